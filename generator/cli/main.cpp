@@ -1,0 +1,194 @@
+// saagen: the command-line front end. Every failure prints one line on stderr and exits non-zero;
+// nothing is written unless everything that would be written has been produced first.
+#include "saagen/catalogue.hpp"
+#include "saagen/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/listing.hpp"
+#include "saagen/output.hpp"
+#include "saagen/validation.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using saagen::Catalogue;
+
+constexpr int exit_usage = 2;
+constexpr int exit_failure = 1;
+
+struct EmitArguments {
+  std::string target = "glsl";
+  std::vector<std::string> variants;
+  std::string prefix = "saa_";
+  std::optional<double> sigma2;
+  std::optional<double> kappa;
+  std::string output_directory;
+  bool force = false;
+};
+
+int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
+  saagen::validate_prefix(prefix);
+  if (json) {
+    std::cout << saagen::catalogue_json(catalogue, prefix).dump(2) << "\n";
+    return 0;
+  }
+  for (const saagen::Variant& variant : catalogue.variants()) {
+    std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
+                             variant.needs_tangents ? "yes" : "no", variant.summary);
+    std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
+    for (const std::string& name : variant.functions) {
+      const saagen::Function& function = *catalogue.find_function(name);
+      std::vector<std::string> parameters;
+      for (const saagen::Parameter& parameter : function.parameters) parameters.push_back(parameter.type + " " + parameter.name);
+      std::cout << fmt::format("{:<26}   {} {}{}({})  [{}]\n", "", function.return_type, prefix, function.name,
+                               fmt::join(parameters, ", "), to_string(function.role));
+    }
+  }
+  return 0;
+}
+
+int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
+  saagen::EmitOptions options;
+  options.target = arguments.target;
+  options.variants = arguments.variants;
+  options.prefix = arguments.prefix;
+  if (arguments.sigma2) options.option_values["sigma2"] = *arguments.sigma2;
+  if (arguments.kappa) options.option_values["kappa"] = *arguments.kappa;
+
+  std::vector<saagen::OutputFile> outputs;
+  for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
+    outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+  }
+  const saagen::WriteReport report = saagen::write_outputs(outputs, arguments.force);
+  for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
+  for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
+  return 0;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw saagen::Error(fmt::format("{}: cannot be read", path.string()));
+  std::ostringstream content;
+  content << stream.rdbuf();
+  return content.str();
+}
+
+// Files `saagen emit` wrote in a directory: known target extensions holding a marker line.
+std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path& directory) {
+  std::error_code error;
+  if (!fs::is_directory(directory, error)) {
+    throw saagen::Error(fmt::format("{}: not a directory; pass the directory `saagen emit -o` wrote", directory.string()));
+  }
+  std::vector<std::string> extensions;
+  for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    const std::string extension = entry.path().extension().string();
+    if (!entry.is_regular_file() || std::find(extensions.begin(), extensions.end(), extension) == extensions.end()) continue;
+    std::string content = read_file(entry.path());
+    if (saagen::find_marker(content)) files.emplace_back(entry.path().string(), std::move(content));
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw saagen::Error(fmt::format("{}: holds no file written by saagen; run `saagen emit -o {}` first", directory.string(), directory.string()));
+  return files;
+}
+
+// Without a directory: every variant for every built-in target, emitted in memory.
+std::vector<std::pair<std::string, std::string>> all_emitted_files(const Catalogue& catalogue) {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& target : saagen::builtin_target_names()) {
+    saagen::EmitOptions options;
+    options.target = target;
+    for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) files.emplace_back(file.file_name, std::move(file.content));
+  }
+  return files;
+}
+
+int run_validate(const Catalogue& catalogue, const std::string& directory) {
+  const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
+  int failures = 0;
+  for (const auto& [name, content] : files) {
+    const saagen::FileValidation validation = saagen::validate_file(catalogue, name, content);
+    std::cout << validation.summary() << "\n";
+    if (!validation.ok()) {
+      ++failures;
+      for (const saagen::ValidationCheck& check : validation.checks) {
+        if (!check.ok) std::cerr << check.name << ":\n" << check.log;
+      }
+    }
+  }
+  std::cout << fmt::format("{} file(s) validated, {} failed\n", files.size(), failures);
+  return failures == 0 ? 0 : exit_failure;
+}
+
+// CLI11 prints multi-line messages; saagen prints one line and the command's --help hint.
+int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+  if (error.get_exit_code() == 0) return app.exit(error);
+  std::string message = error.what();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::cerr << "saagen: error: " << message << " (run `saagen --help`)\n";
+  return exit_usage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"saagen: emits geometric specular anti-aliasing shader snippets (GLSL, HLSL) and validates them in-process"};
+  app.set_version_flag("--version", std::string(saagen::version()));
+  app.require_subcommand(1);
+
+  bool list_json = false;
+  std::string list_prefix = "saa_";
+  CLI::App* list = app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions");
+  list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
+  list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
+
+  EmitArguments emit_arguments;
+  double sigma2 = 0.0;
+  double kappa = 0.0;
+  CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
+  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl or hlsl")->capture_default_str();
+  emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
+  emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
+  CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
+  CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
+  emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
+  emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
+
+  std::string validate_directory;
+  CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process (all variants and targets when no DIR)");
+  validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return report_parse_error(app, error);
+  }
+
+  try {
+    const Catalogue& catalogue = Catalogue::builtin();
+    if (*list) return run_list(catalogue, list_json, list_prefix);
+    if (*emit) {
+      if (*sigma2_option) emit_arguments.sigma2 = sigma2;
+      if (*kappa_option) emit_arguments.kappa = kappa;
+      return run_emit(catalogue, emit_arguments);
+    }
+    if (*validate) return run_validate(catalogue, validate_directory);
+  } catch (const saagen::Error& error) {
+    std::cerr << "saagen: error: " << error.what() << "\n";
+    return exit_failure;
+  } catch (const std::exception& error) {
+    std::cerr << "saagen: internal error: " << error.what() << "\n";
+    return exit_failure;
+  }
+  return exit_failure;
+}

@@ -1,0 +1,48 @@
+// Target syntax tables (targets/*.json): how the dialect's types, intrinsics and constant
+// declarations are spelt in one target language, and the shader skeletons used to validate an
+// emitted file. One table per target; no per-target copy of any formula.
+#pragma once
+
+#include "saagen/compiler.hpp"
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen {
+
+struct ValidationSkeleton {
+  std::string prologue;  // before the emitted file ({core_only_macro} is substituted)
+  std::string epilogue;  // after it; {calls} receives one statement per function
+};
+
+struct TargetSyntax {
+  std::string name;
+  std::string description;
+  std::string file_extension;
+  SourceLanguage language = SourceLanguage::glsl;
+  std::map<std::string, std::string, std::less<>> types;
+  // dialect intrinsic -> pattern with {0}, {1}, ... for the arguments
+  std::map<std::string, std::string, std::less<>> intrinsics;
+  std::string constant_declaration;  // with {type}, {name}, {value}
+  std::vector<ClientApi> validation_clients;
+  ValidationSkeleton fragment_skeleton;
+  ValidationSkeleton compute_skeleton;
+
+  // Parses one table; throws saagen::Error naming `source_name` on a missing or wrong key.
+  static TargetSyntax parse(std::string_view json_text, std::string_view source_name);
+};
+
+// The tables compiled into this build, by name ("glsl", "hlsl").
+const TargetSyntax& builtin_target(std::string_view name);
+std::vector<std::string> builtin_target_names();
+
+// Maps unprefixed template names (functions, constants) to the names they get in the output.
+using NameMap = std::map<std::string, std::string, std::less<>>;
+
+// Rewrites dialect code into the target language: types, intrinsic calls (arguments are
+// rewritten recursively) and template names. Whitespace and comments are kept.
+std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
+
+}  // namespace saagen

@@ -1,0 +1,38 @@
+// In-process validation of emitted files: each file is compiled by glslang inside a generated
+// fragment shader that calls every function and a compute shader that calls every function
+// without derivatives, for every client API the target supports, and checked with spirv-val.
+#pragma once
+
+#include "saagen/catalogue.hpp"
+#include "saagen/compiler.hpp"
+#include "saagen/emitter.hpp"
+
+#include <string>
+#include <vector>
+
+namespace saagen {
+
+struct ValidationCheck {
+  std::string name;  // e.g. "vulkan fragment"
+  bool ok = false;
+  std::string log;
+  std::size_t spirv_words = 0;
+};
+
+struct FileValidation {
+  std::string file_name;
+  std::vector<ValidationCheck> checks;
+  bool ok() const;
+  std::string summary() const;  // one line: "OK  saa_deferred_sum.glsl  (vulkan fragment, ...)" or the first error
+};
+
+// The shader source that validation compiles for `content` (an emitted file described by
+// `marker`) in the given stage: prologue + the file + calls to its functions.
+std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
+                                            const std::string& file_name, const std::string& content, ShaderStage stage);
+
+// Validates an emitted file's content. Throws saagen::Error when the content has no saagen
+// marker or names an unknown target/variant.
+FileValidation validate_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content);
+
+}  // namespace saagen

@@ -1,0 +1,192 @@
+#include "saagen/target.hpp"
+
+#include "saagen/dialect.hpp"
+#include "saagen/error.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
+namespace {
+
+using Json = nlohmann::json;
+
+const Json& require(const Json& object, const char* key, std::string_view source) {
+  if (!object.is_object() || !object.contains(key)) {
+    throw Error(fmt::format("{}: missing key '{}' in the target table", source, key));
+  }
+  return object.at(key);
+}
+
+std::string require_string(const Json& object, const char* key, std::string_view source) {
+  const Json& value = require(object, key, source);
+  if (!value.is_string()) throw Error(fmt::format("{}: key '{}' must be a string", source, key));
+  return value.get<std::string>();
+}
+
+ValidationSkeleton parse_skeleton(const Json& object, std::string_view source) {
+  return {require_string(object, "prologue", source), require_string(object, "epilogue", source)};
+}
+
+ClientApi parse_client(const std::string& name, std::string_view source) {
+  if (name == "vulkan") return ClientApi::vulkan;
+  if (name == "opengl") return ClientApi::opengl;
+  throw Error(fmt::format("{}: validation client '{}' is not vulkan or opengl", source, name));
+}
+
+// Replaces {0}, {1}, ... in `pattern` with the translated arguments.
+std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
+  std::string result;
+  for (std::size_t index = 0; index < pattern.size(); ++index) {
+    const char c = pattern[index];
+    const auto close = pattern.find('}', index);
+    if (c == '{' && close != std::string::npos) {
+      const std::string slot = pattern.substr(index + 1, close - index - 1);
+      if (!slot.empty() && std::all_of(slot.begin(), slot.end(), ::isdigit)) {
+        const std::size_t argument = std::stoul(slot);
+        if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
+        result += arguments[argument];
+        index = close;
+        continue;
+      }
+    }
+    result += c;
+  }
+  return result;
+}
+
+class Translator {
+ public:
+  Translator(const TargetSyntax& target, const NameMap& names, const std::vector<dialect::Token>& tokens)
+      : target_(target), names_(names), tokens_(tokens) {}
+
+  std::string range(std::size_t begin, std::size_t end) const {
+    std::string out;
+    for (std::size_t index = begin; index < end; ++index) {
+      const dialect::Token& token = tokens_[index];
+      if (token.kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens_, index)) {
+        out += token.text;
+        continue;
+      }
+      const std::size_t open = dialect::next_significant(tokens_, index);
+      const auto intrinsic = target_.intrinsics.find(token.text);
+      if (intrinsic != target_.intrinsics.end() && open < end && tokens_[open].text == "(") {
+        std::size_t close = open;
+        const auto arguments = call_arguments(open, end, close);
+        out += expand_pattern(intrinsic->second, arguments);
+        index = close;
+        continue;
+      }
+      if (const auto type = target_.types.find(token.text); type != target_.types.end()) out += type->second;
+      else if (const auto name = names_.find(token.text); name != names_.end()) out += name->second;
+      else out += token.text;
+    }
+    return out;
+  }
+
+ private:
+  // Splits the arguments of the call whose '(' is at `open`; sets `close` to its ')'.
+  std::vector<std::string> call_arguments(std::size_t open, std::size_t end, std::size_t& close) const {
+    std::vector<std::string> arguments;
+    int depth = 0;
+    std::size_t argument_begin = open + 1;
+    for (std::size_t index = open; index < end; ++index) {
+      const std::string_view text = tokens_[index].text;
+      if (text == "(") ++depth;
+      else if (text == ")" && --depth == 0) {
+        arguments.push_back(trimmed(range(argument_begin, index)));
+        close = index;
+        return arguments;
+      } else if (text == "," && depth == 1) {
+        arguments.push_back(trimmed(range(argument_begin, index)));
+        argument_begin = index + 1;
+      }
+    }
+    throw Error("unbalanced parentheses in template code");
+  }
+
+  static std::string trimmed(const std::string& text) {
+    const auto first = text.find_first_not_of(" \t\n");
+    if (first == std::string::npos) return {};
+    return text.substr(first, text.find_last_not_of(" \t\n") - first + 1);
+  }
+
+  const TargetSyntax& target_;
+  const NameMap& names_;
+  const std::vector<dialect::Token>& tokens_;
+};
+
+}  // namespace
+
+TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
+  Json json;
+  try {
+    json = Json::parse(json_text);
+  } catch (const Json::parse_error& error) {
+    throw Error(fmt::format("{}: {}", source, error.what()));
+  }
+  TargetSyntax target;
+  target.name = require_string(json, "name", source);
+  target.description = require_string(json, "description", source);
+  target.file_extension = require_string(json, "file_extension", source);
+  const std::string language = require_string(json, "language", source);
+  if (language != "glsl" && language != "hlsl") throw Error(fmt::format("{}: language '{}' is not glsl or hlsl", source, language));
+  target.language = language == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  for (const auto& [key, value] : require(json, "types", source).items()) target.types[key] = value.get<std::string>();
+  for (const std::string& type : dialect::type_names()) {
+    if (!target.types.count(type)) throw Error(fmt::format("{}: 'types' has no spelling for dialect type '{}'", source, type));
+  }
+  for (const auto& [key, value] : require(json, "intrinsics", source).items()) target.intrinsics[key] = value.get<std::string>();
+  target.constant_declaration = require_string(json, "constant_declaration", source);
+  const Json& validation = require(json, "validation", source);
+  for (const Json& client : require(validation, "clients", source)) {
+    target.validation_clients.push_back(parse_client(client.get<std::string>(), source));
+  }
+  target.fragment_skeleton = parse_skeleton(require(validation, "fragment", source), source);
+  target.compute_skeleton = parse_skeleton(require(validation, "compute", source), source);
+  return target;
+}
+
+namespace {
+const std::map<std::string, TargetSyntax, std::less<>>& builtin_targets() {
+  static const auto targets = [] {
+    std::map<std::string, TargetSyntax, std::less<>> table;
+    for (const auto& [name, text] : embedded::files()) {
+      if (name.rfind("targets/", 0) != 0 || name.size() < 5 || name.substr(name.size() - 5) != ".json") continue;
+      TargetSyntax target = TargetSyntax::parse(text, name);
+      table.emplace(target.name, std::move(target));
+    }
+    return table;
+  }();
+  return targets;
+}
+}  // namespace
+
+const TargetSyntax& builtin_target(std::string_view name) {
+  const auto& targets = builtin_targets();
+  const auto found = targets.find(name);
+  if (found == targets.end()) {
+    throw Error(fmt::format("unknown target '{}'; choose one of: {}", name, fmt::join(builtin_target_names(), ", ")));
+  }
+  return found->second;
+}
+
+std::vector<std::string> builtin_target_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, target] : builtin_targets()) names.push_back(name);
+  return names;
+}
+
+std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names) {
+  const auto tokens = dialect::tokenize(code);
+  return Translator(target, names, tokens).range(0, tokens.size());
+}
+
+}  // namespace saagen

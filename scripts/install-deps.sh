@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs what saagen needs from Debian bookworm's packages, and nothing that is already there.
+# Safe to run repeatedly; needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  glslang-dev spirv-tools spirv-headers
+  # Debian's glslang CMake config names /usr/bin/glslangValidator as an imported target and
+  # fails without it; saagen compiles in-process and never runs the tool.
+  glslang-tools
+  libvulkan-dev mesa-vulkan-drivers
+  libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev
+  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
