@@ -168,6 +168,12 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process (all variants and targets when no DIR)");
   validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
 
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
+        return command->get_name() == argv[1];
+      }).empty()) {
+    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate (run `saagen --help`)\n";
+    return exit_usage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

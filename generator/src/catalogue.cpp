@@ -190,7 +190,7 @@ class TemplateParser {
       else fail(file_, value.number, fmt::format("unknown function key '{}'; allowed: role, cite, returns, param", key));
     }
     require_keys(file_, line, "@function " + name, seen, {"role", "cite", "returns"});
-    function.body = read_body(name);
+    function.body = read_body(name, line);
     functions_.push_back(std::move(function));
   }
 
@@ -224,10 +224,9 @@ class TemplateParser {
     return Parameter{words[0], words[1], meaning};
   }
 
-  std::string read_body(const std::string& name) {
+  std::string read_body(const std::string& name, int function_line) {
     if (next_ >= lines_.size() || trim(lines_[next_].text) != "{") {
-      const int line = next_ < lines_.size() ? lines_[next_].number : lines_.back().number;
-      fail(file_, line, fmt::format("@function {} needs a body: a line '{{', the code, and a line '}}'", name));
+      fail(file_, function_line, fmt::format("@function {} needs a body: a line '{{', the code, and a line '}}'", name));
     }
     const int open_line = lines_[next_].number;
     ++next_;

@@ -1,0 +1,227 @@
+// The saagen command line: what it writes, what it prints, and how it refuses bad input (one
+// line on stderr, a non-zero exit, nothing written).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+std::string quote(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    scratch_ = fs::temp_directory_path() / (std::string("saagen-cli-") + info->name() + "-" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::permissions(scratch_, fs::perms::owner_all, fs::perm_options::add, ignored);
+    fs::remove_all(scratch_, ignored);
+  }
+
+  CliRun saagen(const std::vector<std::string>& arguments) const {
+    std::string command = quote(SAAGEN_CLI_PATH);
+    for (const std::string& argument : arguments) command += " " + quote(argument);
+    const fs::path out = scratch_ / "stdout.txt";
+    const fs::path err = scratch_ / "stderr.txt";
+    command += " >" + quote(out.string()) + " 2>" + quote(err.string());
+    const int status = std::system(command.c_str());
+    CliRun run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out = read_text(out);
+    run.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return run;
+  }
+
+  // Asserts a refusal: non-zero exit, exactly one line on stderr containing `expected`.
+  void expect_one_line_error(const CliRun& run, const std::string& expected) const {
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+
+  std::set<std::string> files_in(const fs::path& directory) const {
+    std::set<std::string> names;
+    if (!fs::exists(directory)) return names;
+    for (const auto& entry : fs::directory_iterator(directory)) names.insert(entry.path().filename().string());
+    return names;
+  }
+
+  fs::path scratch_;
+};
+
+TEST_F(Cli, ListJsonIsTheContract) {
+  const CliRun run = saagen({"list", "--json", "--prefix", "eng_"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["prefix"], "eng_");
+  EXPECT_EQ(json["core_only_macro"], "ENG_CORE_ONLY");
+  ASSERT_EQ(json["variants"].size(), 11u);
+  for (const auto& variant : json["variants"]) {
+    for (const char* key : {"id", "summary", "paper", "equation", "render_path", "needs_tangents", "domain", "functions"}) {
+      EXPECT_TRUE(variant.contains(key)) << key;
+    }
+    for (const auto& function : variant["functions"]) {
+      EXPECT_EQ(function["emitted_name"].get<std::string>(), "eng_" + function["name"].get<std::string>());
+      for (const auto& parameter : function["parameters"]) {
+        EXPECT_FALSE(parameter["meaning"].get<std::string>().empty());
+        EXPECT_TRUE(parameter["target_types"].contains("glsl"));
+        EXPECT_TRUE(parameter["target_types"].contains("hlsl"));
+      }
+    }
+  }
+  const auto& sum = json["variants"][6];
+  EXPECT_EQ(sum["id"], "deferred-sum");
+  EXPECT_EQ(sum["needs_tangents"], false);
+  EXPECT_EQ(sum["functions"][0]["parameters"][1]["target_types"]["hlsl"], "float3");
+  EXPECT_EQ(json["options"][0]["name"], "sigma2");
+  EXPECT_EQ(json["options"][0]["default"], 0.25);
+}
+
+TEST_F(Cli, ListPrintsEveryVariant) {
+  const CliRun run = saagen({"list"});
+  ASSERT_EQ(run.exit_code, 0);
+  for (const char* id : {"forward-aniso-slope", "deferred-projected-space", "brdf-beckmann"}) {
+    EXPECT_NE(run.out.find(id), std::string::npos) << id;
+  }
+}
+
+TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
+  const fs::path out = scratch_ / "out";
+  const CliRun first = saagen({"emit", "--target", "hlsl", "-o", out.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_EQ(files_in(out).size(), 11u);
+  EXPECT_TRUE(files_in(out).count("saa_deferred_avg.hlsl"));
+  const auto stamp = fs::last_write_time(out / "saa_deferred_avg.hlsl");
+  const std::string bytes = read_text(out / "saa_deferred_avg.hlsl");
+
+  const CliRun second = saagen({"emit", "--target", "hlsl", "-o", out.string()});
+  ASSERT_EQ(second.exit_code, 0);
+  EXPECT_EQ(second.out.find("wrote"), std::string::npos) << second.out;
+  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 11);
+  EXPECT_EQ(fs::last_write_time(out / "saa_deferred_avg.hlsl"), stamp);  // no needless rebuilds
+  EXPECT_EQ(read_text(out / "saa_deferred_avg.hlsl"), bytes);
+  EXPECT_EQ(files_in(out).size(), 11u);  // no temporaries left behind
+}
+
+TEST_F(Cli, EmitSelectedVariantsWithOptions) {
+  const fs::path out = scratch_ / "out";
+  const CliRun run = saagen({"emit", "-t", "glsl", "-v", "deferred-sum", "--variant", "forward-axis-projected", "--prefix", "my_",
+                          "--sigma2", "0.5", "--kappa", "0.1", "-o", out.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(files_in(out), (std::set<std::string>{"my_deferred_sum.glsl", "my_forward_axis_projected.glsl"}));
+  const std::string text = read_text(out / "my_deferred_sum.glsl");
+  EXPECT_NE(text.find("const float my_SIGMA2 = 0.5;"), std::string::npos);
+  EXPECT_NE(text.find("const float my_KAPPA = 0.1;"), std::string::npos);
+}
+
+TEST_F(Cli, ValidateChecksWhatEmitWrote) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "-t", "glsl", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
+  const CliRun good = saagen({"validate", out.string()});
+  EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+  EXPECT_NE(good.out.find("22 file(s) validated, 0 failed"), std::string::npos) << good.out;
+
+  // A hand edit that breaks the code is caught and named.
+  const fs::path edited = out / "saa_deferred_max.hlsl";
+  std::string text = read_text(edited);
+  text.replace(text.find("return saturate"), 6, "retrun");
+  std::ofstream(edited, std::ios::binary) << text;
+  const CliRun bad = saagen({"validate", out.string()});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.out.find("FAIL " + edited.string()), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("22 file(s) validated, 1 failed"), std::string::npos) << bad.out;
+}
+
+TEST_F(Cli, ValidateWithoutDirectoryChecksEverything) {
+  const CliRun run = saagen({"validate"});
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("22 file(s) validated, 0 failed"), std::string::npos);
+}
+
+TEST_F(Cli, RejectsBadInputWithOneLineAndWritesNothing) {
+  const fs::path out = scratch_ / "out";
+  expect_one_line_error(saagen({"emit", "-v", "deferred-median", "-o", out.string()}),
+                        "unknown variant 'deferred-median'; run `saagen list` to see the ids");
+  expect_one_line_error(saagen({"emit", "-v", "deferred-sum", "-v", "nope", "-o", out.string()}), "unknown variant 'nope'");
+  expect_one_line_error(saagen({"emit", "--target", "metal", "-o", out.string()}), "unknown target 'metal'");
+  expect_one_line_error(saagen({"emit", "--sigma2", "abc", "-o", out.string()}), "--sigma2");
+  expect_one_line_error(saagen({"emit", "--sigma2", "0", "-o", out.string()}), "--sigma2 0 is out of range: allowed (0, 4]");
+  expect_one_line_error(saagen({"emit", "--kappa", "1.5", "-o", out.string()}), "--kappa 1.5 is out of range: allowed [0, 1]");
+  expect_one_line_error(saagen({"emit", "--kappa", "nan", "-o", out.string()}), "--kappa nan is out of range");
+  expect_one_line_error(saagen({"emit", "--prefix", "x;y", "-o", out.string()}), "invalid prefix 'x;y'");
+  expect_one_line_error(saagen({"emit", "--prefix", "gl_", "-o", out.string()}), "'gl_' is reserved in GLSL");
+  expect_one_line_error(saagen({"emit"}), "--output is required");
+  expect_one_line_error(saagen({"frobnicate"}), "unknown command 'frobnicate'; use list, emit or validate");
+  expect_one_line_error(saagen({"validate", (scratch_ / "missing").string()}), "not a directory");
+  EXPECT_FALSE(fs::exists(out)) << "a refused command created the output directory";
+}
+
+TEST_F(Cli, UnwritableOutputIsOneLineAndLeavesNoPartialFiles) {
+  const fs::path blocker = scratch_ / "a-file";
+  std::ofstream(blocker) << "not a directory";
+  expect_one_line_error(saagen({"emit", "-o", (blocker / "out").string()}), "cannot create the output directory");
+
+  if (::geteuid() != 0) {  // root ignores directory permissions
+    const fs::path locked = scratch_ / "locked";
+    fs::create_directories(locked);
+    fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+    expect_one_line_error(saagen({"emit", "-o", locked.string()}), "cannot write in this directory");
+    EXPECT_TRUE(files_in(locked).empty());
+  }
+}
+
+TEST_F(Cli, RefusesToOverwriteForeignFilesUnlessForced) {
+  const fs::path out = scratch_ / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "saa_deferred_sum.glsl") << "// my own shader\n";
+  expect_one_line_error(saagen({"emit", "-o", out.string()}), "was not written by saagen; refusing to overwrite it (use --force)");
+  EXPECT_EQ(files_in(out), std::set<std::string>{"saa_deferred_sum.glsl"});  // all or nothing
+  EXPECT_EQ(read_text(out / "saa_deferred_sum.glsl"), "// my own shader\n");
+  const CliRun forced = saagen({"emit", "--force", "-o", out.string()});
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(files_in(out).size(), 11u);
+}
+
+TEST_F(Cli, HelpOnEveryCommand) {
+  for (const std::vector<std::string>& arguments :
+       {std::vector<std::string>{"--help"}, {"list", "--help"}, {"emit", "--help"}, {"validate", "--help"}}) {
+    const CliRun run = saagen(arguments);
+    EXPECT_EQ(run.exit_code, 0) << arguments.front();
+    EXPECT_NE(run.out.find("Usage"), std::string::npos) << run.out;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,135 @@
+// The template dialect: parsing rules, the error each mistake produces (file:line: what to do),
+// and the translation of types, intrinsics and names into each target.
+#include "saagen/catalogue.hpp"
+#include "saagen/error.hpp"
+#include "saagen/target.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using saagen::Catalogue;
+
+const char* const valid_function = R"(@function twice
+role: core
+cite: test
+returns: real | two times x
+param: real x | input
+{
+    return 2.0 * x;
+}
+)";
+
+std::string parse_error(const std::string& text) {
+  try {
+    Catalogue::parse({{"templates/test.saa", text}});
+  } catch (const saagen::Error& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(TemplateParser, ReadsAFunctionWithItsParametersAndBody) {
+  const Catalogue catalogue = Catalogue::parse({{"templates/test.saa", valid_function}});
+  const saagen::Function* function = catalogue.find_function("twice");
+  ASSERT_NE(function, nullptr);
+  EXPECT_EQ(function->role, saagen::FunctionRole::core);
+  EXPECT_EQ(function->return_type, "real");
+  ASSERT_EQ(function->parameters.size(), 1u);
+  EXPECT_EQ(function->parameters[0].name, "x");
+  EXPECT_EQ(function->parameters[0].meaning, "input");
+  EXPECT_EQ(function->body, "    return 2.0 * x;\n");
+  EXPECT_EQ(function->line, 1);
+}
+
+TEST(TemplateParser, RejectsMatrixProductsWithALineAndAFix) {
+  const std::string text = "\n\n@function bad\nrole: core\ncite: c\nreturns: real3 | r\nparam: real3 v | v\n{\n    return mul(v, v);\n}\n";
+  EXPECT_EQ(parse_error(text),
+            "templates/test.saa:3: bad uses 'mul': the dialect has no matrices; write the product with dot products");
+}
+
+TEST(TemplateParser, RejectsMatrixTypes) {
+  EXPECT_EQ(parse_error("@function f\nrole: core\ncite: c\nreturns: real | r\nparam: float2x2 m | m\n{\n}\n"),
+            "templates/test.saa:5: unknown type 'float2x2'; the dialect has real, real2, real3, real4, bool, int (no matrices)");
+}
+
+TEST(TemplateParser, ReportsEachKindOfMistakeAtItsLine) {
+  EXPECT_EQ(parse_error("@function f\nrole: core\n"), "templates/test.saa:1: @function f is missing the 'cite:' line");
+  EXPECT_EQ(parse_error("@function f\nrole: sometimes\n"),
+            "templates/test.saa:2: role 'sometimes' is not one of core, fragment, evaluate, helper");
+  EXPECT_EQ(parse_error("@function f\nrole: core\ncite: c\nreturns: real | r\n"),
+            "templates/test.saa:1: @function f needs a body: a line '{', the code, and a line '}'");
+  EXPECT_EQ(parse_error("@function f\nrole: core\ncite: c\nreturns: real | r\n{\n  return 1.0;\n"),
+            "templates/test.saa:5: body of f has no closing '}' line at column 1");
+  EXPECT_EQ(parse_error("@shader f\n"), "templates/test.saa:1: unknown block '@shader'; use @variant, @function or @constant");
+  EXPECT_EQ(parse_error("@function f\nrole: core\ncolour: red\n"),
+            "templates/test.saa:3: unknown function key 'colour'; allowed: role, cite, returns, param");
+  EXPECT_EQ(parse_error("# alpha \xce\xb1\n"),
+            "templates/test.saa:1: non-ASCII character; templates (and the code they emit) must be ASCII");
+  EXPECT_EQ(parse_error(std::string(valid_function) + valid_function), "templates/test.saa:9: function name 'twice' is already used");
+}
+
+TEST(TemplateParser, ChecksRolesAgainstDerivativeUse) {
+  EXPECT_EQ(parse_error("@function f\nrole: core\ncite: c\nreturns: real | r\nparam: real x | x\n{\n    return ddx(x);\n}\n"),
+            "templates/test.saa:1: f takes screen-space derivatives; its role must be fragment");
+  // Derivative use propagates through helpers to their callers.
+  const std::string chain =
+      "@function h\nrole: helper\ncite: c\nreturns: real | r\nparam: real x | x\n{\n    return ddy_fine(x);\n}\n"
+      "@function g\nrole: evaluate\ncite: c\nreturns: real | r\nparam: real x | x\n{\n    return h(x);\n}\n";
+  EXPECT_EQ(parse_error(chain), "templates/test.saa:9: g takes screen-space derivatives; its role must be fragment");
+}
+
+TEST(TemplateParser, ChecksVariantsAndOptions) {
+  EXPECT_EQ(parse_error("@variant v\nsummary: s\npaper: p\nequation: e\npath: sideways\n"),
+            "templates/test.saa:5: path 'sideways' is not one of forward, deferred, any");
+  EXPECT_EQ(parse_error("@variant v\nsummary: s\npaper: p\nequation: e\npath: any\ntangents: no\ndomain: d\nfunctions: nothing\n"),
+            "templates/test.saa:1: variant v lists unknown function 'nothing'");
+  EXPECT_EQ(parse_error("@constant K\ntype: real\nmeaning: m\noption: k\ndefault: 2\nrange: [0, 1]\n"),
+            "templates/test.saa:1: default 2 of K is outside its range [0, 1]");
+}
+
+TEST(TemplateParser, RecordsCallsConstantsAndClosureOrder) {
+  const Catalogue& catalogue = Catalogue::builtin();
+  const saagen::Function* sum = catalogue.find_function("deferred_sum");
+  ASSERT_NE(sum, nullptr);
+  EXPECT_EQ(sum->calls, std::vector<std::string>{"isotropic_kernel_sum"});
+  EXPECT_EQ(sum->constants, std::vector<std::string>{"KAPPA"});
+  std::vector<std::string> order;
+  for (const saagen::Function* function : catalogue.closure({"deferred_sum_fragment"})) order.push_back(function->name);
+  EXPECT_EQ(order, (std::vector<std::string>{"isotropic_kernel_sum", "deferred_sum", "deferred_sum_fragment"}));
+}
+
+TEST(Translation, SpellsTypesIntrinsicsAndNamesPerTarget) {
+  const saagen::NameMap names = {{"helper", "eng_helper"}, {"KAPPA", "eng_KAPPA"}};
+  const std::string code = "real3 v = saturate(lerp(a, frac(b.xy), rsqrt(c))) + helper(ddx_fine(v.x)) * KAPPA;";
+  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), code, names),
+            "vec3 v = clamp(mix(a, fract(b.xy), inversesqrt(c)), 0.0, 1.0) + eng_helper(dFdxFine(v.x)) * eng_KAPPA;");
+  EXPECT_EQ(saagen::translate(saagen::builtin_target("hlsl"), code, names),
+            "float3 v = saturate(lerp(a, frac(b.xy), rsqrt(c))) + eng_helper(ddx_fine(v.x)) * eng_KAPPA;");
+}
+
+TEST(Translation, LeavesMemberAccessesCommentsAndUnknownNamesAlone) {
+  const saagen::NameMap names = {{"x", "eng_x"}};
+  // `.x` is a swizzle, not the template name x; comments keep their text.
+  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), "v.x + x; // real x\nfoo(x)", names),
+            "v.x + eng_x; // real x\nfoo(eng_x)");
+}
+
+TEST(TargetTable, ReportsMissingKeysAndTypes) {
+  try {
+    saagen::TargetSyntax::parse(R"({"name": "x"})", "targets/x.json");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "targets/x.json: missing key 'description' in the target table");
+  }
+  try {
+    saagen::TargetSyntax::parse(R"({"name": "x", "description": "d", "file_extension": "x", "language": "glsl",
+                                    "types": {"real": "float"}})",
+                                "targets/x.json");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "targets/x.json: 'types' has no spelling for dialect type 'real2'");
+  }
+}
+
+}  // namespace
