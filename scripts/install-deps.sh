@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   glslang-dev spirv-tools spirv-headers
   # Debian's glslang CMake config names /usr/bin/glslangValidator as an imported target and
   # fails without it; saagen compiles in-process and never runs the tool.

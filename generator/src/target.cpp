@@ -151,6 +151,9 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   }
   target.fragment_skeleton = parse_skeleton(require(validation, "fragment", source), source);
   target.compute_skeleton = parse_skeleton(require(validation, "compute", source), source);
+  for (const auto& [kind, skeleton] : require(json, "kernels", source).items()) {
+    target.kernel_skeletons[kind] = parse_skeleton(skeleton, source);
+  }
   return target;
 }
 

@@ -29,6 +29,9 @@ struct TargetSyntax {
   std::vector<ClientApi> validation_clients;
   ValidationSkeleton fragment_skeleton;
   ValidationSkeleton compute_skeleton;
+  // Skeletons that run emitted functions over buffers ("compute", "quad_compute",
+  // "fragment"); see saagen/kernels.hpp.
+  std::map<std::string, ValidationSkeleton, std::less<>> kernel_skeletons;
 
   // Parses one table; throws saagen::Error naming `source_name` on a missing or wrong key.
   static TargetSyntax parse(std::string_view json_text, std::string_view source_name);

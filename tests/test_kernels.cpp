@@ -1,0 +1,99 @@
+// Kernels compile for every function, target and kind: the GPU harness (issue 3) depends on
+// them, and this suite needs no Vulkan device.
+#include "saagen/catalogue.hpp"
+#include "saagen/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/kernels.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using saagen::Catalogue;
+
+saagen::CompileResult compile_kernel(const saagen::EmittedFile& file, const saagen::KernelRequest& request,
+                                     saagen::ShaderStage stage) {
+  saagen::CompileRequest compile;
+  compile.language = file.marker.target == "hlsl" ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
+  compile.stage = stage;
+  compile.sources = saagen::kernel_sources(Catalogue::builtin(), file.file_name, file.content, request);
+  return saagen::compile_to_spirv(compile);
+}
+
+std::vector<saagen::EmittedFile> all_files(const std::string& target) {
+  saagen::EmitOptions options;
+  options.target = target;
+  return saagen::emit_variants(Catalogue::builtin(), options);
+}
+
+// A body calling a fragment wrapper with every argument derived from the pixel centre.
+std::string wrapper_body(const saagen::Function& function) {
+  std::string arguments;
+  for (const saagen::Parameter& parameter : function.parameters) {
+    if (!arguments.empty()) arguments += ", ";
+    const std::string seed = "(saagen_frag_coord.x * 0.01 + saagen_frag_coord.y * 0.02 + SAAGEN_LOAD(0))";
+    arguments += parameter.type == "real" ? seed : parameter.type + "(" + seed + ")";
+  }
+  std::string body = "    " + function.return_type + " saagen_result = " + function.name + "(" + arguments + ");\n";
+  body += "    SAAGEN_STORE(0, saagen_result" + std::string(function.return_type == "real" ? "" : ".x") + ");\n";
+  return body;
+}
+
+class KernelsPerTarget : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(KernelsPerTarget, EveryCoreAndEvaluateFunctionRunsInACompute) {
+  int compiled = 0;
+  for (const auto& file : all_files(GetParam())) {
+    for (const std::string& name : saagen::public_functions(Catalogue::builtin(), file.marker.variants)) {
+      const saagen::Function& function = *Catalogue::builtin().find_function(name);
+      if (function.fragment_only) continue;
+      saagen::KernelRequest request;
+      request.body = saagen::load_call_store_body(Catalogue::builtin(), name, request);
+      EXPECT_EQ(request.input_stride, [&] {
+        std::uint32_t floats = 0;
+        for (const auto& parameter : function.parameters) floats += saagen::component_count(parameter.type);
+        return floats;
+      }());
+      const auto result = compile_kernel(file, request, saagen::ShaderStage::compute);
+      EXPECT_TRUE(result.ok) << file.file_name << " " << name << ":\n" << result.log;
+      ++compiled;
+    }
+  }
+  EXPECT_EQ(compiled, 24);  // 4 forward + 6 deferred cores, 8 GGX + 6 Beckmann evaluators
+}
+
+TEST_P(KernelsPerTarget, EveryFragmentWrapperRunsInAFragmentShaderAndUnderQuadEmulation) {
+  for (const auto& file : all_files(GetParam())) {
+    for (const std::string& name : saagen::public_functions(Catalogue::builtin(), file.marker.variants)) {
+      const saagen::Function& function = *Catalogue::builtin().find_function(name);
+      if (!function.fragment_only) continue;
+      for (const auto plain : {saagen::PlainDerivative::coarse, saagen::PlainDerivative::fine}) {
+        saagen::KernelRequest request;
+        request.body = wrapper_body(function);
+        request.output_stride = 1;
+        request.width = 64;
+        request.plain_derivative = plain;
+        request.kind = saagen::KernelKind::quad_compute;
+        const auto quad = compile_kernel(file, request, saagen::ShaderStage::compute);
+        EXPECT_TRUE(quad.ok) << file.file_name << " " << name << " (quad compute):\n" << quad.log;
+        request.kind = saagen::KernelKind::fragment;
+        const auto fragment = compile_kernel(file, request, saagen::ShaderStage::fragment);
+        EXPECT_TRUE(fragment.ok) << file.file_name << " " << name << " (fragment):\n" << fragment.log;
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, KernelsPerTarget, ::testing::Values("glsl", "hlsl"));
+
+TEST(Kernels, RejectOddWidthsAndUnmarkedFiles) {
+  const auto file = all_files("glsl").front();
+  saagen::KernelRequest request;
+  request.kind = saagen::KernelKind::fragment;
+  request.width = 63;
+  EXPECT_THROW(saagen::kernel_sources(Catalogue::builtin(), file.file_name, file.content, request), saagen::Error);
+  request.width = 64;
+  EXPECT_THROW(saagen::kernel_sources(Catalogue::builtin(), "x.glsl", "float f;", request), saagen::Error);
+}
+
+}  // namespace
