@@ -1,0 +1,81 @@
+#include "saagen/harness/compare.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace saagen::harness {
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// |got - expected| in units of the allowed error; 0 for an exact match, infinity for a
+// non-finite mismatch or any mismatch under a zero tolerance. Fails when > 1.
+double normalised_error(double got, double expected, Tolerance tolerance) {
+  if (std::isnan(expected) || std::isnan(got)) return std::isnan(expected) && std::isnan(got) ? 0.0 : infinity;
+  if (std::isinf(expected) || std::isinf(got)) return got == expected ? 0.0 : infinity;
+  const double difference = std::fabs(got - expected);
+  if (difference == 0.0) return 0.0;
+  const double allowed = tolerance.abs_tol + tolerance.rel_tol * std::fabs(expected);
+  return allowed > 0.0 ? difference / allowed : infinity;
+}
+
+template <typename Got, typename Expected>
+CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, Tolerance tolerance,
+                           const std::string& what, const DescribeElement& describe) {
+  if (got.size() != expected.size()) {
+    throw std::invalid_argument(
+        fmt::format("compare{}: {} values but {} expected values", what.empty() ? "" : " (" + what + ")", got.size(),
+                    expected.size()));
+  }
+  CompareReport report;
+  report.tolerance = tolerance;
+  report.what = what;
+  report.compared = got.size();
+  double worst = -1.0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const double error = normalised_error(static_cast<double>(got[i]), static_cast<double>(expected[i]), tolerance);
+    if (error > 1.0) ++report.failing;
+    if (error > worst) {
+      worst = error;
+      report.worst_index = i;
+    }
+  }
+  if (report.compared > 0) {
+    report.worst_got = static_cast<double>(got[report.worst_index]);
+    report.worst_expected = static_cast<double>(expected[report.worst_index]);
+    report.worst_normalised_error = worst;
+    if (describe) report.worst_label = describe(report.worst_index);
+  }
+  return report;
+}
+
+}  // namespace
+
+std::string CompareReport::summary() const {
+  std::string line = fmt::format("{}{} of {} failing (tol abs {:g} + rel {:g})", what.empty() ? "" : what + ": ",
+                                 failing, compared, tolerance.abs_tol, tolerance.rel_tol);
+  if (compared == 0) return line;
+  return line + fmt::format("; worst #{}{}: got {:.9g}, expected {:.17g}, err {:.3g} x tol", worst_index,
+                            worst_label.empty() ? "" : " " + worst_label, worst_got, worst_expected,
+                            worst_normalised_error);
+}
+
+CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance,
+                      const std::string& what, const DescribeElement& describe) {
+  return compare_impl(got, expected, tolerance, what, describe);
+}
+
+CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance,
+                      const std::string& what, const DescribeElement& describe) {
+  return compare_impl(got, expected, tolerance, what, describe);
+}
+
+CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance,
+                      const std::string& what, const DescribeElement& describe) {
+  return compare_impl(got, expected, tolerance, what, describe);
+}
+
+}  // namespace saagen::harness

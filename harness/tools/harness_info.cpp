@@ -1,0 +1,25 @@
+// Prints the Vulkan device the harness selects (or all devices with --list).
+// Usage: saagen_harness_info [--device NAME] [--list]
+#include <saagen/harness/context.hpp>
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <exception>
+
+int main(int argc, char** argv) {
+  using namespace saagen::harness;
+  try {
+    const std::string device = take_device_flag(argc, argv);
+    if (argc > 1 && std::strcmp(argv[1], "--list") == 0) {
+      for (const std::string& name : VulkanContext::available_devices()) fmt::print("{}\n", name);
+      return 0;
+    }
+    VulkanContext context(ContextOptions{device});
+    fmt::print("{}\n", context.info().summary());
+    return 0;
+  } catch (const std::exception& error) {
+    fmt::print(stderr, "saagen_harness_info: {}\n", error.what());
+    return 1;
+  }
+}
