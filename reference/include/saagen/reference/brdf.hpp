@@ -1,0 +1,84 @@
+// saagen reference: the microfacet BRDFs of templates/30-brdf.saa, in double precision.
+//
+// Directions are unit vectors in tangent space (z = shading normal). A roughness matrix A is
+// a Sym2 (A00, A01, A11) in the alpha^2 domain; (ax^2, ay^2) is a Vec2. BRDF values exclude
+// the Fresnel factor. Same names, argument order, guards and clamps as the templates.
+#pragma once
+
+#include "saagen/reference/math.hpp"
+#include "saagen/reference/quad.hpp"
+#include "saagen/reference/saa.hpp"
+
+namespace saagen::ref {
+
+// tau = ax^2 ay^2 for the determinant clamp (T&K 2019 supplemental Sec. 1, "Practical
+// Implementation"): sqrt(det A) is kept >= the unfiltered ax ay.
+double ndf_clamp_tau(Vec2 alpha2);
+
+// ---------------------------------------------------------------------------------------------
+// GGX
+
+// Supplemental Sec. 1: D(h) = chi+(hz) / (pi sqrt(max(det A, tau)) (h.xy^T A^-1 h.xy + hz^2)^2),
+// A^-1 = adj(A) / max(det A, tau).
+double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau);
+
+// Supplemental Sec. 1: Lambda(w) = -1/2 + sqrt(w.xy^T A w.xy + wz^2) / (2 |wz|).
+double ggx_lambda_matrix(Vec3 w, Sym2 a);
+
+// Height-correlated G2 = chi+(i.h) chi+(o.h) / (1 + Lambda(i) + Lambda(o)) (Heitz 2014, as in
+// the supplemental document Sec. 1).
+double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a);
+
+// T&K 2019 Sec. 2.2: f = G2 D / (4 |i.n| |o.n|) without F; 0 when i.z <= 0 or o.z <= 0.
+double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau);
+
+// Supplemental Sec. 1, axis-aligned: D(h) = chi+(hz) / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2).
+double ggx_ndf_axis(Vec3 h, Vec2 alpha2);
+
+// Supplemental Sec. 1, axis-aligned: Lambda(w) = -1/2 + sqrt(ax^2 wx^2 + ay^2 wy^2 + wz^2) / (2|wz|).
+double ggx_lambda_axis(Vec3 w, Vec2 alpha2);
+
+// Axis-aligned GGX BRDF with height-correlated G2, without F.
+double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
+
+// ---------------------------------------------------------------------------------------------
+// Beckmann
+
+// Heitz 2014 with a roughness matrix: D(h) = chi+(hz) exp(-s^T A^-1 s) / (pi sqrt(max(det A, tau))
+// hz^4), s = h.xy / hz, A^-1 = adj(A) / max(det A, tau).
+double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau);
+
+// Walter et al. 2007 rational fit: Lambda(a) = (1 - 1.259 a + 0.396 a^2) / (3.535 a + 2.181 a^2)
+// for a < 1.6, else 0; a = 1 / (alpha_o tan theta_o).
+double beckmann_lambda_from_a(double a_param);
+
+// Exact Beckmann Smith Lambda (Heitz 2014 Eq. 81 form):
+// Lambda(a) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)). For testing the Walter fit.
+double beckmann_lambda_exact(double a_param);
+
+// Heitz 2014: Lambda(w) with a = |wz| / sqrt(w.xy^T A w.xy) and the Walter fit; 0 when
+// w.xy^T A w.xy <= 0.
+double beckmann_lambda_matrix(Vec3 w, Sym2 a);
+
+// f = G2 D / (4 |i.n| |o.n|), matrix Beckmann NDF, without F.
+double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau);
+
+// Beckmann 1963 axis-aligned: D(h) = chi+(hz) exp(-(sx^2/ax^2 + sy^2/ay^2)) / (pi ax ay hz^4).
+double beckmann_ndf_axis(Vec3 h, Vec2 alpha2);
+
+// Axis-aligned Beckmann BRDF (Walter Lambda through the matrix form with A = diag(alpha2)).
+double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
+
+// ---------------------------------------------------------------------------------------------
+// Fragment wrappers on a 2x2 quad (quad.hpp): the template differentiates the projected half
+// vector normalize(i + o) with plain ddx/ddy (forward_aniso_projected_fragment), then evaluates
+// the matrix BRDF of this pixel with tau = ndf_clamp_tau(alpha2).
+
+double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
+                                       Vec2 alpha2, int pixel,
+                                       Derivative mode = Derivative::coarse);
+double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i,
+                                            const Quad<Vec3>& o, Vec2 alpha2, int pixel,
+                                            Derivative mode = Derivative::coarse);
+
+}  // namespace saagen::ref

@@ -1,0 +1,8 @@
+// saagen reference: everything (double-precision re-implementation of templates/*.saa).
+#pragma once
+
+#include "saagen/reference/math.hpp"
+#include "saagen/reference/quad.hpp"
+#include "saagen/reference/saa.hpp"
+#include "saagen/reference/brdf.hpp"
+#include "saagen/reference/jacobian.hpp"

@@ -1,0 +1,153 @@
+// saagen reference: the filtering variants of templates/00-common.saa, 10-forward.saa and
+// 20-deferred.saa, in double precision.
+//
+// Every function has the name and the argument order of its template function; the functions
+// whose template body reads SIGMA2 or KAPPA take a Params first. Types: real -> double,
+// real2 -> Vec2, real3 -> Vec3 (or Sym2 for a symmetric matrix (m00, m01, m11)).
+// The bodies compute the same formulas as the templates, with the same guards, clamps and
+// saturates, so that emitted fp32 code can be compared with them element-wise.
+//
+// Fragment wrappers (role: fragment, which call ddx/ddy on the GPU) have a *_quad reference
+// taking the per-pixel inputs of a whole 2x2 quad (quad.hpp) and the index of the pixel whose
+// result is wanted. Inputs that the wrapper does not differentiate (alpha2) are plain values:
+// pass the value of that pixel.
+#pragma once
+
+#include "saagen/reference/math.hpp"
+#include "saagen/reference/quad.hpp"
+
+namespace saagen::ref {
+
+// The emission-time constants of templates/00-common.saa.
+struct Params {
+    double sigma2 = 0.25;  // SIGMA2: variance of the Gaussian pixel filter, pixels^2 (sigma = 0.5)
+    double kappa = 0.18;   // KAPPA: clamp of the kernel roughness, alpha^2 domain
+};
+
+// ---------------------------------------------------------------------------------------------
+// Helpers (templates/00-common.saa)
+
+// Delta^T Delta for the 2x2 matrix Delta with rows du and dv
+// (Kaplanyan et al. 2016; Tokuyoshi & Kaplanyan 2019 Sec. 2.2).
+Sym2 sym2_from_derivative_rows(Vec2 du, Vec2 dv);
+
+// Largest eigenvalue of a symmetric 2x2 matrix: (m00 + m11)/2 + sqrt(((m00 - m11)/2)^2 + m01^2).
+double sym2_max_eigenvalue(Sym2 m);
+
+// Determinant m00 m11 - m01^2.
+double sym2_determinant(Sym2 m);
+
+// v^T M v = m00 vx^2 + 2 m01 vx vy + m11 vy^2.
+double sym2_quadratic_form(Sym2 m, Vec2 v);
+
+// (v.t, v.b, v.n): v expressed in the frame (t, b, n), written with dot products.
+Vec3 to_tangent_space(Vec3 v, Vec3 t, Vec3 b, Vec3 n);
+
+// Slope-space half vector h.xy / |h.z| (Kaplanyan et al. 2016; T&K 2019 Listing 1). The paper's
+// slope (supplemental Eq. 5) is -h.xy / h.z; Sigma is quadratic in it, so the sign is immaterial.
+Vec2 half_vector_slope(Vec3 half_ts);
+
+// Orthographic projection of h onto the hx-hy plane: h.xy (T&K 2019 Sec. 3.2).
+Vec2 half_vector_projected(Vec3 half_ts);
+
+// Roughness matrix A = diag(ax^2, ay^2) + 2 Sigma, Sigma = sigma^2 Delta^T Delta
+// (T&K 2019 Sec. 2.2). Not clamped.
+Sym2 filter_roughness_matrix(const Params& p, Vec2 alpha2, Vec2 du, Vec2 dv);
+
+// Kaplanyan et al. 2016 biased axis-aligned kernel: rect = |du| + |dv|,
+// alpha^2 = saturate(alpha^2 + min(2 sigma^2 rect^2, kappa)) per axis.
+Vec2 filter_roughness_rectangle(const Params& p, Vec2 alpha2, Vec2 du, Vec2 dv);
+
+// tr(Sigma) = sigma^2 (|dn_dx|^2 + |dn_dy|^2) (T&K 2019 Eqs. 2-3).
+double isotropic_kernel_sum(const Params& p, Vec3 dn_dx, Vec3 dn_dy);
+
+// ---------------------------------------------------------------------------------------------
+// Forward variants (templates/10-forward.saa)
+
+// Kaplanyan et al. 2016 / T&K 2019 Sec. 2.2: A from slope-space derivatives (not clamped).
+Sym2 forward_aniso_slope(const Params& p, Vec2 alpha2, Vec2 dslope_dx, Vec2 dslope_dy);
+
+// T&K 2019 Sec. 3.2: A from derivatives of the projected half vector h.xy (not clamped).
+Sym2 forward_aniso_projected(const Params& p, Vec2 alpha2, Vec2 dproj_dx, Vec2 dproj_dy);
+
+// Kaplanyan et al. 2016 rectangle, slope-space derivatives (T&K 2019 Sec. 3.1); saturated.
+Vec2 forward_axis_slope(const Params& p, Vec2 alpha2, Vec2 dslope_dx, Vec2 dslope_dy);
+
+// T&K 2019 Sec. 3.2 derivatives with the Kaplanyan et al. 2016 rectangle; saturated.
+Vec2 forward_axis_projected(const Params& p, Vec2 alpha2, Vec2 dproj_dx, Vec2 dproj_dy);
+
+// ---------------------------------------------------------------------------------------------
+// Deferred (normal-based isotropic) variants (templates/20-deferred.saa); alpha^2 domain.
+
+// Kaplanyan et al. 2016 rectangle maximum width (T&K 2019 Listing 3):
+// saturate(alpha^2 + min(2 sigma^2 max(rect.x, rect.y)^2, kappa)), rect = |dx| + |dy|.
+double deferred_previous(const Params& p, double alpha2, Vec2 dslope_dx, Vec2 dslope_dy);
+
+// T&K 2019 Eq. 1: saturate(alpha^2 + min(2 lambda_max(Sigma), kappa)), Sigma from the
+// derivatives of the projected average normal (Sec. 4.1).
+double deferred_max(const Params& p, double alpha2, Vec2 dproj_dx, Vec2 dproj_dy);
+
+// T&K 2019 Eq. 1 with lambda_max taken from the Gram matrix of the world-space normal
+// derivatives (same nonzero eigenvalues as Delta^T Delta when the rows lie in one plane).
+double deferred_max_tangent_free(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
+
+// T&K 2019 Eq. 4: saturate(alpha^2 + min(2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
+double deferred_sum(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
+
+// T&K 2019 Eq. 5: saturate(alpha^2 + min(sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
+double deferred_avg(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
+
+// Tokuyoshi & Kaplanyan 2021 (projected space): p = a/(1-a), p' = p + k, a' = p'/(1+p'),
+// written as (a + k(1-a)) / (1 + k(1-a)) with a = saturate(alpha2),
+// k = min(2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa).
+double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
+
+// ---------------------------------------------------------------------------------------------
+// Fragment wrappers on a 2x2 quad. `pixel` is the quad index 0..3 (quad.hpp); `mode` says how
+// the wrapper's plain ddx/ddy are evaluated (the template's explicit ddx_fine/ddy_fine are
+// always fine).
+
+// Listing 3's neighbour-weighted normal at one pixel (template helper quad_average_normal):
+// n + ddx_fine(n) w.x + ddy_fine(n) w.y, w = 0.5 - 2 frac(floor(frag_coord) / 2). Not normalised.
+// Note: for the top-left pixel this is (n_tr + n_bl) / 2, for the top-right (n_tl + n_br) / 2:
+// each pixel gets the mean of its two edge neighbours.
+Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord,
+                              int pixel);
+
+Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
+                                       int pixel, Derivative mode = Derivative::coarse);
+Sym2 forward_aniso_projected_fragment_quad(const Params& p, Vec2 alpha2,
+                                           const Quad<Vec3>& half_ts, int pixel,
+                                           Derivative mode = Derivative::coarse);
+Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
+                                      int pixel, Derivative mode = Derivative::coarse);
+Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2,
+                                          const Quad<Vec3>& half_ts, int pixel,
+                                          Derivative mode = Derivative::coarse);
+
+// Two levels of derivatives, as in the template: ddx_fine/ddy_fine form each pixel's
+// neighbour-weighted normal, which is expressed in that pixel's own frame (t, b, n); the outer
+// plain ddx/ddy (mode) then differentiate the per-pixel slope (previous) or projected unit
+// vector (max).
+double deferred_previous_fragment_quad(const Params& p, double alpha2,
+                                       const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
+                                       const Quad<Vec3>& bitangent_ws,
+                                       const Quad<Vec2>& frag_coord, int pixel,
+                                       Derivative mode = Derivative::coarse);
+double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
+                                  const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
+                                  const Quad<Vec2>& frag_coord, int pixel,
+                                  Derivative mode = Derivative::coarse);
+
+double deferred_max_tangent_free_fragment_quad(const Params& p, double alpha2,
+                                               const Quad<Vec3>& normal_ws, int pixel,
+                                               Derivative mode = Derivative::coarse);
+double deferred_sum_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
+                                  int pixel, Derivative mode = Derivative::coarse);
+double deferred_avg_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
+                                  int pixel, Derivative mode = Derivative::coarse);
+double deferred_projected_space_fragment_quad(const Params& p, double alpha2,
+                                              const Quad<Vec3>& normal_ws, int pixel,
+                                              Derivative mode = Derivative::coarse);
+
+}  // namespace saagen::ref
