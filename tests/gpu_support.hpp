@@ -12,8 +12,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,46 +39,6 @@ inline std::vector<std::uint32_t> compile_kernel(const EmittedFile& file, const 
   const CompileResult result = compile_to_spirv(compile);
   if (!result.ok) throw std::runtime_error(file.file_name + ": kernel does not compile:\n" + result.log);
   return result.spirv;
-}
-
-// Element-wise check |got - expected| <= bound[i]. The worst element is the one with the
-// largest ratio error / bound; its relative error is reported too.
-struct BoundReport {
-  std::size_t compared = 0;
-  std::size_t failing = 0;
-  std::size_t worst_index = 0;
-  double worst_ratio = 0.0;
-  double worst_got = 0.0;
-  double worst_expected = 0.0;
-  double max_relative_error = 0.0;  // over elements with |expected| > 1e-30
-  std::string summary(const std::string& what) const {
-    return fmt::format("{}: {} compared, {} failing; worst error/bound {:.3g} at #{} (got {:.9g}, expected {:.9g}); "
-                       "max relative error {:.3g}",
-                       what, compared, failing, worst_ratio, worst_index, worst_got, worst_expected, max_relative_error);
-  }
-};
-
-inline BoundReport compare_with_bounds(const std::vector<float>& got, const std::vector<double>& expected,
-                                       const std::vector<double>& bound) {
-  BoundReport report;
-  report.compared = expected.size();
-  for (std::size_t index = 0; index < expected.size(); ++index) {
-    const double value = got[index];
-    const double error = std::fabs(value - expected[index]);
-    const bool finite_match = std::isfinite(value) && std::isfinite(expected[index]);
-    const double ratio = finite_match ? error / bound[index] : (value == expected[index] ? 0.0 : INFINITY);
-    if (!(ratio <= 1.0)) ++report.failing;
-    if (!(ratio <= report.worst_ratio)) {
-      report.worst_ratio = ratio;
-      report.worst_index = index;
-      report.worst_got = value;
-      report.worst_expected = expected[index];
-    }
-    if (finite_match && std::fabs(expected[index]) > 1e-30) {
-      report.max_relative_error = std::max(report.max_relative_error, error / std::fabs(expected[index]));
-    }
-  }
-  return report;
 }
 
 }  // namespace saagen::test

@@ -313,10 +313,10 @@ TEST_P(CoreOnGpu, MatchesTheDoublePrecisionReference) {
       bound.push_back(rounding_bound * std::max(std::fabs(values[k]), scales[std::min(k, scales.size() - 1)]) + 1e-30);
     }
   }
-  const auto report = saagen::test::compare_with_bounds(got, expected, bound);
   const std::string what = fmt::format("{} {} ({})", c.target, c.function, c.variant);
-  std::cout << "[ worst    ] " << report.summary(what) << "\n";
-  EXPECT_EQ(report.failing, 0u) << report.summary(what);
+  const auto report = saagen::harness::compare_with_bounds(got, expected, bound, what);
+  std::cout << "[ worst    ] " << report.summary() << "\n";
+  EXPECT_EQ(report.failing, 0u) << report.summary();
 }
 
 std::vector<CoreCase> core_cases() {

@@ -143,8 +143,9 @@ std::vector<double> reference_wrapper(const std::string& name, const std::vector
 }
 
 // Compares a run's per-pixel results with the reference fed its own fields.
-saagen::test::BoundReport check_against_reference(const std::string& wrapper, std::uint32_t outputs_per_pixel,
-                                                  const std::vector<float>& out, ref::Derivative mode) {
+saagen::harness::CompareReport check_against_reference(const std::string& wrapper, std::uint32_t outputs_per_pixel,
+                                                      const std::vector<float>& out, ref::Derivative mode,
+                                                      const std::string& what) {
   std::vector<float> got;
   std::vector<double> expected, bound;
   for (std::uint32_t qy = 0; qy < height; qy += 2) {
@@ -183,7 +184,7 @@ saagen::test::BoundReport check_against_reference(const std::string& wrapper, st
       }
     }
   }
-  return saagen::test::compare_with_bounds(got, expected, bound);
+  return saagen::harness::compare_with_bounds(got, expected, bound, what);
 }
 
 // How the device evaluates a plain ddx in a fragment shader: Vulkan allows coarse or fine.
@@ -219,9 +220,9 @@ class WrapperOnGpu : public ::testing::TestWithParam<WrapperCase> {
     r.body = std::string(scene_body) + wrapper_call(wrapper);
     return r;
   }
-  void expect_match(const saagen::test::BoundReport& report, const std::string& what) const {
-    std::cout << "[ worst    ] " << report.summary(what) << "\n";
-    EXPECT_EQ(report.failing, 0u) << report.summary(what);
+  void expect_match(const saagen::harness::CompareReport& report) const {
+    std::cout << "[ worst    ] " << report.summary() << "\n";
+    EXPECT_EQ(report.failing, 0u) << report.summary();
   }
 };
 
@@ -238,8 +239,10 @@ TEST_P(WrapperOnGpu, FragmentShaderMatchesReferenceOnQuadDifferences) {
   run.buffers = {saagen::harness::input_buffer(0, scene_parameters),
                  saagen::harness::output_buffer<float>(1, std::size_t{width} * height * stride)};
   const auto out = saagen::harness::run_fragment(saagen::test::gpu(), run).buffer_as<float>(1);
-  const auto report = check_against_reference(c.wrapper, saagen::component_count(wrapper.return_type), out, mode);
-  expect_match(report, fmt::format("{} {} fragment (plain ddx {})", c.target, c.wrapper, mode == ref::Derivative::fine ? "fine" : "coarse"));
+  const auto report = check_against_reference(c.wrapper, saagen::component_count(wrapper.return_type), out, mode,
+                                              fmt::format("{} {} fragment (plain ddx {})", c.target, c.wrapper,
+                                                          mode == ref::Derivative::fine ? "fine" : "coarse"));
+  expect_match(report);
 }
 
 TEST_P(WrapperOnGpu, QuadEmulatingComputeMatchesReferenceForCoarseAndFine) {
@@ -259,8 +262,10 @@ TEST_P(WrapperOnGpu, QuadEmulatingComputeMatchesReferenceForCoarseAndFine) {
     const auto out = saagen::harness::run_compute(saagen::test::gpu(), run).buffer_as<float>(1);
     const bool fine = plain == saagen::PlainDerivative::fine;
     const auto report = check_against_reference(c.wrapper, saagen::component_count(wrapper.return_type), out,
-                                                fine ? ref::Derivative::fine : ref::Derivative::coarse);
-    expect_match(report, fmt::format("{} {} quad compute (plain ddx {})", c.target, c.wrapper, fine ? "fine" : "coarse"));
+                                                fine ? ref::Derivative::fine : ref::Derivative::coarse,
+                                                fmt::format("{} {} quad compute (plain ddx {})", c.target, c.wrapper,
+                                                            fine ? "fine" : "coarse"));
+    expect_match(report);
   }
 }
 

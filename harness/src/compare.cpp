@@ -22,8 +22,8 @@ double normalised_error(double got, double expected, Tolerance tolerance) {
   return allowed > 0.0 ? difference / allowed : infinity;
 }
 
-template <typename Got, typename Expected>
-CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, Tolerance tolerance,
+template <typename Got, typename Expected, typename ToleranceAt>
+CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, ToleranceAt tolerance_at,
                            const std::string& what, const DescribeElement& describe) {
   if (got.size() != expected.size()) {
     throw std::invalid_argument(
@@ -31,13 +31,16 @@ CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> e
                     expected.size()));
   }
   CompareReport report;
-  report.tolerance = tolerance;
   report.what = what;
   report.compared = got.size();
   double worst = -1.0;
   for (std::size_t i = 0; i < got.size(); ++i) {
-    const double error = normalised_error(static_cast<double>(got[i]), static_cast<double>(expected[i]), tolerance);
+    const double value = static_cast<double>(got[i]), reference = static_cast<double>(expected[i]);
+    const double error = normalised_error(value, reference, tolerance_at(i));
     if (error > 1.0) ++report.failing;
+    if (std::isfinite(value) && std::isfinite(reference) && std::fabs(reference) > 1e-30) {
+      report.max_relative_error = std::max(report.max_relative_error, std::fabs(value - reference) / std::fabs(reference));
+    }
     if (error > worst) {
       worst = error;
       report.worst_index = i;
@@ -55,27 +58,49 @@ CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> e
 }  // namespace
 
 std::string CompareReport::summary() const {
-  std::string line = fmt::format("{}{} of {} failing (tol abs {:g} + rel {:g})", what.empty() ? "" : what + ": ",
-                                 failing, compared, tolerance.abs_tol, tolerance.rel_tol);
+  const std::string bounds = per_element_bounds ? std::string("per-element bounds")
+                                                : fmt::format("tol abs {:g} + rel {:g}", tolerance.abs_tol, tolerance.rel_tol);
+  std::string line = fmt::format("{}{} of {} failing ({})", what.empty() ? "" : what + ": ", failing, compared, bounds);
   if (compared == 0) return line;
-  return line + fmt::format("; worst #{}{}: got {:.9g}, expected {:.17g}, err {:.3g} x tol", worst_index,
-                            worst_label.empty() ? "" : " " + worst_label, worst_got, worst_expected,
-                            worst_normalised_error);
+  return line + fmt::format("; worst #{}{}: got {:.9g}, expected {:.17g}, err {:.3g} x tol; max relative error {:.3g}",
+                            worst_index, worst_label.empty() ? "" : " " + worst_label, worst_got, worst_expected,
+                            worst_normalised_error, max_relative_error);
 }
+
+namespace {
+template <typename Got, typename Expected>
+CompareReport compare_with_tolerance(std::span<const Got> got, std::span<const Expected> expected, Tolerance tolerance,
+                                     const std::string& what, const DescribeElement& describe) {
+  CompareReport report = compare_impl(got, expected, [tolerance](std::size_t) { return tolerance; }, what, describe);
+  report.tolerance = tolerance;
+  return report;
+}
+}  // namespace
 
 CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance,
                       const std::string& what, const DescribeElement& describe) {
-  return compare_impl(got, expected, tolerance, what, describe);
+  return compare_with_tolerance(got, expected, tolerance, what, describe);
 }
 
 CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance,
                       const std::string& what, const DescribeElement& describe) {
-  return compare_impl(got, expected, tolerance, what, describe);
+  return compare_with_tolerance(got, expected, tolerance, what, describe);
 }
 
 CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance,
                       const std::string& what, const DescribeElement& describe) {
-  return compare_impl(got, expected, tolerance, what, describe);
+  return compare_with_tolerance(got, expected, tolerance, what, describe);
+}
+
+CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected,
+                                  std::span<const double> bounds, const std::string& what,
+                                  const DescribeElement& describe) {
+  if (bounds.size() != expected.size()) {
+    throw std::invalid_argument(fmt::format("compare ({}): {} bounds for {} values", what, bounds.size(), expected.size()));
+  }
+  CompareReport report = compare_impl(got, expected, [bounds](std::size_t i) { return Tolerance{bounds[i], 0.0}; }, what, describe);
+  report.per_element_bounds = true;
+  return report;
 }
 
 }  // namespace saagen::harness

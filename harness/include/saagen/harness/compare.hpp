@@ -28,6 +28,8 @@ struct CompareReport {
   double worst_normalised_error = 0.0;
   std::string worst_label;  // from the describe callback, if any
   Tolerance tolerance;
+  bool per_element_bounds = false;  // compared against a bound per element instead of `tolerance`
+  double max_relative_error = 0.0;  // max |got - expected| / |expected| over finite |expected| > 1e-30
   std::string what;         // caption given by the caller
 
   bool ok() const { return failing == 0; }
@@ -44,6 +46,11 @@ CompareReport compare(std::span<const float> got, std::span<const double> expect
                       const std::string& what = {}, const DescribeElement& describe = {});
 CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance,
                       const std::string& what = {}, const DescribeElement& describe = {});
+// Element i passes when |got - expected| <= bounds[i] (an error bound derived per element, e.g.
+// from a condition number); non-finite values as above.
+CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected,
+                                  std::span<const double> bounds, const std::string& what = {},
+                                  const DescribeElement& describe = {});
 // Device against device (e.g. two shader variants), or against an fp32 CPU model.
 CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance,
                       const std::string& what = {}, const DescribeElement& describe = {});
