@@ -36,6 +36,8 @@ struct VariantTarget {
   std::string target;
 };
 
+void PrintTo(const VariantTarget& c, std::ostream* os) { *os << c.target << " " << c.variant; }
+
 class EveryVariantAndTarget : public ::testing::TestWithParam<VariantTarget> {};
 
 TEST_P(EveryVariantAndTarget, CompilesAndValidatesForEveryClientAndStage) {

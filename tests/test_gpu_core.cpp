@@ -275,6 +275,8 @@ struct CoreCase {
   std::string function;
 };
 
+void PrintTo(const CoreCase& c, std::ostream* os) { *os << c.target << " " << c.function; }
+
 class CoreOnGpu : public ::testing::TestWithParam<CoreCase> {};
 
 TEST_P(CoreOnGpu, MatchesTheDoublePrecisionReference) {

@@ -210,6 +210,8 @@ struct WrapperCase {
   std::string wrapper;
 };
 
+void PrintTo(const WrapperCase& c, std::ostream* os) { *os << c.target << " " << c.wrapper; }
+
 class WrapperOnGpu : public ::testing::TestWithParam<WrapperCase> {
  protected:
   saagen::KernelRequest request(saagen::KernelKind kind, const saagen::Function& wrapper) const {
