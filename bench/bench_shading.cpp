@@ -1,0 +1,648 @@
+// Measured shading cost of every SAA variant (issue 3, "Measured"): one fragment kernel per
+// variant and target shades a bumpy sphere with the GGX specular term, filtered through the
+// variant's fragment wrapper, and is timed against the same shading without SAA in the same run.
+//
+//   build-bench/bench/bench_shading [--device NAME] [--quick] [--size N] [--repetitions N]
+//                                   [--csv FILE] [--json FILE]
+//
+// Per target (glsl, hlsl) it prints: variant | median ms | median no-SAA ms of the rounds
+// interleaved with it | ratio variant / no SAA (median of the per-round ratios, with quartiles) |
+// ratio of the fastest rounds | optimized SPIR-V instructions of the variant shader minus the
+// no-SAA shader's | mean per-pixel change and change of the mean of the shaded value | the
+// paper's Table 2 ratios. Forward anisotropic variants shade with the matrix GGX BRDF, the others
+// (and no SAA) with the axis-aligned one, so their cost includes the matrix BRDF's.
+//
+// It exits non-zero with one line on stderr when a shader fails to compile or validate, when a
+// shaded value on the sphere is non-finite or negative, or when a variant leaves the image
+// (almost) unchanged, which would mean the filter is not wired in and the timings are meaningless.
+#include "saagen/catalogue.hpp"
+#include "saagen/compiler.hpp"
+#include "saagen/emitter.hpp"
+#include "saagen/kernels.hpp"
+
+#include <saagen/harness/harness.hpp>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace hx = saagen::harness;
+
+// A failure that ends the bench with one line.
+struct Failure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The kernel body, written once in the template dialect: a parameter block (generated below from
+// scene_parameters) followed by the scene. {shade} is replaced by the statements that compute
+// `real value` from the scene quantities (a small table per variant).
+//
+// Camera at the origin looking down -z. A ray that misses the sphere uses the point of closest
+// approach instead of the hit point, so every quantity (and every derivative of it) stays finite
+// and the derivative intrinsics run in uniform control flow; such pixels store -1.
+constexpr const char* scene_body = R"(    real2 ndc = saagen_frag_coord * inverse_size * 2.0 - 1.0;
+    real3 ray = normalize(real3(ndc.x * tan_half_fov * inverse_size.y / inverse_size.x, -ndc.y * tan_half_fov, -1.0));
+    real3 light_ws = normalize(light_direction);
+    real3 centre = real3(0.0, 0.0, -centre_distance);
+    real closest = dot(ray, centre);
+    real discriminant = closest * closest - dot(centre, centre) + radius * radius;
+    bool hit = discriminant > 0.0;
+    real3 position = (closest - sqrt(max(discriminant, 0.0))) * ray;
+    real3 sphere_normal = normalize(position - centre);
+    // Procedural bumps: the normal tilts along the tangential part of the gradient cos(q) of
+    // sin(q.x) + sin(q.y) + sin(q.z), q = frequency * object-space point.
+    real3 gradient = cos(sphere_normal * bump_frequency);
+    real3 normal = normalize(sphere_normal - bump_amplitude * (gradient - sphere_normal * dot(gradient, sphere_normal)));
+    // Tangent frame: the longitude direction cross((0, 1, 0), normal), smooth away from the
+    // poles (which lie just outside the visible hemisphere).
+    real3 tangent = real3(normal.z, 0.0, -normal.x);
+    tangent = tangent * rsqrt(max(dot(tangent, tangent), 1e-12));
+    real3 bitangent = cross(normal, tangent);
+    real3 view_ws = -ray;
+    real3 i_ts = real3(dot(light_ws, tangent), dot(light_ws, bitangent), dot(light_ws, normal));
+    real3 o_ts = real3(dot(view_ws, tangent), dot(view_ws, bitangent), dot(view_ws, normal));
+    real3 half_ts = normalize(i_ts + o_ts);
+    real2 alpha2 = real2(alpha2_material, alpha2_material);
+{shade}    SAAGEN_STORE(0, hit ? value : -1.0);
+)";
+
+// The shared parameters, in input-buffer order: dialect type, name, value per component.
+struct SceneParameter {
+  const char* type;
+  const char* name;
+  std::vector<float> values;
+};
+
+std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t height) {
+  return {
+      {"real", "alpha2_material", {0.0025f}},  // alpha = 0.05
+      {"real2", "inverse_size", {1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height)}},
+      {"real", "tan_half_fov", {0.5f}},  // about 53 degrees vertically
+      {"real3", "light_direction", {-0.45f, 0.55f, 0.7f}},  // towards the light: upper left, in front
+      {"real", "centre_distance", {3.0f}},
+      {"real", "radius", {1.25f}},           // the sphere covers about 65% of the frame
+      {"real", "bump_amplitude", {0.25f}},   // normal tilt (radians, roughly)
+      {"real", "bump_frequency", {120.0f}},  // bumps of about 20 px at 1000 px: strong specular aliasing
+  };
+}
+
+// The input buffer: every parameter's components, then a sentinel 1.0.
+std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height) {
+  std::vector<float> buffer;
+  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+    buffer.insert(buffer.end(), parameter.values.begin(), parameter.values.end());
+  }
+  buffer.push_back(1.0f);
+  return buffer;
+}
+
+// The parameter block of the body. Every parameter is loaded (so nothing folds), but lavapipe
+// (Mesa 22.3) returns 0 from buffer loads in helper invocations, which the quads along the
+// internal edge of the clipped full-screen triangle (the diagonal x = y) use for derivatives; a
+// loaded sentinel detects such lanes, which then take the same values as literals. On a driver
+// that loads in helper lanes the literals are never selected.
+std::string parameter_block(std::uint32_t width, std::uint32_t height) {
+  std::string block = fmt::format("    bool load_missing = SAAGEN_LOAD({}) == 0.0;\n", parameter_buffer(width, height).size() - 1);
+  std::uint32_t offset = 0;
+  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+    std::string literal, loaded;
+    for (std::size_t component = 0; component < parameter.values.size(); ++component) {
+      literal += fmt::format("{}{:.9e}", component == 0 ? "" : ", ", parameter.values[component]);
+      loaded += fmt::format("{}SAAGEN_LOAD({})", component == 0 ? "" : ", ", offset++);
+    }
+    if (parameter.values.size() > 1) {
+      literal = fmt::format("{}({})", parameter.type, literal);
+      loaded = fmt::format("{}({})", parameter.type, loaded);
+    }
+    block += fmt::format("    {} {} = load_missing ? {} : {};\n", parameter.type, parameter.name, literal, loaded);
+  }
+  return block;
+}
+
+// Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF.
+constexpr const char* baseline_shade = "    real value = ggx_brdf_axis(i_ts, o_ts, alpha2);\n";
+
+// Paper, Table 2 (Tokuyoshi & Kaplanyan 2019): forward shading at 8K in ms, for Sponza, Bistro
+// and San Miguel, without SAA and with each variant. The bench shows the range of the ratios.
+constexpr std::array<double, 3> paper_no_saa_ms = {1.80, 2.06, 3.65};
+
+struct VariantCase {
+  const char* id;
+  const char* shade;  // dialect statements defining `real value`
+  std::optional<std::array<double, 3>> paper_ms;
+};
+
+const std::vector<VariantCase>& variant_cases() {
+  static const std::vector<VariantCase> cases = {
+      {"forward-aniso-slope",
+       "    real3 filtered = forward_aniso_slope_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
+       std::array<double, 3>{2.34, 2.60, 4.16}},
+      {"forward-aniso-projected",
+       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
+       std::array<double, 3>{2.31, 2.57, 4.12}},
+      {"forward-axis-slope",
+       "    real2 filtered = forward_axis_slope_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
+       std::array<double, 3>{2.35, 2.61, 4.15}},
+      {"forward-axis-projected",
+       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
+       std::array<double, 3>{2.30, 2.56, 4.12}},
+      {"deferred-previous",
+       "    real filtered = deferred_previous_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{2.35, 2.58, 4.16}},
+      {"deferred-max",
+       "    real filtered = deferred_max_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{2.40, 2.62, 4.19}},
+      {"deferred-sum",
+       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{1.90, 2.16, 3.74}},
+      {"deferred-avg",
+       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{1.88, 2.17, 3.74}},
+      {"deferred-projected-space",
+       "    real filtered = deferred_projected_space_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::nullopt},  // Tokuyoshi & Kaplanyan 2021: not in the 2019 table
+  };
+  return cases;
+}
+
+std::string body_with(const std::string& shade, std::uint32_t width, std::uint32_t height) {
+  std::string body = scene_body;
+  body.replace(body.find("{shade}"), 7, shade);
+  return parameter_block(width, height) + body;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Options
+
+struct Options {
+  std::uint32_t size = 1000;
+  std::uint32_t repetitions = 15;
+  std::uint32_t warmup = 2;
+  bool quick = false;
+  std::string csv_path;
+  std::string json_path;
+  std::string device;
+};
+
+std::uint32_t parse_count(const std::string& flag, const std::string& text, std::uint32_t low, std::uint32_t high) {
+  std::size_t used = 0;
+  unsigned long value = 0;
+  try {
+    value = std::stoul(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || value < low || value > high) {
+    throw Failure(fmt::format("{} wants an integer in [{}, {}], got '{}'", flag, low, high, text));
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+Options parse_options(int argc, char** argv) {
+  Options options;
+  options.device = hx::take_device_flag(argc, argv);
+  std::optional<std::uint32_t> size, repetitions;
+  for (int index = 1; index < argc; ++index) {
+    const std::string argument = argv[index];
+    const auto value = [&]() -> std::string {
+      if (index + 1 >= argc) throw Failure(fmt::format("{} needs a value", argument));
+      return argv[++index];
+    };
+    if (argument == "--quick") {
+      options.quick = true;
+    } else if (argument == "--csv") {
+      options.csv_path = value();
+    } else if (argument == "--json") {
+      options.json_path = value();
+    } else if (argument == "--size") {
+      size = parse_count(argument, value(), 16, 8192);
+    } else if (argument == "--repetitions") {
+      repetitions = parse_count(argument, value(), 1, 1000);
+    } else if (argument == "--help" || argument == "-h") {
+      std::printf(
+          "usage: bench_shading [--device NAME] [--quick] [--size N] [--repetitions N] [--csv FILE] [--json FILE]\n"
+          "  --quick          smoke run: 128x128 pixels, 3 repetitions\n"
+          "  --size N         framebuffer N x N (even; default 1000)\n"
+          "  --repetitions N  timed rounds per variant (default 15), after two warm-up rounds\n"
+          "  --csv FILE       the table as CSV; --json FILE the same as JSON\n");
+      std::exit(0);
+    } else {
+      throw Failure(fmt::format("unknown argument '{}' (see --help)", argument));
+    }
+  }
+  if (options.quick) {
+    options.size = 128;
+    options.repetitions = 3;
+    options.warmup = 1;
+  }
+  if (size) options.size = *size;
+  if (repetitions) options.repetitions = *repetitions;
+  if (options.size % 2 != 0) throw Failure(fmt::format("--size must be even, got {}", options.size));
+  return options;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shaders
+
+struct Shader {
+  std::vector<std::uint32_t> spirv;  // optimized (what is timed and counted)
+  std::size_t instructions = 0;
+};
+
+std::string first_line(const std::string& text) {
+  std::size_t start = text.find_first_not_of(" \n\r\t");
+  if (start == std::string::npos) return "(no log)";
+  std::string line = text.substr(start, text.find('\n', start) - start);
+  return line;
+}
+
+Shader build_shader(const std::string& target, const std::string& what, const saagen::EmittedFile& primary,
+                    const std::string& content, const std::string& body, std::uint32_t width) {
+  saagen::KernelRequest request;
+  request.kind = saagen::KernelKind::fragment;
+  request.body = body;
+  request.output_stride = 1;
+  request.width = width;
+  saagen::CompileRequest compile;
+  compile.language = target == "hlsl" ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
+  compile.stage = saagen::ShaderStage::fragment;
+  compile.sources = saagen::kernel_sources(saagen::Catalogue::builtin(), primary.file_name, content, request);
+  const saagen::CompileResult compiled = saagen::compile_to_spirv(compile);
+  if (!compiled.ok) throw Failure(fmt::format("{} {}: shader failed to compile: {}", target, what, first_line(compiled.log)));
+  Shader shader;
+  shader.spirv = saagen::optimize_spirv(compiled.spirv, saagen::ClientApi::vulkan);
+  if (shader.spirv.empty()) throw Failure(fmt::format("{} {}: spirv-opt failed", target, what));
+  if (const std::string problem = saagen::validate_spirv(shader.spirv, saagen::ClientApi::vulkan); !problem.empty()) {
+    throw Failure(fmt::format("{} {}: optimized SPIR-V does not validate: {}", target, what, first_line(problem)));
+  }
+  shader.instructions = saagen::count_spirv_instructions(shader.spirv);
+  return shader;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Runs and checks
+
+struct ImageStats {
+  std::size_t on_sphere = 0;
+  double mean = 0.0;
+};
+
+ImageStats check_image(const std::string& target, const std::string& what, const std::vector<float>& values) {
+  ImageStats stats;
+  double sum = 0.0;
+  for (std::size_t index = 0; index < values.size(); ++index) {
+    const float value = values[index];
+    if (value == -1.0f) continue;  // off the sphere
+    if (!std::isfinite(value) || value < 0.0f) {
+      throw Failure(fmt::format("{} {}: shaded value {} at pixel {} on the sphere", target, what, value, index));
+    }
+    ++stats.on_sphere;
+    sum += value;
+  }
+  const double coverage = static_cast<double>(stats.on_sphere) / static_cast<double>(values.size());
+  if (coverage < 0.3 || coverage > 0.95) {
+    throw Failure(fmt::format("{} {}: the sphere covers {:.1f}% of the frame (expected 30-95%): broken scene or output binding",
+                              target, what, 100.0 * coverage));
+  }
+  stats.mean = sum / static_cast<double>(stats.on_sphere);
+  if (!(stats.mean > 0.0)) throw Failure(fmt::format("{} {}: the shaded image is black", target, what));
+  return stats;
+}
+
+class Kernel {
+ public:
+  Kernel(hx::VulkanContext& context, const Shader& shader, std::uint32_t size, const std::vector<float>& input) {
+    hx::FragmentRun run;
+    run.fragment.spirv = shader.spirv;
+    run.width = size;
+    run.height = size;
+    run.color_formats = {VK_FORMAT_R32_SFLOAT};
+    run.buffers = {hx::input_buffer(0, input),
+                   hx::output_buffer<float>(1, static_cast<std::size_t>(size) * size)};
+    program_ = std::make_unique<hx::FragmentProgram>(context, run);
+  }
+
+  // One submission; returns its time (GPU timestamps when available, else host wall clock).
+  double run_once(bool timestamps) {
+    last_ = program_->run({.repetitions = 1, .gpu_timestamps = timestamps});
+    const auto& samples = timestamps ? last_.timing.gpu_ms : last_.timing.host_ms;
+    if (samples.empty()) throw Failure("the harness returned no timing sample");
+    return samples.front();
+  }
+  std::vector<float> output() const { return last_.buffer_as<float>(1); }
+
+ private:
+  std::unique_ptr<hx::FragmentProgram> program_;
+  hx::RunResult last_;
+};
+
+double percentile(std::vector<double> samples, double p) {
+  if (samples.empty()) return std::nan("");
+  std::sort(samples.begin(), samples.end());
+  const double position = p * static_cast<double>(samples.size() - 1);
+  const std::size_t below = static_cast<std::size_t>(std::floor(position));
+  const std::size_t above = std::min(below + 1, samples.size() - 1);
+  return samples[below] + (samples[above] - samples[below]) * (position - static_cast<double>(below));
+}
+
+struct Row {
+  std::string target;
+  std::string variant;
+  double ms = 0.0;           // median of the variant's samples
+  double baseline_ms = 0.0;  // median of the baseline samples interleaved with them
+  double ratio = 1.0;        // median of the per-round ratios
+  double ratio_p25 = 1.0;
+  double ratio_p75 = 1.0;
+  double ms_min = 0.0;
+  double baseline_ms_min = 0.0;
+  double ratio_of_minima = 1.0;  // min variant ms / min no-SAA ms: robust when noise only adds time
+  std::size_t instructions = 0;
+  long delta_instructions = 0;
+  double mean_change = 0.0;   // (mean variant - mean baseline) / mean baseline, over the sphere
+  double pixel_change = 0.0;  // mean |variant - baseline| per sphere pixel / mean baseline
+  std::optional<std::array<double, 2>> paper_range;
+  std::optional<double> paper_sponza;
+};
+
+std::string format_anchor(const Row& row) {
+  if (!row.paper_range) return "-";
+  return fmt::format("x{:.2f}-{:.2f} (Sponza x{:.2f})", (*row.paper_range)[0], (*row.paper_range)[1], *row.paper_sponza);
+}
+
+void print_table(const std::string& target, const std::vector<Row>& rows, const char* time_source) {
+  fmt::print("\n{} ({} ms, median)\n", target, time_source);
+  const std::string header = fmt::format("{:<25} {:>8} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}", "variant", "ms", "no-SAA ms",
+                                         "ratio (p25-p75)", "min ratio", "dSPIR-V", "|d| px", "mean d", "paper Table 2");
+  fmt::print("{}\n{}\n", header, std::string(header.size() + 10, '-'));
+  for (const Row& row : rows) {
+    const bool baseline = row.variant == "no-saa";
+    fmt::print("{:<25} {:>8.2f} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}\n", row.variant, row.ms,
+               baseline ? std::string("-") : fmt::format("{:.2f}", row.baseline_ms),
+               baseline ? std::string("1.000") : fmt::format("{:.3f} ({:.3f}-{:.3f})", row.ratio, row.ratio_p25, row.ratio_p75),
+               baseline ? std::string("1.000") : fmt::format("{:.3f}", row.ratio_of_minima),
+               baseline ? fmt::format("({})", row.instructions) : fmt::format("{:+d}", row.delta_instructions),
+               baseline ? std::string("-") : fmt::format("{:.1f}%", 100.0 * row.pixel_change),
+               baseline ? std::string("-") : fmt::format("{:+.1f}%", 100.0 * row.mean_change),
+               baseline ? std::string("x1.00") : format_anchor(row));
+  }
+}
+
+void write_csv(const std::string& path, const std::vector<Row>& rows, const Options& options, const std::string& device,
+               const char* time_source) {
+  std::ofstream out(path);
+  if (!out) throw Failure(fmt::format("cannot write {}", path));
+  out << "target,variant,ms_median,baseline_ms_median,ratio_median,ratio_p25,ratio_p75,ms_min,baseline_ms_min,ratio_of_minima,spirv_instructions,"
+         "delta_spirv_instructions,pixel_change,mean_change,paper_ratio_low,paper_ratio_high,paper_ratio_sponza,width,height,"
+         "repetitions,time_source,device\n";
+  for (const Row& row : rows) {
+    const auto optional_number = [](const auto& value, auto get) { return value ? fmt::format("{:.4f}", get(*value)) : std::string(); };
+    std::string quoted_device;
+    for (const char character : device) {
+      if (character == '"') quoted_device += '"';
+      quoted_device += character;
+    }
+    out << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{:.5f},{:.5f},{},{},{},{},{},{},{},\"{}\"\n", row.target,
+                       row.variant, row.ms, row.baseline_ms, row.ratio, row.ratio_p25, row.ratio_p75, row.ms_min, row.baseline_ms_min, row.ratio_of_minima, row.instructions,
+                       row.delta_instructions, row.pixel_change, row.mean_change,
+                       optional_number(row.paper_range, [](const auto& r) { return r[0]; }),
+                       optional_number(row.paper_range, [](const auto& r) { return r[1]; }),
+                       optional_number(row.paper_sponza, [](double v) { return v; }), options.size, options.size,
+                       options.repetitions, time_source, quoted_device);
+  }
+  if (!out) throw Failure(fmt::format("cannot write {}", path));
+}
+
+void write_json(const std::string& path, const std::vector<Row>& rows, const Options& options, const std::string& device,
+                const char* time_source) {
+  nlohmann::json document;
+  document["device"] = device;
+  document["width"] = options.size;
+  document["height"] = options.size;
+  document["repetitions"] = options.repetitions;
+  document["time_source"] = time_source;
+  document["alpha"] = std::sqrt(scene_parameters(2, 2).front().values.front());
+  nlohmann::json entries = nlohmann::json::array();
+  for (const Row& row : rows) {
+    nlohmann::json entry = {{"target", row.target},
+                            {"variant", row.variant},
+                            {"ms_median", row.ms},
+                            {"baseline_ms_median", row.baseline_ms},
+                            {"ratio_median", row.ratio},
+                            {"ratio_p25", row.ratio_p25},
+                            {"ratio_p75", row.ratio_p75},
+                            {"ms_min", row.ms_min},
+                            {"baseline_ms_min", row.baseline_ms_min},
+                            {"ratio_of_minima", row.ratio_of_minima},
+                            {"spirv_instructions", row.instructions},
+                            {"delta_spirv_instructions", row.delta_instructions},
+                            {"pixel_change", row.pixel_change},
+                            {"mean_change", row.mean_change}};
+    if (row.paper_range) {
+      entry["paper_ratio_low"] = (*row.paper_range)[0];
+      entry["paper_ratio_high"] = (*row.paper_range)[1];
+      entry["paper_ratio_sponza"] = *row.paper_sponza;
+    }
+    entries.push_back(entry);
+  }
+  document["rows"] = entries;
+  std::ofstream out(path);
+  if (!out) throw Failure(fmt::format("cannot write {}", path));
+  out << document.dump(2) << "\n";
+  if (!out) throw Failure(fmt::format("cannot write {}", path));
+}
+
+// Counts the pixels whose screen derivatives of a buffer-loaded value are wrong: non-zero on
+// lavapipe (Mesa 22.3), whose helper invocations read 0 from storage buffers.
+std::size_t probe_helper_loads(hx::VulkanContext& context, const saagen::EmittedFile& host_file, std::uint32_t size) {
+  const std::string body =
+      "    real v = SAAGEN_LOAD(0);\n"
+      "    SAAGEN_STORE(0, abs(ddx_fine(v * saagen_frag_coord.x) - v) + abs(ddy_fine(v * saagen_frag_coord.y) - v));\n";
+  const Shader shader = build_shader("glsl", "helper-load probe", host_file, host_file.content, body, size);
+  Kernel probe(context, shader, size, {1.0f});
+  probe.run_once(false);
+  std::size_t wrong = 0;
+  for (const float value : probe.output()) wrong += value > 1e-3f || !std::isfinite(value) ? 1 : 0;
+  return wrong;
+}
+
+// Below this mean per-pixel change (relative to the mean no-SAA value) a variant counts as "did
+// nothing". NDF filtering roughly preserves the mean, so the mean itself is no test.
+constexpr double minimum_pixel_change = 0.02;
+
+int run_bench(const Options& options) {
+  const auto started = std::chrono::steady_clock::now();
+  hx::VulkanContext context(hx::ContextOptions{.device_name = options.device});
+  const hx::DeviceInfo& info = context.info();
+  fmt::print("device: {}\n", info.summary());
+  if (!info.fragment_stores_and_atomics) throw Failure("the device lacks fragmentStoresAndAtomics (fragment storage writes)");
+  const bool timestamps = info.timestamps_supported();
+  const char* time_source = timestamps ? "GPU timestamp" : "host wall-clock";
+  fmt::print("scene: bumpy GGX sphere, alpha 0.05, {0}x{0} px, {1} warm-up + {2} timed rounds per variant, "
+             "baseline and variant interleaved (ABBA)\n",
+             options.size, options.warmup, options.repetitions);
+
+  const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
+  {
+    saagen::EmitOptions emit;
+    emit.variants = {"brdf-ggx"};
+    const std::size_t wrong = probe_helper_loads(context, saagen::emit_variants(catalogue, emit).front(), options.size);
+    if (wrong == 0) {
+      fmt::print("helper invocations: buffer loads ok (derivatives of loaded values are exact on every pixel)\n");
+    } else {
+      fmt::print("helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
+                 "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
+                 wrong, static_cast<std::size_t>(options.size) * options.size);
+    }
+  }
+  std::vector<Row> all_rows;
+  for (const std::string target : {"glsl", "hlsl"}) {
+    saagen::EmitOptions emit;
+    emit.target = target;
+    const std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, emit);
+    const auto file_of = [&](const std::string& id) -> const saagen::EmittedFile& {
+      for (const auto& file : files) {
+        if (file.marker.variants.size() == 1 && file.marker.variants.front() == id) return file;
+      }
+      throw Failure(fmt::format("{}: no emitted file for variant {}", target, id));
+    };
+    const saagen::EmittedFile& brdf = file_of("brdf-ggx");
+
+    const Shader baseline_shader = build_shader(target, "no-saa", brdf, brdf.content,
+                                                body_with(baseline_shade, options.size, options.size), options.size);
+    Kernel baseline(context, baseline_shader, options.size, parameter_buffer(options.size, options.size));
+    baseline.run_once(timestamps);
+    const std::vector<float> baseline_image = baseline.output();
+    const ImageStats baseline_stats = check_image(target, "no-saa", baseline_image);
+
+    std::vector<Row> rows;
+    std::vector<double> all_baseline_samples;
+    for (const VariantCase& variant : variant_cases()) {
+      const saagen::EmittedFile& file = file_of(variant.id);
+      const Shader shader =
+          build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
+                       body_with(variant.shade, options.size, options.size), options.size);
+      Kernel kernel(context, shader, options.size, parameter_buffer(options.size, options.size));
+
+      std::vector<double> variant_samples, baseline_samples, ratios;
+      for (std::uint32_t round = 0; round < options.warmup + options.repetitions; ++round) {
+        double base_ms = 0.0, variant_ms = 0.0;
+        if (round % 2 == 0) {
+          base_ms = baseline.run_once(timestamps);
+          variant_ms = kernel.run_once(timestamps);
+        } else {
+          variant_ms = kernel.run_once(timestamps);
+          base_ms = baseline.run_once(timestamps);
+        }
+        if (round < options.warmup) continue;
+        variant_samples.push_back(variant_ms);
+        baseline_samples.push_back(base_ms);
+        ratios.push_back(variant_ms / base_ms);
+      }
+      const std::vector<float> image = kernel.output();
+      const ImageStats stats = check_image(target, variant.id, image);
+      if (stats.on_sphere != baseline_stats.on_sphere) {
+        throw Failure(fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant.id, stats.on_sphere,
+                                  baseline_stats.on_sphere));
+      }
+      double absolute_change = 0.0;
+      for (std::size_t index = 0; index < image.size(); ++index) {
+        if (baseline_image[index] != -1.0f) absolute_change += std::abs(static_cast<double>(image[index]) - baseline_image[index]);
+      }
+      const double pixel_change = absolute_change / static_cast<double>(stats.on_sphere) / baseline_stats.mean;
+      const double mean_change = (stats.mean - baseline_stats.mean) / baseline_stats.mean;
+      if (pixel_change < minimum_pixel_change) {
+        throw Failure(fmt::format("{} {}: the image differs from no SAA by only {:.3f}% per pixel: the filter is not wired in",
+                                  target, variant.id, 100.0 * pixel_change));
+      }
+      all_baseline_samples.insert(all_baseline_samples.end(), baseline_samples.begin(), baseline_samples.end());
+
+      Row row;
+      row.target = target;
+      row.variant = variant.id;
+      row.ms = percentile(variant_samples, 0.5);
+      row.baseline_ms = percentile(baseline_samples, 0.5);
+      row.ratio = percentile(ratios, 0.5);
+      row.ratio_p25 = percentile(ratios, 0.25);
+      row.ratio_p75 = percentile(ratios, 0.75);
+      row.ms_min = *std::min_element(variant_samples.begin(), variant_samples.end());
+      row.baseline_ms_min = *std::min_element(baseline_samples.begin(), baseline_samples.end());
+      row.ratio_of_minima = row.ms_min / row.baseline_ms_min;
+      row.instructions = shader.instructions;
+      row.delta_instructions = static_cast<long>(shader.instructions) - static_cast<long>(baseline_shader.instructions);
+      row.mean_change = mean_change;
+      row.pixel_change = pixel_change;
+      if (variant.paper_ms) {
+        std::array<double, 3> ratios_in_paper{};
+        for (std::size_t scene = 0; scene < 3; ++scene) ratios_in_paper[scene] = (*variant.paper_ms)[scene] / paper_no_saa_ms[scene];
+        row.paper_range = std::array<double, 2>{*std::min_element(ratios_in_paper.begin(), ratios_in_paper.end()),
+                                                *std::max_element(ratios_in_paper.begin(), ratios_in_paper.end())};
+        row.paper_sponza = ratios_in_paper[0];
+      }
+      rows.push_back(row);
+    }
+
+    Row baseline_row;
+    baseline_row.target = target;
+    baseline_row.variant = "no-saa";
+    baseline_row.ms = percentile(all_baseline_samples, 0.5);
+    baseline_row.baseline_ms = baseline_row.ms;
+    baseline_row.ms_min = *std::min_element(all_baseline_samples.begin(), all_baseline_samples.end());
+    baseline_row.baseline_ms_min = baseline_row.ms_min;
+    baseline_row.instructions = baseline_shader.instructions;
+    rows.insert(rows.begin(), baseline_row);
+    print_table(target, rows, time_source);
+    all_rows.insert(all_rows.end(), rows.begin(), rows.end());
+  }
+
+  if (!options.csv_path.empty()) write_csv(options.csv_path, all_rows, options, info.summary(), time_source);
+  if (!options.json_path.empty()) write_json(options.json_path, all_rows, options, info.summary(), time_source);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  fmt::print(
+      "\nratio: median over rounds of variant ms / no-SAA ms measured back to back (p25-p75: quartiles)\n"
+      "min ratio: fastest variant round / fastest no-SAA round\n"
+      "dSPIR-V: optimized (spirv-opt -O) instructions minus the no-SAA shader's (its own count in parentheses)\n"
+      "|d| px, mean d: mean per-pixel |change| of the specular value on the sphere, change of its mean (both relative\n"
+      "  to the no-SAA mean); forward aniso variants shade with the matrix GGX BRDF, so they include its extra cost\n"
+      "paper: Table 2 of Tokuyoshi & Kaplanyan 2019, ratio range over Sponza, Bistro, San Miguel (8K, RX Vega 56)\n"
+      "total {:.1f} s\n",
+      seconds);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_bench(parse_options(argc, argv));
+  } catch (const std::exception& error) {
+    std::string message = error.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::fprintf(stderr, "bench_shading: %s\n", message.c_str());
+    return 1;
+  }
+}
