@@ -24,19 +24,18 @@ inline harness::VulkanContext& gpu() {
   return context;
 }
 
-inline EmittedFile emit_variant(const std::string& target, const std::string& variant) {
+inline EmittedFile emit_variant(const std::string& target, const std::string& variant, const std::string& precision = "fp32",
+                                bool guards = true) {
   EmitOptions options;
   options.target = target;
   options.variants = {variant};
+  options.precision = precision;
+  options.guards = guards;
   return emit_variants(Catalogue::builtin(), options).front();
 }
 
 inline std::vector<std::uint32_t> compile_kernel(const EmittedFile& file, const KernelRequest& request) {
-  CompileRequest compile;
-  compile.language = file.marker.target == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
-  compile.stage = request.kind == KernelKind::fragment ? ShaderStage::fragment : ShaderStage::compute;
-  compile.sources = kernel_sources(Catalogue::builtin(), file.file_name, file.content, request);
-  const CompileResult result = compile_to_spirv(compile);
+  const CompileResult result = compile_to_spirv(kernel_compile_request(Catalogue::builtin(), file.file_name, file.content, request));
   if (!result.ok) throw std::runtime_error(file.file_name + ": kernel does not compile:\n" + result.log);
   return result.spirv;
 }

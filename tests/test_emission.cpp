@@ -263,7 +263,11 @@ TEST(Prefix, RejectsAnythingThatCouldInjectCodeOrCollide) {
 }
 
 TEST(Marker, RoundTripsAndIsAbsentFromForeignFiles) {
-  const saagen::EmissionMarker marker{"hlsl", {"deferred-sum", "deferred-avg"}, "eng_", {{"kappa", 0.1}, {"sigma2", 0.3}}};
+  saagen::EmissionMarker marker;
+  marker.target = "hlsl";
+  marker.variants = {"deferred-sum", "deferred-avg"};
+  marker.prefix = "eng_";
+  marker.option_values = {{"kappa", 0.1}, {"sigma2", 0.3}};
   const auto parsed = saagen::find_marker("// header\n" + saagen::marker_line(marker) + "\nfloat x;\n");
   ASSERT_TRUE(parsed.has_value());
   EXPECT_EQ(parsed->target, "hlsl");
@@ -288,6 +292,98 @@ TEST(Validation, ReportsTheEmittedFileNameAndLineOfAnError) {
 
 TEST(Validation, RefusesFilesWithoutAMarker) {
   EXPECT_THROW(saagen::validate_file(Catalogue::builtin(), "foreign.glsl", "float f() { return 1.0; }\n"), saagen::Error);
+}
+
+struct Form {
+  std::string target;
+  std::string precision;
+  bool guards;
+};
+
+void PrintTo(const Form& form, std::ostream* os) {
+  *os << form.target << " " << form.precision << (form.guards ? "" : " unguarded");
+}
+
+class EveryForm : public ::testing::TestWithParam<Form> {};
+
+// Every variant in every precision the target offers, guarded and unguarded, compiles and
+// passes spirv-val; half-precision GLSL carries its extension and fp32 derivative helpers.
+TEST_P(EveryForm, EveryVariantValidates) {
+  const Form& form = GetParam();
+  saagen::EmitOptions options;
+  options.target = form.target;
+  options.precision = form.precision;
+  options.guards = form.guards;
+  for (const auto& file : saagen::emit_variants(Catalogue::builtin(), options)) {
+    const auto validation = saagen::validate_file(Catalogue::builtin(), file.file_name, file.content);
+    EXPECT_TRUE(validation.ok()) << validation.summary() << "\n" << validation.checks.front().log;
+    EXPECT_EQ(file.marker.precision, form.precision);
+    EXPECT_EQ(file.marker.guards, form.guards);
+    const auto parsed = saagen::find_marker(file.content);
+    ASSERT_TRUE(parsed.has_value());
+    EXPECT_EQ(parsed->precision, form.precision);
+    EXPECT_EQ(parsed->guards, form.guards);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Forms, EveryForm,
+                         ::testing::Values(Form{"glsl", "fp16", true}, Form{"glsl", "fp16", false}, Form{"glsl", "fp32", false},
+                                           Form{"hlsl", "min16", true}, Form{"hlsl", "min16", false}, Form{"hlsl", "fp32", false}),
+                         [](const auto& info) {
+                           return info.param.target + "_" + info.param.precision + (info.param.guards ? "" : "_unguarded");
+                         });
+
+TEST(Forms, HalfPrecisionGlslUsesFloat16TypesLiteralsAndFp32Derivatives) {
+  saagen::EmitOptions options;
+  options.precision = "fp16";
+  options.variants = {"deferred-sum"};
+  const auto file = saagen::emit_variants(Catalogue::builtin(), options).front();
+  EXPECT_EQ(file.file_name, "saa_deferred_sum_fp16.glsl");
+  EXPECT_NE(file.content.find("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require"), std::string::npos);
+  EXPECT_NE(file.content.find("const float16_t saa_SIGMA2 = 0.25hf;"), std::string::npos);
+  EXPECT_NE(file.content.find("float16_t saa_deferred_sum(float16_t alpha2, f16vec3 dn_dx, f16vec3 dn_dy)"), std::string::npos);
+  // Vulkan SPIR-V takes derivatives of 32-bit values only.
+  EXPECT_NE(file.content.find("f16vec3 saa_ddx_fp16(f16vec3 v) { return f16vec3(dFdx(vec3(v))); }"), std::string::npos);
+  EXPECT_NE(file.content.find("saa_ddx_fp16(normal_ws)"), std::string::npos);
+  EXPECT_EQ(file.content.find("dFdx(normal_ws)"), std::string::npos);
+}
+
+TEST(Forms, GuardsAppearOnlyWhereTemplatesPlaceThemAndUnguardedIsThePaperForm) {
+  saagen::EmitOptions options;
+  options.variants = {"forward-aniso-slope"};
+  const auto guarded = saagen::emit_variants(Catalogue::builtin(), options).front();
+  options.guards = false;
+  const auto paper = saagen::emit_variants(Catalogue::builtin(), options).front();
+  EXPECT_EQ(paper.file_name, "saa_forward_aniso_slope_unguarded.glsl");
+  EXPECT_NE(guarded.content.find("return half_ts.xy / (max(abs(half_ts.z), saa_SLOPE_MIN_Z));"), std::string::npos);
+  EXPECT_NE(paper.content.find("return half_ts.xy / (abs(half_ts.z));"), std::string::npos);
+  // The guard helpers and constants follow the form that is emitted.
+  EXPECT_NE(guarded.content.find("saa_clamp_derivative2("), std::string::npos);
+  EXPECT_EQ(paper.content.find("saa_clamp_derivative2"), std::string::npos);
+  EXPECT_EQ(paper.content.find("saa_SLOPE_MIN_Z"), std::string::npos);
+  // A variant without guard sites is identical in both forms apart from its header.
+  options.variants = {"deferred-sum"};
+  const auto sum_paper = saagen::emit_variants(Catalogue::builtin(), options).front();
+  options.guards = true;
+  const auto sum_guarded = saagen::emit_variants(Catalogue::builtin(), options).front();
+  // Compare from the first constant up to the header guard's closing line (whose name differs).
+  const auto body = [](const std::string& text) {
+    const auto begin = text.find("#ifndef SAA_CONST_SIGMA2");
+    return text.substr(begin, text.rfind("#endif  // SAA_DEFERRED_SUM") - begin);
+  };
+  EXPECT_EQ(body(sum_paper.content), body(sum_guarded.content));
+}
+
+TEST(Forms, UnknownPrecisionNamesTheOnesTheTargetHas) {
+  saagen::EmitOptions options;
+  options.target = "hlsl";
+  options.precision = "fp16";
+  try {
+    saagen::emit_variants(Catalogue::builtin(), options);
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "target hlsl has no precision 'fp16'; choose one of: fp32, min16");
+  }
 }
 
 }  // namespace

@@ -13,10 +13,8 @@ using saagen::Catalogue;
 
 saagen::CompileResult compile_kernel(const saagen::EmittedFile& file, const saagen::KernelRequest& request,
                                      saagen::ShaderStage stage) {
-  saagen::CompileRequest compile;
-  compile.language = file.marker.target == "hlsl" ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
+  auto compile = saagen::kernel_compile_request(Catalogue::builtin(), file.file_name, file.content, request);
   compile.stage = stage;
-  compile.sources = saagen::kernel_sources(Catalogue::builtin(), file.file_name, file.content, request);
   return saagen::compile_to_spirv(compile);
 }
 

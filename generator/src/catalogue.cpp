@@ -261,10 +261,14 @@ class TemplateParser {
         const auto number = parse_number(text);
         if (!number) fail(file_, value.number, fmt::format("'{}' is not a number", text));
         constant.value = *number;
+      } else if (key == "half_value") {
+        const auto number = parse_number(text);
+        if (!number) fail(file_, value.number, fmt::format("'{}' is not a number", text));
+        constant.half_value = *number;
       } else if (key == "range") {
         constant.range = parse_interval(text, value.number);
       } else {
-        fail(file_, value.number, fmt::format("unknown constant key '{}'; allowed: type, value, option, default, range, meaning", key));
+        fail(file_, value.number, fmt::format("unknown constant key '{}'; allowed: type, value, half_value, option, default, range, meaning", key));
       }
     }
     require_keys(file_, line, "@constant " + name, seen, {"type", "meaning"});
@@ -365,7 +369,18 @@ void Catalogue::link() {
     }
   }
 
-  // Direct references: identifiers that name a function or a constant (member accesses excluded).
+  // Direct references: identifiers that name a function or a constant (member accesses
+  // excluded), in the guarded form and in the paper form.
+  const auto collect = [&](const Function& function, const std::string& code, std::vector<std::string>& calls,
+                           std::vector<std::string>& constants) {
+    const auto tokens = dialect::tokenize(code);
+    for (std::size_t index = 0; index < tokens.size(); ++index) {
+      if (tokens[index].kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens, index)) continue;
+      const std::string name(tokens[index].text);
+      if (function_index_.count(name) && name != function.name && !contains(calls, name)) calls.push_back(name);
+      if (constant_names.count(name) && !contains(constants, name)) constants.push_back(name);
+    }
+  };
   for (Function& function : functions_) {
     const auto tokens = dialect::tokenize(function.body);
     for (std::size_t index = 0; index < tokens.size(); ++index) {
@@ -376,8 +391,13 @@ void Catalogue::link() {
              fmt::format("{} uses '{}': the dialect has no matrices; write the product with dot products", function.name, name));
       }
       if (contains(dialect::derivative_intrinsics(), name)) function.fragment_only = true;
-      if (function_index_.count(name) && name != function.name && !contains(function.calls, name)) function.calls.push_back(name);
-      if (constant_names.count(name) && !contains(function.constants, name)) function.constants.push_back(name);
+      if (name == "guarded") function.has_guards = true;
+    }
+    try {
+      collect(function, dialect::resolve_guards(function.body, true), function.calls, function.constants);
+      collect(function, dialect::resolve_guards(function.body, false), function.paper_calls, function.paper_constants);
+    } catch (const Error& error) {
+      fail(function.source_file, function.line, fmt::format("{}: {}", function.name, error.what()));
     }
   }
 
@@ -386,12 +406,11 @@ void Catalogue::link() {
     changed = false;
     for (Function& function : functions_) {
       if (function.fragment_only) continue;
-      for (const std::string& callee : function.calls) {
-        if (functions_[function_index_.at(callee)].fragment_only) {
-          function.fragment_only = true;
-          changed = true;
-          break;
-        }
+      const auto fragment_callee = [&](const std::string& callee) { return functions_[function_index_.at(callee)].fragment_only; };
+      if (std::any_of(function.calls.begin(), function.calls.end(), fragment_callee) ||
+          std::any_of(function.paper_calls.begin(), function.paper_calls.end(), fragment_callee)) {
+        function.fragment_only = true;
+        changed = true;
       }
     }
   }
@@ -442,13 +461,13 @@ const Constant* Catalogue::find_option(std::string_view option) const {
   return nullptr;
 }
 
-std::vector<const Function*> Catalogue::closure(const std::vector<std::string>& roots) const {
+std::vector<const Function*> Catalogue::closure(const std::vector<std::string>& roots, bool guarded) const {
   std::vector<const Function*> ordered;
   std::set<const Function*> visited;
   std::function<void(const Function&)> visit = [&](const Function& function) {
     if (!visited.insert(&function).second) return;
     std::vector<const Function*> callees;
-    for (const std::string& callee : function.calls) callees.push_back(find_function(callee));
+    for (const std::string& callee : guarded ? function.calls : function.paper_calls) callees.push_back(find_function(callee));
     std::sort(callees.begin(), callees.end());  // template order: functions_ is contiguous
     for (const Function* callee : callees) visit(*callee);
     ordered.push_back(&function);
@@ -464,11 +483,11 @@ std::vector<const Function*> Catalogue::closure(const std::vector<std::string>& 
   return ordered;
 }
 
-std::vector<const Constant*> Catalogue::constants_used(const std::vector<const Function*>& functions) const {
+std::vector<const Constant*> Catalogue::constants_used(const std::vector<const Function*>& functions, bool guarded) const {
   std::vector<const Constant*> used;
   for (const Constant& constant : constants_) {
     const bool referenced = std::any_of(functions.begin(), functions.end(), [&](const Function* function) {
-      return contains(function->constants, constant.name);
+      return contains(guarded ? function->constants : function->paper_constants, constant.name);
     });
     if (referenced) used.push_back(&constant);
   }

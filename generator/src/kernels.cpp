@@ -57,7 +57,8 @@ std::string load_call_store_body(const Catalogue& catalogue, const std::string& 
     const std::uint32_t count = component_count(parameter.type);
     std::vector<std::string> loads;
     for (std::uint32_t component = 0; component < count; ++component) loads.push_back(fmt::format("SAAGEN_LOAD({})", offset++));
-    const std::string value = count == 1 ? loads.front() : fmt::format("{}({})", parameter.type, fmt::join(loads, ", "));
+    // Constructors convert explicitly (half-precision GLSL has no implicit narrowing).
+    const std::string value = fmt::format("{}({})", parameter.type, fmt::join(loads, ", "));
     body += fmt::format("    {} saagen_arg_{} = {};\n", parameter.type, parameter.name, value);
     arguments.push_back("saagen_arg_" + parameter.name);
   }
@@ -76,7 +77,8 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
                                         const std::string& content, const KernelRequest& request) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
-  const TargetSyntax& target = builtin_target(marker->target);
+  const TargetSyntax target =
+      builtin_target(marker->target).with_precision(marker->precision).with_prefix(marker->prefix, macro_prefix(marker->prefix));
   const auto skeleton = target.kernel_skeletons.find(kind_name(request.kind));
   if (skeleton == target.kernel_skeletons.end()) {
     throw Error(fmt::format("target {} has no '{}' kernel skeleton", target.name, kind_name(request.kind)));
@@ -109,6 +111,19 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   pieces.push_back({file_name, content});
   pieces.push_back({"saagen-kernel-main", substitute(fill(skeleton->second.epilogue), "{body}", body)});
   return pieces;
+}
+
+CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name,
+                                      const std::string& content, const KernelRequest& request) {
+  const auto marker = find_marker(content);
+  if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
+  const TargetSyntax target = builtin_target(marker->target).with_precision(marker->precision);
+  CompileRequest compile;
+  compile.language = target.language;
+  compile.stage = request.kind == KernelKind::fragment ? ShaderStage::fragment : ShaderStage::compute;
+  compile.hlsl_native_16bit = target.native_16bit;
+  compile.sources = kernel_sources(catalogue, file_name, content, request);
+  return compile;
 }
 
 }  // namespace saagen

@@ -154,6 +154,21 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   for (const auto& [kind, skeleton] : require(json, "kernels", source).items()) {
     target.kernel_skeletons[kind] = parse_skeleton(skeleton, source);
   }
+  for (const auto& [name, entry] : require(json, "precisions", source).items()) {
+    Precision precision;
+    for (const auto& [type, spelling] : require(entry, "types", source).items()) {
+      if (!target.types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
+      precision.types[type] = spelling.get<std::string>();
+    }
+    for (const auto& [intrinsic, pattern] : require(entry, "intrinsics", source).items()) {
+      precision.intrinsics[intrinsic] = pattern.get<std::string>();
+    }
+    precision.literal_suffix = require_string(entry, "literal_suffix", source);
+    precision.preamble = require_string(entry, "preamble", source);
+    precision.native_16bit = entry.value("native_16bit", false);
+    target.precisions[name] = std::move(precision);
+  }
+  if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
   return target;
 }
 
@@ -185,6 +200,53 @@ std::vector<std::string> builtin_target_names() {
   std::vector<std::string> names;
   for (const auto& [name, target] : builtin_targets()) names.push_back(name);
   return names;
+}
+
+TargetSyntax TargetSyntax::with_precision(std::string_view precision) const {
+  const auto found = precisions.find(precision);
+  if (found == precisions.end()) {
+    std::vector<std::string> names;
+    for (const auto& [name, entry] : precisions) names.push_back(name);
+    throw Error(fmt::format("target {} has no precision '{}'; choose one of: {}", name, precision, fmt::join(names, ", ")));
+  }
+  TargetSyntax result = *this;
+  for (const auto& [type, spelling] : found->second.types) result.types[type] = spelling;
+  for (const auto& [intrinsic, pattern] : found->second.intrinsics) result.intrinsics[intrinsic] = pattern;
+  result.literal_suffix = found->second.literal_suffix;
+  result.preamble = found->second.preamble;
+  result.native_16bit = found->second.native_16bit;
+  return result;
+}
+
+namespace {
+std::string replace_placeholders(std::string text, std::string_view prefix, std::string_view macro_prefix) {
+  for (const auto& [key, value] : {std::pair<std::string_view, std::string_view>{"{prefix}", prefix}, {"{macro_prefix}", macro_prefix}}) {
+    for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
+      text.replace(position, key.size(), value);
+    }
+  }
+  return text;
+}
+}  // namespace
+
+TargetSyntax TargetSyntax::with_prefix(std::string_view prefix, std::string_view macro_prefix) const {
+  TargetSyntax result = *this;
+  for (auto& [intrinsic, pattern] : result.intrinsics) pattern = replace_placeholders(pattern, prefix, macro_prefix);
+  result.preamble = replace_placeholders(result.preamble, prefix, macro_prefix);
+  return result;
+}
+
+std::string suffix_float_literals(std::string_view code, std::string_view suffix) {
+  if (suffix.empty()) return std::string(code);
+  std::string out;
+  for (const dialect::Token& token : dialect::tokenize(code)) {
+    out += token.text;
+    const bool is_float = token.kind == dialect::TokenKind::number &&
+                          token.text.find_first_of(".eE") != std::string_view::npos &&
+                          std::isdigit(static_cast<unsigned char>(token.text.back()));
+    if (is_float) out += suffix;
+  }
+  return out;
 }
 
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names) {

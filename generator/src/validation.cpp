@@ -13,10 +13,11 @@ namespace {
 // A dialect expression of the given type built from the shader's input vector, so that the
 // compiler cannot fold the call away.
 std::string argument_for(const std::string& type) {
-  if (type == "real") return "saagen_seed.x";
-  if (type == "real2") return "saagen_seed.xy";
-  if (type == "real3") return "saagen_seed.xyz";
-  if (type == "real4") return "saagen_seed";
+  // Constructors convert explicitly, which half-precision GLSL requires.
+  if (type == "real") return "real(saagen_seed.x)";
+  if (type == "real2") return "real2(saagen_seed.xy)";
+  if (type == "real3") return "real3(saagen_seed.xyz)";
+  if (type == "real4") return "real4(saagen_seed)";
   if (type == "int") return "int(saagen_seed.x)";
   if (type == "bool") return "(saagen_seed.x > 0.5)";
   throw Error(fmt::format("no validation argument for type '{}'", type));
@@ -77,9 +78,16 @@ std::string FileValidation::summary() const {
 
 std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
                                             const std::string& file_name, const std::string& content, ShaderStage stage) {
-  const TargetSyntax& target = builtin_target(marker.target);
+  const TargetSyntax target =
+      builtin_target(marker.target).with_precision(marker.precision).with_prefix(marker.prefix, macro_prefix(marker.prefix));
   const ValidationSkeleton& skeleton = stage == ShaderStage::compute ? target.compute_skeleton : target.fragment_skeleton;
-  const auto functions = public_functions(catalogue, marker.variants);
+  auto functions = public_functions(catalogue, marker.variants);
+  if (!marker.functions.empty()) {  // a bundle: exactly its public functions
+    for (const std::string& name : marker.functions) {
+      if (!catalogue.find_function(name)) throw Error(fmt::format("{}: the marker names unknown function '{}'", file_name, name));
+    }
+    functions = marker.functions;
+  }
 
   NameMap names;
   for (const std::string& name : functions) names[name] = prefixed_name(marker.prefix, name);
@@ -97,7 +105,7 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 FileValidation validate_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line; this file was not written by `saagen emit`", file_name));
-  const TargetSyntax& target = builtin_target(marker->target);
+  const TargetSyntax target = builtin_target(marker->target).with_precision(marker->precision);
 
   FileValidation validation{file_name, {}};
   for (ClientApi client : target.validation_clients) {
@@ -106,6 +114,7 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
       request.language = target.language;
       request.stage = stage;
       request.client = client;
+      request.hlsl_native_16bit = target.native_16bit;
       request.sources = validation_sources(catalogue, *marker, file_name, content, stage);
       const CompileResult result = compile_to_spirv(request);
       validation.checks.push_back({client_name(client) + " " + stage_name(stage), result.ok, result.log, result.spirv.size()});

@@ -29,8 +29,13 @@ struct Function {
   std::string body;  // dialect code between the braces, without them
   std::string source_file;
   int line = 0;
-  std::vector<std::string> calls;      // template functions this body calls directly
-  std::vector<std::string> constants;  // constants this body references directly
+  // Template functions and constants this body references directly, with guards (the default)
+  // and in the unguarded paper form; see dialect::resolve_guards.
+  std::vector<std::string> calls;
+  std::vector<std::string> constants;
+  std::vector<std::string> paper_calls;
+  std::vector<std::string> paper_constants;
+  bool has_guards = false;  // the body contains guarded(...)
   bool fragment_only = false;          // takes derivatives itself or through a callee
 };
 
@@ -50,6 +55,7 @@ struct Constant {
   std::string meaning;
   std::string option;  // non-empty for emission-time options (sigma2, kappa)
   double value = 0.0;  // the fixed value, or the option's default
+  std::optional<double> half_value;  // the value in half-precision emissions, when it differs
   std::optional<Interval> range;
   std::string source_file;
   int line = 0;
@@ -93,10 +99,10 @@ class Catalogue {
   const Constant* find_option(std::string_view option) const;
 
   // The functions needed to define `roots`, callees before callers, otherwise in template
-  // order. Deterministic.
-  std::vector<const Function*> closure(const std::vector<std::string>& roots) const;
+  // order. Deterministic. `guarded` selects the guarded form's references or the paper form's.
+  std::vector<const Function*> closure(const std::vector<std::string>& roots, bool guarded = true) const;
   // The constants referenced by `functions`, in template order.
-  std::vector<const Constant*> constants_used(const std::vector<const Function*>& functions) const;
+  std::vector<const Constant*> constants_used(const std::vector<const Function*>& functions, bool guarded = true) const;
 
  private:
   void link();

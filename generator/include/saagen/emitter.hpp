@@ -18,6 +18,8 @@ struct EmitOptions {
   std::vector<std::string> variants;  // empty: every variant
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // e.g. {"sigma2", 0.25}; missing: the default
+  std::string precision = "fp32";  // a precision of the target table: fp32, fp16, min16 (HLSL)
+  bool guards = true;              // false: the unguarded paper form (for comparison)
 };
 
 // What one emitted file holds, as written in its marker line, so that a file on disk can be
@@ -27,6 +29,11 @@ struct EmissionMarker {
   std::vector<std::string> variants;
   std::string prefix;
   std::map<std::string, double> option_values;
+  std::string precision = "fp32";
+  bool guards = true;
+  // A bundle's public functions (`functions=` in the marker); empty: every public function of
+  // `variants` (a per-variant file).
+  std::vector<std::string> functions;
 };
 
 struct EmittedFile {
@@ -45,6 +52,18 @@ std::map<std::string, double> resolve_options(const Catalogue& catalogue, const 
 
 // One file per requested variant, in catalogue order. Validates every input before emitting.
 std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOptions& options);
+
+// A bundle (issue 6, scene manifests): one file holding exactly the dependency closure of the
+// given public functions, drawn from several variants, with the same header, guards, marker
+// and CORE_ONLY conventions as a per-variant file. File: <prefix><name>[_<precision>].<ext>.
+struct BundleRequest {
+  std::string name;                    // the file name's stem after the prefix, e.g. "scene"
+  std::vector<std::string> functions;  // public functions: the roots of the closure
+  std::vector<std::string> variants;   // the variants they come from (header and marker)
+  std::vector<std::string> notes;      // header comment lines (what each material calls)
+};
+// Uses options.target, prefix, option_values, precision and guards (not options.variants).
+EmittedFile emit_bundle(const Catalogue& catalogue, const EmitOptions& options, const BundleRequest& request);
 
 // The marker line written into every emitted file, and its parser (nullopt when the text holds
 // no marker: the file was not written by saagen).

@@ -46,6 +46,11 @@ struct KernelRequest {
 std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name,
                                         const std::string& content, const KernelRequest& request);
 
+// The complete compile request for a kernel: language, stage and 16-bit settings from the
+// file's marker, and kernel_sources().
+CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name,
+                                      const std::string& content, const KernelRequest& request);
+
 // A body that loads every parameter of `function` from the input (in declaration order, each
 // vector component by component), calls it, and stores every component of the result. Sets
 // the request's strides.

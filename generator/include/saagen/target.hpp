@@ -17,6 +17,17 @@ struct ValidationSkeleton {
   std::string epilogue;  // after it; {calls} receives one statement per function
 };
 
+// A precision the target can emit: type spellings that replace the defaults, a suffix for
+// floating-point literals ("hf" for GLSL float16_t), a preamble (an #extension line), and
+// whether the HLSL front end must enable native 16-bit types.
+struct Precision {
+  std::map<std::string, std::string, std::less<>> types;
+  std::map<std::string, std::string, std::less<>> intrinsics;  // overrides; may use {prefix}
+  std::string literal_suffix;
+  std::string preamble;
+  bool native_16bit = false;
+};
+
 struct TargetSyntax {
   std::string name;
   std::string description;
@@ -32,6 +43,17 @@ struct TargetSyntax {
   // Skeletons that run emitted functions over buffers ("compute", "quad_compute",
   // "fragment"); see saagen/kernels.hpp.
   std::map<std::string, ValidationSkeleton, std::less<>> kernel_skeletons;
+  std::map<std::string, Precision, std::less<>> precisions;  // "fp32" (the default), "fp16", ...
+
+  // This target with the types, literal suffix and preamble of `precision`; throws
+  // saagen::Error naming the precisions the target has when it has no such precision.
+  TargetSyntax with_precision(std::string_view precision) const;
+  // Replaces {prefix} and {macro_prefix} in the intrinsic patterns and the preamble (precision
+  // helpers are emitted under the emission's prefix).
+  TargetSyntax with_prefix(std::string_view prefix, std::string_view macro_prefix) const;
+  std::string literal_suffix;      // set by with_precision
+  std::string preamble;            // set by with_precision
+  bool native_16bit = false;       // set by with_precision
 
   // Parses one table; throws saagen::Error naming `source_name` on a missing or wrong key.
   static TargetSyntax parse(std::string_view json_text, std::string_view source_name);
@@ -47,5 +69,9 @@ using NameMap = std::map<std::string, std::string, std::less<>>;
 // Rewrites dialect code into the target language: types, intrinsic calls (arguments are
 // rewritten recursively) and template names. Whitespace and comments are kept.
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
+
+// Appends `suffix` to every floating-point literal in `code` (numbers with '.' or an exponent);
+// comments are left alone. Used for half-precision literals (1.0hf).
+std::string suffix_float_literals(std::string_view code, std::string_view suffix);
 
 }  // namespace saagen
