@@ -10,7 +10,7 @@ packages=(
   # fails without it; saagen compiles in-process and never runs the tool.
   glslang-tools
   libvulkan-dev mesa-vulkan-drivers
-  libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
 )
 

@@ -6,6 +6,7 @@
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
 #include "saagen/validation.hpp"
+#include "scene_commands.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -33,6 +34,8 @@ struct EmitArguments {
   std::optional<double> kappa;
   std::string output_directory;
   bool force = false;
+  std::string precision = "fp32";
+  bool unguarded = false;
 };
 
 int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
@@ -63,6 +66,8 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   options.prefix = arguments.prefix;
   if (arguments.sigma2) options.option_values["sigma2"] = *arguments.sigma2;
   if (arguments.kappa) options.option_values["kappa"] = *arguments.kappa;
+  options.precision = arguments.precision;
+  options.guards = !arguments.unguarded;
 
   std::vector<saagen::OutputFile> outputs;
   for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
@@ -163,15 +168,26 @@ int main(int argc, char** argv) {
   CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
   emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
   emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
+  emit->add_option("--precision", emit_arguments.precision,
+                   "fp32, fp16 (GLSL float16_t) or min16 (HLSL min16float)")->capture_default_str();
+  emit->add_flag("--unguarded", emit_arguments.unguarded,
+                 "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
 
   std::string validate_directory;
   CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process (all variants and targets when no DIR)");
   validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
 
+  // Scene manifests (issue 6): `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
+  std::vector<CLI::Option*> per_variant_options;
+  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded"}) {
+    if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
+  }
+  const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
+
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
         return command->get_name() == argv[1];
       }).empty()) {
-    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate (run `saagen --help`)\n";
+    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate, or plan or compile for scene manifests (run `saagen --help`)\n";
     return exit_usage;
   }
   try {
@@ -183,6 +199,9 @@ int main(int argc, char** argv) {
   try {
     const Catalogue& catalogue = Catalogue::builtin();
     if (*list) return run_list(catalogue, list_json, list_prefix);
+    if (*emit && scene.emit_from_manifest()) return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
+    if (scene.plan_requested()) return scene.run_plan(catalogue);
+    if (scene.compile_requested()) return scene.run_compile();
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = sigma2;
       if (*kappa_option) emit_arguments.kappa = kappa;

@@ -1,0 +1,43 @@
+#version 450
+// Forward pass of an anisotropic, normal-mapped material (car_paint in scene.saagen.toml):
+// rule F1 gives forward-aniso-projected (a filtered roughness matrix) and the matrix GGX BRDF.
+#include "saa_scene.glsl"
+
+layout(location = 0) in vec3 in_position_ws;
+layout(location = 1) in vec3 in_normal_ws;
+layout(location = 2) in vec4 in_tangent_ws;  // xyz: tangent, w: bitangent sign
+layout(location = 3) in vec2 in_uv;
+
+layout(set = 0, binding = 0) uniform Frame {
+  vec4 camera_position_ws;
+  vec4 light_direction_ws;  // towards the light
+  vec4 light_radiance;
+} frame;
+layout(set = 1, binding = 0) uniform MaterialParameters {
+  vec2 alpha;  // GGX alpha along the tangent and the bitangent
+} material;
+layout(set = 1, binding = 1) uniform sampler2D normal_map;  // tangent space
+
+layout(location = 0) out vec4 out_radiance;
+
+void main() {
+  // Per-pixel frame around the normal-mapped normal: the filter must see the map's detail.
+  vec3 n = normalize(in_normal_ws);
+  vec3 t = normalize(in_tangent_ws.xyz - n * dot(n, in_tangent_ws.xyz));
+  vec3 b = cross(n, t) * in_tangent_ws.w;
+  vec3 mapped = texture(normal_map, in_uv).xyz * 2.0 - 1.0;
+  n = normalize(t * mapped.x + b * mapped.y + n * mapped.z);
+  t = normalize(t - n * dot(n, t));
+  b = cross(n, t) * in_tangent_ws.w;
+
+  vec3 l = normalize(frame.light_direction_ws.xyz);
+  vec3 v = normalize(frame.camera_position_ws.xyz - in_position_ws);
+  vec3 i_ts = vec3(dot(l, t), dot(l, b), dot(l, n));
+  vec3 o_ts = vec3(dot(v, t), dot(v, b), dot(v, n));
+  vec3 half_ts = normalize(i_ts + o_ts);
+
+  vec2 alpha2 = material.alpha * material.alpha;
+  vec3 roughness_matrix = saa_forward_aniso_projected_fragment(alpha2, half_ts);
+  float specular = saa_ggx_brdf_matrix(i_ts, o_ts, roughness_matrix, saa_ndf_clamp_tau(alpha2));
+  out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
+}

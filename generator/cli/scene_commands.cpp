@@ -1,0 +1,220 @@
+#include "scene_commands.hpp"
+
+#include "saagen/compiler.hpp"
+#include "saagen/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/manifest.hpp"
+#include "saagen/output.hpp"
+#include "saagen/planner.hpp"
+#include "saagen/target.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <unistd.h>
+
+namespace saagen::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw Error(fmt::format("{}: cannot be read", path.string()));
+  std::ostringstream content;
+  content << stream.rdbuf();
+  return content.str();
+}
+
+// `#include "name"` on a line of its own: the name, else nullopt. `#include <name>` is an error.
+std::optional<std::string> include_target(std::string_view line, const std::string& where) {
+  std::size_t index = line.find_first_not_of(" \t");
+  if (index == std::string_view::npos || line[index] != '#') return std::nullopt;
+  index = line.find_first_not_of(" \t", index + 1);
+  if (index == std::string_view::npos || line.substr(index, 7) != "include") return std::nullopt;
+  index = line.find_first_not_of(" \t", index + 7);
+  if (index == std::string_view::npos) throw Error(fmt::format("{}: #include names no file", where));
+  const char open = line[index];
+  if (open != '"') throw Error(fmt::format("{}: only #include \"FILE\" is supported (searched next to the file, then in -I directories)", where));
+  const auto close = line.find('"', index + 1);
+  if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
+  return std::string(line.substr(index + 1, close - index - 1));
+}
+
+// Expands #include "..." into named source pieces, so that compiler messages name the file
+// and line they come from (a `#line` directive restarts the count after each include).
+class IncludeExpander {
+ public:
+  explicit IncludeExpander(std::vector<std::string> directories) : directories_(std::move(directories)) {}
+
+  void expand(const fs::path& file, int depth) {
+    if (depth > 32) throw Error(fmt::format("{}: #include nested deeper than 32 (a cycle?)", file.string()));
+    const std::string text = read_text(file);
+    if (const auto marker = find_marker(text)) {
+      try {
+        native_16bit_ = native_16bit_ || builtin_target(marker->target).with_precision(marker->precision).native_16bit;
+      } catch (const Error&) {
+        // Not a file this saagen can read the precision of; compile it as it is.
+      }
+    }
+    std::string chunk;
+    std::istringstream lines(text);
+    int number = 0;
+    for (std::string line; std::getline(lines, line);) {
+      ++number;
+      const auto included = include_target(line, fmt::format("{}:{}", file.string(), number));
+      if (!included) {
+        chunk += line + "\n";
+        continue;
+      }
+      if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
+      expand(resolve(*included, file, number), depth + 1);
+      chunk = fmt::format("#line {}\n", number + 1);
+    }
+    if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
+  }
+
+  std::vector<SourcePiece>& pieces() { return pieces_; }
+  bool native_16bit() const { return native_16bit_; }
+
+ private:
+  fs::path resolve(const std::string& name, const fs::path& from, int line) const {
+    std::vector<fs::path> candidates = {from.parent_path() / name};
+    for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
+    for (const fs::path& candidate : candidates) {
+      std::error_code error;
+      if (fs::is_regular_file(candidate, error)) return candidate;
+    }
+    throw Error(fmt::format("{}:{}: #include \"{}\" not found next to the file or in the -I directories", from.string(), line, name));
+  }
+
+  std::vector<std::string> directories_;
+  std::vector<SourcePiece> pieces_;
+  bool native_16bit_ = false;
+};
+
+void write_binary(const fs::path& path, const std::vector<std::uint32_t>& words) {
+  std::error_code error;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path(), error);
+  const fs::path temporary = path.parent_path() / fmt::format(".{}.saagen-tmp-{}", path.filename().string(), ::getpid());
+  {
+    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
+    if (!stream) throw Error(fmt::format("{}: cannot be written; choose a writable output path", path.string()));
+    stream.write(reinterpret_cast<const char*>(words.data()), static_cast<std::streamsize>(words.size() * sizeof(std::uint32_t)));
+    if (!stream.flush()) {
+      fs::remove(temporary, error);
+      throw Error(fmt::format("{}: write failed (disk full?)", path.string()));
+    }
+  }
+  fs::rename(temporary, path, error);
+  if (error) {
+    fs::remove(temporary, error);
+    throw Error(fmt::format("{}: cannot replace the file", path.string()));
+  }
+}
+
+}  // namespace
+
+SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CLI::Option*>& emit_exclusive) {
+  plan_ = app.add_subcommand("plan", "Print, per material of a scene manifest, the variant chosen, why, what to call, and its cost");
+  plan_->add_option("MANIFEST", plan_manifest_, "Scene manifest (TOML; see examples/scene.saagen.toml)");
+  plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON, as bench_shading --json writes); rules otherwise");
+  plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
+  plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
+
+  CLI::Option* manifest = emit->add_option("--manifest,-m", emit_manifest_,
+                                           "Scene manifest: one bundle per target with only the functions its materials need");
+  for (CLI::Option* option : emit_exclusive) manifest->excludes(option);
+  emit->add_option("--trade-table", emit_trade_table_, "With --manifest: the measured trade table the planner reads")->needs(manifest);
+  emit->add_flag("--list-outputs", emit_list_outputs_, "With --manifest: print the files it would write, one per line, and write nothing")
+      ->needs(manifest);
+
+  compile_ = app.add_subcommand("compile", "Compile a shader (GLSL or HLSL, #include \"...\" resolved) to SPIR-V in-process, with spirv-val");
+  compile_->add_option("FILE", compile_input_, "Shader source")->required();
+  compile_->add_option("--output,-o", compile_output_, "SPIR-V output file")->required();
+  compile_->add_option("--stage,-S", compile_stage_, "vert, frag or comp (default: from the extension .vert/.frag/.comp)")
+      ->check(CLI::IsMember({"vert", "frag", "comp"}));
+  compile_->add_option("--language", compile_language_, "glsl or hlsl (default: hlsl for .hlsl, else glsl)")
+      ->check(CLI::IsMember({"glsl", "hlsl"}));
+  compile_->add_option("--client", compile_client_, "vulkan or opengl")->check(CLI::IsMember({"vulkan", "opengl"}))->capture_default_str();
+  compile_->add_option("--entry", compile_entry_, "Entry point")->capture_default_str();
+  compile_->add_option("-I,--include-dir", compile_include_dirs_, "Directory searched for #include \"...\" (repeatable)");
+  compile_->add_flag("--optimize,-O", compile_optimize_, "Run spirv-opt -O on the result");
+}
+
+int SceneCommands::run_plan(const Catalogue& catalogue) const {
+  if (plan_rules_) std::cout << rules_text();
+  if (plan_manifest_.empty()) {
+    if (plan_rules_) return 0;
+    throw Error("plan needs a MANIFEST (see examples/scene.saagen.toml), or --rules");
+  }
+  if (plan_rules_) std::cout << "\n";
+  const Manifest manifest = load_manifest(plan_manifest_, catalogue);
+  std::optional<TradeTable> table;
+  if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
+  ScenePlan plan = plan_scene(catalogue, manifest, table ? &*table : nullptr);
+  if (!plan_no_cost_) measure_costs(catalogue, manifest, plan);
+  std::cout << format_plan(catalogue, manifest, plan);
+  return 0;
+}
+
+int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& output_directory, bool force) const {
+  const Manifest manifest = load_manifest(emit_manifest_, catalogue);
+  std::optional<TradeTable> table;
+  if (!emit_trade_table_.empty()) table = load_trade_table(emit_trade_table_);
+  const ScenePlan plan = plan_scene(catalogue, manifest, table ? &*table : nullptr);
+  std::vector<OutputFile> outputs;
+  for (EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
+    outputs.push_back({fs::path(output_directory) / file.file_name, std::move(file.content)});
+  }
+  if (emit_list_outputs_) {
+    for (const OutputFile& output : outputs) std::cout << output.path.string() << "\n";
+    return 0;
+  }
+  const WriteReport report = write_outputs(outputs, force);
+  for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
+  for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
+  return 0;
+}
+
+int SceneCommands::run_compile() const {
+  const fs::path input(compile_input_);
+  const std::string extension = input.extension().string();
+  std::string stage = compile_stage_;
+  if (stage.empty()) {
+    if (extension == ".vert" || extension == ".frag" || extension == ".comp") stage = extension.substr(1);
+    else throw Error(fmt::format("{}: cannot tell the stage from the extension; pass --stage vert, frag or comp", input.string()));
+  }
+  const std::string language = !compile_language_.empty() ? compile_language_ : extension == ".hlsl" ? "hlsl" : "glsl";
+
+  IncludeExpander expander(compile_include_dirs_);
+  expander.expand(input, 0);
+
+  CompileRequest request;
+  request.language = language == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  request.stage = stage == "vert" ? ShaderStage::vertex : stage == "comp" ? ShaderStage::compute : ShaderStage::fragment;
+  request.client = compile_client_ == "opengl" ? ClientApi::opengl : ClientApi::vulkan;
+  request.entry_point = compile_entry_;
+  request.hlsl_native_16bit = expander.native_16bit();
+  request.sources = std::move(expander.pieces());
+  const CompileResult result = compile_to_spirv(request);
+  if (!result.ok) {
+    std::cerr << result.log;
+    if (!result.log.empty() && result.log.back() != '\n') std::cerr << "\n";
+    throw Error(fmt::format("{}: compilation to SPIR-V failed (messages above)", input.string()));
+  }
+  std::vector<std::uint32_t> spirv = result.spirv;
+  if (compile_optimize_) {
+    spirv = optimize_spirv(spirv, request.client);
+    if (spirv.empty()) throw Error(fmt::format("{}: spirv-opt failed", input.string()));
+  }
+  write_binary(compile_output_, spirv);
+  std::cout << fmt::format("wrote     {} ({} SPIR-V words)\n", compile_output_, spirv.size());
+  return 0;
+}
+
+}  // namespace saagen::cli

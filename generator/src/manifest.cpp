@@ -1,0 +1,369 @@
+#include "saagen/manifest.hpp"
+
+#include "saagen/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/target.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+// toml++ is used header-only and privately: nothing of it appears in saagen's headers, so the
+// installed library adds no dependency for engines.
+#define TOML_HEADER_ONLY 1
+#define TOML_EXCEPTIONS 1
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace saagen {
+namespace {
+
+// A value as it may be shown in a one-line message: printable ASCII, at most 40 characters.
+std::string show(std::string_view text, std::size_t limit = 40) {
+  std::string shown;
+  for (char c : text.substr(0, limit)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '\\') shown += c;
+    else shown += fmt::format("\\x{:02x}", byte);
+  }
+  if (text.size() > limit) shown += "...";
+  return shown;
+}
+
+std::string quoted_list(const std::vector<std::string>& values) {
+  std::vector<std::string> quoted;
+  for (const std::string& value : values) quoted.push_back("\"" + value + "\"");
+  return fmt::format("{}", fmt::join(quoted, ", "));
+}
+
+std::string_view type_phrase(toml::node_type type) {
+  switch (type) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a floating-point number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "nothing";
+  }
+}
+
+SourcePosition position_of(const toml::source_region& region) {
+  return {static_cast<int>(region.begin.line), static_cast<int>(region.begin.column)};
+}
+
+bool is_identifier(std::string_view text, bool allow_dash) {
+  if (text.empty() || text.size() > 64 || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
+  return std::all_of(text.begin(), text.end(), [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allow_dash && c == '-');
+  });
+}
+
+// Reads one table's keys, in file order, checking each against the allowed set and its type.
+class TableReader {
+ public:
+  TableReader(const Manifest& manifest, const toml::table& table, std::string context, const std::vector<std::string>& allowed)
+      : manifest_(manifest), table_(table), context_(std::move(context)) {
+    std::vector<std::pair<SourcePosition, std::string>> keys;
+    for (auto&& [key, node] : table) keys.emplace_back(position_of(key.source()), std::string(key.str()));
+    std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
+      return std::tie(a.first.line, a.first.column, a.second) < std::tie(b.first.line, b.first.column, b.second);
+    });
+    for (const auto& [position, key] : keys) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        fail(position, fmt::format("unknown key '{}'{}; allowed keys: {}", show(key), context_, fmt::join(allowed, ", ")));
+      }
+    }
+  }
+
+  const toml::node* find(std::string_view key) const { return table_.get(key); }
+  bool has(std::string_view key) const { return find(key) != nullptr; }
+
+  SourcePosition position(std::string_view key) const {
+    const toml::node* node = find(key);
+    return node ? position_of(node->source()) : position_of(table_.source());
+  }
+
+  [[noreturn]] void fail(SourcePosition position, const std::string& message) const {
+    throw Error(manifest_.where(position) + message);
+  }
+  [[noreturn]] void fail_key(std::string_view key, const std::string& problem, const std::string& allowed) const {
+    fail(position(key), fmt::format("key '{}'{}: {}; allowed: {}", key, context_, problem, allowed));
+  }
+  [[noreturn]] void missing(std::string_view key, const std::string& allowed) const {
+    fail(position_of(table_.source()), fmt::format("missing key '{}'{}; allowed: {}", key, context_, allowed));
+  }
+  [[noreturn]] void wrong_type(std::string_view key, const toml::node& node, const std::string& allowed) const {
+    fail(position_of(node.source()), fmt::format("key '{}'{}: must be {}, got {}; allowed: {}", key, context_,
+                                                 allowed_type_of(allowed), type_phrase(node.type()), allowed));
+  }
+
+  std::optional<std::string> string(std::string_view key, const std::string& allowed) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_string()) wrong_type(key, *node, allowed);
+    return std::string(node->as_string()->get());
+  }
+
+  // One of `values` (strings).
+  std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& values) const {
+    const std::string allowed = quoted_list(values);
+    const auto value = string(key, allowed);
+    if (value && std::find(values.begin(), values.end(), *value) == values.end()) {
+      fail_key(key, fmt::format("unknown value \"{}\"", show(*value)), allowed);
+    }
+    return value;
+  }
+
+  std::optional<bool> boolean(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean()) wrong_type(key, *node, "true, false");
+    return node->as_boolean()->get();
+  }
+
+  std::optional<double> number(std::string_view key, const std::string& allowed) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (node->is_integer()) return static_cast<double>(node->as_integer()->get());
+    if (!node->is_floating_point()) wrong_type(key, *node, allowed);
+    return node->as_floating_point()->get();
+  }
+
+  const std::string& context() const { return context_; }
+
+ private:
+  static std::string allowed_type_of(const std::string& allowed) {
+    if (allowed == "true, false") return "a boolean";
+    if (allowed.rfind("a number", 0) == 0) return "a number";
+    if (allowed.rfind("an array of tables", 0) == 0) return "an array of tables";
+    if (allowed.rfind("an array", 0) == 0) return "an array";
+    return "a string";
+  }
+
+  const Manifest& manifest_;
+  const toml::table& table_;
+  std::string context_;
+};
+
+// The manifest precisions every target can emit: fp32 always, fp16 when each target has a
+// half-precision form (see target_precision).
+std::vector<std::string> precisions_of_all(const std::vector<std::string>& targets) {
+  std::vector<std::string> common = {"fp32"};
+  const bool half = std::all_of(targets.begin(), targets.end(), [](const std::string& target) { return target_precision(target, "fp16").has_value(); });
+  if (half) common.push_back("fp16");
+  return common;
+}
+
+void read_targets(Manifest& manifest, const TableReader& top) {
+  const std::vector<std::string> names = builtin_target_names();
+  const std::string allowed = "an array of " + quoted_list(names);
+  const toml::node* node = top.find("targets");
+  if (!node) top.missing("targets", allowed);
+  if (!node->is_array()) top.wrong_type("targets", *node, allowed);
+  const toml::array& array = *node->as_array();
+  if (array.empty()) top.fail_key("targets", "the array is empty", allowed);
+  for (const toml::node& element : array) {
+    const SourcePosition position = position_of(element.source());
+    if (!element.is_string()) {
+      top.fail(position, fmt::format("key 'targets': every element must be a string, got {}; allowed: {}", type_phrase(element.type()),
+                                     quoted_list(names)));
+    }
+    const std::string target(element.as_string()->get());
+    if (std::find(names.begin(), names.end(), target) == names.end()) {
+      top.fail(position, fmt::format("key 'targets': unknown target \"{}\"; allowed: {}", show(target), quoted_list(names)));
+    }
+    if (std::find(manifest.targets.begin(), manifest.targets.end(), target) != manifest.targets.end()) {
+      top.fail(position, fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", target, quoted_list(names)));
+    }
+    manifest.targets.push_back(target);
+  }
+}
+
+void read_options(Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
+  for (const Constant& constant : catalogue.constants()) {
+    if (constant.option.empty()) continue;
+    const std::string allowed = fmt::format("a number in {} ({}; default {})", constant.range->describe(), constant.meaning, constant.value);
+    const auto value = top.number(constant.option, allowed);
+    if (!value) continue;
+    if (!std::isfinite(*value) || !constant.range->contains(*value)) {
+      top.fail_key(constant.option, fmt::format("{} is out of range", *value), allowed);
+    }
+    manifest.option_values[constant.option] = *value;
+  }
+}
+
+Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index,
+                       const std::vector<std::string>& precisions, const Catalogue& catalogue) {
+  Material material;
+  material.position = position_of(table.source());
+  // The context names the material by its name once it is known to be a safe identifier.
+  std::string context = fmt::format(" of material #{}", index + 1);
+  if (const toml::node* name = table.get("name"); name && name->is_string() && is_identifier(name->as_string()->get(), true)) {
+    context = fmt::format(" of material '{}'", name->as_string()->get());
+  }
+  const TableReader reader(manifest, table, context, material_keys());
+
+  const std::string name_rule = "an identifier: a letter, then letters, digits, '_' or '-' (at most 64 characters)";
+  const auto name = reader.string("name", name_rule);
+  if (!name) reader.missing("name", name_rule);
+  if (!is_identifier(*name, true)) reader.fail_key("name", fmt::format("\"{}\" is not an identifier", show(*name)), name_rule);
+  material.name = *name;
+
+  const auto path = reader.choice("path", {"forward", "deferred"});
+  if (!path) reader.missing("path", "\"forward\", \"deferred\"");
+  material.path = *path == "forward" ? RenderPath::forward : RenderPath::deferred;
+
+  material.anisotropic = reader.boolean("anisotropic").value_or(false);
+  material.tangents = reader.boolean("tangents").value_or(false);
+  if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
+  material.normal_maps = reader.boolean("normal_maps").value_or(false);
+  if (reader.boolean("glints").value_or(false)) {
+    reader.fail_key("glints", "glint filtering is not available yet (issue 7); saagen plans no variant for it", "false");
+  }
+  if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
+  if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
+    material.prefer = *prefer == "accuracy" ? Preference::accuracy : Preference::speed;
+  }
+
+  std::vector<std::string> filters;
+  for (const Variant& variant : catalogue.variants()) {
+    const bool has_core = std::any_of(variant.functions.begin(), variant.functions.end(), [&](const std::string& function) {
+      return catalogue.find_function(function)->role == FunctionRole::core;
+    });
+    if (has_core) filters.push_back(variant.id);
+  }
+  if (const auto variant = reader.string("variant", quoted_list(filters))) {
+    if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
+      const bool is_brdf = catalogue.find_variant(*variant) != nullptr;
+      reader.fail_key("variant",
+                      fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
+                      quoted_list(filters));
+    }
+    material.variant = *variant;
+  }
+
+  for (auto&& [key, node] : table) material.positions[std::string(key.str())] = position_of(node.source());
+  return material;
+}
+
+void read_materials(Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
+  const std::string allowed = "an array of tables, one [[material]] per material";
+  const toml::node* node = top.find("material");
+  if (!node) top.missing("material", allowed);
+  if (!node->is_array()) top.wrong_type("material", *node, allowed);
+  const toml::array& array = *node->as_array();
+  if (array.empty()) top.fail_key("material", "the array is empty", allowed);
+  const auto precisions = precisions_of_all(manifest.targets);
+  std::map<std::string, SourcePosition> first_seen;
+  for (std::size_t index = 0; index < array.size(); ++index) {
+    const toml::node& element = *array.get(index);
+    if (!element.is_table()) {
+      top.fail(position_of(element.source()), fmt::format("key 'material': element #{} must be a table, got {}; allowed: {}", index + 1,
+                                                          type_phrase(element.type()), allowed));
+    }
+    Material material = read_material(manifest, *element.as_table(), index, precisions, catalogue);
+    const SourcePosition name_position = material.positions.at("name");
+    if (const auto seen = first_seen.find(material.name); seen != first_seen.end()) {
+      top.fail(name_position, fmt::format("key 'name' of material #{}: duplicate material name \"{}\" (first defined at {}:{}:{}); "
+                                          "allowed: a name no other material has",
+                                          index + 1, material.name, manifest.source_name, seen->second.line, seen->second.column));
+    }
+    first_seen[material.name] = name_position;
+    manifest.materials.push_back(std::move(material));
+  }
+}
+
+}  // namespace
+
+std::optional<std::string> target_precision(std::string_view target, std::string_view precision) {
+  const auto& precisions = builtin_target(target).precisions;
+  if (precisions.count(std::string(precision))) return std::string(precision);
+  if (precision == "fp16" && precisions.count("min16")) return std::string("min16");
+  return std::nullopt;
+}
+
+std::string_view to_string(Preference preference) { return preference == Preference::accuracy ? "accuracy" : "speed"; }
+std::string_view to_string(Ndf ndf) { return ndf == Ndf::ggx ? "ggx" : "beckmann"; }
+
+std::string Manifest::where(SourcePosition position) const {
+  return fmt::format("{}:{}:{}: ", source_name, std::max(position.line, 1), std::max(position.column, 1));
+}
+
+const std::vector<std::string>& manifest_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> names = {"name", "targets", "prefix"};
+    for (const Constant& constant : Catalogue::builtin().constants()) {
+      if (!constant.option.empty()) names.push_back(constant.option);
+    }
+    names.push_back("material");
+    return names;
+  }();
+  return keys;
+}
+
+const std::vector<std::string>& material_keys() {
+  static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
+                                                "glints",      "precision", "prefer",   "variant"};
+  return keys;
+}
+
+Manifest parse_manifest(std::string_view text, std::string_view source_name, const Catalogue& catalogue) {
+  Manifest manifest;
+  manifest.source_name = std::string(source_name);
+  toml::table document;
+  try {
+    document = toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& error) {
+    throw Error(manifest.where(position_of(error.source())) +
+                fmt::format("not valid TOML: {}; allowed: TOML 1.0 (see examples/scene.saagen.toml)", show(error.description(), 200)));
+  }
+
+  const TableReader top(manifest, document, "", manifest_keys());
+  read_targets(manifest, top);
+
+  const std::string prefix_rule = "letters, digits and '_', starting with a letter, at most 32 characters, no '__', not 'gl_'";
+  if (const auto prefix = top.string("prefix", prefix_rule)) {
+    try {
+      validate_prefix(*prefix);
+    } catch (const Error&) {
+      top.fail_key("prefix", fmt::format("\"{}\" is not a safe identifier prefix", show(*prefix)), prefix_rule);
+    }
+    manifest.prefix = *prefix;
+  }
+
+  const std::string name_rule = "an identifier: a letter, then letters, digits or '_' (at most 64 characters); default \"scene\"";
+  if (const auto name = top.string("name", name_rule)) {
+    if (!is_identifier(*name, false)) top.fail_key("name", fmt::format("\"{}\" is not an identifier", show(*name)), name_rule);
+    for (const Variant& variant : catalogue.variants()) {
+      std::string stem = variant.id;
+      std::replace(stem.begin(), stem.end(), '-', '_');
+      if (stem == *name) {
+        top.fail_key("name", fmt::format("\"{}\" would collide with the file `saagen emit` writes for {}", *name, variant.id), name_rule);
+      }
+    }
+    manifest.name = *name;
+  }
+
+  read_options(manifest, top, catalogue);
+  read_materials(manifest, top, catalogue);
+  return manifest;
+}
+
+Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the path of a scene manifest (see examples/scene.saagen.toml)", path.string()));
+  std::ostringstream content;
+  content << stream.rdbuf();
+  return parse_manifest(content.str(), path.string(), catalogue);
+}
+
+}  // namespace saagen

@@ -1,0 +1,519 @@
+#include "saagen/planner.hpp"
+
+#include "saagen/compiler.hpp"
+#include "saagen/error.hpp"
+#include "saagen/kernels.hpp"
+#include "saagen/target.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace saagen {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Rules
+
+enum class Tri { no, yes, any };
+
+struct Rule {
+  const char* id;
+  RenderPath path;
+  Tri anisotropic;
+  Tri tangents;
+  std::optional<Preference> prefer;  // nullopt: any
+  const char* variant;
+  const char* why;
+};
+
+// Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
+// with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
+const std::vector<Rule>& rules() {
+  static const std::vector<Rule> table = {
+      {"F1", RenderPath::forward, Tri::yes, Tri::yes, Preference::accuracy, "forward-aniso-projected",
+       "the full roughness matrix keeps the filtered lobe's orientation, and projected derivatives shrink the kernel as h_z "
+       "at grazing angles where slope derivatives blow up (T&K 2019 Sec. 3.2); shade with the matrix BRDF"},
+      {"F2", RenderPath::forward, Tri::yes, Tri::yes, Preference::speed, "forward-axis-projected",
+       "axis-aligned filtering feeds the engine's own anisotropic BRDF (no matrix BRDF to evaluate) and is the more "
+       "temporally stable form (T&K 2019); projected derivatives as in F1"},
+      {"F3", RenderPath::forward, Tri::no, Tri::yes, Preference::accuracy, "forward-aniso-projected",
+       "an isotropic material still filters to an anisotropic lobe along the pixel footprint; the matrix form keeps it "
+       "(T&K 2019 Sec. 3.2); shade with the matrix BRDF"},
+      {"F4", RenderPath::forward, Tri::no, Tri::yes, Preference::speed, "deferred-avg",
+       "the cheapest filter (Table 2: x1.02-1.05 against x1.13-1.31 for forward-*), tangent-free, feeding the engine's "
+       "isotropic BRDF; it works in a forward pass unchanged"},
+      {"F5", RenderPath::forward, Tri::no, Tri::no, std::nullopt, "deferred-avg",
+       "without tangents only the tangent-free filters apply; deferred-avg has the lowest error of them (T&K 2019 Eq. 5) "
+       "and is the cheapest"},
+      {"D1", RenderPath::deferred, Tri::any, Tri::any, Preference::accuracy, "deferred-avg",
+       "tangent-free, from the G-buffer normal; the lowest error of the deferred filters (T&K 2019 Eq. 5)"},
+      {"D2", RenderPath::deferred, Tri::any, Tri::any, Preference::speed, "deferred-avg",
+       "also the cheapest deferred filter (Table 2: x1.02-1.05), so speed and accuracy agree; deferred-sum (Eq. 4, the "
+       "conservative bound) is available with variant = \"deferred-sum\""},
+  };
+  return table;
+}
+
+bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
+
+const Rule& rule_for(const Material& material) {
+  for (const Rule& rule : rules()) {
+    if (rule.path == material.path && matches(rule.anisotropic, material.anisotropic) && matches(rule.tangents, material.tangents) &&
+        (!rule.prefer || *rule.prefer == material.prefer)) {
+      return rule;
+    }
+  }
+  throw Error(fmt::format("internal error: no planner rule for material '{}'", material.name));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Eligibility
+
+bool is_filter(const Catalogue& catalogue, const Variant& variant) {
+  return std::any_of(variant.functions.begin(), variant.functions.end(),
+                     [&](const std::string& name) { return catalogue.find_function(name)->role == FunctionRole::core; });
+}
+
+bool has_tangent_free_form(const Variant& variant) {
+  return std::any_of(variant.functions.begin(), variant.functions.end(),
+                     [](const std::string& name) { return name.find("tangent_free") != std::string::npos; });
+}
+
+// Empty when the material can use the variant, else why not.
+std::string ineligibility(const Variant& variant, const Material& material) {
+  if (variant.path == RenderPath::forward && material.path != RenderPath::forward) {
+    return fmt::format("{} filters the half vector of each light in a forward pass; this material's path is deferred", variant.id);
+  }
+  if (variant.needs_tangents && !material.tangents && !has_tangent_free_form(variant)) {
+    return fmt::format("{} needs tangents = true (it filters in the tangent frame)", variant.id);
+  }
+  if (material.anisotropic && material.path == RenderPath::forward && variant.path != RenderPath::forward) {
+    return fmt::format("{} filters isotropic roughness; an anisotropic forward material takes a forward-* filter", variant.id);
+  }
+  return {};
+}
+
+std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
+  std::vector<const Variant*> eligible;
+  for (const Variant& variant : catalogue.variants()) {
+    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty()) eligible.push_back(&variant);
+  }
+  return eligible;
+}
+
+std::string ids_of(const std::vector<const Variant*>& variants) {
+  std::vector<std::string> ids;
+  for (const Variant* variant : variants) ids.push_back("\"" + variant->id + "\"");
+  return fmt::format("{}", fmt::join(ids, ", "));
+}
+
+// The material's functions from the chosen variant: its fragment wrappers and their cores;
+// for a variant with a tangent-free form, the form that matches the material's tangents.
+void choose_functions(const Catalogue& catalogue, const Material& material, MaterialPlan& plan) {
+  const Variant& variant = *catalogue.find_variant(plan.variant);
+  const bool split = has_tangent_free_form(variant);
+  const auto wanted = [&](const std::string& name) {
+    if (!split) return true;
+    return (name.find("tangent_free") != std::string::npos) == !material.tangents;
+  };
+  for (const std::string& name : variant.functions) {
+    const Function& function = *catalogue.find_function(name);
+    if (!wanted(name) || (function.role != FunctionRole::core && function.role != FunctionRole::fragment)) continue;
+    plan.functions.push_back(name);
+    if (function.role == FunctionRole::fragment && plan.wrapper.empty()) plan.wrapper = name;
+  }
+  if (plan.wrapper.empty()) throw Error(fmt::format("internal error: variant {} has no fragment wrapper", variant.id));
+  plan.variants.push_back(variant.id);
+
+  const Function& wrapper = *catalogue.find_function(plan.wrapper);
+  if (wrapper.return_type == "real3") {  // a roughness matrix: only the matrix BRDFs take it
+    const std::string brdf = std::string(to_string(material.ndf)) + "_brdf_matrix";
+    const std::string brdf_variant = "brdf-" + std::string(to_string(material.ndf));
+    if (!catalogue.find_function(brdf) || !catalogue.find_function("ndf_clamp_tau") || !catalogue.find_variant(brdf_variant)) {
+      throw Error(fmt::format("internal error: the catalogue lacks {} or ndf_clamp_tau", brdf));
+    }
+    plan.brdf = brdf;
+    plan.functions.push_back(brdf);
+    plan.functions.push_back("ndf_clamp_tau");
+    plan.variants.push_back(brdf_variant);
+  }
+  plan.per_axis = material.anisotropic && wrapper.return_type == "real";
+}
+
+// Where a key of the material was written; its [[material]] header when it was not (or when
+// the manifest was built in code rather than parsed).
+SourcePosition key_position(const Material& material, std::string_view key) {
+  const auto found = material.positions.find(key);
+  return found != material.positions.end() ? found->second : material.position;
+}
+
+std::string fixed(double value) { return fmt::format("{:.4g}", value); }
+
+// ---------------------------------------------------------------------------------------------
+// Cost kernels
+
+// A fragment-shader body in the dialect: a bumpy frame from the pixel position and the input
+// buffer, so every derivative is live; {shade} defines `real value`.
+constexpr const char* cost_body = R"(    real2 frag_coord = real2(saagen_frag_coord);
+    real2 bump = frag_coord * real(SAAGEN_LOAD(0));
+    real3 normal_ws = normalize(real3(sin(bump.x), cos(bump.y), real(SAAGEN_LOAD(1))));
+    real3 tangent_ws = normalize(real3(normal_ws.z, real(SAAGEN_LOAD(2)), -normal_ws.x));
+    real3 bitangent_ws = cross(normal_ws, tangent_ws);
+    real3 light_ws = normalize(real3(real(SAAGEN_LOAD(3)), real(SAAGEN_LOAD(4)), real(SAAGEN_LOAD(5))));
+    real3 view_ws = normalize(real3(frag_coord * real(SAAGEN_LOAD(6)), real(SAAGEN_LOAD(7))));
+    real3 i_ts = real3(dot(light_ws, tangent_ws), dot(light_ws, bitangent_ws), dot(light_ws, normal_ws));
+    real3 o_ts = real3(dot(view_ws, tangent_ws), dot(view_ws, bitangent_ws), dot(view_ws, normal_ws));
+    real3 half_ts = normalize(i_ts + o_ts);
+    real2 alpha2 = real2(real(SAAGEN_LOAD(8)), real(SAAGEN_LOAD(9)));
+{shade}    SAAGEN_STORE(0, value);
+)";
+
+std::string call_with(const Function& function, const std::string& alpha2) {
+  std::vector<std::string> arguments;
+  for (const Parameter& parameter : function.parameters) {
+    if (parameter.name == "alpha2") arguments.push_back(alpha2);
+    else if (parameter.name == "half_ts" || parameter.name == "normal_ws" || parameter.name == "tangent_ws" ||
+             parameter.name == "bitangent_ws" || parameter.name == "frag_coord") arguments.push_back(parameter.name);
+    else throw Error(fmt::format("internal error: the cost kernel has no value for parameter '{}' of {}", parameter.name, function.name));
+  }
+  return fmt::format("{}({})", function.name, fmt::join(arguments, ", "));
+}
+
+std::string shade_statements(const Catalogue& catalogue, const Material& material, const MaterialPlan* plan) {
+  const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
+  const std::string material_alpha2 = material.anisotropic ? "alpha2" : "real2(alpha2.x, alpha2.x)";
+  if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
+  const Function& wrapper = *catalogue.find_function(plan->wrapper);
+  if (wrapper.return_type == "real3") {
+    return fmt::format("    real3 filtered = {};\n    real value = {}(i_ts, o_ts, filtered, ndf_clamp_tau({}));\n",
+                       call_with(wrapper, material_alpha2), *plan->brdf, material_alpha2);
+  }
+  if (wrapper.return_type == "real2") {
+    return fmt::format("    real2 filtered = {};\n    real value = {}(i_ts, o_ts, filtered);\n", call_with(wrapper, material_alpha2), axis_brdf);
+  }
+  if (plan->per_axis) {
+    return fmt::format("    real2 filtered = real2({}, {});\n    real value = {}(i_ts, o_ts, filtered);\n", call_with(wrapper, "alpha2.x"),
+                       call_with(wrapper, "alpha2.y"), axis_brdf);
+  }
+  return fmt::format("    real filtered = {};\n    real value = {}(i_ts, o_ts, real2(filtered, filtered));\n", call_with(wrapper, "alpha2.x"),
+                     axis_brdf);
+}
+
+std::size_t kernel_instructions(const Catalogue& catalogue, const EmittedFile& file, const std::string& shade) {
+  KernelRequest request;
+  request.kind = KernelKind::fragment;
+  request.body = cost_body;
+  request.body.replace(request.body.find("{shade}"), 7, shade);
+  request.output_stride = 1;
+  request.width = 64;
+  const CompileRequest compile = kernel_compile_request(catalogue, file.file_name, file.content, request);
+  const CompileResult compiled = compile_to_spirv(compile);
+  if (!compiled.ok) {
+    throw Error(fmt::format("{}: the cost kernel failed to compile: {}", file.file_name, compiled.log.substr(0, compiled.log.find('\n'))));
+  }
+  const auto optimized = optimize_spirv(compiled.spirv, ClientApi::vulkan);
+  if (optimized.empty()) throw Error(fmt::format("{}: spirv-opt failed on the cost kernel", file.file_name));
+  return count_spirv_instructions(optimized);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Trade table
+
+std::optional<double> mean_of(const std::vector<TradeRow>& rows, std::string_view variant, std::optional<double> TradeRow::*field) {
+  double sum = 0.0;
+  int count = 0;
+  for (const TradeRow& row : rows) {
+    if (row.variant == variant && (row.*field)) {
+      sum += *(row.*field);
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+std::string describe_choice(const std::vector<std::pair<double, const Variant*>>& ranked, std::string_view metric) {
+  std::vector<std::string> parts;
+  for (const auto& [value, variant] : ranked) parts.push_back(fmt::format("{} {}", variant->id, fixed(value)));
+  return fmt::format("{} measured over the eligible variants: {}", metric, fmt::join(parts, ", "));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+std::optional<double> TradeTable::cost(std::string_view variant) const {
+  const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.cost_ratio.has_value(); });
+  return mean_of(rows, variant, any_ratio ? &TradeRow::cost_ratio : &TradeRow::delta_instructions);
+}
+
+std::optional<double> TradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &TradeRow::error); }
+
+bool TradeTable::has_errors() const {
+  return std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.error.has_value(); });
+}
+
+TradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
+  TradeTable table;
+  table.source_name = std::string(source_name);
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
+  }
+  const auto fail = [&](std::size_t index, std::string_view what) {
+    throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
+                            "\"delta_spirv_instructions\": number, \"error\": number}}",
+                            source_name, index, what));
+  };
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
+    throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
+  }
+  const auto number = [&](const nlohmann::json& row, const char* key, std::size_t index) -> std::optional<double> {
+    if (!row.contains(key)) return std::nullopt;
+    if (!row[key].is_number()) fail(index, fmt::format("\"{}\" must be a number", key));
+    const double value = row[key].get<double>();
+    if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
+    return value;
+  };
+  const nlohmann::json& rows = document["rows"];
+  for (std::size_t index = 0; index < rows.size(); ++index) {
+    const nlohmann::json& row = rows[index];
+    if (!row.is_object()) fail(index, "must be an object");
+    if (!row.contains("variant") || !row["variant"].is_string()) fail(index, "needs a string \"variant\"");
+    TradeRow entry;
+    entry.variant = row["variant"].get<std::string>();
+    if (row.contains("target")) {
+      if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
+      entry.target = row["target"].get<std::string>();
+    }
+    entry.cost_ratio = number(row, "ratio_median", index);
+    entry.delta_instructions = number(row, "delta_spirv_instructions", index);
+    entry.error = number(row, "error", index);
+    table.rows.push_back(std::move(entry));
+  }
+  return table;
+}
+
+TradeTable load_trade_table(const std::filesystem::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the file `bench_shading --json` writes", path.string()));
+  std::ostringstream content;
+  content << stream.rdbuf();
+  return parse_trade_table(content.str(), path.string());
+}
+
+ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
+  ScenePlan scene;
+  if (table) scene.trade_table = table->source_name;
+  // Manifests built in code (not parsed) get the checks that protect the emitted text.
+  const auto identifier = [](std::string_view text, bool dash) {
+    return !text.empty() && text.size() <= 64 && std::isalpha(static_cast<unsigned char>(text[0])) &&
+           std::all_of(text.begin(), text.end(), [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (dash && c == '-'); });
+  };
+  if (!identifier(manifest.name, false)) throw Error(fmt::format("{}: the scene name must be an identifier", manifest.source_name));
+  if (manifest.materials.empty()) throw Error(fmt::format("{}: the manifest has no material", manifest.source_name));
+  for (const Material& material : manifest.materials) {
+    if (!identifier(material.name, true) || material.path == RenderPath::any) {
+      throw Error(manifest.where(material.position) + "a material needs an identifier name and a forward or deferred path");
+    }
+    const std::string context = fmt::format(" of material '{}'", material.name);
+    if (material.anisotropic && !material.tangents) {
+      const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
+      throw Error(manifest.where(position) +
+                  fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
+                              "tangent frame); allowed: tangents = true, or anisotropic = false",
+                              context));
+    }
+    MaterialPlan plan;
+    plan.material = material.name;
+    plan.precision = material.precision;
+    const auto eligible = eligible_variants(catalogue, material);
+
+    if (material.variant) {
+      const Variant* found = catalogue.find_variant(*material.variant);
+      if (!found || !is_filter(catalogue, *found)) {
+        throw Error(manifest.where(key_position(material, "variant")) +
+                    fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
+      }
+      const Variant& variant = *found;
+      if (const std::string why = ineligibility(variant, material); !why.empty()) {
+        throw Error(manifest.where(key_position(material, "variant")) +
+                    fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
+      }
+      plan.variant = variant.id;
+      plan.rule = "manifest";
+      plan.reason = "named by the manifest's `variant` key";
+    } else {
+      const Rule& rule = rule_for(material);
+      plan.variant = rule.variant;
+      plan.rule = rule.id;
+      plan.reason = rule.why;
+      if (table) {
+        const bool speed = material.prefer == Preference::speed;
+        std::vector<std::pair<double, const Variant*>> ranked;
+        for (const Variant* variant : eligible) {
+          if (const auto value = speed ? table->cost(variant->id) : table->error(variant->id)) ranked.emplace_back(*value, variant);
+        }
+        // Ties keep the rule's choice first, then catalogue order.
+        std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+          if (a.first != b.first) return a.first < b.first;
+          return a.second->id == rule.variant && b.second->id != rule.variant;
+        });
+        if (!ranked.empty()) {
+          plan.variant = ranked.front().second->id;
+          plan.rule = "trade table";
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", speed ? "cost" : "error", table->source_name,
+                                    describe_choice(ranked, speed ? "cost" : "error"), rule.id, rule.variant);
+        } else {
+          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", table->source_name,
+                                     speed ? "cost" : "error", ids_of(eligible), rule.id);
+        }
+      }
+    }
+    choose_functions(catalogue, material, plan);
+    scene.materials.push_back(std::move(plan));
+  }
+  return scene;
+}
+
+EmitOptions emit_options(const Manifest& manifest, const std::string& target, const std::string& precision) {
+  EmitOptions options;
+  options.target = target;
+  options.prefix = manifest.prefix;
+  options.option_values = manifest.option_values;
+  const auto form = target_precision(target, precision);
+  if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
+  options.precision = *form;
+  return options;
+}
+
+void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePlan& plan) {
+  std::map<std::string, std::size_t> baselines;  // target|precision|ndf|anisotropic -> instructions
+  for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+    MaterialPlan& material_plan = plan.materials[index];
+    const Material& material = manifest.materials.at(index);
+    const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
+    BundleRequest request;
+    request.name = "cost_" + material.name;
+    request.functions = material_plan.functions;
+    request.functions.push_back(axis_brdf);
+    request.variants = material_plan.variants;
+    request.variants.push_back("brdf-" + std::string(to_string(material.ndf)));
+    for (const std::string& target : manifest.targets) {
+      const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, target, material.precision), request);
+      const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
+      if (!baselines.count(key)) baselines[key] = kernel_instructions(catalogue, file, shade_statements(catalogue, material, nullptr));
+      const std::size_t with_filter = kernel_instructions(catalogue, file, shade_statements(catalogue, material, &material_plan));
+      material_plan.cost[target] = static_cast<long>(with_filter) - static_cast<long>(baselines[key]);
+    }
+  }
+}
+
+std::string rules_text() {
+  std::string text = fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", "rule", "path", "anisotropic", "tangents", "prefer",
+                                 "variant", "why");
+  const auto tri = [](Tri value) { return value == Tri::any ? "any" : value == Tri::yes ? "yes" : "no"; };
+  for (const Rule& rule : rules()) {
+    text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic), tri(rule.tangents),
+                        rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
+  }
+  text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
+          "anisotropic = true with tangents = false is rejected; glints = true is rejected (not available yet, issue 7).\n"
+          "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
+          "With --trade-table, prefer = \"speed\" takes the eligible variant of lowest measured cost (ratio_median, else\n"
+          "delta_spirv_instructions) and prefer = \"accuracy\" the one of lowest measured \"error\" when the table has errors.\n";
+  return text;
+}
+
+std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
+  std::string text = fmt::format("scene '{}' from {}: targets {}, prefix {}", manifest.name, manifest.source_name,
+                                 fmt::join(manifest.targets, ", "), manifest.prefix);
+  for (const auto& [option, value] : resolve_options(catalogue, manifest.option_values)) text += fmt::format(", {} = {}", option, value);
+  text += plan.trade_table.empty() ? "; rules (no trade table)\n" : fmt::format("; trade table {}\n", plan.trade_table);
+
+  for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+    const MaterialPlan& material_plan = plan.materials[index];
+    const Material& material = manifest.materials.at(index);
+    std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
+                                       material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
+    if (material.normal_maps) traits.push_back("normal maps");
+    traits.push_back(material.precision);
+    traits.push_back("prefer " + std::string(to_string(material.prefer)));
+    text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
+    text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
+    text += fmt::format("  why       {}\n", material_plan.reason);
+
+    const Function& wrapper = *catalogue.find_function(material_plan.wrapper);
+    std::vector<std::string> parameters;
+    for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
+    text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
+                        wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
+    if (material_plan.brdf) {
+      text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
+                          prefixed_name(manifest.prefix, "ndf_clamp_tau"));
+    } else {
+      text += "  shade     the engine's own BRDF with the filtered roughness (alpha^2 domain)\n";
+    }
+    if (material.normal_maps) text += "  note      pass the normal-mapped shading normal / half vector: the filter sees the map's detail through its derivatives\n";
+    if (!material_plan.cost.empty()) {
+      std::vector<std::string> costs;
+      for (const std::string& target : manifest.targets) {
+        if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target, material_plan.cost.at(target)));
+      }
+      text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
+                          fmt::join(costs, ", "), material.precision, material_plan.brdf ? " + matrix BRDF" : " + axis BRDF",
+                          to_string(material.ndf));
+    }
+  }
+
+  text += "\nfiles\n";
+  for (const EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
+    const auto functions = catalogue.closure(file.marker.functions);
+    text += fmt::format("  {}  {} public function(s), {} in the closure\n", file.file_name, file.marker.functions.size(), functions.size());
+  }
+  return text;
+}
+
+std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
+  std::vector<std::string> precisions;
+  for (const MaterialPlan& material_plan : plan.materials) {
+    if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end()) precisions.push_back(material_plan.precision);
+  }
+  std::stable_partition(precisions.begin(), precisions.end(), [](const std::string& name) { return name == "fp32"; });
+
+  std::vector<EmittedFile> files;
+  for (const std::string& target : manifest.targets) {
+    for (const std::string& precision : precisions) {
+      BundleRequest request;
+      request.name = manifest.name;
+      for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+        const MaterialPlan& material_plan = plan.materials[index];
+        if (material_plan.precision != precision) continue;
+        for (const std::string& name : material_plan.functions) {
+          if (std::find(request.functions.begin(), request.functions.end(), name) == request.functions.end()) request.functions.push_back(name);
+        }
+        for (const std::string& id : material_plan.variants) {
+          if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
+        }
+        std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
+                                       material_plan.variant, prefixed_name(manifest.prefix, material_plan.wrapper),
+                                       material_plan.per_axis ? " once per axis" : "");
+        if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
+        request.notes.push_back(note);
+      }
+      files.push_back(emit_bundle(catalogue, emit_options(manifest, target, precision), request));
+    }
+  }
+  return files;
+}
+
+}  // namespace saagen

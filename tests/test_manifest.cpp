@@ -1,0 +1,579 @@
+// Scene manifests (issue 6): parsing and its one-line errors (file:line:column, key, what is
+// allowed), the planner's rules and trade table, minimal emission (exactly the dependency
+// closure; removing a material removes its code), and the bundle's validation and CLI.
+#include "saagen/catalogue.hpp"
+#include "saagen/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/manifest.hpp"
+#include "saagen/planner.hpp"
+#include "saagen/validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using saagen::Catalogue;
+
+const fs::path example_manifest = fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml";
+
+std::string read_text(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+saagen::Manifest parse(const std::string& text) { return saagen::parse_manifest(text, "scene.toml", Catalogue::builtin()); }
+
+// The message parse (and plan) throws for `text`, or "" when it is accepted.
+std::string error_of(const std::string& text) {
+  try {
+    const saagen::Manifest manifest = parse(text);
+    (void)saagen::plan_scene(Catalogue::builtin(), manifest);
+  } catch (const saagen::Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+const std::string header = "targets = [\"glsl\"]\n";
+const std::string forward_material = "[[material]]\nname = \"m\"\npath = \"forward\"\n";
+
+// Names of the functions defined (not merely declared in a comment) in an emitted file.
+std::set<std::string> defined_functions(const std::string& content, const std::string& prefix) {
+  std::set<std::string> names;
+  const std::regex definition("^[A-Za-z0-9_]+ " + prefix + "([A-Za-z0-9_]+)\\(");
+  std::istringstream lines(content);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (std::regex_search(line, match, definition)) names.insert(match[1]);
+  }
+  return names;
+}
+
+std::set<std::string> closure_names(const std::vector<std::string>& roots) {
+  std::set<std::string> names;
+  for (const saagen::Function* function : Catalogue::builtin().closure(roots)) names.insert(function->name);
+  return names;
+}
+
+std::vector<saagen::EmittedFile> emit_text(const std::string& text) {
+  const saagen::Manifest manifest = parse(text);
+  return saagen::emit_scene(Catalogue::builtin(), manifest, saagen::plan_scene(Catalogue::builtin(), manifest));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing
+
+TEST(Manifest, ParsesTheExample) {
+  const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
+  EXPECT_EQ(manifest.name, "scene");
+  EXPECT_EQ(manifest.targets, (std::vector<std::string>{"glsl", "hlsl"}));
+  EXPECT_EQ(manifest.prefix, "saa_");
+  EXPECT_EQ(manifest.option_values.at("sigma2"), 0.25);
+  EXPECT_EQ(manifest.option_values.at("kappa"), 0.18);
+  ASSERT_EQ(manifest.materials.size(), 4u);
+  const saagen::Material& car = manifest.materials[0];
+  EXPECT_EQ(car.name, "car_paint");
+  EXPECT_EQ(car.path, saagen::RenderPath::forward);
+  EXPECT_TRUE(car.anisotropic);
+  EXPECT_TRUE(car.tangents);
+  EXPECT_EQ(car.ndf, saagen::Ndf::ggx);
+  EXPECT_TRUE(car.normal_maps);
+  EXPECT_EQ(car.prefer, saagen::Preference::accuracy);
+  EXPECT_EQ(manifest.materials[1].ndf, saagen::Ndf::beckmann);
+  EXPECT_EQ(manifest.materials[1].prefer, saagen::Preference::speed);
+  EXPECT_EQ(manifest.materials[2].path, saagen::RenderPath::deferred);
+  EXPECT_FALSE(manifest.materials[2].tangents);
+  EXPECT_EQ(manifest.materials[3].precision, "fp16");
+  EXPECT_EQ(car.position.line, 22);
+}
+
+TEST(Manifest, DefaultsAndIntegerNumbers) {
+  const saagen::Manifest manifest = parse(header + "kappa = 0\n" + forward_material);
+  EXPECT_EQ(manifest.name, "scene");
+  EXPECT_EQ(manifest.prefix, "saa_");
+  EXPECT_EQ(manifest.option_values.at("kappa"), 0.0);
+  EXPECT_FALSE(manifest.option_values.count("sigma2"));
+  const saagen::Material& material = manifest.materials.at(0);
+  EXPECT_FALSE(material.anisotropic);
+  EXPECT_FALSE(material.tangents);
+  EXPECT_EQ(material.ndf, saagen::Ndf::ggx);
+  EXPECT_EQ(material.precision, "fp32");
+  EXPECT_EQ(material.prefer, saagen::Preference::accuracy);
+  EXPECT_FALSE(material.variant);
+}
+
+struct BadCase {
+  const char* what;
+  std::string text;
+  std::string message;
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.what; }
+
+class BadManifest : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) {
+  EXPECT_EQ(error_of(GetParam().text), GetParam().message);
+}
+
+const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, glints, precision, prefer, variant";
+const std::string filters =
+    "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
+    "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\"";
+
+INSTANTIATE_TEST_SUITE_P(
+    Errors, BadManifest,
+    ::testing::Values(
+        BadCase{"toml_syntax", header + "prefix = = 1\n",
+                "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
+                "(see examples/scene.saagen.toml)"},
+        BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, sigma2, kappa, material"},
+        BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
+                "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
+        BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
+                "scene.toml:2:10: key 'sigma2': must be a number, got a string; allowed: a number in (0, 4] (variance sigma^2 of the "
+                "Gaussian pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},
+        BadCase{"wrong_type_boolean", header + forward_material + "tangents = \"yes\"\n",
+                "scene.toml:5:12: key 'tangents' of material 'm': must be a boolean, got a string; allowed: true, false"},
+        BadCase{"wrong_type_targets", "targets = \"glsl\"\n" + forward_material,
+                "scene.toml:1:11: key 'targets': must be an array, got a string; allowed: an array of \"glsl\", \"hlsl\""},
+        BadCase{"wrong_type_material", header + "material = 3\n",
+                "scene.toml:2:12: key 'material': must be an array of tables, got an integer; allowed: an array of tables, one "
+                "[[material]] per material"},
+        BadCase{"unknown_value", header + forward_material + "ndf = \"phong\"\n",
+                "scene.toml:5:7: key 'ndf' of material 'm': unknown value \"phong\"; allowed: \"ggx\", \"beckmann\""},
+        BadCase{"unknown_path", header + "[[material]]\nname = \"m\"\npath = \"tiled\"\n",
+                "scene.toml:4:8: key 'path' of material 'm': unknown value \"tiled\"; allowed: \"forward\", \"deferred\""},
+        BadCase{"unknown_variant", header + forward_material + "variant = \"deferred-fancy\"\n",
+                "scene.toml:5:11: key 'variant' of material 'm': unknown variant \"deferred-fancy\"; allowed: " + filters},
+        BadCase{"brdf_is_not_a_filter", header + forward_material + "variant = \"brdf-ggx\"\n",
+                "scene.toml:5:11: key 'variant' of material 'm': not a filter variant (the BRDF is planned from 'ndf'): "
+                "\"brdf-ggx\"; allowed: " + filters},
+        BadCase{"unknown_target", "targets = [\"glsl\", \"metal\"]\n" + forward_material,
+                "scene.toml:1:20: key 'targets': unknown target \"metal\"; allowed: \"glsl\", \"hlsl\""},
+        BadCase{"duplicate_target", "targets = [\"glsl\", \"glsl\"]\n" + forward_material,
+                "scene.toml:1:20: key 'targets': \"glsl\" is listed twice; allowed: each of \"glsl\", \"hlsl\" at most once"},
+        BadCase{"empty_targets", "targets = []\n" + forward_material,
+                "scene.toml:1:11: key 'targets': the array is empty; allowed: an array of \"glsl\", \"hlsl\""},
+        BadCase{"missing_targets", forward_material,
+                "scene.toml:1:1: missing key 'targets'; allowed: an array of \"glsl\", \"hlsl\""},
+        BadCase{"sigma2_out_of_range", header + "sigma2 = 5\n" + forward_material,
+                "scene.toml:2:10: key 'sigma2': 5 is out of range; allowed: a number in (0, 4] (variance sigma^2 of the Gaussian "
+                "pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},
+        BadCase{"sigma2_zero", header + "sigma2 = 0.0\n" + forward_material,
+                "scene.toml:2:10: key 'sigma2': 0 is out of range; allowed: a number in (0, 4] (variance sigma^2 of the Gaussian "
+                "pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},
+        BadCase{"kappa_out_of_range", header + "kappa = -0.5\n" + forward_material,
+                "scene.toml:2:9: key 'kappa': -0.5 is out of range; allowed: a number in [0, 1] (clamp kappa of the kernel "
+                "roughness, in the alpha^2 domain; default 0.18)"},
+        BadCase{"kappa_nan", header + "kappa = nan\n" + forward_material,
+                "scene.toml:2:9: key 'kappa': nan is out of range; allowed: a number in [0, 1] (clamp kappa of the kernel "
+                "roughness, in the alpha^2 domain; default 0.18)"},
+        BadCase{"prefix_digit", header + "prefix = \"1x_\"\n" + forward_material,
+                "scene.toml:2:10: key 'prefix': \"1x_\" is not a safe identifier prefix; allowed: letters, digits and '_', "
+                "starting with a letter, at most 32 characters, no '__', not 'gl_'"},
+        BadCase{"prefix_injection", header + "prefix = \"x;\\n#define\"\n" + forward_material,
+                "scene.toml:2:10: key 'prefix': \"x;\\x0a#define\" is not a safe identifier prefix; allowed: letters, digits and "
+                "'_', starting with a letter, at most 32 characters, no '__', not 'gl_'"},
+        BadCase{"prefix_gl", header + "prefix = \"gl_\"\n" + forward_material,
+                "scene.toml:2:10: key 'prefix': \"gl_\" is not a safe identifier prefix; allowed: letters, digits and '_', "
+                "starting with a letter, at most 32 characters, no '__', not 'gl_'"},
+        BadCase{"duplicate_material", header + forward_material + forward_material,
+                "scene.toml:6:8: key 'name' of material #2: duplicate material name \"m\" (first defined at scene.toml:3:8); "
+                "allowed: a name no other material has"},
+        BadCase{"material_name_not_identifier", header + "[[material]]\nname = \"car paint\"\npath = \"forward\"\n",
+                "scene.toml:3:8: key 'name' of material #1: \"car paint\" is not an identifier; allowed: an identifier: a letter, "
+                "then letters, digits, '_' or '-' (at most 64 characters)"},
+        BadCase{"missing_path", header + "[[material]]\nname = \"m\"\n",
+                "scene.toml:2:1: missing key 'path' of material 'm'; allowed: \"forward\", \"deferred\""},
+        BadCase{"no_material", header,
+                "scene.toml:1:1: missing key 'material'; allowed: an array of tables, one [[material]] per material"},
+        BadCase{"glints", header + forward_material + "glints = true\n",
+                "scene.toml:5:10: key 'glints' of material 'm': glint filtering is not available yet (issue 7); saagen plans no "
+                "variant for it; allowed: false"},
+        BadCase{"fp16_unknown_precision", header + forward_material + "precision = \"fp64\"\n",
+                "scene.toml:5:13: key 'precision' of material 'm': unknown value \"fp64\"; allowed: \"fp32\", \"fp16\""},
+        BadCase{"bundle_name_collides", header + "name = \"deferred_sum\"\n" + forward_material,
+                "scene.toml:2:8: key 'name': \"deferred_sum\" would collide with the file `saagen emit` writes for deferred-sum; "
+                "allowed: an identifier: a letter, then letters, digits or '_' (at most 64 characters); default \"scene\""},
+        BadCase{"anisotropic_without_tangents", header + forward_material + "anisotropic = true\n",
+                "scene.toml:5:15: key 'tangents' of material 'm': anisotropic = true needs tangents = true (an anisotropic BRDF is "
+                "defined in a tangent frame); allowed: tangents = true, or anisotropic = false"},
+        BadCase{"forward_variant_in_deferred", header + "[[material]]\nname = \"m\"\npath = \"deferred\"\ntangents = true\n"
+                "variant = \"forward-axis-projected\"\n",
+                "scene.toml:6:11: key 'variant' of material 'm': forward-axis-projected filters the half vector of each light in a "
+                "forward pass; this material's path is deferred; allowed: \"deferred-previous\", \"deferred-max\", \"deferred-sum\", "
+                "\"deferred-avg\", \"deferred-projected-space\""},
+        BadCase{"variant_needs_tangents", header + forward_material + "variant = \"deferred-previous\"\n",
+                "scene.toml:5:11: key 'variant' of material 'm': deferred-previous needs tangents = true (it filters in the tangent "
+                "frame); allowed: \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\""}),
+    [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.what); });
+
+TEST(Manifest, UnreadableFileNamesItself) {
+  try {
+    (void)saagen::load_manifest("/nonexistent/scene.toml", Catalogue::builtin());
+    FAIL() << "no error";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("/nonexistent/scene.toml: cannot be read", 0), 0u) << error.what();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planning
+
+struct RuleCase {
+  std::string material;  // the keys after name
+  std::string rule;
+  std::string variant;
+  std::vector<std::string> functions;
+};
+
+void PrintTo(const RuleCase& c, std::ostream* os) { *os << c.rule; }
+
+class Rules : public ::testing::TestWithParam<RuleCase> {};
+
+TEST_P(Rules, PickTheDocumentedVariantAndFunctions) {
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\n" + GetParam().material);
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  ASSERT_EQ(plan.materials.size(), 1u);
+  EXPECT_EQ(plan.materials[0].rule, GetParam().rule);
+  EXPECT_EQ(plan.materials[0].variant, GetParam().variant);
+  EXPECT_EQ(plan.materials[0].functions, GetParam().functions);
+  EXPECT_FALSE(plan.materials[0].reason.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Planner, Rules,
+    ::testing::Values(
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n", "F1", "forward-aniso-projected",
+                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_matrix", "ndf_clamp_tau"}},
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n", "F1", "forward-aniso-projected",
+                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "beckmann_brdf_matrix", "ndf_clamp_tau"}},
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n", "F2", "forward-axis-projected",
+                 {"forward_axis_projected", "forward_axis_projected_fragment"}},
+        RuleCase{"path = \"forward\"\ntangents = true\n", "F3", "forward-aniso-projected",
+                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_matrix", "ndf_clamp_tau"}},
+        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "F4", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"deferred\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "D2", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n", "manifest", "deferred-sum", {"deferred_sum", "deferred_sum_fragment"}},
+        RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
+                 {"deferred_max", "deferred_max_fragment"}},
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
+                 {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment"}}),
+    [](const ::testing::TestParamInfo<RuleCase>& info) { return "case" + std::to_string(info.index) + "_" + info.param.rule; });
+
+TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\n");
+  EXPECT_TRUE(saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).per_axis);
+}
+
+TEST(Planner, ManifestsBuiltInCodeAreCheckedToo) {
+  saagen::Manifest manifest;
+  manifest.source_name = "engine";
+  manifest.targets = {"glsl"};
+  saagen::Material material;
+  material.name = "x\n#define evil";
+  material.path = saagen::RenderPath::deferred;
+  manifest.materials.push_back(material);
+  EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), manifest), saagen::Error);
+  manifest.materials[0].name = "ok";
+  manifest.materials[0].variant = "brdf-ggx";
+  EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), manifest), saagen::Error);
+  manifest.materials[0].variant.reset();
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-avg");
+  EXPECT_EQ(saagen::emit_scene(Catalogue::builtin(), manifest, plan).at(0).file_name, "saa_scene.glsl");
+}
+
+TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
+  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"target": "glsl", "variant": "deferred-avg", "ratio_median": 1.05, "error": 0.02},
+      {"target": "hlsl", "variant": "deferred-avg", "ratio_median": 1.07, "error": 0.02},
+      {"target": "glsl", "variant": "deferred-sum", "ratio_median": 1.02, "error": 0.05},
+      {"target": "glsl", "variant": "deferred-projected-space", "ratio_median": 1.10, "error": 0.01},
+      {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.00, "error": 0.00}]})",
+                                                             "trade.json");
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"fast\"\npath = \"deferred\"\nprefer = \"speed\"\n" +
+                                          "[[material]]\nname = \"exact\"\npath = \"deferred\"\n");
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
+  EXPECT_EQ(plan.trade_table, "trade.json");
+  // forward-axis-projected is cheaper still, but a deferred material cannot use it.
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-sum");
+  EXPECT_EQ(plan.materials.at(0).rule, "trade table");
+  EXPECT_NE(plan.materials.at(0).reason.find("deferred-sum 1.02, deferred-avg 1.06, deferred-projected-space 1.1"), std::string::npos)
+      << plan.materials.at(0).reason;
+  EXPECT_EQ(plan.materials.at(1).variant, "deferred-projected-space");
+}
+
+TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
+  const saagen::TradeTable table =
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
+  EXPECT_FALSE(table.has_errors());
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-avg");
+  EXPECT_EQ(plan.materials.at(0).rule, "D1");
+  EXPECT_NE(plan.materials.at(0).reason.find("t.json has no error"), std::string::npos) << plan.materials.at(0).reason;
+}
+
+TEST(Planner, BadTradeTablesAreRejected) {
+  const auto error_of_table = [](const std::string& text) -> std::string {
+    try {
+      (void)saagen::parse_trade_table(text, "t.json");
+    } catch (const saagen::Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of_table("{"), "t.json: not valid JSON (byte 2); pass the file `bench_shading --json` writes");
+  EXPECT_EQ(error_of_table("[]"), "t.json: no \"rows\" array; pass the file `bench_shading --json` writes");
+  EXPECT_NE(error_of_table(R"({"rows": [{"variant": "x", "ratio_median": "fast"}]})").find("t.json: rows[0]: \"ratio_median\" must be a number"),
+            std::string::npos);
+}
+
+TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
+  const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
+  saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  saagen::measure_costs(Catalogue::builtin(), manifest, plan);
+  for (const saagen::MaterialPlan& material : plan.materials) {
+    for (const std::string& target : manifest.targets) {
+      ASSERT_TRUE(material.cost.count(target)) << material.material;
+      EXPECT_GT(material.cost.at(target), 0) << material.material << " " << target;
+    }
+  }
+  // The matrix filter plus the matrix BRDF costs more than the isotropic deferred filter.
+  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), plan.materials.at(2).cost.at("glsl"));
+  const std::string text = saagen::format_plan(Catalogue::builtin(), manifest, plan);
+  EXPECT_NE(text.find("material car_paint"), std::string::npos);
+  EXPECT_NE(text.find("variant   forward-aniso-projected  [F1]"), std::string::npos) << text;
+  EXPECT_NE(text.find("optimized SPIR-V instructions"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Minimal emission
+
+TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
+  const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
+  ASSERT_EQ(files.size(), 4u);  // glsl + hlsl, fp32 + fp16 (min16 in HLSL)
+  EXPECT_EQ(files[0].file_name, "saa_scene.glsl");
+  EXPECT_EQ(files[1].file_name, "saa_scene_fp16.glsl");
+  EXPECT_EQ(files[2].file_name, "saa_scene.hlsl");
+  EXPECT_EQ(files[3].file_name, "saa_scene_min16.hlsl");
+
+  for (const saagen::EmittedFile& file : files) {
+    const bool half = file.marker.precision != "fp32";
+    std::vector<std::string> roots;
+    for (const saagen::MaterialPlan& material : plan.materials) {
+      if ((material.precision != "fp32") != half) continue;
+      for (const std::string& name : material.functions) {
+        if (std::find(roots.begin(), roots.end(), name) == roots.end()) roots.push_back(name);
+      }
+    }
+    EXPECT_EQ(file.marker.functions, roots) << file.file_name;
+    // Catalogue functions only: a precision's target support (e.g. fp16 derivative helpers in
+    // the target table's preamble) is not part of the catalogue's closure.
+    std::set<std::string> defined;
+    for (const std::string& name : defined_functions(file.content, "saa_")) {
+      if (Catalogue::builtin().find_function(name)) defined.insert(name);
+    }
+    EXPECT_EQ(defined, closure_names(roots)) << file.file_name;
+    // Nothing else of the catalogue appears, not even in a comment.
+    for (const saagen::Function& function : Catalogue::builtin().functions()) {
+      if (defined.count(function.name)) continue;
+      EXPECT_FALSE(std::regex_search(file.content, std::regex("\\bsaa_" + function.name + "\\b"))) << file.file_name << ": " << function.name;
+    }
+  }
+  // The fp32 GLSL bundle: car_paint, brushed_metal and terrain; not the deferred-sum family.
+  const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
+  EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));
+  EXPECT_TRUE(defined.count("forward_aniso_projected"));  // the wrapper pulls its core
+  EXPECT_TRUE(defined.count("ggx_brdf_matrix"));          // forward anisotropic pulls the matrix BRDF
+  EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));    // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
+  EXPECT_FALSE(defined.count("deferred_sum"));
+  EXPECT_FALSE(defined.count("ggx_brdf_axis"));
+}
+
+TEST(Bundle, RemovingAMaterialRemovesItsCode) {
+  const std::string full = read_text(example_manifest);
+  // Without brushed_metal (the only forward-axis-projected material).
+  const auto start = full.find("[[material]]\nname = \"brushed_metal\"");
+  ASSERT_NE(start, std::string::npos);
+  const auto end = full.find("[[material]]", start + 1);
+  const std::string reduced = full.substr(0, start) + full.substr(end);
+
+  const auto before = emit_text(full);
+  const auto after = emit_text(reduced);
+  ASSERT_EQ(before.size(), after.size());
+  const std::set<std::string> had = defined_functions(before[0].content, "saa_");
+  const std::set<std::string> has = defined_functions(after[0].content, "saa_");
+  std::set<std::string> removed;
+  for (const std::string& name : had) {
+    if (!has.count(name)) removed.insert(name);
+  }
+  EXPECT_TRUE(removed.count("forward_axis_projected_fragment"));
+  EXPECT_TRUE(removed.count("forward_axis_projected"));
+  EXPECT_TRUE(removed.count("filter_roughness_rectangle"));  // a helper only it used
+  for (const std::string& name : has) EXPECT_TRUE(had.count(name)) << name;
+  EXPECT_EQ(has, closure_names(after[0].marker.functions));
+  EXPECT_EQ(after[0].content.find("saa_forward_axis_projected"), std::string::npos);
+  EXPECT_EQ(after[0].content.find("brushed_metal"), std::string::npos);
+  // The other precision's bundle is unchanged.
+  EXPECT_EQ(before[1].content, after[1].content);
+}
+
+TEST(Bundle, IsDeterministicAndValidatesInProcess) {
+  const std::string text = read_text(example_manifest);
+  const auto first = emit_text(text);
+  const auto second = emit_text(text);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t index = 0; index < first.size(); ++index) {
+    EXPECT_EQ(first[index].content, second[index].content);
+    const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), first[index].file_name, first[index].content);
+    EXPECT_TRUE(validation.ok()) << validation.summary();
+  }
+}
+
+TEST(Bundle, MarkerRecordsThePublicFunctions) {
+  const auto files = emit_text(header + "prefix = \"eng_\"\nsigma2 = 0.5\n" + forward_material);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].file_name, "eng_scene.glsl");
+  const auto marker = saagen::find_marker(files[0].content);
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->target, "glsl");
+  EXPECT_EQ(marker->prefix, "eng_");
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-avg"}));
+  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_avg", "deferred_avg_fragment"}));
+  EXPECT_EQ(marker->option_values.at("sigma2"), 0.5);
+  EXPECT_NE(files[0].content.find("#ifndef ENG_BUNDLE_SCENE_GLSL"), std::string::npos);
+  EXPECT_NE(files[0].content.find("#ifndef ENG_CORE_ONLY"), std::string::npos);
+  EXPECT_NE(files[0].content.find("const float eng_SIGMA2 = 0.5;"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// CLI
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+class SceneCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    scratch_ = fs::temp_directory_path() / (std::string("saagen-manifest-") + info->name() + "-" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override { fs::remove_all(scratch_); }
+
+  CliRun saagen(const std::string& arguments) const {
+    const fs::path out = scratch_ / "stdout.txt";
+    const fs::path err = scratch_ / "stderr.txt";
+    const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' " + arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  }
+
+  void write(const fs::path& path, const std::string& text) const {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+  }
+
+  fs::path scratch_;
+};
+
+TEST_F(SceneCli, PlanPrintsVariantWhyCallAndCost) {
+  const CliRun run = saagen("plan '" + example_manifest.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("material terrain"), std::string::npos);
+  EXPECT_NE(run.out.find("variant   deferred-avg  [D1]"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("why       "), std::string::npos);
+  EXPECT_NE(run.out.find("cost      glsl +"), std::string::npos) << run.out;
+}
+
+TEST_F(SceneCli, BadManifestIsOneLineWithPosition) {
+  write(scratch_ / "bad.toml", header + forward_material + "ndf = \"phong\"\n");
+  const CliRun run = saagen("plan '" + (scratch_ / "bad.toml").string() + "' --no-cost");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("bad.toml:5:7: key 'ndf' of material 'm': unknown value \"phong\"; allowed: \"ggx\", \"beckmann\""), std::string::npos)
+      << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+}
+
+TEST_F(SceneCli, EmitWritesOnlyWhenBytesChangeAndRefusesForeignFiles) {
+  const fs::path out = scratch_ / "out";
+  const std::string manifest = "--manifest '" + example_manifest.string() + "' -o '" + out.string() + "'";
+  CliRun run = saagen("emit " + manifest);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("wrote     " + (out / "saa_scene.glsl").string()), std::string::npos) << run.out;
+  run = saagen("emit " + manifest);
+  EXPECT_NE(run.out.find("unchanged " + (out / "saa_scene.glsl").string()), std::string::npos) << run.out;
+  run = saagen("validate '" + out.string() + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("4 file(s) validated, 0 failed"), std::string::npos) << run.out;
+
+  run = saagen("emit " + manifest + " --list-outputs");
+  EXPECT_EQ(run.out, (out / "saa_scene.glsl").string() + "\n" + (out / "saa_scene_fp16.glsl").string() + "\n" +
+                         (out / "saa_scene.hlsl").string() + "\n" + (out / "saa_scene_min16.hlsl").string() + "\n");
+
+  write(out / "saa_scene.hlsl", "// my own file\n");
+  run = saagen("emit " + manifest);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("exists and was not written by saagen; refusing to overwrite it (use --force)"), std::string::npos) << run.err;
+  EXPECT_EQ(read_text(out / "saa_scene.hlsl"), "// my own file\n");
+  run = saagen("emit " + manifest + " --force");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(saagen::find_marker(read_text(out / "saa_scene.hlsl")));
+}
+
+TEST_F(SceneCli, ManifestExcludesPerVariantOptions) {
+  const CliRun run = saagen("emit --manifest '" + example_manifest.string() + "' --target hlsl -o '" + (scratch_ / "out").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--target excludes --manifest"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "out"));
+}
+
+TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
+  const fs::path out = scratch_ / "gen";
+  ASSERT_EQ(saagen("emit --manifest '" + example_manifest.string() + "' -o '" + out.string() + "'").exit_code, 0);
+  write(scratch_ / "shaders" / "lit.frag",
+        "#version 450\n"
+        "#include \"saa_scene.glsl\"\n"
+        "layout(location = 0) in vec3 normal_ws;\n"
+        "layout(location = 0) out vec4 color;\n"
+        "void main() { color = vec4(saa_deferred_avg_fragment(0.04, normalize(normal_ws))); }\n");
+  CliRun run = saagen("compile '" + (scratch_ / "shaders" / "lit.frag").string() + "' -I '" + out.string() + "' -o '" +
+                   (scratch_ / "lit.spv").string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_GT(fs::file_size(scratch_ / "lit.spv"), 100u);
+  EXPECT_EQ(read_text(scratch_ / "lit.spv").substr(0, 4), std::string("\x03\x02\x23\x07", 4));  // SPIR-V magic
+
+  // An error names the file and the line after the include.
+  write(scratch_ / "shaders" / "bad.frag", "#version 450\n#include \"saa_scene.glsl\"\nvoid main() { undefined_call(); }\n");
+  run = saagen("compile '" + (scratch_ / "shaders" / "bad.frag").string() + "' -I '" + out.string() + "' -o '" + (scratch_ / "bad.spv").string() + "'");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("bad.frag:3"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
+}  // namespace
