@@ -1,0 +1,180 @@
+// saagen ground-truth renderer: the converged image and the 1-spp image of every SAA variant.
+//
+// Shading (both images): the specular term only,
+//   L = F(i.h) f(i, o) (n.i) E,
+// f the GGX microfacet BRDF without Fresnel (ref::ggx_brdf_axis, or ref::ggx_brdf_matrix for
+// the forward non-axis-aligned variants), i the unit direction to the light, o to the camera,
+// both in the hit's tangent frame (t, b, n), E the light's irradiance at normal incidence, and
+// F = 1 (no Fresnel) or Schlick's F0 + (1 - F0)(1 - i.h)^5 with F0 = 0.04 and h = normalize(i
+// + o). No shadows or inter-reflections: SAA addresses the specular term of one light, and
+// occlusion edges would only add geometric aliasing common to every variant. Rays that miss
+// the shape see a black background (radiance 0).
+//
+// Ground truth (render_ground_truth): per pixel, strata x strata (default 32 x 32 = 1024)
+// jittered samples distributed by the truncated Gaussian pixel filter of sampling.hpp
+// (variance sigma^2 = 0.25 px^2, the sigma^2 the SAA kernel assumes), shaded with the
+// unfiltered BRDF of roughness alpha; the pixel value is their mean. One set of rays serves
+// every material of a call (the geometry does not depend on alpha or Fresnel).
+//
+// 1-spp variant images (render_gbuffer, then shade_pixel / render_variant): the shape is
+// sampled once at every pixel centre; the per-pixel fields (world normal, tangent, bitangent,
+// tangent-space light/view/half vectors, gl_FragCoord) of the 2x2 quad containing a pixel are
+// handed to the reference *_fragment_quad function of the variant (saa.hpp), which takes
+// ddx/ddy as a GPU does (Derivative::coarse by default; lavapipe's plain ddx is fine). The
+// filtered roughness then feeds the BRDF at the pixel's own centre:
+//   forward-aniso-*  -> matrix A -> ggx_brdf_matrix(i, o, A, ndf_clamp_tau(alpha^2))
+//   forward-axis-*   -> (ax'^2, ay'^2) -> ggx_brdf_axis
+//   deferred-*       -> alpha'^2 -> ggx_brdf_axis(i, o, (alpha'^2, alpha'^2))
+//   none             -> ggx_brdf_axis with the unfiltered alpha^2 (no SAA).
+//
+// Quad partners off the surface: on a GPU the pixels of a quad that a triangle does not cover
+// run as helper invocations that evaluate the same triangle's attributes, extrapolated. The
+// analytic stand-in used here: a partner whose centre misses the shape, hits another connected
+// surface (another tube), or lies outside the image takes the shaded pixel's own fields
+// (normal, frame, vectors), i.e. a zero difference across that edge; only its gl_FragCoord
+// stays its own (the rasteriser's value, which Listing 3's neighbour direction reads).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "saagen/reference/math.hpp"
+#include "saagen/reference/quad.hpp"
+#include "saagen/reference/render/image.hpp"
+#include "saagen/reference/render/sampling.hpp"
+#include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/saa.hpp"
+
+namespace saagen::render {
+
+inline constexpr double kFresnelF0 = 0.04;
+
+// Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (cos clamped to [0, 1]).
+double schlick_fresnel(double cos_theta, double f0 = kFresnelF0);
+
+// Isotropic GGX roughness alpha (the BRDF reads alpha^2) and the Fresnel switch.
+struct Material {
+    double alpha = 0.1;
+    bool fresnel = false;
+};
+
+// The variants, named as in the catalogue (README "Variants"), plus the no-SAA baseline and
+// deferred-max's tangent-free form as a variant of its own.
+enum class Variant {
+    none,
+    forward_aniso_slope,
+    forward_aniso_projected,
+    forward_axis_slope,
+    forward_axis_projected,
+    deferred_previous,
+    deferred_max,
+    deferred_max_tangent_free,
+    deferred_sum,
+    deferred_avg,
+    deferred_projected_space,
+};
+
+// "none", "forward-aniso-slope", ..., "deferred-max-tangent-free", ...
+std::string_view variant_id(Variant v);
+std::optional<Variant> variant_from_id(std::string_view id);
+std::span<const Variant> all_variants();
+
+// The specular radiance of one light at a surface point, in the tangent frame.
+// brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
+double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
+                         bool fresnel);
+
+// ---------------------------------------------------------------------------------------------
+// Ground truth
+
+struct GroundTruthSettings {
+    int width = 256;
+    int height = 256;
+    int strata = 32;  // samples per pixel = strata^2 (32 -> 1024)
+    std::uint64_t seed = 0x5aa6e11ULL;
+    int threads = 0;  // 0: hardware concurrency
+    double filter_variance = 0.25;  // sigma^2 of the pixel filter (px^2)
+    double filter_truncation = 3.0; // support half-width in units of the underlying sigma
+};
+
+struct GroundTruth {
+    std::vector<Image> images;  // one per material, in the order given
+    Image coverage;             // fraction of each pixel's samples that hit the shape
+};
+
+// progress(samples_done, samples_total), on the calling thread (parallel_rows).
+using SampleProgress = std::function<void(std::uint64_t done, std::uint64_t total)>;
+
+GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
+                                std::span<const Material> materials,
+                                const SampleProgress& progress = {});
+
+// ---------------------------------------------------------------------------------------------
+// 1-spp fields and variant images
+
+// What a fragment shader has at one pixel centre.
+struct PixelFields {
+    bool hit = false;
+    int object = 0;
+    Vec3 position;
+    Vec3 normal;      // world-space shading normal
+    Vec3 tangent;     // world-space tangent
+    Vec3 bitangent;   // world-space bitangent
+    Vec3 to_light;    // i, world
+    Vec3 to_view;     // o, world
+    double irradiance = 0.0;
+    Vec3 light_ts;    // i in (t, b, n)
+    Vec3 view_ts;     // o in (t, b, n)
+    Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
+    Vec2 frag_coord;  // (x + 0.5, y + 0.5)
+};
+
+// Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
+PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height);
+
+struct GBuffer {
+    int width = 0;
+    int height = 0;
+    std::vector<PixelFields> pixels;  // row-major
+    const PixelFields& at(int x, int y) const {
+        return pixels[static_cast<std::size_t>(y) * width + x];
+    }
+};
+
+GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0);
+
+// The quad inputs of a pixel: the fields of the four pixels of its 2x2 quad, partners off the
+// surface replaced by the pixel's own fields (see the top of this file).
+struct QuadFields {
+    ref::Quad<Vec3> normal;
+    ref::Quad<Vec3> tangent;
+    ref::Quad<Vec3> bitangent;
+    ref::Quad<Vec3> half_ts;
+    ref::Quad<Vec2> frag_coord;
+    int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
+};
+
+// Precondition: gbuffer.at(x, y).hit.
+QuadFields gather_quad(const GBuffer& gbuffer, int x, int y);
+
+struct PixelShade {
+    double radiance = 0.0;
+    // The roughness the BRDF was evaluated with, alpha^2 domain: the matrix A of the
+    // non-axis-aligned forms, (ax^2, 0, ay^2) of the axis-aligned ones, (a^2, 0, a^2) otherwise.
+    ref::Sym2 roughness;
+};
+
+// The 1-spp shading of pixel (x, y) with a variant (radiance 0 and roughness 0 on a miss).
+PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
+                       const Material& material, const ref::Params& params = {},
+                       ref::Derivative mode = ref::Derivative::coarse);
+
+Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
+                     const ref::Params& params = {},
+                     ref::Derivative mode = ref::Derivative::coarse, int threads = 0);
+
+}  // namespace saagen::render

@@ -1,0 +1,235 @@
+// saagen ground-truth renderer: analytic scenes.
+//
+// Each scene is one analytic shape (with closed-form intersection, shading normal and a smooth
+// tangent frame), a rigid placement, a pinhole camera and one light. Every ray hit provides
+// what the SAA variants read per pixel: position, shading normal n, tangent t and bitangent
+// b = n x t (so (t, b, n) is a right-handed orthonormal frame), and an object index (the tube
+// of a row of tubes), which the 1-spp renderer uses to decide whether a quad partner lies on
+// the same surface.
+//
+// Conventions: right-handed world space, +y up; the camera looks towards -z; pixel (x, y) has
+// its centre at film position (x + 0.5, y + 0.5) with y growing downwards (quad.hpp's layout).
+// The whole shape can rotate about the world vertical axis through a per-scene pivot (the
+// temporal-flicker animation); camera and light stay fixed.
+//
+// The standard scenes (make_scene):
+//   sphere      unit sphere at the origin, camera at z = 4, directional light from the upper
+//               left near the camera: a small highlight on the front and grazing half vectors
+//               (small h_z) all along the rim. Tangent frame: the stereographic field
+//               (smooth everywhere except the pole facing away from the camera). Pivot
+//               (0, 0, -1), so the rotation also slides the sphere sideways.
+//   torus       R = 1, r = 0.35, tilted 55 degrees towards the camera (hole visible), point
+//               light; tangent along the major circle (smooth everywhere).
+//   tubes       a row of 9 thin parallel open cylinders (r = 0.05, 1.2 long on each side of
+//               the centre) receding at 35 degrees: normals turn by 180 degrees across a few
+//               pixels, and the top and bottom of every tube are seen at grazing angles;
+//               tangent along the axis. Directional light placed so that i.a = -o.a at the
+//               image centre (a the axis): a highlight line runs along every tube.
+//   bump_plane  a 5 x 5 square seen from above at ~33 degrees, shaded with a sum of four
+//               sines (wavelengths 0.083 - 0.23, i.e. ~8 - 22 pixels per period at the image
+//               centre at 256 px, fewer towards the back): analytic normal normalize(-dh/dx,
+//               -dh/dy, 1) in the plane's frame; light near the mirror direction of the view, so
+//               the glint patch is centred.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "saagen/reference/math.hpp"
+
+namespace saagen::render {
+
+using ref::Vec2;
+using ref::Vec3;
+
+struct Ray {
+    Vec3 origin;
+    Vec3 direction;  // unit length
+};
+
+// x -> R x + translation, R a rotation given by its columns (the images of the unit axes).
+struct Rigid {
+    Vec3 col_x{1.0, 0.0, 0.0};
+    Vec3 col_y{0.0, 1.0, 0.0};
+    Vec3 col_z{0.0, 0.0, 1.0};
+    Vec3 translation{};
+
+    Vec3 apply_vector(Vec3 v) const { return v.x * col_x + v.y * col_y + v.z * col_z; }
+    Vec3 apply_point(Vec3 p) const { return apply_vector(p) + translation; }
+    Vec3 inverse_vector(Vec3 v) const { return {ref::dot(v, col_x), ref::dot(v, col_y), ref::dot(v, col_z)}; }
+    Vec3 inverse_point(Vec3 p) const { return inverse_vector(p - translation); }
+
+    // Rotation by angle (radians, right-handed) about a unit axis through the origin.
+    static Rigid rotation(Vec3 axis, double angle);
+    static Rigid translate(Vec3 t);
+};
+
+// a after b: x -> a(b(x)).
+Rigid compose(const Rigid& a, const Rigid& b);
+
+// What a ray hit provides (world space once returned by Scene::intersect).
+struct SurfaceHit {
+    double t = 0.0;
+    Vec3 position;
+    Vec3 normal;     // shading normal n (unit)
+    Vec3 tangent;    // t (unit, orthogonal to n)
+    Vec3 bitangent;  // b = n x t
+    int object = 0;  // index of the connected surface (tube index); 0 for single surfaces
+};
+
+// An analytic shape in its object space.
+class Shape {
+public:
+    virtual ~Shape() = default;
+    // The nearest hit with t > t_min along a ray whose direction has unit length.
+    virtual bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const = 0;
+    // Every number that defines the shape (part of the ground-truth cache key).
+    virtual std::string describe() const = 0;
+};
+
+// Sphere of the given radius centred at the origin. Tangent frame: with n = (a, b, c), the
+// field t ~ ((1 + c)^2 + b^2 - a^2, -2ab, -2a(1 + c)), the image of the plane's x axis under
+// the inverse stereographic projection from the pole -z; smooth except at n = -z.
+class Sphere final : public Shape {
+public:
+    explicit Sphere(double radius) : radius_(radius) {}
+    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+    std::string describe() const override;
+    static Vec3 stereographic_tangent(Vec3 n);
+
+private:
+    double radius_;
+};
+
+// Torus around the y axis: (|p|^2 + R^2 - r^2)^2 = 4 R^2 (px^2 + pz^2). The ray equation is
+// a quartic; its real roots are bracketed between the critical points (roots of the cubic
+// derivative, solved in closed form) and refined by safeguarded Newton iterations.
+// Normal: normalize(p - R normalize(px, 0, pz)); tangent: the major-circle direction
+// normalize(-pz, 0, px).
+class Torus final : public Shape {
+public:
+    Torus(double major_radius, double minor_radius) : major_(major_radius), minor_(minor_radius) {}
+    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+    std::string describe() const override;
+
+private:
+    double major_;
+    double minor_;
+};
+
+// A row of `count` open cylinders of the given radius with axes parallel to x, centred on
+// y = (k - (count - 1) / 2) spacing, z = 0, |x| <= half_length. Only the outer surface is
+// visible (a ray that would enter through an open end sees nothing). Normal: the radial
+// direction; tangent: +x. SurfaceHit::object is the tube index k.
+class TubeRow final : public Shape {
+public:
+    TubeRow(int count, double radius, double spacing, double half_length)
+        : count_(count), radius_(radius), spacing_(spacing), half_length_(half_length) {}
+    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+    std::string describe() const override;
+    double axis_y(int k) const { return (k - 0.5 * (count_ - 1)) * spacing_; }
+
+private:
+    int count_;
+    double radius_;
+    double spacing_;
+    double half_length_;
+};
+
+// One term a sin(k . (x, y) + phase) of a height field.
+struct SineWave {
+    Vec2 wave_vector;  // k, radians per unit length
+    double amplitude = 0.0;
+    double phase = 0.0;
+};
+
+// The square |x|, |y| <= half_size of the plane z = 0, seen from +z, bump-mapped with
+// h(x, y) = sum of SineWaves (the geometry stays flat: only the shading normal follows h).
+// Normal: normalize(-dh/dx, -dh/dy, 1). Tangent: x axis made orthogonal to n,
+// normalize(e_x - n_x n).
+class BumpPlane final : public Shape {
+public:
+    BumpPlane(double half_size, std::vector<SineWave> waves)
+        : half_size_(half_size), waves_(std::move(waves)) {}
+    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+    std::string describe() const override;
+    double height(double x, double y) const;
+    Vec2 gradient(double x, double y) const;  // (dh/dx, dh/dy)
+    Vec3 normal(double x, double y) const;
+
+private:
+    double half_size_;
+    std::vector<SineWave> waves_;
+};
+
+// Pinhole camera.
+struct Camera {
+    Vec3 position{0.0, 0.0, 4.0};
+    Vec3 look_at{};
+    Vec3 up{0.0, 1.0, 0.0};
+    double fov_y_degrees = 35.0;
+
+    // The same camera with the field of view narrowed so that an image of `size` pixels has
+    // the pixel footprint of a `full_size` image: the centre crop of the full image (square
+    // images: the aspect ratio is width / height of the image rendered).
+    Camera cropped(int size, int full_size) const;
+
+    // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
+    // width x height image.
+    Ray generate(double fx, double fy, int width, int height) const;
+};
+
+struct Light {
+    enum class Kind { directional, point };
+    Kind kind = Kind::directional;
+    Vec3 vector{0.0, 0.0, 1.0};  // directional: unit direction towards the light; point: position
+    double intensity = 1.0;      // directional: irradiance on a surface facing it; point: I (E = I / d^2)
+
+    // Unit direction to the light and the irradiance E at p (normal incidence).
+    void at(Vec3 p, Vec3& to_light, double& irradiance) const;
+};
+
+enum class SceneId { sphere, torus, tubes, bump_plane };
+
+std::string_view scene_name(SceneId id);
+std::optional<SceneId> scene_from_name(std::string_view name);
+std::span<const SceneId> all_scenes();
+
+class Scene {
+public:
+    Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera,
+          Light light, Vec3 pivot, double rotation_radians);
+
+    // Nearest hit of a world-space ray (fields transformed to world space).
+    bool intersect(const Ray& ray, SurfaceHit& hit) const;
+
+    // The same scene seen through another camera.
+    Scene with_camera(const Camera& camera) const;
+
+    const std::string& name() const { return name_; }
+    const Camera& camera() const { return camera_; }
+    const Light& light() const { return light_; }
+    double rotation() const { return rotation_; }
+    const Rigid& object_to_world() const { return object_to_world_; }
+    // Every number that affects a rendered image of the scene (cache keys).
+    std::string describe() const;
+
+private:
+    std::string name_;
+    std::shared_ptr<const Shape> shape_;
+    Rigid placement_;
+    Camera camera_;
+    Light light_;
+    Vec3 pivot_;
+    double rotation_;
+    Rigid object_to_world_;
+};
+
+// The standard scene, rotated by rotation_radians about the vertical axis through its pivot.
+Scene make_scene(SceneId id, double rotation_radians = 0.0);
+
+}  // namespace saagen::render

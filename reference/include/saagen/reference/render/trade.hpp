@@ -1,0 +1,135 @@
+// saagen ground-truth renderer: the quality trade table of the SAA variants.
+//
+// For every scene, GGX alpha, Fresnel switch and variant, the 1-spp image of the variant is
+// compared with the ground truth of the same view (renderer.hpp):
+//   rmse_linear      RMSE of linear specular radiance over all pixels;
+//   rmse_tonemapped  RMSE after Reinhard's x / (1 + x) on both images (image.hpp);
+//   max_error        the largest absolute linear error of a pixel;
+//   flicker          the scene rotates about the vertical axis through its pivot by
+//                    rotation_degrees_per_frame per frame for `frames` frames (frame k at k
+//                    times the step, frame 0 unrotated); per pixel, the temporal standard
+//                    deviation of the variant's 1-spp frames minus that of the ground-truth
+//                    frames, averaged over the pixels (image.hpp, flicker()).
+//
+// Flicker ground truth. 32 converged frames at the full resolution and 1024 spp would cost 32
+// times the main ground truth, so the animation is rendered at flicker_width x flicker_height
+// (default 128 x 128, half the main resolution) with flicker_strata^2 samples per pixel (default
+// 16^2 = 256), and the 1-spp frames of the variants at that same resolution. Every frame uses
+// the same per-pixel sample pattern (the pixel seeds do not depend on the frame), so the
+// ground truth's residual Monte-Carlo error is correlated from frame to frame and changes only
+// as the surface moves under the pattern: its temporal standard deviation measures mostly the
+// motion of the converged image, not sampler noise. Measured at 128 x 128 over 8 frames, the
+// mean temporal standard deviation of the ground truth at 256 spp is within 2 % of the 1024-spp
+// value for every scene and alpha except the bump plane at alpha = 0.01 (0.84 at 256 spp, 0.69
+// at 1024, 1.19 at 64: its sub-pixel glints are not converged), so that case's flicker is biased
+// low by ~0.15-0.25 (against 1-spp standard deviations of 0.5 - 2.3). Set flicker_strata = 32
+// for 1024 spp (4 x the cost).
+//
+// Ground-truth images can be cached on disk (cache_dir): one file per (scene, rotation, size,
+// samples, seed, filter, material list), named by a 64-bit FNV-1a hash of a text key holding
+// every one of those numbers (and a format version); the key is stored in the file and
+// compared on load, so a hash collision or a stale file only costs a re-render.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "saagen/reference/quad.hpp"
+#include "saagen/reference/render/image.hpp"
+#include "saagen/reference/render/renderer.hpp"
+#include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/saa.hpp"
+
+namespace saagen::render {
+
+struct TradeConfig {
+    int width = 256;
+    int height = 256;
+    int strata = 32;  // main ground truth: strata^2 = 1024 spp
+    int flicker_width = 128;
+    int flicker_height = 128;
+    int flicker_strata = 16;  // flicker ground truth: 256 spp
+    int frames = 32;          // 0 disables the flicker metric (flicker = 0)
+    double rotation_degrees_per_frame = 0.25;
+    std::vector<SceneId> scenes{SceneId::sphere, SceneId::torus, SceneId::tubes,
+                                SceneId::bump_plane};
+    std::vector<double> alphas{0.01, 0.05, 0.1, 0.3};
+    std::vector<bool> fresnel_modes{false, true};
+    std::vector<Variant> variants{all_variants().begin(), all_variants().end()};
+    ref::Params params{};
+    ref::Derivative derivative = ref::Derivative::coarse;
+    std::uint64_t seed = 0x5aa6e11ULL;
+    int threads = 0;        // 0: hardware concurrency
+    std::string cache_dir;  // empty: no ground-truth cache
+    bool keep_images = false;  // fill TradeTable::images
+};
+
+struct TradeRow {
+    Variant variant = Variant::none;
+    SceneId scene = SceneId::sphere;
+    double alpha = 0.0;
+    bool fresnel = false;
+    double rmse_linear = 0.0;
+    double rmse_tonemapped = 0.0;
+    double max_error = 0.0;
+    double flicker = 0.0;
+    double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
+    double reference_temporal_stddev = 0.0;  // the same for the ground truth
+    std::size_t non_finite = 0;              // NaN/inf pixels of the frame-0 image (excluded)
+};
+
+// The images behind the rows of one (scene, material): frame 0 at the main resolution.
+struct ImageSet {
+    SceneId scene = SceneId::sphere;
+    Material material;
+    Image reference;  // ground truth
+    Image coverage;   // fraction of the ground-truth samples that hit the shape
+    std::vector<std::pair<Variant, Image>> variants;  // 1-spp images, config.variants order
+};
+
+struct TradeTable {
+    TradeConfig config;
+    std::vector<TradeRow> rows;   // scene-major, then alpha, Fresnel, variant (config order)
+    std::vector<ImageSet> images; // when config.keep_images
+    double ground_truth_seconds = 0.0;    // wall time spent rendering ground truths
+    std::uint64_t ground_truth_samples = 0;  // samples rendered (cache hits excluded)
+    int cache_hits = 0;
+    int cache_misses = 0;
+
+    const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel) const;
+};
+
+struct TradeProgress {
+    std::string stage;        // e.g. "ground truth sphere", "flicker torus frame 3/32"
+    std::uint64_t done = 0;   // work units: ground-truth samples + 1-spp pixel shadings
+    std::uint64_t total = 0;
+};
+
+// Called on the calling thread, at most about every 100 ms and at each stage change.
+using TradeProgressFn = std::function<void(const TradeProgress&)>;
+
+TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {});
+
+// The materials of a configuration in table order: for each alpha, for each Fresnel mode.
+std::vector<Material> trade_materials(const TradeConfig& config);
+
+// Ground truth through the disk cache (render_ground_truth when cache_dir is empty or the
+// entry is missing or stale). *cache_hit (when given) tells which happened.
+GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
+                                std::span<const Material> materials, const std::string& cache_dir,
+                                const SampleProgress& progress = {}, bool* cache_hit = nullptr);
+
+// The cache key text and its file name ("gt-<16 hex digits>.bin").
+std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings,
+                                   std::span<const Material> materials);
+std::string ground_truth_cache_file(const std::string& key);
+
+// Fixed-width text table and CSV of the rows.
+std::string format_trade_table(const TradeTable& table);
+std::string trade_table_csv(const TradeTable& table);
+
+}  // namespace saagen::render

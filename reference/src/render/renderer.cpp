@@ -1,0 +1,316 @@
+// Ground truth and 1-spp variant images (see renderer.hpp).
+#include "saagen/reference/render/renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+#include "saagen/reference/brdf.hpp"
+#include "saagen/reference/render/parallel.hpp"
+
+namespace saagen::render {
+
+using ref::dot;
+using ref::normalize;
+using ref::Sym2;
+using ref::to_tangent_space;
+
+namespace {
+
+constexpr std::array<Variant, 11> kAllVariants{
+    Variant::none,
+    Variant::forward_aniso_slope,
+    Variant::forward_aniso_projected,
+    Variant::forward_axis_slope,
+    Variant::forward_axis_projected,
+    Variant::deferred_previous,
+    Variant::deferred_max,
+    Variant::deferred_max_tangent_free,
+    Variant::deferred_sum,
+    Variant::deferred_avg,
+    Variant::deferred_projected_space,
+};
+
+// The shading vectors of a hit: i, o in world space and in the tangent frame, E.
+struct LocalShading {
+    Vec3 to_light, to_view, light_ts, view_ts;
+    double irradiance = 0.0;
+};
+
+LocalShading local_shading(const Scene& scene, const Ray& ray, const SurfaceHit& hit) {
+    LocalShading s;
+    scene.light().at(hit.position, s.to_light, s.irradiance);
+    s.to_view = -1.0 * ray.direction;
+    s.light_ts = to_tangent_space(s.to_light, hit.tangent, hit.bitangent, hit.normal);
+    s.view_ts = to_tangent_space(s.to_view, hit.tangent, hit.bitangent, hit.normal);
+    return s;
+}
+
+}  // namespace
+
+double schlick_fresnel(double cos_theta, double f0) {
+    const double c = ref::saturate(cos_theta);
+    const double m = 1.0 - c;
+    const double m2 = m * m;
+    return f0 + (1.0 - f0) * m2 * m2 * m;
+}
+
+std::string_view variant_id(Variant v) {
+    switch (v) {
+        case Variant::none: return "none";
+        case Variant::forward_aniso_slope: return "forward-aniso-slope";
+        case Variant::forward_aniso_projected: return "forward-aniso-projected";
+        case Variant::forward_axis_slope: return "forward-axis-slope";
+        case Variant::forward_axis_projected: return "forward-axis-projected";
+        case Variant::deferred_previous: return "deferred-previous";
+        case Variant::deferred_max: return "deferred-max";
+        case Variant::deferred_max_tangent_free: return "deferred-max-tangent-free";
+        case Variant::deferred_sum: return "deferred-sum";
+        case Variant::deferred_avg: return "deferred-avg";
+        case Variant::deferred_projected_space: return "deferred-projected-space";
+    }
+    return "?";
+}
+
+std::optional<Variant> variant_from_id(std::string_view id) {
+    for (Variant v : kAllVariants)
+        if (variant_id(v) == id) return v;
+    return std::nullopt;
+}
+
+std::span<const Variant> all_variants() { return kAllVariants; }
+
+double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
+                         bool fresnel) {
+    if (!(light_ts.z > 0.0)) return 0.0;
+    double value = brdf * light_ts.z * irradiance;
+    if (fresnel) {
+        const Vec3 h = normalize(light_ts + view_ts);
+        value *= schlick_fresnel(dot(light_ts, h));
+    }
+    return value;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ground truth
+
+GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
+                                std::span<const Material> materials,
+                                const SampleProgress& progress) {
+    if (settings.width <= 0 || settings.height <= 0 || settings.strata <= 0)
+        throw std::invalid_argument("render_ground_truth: bad image size or strata");
+    // The default filter is built once per process; other variances/truncations per call.
+    const bool default_filter =
+        settings.filter_variance == 0.25 && settings.filter_truncation == 3.0;
+    std::optional<GaussianPixelFilter> custom_filter;
+    if (!default_filter)
+        custom_filter.emplace(settings.filter_variance, settings.filter_truncation);
+    const GaussianPixelFilter& filter = default_filter ? default_pixel_filter() : *custom_filter;
+
+    const int w = settings.width, h = settings.height;
+    GroundTruth gt;
+    gt.images.assign(materials.size(), Image(w, h));
+    gt.coverage = Image(w, h);
+    const std::size_t n_materials = materials.size();
+    const std::size_t spp = static_cast<std::size_t>(settings.strata) * settings.strata;
+
+    auto render_row = [&](int y) {
+        std::vector<FilmOffset> offsets;
+        std::vector<double> sums(n_materials);
+        for (int x = 0; x < w; ++x) {
+            Rng rng(pixel_seed(settings.seed, x, y));
+            stratified_filter_offsets(filter, settings.strata, rng, offsets);
+            std::fill(sums.begin(), sums.end(), 0.0);
+            std::size_t hits = 0;
+            for (const FilmOffset& off : offsets) {
+                const Ray ray = scene.camera().generate(x + 0.5 + off.dx, y + 0.5 + off.dy, w, h);
+                SurfaceHit hit;
+                if (!scene.intersect(ray, hit)) continue;
+                ++hits;
+                const LocalShading s = local_shading(scene, ray, hit);
+                if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
+                const Vec3 half = normalize(s.light_ts + s.view_ts);
+                const double fresnel = schlick_fresnel(dot(s.light_ts, half));
+                const double common = s.light_ts.z * s.irradiance;
+                double last_alpha = -1.0, last_brdf = 0.0;
+                for (std::size_t m = 0; m < n_materials; ++m) {
+                    const double alpha = materials[m].alpha;
+                    if (alpha != last_alpha) {
+                        const double a2 = alpha * alpha;
+                        last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
+                        last_alpha = alpha;
+                    }
+                    sums[m] += last_brdf * common * (materials[m].fresnel ? fresnel : 1.0);
+                }
+            }
+            const double inv = 1.0 / static_cast<double>(spp);
+            for (std::size_t m = 0; m < n_materials; ++m)
+                gt.images[m].at(x, y) = static_cast<float>(sums[m] * inv);
+            gt.coverage.at(x, y) = static_cast<float>(static_cast<double>(hits) * inv);
+        }
+    };
+
+    const std::uint64_t total = static_cast<std::uint64_t>(w) * h * spp;
+    std::function<void(int)> row_progress;
+    if (progress)
+        row_progress = [&](int rows_done) {
+            progress(static_cast<std::uint64_t>(rows_done) * w * spp, total);
+        };
+    parallel_rows(h, settings.threads, render_row, row_progress);
+    return gt;
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1-spp fields
+
+PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height) {
+    PixelFields f;
+    f.frag_coord = {x + 0.5, y + 0.5};
+    const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return f;
+    const LocalShading s = local_shading(scene, ray, hit);
+    f.hit = true;
+    f.object = hit.object;
+    f.position = hit.position;
+    f.normal = hit.normal;
+    f.tangent = hit.tangent;
+    f.bitangent = hit.bitangent;
+    f.to_light = s.to_light;
+    f.to_view = s.to_view;
+    f.irradiance = s.irradiance;
+    f.light_ts = s.light_ts;
+    f.view_ts = s.view_ts;
+    f.half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent,
+                                 hit.normal);
+    return f;
+}
+
+GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
+    GBuffer g;
+    g.width = width;
+    g.height = height;
+    g.pixels.resize(static_cast<std::size_t>(width) * height);
+    parallel_rows(height, threads, [&](int y) {
+        for (int x = 0; x < width; ++x)
+            g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
+    });
+    return g;
+}
+
+QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
+    const PixelFields& self = gbuffer.at(x, y);
+    if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
+    const int x0 = x & ~1, y0 = y & ~1;
+    std::array<const PixelFields*, 4> source{};
+    std::array<Vec2, 4> frag{};
+    for (int q = 0; q < 4; ++q) {
+        const int qx = x0 + (q & 1), qy = y0 + (q >> 1);
+        frag[q] = {qx + 0.5, qy + 0.5};
+        const PixelFields* f = &self;
+        if (qx < gbuffer.width && qy < gbuffer.height) {
+            const PixelFields& partner = gbuffer.at(qx, qy);
+            if (partner.hit && partner.object == self.object) f = &partner;
+        }
+        source[q] = f;
+    }
+    auto quad = [&](auto member) {
+        using T = std::remove_cvref_t<decltype(source[0]->*member)>;
+        return ref::Quad<T>{source[0]->*member, source[1]->*member, source[2]->*member,
+                            source[3]->*member};
+    };
+    QuadFields q;
+    q.normal = quad(&PixelFields::normal);
+    q.tangent = quad(&PixelFields::tangent);
+    q.bitangent = quad(&PixelFields::bitangent);
+    q.half_ts = quad(&PixelFields::half_ts);
+    q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
+    q.pixel = (x & 1) + 2 * (y & 1);
+    return q;
+}
+
+PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
+                       const Material& material, const ref::Params& params,
+                       ref::Derivative mode) {
+    const PixelFields& f = gbuffer.at(x, y);
+    PixelShade out;
+    if (!f.hit) return out;
+    const double a2 = material.alpha * material.alpha;
+    const Vec2 alpha2{a2, a2};
+    double brdf = 0.0;
+    auto isotropic = [&](double filtered) {
+        out.roughness = {filtered, 0.0, filtered};
+        brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, {filtered, filtered});
+    };
+    auto axis = [&](Vec2 filtered) {
+        out.roughness = {filtered.x, 0.0, filtered.y};
+        brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
+    };
+    auto matrix = [&](Sym2 a) {
+        out.roughness = a;
+        brdf = ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
+    };
+
+    if (variant == Variant::none) {
+        isotropic(a2);
+    } else {
+        const QuadFields q = gather_quad(gbuffer, x, y);
+        switch (variant) {
+            case Variant::none: break;
+            case Variant::forward_aniso_slope:
+                matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, q.half_ts, q.pixel, mode));
+                break;
+            case Variant::forward_aniso_projected:
+                matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, q.half_ts, q.pixel,
+                                                                  mode));
+                break;
+            case Variant::forward_axis_slope:
+                axis(ref::forward_axis_slope_fragment_quad(params, alpha2, q.half_ts, q.pixel, mode));
+                break;
+            case Variant::forward_axis_projected:
+                axis(ref::forward_axis_projected_fragment_quad(params, alpha2, q.half_ts, q.pixel,
+                                                               mode));
+                break;
+            case Variant::deferred_previous:
+                isotropic(ref::deferred_previous_fragment_quad(params, a2, q.normal, q.tangent,
+                                                               q.bitangent, q.frag_coord, q.pixel,
+                                                               mode));
+                break;
+            case Variant::deferred_max:
+                isotropic(ref::deferred_max_fragment_quad(params, a2, q.normal, q.tangent,
+                                                          q.bitangent, q.frag_coord, q.pixel, mode));
+                break;
+            case Variant::deferred_max_tangent_free:
+                isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, q.normal,
+                                                                       q.pixel, mode));
+                break;
+            case Variant::deferred_sum:
+                isotropic(ref::deferred_sum_fragment_quad(params, a2, q.normal, q.pixel, mode));
+                break;
+            case Variant::deferred_avg:
+                isotropic(ref::deferred_avg_fragment_quad(params, a2, q.normal, q.pixel, mode));
+                break;
+            case Variant::deferred_projected_space:
+                isotropic(ref::deferred_projected_space_fragment_quad(params, a2, q.normal, q.pixel,
+                                                                      mode));
+                break;
+        }
+    }
+    out.radiance = specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
+    return out;
+}
+
+Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
+                     const ref::Params& params, ref::Derivative mode, int threads) {
+    Image image(gbuffer.width, gbuffer.height);
+    parallel_rows(gbuffer.height, threads, [&](int y) {
+        for (int x = 0; x < gbuffer.width; ++x)
+            image.at(x, y) = static_cast<float>(
+                shade_pixel(gbuffer, x, y, variant, material, params, mode).radiance);
+    });
+    return image;
+}
+
+}  // namespace saagen::render

@@ -1,0 +1,349 @@
+// The SAA quality trade table (see trade.hpp).
+#include "saagen/reference/render/trade.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "saagen/reference/render/parallel.hpp"
+
+namespace saagen::render {
+
+namespace {
+
+constexpr char kCacheMagic[8] = {'S', 'A', 'A', 'G', 'T', '0', '0', '1'};
+// Bump when anything that changes ground-truth pixels without appearing in the key changes
+// (shading model, sampler, scene code).
+constexpr const char* kCacheFormat = "saagen-ground-truth-v2";
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::uint64_t fnv1a64(std::string_view text) {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+template <class T>
+void write_pod(std::ostream& out, const T& value) {
+    out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+template <class T>
+bool read_pod(std::istream& in, T& value) {
+    return static_cast<bool>(in.read(reinterpret_cast<char*>(&value), sizeof(T)));
+}
+
+bool load_cache(const std::filesystem::path& path, const std::string& key, int width, int height,
+                std::size_t count, GroundTruth& gt) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    char magic[8];
+    if (!in.read(magic, 8) || std::memcmp(magic, kCacheMagic, 8) != 0) return false;
+    std::uint64_t key_size = 0;
+    if (!read_pod(in, key_size) || key_size != key.size()) return false;
+    std::string stored(key_size, '\0');
+    if (!in.read(stored.data(), static_cast<std::streamsize>(key_size)) || stored != key)
+        return false;
+    std::int32_t w = 0, h = 0;
+    std::uint64_t n = 0;
+    if (!read_pod(in, w) || !read_pod(in, h) || !read_pod(in, n)) return false;
+    if (w != width || h != height || n != count) return false;
+    GroundTruth loaded;
+    auto read_image = [&](Image& image) {
+        image = Image(width, height);
+        return static_cast<bool>(
+            in.read(reinterpret_cast<char*>(image.pixels.data()),
+                    static_cast<std::streamsize>(image.pixels.size() * sizeof(float))));
+    };
+    loaded.images.resize(count);
+    for (Image& image : loaded.images)
+        if (!read_image(image)) return false;
+    if (!read_image(loaded.coverage)) return false;
+    gt = std::move(loaded);
+    return true;
+}
+
+void store_cache(const std::filesystem::path& path, const std::string& key, const GroundTruth& gt) {
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    // Write to a unique temporary name, then rename: readers never see a partial file.
+    std::random_device rd;
+    const std::filesystem::path temporary =
+        path.string() + ".tmp" + std::to_string(rd()) + std::to_string(rd());
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) return;  // the cache is an optimisation: failing to write it is not an error
+        out.write(kCacheMagic, 8);
+        write_pod(out, static_cast<std::uint64_t>(key.size()));
+        out.write(key.data(), static_cast<std::streamsize>(key.size()));
+        const Image& first = gt.coverage;
+        write_pod(out, static_cast<std::int32_t>(first.width));
+        write_pod(out, static_cast<std::int32_t>(first.height));
+        write_pod(out, static_cast<std::uint64_t>(gt.images.size()));
+        auto write_image = [&](const Image& image) {
+            out.write(reinterpret_cast<const char*>(image.pixels.data()),
+                      static_cast<std::streamsize>(image.pixels.size() * sizeof(float)));
+        };
+        for (const Image& image : gt.images) write_image(image);
+        write_image(gt.coverage);
+        if (!out) {
+            out.close();
+            std::filesystem::remove(temporary, ec);
+            return;
+        }
+    }
+    std::filesystem::rename(temporary, path, ec);
+    if (ec) std::filesystem::remove(temporary, ec);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Cache
+
+std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings,
+                                   std::span<const Material> materials) {
+    std::ostringstream s;
+    s.precision(17);
+    s << kCacheFormat << ";" << scene.describe() << ";size=" << settings.width << "x"
+      << settings.height << ";strata=" << settings.strata << ";seed=" << settings.seed
+      << ";filter_variance=" << settings.filter_variance
+      << ";filter_truncation=" << settings.filter_truncation << ";F0=" << kFresnelF0
+      << ";materials=";
+    for (const Material& m : materials) s << "(" << m.alpha << "," << (m.fresnel ? 1 : 0) << ")";
+    return s.str();
+}
+
+std::string ground_truth_cache_file(const std::string& key) {
+    char name[32];
+    std::snprintf(name, sizeof name, "gt-%016llx.bin",
+                  static_cast<unsigned long long>(fnv1a64(key)));
+    return name;
+}
+
+GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
+                                std::span<const Material> materials, const std::string& cache_dir,
+                                const SampleProgress& progress, bool* cache_hit) {
+    if (cache_hit) *cache_hit = false;
+    if (cache_dir.empty()) return render_ground_truth(scene, settings, materials, progress);
+    const std::string key = ground_truth_cache_key(scene, settings, materials);
+    const std::filesystem::path path =
+        std::filesystem::path(cache_dir) / ground_truth_cache_file(key);
+    GroundTruth gt;
+    if (load_cache(path, key, settings.width, settings.height, materials.size(), gt)) {
+        if (cache_hit) *cache_hit = true;
+        return gt;
+    }
+    gt = render_ground_truth(scene, settings, materials, progress);
+    store_cache(path, key, gt);
+    return gt;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Table
+
+std::vector<Material> trade_materials(const TradeConfig& config) {
+    std::vector<Material> materials;
+    for (double alpha : config.alphas)
+        for (bool fresnel : config.fresnel_modes) materials.push_back({alpha, fresnel});
+    return materials;
+}
+
+const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel) const {
+    for (const TradeRow& row : rows)
+        if (row.variant == variant && row.scene == scene && row.alpha == alpha &&
+            row.fresnel == fresnel)
+            return &row;
+    return nullptr;
+}
+
+TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
+    if (config.width <= 0 || config.height <= 0 || config.strata <= 0)
+        throw std::invalid_argument("trade table: bad main resolution or strata");
+    if (config.frames > 0 &&
+        (config.flicker_width <= 0 || config.flicker_height <= 0 || config.flicker_strata <= 0))
+        throw std::invalid_argument("trade table: bad flicker resolution or strata");
+
+    TradeTable table;
+    table.config = config;
+    const std::vector<Material> materials = trade_materials(config);
+    const std::size_t n_materials = materials.size();
+    const std::size_t n_variants = config.variants.size();
+
+    // Work units: ground-truth samples and 1-spp pixel shadings.
+    const std::uint64_t main_pixels = static_cast<std::uint64_t>(config.width) * config.height;
+    const std::uint64_t flicker_pixels =
+        static_cast<std::uint64_t>(config.flicker_width) * config.flicker_height;
+    const std::uint64_t main_gt = main_pixels * config.strata * config.strata;
+    const std::uint64_t flicker_gt =
+        flicker_pixels * config.flicker_strata * config.flicker_strata;
+    const std::uint64_t shading_per_frame = n_materials * n_variants;
+    const std::uint64_t per_scene =
+        main_gt + main_pixels * shading_per_frame +
+        (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0);
+    TradeProgress state;
+    state.total = per_scene * config.scenes.size();
+    auto report = [&](const std::string& stage, std::uint64_t done) {
+        state.stage = stage;
+        state.done = done;
+        if (progress) progress(state);
+    };
+
+    GroundTruthSettings main_settings;
+    main_settings.width = config.width;
+    main_settings.height = config.height;
+    main_settings.strata = config.strata;
+    main_settings.seed = config.seed;
+    main_settings.threads = config.threads;
+    GroundTruthSettings flicker_settings = main_settings;
+    flicker_settings.width = config.flicker_width;
+    flicker_settings.height = config.flicker_height;
+    flicker_settings.strata = config.flicker_strata;
+
+    auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings,
+                            const std::string& stage, std::uint64_t base) {
+        report(stage, base);
+        bool hit = false;
+        const auto start = std::chrono::steady_clock::now();
+        GroundTruth gt = cached_ground_truth(
+            scene, settings, materials, config.cache_dir,
+            [&](std::uint64_t done, std::uint64_t) { report(stage, base + done); }, &hit);
+        if (hit) {
+            ++table.cache_hits;
+        } else {
+            ++table.cache_misses;
+            table.ground_truth_seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            table.ground_truth_samples += static_cast<std::uint64_t>(settings.width) *
+                                          settings.height * settings.strata * settings.strata;
+        }
+        return gt;
+    };
+
+    for (std::size_t si = 0; si < config.scenes.size(); ++si) {
+        const SceneId id = config.scenes[si];
+        const std::string name(scene_name(id));
+        std::uint64_t base = per_scene * si;
+
+        // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
+        const Scene scene = make_scene(id, 0.0);
+        const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
+        base += main_gt;
+        report("1-spp variants " + name, base);
+        const GBuffer gbuffer = render_gbuffer(scene, config.width, config.height, config.threads);
+        const std::size_t first_row = table.rows.size();
+        for (std::size_t m = 0; m < n_materials; ++m) {
+            ImageSet set;
+            if (config.keep_images) {
+                set.scene = id;
+                set.material = materials[m];
+                set.reference = gt.images[m];
+                set.coverage = gt.coverage;
+            }
+            for (Variant v : config.variants) {
+                Image image = render_variant(gbuffer, v, materials[m], config.params,
+                                             config.derivative, config.threads);
+                const ImageError e = compare_images(image, gt.images[m]);
+                TradeRow row;
+                row.variant = v;
+                row.scene = id;
+                row.alpha = materials[m].alpha;
+                row.fresnel = materials[m].fresnel;
+                row.rmse_linear = e.rmse_linear;
+                row.rmse_tonemapped = e.rmse_tonemapped;
+                row.max_error = e.max_error;
+                row.non_finite = e.non_finite;
+                table.rows.push_back(row);
+                if (config.keep_images) set.variants.emplace_back(v, std::move(image));
+                base += main_pixels;
+                report("1-spp variants " + name, base);
+            }
+            if (config.keep_images) table.images.push_back(std::move(set));
+        }
+
+        // Flicker: the rotating animation at the flicker resolution.
+        if (config.frames > 0) {
+            const int fw = config.flicker_width, fh = config.flicker_height;
+            std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
+            std::vector<TemporalStats> variant_stats(n_materials * n_variants,
+                                                     TemporalStats(fw, fh));
+            for (int frame = 0; frame < config.frames; ++frame) {
+                const double angle = frame * config.rotation_degrees_per_frame * kPi / 180.0;
+                const Scene moved = make_scene(id, angle);
+                const std::string stage = "flicker " + name + " frame " +
+                                          std::to_string(frame + 1) + "/" +
+                                          std::to_string(config.frames);
+                const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
+                base += flicker_gt;
+                const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
+                for (std::size_t m = 0; m < n_materials; ++m) {
+                    reference_stats[m].add(frame_gt.images[m]);
+                    for (std::size_t vi = 0; vi < n_variants; ++vi) {
+                        variant_stats[m * n_variants + vi].add(
+                            render_variant(frame_buffer, config.variants[vi], materials[m],
+                                           config.params, config.derivative, config.threads));
+                        base += flicker_pixels;
+                    }
+                }
+                report(stage, base);
+            }
+            for (std::size_t m = 0; m < n_materials; ++m) {
+                const double reference_std = mean_temporal_stddev(reference_stats[m]);
+                for (std::size_t vi = 0; vi < n_variants; ++vi) {
+                    TradeRow& row = table.rows[first_row + m * n_variants + vi];
+                    const TemporalStats& stats = variant_stats[m * n_variants + vi];
+                    row.flicker = flicker(stats, reference_stats[m]);
+                    row.temporal_stddev = mean_temporal_stddev(stats);
+                    row.reference_temporal_stddev = reference_std;
+                }
+            }
+        }
+    }
+    report("done", state.total);
+    return table;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
+
+std::string format_trade_table(const TradeTable& table) {
+    std::ostringstream s;
+    char line[256];
+    std::snprintf(line, sizeof line, "%-10s %5s %3s %-26s %12s %10s %12s %10s\n", "scene", "alpha",
+                  "F", "variant", "rmse_linear", "rmse_tm", "max_error", "flicker");
+    s << line;
+    for (const TradeRow& r : table.rows) {
+        std::snprintf(line, sizeof line, "%-10s %5.2f %3s %-26s %12.5g %10.5f %12.5g %10.5f%s\n",
+                      std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no",
+                      std::string(variant_id(r.variant)).c_str(), r.rmse_linear,
+                      r.rmse_tonemapped, r.max_error, r.flicker,
+                      r.non_finite ? "  (non-finite pixels)" : "");
+        s << line;
+    }
+    return s.str();
+}
+
+std::string trade_table_csv(const TradeTable& table) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "scene,alpha,fresnel,variant,rmse_linear,rmse_tonemapped,max_error,flicker,"
+         "temporal_stddev,reference_temporal_stddev,non_finite\n";
+    for (const TradeRow& r : table.rows)
+        s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
+          << variant_id(r.variant) << "," << r.rmse_linear << "," << r.rmse_tonemapped << ","
+          << r.max_error << "," << r.flicker << "," << r.temporal_stddev << ","
+          << r.reference_temporal_stddev << "," << r.non_finite << "\n";
+    return s.str();
+}
+
+}  // namespace saagen::render
