@@ -12,6 +12,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
+  # the report test opens the generated HTML report in headless Chromium
+  chromium
 )
 
 missing=()

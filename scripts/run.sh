@@ -1,11 +1,24 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build, emit every variant for every target into out/,
-# and validate what was written (glslang + spirv-val, in-process).
+# The main job: install what is missing, build, emit the bundled example scene's snippets (and
+# every variant for every target), validate them, measure each variant's cost on lavapipe, and
+# print the speed/accuracy trade table; the full report goes to out/report/index.html.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
+saagen=./build/generator/saagen
+
+"$saagen" plan examples/scene.saagen.toml --no-cost
+"$saagen" emit --manifest examples/scene.saagen.toml -o out/scene
 for target in glsl hlsl; do
-  ./build/generator/saagen emit --target "$target" -o out/snippets
+  "$saagen" emit --target "$target" -o out/snippets > /dev/null
 done
-./build/generator/saagen validate out/snippets
+"$saagen" validate out/scene
+"$saagen" validate out/snippets | tail -n 1
+
+# Cost: lavapipe time ratio and optimized SPIR-V delta per variant (about 15 s).
+./build/bench/bench_shading --json out/cost.json > out/cost.txt
+head -n 1 out/cost.txt
+# Accuracy against 1024-spp ground truths (about 3 minutes the first time; cached in out/cache).
+"$saagen" bench --cost out/cost.json --cache out/cache --json out/trade.json
+"$saagen" report --cost out/cost.json --cache out/cache -o out/report

@@ -6,6 +6,7 @@
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
 #include "saagen/validation.hpp"
+#include "report_commands.hpp"
 #include "scene_commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -183,11 +184,13 @@ int main(int argc, char** argv) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
+  // The speed/accuracy trade (issue 4): `bench`, `report`; see report_commands.cpp.
+  const saagen::cli::ReportCommands trade(app);
 
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
         return command->get_name() == argv[1];
       }).empty()) {
-    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate, or plan or compile for scene manifests (run `saagen --help`)\n";
+    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
     return exit_usage;
   }
   try {
@@ -202,6 +205,8 @@ int main(int argc, char** argv) {
     if (*emit && scene.emit_from_manifest()) return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
     if (scene.plan_requested()) return scene.run_plan(catalogue);
     if (scene.compile_requested()) return scene.run_compile();
+    if (trade.bench_requested()) return trade.run_bench();
+    if (trade.report_requested()) return trade.run_report();
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = sigma2;
       if (*kappa_option) emit_arguments.kappa = kappa;

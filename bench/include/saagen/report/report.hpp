@@ -1,0 +1,68 @@
+// The speed/accuracy trade report (issue 4): the ground-truth trade table of saagen::render
+// joined with the measured cost of each variant (bench_shading --json: lavapipe time ratio and
+// optimized SPIR-V instruction delta), printed for the terminal (`saagen bench`) and written as a
+// self-contained report (`saagen report -o DIR`: index.html, report.md, PNG sheets, an SVG plot).
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace saagen::report {
+
+// One variant's cost, averaged over the targets bench_shading measured.
+struct VariantCost {
+  std::string variant;
+  std::optional<double> time_ratio;          // GPU time with the variant / without SAA
+  std::optional<double> delta_instructions;  // optimized SPIR-V instructions added
+};
+
+struct CostTable {
+  std::string source;  // the file it was read from
+  std::string device;  // as bench_shading reported it
+  std::vector<VariantCost> rows;
+  const VariantCost* find(std::string_view variant) const;
+};
+
+// Reads bench_shading's --json output; throws saagen::Error with the file name on bad input.
+CostTable load_cost_table(const std::filesystem::path& path);
+
+// Means over the table's scenes and alphas, without Fresnel (with Fresnel the radiance is ~25x
+// dimmer and the orderings are the same).
+struct VariantSummary {
+  std::string variant;
+  double rmse_linear = 0.0;
+  double rmse_tonemapped = 0.0;
+  double max_error = 0.0;  // the largest over the cases
+  double flicker = 0.0;
+  std::size_t cases = 0;
+};
+
+std::vector<VariantSummary> summarize(const render::TradeTable& table);
+
+// The preset configurations: "full" (256 x 256, 1024 spp, 32 flicker frames, every scene, alpha
+// and Fresnel mode) and "quick" (64 x 64, 64 spp, 4 frames; for smoke tests).
+render::TradeConfig preset_config(std::string_view preset);
+
+// Terminal table: one row per variant (means), with the cost columns when known.
+std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs);
+
+// Rows in the format bench_shading --json uses, each carrying "error" (mean tonemapped RMSE),
+// so that `saagen plan --trade-table` can choose by accuracy; plus the full trade rows.
+nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
+
+// Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg and DIR/sheet_<scene>_<alpha>.png
+// (the ground truth beside every variant's 1-spp image, over false-colour difference maps).
+// The table must have been computed with keep_images. Returns the image files written.
+std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir);
+
+// A progress callback drawing a one-line bar on stderr ("\r[#####.....]  42%  ground truth sphere").
+render::TradeProgressFn progress_bar();
+
+}  // namespace saagen::report

@@ -1,0 +1,76 @@
+#include "report_commands.hpp"
+
+#include "saagen/error.hpp"
+#include "saagen/report/report.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+namespace saagen::cli {
+namespace {
+
+std::optional<report::CostTable> load_costs(const std::string& path) {
+  if (path.empty()) return std::nullopt;
+  return report::load_cost_table(path);
+}
+
+render::TradeTable compute(const std::string& preset, const std::string& cache_dir, int threads, bool keep_images) {
+  render::TradeConfig config = report::preset_config(preset);
+  config.cache_dir = cache_dir;
+  config.threads = threads;
+  config.keep_images = keep_images;
+  return render::compute_trade_table(config, report::progress_bar());
+}
+
+}  // namespace
+
+void ReportCommands::add_common(CLI::App* command, Common& common) {
+  command->add_option("--preset", common.preset, "full (256 px, 1024 spp, 32 frames, 4 scenes x 4 alphas x Fresnel) or quick")
+      ->capture_default_str();
+  command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
+  command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
+  command->add_option("--threads", common.threads, "Render threads (0: all cores)")->capture_default_str();
+}
+
+ReportCommands::ReportCommands(CLI::App& app) {
+  bench_ = app.add_subcommand("bench", "Render the ground truths and print the speed/accuracy trade table of every variant");
+  add_common(bench_, bench_common_);
+  bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)");
+  bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
+
+  report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, cost-vs-error plot");
+  add_common(report_, report_common_);
+  report_->add_option("--output,-o", report_directory_, "Report directory")->required();
+}
+
+int ReportCommands::run_bench() const {
+  const auto costs = load_costs(bench_common_.cost_json);  // read first: a bad file fails before rendering
+  const render::TradeTable table = compute(bench_common_.preset, bench_common_.cache_dir, bench_common_.threads, false);
+  const auto summary = report::summarize(table);
+  const report::CostTable* cost_table = costs ? &*costs : nullptr;
+  if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
+  std::cout << report::format_summary(summary, cost_table);
+  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; error = RMSE against the {}-spp ground truth; "
+                           "time ratio and dSPIR-V from {})\n",
+                           table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
+                           cost_table ? cost_table->source : std::string("no --cost file"));
+  if (!bench_json_.empty()) {
+    std::ofstream out(bench_json_);
+    out << report::trade_json(table, summary, cost_table).dump(2) << "\n";
+    if (!out) throw Error(fmt::format("{}: cannot write", bench_json_));
+  }
+  return 0;
+}
+
+int ReportCommands::run_report() const {
+  const auto costs = load_costs(report_common_.cost_json);
+  const render::TradeTable table = compute(report_common_.preset, report_common_.cache_dir, report_common_.threads, true);
+  const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_);
+  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n", report_directory_, images.size());
+  return 0;
+}
+
+}  // namespace saagen::cli

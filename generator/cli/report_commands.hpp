@@ -1,0 +1,41 @@
+// The trade-off commands of the CLI (issue 4): `saagen bench` prints the speed/accuracy table,
+// `saagen report -o DIR` writes it as a self-contained report. Kept apart from main.cpp, which
+// only registers and dispatches them.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace saagen::cli {
+
+class ReportCommands {
+ public:
+  explicit ReportCommands(CLI::App& app);
+
+  bool bench_requested() const { return bench_->parsed(); }
+  bool report_requested() const { return report_->parsed(); }
+
+  int run_bench() const;
+  int run_report() const;
+
+ private:
+  struct Common {
+    std::string preset = "full";
+    std::string cost_json;  // bench_shading --json output
+    std::string cache_dir;
+    int threads = 0;
+  };
+  static void add_common(CLI::App* command, Common& common);
+
+  CLI::App* bench_ = nullptr;
+  Common bench_common_;
+  std::string bench_json_;
+  bool bench_every_case_ = false;
+
+  CLI::App* report_ = nullptr;
+  Common report_common_;
+  std::string report_directory_;
+};
+
+}  // namespace saagen::cli

@@ -1,0 +1,111 @@
+// Issue 4's report: `saagen report` writes a self-contained report whose every image loads in a
+// headless browser (Debian's chromium, installed by scripts/install-deps.sh; a missing browser
+// fails this test, it never skips), and `saagen bench` prints and writes the trade table.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class Report : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scratch_ = fs::temp_directory_path() / ("saagen-report-" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+    // A cost file in bench_shading's --json format, so the plot and the cost columns are drawn.
+    nlohmann::json rows = nlohmann::json::array();
+    const char* variants[] = {"forward-aniso-slope", "forward-aniso-projected", "forward-axis-slope", "forward-axis-projected",
+                              "deferred-previous", "deferred-max", "deferred-sum", "deferred-avg", "deferred-projected-space"};
+    double ratio = 1.0;
+    for (const char* variant : variants) {
+      rows.push_back({{"target", "glsl"}, {"variant", variant}, {"ratio_median", ratio += 0.01}, {"delta_spirv_instructions", 20}});
+    }
+    std::ofstream(scratch_ / "cost.json") << nlohmann::json{{"device", "test fixture"}, {"rows", rows}}.dump();
+    const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' report --preset quick --cost '" + (scratch_ / "cost.json").string() +
+                                "' -o '" + (scratch_ / "report").string() + "' > '" + (scratch_ / "report.log").string() + "' 2>&1";
+    report_exit_ = run(command);
+  }
+  static void TearDownTestSuite() { fs::remove_all(scratch_); }
+
+  static inline fs::path scratch_;
+  static inline int report_exit_ = -1;
+};
+
+TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
+  ASSERT_EQ(report_exit_, 0) << read_text(scratch_ / "report.log");
+  const fs::path dir = scratch_ / "report";
+  for (const char* file : {"index.html", "report.md", "cost_vs_error.svg"}) EXPECT_TRUE(fs::exists(dir / file)) << file;
+  int sheets = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) sheets += entry.path().extension() == ".png";
+  EXPECT_EQ(sheets, 8);  // quick preset: 4 scenes x 2 alphas, without Fresnel
+  const std::string markdown = read_text(dir / "report.md");
+  EXPECT_NE(markdown.find("| deferred-avg |"), std::string::npos);
+  EXPECT_NE(markdown.find("test fixture"), std::string::npos);
+  const std::string svg = read_text(dir / "cost_vs_error.svg");
+  EXPECT_NE(svg.find("GPU time with SAA / without"), std::string::npos);
+  EXPECT_EQ(std::count(svg.begin(), svg.end(), '\n') > 10, true);
+}
+
+TEST_F(Report, EveryImageLoadsInHeadlessChromium) {
+  ASSERT_EQ(report_exit_, 0) << read_text(scratch_ / "report.log");
+  const fs::path dom = scratch_ / "dom.html";
+  const std::string command =
+      "chromium --headless --no-sandbox --disable-gpu --disable-background-networking --disable-component-update "
+      "--disable-sync --no-first-run --user-data-dir='" + (scratch_ / "profile").string() +
+      "' --virtual-time-budget=10000 --dump-dom 'file://" + (scratch_ / "report" / "index.html").string() + "' > '" + dom.string() +
+      "' 2> /dev/null";
+  ASSERT_EQ(run(command), 0) << "chromium did not run; scripts/install-deps.sh installs it";
+  std::smatch match;
+  const std::string page = read_text(dom);
+  ASSERT_TRUE(std::regex_search(page, match, std::regex(R"(images loaded: (\d+)/(\d+))"))) << page.substr(0, 500);
+  EXPECT_EQ(match[1].str(), match[2].str());
+  EXPECT_EQ(match[2].str(), "9");  // 8 sheets and the plot
+}
+
+TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
+  const fs::path json = scratch_ / "trade.json";
+  const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' bench --preset quick --cost '" + (scratch_ / "cost.json").string() +
+                              "' --json '" + json.string() + "' > '" + (scratch_ / "bench.txt").string() + "' 2> /dev/null";
+  ASSERT_EQ(run(command), 0);
+  const std::string table = read_text(scratch_ / "bench.txt");
+  EXPECT_NE(table.find("RMSE tonemapped"), std::string::npos);
+  EXPECT_NE(table.find("deferred-projected-space"), std::string::npos);
+  const auto document = nlohmann::json::parse(read_text(json));
+  ASSERT_EQ(document["rows"].size(), 11u);  // none + 10 variants
+  for (const auto& row : document["rows"]) EXPECT_TRUE(row["error"].is_number());
+  EXPECT_EQ(document["cases"].size(), 4u * 2u * 11u);
+}
+
+TEST_F(Report, BadCostFileIsOneLineAndRendersNothing) {
+  std::ofstream(scratch_ / "bad.json") << "{\"rows\": 3}";
+  const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' report --preset quick --cost '" + (scratch_ / "bad.json").string() +
+                              "' -o '" + (scratch_ / "never").string() + "' 2> '" + (scratch_ / "err.txt").string() + "'";
+  EXPECT_NE(run(command), 0);
+  const std::string error = read_text(scratch_ / "err.txt");
+  EXPECT_NE(error.find("no \"rows\" array"), std::string::npos) << error;
+  EXPECT_EQ(std::count(error.begin(), error.end(), '\n'), 1) << error;
+  EXPECT_FALSE(fs::exists(scratch_ / "never"));
+}
+
+}  // namespace
