@@ -5,8 +5,11 @@
 #include "saagen/error.hpp"
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
+#include "saagen/spirv_library.hpp"
 #include "saagen/validation.hpp"
+#include "pass_commands.hpp"
 #include "report_commands.hpp"
+#include "glint_commands.hpp"
 #include "scene_commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -71,8 +74,16 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   options.guards = !arguments.unguarded;
 
   std::vector<saagen::OutputFile> outputs;
-  for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
-    outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+  if (options.target == saagen::spirv_library_target) {
+    // Issue 8: per variant a linkable SPIR-V library module and a C/C++ header embedding it.
+    for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
+      outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
+      outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
+    }
+  } else {
+    for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
+      outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+    }
   }
   const saagen::WriteReport report = saagen::write_outputs(outputs, arguments.force);
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
@@ -96,6 +107,7 @@ std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path
   }
   std::vector<std::string> extensions;
   for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
+  extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes (issue 8)
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& entry : fs::directory_iterator(directory)) {
     const std::string extension = entry.path().extension().string();
@@ -123,7 +135,10 @@ int run_validate(const Catalogue& catalogue, const std::string& directory) {
   const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
   int failures = 0;
   for (const auto& [name, content] : files) {
-    const saagen::FileValidation validation = saagen::validate_file(catalogue, name, content);
+    const auto marker = saagen::find_marker(content);
+    const saagen::FileValidation validation = marker && saagen::is_spirv_or_pass_marker(*marker)
+                                                  ? saagen::validate_spirv_or_pass_file(catalogue, name, content)
+                                                  : saagen::validate_file(catalogue, name, content);
     std::cout << validation.summary() << "\n";
     if (!validation.ok()) {
       ++failures;
@@ -162,7 +177,7 @@ int main(int argc, char** argv) {
   double sigma2 = 0.0;
   double kappa = 0.0;
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
-  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl or hlsl")->capture_default_str();
+  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
   emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
   CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
@@ -184,8 +199,11 @@ int main(int argc, char** argv) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
+  const saagen::cli::GlintCommands glints(app);  // issue 7: `saagen glints ...`
   // The speed/accuracy trade (issue 4): `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
+  // The deferred roughness-limiter pass (issue 8): `pass`; see pass_commands.cpp.
+  const saagen::cli::PassCommand deferred_pass(app);
 
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
         return command->get_name() == argv[1];
@@ -213,6 +231,8 @@ int main(int argc, char** argv) {
       return run_emit(catalogue, emit_arguments);
     }
     if (*validate) return run_validate(catalogue, validate_directory);
+    if (glints.requested()) return glints.run();
+    if (deferred_pass.requested()) return deferred_pass.run(catalogue);
   } catch (const saagen::Error& error) {
     std::cerr << "saagen: error: " << error.what() << "\n";
     return exit_failure;

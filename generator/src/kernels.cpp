@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -91,10 +92,13 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   for (const Function& function : catalogue.functions()) names[function.name] = prefixed_name(marker->prefix, function.name);
   const std::string body = translate(target, request.body, names);
 
-  // The plain derivative macros expand to the target's coarse or fine spelling.
+  // The plain derivative macros expand to the target's coarse or fine spelling: the built-ins of
+  // the base table, which the half-precision derivative helpers call on fp32 values (the
+  // precision's table maps ddx to those helpers).
   const bool fine = request.plain_derivative == PlainDerivative::fine;
-  const std::string plain_ddx = intrinsic_name(target, fine ? "ddx_fine" : "ddx_coarse");
-  const std::string plain_ddy = intrinsic_name(target, fine ? "ddy_fine" : "ddy_coarse");
+  const TargetSyntax base = builtin_target(marker->target);
+  const std::string plain_ddx = intrinsic_name(base, fine ? "ddx_fine" : "ddx_coarse");
+  const std::string plain_ddy = intrinsic_name(base, fine ? "ddy_fine" : "ddy_coarse");
   const auto fill = [&](std::string text) {
     text = substitute(std::move(text), "{core_only_macro}", macro_prefix(marker->prefix) + "CORE_ONLY");
     text = substitute(std::move(text), "{workgroup_size}", std::to_string(request.workgroup_size));
@@ -108,6 +112,15 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   std::vector<SourcePiece> pieces;
   const std::string prologue = fill(skeleton->second.prologue);
   if (!prologue.empty()) pieces.push_back({"saagen-kernel-prologue", prologue});
+  // Resources (the glint dictionary) that the file's functions sample, declared before it.
+  std::vector<std::string> roots = marker->functions;
+  if (roots.empty()) {
+    for (const std::string& id : marker->variants) {
+      if (const Variant* variant = catalogue.find_variant(id)) roots.insert(roots.end(), variant->functions.begin(), variant->functions.end());
+    }
+  }
+  const std::string resources = resource_declarations(target, catalogue, roots);
+  if (!resources.empty()) pieces.push_back({"saagen-kernel-resources", resources});
   pieces.push_back({file_name, content});
   pieces.push_back({"saagen-kernel-main", substitute(fill(skeleton->second.epilogue), "{body}", body)});
   return pieces;

@@ -169,6 +169,14 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     target.precisions[name] = std::move(precision);
   }
   if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
+  if (json.contains("resources")) {
+    for (const auto& [name, entry] : json.at("resources").items()) {
+      Resource resource;
+      for (const Json& intrinsic : require(entry, "intrinsics", source)) resource.intrinsics.push_back(intrinsic.get<std::string>());
+      resource.declaration = require_string(entry, "declaration", source);
+      target.resources[name] = std::move(resource);
+    }
+  }
   return target;
 }
 
@@ -233,6 +241,7 @@ TargetSyntax TargetSyntax::with_prefix(std::string_view prefix, std::string_view
   TargetSyntax result = *this;
   for (auto& [intrinsic, pattern] : result.intrinsics) pattern = replace_placeholders(pattern, prefix, macro_prefix);
   result.preamble = replace_placeholders(result.preamble, prefix, macro_prefix);
+  for (auto& [name, resource] : result.resources) resource.declaration = replace_placeholders(resource.declaration, prefix, macro_prefix);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "saagen/validation.hpp"
 
+#include "saagen/dialect.hpp"
 #include "saagen/error.hpp"
 #include "saagen/target.hpp"
 
@@ -60,6 +61,27 @@ std::string stage_name(ShaderStage stage) {
 
 }  // namespace
 
+std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
+  if (target.resources.empty()) return {};
+  std::vector<std::string> used;
+  for (const Function* function : catalogue.closure(roots)) {
+    const auto tokens = dialect::tokenize(function->body);
+    for (std::size_t index = 0; index < tokens.size(); ++index) {
+      if (tokens[index].kind == dialect::TokenKind::identifier && !dialect::is_member_access(tokens, index)) {
+        used.emplace_back(tokens[index].text);
+      }
+    }
+  }
+  std::string declarations;
+  for (const auto& [name, resource] : target.resources) {
+    const bool needed = std::any_of(resource.intrinsics.begin(), resource.intrinsics.end(), [&](const std::string& intrinsic) {
+      return std::find(used.begin(), used.end(), intrinsic) != used.end();
+    });
+    if (needed) declarations += resource.declaration;
+  }
+  return declarations;
+}
+
 bool FileValidation::ok() const {
   return !checks.empty() && std::all_of(checks.begin(), checks.end(), [](const ValidationCheck& check) { return check.ok; });
 }
@@ -97,6 +119,8 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
   std::vector<SourcePiece> pieces;
   const std::string prologue = substitute(skeleton.prologue, "{core_only_macro}", core_only);
   if (!prologue.empty()) pieces.push_back({"saagen-validation-prologue", prologue});
+  const std::string resources = resource_declarations(target, catalogue, functions);
+  if (!resources.empty()) pieces.push_back({"saagen-validation-resources", resources});
   pieces.push_back({file_name, content});
   pieces.push_back({"saagen-validation-main", substitute(skeleton.epilogue, "{calls}", calls)});
   return pieces;

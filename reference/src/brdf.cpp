@@ -21,52 +21,62 @@ double ndf_clamp_tau(Vec2 alpha2) { return alpha2.x * alpha2.y; }
 
 // Supplemental Sec. 1 (clamped form):
 // D(h) = chi+(hz) / (pi sqrt(max(det A, tau)) (h.xy^T A^-1 h.xy + hz^2)^2),
-// A^-1 = adj(A) / max(det A, tau).
-double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) {
+// A^-1 = adj(A) / max(det A, tau). Guarded: tau is floored at TINY_POSITIVE.
+// Guarded: the adjugate's quadratic form is floored by quadratic_form_floor.
+double Brdf::ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) const {
     if (h.z <= 0.0) return 0.0;
-    const double det = max(sym2_determinant(a), tau);
-    const double q = sym2_quadratic_form(adjugate(a), h.xy()) / det + h.z * h.z;
+    const double det_a = sym2_determinant(a);
+    const double det = max(det_a, guarded(max(tau, tiny()), tau));
+    const double spread = sym2_quadratic_form(adjugate(a), h.xy()) / det;
+    const double q = guarded(max(spread, quadratic_form_floor(params, a, det_a, det, h.xy())), spread) + h.z * h.z;
     return 1.0 / (kPi * std::sqrt(det) * q * q);
 }
 
 // Supplemental Sec. 1: Lambda(w) = -1/2 + sqrt(w.xy^T A w.xy + wz^2) / (2 |wz|).
-double ggx_lambda_matrix(Vec3 w, Sym2 a) {
-    return -0.5 + std::sqrt(sym2_quadratic_form(a, w.xy()) + w.z * w.z) / (2.0 * std::fabs(w.z));
+// Guarded: z = max(|wz|, LAMBDA_MIN_Z) in both places (so Lambda >= 0), the quadratic form >= 0.
+double Brdf::ggx_lambda_matrix(Vec3 w, Sym2 a) const {
+    const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
+    const double spread = sym2_quadratic_form(a, w.xy());
+    return -0.5 + std::sqrt(guarded(max(spread, 0.0), spread) + z * z) / (2.0 * z);
 }
 
 // Supplemental Sec. 1 / Heitz 2014: G2 = chi+(i.h) chi+(o.h) / (1 + Lambda(i) + Lambda(o)).
-double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) {
+double Brdf::ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const {
     if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
     return 1.0 / (1.0 + ggx_lambda_matrix(i, a) + ggx_lambda_matrix(o, a));
 }
 
 // T&K 2019 Sec. 2.2: f = G2 D / (4 |i.n| |o.n|), Fresnel left to the caller.
-double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) {
+// Guarded: the cosines floored at LAMBDA_MIN_Z, as in Lambda.
+double Brdf::ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
     const Vec3 h = normalize(i + o);
-    return ggx_ndf_matrix(h, a, tau) * ggx_g2_matrix(i, o, h, a) / (4.0 * i.z * o.z);
+    return ggx_ndf_matrix(h, a, tau) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
 }
 
 // Supplemental Sec. 1: D(h) = chi+(hz) / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2).
-double ggx_ndf_axis(Vec3 h, Vec2 alpha2) {
+// Guarded: alpha^2 floored at TINY_POSITIVE per axis.
+double Brdf::ggx_ndf_axis(Vec3 h, Vec2 alpha2) const {
     if (h.z <= 0.0) return 0.0;
-    const double q = h.x * h.x / alpha2.x + h.y * h.y / alpha2.y + h.z * h.z;
-    return 1.0 / (kPi * std::sqrt(alpha2.x * alpha2.y) * q * q);
+    const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
+    const double q = h.x * h.x / a2.x + h.y * h.y / a2.y + h.z * h.z;
+    return 1.0 / (kPi * std::sqrt(a2.x * a2.y) * q * q);
 }
 
 // Supplemental Sec. 1: Lambda(w) = -1/2 + sqrt(ax^2 wx^2 + ay^2 wy^2 + wz^2) / (2 |wz|).
-double ggx_lambda_axis(Vec3 w, Vec2 alpha2) {
-    return -0.5 + std::sqrt(alpha2.x * w.x * w.x + alpha2.y * w.y * w.y + w.z * w.z) /
-                      (2.0 * std::fabs(w.z));
+// Guarded: z = max(|wz|, LAMBDA_MIN_Z) in both places.
+double Brdf::ggx_lambda_axis(Vec3 w, Vec2 alpha2) const {
+    const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
+    return -0.5 + std::sqrt(alpha2.x * w.x * w.x + alpha2.y * w.y * w.y + z * z) / (2.0 * z);
 }
 
 // T&K 2019 Sec. 2.2 with the axis-aligned GGX NDF and height-correlated G2.
-double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) {
+double Brdf::ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
     const Vec3 h = normalize(i + o);
     if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
     const double g2 = 1.0 / (1.0 + ggx_lambda_axis(i, alpha2) + ggx_lambda_axis(o, alpha2));
-    return ggx_ndf_axis(h, alpha2) * g2 / (4.0 * i.z * o.z);
+    return ggx_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -74,14 +84,92 @@ double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) {
 
 // Supplemental Sec. 1 applied to Beckmann (Heitz 2014): the slope distribution
 // exp(-s^T A^-1 s) / (pi sqrt(det A)), s = h.xy / hz, divided by hz^4 for the NDF.
-double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) {
+// Guarded: tau and hz^4 floored at TINY_POSITIVE; the exponent computed as
+// max(h.xy^T adj h.xy / det, quadratic_form_floor) / max(hz^2, TINY_POSITIVE).
+double Brdf::beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const {
     if (h.z <= 0.0) return 0.0;
-    const double det = max(sym2_determinant(a), tau);
+    const double det_a = sym2_determinant(a);
+    const double det = max(det_a, guarded(max(tau, tiny()), tau));
+    const double cos2 = h.z * h.z;
+    const double exponent =
+        params.guards ? max(sym2_quadratic_form(adjugate(a), h.xy()) / det,
+                            quadratic_form_floor(params, a, det_a, det, h.xy())) / max(cos2, tiny())
+                      : sym2_quadratic_form(adjugate(a), h.xy() / h.z) / det;
+    return std::exp(-exponent) / (kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
+}
+
+// Heitz 2014: a = |wz| / sqrt(w.xy^T A w.xy) (1 / (alpha_w tan theta_w)), Walter fit.
+// Guarded: |wz| >= LAMBDA_MIN_Z.
+double Brdf::beckmann_lambda_matrix(Vec3 w, Sym2 a) const {
+    const double projected_roughness2 = sym2_quadratic_form(a, w.xy());
+    if (projected_roughness2 <= 0.0) return 0.0;
+    const double z = std::fabs(w.z);
+    return beckmann_lambda_from_a(guarded(max(z, params.guard_constants().lambda_min_z), z) /
+                                  std::sqrt(projected_roughness2));
+}
+
+// T&K 2019 Sec. 2.2 with the matrix Beckmann NDF. Guarded: the cosines floored.
+double Brdf::beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
+    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+    const Vec3 h = normalize(i + o);
+    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
+    return beckmann_ndf_matrix(h, a, tau) * g2 / (4.0 * cosines(i, o));
+}
+
+// Beckmann 1963, axis-aligned anisotropic. Guarded: alpha^2 and hz^4 floored.
+double Brdf::beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const {
+    if (h.z <= 0.0) return 0.0;
+    const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
     const Vec2 slope = h.xy() / h.z;
     const double cos2 = h.z * h.z;
-    return std::exp(-sym2_quadratic_form(adjugate(a), slope) / det) /
-           (kPi * std::sqrt(det) * cos2 * cos2);
+    const double exponent = slope.x * slope.x / a2.x + slope.y * slope.y / a2.y;
+    return std::exp(-exponent) /
+           (kPi * std::sqrt(a2.x * a2.y) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
 }
+
+// T&K 2019 Sec. 2.2 with the axis-aligned Beckmann NDF (Walter et al. 2007 Lambda).
+double Brdf::beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
+    const Sym2 a{alpha2.x, 0.0, alpha2.y};
+    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+    const Vec3 h = normalize(i + o);
+    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
+    return beckmann_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
+}
+
+// 4 i.z o.z of the BRDFs; guarded: max(i.z, LAMBDA_MIN_Z) max(o.z, LAMBDA_MIN_Z), the cosines
+// Lambda uses (a floor of i.z o.z alone lets G2 / (i.z o.z) grow as 1 / i.z below LAMBDA_MIN_Z).
+double Brdf::cosines(Vec3 i, Vec3 o) const {
+    const double m = params.guard_constants().lambda_min_z;
+    return guarded(max(i.z, m) * max(o.z, m), i.z * o.z);
+}
+
+// lambda_min(A) >= det(A) / tr(A); a determinant below DET_RELIABLE a00 a11 is rounding noise in
+// fp32, and is then taken as det = max(det(A), tau) (filtered matrices have det(A) >= tau).
+double quadratic_form_floor(const Params& p, Sym2 a, double det_a, double det, Vec2 v) {
+    const GuardConstants& g = p.guard_constants();
+    const double det_floor = max(det_a, min(det, g.det_reliable * a.xx * a.yy));
+    return dot(v, v) * (det_floor / det) / max(a.xx + a.yy, g.tiny_positive);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The free functions: saagen's default emission (guarded, fp32 guard constants).
+
+double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) { return Brdf{}.ggx_ndf_matrix(h, a, tau); }
+double ggx_lambda_matrix(Vec3 w, Sym2 a) { return Brdf{}.ggx_lambda_matrix(w, a); }
+double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) { return Brdf{}.ggx_g2_matrix(i, o, h, a); }
+double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) { return Brdf{}.ggx_brdf_matrix(i, o, a, tau); }
+double ggx_ndf_axis(Vec3 h, Vec2 alpha2) { return Brdf{}.ggx_ndf_axis(h, alpha2); }
+double ggx_lambda_axis(Vec3 w, Vec2 alpha2) { return Brdf{}.ggx_lambda_axis(w, alpha2); }
+double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) { return Brdf{}.ggx_brdf_axis(i, o, alpha2); }
+double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) { return Brdf{}.beckmann_ndf_matrix(h, a, tau); }
+double beckmann_lambda_matrix(Vec3 w, Sym2 a) { return Brdf{}.beckmann_lambda_matrix(w, a); }
+double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) {
+    return Brdf{}.beckmann_brdf_matrix(i, o, a, tau);
+}
+double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) { return Brdf{}.beckmann_ndf_axis(h, alpha2); }
+double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) { return Brdf{}.beckmann_brdf_axis(i, o, alpha2); }
 
 // Walter et al. 2007 rational approximation of the Beckmann Smith Lambda.
 double beckmann_lambda_from_a(double a_param) {
@@ -96,64 +184,34 @@ double beckmann_lambda_exact(double a_param) {
            std::exp(-a_param * a_param) / (2.0 * a_param * kSqrtPi);
 }
 
-// Heitz 2014: a = |wz| / sqrt(w.xy^T A w.xy) (1 / (alpha_w tan theta_w)), Walter fit.
-double beckmann_lambda_matrix(Vec3 w, Sym2 a) {
-    const double projected_roughness2 = sym2_quadratic_form(a, w.xy());
-    if (projected_roughness2 <= 0.0) return 0.0;
-    return beckmann_lambda_from_a(std::fabs(w.z) / std::sqrt(projected_roughness2));
-}
-
-// T&K 2019 Sec. 2.2 with the matrix Beckmann NDF.
-double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) {
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
-    return beckmann_ndf_matrix(h, a, tau) * g2 / (4.0 * i.z * o.z);
-}
-
-// Beckmann 1963, axis-aligned anisotropic.
-double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) {
-    if (h.z <= 0.0) return 0.0;
-    const Vec2 slope = h.xy() / h.z;
-    const double cos2 = h.z * h.z;
-    const double exponent = slope.x * slope.x / alpha2.x + slope.y * slope.y / alpha2.y;
-    return std::exp(-exponent) / (kPi * std::sqrt(alpha2.x * alpha2.y) * cos2 * cos2);
-}
-
-// T&K 2019 Sec. 2.2 with the axis-aligned Beckmann NDF (Walter et al. 2007 Lambda).
-double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) {
-    const Sym2 a{alpha2.x, 0.0, alpha2.y};
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
-    return beckmann_ndf_axis(h, alpha2) * g2 / (4.0 * i.z * o.z);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a quad
+
+namespace {
+// The half vectors the filtered wrappers differentiate: normalize(i + o); guarded
+// safe_normalize(i + o), which keeps i = -o (a zero sum) from putting NaN into the quad.
+Quad<Vec3> filtered_half_vectors(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o) {
+    const auto half = [&](int q) { return p.guards ? safe_normalize(p, i[q] + o[q]) : normalize(i[q] + o[q]); };
+    return {half(0), half(1), half(2), half(3)};
+}
+}  // namespace
 
 // Template ggx_brdf_filtered_fragment: A = forward_aniso_projected_fragment(alpha2,
 // normalize(i + o)) (T&K 2019 Sec. 3.2), then the matrix GGX BRDF with tau = ax^2 ay^2.
 double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
                                        Vec2 alpha2, int pixel, Derivative mode) {
-    const Quad<Vec3> half{normalize(i.top_left + o.top_left), normalize(i.top_right + o.top_right),
-                          normalize(i.bottom_left + o.bottom_left),
-                          normalize(i.bottom_right + o.bottom_right)};
+    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
     const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
-    return ggx_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
+    return Brdf{p}.ggx_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
 }
 
 // Template beckmann_brdf_filtered_fragment: as above with the matrix Beckmann BRDF.
 double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i,
                                             const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                             Derivative mode) {
-    const Quad<Vec3> half{normalize(i.top_left + o.top_left), normalize(i.top_right + o.top_right),
-                          normalize(i.bottom_left + o.bottom_left),
-                          normalize(i.bottom_right + o.bottom_right)};
+    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
     const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
-    return beckmann_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
+    return Brdf{p}.beckmann_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
 }
 
 }  // namespace saagen::ref

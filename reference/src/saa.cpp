@@ -3,6 +3,7 @@
 // order of operations where it matters for branches).
 #include "saagen/reference/saa.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace saagen::ref {
@@ -33,15 +34,39 @@ double sym2_quadratic_form(Sym2 m, Vec2 v) {
 
 Vec3 to_tangent_space(Vec3 v, Vec3 t, Vec3 b, Vec3 n) { return {dot(v, t), dot(v, b), dot(v, n)}; }
 
-// Kaplanyan et al. 2016 (T&K 2019 Listing 1): slope h.xy / |h.z|.
-Vec2 half_vector_slope(Vec3 half_ts) { return half_ts.xy() / std::fabs(half_ts.z); }
+// saagen guards (templates/00-common.saa): clamp(d, -DERIVATIVE_MAX, DERIVATIVE_MAX) per component.
+Vec2 clamp_derivative2(const Params& p, Vec2 d) {
+    const double m = p.guard_constants().derivative_max;
+    return {std::clamp(d.x, -m, m), std::clamp(d.y, -m, m)};
+}
+
+Vec3 clamp_derivative3(const Params& p, Vec3 d) {
+    const double m = p.guard_constants().derivative_max;
+    return {std::clamp(d.x, -m, m), std::clamp(d.y, -m, m), std::clamp(d.z, -m, m)};
+}
+
+// v * rsqrt(max(dot(v, v), TINY_POSITIVE)), written as v / sqrt(...): bit-identical to
+// normalize(v) whenever |v|^2 >= TINY_POSITIVE (the double reference's rounding is immaterial).
+Vec3 safe_normalize(const Params& p, Vec3 v) {
+    return v / std::sqrt(max(dot(v, v), p.guard_constants().tiny_positive));
+}
+
+// Kaplanyan et al. 2016 (T&K 2019 Listing 1): slope h.xy / |h.z|; guarded: / max(|h.z|, SLOPE_MIN_Z).
+Vec2 half_vector_slope_form(const Params& p, Vec3 half_ts) {
+    const double z = std::fabs(half_ts.z);
+    return half_ts.xy() / (p.guards ? max(z, p.guard_constants().slope_min_z) : z);
+}
+
+Vec2 half_vector_slope(Vec3 half_ts) { return half_vector_slope_form(Params{}, half_ts); }
 
 // T&K 2019 Sec. 3.2: orthographic projection onto the hx-hy plane.
 Vec2 half_vector_projected(Vec3 half_ts) { return half_ts.xy(); }
 
 // T&K 2019 Sec. 2.2: A = diag(ax^2, ay^2) + 2 Sigma, Sigma = sigma^2 Delta^T Delta.
 Sym2 filter_roughness_matrix(const Params& p, Vec2 alpha2, Vec2 du, Vec2 dv) {
-    const Sym2 kernel = (2.0 * p.sigma2) * sym2_from_derivative_rows(du, dv);
+    const Sym2 kernel =
+        (2.0 * p.sigma2) * (p.guards ? sym2_from_derivative_rows(clamp_derivative2(p, du), clamp_derivative2(p, dv))
+                                     : sym2_from_derivative_rows(du, dv));
     return Sym2{alpha2.x, 0.0, alpha2.y} + kernel;
 }
 
@@ -93,15 +118,18 @@ double deferred_previous(const Params& p, double alpha2, Vec2 dslope_dx, Vec2 ds
 
 // T&K 2019 Eq. 1 with Sigma of Sec. 4.1.
 double deferred_max(const Params& p, double alpha2, Vec2 dproj_dx, Vec2 dproj_dy) {
-    const double lambda_max =
-        p.sigma2 * sym2_max_eigenvalue(sym2_from_derivative_rows(dproj_dx, dproj_dy));
+    const Vec2 du = p.guards ? clamp_derivative2(p, dproj_dx) : dproj_dx;
+    const Vec2 dv = p.guards ? clamp_derivative2(p, dproj_dy) : dproj_dy;
+    const double lambda_max = p.sigma2 * sym2_max_eigenvalue(sym2_from_derivative_rows(du, dv));
     return saturate(alpha2 + min(2.0 * lambda_max, p.kappa));
 }
 
 // T&K 2019 Eq. 1; Delta^T Delta and Delta Delta^T (the Gram matrix of the rows) share their
 // eigenvalues, and the Gram matrix needs no frame.
 double deferred_max_tangent_free(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy) {
-    const Sym2 gram{dot(dn_dx, dn_dx), dot(dn_dx, dn_dy), dot(dn_dy, dn_dy)};
+    const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
+    const Vec3 dy = p.guards ? clamp_derivative3(p, dn_dy) : dn_dy;
+    const Sym2 gram{dot(dx, dx), dot(dx, dy), dot(dy, dy)};
     const double lambda_max = p.sigma2 * sym2_max_eigenvalue(gram);
     return saturate(alpha2 + min(2.0 * lambda_max, p.kappa));
 }
@@ -141,7 +169,7 @@ Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& fra
 
 Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
                                        int pixel, Derivative mode) {
-    const Quad<Vec2> slope = map(half_ts, half_vector_slope);
+    const Quad<Vec2> slope = map(half_ts, [&](Vec3 h) { return half_vector_slope_form(p, h); });
     return forward_aniso_slope(p, alpha2, ddx(slope, pixel, mode), ddy(slope, pixel, mode));
 }
 
@@ -155,7 +183,7 @@ Sym2 forward_aniso_projected_fragment_quad(const Params& p, Vec2 alpha2,
 
 Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
                                       int pixel, Derivative mode) {
-    const Quad<Vec2> slope = map(half_ts, half_vector_slope);
+    const Quad<Vec2> slope = map(half_ts, [&](Vec3 h) { return half_vector_slope_form(p, h); });
     return forward_axis_slope(p, alpha2, ddx(slope, pixel, mode), ddy(slope, pixel, mode));
 }
 
@@ -169,7 +197,7 @@ Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2,
 
 // Template deferred_previous_fragment: at every pixel q of the quad,
 //   average_ts(q) = to_tangent_space(quad_average_normal(q), t(q), b(q), n(q)),
-//   slope(q) = average_ts.xy / |average_ts.z|;
+//   slope(q) = average_ts.xy / |average_ts.z| (guarded: / max(|average_ts.z|, SLOPE_MIN_Z));
 // then ddx/ddy of slope at the requested pixel.
 double deferred_previous_fragment_quad(const Params& p, double alpha2,
                                        const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
@@ -179,19 +207,22 @@ double deferred_previous_fragment_quad(const Params& p, double alpha2,
     const Quad<Vec2> slope = map_indexed(normal_ws, [&](Vec3 n, int q) {
         const Vec3 average_ts = to_tangent_space(quad_average_normal_quad(normal_ws, frag_coord, q),
                                                  tangent_ws[q], bitangent_ws[q], n);
-        return average_ts.xy() / std::fabs(average_ts.z);
+        const double z = std::fabs(average_ts.z);
+        return average_ts.xy() / (p.guards ? max(z, p.guard_constants().slope_min_z) : z);
     });
     return deferred_previous(p, alpha2, ddx(slope, pixel, mode), ddy(slope, pixel, mode));
 }
 
 // Template deferred_max_fragment: at every pixel q,
-//   projected(q) = to_tangent_space(normalize(quad_average_normal(q)), t(q), b(q), n(q)).xy;
+//   projected(q) = to_tangent_space(normalize(quad_average_normal(q)), t(q), b(q), n(q)).xy
+//   (guarded: safe_normalize);
 // then ddx/ddy of projected at the requested pixel.
 double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
                                   const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
                                   const Quad<Vec2>& frag_coord, int pixel, Derivative mode) {
     const Quad<Vec2> projected = map_indexed(normal_ws, [&](Vec3 n, int q) {
-        const Vec3 average = normalize(quad_average_normal_quad(normal_ws, frag_coord, q));
+        const Vec3 sum = quad_average_normal_quad(normal_ws, frag_coord, q);
+        const Vec3 average = p.guards ? safe_normalize(p, sum) : normalize(sum);
         return to_tangent_space(average, tangent_ws[q], bitangent_ws[q], n).xy();
     });
     return deferred_max(p, alpha2, ddx(projected, pixel, mode), ddy(projected, pixel, mode));

@@ -44,6 +44,15 @@ struct TargetSyntax {
   // "fragment"); see saagen/kernels.hpp.
   std::map<std::string, ValidationSkeleton, std::less<>> kernel_skeletons;
   std::map<std::string, Precision, std::less<>> precisions;  // "fp32" (the default), "fp16", ...
+  // Resources that some templates sample (optional key "resources"; the glint dictionary of
+  // templates/glints/): the intrinsics that read one, and the declaration that validation and
+  // kernel skeletons put before an emitted file whose functions use them ({macro_prefix} is
+  // substituted by with_prefix). Emitted files never declare resources: the includer does.
+  struct Resource {
+    std::vector<std::string> intrinsics;
+    std::string declaration;
+  };
+  std::map<std::string, Resource, std::less<>> resources;
 
   // This target with the types, literal suffix and preamble of `precision`; throws
   // saagen::Error naming the precisions the target has when it has no such precision.

@@ -6,6 +6,7 @@
 #include "saagen/catalogue.hpp"
 #include "saagen/compiler.hpp"
 #include "saagen/emitter.hpp"
+#include "saagen/target.hpp"
 
 #include <string>
 #include <vector>
@@ -30,6 +31,11 @@ struct FileValidation {
 // `marker`) in the given stage: prologue + the file + calls to its functions.
 std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
                                             const std::string& file_name, const std::string& content, ShaderStage stage);
+
+// The target's resource declarations (TargetSyntax::resources) that the functions `roots`
+// need, through their dependency closure in `catalogue`; empty when they sample nothing.
+// `target` must have its prefix applied (with_prefix).
+std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots);
 
 // Validates an emitted file's content. Throws saagen::Error when the content has no saagen
 // marker or names an unknown target/variant.

@@ -3,6 +3,18 @@
 // Directions are unit vectors in tangent space (z = shading normal). A roughness matrix A is
 // a Sym2 (A00, A01, A11) in the alpha^2 domain; (ax^2, ay^2) is a Vec2. BRDF values exclude
 // the Fresnel factor. Same names, argument order, guards and clamps as the templates.
+//
+// Guards (templates/30-brdf.saa): the free functions compute saagen's default emission
+// (guarded, fp32 guard constants). `Brdf{params}` has the same functions under an explicit
+// Params: `params.guards = false` gives the unguarded paper form, `params.half_precision` the
+// half constants. The guarded sites: the determinant floor max(tau, TINY_POSITIVE); the floor of
+// the adjugate's quadratic form in the matrix NDFs (quadratic_form_floor: a near-singular A
+// makes it cancel to any sign); the Beckmann matrix exponent taken as
+// (h.xy^T adj h.xy / det) / h.z^2 (the slope h.xy / h.z overflows); the alpha^2 floor of the
+// axis NDFs and the cos^4 floor of the Beckmann NDFs (TINY_POSITIVE); |w.z| >= LAMBDA_MIN_Z in
+// every Lambda, and the GGX matrix Lambda's quadratic form >= 0; the BRDFs' cosines
+// max(i.z, LAMBDA_MIN_Z) max(o.z, LAMBDA_MIN_Z), consistent with Lambda; safe_normalize(i + o)
+// in the filtered wrappers.
 #pragma once
 
 #include "saagen/reference/math.hpp"
@@ -66,13 +78,45 @@ double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau);
 // Beckmann 1963 axis-aligned: D(h) = chi+(hz) exp(-(sx^2/ax^2 + sy^2/ay^2)) / (pi ax ay hz^4).
 double beckmann_ndf_axis(Vec3 h, Vec2 alpha2);
 
+// Guard helper of the matrix NDFs: |v|^2 det_floor / (det max(tr A, TINY_POSITIVE)) with
+// det_floor = max(det_a, min(det, DET_RELIABLE a00 a11)), a lower bound of v^T adj(A) v / det
+// (lambda_min(A) >= det(A) / tr(A)) that treats a numerically singular A as det(A) >= tau.
+double quadratic_form_floor(const Params& p, Sym2 a, double det_a, double det, Vec2 v);
+
 // Axis-aligned Beckmann BRDF (Walter Lambda through the matrix form with A = diag(alpha2)).
 double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 
 // ---------------------------------------------------------------------------------------------
+// The functions above under explicit Params (guards on/off, fp32 or half guard constants); only
+// params.guards and params.half_precision matter. (A struct rather than overloads: the free
+// functions must stay single functions, which callers pass around as values.)
+struct Brdf {
+    Params params;
+
+    double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
+    double ggx_lambda_matrix(Vec3 w, Sym2 a) const;
+    double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const;
+    double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
+    double ggx_ndf_axis(Vec3 h, Vec2 alpha2) const;
+    double ggx_lambda_axis(Vec3 w, Vec2 alpha2) const;
+    double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
+    double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
+    double beckmann_lambda_matrix(Vec3 w, Sym2 a) const;
+    double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
+    double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
+    double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
+
+ private:
+    // guarded(safe, paper) of the templates.
+    double guarded(double safe, double paper) const { return params.guards ? safe : paper; }
+    double tiny() const { return params.guard_constants().tiny_positive; }
+    double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
+};
+
+// ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad (quad.hpp): the template differentiates the projected half
 // vector normalize(i + o) with plain ddx/ddy (forward_aniso_projected_fragment), then evaluates
-// the matrix BRDF of this pixel with tau = ndf_clamp_tau(alpha2).
+// the matrix BRDF of this pixel with tau = ndf_clamp_tau(alpha2), both under p's guards.
 
 double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
                                        Vec2 alpha2, int pixel,

@@ -2,7 +2,8 @@
 // 20-deferred.saa, in double precision.
 //
 // Every function has the name and the argument order of its template function; the functions
-// whose template body reads SIGMA2 or KAPPA take a Params first. Types: real -> double,
+// whose template body reads SIGMA2, KAPPA or a guard constant take a Params first (Params also
+// selects the guarded or the unguarded paper form, and fp32 or half guard constants). Types: real -> double,
 // real2 -> Vec2, real3 -> Vec3 (or Sym2 for a symmetric matrix (m00, m01, m11)).
 // The bodies compute the same formulas as the templates, with the same guards, clamps and
 // saturates, so that emitted fp32 code can be compared with them element-wise.
@@ -18,10 +19,32 @@
 
 namespace saagen::ref {
 
-// The emission-time constants of templates/00-common.saa.
+// The guard constants of templates/00-common.saa: `value` in fp32 emissions, `half_value` in
+// half-precision ones (GLSL fp16, HLSL min16).
+struct GuardConstants {
+    double slope_min_z = 0.0;     // SLOPE_MIN_Z: smallest |h_z| a slope divides by
+    double derivative_max = 0.0;  // DERIVATIVE_MAX: derivative components clamped to +-this
+    double tiny_positive = 0.0;   // TINY_POSITIVE: floor of determinants, squared lengths, cos products
+    double lambda_min_z = 0.0;    // LAMBDA_MIN_Z: smallest |w_z| Smith Lambda (and the BRDF's cosines) use
+    double det_reliable = 0.0;    // DET_RELIABLE: det(A) below this fraction of a00 a11 is rounding noise
+};
+inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3};
+inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1};
+
+// The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {
     double sigma2 = 0.25;  // SIGMA2: variance of the Gaussian pixel filter, pixels^2 (sigma = 0.5)
     double kappa = 0.18;   // KAPPA: clamp of the kernel roughness, alpha^2 domain
+    // The form of every guarded(safe, paper) site: true computes `safe` (saagen's default
+    // emission), false the unguarded paper form (EmitOptions::guards = false).
+    bool guards = true;
+    // The guard constants' half_value (EmitOptions::precision fp16 / min16). Only the constants
+    // change: the arithmetic stays double.
+    bool half_precision = false;
+
+    const GuardConstants& guard_constants() const {
+        return half_precision ? kGuardConstantsHalf : kGuardConstantsFp32;
+    }
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -43,15 +66,27 @@ double sym2_quadratic_form(Sym2 m, Vec2 v);
 // (v.t, v.b, v.n): v expressed in the frame (t, b, n), written with dot products.
 Vec3 to_tangent_space(Vec3 v, Vec3 t, Vec3 b, Vec3 n);
 
+// Guard helpers (saagen's, not the papers'): each derivative component clamped to
+// +-DERIVATIVE_MAX so that products of derivatives stay finite.
+Vec2 clamp_derivative2(const Params& p, Vec2 d);
+Vec3 clamp_derivative3(const Params& p, Vec3 d);
+
+// Guard helper: v * rsqrt(max(dot(v, v), TINY_POSITIVE)); a zero vector stays zero.
+Vec3 safe_normalize(const Params& p, Vec3 v);
+
 // Slope-space half vector h.xy / |h.z| (Kaplanyan et al. 2016; T&K 2019 Listing 1). The paper's
 // slope (supplemental Eq. 5) is -h.xy / h.z; Sigma is quadratic in it, so the sign is immaterial.
+// Guarded: h.xy / max(|h.z|, SLOPE_MIN_Z). half_vector_slope is the default emission (guarded,
+// Params{}); half_vector_slope_form takes the form from p (a separate name, not an overload, so
+// that half_vector_slope stays a single function that callers can pass to map()).
 Vec2 half_vector_slope(Vec3 half_ts);
+Vec2 half_vector_slope_form(const Params& p, Vec3 half_ts);
 
 // Orthographic projection of h onto the hx-hy plane: h.xy (T&K 2019 Sec. 3.2).
 Vec2 half_vector_projected(Vec3 half_ts);
 
 // Roughness matrix A = diag(ax^2, ay^2) + 2 Sigma, Sigma = sigma^2 Delta^T Delta
-// (T&K 2019 Sec. 2.2). Not clamped.
+// (T&K 2019 Sec. 2.2). Not clamped. Guarded: du and dv pass through clamp_derivative2.
 Sym2 filter_roughness_matrix(const Params& p, Vec2 alpha2, Vec2 du, Vec2 dv);
 
 // Kaplanyan et al. 2016 biased axis-aligned kernel: rect = |du| + |dv|,
@@ -84,11 +119,12 @@ Vec2 forward_axis_projected(const Params& p, Vec2 alpha2, Vec2 dproj_dx, Vec2 dp
 double deferred_previous(const Params& p, double alpha2, Vec2 dslope_dx, Vec2 dslope_dy);
 
 // T&K 2019 Eq. 1: saturate(alpha^2 + min(2 lambda_max(Sigma), kappa)), Sigma from the
-// derivatives of the projected average normal (Sec. 4.1).
+// derivatives of the projected average normal (Sec. 4.1). Guarded: derivatives clamped.
 double deferred_max(const Params& p, double alpha2, Vec2 dproj_dx, Vec2 dproj_dy);
 
 // T&K 2019 Eq. 1 with lambda_max taken from the Gram matrix of the world-space normal
 // derivatives (same nonzero eigenvalues as Delta^T Delta when the rows lie in one plane).
+// Guarded: derivatives clamped (clamp_derivative3).
 double deferred_max_tangent_free(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
 
 // T&K 2019 Eq. 4: saturate(alpha^2 + min(2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
@@ -128,7 +164,8 @@ Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2,
 // Two levels of derivatives, as in the template: ddx_fine/ddy_fine form each pixel's
 // neighbour-weighted normal, which is expressed in that pixel's own frame (t, b, n); the outer
 // plain ddx/ddy (mode) then differentiate the per-pixel slope (previous) or projected unit
-// vector (max).
+// vector (max). Guarded: the slope divides by max(|z|, SLOPE_MIN_Z) (previous), the average
+// normal is normalised by safe_normalize (max).
 double deferred_previous_fragment_quad(const Params& p, double alpha2,
                                        const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
                                        const Quad<Vec3>& bitangent_ws,

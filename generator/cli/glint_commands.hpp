@@ -1,0 +1,59 @@
+// The glint commands of the CLI (issue 7): `saagen glints emit|validate|dictionary|lean`. Kept
+// apart from main.cpp, which only registers and dispatches them. docs/GLINTS.md.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace saagen::cli {
+
+class GlintCommands {
+ public:
+  explicit GlintCommands(CLI::App& app);
+
+  bool requested() const { return glints_->parsed(); }
+  int run() const;
+
+ private:
+  int run_emit() const;
+  int run_validate() const;
+  int run_dictionary() const;
+  int run_lean() const;
+
+  CLI::App* glints_ = nullptr;
+  CLI::App* emit_ = nullptr;
+  CLI::App* validate_ = nullptr;
+  CLI::App* dictionary_ = nullptr;
+  CLI::App* lean_ = nullptr;
+
+  // emit
+  std::string target_ = "glsl";
+  std::vector<std::string> variants_;
+  std::string prefix_ = "saa_";
+  std::string precision_ = "fp32";
+  bool unguarded_ = false;
+  std::optional<double> kernel_scale_;
+  std::string output_directory_;
+  bool force_ = false;
+  // shared by emit (shader constants) and dictionary (generation)
+  std::optional<int> count_;
+  std::optional<int> lods_;
+  std::optional<double> alpha_;
+  // dictionary
+  int resolution_ = 64;
+  double lobe_sigma_ = 0.02;
+  std::uint64_t seed_ = 2021;
+  bool no_mips_ = false;
+  std::string output_file_;
+  std::string raw_file_;
+  // validate
+  std::string validate_directory_;
+  // lean
+  std::string normal_map_;
+};
+
+}  // namespace saagen::cli

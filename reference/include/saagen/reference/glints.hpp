@@ -1,0 +1,163 @@
+// saagen reference: the glinty BRDF of Chermain et al. 2020 with the slope correlation and the
+// geometric glint anti-aliasing (GGAA) of Chermain et al. 2021, in double precision, and a
+// software sampler for the dictionary texture that follows the Vulkan specification's rules for
+// a 1D array image sampled with LINEAR filters, LINEAR mipmaps and MIRRORED_REPEAT addressing.
+//
+// Mirrors templates/glints/50-glints.saa function by function (same names without the prefix,
+// same argument order; the dictionary binding comes first as a `Dictionary`). docs/GLINTS.md
+// gives the equations and the texture layout.
+#pragma once
+
+#include "saagen/reference/math.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace saagen::ref::glints {
+
+// ---------------------------------------------------------------------------------------------
+// Software sampler (Vulkan spec, "Texel Filtering" and "Level-of-Detail Operation")
+
+// A 1D array image with a mip chain, texels as doubles (RGBA). Level m has width
+// max(1, width >> m); levels[m] holds layers * level_width(m) * 4 values, layer after layer.
+struct Texture1DArray {
+    int width = 0;
+    int layers = 0;
+    std::vector<std::vector<double>> levels;
+
+    int level_count() const { return static_cast<int>(levels.size()); }
+    int level_width(int level) const { return width >> level > 0 ? width >> level : 1; }
+    const double* texel(int level, int layer, int x) const {
+        return &levels[static_cast<std::size_t>(level)][(static_cast<std::size_t>(layer) * level_width(level) + x) * 4];
+    }
+};
+
+using Texel = std::array<double, 4>;
+
+// How the sampler turns a gradient into a level of detail lambda.
+//   exact:    the specification's lambda = log2(rho_max), rho_max = max(|du/dx|, |du/dy|) * width.
+//   lavapipe: what llvmpipe computes (measured, docs/GLINTS.md): lambda = 0.5 fastlog2(rho_max^2)
+//             with fastlog2(2^e (1 + f)) = e + f (exact at powers of two, up to 0.043 below the
+//             exact lambda in between).
+enum class LodModel { exact, lavapipe };
+
+// Vulkan MIRRORED_REPEAT of an integer texel coordinate for a level of `size` texels.
+int mirrored_repeat(int i, int size);
+
+// lambda for a 1D gradient (before clamping to the level range).
+double lod_from_gradients(double du_dx, double du_dy, int width, LodModel model);
+
+// LINEAR filtering inside one level at normalised coordinate u (mirrored repeat), layer index
+// already selected.
+Texel sample_level(const Texture1DArray& texture, int level, double u, int layer);
+
+// textureLod / SampleLevel: LINEAR mipmap mode between floor(lod) and floor(lod) + 1, lod
+// clamped to [0, levels - 1]; the layer is round-to-nearest-even of `layer`, clamped.
+Texel texture_lod(const Texture1DArray& texture, double u, double layer, double lod);
+
+// textureGrad / SampleGrad: lambda from the gradients (`model`), then as texture_lod.
+Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
+                   LodModel model = LodModel::exact);
+
+// ---------------------------------------------------------------------------------------------
+// The glinty BRDF
+
+// The emission-time options the snippet is emitted with (templates/glints/50-glints.saa).
+struct Params {
+    int count = 192;            // N distributions (a multiple of 4)
+    int lods = 16;              // L LODs
+    double alpha_dict = 0.5;    // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
+    double kernel_scale = 0.5;  // s_K (2021 Eq. 19)
+};
+
+// The dictionary as the shader sees it: its texture (RGBA, 4 distributions per texel; layer =
+// lod * count / 4 + d / 4, channel d % 4), the options, and the sampler's LOD rule.
+struct Dictionary {
+    const Texture1DArray* texture = nullptr;
+    Params params;
+    LodModel lod_model = LodModel::exact;
+};
+
+// x_max = 2 sqrt(2) alpha_dict: the dictionary holds |x| < x_max (4 sigma_o).
+double dictionary_range(const Params& params);
+
+// Roughness of Eq. 18: Beckmann (alpha_x, alpha_y) and the slope correlation rho.
+struct Roughness {
+    double alpha_x = 0.1;
+    double alpha_y = 0.1;
+    double rho = 0.0;
+};
+
+// The 32-bit integer mixer shared with the templates (wrapping arithmetic).
+std::int32_t mix(std::int32_t v);
+
+// The random choices of cell (i, j) at level l: distributions d_x, d_y in [0, count) and the
+// rotation as a fraction of a turn, turn / 32768 (exact in fp32).
+struct CellRandom {
+    int dx = 0;
+    int dy = 0;
+    double turn = 0.0;
+};
+CellRandom cell_random(int i, int j, int level, int count);
+
+// A^-1 v (Eq. 18 without the rotation) and det M = det A.
+Vec2 inverse_transform(const Params& params, Vec2 v, const Roughness& roughness);
+double transform_determinant(const Params& params, const Roughness& roughness);
+
+// l_P = clamp(log2(max(|duv_dx|, |duv_dy|)) + log_density / (2 ln 2), 0, L - 1).
+double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_density);
+
+// One 1D distribution at x: textureLod at mip 0 / textureGrad with the kernel-scaled
+// derivatives of x; 0 for |x| >= x_max.
+double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level);
+double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_dx, double dx_dy, int distribution, int level);
+
+// The footprint's cells: for each of the two levels of Eq. 3 the four cells, their weights
+// (w(l) W_P(l, s)) and random choices. Depends only on uv, the footprint and the density.
+struct PatchCell {
+    double weight = 0.0;
+    int level = 0;
+    CellRandom random;
+    double cos_theta = 1.0;
+    double sin_theta = 0.0;
+};
+struct Patch {
+    std::array<PatchCell, 8> cells;
+    double lod = 0.0;  // l_P
+};
+Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density);
+
+// The patch SDF of Eq. 3 (textureLod) and its GGAA-filtered form (Eqs. 10, 19); the
+// derivatives dh_* are those of the projected half vector (Eq. 21) or of the slope (Eq. 20).
+double patch_sdf(const Dictionary& dictionary, const Patch& patch, Vec2 slope, const Roughness& roughness);
+double patch_sdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy,
+                          const Roughness& roughness);
+
+double sdf(const Dictionary& dictionary, Vec2 slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness,
+           double log_density);
+double sdf_filtered(const Dictionary& dictionary, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
+                    const Roughness& roughness, double log_density);
+
+// V-cavity masking-shadowing: min(1, 2 h.z o.z / o.h, 2 h.z i.z / i.h); 0 below the horizon.
+double vcavity_g2(Vec3 i, Vec3 o, Vec3 h);
+
+// The BRDF f(i, o) = G2 D / (4 i.z o.z), D = P22(h~ - mean_slope) / h.z^4, without Fresnel.
+double brdf(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
+            const Roughness& roughness, double log_density);
+double brdf_filtered(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv,
+                     Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness, double log_density);
+// The same with a precomputed patch (ground-truth renderers evaluate many directions per patch).
+double patch_brdf(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope,
+                  const Roughness& roughness);
+double patch_brdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx,
+                           Vec2 dh_dy, const Roughness& roughness);
+
+// Half-vector slope h~ = -h.xy / h.z (h.z clamped to 1e-4, SLOPE_MIN_Z) of normalize(i + o).
+Vec2 half_slope(Vec3 i, Vec3 o);
+
+// LEAN (Olano & Baker 2010; 2021 Sec. 5.2): the roughness (sqrt(2 Sigma_xx), sqrt(2 Sigma_yy),
+// rho) of Sigma = second - mean mean^T + diag(alpha^2) / 2. second = (E[x^2], E[xy], E[y^2]).
+Roughness lean_roughness(Vec2 alpha, Vec2 mean, Sym2 second);
+
+}  // namespace saagen::ref::glints

@@ -1,0 +1,285 @@
+// Double-precision reference of templates/glints/50-glints.saa and a software Vulkan sampler for
+// the dictionary texture. See saagen/reference/glints.hpp and docs/GLINTS.md.
+#include "saagen/reference/glints.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace saagen::ref::glints {
+namespace {
+
+constexpr double kRangePerAlpha = 2.82842712474619;  // GLINT_RANGE_PER_ALPHA
+constexpr double kRhoMax = 0.999;                    // GLINT_RHO_MAX
+constexpr double kInv2Ln2 = 0.721347520444482;       // GLINT_INV_2LN2
+constexpr double kTurn = 3.0517578125e-05;           // GLINT_TURN = 2^-15
+constexpr double kTinyPositive = 1e-30;              // TINY_POSITIVE
+constexpr double kSlopeMinZ = 1e-4;                  // SLOPE_MIN_Z
+
+// Round half to even, as the Vulkan layer selection does.
+double round_half_even(double v) { return std::nearbyint(v); }
+
+double clamp(double v, double low, double high) { return v < low ? low : (v > high ? high : v); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Sampler
+
+int mirrored_repeat(int i, int size) {
+    const int period = 2 * size;
+    int t = i % period;
+    if (t < 0) t += period;
+    return t < size ? t : period - 1 - t;
+}
+
+double lod_from_gradients(double du_dx, double du_dy, int width, LodModel model) {
+    const double rx = du_dx * width, ry = du_dy * width;
+    if (model == LodModel::exact) {
+        const double rho_max = std::max(std::fabs(rx), std::fabs(ry));
+        return std::log2(rho_max);  // -inf for a zero gradient: clamped to level 0 by the caller
+    }
+    // llvmpipe: 0.5 * (exponent + mantissa fraction) of rho_max^2.
+    const double rho2 = std::max(rx * rx, ry * ry);
+    if (rho2 <= 0.0) return -std::numeric_limits<double>::infinity();
+    int exponent = 0;
+    const double mantissa = std::frexp(rho2, &exponent);  // rho2 = mantissa 2^exponent, mantissa in [0.5, 1)
+    return 0.5 * ((exponent - 1) + (2.0 * mantissa - 1.0));
+}
+
+Texel sample_level(const Texture1DArray& texture, int level, double u, int layer) {
+    const int size = texture.level_width(level);
+    const double coordinate = u * size - 0.5;
+    const double base = std::floor(coordinate);
+    const double alpha = coordinate - base;
+    const int i0 = static_cast<int>(base);
+    const double* t0 = texture.texel(level, layer, mirrored_repeat(i0, size));
+    const double* t1 = texture.texel(level, layer, mirrored_repeat(i0 + 1, size));
+    Texel result;
+    for (int c = 0; c < 4; ++c) result[c] = (1.0 - alpha) * t0[c] + alpha * t1[c];
+    return result;
+}
+
+Texel texture_lod(const Texture1DArray& texture, double u, double layer, double lod) {
+    const int layer_index = static_cast<int>(clamp(round_half_even(layer), 0.0, texture.layers - 1.0));
+    const int q = texture.level_count() - 1;
+    const double d = std::isnan(lod) ? 0.0 : clamp(lod, 0.0, q);
+    const double hi = std::floor(d);
+    const double delta = d - hi;
+    const int level_hi = static_cast<int>(hi);
+    const Texel fine = sample_level(texture, level_hi, u, layer_index);
+    if (delta == 0.0 || level_hi == q) return fine;
+    const Texel coarse = sample_level(texture, level_hi + 1, u, layer_index);
+    Texel result;
+    for (int c = 0; c < 4; ++c) result[c] = (1.0 - delta) * fine[c] + delta * coarse[c];
+    return result;
+}
+
+Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy, LodModel model) {
+    return texture_lod(texture, u, layer, lod_from_gradients(du_dx, du_dy, texture.width, model));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The model
+
+double dictionary_range(const Params& params) { return kRangePerAlpha * params.alpha_dict; }
+
+std::int32_t mix(std::int32_t v) {
+    // Unsigned arithmetic wraps like GLSL/HLSL int; (v >> k) & mask is a logical shift.
+    std::uint32_t u = static_cast<std::uint32_t>(v);
+    u = u ^ (u >> 16);
+    u = u * 1911520717u;
+    u = u ^ (u >> 13);
+    u = u * 1366156441u;
+    u = u ^ (u >> 16);
+    return static_cast<std::int32_t>(u);
+}
+
+CellRandom cell_random(int i, int j, int level, int count) {
+    const std::int32_t seed = mix(mix(mix(static_cast<std::int32_t>(static_cast<std::uint32_t>(level) + 1013u)) ^ i) ^ j);
+    CellRandom random;
+    random.dx = (mix(seed) & 2147483647) % count;
+    random.dy = (mix(seed ^ 1431655765) & 2147483647) % count;
+    const std::uint32_t turn = (static_cast<std::uint32_t>(mix(seed ^ 858993459)) >> 17) & 32767u;
+    random.turn = static_cast<double>(turn) * kTurn;
+    return random;
+}
+
+Vec2 inverse_transform(const Params& params, Vec2 v, const Roughness& roughness) {
+    const double rho = clamp(roughness.rho, -kRhoMax, kRhoMax);
+    const Vec2 scaled{v.x / roughness.alpha_x, v.y / roughness.alpha_y};
+    return params.alpha_dict * Vec2{(scaled.x - rho * scaled.y) / std::sqrt(1.0 - rho * rho), scaled.y};
+}
+
+double transform_determinant(const Params& params, const Roughness& roughness) {
+    const double rho = clamp(roughness.rho, -kRhoMax, kRhoMax);
+    return roughness.alpha_x * roughness.alpha_y * std::sqrt(1.0 - rho * rho) / (params.alpha_dict * params.alpha_dict);
+}
+
+double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
+    const double size = std::max(length(duv_dx), length(duv_dy));
+    return clamp(std::log2(std::max(size, kTinyPositive)) + log_density * kInv2Ln2, 0.0, params.lods - 1.0);
+}
+
+namespace {
+
+double select_channel(const Texel& texel, int channel) { return texel[static_cast<std::size_t>(channel)]; }
+
+double layer_of(const Params& params, int distribution, int level) {
+    return static_cast<double>(level * (params.count / 4) + distribution / 4);
+}
+
+}  // namespace
+
+double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level) {
+    const double u = x / dictionary_range(dictionary.params);
+    if (!(std::fabs(u) < 1.0)) return 0.0;
+    const Texel texel = texture_lod(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), 0.0);
+    return select_channel(texel, distribution % 4);
+}
+
+double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_dx, double dx_dy, int distribution, int level) {
+    const double to_u = 1.0 / dictionary_range(dictionary.params);
+    const double u = x * to_u;
+    if (!(std::fabs(u) < 1.0)) return 0.0;
+    const double s = dictionary.params.kernel_scale * to_u;
+    const Texel texel = texture_grad(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), s * dx_dx,
+                                     s * dx_dy, dictionary.lod_model);
+    return select_channel(texel, distribution % 4);
+}
+
+Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
+    const Params& params = dictionary.params;
+    Patch patch;
+    patch.lod = footprint_lod(params, duv_dx, duv_dy, log_density);
+    const double level = std::floor(patch.lod);
+    const double t = patch.lod - level;
+    const double levels[2] = {level, std::min(level + 1.0, params.lods - 1.0)};
+    const double level_weights[2] = {1.0 - t, t};
+    for (int k = 0; k < 2; ++k) {
+        const double scale = std::exp2(log_density * kInv2Ln2 - levels[k]);
+        const Vec2 c{uv.x * scale - 0.5, uv.y * scale - 0.5};
+        const Vec2 base{std::floor(c.x), std::floor(c.y)};
+        const Vec2 f{c.x - base.x, c.y - base.y};
+        const int i = static_cast<int>(base.x), j = static_cast<int>(base.y), l = static_cast<int>(levels[k]);
+        const int di[4] = {0, 1, 0, 1}, dj[4] = {0, 0, 1, 1};
+        const double w[4] = {(1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y};
+        for (int n = 0; n < 4; ++n) {
+            PatchCell& cell = patch.cells[static_cast<std::size_t>(4 * k + n)];
+            cell.weight = level_weights[k] * w[n];
+            cell.level = l;
+            cell.random = cell_random(i + di[n], j + dj[n], l, params.count);
+            const double angle = 2.0 * kPi * cell.random.turn;
+            cell.cos_theta = std::cos(angle);
+            cell.sin_theta = std::sin(angle);
+        }
+    }
+    return patch;
+}
+
+namespace {
+
+Vec2 rotate(Vec2 q, double c, double s) { return {c * q.x + s * q.y, c * q.y - s * q.x}; }
+
+}  // namespace
+
+double patch_sdf(const Dictionary& dictionary, const Patch& patch, Vec2 slope, const Roughness& roughness) {
+    const Vec2 q = inverse_transform(dictionary.params, slope, roughness);
+    double mixture = 0.0;
+    for (const PatchCell& cell : patch.cells) {
+        if (cell.weight == 0.0) continue;
+        const Vec2 o = rotate(q, cell.cos_theta, cell.sin_theta);
+        mixture += cell.weight * dictionary_lod_value(dictionary, o.x, cell.random.dx, cell.level) *
+                   dictionary_lod_value(dictionary, o.y, cell.random.dy, cell.level);
+    }
+    return mixture / transform_determinant(dictionary.params, roughness);
+}
+
+double patch_sdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy,
+                          const Roughness& roughness) {
+    const Params& params = dictionary.params;
+    const Vec2 q = inverse_transform(params, slope, roughness);
+    const Vec2 dq_dx = inverse_transform(params, dh_dx, roughness);
+    const Vec2 dq_dy = inverse_transform(params, dh_dy, roughness);
+    double mixture = 0.0;
+    for (const PatchCell& cell : patch.cells) {
+        if (cell.weight == 0.0) continue;
+        const Vec2 o = rotate(q, cell.cos_theta, cell.sin_theta);
+        const Vec2 o_dx = rotate(dq_dx, cell.cos_theta, cell.sin_theta);
+        const Vec2 o_dy = rotate(dq_dy, cell.cos_theta, cell.sin_theta);
+        mixture += cell.weight * dictionary_grad_value(dictionary, o.x, o_dx.x, o_dy.x, cell.random.dx, cell.level) *
+                   dictionary_grad_value(dictionary, o.y, o_dx.y, o_dy.y, cell.random.dy, cell.level);
+    }
+    return mixture / transform_determinant(params, roughness);
+}
+
+double sdf(const Dictionary& dictionary, Vec2 slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness,
+           double log_density) {
+    return patch_sdf(dictionary, make_patch(dictionary, uv, duv_dx, duv_dy, log_density), slope, roughness);
+}
+
+double sdf_filtered(const Dictionary& dictionary, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
+                    const Roughness& roughness, double log_density) {
+    return patch_sdf_filtered(dictionary, make_patch(dictionary, uv, duv_dx, duv_dy, log_density), slope, dh_dx, dh_dy,
+                              roughness);
+}
+
+double vcavity_g2(Vec3 i, Vec3 o, Vec3 h) {
+    if (!(i.z > 0.0 && o.z > 0.0 && h.z > 0.0)) return 0.0;
+    const double masking = 2.0 * h.z * o.z / std::max(dot(o, h), kTinyPositive);
+    const double shadowing = 2.0 * h.z * i.z / std::max(dot(i, h), kTinyPositive);
+    return std::min(1.0, std::min(masking, shadowing));
+}
+
+Vec2 half_slope(Vec3 i, Vec3 o) {
+    const Vec3 sum = i + o;
+    const Vec3 h = sum / std::sqrt(std::max(dot(sum, sum), kTinyPositive));
+    const double hz = std::max(h.z, kSlopeMinZ);
+    return {-h.x / hz, -h.y / hz};
+}
+
+namespace {
+
+// G2 / (4 i.z o.z h.z^4): the BRDF is this times the SDF.
+double brdf_factor(Vec3 i, Vec3 o) {
+    const Vec3 sum = i + o;
+    const Vec3 h = sum / std::sqrt(std::max(dot(sum, sum), kTinyPositive));
+    const double hz = std::max(h.z, kSlopeMinZ);
+    return vcavity_g2(i, o, h) / (hz * hz * hz * hz) / std::max(4.0 * i.z * o.z, kTinyPositive);
+}
+
+}  // namespace
+
+double patch_brdf(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope,
+                  const Roughness& roughness) {
+    const double factor = brdf_factor(i, o);
+    if (factor == 0.0) return 0.0;
+    return factor * patch_sdf(dictionary, patch, half_slope(i, o) - mean_slope, roughness);
+}
+
+double patch_brdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx,
+                           Vec2 dh_dy, const Roughness& roughness) {
+    const double factor = brdf_factor(i, o);
+    if (factor == 0.0) return 0.0;
+    return factor * patch_sdf_filtered(dictionary, patch, half_slope(i, o) - mean_slope, dh_dx, dh_dy, roughness);
+}
+
+double brdf(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
+            const Roughness& roughness, double log_density) {
+    return patch_brdf(dictionary, make_patch(dictionary, uv, duv_dx, duv_dy, log_density), i, o, mean_slope, roughness);
+}
+
+double brdf_filtered(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv,
+                     Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness, double log_density) {
+    return patch_brdf_filtered(dictionary, make_patch(dictionary, uv, duv_dx, duv_dy, log_density), i, o, mean_slope, dh_dx,
+                               dh_dy, roughness);
+}
+
+Roughness lean_roughness(Vec2 alpha, Vec2 mean, Sym2 second) {
+    const double sxx = std::max(second.xx - mean.x * mean.x + 0.5 * alpha.x * alpha.x, kTinyPositive);
+    const double sxy = second.xy - mean.x * mean.y;
+    const double syy = std::max(second.yy - mean.y * mean.y + 0.5 * alpha.y * alpha.y, kTinyPositive);
+    return {std::sqrt(2.0 * sxx), std::sqrt(2.0 * syy), sxy / std::sqrt(sxx * syy)};
+}
+
+}  // namespace saagen::ref::glints

@@ -1,0 +1,134 @@
+// Issue 5: what every public function of every variant guarantees (docs/STABILITY.md), as code.
+// The property tests (test_stability_properties), the adversarial sweep (test_stability_sweep)
+// and the half-precision test (test_precision) judge outputs with these claims.
+//
+// A claim holds for FINITE inputs inside the function's domain (kDomain below); for inputs with
+// an Inf or NaN component nothing is claimed (GLSL/HLSL min, max and clamp are undefined for
+// NaN), and the unguarded paper form (EmitOptions::guards = false) claims nothing at all: the
+// sweep only counts what they do.
+//
+// Tolerances are fp32 rounding, stated once here:
+//  - kKappaSlack: out - alpha^2 <= kappa + 2^-22. fl(a + k) exceeds a + k by at most half an ulp
+//    of a value below 2 (2^-24), and KAPPA itself is the fp32 rounding of kappa (|0.18f - 0.18| =
+//    7.2e-9 < 2^-26); 2^-22 covers both with a factor 3 to spare.
+//  - kProjectedSlack: the projected-space form ends with a division (a + ks) / (1 + ks), whose
+//    rounding (1 ulp correctly rounded; Vulkan allows 2.5) and that of the two sums can put the
+//    result up to ~3 ulps of 1 below alpha^2 or above 1 in exact terms: 2^-22 is 4 ulps of 1.
+//  - kPsdSlack, kPsdUnderflow: det(A) = A00 A11 - A01^2 >= -2^-20 A00 A11 - 2^-122 (A00 + A11).
+//    Each entry of the kernel is a sum of two products, rounded; by Cauchy-Schwarz
+//    (|du.x du.y| + |dv.x dv.y|)^2 <= K00 K11, so the rounding errors can make A01^2 exceed
+//    A00 A11 by at most ~(4 gamma_2 + 2 u) A00 A11 = ~10 u A00 A11 with u = 2^-24: 2^-20 = 16 u.
+//    Products below FLT_MIN = 2^-126 underflow (or flush to zero, which Vulkan allows): K11 can
+//    come out 0 while its exact value is up to 2 sigma^2 * 2 FLT_MIN <= 16 FLT_MIN (sigma^2 <= 4),
+//    and A01^2 <= A00 K11 then exceeds A00 A11 by at most 16 FLT_MIN A00 = 2^-122 A00.
+#pragma once
+
+#include "saagen/reference/reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace saagen::stability {
+
+enum class Claim {
+  roughness_matrix,  // forward-aniso-*: A finite, A00 >= ax^2, A11 >= ay^2, det(A) >= -(rounding)
+  saturated,         // forward-axis-*, deferred-{previous,max,sum,avg}: min(a, 1) <= out <= 1, out - a <= kappa
+  projected_space,   // deferred-projected-space: a = saturate(alpha^2) <= out <= 1, out - a <= kappa
+  brdf_value,        // NDFs, G2, BRDFs: finite, >= 0
+  smith_lambda,      // Lambdas: finite, >= kLambdaFloor (Walter's Beckmann fit dips below 0)
+  clamp_tau,         // ndf_clamp_tau: finite, >= 0
+};
+
+inline constexpr double kKappaSlack = 0x1p-22;
+inline constexpr double kProjectedSlack = 0x1p-22;
+inline constexpr double kPsdSlack = 0x1p-20;
+inline constexpr double kPsdUnderflow = 0x1p-122;
+// Walter et al.'s rational Lambda fit has numerator roots at a = 1.5498 and 1.6296, so for
+// 1.5498 < a < 1.6 it is slightly negative: its minimum is -6.0e-5 (at a = 1.585); GGX's Lambda
+// is >= 0 up to rounding of -0.5 + x with x >= 0.5.
+inline constexpr double kLambdaFloor = -1e-4;
+
+inline Claim claim_of(std::string_view function) {
+  const auto starts = [&](std::string_view prefix) { return function.substr(0, prefix.size()) == prefix; };
+  if (starts("forward_aniso_")) return Claim::roughness_matrix;
+  if (starts("deferred_projected_space")) return Claim::projected_space;
+  if (starts("forward_axis_") || starts("deferred_")) return Claim::saturated;
+  if (function == "ndf_clamp_tau") return Claim::clamp_tau;
+  if (function.find("_lambda_") != std::string_view::npos) return Claim::smith_lambda;
+  return Claim::brdf_value;
+}
+
+inline std::string_view describe(Claim claim) {
+  switch (claim) {
+    case Claim::roughness_matrix: return "finite; A00 >= ax^2, A11 >= ay^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
+    case Claim::saturated: return "finite; min(a,1) <= a' <= 1; a' - a <= kappa";
+    case Claim::projected_space: return "finite; saturate(a) <= a' <= 1 (+-2^-22); a' - a <= kappa";
+    case Claim::brdf_value: return "finite; >= 0";
+    case Claim::smith_lambda: return "finite; >= -1e-4";
+    case Claim::clamp_tau: return "finite; >= 0";
+  }
+  return "";
+}
+
+// The filters' alpha^2 inputs: the function's `alpha2` parameter (1 or 2 values).
+struct Verdict {
+  bool non_finite = false;
+  bool out_of_bound = false;
+  std::string why;  // filled when asked, for the first failure a test reports
+  bool ok() const { return !non_finite && !out_of_bound; }
+};
+
+inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, std::span<const double> out,
+                     bool explain = false) {
+  Verdict verdict;
+  for (double v : out) {
+    if (!std::isfinite(v)) verdict.non_finite = true;
+  }
+  if (verdict.non_finite) {
+    if (explain) verdict.why = "non-finite output";
+    return verdict;
+  }
+  const auto fail = [&](const char* what) {
+    verdict.out_of_bound = true;
+    if (explain && verdict.why.empty()) verdict.why = what;
+  };
+  switch (claim) {
+    case Claim::roughness_matrix: {
+      if (out[0] < alpha2[0]) fail("A00 < ax^2");
+      if (out[2] < alpha2[1]) fail("A11 < ay^2");
+      if (out[0] * out[2] - out[1] * out[1] < -kPsdSlack * out[0] * out[2] - kPsdUnderflow * (out[0] + out[2])) {
+        fail("det A < 0 beyond rounding");
+      }
+      break;
+    }
+    case Claim::saturated: {
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        const double a = alpha2[k];
+        if (out[k] < std::min(a, 1.0)) fail("a' < min(a, 1)");
+        if (out[k] > 1.0) fail("a' > 1");
+        if (out[k] - a > kappa + kKappaSlack) fail("a' - a > kappa");
+      }
+      break;
+    }
+    case Claim::projected_space: {
+      const double a = ref::saturate(alpha2[0]);
+      if (out[0] < a - kProjectedSlack) fail("a' < saturate(a)");
+      if (out[0] > 1.0 + kProjectedSlack) fail("a' > 1");
+      if (out[0] - a > kappa + kProjectedSlack) fail("a' - a > kappa");
+      break;
+    }
+    case Claim::brdf_value:
+    case Claim::clamp_tau:
+      if (out[0] < 0.0) fail("negative");
+      break;
+    case Claim::smith_lambda:
+      if (out[0] < kLambdaFloor) fail("Lambda < -1e-4");
+      break;
+  }
+  return verdict;
+}
+
+}  // namespace saagen::stability

@@ -1,0 +1,132 @@
+// Issue 7: `saagen glints emit|validate|dictionary|lean` as whole processes.
+#include "saagen/error.hpp"
+#include "saagen/glints.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+    std::ifstream stream(path, std::ios::binary);
+    std::ostringstream text;
+    text << stream.rdbuf();
+    return text.str();
+}
+
+std::string quote(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+class GlintCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        scratch_ = fs::temp_directory_path() / (std::string("saagen-glints-") + info->name() + "-" + std::to_string(::getpid()));
+        fs::remove_all(scratch_);
+        fs::create_directories(scratch_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(scratch_, ignored);
+    }
+    CliRun saagen(const std::vector<std::string>& arguments) const {
+        std::string command = quote(SAAGEN_CLI_PATH);
+        for (const std::string& argument : arguments) command.append(" ").append(quote(argument));
+        const fs::path out = scratch_ / "stdout.txt", err = scratch_ / "stderr.txt";
+        command.append(" >").append(quote(out.string())).append(" 2>").append(quote(err.string()));
+        const int status = std::system(command.c_str());
+        CliRun run;
+        run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        run.out = read_text(out);
+        run.err = read_text(err);
+        fs::remove(out);
+        fs::remove(err);
+        return run;
+    }
+    fs::path scratch_;
+};
+
+TEST_F(GlintCli, EmitsAndValidatesTheSnippets) {
+    const fs::path out = scratch_ / "snippets";
+    for (const std::string target : {"glsl", "hlsl"}) {
+        const auto run = saagen({"glints", "emit", "--target", target, "--kernel-scale", "1", "-o", out.string()});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+    }
+    EXPECT_TRUE(fs::exists(out / "saa_glints.glsl"));
+    EXPECT_TRUE(fs::exists(out / "saa_glints_ggaa.hlsl"));
+    EXPECT_NE(read_text(out / "saa_glints_ggaa.glsl").find("glint_kernel_scale=1.0"), std::string::npos);
+    const auto validate = saagen({"glints", "validate", out.string()});
+    EXPECT_EQ(validate.exit_code, 0) << validate.out << validate.err;
+    EXPECT_NE(validate.out.find("4 file(s) validated, 0 failed"), std::string::npos) << validate.out;
+    // A second emission leaves the files alone.
+    const auto again = saagen({"glints", "emit", "--kernel-scale", "1", "-o", out.string()});
+    EXPECT_NE(again.out.find("unchanged"), std::string::npos);
+    // The SAA commands are unaffected: `saagen list` shows no glint variant.
+    EXPECT_EQ(saagen({"list"}).out.find("glints"), std::string::npos);
+}
+
+TEST_F(GlintCli, RejectsBadOptionsInOneLine) {
+    const auto run = saagen({"glints", "emit", "--count", "98", "-o", (scratch_ / "x").string()});
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("multiple of 4"), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "x"));
+    const auto dictionary = saagen({"glints", "dictionary", "--resolution", "48", "-o", (scratch_ / "d.ktx2").string()});
+    EXPECT_NE(dictionary.exit_code, 0);
+    EXPECT_NE(dictionary.err.find("power of two"), std::string::npos) << dictionary.err;
+}
+
+TEST_F(GlintCli, WritesTheDictionaryAndRawData) {
+    const fs::path file = scratch_ / "dict.ktx2", raw = scratch_ / "dict.f32";
+    const auto run = saagen({"glints", "dictionary", "--count", "8", "--lods", "6", "--resolution", "32", "--seed", "7", "-o", file.string(),
+                             "--raw", raw.string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::string bytes = read_text(file);
+    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    EXPECT_EQ(image.width, 32u);
+    EXPECT_EQ(image.layers, 12u);  // 6 LODs x 8 / 4
+    EXPECT_EQ(image.levels.size(), 6u);
+    const auto description = nlohmann::json::parse(image.key_values.at(1).second);
+    EXPECT_EQ(description.at("seed"), 7);
+    EXPECT_EQ(fs::file_size(raw), 12u * 32u * 4u * 4u);
+    // Same parameters, same bytes (deterministic); a foreign file is not overwritten.
+    ASSERT_EQ(saagen({"glints", "dictionary", "--count", "8", "--lods", "6", "--resolution", "32", "--seed", "7", "-o", file.string()}).exit_code, 0);
+    EXPECT_EQ(read_text(file), bytes);
+    std::ofstream(scratch_ / "foreign.ktx2") << "not a texture";
+    EXPECT_NE(saagen({"glints", "dictionary", "--count", "8", "--lods", "6", "-o", (scratch_ / "foreign.ktx2").string()}).exit_code, 0);
+}
+
+TEST_F(GlintCli, WritesLeanMomentsOfAPpmNormalMap) {
+    std::string ppm = "P6\n4 4\n255\n";
+    for (int t = 0; t < 16; ++t) ppm += std::string{static_cast<char>(100 + 8 * t), static_cast<char>(128), static_cast<char>(250)};
+    std::ofstream(scratch_ / "normals.ppm", std::ios::binary) << ppm;
+    const fs::path file = scratch_ / "lean.ktx2";
+    const auto run = saagen({"glints", "lean", (scratch_ / "normals.ppm").string(), "-o", file.string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::string bytes = read_text(file);
+    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    EXPECT_EQ(image.vk_format, 109u);
+    EXPECT_EQ(image.width, 4u);
+    EXPECT_EQ(image.layers, 2u);
+    EXPECT_EQ(image.levels.size(), 3u);
+}
+
+}  // namespace
