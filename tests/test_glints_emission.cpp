@@ -2,6 +2,7 @@
 // in-process validation (glslang + spirv-val, fragment and compute, every client API of the
 // target), with the dictionary declared by the validation skeleton (targets/*.json "resources").
 #include "saagen/glints.hpp"
+#include "saagen/kernels.hpp"
 #include "saagen/validation.hpp"
 
 #include "saagen/error.hpp"
@@ -111,6 +112,18 @@ TEST(GlintEmission, SaaCatalogueIsUnchanged) {
     const auto pieces = saagen::validation_sources(saagen::Catalogue::builtin(), *saagen::find_marker(file.content), file.file_name,
                                                    file.content, saagen::ShaderStage::compute);
     for (const auto& piece : pieces) EXPECT_NE(piece.name, "saagen-validation-resources");
+    // Kernels of the SAA variants get no resource piece either: their sources are as before.
+    for (const saagen::Variant& variant : saagen::Catalogue::builtin().variants()) {
+        saagen::EmitOptions variant_options;
+        variant_options.variants = {variant.id};
+        const auto variant_file = saagen::emit_variants(saagen::Catalogue::builtin(), variant_options).front();
+        saagen::KernelRequest request;
+        request.body = "    SAAGEN_STORE(0, 1.0);\n";
+        request.output_stride = 1;
+        const auto kernel = saagen::kernel_sources(saagen::Catalogue::builtin(), variant_file.file_name, variant_file.content, request);
+        ASSERT_EQ(kernel.size(), 3u) << variant.id;
+        for (const auto& piece : kernel) EXPECT_NE(piece.name, "saagen-kernel-resources") << variant.id;
+    }
     const auto glint = glints::emit(options_for("glsl")).front();
     const auto glint_pieces = saagen::validation_sources(glints::catalogue(), *saagen::find_marker(glint.content), glint.file_name,
                                                          glint.content, saagen::ShaderStage::compute);
