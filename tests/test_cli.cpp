@@ -1,5 +1,7 @@
 // The saagen command line: what it writes, what it prints, and how it refuses bad input (one
 // line on stderr, a non-zero exit, nothing written).
+#include "cli_support.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,55 +17,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using saagen::test::CliRun;
+using saagen::test::read_text;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
-
-std::string quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-class Cli : public ::testing::Test {
+class Cli : public saagen::test::CliTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    scratch_ = fs::temp_directory_path() / (std::string("saagen-cli-") + info->name() + "-" + std::to_string(::getpid()));
-    fs::remove_all(scratch_);
-    fs::create_directories(scratch_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::permissions(scratch_, fs::perms::owner_all, fs::perm_options::add, ignored);
-    fs::remove_all(scratch_, ignored);
-  }
-
-  CliRun saagen(const std::vector<std::string>& arguments) const {
-    std::string command = quote(SAAGEN_CLI_PATH);
-    for (const std::string& argument : arguments) command += " " + quote(argument);
-    const fs::path out = scratch_ / "stdout.txt";
-    const fs::path err = scratch_ / "stderr.txt";
-    command += " >" + quote(out.string()) + " 2>" + quote(err.string());
-    const int status = std::system(command.c_str());
-    CliRun run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = read_text(out);
-    run.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return run;
-  }
-
   // Asserts a refusal: non-zero exit, exactly one line on stderr containing `expected`.
   void expect_one_line_error(const CliRun& run, const std::string& expected) const {
     EXPECT_NE(run.exit_code, 0);
@@ -78,7 +36,6 @@ class Cli : public ::testing::Test {
     return names;
   }
 
-  fs::path scratch_;
 };
 
 TEST_F(Cli, ListJsonIsTheContract) {

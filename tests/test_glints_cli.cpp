@@ -2,6 +2,8 @@
 #include "saagen/error.hpp"
 #include "saagen/glints.hpp"
 
+#include "cli_support.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,53 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
+using saagen::test::read_text;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream stream(path, std::ios::binary);
-    std::ostringstream text;
-    text << stream.rdbuf();
-    return text.str();
-}
-
-std::string quote(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
-}
-
-class GlintCli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        scratch_ = fs::temp_directory_path() / (std::string("saagen-glints-") + info->name() + "-" + std::to_string(::getpid()));
-        fs::remove_all(scratch_);
-        fs::create_directories(scratch_);
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(scratch_, ignored);
-    }
-    CliRun saagen(const std::vector<std::string>& arguments) const {
-        std::string command = quote(SAAGEN_CLI_PATH);
-        for (const std::string& argument : arguments) command.append(" ").append(quote(argument));
-        const fs::path out = scratch_ / "stdout.txt", err = scratch_ / "stderr.txt";
-        command.append(" >").append(quote(out.string())).append(" 2>").append(quote(err.string()));
-        const int status = std::system(command.c_str());
-        CliRun run;
-        run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        run.out = read_text(out);
-        run.err = read_text(err);
-        fs::remove(out);
-        fs::remove(err);
-        return run;
-    }
-    fs::path scratch_;
-};
+class GlintCli : public saagen::test::CliTest {};
 
 TEST_F(GlintCli, EmitsAndValidatesTheSnippets) {
     const fs::path out = scratch_ / "snippets";
