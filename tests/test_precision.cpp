@@ -22,6 +22,7 @@
 // measure fp32 arithmetic with the half guard constants; on hardware that honours the hint they
 // are bounded by the fp16 rows (fp16 is the lowest precision RelaxedPrecision allows).
 #include "gpu_support.hpp"
+#include "reference_dispatch.hpp"
 #include "stability_claims.hpp"
 #include "stability_inputs.hpp"
 
@@ -156,17 +157,7 @@ Inputs wrapper_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
 
 // --- the reference on the packed fp32 inputs -------------------------------------------------
 
-class Reader {
- public:
-  explicit Reader(const float* data) : data_(data) {}
-  double real() { return data_[next_++]; }
-  Vec2 vec2() { const double x = real(); return {x, real()}; }
-  Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  Sym2 sym2() { const double x = real(), y = real(); return {x, y, real()}; }
- private:
-  const float* data_;
-  std::size_t next_ = 0;
-};
+using Reader = saagen::test::FloatReader;
 
 std::vector<double> values(double v) { return {v}; }
 std::vector<double> values(Vec2 v) { return {v.x, v.y}; }
@@ -225,24 +216,7 @@ std::vector<double> reference_wrapper(const ref::Params& p, const Function& f, c
     }
     offset += count;
   }
-  const Quad<Vec2> frag{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
-  const auto mode = ref::Derivative::coarse;
-  const std::string& n = f.name;
-  if (n == "forward_aniso_slope_fragment") return values(ref::forward_aniso_slope_fragment_quad(p, alpha2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_aniso_projected_fragment") return values(ref::forward_aniso_projected_fragment_quad(p, alpha2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_axis_slope_fragment") return values(ref::forward_axis_slope_fragment_quad(p, alpha2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_axis_projected_fragment") return values(ref::forward_axis_projected_fragment_quad(p, alpha2, vectors["half_ts"], pixel, mode));
-  if (n == "deferred_previous_fragment")
-    return values(ref::deferred_previous_fragment_quad(p, alpha2.x, vectors["normal_ws"], vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
-  if (n == "deferred_max_fragment")
-    return values(ref::deferred_max_fragment_quad(p, alpha2.x, vectors["normal_ws"], vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
-  if (n == "deferred_max_tangent_free_fragment") return values(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_sum_fragment") return values(ref::deferred_sum_fragment_quad(p, alpha2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_avg_fragment") return values(ref::deferred_avg_fragment_quad(p, alpha2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_projected_space_fragment") return values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "ggx_brdf_filtered_fragment") return values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
-  if (n == "beckmann_brdf_filtered_fragment") return values(ref::beckmann_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
-  throw std::runtime_error("no reference for " + n);
+  return saagen::test::wrapper_reference_on_quad(f.name, p, alpha2, vectors, pixel);
 }
 
 // --- running and measuring ----------------------------------------------------------------

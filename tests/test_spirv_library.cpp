@@ -19,6 +19,7 @@
 // terms: |f| (1 + conditioning + Beckmann exponent), Lambda terms: (1 + |f|)(1 + conditioning)),
 // twice test_gpu_core's 2e-5.
 #include "gpu_support.hpp"
+#include "reference_dispatch.hpp"
 
 #include "saagen/error.hpp"
 #include "saagen/listing.hpp"
@@ -318,18 +319,7 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
   }
 }
 
-// Reads fp32 inputs back as doubles.
-class Reader {
- public:
-  explicit Reader(const float* data) : data_(data) {}
-  double real() { return data_[next_++]; }
-  Vec2 vec2() { const double x = real(); return {x, real()}; }
-  Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  Sym2 sym2() { const double x = real(), y = real(); return {x, y, real()}; }
- private:
-  const float* data_;
-  std::size_t next_ = 0;
-};
+using Reader = saagen::test::FloatReader;
 
 struct Expected {
   std::vector<double> values;

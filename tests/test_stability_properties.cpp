@@ -30,6 +30,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #endif
+#include "reference_dispatch.hpp"
 #include "stability_claims.hpp"
 #include "stability_inputs.hpp"
 
@@ -352,25 +353,7 @@ Values reference_wrapper(const ref::Params& p, const Function& f, const Element&
     }
     offset += count;
   }
-  const Quad<Vec2> frag{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
-  const Vec2 a2{alpha2[0], alpha2[1]};
-  const auto mode = ref::Derivative::coarse;
-  const std::string& n = f.name;
-  if (n == "forward_aniso_slope_fragment") return values(ref::forward_aniso_slope_fragment_quad(p, a2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_aniso_projected_fragment") return values(ref::forward_aniso_projected_fragment_quad(p, a2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_axis_slope_fragment") return values(ref::forward_axis_slope_fragment_quad(p, a2, vectors["half_ts"], pixel, mode));
-  if (n == "forward_axis_projected_fragment") return values(ref::forward_axis_projected_fragment_quad(p, a2, vectors["half_ts"], pixel, mode));
-  if (n == "deferred_previous_fragment")
-    return values(ref::deferred_previous_fragment_quad(p, a2.x, vectors["normal_ws"], vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
-  if (n == "deferred_max_fragment")
-    return values(ref::deferred_max_fragment_quad(p, a2.x, vectors["normal_ws"], vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
-  if (n == "deferred_max_tangent_free_fragment") return values(ref::deferred_max_tangent_free_fragment_quad(p, a2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_sum_fragment") return values(ref::deferred_sum_fragment_quad(p, a2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_avg_fragment") return values(ref::deferred_avg_fragment_quad(p, a2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "deferred_projected_space_fragment") return values(ref::deferred_projected_space_fragment_quad(p, a2.x, vectors["normal_ws"], pixel, mode));
-  if (n == "ggx_brdf_filtered_fragment") return values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], a2, pixel, mode));
-  if (n == "beckmann_brdf_filtered_fragment") return values(ref::beckmann_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], a2, pixel, mode));
-  throw std::runtime_error("no reference for " + n);
+  return saagen::test::wrapper_reference_on_quad(f.name, p, Vec2{alpha2[0], alpha2[1]}, vectors, pixel);
 }
 
 bool is_wrapper(const Function& f) { return f.role == saagen::FunctionRole::fragment; }
