@@ -591,11 +591,16 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
     config.alphas = {0.01};
     config.fresnel_modes = {false};
     const TradeTable table = compute_trade_table(config);
-    ASSERT_EQ(table.rows.size(), 2 * all_variants().size());
+    // Per scene: every variant and engine; the bump plane's normal detail adds the geometric
+    // feed of every variant but the baseline.
+    const std::size_t per_scene = all_variants().size() + all_engines().size();
+    ASSERT_EQ(table.rows.size(), 2 * per_scene + (all_variants().size() - 1));
     for (const TradeRow& row : table.rows) {
-        EXPECT_EQ(row.flicker, 0.0) << variant_id(row.variant) << " " << scene_name(row.scene);
+        EXPECT_EQ(row.flicker, 0.0) << configuration_id(row) << " " << scene_name(row.scene);
         EXPECT_EQ(row.temporal_stddev, 0.0);
         EXPECT_EQ(row.reference_temporal_stddev, 0.0);
+        EXPECT_EQ(row.temporal_stddev_display, 0.0);
+        EXPECT_EQ(row.reference_temporal_stddev_display, 0.0);
     }
     // And a moving one does change from frame to frame, for the variant and the ground truth.
     config.rotation_degrees_per_frame = 0.25;
@@ -606,6 +611,8 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
     EXPECT_GT(moving.rows[0].temporal_stddev, 0.0);
     EXPECT_GT(moving.rows[0].reference_temporal_stddev, 0.0);
     EXPECT_NE(moving.rows[0].flicker, 0.0);
+    EXPECT_GT(moving.rows[0].temporal_stddev_display, 0.0);
+    EXPECT_GT(moving.rows[0].flicker_display, 0.0);
 }
 
 // The metrics on hand-made images.

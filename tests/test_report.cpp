@@ -92,9 +92,12 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
   EXPECT_NE(table.find("RMSE tonemapped"), std::string::npos);
   EXPECT_NE(table.find("deferred-projected-space"), std::string::npos);
   const auto document = nlohmann::json::parse(read_text(json));
-  ASSERT_EQ(document["rows"].size(), 11u);  // none + 10 variants
+  // none + 10 variants + 6 engines, and the 10 variants fed the geometric normal (the bump plane
+  // has normal detail).
+  ASSERT_EQ(document["rows"].size(), 27u);
   for (const auto& row : document["rows"]) EXPECT_TRUE(row["error"].is_number());
-  EXPECT_EQ(document["cases"].size(), 4u * 2u * 11u);
+  // 3 scenes without normal detail x 2 alphas x 17 configurations + the bump plane's 2 x 27.
+  EXPECT_EQ(document["cases"].size(), 3u * 2u * 17u + 2u * 27u);
 }
 
 TEST_F(Report, BadCostFileIsOneLineAndRendersNothing) {

@@ -16,6 +16,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #include <stb/stb_image_write.h>
+#include <stb/stb_easy_font.h>
 
 namespace saagen::report {
 namespace {
@@ -71,25 +72,80 @@ double box(const render::Image& image, int x, int y, int scale) {
   return sum / (scale * scale);
 }
 
-// One sheet: row 0 the ground truth then each variant, row 1 an empty cell then the difference
-// maps; a 2-pixel grey gutter between tiles.
+// Column labels drawn into the sheet itself (so a PNG shared alone still says what it shows):
+// stb_easy_font builds each glyph from axis-aligned quads, filled here at integer pixels. A
+// label wraps at its '-' and ':' separators to fit the tile; kLabelLines lines at most.
+constexpr int kLabelLineHeight = 11, kLabelLines = 3;
+
+std::vector<std::string> wrap_label(const std::string& label, int max_width) {
+  std::vector<std::string> lines{""};
+  std::string token;
+  auto width_of = [](std::string text) { return stb_easy_font_width(text.data()); };
+  auto flush = [&]() {
+    if (!lines.back().empty() && width_of(lines.back() + token) > max_width) lines.push_back("");
+    lines.back() += token;
+    token.clear();
+  };
+  for (char c : label) {
+    token += c;
+    if (c == '-' || c == ':') flush();
+  }
+  flush();
+  return lines;
+}
+
+void draw_text(std::vector<std::uint8_t>& pixels, int image_width, int image_height, int x, int y, const std::string& text) {
+  struct Vertex {
+    float x, y, z;
+    unsigned char colour[4];
+  };
+  std::vector<Vertex> vertices(4 * 600);
+  std::string buffer = text;
+  unsigned char white[4] = {255, 255, 255, 255};
+  const int quads = stb_easy_font_print(static_cast<float>(x), static_cast<float>(y), buffer.data(), white, vertices.data(),
+                                        static_cast<int>(vertices.size() * sizeof(Vertex)));
+  for (int q = 0; q < quads; ++q) {
+    const Vertex& a = vertices[4 * q];
+    const Vertex& c = vertices[4 * q + 2];
+    for (int py = static_cast<int>(a.y); py < static_cast<int>(c.y); ++py)
+      for (int px = static_cast<int>(a.x); px < static_cast<int>(c.x); ++px) {
+        if (px < 0 || py < 0 || px >= image_width || py >= image_height) continue;
+        const std::size_t index = (static_cast<std::size_t>(py) * image_width + px) * 3;
+        pixels[index] = pixels[index + 1] = pixels[index + 2] = 255;
+      }
+  }
+}
+
+// One sheet: a label band, then row 0 the ground truth and each configuration, row 1 an empty
+// cell then the difference maps; a 2-pixel grey gutter between tiles.
 void write_sheet(const render::ImageSet& set, const fs::path& path) {
   const int scale = display_scale(set.reference);
   const int tile_w = set.reference.width / scale, tile_h = set.reference.height / scale, gutter = 2;
+  const int band = kLabelLines * kLabelLineHeight + 4;
   const int columns = 1 + static_cast<int>(set.variants.size());
-  const int width = columns * tile_w + (columns - 1) * gutter, height = 2 * tile_h + gutter;
+  const int width = columns * tile_w + (columns - 1) * gutter, height = band + 2 * tile_h + gutter;
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height * 3, 96);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(width) * band * 3; ++i) pixels[i] = 32;
   const auto put = [&](int column, int row, int x, int y, Rgb colour) {
-    const std::size_t index = (static_cast<std::size_t>(row * (tile_h + gutter) + y) * width + column * (tile_w + gutter) + x) * 3;
+    const std::size_t index =
+        (static_cast<std::size_t>(band + row * (tile_h + gutter) + y) * width + column * (tile_w + gutter) + x) * 3;
     pixels[index] = colour.r, pixels[index + 1] = colour.g, pixels[index + 2] = colour.b;
   };
+  const auto label = [&](int column, const std::string& text) {
+    const std::vector<std::string> lines = wrap_label(text, tile_w - 4);
+    for (std::size_t l = 0; l < lines.size() && l < kLabelLines; ++l)
+      draw_text(pixels, width, height, column * (tile_w + gutter) + 2, 2 + static_cast<int>(l) * kLabelLineHeight, lines[l]);
+  };
+  label(0, "ground truth");
+  for (std::size_t k = 0; k < set.variants.size(); ++k)
+    label(static_cast<int>(k) + 1, render::configuration_id(set.variants[k].variant, set.variants[k].feed));
   for (int y = 0; y < tile_h; ++y) {
     for (int x = 0; x < tile_w; ++x) {
       const double reference = box(set.reference, x, y, scale);
       put(0, 0, x, y, display(reference));
       put(0, 1, x, y, {0, 0, 0});
       for (std::size_t k = 0; k < set.variants.size(); ++k) {
-        const double value = box(set.variants[k].second, x, y, scale);
+        const double value = box(set.variants[k].image, x, y, scale);
         put(static_cast<int>(k) + 1, 0, x, y, display(value));
         put(static_cast<int>(k) + 1, 1, x, y, difference_colour(value, reference));
       }
@@ -101,14 +157,24 @@ void write_sheet(const render::ImageSet& set, const fs::path& path) {
 }
 
 std::string sheet_name(const render::ImageSet& set) {
-  return fmt::format("sheet_{}_alpha{:.2f}.png", render::scene_name(set.scene), set.material.alpha);
+  return fmt::format("sheet_{}_alpha{:.4f}.png", render::scene_name(set.scene), set.material.alpha);
 }
 
 // ---------------------------------------------------------------------------------------------
 // The cost-vs-error plot (SVG): x = lavapipe time ratio when measured, else the SPIR-V delta;
 // y = mean tonemapped RMSE.
 
-std::optional<double> cost_of(const CostTable* costs, const std::string& variant, bool time) {
+// The measured shader whose cost a configuration has: the variant itself whatever normal feeds it
+// (the feed changes the input, not the code); an engine's form costs what deferred-sum costs
+// (the same operations: two normal derivatives, their squared lengths, a min and an add; the
+// engines' pow-based forms add one transcendental), which bench_shading measures.
+std::string cost_key(const std::string& configuration) {
+  if (configuration.rfind("engine-", 0) == 0) return "deferred-sum";
+  return configuration.substr(0, configuration.find(':'));
+}
+
+std::optional<double> cost_of(const CostTable* costs, const std::string& configuration, bool time) {
+  const std::string variant = cost_key(configuration);
   if (variant == "none") return time ? std::optional<double>(1.0) : std::optional<double>(0.0);
   if (!costs) return std::nullopt;
   const VariantCost* cost = costs->find(variant);
@@ -145,7 +211,10 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
   svg << fmt::format(R"s(<text x="16" y="{}" transform="rotate(-90 16 {})" text-anchor="middle">error: mean tonemapped RMSE</text>)s",
                      (top + height - bottom) / 2, (top + height - bottom) / 2) << "\n";
   for (const auto& [name, x, y] : points) {
-    const std::string colour = name.rfind("forward", 0) == 0 ? "#c0392b" : name.rfind("deferred", 0) == 0 ? "#2471a3" : "#555555";
+    const std::string colour = name.rfind("engine-", 0) == 0   ? "#e67e22"
+                               : name.rfind("forward", 0) == 0 ? "#c0392b"
+                               : name.rfind("deferred", 0) == 0 ? "#2471a3"
+                                                                 : "#555555";
     svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", sx(x), sy(y),
                        colour, sx(x) + 8, sy(y) + 4, name) << "\n";
   }
@@ -161,7 +230,7 @@ std::string optional_number(const std::optional<double>& value, const char* form
 }
 
 struct SummaryColumns {
-  std::string variant, rmse_linear, rmse_tonemapped, max_error, flicker, time_ratio, delta_spirv;
+  std::string variant, rmse_linear, rmse_tonemapped, max_error, flicker, flicker_display, time_ratio, delta_spirv;
 };
 
 std::vector<SummaryColumns> summary_columns(const std::vector<VariantSummary>& summary, const CostTable* costs) {
@@ -169,6 +238,7 @@ std::vector<SummaryColumns> summary_columns(const std::vector<VariantSummary>& s
   for (const VariantSummary& row : summary) {
     rows.push_back({row.variant, fmt::format("{:.4g}", row.rmse_linear), fmt::format("{:.4g}", row.rmse_tonemapped),
                     fmt::format("{:.4g}", row.max_error), fmt::format("{:+.4f}", row.flicker),
+                    fmt::format("{:.3f}", row.flicker_display),
                     optional_number(cost_of(costs, row.variant, true), "{:.3f}"),
                     optional_number(cost_of(costs, row.variant, false), "{:+.0f}")});
   }
@@ -309,22 +379,31 @@ CostTable load_cost_table(const fs::path& path) {
 }
 
 std::vector<VariantSummary> summarize(const render::TradeTable& table) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const render::TradeRow*>> by_configuration;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel) continue;
+    const std::string id = render::configuration_id(row);
+    if (!by_configuration.count(id)) order.push_back(id);
+    by_configuration[id].push_back(&row);
+  }
   std::vector<VariantSummary> summary;
-  for (Variant variant : table.config.variants) {
-    VariantSummary row{id_of(variant)};
-    std::vector<double> linear, tonemapped, flicker;
-    for (const render::TradeRow& entry : table.rows) {
-      if (entry.variant != variant || entry.fresnel) continue;
-      linear.push_back(entry.rmse_linear);
-      tonemapped.push_back(entry.rmse_tonemapped);
-      flicker.push_back(entry.flicker);
-      row.max_error = std::max(row.max_error, entry.max_error);
+  for (const std::string& id : order) {
+    VariantSummary entry{id};
+    std::vector<double> linear, tonemapped, flicker, flicker_display;
+    for (const render::TradeRow* row : by_configuration[id]) {
+      linear.push_back(row->rmse_linear);
+      tonemapped.push_back(row->rmse_tonemapped);
+      flicker.push_back(row->flicker);
+      flicker_display.push_back(row->flicker_display);
+      entry.max_error = std::max(entry.max_error, row->max_error);
     }
-    row.cases = linear.size();
-    row.rmse_linear = mean(linear);
-    row.rmse_tonemapped = mean(tonemapped);
-    row.flicker = mean(flicker);
-    summary.push_back(row);
+    entry.cases = linear.size();
+    entry.rmse_linear = mean(linear);
+    entry.rmse_tonemapped = mean(tonemapped);
+    entry.flicker = mean(flicker);
+    entry.flicker_display = mean(flicker_display);
+    summary.push_back(entry);
   }
   return summary;
 }
@@ -359,7 +438,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
     nlohmann::json entry = {{"variant", row.variant}, {"error", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
-                            {"flicker", row.flicker}};
+                            {"flicker", row.flicker}, {"flicker_display", row.flicker_display}};
     if (const auto ratio = cost_of(costs, row.variant, true)) entry["ratio_median"] = *ratio;
     if (const auto delta = cost_of(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
     rows.push_back(entry);
@@ -367,8 +446,10 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
   nlohmann::json cases = nlohmann::json::array();
   for (const render::TradeRow& row : table.rows) {
     cases.push_back({{"scene", std::string(render::scene_name(row.scene))}, {"alpha", row.alpha}, {"fresnel", row.fresnel},
-                     {"variant", id_of(row.variant)}, {"rmse_linear", row.rmse_linear}, {"rmse_tonemapped", row.rmse_tonemapped},
-                     {"max_error", row.max_error}, {"flicker", row.flicker}});
+                     {"variant", id_of(row.variant)}, {"feed", std::string(render::feed_name(row.feed))},
+                     {"configuration", render::configuration_id(row)}, {"rmse_linear", row.rmse_linear},
+                     {"rmse_tonemapped", row.rmse_tonemapped}, {"max_error", row.max_error}, {"flicker", row.flicker},
+                     {"flicker_display", row.flicker_display}});
   }
   return {{"error_metric", "mean tonemapped RMSE over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
           {"rows", rows}, {"cases", cases}};
@@ -387,7 +468,7 @@ std::vector<std::string> write_report(const render::TradeTable& table, const Cos
     write_sheet(set, dir / sheets.back());
   }
   std::vector<std::string> columns{"ground truth"};
-  for (const auto& [variant, image] : table.images.front().variants) columns.push_back(id_of(variant));
+  for (const auto& rendered : table.images.front().variants) columns.push_back(render::configuration_id(rendered.variant, rendered.feed));
 
   const auto summary = summarize(table);
   write_text(dir / "cost_vs_error.svg", plot_svg(summary, costs));

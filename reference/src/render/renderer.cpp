@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "saagen/reference/brdf.hpp"
+#include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/render/parallel.hpp"
 
 namespace saagen::render {
@@ -31,6 +32,11 @@ constexpr std::array<Variant, 11> kAllVariants{
     Variant::deferred_sum,
     Variant::deferred_avg,
     Variant::deferred_projected_space,
+};
+
+constexpr std::array<Variant, 6> kAllEngines{
+    Variant::engine_hdrp,   Variant::engine_filament, Variant::engine_godot,
+    Variant::engine_unreal, Variant::engine_threejs,  Variant::engine_babylon,
 };
 
 // The shading vectors of a hit: i, o in world space and in the tangent frame, E.
@@ -70,6 +76,12 @@ std::string_view variant_id(Variant v) {
         case Variant::deferred_sum: return "deferred-sum";
         case Variant::deferred_avg: return "deferred-avg";
         case Variant::deferred_projected_space: return "deferred-projected-space";
+        case Variant::engine_hdrp: return "engine-hdrp";
+        case Variant::engine_filament: return "engine-filament";
+        case Variant::engine_godot: return "engine-godot";
+        case Variant::engine_unreal: return "engine-unreal";
+        case Variant::engine_threejs: return "engine-threejs";
+        case Variant::engine_babylon: return "engine-babylon";
     }
     return "?";
 }
@@ -77,10 +89,29 @@ std::string_view variant_id(Variant v) {
 std::optional<Variant> variant_from_id(std::string_view id) {
     for (Variant v : kAllVariants)
         if (variant_id(v) == id) return v;
+    for (Variant v : kAllEngines)
+        if (variant_id(v) == id) return v;
     return std::nullopt;
 }
 
 std::span<const Variant> all_variants() { return kAllVariants; }
+std::span<const Variant> all_engines() { return kAllEngines; }
+
+bool is_engine(Variant v) {
+    return std::find(kAllEngines.begin(), kAllEngines.end(), v) != kAllEngines.end();
+}
+
+std::string_view feed_name(NormalFeed feed) {
+    return feed == NormalFeed::shading ? "shading" : "geometric";
+}
+
+NormalFeed engine_feed(Variant engine) {
+    switch (engine) {
+        case Variant::engine_godot:
+        case Variant::engine_babylon: return NormalFeed::shading;
+        default: return NormalFeed::geometric;
+    }
+}
 
 double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
                          bool fresnel) {
@@ -183,8 +214,13 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
     f.irradiance = s.irradiance;
     f.light_ts = s.light_ts;
     f.view_ts = s.view_ts;
-    f.half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent,
-                                 hit.normal);
+    const Vec3 half = normalize(s.to_view + s.to_light);
+    f.half_ts = to_tangent_space(half, hit.tangent, hit.bitangent, hit.normal);
+    f.geometric_normal = hit.normal;
+    f.geometric_tangent = hit.tangent;
+    f.geometric_bitangent = hit.bitangent;
+    f.geometric_half_ts = to_tangent_space(half, f.geometric_tangent, f.geometric_bitangent,
+                                           f.geometric_normal);
     return f;
 }
 
@@ -227,13 +263,50 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
     q.bitangent = quad(&PixelFields::bitangent);
     q.half_ts = quad(&PixelFields::half_ts);
     q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
+    q.geometric_normal = quad(&PixelFields::geometric_normal);
+    q.geometric_tangent = quad(&PixelFields::geometric_tangent);
+    q.geometric_bitangent = quad(&PixelFields::geometric_bitangent);
+    q.geometric_half_ts = quad(&PixelFields::geometric_half_ts);
     q.pixel = (x & 1) + 2 * (y & 1);
     return q;
 }
 
+namespace {
+
+// The quad inputs a filter reads, from the shading or the geometric frame.
+struct FeedQuads {
+    const ref::Quad<Vec3>& normal;
+    const ref::Quad<Vec3>& tangent;
+    const ref::Quad<Vec3>& bitangent;
+    const ref::Quad<Vec3>& half_ts;
+};
+
+FeedQuads feed_quads(const QuadFields& q, NormalFeed feed) {
+    if (feed == NormalFeed::geometric)
+        return {q.geometric_normal, q.geometric_tangent, q.geometric_bitangent, q.geometric_half_ts};
+    return {q.normal, q.tangent, q.bitangent, q.half_ts};
+}
+
+// alpha^2 after an engine's shipped form (engines.hpp), on the normal the engine feeds.
+double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Derivative mode) {
+    const ref::Quad<Vec3>& n = feed_quads(q, engine_feed(engine)).normal;
+    const Vec3 dndx = ref::ddx(n, q.pixel, mode), dndy = ref::ddy(n, q.pixel, mode);
+    switch (engine) {
+        case Variant::engine_hdrp: return hdrp_alpha2(alpha, dndx, dndy);
+        case Variant::engine_filament: return filament_alpha2(alpha, dndx, dndy);
+        case Variant::engine_godot: return godot_alpha2(alpha, dndx, dndy);
+        case Variant::engine_unreal: return unreal_alpha2(alpha, dndx, dndy);
+        case Variant::engine_threejs: return threejs_alpha2(alpha, dndx, dndy);
+        case Variant::engine_babylon: return babylon_alpha2(alpha, dndx, dndy);
+        default: throw std::invalid_argument("engine_alpha2: not an engine");
+    }
+}
+
+}  // namespace
+
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params,
-                       ref::Derivative mode) {
+                       ref::Derivative mode, NormalFeed feed) {
     const PixelFields& f = gbuffer.at(x, y);
     PixelShade out;
     if (!f.hit) return out;
@@ -255,47 +328,50 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
 
     if (variant == Variant::none) {
         isotropic(a2);
+    } else if (is_engine(variant)) {
+        isotropic(engine_alpha2(variant, material.alpha, gather_quad(gbuffer, x, y), mode));
     } else {
         const QuadFields q = gather_quad(gbuffer, x, y);
+        const FeedQuads in = feed_quads(q, feed);
         switch (variant) {
-            case Variant::none: break;
             case Variant::forward_aniso_slope:
-                matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, q.half_ts, q.pixel, mode));
+                matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
                 break;
             case Variant::forward_aniso_projected:
-                matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, q.half_ts, q.pixel,
+                matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel,
                                                                   mode));
                 break;
             case Variant::forward_axis_slope:
-                axis(ref::forward_axis_slope_fragment_quad(params, alpha2, q.half_ts, q.pixel, mode));
+                axis(ref::forward_axis_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
                 break;
             case Variant::forward_axis_projected:
-                axis(ref::forward_axis_projected_fragment_quad(params, alpha2, q.half_ts, q.pixel,
+                axis(ref::forward_axis_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel,
                                                                mode));
                 break;
             case Variant::deferred_previous:
-                isotropic(ref::deferred_previous_fragment_quad(params, a2, q.normal, q.tangent,
-                                                               q.bitangent, q.frag_coord, q.pixel,
+                isotropic(ref::deferred_previous_fragment_quad(params, a2, in.normal, in.tangent,
+                                                               in.bitangent, q.frag_coord, q.pixel,
                                                                mode));
                 break;
             case Variant::deferred_max:
-                isotropic(ref::deferred_max_fragment_quad(params, a2, q.normal, q.tangent,
-                                                          q.bitangent, q.frag_coord, q.pixel, mode));
+                isotropic(ref::deferred_max_fragment_quad(params, a2, in.normal, in.tangent,
+                                                          in.bitangent, q.frag_coord, q.pixel, mode));
                 break;
             case Variant::deferred_max_tangent_free:
-                isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, q.normal,
+                isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, in.normal,
                                                                        q.pixel, mode));
                 break;
             case Variant::deferred_sum:
-                isotropic(ref::deferred_sum_fragment_quad(params, a2, q.normal, q.pixel, mode));
+                isotropic(ref::deferred_sum_fragment_quad(params, a2, in.normal, q.pixel, mode));
                 break;
             case Variant::deferred_avg:
-                isotropic(ref::deferred_avg_fragment_quad(params, a2, q.normal, q.pixel, mode));
+                isotropic(ref::deferred_avg_fragment_quad(params, a2, in.normal, q.pixel, mode));
                 break;
             case Variant::deferred_projected_space:
-                isotropic(ref::deferred_projected_space_fragment_quad(params, a2, q.normal, q.pixel,
+                isotropic(ref::deferred_projected_space_fragment_quad(params, a2, in.normal, q.pixel,
                                                                       mode));
                 break;
+            default: throw std::invalid_argument("shade_pixel: unknown variant");
         }
     }
     out.radiance = specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
@@ -303,12 +379,13 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
 }
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
-                     const ref::Params& params, ref::Derivative mode, int threads) {
+                     const ref::Params& params, ref::Derivative mode, int threads,
+                     NormalFeed feed) {
     Image image(gbuffer.width, gbuffer.height);
     parallel_rows(gbuffer.height, threads, [&](int y) {
         for (int x = 0; x < gbuffer.width; ++x)
             image.at(x, y) = static_cast<float>(
-                shade_pixel(gbuffer, x, y, variant, material, params, mode).radiance);
+                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed).radiance);
     });
     return image;
 }

@@ -159,13 +159,67 @@ std::vector<Material> trade_materials(const TradeConfig& config) {
     return materials;
 }
 
-const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel) const {
+const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel,
+                                 NormalFeed feed) const {
     for (const TradeRow& row : rows)
         if (row.variant == variant && row.scene == scene && row.alpha == alpha &&
-            row.fresnel == fresnel)
+            row.fresnel == fresnel && row.feed == feed)
             return &row;
     return nullptr;
 }
+
+std::vector<Variant> default_trade_variants() {
+    std::vector<Variant> variants(all_variants().begin(), all_variants().end());
+    variants.insert(variants.end(), all_engines().begin(), all_engines().end());
+    return variants;
+}
+
+std::string configuration_id(Variant variant, NormalFeed feed) {
+    std::string id(variant_id(variant));
+    if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none)
+        id += ":geometric";
+    return id;
+}
+
+std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed); }
+
+bool scene_has_normal_detail(SceneId id) { return id == SceneId::bump_plane; }
+
+namespace {
+
+// One row's configuration: a variant and the normal it reads.
+struct RowKey {
+    Variant variant;
+    NormalFeed feed;
+};
+
+// The rows of a scene, in config.variants order; a variant's feeds in config.feeds order. The
+// baseline reads no normal; engines read their own; the geometric feed adds rows only where
+// the scene's normals have detail the geometry lacks.
+std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
+    std::vector<RowKey> keys;
+    for (Variant v : config.variants) {
+        if (v == Variant::none) {
+            keys.push_back({v, NormalFeed::shading});
+        } else if (is_engine(v)) {
+            keys.push_back({v, engine_feed(v)});
+        } else {
+            for (NormalFeed feed : config.feeds)
+                if (feed == NormalFeed::shading || scene_has_normal_detail(scene))
+                    keys.push_back({v, feed});
+        }
+    }
+    return keys;
+}
+
+Image tonemapped(const Image& image) {
+    Image out(image.width, image.height);
+    for (std::size_t i = 0; i < image.size(); ++i)
+        out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
+    return out;
+}
+
+}  // namespace
 
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
     if (config.width <= 0 || config.height <= 0 || config.strata <= 0)
@@ -178,7 +232,6 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     table.config = config;
     const std::vector<Material> materials = trade_materials(config);
     const std::size_t n_materials = materials.size();
-    const std::size_t n_variants = config.variants.size();
 
     // Work units: ground-truth samples and 1-spp pixel shadings.
     const std::uint64_t main_pixels = static_cast<std::uint64_t>(config.width) * config.height;
@@ -187,12 +240,15 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     const std::uint64_t main_gt = main_pixels * config.strata * config.strata;
     const std::uint64_t flicker_gt =
         flicker_pixels * config.flicker_strata * config.flicker_strata;
-    const std::uint64_t shading_per_frame = n_materials * n_variants;
-    const std::uint64_t per_scene =
-        main_gt + main_pixels * shading_per_frame +
-        (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0);
+    auto scene_work = [&](SceneId id) {
+        const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
+        return main_gt + main_pixels * shading_per_frame +
+               (config.frames > 0
+                    ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame)
+                    : 0);
+    };
     TradeProgress state;
-    state.total = per_scene * config.scenes.size();
+    for (SceneId id : config.scenes) state.total += scene_work(id);
     auto report = [&](const std::string& stage, std::uint64_t done) {
         state.stage = stage;
         state.done = done;
@@ -229,11 +285,16 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         }
         return gt;
     };
+    auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
+        return render_variant(gbuffer, key.variant, material, config.params, config.derivative,
+                              config.threads, key.feed);
+    };
 
-    for (std::size_t si = 0; si < config.scenes.size(); ++si) {
-        const SceneId id = config.scenes[si];
+    std::uint64_t base = 0;
+    for (const SceneId id : config.scenes) {
         const std::string name(scene_name(id));
-        std::uint64_t base = per_scene * si;
+        const std::vector<RowKey> keys = row_keys(config, id);
+        const std::size_t n_keys = keys.size();
 
         // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
         const Scene scene = make_scene(id, 0.0);
@@ -250,12 +311,12 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 set.reference = gt.images[m];
                 set.coverage = gt.coverage;
             }
-            for (Variant v : config.variants) {
-                Image image = render_variant(gbuffer, v, materials[m], config.params,
-                                             config.derivative, config.threads);
+            for (const RowKey& key : keys) {
+                Image image = shade(gbuffer, key, materials[m]);
                 const ImageError e = compare_images(image, gt.images[m]);
                 TradeRow row;
-                row.variant = v;
+                row.variant = key.variant;
+                row.feed = key.feed;
                 row.scene = id;
                 row.alpha = materials[m].alpha;
                 row.fresnel = materials[m].fresnel;
@@ -264,19 +325,21 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 row.max_error = e.max_error;
                 row.non_finite = e.non_finite;
                 table.rows.push_back(row);
-                if (config.keep_images) set.variants.emplace_back(v, std::move(image));
+                if (config.keep_images)
+                    set.variants.push_back({key.variant, key.feed, std::move(image)});
                 base += main_pixels;
                 report("1-spp variants " + name, base);
             }
             if (config.keep_images) table.images.push_back(std::move(set));
         }
 
-        // Flicker: the rotating animation at the flicker resolution.
+        // Flicker: the rotating animation at the flicker resolution, in linear and display values.
         if (config.frames > 0) {
             const int fw = config.flicker_width, fh = config.flicker_height;
             std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
-            std::vector<TemporalStats> variant_stats(n_materials * n_variants,
-                                                     TemporalStats(fw, fh));
+            std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
+            std::vector<TemporalStats> variant_stats(n_materials * n_keys, TemporalStats(fw, fh));
+            std::vector<TemporalStats> variant_display(n_materials * n_keys, TemporalStats(fw, fh));
             for (int frame = 0; frame < config.frames; ++frame) {
                 const double angle = frame * config.rotation_degrees_per_frame * kPi / 180.0;
                 const Scene moved = make_scene(id, angle);
@@ -288,10 +351,11 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
                 for (std::size_t m = 0; m < n_materials; ++m) {
                     reference_stats[m].add(frame_gt.images[m]);
-                    for (std::size_t vi = 0; vi < n_variants; ++vi) {
-                        variant_stats[m * n_variants + vi].add(
-                            render_variant(frame_buffer, config.variants[vi], materials[m],
-                                           config.params, config.derivative, config.threads));
+                    reference_display[m].add(tonemapped(frame_gt.images[m]));
+                    for (std::size_t k = 0; k < n_keys; ++k) {
+                        const Image image = shade(frame_buffer, keys[k], materials[m]);
+                        variant_stats[m * n_keys + k].add(image);
+                        variant_display[m * n_keys + k].add(tonemapped(image));
                         base += flicker_pixels;
                     }
                 }
@@ -299,12 +363,19 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
             }
             for (std::size_t m = 0; m < n_materials; ++m) {
                 const double reference_std = mean_temporal_stddev(reference_stats[m]);
-                for (std::size_t vi = 0; vi < n_variants; ++vi) {
-                    TradeRow& row = table.rows[first_row + m * n_variants + vi];
-                    const TemporalStats& stats = variant_stats[m * n_variants + vi];
+                const double reference_std_display = mean_temporal_stddev(reference_display[m]);
+                for (std::size_t k = 0; k < n_keys; ++k) {
+                    TradeRow& row = table.rows[first_row + m * n_keys + k];
+                    const TemporalStats& stats = variant_stats[m * n_keys + k];
                     row.flicker = flicker(stats, reference_stats[m]);
                     row.temporal_stddev = mean_temporal_stddev(stats);
                     row.reference_temporal_stddev = reference_std;
+                    row.temporal_stddev_display =
+                        mean_temporal_stddev(variant_display[m * n_keys + k]);
+                    row.reference_temporal_stddev_display = reference_std_display;
+                    row.flicker_display = reference_std_display > 0.0
+                                              ? row.temporal_stddev_display / reference_std_display
+                                              : 0.0;
                 }
             }
         }
@@ -319,15 +390,16 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
 std::string format_trade_table(const TradeTable& table) {
     std::ostringstream s;
     char line[256];
-    std::snprintf(line, sizeof line, "%-10s %5s %3s %-26s %12s %10s %12s %10s\n", "scene", "alpha",
-                  "F", "variant", "rmse_linear", "rmse_tm", "max_error", "flicker");
+    std::snprintf(line, sizeof line, "%-16s %6s %3s %-36s %12s %10s %12s %10s %10s\n", "scene",
+                  "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error", "flicker",
+                  "flicker_tm");
     s << line;
     for (const TradeRow& r : table.rows) {
-        std::snprintf(line, sizeof line, "%-10s %5.2f %3s %-26s %12.5g %10.5f %12.5g %10.5f%s\n",
+        std::snprintf(line, sizeof line,
+                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %10.5f %10.4f%s\n",
                       std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no",
-                      std::string(variant_id(r.variant)).c_str(), r.rmse_linear,
-                      r.rmse_tonemapped, r.max_error, r.flicker,
-                      r.non_finite ? "  (non-finite pixels)" : "");
+                      configuration_id(r).c_str(), r.rmse_linear, r.rmse_tonemapped, r.max_error,
+                      r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
         s << line;
     }
     return s.str();
@@ -336,13 +408,16 @@ std::string format_trade_table(const TradeTable& table) {
 std::string trade_table_csv(const TradeTable& table) {
     std::ostringstream s;
     s.precision(9);
-    s << "scene,alpha,fresnel,variant,rmse_linear,rmse_tonemapped,max_error,flicker,"
-         "temporal_stddev,reference_temporal_stddev,non_finite\n";
+    s << "scene,alpha,fresnel,variant,feed,rmse_linear,rmse_tonemapped,max_error,flicker,"
+         "temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
+         "reference_temporal_stddev_display,non_finite\n";
     for (const TradeRow& r : table.rows)
         s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
-          << variant_id(r.variant) << "," << r.rmse_linear << "," << r.rmse_tonemapped << ","
-          << r.max_error << "," << r.flicker << "," << r.temporal_stddev << ","
-          << r.reference_temporal_stddev << "," << r.non_finite << "\n";
+          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << r.rmse_linear << ","
+          << r.rmse_tonemapped << "," << r.max_error << "," << r.flicker << ","
+          << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display
+          << "," << r.temporal_stddev_display << "," << r.reference_temporal_stddev_display << ","
+          << r.non_finite << "\n";
     return s.str();
 }
 

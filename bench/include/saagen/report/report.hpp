@@ -35,12 +35,15 @@ CostTable load_cost_table(const std::filesystem::path& path);
 
 // Means over the table's scenes and alphas, without Fresnel (with Fresnel the radiance is ~25x
 // dimmer and the orderings are the same).
+// Means over the cases (scenes x alphas, no Fresnel) of one configuration: a variant, or a
+// variant fed the geometric normal ("deferred-avg:geometric"), or an engine's shipped form.
 struct VariantSummary {
-  std::string variant;
+  std::string variant;  // render::configuration_id
   double rmse_linear = 0.0;
   double rmse_tonemapped = 0.0;
   double max_error = 0.0;  // the largest over the cases
   double flicker = 0.0;
+  double flicker_display = 0.0;  // tonemapped temporal std relative to the ground truth's
   std::size_t cases = 0;
 };
 

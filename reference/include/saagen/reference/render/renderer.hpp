@@ -76,12 +76,36 @@ enum class Variant {
     deferred_sum,
     deferred_avg,
     deferred_projected_space,
+    // The forms engines ship (shared/REFERENCES.md; engines.hpp): reference-renderer rows of the
+    // trade only, never emitted. Each reads the normal its engine feeds it (engine_feed()).
+    engine_hdrp,
+    engine_filament,
+    engine_godot,
+    engine_unreal,
+    engine_threejs,
+    engine_babylon,
 };
 
-// "none", "forward-aniso-slope", ..., "deferred-max-tangent-free", ...
+// "none", "forward-aniso-slope", ..., "deferred-max-tangent-free", ..., "engine-hdrp", ...
 std::string_view variant_id(Variant v);
 std::optional<Variant> variant_from_id(std::string_view id);
+// saagen's variants and the no-SAA baseline (catalogue ids, plus the tangent-free form).
 std::span<const Variant> all_variants();
+// The engines' shipped forms.
+std::span<const Variant> all_engines();
+bool is_engine(Variant v);
+
+// Which normal feeds a filter. Engines disagree: HDRP, Filament, Unreal and three.js filter the
+// geometric (interpolated vertex) normal and leave normal-map detail to texture prefiltering;
+// Godot and Babylon.js filter the shading normal after normal mapping.
+//   shading    the normal-mapped normal (deferred variants) and the half vector in the frame
+//              built on it (forward variants);
+//   geometric  the base surface's normal and frame before the normal map (curvature only).
+// On surfaces without normal detail the two are the same.
+enum class NormalFeed { shading, geometric };
+std::string_view feed_name(NormalFeed feed);  // "shading", "geometric"
+// The normal an engine's shipped form reads.
+NormalFeed engine_feed(Variant engine);
 
 // The specular radiance of one light at a surface point, in the tangent frame.
 // brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
@@ -131,6 +155,12 @@ struct PixelFields {
     Vec3 view_ts;     // o in (t, b, n)
     Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
     Vec2 frag_coord;  // (x + 0.5, y + 0.5)
+    // The base surface's frame before normal mapping (equal to the shading frame on surfaces
+    // without normal detail) and the half vector expressed in it.
+    Vec3 geometric_normal;
+    Vec3 geometric_tangent;
+    Vec3 geometric_bitangent;
+    Vec3 geometric_half_ts;
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
@@ -155,6 +185,10 @@ struct QuadFields {
     ref::Quad<Vec3> bitangent;
     ref::Quad<Vec3> half_ts;
     ref::Quad<Vec2> frag_coord;
+    ref::Quad<Vec3> geometric_normal;
+    ref::Quad<Vec3> geometric_tangent;
+    ref::Quad<Vec3> geometric_bitangent;
+    ref::Quad<Vec3> geometric_half_ts;
     int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
 };
 
@@ -169,12 +203,16 @@ struct PixelShade {
 };
 
 // The 1-spp shading of pixel (x, y) with a variant (radiance 0 and roughness 0 on a miss).
+// feed: the normal the filter reads (ignored by none; engines always read engine_feed()).
+// The BRDF is always evaluated in the shading frame.
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params = {},
-                       ref::Derivative mode = ref::Derivative::coarse);
+                       ref::Derivative mode = ref::Derivative::coarse,
+                       NormalFeed feed = NormalFeed::shading);
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params = {},
-                     ref::Derivative mode = ref::Derivative::coarse, int threads = 0);
+                     ref::Derivative mode = ref::Derivative::coarse, int threads = 0,
+                     NormalFeed feed = NormalFeed::shading);
 
 }  // namespace saagen::render

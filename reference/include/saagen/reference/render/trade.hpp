@@ -46,6 +46,9 @@
 
 namespace saagen::render {
 
+// saagen's variants, the no-SAA baseline and the engines' shipped forms.
+std::vector<Variant> default_trade_variants();
+
 struct TradeConfig {
     int width = 256;
     int height = 256;
@@ -59,7 +62,11 @@ struct TradeConfig {
                                 SceneId::bump_plane};
     std::vector<double> alphas{0.01, 0.05, 0.1, 0.3};
     std::vector<bool> fresnel_modes{false, true};
-    std::vector<Variant> variants{all_variants().begin(), all_variants().end()};
+    std::vector<Variant> variants = default_trade_variants();
+    // The normals the normal-based variants are fed (engines always read their own). The
+    // geometric feed only adds rows on scenes with normal detail (normal maps, bump plane),
+    // where it differs from the shading feed.
+    std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
     ref::Params params{};
     ref::Derivative derivative = ref::Derivative::coarse;
     std::uint64_t seed = 0x5aa6e11ULL;
@@ -70,6 +77,7 @@ struct TradeConfig {
 
 struct TradeRow {
     Variant variant = Variant::none;
+    NormalFeed feed = NormalFeed::shading;
     SceneId scene = SceneId::sphere;
     double alpha = 0.0;
     bool fresnel = false;
@@ -79,6 +87,12 @@ struct TradeRow {
     double flicker = 0.0;
     double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
     double reference_temporal_stddev = 0.0;  // the same for the ground truth
+    // Display-referred flicker: the mean per-pixel temporal std of the tonemapped frames
+    // (tonemap(), image.hpp), of the variant and of the ground truth, and their ratio
+    // (1: flickers as much as the converged animation; > 1: aliasing; < 1: overblurred motion).
+    double temporal_stddev_display = 0.0;
+    double reference_temporal_stddev_display = 0.0;
+    double flicker_display = 0.0;            // temporal_stddev_display / reference's
     std::size_t non_finite = 0;              // NaN/inf pixels of the frame-0 image (excluded)
 };
 
@@ -88,7 +102,12 @@ struct ImageSet {
     Material material;
     Image reference;  // ground truth
     Image coverage;   // fraction of the ground-truth samples that hit the shape
-    std::vector<std::pair<Variant, Image>> variants;  // 1-spp images, config.variants order
+    struct Rendered {
+        Variant variant;
+        NormalFeed feed;
+        Image image;
+    };
+    std::vector<Rendered> variants;  // 1-spp images, in row order
 };
 
 struct TradeTable {
@@ -100,7 +119,8 @@ struct TradeTable {
     int cache_hits = 0;
     int cache_misses = 0;
 
-    const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel) const;
+    const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel,
+                         NormalFeed feed = NormalFeed::shading) const;
 };
 
 struct TradeProgress {
@@ -127,6 +147,15 @@ GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& s
 std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings,
                                    std::span<const Material> materials);
 std::string ground_truth_cache_file(const std::string& key);
+
+// The configuration a row measures: the variant id, with ":geometric" appended when a saagen
+// variant is fed the geometric normal ("deferred-avg", "deferred-avg:geometric", "engine-hdrp").
+std::string configuration_id(Variant variant, NormalFeed feed);
+std::string configuration_id(const TradeRow& row);
+
+// Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.
+// whether the geometric and the shading normal differ.
+bool scene_has_normal_detail(SceneId id);
 
 // Fixed-width text table and CSV of the rows.
 std::string format_trade_table(const TradeTable& table);
