@@ -74,8 +74,8 @@ double box(const render::Image& image, int x, int y, int scale) {
 
 // Column labels drawn into the sheet itself (so a PNG shared alone still says what it shows):
 // stb_easy_font builds each glyph from axis-aligned quads, filled here at integer pixels. A
-// label wraps at its '-' and ':' separators to fit the tile; kLabelLines lines at most.
-constexpr int kLabelLineHeight = 11, kLabelLines = 3;
+// label wraps after its '-', ':' and ' ' separators to fit the tile; kLabelLines lines at most.
+constexpr int kLabelLineHeight = 11, kLabelLines = 4;
 
 std::vector<std::string> wrap_label(const std::string& label, int max_width) {
   std::vector<std::string> lines{""};
@@ -88,7 +88,7 @@ std::vector<std::string> wrap_label(const std::string& label, int max_width) {
   };
   for (char c : label) {
     token += c;
-    if (c == '-' || c == ':') flush();
+    if (c == '-' || c == ':' || c == ' ') flush();
   }
   flush();
   return lines;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/parallel.hpp"
 
 namespace saagen::render {
@@ -304,6 +305,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         const GBuffer gbuffer = render_gbuffer(scene, config.width, config.height, config.threads);
         const std::size_t first_row = table.rows.size();
         for (std::size_t m = 0; m < n_materials; ++m) {
+            const Image reference_display = tonemapped(gt.images[m]);
             ImageSet set;
             if (config.keep_images) {
                 set.scene = id;
@@ -324,6 +326,10 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 row.rmse_tonemapped = e.rmse_tonemapped;
                 row.max_error = e.max_error;
                 row.non_finite = e.non_finite;
+                if (config.flip) {
+                    row.flip_ldr = ldr_flip_mean_grey(reference_display, tonemapped(image));
+                    row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
+                }
                 table.rows.push_back(row);
                 if (config.keep_images)
                     set.variants.push_back({key.variant, key.feed, std::move(image)});
@@ -390,16 +396,16 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
 std::string format_trade_table(const TradeTable& table) {
     std::ostringstream s;
     char line[256];
-    std::snprintf(line, sizeof line, "%-16s %6s %3s %-36s %12s %10s %12s %10s %10s\n", "scene",
-                  "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error", "flicker",
-                  "flicker_tm");
+    std::snprintf(line, sizeof line, "%-16s %6s %3s %-36s %12s %10s %12s %8s %8s %10s %10s\n",
+                  "scene", "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error",
+                  "ldr_flip", "hdr_flip", "flicker", "flicker_tm");
     s << line;
     for (const TradeRow& r : table.rows) {
         std::snprintf(line, sizeof line,
-                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %10.5f %10.4f%s\n",
+                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %8.5f %8.5f %10.5f %10.4f%s\n",
                       std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no",
                       configuration_id(r).c_str(), r.rmse_linear, r.rmse_tonemapped, r.max_error,
-                      r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
+                      r.flip_ldr, r.flip_hdr, r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
         s << line;
     }
     return s.str();
@@ -408,13 +414,14 @@ std::string format_trade_table(const TradeTable& table) {
 std::string trade_table_csv(const TradeTable& table) {
     std::ostringstream s;
     s.precision(9);
-    s << "scene,alpha,fresnel,variant,feed,rmse_linear,rmse_tonemapped,max_error,flicker,"
+    s << "scene,alpha,fresnel,variant,feed,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,flicker,"
          "temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
          "reference_temporal_stddev_display,non_finite\n";
     for (const TradeRow& r : table.rows)
         s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
           << variant_id(r.variant) << "," << feed_name(r.feed) << "," << r.rmse_linear << ","
-          << r.rmse_tonemapped << "," << r.max_error << "," << r.flicker << ","
+          << r.rmse_tonemapped << "," << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << ","
+          << r.flicker << ","
           << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display
           << "," << r.temporal_stddev_display << "," << r.reference_temporal_stddev_display << ","
           << r.non_finite << "\n";

@@ -5,11 +5,15 @@
 //   rmse_linear      RMSE of linear specular radiance over all pixels;
 //   rmse_tonemapped  RMSE after Reinhard's x / (1 + x) on both images (image.hpp);
 //   max_error        the largest absolute linear error of a pixel;
+//   flip_ldr         mean LDR-FLIP (Andersson et al. 2020) of the tonemapped images;
+//   flip_hdr         mean HDR-FLIP (Andersson et al. 2021) of the linear images;
 //   flicker          the scene rotates about the vertical axis through its pivot by
 //                    rotation_degrees_per_frame per frame for `frames` frames (frame k at k
 //                    times the step, frame 0 unrotated); per pixel, the temporal standard
 //                    deviation of the variant's 1-spp frames minus that of the ground-truth
-//                    frames, averaged over the pixels (image.hpp, flicker()).
+//                    frames, averaged over the pixels (image.hpp, flicker());
+//   flicker_display  the same animation in display values: the mean per-pixel temporal std of
+//                    the tonemapped 1-spp frames divided by that of the tonemapped ground truth.
 //
 // Flicker ground truth. 32 converged frames at the full resolution and 1024 spp would cost 32
 // times the main ground truth, so the animation is rendered at flicker_width x flicker_height
@@ -73,6 +77,7 @@ struct TradeConfig {
     int threads = 0;        // 0: hardware concurrency
     std::string cache_dir;  // empty: no ground-truth cache
     bool keep_images = false;  // fill TradeTable::images
+    bool flip = true;          // compute the FLIP metrics (flip.hpp; ~80 ms per row at 256^2)
 };
 
 struct TradeRow {
@@ -84,6 +89,10 @@ struct TradeRow {
     double rmse_linear = 0.0;
     double rmse_tonemapped = 0.0;
     double max_error = 0.0;
+    // FLIP (flip.hpp): LDR-FLIP of the tonemapped images (tonemap(), then the sRGB encoding FLIP
+    // expects) and HDR-FLIP of the linear images; means of the per-pixel error maps.
+    double flip_ldr = 0.0;
+    double flip_hdr = 0.0;
     double flicker = 0.0;
     double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
     double reference_temporal_stddev = 0.0;  // the same for the ground truth

@@ -1,0 +1,98 @@
+// What the trade table says: per content type and render path, the configuration that wins on
+// the display-referred metrics; per engine, the best saagen configuration at equal or lower cost;
+// per scene, whether the recommendation beats no SAA and every engine's shipped form. The advice
+// of `saagen bench`, `saagen report` and the planner comes from here.
+//
+// Display-referred criteria (what a viewer sees):
+//   image    mean LDR-FLIP of the tonemapped frame-0 images (ties: tonemapped RMSE);
+//   motion   flicker error |flicker_display - 1|: how far the tonemapped temporal variation is
+//            from the converged animation's (0: as the ground truth; a variant that aliases
+//            is above 1, one that blurs the moving highlight away is below 1).
+// A configuration "beats" another on a metric when its value is lower (flicker: its flicker
+// error is lower).
+#pragma once
+
+#include "saagen/report/report.hpp"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen::report {
+
+enum class Content { curved, normal_mapped };
+std::string_view content_name(Content content);  // "curved", "normal-mapped"
+// Scenes with normal detail (normal maps, bump shading) are normal-mapped content.
+Content content_of(render::SceneId scene);
+
+// Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).
+struct Metrics {
+  double rmse_linear = 0.0;
+  double rmse_tonemapped = 0.0;
+  double max_error = 0.0;  // the largest
+  double flip_ldr = 0.0;
+  double flip_hdr = 0.0;
+  double flicker = 0.0;
+  double flicker_display = 0.0;
+  std::size_t cases = 0;
+};
+double flicker_error(const Metrics& m);
+
+using RowFilter = std::function<bool(const render::TradeRow&)>;
+// Means of one configuration (render::configuration_id) over the non-Fresnel rows `keep` accepts.
+Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep);
+// The configurations of a table in row order.
+std::vector<std::string> configurations(const render::TradeTable& table);
+
+enum class Path { forward, deferred };
+std::string_view path_name(Path path);
+// Whether a configuration belongs to a path: forward-* and deferred-* by name; none and the
+// engines to both.
+bool serves(const std::string& configuration, Path path);
+bool is_engine_configuration(const std::string& configuration);
+
+// The cost of a configuration, lavapipe time ratio (time) or optimized SPIR-V delta; nullopt when
+// the cost table does not have it. The feed changes inputs, not code; engines cost what
+// deferred-sum costs (see findings.cpp).
+std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time);
+// Whether a's cost is at most b's (time ratio when both have one, else the SPIR-V delta; true
+// when neither is known, and the caller says so).
+bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
+
+struct Recommendation {
+  Path path = Path::deferred;
+  Content content = Content::curved;
+  std::string configuration;
+  Metrics metrics;
+};
+// Per path and content type present in the table: the saagen configuration with the lowest mean
+// LDR-FLIP over that content's scenes.
+std::vector<Recommendation> recommend(const render::TradeTable& table);
+const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
+
+struct EngineSwitch {
+  std::string engine;
+  Content content = Content::curved;
+  std::string configuration;  // the best saagen configuration at equal or lower cost; empty: none
+  Metrics engine_metrics;
+  Metrics saagen_metrics;
+};
+// Per engine and content type: the saagen configuration (either path) with the lowest mean
+// LDR-FLIP among those whose cost is at most the engine's.
+std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
+
+struct SceneVerdict {
+  render::SceneId scene = render::SceneId::sphere;
+  Path path = Path::deferred;
+  std::string configuration;                                  // the recommendation for its content
+  Metrics recommended;                                        // over the scene's alphas
+  std::vector<std::pair<std::string, Metrics>> baselines;     // none and every engine
+  std::vector<std::string> losses;  // "engine-filament: LDR-FLIP 0.0312 > 0.0305", one per lost metric
+};
+// Per scene and path: the recommendation against no SAA and every engine, on tonemapped RMSE,
+// LDR-FLIP, HDR-FLIP and flicker error.
+std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+
+}  // namespace saagen::report

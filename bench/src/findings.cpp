@@ -1,0 +1,182 @@
+#include "saagen/report/findings.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace saagen::report {
+
+namespace {
+
+bool starts_with(const std::string& text, std::string_view prefix) { return text.rfind(prefix, 0) == 0; }
+
+bool is_saagen_configuration(const std::string& configuration) {
+  return configuration != "none" && !is_engine_configuration(configuration);
+}
+
+// Image criterion: LDR-FLIP, then tonemapped RMSE.
+bool better_image(const Metrics& a, const Metrics& b) {
+  if (a.flip_ldr != b.flip_ldr) return a.flip_ldr < b.flip_ldr;
+  return a.rmse_tonemapped < b.rmse_tonemapped;
+}
+
+RowFilter content_filter(Content content) {
+  return [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+}
+
+std::vector<Content> contents_of(const render::TradeTable& table) {
+  std::vector<Content> contents;
+  for (render::SceneId scene : table.config.scenes)
+    if (std::find(contents.begin(), contents.end(), content_of(scene)) == contents.end()) contents.push_back(content_of(scene));
+  return contents;
+}
+
+// The configurations measured on every scene of a content type (the geometric feed exists only
+// where the scene has normal detail).
+std::vector<std::string> configurations_of(const render::TradeTable& table, Content content) {
+  std::vector<std::string> ids;
+  for (const std::string& id : configurations(table))
+    if (mean_metrics(table, id, content_filter(content)).cases > 0) ids.push_back(id);
+  return ids;
+}
+
+}  // namespace
+
+std::string_view content_name(Content content) { return content == Content::curved ? "curved" : "normal-mapped"; }
+
+Content content_of(render::SceneId scene) {
+  return render::scene_has_normal_detail(scene) ? Content::normal_mapped : Content::curved;
+}
+
+double flicker_error(const Metrics& m) { return std::fabs(m.flicker_display - 1.0); }
+
+Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
+  Metrics m;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel || render::configuration_id(row) != configuration || !keep(row)) continue;
+    m.rmse_linear += row.rmse_linear;
+    m.rmse_tonemapped += row.rmse_tonemapped;
+    m.max_error = std::max(m.max_error, row.max_error);
+    m.flip_ldr += row.flip_ldr;
+    m.flip_hdr += row.flip_hdr;
+    m.flicker += row.flicker;
+    m.flicker_display += row.flicker_display;
+    ++m.cases;
+  }
+  if (m.cases) {
+    const double n = static_cast<double>(m.cases);
+    m.rmse_linear /= n, m.rmse_tonemapped /= n, m.flip_ldr /= n, m.flip_hdr /= n, m.flicker /= n, m.flicker_display /= n;
+  }
+  return m;
+}
+
+std::vector<std::string> configurations(const render::TradeTable& table) {
+  std::vector<std::string> ids;
+  for (const render::TradeRow& row : table.rows) {
+    const std::string id = render::configuration_id(row);
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  }
+  return ids;
+}
+
+std::string_view path_name(Path path) { return path == Path::forward ? "forward" : "deferred"; }
+
+bool is_engine_configuration(const std::string& configuration) { return starts_with(configuration, "engine-"); }
+
+bool serves(const std::string& configuration, Path path) {
+  if (configuration == "none" || is_engine_configuration(configuration)) return true;
+  return starts_with(configuration, path == Path::forward ? "forward-" : "deferred-");
+}
+
+// Engines' forms cost what deferred-sum costs: the same operations (two normal derivatives, their
+// squared lengths, a min and an add; the pow-based forms of Unreal and Babylon.js add one
+// transcendental). bench_shading measures deferred-sum.
+std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time) {
+  const std::string variant =
+      is_engine_configuration(configuration) ? std::string("deferred-sum") : configuration.substr(0, configuration.find(':'));
+  if (variant == "none") return time ? 1.0 : 0.0;
+  if (!costs) return std::nullopt;
+  const VariantCost* cost = costs->find(variant);
+  if (!cost) return std::nullopt;
+  return time ? cost->time_ratio : cost->delta_instructions;
+}
+
+bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b) {
+  for (bool time : {true, false}) {
+    const auto ca = configuration_cost(costs, a, time), cb = configuration_cost(costs, b, time);
+    if (ca && cb) return *ca <= *cb;
+  }
+  return true;
+}
+
+std::vector<Recommendation> recommend(const render::TradeTable& table) {
+  std::vector<Recommendation> recs;
+  for (Content content : contents_of(table)) {
+    for (Path path : {Path::forward, Path::deferred}) {
+      std::optional<Recommendation> best;
+      for (const std::string& id : configurations_of(table, content)) {
+        if (!is_saagen_configuration(id) || !serves(id, path)) continue;
+        const Metrics m = mean_metrics(table, id, content_filter(content));
+        if (!best || better_image(m, best->metrics)) best = Recommendation{path, content, id, m};
+      }
+      if (best) recs.push_back(*best);
+    }
+  }
+  return recs;
+}
+
+const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content) {
+  for (const Recommendation& rec : recs)
+    if (rec.path == path && rec.content == content) return &rec;
+  return nullptr;
+}
+
+std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs) {
+  std::vector<EngineSwitch> switches;
+  for (Content content : contents_of(table)) {
+    const std::vector<std::string> ids = configurations_of(table, content);
+    for (const std::string& engine : ids) {
+      if (!is_engine_configuration(engine)) continue;
+      EngineSwitch entry{engine, content, "", mean_metrics(table, engine, content_filter(content)), {}};
+      for (const std::string& id : ids) {
+        if (!is_saagen_configuration(id) || !costs_at_most(costs, id, engine)) continue;
+        const Metrics m = mean_metrics(table, id, content_filter(content));
+        if (entry.configuration.empty() || better_image(m, entry.saagen_metrics)) entry.configuration = id, entry.saagen_metrics = m;
+      }
+      switches.push_back(entry);
+    }
+  }
+  return switches;
+}
+
+std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+  std::vector<SceneVerdict> verdicts;
+  for (render::SceneId scene : table.config.scenes) {
+    const RowFilter on_scene = [scene](const render::TradeRow& row) { return row.scene == scene; };
+    for (Path path : {Path::forward, Path::deferred}) {
+      const Recommendation* rec = find_recommendation(recs, path, content_of(scene));
+      if (!rec) continue;
+      SceneVerdict verdict{scene, path, rec->configuration, mean_metrics(table, rec->configuration, on_scene), {}, {}};
+      for (const std::string& id : configurations(table)) {
+        if (id != "none" && !is_engine_configuration(id)) continue;
+        const Metrics base = mean_metrics(table, id, on_scene);
+        if (!base.cases) continue;
+        verdict.baselines.emplace_back(id, base);
+        const Metrics& r = verdict.recommended;
+        const auto lose = [&](const char* metric, double ours, double theirs) {
+          if (ours > theirs) verdict.losses.push_back(fmt::format("{}: {} {:.4g} > {:.4g}", id, metric, ours, theirs));
+        };
+        lose("tonemapped RMSE", r.rmse_tonemapped, base.rmse_tonemapped);
+        lose("LDR-FLIP", r.flip_ldr, base.flip_ldr);
+        lose("HDR-FLIP", r.flip_hdr, base.flip_hdr);
+        lose("flicker error", flicker_error(r), flicker_error(base));
+      }
+      verdicts.push_back(std::move(verdict));
+    }
+  }
+  return verdicts;
+}
+
+}  // namespace saagen::report
