@@ -50,7 +50,9 @@ PeriodicHeightField PeriodicHeightField::random(std::uint64_t seed, int count, d
     Rng rng(seed);
     PeriodicHeightField field;
     while (static_cast<int>(field.waves.size()) < count) {
-        const double angle = 2.0 * kPi * rng.next_double();
+        // Stratified directions: wave k's angle uniform in [k, k + 1) pi / count (a wave and its
+        // opposite are the same up to phase, so half a turn covers every direction).
+        const double angle = kPi * (static_cast<double>(field.waves.size()) + rng.next_double()) / count;
         const double c = cycles * (0.85 + 0.3 * rng.next_double());
         PeriodicWave w;
         w.m = static_cast<int>(std::lround(c * std::cos(angle)));

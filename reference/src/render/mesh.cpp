@@ -17,6 +17,7 @@ using ref::normalize;
 namespace {
 
 constexpr int kLeafSize = 4;
+constexpr int kMaxDepth = 60;  // the traversal stack holds at most depth + 1 entries
 
 Vec3 component_min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 Vec3 component_max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
@@ -36,21 +37,35 @@ void hash_vec(std::uint64_t& h, Vec3 v) {
     hash_bytes(h, c, sizeof c);
 }
 
-// Slab test (Kay & Kajiya 1986): the entry distance of the ray into the box when it overlaps
-// (t_min, t_max), +inf otherwise. inv: 1 / direction per axis.
-double box_entry(const Vec3& lo, const Vec3& hi, const Vec3& origin, const Vec3& inv,
-                 double t_min, double t_max) {
+// A ray prepared for slab tests: origin, 1 / direction, and per axis the offset (0 or 3) of
+// the box plane it enters through (the low plane for a positive direction).
+struct SlabRay {
+    double origin[3];
+    double inv[3];
+    int near[3];
+    explicit SlabRay(const Ray& ray) {
+        const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+        const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+        for (int a = 0; a < 3; ++a) {
+            origin[a] = o[a];
+            inv[a] = 1.0 / d[a];
+            near[a] = inv[a] < 0.0 ? 3 : 0;
+        }
+    }
+};
+
+// Slab test (Kay & Kajiya 1986) of a box stored as (lo.x, lo.y, lo.z, hi.x, hi.y, hi.z): the
+// entry distance of the ray into the box when it overlaps (t_min, t_max), +inf otherwise. A NaN
+// (0 * inf, an origin on a slab of a parallel ray) leaves the interval unchanged.
+double box_entry(const double* box, const SlabRay& r, double t_min, double t_max) {
     double t0 = t_min, t1 = t_max;
     for (int a = 0; a < 3; ++a) {
-        const double o = axis_value(origin, a), i = axis_value(inv, a);
-        double near = (axis_value(lo, a) - o) * i, far = (axis_value(hi, a) - o) * i;
-        if (near > far) std::swap(near, far);
-        // NaN (0 * inf for an origin on a slab of a parallel ray) keeps the interval unchanged.
+        const double near = (box[r.near[a] + a] - r.origin[a]) * r.inv[a];
+        const double far = (box[3 - r.near[a] + a] - r.origin[a]) * r.inv[a];
         if (near > t0) t0 = near;
         if (far < t1) t1 = far;
-        if (t0 > t1) return HUGE_VAL;
     }
-    return t0;
+    return t0 <= t1 ? t0 : HUGE_VAL;
 }
 
 }  // namespace
@@ -79,8 +94,17 @@ TriangleMesh::TriangleMesh(std::string label, std::vector<MeshVertex> vertices,
     }
     order_.resize(triangles_.size());
     for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
+    edges_.resize(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+        const Vec3 p0 = vertices_[triangles_[i][0]].position;
+        edges_[i] = {p0, vertices_[triangles_[i][1]].position - p0,
+                     vertices_[triangles_[i][2]].position - p0};
+    }
     nodes_.reserve(2 * triangles_.size() / kLeafSize + 1);
     if (!triangles_.empty()) build(0, static_cast<int>(triangles_.size()), 1, centroids);
+    if (depth_ >= kMaxDepth) throw std::invalid_argument("TriangleMesh: BVH too deep");
+    leaf_edges_.resize(order_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i) leaf_edges_[i] = edges_[order_[i]];
 }
 
 TriangleMesh::Box TriangleMesh::triangle_box(int index) const {
@@ -106,7 +130,8 @@ int TriangleMesh::build(int begin, int end, int depth, std::vector<Vec3>& centro
         centroid_box.lo = component_min(centroid_box.lo, centroids[order_[i]]);
         centroid_box.hi = component_max(centroid_box.hi, centroids[order_[i]]);
     }
-    nodes_[index].box = box;
+    const double bounds[6] = {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z};
+    std::copy(bounds, bounds + 6, nodes_[index].box);
     if (end - begin <= kLeafSize) {
         nodes_[index].first = begin;
         nodes_[index].count = end - begin;
@@ -130,13 +155,16 @@ int TriangleMesh::build(int begin, int end, int depth, std::vector<Vec3>& centro
 
 bool TriangleMesh::hit_triangle(int index, const Ray& ray, double t_min, double t_max, double& t,
                                 double& b1, double& b2) const {
-    const auto& tri = triangles_[index];
-    const Vec3 p0 = vertices_[tri[0]].position;
+    const Edges& g = edges_[index];
+    return hit_edges(g, ray, t_min, t_max, t, b1, b2);
+}
+
+bool TriangleMesh::hit_edges(const Edges& g, const Ray& ray, double t_min, double t_max,
+                             double& t, double& b1, double& b2) {
     // Moller-Trumbore: solve o + t d = (1 - b1 - b2) p0 + b1 p1 + b2 p2 by Cramer's rule with
     // e1 = p1 - p0, e2 = p2 - p0, s = o - p0: det = e1 . (d x e2), b1 = s . (d x e2) / det,
     // b2 = d . (s x e1) / det, t = e2 . (s x e1) / det.
-    const Vec3 e1 = vertices_[tri[1]].position - p0;
-    const Vec3 e2 = vertices_[tri[2]].position - p0;
+    const Vec3 p0 = g.p0, e1 = g.e1, e2 = g.e2;
     const Vec3 pvec = cross(ray.direction, e2);
     const double det = dot(e1, pvec);
     if (det == 0.0) return false;
@@ -184,7 +212,7 @@ void TriangleMesh::fill_hit(int index, const Ray& ray, double t, double b1, doub
 
 bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
     if (nodes_.empty()) return false;
-    const Vec3 inv{1.0 / ray.direction.x, 1.0 / ray.direction.y, 1.0 / ray.direction.z};
+    const SlabRay slab(ray);
     double best = HUGE_VAL, best_b1 = 0.0, best_b2 = 0.0;
     int best_index = -1;
     // Nodes whose box starts at or before the best hit may still hold an equal-distance hit
@@ -193,9 +221,9 @@ bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) cons
         int node;
         double t;  // where the ray enters the node's box
     };
-    Entry stack[64];
+    Entry stack[kMaxDepth + 4];
     int top = 0;
-    const double t_root = box_entry(nodes_[0].box.lo, nodes_[0].box.hi, ray.origin, inv, t_min, HUGE_VAL);
+    const double t_root = box_entry(nodes_[0].box, slab, t_min, HUGE_VAL);
     if (t_root == HUGE_VAL) return false;
     stack[top++] = {0, t_root};
     while (top > 0) {
@@ -206,7 +234,8 @@ bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) cons
             for (int i = node.first; i < node.first + node.count; ++i) {
                 const int index = order_[i];
                 double t, b1, b2;
-                if (!hit_triangle(index, ray, t_min, std::nextafter(best, HUGE_VAL), t, b1, b2)) continue;
+                if (!hit_edges(leaf_edges_[i], ray, t_min, std::nextafter(best, HUGE_VAL), t, b1, b2))
+                    continue;
                 if (t < best || index < best_index) {
                     best = t;
                     best_b1 = b1;
@@ -217,8 +246,8 @@ bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) cons
             continue;
         }
         const int left = entry.node + 1, right = node.first;
-        const double t_left = box_entry(nodes_[left].box.lo, nodes_[left].box.hi, ray.origin, inv, t_min, best);
-        const double t_right = box_entry(nodes_[right].box.lo, nodes_[right].box.hi, ray.origin, inv, t_min, best);
+        const double t_left = box_entry(nodes_[left].box, slab, t_min, best);
+        const double t_right = box_entry(nodes_[right].box, slab, t_min, best);
         // Push the farther child first so that the nearer one is visited next.
         const bool left_first = t_left <= t_right;
         const int near = left_first ? left : right, far = left_first ? right : left;

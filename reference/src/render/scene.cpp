@@ -444,6 +444,19 @@ void set_texture_frame(SurfaceHit& hit) {
     hit.geometric_tangent = normalize(hit.dpdu - dot(hit.dpdu, n) * n);
     hit.geometric_bitangent = cross(n, hit.geometric_tangent);
 }
+
+// NormalMap::bilinear(0, uv).normal without the other moments (the same arithmetic in the same
+// order, so the same bits): Vulkan's bilinear weights from uv * size - 0.5, repeat addressing.
+Vec3 bilinear_level0_normal(const NormalMap& map, Vec2 uv) {
+    const double fx = uv.x * map.width(0) - 0.5, fy = uv.y * map.height(0) - 0.5;
+    const double x0 = std::floor(fx), y0 = std::floor(fy);
+    const double ax = fx - x0, ay = fy - y0;
+    const int ix = static_cast<int>(x0), iy = static_cast<int>(y0);
+    return ((1.0 - ax) * (1.0 - ay)) * map.texel(0, ix, iy).normal +
+           (ax * (1.0 - ay)) * map.texel(0, ix + 1, iy).normal +
+           ((1.0 - ax) * ay) * map.texel(0, ix, iy + 1).normal +
+           (ax * ay) * map.texel(0, ix + 1, iy + 1).normal;
+}
 }  // namespace
 
 std::string_view scene_name(SceneId id) {
@@ -528,7 +541,7 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (!intersect_surface(ray, hit)) return false;
-    if (normal_map_) apply_normal_map(hit, normal_map_->bilinear(0, hit.uv).normal);
+    if (normal_map_) apply_normal_map(hit, bilinear_level0_normal(*normal_map_, hit.uv));
     return true;
 }
 
@@ -637,12 +650,15 @@ Scene make_scene(SceneId id, double rotation_radians) {
         case SceneId::torus_knot: {
             // The knot lies in the object xy plane (core circle radius 1, extent ~1.65); tilted
             // 25 degrees about x so that the strands overlap in depth, rolled 10 degrees.
-            const Rigid placement = compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(10.0)),
-                                            Rigid::rotation({1.0, 0.0, 0.0}, radians(-25.0)));
+            // Shifted by (-0.08, 0.19) to centre its image; the pivot is the shifted centre.
+            const Vec3 centre{-0.08, 0.19, 0.0};
+            const Rigid placement = compose(Rigid::translate(centre),
+                                            compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(10.0)),
+                                                    Rigid::rotation({1.0, 0.0, 0.0}, radians(-25.0))));
             Camera camera{{0.0, 0.0, 5.5}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 38.0};
             Light light{Light::Kind::directional, normalize(Vec3{-0.4, 0.6, 1.0}), 1.0};
-            return Scene("torus-knot", content_torus_knot_mesh(), placement, camera, light,
-                         {0.0, 0.0, 0.0}, rotation_radians);
+            return Scene("torus-knot", content_torus_knot_mesh(), placement, camera, light, centre,
+                         rotation_radians);
         }
     }
     throw std::invalid_argument("unknown scene id");

@@ -37,7 +37,8 @@ struct PeriodicHeightField {
     // Every number of the field (cache keys).
     std::string describe() const;
 
-    // `count` waves with uniformly random directions and phases from a fixed seed (SplitMix64,
+    // `count` waves with stratified random directions (wave k's angle uniform in
+    // [k, k + 1) pi / count) and uniformly random phases from a fixed seed (SplitMix64,
     // sampling.hpp), cycles in cycles * [0.85, 1.15] (rounded to the integer lattice, distinct),
     // and equal slope amplitudes total_slope / count, so that slope_bound() == total_slope.
     static PeriodicHeightField random(std::uint64_t seed, int count, double cycles,

@@ -61,18 +61,25 @@ private:
         Vec3 lo{1e300, 1e300, 1e300};
         Vec3 hi{-1e300, -1e300, -1e300};
     };
+    struct Edges {  // Moller-Trumbore's p0, e1 = p1 - p0, e2 = p2 - p0
+        Vec3 p0, e1, e2;
+    };
     struct Node {
-        Box box;
+        double box[6];  // lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
         int first = 0;  // leaf: first entry of order_; interior: index of the right child
         int count = 0;  // leaf: number of triangles; 0 for an interior node (left child = this + 1)
     };
     int build(int begin, int end, int depth, std::vector<Vec3>& centroids);
     Box triangle_box(int index) const;
+    static bool hit_edges(const Edges& g, const Ray& ray, double t_min, double t_max, double& t,
+                          double& b1, double& b2);
 
     std::string label_;
     std::vector<MeshVertex> vertices_;
     std::vector<std::array<int, 3>> triangles_;
-    std::vector<int> order_;  // triangle indices in BVH leaf order
+    std::vector<Edges> edges_;       // per triangle
+    std::vector<int> order_;         // triangle indices in BVH leaf order
+    std::vector<Edges> leaf_edges_;  // edges_ in leaf order
     std::vector<Node> nodes_;
     int depth_ = 0;
     std::uint64_t hash_ = 0;
