@@ -30,6 +30,31 @@
 //               centre at 256 px, fewer towards the back): analytic normal normalize(-dh/dx,
 //               -dh/dy, 1) in the plane's frame; light near the mirror direction of the view, so
 //               the glint patch is centred.
+//
+// The "real content" scenes (content_scenes; not in all_scenes, the trade's default list):
+//   nmap-sphere       the sphere scene (same sphere, camera, light, pivot) shaded with a
+//                     512 x 512 tangent-space normal map repeated (2, 1) times over the sphere's
+//                     (longitude, latitude) uv, so texels are square at the equator (pi / 512
+//                     long). The map: normals_from_gradient of a periodic height field of 8
+//                     sinusoids (content_height_field: fixed seed, stratified directions, 106 -
+//                     125 periods per tile = 4.1 - 4.8 texels per period, slope bound tan 30
+//                     degrees; largest tilt of a level-0 normal 20.3 degrees). Measured at the
+//                     base 256 x 256 view: LOD 0.224 at the image centre (0.224 - 0.253 over the
+//                     central 32 x 32 pixels), i.e. ~1.17 texels per pixel, and sinusoid periods
+//                     of 3.5 - 4.1 px there ("features of ~4 px", magnified to ~1:1). The
+//                     highlight sits on the upper left of the front; the uv seam (-z) and the
+//                     poles (+-y, z = 0 < 1/4) are behind the silhouette.
+//   nmap-sphere-fine  the same with tiling (16, 8): LOD 3.224 at the centre (3.224 - 3.253 over
+//                     the central 32 x 32), 9.3 texels per pixel, periods of 0.44 - 0.52 px
+//                     (features below a pixel, strongly minified).
+//   torus-knot        a (2, 3) torus-knot tube (mesh.hpp: core radius R = 1, offset a = 0.45,
+//                     tube radius 0.2) as a TRIANGLE MESH of 512 x 24 segments (24576
+//                     triangles, BVH) with the analytic tube normals and curve tangents at the
+//                     vertices, interpolated barycentrically (so the geometric normal is the
+//                     interpolated vertex normal, not the face normal); no normal map. Tilted
+//                     25 degrees about x, rolled 10 degrees and centred: it spans ~83 % of the
+//                     frame (35 % coverage); a directional light from the upper left near the
+//                     camera draws a highlight band along every strand.
 #pragma once
 
 #include <memory>
