@@ -146,8 +146,9 @@ struct PixelFields {
     Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
     Vec2 frag_coord;  // (x + 0.5, y + 0.5)
 
-    // The base surface before the normal map (SurfaceHit's geometric frame) and the texture.
-    // Equal to the shading frame above, and uv derivatives, lod and texel zero, without a map.
+    // The base surface before the normal map (SurfaceHit's geometric frame: the shading frame
+    // above except in normal-mapped scenes and on the bump plane) and the texture (uv
+    // derivatives, lod and texel stay zero in a scene without a map).
     bool has_normal_map = false;
     Vec3 geometric_normal;
     Vec3 geometric_tangent;
