@@ -196,12 +196,62 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
 // ---------------------------------------------------------------------------------------------
 // 1-spp fields
 
+Vec2 tangent_plane_uv(const SurfaceHit& shaded, const Ray& ray) {
+    const Vec3 plane_normal = ref::cross(shaded.dpdu, shaded.dpdv);
+    const double denominator = dot(ray.direction, plane_normal);
+    if (denominator == 0.0) return shaded.uv;
+    // o + t d on the plane: (o + t d - p) . m = 0.
+    const double t = dot(shaded.position - ray.origin, plane_normal) / denominator;
+    if (!(t > 0.0)) return shaded.uv;
+    const Vec3 offset = ray.origin + t * ray.direction - shaded.position;
+    // Normal equations of offset = a dpdu + b dpdv: G (a, b) = (offset . dpdu, offset . dpdv).
+    const double g_uu = dot(shaded.dpdu, shaded.dpdu), g_uv = dot(shaded.dpdu, shaded.dpdv),
+                 g_vv = dot(shaded.dpdv, shaded.dpdv);
+    const double det = g_uu * g_vv - g_uv * g_uv;
+    if (!(det > 0.0)) return shaded.uv;
+    const double r_u = dot(offset, shaded.dpdu), r_v = dot(offset, shaded.dpdv);
+    return shaded.uv + Vec2{(g_vv * r_u - g_uv * r_v) / det, (g_uu * r_v - g_uv * r_u) / det};
+}
+
+Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py,
+                     int width, int height) {
+    const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
+    const bool inside = px >= 0 && py >= 0 && px < width && py < height;
+    SurfaceHit partner;
+    if (inside && scene.intersect_surface(ray, partner) && partner.object == object)
+        return partner.uv;
+    return tangent_plane_uv(shaded, ray);
+}
+
+UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y,
+                                    int width, int height) {
+    const int x0 = x & ~1, y0 = y & ~1;
+    // Quad pixels 0 = (x0, y0), 1 = (x0 + 1, y0), 2 = (x0, y0 + 1); the shaded pixel uses its
+    // own hit.
+    auto uv_at = [&](int px, int py) {
+        if (px == x && py == y) return shaded.uv;
+        return quad_partner_uv(scene, shaded, shaded.object, px, py, width, height);
+    };
+    const Vec2 uv0 = uv_at(x0, y0);
+    return {uv_at(x0 + 1, y0) - uv0, uv_at(x0, y0 + 1) - uv0};
+}
+
 PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height) {
     PixelFields f;
     f.frag_coord = {x + 0.5, y + 0.5};
     const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
     SurfaceHit hit;
-    if (!scene.intersect(ray, hit)) return f;
+    if (!scene.intersect_surface(ray, hit)) return f;
+    if (const NormalMap* map = scene.normal_map()) {
+        // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+        const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
+        f.has_normal_map = true;
+        f.duv_dx = d.ddx;
+        f.duv_dy = d.ddy;
+        f.lod = map->lod(d.ddx, d.ddy);
+        f.texel = map->trilinear(hit.uv, f.lod);
+        Scene::apply_normal_map(hit, normalize(f.texel.normal));
+    }
     const LocalShading s = local_shading(scene, ray, hit);
     f.hit = true;
     f.object = hit.object;
@@ -214,13 +264,14 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
     f.irradiance = s.irradiance;
     f.light_ts = s.light_ts;
     f.view_ts = s.view_ts;
-    const Vec3 half = normalize(s.to_view + s.to_light);
-    f.half_ts = to_tangent_space(half, hit.tangent, hit.bitangent, hit.normal);
-    f.geometric_normal = hit.normal;
-    f.geometric_tangent = hit.tangent;
-    f.geometric_bitangent = hit.bitangent;
-    f.geometric_half_ts = to_tangent_space(half, f.geometric_tangent, f.geometric_bitangent,
-                                           f.geometric_normal);
+    f.half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent,
+                                 hit.normal);
+    f.geometric_normal = hit.geometric_normal;
+    f.geometric_tangent = hit.geometric_tangent;
+    f.geometric_bitangent = hit.geometric_bitangent;
+    f.geometric_half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent,
+                                           hit.geometric_bitangent, hit.geometric_normal);
+    f.uv = hit.uv;
     return f;
 }
 

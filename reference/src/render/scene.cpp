@@ -1,6 +1,9 @@
 // Analytic scenes of the ground-truth renderer (see scene.hpp).
 #include "saagen/reference/render/scene.hpp"
 
+#include "saagen/reference/render/height_field.hpp"
+#include "saagen/reference/render/mesh.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -83,6 +86,19 @@ double bracketed_root(F&& f, DF&& df, double a, double b, double fa) {
     return x;
 }
 
+// The geometric frame equal to the shading frame (shapes without a separate base surface).
+void copy_shading_frame_to_geometric(SurfaceHit& hit) {
+    hit.geometric_normal = hit.normal;
+    hit.geometric_tangent = hit.tangent;
+    hit.geometric_bitangent = hit.bitangent;
+}
+
+// An angle in (-pi, pi] as a fraction of a turn in [0, 1).
+double turn_fraction(double angle) {
+    const double f = angle / (2.0 * kPi);
+    return f < 0.0 ? f + 1.0 : f;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -150,7 +166,20 @@ bool Sphere::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
     hit.tangent = stereographic_tangent(hit.normal);
     hit.bitangent = cross(hit.normal, hit.tangent);
     hit.object = 0;
+    copy_shading_frame_to_geometric(hit);
+    set_uv(hit);
     return true;
+}
+
+void Sphere::set_uv(SurfaceHit& hit) const {
+    // p = r (sin(theta) sin(phi), cos(theta), sin(theta) cos(phi)), u = phi / (2 pi) + 1/2,
+    // v = 1 - theta / pi: dp/dphi = (z, 0, -x), dp/dtheta = (y x / rho, -rho, y z / rho).
+    const Vec3 p = hit.position;
+    const double rho = std::hypot(p.x, p.z);
+    const double theta = std::acos(std::clamp(p.y / radius_, -1.0, 1.0));
+    hit.uv = {std::atan2(p.x, p.z) / (2.0 * kPi) + 0.5, 1.0 - theta / kPi};
+    hit.dpdu = (2.0 * kPi) * Vec3{p.z, 0.0, -p.x};
+    hit.dpdv = rho > 0.0 ? kPi * Vec3{-p.y * p.x / rho, rho, -p.y * p.z / rho} : Vec3{};
 }
 
 std::string Sphere::describe() const {
@@ -228,11 +257,23 @@ bool Torus::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
             hit.tangent = normalize(Vec3{-p.z, 0.0, p.x});
             hit.bitangent = cross(hit.normal, hit.tangent);
             hit.object = 0;
+            copy_shading_frame_to_geometric(hit);
+            set_uv(hit);
             return true;
         }
         f_left = f_right;
     }
     return false;
+}
+
+void Torus::set_uv(SurfaceHit& hit) const {
+    // p = ((R + r cos psi) cos phi, r sin psi, (R + r cos psi) sin phi):
+    // dp/dphi = (-z, 0, x), dp/dpsi = (-y x / rho, rho - R, -y z / rho), rho = sqrt(x^2 + z^2).
+    const Vec3 p = hit.position;
+    const double rho = std::hypot(p.x, p.z);
+    hit.uv = {turn_fraction(std::atan2(p.z, p.x)), turn_fraction(std::atan2(p.y, rho - major_))};
+    hit.dpdu = (2.0 * kPi) * Vec3{-p.z, 0.0, p.x};
+    hit.dpdv = (2.0 * kPi) * Vec3{-p.y * p.x / rho, rho - major_, -p.y * p.z / rho};
 }
 
 std::string Torus::describe() const {
@@ -277,6 +318,13 @@ bool TubeRow::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
     hit.tangent = {1.0, 0.0, 0.0};
     hit.bitangent = cross(hit.normal, hit.tangent);
     hit.object = best_k;
+    copy_shading_frame_to_geometric(hit);
+    // p = (x, y_k + r cos psi, r sin psi): dp/dx = e_x, dp/dpsi = (0, -z, y - y_k).
+    const double dy = hit.position.y - axis_y(best_k);
+    hit.uv = {(hit.position.x + half_length_) / (2.0 * half_length_),
+              turn_fraction(std::atan2(hit.position.z, dy))};
+    hit.dpdu = {2.0 * half_length_, 0.0, 0.0};
+    hit.dpdv = (2.0 * kPi) * Vec3{0.0, -hit.position.z, dy};
     return true;
 }
 
@@ -324,6 +372,13 @@ bool BumpPlane::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
     hit.tangent = normalize(Vec3{1.0, 0.0, 0.0} - hit.normal.x * hit.normal);
     hit.bitangent = cross(hit.normal, hit.tangent);
     hit.object = 0;
+    hit.geometric_normal = {0.0, 0.0, 1.0};
+    hit.geometric_tangent = {1.0, 0.0, 0.0};
+    hit.geometric_bitangent = {0.0, 1.0, 0.0};
+    const double size = 2.0 * half_size_;
+    hit.uv = {(p.x + half_size_) / size, (p.y + half_size_) / size};
+    hit.dpdu = {size, 0.0, 0.0};
+    hit.dpdv = {0.0, size, 0.0};
     return true;
 }
 
@@ -378,7 +433,30 @@ void Light::at(Vec3 p, Vec3& to_light, double& irradiance) const {
 namespace {
 constexpr std::array<SceneId, 4> kAllScenes{SceneId::sphere, SceneId::torus, SceneId::tubes,
                                             SceneId::bump_plane};
+constexpr std::array<SceneId, 3> kContentScenes{SceneId::nmap_sphere, SceneId::nmap_sphere_fine,
+                                                SceneId::torus_knot};
 double radians(double degrees) { return degrees * kPi / 180.0; }
+
+// The texture frame of a hit (MikkTSpace's per-pixel form): t = dpdu made orthogonal to the
+// geometric normal, b = n x t.
+void set_texture_frame(SurfaceHit& hit) {
+    const Vec3 n = hit.geometric_normal;
+    hit.geometric_tangent = normalize(hit.dpdu - dot(hit.dpdu, n) * n);
+    hit.geometric_bitangent = cross(n, hit.geometric_tangent);
+}
+
+// NormalMap::bilinear(0, uv).normal without the other moments (the same arithmetic in the same
+// order, so the same bits): Vulkan's bilinear weights from uv * size - 0.5, repeat addressing.
+Vec3 bilinear_level0_normal(const NormalMap& map, Vec2 uv) {
+    const double fx = uv.x * map.width(0) - 0.5, fy = uv.y * map.height(0) - 0.5;
+    const double x0 = std::floor(fx), y0 = std::floor(fy);
+    const double ax = fx - x0, ay = fy - y0;
+    const int ix = static_cast<int>(x0), iy = static_cast<int>(y0);
+    return ((1.0 - ax) * (1.0 - ay)) * map.texel(0, ix, iy).normal +
+           (ax * (1.0 - ay)) * map.texel(0, ix + 1, iy).normal +
+           ((1.0 - ax) * ay) * map.texel(0, ix, iy + 1).normal +
+           (ax * ay) * map.texel(0, ix + 1, iy + 1).normal;
+}
 }  // namespace
 
 std::string_view scene_name(SceneId id) {
@@ -387,6 +465,9 @@ std::string_view scene_name(SceneId id) {
         case SceneId::torus: return "torus";
         case SceneId::tubes: return "tubes";
         case SceneId::bump_plane: return "bump_plane";
+        case SceneId::nmap_sphere: return "nmap-sphere";
+        case SceneId::nmap_sphere_fine: return "nmap-sphere-fine";
+        case SceneId::torus_knot: return "torus-knot";
     }
     return "?";
 }
@@ -394,10 +475,13 @@ std::string_view scene_name(SceneId id) {
 std::optional<SceneId> scene_from_name(std::string_view name) {
     for (SceneId id : kAllScenes)
         if (scene_name(id) == name) return id;
+    for (SceneId id : kContentScenes)
+        if (scene_name(id) == name) return id;
     return std::nullopt;
 }
 
 std::span<const SceneId> all_scenes() { return kAllScenes; }
+std::span<const SceneId> content_scenes() { return kContentScenes; }
 
 Scene::Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement,
              Camera camera, Light light, Vec3 pivot, double rotation_radians)
@@ -421,7 +505,16 @@ Scene Scene::with_camera(const Camera& camera) const {
     return copy;
 }
 
-bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+Scene Scene::with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling,
+                             std::string source) const {
+    Scene copy = *this;
+    copy.normal_map_ = std::move(map);
+    copy.tiling_ = tiling;
+    copy.normal_map_source_ = std::move(source);
+    return copy;
+}
+
+bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
     const Ray local{object_to_world_.inverse_point(ray.origin),
                     object_to_world_.inverse_vector(ray.direction)};
     if (!shape_->intersect(local, 0.0, hit)) return false;
@@ -429,7 +522,37 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.normal = object_to_world_.apply_vector(hit.normal);
     hit.tangent = object_to_world_.apply_vector(hit.tangent);
     hit.bitangent = object_to_world_.apply_vector(hit.bitangent);
+    hit.geometric_normal = object_to_world_.apply_vector(hit.geometric_normal);
+    hit.geometric_tangent = object_to_world_.apply_vector(hit.geometric_tangent);
+    hit.geometric_bitangent = object_to_world_.apply_vector(hit.geometric_bitangent);
+    // Texture units: uv' = tiling uv, so dp/du' = (dp/du) / tiling.x (likewise for v).
+    hit.uv = tiling_ * hit.uv;
+    hit.dpdu = object_to_world_.apply_vector(hit.dpdu) / tiling_.x;
+    hit.dpdv = object_to_world_.apply_vector(hit.dpdv) / tiling_.y;
+    if (normal_map_) {
+        set_texture_frame(hit);
+        hit.normal = hit.geometric_normal;
+        hit.tangent = hit.geometric_tangent;
+        hit.bitangent = hit.geometric_bitangent;
+    }
+    hit.bitangent_sign = dot(hit.geometric_bitangent, hit.dpdv) < 0.0 ? -1.0 : 1.0;
     return true;
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+    if (!intersect_surface(ray, hit)) return false;
+    if (normal_map_) apply_normal_map(hit, bilinear_level0_normal(*normal_map_, hit.uv));
+    return true;
+}
+
+void Scene::apply_normal_map(SurfaceHit& hit, Vec3 normal_ts) {
+    // TBN: tangent-space x along +u (t), y along +v (s b), z along the geometric normal.
+    const Vec3 t = hit.geometric_tangent;
+    const Vec3 n = normalize(normal_ts.x * t + (hit.bitangent_sign * normal_ts.y) * hit.geometric_bitangent +
+                             normal_ts.z * hit.geometric_normal);
+    hit.normal = n;
+    hit.tangent = normalize(t - dot(t, n) * n);
+    hit.bitangent = cross(n, hit.tangent);
 }
 
 std::string Scene::describe() const {
@@ -443,6 +566,9 @@ std::string Scene::describe() const {
       << ";light=" << (light_.kind == Light::Kind::directional ? "dir" : "point")
       << format_vec(light_.vector) << light_.intensity << ";pivot=" << format_vec(pivot_)
       << ";rotation=" << rotation_;
+    if (normal_map_)
+        s << ";normal_map=" << normal_map_->describe() << ",tiling=(" << tiling_.x << ","
+          << tiling_.y << "),source=" << normal_map_source_;
     return s.str();
 }
 
@@ -509,8 +635,65 @@ Scene make_scene(SceneId id, double rotation_radians) {
             return Scene("bump_plane", std::make_shared<BumpPlane>(2.5, std::move(waves)),
                          placement, camera, light, {0.0, 0.0, 0.0}, rotation_radians);
         }
+        case SceneId::nmap_sphere:
+        case SceneId::nmap_sphere_fine: {
+            // The sphere scene's sphere, camera, light and pivot, shaded with the content map.
+            // u spans 2 pi and v spans pi on the unit sphere, so tiling (2k, k) keeps the
+            // texels square at the equator: a texel is pi / (k 512) long.
+            const Vec2 tiling = id == SceneId::nmap_sphere ? Vec2{2.0, 1.0} : Vec2{16.0, 8.0};
+            const Scene base = make_scene(SceneId::sphere, rotation_radians);
+            Scene scene(std::string(scene_name(id)), std::make_shared<Sphere>(1.0), Rigid{},
+                        base.camera(), base.light(), {0.0, 0.0, -1.0}, rotation_radians);
+            return scene.with_normal_map(content_normal_map(), tiling,
+                                         content_height_field().describe());
+        }
+        case SceneId::torus_knot: {
+            // The knot lies in the object xy plane (core circle radius 1, extent ~1.65); tilted
+            // 25 degrees about x so that the strands overlap in depth, rolled 10 degrees.
+            // Shifted by (-0.08, 0.19) to centre its image; the pivot is the shifted centre.
+            const Vec3 centre{-0.08, 0.19, 0.0};
+            const Rigid placement = compose(Rigid::translate(centre),
+                                            compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(10.0)),
+                                                    Rigid::rotation({1.0, 0.0, 0.0}, radians(-25.0))));
+            Camera camera{{0.0, 0.0, 5.5}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 38.0};
+            Light light{Light::Kind::directional, normalize(Vec3{-0.4, 0.6, 1.0}), 1.0};
+            return Scene("torus-knot", content_torus_knot_mesh(), placement, camera, light, centre,
+                         rotation_radians);
+        }
     }
     throw std::invalid_argument("unknown scene id");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared content (built once per process; function-local statics are initialised thread-safely)
+
+const PeriodicHeightField& content_height_field() {
+    // 8 waves of ~110 cycles per texture tile (4.65 texels per period at 512 texels), slope
+    // bound tan(30 deg): no normal tilts more than 30 degrees.
+    static const PeriodicHeightField field = PeriodicHeightField::random(
+        0x6e6d6170ULL, 8, 110.0, std::tan(radians(30.0)));
+    return field;
+}
+
+std::shared_ptr<const NormalMap> content_normal_map() {
+    static const std::shared_ptr<const NormalMap> map = [] {
+        const PeriodicHeightField& field = content_height_field();
+        return std::make_shared<const NormalMap>(
+            kContentNormalMapSize, kContentNormalMapSize,
+            normals_from_gradient(kContentNormalMapSize, [&](Vec2 uv) { return field.gradient(uv); }));
+    }();
+    return map;
+}
+
+const TorusKnot& content_torus_knot() {
+    static const TorusKnot knot{};
+    return knot;
+}
+
+std::shared_ptr<const TriangleMesh> content_torus_knot_mesh() {
+    static const std::shared_ptr<const TriangleMesh> mesh =
+        std::make_shared<const TriangleMesh>(content_torus_knot().mesh());
+    return mesh;
 }
 
 }  // namespace saagen::render

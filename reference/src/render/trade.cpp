@@ -184,7 +184,9 @@ std::string configuration_id(Variant variant, NormalFeed feed) {
 
 std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed); }
 
-bool scene_has_normal_detail(SceneId id) { return id == SceneId::bump_plane; }
+bool scene_has_normal_detail(SceneId id) {
+    return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
+}
 
 namespace {
 

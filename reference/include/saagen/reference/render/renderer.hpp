@@ -33,6 +33,19 @@
 // surface (another tube), or lies outside the image takes the shaded pixel's own fields
 // (normal, frame, vectors), i.e. a zero difference across that edge; only its gl_FragCoord
 // stays its own (the rasteriser's value, which Listing 3's neighbour direction reads).
+//
+// Normal-mapped scenes (Scene::normal_map). Ground truth: every sample's shading normal is the
+// map's level-0 bilinear sample at its hit (Scene::intersect), so the 1024 samples integrate the
+// full-resolution map over the pixel filter. 1-spp fields, as a GPU samples a texture: uv at the
+// pixel centre; the derivatives of uv per 2x2 quad with coarse differences (ddx = uv of quad
+// pixel 1 - pixel 0, ddy = pixel 2 - pixel 0, the same for the four pixels); the implicit LOD
+// NormalMap::lod(ddx, ddy); the trilinear sample at (uv, LOD); its .normal renormalised and
+// taken through the geometric TBN (Scene::apply_normal_map). A quad partner that misses the
+// surface, hits another connected surface or lies outside the image takes the uv a helper
+// invocation would interpolate: its ray intersected with the shaded pixel's tangent plane
+// (the plane spanned by dpdu and dpdv through the hit) and mapped through dpdu, dpdv
+// (tangent_plane_uv). A partner on the same surface takes its own uv (no unwrapping across a
+// uv seam: the seams of the scenes are out of view).
 #pragma once
 
 #include <cstdint>
@@ -45,6 +58,7 @@
 #include "saagen/reference/math.hpp"
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/render/image.hpp"
+#include "saagen/reference/render/normal_map.hpp"
 #include "saagen/reference/render/sampling.hpp"
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/reference/saa.hpp"
@@ -155,16 +169,45 @@ struct PixelFields {
     Vec3 view_ts;     // o in (t, b, n)
     Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
     Vec2 frag_coord;  // (x + 0.5, y + 0.5)
-    // The base surface's frame before normal mapping (equal to the shading frame on surfaces
-    // without normal detail) and the half vector expressed in it.
+
+    // The base surface before the normal map (SurfaceHit's geometric frame: the shading frame
+    // above except in normal-mapped scenes and on the bump plane) and the texture (uv
+    // derivatives, lod and texel stay zero in a scene without a map).
+    bool has_normal_map = false;
     Vec3 geometric_normal;
     Vec3 geometric_tangent;
     Vec3 geometric_bitangent;
-    Vec3 geometric_half_ts;
+    Vec3 geometric_half_ts;  // normalize(i + o) in the geometric frame
+    Vec2 uv;                 // texture coordinate at the pixel centre
+    Vec2 duv_dx;             // coarse quad derivatives of uv (see the top of this file)
+    Vec2 duv_dy;
+    double lod = 0.0;        // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
+    NormalTexel texel;       // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
 PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height);
+
+// The uv a helper invocation extrapolates for a ray from the shaded hit: the ray meets the
+// plane through hit.position spanned by hit.dpdu, hit.dpdv at X, and X - p = a dpdu + b dpdv
+// (least squares through the 2x2 Gram matrix) gives uv + (a, b). The shaded uv itself when the
+// ray is parallel to the plane or meets it behind its origin.
+Vec2 tangent_plane_uv(const SurfaceHit& shaded, const Ray& ray);
+
+// The uv of quad pixel (px, py) seen from the shaded hit of surface `object`: the pixel's own
+// uv when its centre hits the same connected surface inside the image, tangent_plane_uv of its
+// ray otherwise.
+Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py,
+                     int width, int height);
+
+struct UvDerivatives {
+    Vec2 ddx;  // uv(quad pixel 1) - uv(quad pixel 0)
+    Vec2 ddy;  // uv(quad pixel 2) - uv(quad pixel 0)
+};
+
+// Coarse uv derivatives of the quad of pixel (x, y), whose centre hit is `shaded`.
+UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y,
+                                    int width, int height);
 
 struct GBuffer {
     int width = 0;

@@ -30,6 +30,31 @@
 //               centre at 256 px, fewer towards the back): analytic normal normalize(-dh/dx,
 //               -dh/dy, 1) in the plane's frame; light near the mirror direction of the view, so
 //               the glint patch is centred.
+//
+// The "real content" scenes (content_scenes; not in all_scenes, the trade's default list):
+//   nmap-sphere       the sphere scene (same sphere, camera, light, pivot) shaded with a
+//                     512 x 512 tangent-space normal map repeated (2, 1) times over the sphere's
+//                     (longitude, latitude) uv, so texels are square at the equator (pi / 512
+//                     long). The map: normals_from_gradient of a periodic height field of 8
+//                     sinusoids (content_height_field: fixed seed, stratified directions, 106 -
+//                     125 periods per tile = 4.1 - 4.8 texels per period, slope bound tan 30
+//                     degrees; largest tilt of a level-0 normal 20.3 degrees). Measured at the
+//                     base 256 x 256 view: LOD 0.224 at the image centre (0.224 - 0.253 over the
+//                     central 32 x 32 pixels), i.e. ~1.17 texels per pixel, and sinusoid periods
+//                     of 3.5 - 4.1 px there ("features of ~4 px", magnified to ~1:1). The
+//                     highlight sits on the upper left of the front; the uv seam (-z) and the
+//                     poles (+-y, z = 0 < 1/4) are behind the silhouette.
+//   nmap-sphere-fine  the same with tiling (16, 8): LOD 3.224 at the centre (3.224 - 3.253 over
+//                     the central 32 x 32), 9.3 texels per pixel, periods of 0.44 - 0.52 px
+//                     (features below a pixel, strongly minified).
+//   torus-knot        a (2, 3) torus-knot tube (mesh.hpp: core radius R = 1, offset a = 0.45,
+//                     tube radius 0.2) as a TRIANGLE MESH of 512 x 24 segments (24576
+//                     triangles, BVH) with the analytic tube normals and curve tangents at the
+//                     vertices, interpolated barycentrically (so the geometric normal is the
+//                     interpolated vertex normal, not the face normal); no normal map. Tilted
+//                     25 degrees about x, rolled 10 degrees and centred: it spans ~83 % of the
+//                     frame (35 % coverage); a directional light from the upper left near the
+//                     camera draws a highlight band along every strand.
 #pragma once
 
 #include <memory>
@@ -40,6 +65,7 @@
 #include <vector>
 
 #include "saagen/reference/math.hpp"
+#include "saagen/reference/render/normal_map.hpp"
 
 namespace saagen::render {
 
@@ -72,6 +98,18 @@ struct Rigid {
 Rigid compose(const Rigid& a, const Rigid& b);
 
 // What a ray hit provides (world space once returned by Scene::intersect).
+//
+// Two frames: the shading frame (normal, tangent, bitangent) that the BRDF and the SAA variants
+// read, and the geometric frame of the base surface before any normal map (what an engine's
+// vertex attributes give): for a mesh the interpolated vertex normal, for the bump plane the
+// plane's frame (0, 0, 1), for the sphere, torus and tubes the same as the shading frame. In a
+// normal-mapped scene the geometric tangent is the texture tangent (dpdu made orthogonal to the
+// geometric normal), the frame the map's tangent-space normals and slopes are expressed in.
+// Both frames are right-handed (b = n x t).
+//
+// uv: the surface parameterisation (texture units once returned by Scene::intersect, i.e. times
+// the scene's uv tiling), and dpdu, dpdv the partial derivatives of the position with respect
+// to u and v (for a mesh the triangle's constant partials, as a GPU's attribute interpolation).
 struct SurfaceHit {
     double t = 0.0;
     Vec3 position;
@@ -79,6 +117,15 @@ struct SurfaceHit {
     Vec3 tangent;    // t (unit, orthogonal to n)
     Vec3 bitangent;  // b = n x t
     int object = 0;  // index of the connected surface (tube index); 0 for single surfaces
+    Vec3 geometric_normal;     // base surface normal (unit)
+    Vec3 geometric_tangent;    // unit, orthogonal to geometric_normal
+    Vec3 geometric_bitangent;  // geometric_normal x geometric_tangent
+    Vec2 uv;
+    Vec3 dpdu;
+    Vec3 dpdv;
+    // +1 when dpdv lies on the side of geometric_bitangent (the texture's +v direction is +b),
+    // -1 for a mirrored parameterisation (MikkTSpace's bitangent sign).
+    double bitangent_sign = 1.0;
 };
 
 // An analytic shape in its object space.
@@ -94,6 +141,10 @@ public:
 // Sphere of the given radius centred at the origin. Tangent frame: with n = (a, b, c), the
 // field t ~ ((1 + c)^2 + b^2 - a^2, -2ab, -2a(1 + c)), the image of the plane's x axis under
 // the inverse stereographic projection from the pole -z; smooth except at n = -z.
+// uv: longitude u = atan2(x, z) / (2 pi) + 1/2 (seam at the back, -z) and latitude
+// v = 1 - theta / pi, theta = acos(y / r) (v grows upwards; poles at +-y), so that at the front
+// dpdu points along +x and dpdv along +y: dpdu = 2 pi (z, 0, -x), dpdv = pi (-y x / rho, rho,
+// -y z / rho) with rho = sqrt(x^2 + z^2) (both zero at the poles).
 class Sphere final : public Shape {
 public:
     explicit Sphere(double radius) : radius_(radius) {}
@@ -102,6 +153,7 @@ public:
     static Vec3 stereographic_tangent(Vec3 n);
 
 private:
+    void set_uv(SurfaceHit& hit) const;
     double radius_;
 };
 
@@ -109,7 +161,8 @@ private:
 // a quartic; its real roots are bracketed between the critical points (roots of the cubic
 // derivative, solved in closed form) and refined by safeguarded Newton iterations.
 // Normal: normalize(p - R normalize(px, 0, pz)); tangent: the major-circle direction
-// normalize(-pz, 0, px).
+// normalize(-pz, 0, px). uv: u = phi / (2 pi), phi = atan2(pz, px) the major angle; v = psi /
+// (2 pi), psi = atan2(py, rho - R) the tube angle (both wrapped to [0, 1)).
 class Torus final : public Shape {
 public:
     Torus(double major_radius, double minor_radius) : major_(major_radius), minor_(minor_radius) {}
@@ -117,6 +170,7 @@ public:
     std::string describe() const override;
 
 private:
+    void set_uv(SurfaceHit& hit) const;
     double major_;
     double minor_;
 };
@@ -124,7 +178,8 @@ private:
 // A row of `count` open cylinders of the given radius with axes parallel to x, centred on
 // y = (k - (count - 1) / 2) spacing, z = 0, |x| <= half_length. Only the outer surface is
 // visible (a ray that would enter through an open end sees nothing). Normal: the radial
-// direction; tangent: +x. SurfaceHit::object is the tube index k.
+// direction; tangent: +x. SurfaceHit::object is the tube index k. uv: u = (x + half_length) /
+// (2 half_length) along the axis, v = psi / (2 pi) around it (psi = atan2(z, y - y_k)).
 class TubeRow final : public Shape {
 public:
     TubeRow(int count, double radius, double spacing, double half_length)
@@ -150,7 +205,8 @@ struct SineWave {
 // The square |x|, |y| <= half_size of the plane z = 0, seen from +z, bump-mapped with
 // h(x, y) = sum of SineWaves (the geometry stays flat: only the shading normal follows h).
 // Normal: normalize(-dh/dx, -dh/dy, 1). Tangent: x axis made orthogonal to n,
-// normalize(e_x - n_x n).
+// normalize(e_x - n_x n). Geometric frame: the plane's (e_x, e_y, e_z); uv = (x, y) mapped from
+// [-half_size, half_size] to [0, 1].
 class BumpPlane final : public Shape {
 public:
     BumpPlane(double half_size, std::vector<SineWave> waves)
@@ -193,22 +249,41 @@ struct Light {
     void at(Vec3 p, Vec3& to_light, double& irradiance) const;
 };
 
-enum class SceneId { sphere, torus, tubes, bump_plane };
+// The analytic scenes (all_scenes) and the "real content" scenes (content_scenes: normal maps
+// and a triangle mesh, see the top of this file).
+enum class SceneId { sphere, torus, tubes, bump_plane, nmap_sphere, nmap_sphere_fine, torus_knot };
 
 std::string_view scene_name(SceneId id);
-std::optional<SceneId> scene_from_name(std::string_view name);
-std::span<const SceneId> all_scenes();
+std::optional<SceneId> scene_from_name(std::string_view name);  // any SceneId
+std::span<const SceneId> all_scenes();      // sphere, torus, tubes, bump_plane
+std::span<const SceneId> content_scenes();  // nmap-sphere, nmap-sphere-fine, torus-knot
 
 class Scene {
 public:
     Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera,
           Light light, Vec3 pivot, double rotation_radians);
 
-    // Nearest hit of a world-space ray (fields transformed to world space).
+    // Nearest hit of a world-space ray (fields transformed to world space, uv in texture
+    // units). With a normal map, the shading frame comes from the map's level-0 bilinear sample
+    // at hit.uv (apply_normal_map): what the ground truth integrates over the pixel filter.
     bool intersect(const Ray& ray, SurfaceHit& hit) const;
+    // The same hit before the normal map: the shading frame equals the geometric frame in a
+    // normal-mapped scene (identical to intersect otherwise).
+    bool intersect_surface(const Ray& ray, SurfaceHit& hit) const;
+    // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
+    // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
+    // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
+    static void apply_normal_map(SurfaceHit& hit, Vec3 normal_ts);
 
     // The same scene seen through another camera.
     Scene with_camera(const Camera& camera) const;
+    // The same scene shaded with a normal map repeated `tiling` times over the shape's uv
+    // square (texture uv = tiling * shape uv).
+    // source: the numbers the map was generated from (kept in describe()).
+    Scene with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling,
+                          std::string source = {}) const;
+    const NormalMap* normal_map() const { return normal_map_.get(); }
+    Vec2 uv_tiling() const { return tiling_; }
 
     const std::string& name() const { return name_; }
     const Camera& camera() const { return camera_; }
@@ -227,9 +302,24 @@ private:
     Vec3 pivot_;
     double rotation_;
     Rigid object_to_world_;
+    std::shared_ptr<const NormalMap> normal_map_;
+    Vec2 tiling_{1.0, 1.0};
+    std::string normal_map_source_;  // how the map was made (part of describe())
 };
 
 // The standard scene, rotated by rotation_radians about the vertical axis through its pivot.
 Scene make_scene(SceneId id, double rotation_radians = 0.0);
+
+// The content of the real-content scenes, built once per process and shared by every frame:
+// the height field and kContentNormalMapSize^2 normal map of nmap-sphere(-fine), and the torus
+// knot and its mesh (with BVH) of torus-knot.
+inline constexpr int kContentNormalMapSize = 512;
+struct PeriodicHeightField;
+struct TorusKnot;
+class TriangleMesh;
+const PeriodicHeightField& content_height_field();
+std::shared_ptr<const NormalMap> content_normal_map();
+const TorusKnot& content_torus_knot();
+std::shared_ptr<const TriangleMesh> content_torus_knot_mesh();
 
 }  // namespace saagen::render
