@@ -1,6 +1,7 @@
 #include "saagen/report/report.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/report/findings.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -164,22 +165,8 @@ std::string sheet_name(const render::ImageSet& set) {
 // The cost-vs-error plot (SVG): x = lavapipe time ratio when measured, else the SPIR-V delta;
 // y = mean tonemapped RMSE.
 
-// The measured shader whose cost a configuration has: the variant itself whatever normal feeds it
-// (the feed changes the input, not the code); an engine's form costs what deferred-sum costs
-// (the same operations: two normal derivatives, their squared lengths, a min and an add; the
-// engines' pow-based forms add one transcendental), which bench_shading measures.
-std::string cost_key(const std::string& configuration) {
-  if (configuration.rfind("engine-", 0) == 0) return "deferred-sum";
-  return configuration.substr(0, configuration.find(':'));
-}
-
 std::optional<double> cost_of(const CostTable* costs, const std::string& configuration, bool time) {
-  const std::string variant = cost_key(configuration);
-  if (variant == "none") return time ? std::optional<double>(1.0) : std::optional<double>(0.0);
-  if (!costs) return std::nullopt;
-  const VariantCost* cost = costs->find(variant);
-  if (!cost) return std::nullopt;
-  return time ? cost->time_ratio : cost->delta_instructions;
+  return configuration_cost(costs, configuration, time);
 }
 
 std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable* costs) {
@@ -229,21 +216,178 @@ std::string optional_number(const std::optional<double>& value, const char* form
   return value ? fmt::format(fmt::runtime(format), *value) : std::string("-");
 }
 
-struct SummaryColumns {
-  std::string variant, rmse_linear, rmse_tonemapped, max_error, flicker, flicker_display, time_ratio, delta_spirv;
+// ---------------------------------------------------------------------------------------------
+// Tables: built once, printed for the terminal, Markdown and HTML.
+
+struct TextTable {
+  std::vector<std::string> headers;
+  std::vector<std::vector<std::string>> rows;
 };
 
-std::vector<SummaryColumns> summary_columns(const std::vector<VariantSummary>& summary, const CostTable* costs) {
-  std::vector<SummaryColumns> rows;
-  for (const VariantSummary& row : summary) {
-    rows.push_back({row.variant, fmt::format("{:.4g}", row.rmse_linear), fmt::format("{:.4g}", row.rmse_tonemapped),
-                    fmt::format("{:.4g}", row.max_error), fmt::format("{:+.4f}", row.flicker),
-                    fmt::format("{:.3f}", row.flicker_display),
-                    optional_number(cost_of(costs, row.variant, true), "{:.3f}"),
-                    optional_number(cost_of(costs, row.variant, false), "{:+.0f}")});
-  }
-  return rows;
+std::string as_text(const TextTable& table) {
+  std::vector<std::size_t> widths;
+  for (const std::string& h : table.headers) widths.push_back(h.size());
+  for (const auto& row : table.rows)
+    for (std::size_t c = 0; c < row.size() && c < widths.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  const auto line = [&](const std::vector<std::string>& cells) {
+    std::string text;
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      text += c == 0 ? fmt::format("{:<{}}", cells[c], widths[c]) : fmt::format("  {:>{}}", cells[c], widths[c]);
+    return text + "\n";
+  };
+  std::string text = line(table.headers);
+  for (const auto& row : table.rows) text += line(row);
+  return text;
 }
+
+std::string as_markdown(const TextTable& table) {
+  std::string text = "| " + fmt::format("{}", fmt::join(table.headers, " | ")) + " |\n|";
+  for (std::size_t c = 0; c < table.headers.size(); ++c) text += "---|";
+  text += "\n";
+  for (const auto& row : table.rows) text += "| " + fmt::format("{}", fmt::join(row, " | ")) + " |\n";
+  return text;
+}
+
+std::string html_escape(std::string_view text);
+
+std::string as_html(const TextTable& table) {
+  std::string text = "<table><tr>";
+  for (const std::string& h : table.headers) text += "<th>" + html_escape(h) + "</th>";
+  text += "</tr>\n";
+  for (const auto& row : table.rows) {
+    text += "<tr>";
+    for (const std::string& cell : row) text += "<td>" + html_escape(cell) + "</td>";
+    text += "</tr>\n";
+  }
+  return text + "</table>\n";
+}
+
+const std::vector<std::string> kMetricHeaders{"RMSE linear", "RMSE tonemapped", "LDR-FLIP", "HDR-FLIP", "max error", "flicker",
+                                              "flicker tm ratio"};
+
+std::vector<std::string> metric_cells(const Metrics& m) {
+  return {fmt::format("{:.4g}", m.rmse_linear), fmt::format("{:.4g}", m.rmse_tonemapped), fmt::format("{:.4f}", m.flip_ldr),
+          fmt::format("{:.4f}", m.flip_hdr),    fmt::format("{:.4g}", m.max_error),       fmt::format("{:+.4f}", m.flicker),
+          fmt::format("{:.3f}", m.flicker_display)};
+}
+
+std::vector<std::string> cost_cells(const CostTable* costs, const std::string& configuration) {
+  return {optional_number(cost_of(costs, configuration, true), "{:.3f}"), optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
+}
+
+Metrics metrics_of(const VariantSummary& s) {
+  return {s.rmse_linear, s.rmse_tonemapped, s.max_error, s.flip_ldr, s.flip_hdr, s.flicker, s.flicker_display, s.cases};
+}
+
+TextTable summary_table(const std::vector<VariantSummary>& summary, const CostTable* costs) {
+  TextTable t;
+  t.headers = {"configuration"};
+  t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
+  t.headers.insert(t.headers.end(), {"time ratio", "dSPIR-V"});
+  for (const VariantSummary& row : summary) {
+    std::vector<std::string> cells{row.variant};
+    for (auto& c : metric_cells(metrics_of(row))) cells.push_back(c);
+    for (auto& c : cost_cells(costs, row.variant)) cells.push_back(c);
+    t.rows.push_back(cells);
+  }
+  return t;
+}
+
+TextTable content_table(const render::TradeTable& table, Content content, const CostTable* costs) {
+  TextTable t;
+  t.headers = {"configuration"};
+  t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
+  t.headers.insert(t.headers.end(), {"time ratio", "dSPIR-V"});
+  const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+  for (const std::string& id : configurations(table)) {
+    const Metrics m = mean_metrics(table, id, keep);
+    if (!m.cases) continue;
+    std::vector<std::string> cells{id};
+    for (auto& c : metric_cells(m)) cells.push_back(c);
+    for (auto& c : cost_cells(costs, id)) cells.push_back(c);
+    t.rows.push_back(cells);
+  }
+  return t;
+}
+
+std::string percent_change(double ours, double theirs) {
+  return theirs > 0.0 ? fmt::format("{:+.1f} %", 100.0 * (ours - theirs) / theirs) : std::string("-");
+}
+
+TextTable recommendation_table(const std::vector<Recommendation>& recs, const CostTable* costs) {
+  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "HDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "time ratio", "dSPIR-V"}, {}};
+  for (const Recommendation& r : recs) {
+    std::vector<std::string> cells{std::string(path_name(r.path)), std::string(content_name(r.content)), r.configuration,
+                                   fmt::format("{:.4f}", r.metrics.flip_ldr), fmt::format("{:.4f}", r.metrics.flip_hdr),
+                                   fmt::format("{:.4g}", r.metrics.rmse_tonemapped), fmt::format("{:.3f}", r.metrics.flicker_display)};
+    for (auto& c : cost_cells(costs, r.configuration)) cells.push_back(c);
+    t.rows.push_back(cells);
+  }
+  return t;
+}
+
+TextTable switch_table(const std::vector<EngineSwitch>& switches) {
+  TextTable t{{"switching from", "content", "engine LDR-FLIP", "best saagen at <= cost", "LDR-FLIP", "change LDR-FLIP", "change HDR-FLIP",
+               "change RMSE tm", "flicker tm ratio (engine -> saagen)"},
+              {}};
+  for (const EngineSwitch& s : switches) {
+    if (s.configuration.empty()) {
+      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none)", "-", "-",
+                        "-", "-", "-"});
+      continue;
+    }
+    t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), s.configuration,
+                      fmt::format("{:.4f}", s.saagen_metrics.flip_ldr), percent_change(s.saagen_metrics.flip_ldr, s.engine_metrics.flip_ldr),
+                      percent_change(s.saagen_metrics.flip_hdr, s.engine_metrics.flip_hdr),
+                      percent_change(s.saagen_metrics.rmse_tonemapped, s.engine_metrics.rmse_tonemapped),
+                      fmt::format("{:.3f} -> {:.3f}", s.engine_metrics.flicker_display, s.saagen_metrics.flicker_display)});
+  }
+  return t;
+}
+
+TextTable verdict_table(const std::vector<SceneVerdict>& verdicts) {
+  TextTable t{{"scene", "path", "recommended", "LDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "beats none and every engine", "where it does not"}, {}};
+  for (const SceneVerdict& v : verdicts) {
+    t.rows.push_back({std::string(render::scene_name(v.scene)), std::string(path_name(v.path)), v.configuration,
+                      fmt::format("{:.4f}", v.recommended.flip_ldr), fmt::format("{:.4g}", v.recommended.rmse_tonemapped),
+                      fmt::format("{:.3f}", v.recommended.flicker_display), v.losses.empty() ? "yes" : "no",
+                      v.losses.empty() ? "" : fmt::format("{}", fmt::join(v.losses, "; "))});
+  }
+  return t;
+}
+
+TextTable cases_table(const render::TradeTable& table) {
+  TextTable t{{"scene", "alpha", "Fresnel", "configuration"}, {}};
+  t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
+  for (const render::TradeRow& row : table.rows) {
+    std::vector<std::string> cells{std::string(render::scene_name(row.scene)), fmt::format("{}", row.alpha), row.fresnel ? "yes" : "no",
+                                   render::configuration_id(row)};
+    const Metrics m{row.rmse_linear, row.rmse_tonemapped, row.max_error, row.flip_ldr, row.flip_hdr, row.flicker, row.flicker_display, 1};
+    for (auto& c : metric_cells(m)) cells.push_back(c);
+    t.rows.push_back(cells);
+  }
+  return t;
+}
+
+// The findings in order: recommendation, engine switches, per-scene verdicts. `section` formats
+// a heading and a table.
+template <class Section>
+void for_each_finding(const render::TradeTable& table, const CostTable* costs, Section section) {
+  const std::vector<Recommendation> recs = recommend(table);
+  section("Recommended configuration per render path and content (lowest mean LDR-FLIP)", recommendation_table(recs, costs));
+  section(std::string("Switching from an engine's shipped form: the best saagen configuration at equal or lower cost") +
+              (costs ? "" : " (no cost file: cost not compared)"),
+          switch_table(engine_switches(table, costs)));
+  section("Per scene: the recommendation against no SAA and every engine (tonemapped RMSE, LDR-FLIP, HDR-FLIP, flicker error)",
+          verdict_table(scene_verdicts(table, recs)));
+}
+
+const char* kMetricNote =
+    "Metrics against the supersampled ground truth: RMSE of linear radiance; RMSE after Reinhard's x/(1+x); mean LDR-FLIP of the "
+    "tonemapped images (Andersson et al. 2020, 67 pixels per degree); mean HDR-FLIP of the linear images (Andersson et al. 2021); "
+    "flicker = mean per-pixel temporal std of the 1-spp animation minus the ground truth's (linear); flicker tm ratio = the same "
+    "std in tonemapped values divided by the ground truth's (1 = as the converged animation; flicker error = |ratio - 1|). "
+    "Engines cost what deferred-sum costs (same operations).";
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
@@ -276,22 +420,16 @@ std::string config_line(const render::TradeTable& table) {
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets) {
   std::ostringstream md;
-  md << "# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n";
+  md << "# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
   if (costs) md << "Cost from `" << costs->source << "` (" << costs->device << ").\n\n";
-  md << "## Summary (means over scenes and alphas, no Fresnel)\n\n";
-  md << "| variant | RMSE linear | RMSE tonemapped | max error | flicker | time ratio | dSPIR-V |\n|---|---|---|---|---|---|---|\n";
-  for (const auto& c : summary_columns(summary, costs)) {
-    md << fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", c.variant, c.rmse_linear, c.rmse_tonemapped, c.max_error, c.flicker,
-                      c.time_ratio, c.delta_spirv);
-  }
-  md << "\n![cost vs error](cost_vs_error.svg)\n\n## Every case\n\n";
-  md << "| scene | alpha | Fresnel | variant | RMSE linear | RMSE tonemapped | max error | flicker |\n|---|---|---|---|---|---|---|---|\n";
-  for (const render::TradeRow& row : table.rows) {
-    md << fmt::format("| {} | {} | {} | {} | {:.4g} | {:.4g} | {:.4g} | {:+.4f} |\n", render::scene_name(row.scene), row.alpha,
-                      row.fresnel ? "yes" : "no", id_of(row.variant), row.rmse_linear, row.rmse_tonemapped, row.max_error, row.flicker);
-  }
-  md << "\n## Images\n\nEach sheet: the ground truth, then every variant's 1-spp image (top); their tonemapped differences "
-        "from the ground truth, red brighter, blue darker, full colour at 0.25 (bottom).\n\n";
+  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
+  md << "## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
+  for (Content content : {Content::curved, Content::normal_mapped})
+    md << "\n## " << content_name(content) << " scenes (means over their scenes and alphas)\n\n"
+       << as_markdown(content_table(table, content, costs));
+  md << "\n![cost vs error](cost_vs_error.svg)\n\n## Every case\n\n" << as_markdown(cases_table(table));
+  md << "\n## Images\n\nEach sheet: the ground truth, then every configuration's 1-spp image (top, labelled); their tonemapped "
+        "differences from the ground truth, red brighter, blue darker, full colour at 0.25 (bottom).\n\n";
   for (const std::string& sheet : sheets) md << "![" << sheet << "](" << sheet << ")\n\n";
   return md.str();
 }
@@ -302,27 +440,20 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
           "<style>body{font-family:sans-serif;margin:2em;max-width:1500px}table{border-collapse:collapse}"
           "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}</style>\n"
-          "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n<p>" << html_escape(config_line(table)) << "</p>\n";
+          "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n<p>" << html_escape(config_line(table)) << "</p>\n<p>"
+       << html_escape(kMetricNote) << "</p>\n";
   if (costs) html << "<p>Cost from <code>" << html_escape(costs->source) << "</code> (" << html_escape(costs->device) << ").</p>\n";
-  html << "<h2>Summary (means over scenes and alphas, no Fresnel)</h2>\n<table><tr><th>variant</th><th>RMSE linear</th>"
-          "<th>RMSE tonemapped</th><th>max error</th><th>flicker</th><th>time ratio</th><th>dSPIR-V</th></tr>\n";
-  for (const auto& c : summary_columns(summary, costs)) {
-    html << fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", c.variant,
-                        c.rmse_linear, c.rmse_tonemapped, c.max_error, c.flicker, c.time_ratio, c.delta_spirv);
-  }
-  html << "</table>\n<h2>Cost against error</h2>\n<img src=\"cost_vs_error.svg\" alt=\"cost against error\">\n";
+  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t); });
+  html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
+  for (Content content : {Content::curved, Content::normal_mapped})
+    html << "<h2>" << content_name(content) << " scenes</h2>\n" << as_html(content_table(table, content, costs));
+  html << "<h2>Cost against error</h2>\n<img src=\"cost_vs_error.svg\" alt=\"cost against error\">\n";
   html << "<h2>Images</h2>\n<p>Columns: " << html_escape(fmt::format("{}", fmt::join(columns, ", ")))
        << ". Top: images; bottom: tonemapped difference from the ground truth (red brighter, blue darker, full colour at 0.25).</p>\n";
   for (const std::string& sheet : sheets) html << "<h3>" << sheet << "</h3>\n<img src=\"" << sheet << "\" alt=\"" << sheet << "\">\n";
-  html << "<h2>Every case</h2>\n<table><tr><th>scene</th><th>alpha</th><th>Fresnel</th><th>variant</th><th>RMSE linear</th>"
-          "<th>RMSE tonemapped</th><th>max error</th><th>flicker</th></tr>\n";
-  for (const render::TradeRow& row : table.rows) {
-    html << fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:+.4f}</td></tr>\n",
-                        render::scene_name(row.scene), row.alpha, row.fresnel ? "yes" : "no", id_of(row.variant), row.rmse_linear,
-                        row.rmse_tonemapped, row.max_error, row.flicker);
-  }
+  html << "<h2>Every case</h2>\n" << as_html(cases_table(table));
   // A page check a headless browser can read from the DOM: how many images decoded.
-  html << "</table>\n<p id=\"image-check\">images: not checked</p>\n<script>\nwindow.addEventListener('load', function () {\n"
+  html << "<p id=\"image-check\">images: not checked</p>\n<script>\nwindow.addEventListener('load', function () {\n"
           "  var images = Array.from(document.images);\n"
           "  var loaded = images.filter(function (image) { return image.complete && image.naturalWidth > 0; }).length;\n"
           "  document.getElementById('image-check').textContent = 'images loaded: ' + loaded + '/' + images.length;\n"
@@ -390,8 +521,10 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
   std::vector<VariantSummary> summary;
   for (const std::string& id : order) {
     VariantSummary entry{id};
-    std::vector<double> linear, tonemapped, flicker, flicker_display;
+    std::vector<double> linear, tonemapped, flicker, flicker_display, flip_ldr, flip_hdr;
     for (const render::TradeRow* row : by_configuration[id]) {
+      flip_ldr.push_back(row->flip_ldr);
+      flip_hdr.push_back(row->flip_hdr);
       linear.push_back(row->rmse_linear);
       tonemapped.push_back(row->rmse_tonemapped);
       flicker.push_back(row->flicker);
@@ -403,6 +536,8 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
     entry.rmse_tonemapped = mean(tonemapped);
     entry.flicker = mean(flicker);
     entry.flicker_display = mean(flicker_display);
+    entry.flip_ldr = mean(flip_ldr);
+    entry.flip_hdr = mean(flip_hdr);
     summary.push_back(entry);
   }
   return summary;
@@ -410,6 +545,11 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
 
 render::TradeConfig preset_config(std::string_view preset) {
   render::TradeConfig config;
+  // Every scene: the analytic ones and the real-content ones (normal maps with MIPs, a mesh),
+  // and low roughness down to perceptual 0.05 (alpha 0.0025) and 0.08 (alpha 0.0064).
+  config.scenes.assign(render::all_scenes().begin(), render::all_scenes().end());
+  config.scenes.insert(config.scenes.end(), render::content_scenes().begin(), render::content_scenes().end());
+  config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
   if (preset == "full") return config;
   if (preset == "quick") {
     config.width = config.height = 64;
@@ -417,6 +557,7 @@ render::TradeConfig preset_config(std::string_view preset) {
     config.flicker_width = config.flicker_height = 32;
     config.flicker_strata = 4;
     config.frames = 4;
+    config.scenes.assign(render::all_scenes().begin(), render::all_scenes().end());
     config.alphas = {0.01, 0.1};
     config.fresnel_modes = {false};
     return config;
@@ -425,20 +566,22 @@ render::TradeConfig preset_config(std::string_view preset) {
 }
 
 std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs) {
-  std::string text = fmt::format("{:<27} {:>12} {:>15} {:>10} {:>9} {:>10} {:>8}\n", "variant", "RMSE linear", "RMSE tonemapped",
-                                 "max error", "flicker", "time ratio", "dSPIR-V");
-  for (const auto& c : summary_columns(summary, costs)) {
-    text += fmt::format("{:<27} {:>12} {:>15} {:>10} {:>9} {:>10} {:>8}\n", c.variant, c.rmse_linear, c.rmse_tonemapped, c.max_error,
-                        c.flicker, c.time_ratio, c.delta_spirv);
-  }
+  return as_text(summary_table(summary, costs));
+}
+
+std::string format_findings(const render::TradeTable& table, const CostTable* costs) {
+  std::string text;
+  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { text += "\n" + title + ":\n" + as_text(t); });
   return text;
 }
 
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
-    nlohmann::json entry = {{"variant", row.variant}, {"error", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
-                            {"flicker", row.flicker}, {"flicker_display", row.flicker_display}};
+    nlohmann::json entry = {{"variant", row.variant},         {"error", row.flip_ldr},
+                            {"rmse_tonemapped", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
+                            {"flip_hdr", row.flip_hdr},        {"flicker", row.flicker},
+                            {"flicker_display", row.flicker_display}};
     if (const auto ratio = cost_of(costs, row.variant, true)) entry["ratio_median"] = *ratio;
     if (const auto delta = cost_of(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
     rows.push_back(entry);
@@ -449,10 +592,21 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                      {"variant", id_of(row.variant)}, {"feed", std::string(render::feed_name(row.feed))},
                      {"configuration", render::configuration_id(row)}, {"rmse_linear", row.rmse_linear},
                      {"rmse_tonemapped", row.rmse_tonemapped}, {"max_error", row.max_error}, {"flicker", row.flicker},
-                     {"flicker_display", row.flicker_display}});
+                     {"flip_ldr", row.flip_ldr}, {"flip_hdr", row.flip_hdr}, {"flicker_display", row.flicker_display}});
   }
-  return {{"error_metric", "mean tonemapped RMSE over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
-          {"rows", rows}, {"cases", cases}};
+  // Per content type, the same means: the planner's advice for a material with or without normal maps.
+  nlohmann::json by_content = nlohmann::json::array();
+  for (Content content : {Content::curved, Content::normal_mapped}) {
+    const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+    for (const std::string& id : configurations(table)) {
+      const Metrics m = mean_metrics(table, id, keep);
+      if (!m.cases) continue;
+      by_content.push_back({{"content", std::string(content_name(content))}, {"configuration", id}, {"error", m.flip_ldr},
+                            {"rmse_tonemapped", m.rmse_tonemapped}, {"flip_hdr", m.flip_hdr}, {"flicker_display", m.flicker_display}});
+    }
+  }
+  return {{"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
+          {"rows", rows}, {"by_content", by_content}, {"cases", cases}};
 }
 
 std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir) {

@@ -44,6 +44,8 @@ struct VariantSummary {
   double max_error = 0.0;  // the largest over the cases
   double flicker = 0.0;
   double flicker_display = 0.0;  // tonemapped temporal std relative to the ground truth's
+  double flip_ldr = 0.0;
+  double flip_hdr = 0.0;
   std::size_t cases = 0;
 };
 
@@ -56,7 +58,11 @@ render::TradeConfig preset_config(std::string_view preset);
 // Terminal table: one row per variant (means), with the cost columns when known.
 std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs);
 
-// Rows in the format bench_shading --json uses, each carrying "error" (mean tonemapped RMSE),
+// The findings (findings.hpp) as terminal tables: recommendation per path and content, engine
+// switches, per-scene verdicts.
+std::string format_findings(const render::TradeTable& table, const CostTable* costs);
+
+// Rows in the format bench_shading --json uses, each carrying "error" (mean LDR-FLIP),
 // so that `saagen plan --trade-table` can choose by accuracy; plus the full trade rows.
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
 
