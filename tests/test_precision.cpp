@@ -102,6 +102,12 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
         pack.sym2(material.a);
       } else if (name == "tau") {
         pack.real(material.tau);
+      } else if (name == "mean_length") {
+        pack.real(saagen::test::prefilter_inputs(seed * kElements + e).mean_length);
+      } else if (name == "slope_mean") {
+        pack.vec2(saagen::test::prefilter_inputs(seed * kElements + e).slope_mean);
+      } else if (name == "slope_second") {
+        pack.sym2(saagen::test::prefilter_inputs(seed * kElements + e).slope_second);
       }
     }
     in.min_alpha.push_back(smallest);
@@ -165,6 +171,7 @@ std::vector<double> values(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
 std::vector<double> reference_core(const ref::Params& p, const std::string& name, const float* x) {
   Reader in(x);
+  if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
   const ref::Brdf brdf{p};
   if (name.rfind("forward_aniso_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_matrix(p, a, du, in.vec2())); }
   if (name.rfind("forward_axis_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_rectangle(p, a, du, in.vec2())); }
