@@ -8,6 +8,7 @@
 // float32) + 1e-12 for the double-level difference and values in the subnormal range.
 #include "cli_support.hpp"
 
+#include "saagen/error.hpp"
 #include "saagen/prefilter.hpp"
 #include "saagen/reference/render/normal_map.hpp"
 #include "saagen/reference/reference.hpp"
@@ -149,17 +150,20 @@ TEST(Lean, CovarianceOfAKnownMapIsExact) {
   const auto levels = pf::build_levels(image_of(2, 2, normals));
   const Vec2 mean{levels[1].slope_mean[0], levels[1].slope_mean[1]};
   const Sym2 second{levels[1].slope_second[0], levels[1].slope_second[1], levels[1].slope_second[2]};
-  // E[s] = (0.125, 0.125); E[x^2] = 0.1875 -> 0.171875; E[xy] = 0.03125 -> 0.015625; E[y^2] = 0.28125 -> 0.265625.
+  // E[s] = (0.125, 0.125); Sigma: E[x^2] = 0.09375 -> 0.078125, E[xy] = 0.03125 -> 0.015625,
+  // E[y^2] = 0.21875 -> 0.203125 (the slopes come back from the unit normals to ~1e-16).
+  EXPECT_NEAR(mean.x, 0.125, 1e-15);
+  EXPECT_NEAR(mean.y, 0.125, 1e-15);
   const Sym2 covariance = ref::lean_covariance(ref::Params{}, mean, second);
-  EXPECT_NEAR(covariance.xx, 0.171875, 1e-15);
-  EXPECT_NEAR(covariance.xy, 0.015625, 1e-15);
-  EXPECT_NEAR(covariance.yy, 0.265625, 1e-15);
+  EXPECT_NEAR(covariance.xx, 0.078125, 1e-14);
+  EXPECT_NEAR(covariance.xy, 0.015625, 1e-14);
+  EXPECT_NEAR(covariance.yy, 0.203125, 1e-14);
   const Sym2 a = ref::prefilter_lean(ref::Params{}, {0.01, 0.04}, mean, second);
-  EXPECT_NEAR(a.xx, 0.01 + 2 * 0.171875, 1e-15);
-  EXPECT_NEAR(a.xy, 2 * 0.015625, 1e-15);
-  EXPECT_NEAR(a.yy, 0.04 + 2 * 0.265625, 1e-15);
+  EXPECT_NEAR(a.xx, 0.01 + 2 * 0.078125, 1e-14);
+  EXPECT_NEAR(a.xy, 2 * 0.015625, 1e-14);
+  EXPECT_NEAR(a.yy, 0.04 + 2 * 0.203125, 1e-14);
   // Isotropic: alpha^2 + tr(Sigma) (same E|s - E s|^2), no derivatives.
-  EXPECT_NEAR(ref::prefilter_lean_sum(ref::Params{}, 0.01, mean, second, {}, {}), 0.01 + 0.4375, 1e-15);
+  EXPECT_NEAR(ref::prefilter_lean_sum(ref::Params{}, 0.01, mean, second, {}, {}), 0.01 + 0.28125, 1e-14);
   // Cancellation can make E[s s^T] - E[s]^2 slightly indefinite: the guard clamps it to PSD.
   const Sym2 clamped = ref::lean_covariance(ref::Params{}, {1.0, 1.0}, {1.0 - 1e-9, 1.0 + 1e-3, 1.0});
   EXPECT_EQ(clamped.xx, 0.0);

@@ -15,8 +15,6 @@ double clamped_kernel(const Params& p, Vec3 dn_dx, Vec3 dn_dy) {
     return min(2.0 * isotropic_kernel_sum(p, dn_dx, dn_dy), p.kappa);
 }
 
-double trace(Sym2 m) { return m.xx + m.yy; }
-
 }  // namespace
 
 // Toksvig 2005: |N_a| = 1 / (1 + sigma^2).
