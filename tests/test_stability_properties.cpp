@@ -768,6 +768,18 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
             e[offset] = e[offset + 2] = as_float(2.0 + std::fabs(e[offset + 1]));
           }
           if (param.name == "tau") e[offset] = std::max(e[offset], 1e-20);
+          // Toksvig's L in [1e-3, 1]; LEAN moments of a covariance with variances >= 0.01 and
+          // |correlation| <= 0.5 around a mean within +-1 (no clamp acts).
+          if (param.name == "mean_length") e[offset] = std::clamp(std::fabs(e[offset]), 1e-3, 1.0);
+          if (param.name == "slope_mean")
+            for (std::uint32_t k = 0; k < 2; ++k) e[offset + k] = std::clamp(e[offset + k], -1.0, 1.0);
+          if (param.name == "slope_second") {
+            const double mx = e[offset - 2], my = e[offset - 1];
+            const double xx = std::clamp(std::fabs(e[offset]), 0.01, 1e4), yy = std::clamp(std::fabs(e[offset + 2]), 0.01, 1e4);
+            const double limit = 0.5 * std::sqrt(xx * yy);
+            e[offset + 1] = std::clamp(e[offset + 1], -limit, limit) + mx * my;
+            e[offset] = xx + mx * mx, e[offset + 2] = yy + my * my;
+          }
           offset += count;
         }
       }
