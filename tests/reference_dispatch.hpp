@@ -4,7 +4,10 @@
 
 #include "saagen/reference/reference.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -57,6 +60,106 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
     return output_values(ref::beckmann_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   }
   throw std::runtime_error("no reference for " + name);
+}
+
+// --- normal-map prefiltering (templates/40-prefilter.saa), shared by the suites that iterate the
+// catalogue: realistic inputs, the reference and a magnitude scale for fp32 rounding bounds.
+
+// Realistic texel statistics: L = |mean normal| in [0.3, 1] (1 exactly one time in eight), E[s]
+// with components in [-0.5, 0.5], a rotated covariance of trace 1e-6 .. 0.25 (eigenvalue ratio up
+// to 100), and E[s s^T] = Sigma + E[s] E[s]^T. Deterministic in `index`.
+struct PrefilterInputs {
+  double mean_length = 1.0;
+  ref::Vec2 slope_mean;
+  ref::Sym2 slope_second;
+};
+
+inline PrefilterInputs prefilter_inputs(std::uint64_t index) {
+  std::uint64_t state = index * 0x9E3779B97F4A7C15ull + 0x5EED;
+  const auto unit = [&state] {
+    state ^= state >> 33, state *= 0xFF51AFD7ED558CCDull, state ^= state >> 33, state *= 0xC4CEB9FE1A85EC53ull, state ^= state >> 33;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  PrefilterInputs in;
+  in.mean_length = index % 8 == 0 ? 1.0 : 0.3 + 0.7 * unit();
+  in.slope_mean = {unit() - 0.5, unit() - 0.5};
+  const double trace = std::pow(10.0, -6.0 + 5.4 * unit()), ratio = 0.01 + 0.99 * unit(), angle = 3.14159 * unit();
+  const double l1 = trace / (1.0 + ratio), l2 = l1 * ratio, c = std::cos(angle), s = std::sin(angle);
+  const ref::Sym2 covariance{l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c};
+  const ref::Vec2 m = in.slope_mean;
+  in.slope_second = covariance + ref::Sym2{m.x * m.x, m.x * m.y, m.y * m.y};
+  return in;
+}
+
+inline bool is_prefilter_parameter(const std::string& name) {
+  return name == "mean_length" || name == "slope_mean" || name == "slope_second";
+}
+
+// The reference of prefilter function `name` on inputs read in parameter order (In: real, vec2,
+// vec3, sym2); nullopt for other functions. With `magnitudes`, the magnitude scale of each output
+// instead: the same expression with every term taken by absolute value (|E[s s^T]| + E[s]^2 for the
+// covariance, whose subtraction cancels), so that 2e-5 times it bounds fp32 rounding.
+template <class In>
+std::optional<std::vector<double>> prefilter_reference(const std::string& name, const ref::Params& p, In& in, bool magnitudes = false) {
+  using ref::Sym2;
+  using ref::Vec2;
+  using ref::Vec3;
+  const auto abs2 = [](Vec2 v) { return Vec2{std::fabs(v.x), std::fabs(v.y)}; };
+  const auto abs3 = [](Vec3 v) { return Vec3{std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; };
+  const auto covariance_scale = [](Vec2 m, Sym2 e) {
+    const double xx = std::fabs(e.xx) + m.x * m.x, yy = std::fabs(e.yy) + m.y * m.y;
+    return Sym2{xx, std::fabs(e.xy) + std::fabs(m.x * m.y) + std::sqrt(xx * yy), yy};
+  };
+  const auto kernel_scale = [&](Vec3 dx, Vec3 dy) { return ref::min(2.0 * ref::isotropic_kernel_sum(p, abs3(dx), abs3(dy)), p.kappa); };
+  if (name == "toksvig_variance") {
+    const double l = in.real();
+    return output_values(ref::toksvig_variance(p, l));
+  }
+  if (name == "lean_covariance") {
+    const Vec2 m = in.vec2();
+    const Sym2 e = in.sym2();
+    return output_values(magnitudes ? covariance_scale(m, e) : ref::lean_covariance(p, m, e));
+  }
+  if (name == "prefilter_toksvig") {
+    const double a = in.real(), l = in.real();
+    return output_values(magnitudes ? std::fabs(a) + 2.0 * ref::toksvig_variance(p, l) : ref::prefilter_toksvig(p, a, l));
+  }
+  if (name == "prefilter_toksvig_sum" || name == "prefilter_toksvig_projected") {
+    const double a = in.real(), l = in.real();
+    const Vec3 dx = in.vec3(), dy = in.vec3();
+    if (magnitudes) return output_values(std::fabs(a) + 2.0 * ref::toksvig_variance(p, l) + kernel_scale(dx, dy));
+    return output_values(name == "prefilter_toksvig_sum" ? ref::prefilter_toksvig_sum(p, a, l, dx, dy)
+                                                         : ref::prefilter_toksvig_projected(p, a, l, dx, dy));
+  }
+  if (name == "prefilter_lean") {
+    const Vec2 a = in.vec2(), m = in.vec2();
+    const Sym2 e = in.sym2();
+    if (magnitudes) return output_values(Sym2{std::fabs(a.x), 0.0, std::fabs(a.y)} + 2.0 * covariance_scale(m, e));
+    return output_values(ref::prefilter_lean(p, a, m, e));
+  }
+  if (name == "prefilter_lean_aniso_slope") {
+    const Vec2 a = in.vec2(), m = in.vec2();
+    const Sym2 e = in.sym2();
+    const Vec2 du = in.vec2(), dv = in.vec2();
+    if (magnitudes) {
+      const Sym2 k = ref::filter_roughness_matrix(p, abs2(a), abs2(du), abs2(dv));
+      return output_values(Sym2{k.xx, std::fabs(k.xy) + std::sqrt(k.xx * k.yy), k.yy} + 2.0 * covariance_scale(m, e));
+    }
+    return output_values(ref::prefilter_lean_aniso_slope(p, a, m, e, du, dv));
+  }
+  if (name == "prefilter_lean_sum" || name == "prefilter_lean_projected") {
+    const double a = in.real();
+    const Vec2 m = in.vec2();
+    const Sym2 e = in.sym2();
+    const Vec3 dx = in.vec3(), dy = in.vec3();
+    if (magnitudes) {
+      const Sym2 c = covariance_scale(m, e);
+      return output_values(std::fabs(a) + c.xx + c.yy + kernel_scale(dx, dy));
+    }
+    return output_values(name == "prefilter_lean_sum" ? ref::prefilter_lean_sum(p, a, m, e, dx, dy)
+                                                      : ref::prefilter_lean_projected(p, a, m, e, dx, dy));
+  }
+  return std::nullopt;
 }
 
 }  // namespace saagen::test

@@ -40,6 +40,10 @@ enum class Claim {
   brdf_value,        // NDFs, G2, BRDFs: finite, >= 0
   smith_lambda,      // Lambdas: finite, >= kLambdaFloor (Walter's Beckmann fit dips below 0)
   clamp_tau,         // ndf_clamp_tau: finite, >= 0
+  variance,          // toksvig_variance: finite, >= 0
+  covariance,        // lean_covariance: finite, diagonal >= 0, det >= -(rounding)
+  prefiltered,       // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
+  prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
 };
 
 inline constexpr double kKappaSlack = 0x1p-22;
@@ -53,7 +57,11 @@ inline constexpr double kLambdaFloor = -1e-4;
 
 inline Claim claim_of(std::string_view function) {
   const auto starts = [&](std::string_view prefix) { return function.substr(0, prefix.size()) == prefix; };
-  if (starts("forward_aniso_")) return Claim::roughness_matrix;
+  if (starts("forward_aniso_") || function == "prefilter_lean" || starts("prefilter_lean_aniso")) return Claim::roughness_matrix;
+  if (function == "toksvig_variance") return Claim::variance;
+  if (function == "lean_covariance") return Claim::covariance;
+  if (starts("prefilter_") && function.ends_with("_projected")) return Claim::prefiltered_projected;
+  if (starts("prefilter_")) return Claim::prefiltered;
   if (starts("deferred_projected_space")) return Claim::projected_space;
   if (starts("forward_axis_") || starts("deferred_")) return Claim::saturated;
   if (function == "ndf_clamp_tau") return Claim::clamp_tau;
@@ -69,6 +77,10 @@ inline std::string_view describe(Claim claim) {
     case Claim::brdf_value: return "finite; >= 0";
     case Claim::smith_lambda: return "finite; >= -1e-4";
     case Claim::clamp_tau: return "finite; >= 0";
+    case Claim::variance: return "finite; >= 0";
+    case Claim::covariance: return "finite; S00, S11 >= 0; det S >= -2^-20 S00 S11 - 2^-122 (S00 + S11)";
+    case Claim::prefiltered: return "finite; min(a,1) <= a' <= 1 (texture term unclamped)";
+    case Claim::prefiltered_projected: return "finite; saturate(a) <= a' <= 1 (+-2^-22)";
   }
   return "";
 }
@@ -120,6 +132,26 @@ inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, 
       if (out[0] - a > kappa + kProjectedSlack) fail("a' - a > kappa");
       break;
     }
+    case Claim::covariance: {
+      if (out[0] < 0.0 || out[2] < 0.0) fail("negative variance");
+      if (out[0] * out[2] - out[1] * out[1] < -kPsdSlack * out[0] * out[2] - kPsdUnderflow * (out[0] + out[2])) {
+        fail("det S < 0 beyond rounding");
+      }
+      break;
+    }
+    case Claim::prefiltered: {
+      const double a = alpha2[0];
+      if (out[0] < std::min(a, 1.0)) fail("a' < min(a, 1)");
+      if (out[0] > 1.0) fail("a' > 1");
+      break;
+    }
+    case Claim::prefiltered_projected: {
+      const double a = ref::saturate(alpha2[0]);
+      if (out[0] < a - kProjectedSlack) fail("a' < saturate(a)");
+      if (out[0] > 1.0 + kProjectedSlack) fail("a' > 1");
+      break;
+    }
+    case Claim::variance:
     case Claim::brdf_value:
     case Claim::clamp_tau:
       if (out[0] < 0.0) fail("negative");

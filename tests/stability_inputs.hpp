@@ -112,6 +112,17 @@ inline double brdf_alpha2(Rng& rng) {
 }
 
 // A unit vector whose z is adversarial: 0, tiny, +-1 or uniform, either sign.
+// Toksvig's mean-normal length L: its domain (0, 1] with 0, subnormals and 1 exactly, and also
+// any finite value (L > 1 from rounding, negative from a broken texture).
+inline double adversarial_mean_length(Rng& rng) {
+  static constexpr double specials[] = {0.0, 1e-45, 1e-38, 1e-30, 1e-7, 0.5, 1.0 - 0x1p-24, 1.0, 1.0 + 0x1p-23, 2.0};
+  switch (rng.below(4)) {
+    case 0: return specials[rng.below(std::size(specials))];
+    case 1: return adversarial_component(rng);
+    default: return rng.uniform();
+  }
+}
+
 inline ref::Vec3 adversarial_direction(Rng& rng) {
   static constexpr double zs[] = {0.0, 1e-30, 1e-20, 1e-10, 1e-7, 1e-4, 1e-2, 1.0};
   double z = rng.chance(2) ? zs[rng.below(std::size(zs))] : rng.uniform();
@@ -225,6 +236,10 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       pack.sym2(material.a);
     } else if (name == "tau") {
       pack.real(material.tau);
+    } else if (name == "mean_length") {
+      pack.real(adversarial_mean_length(rng));
+    } else if (name == "slope_mean" || name == "slope_second") {
+      for (std::uint32_t k = 0; k < (name == "slope_mean" ? 2u : 3u); ++k) pack.real(adversarial_component(rng));
     } else {
       throw std::runtime_error("no adversarial generator for parameter " + name + " of " + function.name);
     }

@@ -15,6 +15,7 @@
 //    error of e by e). Smith Lambda is a difference (-0.5 + ..., or Walter's fit whose
 //    numerator has roots near a = 1.55), so its scale is the sum of the magnitudes of its terms.
 #include "gpu_support.hpp"
+#include "reference_dispatch.hpp"
 
 #include "saagen/reference/reference.hpp"
 
@@ -113,8 +114,9 @@ void push(std::vector<float>& out, Vec3 v) { push(out, v.x), push(out, v.y), pus
 void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), push(out, m.yy); }
 
 // Packs the inputs of `function` for one scenario, by parameter name (see templates/*.saa).
-void pack_inputs(const saagen::Function& function, const Scenario& s, const ref::Params& params, std::vector<float>& out) {
+void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params, std::vector<float>& out) {
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
+  const saagen::test::PrefilterInputs texel = saagen::test::prefilter_inputs(index);
   const Sym2 matrix = roughness_matrix(s);
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
@@ -130,6 +132,9 @@ void pack_inputs(const saagen::Function& function, const Scenario& s, const ref:
     else if (name == "o") push(out, s.o);
     else if (name == "a") push(out, matrix);
     else if (name == "tau") push(out, ref::sym2_determinant(matrix) * s.tau_scale);
+    else if (name == "mean_length") push(out, texel.mean_length);
+    else if (name == "slope_mean") push(out, texel.slope_mean);
+    else if (name == "slope_second") push(out, texel.slope_second);
     else throw std::runtime_error("no input generator for parameter " + name + " of " + function.name);
   }
   (void)params;
@@ -266,6 +271,13 @@ std::map<std::string, ReferenceFunction> reference_functions(const ref::Params& 
   };
   table["ggx_brdf_axis"] = brdf_axis(ref::ggx_brdf_axis, false);
   table["beckmann_brdf_axis"] = brdf_axis(ref::beckmann_brdf_axis, true);
+  // Normal-map prefiltering (templates/40-prefilter.saa): the shared reference and its scale.
+  for (const saagen::Function& function : Catalogue::builtin().functions()) {
+    const std::string name = function.name;
+    if (name.rfind("prefilter_", 0) != 0 && name != "toksvig_variance" && name != "lean_covariance") continue;
+    table[name] = {[=](Inputs& in) { return *saagen::test::prefilter_reference(name, p, in); },
+                   [=](Inputs& in) { return *saagen::test::prefilter_reference(name, p, in, true); }};
+  }
   return table;
 }
 
@@ -291,7 +303,7 @@ TEST_P(CoreOnGpu, MatchesTheDoublePrecisionReference) {
 
   std::vector<float> inputs;
   inputs.reserve(std::size_t{element_count} * request.input_stride);
-  for (const Scenario& s : all_scenarios) pack_inputs(function, s, params, inputs);
+  for (std::size_t index = 0; index < all_scenarios.size(); ++index) pack_inputs(function, all_scenarios[index], index, params, inputs);
   ASSERT_EQ(inputs.size(), std::size_t{element_count} * request.input_stride);
 
   saagen::harness::ComputeRun run;

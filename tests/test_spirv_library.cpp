@@ -126,7 +126,7 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
     std::cout << fmt::format("[ size     ] {:<34} {:>6} bytes {:>5} instructions, {} export(s)\n", library.file_name,
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
-  EXPECT_EQ(exported, 24u);  // as test_kernels: 4 forward + 6 deferred cores, 8 GGX + 6 Beckmann evaluators
+  EXPECT_EQ(exported, 33u);  // as test_kernels: 4 forward + 6 deferred cores, 8 GGX + 6 Beckmann evaluators, 9 prefilter cores
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -271,6 +271,7 @@ struct Draw {
   Vec3 dh_x, dh_y;
   Sym2 a;
   double tau = 0.0;
+  saagen::test::PrefilterInputs texel;  // normal-map prefiltering inputs
 };
 
 Draw draw(std::mt19937_64& random) {
@@ -284,6 +285,7 @@ Draw draw(std::mt19937_64& random) {
   d.alpha2 = {std::pow(10.0, -4.0 * unit(random)), std::pow(10.0, -4.0 * unit(random))};
   const ref::SphereBasis basis = ref::sphere_tangent_basis(d.h);
   const double m = std::pow(10.0, -4.0 + 4.0 * unit(random)), psi = angle(), ratio = unit(random);
+  d.texel = saagen::test::prefilter_inputs(random());
   d.dh_x = m * (std::cos(psi) * basis.e_theta + std::sin(psi) * basis.e_phi);
   d.dh_y = (m * ratio) * (-std::sin(psi) * basis.e_theta + std::cos(psi) * basis.e_phi);
   const double l1 = 0.01 + 0.49 * unit(random), l2 = std::clamp(l1 * (1.0 + 9.0 * unit(random)), 0.01, 0.5);
@@ -315,6 +317,9 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
     else if (name == "o") push(out, d.o);
     else if (name == "a") push(out, d.a);
     else if (name == "tau") push(out, d.tau);
+    else if (name == "mean_length") push(out, d.texel.mean_length);
+    else if (name == "slope_mean") push(out, d.texel.slope_mean);
+    else if (name == "slope_second") push(out, d.texel.slope_second);
     else throw std::runtime_error("no input for parameter " + name + " of " + function.name);
   }
 }
@@ -348,6 +353,11 @@ double beckmann_exponent(Vec3 h, Sym2 a, double tau) {
 // The reference of every exported function on one element's fp32 inputs.
 Expected reference(const std::string& name, Reader in) {
   const ref::Params p;
+  Reader terms = in;
+  if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) {
+    const auto scale = *saagen::test::prefilter_reference(name, p, terms, true);
+    return {*prefiltered, std::max(max_abs(*prefiltered), max_abs(scale))};
+  }
   const auto filter2 = [&](auto f) {  // (alpha2 real2, du, dv)
     const Vec2 a = in.vec2(), du = in.vec2(), dv = in.vec2();
     auto v = values_of(f(p, a, du, dv));

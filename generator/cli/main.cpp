@@ -11,6 +11,7 @@
 #include "report_commands.hpp"
 #include "glint_commands.hpp"
 #include "scene_commands.hpp"
+#include "texture_commands.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -204,6 +205,8 @@ int main(int argc, char** argv) {
   const saagen::cli::ReportCommands trade(app);
   // The deferred roughness-limiter pass (issue 8): `pass`; see pass_commands.cpp.
   const saagen::cli::PassCommand deferred_pass(app);
+  // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
+  const saagen::cli::TextureCommands texture(app);
 
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
         return command->get_name() == argv[1];
@@ -233,6 +236,7 @@ int main(int argc, char** argv) {
     if (*validate) return run_validate(catalogue, validate_directory);
     if (glints.requested()) return glints.run();
     if (deferred_pass.requested()) return deferred_pass.run(catalogue);
+    if (texture.requested()) return texture.run();
   } catch (const saagen::Error& error) {
     std::cerr << "saagen: error: " << error.what() << "\n";
     return exit_failure;

@@ -134,33 +134,53 @@ constexpr std::uint8_t kKtx2Identifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32
 constexpr std::uint32_t kFormatRgba16Sfloat = 97;
 constexpr std::uint32_t kFormatRgba32Sfloat = 109;
 
-std::uint32_t texel_bytes(std::uint32_t vk_format) {
-    if (vk_format == kFormatRgba16Sfloat) return 8;
-    if (vk_format == kFormatRgba32Sfloat) return 16;
-    throw Error(fmt::format("KTX2: vkFormat {} is not supported (97: R16G16B16A16_SFLOAT, 109: R32G32B32A32_SFLOAT)", vk_format));
+// The uncompressed formats saagen reads and writes: channel count, bits per channel, and whether
+// the channels are signed floats (else unsigned normalised integers).
+struct FormatInfo {
+    std::uint32_t channels = 0;
+    std::uint32_t bits = 0;
+    bool is_float = true;
+};
+
+FormatInfo format_info(std::uint32_t vk_format) {
+    switch (vk_format) {
+        case 37: return {4, 8, false};   // R8G8B8A8_UNORM
+        case 76: return {1, 16, true};   // R16_SFLOAT
+        case 97: return {4, 16, true};   // R16G16B16A16_SFLOAT
+        case 100: return {1, 32, true};  // R32_SFLOAT
+        case 109: return {4, 32, true};  // R32G32B32A32_SFLOAT
+        default: break;
+    }
+    throw Error(fmt::format("KTX2: vkFormat {} is not supported (37: R8G8B8A8_UNORM, 76: R16_SFLOAT, 97: R16G16B16A16_SFLOAT, "
+                            "100: R32_SFLOAT, 109: R32G32B32A32_SFLOAT)", vk_format));
 }
 
-// The Basic Data Format Descriptor (Khronos Data Format Specification 1.3) of an RGBA float
-// format: RGBSDA colour model, BT.709 primaries, linear transfer, four float signed samples.
+std::uint32_t texel_bytes(std::uint32_t vk_format) {
+    const FormatInfo info = format_info(vk_format);
+    return info.channels * info.bits / 8;
+}
+
+// The Basic Data Format Descriptor (Khronos Data Format Specification 1.3) of an uncompressed
+// format: RGBSDA colour model, BT.709 primaries, linear transfer, one sample per channel (signed
+// floats in [-1, 1], or unsigned normalised integers in [0, 2^bits - 1]).
 std::vector<std::uint32_t> basic_dfd(std::uint32_t vk_format) {
-    const std::uint32_t bytes = texel_bytes(vk_format);
-    const std::uint32_t bits = bytes * 2;  // per channel: 16 or 32
-    const std::uint32_t block_size = 24 + 16 * 4;
+    const FormatInfo info = format_info(vk_format);
+    const std::uint32_t block_size = 24 + 16 * info.channels;
     std::vector<std::uint32_t> words;
     words.push_back(4 + block_size);             // dfdTotalSize
     words.push_back(0);                          // vendorId 0 (Khronos), descriptorType 0 (basic)
     words.push_back(2u | (block_size << 16));    // versionNumber 2, descriptorBlockSize
     words.push_back(1u | (1u << 8) | (1u << 16)); // colorModel RGBSDA, primaries BT709, transfer LINEAR, flags 0
     words.push_back(0);                          // texel block 1x1x1x1
-    words.push_back(bytes);                      // bytesPlane0
+    words.push_back(texel_bytes(vk_format));     // bytesPlane0
     words.push_back(0);                          // bytesPlane4..7
     const std::uint32_t channel_ids[4] = {0, 1, 2, 15};  // R, G, B, A
-    for (std::uint32_t c = 0; c < 4; ++c) {
-        const std::uint32_t qualifiers = 0x80 | 0x40;  // float, signed
-        words.push_back((c * bits) | ((bits - 1) << 16) | ((channel_ids[c] | qualifiers) << 24));
-        words.push_back(0);            // sample position
-        words.push_back(0xBF800000u);  // sampleLower: -1.0f
-        words.push_back(0x3F800000u);  // sampleUpper: 1.0f
+    for (std::uint32_t c = 0; c < info.channels; ++c) {
+        const std::uint32_t qualifiers = info.is_float ? 0x80 | 0x40 : 0;  // float, signed
+        words.push_back((c * info.bits) | ((info.bits - 1) << 16) | ((channel_ids[c] | qualifiers) << 24));
+        words.push_back(0);                                              // sample position
+        words.push_back(info.is_float ? 0xBF800000u : 0u);               // sampleLower: -1.0f or 0
+        words.push_back(info.is_float ? 0x3F800000u : (1u << info.bits) - 1);  // sampleUpper: 1.0f or 2^bits - 1
     }
     return words;
 }
@@ -400,7 +420,7 @@ Ktx2Image read_ktx2(std::span<const std::uint8_t> bytes) {
     const std::uint32_t level_count = in.u32(40);
     if (in.u32(44) != 0) throw Error("KTX2: supercompressed files are not supported");
     const std::uint32_t texel = texel_bytes(image.vk_format);
-    if (image.type_size != texel / 4) throw Error(fmt::format("KTX2: typeSize {} does not match vkFormat {}", image.type_size, image.vk_format));
+    if (image.type_size != format_info(image.vk_format).bits / 8) throw Error(fmt::format("KTX2: typeSize {} does not match vkFormat {}", image.type_size, image.vk_format));
     if (image.width == 0 || image.faces != 1 || level_count == 0) throw Error("KTX2: expected a non-empty image with one face and explicit levels");
     const std::uint32_t dfd_at = in.u32(48), dfd_length = in.u32(52), kvd_at = in.u32(56), kvd_length = in.u32(60);
     if (in.u64(64) != 0 || in.u64(72) != 0) throw Error("KTX2: unexpected supercompression global data");

@@ -236,10 +236,12 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
-    const bool has_core = std::any_of(variant.functions.begin(), variant.functions.end(), [&](const std::string& function) {
-      return catalogue.find_function(function)->role == FunctionRole::core;
-    });
-    if (has_core) filters.push_back(variant.id);
+    // Screen-space filters: core functions and a fragment wrapper (the planner's is_filter).
+    const auto has_role = [&](FunctionRole role) {
+      return std::any_of(variant.functions.begin(), variant.functions.end(),
+                         [&](const std::string& function) { return catalogue.find_function(function)->role == role; });
+    };
+    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment)) filters.push_back(variant.id);
   }
   if (const auto variant = reader.string("variant", quoted_list(filters))) {
     if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {

@@ -76,9 +76,15 @@ const Rule& rule_for(const Material& material) {
 // ---------------------------------------------------------------------------------------------
 // Eligibility
 
+// A screen-space filter the planner can assign: core functions and a fragment wrapper. The
+// prefilter-* variants (texture-space, core only) combine with a filter instead; they are not
+// planned per material.
 bool is_filter(const Catalogue& catalogue, const Variant& variant) {
-  return std::any_of(variant.functions.begin(), variant.functions.end(),
-                     [&](const std::string& name) { return catalogue.find_function(name)->role == FunctionRole::core; });
+  const auto has_role = [&](FunctionRole role) {
+    return std::any_of(variant.functions.begin(), variant.functions.end(),
+                       [&](const std::string& name) { return catalogue.find_function(name)->role == role; });
+  };
+  return has_role(FunctionRole::core) && has_role(FunctionRole::fragment);
 }
 
 bool has_tangent_free_form(const Variant& variant) {

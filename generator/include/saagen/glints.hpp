@@ -75,8 +75,9 @@ double from_half(std::uint16_t bits);
 // Descriptor, key/value data, levels stored smallest first, each aligned to lcm(texel size, 4).
 
 struct Ktx2Image {
-    std::uint32_t vk_format = 0;   // 97: R16G16B16A16_SFLOAT, 109: R32G32B32A32_SFLOAT
-    std::uint32_t type_size = 0;   // 2 or 4
+    std::uint32_t vk_format = 0;   // 37: R8G8B8A8_UNORM, 76: R16_SFLOAT, 97: R16G16B16A16_SFLOAT,
+                                   // 100: R32_SFLOAT, 109: R32G32B32A32_SFLOAT
+    std::uint32_t type_size = 0;   // bytes per channel: 1, 2 or 4
     std::uint32_t width = 0;
     std::uint32_t height = 0;      // 0 for 1D images
     std::uint32_t depth = 0;       // 0 unless 3D

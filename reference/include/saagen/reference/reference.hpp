@@ -4,5 +4,6 @@
 #include "saagen/reference/math.hpp"
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/saa.hpp"
+#include "saagen/reference/prefilter.hpp"
 #include "saagen/reference/brdf.hpp"
 #include "saagen/reference/jacobian.hpp"

@@ -27,9 +27,10 @@ struct GuardConstants {
     double tiny_positive = 0.0;   // TINY_POSITIVE: floor of determinants, squared lengths, cos products
     double lambda_min_z = 0.0;    // LAMBDA_MIN_Z: smallest |w_z| Smith Lambda (and the BRDF's cosines) use
     double det_reliable = 0.0;    // DET_RELIABLE: det(A) below this fraction of a00 a11 is rounding noise
+    double slope_max = 0.0;       // SLOPE_MAX: slope moments clamped to +-this, second moments to this^2
 };
-inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3};
-inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1};
+inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4};
+inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0};
 
 // The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {
