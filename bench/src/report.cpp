@@ -139,7 +139,7 @@ void write_sheet(const render::ImageSet& set, const fs::path& path) {
   };
   label(0, "ground truth");
   for (std::size_t k = 0; k < set.variants.size(); ++k)
-    label(static_cast<int>(k) + 1, render::configuration_id(set.variants[k].variant, set.variants[k].feed));
+    label(static_cast<int>(k) + 1, render::configuration_id(set.variants[k].variant, set.variants[k].feed, set.variants[k].prefilter));
   for (int y = 0; y < tile_h; ++y) {
     for (int x = 0; x < tile_w; ++x) {
       const double reference = box(set.reference, x, y, scale);
@@ -551,6 +551,18 @@ render::TradeConfig preset_config(std::string_view preset) {
   config.scenes.insert(config.scenes.end(), render::content_scenes().begin(), render::content_scenes().end());
   config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
   if (preset == "full") return config;
+  if (preset == "medium") {
+    // Every scene and alpha at a quarter of the pixels and samples, without Fresnel: minutes,
+    // not tens of minutes, for trying a configuration.
+    config.width = config.height = 128;
+    config.strata = 16;
+    config.flicker_width = config.flicker_height = 64;
+    config.flicker_strata = 8;
+    config.frames = 16;
+    config.rotation_degrees_per_frame = 0.5;
+    config.fresnel_modes = {false};
+    return config;
+  }
   if (preset == "quick") {
     config.width = config.height = 64;
     config.strata = 8;
@@ -562,7 +574,7 @@ render::TradeConfig preset_config(std::string_view preset) {
     config.fresnel_modes = {false};
     return config;
   }
-  throw Error(fmt::format("unknown preset '{}'; choose full or quick", preset));
+  throw Error(fmt::format("unknown preset '{}'; choose full, medium or quick", preset));
 }
 
 std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs) {
@@ -622,7 +634,7 @@ std::vector<std::string> write_report(const render::TradeTable& table, const Cos
     write_sheet(set, dir / sheets.back());
   }
   std::vector<std::string> columns{"ground truth"};
-  for (const auto& rendered : table.images.front().variants) columns.push_back(render::configuration_id(rendered.variant, rendered.feed));
+  for (const auto& rendered : table.images.front().variants) columns.push_back(render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter));
 
   const auto summary = summarize(table);
   write_text(dir / "cost_vs_error.svg", plot_svg(summary, costs));

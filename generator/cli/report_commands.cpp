@@ -28,7 +28,7 @@ render::TradeTable compute(const std::string& preset, const std::string& cache_d
 }  // namespace
 
 void ReportCommands::add_common(CLI::App* command, Common& common) {
-  command->add_option("--preset", common.preset, "full (256 px, 1024 spp, 32 frames, 4 scenes x 4 alphas x Fresnel) or quick")
+  command->add_option("--preset", common.preset, "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
       ->capture_default_str();
   command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
@@ -53,10 +53,11 @@ int ReportCommands::run_bench() const {
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
   if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
   std::cout << report::format_summary(summary, cost_table);
-  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; error = RMSE against the {}-spp ground truth; "
+  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}-spp ground truth; "
                            "time ratio and dSPIR-V from {})\n",
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->source : std::string("no --cost file"));
+  std::cout << report::format_findings(table, cost_table);
   if (!bench_json_.empty()) {
     std::ofstream out(bench_json_);
     out << report::trade_json(table, summary, cost_table).dump(2) << "\n";

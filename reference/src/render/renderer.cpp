@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "saagen/reference/brdf.hpp"
+#include "saagen/reference/prefilter.hpp"
 #include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/render/parallel.hpp"
 
@@ -103,6 +104,15 @@ bool is_engine(Variant v) {
 
 std::string_view feed_name(NormalFeed feed) {
     return feed == NormalFeed::shading ? "shading" : "geometric";
+}
+
+std::string_view prefilter_name(Prefilter prefilter) {
+    switch (prefilter) {
+        case Prefilter::none: return "none";
+        case Prefilter::toksvig: return "toksvig";
+        case Prefilter::lean: return "lean";
+    }
+    return "?";
 }
 
 NormalFeed engine_feed(Variant engine) {
@@ -353,26 +363,47 @@ double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Der
     }
 }
 
+// The texture's roughness at a pixel in the alpha^2 domain (prefilter.hpp): 2 sigma^2 I
+// (Toksvig) or 2 Sigma_tex (LEAN), as a symmetric matrix in the tangent frame.
+Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params) {
+    if (prefilter == Prefilter::none || !f.has_normal_map) return {};
+    if (prefilter == Prefilter::toksvig) {
+        const double v = 2.0 * ref::toksvig_variance(params, ref::length(f.texel.mean_normal));
+        return {v, 0.0, v};
+    }
+    return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+}
+
 }  // namespace
 
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params,
-                       ref::Derivative mode, NormalFeed feed) {
+                       ref::Derivative mode, NormalFeed feed, Prefilter prefilter) {
     const PixelFields& f = gbuffer.at(x, y);
     PixelShade out;
     if (!f.hit) return out;
     const double a2 = material.alpha * material.alpha;
     const Vec2 alpha2{a2, a2};
+    // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
+    // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
+    const Sym2 texture = texture_roughness(f, prefilter, params);
+    // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
+    const double texture_isotropic = 0.5 * ref::trace(texture);
     double brdf = 0.0;
     auto isotropic = [&](double filtered) {
+        filtered = variant == Variant::deferred_projected_space
+                       ? ref::projected_space_add(filtered, texture_isotropic)
+                       : ref::saturate(filtered + texture_isotropic);
         out.roughness = {filtered, 0.0, filtered};
         brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, {filtered, filtered});
     };
     auto axis = [&](Vec2 filtered) {
+        filtered = {ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)};
         out.roughness = {filtered.x, 0.0, filtered.y};
         brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
     };
     auto matrix = [&](Sym2 a) {
+        a = a + texture;
         out.roughness = a;
         brdf = ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
     };
@@ -431,12 +462,12 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params, ref::Derivative mode, int threads,
-                     NormalFeed feed) {
+                     NormalFeed feed, Prefilter prefilter) {
     Image image(gbuffer.width, gbuffer.height);
     parallel_rows(gbuffer.height, threads, [&](int y) {
         for (int x = 0; x < gbuffer.width; ++x)
             image.at(x, y) = static_cast<float>(
-                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed).radiance);
+                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter).radiance);
     });
     return image;
 }

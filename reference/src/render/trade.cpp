@@ -161,10 +161,10 @@ std::vector<Material> trade_materials(const TradeConfig& config) {
 }
 
 const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel,
-                                 NormalFeed feed) const {
+                                 NormalFeed feed, Prefilter prefilter) const {
     for (const TradeRow& row : rows)
         if (row.variant == variant && row.scene == scene && row.alpha == alpha &&
-            row.fresnel == fresnel && row.feed == feed)
+            row.fresnel == fresnel && row.feed == feed && row.prefilter == prefilter)
             return &row;
     return nullptr;
 }
@@ -175,14 +175,21 @@ std::vector<Variant> default_trade_variants() {
     return variants;
 }
 
-std::string configuration_id(Variant variant, NormalFeed feed) {
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter) {
     std::string id(variant_id(variant));
     if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none)
         id += ":geometric";
+    if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
     return id;
 }
 
-std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed); }
+std::string configuration_id(const TradeRow& row) {
+    return configuration_id(row.variant, row.feed, row.prefilter);
+}
+
+bool scene_has_normal_map(SceneId id) {
+    return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
+}
 
 bool scene_has_normal_detail(SceneId id) {
     return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
@@ -194,6 +201,7 @@ namespace {
 struct RowKey {
     Variant variant;
     NormalFeed feed;
+    Prefilter prefilter = Prefilter::none;
 };
 
 // The rows of a scene, in config.variants order; a variant's feeds in config.feeds order. The
@@ -212,6 +220,11 @@ std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
                     keys.push_back({v, feed});
         }
     }
+    if (!scene_has_normal_map(scene)) return keys;
+    for (Variant v : config.prefiltered_variants)
+        for (Prefilter prefilter : config.prefilters)
+            keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric,
+                            prefilter});
     return keys;
 }
 
@@ -290,7 +303,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     };
     auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
         return render_variant(gbuffer, key.variant, material, config.params, config.derivative,
-                              config.threads, key.feed);
+                              config.threads, key.feed, key.prefilter);
     };
 
     std::uint64_t base = 0;
@@ -321,6 +334,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 TradeRow row;
                 row.variant = key.variant;
                 row.feed = key.feed;
+                row.prefilter = key.prefilter;
                 row.scene = id;
                 row.alpha = materials[m].alpha;
                 row.fresnel = materials[m].fresnel;
@@ -334,7 +348,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 }
                 table.rows.push_back(row);
                 if (config.keep_images)
-                    set.variants.push_back({key.variant, key.feed, std::move(image)});
+                    set.variants.push_back({key.variant, key.feed, key.prefilter, std::move(image)});
                 base += main_pixels;
                 report("1-spp variants " + name, base);
             }
@@ -416,12 +430,12 @@ std::string format_trade_table(const TradeTable& table) {
 std::string trade_table_csv(const TradeTable& table) {
     std::ostringstream s;
     s.precision(9);
-    s << "scene,alpha,fresnel,variant,feed,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,flicker,"
+    s << "scene,alpha,fresnel,variant,feed,prefilter,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,flicker,"
          "temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
          "reference_temporal_stddev_display,non_finite\n";
     for (const TradeRow& r : table.rows)
         s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
-          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << r.rmse_linear << ","
+          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << prefilter_name(r.prefilter) << "," << r.rmse_linear << ","
           << r.rmse_tonemapped << "," << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << ","
           << r.flicker << ","
           << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display

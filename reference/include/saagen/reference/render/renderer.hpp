@@ -121,6 +121,19 @@ std::string_view feed_name(NormalFeed feed);  // "shading", "geometric"
 // The normal an engine's shipped form reads.
 NormalFeed engine_feed(Variant engine);
 
+// Normal-map prefiltering, the texture-space half of SAA (Kaplanyan et al. 2016 Sec. 4;
+// reference/prefilter.hpp): the spread of the map's normals under the pixel's trilinear MIP
+// footprint (PixelFields::texel) becomes roughness added to the filtered roughness, in the
+// variant's domain, never clamped by kappa.
+//   toksvig  2 sigma^2, sigma^2 = (1 - L) / L from the length L of the filtered mean normal
+//            (Toksvig 2005; the map stores unnormalised mean normals, as Toksvig proposes);
+//   lean     2 Sigma_tex from the filtered slope moments (Olano & Baker 2010): the full
+//            covariance for the matrix forms, its diagonal for the axis-aligned forms, its
+//            trace for the isotropic ones.
+// Only pixels of a normal-mapped surface have a texture term (0 elsewhere).
+enum class Prefilter { none, toksvig, lean };
+std::string_view prefilter_name(Prefilter prefilter);  // "none", "toksvig", "lean"
+
 // The specular radiance of one light at a surface point, in the tangent frame.
 // brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
 double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
@@ -251,11 +264,13 @@ struct PixelShade {
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params = {},
                        ref::Derivative mode = ref::Derivative::coarse,
-                       NormalFeed feed = NormalFeed::shading);
+                       NormalFeed feed = NormalFeed::shading,
+                       Prefilter prefilter = Prefilter::none);
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params = {},
                      ref::Derivative mode = ref::Derivative::coarse, int threads = 0,
-                     NormalFeed feed = NormalFeed::shading);
+                     NormalFeed feed = NormalFeed::shading,
+                     Prefilter prefilter = Prefilter::none);
 
 }  // namespace saagen::render

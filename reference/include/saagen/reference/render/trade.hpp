@@ -71,6 +71,13 @@ struct TradeConfig {
     // geometric feed only adds rows on scenes with normal detail (normal maps, bump plane),
     // where it differs from the shading feed.
     std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
+    // On normal-mapped scenes: these variants fed the geometric normal (curvature) with the map's
+    // detail prefiltered into roughness, the engines' recommended split; `none` with a
+    // prefilter is texture prefiltering alone.
+    std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean};
+    std::vector<Variant> prefiltered_variants{
+        Variant::none, Variant::forward_aniso_projected, Variant::forward_axis_projected,
+        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
     ref::Params params{};
     ref::Derivative derivative = ref::Derivative::coarse;
     std::uint64_t seed = 0x5aa6e11ULL;
@@ -83,6 +90,7 @@ struct TradeConfig {
 struct TradeRow {
     Variant variant = Variant::none;
     NormalFeed feed = NormalFeed::shading;
+    Prefilter prefilter = Prefilter::none;
     SceneId scene = SceneId::sphere;
     double alpha = 0.0;
     bool fresnel = false;
@@ -114,6 +122,7 @@ struct ImageSet {
     struct Rendered {
         Variant variant;
         NormalFeed feed;
+        Prefilter prefilter;
         Image image;
     };
     std::vector<Rendered> variants;  // 1-spp images, in row order
@@ -129,7 +138,8 @@ struct TradeTable {
     int cache_misses = 0;
 
     const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel,
-                         NormalFeed feed = NormalFeed::shading) const;
+                         NormalFeed feed = NormalFeed::shading,
+                         Prefilter prefilter = Prefilter::none) const;
 };
 
 struct TradeProgress {
@@ -158,13 +168,17 @@ std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings
 std::string ground_truth_cache_file(const std::string& key);
 
 // The configuration a row measures: the variant id, with ":geometric" appended when a saagen
-// variant is fed the geometric normal ("deferred-avg", "deferred-avg:geometric", "engine-hdrp").
-std::string configuration_id(Variant variant, NormalFeed feed);
+// variant is fed the geometric normal, and "+toksvig" / "+lean" with a prefiltered normal map
+// ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
+// "engine-hdrp").
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none);
 std::string configuration_id(const TradeRow& row);
 
 // Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.
 // whether the geometric and the shading normal differ.
 bool scene_has_normal_detail(SceneId id);
+// Whether that detail comes from a normal map texture (which prefiltering needs).
+bool scene_has_normal_map(SceneId id);
 
 // Fixed-width text table and CSV of the rows.
 std::string format_trade_table(const TradeTable& table);
