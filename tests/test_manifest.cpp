@@ -332,6 +332,39 @@ TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
   EXPECT_NE(plan.materials.at(0).reason.find("t.json has no error"), std::string::npos) << plan.materials.at(0).reason;
 }
 
+// With per-content rows, a normal-mapped material gets the feed and prefilter of the lowest-error
+// configuration on normal-mapped content; an accuracy material may change variant for it, a
+// material whose variant the manifest names keeps it and gets that variant's best handling.
+TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
+  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "deferred-sum", "error": 0.01},
+      {"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.14},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.12},
+      {"content": "normal-mapped", "configuration": "deferred-sum:geometric", "error": 0.11},
+      {"content": "normal-mapped", "configuration": "engine-godot", "error": 0.01}]})",
+                                                             "trade.json");
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\nnormal_maps = true\n" +
+                                          "[[material]]\nname = \"b\"\npath = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-avg\"\n" +
+                                          "[[material]]\nname = \"c\"\npath = \"deferred\"\n");
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-sum");
+  EXPECT_EQ(plan.materials.at(0).feed, "geometric");
+  EXPECT_EQ(plan.materials.at(0).prefilter, "none");
+  EXPECT_NE(plan.materials.at(0).normal_advice.find("deferred-sum:geometric 0.11"), std::string::npos)
+      << plan.materials.at(0).normal_advice;
+  EXPECT_EQ(plan.materials.at(1).variant, "deferred-avg");
+  EXPECT_EQ(plan.materials.at(1).feed, "geometric");
+  EXPECT_EQ(plan.materials.at(1).prefilter, "toksvig");
+  EXPECT_TRUE(plan.materials.at(2).normal_advice.empty());  // no normal map, nothing to advise
+  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, plan).find("  normal    deferred-sum:geometric"), std::string::npos);
+}
+
+TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
+  const saagen::ScenePlan plan = saagen::plan_scene(
+      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"));
+  EXPECT_NE(plan.materials.at(0).normal_advice.find("measured: "), std::string::npos) << plan.materials.at(0).normal_advice;
+}
+
 TEST(Planner, BadTradeTablesAreRejected) {
   const auto error_of_table = [](const std::string& text) -> std::string {
     try {
@@ -345,6 +378,10 @@ TEST(Planner, BadTradeTablesAreRejected) {
   EXPECT_EQ(error_of_table("[]"), "t.json: no \"rows\" array; pass the file `bench_shading --json` writes");
   EXPECT_NE(error_of_table(R"({"rows": [{"variant": "x", "ratio_median": "fast"}]})").find("t.json: rows[0]: \"ratio_median\" must be a number"),
             std::string::npos);
+  EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "error": 1}]})"),
+            "t.json: by_content[0]: needs a string \"configuration\"");
+  EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
+            "t.json: by_content[0]: needs a number \"error\"");
 }
 
 TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {

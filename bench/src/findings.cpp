@@ -44,10 +44,18 @@ std::vector<std::string> configurations_of(const render::TradeTable& table, Cont
 
 }  // namespace
 
-std::string_view content_name(Content content) { return content == Content::curved ? "curved" : "normal-mapped"; }
+std::string_view content_name(Content content) {
+  switch (content) {
+    case Content::curved: return "curved";
+    case Content::normal_mapped: return "normal-mapped";
+    case Content::bump: return "bump";
+  }
+  return "?";
+}
 
 Content content_of(render::SceneId scene) {
-  return render::scene_has_normal_detail(scene) ? Content::normal_mapped : Content::curved;
+  if (render::scene_has_normal_map(scene)) return Content::normal_mapped;
+  return render::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
 }
 
 double flicker_error(const Metrics& m) { return std::fabs(m.flicker_display - 1.0); }

@@ -424,7 +424,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   if (costs) md << "Cost from `" << costs->source << "` (" << costs->device << ").\n\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
   md << "## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
-  for (Content content : {Content::curved, Content::normal_mapped})
+  for (Content content : kContents)
     md << "\n## " << content_name(content) << " scenes (means over their scenes and alphas)\n\n"
        << as_markdown(content_table(table, content, costs));
   md << "\n![cost vs error](cost_vs_error.svg)\n\n## Every case\n\n" << as_markdown(cases_table(table));
@@ -445,7 +445,7 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   if (costs) html << "<p>Cost from <code>" << html_escape(costs->source) << "</code> (" << html_escape(costs->device) << ").</p>\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t); });
   html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
-  for (Content content : {Content::curved, Content::normal_mapped})
+  for (Content content : kContents)
     html << "<h2>" << content_name(content) << " scenes</h2>\n" << as_html(content_table(table, content, costs));
   html << "<h2>Cost against error</h2>\n<img src=\"cost_vs_error.svg\" alt=\"cost against error\">\n";
   html << "<h2>Images</h2>\n<p>Columns: " << html_escape(fmt::format("{}", fmt::join(columns, ", ")))
@@ -608,7 +608,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
   }
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
-  for (Content content : {Content::curved, Content::normal_mapped}) {
+  for (Content content : kContents) {
     const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
     for (const std::string& id : configurations(table)) {
       const Metrics m = mean_metrics(table, id, keep);

@@ -17,11 +17,14 @@ std::optional<report::CostTable> load_costs(const std::string& path) {
   return report::load_cost_table(path);
 }
 
-render::TradeTable compute(const std::string& preset, const std::string& cache_dir, int threads, bool keep_images) {
-  render::TradeConfig config = report::preset_config(preset);
-  config.cache_dir = cache_dir;
-  config.threads = threads;
+render::TradeTable compute(const ReportCommands::Common& common, bool keep_images) {
+  render::TradeConfig config = report::preset_config(common.preset);
+  config.cache_dir = common.cache_dir;
+  config.threads = common.threads;
   config.keep_images = keep_images;
+  if (common.sigma2) config.params.sigma2 = *common.sigma2;
+  if (common.kappa) config.params.kappa = *common.kappa;
+  config.prefilter_scale = common.prefilter_scale;
   return render::compute_trade_table(config, report::progress_bar());
 }
 
@@ -33,6 +36,12 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
   command->add_option("--threads", common.threads, "Render threads (0: all cores)")->capture_default_str();
+  command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
+      ->check(CLI::Range(1e-6, 16.0));
+  command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(CLI::Range(1e-6, 1.0));
+  command->add_option("--prefilter-scale", common.prefilter_scale, "Scale of the prefiltered normal-map roughness to measure")
+      ->check(CLI::Range(0.0, 4.0))
+      ->capture_default_str();
 }
 
 ReportCommands::ReportCommands(CLI::App& app) {
@@ -48,7 +57,7 @@ ReportCommands::ReportCommands(CLI::App& app) {
 
 int ReportCommands::run_bench() const {
   const auto costs = load_costs(bench_common_.cost_json);  // read first: a bad file fails before rendering
-  const render::TradeTable table = compute(bench_common_.preset, bench_common_.cache_dir, bench_common_.threads, false);
+  const render::TradeTable table = compute(bench_common_, false);
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
   if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
@@ -68,7 +77,7 @@ int ReportCommands::run_bench() const {
 
 int ReportCommands::run_report() const {
   const auto costs = load_costs(report_common_.cost_json);
-  const render::TradeTable table = compute(report_common_.preset, report_common_.cache_dir, report_common_.threads, true);
+  const render::TradeTable table = compute(report_common_, true);
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_);
   std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n", report_directory_, images.size());
   return 0;

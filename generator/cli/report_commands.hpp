@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
 namespace saagen::cli {
@@ -19,13 +20,18 @@ class ReportCommands {
   int run_bench() const;
   int run_report() const;
 
- private:
   struct Common {
     std::string preset = "full";
     std::string cost_json;  // bench_shading --json output
     std::string cache_dir;
     int threads = 0;
+    // What the trade measures, when not the defaults: the kernel's sigma^2 and kappa, and the
+    // scale of the prefiltered texture term.
+    std::optional<double> sigma2, kappa;
+    double prefilter_scale = 1.0;
   };
+
+ private:
   static void add_common(CLI::App* command, Common& common);
 
   CLI::App* bench_ = nullptr;

@@ -61,6 +61,13 @@ const std::vector<Rule>& rules() {
   return table;
 }
 
+// saagen's trade on its normal-mapped scenes (a sphere with a MIP-mapped normal map, features of
+// ~4 px and < 1 px), mean LDR-FLIP over the scenes and six alphas (`saagen bench`, the
+// "normal-mapped" rows of its JSON; README "Which normal, which prefilter").
+constexpr const char* kMeasuredNormalAdvice =
+    "deferred-avg 0.136 on the normal-mapped normal vs 0.141 on the vertex normal and 0.160 with Toksvig prefiltering; "
+    "forward-aniso-projected 0.118 vs 0.137 and 0.159";
+
 bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
 
 const Rule& rule_for(const Material& material) {
@@ -306,6 +313,23 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     entry.error = number(row, "error", index);
     table.rows.push_back(std::move(entry));
   }
+  if (document.contains("by_content")) {
+    const nlohmann::json& content_rows = document["by_content"];
+    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"by_content\" must be an array", source_name));
+    for (std::size_t index = 0; index < content_rows.size(); ++index) {
+      const nlohmann::json& row = content_rows[index];
+      const auto text = [&](const char* key) {
+        if (!row.is_object() || !row.contains(key) || !row[key].is_string())
+          throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
+        return row[key].get<std::string>();
+      };
+      ContentRow entry{text("content"), text("configuration"), 0.0};
+      const auto error = number(row, "error", index);
+      if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
+      entry.error = *error;
+      table.content_rows.push_back(std::move(entry));
+    }
+  }
   return table;
 }
 
@@ -316,6 +340,57 @@ TradeTable load_trade_table(const std::filesystem::path& path) {
   content << stream.rdbuf();
   return parse_trade_table(content.str(), path.string());
 }
+
+namespace {
+
+// A configuration id's parts: "deferred-avg:geometric+toksvig" -> deferred-avg, geometric, toksvig.
+struct Configuration {
+  std::string variant, feed = "shading", prefilter = "none";
+};
+
+Configuration parse_configuration(const std::string& id) {
+  Configuration c;
+  std::string rest = id;
+  if (const auto plus = rest.find('+'); plus != std::string::npos) c.prefilter = rest.substr(plus + 1), rest.resize(plus);
+  if (const auto colon = rest.find(':'); colon != std::string::npos) c.feed = rest.substr(colon + 1), rest.resize(colon);
+  c.variant = rest;
+  return c;
+}
+
+// Without a trade table: what saagen's own trade measured (`saagen bench`, README "Which normal,
+// which prefilter"). The figures are mean LDR-FLIP over the normal-mapped scenes and alphas.
+std::string measured_normal_advice(const MaterialPlan& plan) {
+  return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
+                     plan.prefilter == "none" ? std::string(" and keep the normal map unprefiltered")
+                                              : fmt::format(", prefilter the map ({})", plan.prefilter),
+                     kMeasuredNormalAdvice);
+}
+
+// With a trade table's content rows: the lowest-error configuration of the material's variant on
+// normal-mapped content, and, when the planner chooses the variant by accuracy, of any eligible one.
+void choose_normal_handling(const TradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
+                            MaterialPlan& plan) {
+  std::optional<ContentRow> best;
+  std::vector<std::string> figures;
+  for (const ContentRow& row : table.content_rows) {
+    if (row.content != "normal-mapped") continue;
+    const Configuration c = parse_configuration(row.configuration);
+    const bool allowed = choose_variant ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
+                                        : c.variant == plan.variant;
+    if (!allowed) continue;
+    figures.push_back(fmt::format("{} {}", row.configuration, fixed(row.error)));
+    if (!best || row.error < best->error) best = row;
+  }
+  if (!best) return;
+  const Configuration c = parse_configuration(best->configuration);
+  plan.variant = c.variant;
+  plan.feed = c.feed;
+  plan.prefilter = c.prefilter;
+  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {})", best->configuration,
+                                   table.source_name, fmt::join(figures, ", "));
+}
+
+}  // namespace
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
   ScenePlan scene;
@@ -384,6 +459,12 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
                                      speed ? "cost" : "error", ids_of(eligible), rule.id);
         }
       }
+    }
+    if (material.normal_maps) {
+      if (table && !table->content_rows.empty()) {
+        choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
+      }
+      if (plan.normal_advice.empty()) plan.normal_advice = measured_normal_advice(plan);
     }
     choose_functions(catalogue, material, plan);
     scene.materials.push_back(std::move(plan));
@@ -469,7 +550,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     } else {
       text += "  shade     the engine's own BRDF with the filtered roughness (alpha^2 domain)\n";
     }
-    if (material.normal_maps) text += "  note      pass the normal-mapped shading normal / half vector: the filter sees the map's detail through its derivatives\n";
+    if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
     if (!material_plan.cost.empty()) {
       std::vector<std::string> costs;
       for (const std::string& target : manifest.targets) {

@@ -42,9 +42,19 @@ struct TradeRow {
   std::optional<double> error;               // error
 };
 
+// `saagen bench --json` also writes, per content type ("curved", "normal-mapped", "bump"), the
+// mean display error of every measured configuration: a variant, "VARIANT:geometric" (fed the
+// geometric normal) and "VARIANT[:geometric]+toksvig|+lean" (with a prefiltered normal map).
+struct ContentRow {
+  std::string content;
+  std::string configuration;
+  double error = 0.0;
+};
+
 struct TradeTable {
   std::string source_name;
   std::vector<TradeRow> rows;
+  std::vector<ContentRow> content_rows;
   // Mean cost of a variant: the time ratio when any row has one, else the SPIR-V delta.
   std::optional<double> cost(std::string_view variant) const;
   std::optional<double> error(std::string_view variant) const;
@@ -66,6 +76,12 @@ struct MaterialPlan {
   bool per_axis = false;               // isotropic filter on anisotropic roughness: once per axis
   std::string precision = "fp32";
   std::map<std::string, long> cost;    // target -> optimized SPIR-V instructions added
+  // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
+  // normal) and whether to prefilter the normal map ("none", "toksvig", "lean"), with the
+  // measured figures that decide it.
+  std::string feed = "shading";
+  std::string prefilter = "none";
+  std::string normal_advice;
 };
 
 struct ScenePlan {

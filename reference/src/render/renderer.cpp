@@ -378,7 +378,8 @@ Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Par
 
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params,
-                       ref::Derivative mode, NormalFeed feed, Prefilter prefilter) {
+                       ref::Derivative mode, NormalFeed feed, Prefilter prefilter,
+                       double prefilter_scale) {
     const PixelFields& f = gbuffer.at(x, y);
     PixelShade out;
     if (!f.hit) return out;
@@ -386,7 +387,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
     const Vec2 alpha2{a2, a2};
     // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
     // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-    const Sym2 texture = texture_roughness(f, prefilter, params);
+    const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params);
     // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
     const double texture_isotropic = 0.5 * ref::trace(texture);
     double brdf = 0.0;
@@ -462,12 +463,13 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params, ref::Derivative mode, int threads,
-                     NormalFeed feed, Prefilter prefilter) {
+                     NormalFeed feed, Prefilter prefilter, double prefilter_scale) {
     Image image(gbuffer.width, gbuffer.height);
     parallel_rows(gbuffer.height, threads, [&](int y) {
         for (int x = 0; x < gbuffer.width; ++x)
             image.at(x, y) = static_cast<float>(
-                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter).radiance);
+                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter,
+                            prefilter_scale).radiance);
     });
     return image;
 }

@@ -303,7 +303,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     };
     auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
         return render_variant(gbuffer, key.variant, material, config.params, config.derivative,
-                              config.threads, key.feed, key.prefilter);
+                              config.threads, key.feed, key.prefilter, config.prefilter_scale);
     };
 
     std::uint64_t base = 0;

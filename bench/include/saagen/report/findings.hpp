@@ -22,9 +22,14 @@
 
 namespace saagen::report {
 
-enum class Content { curved, normal_mapped };
-std::string_view content_name(Content content);  // "curved", "normal-mapped"
-// Scenes with normal detail (normal maps, bump shading) are normal-mapped content.
+// The content types advice is given for, each a set of scenes every configuration is measured on:
+//   curved         smooth geometry, the normal is the geometry's (sphere, torus, tubes, mesh);
+//   normal-mapped  a tangent-space normal map texture with MIPs on curved geometry;
+//   bump           analytic bump shading (the bump plane: normals with detail but no texture,
+//                  hence no prefiltering).
+enum class Content { curved, normal_mapped, bump };
+inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump};
+std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump"
 Content content_of(render::SceneId scene);
 
 // Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).

@@ -130,7 +130,8 @@ NormalFeed engine_feed(Variant engine);
 //   lean     2 Sigma_tex from the filtered slope moments (Olano & Baker 2010): the full
 //            covariance for the matrix forms, its diagonal for the axis-aligned forms, its
 //            trace for the isotropic ones.
-// Only pixels of a normal-mapped surface have a texture term (0 elsewhere).
+// Only pixels of a normal-mapped surface have a texture term (0 elsewhere). prefilter_scale
+// multiplies the texture term (1: the formulas as published; the trade measures others).
 enum class Prefilter { none, toksvig, lean };
 std::string_view prefilter_name(Prefilter prefilter);  // "none", "toksvig", "lean"
 
@@ -265,12 +266,12 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params = {},
                        ref::Derivative mode = ref::Derivative::coarse,
                        NormalFeed feed = NormalFeed::shading,
-                       Prefilter prefilter = Prefilter::none);
+                       Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0);
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params = {},
                      ref::Derivative mode = ref::Derivative::coarse, int threads = 0,
                      NormalFeed feed = NormalFeed::shading,
-                     Prefilter prefilter = Prefilter::none);
+                     Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0);
 
 }  // namespace saagen::render

@@ -78,6 +78,7 @@ struct TradeConfig {
     std::vector<Variant> prefiltered_variants{
         Variant::none, Variant::forward_aniso_projected, Variant::forward_axis_projected,
         Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
+    double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
     ref::Params params{};
     ref::Derivative derivative = ref::Derivative::coarse;
     std::uint64_t seed = 0x5aa6e11ULL;
