@@ -25,6 +25,7 @@ class ReportCommands {
     std::string cost_json;  // bench_shading --json output
     std::string cache_dir;
     int threads = 0;
+    bool force = false;
   };
   static void add_common(CLI::App* command, Common& common);
 
