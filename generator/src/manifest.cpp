@@ -2,6 +2,7 @@
 
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/target.hpp"
 
 #include <fmt/format.h>
@@ -282,6 +283,133 @@ void read_materials(Manifest& manifest, const TableReader& top, const Catalogue&
   }
 }
 
+// How deep a manifest may nest: dotted-key parts plus the arrays and inline tables around them.
+// A scene manifest needs 2; toml++ recurses once per level and overflows the stack on deep input.
+constexpr int nesting_limit = 32;
+
+// Scans TOML text for its nesting depth without parsing it: strings and comments are skipped,
+// dots are counted in keys (table headers, before '=', and inside inline tables), brackets in
+// values. Reports the first place deeper than nesting_limit.
+class NestingScanner {
+ public:
+  explicit NestingScanner(std::string_view text) : text_(text) {}
+
+  // The position of the first place nested too deeply, or nullopt.
+  std::optional<SourcePosition> too_deep() {
+    bool line_start = true;
+    for (at_ = 0; at_ < text_.size(); ++at_) {
+      const char c = text_[at_];
+      if (c == '\n') {
+        newline();
+        line_start = true;
+        continue;
+      }
+      if (c == ' ' || c == '\t' || c == '\r') continue;
+      if (line_start && containers_.empty()) start_line(c);
+      line_start = false;
+      if (c == '#') skip_comment();
+      else if (c == '"' || c == '\'') skip_string(c);
+      else if (!step(c)) return position();
+    }
+    return std::nullopt;
+  }
+
+ private:
+  void start_line(char first) {
+    in_key_ = true;
+    key_dots_ = 0;
+    header_ = first == '[';
+  }
+
+  // One structural character; false when it nests too deeply.
+  bool step(char c) {
+    if (header_) {
+      if (c == ']') in_key_ = false;
+      else if (c == '.' && in_key_) ++key_dots_;
+      return depth() <= nesting_limit;
+    }
+    if (in_key_) {
+      if (c == '=') in_key_ = false;
+      else if (c == '.') ++key_dots_;
+      else if (c == '}' && !containers_.empty()) containers_.pop_back();  // `{}` or a trailing `}`
+      return depth() <= nesting_limit;
+    }
+    if (c == '[' || c == '{') {
+      containers_.push_back({c, key_dots_});
+      in_key_ = c == '{';
+      key_dots_ = 0;
+    } else if ((c == ']' || c == '}') && !containers_.empty()) {
+      key_dots_ = containers_.back().outer_dots;
+      containers_.pop_back();
+    } else if (c == ',' && !containers_.empty() && containers_.back().bracket == '{') {
+      in_key_ = true;
+      key_dots_ = 0;
+    }
+    return depth() <= nesting_limit;
+  }
+
+  int depth() const {
+    int outer = 0;
+    for (const Container& container : containers_) outer += container.outer_dots + 1;
+    return outer + key_dots_ + 1;
+  }
+
+  void newline() {
+    ++line_;
+    line_at_ = at_ + 1;
+  }
+
+  void skip_comment() {
+    while (at_ + 1 < text_.size() && text_[at_ + 1] != '\n') ++at_;
+  }
+
+  // From the opening quote to the closing one (""" and ''' strings span lines).
+  void skip_string(char quote) {
+    const bool triple = text_.substr(at_, 3) == std::string(3, quote);
+    at_ += triple ? 3 : 1;
+    for (; at_ < text_.size(); ++at_) {
+      const char c = text_[at_];
+      if (c == '\\' && quote == '"') {
+        ++at_;
+        if (at_ < text_.size() && text_[at_] == '\n') newline();
+      } else if (c == '\n') {
+        newline();
+        if (!triple) return;
+      } else if (c == quote && (!triple || text_.substr(at_, 3) == std::string(3, quote))) {
+        if (triple) at_ += 2;
+        return;
+      }
+    }
+  }
+
+  SourcePosition position() const { return {line_, static_cast<int>(at_ - line_at_) + 1}; }
+
+  struct Container {
+    char bracket;
+    int outer_dots;  // the dots of the key this container is the value of
+  };
+  std::string_view text_;
+  std::size_t at_ = 0;
+  std::size_t line_at_ = 0;
+  int line_ = 1;
+  bool in_key_ = true;
+  bool header_ = false;
+  int key_dots_ = 0;
+  std::vector<Container> containers_;
+};
+
+// Size and nesting are checked before toml++ sees the text: it recurses per nesting level.
+void check_manifest_limits(const Manifest& manifest, std::string_view text) {
+  if (text.size() > manifest_size_limit) {
+    throw Error(manifest.where({1, 1}) + fmt::format("the manifest is larger than {} KiB; allowed: a scene manifest of at most {} KiB",
+                                                     manifest_size_limit >> 10, manifest_size_limit >> 10));
+  }
+  if (const auto position = NestingScanner(text).too_deep()) {
+    throw Error(manifest.where(*position) + fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at "
+                                                        "most {} (a scene manifest needs 2)", nesting_limit, nesting_limit));
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> target_precision(std::string_view target, std::string_view precision) {
@@ -319,6 +447,7 @@ const std::vector<std::string>& material_keys() {
 Manifest parse_manifest(std::string_view text, std::string_view source_name, const Catalogue& catalogue) {
   Manifest manifest;
   manifest.source_name = std::string(source_name);
+  check_manifest_limits(manifest, text);
   toml::table document;
   try {
     document = toml::parse(text, std::string_view(source_name));
@@ -359,11 +488,8 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 }
 
 Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the path of a scene manifest (see examples/scene.saagen.toml)", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return parse_manifest(content.str(), path.string(), catalogue);
+  const std::string text = read_input_file(path, manifest_size_limit, "a scene manifest (see examples/scene.saagen.toml)");
+  return parse_manifest(text, path.string(), catalogue);
 }
 
 }  // namespace saagen

@@ -2,6 +2,7 @@
 
 #include "saagen/compiler.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/kernels.hpp"
 #include "saagen/target.hpp"
 
@@ -298,20 +299,33 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     entry.cost_ratio = number(row, "ratio_median", index);
     entry.delta_instructions = number(row, "delta_spirv_instructions", index);
     entry.error = number(row, "error", index);
+    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
+    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
     table.rows.push_back(std::move(entry));
   }
   return table;
 }
 
 TradeTable load_trade_table(const std::filesystem::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the file `bench_shading --json` writes", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return parse_trade_table(content.str(), path.string());
+  return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
 }
 
+namespace {
+
+void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
+  for (std::size_t index = 0; index < table.rows.size(); ++index) {
+    const std::string& id = table.rows[index].variant;
+    if (id != "none" && !catalogue.find_variant(id)) {
+      throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, or \"none\"", table.source_name,
+                              index, id.substr(0, 40)));
+    }
+  }
+}
+
+}  // namespace
+
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
+  if (table) check_trade_table_ids(catalogue, *table);
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
   // Manifests built in code (not parsed) get the checks that protect the emitted text.
