@@ -42,6 +42,16 @@ std::string raw_level_bytes(const glints::Dictionary& dictionary) {
   return bytes;
 }
 
+// The glint catalogue names its options glint_*; the command line spells them --count, --lods,
+// --alpha and --kernel-scale.
+std::string with_option_names(std::string message) {
+  for (const auto& [internal, option] : {std::pair{"--glint_count", "--count"}, std::pair{"--glint_lods", "--lods"},
+                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"}}) {
+    for (auto at = message.find(internal); at != std::string::npos; at = message.find(internal)) message.replace(at, std::strlen(internal), option);
+  }
+  return message;
+}
+
 void print_report(const WriteReport& report) {
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
   for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
@@ -92,16 +102,6 @@ int GlintCommands::run() const {
   if (validate_->parsed()) return run_validate();
   if (dictionary_->parsed()) return run_dictionary();
   return run_lean();
-}
-
-// The glint catalogue names its options glint_*; the command line spells them --count, --lods,
-// --alpha and --kernel-scale.
-std::string with_option_names(std::string message) {
-  for (const auto& [internal, option] : {std::pair{"--glint_count", "--count"}, std::pair{"--glint_lods", "--lods"},
-                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"}}) {
-    for (auto at = message.find(internal); at != std::string::npos; at = message.find(internal)) message.replace(at, std::strlen(internal), option);
-  }
-  return message;
 }
 
 int GlintCommands::run_emit() const {

@@ -287,17 +287,25 @@ void read_materials(Manifest& manifest, const TableReader& top, const Catalogue&
 // A scene manifest needs 2; toml++ recurses once per level and overflows the stack on deep input.
 constexpr int nesting_limit = 32;
 
-// Scans TOML text for its nesting depth without parsing it: strings and comments are skipped,
-// dots are counted in keys (table headers, before '=', and inside inline tables), brackets in
-// values. Reports the first place deeper than nesting_limit.
-class NestingScanner {
- public:
-  explicit NestingScanner(std::string_view text) : text_(text) {}
+// What the pre-parse scan found: where, and the message's text after the position.
+struct TextProblem {
+  SourcePosition position;
+  std::string message;
+};
 
-  // The position of the first place nested too deeply, or nullopt.
-  std::optional<SourcePosition> too_deep() {
+// Scans TOML text before toml++ parses it, for what toml++ 3.3 cannot take safely:
+// - nesting deeper than nesting_limit (dots are counted in keys, i.e. table headers, before '=' and
+//   inside inline tables; brackets in values; strings and comments are skipped);
+// - non-ASCII characters outside comments and single-line or literal strings (toml++ 3.3 classifies
+//   them as whitespace through an unreachable branch, which is undefined behaviour). TOML's bare
+//   keys and saagen's values are ASCII, so no valid manifest is lost.
+class ManifestScanner {
+ public:
+  explicit ManifestScanner(std::string_view text) : text_(text) {}
+
+  std::optional<TextProblem> first_problem() {
     bool line_start = true;
-    for (at_ = 0; at_ < text_.size(); ++at_) {
+    for (at_ = 0; at_ < text_.size() && !problem_; ++at_) {
       const char c = text_[at_];
       if (c == '\n') {
         newline();
@@ -309,9 +317,11 @@ class NestingScanner {
       line_start = false;
       if (c == '#') skip_comment();
       else if (c == '"' || c == '\'') skip_string(c);
-      else if (!step(c)) return position();
+      else if (static_cast<unsigned char>(c) >= 0x80) non_ascii();
+      else if (!step(c)) report(fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at most {} "
+                                           "(a scene manifest needs 2)", nesting_limit, nesting_limit));
     }
-    return std::nullopt;
+    return problem_;
   }
 
  private:
@@ -354,6 +364,15 @@ class NestingScanner {
     return outer + key_dots_ + 1;
   }
 
+  void non_ascii() {
+    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment or single-line string; allowed: ASCII keys and values",
+                       static_cast<unsigned char>(text_[at_])));
+  }
+
+  void report(std::string message) {
+    if (!problem_) problem_ = TextProblem{position(), std::move(message)};
+  }
+
   void newline() {
     ++line_;
     line_at_ = at_ + 1;
@@ -363,15 +382,19 @@ class NestingScanner {
     while (at_ + 1 < text_.size() && text_[at_ + 1] != '\n') ++at_;
   }
 
-  // From the opening quote to the closing one (""" and ''' strings span lines).
+  // From the opening quote to the closing one (""" and ''' strings span lines). Multi-line
+  // basic strings must be ASCII: toml++ classifies their characters after a line-ending backslash.
   void skip_string(char quote) {
     const bool triple = text_.substr(at_, 3) == std::string(3, quote);
+    const bool ascii_only = triple && quote == '"';
     at_ += triple ? 3 : 1;
     for (; at_ < text_.size(); ++at_) {
       const char c = text_[at_];
+      if (ascii_only && static_cast<unsigned char>(c) >= 0x80) return non_ascii();
       if (c == '\\' && quote == '"') {
         ++at_;
         if (at_ < text_.size() && text_[at_] == '\n') newline();
+        else if (ascii_only && at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
       } else if (c == '\n') {
         newline();
         if (!triple) return;
@@ -396,18 +419,16 @@ class NestingScanner {
   bool header_ = false;
   int key_dots_ = 0;
   std::vector<Container> containers_;
+  std::optional<TextProblem> problem_;
 };
 
-// Size and nesting are checked before toml++ sees the text: it recurses per nesting level.
+// Size, nesting and characters are checked before toml++ sees the text (see ManifestScanner).
 void check_manifest_limits(const Manifest& manifest, std::string_view text) {
   if (text.size() > manifest_size_limit) {
     throw Error(manifest.where({1, 1}) + fmt::format("the manifest is larger than {} KiB; allowed: a scene manifest of at most {} KiB",
                                                      manifest_size_limit >> 10, manifest_size_limit >> 10));
   }
-  if (const auto position = NestingScanner(text).too_deep()) {
-    throw Error(manifest.where(*position) + fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at "
-                                                        "most {} (a scene manifest needs 2)", nesting_limit, nesting_limit));
-  }
+  if (const auto problem = ManifestScanner(text).first_problem()) throw Error(manifest.where(problem->position) + problem->message);
 }
 
 }  // namespace
