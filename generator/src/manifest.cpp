@@ -296,9 +296,10 @@ struct TextProblem {
 // Scans TOML text before toml++ parses it, for what toml++ 3.3 cannot take safely:
 // - nesting deeper than nesting_limit (dots are counted in keys, i.e. table headers, before '=' and
 //   inside inline tables; brackets in values; strings and comments are skipped);
-// - non-ASCII characters outside comments and single-line or literal strings (toml++ 3.3 classifies
-//   them as whitespace through an unreachable branch, which is undefined behaviour). TOML's bare
-//   keys and saagen's values are ASCII, so no valid manifest is lost.
+// - non-ASCII characters outside comments: toml++ 3.3 classifies them as whitespace through an
+//   unreachable branch (undefined behaviour) in keys, in bare values (which may swallow quotes)
+//   and in multi-line strings. TOML's bare keys and every value saagen accepts are ASCII, so no
+//   valid manifest is lost.
 class ManifestScanner {
  public:
   explicit ManifestScanner(std::string_view text) : text_(text) {}
@@ -365,7 +366,7 @@ class ManifestScanner {
   }
 
   void non_ascii() {
-    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment or single-line string; allowed: ASCII keys and values",
+    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment; allowed: ASCII keys and values (every name and value saagen reads is ASCII)",
                        static_cast<unsigned char>(text_[at_])));
   }
 
@@ -382,19 +383,18 @@ class ManifestScanner {
     while (at_ + 1 < text_.size() && text_[at_ + 1] != '\n') ++at_;
   }
 
-  // From the opening quote to the closing one (""" and ''' strings span lines). Multi-line
-  // basic strings must be ASCII: toml++ classifies their characters after a line-ending backslash.
+  // From the opening quote to the closing one (""" and ''' strings span lines); strings must be
+  // ASCII too.
   void skip_string(char quote) {
     const bool triple = text_.substr(at_, 3) == std::string(3, quote);
-    const bool ascii_only = triple && quote == '"';
     at_ += triple ? 3 : 1;
     for (; at_ < text_.size(); ++at_) {
       const char c = text_[at_];
-      if (ascii_only && static_cast<unsigned char>(c) >= 0x80) return non_ascii();
+      if (static_cast<unsigned char>(c) >= 0x80) return non_ascii();
       if (c == '\\' && quote == '"') {
         ++at_;
         if (at_ < text_.size() && text_[at_] == '\n') newline();
-        else if (ascii_only && at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
+        else if (at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
       } else if (c == '\n') {
         newline();
         if (!triple) return;
