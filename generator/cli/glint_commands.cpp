@@ -10,11 +10,9 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <algorithm>
 #include <cstring>
-#include <sstream>
 
 namespace saagen::cli {
 namespace {

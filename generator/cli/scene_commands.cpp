@@ -13,11 +13,9 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
-#include <unistd.h>
 
 namespace saagen::cli {
 namespace {
