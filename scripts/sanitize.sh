@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ASan + UBSan run of the suites that need no Vulkan device, plus every fuzz corpus replayed
-# under the sanitizers. Not part of the default CI (about 18 minutes on 2 cores): run it after
-# changes to readers, writers or the emitter.
+# under the sanitizers. Not part of the default CI (about 13 minutes on 2 cores from scratch: the
+# build, then 276 tests in under 3 minutes): run it after changes to readers, writers or the emitter.
 #   bash scripts/sanitize.sh                 # every non-GPU suite
 #   bash scripts/sanitize.sh -R 'Cli|Safety' # a ctest subset (any ctest arguments)
 #   SANITIZE_TARGETS="saagen_cli test_cli" bash scripts/sanitize.sh -R '^Cli'  # build only these
