@@ -1,21 +1,42 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer target for scene manifests with clang (ASan + libFuzzer) in ./build-fuzz
-# and runs it: by default 1 000 000 executions from fuzz/corpus with fuzz/manifest.dict.
-# Extra arguments go to libFuzzer (e.g. -runs=10000, -max_total_time=60). New inputs are kept in
-# build-fuzz/corpus, crashes in build-fuzz/artifacts. Exits non-zero on a crash.
+# Builds the libFuzzer targets with clang (libFuzzer + ASan + UBSan) in ./build-fuzz and runs
+# each: by default 1 000 000 executions from its seed corpus (fuzz/README.md).
+#   bash scripts/fuzz.sh                                # every target, -runs=1000000 each
+#   FUZZ_TARGETS="ktx2 template" bash scripts/fuzz.sh   # some targets
+#   bash scripts/fuzz.sh -max_total_time=150            # any libFuzzer flags, for every target
+# New inputs are kept in build-fuzz/corpus_<target>, crashes in build-fuzz/artifacts. Exits
+# non-zero on the first crash; prints each target's executions, coverage and time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ is needed (Debian: apt-get install clang)"; exit 1; }
+targets=(${FUZZ_TARGETS:-manifest ktx2 ppm_lean template})
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
+# vptr is off: Debian's glslang is built without RTTI.
+sanitizers="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address -fno-omit-frame-pointer" \
+  -DCMAKE_CXX_FLAGS="$sanitizers -fno-omit-frame-pointer" \
   -DSAAGEN_BUILD_FUZZ=ON -DSAAGEN_BUILD_TESTS=OFF -DSAAGEN_BUILD_BENCH=OFF -DSAAGEN_BUILD_HARNESS=OFF > "$log" 2>&1 || { cat "$log"; exit 1; }
-cmake --build build-fuzz --target saagen_fuzz_manifest -j "$(nproc)"
-mkdir -p build-fuzz/corpus build-fuzz/artifacts
+cmake --build build-fuzz --target "${targets[@]/#/saagen_fuzz_}" -j "$(nproc)"
+mkdir -p build-fuzz/artifacts
 args=("$@")
 [[ " ${args[*]-} " == *" -runs="* || " ${args[*]-} " == *" -max_total_time="* ]] || args+=(-runs=1000000)
-start=$(date +%s)
-./build-fuzz/fuzz/saagen_fuzz_manifest -dict=fuzz/manifest.dict -max_len=4096 -timeout=10 -print_final_stats=1 \
-  -artifact_prefix=build-fuzz/artifacts/ "${args[@]}" build-fuzz/corpus fuzz/corpus
-echo "fuzz.sh: done in $(( $(date +%s) - start )) s, no crash"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+for target in "${targets[@]}"; do
+  case "$target" in
+    manifest) seeds=fuzz/corpus; extra=(-dict=fuzz/manifest.dict -max_len=262144) ;;  # reaches depth attacks
+    ktx2) seeds=fuzz/corpus_ktx2; extra=(-max_len=65536) ;;
+    ppm_lean) seeds=fuzz/corpus_ppm_lean; extra=(-max_len=65536) ;;
+    template) seeds=fuzz/corpus_template; extra=(-dict=fuzz/template.dict -max_len=65536) ;;
+    *) echo "fuzz.sh: unknown target '$target' (manifest, ktx2, ppm_lean, template)"; exit 2 ;;
+  esac
+  mkdir -p "build-fuzz/corpus_$target"
+  start=$(date +%s)
+  status=0
+  "./build-fuzz/fuzz/saagen_fuzz_$target" "${extra[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+    -artifact_prefix=build-fuzz/artifacts/ "${args[@]}" "build-fuzz/corpus_$target" "$seeds" > "build-fuzz/$target.log" 2>&1 || status=$?
+  grep -E "^#[0-9]+ +(DONE|INITED)|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written" "build-fuzz/$target.log" || true
+  echo "fuzz.sh: $target: exit $status in $(( $(date +%s) - start )) s ($(grep -oE 'cov: [0-9]+ ft: [0-9]+' "build-fuzz/$target.log" | tail -1))"
+  [[ $status -eq 0 ]] || exit "$status"
+done
+echo "fuzz.sh: no crash"

@@ -66,6 +66,11 @@ TEST(TemplateParser, ReportsEachKindOfMistakeAtItsLine) {
             "templates/test.saa:3: unknown function key 'colour'; allowed: role, cite, returns, param");
   EXPECT_EQ(parse_error("# alpha \xce\xb1\n"),
             "templates/test.saa:1: non-ASCII character; templates (and the code they emit) must be ASCII");
+  // Found by the template fuzzer: control bytes (NUL here) used to pass into the emitted code.
+  EXPECT_EQ(parse_error(std::string("# a\n# b\0c\n", 9)),
+            "templates/test.saa:2: control character 0x00; templates (and the code they emit) are printable ASCII, indented with spaces");
+  EXPECT_EQ(parse_error("#\ta\n"),
+            "templates/test.saa:1: control character 0x09; templates (and the code they emit) are printable ASCII, indented with spaces");
   EXPECT_EQ(parse_error(std::string(valid_function) + valid_function), "templates/test.saa:9: function name 'twice' is already used");
 }
 

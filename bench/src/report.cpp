@@ -2,6 +2,8 @@
 
 #include "saagen/error.hpp"
 #include "saagen/report/findings.hpp"
+#include "saagen/input.hpp"
+#include "saagen/output.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -73,6 +75,33 @@ double box(const render::Image& image, int x, int y, int scale) {
   return sum / (scale * scale);
 }
 
+std::uint32_t crc32(std::string_view bytes) {
+  std::uint32_t crc = 0xffffffffu;
+  for (const char c : bytes) {
+    crc ^= static_cast<unsigned char>(c);
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void put_be32(std::string& out, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((value >> shift) & 0xffu);
+}
+
+// The PNG with a tEXt chunk `keyword`=`text` after its IHDR chunk (8-byte signature, then IHDR:
+// length 13, type, data, CRC = 25 bytes): how report images carry saagen's output tag.
+std::string with_text_chunk(const std::string& png, std::string_view keyword, std::string_view text) {
+  constexpr std::size_t after_ihdr = 8 + 25;
+  std::string chunk = "tEXt";
+  chunk.append(keyword).append(1, '\0').append(text);
+  std::string out = png.substr(0, after_ihdr);
+  put_be32(out, static_cast<std::uint32_t>(chunk.size() - 4));
+  out += chunk;
+  put_be32(out, crc32(chunk));
+  out += png.substr(after_ihdr);
+  return out;
+}
+
 // Column labels drawn into the sheet itself (so a PNG shared alone still says what it shows):
 // stb_easy_font builds each glyph from axis-aligned quads, filled here at integer pixels. A
 // label wraps after its '-', ':' and ' ' separators to fit the tile; kLabelLines lines at most.
@@ -117,9 +146,9 @@ void draw_text(std::vector<std::uint8_t>& pixels, int image_width, int image_hei
   }
 }
 
-// One sheet: a label band, then row 0 the ground truth and each configuration, row 1 an empty
+// One sheet (PNG bytes): a label band, then row 0 the ground truth and each configuration, row 1 an empty
 // cell then the difference maps; a 2-pixel grey gutter between tiles.
-void write_sheet(const render::ImageSet& set, const fs::path& path) {
+std::string sheet_png(const render::ImageSet& set) {
   const int scale = display_scale(set.reference);
   const int tile_w = set.reference.width / scale, tile_h = set.reference.height / scale, gutter = 2;
   const int band = kLabelLines * kLabelLineHeight + 4;
@@ -152,9 +181,10 @@ void write_sheet(const render::ImageSet& set, const fs::path& path) {
       }
     }
   }
-  if (!stbi_write_png(path.string().c_str(), width, height, 3, pixels.data(), width * 3)) {
-    throw Error(fmt::format("{}: cannot write the PNG", path.string()));
-  }
+  std::string png;
+  const auto append = [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size)); };
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, pixels.data(), width * 3)) throw Error("cannot encode a PNG sheet");
+  return with_text_chunk(png, "Software", std::string(output_tag) + " report");
 }
 
 std::string sheet_name(const render::ImageSet& set) {
@@ -185,6 +215,7 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
   const auto sy = [&](double y) { return height - bottom - y / y_max * (height - top - bottom); };
   std::ostringstream svg;
   svg << fmt::format(R"s(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="12">)s", width, height) << "\n";
+  svg << "<!-- " << output_tag << " report -->\n";
   svg << fmt::format(R"s(<rect width="{}" height="{}" fill="white"/>)s", width, height) << "\n";
   svg << fmt::format(R"s(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="black"/><line x1="{0}" y1="{1}" x2="{0}" y2="{3}" stroke="black"/>)s",
                      left, height - bottom, width - right, top) << "\n";
@@ -420,7 +451,7 @@ std::string config_line(const render::TradeTable& table) {
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets) {
   std::ostringstream md;
-  md << "# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
+  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
   if (costs) md << "Cost from `" << costs->source << "` (" << costs->device << ").\n\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
   md << "## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
@@ -437,7 +468,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
 std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                         const std::vector<std::string>& sheets, const std::vector<std::string>& columns) {
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
+  html << "<!DOCTYPE html>\n<!-- " << output_tag << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
           "<style>body{font-family:sans-serif;margin:2em;max-width:1500px}table{border-collapse:collapse}"
           "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}</style>\n"
           "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n<p>" << html_escape(config_line(table)) << "</p>\n<p>"
@@ -471,11 +502,10 @@ const VariantCost* CostTable::find(std::string_view variant) const {
 }
 
 CostTable load_cost_table(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(fmt::format("{}: cannot be read; run `bench_shading --json {}` first", path.string(), path.string()));
+  const std::string text = read_input_file(path, table_size_limit, fmt::format("the file `bench_shading --json {}` writes", path.string()));
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(in);
+    document = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", path.string(), error.byte));
   }
@@ -617,29 +647,41 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                             {"rmse_tonemapped", m.rmse_tonemapped}, {"flip_hdr", m.flip_hdr}, {"flicker_display", m.flicker_display}});
     }
   }
-  return {{"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
+  return {{"generator", std::string(output_tag) + " saagen bench"},
+          {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
           {"rows", rows}, {"by_content", by_content}, {"cases", cases}};
 }
 
-std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir) {
-  if (table.images.empty()) throw Error("the trade table holds no images; compute it with keep_images");
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error || !fs::is_directory(dir)) throw Error(fmt::format("{}: cannot create the report directory; choose a writable path", dir.string()));
+std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {
+  std::vector<fs::path> paths = {dir / "index.html", dir / "report.md", dir / "cost_vs_error.svg"};
+  for (const render::SceneId scene : config.scenes) {
+    for (const double alpha : config.alphas) {
+      render::ImageSet set;
+      set.scene = scene;
+      set.material.alpha = alpha;
+      paths.push_back(dir / sheet_name(set));
+    }
+  }
+  return paths;
+}
 
+std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force) {
+  if (table.images.empty()) throw Error("the trade table holds no images; compute it with keep_images");
+  std::vector<OutputFile> outputs;
   std::vector<std::string> sheets;
   for (const render::ImageSet& set : table.images) {
     if (set.material.fresnel) continue;  // the Fresnel images differ by a dim factor only
     sheets.push_back(sheet_name(set));
-    write_sheet(set, dir / sheets.back());
+    outputs.push_back({dir / sheets.back(), sheet_png(set)});
   }
   std::vector<std::string> columns{"ground truth"};
   for (const auto& rendered : table.images.front().variants) columns.push_back(render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter));
 
   const auto summary = summarize(table);
-  write_text(dir / "cost_vs_error.svg", plot_svg(summary, costs));
-  write_text(dir / "report.md", markdown_report(table, summary, costs, sheets));
-  write_text(dir / "index.html", html_report(table, summary, costs, sheets, columns));
+  outputs.push_back({dir / "cost_vs_error.svg", plot_svg(summary, costs)});
+  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets)});
+  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns)});
+  write_outputs(outputs, force);
   std::vector<std::string> images = sheets;
   images.push_back("cost_vs_error.svg");
   return images;

@@ -2,49 +2,57 @@
 
 #include "saagen/error.hpp"
 #include "saagen/glints.hpp"
+#include "saagen/input.hpp"
 #include "saagen/output.hpp"
 #include "saagen/validation.hpp"
+#include "arguments.hpp"
 
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <algorithm>
 #include <cstring>
-#include <sstream>
 
 namespace saagen::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::uint8_t> read_bytes(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read", path.string()));
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
+std::vector<std::uint8_t> read_image(const fs::path& path, std::string_view what) {
+  const std::string bytes = read_input_file(path, image_size_limit, what);
+  return std::vector<std::uint8_t>(bytes.begin(), bytes.end());
 }
 
-// Writes a binary file through a temporary and a rename; an existing file is replaced only when
-// it is a KTX2 file (or a raw file this command wrote before) or `force` is set.
-void write_binary(const fs::path& path, const std::vector<std::uint8_t>& bytes, bool force, bool ktx2) {
-  std::error_code error;
-  if (fs::exists(path, error) && !force) {
-    const auto existing = read_bytes(path);
-    const bool ours = ktx2 ? existing.size() >= 12 && existing[1] == 'K' && existing[2] == 'T' && existing[3] == 'X' && existing[5] == '2'
-                           : path.extension() == ".f32";
-    if (!ours) throw Error(fmt::format("{}: exists and was not written by saagen; pass --force to overwrite it", path.string()));
+std::string as_string(const std::vector<std::uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
+
+// Level 0 of the dictionary before rounding, as little-endian float32.
+std::string raw_level_bytes(const glints::Dictionary& dictionary) {
+  const auto level = glints::dictionary_levels(dictionary, false).front();
+  std::string bytes;
+  bytes.reserve(level.size() * 4);
+  for (double v : level) {
+    const float f = static_cast<float>(v);
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &f, 4);
+    for (int k = 0; k < 4; ++k) bytes.push_back(static_cast<char>(bits >> (8 * k)));
   }
-  if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), error);
-  const fs::path temporary = path.string() + ".saagen-tmp";
-  {
-    std::ofstream stream(temporary, std::ios::binary);
-    if (!stream) throw Error(fmt::format("{}: cannot be written", path.string()));
-    stream.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!stream) throw Error(fmt::format("{}: cannot be written", path.string()));
+  return bytes;
+}
+
+// The glint catalogue names its options glint_*; the command line spells them --count, --lods,
+// --alpha and --kernel-scale.
+std::string with_option_names(std::string message) {
+  for (const auto& [internal, option] : {std::pair{"--glint_count", "--count"}, std::pair{"--glint_lods", "--lods"},
+                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"}}) {
+    for (auto at = message.find(internal); at != std::string::npos; at = message.find(internal)) message.replace(at, std::strlen(internal), option);
   }
-  fs::rename(temporary, path, error);
-  if (error) throw Error(fmt::format("{}: cannot be written: {}", path.string(), error.message()));
+  return message;
+}
+
+void print_report(const WriteReport& report) {
+  for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
+  for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
 }
 
 }  // namespace
@@ -95,6 +103,8 @@ int GlintCommands::run() const {
 }
 
 int GlintCommands::run_emit() const {
+  check_output_named("--output", output_directory_);
+  check_named_once("--variant", variants_);
   EmitOptions options;
   options.target = target_;
   options.variants = variants_;
@@ -106,10 +116,14 @@ int GlintCommands::run_emit() const {
   if (alpha_) options.option_values["glint_alpha"] = *alpha_;
   if (kernel_scale_) options.option_values["glint_kernel_scale"] = *kernel_scale_;
   std::vector<OutputFile> outputs;
-  for (EmittedFile& file : glints::emit(options)) outputs.push_back({fs::path(output_directory_) / file.file_name, std::move(file.content)});
-  const WriteReport report = write_outputs(outputs, force_);
-  for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
-  for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
+  std::vector<EmittedFile> files;
+  try {
+    files = glints::emit(options);
+  } catch (const Error& error) {
+    throw Error(with_option_names(error.what()));
+  }
+  for (EmittedFile& file : files) outputs.push_back({fs::path(output_directory_) / file.file_name, std::move(file.content)});
+  print_report(write_outputs(outputs, force_));
   return 0;
 }
 
@@ -124,14 +138,12 @@ int GlintCommands::run_validate() const {
   } else {
     std::error_code error;
     if (!fs::is_directory(validate_directory_, error)) throw Error(fmt::format("{}: not a directory", validate_directory_));
-    for (const auto& entry : fs::directory_iterator(validate_directory_)) {
-      const std::string extension = entry.path().extension().string();
-      if (!entry.is_regular_file() || (extension != ".glsl" && extension != ".hlsl")) continue;
-      const auto bytes = read_bytes(entry.path());
-      std::string content(bytes.begin(), bytes.end());
-      if (find_marker(content)) files.emplace_back(entry.path().string(), std::move(content));
+    for (const fs::path& path : regular_files_in(validate_directory_)) {
+      const std::string extension = path.extension().string();
+      if (extension != ".glsl" && extension != ".hlsl") continue;
+      std::string content = read_input_file(path, source_size_limit, "a file written by `saagen glints emit`");
+      if (find_marker(content)) files.emplace_back(path.string(), std::move(content));
     }
-    std::sort(files.begin(), files.end());
     if (files.empty()) throw Error(fmt::format("{}: holds no file written by saagen", validate_directory_));
   }
   int failures = 0;
@@ -150,6 +162,7 @@ int GlintCommands::run_validate() const {
 }
 
 int GlintCommands::run_dictionary() const {
+  check_output_named("--output", output_file_);
   glints::DictionaryParams params;
   if (count_) params.count = *count_;
   if (lods_) params.lods = *lods_;
@@ -157,31 +170,40 @@ int GlintCommands::run_dictionary() const {
   params.resolution = resolution_;
   params.lobe_sigma = lobe_sigma_;
   params.seed = seed_;
+  params.validate();
+  // Every output path is checked before the generation starts, and written together.
+  std::vector<fs::path> paths = {output_file_};
+  if (!raw_file_.empty()) paths.insert(paths.end(), {raw_file_, fs::path(raw_file_ + ".saagen")});
+  check_output_paths(paths, force_);
+
   const glints::Dictionary dictionary = glints::generate_dictionary(params);
   const glints::DictionaryTexture texture = glints::dictionary_texture(dictionary, !no_mips_);
-  write_binary(output_file_, glints::write_ktx2(glints::dictionary_ktx2(texture, params)), force_, true);
-  std::cout << fmt::format("wrote     {} ({} x {} layers, {} levels, {:.0f} KiB of texels)\n", output_file_, texture.width, texture.layers,
-                           texture.levels.size(), glints::texture_bytes(texture) / 1024.0);
+  std::vector<OutputFile> outputs = {{output_file_, as_string(glints::write_ktx2(glints::dictionary_ktx2(texture, params)))}};
   if (!raw_file_.empty()) {
-    const auto level = glints::dictionary_levels(dictionary, false).front();
-    std::vector<std::uint8_t> bytes;
-    for (double v : level) {
-      const float f = static_cast<float>(v);
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, &f, 4);
-      for (int k = 0; k < 4; ++k) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * k)));
-    }
-    write_binary(raw_file_, bytes, force_, false);
-    std::cout << fmt::format("wrote     {} ({} float32 values)\n", raw_file_, level.size());
+    std::string raw = raw_level_bytes(dictionary);
+    outputs.push_back(ownership_sidecar(raw_file_, raw, fmt::format("level 0 of {} before rounding: little-endian float32, layer-major, 4 per texel",
+                                                                    fs::path(output_file_).filename().string())));
+    outputs.push_back({raw_file_, std::move(raw)});
   }
+  print_report(write_outputs(outputs, force_));
+  std::cout << fmt::format("dictionary {} x {} layers, {} levels, {:.0f} KiB of texels\n", texture.width, texture.layers,
+                           texture.levels.size(), glints::texture_bytes(texture) / 1024.0);
   return 0;
 }
 
 int GlintCommands::run_lean() const {
-  const auto map = glints::slopes_from_ppm(read_bytes(normal_map_));
+  check_output_named("--output", output_file_);
+  check_output_paths({output_file_}, force_);
+  const std::vector<std::uint8_t> bytes = read_image(normal_map_, "a binary PPM (P6) normal map");
+  glints::SlopeMap map;
+  try {
+    map = glints::slopes_from_ppm(bytes);
+  } catch (const Error& error) {
+    throw Error(fmt::format("{}: {}", normal_map_, error.what()));
+  }
   const auto levels = glints::lean_moments(map);
-  write_binary(output_file_, glints::write_ktx2(glints::lean_ktx2(levels)), force_, true);
-  std::cout << fmt::format("wrote     {} ({} x {}, {} levels)\n", output_file_, map.width, map.height, levels.size());
+  print_report(write_outputs({{output_file_, as_string(glints::write_ktx2(glints::lean_ktx2(levels)))}}, force_));
+  std::cout << fmt::format("LEAN moments {} x {}, {} levels\n", map.width, map.height, levels.size());
   return 0;
 }
 

@@ -3,10 +3,12 @@
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
 #include "saagen/spirv_library.hpp"
 #include "saagen/validation.hpp"
+#include "arguments.hpp"
 #include "pass_commands.hpp"
 #include "report_commands.hpp"
 #include "glint_commands.hpp"
@@ -19,9 +21,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 namespace {
 
@@ -65,6 +65,8 @@ int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
 }
 
 int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
+  saagen::cli::check_output_named("--output", arguments.output_directory);
+  saagen::cli::check_named_once("--variant", arguments.variants);
   saagen::EmitOptions options;
   options.target = arguments.target;
   options.variants = arguments.variants;
@@ -92,12 +94,18 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   return 0;
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw saagen::Error(fmt::format("{}: cannot be read", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return content.str();
+std::string read_file(const fs::path& path) { return saagen::read_input_file(path, saagen::source_size_limit, "a file written by `saagen emit`"); }
+
+// A marker that names no known target or precision makes the file invalid: the message names it.
+saagen::FileValidation validate_one(const Catalogue& catalogue, const std::string& name, const std::string& content) {
+  try {
+    const auto marker = saagen::find_marker(content);
+    return marker && saagen::is_spirv_or_pass_marker(*marker) ? saagen::validate_spirv_or_pass_file(catalogue, name, content)
+                                                             : saagen::validate_file(catalogue, name, content);
+  } catch (const saagen::Error& error) {
+    const std::string message = error.what();
+    throw saagen::Error(message.rfind(name, 0) == 0 ? message : fmt::format("{}: bad saagen marker: {}", name, message));
+  }
 }
 
 // Files `saagen emit` wrote in a directory: known target extensions holding a marker line.
@@ -110,13 +118,11 @@ std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path
   for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
   extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes (issue 8)
   std::vector<std::pair<std::string, std::string>> files;
-  for (const auto& entry : fs::directory_iterator(directory)) {
-    const std::string extension = entry.path().extension().string();
-    if (!entry.is_regular_file() || std::find(extensions.begin(), extensions.end(), extension) == extensions.end()) continue;
-    std::string content = read_file(entry.path());
-    if (saagen::find_marker(content)) files.emplace_back(entry.path().string(), std::move(content));
+  for (const fs::path& path : saagen::cli::regular_files_in(directory)) {
+    if (std::find(extensions.begin(), extensions.end(), path.extension().string()) == extensions.end()) continue;
+    std::string content = read_file(path);
+    if (saagen::find_marker(content)) files.emplace_back(path.string(), std::move(content));
   }
-  std::sort(files.begin(), files.end());
   if (files.empty()) throw saagen::Error(fmt::format("{}: holds no file written by saagen; run `saagen emit -o {}` first", directory.string(), directory.string()));
   return files;
 }
@@ -136,10 +142,7 @@ int run_validate(const Catalogue& catalogue, const std::string& directory) {
   const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
   int failures = 0;
   for (const auto& [name, content] : files) {
-    const auto marker = saagen::find_marker(content);
-    const saagen::FileValidation validation = marker && saagen::is_spirv_or_pass_marker(*marker)
-                                                  ? saagen::validate_spirv_or_pass_file(catalogue, name, content)
-                                                  : saagen::validate_file(catalogue, name, content);
+    const saagen::FileValidation validation = validate_one(catalogue, name, content);
     std::cout << validation.summary() << "\n";
     if (!validation.ok()) {
       ++failures;
@@ -175,8 +178,8 @@ int main(int argc, char** argv) {
   list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
 
   EmitArguments emit_arguments;
-  double sigma2 = 0.0;
-  double kappa = 0.0;
+  std::string sigma2;
+  std::string kappa;
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
   emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
@@ -223,14 +226,17 @@ int main(int argc, char** argv) {
   try {
     const Catalogue& catalogue = Catalogue::builtin();
     if (*list) return run_list(catalogue, list_json, list_prefix);
-    if (*emit && scene.emit_from_manifest()) return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
+    if (*emit && scene.emit_from_manifest()) {
+      saagen::cli::check_output_named("--output", emit_arguments.output_directory);
+      return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
+    }
     if (scene.plan_requested()) return scene.run_plan(catalogue);
     if (scene.compile_requested()) return scene.run_compile();
     if (trade.bench_requested()) return trade.run_bench();
     if (trade.report_requested()) return trade.run_report();
     if (*emit) {
-      if (*sigma2_option) emit_arguments.sigma2 = sigma2;
-      if (*kappa_option) emit_arguments.kappa = kappa;
+      if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
+      if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
       return run_emit(catalogue, emit_arguments);
     }
     if (*validate) return run_validate(catalogue, validate_directory);

@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/output.hpp"
+#include "arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -29,14 +30,16 @@ PassCommand::PassCommand(CLI::App& app) {
 }
 
 int PassCommand::run(const Catalogue& catalogue) const {
+  check_output_named("--output", directory_);
+  check_named_once("--variant", options_.passes);
   DeferredPassOptions options = options_;
   if (derivatives_ != "fine" && derivatives_ != "coarse") {
     throw Error(fmt::format("unknown derivative mode '{}'; choose fine or coarse", derivatives_));
   }
   options.derivatives = derivatives_ == "fine" ? PlainDerivative::fine : PlainDerivative::coarse;
   options.guards = !unguarded_;
-  if (*sigma2_option_) options.option_values["sigma2"] = sigma2_;
-  if (*kappa_option_) options.option_values["kappa"] = kappa_;
+  if (*sigma2_option_) options.option_values["sigma2"] = parse_number("--sigma2", sigma2_);
+  if (*kappa_option_) options.option_values["kappa"] = parse_number("--kappa", kappa_);
 
   std::vector<OutputFile> outputs;
   for (const DeferredPass& pass : emit_deferred_passes(catalogue, options)) {

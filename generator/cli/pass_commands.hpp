@@ -27,8 +27,8 @@ class PassCommand {
   std::string derivatives_ = "fine";
   bool unguarded_ = false;
   bool force_ = false;
-  double sigma2_ = 0.0;
-  double kappa_ = 0.0;
+  std::string sigma2_;
+  std::string kappa_;
   CLI::Option* sigma2_option_ = nullptr;
   CLI::Option* kappa_option_ = nullptr;
 };

@@ -1,11 +1,11 @@
 #include "report_commands.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/output.hpp"
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <iostream>
 #include <optional>
 
@@ -17,7 +17,15 @@ std::optional<report::CostTable> load_costs(const std::string& path) {
   return report::load_cost_table(path);
 }
 
-render::TradeTable compute(const ReportCommands::Common& common, bool keep_images) {
+// The configuration of a run, its options checked before any rendering.
+render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
+  if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
+  if (!common.cache_dir.empty()) {
+    std::error_code error;
+    if (std::filesystem::exists(common.cache_dir, error) && !std::filesystem::is_directory(common.cache_dir, error)) {
+      throw Error(fmt::format("--cache {}: exists and is not a directory; pass a directory for the ground-truth cache", common.cache_dir));
+    }
+  }
   render::TradeConfig config = report::preset_config(common.preset);
   config.cache_dir = common.cache_dir;
   config.threads = common.threads;
@@ -25,7 +33,7 @@ render::TradeTable compute(const ReportCommands::Common& common, bool keep_image
   if (common.sigma2) config.params.sigma2 = *common.sigma2;
   if (common.kappa) config.params.kappa = *common.kappa;
   config.prefilter_scale = common.prefilter_scale;
-  return render::compute_trade_table(config, report::progress_bar());
+  return config;
 }
 
 }  // namespace
@@ -42,6 +50,7 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_option("--prefilter-scale", common.prefilter_scale, "Scale of the prefiltered normal-map roughness to measure")
       ->check(CLI::Range(0.0, 4.0))
       ->capture_default_str();
+  command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
 }
 
 ReportCommands::ReportCommands(CLI::App& app) {
@@ -56,8 +65,11 @@ ReportCommands::ReportCommands(CLI::App& app) {
 }
 
 int ReportCommands::run_bench() const {
-  const auto costs = load_costs(bench_common_.cost_json);  // read first: a bad file fails before rendering
-  const render::TradeTable table = compute(bench_common_, false);
+  // Inputs and outputs are checked first: a bad file or path fails before rendering.
+  const auto costs = load_costs(bench_common_.cost_json);
+  const render::TradeConfig config = configure(bench_common_, false);
+  if (!bench_json_.empty()) check_output_paths({bench_json_}, bench_common_.force);
+  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
   if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
@@ -67,18 +79,16 @@ int ReportCommands::run_bench() const {
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->source : std::string("no --cost file"));
   std::cout << report::format_findings(table, cost_table);
-  if (!bench_json_.empty()) {
-    std::ofstream out(bench_json_);
-    out << report::trade_json(table, summary, cost_table).dump(2) << "\n";
-    if (!out) throw Error(fmt::format("{}: cannot write", bench_json_));
-  }
+  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force);
   return 0;
 }
 
 int ReportCommands::run_report() const {
   const auto costs = load_costs(report_common_.cost_json);
-  const render::TradeTable table = compute(report_common_, true);
-  const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_);
+  const render::TradeConfig config = configure(report_common_, true);
+  check_output_paths(report::report_paths(config, report_directory_), report_common_.force);
+  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
+  const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
   std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n", report_directory_, images.size());
   return 0;
 }

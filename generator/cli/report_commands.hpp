@@ -29,6 +29,7 @@ class ReportCommands {
     // scale of the prefiltered texture term.
     std::optional<double> sigma2, kappa;
     double prefilter_scale = 1.0;
+    bool force = false;
   };
 
  private:

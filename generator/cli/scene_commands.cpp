@@ -3,32 +3,26 @@
 #include "saagen/compiler.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/manifest.hpp"
 #include "saagen/output.hpp"
 #include "saagen/planner.hpp"
+#include "saagen/spirv_library.hpp"
 #include "saagen/target.hpp"
 
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
-#include <unistd.h>
 
 namespace saagen::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return content.str();
-}
+std::string read_source(const fs::path& path) { return read_input_file(path, source_size_limit, "a GLSL or HLSL source file"); }
 
 // `#include "name"` on a line of its own: the name, else nullopt. `#include <name>` is an error.
 std::optional<std::string> include_target(std::string_view line, const std::string& where) {
@@ -53,7 +47,8 @@ class IncludeExpander {
 
   void expand(const fs::path& file, int depth) {
     if (depth > 32) throw Error(fmt::format("{}: #include nested deeper than 32 (a cycle?)", file.string()));
-    const std::string text = read_text(file);
+    const std::string text = read_source(file);
+    files_.push_back(file);
     if (const auto marker = find_marker(text)) {
       try {
         native_16bit_ = native_16bit_ || builtin_target(marker->target).with_precision(marker->precision).native_16bit;
@@ -79,6 +74,8 @@ class IncludeExpander {
   }
 
   std::vector<SourcePiece>& pieces() { return pieces_; }
+  // Every file read: the input and what it includes.
+  const std::vector<fs::path>& files() const { return files_; }
   bool native_16bit() const { return native_16bit_; }
 
  private:
@@ -94,27 +91,71 @@ class IncludeExpander {
 
   std::vector<std::string> directories_;
   std::vector<SourcePiece> pieces_;
+  std::vector<fs::path> files_;
   bool native_16bit_ = false;
 };
 
-void write_binary(const fs::path& path, const std::vector<std::uint32_t>& words) {
+// `compile -o` never names one of its inputs, not even with --force.
+void check_not_an_input(const fs::path& output, const std::vector<fs::path>& inputs) {
   std::error_code error;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), error);
-  const fs::path temporary = path.parent_path() / fmt::format(".{}.saagen-tmp-{}", path.filename().string(), ::getpid());
-  {
-    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-    if (!stream) throw Error(fmt::format("{}: cannot be written; choose a writable output path", path.string()));
-    stream.write(reinterpret_cast<const char*>(words.data()), static_cast<std::streamsize>(words.size() * sizeof(std::uint32_t)));
-    if (!stream.flush()) {
-      fs::remove(temporary, error);
-      throw Error(fmt::format("{}: write failed (disk full?)", path.string()));
+  for (const fs::path& input : inputs) {
+    if (fs::equivalent(output, input, error)) {
+      throw Error(fmt::format("{}: is an input of this compilation ({}); choose another output path", output.string(), input.string()));
     }
   }
-  fs::rename(temporary, path, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw Error(fmt::format("{}: cannot replace the file", path.string()));
+}
+
+// -I directories must exist: a typo would otherwise surface as a missing #include.
+void check_include_directories(const std::vector<std::string>& directories) {
+  for (const std::string& directory : directories) {
+    std::error_code error;
+    if (!fs::is_directory(directory, error)) {
+      throw Error(fmt::format("-I {}: not a directory; pass an existing directory to search for #include files", directory));
+    }
   }
+}
+
+// glslang's log as one line: its first error (which names the file and line), and how many
+// more there are.
+std::string first_compiler_message(const std::string& log) {
+  std::vector<std::string> errors;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("ERROR: ", 0) == 0 && line.find("compilation errors.") == std::string::npos) errors.push_back(line.substr(7));
+    else if (line.rfind("spirv-val: ", 0) == 0) errors.push_back(line);
+  }
+  if (errors.empty()) {
+    const auto end = log.find('\n');
+    return fmt::format("compilation to SPIR-V failed: {}", log.substr(0, end));
+  }
+  std::string first = errors.front();
+  while (!first.empty() && first.back() == ' ') first.pop_back();
+  return errors.size() == 1 ? first : fmt::format("{} (and {} more errors)", first, errors.size() - 1);
+}
+
+// The message as is when it starts with FILE:LINE:, else prefixed with the input's name.
+std::string located(const fs::path& input, const std::string& message) {
+  const auto colon = message.find(':');
+  const bool has_location = colon != std::string::npos && colon + 1 < message.size() &&
+                            std::isdigit(static_cast<unsigned char>(message[colon + 1])) && message.find(' ') > colon;
+  return has_location ? message : fmt::format("{}: {}", input.string(), message);
+}
+
+// Whether the module has an OpEntryPoint (glslang's HLSL front end accepts a missing entry
+// function and emits none).
+bool has_entry_point(const std::vector<std::uint32_t>& words) {
+  constexpr std::uint32_t op_entry_point = 15;
+  for (std::size_t word = 5; word < words.size();) {
+    const std::uint32_t length = words[word] >> 16;
+    if ((words[word] & 0xffffu) == op_entry_point) return true;
+    if (length == 0) break;
+    word += length;
+  }
+  return false;
+}
+
+std::string_view stage_name(ShaderStage stage) {
+  return stage == ShaderStage::vertex ? "vertex" : stage == ShaderStage::compute ? "compute" : "fragment";
 }
 
 }  // namespace
@@ -141,9 +182,10 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   compile_->add_option("--language", compile_language_, "glsl or hlsl (default: hlsl for .hlsl, else glsl)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
   compile_->add_option("--client", compile_client_, "vulkan or opengl")->check(CLI::IsMember({"vulkan", "opengl"}))->capture_default_str();
-  compile_->add_option("--entry", compile_entry_, "Entry point")->capture_default_str();
+  compile_->add_option("--entry", compile_entry_, "Entry point (HLSL; GLSL's is always main)")->capture_default_str();
   compile_->add_option("-I,--include-dir", compile_include_dirs_, "Directory searched for #include \"...\" (repeatable)");
   compile_->add_flag("--optimize,-O", compile_optimize_, "Run spirv-opt -O on the result");
+  compile_->add_flag("--force", compile_force_, "Overwrite an output file that saagen did not write");
 }
 
 int SceneCommands::run_plan(const Catalogue& catalogue) const {
@@ -182,7 +224,36 @@ int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& outpu
 }
 
 int SceneCommands::run_compile() const {
-  const fs::path input(compile_input_);
+  const fs::path input(compile_input_), output(compile_output_);
+  const CompileRequest settings = compile_settings(input);
+  check_include_directories(compile_include_dirs_);
+
+  IncludeExpander expander(compile_include_dirs_);
+  expander.expand(input, 0);
+  check_not_an_input(output, expander.files());
+  check_output_paths({output}, compile_force_);
+
+  CompileRequest request = settings;
+  request.hlsl_native_16bit = expander.native_16bit();
+  request.sources = std::move(expander.pieces());
+  const CompileResult result = compile_to_spirv(request);
+  if (!result.ok) throw Error(located(input, first_compiler_message(result.log)));
+  if (!has_entry_point(result.spirv)) {
+    throw Error(fmt::format("{}: no entry point '{}' for the {} stage; pass --entry with the name of the shader's entry function",
+                            input.string(), request.entry_point, stage_name(request.stage)));
+  }
+  std::vector<std::uint32_t> spirv = result.spirv;
+  if (compile_optimize_) {
+    spirv = optimize_spirv(spirv, request.client);
+    if (spirv.empty()) throw Error(fmt::format("{}: spirv-opt failed", input.string()));
+  }
+  spirv = add_source_extension(spirv, fmt::format("{} compiled from {}", output_tag, input.filename().string()));
+  const WriteReport report = write_outputs({{output, spirv_file_bytes(spirv)}}, compile_force_);
+  std::cout << fmt::format("{} {} ({} SPIR-V words)\n", report.written.empty() ? "unchanged" : "wrote    ", compile_output_, spirv.size());
+  return 0;
+}
+
+CompileRequest SceneCommands::compile_settings(const fs::path& input) const {
   const std::string extension = input.extension().string();
   std::string stage = compile_stage_;
   if (stage.empty()) {
@@ -190,31 +261,16 @@ int SceneCommands::run_compile() const {
     else throw Error(fmt::format("{}: cannot tell the stage from the extension; pass --stage vert, frag or comp", input.string()));
   }
   const std::string language = !compile_language_.empty() ? compile_language_ : extension == ".hlsl" ? "hlsl" : "glsl";
-
-  IncludeExpander expander(compile_include_dirs_);
-  expander.expand(input, 0);
-
+  if (language == "glsl" && compile_entry_ != "main") {
+    throw Error(fmt::format("--entry {}: GLSL's entry point is always main; --entry applies to HLSL only", compile_entry_));
+  }
+  if (compile_entry_.empty()) throw Error("--entry: empty; pass the name of the HLSL entry function");
   CompileRequest request;
   request.language = language == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
   request.stage = stage == "vert" ? ShaderStage::vertex : stage == "comp" ? ShaderStage::compute : ShaderStage::fragment;
   request.client = compile_client_ == "opengl" ? ClientApi::opengl : ClientApi::vulkan;
   request.entry_point = compile_entry_;
-  request.hlsl_native_16bit = expander.native_16bit();
-  request.sources = std::move(expander.pieces());
-  const CompileResult result = compile_to_spirv(request);
-  if (!result.ok) {
-    std::cerr << result.log;
-    if (!result.log.empty() && result.log.back() != '\n') std::cerr << "\n";
-    throw Error(fmt::format("{}: compilation to SPIR-V failed (messages above)", input.string()));
-  }
-  std::vector<std::uint32_t> spirv = result.spirv;
-  if (compile_optimize_) {
-    spirv = optimize_spirv(spirv, request.client);
-    if (spirv.empty()) throw Error(fmt::format("{}: spirv-opt failed", input.string()));
-  }
-  write_binary(compile_output_, spirv);
-  std::cout << fmt::format("wrote     {} ({} SPIR-V words)\n", compile_output_, spirv.size());
-  return 0;
+  return request;
 }
 
 }  // namespace saagen::cli

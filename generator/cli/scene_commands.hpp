@@ -3,9 +3,11 @@
 #pragma once
 
 #include "saagen/catalogue.hpp"
+#include "saagen/compiler.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,9 @@ class SceneCommands {
   int run_compile() const;
 
  private:
+  // Stage, language, client and entry point from the options and the input's extension.
+  CompileRequest compile_settings(const std::filesystem::path& input) const;
+
   CLI::App* plan_ = nullptr;
   std::string plan_manifest_;
   std::string plan_trade_table_;
@@ -45,6 +50,7 @@ class SceneCommands {
   std::string compile_entry_ = "main";
   std::vector<std::string> compile_include_dirs_;
   bool compile_optimize_ = false;
+  bool compile_force_ = false;
 };
 
 }  // namespace saagen::cli

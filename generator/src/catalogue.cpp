@@ -105,8 +105,11 @@ class TemplateParser {
   void check_ascii() const {
     for (const Line& line : lines_) {
       for (char c : line.text) {
-        if (static_cast<unsigned char>(c) > 127) {
-          fail(file_, line.number, "non-ASCII character; templates (and the code they emit) must be ASCII");
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte > 127) fail(file_, line.number, "non-ASCII character; templates (and the code they emit) must be ASCII");
+        if (byte < 0x20 || byte == 0x7f) {
+          fail(file_, line.number, fmt::format("control character 0x{:02x}; templates (and the code they emit) are printable ASCII, "
+                                               "indented with spaces", byte));
         }
       }
     }

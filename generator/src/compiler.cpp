@@ -92,6 +92,11 @@ CompileResult compile_to_spirv(const CompileRequest& request) {
     result.log = program.getInfoLog();
     return result;
   }
+  // glslang's HLSL front end links a missing entry function as an empty one, with a warning.
+  if (const std::string link_log = program.getInfoLog(); link_log.find("Entry point not found") != std::string::npos) {
+    result.log = "ERROR: entry point '" + request.entry_point + "' not found; pass --entry with the name of the entry function\n";
+    return result;
+  }
 
   glslang::SpvOptions options;
   options.validate = false;  // validated below with the client's rules

@@ -10,6 +10,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace saagen {
@@ -279,11 +280,29 @@ std::vector<std::string> public_functions(const Catalogue& catalogue, const std:
   return names;
 }
 
+namespace {
+
+// A given option value must survive the target precision: a nonzero value below the smallest
+// normal number would be emitted as 0 (or a denormal flushed to 0 by most GPUs).
+void check_representable(const std::map<std::string, double>& given, std::string_view precision) {
+  const bool half = precision != "fp32";
+  const double smallest_normal = half ? 0x1.0p-14 : static_cast<double>(std::numeric_limits<float>::min());
+  for (const auto& [option, value] : given) {
+    if (value != 0.0 && std::fabs(value) < smallest_normal) {
+      throw Error(fmt::format("--{} {} is below the smallest normal {} number ({:g}) and would be emitted as 0; pass a larger value", option,
+                              value, precision, smallest_normal));
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);  // throws for a precision the target lacks
   const auto option_values = resolve_options(catalogue, options.option_values);
+  check_representable(options.option_values, options.precision);
 
   std::vector<const Variant*> selected;
   if (options.variants.empty()) {
@@ -307,6 +326,7 @@ EmittedFile emit_bundle(const Catalogue& catalogue, const EmitOptions& options, 
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);
   const auto option_values = resolve_options(catalogue, options.option_values);
+  check_representable(options.option_values, options.precision);
   if (request.functions.empty() || request.variants.empty()) throw Error(fmt::format("bundle '{}' has no function", request.name));
   for (const std::string& name : request.functions) {
     if (!catalogue.find_function(name)) throw Error(fmt::format("bundle '{}': unknown function '{}'", request.name, name));

@@ -185,12 +185,24 @@ std::vector<std::uint32_t> basic_dfd(std::uint32_t vk_format) {
     return words;
 }
 
+// Bytes of a level; throws when the header's sizes overflow 64 bits.
 std::size_t level_bytes(const Ktx2Image& image, std::uint32_t level) {
-    const std::uint64_t w = std::max<std::uint32_t>(1, image.width >> level);
-    const std::uint64_t h = image.height == 0 ? 1 : std::max<std::uint32_t>(1, image.height >> level);
-    const std::uint64_t d = image.depth == 0 ? 1 : std::max<std::uint32_t>(1, image.depth >> level);
-    const std::uint64_t layers = std::max<std::uint32_t>(1, image.layers);
-    return static_cast<std::size_t>(w * h * d * layers * image.faces * texel_bytes(image.vk_format));
+    if (level >= 32) throw Error(fmt::format("KTX2: level {} is beyond the 32 levels a 32-bit size can have", level));
+    const std::uint64_t factors[] = {std::max<std::uint32_t>(1, image.width >> level),
+                                     image.height == 0 ? 1 : std::max<std::uint32_t>(1, image.height >> level),
+                                     image.depth == 0 ? 1 : std::max<std::uint32_t>(1, image.depth >> level),
+                                     std::max<std::uint32_t>(1, image.layers), image.faces, texel_bytes(image.vk_format)};
+    std::uint64_t bytes = 1;
+    for (const std::uint64_t factor : factors) {
+        if (__builtin_mul_overflow(bytes, factor, &bytes)) throw Error("KTX2: the image's dimensions overflow 64 bits");
+    }
+    return static_cast<std::size_t>(bytes);
+}
+
+// The most levels an image can have: one per halving of its largest dimension, down to 1.
+std::uint32_t max_levels(const Ktx2Image& image) {
+    const std::uint32_t largest = std::max({image.width, image.height, image.depth});
+    return static_cast<std::uint32_t>(std::bit_width(largest));
 }
 
 template <class T>
@@ -212,6 +224,17 @@ void DictionaryParams::validate() const {
         throw Error(fmt::format("glint dictionary: resolution {} must be a power of two in [2, 4096]", resolution));
     }
     if (!(alpha > 0.0 && alpha <= 2.0)) throw Error(fmt::format("glint dictionary: alpha {} must be in (0, 2]", alpha));
+    // Work and memory caps: lobes drawn (count x 2^(lods - 2)) and double values held.
+    const std::uint64_t lobes = static_cast<std::uint64_t>(count) << (lods - 2);
+    if (lobes > dictionary_lobe_limit) {
+        throw Error(fmt::format("glint dictionary: count {} x 2^(lods - 2) = {} lobes is more than {}; lower the count or the LODs", count, lobes,
+                                dictionary_lobe_limit));
+    }
+    const std::uint64_t values = static_cast<std::uint64_t>(count) * lods * resolution;
+    if (values > dictionary_value_limit) {
+        throw Error(fmt::format("glint dictionary: count x lods x resolution = {} values is more than {}; lower one of them", values,
+                                dictionary_value_limit));
+    }
     if (!(lobe_sigma > 0.0 && lobe_sigma < sigma())) {
         throw Error(fmt::format("glint dictionary: lobe sigma {} must be in (0, sigma_o = {})", lobe_sigma, sigma()));
     }
@@ -422,6 +445,10 @@ Ktx2Image read_ktx2(std::span<const std::uint8_t> bytes) {
     const std::uint32_t texel = texel_bytes(image.vk_format);
     if (image.type_size != format_info(image.vk_format).bits / 8) throw Error(fmt::format("KTX2: typeSize {} does not match vkFormat {}", image.type_size, image.vk_format));
     if (image.width == 0 || image.faces != 1 || level_count == 0) throw Error("KTX2: expected a non-empty image with one face and explicit levels");
+    if (level_count > max_levels(image)) {
+        throw Error(fmt::format("KTX2: {} levels for an image of {} x {} x {} (at most {})", level_count, image.width, image.height, image.depth,
+                                max_levels(image)));
+    }
     const std::uint32_t dfd_at = in.u32(48), dfd_length = in.u32(52), kvd_at = in.u32(56), kvd_length = in.u32(60);
     if (in.u64(64) != 0 || in.u64(72) != 0) throw Error("KTX2: unexpected supercompression global data");
 
@@ -495,13 +522,25 @@ SlopeMap slopes_from_normals(int width, int height, std::span<const double> norm
     return map;
 }
 
+namespace {
+
+// A PPM header field: decimal digits only, at most 9 of them (no sign, no suffix, no wrap-around).
+int ppm_number(const std::string& token, std::string_view field) {
+    if (token.empty() || token.size() > 9 || !std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        throw Error(fmt::format("normal map: the PPM {} '{}' is not a decimal number below 10^9", field, token.substr(0, 20)));
+    }
+    return std::stoi(token);
+}
+
+}  // namespace
+
 SlopeMap slopes_from_ppm(std::span<const std::uint8_t> bytes) {
     std::size_t at = 0;
     const auto token = [&]() {
         std::string text;
         while (at < bytes.size()) {
             const char c = static_cast<char>(bytes[at]);
-            if (c == '#') {
+            if (c == '#' && text.empty()) {
                 while (at < bytes.size() && bytes[at] != '\n') ++at;
             } else if (std::isspace(static_cast<unsigned char>(c))) {
                 ++at;
@@ -509,15 +548,20 @@ SlopeMap slopes_from_ppm(std::span<const std::uint8_t> bytes) {
             } else {
                 text += c;
                 ++at;
+                if (text.size() > 16) return text;  // no header field is this long
             }
         }
         return text;
     };
     if (token() != "P6") throw Error("normal map: only binary PPM (P6) files are read");
-    const int width = std::atoi(token().c_str()), height = std::atoi(token().c_str()), maximum = std::atoi(token().c_str());
+    const int width = ppm_number(token(), "width"), height = ppm_number(token(), "height"), maximum = ppm_number(token(), "maxval");
     if (width <= 0 || height <= 0 || maximum != 255) throw Error("normal map: expected a P6 header with positive size and maxval 255");
+    if (static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) > lean_texel_limit) {
+        throw Error(fmt::format("normal map: {} x {} is larger than {} texels (2048 x 2048); downsample it", width, height, lean_texel_limit));
+    }
     if (bytes.size() - at < static_cast<std::size_t>(width) * height * 3) throw Error("normal map: the PPM file is truncated");
     std::vector<double> normals;
+    normals.reserve(static_cast<std::size_t>(width) * height * 3);
     for (std::size_t t = 0; t < static_cast<std::size_t>(width) * height; ++t) {
         double n[3];
         for (int c = 0; c < 3; ++c) n[c] = 2.0 * bytes[at + 3 * t + c] / 255.0 - 1.0;
@@ -606,7 +650,7 @@ std::vector<EmittedFile> emit(const EmitOptions& options) {
     if (glint_options.variants.empty()) glint_options.variants = {"glints", "glints-ggaa"};
     if (const auto count = options.option_values.find("glint_count"); count != options.option_values.end()) {
         if (std::fmod(count->second, 4.0) != 0.0) {
-            throw Error(fmt::format("--glint-count {} must be a multiple of 4 (four distributions per RGBA texel)", count->second));
+            throw Error(fmt::format("--glint_count {} must be a multiple of 4 (four distributions per RGBA texel)", count->second));
         }
     }
     return emit_variants(catalogue(), glint_options);

@@ -2,6 +2,7 @@
 
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/target.hpp"
 
 #include <fmt/format.h>
@@ -16,9 +17,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace saagen {
 namespace {
@@ -284,6 +283,154 @@ void read_materials(Manifest& manifest, const TableReader& top, const Catalogue&
   }
 }
 
+// How deep a manifest may nest: dotted-key parts plus the arrays and inline tables around them.
+// A scene manifest needs 2; toml++ recurses once per level and overflows the stack on deep input.
+constexpr int nesting_limit = 32;
+
+// What the pre-parse scan found: where, and the message's text after the position.
+struct TextProblem {
+  SourcePosition position;
+  std::string message;
+};
+
+// Scans TOML text before toml++ parses it, for what toml++ 3.3 cannot take safely:
+// - nesting deeper than nesting_limit (dots are counted in keys, i.e. table headers, before '=' and
+//   inside inline tables; brackets in values; strings and comments are skipped);
+// - non-ASCII characters outside comments: toml++ 3.3 classifies them as whitespace through an
+//   unreachable branch (undefined behaviour) in keys, in bare values (which may swallow quotes)
+//   and in multi-line strings. TOML's bare keys and every value saagen accepts are ASCII, so no
+//   valid manifest is lost.
+class ManifestScanner {
+ public:
+  explicit ManifestScanner(std::string_view text) : text_(text) {}
+
+  std::optional<TextProblem> first_problem() {
+    bool line_start = true;
+    for (at_ = 0; at_ < text_.size() && !problem_; ++at_) {
+      const char c = text_[at_];
+      if (c == '\n') {
+        newline();
+        line_start = true;
+        continue;
+      }
+      if (c == ' ' || c == '\t' || c == '\r') continue;
+      if (line_start && containers_.empty()) start_line(c);
+      line_start = false;
+      if (c == '#') skip_comment();
+      else if (c == '"' || c == '\'') skip_string(c);
+      else if (static_cast<unsigned char>(c) >= 0x80) non_ascii();
+      else if (!step(c)) report(fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at most {} "
+                                           "(a scene manifest needs 2)", nesting_limit, nesting_limit));
+    }
+    return problem_;
+  }
+
+ private:
+  void start_line(char first) {
+    in_key_ = true;
+    key_dots_ = 0;
+    header_ = first == '[';
+  }
+
+  // One structural character; false when it nests too deeply.
+  bool step(char c) {
+    if (header_) {
+      if (c == ']') in_key_ = false;
+      else if (c == '.' && in_key_) ++key_dots_;
+      return depth() <= nesting_limit;
+    }
+    if (in_key_) {
+      if (c == '=') in_key_ = false;
+      else if (c == '.') ++key_dots_;
+      else if (c == '}' && !containers_.empty()) containers_.pop_back();  // `{}` or a trailing `}`
+      return depth() <= nesting_limit;
+    }
+    if (c == '[' || c == '{') {
+      containers_.push_back({c, key_dots_});
+      in_key_ = c == '{';
+      key_dots_ = 0;
+    } else if ((c == ']' || c == '}') && !containers_.empty()) {
+      key_dots_ = containers_.back().outer_dots;
+      containers_.pop_back();
+    } else if (c == ',' && !containers_.empty() && containers_.back().bracket == '{') {
+      in_key_ = true;
+      key_dots_ = 0;
+    }
+    return depth() <= nesting_limit;
+  }
+
+  int depth() const {
+    int outer = 0;
+    for (const Container& container : containers_) outer += container.outer_dots + 1;
+    return outer + key_dots_ + 1;
+  }
+
+  void non_ascii() {
+    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment; allowed: ASCII keys and values (every name and value saagen reads is ASCII)",
+                       static_cast<unsigned char>(text_[at_])));
+  }
+
+  void report(std::string message) {
+    if (!problem_) problem_ = TextProblem{position(), std::move(message)};
+  }
+
+  void newline() {
+    ++line_;
+    line_at_ = at_ + 1;
+  }
+
+  void skip_comment() {
+    while (at_ + 1 < text_.size() && text_[at_ + 1] != '\n') ++at_;
+  }
+
+  // From the opening quote to the closing one (""" and ''' strings span lines); strings must be
+  // ASCII too.
+  void skip_string(char quote) {
+    const bool triple = text_.substr(at_, 3) == std::string(3, quote);
+    at_ += triple ? 3 : 1;
+    for (; at_ < text_.size(); ++at_) {
+      const char c = text_[at_];
+      if (static_cast<unsigned char>(c) >= 0x80) return non_ascii();
+      if (c == '\\' && quote == '"') {
+        ++at_;
+        if (at_ < text_.size() && text_[at_] == '\n') newline();
+        else if (at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
+      } else if (c == '\n') {
+        newline();
+        if (!triple) return;
+      } else if (c == quote && (!triple || text_.substr(at_, 3) == std::string(3, quote))) {
+        if (triple) at_ += 2;
+        return;
+      }
+    }
+  }
+
+  SourcePosition position() const { return {line_, static_cast<int>(at_ - line_at_) + 1}; }
+
+  struct Container {
+    char bracket;
+    int outer_dots;  // the dots of the key this container is the value of
+  };
+  std::string_view text_;
+  std::size_t at_ = 0;
+  std::size_t line_at_ = 0;
+  int line_ = 1;
+  bool in_key_ = true;
+  bool header_ = false;
+  int key_dots_ = 0;
+  std::vector<Container> containers_;
+  std::optional<TextProblem> problem_;
+};
+
+// Size, nesting and characters are checked before toml++ sees the text (see ManifestScanner).
+void check_manifest_limits(const Manifest& manifest, std::string_view text) {
+  if (text.size() > manifest_size_limit) {
+    throw Error(manifest.where({1, 1}) + fmt::format("the manifest is larger than {} KiB; allowed: a scene manifest of at most {} KiB",
+                                                     manifest_size_limit >> 10, manifest_size_limit >> 10));
+  }
+  if (const auto problem = ManifestScanner(text).first_problem()) throw Error(manifest.where(problem->position) + problem->message);
+}
+
 }  // namespace
 
 std::optional<std::string> target_precision(std::string_view target, std::string_view precision) {
@@ -321,6 +468,7 @@ const std::vector<std::string>& material_keys() {
 Manifest parse_manifest(std::string_view text, std::string_view source_name, const Catalogue& catalogue) {
   Manifest manifest;
   manifest.source_name = std::string(source_name);
+  check_manifest_limits(manifest, text);
   toml::table document;
   try {
     document = toml::parse(text, std::string_view(source_name));
@@ -361,11 +509,8 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 }
 
 Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the path of a scene manifest (see examples/scene.saagen.toml)", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return parse_manifest(content.str(), path.string(), catalogue);
+  const std::string text = read_input_file(path, manifest_size_limit, "a scene manifest (see examples/scene.saagen.toml)");
+  return parse_manifest(text, path.string(), catalogue);
 }
 
 }  // namespace saagen

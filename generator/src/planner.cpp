@@ -2,6 +2,7 @@
 
 #include "saagen/compiler.hpp"
 #include "saagen/error.hpp"
+#include "saagen/input.hpp"
 #include "saagen/kernels.hpp"
 #include "saagen/target.hpp"
 
@@ -12,8 +13,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace saagen {
 namespace {
@@ -311,6 +310,8 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     entry.cost_ratio = number(row, "ratio_median", index);
     entry.delta_instructions = number(row, "delta_spirv_instructions", index);
     entry.error = number(row, "error", index);
+    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
+    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
     table.rows.push_back(std::move(entry));
   }
   if (document.contains("by_content")) {
@@ -334,11 +335,7 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
 }
 
 TradeTable load_trade_table(const std::filesystem::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read; pass the file `bench_shading --json` writes", path.string()));
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return parse_trade_table(content.str(), path.string());
+  return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
 }
 
 namespace {
@@ -390,9 +387,23 @@ void choose_normal_handling(const TradeTable& table, const std::vector<const Var
                                    table.source_name, fmt::join(figures, ", "));
 }
 
+void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
+  for (std::size_t index = 0; index < table.rows.size(); ++index) {
+    // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
+    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline.
+    const std::string& id = table.rows[index].variant;
+    const std::string base = parse_configuration(id).variant;
+    if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
+      throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
+                              index, id.substr(0, 40)));
+    }
+  }
+}
+
 }  // namespace
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
+  if (table) check_trade_table_ids(catalogue, *table);
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
   // Manifests built in code (not parsed) get the checks that protect the emitted text.

@@ -592,6 +592,28 @@ std::vector<std::uint32_t> add_module_processed(const std::vector<std::uint32_t>
   return assemble_spirv(module_text(instructions));
 }
 
+std::vector<std::uint32_t> add_source_extension(const std::vector<std::uint32_t>& words, std::string_view text) {
+  // Spliced into the binary (the header, version included, stays as it is) before the first
+  // instruction after the mode-setting section: capabilities, extensions, imports, memory
+  // model, entry points and execution modes.
+  static const std::set<std::uint32_t> mode_setting = {17, 10, 11, 14, 15, 16, 331};
+  constexpr std::uint32_t op_source_extension = 4;
+  std::size_t position = 5;
+  while (position < words.size() && mode_setting.count(words[position] & 0xffffu) && (words[position] >> 16) != 0) {
+    position += words[position] >> 16;
+  }
+  if (words.size() < 5 || position > words.size()) throw Error("not a SPIR-V module: truncated instruction stream");
+  std::vector<std::uint32_t> literal((text.size() + 4) / 4, 0u);  // NUL-terminated, padded to a word
+  for (std::size_t index = 0; index < text.size(); ++index) {
+    literal[index / 4] |= std::uint32_t(static_cast<unsigned char>(text[index])) << (8 * (index % 4));
+  }
+  std::vector<std::uint32_t> result(words.begin(), words.begin() + static_cast<std::ptrdiff_t>(position));
+  result.push_back(static_cast<std::uint32_t>((literal.size() + 1) << 16) | op_source_extension);
+  result.insert(result.end(), literal.begin(), literal.end());
+  result.insert(result.end(), words.begin() + static_cast<std::ptrdiff_t>(position), words.end());
+  return result;
+}
+
 std::string spirv_file_bytes(const std::vector<std::uint32_t>& words) {
   std::string bytes;
   bytes.reserve(words.size() * 4);

@@ -18,6 +18,11 @@ namespace saagen::glints {
 // ---------------------------------------------------------------------------------------------
 // Dictionary
 
+// Caps on a dictionary's generation work (lobes drawn) and size (values held, 8 bytes each):
+// about 5x and 170x the defaults, so that a mistyped option fails at once instead of running for minutes.
+inline constexpr std::uint64_t dictionary_lobe_limit = std::uint64_t{1} << 24;
+inline constexpr std::uint64_t dictionary_value_limit = std::uint64_t{1} << 25;
+
 struct DictionaryParams {
     int count = 192;          // N distributions; a multiple of 4 (four per RGBA16F texel)
     int lods = 16;            // L LODs; LOD k < L - 1 mixes 2^k lobes, LOD L - 1 is the Beckmann marginal
@@ -107,7 +112,10 @@ struct SlopeMap {
 
 // Slopes of unit tangent-space normals (3 per texel, n.z > 0).
 SlopeMap slopes_from_normals(int width, int height, std::span<const double> normals);
-// An 8-bit RGB normal map (n = 2 c / 255 - 1) from a binary PPM (P6) file's bytes.
+// The largest normal map LEAN chains are computed for (memory grows ~170 bytes per texel).
+inline constexpr std::uint64_t lean_texel_limit = 2048 * 2048;
+// An 8-bit RGB normal map (n = 2 c / 255 - 1) from a binary PPM (P6) file's bytes. The header's
+// numbers are strict decimals; throws saagen::Error on a malformed, truncated or too large map.
 SlopeMap slopes_from_ppm(std::span<const std::uint8_t> bytes);
 
 // Level m holds, per texel, (E[x], E[y], E[x^2], E[xy], E[y^2]) over the texels of level 0 it

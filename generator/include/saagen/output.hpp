@@ -1,9 +1,12 @@
-// Writing generated files: all or nothing, atomically, and only when the bytes change, so that
-// a build system does not rebuild needlessly and never sees a half-written file.
+// Writing generated files: one layer for every command that writes. All or nothing, atomically,
+// only when the bytes change, never over a file saagen did not write (unless forced), and never
+// through a symbolic link, so that a build system does not rebuild needlessly, never sees a
+// half-written file, and a planted link cannot redirect a write outside the target.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace saagen {
@@ -18,10 +21,29 @@ struct WriteReport {
   std::vector<std::filesystem::path> unchanged;
 };
 
-// Writes every file through a temporary in the same directory and a rename. Before writing
-// anything it checks that each existing target either was written by saagen (holds the marker
-// line) or `force` is set, and that the directories can be created and written; on any problem
-// it throws saagen::Error and leaves the output directory as it was.
+// The tag that marks outputs without an emission marker line as saagen's (report pages, plots
+// and PNG text chunks, compiled SPIR-V, JSON tables, sidecars). Emitted shader files carry the
+// marker line of emitter.hpp instead; KTX2 files a "saagen.*" key/value entry.
+inline constexpr std::string_view output_tag = "saagen-output:";
+
+// Whether bytes found at `path` were written by saagen: an emission marker line, the output tag,
+// a KTX2 file with a "saagen.*" key, or a sidecar `<path>.saagen` vouching for these bytes.
+bool written_by_saagen(const std::filesystem::path& path, std::string_view bytes);
+
+// The sidecar that vouches for a raw output (no room for a tag in its format): an OutputFile
+// named `<path>.saagen` holding the tag, a description and the bytes' size and hash.
+OutputFile ownership_sidecar(const std::filesystem::path& path, std::string_view bytes, std::string_view description);
+
+// Checks, before any long work, that every path could be written: not empty, named once, not a
+// directory, a symbolic link or a special file, saagen's own unless `force`, and inside a
+// directory that exists and is writable or can be created. Throws saagen::Error (one line).
+void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force);
+
+// Writes every file through a temporary created exclusively (mkstemp) in its own directory and a
+// rename, after checking every path as check_output_paths does. Nothing is renamed until every
+// temporary is complete; on any failure (full disk included) every temporary is removed and
+// saagen::Error is thrown. A symbolic link at a path is refused; with `force` the link itself is
+// replaced (what it points to is never written).
 WriteReport write_outputs(const std::vector<OutputFile>& files, bool force);
 
 }  // namespace saagen

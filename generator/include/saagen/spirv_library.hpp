@@ -84,6 +84,10 @@ std::string glsl_import_stubs(const Catalogue& catalogue, const std::vector<std:
 // preserved). Used to carry the saagen marker line (text ends with '\n') in binary outputs.
 std::vector<std::uint32_t> add_module_processed(const std::vector<std::uint32_t>& words, std::string_view text);
 
+// Adds `OpSourceExtension "<text>"` (valid in every SPIR-V version, ignored by drivers): how
+// `saagen compile` tags its outputs as saagen's.
+std::vector<std::uint32_t> add_source_extension(const std::vector<std::uint32_t>& words, std::string_view text);
+
 // SPIR-V text of a module (spirv-dis, numeric ids), and back (spirv-as, numeric ids preserved).
 // Throw saagen::Error with the tool's message on failure.
 std::string disassemble_spirv(const std::vector<std::uint32_t>& words);

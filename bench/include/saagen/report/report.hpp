@@ -69,7 +69,12 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
 // Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg and DIR/sheet_<scene>_<alpha>.png
 // (the ground truth beside every variant's 1-spp image, over false-colour difference maps).
 // The table must have been computed with keep_images. Returns the image files written.
-std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir);
+// Written all or nothing through saagen's output layer (saagen/output.hpp): files saagen did not
+// write are kept unless `force`.
+std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
+                                      bool force = false);
+// The paths write_report will write for a configuration, to check them before rendering.
+std::vector<std::filesystem::path> report_paths(const render::TradeConfig& config, const std::filesystem::path& dir);
 
 // A progress callback drawing a one-line bar on stderr ("\r[#####.....]  42%  ground truth sphere").
 render::TradeProgressFn progress_bar();

@@ -1,0 +1,437 @@
+// Output safety and hostile input, as whole `saagen` processes and through the library: no write
+// outside the target (symbolic links are never followed), no foreign file overwritten without
+// --force, all-or-nothing outputs (full disks included), and one line for every bad input, fast.
+//
+// The full disk is emulated with RLIMIT_FSIZE (`ulimit -f` in the child shell, SIGXFSZ ignored
+// so that write() fails with EFBIG): tmpfs and loop mounts need privileges a test cannot assume.
+#include "saagen/catalogue.hpp"
+#include "saagen/error.hpp"
+#include "saagen/glints.hpp"
+#include "saagen/manifest.hpp"
+
+#include "cli_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sys/wait.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using saagen::test::CliRun;
+using saagen::test::read_text;
+using saagen::test::shell_quote;
+
+class Safety : public saagen::test::CliTest {
+ protected:
+  void expect_one_line_error(const CliRun& run, const std::string& expected) const {
+    EXPECT_EQ(run.exit_code, 1) << run.err;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+
+  // Runs saagen with a per-file size limit of `kib` KiB, as a full disk would refuse the write.
+  CliRun saagen_with_file_limit(int kib, const std::vector<std::string>& arguments) const {
+    std::string command = "trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; exec " + shell_quote(SAAGEN_CLI_PATH);
+    for (const std::string& argument : arguments) command.append(" ").append(shell_quote(argument));
+    return run_shell(command);
+  }
+
+  CliRun run_shell(const std::string& command) const {
+    const fs::path out = scratch_ / "shell-out.txt", err = scratch_ / "shell-err.txt";
+    const std::string line = "bash -c " + shell_quote(command) + " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string());
+    const int status = std::system(line.c_str());
+    CliRun run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out = read_text(out);
+    run.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return run;
+  }
+
+  // Every entry of a directory, hidden ones (temporaries) included.
+  std::set<std::string> entries(const fs::path& directory) const {
+    std::set<std::string> names;
+    if (!fs::exists(directory)) return names;
+    for (const auto& entry : fs::directory_iterator(directory)) names.insert(entry.path().filename().string());
+    return names;
+  }
+
+  void write(const fs::path& path, const std::string& text) const {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+  }
+
+  // A run that must fail fast: before any long work (rendering, generation).
+  CliRun timed(const std::vector<std::string>& arguments, double* seconds) const {
+    const auto start = std::chrono::steady_clock::now();
+    CliRun run = saagen(arguments);
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return run;
+  }
+
+  static std::vector<std::string> small_dictionary(const fs::path& output) {
+    return {"glints", "dictionary", "--count", "4", "--lods", "2", "--resolution", "4", "-o", output.string()};
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// 1. Symbolic links: never followed, neither at a temporary name nor at the output path.
+
+TEST_F(Safety, LinksAtTheOldPredictableTemporaryNamesAreNotFollowed) {
+  write(scratch_ / "victim.txt", "precious\n");
+  fs::create_directories(scratch_ / "gd");
+  fs::create_symlink("../victim.txt", scratch_ / "gd" / "d2.ktx2.saagen-tmp");
+  fs::create_directories(scratch_ / "out");
+  for (int pid = 0; pid < 64; ++pid) {  // the old names carried a PID; plant a few
+    fs::create_symlink("../victim.txt", scratch_ / "out" / (".saa_deferred_sum.glsl.saagen-tmp-" + std::to_string(::getpid() + pid)));
+  }
+  ASSERT_EQ(saagen(small_dictionary(scratch_ / "gd" / "d2.ktx2")).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "-v", "deferred-sum", "-o", (scratch_ / "out").string()}).exit_code, 0);
+  EXPECT_EQ(read_text(scratch_ / "victim.txt"), "precious\n");
+  EXPECT_FALSE(fs::is_symlink(scratch_ / "gd" / "d2.ktx2"));
+  EXPECT_FALSE(fs::is_symlink(scratch_ / "out" / "saa_deferred_sum.glsl"));
+}
+
+TEST_F(Safety, ALinkAtTheOutputPathIsRefusedAndForceReplacesOnlyTheLink) {
+  write(scratch_ / "victim.txt", "precious\n");
+  fs::create_directories(scratch_ / "out");
+  const fs::path link = scratch_ / "out" / "saa_deferred_sum.glsl";
+  fs::create_symlink("../victim.txt", link);
+  expect_one_line_error(saagen({"emit", "-v", "deferred-sum", "-o", (scratch_ / "out").string()}), "is a symbolic link");
+  const fs::path ktx2_link = scratch_ / "d.ktx2";
+  fs::create_symlink("victim.txt", ktx2_link);
+  expect_one_line_error(saagen(small_dictionary(ktx2_link)), "is a symbolic link");
+  const fs::path spv_link = scratch_ / "s.spv";
+  fs::create_symlink("victim.txt", spv_link);
+  write(scratch_ / "s.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "s.comp").string(), "-o", spv_link.string()}), "is a symbolic link");
+  EXPECT_EQ(read_text(scratch_ / "victim.txt"), "precious\n");
+
+  ASSERT_EQ(saagen({"emit", "-v", "deferred-sum", "--force", "-o", (scratch_ / "out").string()}).exit_code, 0);
+  EXPECT_FALSE(fs::is_symlink(link));
+  EXPECT_NE(read_text(link).find("saagen-marker"), std::string::npos);
+  EXPECT_EQ(read_text(scratch_ / "victim.txt"), "precious\n");
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Deeply nested manifests: refused with file:line before toml++ recurses.
+
+TEST_F(Safety, DeeplyNestedManifestIsOneLineNotACrash) {
+  std::string header = "[a";
+  for (int level = 0; level < 250000; ++level) header += ".a";
+  write(scratch_ / "deep.toml", header + "]\n");
+  expect_one_line_error(saagen({"plan", (scratch_ / "deep.toml").string()}), "deep.toml:1:");
+  expect_one_line_error(saagen({"emit", "--manifest", (scratch_ / "deep.toml").string(), "-o", (scratch_ / "out").string()}),
+                        "nested deeper than 32 levels");
+  EXPECT_FALSE(fs::exists(scratch_ / "out"));
+}
+
+TEST(ManifestLimits, NestingAndSizeAreCappedBeforeParsing) {
+  const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
+  const auto error_of = [&](const std::string& text) -> std::string {
+    try {
+      (void)saagen::parse_manifest(text, "m.toml", catalogue);
+    } catch (const saagen::Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  std::string dotted = "x";
+  for (int level = 0; level < 100000; ++level) dotted += ".x";
+  EXPECT_EQ(error_of(dotted + " = 1\n").rfind("m.toml:1:", 0), 0u);
+  EXPECT_NE(error_of("a = " + std::string(5000, '[') + std::string(5000, ']') + "\n").find("nested deeper than 32"), std::string::npos);
+  std::string inline_tables = "a = ";
+  for (int level = 0; level < 5000; ++level) inline_tables += "{b = ";
+  EXPECT_NE(error_of(inline_tables + "1" + std::string(5000, '}') + "\n").find("nested deeper than 32"), std::string::npos);
+  // Multi-line arrays keep their depth across lines; the error names the line.
+  EXPECT_EQ(error_of("targets = [\n" + std::string(40, '[') + "\n").rfind("m.toml:2:", 0), 0u);
+  EXPECT_NE(error_of("# " + std::string(2 << 20, 'x') + "\n").find("larger than 1024 KiB"), std::string::npos);
+  // Non-ASCII outside comments never reaches toml++ 3.3, whose whitespace classification of
+  // U+00A1..U+0499 and others is undefined behaviour (in keys, bare values and strings).
+  EXPECT_EQ(error_of("targets = [\"glsl\"]\npa\xcc\x88th = 1\n").rfind("m.toml:2:3: non-ASCII byte 0xcc", 0), 0u) << error_of("pa\xcc\x88th = 1\n");
+  EXPECT_EQ(error_of("x = \"\"\"a \\\n\xc2\xa1" "b\"\"\"\n").rfind("m.toml:2:1: non-ASCII", 0), 0u);
+  EXPECT_EQ(error_of("t = 1\"caf\xc3\xa9\"\n").rfind("m.toml:1:10: non-ASCII", 0), 0u);  // a bare value swallowing a quote
+  EXPECT_EQ(error_of("# caf\xc3\xa9\ntargets = []\n").find("non-ASCII"), std::string::npos);
+  // Dots in values, strings and comments are not nesting.
+  const std::string fine = "targets = [\"glsl\"] # a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\n"
+                           "name = \"a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\"\n"
+                           "sigma2 = 0.25\n[[material]]\nname = \"m\"\npath = \"deferred\"\n";
+  EXPECT_NE(error_of(fine).find("is not an identifier"), std::string::npos) << error_of(fine);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Foreign files: kept unless --force; saagen's own files are recognised by their marker.
+
+TEST_F(Safety, CompileNeverOverwritesItsInputOrAForeignFile) {
+  const std::string source = "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+  write(scratch_ / "src.comp", source);
+  write(scratch_ / "inc" / "common.glsl", "float f() { return 1.0; }\n");
+  write(scratch_ / "uses.comp", "#version 450\n#include \"common.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() { f(); }\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "src.comp").string(), "-o", (scratch_ / "src.comp").string(), "--force"}),
+                        "is an input of this compilation");
+  expect_one_line_error(saagen({"compile", (scratch_ / "uses.comp").string(), "-I", (scratch_ / "inc").string(), "-o",
+                                (scratch_ / "inc" / "common.glsl").string(), "--force"}),
+                        "is an input of this compilation");
+  EXPECT_EQ(read_text(scratch_ / "src.comp"), source);
+  write(scratch_ / "foreign.bin", "mine\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "src.comp").string(), "-o", (scratch_ / "foreign.bin").string()}),
+                        "was not written by saagen");
+  EXPECT_EQ(read_text(scratch_ / "foreign.bin"), "mine\n");
+  // Its own output carries the tag: recompiling replaces it, unchanged bytes are left alone.
+  ASSERT_EQ(saagen({"compile", (scratch_ / "src.comp").string(), "-o", (scratch_ / "own.spv").string()}).exit_code, 0);
+  EXPECT_NE(read_text(scratch_ / "own.spv").find("saagen-output:"), std::string::npos);
+  const CliRun again = saagen({"compile", (scratch_ / "src.comp").string(), "-o", (scratch_ / "own.spv").string()});
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("unchanged"), std::string::npos) << again.out;
+  EXPECT_EQ(saagen({"compile", (scratch_ / "src.comp").string(), "-o", (scratch_ / "foreign.bin").string(), "--force"}).exit_code, 0);
+}
+
+TEST_F(Safety, DictionaryOwnsOnlyKtx2WithItsKeyAndRawDumpsWithTheirSidecar) {
+  std::string ktx2_magic = "\xABKTX 20\xBB\r\n\x1A\n";
+  write(scratch_ / "foreign.ktx2", ktx2_magic + std::string(100, '\0'));
+  expect_one_line_error(saagen(small_dictionary(scratch_ / "foreign.ktx2")), "was not written by saagen");
+  EXPECT_EQ(fs::file_size(scratch_ / "foreign.ktx2"), 112u);
+
+  write(scratch_ / "foreign.f32", "my floats");
+  auto with_raw = small_dictionary(scratch_ / "d.ktx2");
+  with_raw.insert(with_raw.end(), {"--raw", (scratch_ / "foreign.f32").string()});
+  expect_one_line_error(saagen(with_raw), "foreign.f32: exists and was not written by saagen");
+  EXPECT_EQ(read_text(scratch_ / "foreign.f32"), "my floats");
+  EXPECT_FALSE(fs::exists(scratch_ / "d.ktx2"));  // nothing written
+
+  auto own_raw = small_dictionary(scratch_ / "d.ktx2");
+  own_raw.insert(own_raw.end(), {"--raw", (scratch_ / "own.f32").string()});
+  ASSERT_EQ(saagen(own_raw).exit_code, 0);
+  EXPECT_TRUE(fs::exists(scratch_ / "own.f32.saagen"));
+  own_raw[3] = "8";  // another count: new bytes over saagen's own files
+  EXPECT_EQ(saagen(own_raw).exit_code, 0);
+  write(scratch_ / "own.f32", "edited by hand");  // the sidecar no longer vouches for it
+  expect_one_line_error(saagen(own_raw), "own.f32: exists and was not written by saagen");
+}
+
+TEST_F(Safety, ReportAndBenchKeepForeignFilesAndFailBeforeRendering) {
+  write(scratch_ / "report" / "index.html", "<p>my page</p>\n");
+  double seconds = 0.0;
+  expect_one_line_error(timed({"report", "--preset", "quick", "-o", (scratch_ / "report").string()}, &seconds),
+                        "index.html: exists and was not written by saagen");
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_EQ(entries(scratch_ / "report"), std::set<std::string>{"index.html"});
+  write(scratch_ / "notes.txt", "my notes\n");
+  expect_one_line_error(timed({"bench", "--preset", "quick", "--json", (scratch_ / "notes.txt").string()}, &seconds),
+                        "notes.txt: exists and was not written by saagen");
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_EQ(read_text(scratch_ / "notes.txt"), "my notes\n");
+}
+
+// ---------------------------------------------------------------------------------------------
+// 4. All or nothing: repeated arguments are refused before writing; a failed write (a full disk)
+// leaves no temporary and no changed file.
+
+TEST_F(Safety, RepeatedVariantsWriteNothing) {
+  expect_one_line_error(saagen({"pass", "-o", (scratch_ / "p").string(), "--variant", "deferred-sum", "--variant", "deferred-sum"}),
+                        "--variant deferred-sum: named twice");
+  expect_one_line_error(saagen({"emit", "--target", "spirv", "-v", "deferred-sum", "-v", "deferred-sum", "-o", (scratch_ / "s").string()}),
+                        "--variant deferred-sum: named twice");
+  EXPECT_FALSE(fs::exists(scratch_ / "p"));
+  EXPECT_FALSE(fs::exists(scratch_ / "s"));
+}
+
+TEST_F(Safety, DictionaryChecksTheRawPathBeforeWritingTheTexture) {
+  write(scratch_ / "blocker", "a file, not a directory");
+  auto arguments = small_dictionary(scratch_ / "d.ktx2");
+  arguments.insert(arguments.end(), {"--raw", (scratch_ / "blocker" / "raw.f32").string()});
+  expect_one_line_error(saagen(arguments), "cannot create the output directory");
+  EXPECT_FALSE(fs::exists(scratch_ / "d.ktx2"));
+}
+
+TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "-o", out.string(), "--sigma2", "0.5"}).exit_code, 0);
+  std::map<std::string, std::string> before;
+  for (const std::string& name : entries(out)) before[name] = read_text(out / name);
+  // 8 KiB per file: the small files stage, the BRDF files (14 KiB) cannot.
+  const CliRun run = saagen_with_file_limit(8, {"emit", "-o", out.string()});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("write failed (File too large)"), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  std::map<std::string, std::string> after;
+  for (const std::string& name : entries(out)) after[name] = read_text(out / name);
+  EXPECT_EQ(after, before);  // no temporary left, every file as it was
+
+  const CliRun dictionary = saagen_with_file_limit(16, {"glints", "dictionary", "-o", (scratch_ / "g" / "d.ktx2").string(), "--raw",
+                                                        (scratch_ / "g" / "d.f32").string()});
+  EXPECT_EQ(dictionary.exit_code, 1) << dictionary.err;
+  EXPECT_EQ(entries(scratch_ / "g"), std::set<std::string>{});
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. Concurrent runs to one output do not collide; unchanged outputs are not rewritten.
+
+TEST_F(Safety, ConcurrentRunsToOneOutputAllSucceedAndUnchangedFilesKeepTheirInode) {
+  const fs::path output = scratch_ / "cc" / "d.ktx2";
+  std::string pair = "";
+  for (const int run : {0, 1}) {
+    std::string command = shell_quote(SAAGEN_CLI_PATH);
+    for (const std::string& argument : small_dictionary(output)) command.append(" ").append(shell_quote(argument));
+    pair.append(command).append(" >/dev/null 2>>").append(shell_quote((scratch_ / "errors.txt").string())).append(run == 0 ? " & " : "; wait");
+  }
+  for (int round = 0; round < 10; ++round) {
+    fs::remove_all(scratch_ / "cc");
+    EXPECT_EQ(run_shell(pair).exit_code, 0);
+  }
+  EXPECT_EQ(read_text(scratch_ / "errors.txt"), "");
+  EXPECT_EQ(entries(scratch_ / "cc"), std::set<std::string>{"d.ktx2"});
+  struct stat first {}, second {};
+  ASSERT_EQ(::stat(output.c_str(), &first), 0);
+  const CliRun again = saagen(small_dictionary(output));
+  EXPECT_NE(again.out.find("unchanged"), std::string::npos) << again.out;
+  ASSERT_EQ(::stat(output.c_str(), &second), 0);
+  EXPECT_EQ(first.st_ino, second.st_ino);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 6. Strict readers: PPM headers, LEAN errors naming the file, KTX2 level counts.
+
+TEST(StrictReaders, PpmHeadersAreStrictDecimals) {
+  const auto error_of = [](const std::string& text) -> std::string {
+    try {
+      (void)saagen::glints::slopes_from_ppm(std::vector<std::uint8_t>(text.begin(), text.end()));
+    } catch (const saagen::Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error_of("P6 4294967297 1 255\n" + std::string(3, '\x80')).find("not a decimal number"), std::string::npos);
+  EXPECT_NE(error_of("P6 2abc 1 255\n" + std::string(6, '\x80')).find("'2abc'"), std::string::npos);
+  EXPECT_NE(error_of("P6 -1 1 255\n").find("'-1'"), std::string::npos);
+  EXPECT_NE(error_of("P6 4097 4096 255\n").find("larger than 4194304 texels"), std::string::npos);
+  EXPECT_EQ(error_of("P6 # comment\n1 1 255\n" + std::string(3, '\x80')), "");
+}
+
+TEST(StrictReaders, Ktx2LevelCountIsBoundedByTheImageSize) {
+  saagen::glints::DictionaryParams params;
+  params.count = 4;
+  params.lods = 2;
+  params.resolution = 4;
+  const auto texture = saagen::glints::dictionary_texture(saagen::glints::generate_dictionary(params));
+  auto bytes = saagen::glints::write_ktx2(saagen::glints::dictionary_ktx2(texture, params));
+  ASSERT_NO_THROW((void)saagen::glints::read_ktx2(bytes));
+  bytes[40] = 40;  // levelCount 40 for a width of 4
+  try {
+    (void)saagen::glints::read_ktx2(bytes);
+    FAIL() << "40 levels accepted";
+  } catch (const saagen::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("40 levels"), std::string::npos) << error.what();
+  }
+}
+
+TEST_F(Safety, LeanErrorsNameTheFile) {
+  write(scratch_ / "n.ppm", "P6 4294967297 1 255\n\x80\x80\x80");
+  expect_one_line_error(saagen({"glints", "lean", (scratch_ / "n.ppm").string(), "-o", (scratch_ / "l.ktx2").string()}),
+                        (scratch_ / "n.ppm").string() + ": normal map:");
+  EXPECT_FALSE(fs::exists(scratch_ / "l.ktx2"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// 7. Entry points and constants that would vanish in the target precision.
+
+TEST_F(Safety, EntryPointsAreChecked) {
+  write(scratch_ / "h.hlsl", "RWStructuredBuffer<float> b;\n[numthreads(1, 1, 1)] void cs_main() { b[0] = 1.0; }\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "nope", "-o", (scratch_ / "h.spv").string()}),
+                        "entry point 'nope' not found");
+  EXPECT_EQ(saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "cs_main", "-o", (scratch_ / "h.spv").string()}).exit_code, 0);
+  write(scratch_ / "g.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "g.comp").string(), "--entry", "cs_main", "-o", (scratch_ / "g.spv").string()}),
+                        "--entry applies to HLSL only");
+}
+
+TEST_F(Safety, ConstantsThatRoundToZeroInTheTargetPrecisionAreRefused) {
+  expect_one_line_error(saagen({"emit", "--sigma2", "1e-310", "-o", (scratch_ / "o").string()}), "below the smallest normal fp32 number");
+  expect_one_line_error(saagen({"emit", "--sigma2", "1e-10", "--precision", "fp16", "-o", (scratch_ / "o").string()}),
+                        "below the smallest normal fp16 number");
+  EXPECT_EQ(saagen({"emit", "--kappa", "0", "-v", "deferred-sum", "-o", (scratch_ / "o").string()}).exit_code, 0);  // zero is exact
+}
+
+// ---------------------------------------------------------------------------------------------
+// 8. Inputs that never end or are too large are refused at once.
+
+TEST_F(Safety, DevicesFifosAndHugeInputsAreRefusedFast) {
+  double seconds = 0.0;
+  expect_one_line_error(timed({"plan", "/dev/zero"}, &seconds), "/dev/zero: is not a regular file");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(timed({"compile", "/dev/zero", "--stage", "comp", "-o", (scratch_ / "z.spv").string()}, &seconds),
+                        "/dev/zero: is not a regular file");
+  EXPECT_LT(seconds, 10.0);
+  ASSERT_EQ(::mkfifo((scratch_ / "fifo.toml").c_str(), 0600), 0);
+  expect_one_line_error(timed({"plan", (scratch_ / "fifo.toml").string()}, &seconds), "is not a regular file");
+  EXPECT_LT(seconds, 10.0);
+  write(scratch_ / "big.ppm", "P6 4096 4096 255\n");
+  expect_one_line_error(saagen({"glints", "lean", (scratch_ / "big.ppm").string(), "-o", (scratch_ / "l.ktx2").string()}),
+                        "larger than 4194304 texels");
+  expect_one_line_error(timed({"glints", "dictionary", "--count", "65536", "-o", (scratch_ / "d.ktx2").string()}, &seconds),
+                        "lower the count or the LODs");
+  EXPECT_LT(seconds, 10.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 9. Messages: one line that names the file or the option and says what to do.
+
+TEST_F(Safety, MessagesNameTheFileOrOption) {
+  expect_one_line_error(saagen({"plan", "/tmp"}), "/tmp: is a directory; pass a scene manifest");
+  write(scratch_ / "v" / "bad.glsl", "// saagen-marker: target=metal variants=deferred-sum prefix=saa_\n");
+  expect_one_line_error(saagen({"validate", (scratch_ / "v").string()}), (scratch_ / "v" / "bad.glsl").string() + ": bad saagen marker");
+  expect_one_line_error(saagen({"glints", "emit", "--count", "99", "-o", (scratch_ / "g").string()}), "--count 99 must be a multiple of 4");
+  expect_one_line_error(saagen({"glints", "emit", "--lods", "99", "-o", (scratch_ / "g").string()}), "--lods 99 is out of range");
+  expect_one_line_error(saagen({"emit", "--sigma2", "", "-o", (scratch_ / "e").string()}), "--sigma2 '': not a number");
+  expect_one_line_error(saagen({"emit", "-o", ""}), "--output: empty");
+  expect_one_line_error(saagen({"compile", (scratch_ / "x.comp").string(), "-I", "/nonexistent", "-o", (scratch_ / "x.spv").string()}),
+                        "-I /nonexistent: not a directory");
+  write(scratch_ / "bad.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() { undefined_call(); y = 1; }\n");
+  expect_one_line_error(saagen({"compile", (scratch_ / "bad.comp").string(), "-o", (scratch_ / "bad.spv").string()}),
+                        (scratch_ / "bad.comp").string() + ":3: 'undefined_call'");
+  EXPECT_FALSE(fs::exists(scratch_ / "e"));
+  EXPECT_FALSE(fs::exists(scratch_ / "g"));
+}
+
+TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
+  write(scratch_ / "a-file", "x");
+  double seconds = 0.0;
+  expect_one_line_error(timed({"report", "--preset", "quick", "-o", (scratch_ / "a-file").string()}, &seconds), "cannot create the output directory");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(timed({"bench", "--preset", "quick", "--json", (scratch_ / "a-file" / "t.json").string()}, &seconds),
+                        "cannot create the output directory");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(timed({"bench", "--preset", "quick", "--cache", (scratch_ / "a-file").string()}, &seconds), "is not a directory");
+  expect_one_line_error(timed({"bench", "--preset", "quick", "--threads", "-1"}, &seconds), "--threads -1");
+}
+
+TEST_F(Safety, TradeTablesWithNegativeErrorsOrUnknownIdsAreRefused) {
+  const fs::path manifest = fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml";
+  write(scratch_ / "negative.json", R"({"rows": [{"variant": "deferred-sum", "error": -1}]})");
+  expect_one_line_error(saagen({"plan", manifest.string(), "--no-cost", "--trade-table", (scratch_ / "negative.json").string()}),
+                        "rows[0]: \"error\" must not be negative");
+  write(scratch_ / "unknown.json", R"({"rows": [{"variant": "deferred-median", "error": 0.1}]})");
+  expect_one_line_error(saagen({"plan", manifest.string(), "--no-cost", "--trade-table", (scratch_ / "unknown.json").string()}),
+                        "rows[0]: unknown variant \"deferred-median\"");
+}
+
+TEST_F(Safety, UnreadableDirectoriesAreOneLine) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads every directory";
+  fs::create_directories(scratch_ / "locked");
+  fs::permissions(scratch_ / "locked", fs::perms::none);
+  expect_one_line_error(saagen({"validate", (scratch_ / "locked").string()}), "cannot be listed");
+  expect_one_line_error(saagen({"emit", "-o", (scratch_ / "locked" / "out").string()}), "locked");
+}
+
+}  // namespace
