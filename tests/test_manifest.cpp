@@ -488,6 +488,21 @@ TEST(Bundle, IsDeterministicAndValidatesInProcess) {
   }
 }
 
+// An all-GGX scene that does not set sigma2 gets the GGX-fitted kernel (a quarter of the paper's
+// Beckmann match, measured by the trade); a scene with a Beckmann material, or one that sets
+// sigma2, keeps what it says.
+TEST(Planner, AllGgxScenesGetTheGgxFittedKernel) {
+  const auto ggx = emit_text(header + forward_material);
+  EXPECT_EQ(saagen::find_marker(ggx.at(0).content)->option_values.at("sigma2"), saagen::kGgxSigma2);
+  const saagen::Manifest manifest = parse(header + forward_material);
+  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, saagen::plan_scene(Catalogue::builtin(), manifest)).find("options: sigma2 = 0.0625"),
+            std::string::npos);
+  const auto mixed = emit_text(header + forward_material + "[[material]]\nname = \"b\"\npath = \"deferred\"\nndf = \"beckmann\"\n");
+  EXPECT_EQ(saagen::find_marker(mixed.at(0).content)->option_values.at("sigma2"), 0.25);
+  const auto set = emit_text(header + "sigma2 = 0.2\n" + forward_material);
+  EXPECT_EQ(saagen::find_marker(set.at(0).content)->option_values.at("sigma2"), 0.2);
+}
+
 TEST(Bundle, MarkerRecordsThePublicFunctions) {
   const auto files = emit_text(header + "prefix = \"eng_\"\nsigma2 = 0.5\n" + forward_material);
   ASSERT_EQ(files.size(), 1u);

@@ -87,7 +87,15 @@ struct MaterialPlan {
 struct ScenePlan {
   std::vector<MaterialPlan> materials;
   std::string trade_table;  // its file name when one was used
+  // The emission options of the scene's bundles: the manifest's, plus the planner's choice of
+  // sigma2 for all-GGX scenes that do not set it (kGgxSigma2), with the reason.
+  std::map<std::string, double> option_values;
+  std::string options_reason;
 };
+
+// The pixel-filter variance saagen measured best for GGX (a quarter of T&K 2019's Beckmann
+// match 0.25): `saagen bench --sigma2 0.0625` against 0.25 (README "Measured").
+inline constexpr double kGgxSigma2 = 0.0625;
 
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).
@@ -104,7 +112,7 @@ std::string rules_text();
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan);
 
 // The emission options of a manifest for one target and precision.
-EmitOptions emit_options(const Manifest& manifest, const std::string& target, const std::string& precision);
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision);
 
 // One bundle per target and precision used by the materials (fp32 first): files
 // <prefix><name>[_<precision>].<ext>, holding only the closure of the materials' functions.
