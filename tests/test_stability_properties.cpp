@@ -548,6 +548,22 @@ double max_abs_derivative(const Function& f, const Element& e) {
   return m;
 }
 
+// Whether any non-zero derivative component is an fp32 subnormal (|v| < FLT_MIN = 2^-126).
+// There fp32 rounding is absolute (a multiple of 2^-149), not relative: s d rounds to d itself
+// for the smallest ones, so the scaled input is not s times the input and the relative rounding
+// bound below does not apply.
+bool has_subnormal_derivative(const Function& f, const Element& e) {
+  std::uint32_t offset = 0;
+  for (const saagen::Parameter& p : f.parameters) {
+    const std::uint32_t count = saagen::component_count(p.type);
+    if (is_derivative(p.name))
+      for (std::uint32_t k = 0; k < count; ++k)
+        if (e[offset + k] != 0.0 && std::fabs(e[offset + k]) < double(FLT_MIN)) return true;
+    offset += count;
+  }
+  return false;
+}
+
 double sym2_min_eigenvalue(double xx, double xy, double yy) {
   return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
 }
@@ -573,7 +589,7 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
       continue;
     }
     if (high[0] < low[0] * (1.0 - slack) || high[2] < low[2] * (1.0 - slack)) RC_FAIL(what);
-    if (max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max()) {
+    if (max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e])) {
       // Weyl: rounding the entries (fp32 inputs s d, and the arithmetic) moves the smallest
       // eigenvalue of the difference by at most a few units of 2^-24 times their size.
       const double lambda = sym2_min_eigenvalue(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
