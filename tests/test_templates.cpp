@@ -91,6 +91,9 @@ TEST(TemplateParser, ChecksVariantsAndOptions) {
             "templates/test.saa:1: variant v lists unknown function 'nothing'");
   EXPECT_EQ(parse_error("@constant K\ntype: real\nmeaning: m\noption: k\ndefault: 2\nrange: [0, 1]\n"),
             "templates/test.saa:1: default 2 of K is outside its range [0, 1]");
+  // Found by the template fuzzer: an option name with a space broke the emitted marker line.
+  EXPECT_EQ(parse_error("@constant K\ntype: real\nmeaning: m\noption: k ppa\ndefault: 0.1\nrange: [0, 1]\n"),
+            "templates/test.saa:4: option 'k ppa' is not an identifier");
 }
 
 TEST(TemplateParser, RecordsCallsConstantsAndClosureOrder) {

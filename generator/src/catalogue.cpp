@@ -259,6 +259,9 @@ class TemplateParser {
       } else if (key == "meaning") {
         constant.meaning = text;
       } else if (key == "option") {
+        // The option's name is a manifest key, a CLI flag and a marker field (name=value): an
+        // identifier, never words.
+        if (!is_identifier(text)) fail(file_, value.number, fmt::format("option '{}' is not an identifier", text));
         constant.option = text;
       } else if (key == "value" || key == "default") {
         const auto number = parse_number(text);
