@@ -10,9 +10,12 @@ packages=(
   # fails without it; saagen compiles in-process and never runs the tool.
   glslang-tools
   libvulkan-dev mesa-vulkan-drivers
+  # Khronos validation layer: every GPU test runs with it on (SAAGEN_VK_VALIDATION=1, issue 11)
+  vulkan-validationlayers
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
-  # the report test opens the generated HTML report in headless Chromium
+  # the report test opens the generated HTML report in headless Chromium; chromium also ships
+  # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium
 )
 

@@ -119,15 +119,23 @@ class DeferredPassRunner {
           VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
           barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
           barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+          // The copy reads TRANSFER_SRC_OPTIMAL (the validation layer warns on GENERAL), and the
+          // image goes back to GENERAL for the next run's storage writes.
           barrier.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
-          barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+          barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
           barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
           barrier.image = images_[output_image].image;
           barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
           vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
                                1, &barrier);
           const VkBufferImageCopy copy = region(0);
-          vkCmdCopyImageToBuffer(commands, images_[output_image].image, VK_IMAGE_LAYOUT_GENERAL, staging_, 1, &copy);
+          vkCmdCopyImageToBuffer(commands, images_[output_image].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging_, 1, &copy);
+          barrier.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+          barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
+          barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+          barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+          vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                               1, &barrier);
         } else {
           VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
           barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

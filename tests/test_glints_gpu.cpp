@@ -12,9 +12,18 @@
 // random sign patterns e_k with |e_k| = 2^-21 per input component. This covers the rounding of
 // u * width, of the cell coordinates, of the rotation and of the sampler's arithmetic (backward
 // errors of a few ulps), and grows by itself where a discontinuity (a cell, a LOD or the edge of
-// the dictionary) lies within rounding distance. The LOD rule of the reference sampler is the
-// device's: lavapipe's approximation (measured, docs/GLINTS.md) on llvmpipe, the exact log2
-// elsewhere.
+// the dictionary) lies within rounding distance.
+//
+// The sampler itself is held to what the Vulkan specification lets any implementation do
+// (ref::glints::SamplerTolerance, from the device's mipmapPrecisionBits and
+// subTexelPrecisionBits): lambda anywhere in [log2 rho - 2^-mip, log2 rho + 1/2 + 2^-mip]
+// ("Scale Factor Operation, Level-of-Detail Operation and Image Level(s) Selection": f_x <=
+// sqrt(2) |m_ux| in 1D), level weights snapped to 2^-mipmapPrecisionBits, the texel coordinate
+// to 2^-subTexelPrecisionBits. The reference is evaluated at both ends of that range (every
+// lookup at its low, then its high end: the glint functions are non-negative sums of products of
+// non-negative lookups) and the device must lie in between, plus the fp32 bound above. On
+// lavapipe a second, tighter check uses lavapipe's own LOD arithmetic (0.5 fastlog2(rho^2),
+// measured, docs/GLINTS.md) with the fp32 bound alone.
 #include "glint_support.hpp"
 
 #include "saagen/kernels.hpp"
@@ -42,9 +51,29 @@ hx::VulkanContext& gpu() {
     return context;
 }
 
-g::LodModel device_lod_model() {
-    const std::string name = gpu().info().name;
-    return name.find("llvmpipe") != std::string::npos ? g::LodModel::lavapipe : g::LodModel::exact;
+bool on_lavapipe() { return gpu().info().name.find("llvmpipe") != std::string::npos; }
+
+// The spec's sampler freedom on this device (its reported precision limits).
+const g::SamplerTolerance& spec_tolerance() {
+    static const g::SamplerTolerance tolerance = [] {
+        const auto& limits = gpu().limits();
+        const g::SamplerTolerance t = g::vulkan_sampler_tolerance(static_cast<int>(limits.mipmapPrecisionBits),
+                                                                  static_cast<int>(limits.subTexelPrecisionBits));
+        std::cout << fmt::format("[ sampler  ] {}: mipmapPrecisionBits {}, subTexelPrecisionBits {}: lambda in [log2 rho - {}, log2 rho + {}], "
+                                 "level weight +-{}, texel coordinate +-{}\n",
+                                 gpu().info().name, limits.mipmapPrecisionBits, limits.subTexelPrecisionBits, t.lod_below, t.lod_above,
+                                 t.level_weight, t.texel_weight);
+        return t;
+    }();
+    return tolerance;
+}
+
+// Per element: the interval [low, high] a conforming device may return, widened by the fp32
+// bound, as the (centre, half-width) pair compare_with_bounds takes.
+void push_interval(std::vector<double>& expected, std::vector<double>& bounds, double low, double high, double fp32_bound) {
+    if (low > high) std::swap(low, high);
+    expected.push_back(0.5 * (low + high));
+    bounds.push_back(0.5 * (high - low) + fp32_bound);
 }
 
 // The default dictionary as a combined image sampler at (set 0, binding).
@@ -95,8 +124,16 @@ g::Texel reference_query(const Query& q, g::LodModel model) {
     return g::texture_grad(texture, q.u, q.layer, q.a, q.b, model);
 }
 
+g::TexelRange reference_range(const Query& q) {
+    const auto& texture = saagen::test::default_reference_texture();
+    if (std::isnan(q.b)) return g::texture_lod_range(texture, q.u, q.layer, q.a, spec_tolerance());
+    return g::texture_grad_range(texture, q.u, q.layer, q.a, q.b, spec_tolerance());
+}
+
 TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
-    const g::LodModel model = device_lod_model();
+    // The spec check on every device; on lavapipe also the tight check with its LOD model.
+    const bool lavapipe = on_lavapipe();
+    const g::LodModel model = lavapipe ? g::LodModel::lavapipe : g::LodModel::exact;
     std::mt19937_64 random(7);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<Query> queries;
@@ -113,8 +150,9 @@ TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
         }
     }
     const auto got = run_queries(queries);
-    std::vector<double> expected, bounds, exact_model_error;
+    std::vector<double> expected, bounds, exact_model_error, spec_expected, spec_bounds;
     for (const Query& q : queries) {
+        const g::TexelRange range = reference_range(q);
         const g::Texel value = reference_query(q, model);
         g::Texel spread{};
         for (double su : {-1.0, 1.0}) {
@@ -129,15 +167,22 @@ TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
         }
         const g::Texel exact = reference_query(q, g::LodModel::exact);
         for (int c = 0; c < 4; ++c) {
+            const double fp32 = 2.0 * spread[c] + 2e-6 * std::fabs(value[c]) + 1e-9;
             expected.push_back(value[c]);
-            bounds.push_back(2.0 * spread[c] + 2e-6 * std::fabs(value[c]) + 1e-9);
+            bounds.push_back(fp32);
             exact_model_error.push_back(std::fabs(exact[c] - value[c]));
+            push_interval(spec_expected, spec_bounds, range.low[c], range.high[c], fp32);
         }
     }
-    const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureGrad/textureLod", [&](std::size_t i) {
+    const auto describe = [&](std::size_t i) {
         const Query& q = queries[i / 4];
         return fmt::format("u {} layer {} {} {} {}", q.u, q.layer, std::isnan(q.b) ? "lod" : "grad", q.a, q.b);
-    });
+    };
+    const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds, "dictionary textureGrad/textureLod (Vulkan spec sampler rules)", describe);
+    std::cout << "[ sampler  ] spec: " << spec.summary() << "\n";
+    EXPECT_EQ(spec.failing, 0u) << spec.summary();
+    if (!lavapipe) return;
+    const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureGrad/textureLod (lavapipe LOD model)", describe);
     double worst_abs = 0.0;
     for (std::size_t i = 0; i < got.size(); ++i) worst_abs = std::max(worst_abs, std::fabs(got[i] - expected[i]));
     std::cout << "[ sampler  ] device " << gpu().info().name << ", LOD model "
@@ -360,26 +405,45 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     run.groups = {static_cast<std::uint32_t>(count / request.workgroup_size)};
     const auto got = hx::run_compute(gpu(), run).buffer_as<float>(1);
 
-    g::Dictionary dictionary = saagen::test::default_reference_dictionary(device_lod_model());
+    // Nominal: the exact LOD rule. Low / high: every lookup at the end of what the spec allows.
+    // On lavapipe, the tight check feeds the reference lavapipe's LOD arithmetic.
+    const bool lavapipe = on_lavapipe();
+    g::Dictionary dictionary = saagen::test::default_reference_dictionary(g::LodModel::exact);
     const auto reference = reference_functions(dictionary).at(c.function);
+    g::Dictionary low_dictionary = dictionary, high_dictionary = dictionary;
+    low_dictionary.tolerance = high_dictionary.tolerance = &spec_tolerance();
+    low_dictionary.side = -1;
+    high_dictionary.side = 1;
+    const auto low_reference = reference_functions(low_dictionary).at(c.function);
+    const auto high_reference = reference_functions(high_dictionary).at(c.function);
+    const auto lavapipe_reference = reference_functions(saagen::test::default_reference_dictionary(g::LodModel::lavapipe)).at(c.function);
+    std::vector<double> spec_expected, spec_bounds;
+    std::size_t outside = 0;  // nominal outside [low, high]: the monotonicity the bound relies on
     std::mt19937_64 random(99);
     std::vector<double> expected, bounds;
     double worst_relative = 0.0;
     for (std::size_t e = 0; e < count; ++e) {
         std::vector<double> x(inputs.begin() + e * request.input_stride, inputs.begin() + (e + 1) * request.input_stride);
-        Inputs in(x);
-        const auto value = reference(in);
+        Inputs in(x), low_in(x), high_in(x);
+        const auto nominal = reference(in);
+        const auto low = low_reference(low_in), high = high_reference(high_in);
+        Inputs lavapipe_in(x);
+        const auto value = lavapipe ? lavapipe_reference(lavapipe_in) : nominal;
         std::vector<double> spread(value.size(), 0.0);
         for (int k = 0; k < 6; ++k) {
             std::vector<double> p = x;
             for (double& v : p) v *= 1.0 + ((random() & 1) ? 0x1.0p-21 : -0x1.0p-21);
             Inputs perturbed_in(p);
-            const auto perturbed = reference(perturbed_in);
+            const auto perturbed = (lavapipe ? lavapipe_reference : reference)(perturbed_in);
             for (std::size_t m = 0; m < value.size(); ++m) spread[m] = std::max(spread[m], std::fabs(perturbed[m] - value[m]));
         }
         for (std::size_t m = 0; m < value.size(); ++m) {
+            const double fp32 = 3.0 * spread[m] + 4e-6 * std::fabs(value[m]) + 1e-12;
+            const double lo = std::min(low[m], high[m]), hi = std::max(low[m], high[m]);
+            outside += nominal[m] < lo - fp32 || nominal[m] > hi + fp32;
+            push_interval(spec_expected, spec_bounds, lo, hi, fp32);
             expected.push_back(value[m]);
-            bounds.push_back(3.0 * spread[m] + 4e-6 * std::fabs(value[m]) + 1e-12);
+            bounds.push_back(fp32);
             const double got_value = got[e * request.output_stride + m];
             if (std::fabs(value[m]) > 1e-3) worst_relative = std::max(worst_relative, std::fabs(got_value - value[m]) / std::fabs(value[m]));
         }
@@ -402,11 +466,16 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     std::cout << fmt::format("[ quantile ] relative error 50/99/99.9 %: {:.2e} {:.2e} {:.2e}; relative bound 50/99/99.9 %: {:.2e} {:.2e} {:.2e}\n",
                              quantile(relative_errors, 0.5), quantile(relative_errors, 0.99), quantile(relative_errors, 0.999),
                              quantile(relative_bounds, 0.5), quantile(relative_bounds, 0.99), quantile(relative_bounds, 0.999));
-    const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {}", c.target, c.function));
+    const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds, fmt::format("{} {} (Vulkan spec sampler rules)", c.target, c.function));
+    std::cout << "[ spec     ] " << spec.summary() << "\n";
+    EXPECT_EQ(spec.failing, 0u) << spec.summary();
+    EXPECT_EQ(outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
+    EXPECT_GT(nonzero, expected.size() / 2);  // the inputs do hit lobes
+    if (!lavapipe) return;
+    const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe LOD model)", c.target, c.function));
     std::cout << "[ worst    ] " << report.summary() << "\n[ worst    ] max relative error (|expected| > 1e-3): " << worst_relative
               << "; " << nonzero << " of " << expected.size() << " outputs non-zero\n";
     EXPECT_EQ(report.failing, 0u) << report.summary();
-    EXPECT_GT(nonzero, expected.size() / 2);  // the inputs do hit lobes
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -448,7 +517,12 @@ constexpr const char* baseline_wrapper_body = R"(    real2 p = saagen_frag_coord
 
 TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
     constexpr std::uint32_t width = 64, height = 64, pixels = width * height;
-    const g::Dictionary dictionary = saagen::test::default_reference_dictionary(device_lod_model());
+    const bool lavapipe = on_lavapipe();
+    const g::Dictionary dictionary = saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+    g::Dictionary low_dictionary = saagen::test::default_reference_dictionary(g::LodModel::exact), high_dictionary = low_dictionary;
+    low_dictionary.tolerance = high_dictionary.tolerance = &spec_tolerance();
+    low_dictionary.side = -1;
+    high_dictionary.side = 1;
     const g::Roughness roughness{0.2, 0.15, 0.3};
     const Vec2 mean{0.02, -0.01};
     for (const std::string target : {"glsl", "hlsl"}) {
@@ -474,7 +548,7 @@ TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
 
             // The reference: per-pixel values in double, fine quad differences, the core BRDF.
             std::mt19937_64 random(5);
-            std::vector<double> expected, bounds;
+            std::vector<double> expected, bounds, spec_expected, spec_bounds;
             for (std::uint32_t y = 0; y < height; ++y) {
                 for (std::uint32_t x = 0; x < width; ++x) {
                     const auto at = [&](std::uint32_t px, std::uint32_t py) { return pixel_inputs({px + 0.5, py + 0.5}); };
@@ -484,7 +558,7 @@ TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
                     const auto projected = [](const PixelInputs& p) { return saagen::ref::normalize(p.i + p.o).xy(); };
                     const auto slope = [](const PixelInputs& p) { return g::half_slope(p.i, p.o); };
                     const Vec2 duv_dx = right.uv - left.uv, duv_dy = bottom.uv - top.uv;
-                    const auto evaluate = [&](int which, double jitter_scale, std::mt19937_64& rng) {
+                    const auto evaluate = [&](int which, double jitter_scale, std::mt19937_64& rng, const g::Dictionary& dictionary) {
                         // The device's fp32 rounding of the per-pixel values (relative 2^-21 on
                         // each input, as in GlintSnippetOnGpu), of their differences (absolute,
                         // 2^-22 of the operands) and of the internal log_density * 1 / (2 ln 2).
@@ -507,21 +581,28 @@ TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
                                                 log_density);
                     };
                     for (int which : filtered ? std::vector<int>{0, 1} : std::vector<int>{2}) {
-                        const double value = evaluate(which, 0.0, random);
+                        const double value = evaluate(which, 0.0, random, dictionary);
                         double spread = 0.0;
-                        for (int k = 0; k < 6; ++k) spread = std::max(spread, std::fabs(evaluate(which, 1.0, random) - value));
+                        for (int k = 0; k < 6; ++k) spread = std::max(spread, std::fabs(evaluate(which, 1.0, random, dictionary) - value));
+                        const double fp32 = 3.0 * spread + 4e-6 * std::fabs(value) + 1e-12;
                         expected.push_back(value);
-                        bounds.push_back(3.0 * spread + 4e-6 * std::fabs(value) + 1e-12);
+                        bounds.push_back(fp32);
+                        push_interval(spec_expected, spec_bounds, evaluate(which, 0.0, random, low_dictionary),
+                                      evaluate(which, 0.0, random, high_dictionary), fp32);
                     }
                 }
             }
             std::size_t nonzero = 0;
             for (double v : expected) nonzero += v > 0.0;
-            const auto report = hx::compare_with_bounds(got, expected, bounds,
-                                                        fmt::format("{} {}", target, filtered ? "glint_brdf_filtered_fragment + _slope_fragment" : "glint_brdf_fragment"));
-            std::cout << "[ fragment ] " << report.summary() << "; " << nonzero << " of " << expected.size() << " non-zero\n";
-            EXPECT_EQ(report.failing, 0u) << report.summary();
+            const std::string what = fmt::format("{} {}", target, filtered ? "glint_brdf_filtered_fragment + _slope_fragment" : "glint_brdf_fragment");
+            const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds, what + " (Vulkan spec sampler rules)");
+            std::cout << "[ fragment ] " << spec.summary() << "; " << nonzero << " of " << expected.size() << " non-zero\n";
+            EXPECT_EQ(spec.failing, 0u) << spec.summary();
             EXPECT_GT(nonzero, expected.size() / 2);
+            if (!lavapipe) continue;
+            const auto report = hx::compare_with_bounds(got, expected, bounds, what + " (lavapipe LOD model)");
+            std::cout << "[ fragment ] " << report.summary() << "\n";
+            EXPECT_EQ(report.failing, 0u) << report.summary();
         }
     }
 }

@@ -58,9 +58,22 @@ std::string lowercase(std::string text) {
   return text;
 }
 
-// The device every run test uses (SAAGEN_VK_DEVICE is honoured). Created once per process.
+// The device every run test uses (SAAGEN_VK_DEVICE is honoured). Created once per process and
+// destroyed by a gtest environment before main returns: left to static destruction at exit,
+// vkDestroyDevice on SwiftShader joins worker threads after the driver's own statics are gone,
+// and the process died with SIGSEGV after every test had passed (issue 11).
+std::unique_ptr<VulkanContext> shared;
+
+class SharedContextEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override { shared.reset(); }
+};
+const bool shared_context_environment = [] {
+  ::testing::AddGlobalTestEnvironment(new SharedContextEnvironment);
+  return true;
+}();
+
 VulkanContext& context() {
-  static std::unique_ptr<VulkanContext> shared;
   if (!shared) {
     shared = std::make_unique<VulkanContext>();
     std::cout << "[harness] " << shared->info().summary() << "\n";

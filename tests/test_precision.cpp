@@ -346,6 +346,7 @@ TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
   fp16.content = "#undef dFdx\n#undef dFdy\n#define dFdx(v) dFdxCoarse(v)\n#define dFdy(v) dFdyCoarse(v)\n" + fp16.content;
   const auto min16 = saagen::test::emit_variant("hlsl", variant.id, "min16");
   std::uint64_t seed = 0x5eed;
+  std::string unsupported;  // "unsupported on DEVICE: shaderFloat16 ..." when the fp16 rows cannot run
   for (const std::string& name : variant.functions) {
     const Function& f = *Catalogue::builtin().find_function(name);
     const double min_alpha = stab::is_brdf(f) ? kBrdfMinAlpha : 0.01;
@@ -353,7 +354,17 @@ TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
     const Inputs in = is_wrapper(f) ? wrapper_inputs(f, 0.01, ++seed) : core_inputs(f, 0.01, ++seed);
     const Bound bound = bound_for(f);
     for (const bool half : {true, false}) {
-      const auto got = run(half ? fp16 : min16, f, in);
+      if (half && !unsupported.empty()) continue;
+      std::vector<float> got;
+      try {
+        got = run(half ? fp16 : min16, f, in);
+      } catch (const saagen::harness::UnsupportedFeature& error) {
+        // The harness refuses the fp16 module before any pipeline exists (no shaderFloat16):
+        // one line, and the min16 rows still run on this device.
+        unsupported = error.what();
+        std::cout << unsupported << "\n";
+        continue;
+      }
       const Measured stated = measure(f, in, got, min_alpha);
       const double limit = half ? bound.fp16 : bound.min16;
       std::string line = fmt::format("[ precision] {:<7} {:<36} max {} error {:.3g} (bound {:.3g}) over {} outputs{}", half ? "fp16" : "min16", name,
@@ -368,6 +379,7 @@ TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
       EXPECT_LE(stated.max_error, limit) << name << (half ? " fp16" : " min16") << " worst element " << stated.worst;
     }
   }
+  if (!unsupported.empty()) GTEST_SKIP() << unsupported << " (the fp16 rows; the min16 rows ran and passed)";
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryVariant, HalfPrecision, ::testing::ValuesIn([] {

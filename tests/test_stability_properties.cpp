@@ -817,10 +817,14 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
       // exponent rounding error d into a relative error d, and d ~ e cond(A) 2^-53 <= 1e-5 for
       // exponents e <= 120 (values above 1e-40 / prefactor) and cond(A) <= 1e9; values below
       // 1e-40 (0 in fp32, where the emitted code runs) are compared in absolute terms.
-      const double relative = f->name.find("beckmann") != std::string::npos ? 1e-5 : 1e-12;
+      // The guarded Beckmann NDF also takes exp(-x) as 0 past EXP_ARG_MAX = 104 (0 in fp32
+      // anyway): what it drops is below e^-104 / (pi sqrt(tau) h_z^4) / (4 i.z o.z) <=
+      // 6.8e-46 / (pi 1e-10 1e-8) / 4e-4 < 1e-14 here (tau >= 1e-20, cosines >= 0.01).
+      const bool beckmann = f->name.find("beckmann") != std::string::npos;
+      const double relative = beckmann ? 1e-5 : 1e-12;
       for (std::size_t k = 0; k < a.size(); ++k)
         for (std::size_t c = 0; c < a[k].size(); ++c)
-          if (!(std::fabs(a[k][c] - b[k][c]) <= relative * std::fabs(b[k][c]) + 1e-40))
+          if (!(std::fabs(a[k][c] - b[k][c]) <= relative * std::fabs(b[k][c]) + 1e-40) && !(beckmann && a[k][c] == 0.0 && b[k][c] < 1e-14))
             RC_FAIL(fmt::format("{}: inputs {}: guarded {} vs paper {}", f->name, show(e), show(a[k]), show(b[k])));
     });
   }

@@ -22,6 +22,26 @@ double normalised_error(double got, double expected, Tolerance tolerance) {
   return allowed > 0.0 ? difference / allowed : infinity;
 }
 
+CompareTotals& totals() {
+  static CompareTotals all;
+  return all;
+}
+
+// Every comparison of the process, for the per-suite "worst error / bound" line. The tighter,
+// device-specific checks (lavapipe's LOD model) say so in their caption and are left out: the
+// figure is against bounds that hold on any conforming implementation.
+void record(const CompareReport& report) {
+  if (report.what.find("lavapipe LOD model") != std::string::npos || report.compared == 0) return;
+  CompareTotals& t = totals();
+  ++t.reports;
+  t.elements += report.compared;
+  t.failing += report.failing;
+  if (report.worst_normalised_error > t.worst || t.reports == 1) {
+    t.worst = report.worst_normalised_error;
+    t.worst_what = report.what;
+  }
+}
+
 template <typename Got, typename Expected, typename ToleranceAt>
 CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, ToleranceAt tolerance_at,
                            const std::string& what, const DescribeElement& describe) {
@@ -52,10 +72,19 @@ CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> e
     report.worst_normalised_error = worst;
     if (describe) report.worst_label = describe(report.worst_index);
   }
+  record(report);
   return report;
 }
 
 }  // namespace
+
+const CompareTotals& compare_totals() { return totals(); }
+
+std::string CompareTotals::summary() const {
+  if (reports == 0) return "no bounded comparisons";
+  return fmt::format("{} comparisons, {} elements, {} failing; worst |got - expected| / bound = {:.3g} ({})", reports, elements, failing,
+                     worst, worst_what);
+}
 
 std::string CompareReport::summary() const {
   const std::string bounds = per_element_bounds ? std::string("per-element bounds")

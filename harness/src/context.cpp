@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -50,10 +52,48 @@ const char* device_type_name(VkPhysicalDeviceType type) {
   }
 }
 
-// Creates an instance with no extensions at all (headless: no surface), at the highest API
-// version up to 1.3 that the loader offers (at least 1.1). Throws with an install hint when
-// the loader finds no driver.
-VkInstance create_headless_instance(std::uint32_t& api_version) {
+std::atomic<std::size_t> validation_messages{0};
+
+// Prints every warning and error of the validation layer as one line and counts those of the
+// layer itself (validation and performance types; the loader's general-type notes about ICDs
+// without hardware are printed but not counted).
+VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                      VkDebugUtilsMessageTypeFlagsEXT type,
+                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+  const bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  const bool counted = (type & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT)) != 0;
+  if (counted) ++validation_messages;
+  std::fprintf(stderr, "[validation] %s%s: %s\n", error ? "error" : "warning", counted ? "" : " (loader, not counted)",
+               data && data->pMessage ? data->pMessage : "");
+  return VK_FALSE;
+}
+
+VkDebugUtilsMessengerCreateInfoEXT messenger_info() {
+  VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = on_validation_message;
+  return info;
+}
+
+bool layer_available(const char* name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateInstanceLayerProperties(&count, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkLayerProperties> layers(count);
+  if (count > 0 && vkEnumerateInstanceLayerProperties(&count, layers.data()) != VK_SUCCESS) return false;
+  for (const VkLayerProperties& layer : layers) {
+    if (std::strcmp(layer.layerName, name) == 0) return true;
+  }
+  return false;
+}
+
+// Creates an instance with no surface extensions (headless), at the highest API version up to
+// 1.3 that the loader offers (at least 1.1). With SAAGEN_VK_VALIDATION set, the Khronos
+// validation layer and VK_EXT_debug_utils are enabled and `messenger` reports to
+// on_validation_message (instance creation and destruction too, through pNext). Throws with an
+// install hint when the loader finds no driver or the layer is missing.
+VkInstance create_headless_instance(std::uint32_t& api_version, VkDebugUtilsMessengerEXT* messenger = nullptr) {
   api_version = VK_API_VERSION_1_1;
   std::uint32_t loader_version = VK_API_VERSION_1_0;
   if (vkEnumerateInstanceVersion(&loader_version) == VK_SUCCESS && loader_version >= VK_API_VERSION_1_1) {
@@ -66,6 +106,21 @@ VkInstance create_headless_instance(std::uint32_t& api_version) {
   app.apiVersion = api_version;
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
+  const bool validation = validation_requested();
+  const char* layers[] = {validation_layer_name};
+  const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+  VkDebugUtilsMessengerCreateInfoEXT debug = messenger_info();
+  if (validation) {
+    if (!layer_available(validation_layer_name)) {
+      throw std::runtime_error(fmt::format("{} is set but {} is not installed: install vulkan-validationlayers (scripts/install-deps.sh)",
+                                           validation_env_var, validation_layer_name));
+    }
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = layers;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = extensions;
+    info.pNext = &debug;
+  }
   VkInstance instance = VK_NULL_HANDLE;
   const VkResult result = vkCreateInstance(&info, nullptr, &instance);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED) {
@@ -73,7 +128,24 @@ VkInstance create_headless_instance(std::uint32_t& api_version) {
                                          vk_result_name(result), install_hint));
   }
   check_vk(result, "vkCreateInstance");
+  if (validation && messenger) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (create == nullptr || create(instance, &debug, nullptr, messenger) != VK_SUCCESS) {
+      vkDestroyInstance(instance, nullptr);
+      throw std::runtime_error("validation layer on, but vkCreateDebugUtilsMessengerEXT failed");
+    }
+  }
   return instance;
+}
+
+void destroy_instance(VkInstance instance, VkDebugUtilsMessengerEXT messenger) {
+  if (messenger != VK_NULL_HANDLE) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance, messenger, nullptr);
+  }
+  vkDestroyInstance(instance, nullptr);
 }
 
 std::vector<VkPhysicalDevice> enumerate_devices(VkInstance instance) {
@@ -143,11 +215,17 @@ struct FeatureChain {
   VkPhysicalDeviceShaderFloat16Int8Features float16_int8{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
   VkPhysicalDeviceShaderSubgroupExtendedTypesFeatures subgroup_types{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SUBGROUP_EXTENDED_TYPES_FEATURES};
+  // maintenance4 (core in 1.3) relaxes vertex-output / fragment-input matching: the built-in
+  // full-screen vertex shader writes a uv that many fragment shaders do not read, which the
+  // validation layer reports otherwise (UNASSIGNED-CoreValidation-Shader-OutputNotConsumed).
+  VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
   bool has_float16_int8 = false;
   bool has_subgroup_types = false;
+  bool has_maintenance4 = false;
 
-  FeatureChain(bool float16_int8_available, bool subgroup_types_available)
-      : has_float16_int8(float16_int8_available), has_subgroup_types(subgroup_types_available) {
+  FeatureChain(bool float16_int8_available, bool subgroup_types_available, bool maintenance4_available)
+      : has_float16_int8(float16_int8_available), has_subgroup_types(subgroup_types_available),
+        has_maintenance4(maintenance4_available) {
     // Only structures of supported versions/extensions may appear in the chain.
     void** next = &core.pNext;
     *next = &storage16;
@@ -156,7 +234,11 @@ struct FeatureChain {
       *next = &float16_int8;
       next = &float16_int8.pNext;
     }
-    if (has_subgroup_types) *next = &subgroup_types;
+    if (has_subgroup_types) {
+      *next = &subgroup_types;
+      next = &subgroup_types.pNext;
+    }
+    if (has_maintenance4) *next = &maintenance4;
   }
   FeatureChain(const FeatureChain&) = delete;
   FeatureChain& operator=(const FeatureChain&) = delete;
@@ -196,6 +278,13 @@ std::string flag_names(std::uint32_t flags, const char* const* names, std::size_
 
 }  // namespace
 
+bool validation_requested() {
+  const char* value = std::getenv(validation_env_var);
+  return value != nullptr && *value != '\0' && std::strcmp(value, "0") != 0;
+}
+
+std::size_t validation_message_count() { return validation_messages.load(); }
+
 std::string SubgroupInfo::describe() const {
   return fmt::format("size {}, stages {}, operations {}, quad in all stages: {}", size,
                      flag_names(supported_stages, subgroup_stage_names, std::size(subgroup_stage_names)),
@@ -220,7 +309,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     create_device();
   } catch (...) {
     if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, nullptr);
-    vkDestroyInstance(instance_, nullptr);
+    destroy_instance(instance_, messenger_);
     throw;
   }
 }
@@ -230,10 +319,10 @@ VulkanContext::~VulkanContext() {
     vkDeviceWaitIdle(device_);  // nothing sensible to do with an error during teardown
     vkDestroyDevice(device_, nullptr);
   }
-  if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
+  if (instance_ != VK_NULL_HANDLE) destroy_instance(instance_, messenger_);
 }
 
-void VulkanContext::create_instance() { instance_ = create_headless_instance(instance_api_version_); }
+void VulkanContext::create_instance() { instance_ = create_headless_instance(instance_api_version_, &messenger_); }
 
 void VulkanContext::select_physical_device(const ContextOptions& options) {
   const std::vector<VkPhysicalDevice> devices = enumerate_devices(instance_);
@@ -251,7 +340,15 @@ void VulkanContext::select_physical_device(const ContextOptions& options) {
         "Vulkan device '{}' not found (requested by --device or {}); available devices: {}", wanted,
         device_env_var, join(device_names(devices), "; ")));
   }
+  // lavapipe by name first: SwiftShader is a CPU device too, and the loader's order of ICDs is
+  // not lavapipe-first.
   physical_device_ = devices.front();
+  for (VkPhysicalDevice device : devices) {
+    if (contains_case_insensitive(properties_of(device).deviceName, "llvmpipe")) {
+      physical_device_ = device;
+      return;
+    }
+  }
   for (VkPhysicalDevice device : devices) {
     if (is_lavapipe(properties_of(device))) {
       physical_device_ = device;
@@ -324,7 +421,10 @@ void VulkanContext::create_device() {
   if (float16_ext) extensions.push_back(VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
   if (subgroup_types_ext) extensions.push_back(VK_KHR_SHADER_SUBGROUP_EXTENDED_TYPES_EXTENSION_NAME);
 
-  FeatureChain features(vulkan12 || float16_ext, vulkan12 || subgroup_types_ext);
+  const bool vulkan13 = info_.api_version >= VK_API_VERSION_1_3 && instance_api_version_ >= VK_API_VERSION_1_3;
+  const bool maintenance4_ext = !vulkan13 && has_extension(device_extensions_, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+  if (maintenance4_ext) extensions.push_back(VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+  FeatureChain features(vulkan12 || float16_ext, vulkan12 || subgroup_types_ext, vulkan13 || maintenance4_ext);
   vkGetPhysicalDeviceFeatures2(physical_device_, &features.core);
   features.restrict_core_features();
   // The 16-bit storage and fp16/int8 structures are enabled as queried (all supported bits).
@@ -407,6 +507,47 @@ std::string take_device_flag(int& argc, char** argv) {
   argc = out;
   argv[out] = nullptr;  // argv[argc] is null by convention
   return name;
+}
+
+}  // namespace saagen::harness
+
+namespace saagen::harness {
+
+void VulkanContext::require_capabilities(const std::vector<std::uint32_t>& spirv, VkShaderStageFlags stage) const {
+  // SPIR-V 1.6 Sec. 2.4: the OpCapability instructions (opcode 17) open the module after the
+  // 5-word header. Vulkan spec, Appendix A "Capabilities": a capability may be used only when
+  // its feature is enabled (or its extension / core version supported).
+  constexpr std::uint32_t op_capability = 17;
+  const DeviceInfo& d = info_;
+  const auto subgroup = [&](VkSubgroupFeatureFlags operation) { return d.subgroup.supports(operation, stage); };
+  for (std::size_t at = 5; at < spirv.size();) {
+    const std::uint32_t words = spirv[at] >> 16, opcode = spirv[at] & 0xffffu;
+    if (opcode != op_capability || words < 2 || at + 1 >= spirv.size()) break;
+    const std::uint32_t capability = spirv[at + 1];
+    at += words;
+    const char* missing = nullptr;
+    switch (capability) {
+      case 9: if (!d.shader_float16) missing = "shaderFloat16 (SPIR-V capability Float16)"; break;
+      case 10: if (!d.shader_float64) missing = "shaderFloat64 (SPIR-V capability Float64)"; break;
+      case 11: if (!d.shader_int64) missing = "shaderInt64 (SPIR-V capability Int64)"; break;
+      case 22: if (!d.shader_int16) missing = "shaderInt16 (SPIR-V capability Int16)"; break;
+      case 39: if (!d.shader_int8) missing = "shaderInt8 (SPIR-V capability Int8)"; break;
+      case 4433: if (!d.storage_buffer_16bit_access) missing = "storageBuffer16BitAccess"; break;
+      case 4434: if (!d.uniform_and_storage_buffer_16bit_access) missing = "uniformAndStorageBuffer16BitAccess"; break;
+      case 4435: if (!d.storage_push_constant_16) missing = "storagePushConstant16"; break;
+      case 4436: if (!d.storage_input_output_16) missing = "storageInputOutput16"; break;
+      case 61: if (!subgroup(VK_SUBGROUP_FEATURE_BASIC_BIT)) missing = "subgroup basic operations in this stage"; break;
+      case 62: if (!subgroup(VK_SUBGROUP_FEATURE_VOTE_BIT)) missing = "subgroup vote operations in this stage"; break;
+      case 63: if (!subgroup(VK_SUBGROUP_FEATURE_ARITHMETIC_BIT)) missing = "subgroup arithmetic operations in this stage"; break;
+      case 64: if (!subgroup(VK_SUBGROUP_FEATURE_BALLOT_BIT)) missing = "subgroup ballot operations in this stage"; break;
+      case 65: if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_BIT)) missing = "subgroup shuffle operations in this stage"; break;
+      case 66: if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT)) missing = "subgroup relative shuffle operations in this stage"; break;
+      case 67: if (!subgroup(VK_SUBGROUP_FEATURE_CLUSTERED_BIT)) missing = "subgroup clustered operations in this stage"; break;
+      case 68: if (!subgroup(VK_SUBGROUP_FEATURE_QUAD_BIT)) missing = "subgroup quad operations in this stage"; break;
+      default: break;
+    }
+    if (missing) throw UnsupportedFeature(d.name, missing);
+  }
 }
 
 }  // namespace saagen::harness

@@ -206,6 +206,10 @@ DeviceHandle<VkShaderModule> create_shader_module(const VulkanContext& context, 
   if (shader.spirv.size() < 5 || shader.spirv[0] != spirv_magic) {
     throw std::invalid_argument(fmt::format("{} shader: not a SPIR-V module ({} words)", role, shader.spirv.size()));
   }
+  const VkShaderStageFlags stage = std::string(role) == "compute"  ? VK_SHADER_STAGE_COMPUTE_BIT
+                                   : std::string(role) == "vertex" ? VK_SHADER_STAGE_VERTEX_BIT
+                                                                   : VK_SHADER_STAGE_FRAGMENT_BIT;
+  context.require_capabilities(shader.spirv, stage);  // "unsupported on DEVICE: FEATURE" before the driver sees it
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = shader.spirv.size() * sizeof(std::uint32_t);
   info.pCode = shader.spirv.data();

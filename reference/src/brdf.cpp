@@ -82,6 +82,16 @@ double Brdf::ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
 // ---------------------------------------------------------------------------------------------
 // Beckmann
 
+// beckmann_falloff of the template: exp(-x), 0 for x >= EXP_ARG_MAX (guarded); the NDF's divisor
+// floored at DIVISOR_MIN = 2^-126 (guarded). Vulkan spec, Appendix A, "Precision and Operation of
+// SPIR-V Instructions": exp is bounded by 3 + 2|x| ULP, x / y only for |y| in [2^-126, 2^126],
+// and denormals may flush to 0.
+double Brdf::falloff(double x) const {
+    if (!params.guards) return std::exp(-x);
+    return x < params.guard_constants().exp_arg_max ? std::exp(-x) : 0.0;
+}
+double Brdf::divisor(double d) const { return guarded(max(d, params.guard_constants().divisor_min), d); }
+
 // Supplemental Sec. 1 applied to Beckmann (Heitz 2014): the slope distribution
 // exp(-s^T A^-1 s) / (pi sqrt(det A)), s = h.xy / hz, divided by hz^4 for the NDF.
 // Guarded: tau and hz^4 floored at TINY_POSITIVE; the exponent computed as
@@ -95,7 +105,7 @@ double Brdf::beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const {
         params.guards ? max(sym2_quadratic_form(adjugate(a), h.xy()) / det,
                             quadratic_form_floor(params, a, det_a, det, h.xy())) / max(cos2, tiny())
                       : sym2_quadratic_form(adjugate(a), h.xy() / h.z) / det;
-    return std::exp(-exponent) / (kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
+    return falloff(exponent) / divisor(kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
 }
 
 // Heitz 2014: a = |wz| / sqrt(w.xy^T A w.xy) (1 / (alpha_w tan theta_w)), Walter fit.
@@ -124,8 +134,7 @@ double Brdf::beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const {
     const Vec2 slope = h.xy() / h.z;
     const double cos2 = h.z * h.z;
     const double exponent = slope.x * slope.x / a2.x + slope.y * slope.y / a2.y;
-    return std::exp(-exponent) /
-           (kPi * std::sqrt(a2.x * a2.y) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
+    return falloff(exponent) / divisor(kPi * std::sqrt(a2.x * a2.y) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
 }
 
 // T&K 2019 Sec. 2.2 with the axis-aligned Beckmann NDF (Walter et al. 2007 Lambda).

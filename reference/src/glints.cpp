@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace saagen::ref::glints {
 namespace {
@@ -79,6 +80,102 @@ Texel texture_grad(const Texture1DArray& texture, double u, double layer, double
     return texture_lod(texture, u, layer, lod_from_gradients(du_dx, du_dy, texture.width, model));
 }
 
+SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_texel_precision_bits) {
+    SamplerTolerance t;
+    t.level_weight = std::ldexp(1.0, -mipmap_precision_bits);
+    t.texel_weight = std::ldexp(1.0, -sub_texel_precision_bits);
+    t.lod_below = t.level_weight;       // the snapped log2 (see the header)
+    t.lod_above = 0.5 + t.level_weight;  // f_x <= sqrt(2) |m_ux| for a 1D image
+    return t;
+}
+
+namespace {
+
+// One level's LINEAR filter at texel coordinate c = u size - 0.5 (piecewise linear in c).
+Texel level_at(const Texture1DArray& texture, int level, double c, int layer) {
+    const int size = texture.level_width(level);
+    const double base = std::floor(c);
+    const double alpha = c - base;
+    const int i0 = static_cast<int>(base);
+    const double* t0 = texture.texel(level, layer, mirrored_repeat(i0, size));
+    const double* t1 = texture.texel(level, layer, mirrored_repeat(i0 + 1, size));
+    Texel result;
+    for (int k = 0; k < 4; ++k) result[k] = (1.0 - alpha) * t0[k] + alpha * t1[k];
+    return result;
+}
+
+void widen(TexelRange& range, const Texel& value) {
+    for (int k = 0; k < 4; ++k) {
+        range.low[k] = std::min(range.low[k], value[k]);
+        range.high[k] = std::max(range.high[k], value[k]);
+    }
+}
+
+// The level's filter over texel coordinates within +-e of u size - 0.5: the ends and the knots.
+TexelRange level_range(const Texture1DArray& texture, int level, double u, int layer, double e) {
+    const double c = u * texture.level_width(level) - 0.5;
+    TexelRange range;
+    range.low.fill(std::numeric_limits<double>::infinity());
+    range.high.fill(-std::numeric_limits<double>::infinity());
+    widen(range, level_at(texture, level, c - e, layer));
+    widen(range, level_at(texture, level, c + e, layer));
+    for (double knot = std::ceil(c - e); knot < c + e; knot += 1.0) widen(range, level_at(texture, level, knot, layer));
+    return range;
+}
+
+}  // namespace
+
+TexelRange texture_lod_range(const Texture1DArray& texture, double u, double layer, double lod, const SamplerTolerance& t) {
+    return texture_grad_range(texture, u, layer, std::numeric_limits<double>::quiet_NaN(), lod, t);
+}
+
+// With du_dx NaN, du_dy is the shader's lambda (textureLod), known exactly.
+TexelRange texture_grad_range(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
+                              const SamplerTolerance& t) {
+    const int layer_index = static_cast<int>(clamp(round_half_even(layer), 0.0, texture.layers - 1.0));
+    const int q = texture.level_count() - 1;
+    double lo, hi;
+    if (std::isnan(du_dx)) {
+        lo = hi = std::isnan(du_dy) ? 0.0 : du_dy;
+    } else {
+        const double base = lod_from_gradients(du_dx, du_dy, texture.width, LodModel::exact);
+        lo = base - t.lod_below;
+        hi = base + t.lod_above;
+    }
+    // The two levels' weights are snapped to 2^-mipmapPrecisionBits: lambda's fraction within
+    // +-level_weight, i.e. lambda itself within that of [lo, hi] (the filter is continuous in lambda).
+    lo = clamp(lo - t.level_weight, 0.0, q);
+    hi = clamp(hi + t.level_weight, 0.0, q);
+    if (std::isnan(lo)) lo = 0.0;  // log2(0) = -inf, clamped
+    if (std::isnan(hi)) hi = 0.0;
+    // The trilinear value is piecewise linear in lambda between integer levels: its range over
+    // [lo, hi] is reached at the ends or at an integer level, each with its sub-texel range.
+    std::vector<double> lambdas{lo, hi};
+    for (double k = std::ceil(lo); k < hi; k += 1.0) lambdas.push_back(k);
+    TexelRange range;
+    range.low.fill(std::numeric_limits<double>::infinity());
+    range.high.fill(-std::numeric_limits<double>::infinity());
+    for (double lambda : lambdas) {
+        const int level = static_cast<int>(std::floor(lambda));
+        const double delta = lambda - level;
+        const TexelRange fine = level_range(texture, level, u, layer_index, t.texel_weight);
+        if (delta == 0.0 || level == q) {
+            widen(range, fine.low);
+            widen(range, fine.high);
+            continue;
+        }
+        const TexelRange coarse = level_range(texture, level + 1, u, layer_index, t.texel_weight);
+        Texel low, high;
+        for (int k = 0; k < 4; ++k) {
+            low[k] = (1.0 - delta) * fine.low[k] + delta * coarse.low[k];
+            high[k] = (1.0 - delta) * fine.high[k] + delta * coarse.high[k];
+        }
+        widen(range, low);
+        widen(range, high);
+    }
+    return range;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The model
 
@@ -134,7 +231,12 @@ double layer_of(const Params& params, int distribution, int level) {
 double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level) {
     const double u = x / dictionary_range(dictionary.params);
     if (!(std::fabs(u) < 1.0)) return 0.0;
-    const Texel texel = texture_lod(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), 0.0);
+    const double layer = layer_of(dictionary.params, distribution, level);
+    if (dictionary.tolerance && dictionary.side != 0) {
+        const TexelRange range = texture_lod_range(*dictionary.texture, u, layer, 0.0, *dictionary.tolerance);
+        return select_channel(dictionary.side < 0 ? range.low : range.high, distribution % 4);
+    }
+    const Texel texel = texture_lod(*dictionary.texture, u, layer, 0.0);
     return select_channel(texel, distribution % 4);
 }
 
@@ -143,6 +245,11 @@ double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_d
     const double u = x * to_u;
     if (!(std::fabs(u) < 1.0)) return 0.0;
     const double s = dictionary.params.kernel_scale * to_u;
+    if (dictionary.tolerance && dictionary.side != 0) {
+        const TexelRange range = texture_grad_range(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), s * dx_dx,
+                                                    s * dx_dy, *dictionary.tolerance);
+        return select_channel(dictionary.side < 0 ? range.low : range.high, distribution % 4);
+    }
     const Texel texel = texture_grad(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), s * dx_dx,
                                      s * dx_dy, dictionary.lod_model);
     return select_channel(texel, distribution % 4);

@@ -38,6 +38,18 @@ struct CompareReport {
   std::string summary() const;
 };
 
+// All comparisons made in this process so far (except those captioned as a device-specific
+// model): the largest normalised error, i.e. the worst error as a fraction of its bound.
+struct CompareTotals {
+  std::size_t reports = 0;
+  std::size_t elements = 0;
+  std::size_t failing = 0;
+  double worst = 0.0;
+  std::string worst_what;
+  std::string summary() const;
+};
+const CompareTotals& compare_totals();
+
 // Called for the worst element only, to label it (e.g. with its inputs).
 using DescribeElement = std::function<std::string(std::size_t index)>;
 

@@ -15,6 +15,18 @@ namespace saagen::harness {
 // Environment variable naming the device (case-insensitive substring of its name).
 inline constexpr const char* device_env_var = "SAAGEN_VK_DEVICE";
 
+// Environment variable that turns the Khronos validation layer on for every instance the harness
+// creates (any value but "" or "0"; ctest sets it for every vulkan-labelled test). When set and
+// the layer is not installed, creating a context throws (install vulkan-validationlayers).
+inline constexpr const char* validation_env_var = "SAAGEN_VK_VALIDATION";
+inline constexpr const char* validation_layer_name = "VK_LAYER_KHRONOS_validation";
+
+// Whether SAAGEN_VK_VALIDATION asks for the validation layer.
+bool validation_requested();
+// Warnings and errors the validation layer has reported in this process (each is also printed
+// to stderr as one "[validation] ..." line). Tests fail when it is not 0 (tests/vulkan_validation.cpp).
+std::size_t validation_message_count();
+
 struct ContextOptions {
   // Case-insensitive substring of the device name, e.g. from a `--device NAME` flag. When
   // empty, SAAGEN_VK_DEVICE is consulted; when that is empty too, lavapipe is preferred
@@ -113,6 +125,12 @@ class VulkanContext {
   // Names of all devices the loader reports (creates a temporary instance).
   static std::vector<std::string> available_devices();
 
+  // Throws UnsupportedFeature ("unsupported on DEVICE: FEATURE") when `spirv` declares a
+  // capability whose Vulkan feature is not enabled on this device (Float16 -> shaderFloat16,
+  // Int16, Int64, Float64, 16-bit storage, subgroup operations in `stage`). The harness calls it
+  // before creating any shader module, so a missing feature never reaches the driver.
+  void require_capabilities(const std::vector<std::uint32_t>& spirv, VkShaderStageFlags stage) const;
+
  private:
   void create_instance();
   void select_physical_device(const ContextOptions& options);
@@ -120,6 +138,7 @@ class VulkanContext {
   void create_device();
 
   VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

@@ -4,9 +4,25 @@
 
 #include <vulkan/vulkan.h>
 
+#include <stdexcept>
 #include <string>
 
 namespace saagen::harness {
+
+// A device that lacks a feature or extension a run needs (e.g. shaderFloat16 for a module that
+// declares the Float16 capability). Thrown before any shader module or pipeline is created;
+// what() is the one line "unsupported on DEVICE: FEATURE".
+class UnsupportedFeature : public std::runtime_error {
+ public:
+  UnsupportedFeature(std::string device, std::string feature)
+      : std::runtime_error("unsupported on " + device + ": " + feature), device_(std::move(device)), feature_(std::move(feature)) {}
+  const std::string& device() const { return device_; }
+  const std::string& feature() const { return feature_; }
+
+ private:
+  std::string device_;
+  std::string feature_;
+};
 
 // "VK_ERROR_DEVICE_LOST", or "VkResult(-1000012000)" for codes this build does not name.
 std::string vk_result_name(VkResult result);

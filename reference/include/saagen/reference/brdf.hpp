@@ -110,6 +110,8 @@ struct Brdf {
     // guarded(safe, paper) of the templates.
     double guarded(double safe, double paper) const { return params.guards ? safe : paper; }
     double tiny() const { return params.guard_constants().tiny_positive; }
+    double falloff(double x) const;  // exp(-x), 0 past EXP_ARG_MAX when guarded
+    double divisor(double d) const;  // d, floored at DIVISOR_MIN when guarded
     double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
 };
 

@@ -60,6 +60,34 @@ Texel texture_lod(const Texture1DArray& texture, double u, double layer, double 
 Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
                    LodModel model = LodModel::exact);
 
+// What any conforming Vulkan implementation may return for a LINEAR/LINEAR/LINEAR lookup, as
+// a per-channel interval [low, high] (the texture-space rules of the Vulkan 1.3 specification,
+// chapter "Image Operations"):
+//   - "Scale Factor Operation, Level-of-Detail Operation and Image Level(s) Selection": rho_x may
+//     be approximated by any f_x with max(|m_ux|, |m_vx|, |m_wx|) <= f_x <= sqrt(2) (|m_ux| +
+//     |m_vx| + |m_wx|); for a 1D image lambda is thus in [log2 rho_max, log2 rho_max + 1/2]
+//     (textureGrad; textureLod takes lambda from the shader).
+//   - VkPhysicalDeviceLimits::mipmapPrecisionBits: the weight of each of the two levels is
+//     snapped to 2^-mipmapPrecisionBits (at least 4 bits are required: 1/16 of a level). The
+//     same step bounds the log2 of lambda_base, which the specification states without a
+//     precision of its own (lavapipe's fastlog2 is up to 0.043 below, docs/GLINTS.md).
+//   - VkPhysicalDeviceLimits::subTexelPrecisionBits: the linear filter's sub-texel position is
+//     snapped to 2^-subTexelPrecisionBits of a texel (at least 4 bits).
+struct SamplerTolerance {
+    double lod_below = 0.0;     // textureGrad: lambda may be this far below log2(rho_max)
+    double lod_above = 0.0;     // textureGrad: ... and this far above it
+    double level_weight = 0.0;  // 2^-mipmapPrecisionBits: lambda's fraction (both lookups)
+    double texel_weight = 0.0;  // 2^-subTexelPrecisionBits: the texel coordinate
+};
+SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_texel_precision_bits);
+
+struct TexelRange {
+    Texel low{}, high{};
+};
+TexelRange texture_lod_range(const Texture1DArray& texture, double u, double layer, double lod, const SamplerTolerance& tolerance);
+TexelRange texture_grad_range(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
+                              const SamplerTolerance& tolerance);
+
 // ---------------------------------------------------------------------------------------------
 // The glinty BRDF
 
@@ -77,6 +105,11 @@ struct Dictionary {
     const Texture1DArray* texture = nullptr;
     Params params;
     LodModel lod_model = LodModel::exact;
+    // With a tolerance and side = -1 (+1), every dictionary lookup returns the low (high) end of
+    // what a conforming sampler may return (texture_*_range): the glint functions are sums of
+    // non-negative weights times products of non-negative lookups, so they bound the device.
+    const SamplerTolerance* tolerance = nullptr;
+    int side = 0;
 };
 
 // x_max = 2 sqrt(2) alpha_dict: the dictionary holds |x| < x_max (4 sigma_o).

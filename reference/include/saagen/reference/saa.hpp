@@ -28,9 +28,11 @@ struct GuardConstants {
     double lambda_min_z = 0.0;    // LAMBDA_MIN_Z: smallest |w_z| Smith Lambda (and the BRDF's cosines) use
     double det_reliable = 0.0;    // DET_RELIABLE: det(A) below this fraction of a00 a11 is rounding noise
     double slope_max = 0.0;       // SLOPE_MAX: slope moments clamped to +-this, second moments to this^2
+    double exp_arg_max = 0.0;     // EXP_ARG_MAX (30-brdf.saa): exp(-x) = 0 for x >= this (rounds to 0 in fp32 anyway)
+    double divisor_min = 0.0;     // DIVISOR_MIN (30-brdf.saa): 2^-126, Vulkan's x / y is bounded for |y| >= this
 };
-inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4};
-inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0};
+inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4, 104.0, 1.1754943508222875e-38};
+inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0, 17.5, 6.103515625e-5};
 
 // The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {
