@@ -226,7 +226,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
   material.normal_maps = reader.boolean("normal_maps").value_or(false);
   if (reader.boolean("glints").value_or(false)) {
-    reader.fail_key("glints", "glint filtering is not available yet (issue 7); saagen plans no variant for it", "false");
+    reader.fail_key("glints", "the planner does not plan glint filtering; emit the glint snippets with `saagen glints emit`", "false");
   }
   if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {

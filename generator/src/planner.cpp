@@ -538,7 +538,7 @@ std::string rules_text() {
                         rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
   text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
-          "anisotropic = true with tangents = false is rejected; glints = true is rejected (not available yet, issue 7).\n"
+          "anisotropic = true with tangents = false is rejected; glints = true is rejected (glint snippets come from `saagen glints emit`; the planner does not plan them).\n"
           "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
           "With --trade-table, prefer = \"speed\" takes the eligible variant of lowest measured cost (ratio_median, else\n"
           "delta_spirv_instructions) and prefer = \"accuracy\" the one of lowest measured \"error\" when the table has errors.\n";
