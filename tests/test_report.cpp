@@ -65,6 +65,15 @@ TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   const std::string svg = read_text(dir / "cost_vs_error.svg");
   EXPECT_NE(svg.find("GPU time with SAA / without"), std::string::npos);
   EXPECT_EQ(std::count(svg.begin(), svg.end(), '\n') > 10, true);
+  // The engines' shipped forms are points of their own colour (6 engines + the legend's swatch),
+  // and the findings are in the report: recommendation, switching from each engine, verdicts.
+  std::size_t orange = 0;
+  for (std::size_t at = svg.find("#e67e22"); at != std::string::npos; at = svg.find("#e67e22", at + 1)) ++orange;
+  EXPECT_EQ(orange, 7u);
+  EXPECT_NE(svg.find(">engine-godot<"), std::string::npos);
+  for (const char* section : {"## Recommended configuration", "## Switching from an engine's shipped form", "## Per scene:",
+                              "| engine-hdrp | curved |", "LDR-FLIP", "HDR-FLIP", "flicker tm ratio"})
+    EXPECT_NE(markdown.find(section), std::string::npos) << section;
 }
 
 TEST_F(Report, EveryImageLoadsInHeadlessChromium) {

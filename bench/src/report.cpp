@@ -236,6 +236,15 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
     svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", sx(x), sy(y),
                        colour, sx(x) + 8, sy(y) + 4, name) << "\n";
   }
+  // Legend: which colour is which family (engines' shipped forms in their own colour).
+  const std::pair<const char*, const char*> legend[] = {
+      {"#c0392b", "saagen forward"}, {"#2471a3", "saagen deferred"}, {"#e67e22", "engine shipped form"}, {"#555555", "no SAA"}};
+  for (std::size_t i = 0; i < std::size(legend); ++i) {
+    const double y = top + 14.0 * static_cast<double>(i);
+    svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", width - right + 20, y,
+                       legend[i].first, width - right + 28, y + 4, legend[i].second)
+        << "\n";
+  }
   svg << "</svg>\n";
   return svg.str();
 }
