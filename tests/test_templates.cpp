@@ -94,6 +94,9 @@ TEST(TemplateParser, ChecksVariantsAndOptions) {
   // Found by the template fuzzer: an option name with a space broke the emitted marker line.
   EXPECT_EQ(parse_error("@constant K\ntype: real\nmeaning: m\noption: k ppa\ndefault: 0.1\nrange: [0, 1]\n"),
             "templates/test.saa:4: option 'k ppa' is not an identifier");
+  // And a comma in a variant id broke the marker's comma-separated variant list.
+  EXPECT_EQ(parse_error("@variant v,w\nsummary: s\n"),
+            "templates/test.saa:1: variant id 'v,w' must be letters, digits and '-', starting with a letter");
 }
 
 TEST(TemplateParser, RecordsCallsConstantsAndClosureOrder) {

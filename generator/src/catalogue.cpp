@@ -142,6 +142,11 @@ class TemplateParser {
   }
 
   void parse_variant(const std::string& id, int line) {
+    // A variant id is a CLI argument, a manifest value and a marker list item (comma-separated):
+    // letters, digits and '-' only, starting with a letter.
+    const bool valid_id = !id.empty() && std::isalpha(static_cast<unsigned char>(id[0])) &&
+                          std::all_of(id.begin(), id.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-'; });
+    if (!valid_id) fail(file_, line, fmt::format("variant id '{}' must be letters, digits and '-', starting with a letter", id));
     Variant variant;
     variant.id = id;
     variant.source_file = file_;
