@@ -258,13 +258,24 @@ double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_d
 Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
     const Params& params = dictionary.params;
     Patch patch;
-    patch.lod = footprint_lod(params, duv_dx, duv_dy, log_density);
+    if (dictionary.log2_side == 0) {
+        patch.lod = footprint_lod(params, duv_dx, duv_dy, log_density);
+    } else {
+        // Vulkan spec, "Precision and Operation of SPIR-V Instructions": log, log2: 3 ULP outside
+        // [0.5, 2.0], absolute error < 2^-21 inside.
+        const double size = std::max(std::max(length(duv_dx), length(duv_dy)), kTinyPositive);
+        const double exact = std::log2(size);
+        const double allowance = (size >= 0.5 && size <= 2.0) ? 0x1.0p-21 : 3.0 * 0x1.0p-23 * std::fabs(exact);
+        patch.lod = clamp(exact + dictionary.log2_side * allowance + log_density * kInv2Ln2, 0.0, params.lods - 1.0);
+    }
     const double level = std::floor(patch.lod);
     const double t = patch.lod - level;
     const double levels[2] = {level, std::min(level + 1.0, params.lods - 1.0)};
     const double level_weights[2] = {1.0 - t, t};
     for (int k = 0; k < 2; ++k) {
-        const double scale = std::exp2(log_density * kInv2Ln2 - levels[k]);
+        // Vulkan spec, "Precision and Operation of SPIR-V Instructions": exp2(x): 3 + 2|x| ULP.
+        const double exponent = log_density * kInv2Ln2 - levels[k];
+        const double scale = std::exp2(exponent) * (1.0 + dictionary.exp2_side * (3.0 + 2.0 * std::fabs(exponent)) * 0x1.0p-23);
         const Vec2 c{uv.x * scale - 0.5, uv.y * scale - 0.5};
         const Vec2 base{std::floor(c.x), std::floor(c.y)};
         const Vec2 f{c.x - base.x, c.y - base.y};
