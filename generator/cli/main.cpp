@@ -116,7 +116,7 @@ std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path
   }
   std::vector<std::string> extensions;
   for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
-  extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes (issue 8)
+  extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes
   std::vector<std::pair<std::string, std::string>> files;
   for (const fs::path& path : saagen::cli::regular_files_in(directory)) {
     if (std::find(extensions.begin(), extensions.end(), path.extension().string()) == extensions.end()) continue;
