@@ -504,6 +504,29 @@ bool is_grey(const RgbImage& img) {
 double flip_aces_tonemap(double x) { return aces(x); }
 double flip_aces_x_max() { return aces_x_max(); }
 
+// Both images into the workspace's YCxCz planes, each channel value first mapped to linear
+// display RGB in [0, 1] by `to_linear` (LDR: the sRGB EOTF; HDR: exposure and tone mapping).
+// Grey images fill Y alone (L* = 116 Y - 16 with the white point's Y = 1).
+template <class ToLinear>
+void load_planes(Workspace& ws, const RgbImage& reference, const RgbImage& test, bool grey,
+                 ToLinear to_linear) {
+    const ColourConstants& cc = colour_constants();
+    const RgbImage* imgs[2] = {&reference, &test};
+    for (int img = 0; img < 2; ++img) {
+        const float* p = imgs[img]->rgb.data();
+        double* Y = ws.plane(img, kY);
+        if (grey) {
+            for (std::size_t i = 0; i < ws.n; ++i) Y[i] = 116.0 * to_linear(p[3 * i]) - 16.0;
+            continue;
+        }
+        double* Cx = ws.plane(img, kCx);
+        double* Cz = ws.plane(img, kCz);
+        for (std::size_t i = 0; i < ws.n; ++i)
+            linear_to_ycxcz(cc, to_linear(p[3 * i]), to_linear(p[3 * i + 1]), to_linear(p[3 * i + 2]),
+                            Y[i], Cx[i], Cz[i]);
+    }
+}
+
 std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test,
                                 const FlipSettings& settings) {
     check_pair(reference, test, "ldr_flip_map");
@@ -512,22 +535,7 @@ std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test,
     if (out.empty()) return out;
     const bool grey = is_grey(reference) && is_grey(test);
     Workspace ws(reference.width, reference.height, k, grey);
-    const ColourConstants& cc = colour_constants();
-    const RgbImage* imgs[2] = {&reference, &test};
-    for (int img = 0; img < 2; ++img) {
-        const float* p = imgs[img]->rgb.data();
-        double* Y = ws.plane(img, kY);
-        if (grey) {
-            for (std::size_t i = 0; i < ws.n; ++i)
-                Y[i] = 116.0 * srgb_eotf(clamp01(p[3 * i])) - 16.0;
-            continue;
-        }
-        double* Cx = ws.plane(img, kCx);
-        double* Cz = ws.plane(img, kCz);
-        for (std::size_t i = 0; i < ws.n; ++i)
-            linear_to_ycxcz(cc, srgb_eotf(clamp01(p[3 * i])), srgb_eotf(clamp01(p[3 * i + 1])),
-                            srgb_eotf(clamp01(p[3 * i + 2])), Y[i], Cx[i], Cz[i]);
-    }
+    load_planes(ws, reference, test, grey, [](float v) { return srgb_eotf(clamp01(v)); });
     flip_core(ws, k, out.data(), false);
     return out;
 }
@@ -583,29 +591,14 @@ std::vector<float> hdr_flip_map(const RgbImage& reference, const RgbImage& test,
     if (out.empty()) return out;
     const bool grey = is_grey(reference) && is_grey(test);
     Workspace ws(reference.width, reference.height, k, grey);
-    const ColourConstants& cc = colour_constants();
-    const RgbImage* imgs[2] = {&reference, &test};
     for (int i = 0; i < ex.count; ++i) {
         const double c =
             ex.count == 1 ? ex.start : ex.start + i * (ex.stop - ex.start) / (ex.count - 1);
         const double scale = std::exp2(c);
-        auto tm = [scale](float v) {  // expose, tone map, clamp (NaN -> 0)
+        load_planes(ws, reference, test, grey, [scale](float v) {  // expose, tone map, clamp (NaN -> 0)
             if (std::isnan(v)) return 0.0;
             return clamp01(aces(scale * static_cast<double>(v)));
-        };
-        for (int img = 0; img < 2; ++img) {
-            const float* p = imgs[img]->rgb.data();
-            double* Y = ws.plane(img, kY);
-            if (grey) {
-                for (std::size_t j = 0; j < ws.n; ++j) Y[j] = 116.0 * tm(p[3 * j]) - 16.0;
-                continue;
-            }
-            double* Cx = ws.plane(img, kCx);
-            double* Cz = ws.plane(img, kCz);
-            for (std::size_t j = 0; j < ws.n; ++j)
-                linear_to_ycxcz(cc, tm(p[3 * j]), tm(p[3 * j + 1]), tm(p[3 * j + 2]), Y[j], Cx[j],
-                                Cz[j]);
-        }
+        });
         flip_core(ws, k, out.data(), i > 0);
     }
     return out;
