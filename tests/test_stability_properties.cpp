@@ -588,12 +588,17 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
         if (high[k] < low[k] - slack * std::max(1.0, low[k])) RC_FAIL(what);
       continue;
     }
-    if (high[0] < low[0] * (1.0 - slack) || high[2] < low[2] * (1.0 - slack)) RC_FAIL(what);
+    // The Vulkan spec lets a device flush denormal results of any operation to zero (Precision
+    // and Operation of SPIR-V Instructions), so an entry below FLT_MIN may be off by FLT_MIN in
+    // absolute terms: two entries of the difference, each from both matrices, 4 FLT_MIN.
+    const double flushed = 4.0 * double(FLT_MIN);
+    if (high[0] < low[0] * (1.0 - slack) - flushed || high[2] < low[2] * (1.0 - slack) - flushed) RC_FAIL(what);
     if (max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e])) {
       // Weyl: rounding the entries (fp32 inputs s d, and the arithmetic) moves the smallest
-      // eigenvalue of the difference by at most a few units of 2^-24 times their size.
+      // eigenvalue of the difference by at most a few units of 2^-24 times their size, plus the
+      // denormal flush above.
       const double lambda = sym2_min_eigenvalue(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
-      if (lambda < -0x1p-20 * (high[0] + high[2] + low[0] + low[2])) RC_FAIL(what);
+      if (lambda < -0x1p-20 * (high[0] + high[2] + low[0] + low[2]) - flushed) RC_FAIL(what);
     }
   }
 }
