@@ -6,6 +6,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <string>
 #include <vector>
 
 namespace {
@@ -28,6 +29,22 @@ void BM_GroundTruthSphere64(benchmark::State& state) {
     state.counters["s_at_256x256"] = benchmark::Counter(1.0 / 16.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_GroundTruthSphere64)->Unit(benchmark::kSecond)->UseRealTime();
+
+// The trade's cost per content scene (normal-mapped spheres, torus knot): 256 x 256 x 1024 spp,
+// the trade's eight materials (target: 60 s each on 2 threads). About a minute per scene.
+void BM_GroundTruthContent(benchmark::State& state) {
+    namespace render = saagen::render;
+    const render::SceneId id = render::content_scenes()[static_cast<std::size_t>(state.range(0))];
+    const render::Scene scene = render::make_scene(id);
+    std::vector<render::Material> materials;
+    for (double alpha : {0.01, 0.05, 0.1, 0.3})
+        for (bool fresnel : {false, true}) materials.push_back({alpha, fresnel});
+    render::GroundTruthSettings settings;
+    settings.threads = 2;
+    for (auto _ : state) benchmark::DoNotOptimize(render::render_ground_truth(scene, settings, materials));
+    state.SetLabel(std::string(render::scene_name(id)));
+}
+BENCHMARK(BM_GroundTruthContent)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 
