@@ -1,7 +1,7 @@
 // The GLSL ES 3.00 target run in WebGL2 (headless Chromium, ANGLE on SwiftShader; driven by
 // tests/webgl/run_functions.mjs through puppeteer-core) against the double-precision reference:
 // every core function of every variant on the inputs of test_gpu_core (core_cases.hpp: every
-// 8th of its 131072, 16384 per function), and every fragment wrapper on the analytic sphere of
+// 8th of its 131072 at a rotating offset, 16384 per function), and every fragment wrapper on the analytic sphere of
 // test_gpu_fragment (wrapper_cases.hpp) with real quad derivatives; each emitted in highp (fp32)
 // and mediump (fp16). Inputs come in as an RGBA32F texture, results go out to RGBA32F render
 // targets (EXT_color_buffer_float) read back as floats.
@@ -50,7 +50,7 @@ using saagen::Catalogue;
 
 constexpr std::uint32_t kCoreSide = 128;  // core results: a 128 x 128 target, one element per pixel
 constexpr std::uint32_t kCoreElements = kCoreSide * kCoreSide;
-constexpr std::uint32_t kCoreSubsample = 131072 / kCoreElements;  // every 8th input of test_gpu_core
+constexpr std::uint32_t kCoreSubsample = 131072 / kCoreElements;  // one in 8 of test_gpu_core's inputs
 constexpr std::uint32_t kInputTextureWidth = 1024;                 // texels (4 floats) per row
 constexpr double kMediumpUlp = 0x1p-10;                             // ES 3.00 4.5.2: relative precision
 constexpr double kMediumpFlush = 0x1p-14;                           // ES 3.00 4.5.2: smallest magnitude
@@ -157,7 +157,9 @@ nlohmann::json write_case(const fs::path& directory, const Case& c, std::vector<
   inputs.clear();
   const ref::Params params;
   for (std::uint32_t element = 0; element < kCoreElements; ++element) {
-    const std::uint64_t index = std::uint64_t{element} * kCoreSubsample;
+    // One of each run of 8, at a rotating offset: every residue mod 8 appears (the texel
+    // statistics of core_cases.hpp depend on index % 8).
+    const std::uint64_t index = std::uint64_t{element} * kCoreSubsample + element % kCoreSubsample;
     core::pack_inputs(function, scenarios[index], index, params, inputs);
   }
   inputs.resize(((inputs.size() + 4 * kInputTextureWidth - 1) / (4 * kInputTextureWidth)) * 4 * kInputTextureWidth, 0.0f);
