@@ -102,6 +102,9 @@ TEST(Gles, TheQuadAverageSubstituteIsStatedExactlyWhereItIsUsed) {
     EXPECT_EQ(uses_quad_average, noted) << file.file_name;
   }
   EXPECT_NE(emit_one("deferred-max").content.find("saa_quad_average_normal("), std::string::npos);
+  // In mediump the note adds the range of exact pixel coordinates.
+  EXPECT_NE(emit_one("deferred-max", "fp16").content.find("keeps its .5 pixel centres only below 1024 pixels"), std::string::npos);
+  EXPECT_EQ(emit_one("deferred-max").content.find("1024 pixels"), std::string::npos);
   EXPECT_NE(emit_one("deferred-previous").content.find("saa_quad_average_normal("), std::string::npos);
 }
 

@@ -50,6 +50,15 @@ ShaderStage parse_core_stage(const Json& validation, std::string_view source) {
   throw Error(fmt::format("{}: validation core_stage '{}' is not compute or vertex", source, name));
 }
 
+// Reads the optional "intrinsic_notes": intrinsic -> note text.
+void read_notes(const Json& object, std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
+  if (!object.contains("intrinsic_notes")) return;
+  for (const auto& [intrinsic, note] : object.at("intrinsic_notes").items()) {
+    if (!note.is_string()) throw Error(fmt::format("{}: 'intrinsic_notes.{}' must be a string", source, intrinsic));
+    out[intrinsic] = note.get<std::string>();
+  }
+}
+
 // Reads an optional object of strings keyed by dialect type; every key must be a known type.
 void read_type_spellings(const Json& object, const char* key, const std::map<std::string, std::string, std::less<>>& known,
                          std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
@@ -167,9 +176,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   target.constant_declaration = require_string(json, "constant_declaration", source);
   read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
   if (json.contains("function_prologue")) target.function_prologue = require_string(json, "function_prologue", source);
-  if (json.contains("intrinsic_notes")) {
-    for (const auto& [intrinsic, note] : json.at("intrinsic_notes").items()) target.intrinsic_notes[intrinsic] = note.get<std::string>();
-  }
+  read_notes(json, target.intrinsic_notes, source);
   const Json& validation = require(json, "validation", source);
   target.core_validation_stage = parse_core_stage(validation, source);
   for (const Json& client : require(validation, "clients", source)) {
@@ -194,6 +201,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     precision.native_16bit = entry.value("native_16bit", false);
     read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
     if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
+    read_notes(entry, precision.intrinsic_notes, source);
     target.precisions[name] = std::move(precision);
   }
   if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
@@ -253,6 +261,7 @@ TargetSyntax TargetSyntax::with_precision(std::string_view precision) const {
   result.native_16bit = found->second.native_16bit;
   for (const auto& [type, spelling] : found->second.declaration_types) result.declaration_types[type] = spelling;
   if (found->second.function_prologue) result.function_prologue = *found->second.function_prologue;
+  for (const auto& [intrinsic, note] : found->second.intrinsic_notes) result.intrinsic_notes[intrinsic] = note;
   return result;
 }
 

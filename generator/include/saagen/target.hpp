@@ -27,9 +27,10 @@ struct Precision {
   std::string literal_suffix;
   std::string preamble;
   bool native_16bit = false;
-  // Optional overrides of TargetSyntax::declaration_types and function_prologue.
+  // Optional overrides of TargetSyntax::declaration_types, function_prologue and intrinsic_notes.
   std::map<std::string, std::string, std::less<>> declaration_types;
   std::optional<std::string> function_prologue;
+  std::map<std::string, std::string, std::less<>> intrinsic_notes;
 };
 
 struct TargetSyntax {
