@@ -154,8 +154,10 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 // n + ddx_fine(n) w.x + ddy_fine(n) w.y, w = 0.5 - 2 frac(floor(frag_coord) / 2). Not normalised.
 // Note: for the top-left pixel this is (n_tr + n_bl) / 2, for the top-right (n_tl + n_br) / 2:
 // each pixel gets the mean of its two edge neighbours.
+// `average` is the derivative the average takes: fine in GLSL and HLSL; GLSL ES 3.00 has only
+// the plain dFdx/dFdy, fine or coarse as the implementation chooses.
 Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord,
-                              int pixel);
+                              int pixel, Derivative average = Derivative::fine);
 
 Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
                                        int pixel, Derivative mode = Derivative::coarse);
@@ -177,11 +179,13 @@ double deferred_previous_fragment_quad(const Params& p, double alpha2,
                                        const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
                                        const Quad<Vec3>& bitangent_ws,
                                        const Quad<Vec2>& frag_coord, int pixel,
-                                       Derivative mode = Derivative::coarse);
+                                       Derivative mode = Derivative::coarse,
+                                       Derivative average = Derivative::fine);
 double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
                                   const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
                                   const Quad<Vec2>& frag_coord, int pixel,
-                                  Derivative mode = Derivative::coarse);
+                                  Derivative mode = Derivative::coarse,
+                                  Derivative average = Derivative::fine);
 
 double deferred_max_tangent_free_fragment_quad(const Params& p, double alpha2,
                                                const Quad<Vec3>& normal_ws, int pixel,
