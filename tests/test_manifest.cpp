@@ -96,7 +96,8 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_EQ(manifest.materials[2].path, saagen::RenderPath::deferred);
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, "fp16");
-  EXPECT_EQ(car.position.line, 22);
+  EXPECT_EQ(manifest.gpu_family, "vega10");
+  EXPECT_EQ(car.position.line, 23);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -140,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, sigma2, kappa, material"},
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
