@@ -58,6 +58,23 @@ const EmittedFile& file_of(const std::vector<EmittedFile>& files, const std::str
   throw Error(fmt::format("no emitted file for variant {}", variant));
 }
 
+// What the forward shader is measured with: bench_shading's variant cases, plus the
+// tangent-free form of deferred-max, which the trade measures as a configuration of its own.
+struct ForwardCase {
+  std::string id;
+  std::string file_variant;  // the catalogue variant whose emitted file defines the wrapper
+  std::string shade;
+};
+
+std::vector<ForwardCase> forward_cases() {
+  std::vector<ForwardCase> cases;
+  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, variant.id, variant.shade});
+  cases.push_back({"deferred-max-tangent-free", "deferred-max",
+                   "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n"
+                   "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"});
+  return cases;
+}
+
 // The forward-shading rows of one family and target: the no-SAA baseline, then every variant.
 void measure_forward(const hx::IsaCompiler& compiler, const std::string& target, std::vector<IsaCostRow>& rows) {
   EmitOptions emit;
@@ -68,11 +85,11 @@ void measure_forward(const hx::IsaCompiler& compiler, const std::string& target,
       scene_shader_spirv(target, brdf.file_name, brdf.content, body_with(baseline_shade, scene_size, scene_size), scene_size),
       scene_layout());
   rows.push_back({compiler.family(), isa_forward_shader, target, isa_baseline, baseline, baseline});
-  for (const VariantCase& variant : variant_cases()) {
-    const EmittedFile& file = file_of(files, variant.id);
+  for (const ForwardCase& item : forward_cases()) {
+    const EmittedFile& file = file_of(files, item.file_variant);
     const auto spirv = scene_shader_spirv(target, file.file_name, file.content + "\n" + brdf.content,
-                                          body_with(variant.shade, scene_size, scene_size), scene_size);
-    rows.push_back({compiler.family(), isa_forward_shader, target, variant.id, compiler.fragment(spirv, scene_layout()), baseline});
+                                          body_with(item.shade, scene_size, scene_size), scene_size);
+    rows.push_back({compiler.family(), isa_forward_shader, target, item.id, compiler.fragment(spirv, scene_layout()), baseline});
   }
 }
 
