@@ -39,7 +39,6 @@
 
 namespace {
 
-
 struct Options {
   std::uint32_t width = 1920, height = 1080;
   int rounds = 15;

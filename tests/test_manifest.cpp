@@ -352,6 +352,23 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
                saagen::Error);
 }
 
+// `saagen bench --json` measures a variant's tangent-free form as a configuration of its own;
+// for a material without tangents, speed ranks deferred-max by that form's ISA figure.
+TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
+  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"variant": "deferred-max-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.01},
+      {"variant": "deferred-max", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5},
+      {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.1}]})",
+                                                             "bench.json");
+  const saagen::ScenePlan plan = saagen::plan_scene(
+      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"), &table);
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-max") << plan.materials.at(0).reason;
+  const saagen::TradeTable unknown =
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
+  EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &unknown),
+               saagen::Error);
+}
+
 TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
   const saagen::TradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");

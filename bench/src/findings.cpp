@@ -1,5 +1,7 @@
 #include "saagen/report/findings.hpp"
 
+#include "saagen/planner.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -130,9 +132,10 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
   // The optimized SPIR-V delta first: deterministic, while lavapipe's time ratios of the cheap
   // filters differ by less than their own quartile spread (bench_shading: 0.95-1.0, p25-p75
   // +-0.06), which would order equal-cost forms by noise.
-  // ACO's ISA estimate first: deterministic and a GPU's cost model.
+  // ACO's ISA estimate first: deterministic and a GPU's cost model; within kIsaTieTolerance
+  // (about two instructions of these shaders) costs count as equal, as in the planner.
   const auto isa_a = configuration_isa_cost(costs, a), isa_b = configuration_isa_cost(costs, b);
-  if (isa_a && isa_b) return *isa_a <= *isa_b;
+  if (isa_a && isa_b) return *isa_a <= *isa_b * (1.0 + kIsaTieTolerance);
   for (bool time : {false, true}) {
     const auto ca = configuration_cost(costs, a, time), cb = configuration_cost(costs, b, time);
     if (ca && cb) return *ca <= *cb;

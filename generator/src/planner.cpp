@@ -479,9 +479,15 @@ void choose_normal_handling(const TradeTable& table, const std::vector<const Var
 void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
-    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline.
+    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free").
     const std::string& id = table.rows[index].variant;
-    const std::string base = parse_configuration(id).variant;
+    std::string base = parse_configuration(id).variant;
+    constexpr std::string_view tangent_free_suffix = "-tangent-free";
+    if (base.size() > tangent_free_suffix.size() && base.ends_with(tangent_free_suffix)) {
+      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
+      if (variant && has_tangent_free_form(*variant)) base = variant->id;
+    }
     if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
       throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
                               index, id.substr(0, 40)));
@@ -560,9 +566,13 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
                                                  : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
         std::vector<std::pair<double, const Variant*>> ranked;
         for (const Variant* variant : eligible) {
+          // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+          const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
+                                         ? variant->id + "-tangent-free"
+                                         : variant->id;
           const auto value = !speed              ? table->error(variant->id)
-                             : table_has_isa     ? table->isa_cost(variant->id, family)
-                                                 : committed_isa_costs().forward_ratio(family, variant->id, manifest.targets);
+                             : table_has_isa     ? table->isa_cost(costed, family)
+                                                 : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
           if (value) ranked.emplace_back(*value, variant);
         }
         // Ties keep the rule's choice first, then catalogue order.

@@ -64,8 +64,8 @@ bool is_engine_configuration(const std::string& configuration);
 std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time);
 // The ISA inverse-throughput ratio of a configuration (VariantCost::isa_ratio), same conventions.
 std::optional<double> configuration_isa_cost(const CostTable* costs, const std::string& configuration);
-// Whether a's cost is at most b's (the ISA ratio when both have one, else the SPIR-V delta, else
-// the time ratio; true when none is known, and the caller says so).
+// Whether a's cost is at most b's (the ISA ratio when both have one, within kIsaTieTolerance;
+// else the SPIR-V delta, else the time ratio; true when none is known, and the caller says so).
 bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
 
 struct Recommendation {
