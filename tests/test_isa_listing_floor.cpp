@@ -237,6 +237,7 @@ TEST_P(IsaFloor, EmittedWrappersCostNoMoreThanThePapersListings) {
 }
 
 // GFX9 (the paper's RX Vega 56) and RDNA2.
-INSTANTIATE_TEST_SUITE_P(Families, IsaFloor, ::testing::Values("vega10", "navi21"));
+INSTANTIATE_TEST_SUITE_P(Families, IsaFloor, ::testing::Values("vega10", "navi21"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
