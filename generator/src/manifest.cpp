@@ -1,4 +1,5 @@
 #include "saagen/manifest.hpp"
+#include "saagen/planner.hpp"
 
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
@@ -449,7 +450,7 @@ std::string Manifest::where(SourcePosition position) const {
 
 const std::vector<std::string>& manifest_keys() {
   static const std::vector<std::string> keys = [] {
-    std::vector<std::string> names = {"name", "targets", "prefix"};
+    std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family"};
     for (const Constant& constant : Catalogue::builtin().constants()) {
       if (!constant.option.empty()) names.push_back(constant.option);
     }
@@ -503,6 +504,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
     manifest.name = *name;
   }
 
+  if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
   read_options(manifest, top, catalogue);
   read_materials(manifest, top, catalogue);
   return manifest;

@@ -15,6 +15,10 @@
 #include <cmath>
 
 namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -271,6 +275,82 @@ std::optional<double> TradeTable::cost(std::string_view variant) const {
 
 std::optional<double> TradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &TradeRow::error); }
 
+std::optional<double> TradeTable::isa_cost(std::string_view variant, std::string_view family) const {
+  std::vector<TradeRow> of_family;
+  for (const TradeRow& row : rows) {
+    if (row.isa_family == family) of_family.push_back(row);
+  }
+  return mean_of(of_family, variant, &TradeRow::isa_ratio);
+}
+
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
+  double sum = 0.0;
+  int count = 0;
+  for (const IsaRow& row : rows) {
+    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
+    if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
+    sum += row.inverse_throughput_ratio;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name) {
+  IsaTable table;
+  table.source_name = std::string(source_name);
+  const auto fail = [&](std::string_view what) {
+    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
+  };
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    fail(fmt::format("not valid JSON (byte {})", error.byte));
+  }
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
+      !document["families"].is_array()) {
+    fail("needs \"families\" and \"rows\" arrays");
+  }
+  table.driver = document.value("driver", std::string());
+  for (const auto& family : document["families"]) {
+    if (!family.is_string()) fail("\"families\" must hold strings");
+    table.families.push_back(family.get<std::string>());
+  }
+  for (const auto& row : document["rows"]) {
+    const auto text = [&](const char* key) {
+      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
+      return row[key].get<std::string>();
+    };
+    const auto number = [&](const char* key) {
+      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
+      return row[key].get<double>();
+    };
+    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
+    entry.instructions = number("instructions");
+    entry.vgprs = number("vgprs");
+    entry.sgprs = number("sgprs");
+    entry.subgroups_per_simd = number("subgroups_per_simd");
+    entry.latency = number("latency");
+    entry.inverse_throughput = number("inverse_throughput");
+    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
+    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    table.rows.push_back(std::move(entry));
+  }
+  return table;
+}
+
+const IsaTable& committed_isa_costs() {
+  static const IsaTable table = [] {
+    constexpr const char* name = "generator/data/isa_cost.json";
+    const auto& files = embedded::files();
+    const auto found = files.find(name);
+    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+    return parse_isa_table(found->second, name);
+  }();
+  return table;
+}
+
 bool TradeTable::has_errors() const {
   return std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.error.has_value(); });
 }
@@ -313,6 +393,12 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     entry.cost_ratio = number(row, "ratio_median", index);
     entry.delta_instructions = number(row, "delta_spirv_instructions", index);
     entry.error = number(row, "error", index);
+    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
+    if (entry.isa_ratio) {
+      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+      entry.isa_family = row["isa_family"].get<std::string>();
+      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
+    }
     if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
     if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
     table.rows.push_back(std::move(entry));
@@ -393,9 +479,15 @@ void choose_normal_handling(const TradeTable& table, const std::vector<const Var
 void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
-    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline.
+    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free").
     const std::string& id = table.rows[index].variant;
-    const std::string base = parse_configuration(id).variant;
+    std::string base = parse_configuration(id).variant;
+    constexpr std::string_view tangent_free_suffix = "-tangent-free";
+    if (base.size() > tangent_free_suffix.size() && base.ends_with(tangent_free_suffix)) {
+      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
+      if (variant && has_tangent_free_form(*variant)) base = variant->id;
+    }
     if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
       throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
                               index, id.substr(0, 40)));
@@ -462,25 +554,50 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       plan.variant = rule.variant;
       plan.rule = rule.id;
       plan.reason = rule.why;
-      if (table) {
-        const bool speed = material.prefer == Preference::speed;
+      const bool speed = material.prefer == Preference::speed;
+      if (table || speed) {
+        // Speed: the ISA cost on the manifest's GPU family, from the trade table when it has
+        // figures for that family, else from the committed table. Accuracy: the table's error.
+        const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const TradeRow& row) {
+                                     return row.isa_ratio && row.isa_family == family;
+                                   });
+        const std::string source = table_has_isa ? table->source_name
+                                                 : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
         std::vector<std::pair<double, const Variant*>> ranked;
         for (const Variant* variant : eligible) {
-          if (const auto value = speed ? table->cost(variant->id) : table->error(variant->id)) ranked.emplace_back(*value, variant);
+          // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+          const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
+                                         ? variant->id + "-tangent-free"
+                                         : variant->id;
+          const auto value = !speed              ? table->error(variant->id)
+                             : table_has_isa     ? table->isa_cost(costed, family)
+                                                 : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
+          if (value) ranked.emplace_back(*value, variant);
         }
         // Ties keep the rule's choice first, then catalogue order.
         std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
           if (a.first != b.first) return a.first < b.first;
           return a.second->id == rule.variant && b.second->id != rule.variant;
         });
-        if (!ranked.empty()) {
+        const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+        // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
+        // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
+        // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
+        const auto rule_entry = std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+        const bool rule_ties = speed && !ranked.empty() && rule_entry != ranked.end() &&
+                               rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+        if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
           plan.variant = ranked.front().second->id;
-          plan.rule = "trade table";
-          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", speed ? "cost" : "error", table->source_name,
-                                    describe_choice(ranked, speed ? "cost" : "error"), rule.id, rule.variant);
+          plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, speed ? source : table->source_name,
+                                    describe_choice(ranked, metric), rule.id, rule.variant);
+        } else if (!ranked.empty()) {
+          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
+                                     metric, source, describe_choice(ranked, metric));
         } else {
-          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", table->source_name,
-                                     speed ? "cost" : "error", ids_of(eligible), rule.id);
+          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", speed ? source : table->source_name,
+                                     metric, ids_of(eligible), rule.id);
         }
       }
     }
@@ -543,8 +660,10 @@ std::string rules_text() {
   text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
           "anisotropic = true with tangents = false is rejected; glints = true is rejected (glint snippets come from `saagen glints emit`; the planner does not plan them).\n"
           "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
-          "With --trade-table, prefer = \"speed\" takes the eligible variant of lowest measured cost (ratio_median, else\n"
-          "delta_spirv_instructions) and prefer = \"accuracy\" the one of lowest measured \"error\" when the table has errors.\n";
+          "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
+          "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
+          "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
+          "lowest measured \"error\" when the table has errors.\n";
   return text;
 }
 

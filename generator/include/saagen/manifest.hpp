@@ -49,6 +49,9 @@ struct Manifest {
   std::vector<std::string> targets;
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // only the options the file sets (sigma2, kappa)
+  // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
+  // planner.hpp); empty: kDefaultGpuFamily (vega10).
+  std::string gpu_family;
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.
