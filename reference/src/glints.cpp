@@ -192,7 +192,8 @@ std::int32_t mix(std::int32_t v) {
     return static_cast<std::int32_t>(u);
 }
 
-std::int32_t cell_seed(int i, int j, int level) {
+std::int32_t cell_seed(int i, int j, int level, bool coherent) {
+    if (!coherent) return mix(mix(mix(static_cast<std::int32_t>(static_cast<std::uint32_t>(level) + 1013u)) ^ i) ^ j);
     // (i << level) on 32-bit ints, wrapping like the shader.
     const std::uint32_t si = static_cast<std::uint32_t>(i) << level, sj = static_cast<std::uint32_t>(j) << level;
     return mix(mix(static_cast<std::int32_t>(si + 1013u)) ^ static_cast<std::int32_t>(sj));
@@ -209,8 +210,8 @@ constexpr double kZeta = 2.0;  // the authors' density randomisation (2020 Sec. 
 
 }  // namespace
 
-CellRandom cell_random(int i, int j, int level, int count) {
-    const std::int32_t seed = cell_seed(i, j, level);
+CellRandom cell_random(int i, int j, int level, int count, bool coherent) {
+    const std::int32_t seed = cell_seed(i, j, level, coherent);
     CellRandom random;
     random.dx = (mix(seed) & 2147483647) % count;
     random.dy = (mix(seed ^ 1431655765) & 2147483647) % count;
@@ -235,7 +236,7 @@ int zeta_offset(int u) {
 }
 
 int cell_dictionary_lod(const Params& params, int i, int j, int level) {
-    const std::int32_t seed = cell_seed(i, j, level);
+    const std::int32_t seed = cell_seed(i, j, level, params.coherent_seeds);
     const int area = random_bits(seed, 16711935);
     const int zeta = random_bits(seed, 252645135);
     if (!(area < params.relative_area * 32768.0)) return -1;
@@ -352,7 +353,7 @@ void add_level_cells(const Dictionary& dictionary, Vec2 uv, const FootprintAxes&
             cell.spatial_level = level;
             cell.i = i;
             cell.j = j;
-            cell.random = cell_random(i, j, level, params.count);
+            cell.random = cell_random(i, j, level, params.count, params.coherent_seeds);
             const double angle = 2.0 * kPi * cell.random.turn;
             cell.cos_theta = std::cos(angle);
             cell.sin_theta = std::sin(angle);

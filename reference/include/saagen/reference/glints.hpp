@@ -99,6 +99,9 @@ struct Params {
     double kernel_scale = 0.5;  // s_K (2021 Eq. 19)
     double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
     double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Sec. 5.3)
+    // Level-coherent seeds (2020 Eq. 8), as the templates. false: the seed mixes the level in
+    // (each level draws independently), only to measure what coherence buys under a zoom.
+    bool coherent_seeds = true;
 };
 
 // The dictionary as the shader sees it: its texture (RGBA, 4 distributions per texel; layer =
@@ -138,7 +141,7 @@ std::int32_t mix(std::int32_t v);
 
 // The seed of cell (i, j) at level l: that of its corner child (i 2^l, j 2^l) at level 0, so a
 // cell shares distributions, rotation and LOD offset with that child (2020 Eq. 8, Alg. 3).
-std::int32_t cell_seed(int i, int j, int level);
+std::int32_t cell_seed(int i, int j, int level, bool coherent = true);
 
 // The random choices of cell (i, j) at level l: distributions d_x, d_y in [0, count) and the
 // rotation as a fraction of a turn, (turn - 2^14) / 2^15 in [-1/2, 1/2) (exact in fp32).
@@ -147,7 +150,7 @@ struct CellRandom {
     int dy = 0;
     double turn = 0.0;
 };
-CellRandom cell_random(int i, int j, int level, int count);
+CellRandom cell_random(int i, int j, int level, int count, bool coherent = true);
 
 // round(zeta N(0, 1)), zeta = 2, for a uniform 15-bit integer u, by inverse CDF: the number of
 // thresholds round(32768 Phi((k + 1/2) / zeta)), k = -8..7, that u reaches, minus 8 (2020 Alg. 3).
