@@ -263,7 +263,9 @@ std::vector<Scenario> scenarios(std::size_t count) {
         // Footprint: l_P uniform in [-0.5, 16] (clamped at both ends), random shape.
         const double lod = -0.5 + 16.5 * unit(random);
         const double size = std::exp2(lod - s.log_density * 0.721347520444482);
-        const double angle = 6.283185307179586 * unit(random), shape = 0.2 + 0.8 * unit(random);
+        // One in eight beyond the 8:1 anisotropy clamp (2020 Alg. 1 line 4), the rest up to 5:1.
+        const double angle = 6.283185307179586 * unit(random);
+        const double shape = all.size() % 8 == 1 ? 0.01 + 0.11 * unit(random) : 0.2 + 0.8 * unit(random);
         s.duv_dx = {size * std::cos(angle), size * std::sin(angle)};
         s.duv_dy = {-shape * size * std::sin(angle + 0.3), shape * size * std::cos(angle + 0.3)};
         // Three in four near the uv origin; one in four anywhere in [-0.2, 1.2]^2, where the cell
