@@ -44,7 +44,7 @@ TEST_F(Cli, ListJsonIsTheContract) {
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["prefix"], "eng_");
   EXPECT_EQ(json["core_only_macro"], "ENG_CORE_ONLY");
-  ASSERT_EQ(json["variants"].size(), 13u);
+  ASSERT_EQ(json["variants"].size(), 15u);  // 13 SAA variants, glints, glints-ggaa
   for (const auto& variant : json["variants"]) {
     for (const char* key : {"id", "summary", "paper", "equation", "render_path", "needs_tangents", "domain", "functions"}) {
       EXPECT_TRUE(variant.contains(key)) << key;
@@ -78,7 +78,7 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const fs::path out = scratch_ / "out";
   const CliRun first = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  EXPECT_EQ(files_in(out).size(), 13u);
+  EXPECT_EQ(files_in(out).size(), 15u);  // the glint variants included
   EXPECT_TRUE(files_in(out).count("saa_deferred_avg.hlsl"));
   const auto stamp = fs::last_write_time(out / "saa_deferred_avg.hlsl");
   const std::string bytes = read_text(out / "saa_deferred_avg.hlsl");
@@ -86,10 +86,10 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const CliRun second = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(second.exit_code, 0);
   EXPECT_EQ(second.out.find("wrote"), std::string::npos) << second.out;
-  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 13);
+  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 15);
   EXPECT_EQ(fs::last_write_time(out / "saa_deferred_avg.hlsl"), stamp);  // no needless rebuilds
   EXPECT_EQ(read_text(out / "saa_deferred_avg.hlsl"), bytes);
-  EXPECT_EQ(files_in(out).size(), 13u);  // no temporaries left behind
+  EXPECT_EQ(files_in(out).size(), 15u);  // no temporaries left behind
 }
 
 TEST_F(Cli, EmitSelectedVariantsWithOptions) {
@@ -169,7 +169,7 @@ TEST_F(Cli, RefusesToOverwriteForeignFilesUnlessForced) {
   EXPECT_EQ(read_text(out / "saa_deferred_sum.glsl"), "// my own shader\n");
   const CliRun forced = saagen({"emit", "--force", "-o", out.string()});
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
-  EXPECT_EQ(files_in(out).size(), 13u);
+  EXPECT_EQ(files_in(out).size(), 15u);
 }
 
 TEST_F(Cli, HelpOnEveryCommand) {

@@ -1,4 +1,4 @@
-// Issue 7: `saagen glints emit|validate|dictionary|lean` as whole processes.
+// `saagen glints emit|validate|dictionary|lean`, and the glint variants of `saagen list|emit`, as whole processes.
 #include "saagen/error.hpp"
 #include "saagen/glints.hpp"
 
@@ -37,8 +37,48 @@ TEST_F(GlintCli, EmitsAndValidatesTheSnippets) {
     // A second emission leaves the files alone.
     const auto again = saagen({"glints", "emit", "--kernel-scale", "1", "-o", out.string()});
     EXPECT_NE(again.out.find("unchanged"), std::string::npos);
-    // The SAA commands are unaffected: `saagen list` shows no glint variant.
-    EXPECT_EQ(saagen({"list"}).out.find("glints"), std::string::npos);
+}
+
+// Glints are variants like the others: `saagen list` shows them with the dictionary they read,
+// `saagen emit --variant` writes them for GLSL and HLSL, and a SPIR-V library module (which cannot
+// leave the dictionary binding to its consumer) is refused in one line.
+TEST_F(GlintCli, GlintsAreListedAndEmittedLikeTheOtherVariants) {
+    const auto list = saagen({"list"});
+    ASSERT_EQ(list.exit_code, 0) << list.err;
+    EXPECT_NE(list.out.find("glints-ggaa"), std::string::npos);
+    EXPECT_NE(list.out.find("resources: glint_dictionary"), std::string::npos) << list.out;
+    const auto json = nlohmann::json::parse(saagen({"list", "--json"}).out);
+    const auto ggaa = std::find_if(json["variants"].begin(), json["variants"].end(), [](const auto& v) { return v["id"] == "glints-ggaa"; });
+    ASSERT_NE(ggaa, json["variants"].end());
+    EXPECT_EQ((*ggaa)["paper"].get<std::string>().rfind("Chermain", 0), 0u);
+    EXPECT_FALSE((*ggaa)["equation"].get<std::string>().empty());
+    EXPECT_EQ((*ggaa)["render_path"], "forward");
+    ASSERT_EQ((*ggaa)["resources"].size(), 1u);
+    EXPECT_EQ((*ggaa)["resources"][0]["name"], "glint_dictionary");
+    EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["glsl"].get<std::string>().find("sampler1DArray"), std::string::npos);
+    EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["hlsl"].get<std::string>().find("Texture1DArray"), std::string::npos);
+    for (const auto& variant : json["variants"]) {
+        if (variant["id"].get<std::string>().rfind("glints", 0) != 0) EXPECT_TRUE(variant["resources"].empty()) << variant["id"];
+    }
+
+    const fs::path out = scratch_ / "emitted";
+    for (const std::string target : {"glsl", "hlsl"}) {
+        const auto run = saagen({"emit", "--target", target, "--variant", "glints-ggaa", "-o", out.string()});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+    }
+    EXPECT_TRUE(fs::exists(out / "saa_glints_ggaa.glsl"));
+    EXPECT_TRUE(fs::exists(out / "saa_glints_ggaa.hlsl"));
+    const auto validate = saagen({"validate", out.string()});
+    EXPECT_EQ(validate.exit_code, 0) << validate.out << validate.err;
+
+    const auto spirv = saagen({"emit", "--target", "spirv", "--variant", "glints-ggaa", "-o", (scratch_ / "spv").string()});
+    EXPECT_NE(spirv.exit_code, 0);
+    EXPECT_NE(spirv.err.find("glint_dictionary"), std::string::npos) << spirv.err;
+    EXPECT_EQ(std::count(spirv.err.begin(), spirv.err.end(), '\n'), 1) << spirv.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "spv"));
+    const auto every = saagen({"emit", "--target", "spirv", "-o", (scratch_ / "spv_all").string()});
+    ASSERT_EQ(every.exit_code, 0) << every.err;
+    EXPECT_EQ(every.out.find("glints"), std::string::npos) << every.out;
 }
 
 TEST_F(GlintCli, RejectsBadOptionsInOneLine) {

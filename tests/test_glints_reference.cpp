@@ -151,7 +151,7 @@ TEST(GlintHash, SeedsAreCoherentAcrossLevels) {
     }
 }
 
-// Chermain et al. 2020 Sec. 5.3, Alg. 3: the dictionary LOD is round(log4 n + zeta N(0, 1)), zeta = 2,
+// Chermain et al. 2020 Alg. 3 lines 5-9: the dictionary LOD is round(log4 n + zeta N(0, 1)), zeta = 2,
 // and a cell is empty with probability 1 - relative area.
 TEST(GlintHash, DensityRandomisationAndRelativeArea) {
     // Thresholds: the templates spell them as literals; they are 32768 Phi((k + 1/2) / 2).
@@ -188,7 +188,7 @@ TEST(GlintHash, DensityRandomisationAndRelativeArea) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Glint contrast (Chermain et al. 2020 Secs. 5.2-5.3): the spread of P22(slope; P) over surface
+// Glint contrast (Chermain et al. 2020 Alg. 1-3): the spread of P22(slope; P) over surface
 // positions, for an isotropic footprint and an 8:1 one of the same major axis. The level comes
 // from the minor axis, so the 8:1 footprint reads cells three levels finer and sparkles more;
 // zeta mixes dictionary LODs within a level. Before the anisotropic footprint and zeta (the

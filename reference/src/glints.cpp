@@ -206,7 +206,7 @@ int random_bits(std::int32_t seed, std::int32_t salt) {
     return static_cast<int>((static_cast<std::uint32_t>(mix(seed ^ salt)) >> 17) & 32767u);
 }
 
-constexpr double kZeta = 2.0;  // the authors' density randomisation (2020 Sec. 5.3)
+constexpr double kZeta = 2.0;  // the authors' density randomisation (2020 Alg. 3)
 
 }  // namespace
 

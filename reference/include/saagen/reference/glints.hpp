@@ -98,7 +98,7 @@ struct Params {
     double alpha_dict = 0.5;    // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
     double kernel_scale = 0.5;  // s_K (2021 Eq. 19)
     double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
-    double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Sec. 5.3)
+    double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Alg. 3)
     // Level-coherent seeds (2020 Eq. 8), as the templates. false: the seed mixes the level in
     // (each level draws independently), only to measure what coherence buys under a zoom.
     bool coherent_seeds = true;
@@ -159,7 +159,7 @@ int zeta_offset(int u);
 std::array<int, 16> zeta_thresholds();
 
 // The dictionary LOD of cell (i, j) at level l: clamp(l + zeta_offset, 0, L - 1), or -1 when the
-// cell is empty (probability 1 - relative_area) (2020 Sec. 5.3, Alg. 3 lines 3-9).
+// cell is empty (probability 1 - relative_area) (2020 Alg. 3 lines 3-9).
 int cell_dictionary_lod(const Params& params, int i, int j, int level);
 
 // A^-1 v (Eq. 18 without the rotation) and det M = det A.
