@@ -109,7 +109,7 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   ASSERT_EQ(saagen({"emit", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
   const CliRun good = saagen({"validate", out.string()});
   EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
-  EXPECT_NE(good.out.find("26 file(s) validated, 0 failed"), std::string::npos) << good.out;
+  EXPECT_NE(good.out.find("30 file(s) validated, 0 failed"), std::string::npos) << good.out;
 
   // A hand edit that breaks the code is caught and named.
   const fs::path edited = out / "saa_deferred_max.hlsl";
@@ -119,13 +119,13 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const CliRun bad = saagen({"validate", out.string()});
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.out.find("FAIL " + edited.string()), std::string::npos) << bad.out;
-  EXPECT_NE(bad.out.find("26 file(s) validated, 1 failed"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("30 file(s) validated, 1 failed"), std::string::npos) << bad.out;
 }
 
 TEST_F(Cli, ValidateWithoutDirectoryChecksEverything) {
   const CliRun run = saagen({"validate"});
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
-  EXPECT_NE(run.out.find("26 file(s) validated, 0 failed"), std::string::npos);
+  EXPECT_NE(run.out.find("30 file(s) validated, 0 failed"), std::string::npos);
 }
 
 TEST_F(Cli, RejectsBadInputWithOneLineAndWritesNothing) {
