@@ -81,6 +81,50 @@ TEST_F(GlintCli, GlintsAreListedAndEmittedLikeTheOtherVariants) {
     EXPECT_EQ(every.out.find("glints"), std::string::npos) << every.out;
 }
 
+// A scene manifest with glints = true: the planner picks the glint variant (GGAA for accuracy,
+// the textureLod baseline for speed) with lean_roughness for normal maps, and `emit --manifest`
+// writes the dictionary next to the bundle.
+TEST_F(GlintCli, ManifestWithGlintsPlansTheGlintVariantAndWritesTheDictionary) {
+    const fs::path manifest = scratch_ / "glints.toml";
+    std::ofstream(manifest) << "name = \"sparkle\"\ntargets = [\"glsl\", \"hlsl\"]\n"
+                               "[[material]]\nname = \"paint\"\npath = \"forward\"\ntangents = true\nnormal_maps = true\nglints = true\n"
+                               "[[material]]\nname = \"flakes\"\npath = \"forward\"\ntangents = true\nglints = true\nprefer = \"speed\"\n"
+                               "[[material]]\nname = \"ground\"\npath = \"deferred\"\n";
+    const auto plan = saagen({"plan", manifest.string()});
+    ASSERT_EQ(plan.exit_code, 0) << plan.err;
+    EXPECT_NE(plan.out.find("variant   glints-ggaa  [G1]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("variant   glints  [G2]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("saa_sparkle_glint_dictionary.ktx2"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("variant   deferred-avg"), std::string::npos) << plan.out;
+
+    const fs::path out = scratch_ / "bundle";
+    const auto emit = saagen({"emit", "--manifest", manifest.string(), "-o", out.string()});
+    ASSERT_EQ(emit.exit_code, 0) << emit.err;
+    const std::string bundle = read_text(out / "saa_sparkle.glsl");
+    for (const char* function : {"saa_glint_brdf_filtered_fragment", "saa_glint_brdf_fragment", "saa_lean_roughness", "saa_glint_dictionary_grad_value"}) {
+        EXPECT_NE(bundle.find(function), std::string::npos) << function;
+    }
+    const std::string bytes = read_text(out / "saa_sparkle_glint_dictionary.ktx2");
+    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    EXPECT_EQ(image.width, 64u);
+    EXPECT_EQ(image.layers, 16u * 192u / 4u);
+    const auto validate = saagen({"validate", out.string()});
+    EXPECT_EQ(validate.exit_code, 0) << validate.out << validate.err;
+    // Unchanged on a second run.
+    const auto again = saagen({"emit", "--manifest", manifest.string(), "-o", out.string()});
+    EXPECT_EQ(again.out.find("wrote"), std::string::npos) << again.out;
+
+    // glints = true on a deferred material: one line with the file position, nothing written.
+    const fs::path bad = scratch_ / "bad.toml";
+    std::ofstream(bad) << "name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nglints = true\n";
+    const auto rejected = saagen({"emit", "--manifest", bad.string(), "-o", (scratch_ / "bad_out").string()});
+    EXPECT_NE(rejected.exit_code, 0);
+    EXPECT_NE(rejected.err.find("bad.toml:6:"), std::string::npos) << rejected.err;
+    EXPECT_NE(rejected.err.find("glints = true needs path = \"forward\" and tangents = true"), std::string::npos) << rejected.err;
+    EXPECT_EQ(std::count(rejected.err.begin(), rejected.err.end(), '\n'), 1) << rejected.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "bad_out"));
+}
+
 TEST_F(GlintCli, RejectsBadOptionsInOneLine) {
     const auto run = saagen({"glints", "emit", "--count", "98", "-o", (scratch_ / "x").string()});
     EXPECT_NE(run.exit_code, 0);
