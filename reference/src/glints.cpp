@@ -239,7 +239,7 @@ int cell_dictionary_lod(const Params& params, int i, int j, int level) {
     const std::int32_t seed = cell_seed(i, j, level, params.coherent_seeds);
     const int area = random_bits(seed, 16711935);
     const int zeta = random_bits(seed, 252645135);
-    if (!(area < params.relative_area * 32768.0)) return -1;
+    if (!(area < static_cast<int>(params.relative_area * 32768.0))) return -1;  // an integer comparison, as the templates
     return std::clamp(level + zeta_offset(zeta), 0, params.lods - 1);
 }
 
