@@ -16,9 +16,9 @@
 // Added to it, T = max |f' - f| over the reference f' whose transcendentals sit at either end of
 // what the Vulkan specification allows ("Precision and Operation of SPIR-V Instructions"): the
 // footprint LOD's log2(size) off by 3 ulp (|log2 size| 3 2^-23; 2^-21 absolute inside [0.5, 2]),
-// the cell scale exp2(x), x = log_density / (2 ln 2) - level (up to ~14), off by a factor
-// 1 +- (3 + 2|x|) 2^-23 (g::Dictionary::log2_side, exp2_side): up to ~30 ulp, far more than the
-// 2^-21 input perturbations cover. Division (2.5 ulp), inversesqrt (2 ulp) and sqrt (inherited)
+// the cell scale exp2(x), x = log_density / (2 ln 2) - level (up to ~14), and the EWA weights
+// exp(-2 r^2), off by a factor 1 +- (3 + 2|x|) 2^-23 (g::Dictionary::log2_side, exp2_side): up
+// to ~30 ulp, far more than the 2^-21 input perturbations cover. Division (2.5 ulp), inversesqrt (2 ulp) and sqrt (inherited)
 // stay within the 4e-6 |f| term and the perturbations.
 //
 // The sampler itself is held to what the Vulkan specification lets any implementation do

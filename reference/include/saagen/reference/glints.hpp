@@ -118,10 +118,10 @@ struct Dictionary {
     // The precision the Vulkan specification grants the shader's transcendentals (section
     // "Precision and Operation of SPIR-V Instructions"), applied at the end of the allowance given
     // by the sign (-1, 0 = exact, +1); the tests take the change of the result as part of their
-    // bound. log2_side: the footprint LOD's log2(size) off by 3 ulp of the result outside
+    // bound. log2_side: the footprint LOD's log2(|minor axis|) off by 3 ulp of the result outside
     // [0.5, 2] (at most 3 2^-23 |log2 size|), by 2^-21 absolute inside. exp2_side: the cell
-    // scale exp2(x), x = log_density / (2 ln 2) - level, off by (3 + 2|x|) ulp, i.e. by a
-    // factor 1 +- (3 + 2|x|) 2^-23.
+    // scale exp2(x), x = log_density / (2 ln 2) - level, and the EWA weights exp(x), x = -2 r^2,
+    // off by (3 + 2|x|) ulp, i.e. by a factor 1 +- (3 + 2|x|) 2^-23.
     int log2_side = 0;
     int exp2_side = 0;
 };
