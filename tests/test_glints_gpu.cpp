@@ -382,9 +382,18 @@ struct SnippetCase {
     std::string target;
     std::string variant;
     std::string function;
+    // Emission options other than the defaults (the reference gets the same).
+    double relative_area = 1.0;
+    double max_anisotropy = 8.0;
 };
 
 void PrintTo(const SnippetCase& c, std::ostream* os) { *os << c.target << " " << c.function; }
+
+g::Dictionary configured(g::Dictionary dictionary, const SnippetCase& c) {
+    dictionary.params.relative_area = c.relative_area;
+    dictionary.params.max_anisotropy = c.max_anisotropy;
+    return dictionary;
+}
 
 class GlintSnippetOnGpu : public ::testing::TestWithParam<SnippetCase> {};
 
@@ -398,6 +407,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     saagen::EmitOptions options;
     options.target = c.target;
     options.variants = {c.variant};
+    options.option_values = {{"glint_relative_area", c.relative_area}, {"glint_max_anisotropy", c.max_anisotropy}};
     const auto file = saagen::glints::emit(options).front();
     saagen::KernelRequest request;
     request.body = saagen::load_call_store_body(catalogue, c.function, request);
@@ -417,7 +427,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     // Nominal: the exact LOD rule. Low / high: every lookup at the end of what the spec allows.
     // On lavapipe, the tight check feeds the reference lavapipe's LOD arithmetic.
     const bool lavapipe = on_lavapipe();
-    g::Dictionary dictionary = saagen::test::default_reference_dictionary(g::LodModel::exact);
+    g::Dictionary dictionary = configured(saagen::test::default_reference_dictionary(g::LodModel::exact), c);
     const auto reference = reference_functions(dictionary).at(c.function);
     g::Dictionary low_dictionary = dictionary, high_dictionary = dictionary;
     low_dictionary.tolerance = high_dictionary.tolerance = &spec_tolerance();
@@ -425,13 +435,13 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     high_dictionary.side = 1;
     const auto low_reference = reference_functions(low_dictionary).at(c.function);
     const auto high_reference = reference_functions(high_dictionary).at(c.function);
-    const auto lavapipe_reference = reference_functions(saagen::test::default_reference_dictionary(g::LodModel::lavapipe)).at(c.function);
+    const auto lavapipe_reference = reference_functions(configured(saagen::test::default_reference_dictionary(g::LodModel::lavapipe), c)).at(c.function);
     // The reference with the footprint's log2 and the cell scale's exp2 at either end of the
     // spec's allowance (g::Dictionary::log2_side, exp2_side), for the transcendental term.
     std::vector<ReferenceFunction> transcendental_references;
     for (const int log2_side : {-1, 1}) {
         for (const int exp2_side : {-1, 1}) {
-            g::Dictionary d = saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+            g::Dictionary d = configured(saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact), c);
             d.log2_side = log2_side;
             d.exp2_side = exp2_side;
             transcendental_references.push_back(reference_functions(d).at(c.function));
@@ -654,11 +664,14 @@ std::vector<SnippetCase> snippet_cases() {
         cases.push_back({target, "glints-ggaa", "glint_brdf_filtered"});
         cases.push_back({target, "glints-ggaa", "lean_roughness"});
     }
+    // The relative area (half the cells empty) and a lower anisotropy clamp.
+    cases.push_back({"glsl", "glints-ggaa", "glint_sdf_filtered", 0.5, 4.0});
     return cases;
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFunction, GlintSnippetOnGpu, ::testing::ValuesIn(snippet_cases()), [](const auto& info) {
-    return info.param.target + "_" + info.param.function;
+    const bool defaults = info.param.relative_area == 1.0 && info.param.max_anisotropy == 8.0;
+    return info.param.target + "_" + info.param.function + (defaults ? "" : "_area_half_anisotropy_4");
 });
 
 }  // namespace
