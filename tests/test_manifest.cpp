@@ -203,8 +203,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"no_material", header,
                 "scene.toml:1:1: missing key 'material'; allowed: an array of tables, one [[material]] per material"},
         BadCase{"glints", header + forward_material + "glints = true\n",
-                "scene.toml:5:10: key 'glints' of material 'm': the planner does not plan glint filtering; emit the glint "
-                "snippets with `saagen glints emit`; allowed: false"},
+                "scene.toml:5:10: key 'glints' of material 'm': the glinty BRDF is evaluated per light in the tangent frame: "
+                "glints = true needs path = \"forward\" and tangents = true; allowed: false, or true with path = \"forward\" and "
+                "tangents = true"},
         BadCase{"fp16_unknown_precision", header + forward_material + "precision = \"fp64\"\n",
                 "scene.toml:5:13: key 'precision' of material 'm': unknown value \"fp64\"; allowed: \"fp32\", \"fp16\""},
         BadCase{"bundle_name_collides", header + "name = \"deferred_sum\"\n" + forward_material,

@@ -3,10 +3,12 @@
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/glints.hpp"
 #include "saagen/input.hpp"
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
 #include "saagen/spirv_library.hpp"
+#include "saagen/target.hpp"
 #include "saagen/validation.hpp"
 #include "arguments.hpp"
 #include "pass_commands.hpp"
@@ -53,6 +55,11 @@ int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
     std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
                              variant.needs_tangents ? "yes" : "no", variant.summary);
     std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
+    const auto resources = saagen::resources_used(saagen::builtin_target("glsl"), catalogue, variant.functions);
+    if (!resources.empty()) {
+      std::cout << fmt::format("{:<26} resources: {} (declared by the including shader; `saagen list --json` shows how)\n", "",
+                               fmt::join(resources, ", "));
+    }
     for (const std::string& name : variant.functions) {
       const saagen::Function& function = *catalogue.find_function(name);
       std::vector<std::string> parameters;
@@ -62,6 +69,30 @@ int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
     }
   }
   return 0;
+}
+
+// The variants a SPIR-V library module can hold: a module cannot leave a resource (the glint
+// dictionary) for its consumer to declare, so those variants are left out of "all variants" and
+// rejected when named.
+std::vector<std::string> spirv_library_variants(const Catalogue& catalogue, const std::vector<std::string>& named) {
+  const saagen::TargetSyntax& glsl = saagen::builtin_target("glsl");
+  const auto reads_resource = [&](const saagen::Variant& variant) { return !saagen::resources_used(glsl, catalogue, variant.functions).empty(); };
+  std::vector<std::string> ids;
+  for (const saagen::Variant& variant : catalogue.variants()) {
+    const bool asked = named.empty() || std::find(named.begin(), named.end(), variant.id) != named.end();
+    if (!asked) continue;
+    if (!reads_resource(variant)) {
+      ids.push_back(variant.id);
+    } else if (!named.empty()) {
+      throw saagen::Error(fmt::format("--variant {}: a SPIR-V library module cannot leave the {} binding to the including shader; "
+                                      "emit it with --target glsl or hlsl",
+                                      variant.id, fmt::join(saagen::resources_used(glsl, catalogue, variant.functions), ", ")));
+    }
+  }
+  for (const std::string& id : named) {
+    if (!catalogue.find_variant(id)) ids.push_back(id);  // unknown ids keep the emitter's own message
+  }
+  return ids;
 }
 
 int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
@@ -78,6 +109,7 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
 
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {
+    options.variants = spirv_library_variants(catalogue, options.variants);
     // Issue 8: per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
@@ -203,7 +235,7 @@ int main(int argc, char** argv) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
-  const saagen::cli::GlintCommands glints(app);  // issue 7: `saagen glints ...`
+  const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
   // The speed/accuracy trade (issue 4): `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
   // The deferred roughness-limiter pass (issue 8): `pass`; see pass_commands.cpp.
@@ -225,7 +257,10 @@ int main(int argc, char** argv) {
 
   try {
     const Catalogue& catalogue = Catalogue::builtin();
-    if (*list) return run_list(catalogue, list_json, list_prefix);
+    // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
+    // the other commands keep the screen-space SAA catalogue.
+    const Catalogue& every_variant = saagen::glints::catalogue();
+    if (*list) return run_list(every_variant, list_json, list_prefix);
     if (*emit && scene.emit_from_manifest()) {
       saagen::cli::check_output_named("--output", emit_arguments.output_directory);
       return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
@@ -237,9 +272,9 @@ int main(int argc, char** argv) {
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
       if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
-      return run_emit(catalogue, emit_arguments);
+      return run_emit(every_variant, emit_arguments);
     }
-    if (*validate) return run_validate(catalogue, validate_directory);
+    if (*validate) return run_validate(every_variant, validate_directory);
     if (glints.requested()) return glints.run();
     if (deferred_pass.requested()) return deferred_pass.run(catalogue);
     if (texture.requested()) return texture.run();

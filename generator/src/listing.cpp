@@ -2,6 +2,9 @@
 
 #include "saagen/emitter.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
+
+#include <algorithm>
 
 namespace saagen {
 namespace {
@@ -31,6 +34,23 @@ Json function_json(const Function& function, std::string_view prefix) {
           {"parameters", parameters}};
 }
 
+// The resources a variant's functions read (the glint dictionary): per target the declaration
+// that the including shader provides in the validation skeletons, as an example of the binding.
+Json resources_json(const Catalogue& catalogue, const Variant& variant, std::string_view prefix) {
+  Json resources = Json::array();
+  std::vector<std::string> names;
+  Json declarations = Json::object();
+  for (const std::string& target_name : builtin_target_names()) {
+    const TargetSyntax target = builtin_target(target_name).with_prefix(prefix, macro_prefix(prefix));
+    for (const std::string& name : resources_used(target, catalogue, variant.functions)) {
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+      declarations[name][target_name] = target.resources.find(name)->second.declaration;
+    }
+  }
+  for (const std::string& name : names) resources.push_back({{"name", name}, {"example_declaration", declarations[name]}});
+  return resources;
+}
+
 }  // namespace
 
 nlohmann::json catalogue_json(const Catalogue& catalogue, std::string_view prefix) {
@@ -45,6 +65,7 @@ nlohmann::json catalogue_json(const Catalogue& catalogue, std::string_view prefi
                         {"render_path", std::string(to_string(variant.path))},
                         {"needs_tangents", variant.needs_tangents},
                         {"domain", variant.domain},
+                        {"resources", resources_json(catalogue, variant, prefix)},
                         {"functions", functions}});
   }
   Json options = Json::array();

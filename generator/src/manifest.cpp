@@ -5,6 +5,7 @@
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -226,8 +227,11 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   material.tangents = reader.boolean("tangents").value_or(false);
   if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
   material.normal_maps = reader.boolean("normal_maps").value_or(false);
-  if (reader.boolean("glints").value_or(false)) {
-    reader.fail_key("glints", "the planner does not plan glint filtering; emit the glint snippets with `saagen glints emit`", "false");
+  material.glints = reader.boolean("glints").value_or(false);
+  if (material.glints && (material.path != RenderPath::forward || !material.tangents)) {
+    reader.fail_key("glints",
+                    "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
+                    "false, or true with path = \"forward\" and tangents = true");
   }
   if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
@@ -241,7 +245,9 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
       return std::any_of(variant.functions.begin(), variant.functions.end(),
                          [&](const std::string& function) { return catalogue.find_function(function)->role == role; });
     };
-    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment)) filters.push_back(variant.id);
+    // Variants that read a resource (the glint dictionary) are planned through `glints = true`.
+    const bool reads_resource = !resources_used(builtin_target("glsl"), catalogue, variant.functions).empty();
+    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment) && !reads_resource) filters.push_back(variant.id);
   }
   if (const auto variant = reader.string("variant", quoted_list(filters))) {
     if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
@@ -250,6 +256,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
                       fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
                       quoted_list(filters));
     }
+    if (material.glints) reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
     material.variant = *variant;
   }
 

@@ -5,6 +5,7 @@
 #include "saagen/input.hpp"
 #include "saagen/kernels.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -119,10 +120,18 @@ std::string ineligibility(const Variant& variant, const Material& material) {
   return {};
 }
 
+// The resources (the glint dictionary) a variant's functions read; such a variant is planned
+// only for a material that asks for it (glints = true), never as a screen-space filter.
+std::vector<std::string> variant_resources(const Catalogue& catalogue, const Variant& variant) {
+  return resources_used(builtin_target("glsl"), catalogue, variant.functions);
+}
+
 std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
   std::vector<const Variant*> eligible;
   for (const Variant& variant : catalogue.variants()) {
-    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty()) eligible.push_back(&variant);
+    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+      eligible.push_back(&variant);
+    }
   }
   return eligible;
 }
@@ -171,6 +180,35 @@ void choose_functions(const Catalogue& catalogue, const Material& material, Mate
 SourcePosition key_position(const Material& material, std::string_view key) {
   const auto found = material.positions.find(key);
   return found != material.positions.end() ? found->second : material.position;
+}
+
+// The glint rules: the glinty BRDF (Chermain et al. 2020, with the 2021 slope correlation) is
+// the material's specular BRDF; accuracy takes GGAA, speed the textureLod baseline.
+constexpr const char* kGlintAccuracyReason =
+    "glints = true, prefer accuracy: GGAA (textureGrad on the dictionary's MIP chain) lowers RMSE and flicker against a 1024-spp "
+    "ground truth on both measured curved scenes (docs/GLINTS.md)";
+constexpr const char* kGlintSpeedReason =
+    "glints = true, prefer speed: the textureLod baseline, about 1.7x faster than GGAA on lavapipe, with more glint aliasing on "
+    "curved surfaces (docs/GLINTS.md)";
+
+void plan_glints(const Catalogue& catalogue, const Manifest& manifest, const Material& material, MaterialPlan& plan) {
+  const bool speed = material.prefer == Preference::speed;
+  plan.variant = speed ? "glints" : "glints-ggaa";
+  plan.rule = speed ? "G2" : "G1";
+  plan.reason = speed ? kGlintSpeedReason : kGlintAccuracyReason;
+  const Variant* variant = catalogue.find_variant(plan.variant);
+  if (!variant || variant_resources(catalogue, *variant).empty()) {
+    throw Error(manifest.where(key_position(material, "glints")) +
+                fmt::format("key 'glints' of material '{}': this catalogue has no glint variant \"{}\"; plan with the full catalogue "
+                            "(saagen::glints::catalogue())",
+                            material.name, plan.variant));
+  }
+  if (material.normal_maps) {
+    plan.prefilter = "lean";
+    plan.normal_advice =
+        "LEAN: write the normal map's moments with `saagen glints lean`, sample both layers with the footprint, and pass "
+        "lean_roughness(alpha, mean, second) as roughness and the mean as mean_slope";
+  }
 }
 
 std::string fixed(double value) { return fmt::format("{:.4g}", value); }
@@ -533,6 +571,13 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     MaterialPlan plan;
     plan.material = material.name;
     plan.precision = material.precision;
+    if (material.glints) {
+      plan_glints(catalogue, manifest, material, plan);
+      choose_functions(catalogue, material, plan);
+      plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
+      scene.materials.push_back(std::move(plan));
+      continue;
+    }
     const auto eligible = eligible_variants(catalogue, material);
 
     if (material.variant) {
@@ -632,6 +677,7 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
   for (std::size_t index = 0; index < plan.materials.size(); ++index) {
     MaterialPlan& material_plan = plan.materials[index];
     const Material& material = manifest.materials.at(index);
+    if (material.glints) continue;  // no SAA filter to cost: the glinty BRDF replaces the BRDF (docs/GLINTS.md, cost)
     const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
     BundleRequest request;
     request.name = "cost_" + material.name;
@@ -658,7 +704,9 @@ std::string rules_text() {
                         rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
   text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
-          "anisotropic = true with tangents = false is rejected; glints = true is rejected (glint snippets come from `saagen glints emit`; the planner does not plan them).\n"
+          "anisotropic = true with tangents = false is rejected.\n"
+          "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
+          "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
           "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
           "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
           "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
@@ -682,6 +730,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     if (material.normal_maps) traits.push_back("normal maps");
     traits.push_back(material.precision);
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
+    if (material.glints) traits.push_back("glints");
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
@@ -691,7 +740,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
     text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
                         wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
-    if (material_plan.brdf) {
+    if (material.glints) {
+      text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
+      text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+                          glint_dictionary_file_name(manifest));
+    } else if (material_plan.brdf) {
       text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
                           prefixed_name(manifest.prefix, "ndf_clamp_tau"));
     } else {
@@ -748,6 +801,16 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
     }
   }
   return files;
+}
+
+}  // namespace saagen
+
+namespace saagen {
+
+std::string glint_dictionary_file_name(const Manifest& manifest) { return manifest.prefix + manifest.name + "_glint_dictionary.ktx2"; }
+
+bool plans_glints(const Manifest& manifest) {
+  return std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.glints; });
 }
 
 }  // namespace saagen

@@ -63,7 +63,7 @@ std::string stage_name(ShaderStage stage) {
 
 }  // namespace
 
-std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
+std::vector<std::string> resources_used(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
   if (target.resources.empty()) return {};
   std::vector<std::string> used;
   for (const Function* function : catalogue.closure(roots)) {
@@ -74,13 +74,19 @@ std::string resource_declarations(const TargetSyntax& target, const Catalogue& c
       }
     }
   }
-  std::string declarations;
+  std::vector<std::string> names;
   for (const auto& [name, resource] : target.resources) {
     const bool needed = std::any_of(resource.intrinsics.begin(), resource.intrinsics.end(), [&](const std::string& intrinsic) {
       return std::find(used.begin(), used.end(), intrinsic) != used.end();
     });
-    if (needed) declarations += resource.declaration;
+    if (needed) names.push_back(name);
   }
+  return names;
+}
+
+std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
+  std::string declarations;
+  for (const std::string& name : resources_used(target, catalogue, roots)) declarations += target.resources.find(name)->second.declaration;
   return declarations;
 }
 

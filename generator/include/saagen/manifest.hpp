@@ -34,7 +34,7 @@ struct Material {
   bool tangents = false;
   Ndf ndf = Ndf::ggx;
   bool normal_maps = false;
-  bool glints = false;                 // always false after parsing: glints are not available yet
+  bool glints = false;                 // the glinty BRDF (forward, tangents): the planner picks a glint variant
   std::string precision = "fp32";      // "fp32" or "fp16" (per target: see target_precision)
   Preference prefer = Preference::accuracy;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules

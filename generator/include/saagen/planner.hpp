@@ -13,6 +13,9 @@
 //   D1    deferred  any          any       accuracy  deferred-avg             -
 //   D2    deferred  any          any       speed     deferred-avg             -
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
+//   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
+//   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
+//   (glint variants need saagen::glints::catalogue(); their dictionary goes next to the bundle)
 //
 // `speed` picks the eligible variant of lowest GPU cost: ACO's inverse-throughput ratio of the
 // forward-shading shader with the variant over the same shader without SAA, on the manifest's
@@ -154,6 +157,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 
 // The emission options of a manifest for one target and precision.
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision);
+
+// The glint dictionary written next to the bundles when a material has glints = true:
+// <prefix><name>_glint_dictionary.ktx2 (the default dictionary, matching the default options).
+std::string glint_dictionary_file_name(const Manifest& manifest);
+bool plans_glints(const Manifest& manifest);
 
 // One bundle per target and precision used by the materials (fp32 first): files
 // <prefix><name>[_<precision>].<ext>, holding only the closure of the materials' functions.
