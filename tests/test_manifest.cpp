@@ -140,7 +140,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, sigma2, kappa, material"},
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, sigma2, kappa, preset, domain, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,

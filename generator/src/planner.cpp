@@ -1,5 +1,7 @@
 #include "saagen/planner.hpp"
 
+#include "saagen/engines.hpp"
+
 #include "saagen/compiler.hpp"
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
@@ -504,6 +506,7 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
   options.target = target;
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
+  options.domain = manifest.domain;
   const auto form = target_precision(target, precision);
   if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
   options.precision = *form;
@@ -619,8 +622,13 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         for (const std::string& id : material_plan.variants) {
           if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
         }
+        // Under another roughness domain the material calls the wrapper's converting form.
+        const Function* wrapper = catalogue.find_function(material_plan.wrapper);
+        const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
+                                       ? domain_function_name(material_plan.wrapper, manifest.domain)
+                                       : material_plan.wrapper;
         std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
-                                       material_plan.variant, prefixed_name(manifest.prefix, material_plan.wrapper),
+                                       material_plan.variant, prefixed_name(manifest.prefix, called),
                                        material_plan.per_axis ? " once per axis" : "");
         if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
         request.notes.push_back(note);

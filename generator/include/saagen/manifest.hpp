@@ -49,6 +49,10 @@ struct Manifest {
   std::vector<std::string> targets;
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // only the options the file sets (sigma2, kappa)
+  // `preset`: an engine's form (saagen/engines.hpp): its sigma2 and kappa where the file sets
+  // none, its variant for deferred materials that name none, and its roughness domain.
+  std::optional<std::string> preset;
+  std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.

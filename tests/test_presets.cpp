@@ -1,0 +1,209 @@
+// Engine presets and roughness domains on the double-precision reference.
+//
+// Each preset (templates/engines.json) is checked against an independent float64 implementation
+// of that engine's formula, written here from the engine's own math (not from the templates), in
+// the engine's roughness domain, over >= 10^5 inputs; the largest |difference| is printed and
+// recorded. saagen's side is the reference filter (reference/saa.cpp) with the preset's sigma^2,
+// kappa and variant, wrapped in the reference's domain conversions.
+#include "saagen/engines.hpp"
+#include "saagen/error.hpp"
+#include "saagen/reference/saa.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+
+namespace {
+
+namespace ref = saagen::ref;
+using ref::Vec3;
+using ref::RoughnessDomain;
+
+double clamp01(double x) { return std::min(std::max(x, 0.0), 1.0); }
+double dot3(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The engines' forms, as their shader sources write them (shared/REFERENCES.md lists the files).
+// Unity HDRP, CommonMaterial.hlsl GeometricNormalFiltering: smoothness in and out.
+double hdrp(double smoothness, Vec3 du, Vec3 dv) {
+  const double screen_space_variance = 0.1, threshold = 0.2;
+  const double variance = screen_space_variance * (dot3(du, du) + dot3(dv, dv));
+  const double perceptual_roughness = 1.0 - smoothness;
+  const double roughness = perceptual_roughness * perceptual_roughness;
+  const double squared_roughness = clamp01(roughness * roughness + std::min(2.0 * variance, threshold * threshold));
+  return 1.0 - std::sqrt(std::sqrt(squared_roughness));
+}
+
+// Filament, surface_shading_lit.fs normalFiltering: perceptual roughness in and out; the
+// material's threshold is stored squared; under TAA upscaling the variance is scaled by d^2.
+double filament(double perceptual_roughness, Vec3 du, Vec3 dv, double taa_scale) {
+  const double specular_anti_aliasing_variance = 0.15 * taa_scale * taa_scale;
+  const double specular_anti_aliasing_threshold = 0.2 * 0.2;
+  const double variance = specular_anti_aliasing_variance * (dot3(du, du) + dot3(dv, dv));
+  const double roughness = perceptual_roughness * perceptual_roughness;
+  const double kernel_roughness = std::min(2.0 * variance, specular_anti_aliasing_threshold);
+  const double square_roughness = clamp01(roughness * roughness + kernel_roughness);
+  return std::sqrt(std::sqrt(square_roughness));
+}
+
+// O3DE, PBR/SpecularAA.azsli: alpha^2 in and out, 2 * 0.25 S capped at 0.18.
+double o3de(double alpha2, Vec3 du, Vec3 dv) {
+  const double variance = 0.25 * (dot3(du, du) + dot3(dv, dv));
+  return clamp01(alpha2 + std::min(2.0 * variance, 0.18));
+}
+
+// Bevy's proposal: alpha^2 + min(sigma^2 S, kappa), sigma = 0.5, kappa = 0.18.
+double bevy(double alpha2, Vec3 du, Vec3 dv) {
+  const double sigma = 0.5;
+  return clamp01(alpha2 + std::min(sigma * sigma * (dot3(du, du) + dot3(dv, dv)), 0.18));
+}
+
+// Tokuyoshi's VSGL code (NDFFiltering.hlsli): alpha^2 + min(S / (2 pi), 0.18).
+double vsgl(double alpha2, Vec3 du, Vec3 dv) {
+  const double pi = 3.14159265358979323846;
+  return clamp01(alpha2 + std::min((dot3(du, du) + dot3(dv, dv)) / (2.0 * pi), 0.18));
+}
+
+using EngineForm = std::function<double(double, Vec3, Vec3)>;
+
+std::map<std::string, EngineForm> engine_forms() {
+  return {{"hdrp", hdrp},
+          {"filament", [](double r, Vec3 du, Vec3 dv) { return filament(r, du, dv, 1.0); }},
+          {"filament-taa", [](double r, Vec3 du, Vec3 dv) { return filament(r, du, dv, 0.5); }},
+          {"o3de", o3de},
+          {"bevy", bevy},
+          {"vsgl", vsgl}};
+}
+
+RoughnessDomain reference_domain(const std::string& id) {
+  if (id == "alpha") return RoughnessDomain::alpha;
+  if (id == "perceptual") return RoughnessDomain::perceptual;
+  if (id == "smoothness") return RoughnessDomain::smoothness;
+  return RoughnessDomain::alpha2;
+}
+
+// saagen's side: the preset's variant on the reference, in the preset's domain.
+double saagen_preset(const saagen::Preset& preset, double value, Vec3 du, Vec3 dv) {
+  const ref::Params params{preset.sigma2, preset.kappa};
+  const RoughnessDomain domain = reference_domain(preset.domain);
+  const double alpha2 = ref::alpha2_from_domain(domain, value);
+  double filtered = 0.0;
+  if (preset.variant == "deferred-sum") filtered = ref::deferred_sum(params, alpha2, du, dv);
+  else if (preset.variant == "deferred-avg") filtered = ref::deferred_avg(params, alpha2, du, dv);
+  else ADD_FAILURE() << "no reference dispatch for " << preset.variant;
+  return ref::domain_from_alpha2(domain, filtered);
+}
+
+// Inputs: the roughness uniform in [0, 1] with both ends, derivative magnitudes log-uniform over
+// 1e-4..10 (the kernel below, at and above every cap), random directions.
+struct Input {
+  double value;
+  Vec3 du, dv;
+};
+
+std::vector<Input> inputs(std::size_t count) {
+  std::mt19937_64 random(20261124);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto direction = [&] {
+    const double z = 2.0 * unit(random) - 1.0, phi = 6.283185307179586 * unit(random), r = std::sqrt(1.0 - z * z);
+    return Vec3{r * std::cos(phi), r * std::sin(phi), z};
+  };
+  std::vector<Input> all;
+  for (std::size_t index = 0; index < count; ++index) {
+    const double value = index % 50 == 0 ? 0.0 : index % 50 == 1 ? 1.0 : unit(random);
+    const double m1 = std::pow(10.0, -4.0 + 5.0 * unit(random)), m2 = std::pow(10.0, -4.0 + 5.0 * unit(random));
+    all.push_back({value, m1 * direction(), m2 * direction()});
+  }
+  return all;
+}
+
+}  // namespace
+
+// Every preset named in the issue exists and points at a catalogue variant and domain.
+TEST(Presets, EveryEngineHasAPreset) {
+  for (const char* id : {"hdrp", "filament", "filament-taa", "o3de", "bevy", "vsgl"}) {
+    const saagen::Preset& preset = saagen::find_preset(id);
+    EXPECT_NO_THROW(saagen::find_domain(preset.domain)) << id;
+    EXPECT_TRUE(saagen::Catalogue::builtin().find_variant(preset.variant)) << id;
+  }
+  EXPECT_THROW(saagen::find_preset("unreal"), saagen::Error);
+}
+
+// Same operations up to the order of a few roundings: the difference is a few ulps of the
+// result's scale (values in [0, 1]); r = a^(1/4) divides a relative error of a by 4. 1e-15 is
+// 4.5 ulp of 1 (2^-52 = 2.2e-16), the tolerance shared/REFERENCES.md states the equivalences at.
+TEST(Presets, MatchTheEnginesFormulasInTheirDomain) {
+  const auto forms = engine_forms();
+  const std::vector<Input> all = inputs(200000);
+  for (const saagen::Preset& preset : saagen::presets()) {
+    ASSERT_TRUE(forms.count(preset.id)) << "no engine form written for preset " << preset.id;
+    const EngineForm& engine = forms.at(preset.id);
+    double worst = 0.0;
+    for (const Input& input : all) {
+      const double difference = std::fabs(saagen_preset(preset, input.value, input.du, input.dv) - engine(input.value, input.du, input.dv));
+      worst = std::max(worst, difference);
+    }
+    std::printf("preset %-13s max |difference| %.3g in %s over %zu inputs\n", preset.id.c_str(), worst, preset.domain.c_str(), all.size());
+    ::testing::Test::RecordProperty("max_difference_" + preset.id, std::to_string(worst));
+    EXPECT_LE(worst, 1e-15) << preset.id;
+  }
+}
+
+// The conversions at the ends of the range: 0 and 1 exactly, denormals, the saturation bound,
+// and a round trip through alpha^2 that gives back the value when the kernel is 0.
+TEST(Domains, ExactAtTheEndsOfTheRange) {
+  for (RoughnessDomain domain : {RoughnessDomain::alpha, RoughnessDomain::perceptual, RoughnessDomain::smoothness}) {
+    const bool smooth = domain == RoughnessDomain::smoothness;
+    // Roughness 0 and 1 (smoothness 1 and 0) map to alpha^2 0 and 1 and back, exactly.
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 1.0 : 0.0), 0.0);
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 0.0 : 1.0), 1.0);
+    EXPECT_EQ(ref::domain_from_alpha2(domain, 0.0), smooth ? 1.0 : 0.0);
+    EXPECT_EQ(ref::domain_from_alpha2(domain, 1.0), smooth ? 0.0 : 1.0);
+    // The saturation bound: a filter output of exactly 1 is roughness 1 (smoothness 0).
+    const ref::Params params{0.25, 1.0};
+    const Vec3 huge{10.0, 0.0, 0.0};
+    EXPECT_EQ(ref::domain_from_alpha2(domain, ref::deferred_sum(params, ref::alpha2_from_domain(domain, 0.5), huge, huge)),
+              smooth ? 0.0 : 1.0);
+    // Denormal alpha^2 (below DBL_MIN): finite, in [0, 1], monotone with 0.
+    const double denormal = std::numeric_limits<double>::denorm_min();
+    const double converted = ref::domain_from_alpha2(domain, denormal);
+    EXPECT_TRUE(std::isfinite(converted));
+    EXPECT_GE(converted, 0.0);
+    EXPECT_LE(converted, 1.0);
+    // A denormal value in the domain goes to alpha^2 0 (it underflows), never below.
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 1.0 - 0x1p-53 : denormal), smooth ? 0x1p-212 : 0.0);
+  }
+}
+
+// With a zero kernel the wrapper returns its input: sqrt(fl(x^2)) = x for correctly rounded
+// arithmetic (no underflow), so alpha and r round-trip exactly; smoothness goes through 1 - s,
+// exact for s in [0.5, 1] (Sterbenz) and within half an ulp of 1 below.
+TEST(Domains, RoundTripWithoutKernelIsExact) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(1e-60, 1.0);
+  const Vec3 zero{0.0, 0.0, 0.0};
+  const ref::Params params;
+  for (int i = 0; i < 100000; ++i) {
+    const double value = unit(random);
+    for (RoughnessDomain domain : {RoughnessDomain::alpha, RoughnessDomain::perceptual}) {
+      ASSERT_EQ(ref::domain_from_alpha2(domain, ref::deferred_avg(params, ref::alpha2_from_domain(domain, value), zero, zero)), value);
+    }
+    const double back = ref::domain_from_alpha2(RoughnessDomain::smoothness,
+                                                ref::deferred_avg(params, ref::alpha2_from_domain(RoughnessDomain::smoothness, value), zero, zero));
+    if (value >= 0.5) ASSERT_EQ(back, value);
+    else ASSERT_LE(std::fabs(back - value), 0x1p-53);
+  }
+}
+
+TEST(Domains, UnknownNamesAreOneLine) {
+  try {
+    saagen::find_domain("linear");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "--domain 'linear' is not a roughness domain; use one of alpha2, alpha, perceptual, smoothness");
+  }
+}
