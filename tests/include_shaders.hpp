@@ -19,9 +19,10 @@ namespace saagen::test {
 
 // A compute shader reading (value, dn_dx, dn_dy) as 7 floats per element and writing the
 // filtered value: `include` is the #include line, `call` the function it calls.
-inline std::string glsl_user_shader(const std::string& include, const std::string& call, bool include_extension) {
+inline std::string glsl_user_shader(const std::string& include, const std::string& call, bool include_extension,
+                                    const std::string& core_only_macro = "SAA_CORE_ONLY") {
   return std::string("#version 450\n") + (include_extension ? "#extension GL_GOOGLE_include_directive : require\n" : "") +
-         "#define SAA_CORE_ONLY\n" + include + "\n" +
+         "#define " + core_only_macro + "\n" + include + "\n" +
          "layout(local_size_x = 64) in;\n"
          "layout(std430, set = 0, binding = 0) readonly buffer Inputs { float values[]; } inputs;\n"
          "layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float values[]; } outputs;\n"
@@ -34,8 +35,9 @@ inline std::string glsl_user_shader(const std::string& include, const std::strin
          "}\n";
 }
 
-inline std::string hlsl_user_shader(const std::string& include, const std::string& call) {
-  return "#define SAA_CORE_ONLY\n" + include + "\n" +
+inline std::string hlsl_user_shader(const std::string& include, const std::string& call,
+                                    const std::string& core_only_macro = "SAA_CORE_ONLY") {
+  return "#define " + core_only_macro + "\n" + include + "\n" +
          "[[vk::binding(0, 0)]] StructuredBuffer<float> inputs;\n"
          "[[vk::binding(1, 0)]] RWStructuredBuffer<float> outputs;\n"
          "[numthreads(64, 1, 1)]\n"

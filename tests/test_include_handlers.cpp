@@ -27,7 +27,7 @@ TEST(IncludeNames, ResolveVariantsPresetsAndOptions) {
   EXPECT_EQ(preset.domain, "smoothness");
   // The name's options win over the preset's and the handler's.
   const saagen::EmitOptions mixed =
-      saagen::include_emit_options("saagen/deferred-avg.glsl?domain=perceptual&kappa=0.1&prefix=eng_", IncludeOptions{.sigma2 = 0.2, .domain = "alpha"});
+      saagen::include_emit_options("saagen/deferred-avg.glsl?domain=perceptual&kappa=0.1&prefix=eng_", IncludeOptions{.prefix = "saa_", .sigma2 = 0.2, .kappa = {}, .preset = {}, .domain = "alpha"});
   EXPECT_EQ(mixed.variants, std::vector<std::string>{"deferred-avg"});
   EXPECT_EQ(mixed.domain, "perceptual");
   EXPECT_EQ(mixed.option_values.at("kappa"), 0.1);
@@ -77,9 +77,11 @@ saagen::test::Compiled compile(const CompileCase& c, const std::string& source, 
   return compile_with_shaderc(source, c.hlsl, std::make_unique<saagen::ShadercIncluder>(defaults));
 }
 
+// The name's prefix sets the CORE_ONLY macro's (the shader is a compute shader: no derivatives).
 std::string user_shader(const CompileCase& c, const std::string& name, const std::string& call) {
   const std::string include = "#include <saagen/" + name + ">";
-  return c.hlsl ? hlsl_user_shader(include, call) : glsl_user_shader(include, call, std::string(c.compiler) == "glslang");
+  const std::string core_only = name.find("prefix=eng_") != std::string::npos ? "ENG_CORE_ONLY" : "SAA_CORE_ONLY";
+  return c.hlsl ? hlsl_user_shader(include, call, core_only) : glsl_user_shader(include, call, std::string(c.compiler) == "glslang", core_only);
 }
 
 TEST_P(IncludeHandlerCompile, PresetsVariantsAndDomainsCompile) {
@@ -96,7 +98,7 @@ TEST_P(IncludeHandlerCompile, PresetsVariantsAndDomainsCompile) {
     EXPECT_TRUE(is_spirv(compiled.spirv)) << name;
   }
   // Options given to the handler apply to names that carry none.
-  const auto from_handler = compile(c, user_shader(c, "deferred-avg." + ext, "saa_deferred_avg_perceptual"), IncludeOptions{.domain = "perceptual"});
+  const auto from_handler = compile(c, user_shader(c, "deferred-avg." + ext, "saa_deferred_avg_perceptual"), IncludeOptions{.prefix = "saa_", .sigma2 = {}, .kappa = {}, .preset = {}, .domain = "perceptual"});
   EXPECT_TRUE(from_handler.ok) << from_handler.log;
 }
 

@@ -66,7 +66,7 @@ std::string wrapper_source(const Function& function, const RoughnessDomain& doma
   out << fmt::format("@function {}\n", domain_function_name(function.name, domain.id));
   out << fmt::format("role: {}\n", to_string(function.role));
   out << fmt::format("cite: {} with roughness in and out as {} (saagen domain conversion)\n", function.name, domain.meaning);
-  out << fmt::format("returns: {} | {}, as {}\n", function.return_type, function.return_meaning, domain.id);
+  out << fmt::format("returns: {} | the filtered roughness as {}{}\n", function.return_type, domain.meaning, per_axis ? ", per axis" : "");
   out << fmt::format("param: {} {} | {}{}\n", function.return_type, x, domain.meaning, per_axis ? ", per axis" : "");
   std::vector<std::string> arguments;
   for (std::size_t index = 1; index < function.parameters.size(); ++index) {
