@@ -67,7 +67,7 @@ inline Compiled compile_with_glslang(const std::string& source, bool hlsl, glsla
   shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
   if (hlsl) shader.setEntryPoint("main");
-  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : 0));
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? static_cast<int>(EShMsgReadHlsl) : 0));
   Compiled compiled;
   compiled.ok = shader.parse(GetDefaultResources(), hlsl ? 100 : 450, false, messages, includer);
   compiled.log = shader.getInfoLog();

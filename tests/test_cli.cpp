@@ -103,6 +103,39 @@ TEST_F(Cli, EmitSelectedVariantsWithOptions) {
   EXPECT_NE(text.find("const float my_KAPPA = 0.1;"), std::string::npos);
 }
 
+// Presets and roughness domains: the engine's variant, constants and domain in one option;
+// explicit options win; bad names are one line.
+TEST_F(Cli, EmitPresetsAndDomains) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "--preset", "filament", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "--preset", "hdrp", "--kappa", "0.1", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "-v", "forward-axis-slope", "--domain", "alpha", "-o", out.string()}).exit_code, 0);
+  EXPECT_EQ(files_in(out), (std::set<std::string>{"saa_deferred_sum_perceptual.glsl", "saa_deferred_sum_smoothness.hlsl",
+                                                  "saa_forward_axis_slope_alpha.glsl"}));
+  const std::string filament = read_text(out / "saa_deferred_sum_perceptual.glsl");
+  EXPECT_NE(filament.find("const float saa_SIGMA2 = 0.15;"), std::string::npos);
+  EXPECT_NE(filament.find("float saa_deferred_sum_fragment_perceptual(float perceptual_roughness, vec3 normal_ws)"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_deferred_sum_smoothness.hlsl").find("static const float saa_KAPPA = 0.1;"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_forward_axis_slope_alpha.glsl").find("vec2 saa_forward_axis_slope_alpha(vec2 alpha,"), std::string::npos);
+  const CliRun validate = saagen({"validate", out.string()});
+  EXPECT_NE(validate.out.find("3 file(s) validated, 0 failed"), std::string::npos) << validate.out << validate.err;
+
+  const fs::path refused = scratch_ / "refused";
+  expect_one_line_error(saagen({"emit", "--preset", "unreal", "-o", refused.string()}),
+                        "--preset 'unreal' is not a preset; use one of hdrp, filament, filament-taa, o3de, bevy, vsgl");
+  expect_one_line_error(saagen({"emit", "--domain", "linear", "-o", refused.string()}), "--domain 'linear' is not a roughness domain");
+  expect_one_line_error(saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", refused.string()}),
+                        "variant 'brdf-ggx' takes or returns no scalar or per-axis roughness");
+  EXPECT_FALSE(fs::exists(refused));
+
+  const auto listing = nlohmann::json::parse(saagen({"list", "--json", "--domain", "smoothness"}).out);
+  EXPECT_EQ(listing["roughness_domain"], "smoothness");
+  EXPECT_EQ(listing["presets"].size(), 6u);
+  for (const auto& variant : listing["variants"]) {
+    EXPECT_NE(std::find(variant["roughness_domains"].begin(), variant["roughness_domains"].end(), "smoothness"), variant["roughness_domains"].end());
+  }
+}
+
 TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const fs::path out = scratch_ / "out";
   ASSERT_EQ(saagen({"emit", "-t", "glsl", "-o", out.string()}).exit_code, 0);

@@ -629,3 +629,41 @@ TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
 }
 
 }  // namespace
+
+namespace {
+
+// `preset` and `domain` (examples/INTEGRATION.md, "Engines"): the preset's sigma2, kappa, variant
+// for deferred materials and roughness domain; keys the file sets win.
+const std::string deferred_material = "[[material]]\nname = \"d\"\npath = \"deferred\"\n";
+
+TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
+  const auto files = emit_text(header + "preset = \"hdrp\"\n" + deferred_material);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].file_name, "saa_scene_smoothness.glsl");
+  const auto marker = saagen::find_marker(files[0].content);
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-sum"}));
+  EXPECT_EQ(marker->domain, "smoothness");
+  EXPECT_EQ(marker->option_values.at("sigma2"), 0.1);
+  EXPECT_EQ(marker->option_values.at("kappa"), 0.04);
+  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_sum_smoothness", "deferred_sum_fragment_smoothness"}));
+  EXPECT_NE(files[0].content.find("d (deferred): deferred-sum -> saa_deferred_sum_fragment_smoothness"), std::string::npos);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+
+  const auto overridden = emit_text(header + "preset = \"hdrp\"\ndomain = \"perceptual\"\nkappa = 0.1\n" + deferred_material);
+  const auto marker2 = saagen::find_marker(overridden.at(0).content);
+  EXPECT_EQ(marker2->domain, "perceptual");
+  EXPECT_EQ(marker2->option_values.at("kappa"), 0.1);
+  EXPECT_EQ(marker2->option_values.at("sigma2"), 0.1);
+}
+
+TEST(Manifest, BadPresetOrDomainIsOneLine) {
+  EXPECT_EQ(error_of(header + "preset = \"unreal\"\n" + deferred_material),
+            "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
+            "\"vsgl\"");
+  EXPECT_EQ(error_of(header + "domain = \"linear\"\n" + deferred_material),
+            "scene.toml:2:10: key 'domain': unknown value \"linear\"; allowed: \"alpha2\", \"alpha\", \"perceptual\", \"smoothness\"");
+}
+
+}  // namespace

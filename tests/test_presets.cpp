@@ -7,6 +7,8 @@
 // kappa and variant, wrapped in the reference's domain conversions.
 #include "saagen/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <gtest/gtest.h>
@@ -206,4 +208,29 @@ TEST(Domains, UnknownNamesAreOneLine) {
   } catch (const saagen::Error& error) {
     EXPECT_STREQ(error.what(), "--domain 'linear' is not a roughness domain; use one of alpha2, alpha, perceptual, smoothness");
   }
+}
+
+// Every variant with roughness in and out, in every domain and target (and each target's half
+// precision in the perceptual domain): emitted and compiled in-process (glslang, spirv-val).
+TEST(Domains, EveryConvertibleVariantValidatesInEveryDomainAndTarget) {
+  const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
+  std::size_t files = 0;
+  for (const saagen::RoughnessDomain& domain : saagen::roughness_domains()) {
+    if (domain.to_alpha2.empty()) continue;
+    for (const std::string& target : saagen::builtin_target_names()) {
+      for (const auto& [precision, form] : saagen::builtin_target(target).precisions) {
+        if (precision != "fp32" && domain.id != "perceptual") continue;
+        saagen::EmitOptions options;
+        options.target = target;
+        options.domain = domain.id;
+        options.precision = precision;
+        for (const saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
+          const saagen::FileValidation validation = saagen::validate_file(catalogue, file.file_name, file.content);
+          EXPECT_TRUE(validation.ok()) << validation.summary();
+          ++files;
+        }
+      }
+    }
+  }
+  EXPECT_GE(files, 9u * 3u * 2u);
 }

@@ -78,10 +78,6 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
   const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
   saagen::apply_settings(catalogue, settings, options);
-  if (options.target == saagen::spirv_library_target && options.domain != "alpha2") {
-    throw saagen::Error(fmt::format("--domain {}: SPIR-V libraries are emitted in alpha2; use --target glsl or hlsl for another domain",
-                                    options.domain));
-  }
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
 

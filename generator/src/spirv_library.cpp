@@ -441,6 +441,9 @@ std::vector<std::uint32_t> assemble_spirv(const std::string& text) {
 
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
+  if (options.domain != "alpha2") {
+    throw Error(fmt::format("--domain {}: SPIR-V libraries are emitted in alpha2; use --target glsl or hlsl for another domain", options.domain));
+  }
   if (!builtin_target("glsl").precisions.count(options.precision)) {
     std::vector<std::string> names;
     for (const auto& [name, precision] : builtin_target("glsl").precisions) names.push_back(name);
