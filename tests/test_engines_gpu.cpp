@@ -1,5 +1,5 @@
 // Engines on the GPU devices (lavapipe, SwiftShader): the roughness-domain wrappers against the
-// double-precision reference, their exact ends, and a preset compiled from a user shader
+// double-precision reference, their exact ends, and every preset compiled from a user shader
 // through the shaderc include handler, run against the engine's own formula.
 //
 // Bound per element: |gpu - reference| <= 2e-5 * S + 2^-24 with S the scale of the roughness
@@ -10,6 +10,7 @@
 // relative error of a by 4. 2e-5 covers that with the same margin as test_gpu_core.cpp; 2^-24
 // is the final 1 - r rounding of the smoothness domain.
 #include "gpu_support.hpp"
+#include "engine_forms.hpp"
 #include "include_shaders.hpp"
 
 #include "saagen/engines.hpp"
@@ -144,35 +145,43 @@ INSTANTIATE_TEST_SUITE_P(Domains, DomainWrappersOnGpu,
                            return name;
                          });
 
-// Unity HDRP's GeometricNormalFiltering in float64, from the engine's math (test_presets.cpp
-// writes all six engines' forms).
-double hdrp_smoothness(double smoothness, Vec3 du, Vec3 dv) {
-  const double variance = 0.1 * (du.x * du.x + du.y * du.y + du.z * du.z + dv.x * dv.x + dv.y * dv.y + dv.z * dv.z);
-  const double roughness = (1.0 - smoothness) * (1.0 - smoothness);
-  const double squared = std::min(std::max(roughness * roughness + std::min(2.0 * variance, 0.2 * 0.2), 0.0), 1.0);
-  return 1.0 - std::sqrt(std::sqrt(squared));
-}
+// Each preset from a user shader with `#include <saagen/PRESET.glsl>`, compiled by shaderc
+// through the handler and run on the device, against the engine's own formula (engine_forms.hpp)
+// evaluated in float64 on the same fp32 inputs, within the bound of the file comment.
+class PresetOnGpu : public ::testing::TestWithParam<std::string> {};
 
-// A user shader with `#include <saagen/hdrp.glsl>` compiled by shaderc through the handler and
-// run on the device: the engine's own formula, within the fp32 bound of the file comment.
-TEST(IncludeHandlerOnGpu, HdrpPresetThroughShadercMatchesTheEngine) {
+TEST_P(PresetOnGpu, IncludedThroughShadercMatchesTheEngine) {
+  const saagen::Preset& preset = saagen::find_preset(GetParam());
+  std::string function = "saa_" + preset.variant;
+  for (char& ch : function) ch = ch == '-' ? '_' : ch;
+  if (preset.domain != "alpha2") function = saagen::domain_function_name(function, preset.domain);
   const auto compiled = saagen::test::compile_with_shaderc(
-      saagen::test::glsl_user_shader("#include <saagen/hdrp.glsl>", "saa_deferred_sum_smoothness", false), false,
+      saagen::test::glsl_user_shader("#include <saagen/" + preset.id + ".glsl>", function, false), false,
       std::make_unique<saagen::ShadercIncluder>());
   ASSERT_TRUE(compiled.ok) << compiled.log;
-  const Batch batch = make_batch(true);
+  const bool smoothness = preset.domain == "smoothness";
+  const Batch batch = make_batch(smoothness);
   const std::vector<float> got = run(compiled.spirv, batch.inputs, 64);
+  const saagen::test::EngineForm engine = saagen::test::engine_forms().at(preset.id);
   double worst = 0.0;
   std::size_t failures = 0;
   for (std::size_t i = 0; i < element_count; ++i) {
     const float* in = batch.inputs.data() + 7 * i;
-    const double expected = hdrp_smoothness(in[0], {in[1], in[2], in[3]}, {in[4], in[5], in[6]});
+    const double expected = engine(in[0], {in[1], in[2], in[3]}, {in[4], in[5], in[6]});
     const double error = std::fabs(got[i] - expected);
     worst = std::max(worst, error);
-    if (error > 2e-5 * (1.0 - expected) + 0x1p-24 && ++failures <= 5) ADD_FAILURE() << "element " << i << ": gpu " << got[i] << " engine " << expected;
+    const double scale = smoothness ? 1.0 - expected : std::fabs(expected);
+    if (error > 2e-5 * scale + 0x1p-24 && ++failures <= 5) ADD_FAILURE() << "element " << i << ": gpu " << got[i] << " engine " << expected;
   }
-  std::printf("hdrp preset through shaderc on the device: max |difference| %.3g (smoothness)\n", worst);
+  std::printf("preset %s through shaderc on the device: max |difference| %.3g (%s)\n", preset.id.c_str(), worst, preset.domain.c_str());
   EXPECT_EQ(failures, 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Presets, PresetOnGpu, ::testing::Values("hdrp", "filament", "filament-taa", "o3de", "bevy", "vsgl"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& ch : name) ch = ch == '-' ? '_' : ch;
+                           return name;
+                         });
 
 }  // namespace
