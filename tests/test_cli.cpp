@@ -136,6 +136,23 @@ TEST_F(Cli, EmitPresetsAndDomains) {
   }
 }
 
+// `saagen compile` resolves <saagen/...> names as the include handlers do: generated in memory.
+TEST_F(Cli, CompileGeneratesSaagenIncludeNames) {
+  const fs::path shader = scratch_ / "material.frag";
+  std::ofstream(shader) << "#version 450\n#include <saagen/filament.glsl>\nlayout(location = 0) in vec3 n;\n"
+                           "layout(location = 0) out vec4 colour;\n"
+                           "void main() { colour = vec4(saa_deferred_sum_fragment_perceptual(0.3, normalize(n))); }\n";
+  const CliRun run = saagen({"compile", shader.string(), "-o", (scratch_ / "material.spv").string()});
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "material.spv"));
+
+  const fs::path bad = scratch_ / "bad.frag";
+  std::ofstream(bad) << "#version 450\n#include <saagen/filament.glsl?domain=linear>\nvoid main() {}\n";
+  expect_one_line_error(saagen({"compile", bad.string(), "-o", (scratch_ / "bad.spv").string()}),
+                        bad.string() + ":2: saagen/filament.glsl?domain=linear: --domain 'linear' is not a roughness domain");
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
 TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const fs::path out = scratch_ / "out";
   ASSERT_EQ(saagen({"emit", "-t", "glsl", "-o", out.string()}).exit_code, 0);
