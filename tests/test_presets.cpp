@@ -9,6 +9,7 @@
 #include "saagen/error.hpp"
 #include "saagen/target.hpp"
 #include "saagen/validation.hpp"
+#include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/saa.hpp"
 #include "engine_forms.hpp"
 
@@ -100,6 +101,21 @@ TEST(Presets, MatchTheEnginesFormulasInTheirDomain) {
     std::printf("preset %-13s max |difference| %.3g in %s over %zu inputs\n", preset.id.c_str(), worst, preset.domain.c_str(), all.size());
     ::testing::Test::RecordProperty("max_difference_" + preset.id, std::to_string(worst));
     EXPECT_LE(worst, 1e-15) << preset.id;
+  }
+}
+
+// The trade report's engine rows (reference/render/engines.cpp) and the presets carry the same
+// constants: the rows equal the presets' filters in alpha^2 (same operations, a few ulps).
+TEST(Presets, AgreeWithTheTradeReportsEngineRows) {
+  const std::vector<Input> all = inputs(100000);
+  const saagen::Preset& hdrp_preset = saagen::find_preset("hdrp");
+  const saagen::Preset& filament_preset = saagen::find_preset("filament");
+  for (const Input& input : all) {
+    const double alpha = input.value;
+    ASSERT_NEAR(saagen::render::hdrp_alpha2(alpha, input.du, input.dv),
+                ref::deferred_sum({hdrp_preset.sigma2, hdrp_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
+    ASSERT_NEAR(saagen::render::filament_alpha2(alpha, input.du, input.dv),
+                ref::deferred_sum({filament_preset.sigma2, filament_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
   }
 }
 
