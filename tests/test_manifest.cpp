@@ -658,6 +658,25 @@ TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
   EXPECT_EQ(marker2->option_values.at("sigma2"), 0.1);
 }
 
+// A domain reaches the plan's text, its costs and the bundle next to materials without one (a
+// forward-aniso material keeps its alpha^2 matrix form).
+TEST(Planner, PlansAndCostsInTheManifestsDomain) {
+  const std::string text = header + "preset = \"filament\"\n" + deferred_material +
+                           "[[material]]\nname = \"paint\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n";
+  const saagen::Manifest manifest = parse(text);
+  saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  saagen::measure_costs(Catalogue::builtin(), manifest, plan);
+  const std::string printed = saagen::format_plan(Catalogue::builtin(), manifest, plan);
+  EXPECT_NE(printed.find("call      saa_deferred_sum_fragment_perceptual(perceptual_roughness, normal_ws)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("the variant of the manifest's preset \"filament\""), std::string::npos) << printed;
+  EXPECT_NE(printed.find("call      saa_forward_aniso_projected_fragment(alpha2, half_ts)"), std::string::npos) << printed;
+  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), 0);
+  const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
+  ASSERT_EQ(files.size(), 1u);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+}
+
 TEST(Manifest, BadPresetOrDomainIsOneLine) {
   EXPECT_EQ(error_of(header + "preset = \"unreal\"\n" + deferred_material),
             "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
