@@ -51,7 +51,7 @@ TEST(IncludeNames, BadNamesAreOneLineCliMessages) {
   EXPECT_EQ(message("saagen/deferred-avg.glsl?sigma2=big"), "saagen/deferred-avg.glsl?sigma2=big: --sigma2 'big': not a number; pass a decimal number");
   EXPECT_EQ(message("saagen/deferred-avg.glsl?colour=red"),
             "saagen/deferred-avg.glsl?colour=red: unknown option 'colour'; use prefix, sigma2, kappa, preset, domain, precision, guards");
-  EXPECT_EQ(message("saagen/deferred-avg.wgsl"), "saagen/deferred-avg.wgsl: unknown extension '.wgsl'; use .glsl or .hlsl");
+  EXPECT_EQ(message("saagen/deferred-avg.wgsl"), "saagen/deferred-avg.wgsl: unknown extension '.wgsl'; use .essl, .glsl, .hlsl");
   EXPECT_EQ(message("saagen/brdf-ggx.glsl?domain=perceptual"),
             "saagen/brdf-ggx.glsl?domain=perceptual: --domain perceptual: variant 'brdf-ggx' takes or returns no scalar or per-axis "
             "roughness; emit it with --domain alpha2");

@@ -8,6 +8,7 @@
 #include "saagen/target.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cerrno>
 #include <cmath>
@@ -29,6 +30,17 @@ double parse_number(std::string_view key, const std::string& text) {
     throw Error(fmt::format("--{} '{}': not a number; pass a decimal number", key, text));
   }
   return value;
+}
+
+// The built-in target whose files carry `extension` (glsl, essl for gles, hlsl).
+std::string target_of_extension(std::string_view extension) {
+  std::vector<std::string> known;
+  for (const std::string& name : builtin_target_names()) {
+    const std::string& target_extension = builtin_target(name).file_extension;
+    if (target_extension == extension) return name;
+    known.push_back("." + target_extension);
+  }
+  throw Error(fmt::format("unknown extension '.{}'; use {}", extension, fmt::join(known, ", ")));
 }
 
 struct ParsedName {
@@ -56,7 +68,7 @@ void apply_query_pair(std::string_view pair, IncludeOptions& options) {
 }
 
 ParsedName parse_name(std::string_view name, const IncludeOptions& defaults) {
-  if (!is_saagen_include(name)) throw Error(fmt::format("not a saagen include; name saagen/<variant or preset>.<glsl|hlsl>"));
+  if (!is_saagen_include(name)) throw Error(fmt::format("not a saagen include; name saagen/<variant or preset>.<glsl|essl|hlsl>"));
   ParsedName parsed{{}, {}, defaults};
   std::string_view path = name.substr(include_root.size());
   const auto question = path.find('?');
@@ -64,13 +76,10 @@ ParsedName parse_name(std::string_view name, const IncludeOptions& defaults) {
   path = path.substr(0, question);
   const auto dot = path.rfind('.');
   if (dot == std::string_view::npos || dot == 0) {
-    throw Error(fmt::format("'{}' has no extension; name saagen/<variant or preset>.<glsl|hlsl>", path));
+    throw Error(fmt::format("'{}' has no extension; name saagen/<variant or preset>.<glsl|essl|hlsl>", path));
   }
   parsed.id = std::string(path.substr(0, dot));
-  parsed.target = std::string(path.substr(dot + 1));
-  if (parsed.target != "glsl" && parsed.target != "hlsl") {
-    throw Error(fmt::format("unknown extension '.{}'; use .glsl or .hlsl", parsed.target));
-  }
+  parsed.target = target_of_extension(path.substr(dot + 1));
   while (!query.empty()) {
     const auto ampersand = query.find('&');
     apply_query_pair(query.substr(0, ampersand), parsed.options);

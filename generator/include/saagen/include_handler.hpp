@@ -5,7 +5,7 @@
 //
 //   <id>   a variant id (deferred-avg) or a preset id (hdrp: the engine's variant, sigma^2,
 //          kappa and roughness domain)
-//   <ext>  glsl or hlsl: the target
+//   <ext>  glsl, essl (gles) or hlsl: the target
 //   keys   prefix, sigma2, kappa, preset, domain, precision (fp32, fp16, min16), guards (on, off)
 //
 // e.g. #include <saagen/deferred-avg.glsl?domain=perceptual&kappa=0.1>. glslang (and shaderc,

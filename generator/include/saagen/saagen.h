@@ -12,7 +12,7 @@
  *     long as the handle.
  *
  * Emission requests use the include-name grammar of the shader-compiler plugin:
- *   [saagen/]<variant or preset>.<glsl|hlsl>[?key=value(&key=value)*]
+ *   [saagen/]<variant or preset>.<glsl|essl|hlsl>[?key=value(&key=value)*]
  *   keys: prefix, sigma2, kappa, preset, domain (alpha2, alpha, perceptual, smoothness),
  *         precision (fp32, fp16, min16), guards (on, off)
  *   e.g. "deferred-avg.glsl?domain=perceptual", "hdrp.hlsl".
