@@ -105,6 +105,56 @@ TEST_F(Cli, EmitSelectedVariantsWithOptions) {
   EXPECT_NE(text.find("const float my_KAPPA = 0.1;"), std::string::npos);
 }
 
+// Presets and roughness domains: the engine's variant, constants and domain in one option;
+// explicit options win; bad names are one line.
+TEST_F(Cli, EmitPresetsAndDomains) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "--preset", "filament", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "--preset", "hdrp", "--kappa", "0.1", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "-v", "forward-axis-slope", "--domain", "alpha", "-o", out.string()}).exit_code, 0);
+  EXPECT_EQ(files_in(out), (std::set<std::string>{"saa_deferred_sum_perceptual.glsl", "saa_deferred_sum_smoothness.hlsl",
+                                                  "saa_forward_axis_slope_alpha.glsl"}));
+  const std::string filament = read_text(out / "saa_deferred_sum_perceptual.glsl");
+  EXPECT_NE(filament.find("const float saa_SIGMA2 = 0.15;"), std::string::npos);
+  EXPECT_NE(filament.find("float saa_deferred_sum_fragment_perceptual(float perceptual_roughness, vec3 normal_ws)"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_deferred_sum_smoothness.hlsl").find("static const float saa_KAPPA = 0.1;"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_forward_axis_slope_alpha.glsl").find("vec2 saa_forward_axis_slope_alpha(vec2 alpha,"), std::string::npos);
+  const CliRun validate = saagen({"validate", out.string()});
+  EXPECT_NE(validate.out.find("3 file(s) validated, 0 failed"), std::string::npos) << validate.out << validate.err;
+
+  const fs::path refused = scratch_ / "refused";
+  expect_one_line_error(saagen({"emit", "--preset", "unreal", "-o", refused.string()}),
+                        "--preset 'unreal' is not a preset; use one of hdrp, filament, filament-taa, o3de, bevy, vsgl");
+  expect_one_line_error(saagen({"emit", "--domain", "linear", "-o", refused.string()}), "--domain 'linear' is not a roughness domain");
+  expect_one_line_error(saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", refused.string()}),
+                        "variant 'brdf-ggx' takes or returns no scalar or per-axis roughness");
+  EXPECT_FALSE(fs::exists(refused));
+
+  const auto listing = nlohmann::json::parse(saagen({"list", "--json", "--domain", "smoothness"}).out);
+  EXPECT_EQ(listing["roughness_domain"], "smoothness");
+  EXPECT_EQ(listing["presets"].size(), 6u);
+  for (const auto& variant : listing["variants"]) {
+    EXPECT_NE(std::find(variant["roughness_domains"].begin(), variant["roughness_domains"].end(), "smoothness"), variant["roughness_domains"].end());
+  }
+}
+
+// `saagen compile` resolves <saagen/...> names as the include handlers do: generated in memory.
+TEST_F(Cli, CompileGeneratesSaagenIncludeNames) {
+  const fs::path shader = scratch_ / "material.frag";
+  std::ofstream(shader) << "#version 450\n#include <saagen/filament.glsl>\nlayout(location = 0) in vec3 n;\n"
+                           "layout(location = 0) out vec4 colour;\n"
+                           "void main() { colour = vec4(saa_deferred_sum_fragment_perceptual(0.3, normalize(n))); }\n";
+  const CliRun run = saagen({"compile", shader.string(), "-o", (scratch_ / "material.spv").string()});
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "material.spv"));
+
+  const fs::path bad = scratch_ / "bad.frag";
+  std::ofstream(bad) << "#version 450\n#include <saagen/filament.glsl?domain=linear>\nvoid main() {}\n";
+  expect_one_line_error(saagen({"compile", bad.string(), "-o", (scratch_ / "bad.spv").string()}),
+                        bad.string() + ":2: saagen/filament.glsl?domain=linear: --domain 'linear' is not a roughness domain");
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
 TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const fs::path out = scratch_ / "out";
   ASSERT_EQ(saagen({"emit", "-t", "glsl", "-o", out.string()}).exit_code, 0);

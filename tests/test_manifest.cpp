@@ -141,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, material"},
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, preset, domain, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
@@ -674,6 +674,63 @@ TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("bad.frag:3"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
+}  // namespace
+
+namespace {
+
+// `preset` and `domain` (examples/INTEGRATION.md, "Engines"): the preset's sigma2, kappa, variant
+// for deferred materials and roughness domain; keys the file sets win.
+const std::string deferred_material = "[[material]]\nname = \"d\"\npath = \"deferred\"\n";
+
+TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
+  const auto files = emit_text(header + "preset = \"hdrp\"\n" + deferred_material);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].file_name, "saa_scene_smoothness.glsl");
+  const auto marker = saagen::find_marker(files[0].content);
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-sum"}));
+  EXPECT_EQ(marker->domain, "smoothness");
+  EXPECT_EQ(marker->option_values.at("sigma2"), 0.1);
+  EXPECT_EQ(marker->option_values.at("kappa"), 0.04);
+  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_sum_smoothness", "deferred_sum_fragment_smoothness"}));
+  EXPECT_NE(files[0].content.find("d (deferred): deferred-sum -> saa_deferred_sum_fragment_smoothness"), std::string::npos);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+
+  const auto overridden = emit_text(header + "preset = \"hdrp\"\ndomain = \"perceptual\"\nkappa = 0.1\n" + deferred_material);
+  const auto marker2 = saagen::find_marker(overridden.at(0).content);
+  EXPECT_EQ(marker2->domain, "perceptual");
+  EXPECT_EQ(marker2->option_values.at("kappa"), 0.1);
+  EXPECT_EQ(marker2->option_values.at("sigma2"), 0.1);
+}
+
+// A domain reaches the plan's text, its costs and the bundle next to materials without one (a
+// forward-aniso material keeps its alpha^2 matrix form).
+TEST(Planner, PlansAndCostsInTheManifestsDomain) {
+  const std::string text = header + "preset = \"filament\"\n" + deferred_material +
+                           "[[material]]\nname = \"paint\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n";
+  const saagen::Manifest manifest = parse(text);
+  saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  saagen::measure_costs(Catalogue::builtin(), manifest, plan);
+  const std::string printed = saagen::format_plan(Catalogue::builtin(), manifest, plan);
+  EXPECT_NE(printed.find("call      saa_deferred_sum_fragment_perceptual(perceptual_roughness, normal_ws)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("the variant of the manifest's preset \"filament\""), std::string::npos) << printed;
+  EXPECT_NE(printed.find("call      saa_forward_aniso_projected_fragment(alpha2, half_ts)"), std::string::npos) << printed;
+  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), 0);
+  const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
+  ASSERT_EQ(files.size(), 1u);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+}
+
+TEST(Manifest, BadPresetOrDomainIsOneLine) {
+  EXPECT_EQ(error_of(header + "preset = \"unreal\"\n" + deferred_material),
+            "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
+            "\"vsgl\"");
+  EXPECT_EQ(error_of(header + "domain = \"linear\"\n" + deferred_material),
+            "scene.toml:2:10: key 'domain': unknown value \"linear\"; allowed: \"alpha2\", \"alpha\", \"perceptual\", \"smoothness\"");
 }
 
 }  // namespace

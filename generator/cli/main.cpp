@@ -2,6 +2,7 @@
 // nothing is written unless everything that would be written has been produced first.
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
+#include "saagen/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/glints.hpp"
 #include "saagen/input.hpp"
@@ -43,15 +44,19 @@ struct EmitArguments {
   bool force = false;
   std::string precision = "fp32";
   bool unguarded = false;
+  std::optional<std::string> preset;  // an engine's variant, sigma^2, kappa and domain
+  std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
 };
 
-int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
+int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
   saagen::validate_prefix(prefix);
   if (json) {
-    std::cout << saagen::catalogue_json(catalogue, prefix).dump(2) << "\n";
+    std::cout << saagen::catalogue_json(base_catalogue, prefix, domain).dump(2) << "\n";
     return 0;
   }
+  const Catalogue& catalogue = saagen::domain_catalogue(base_catalogue, domain);
   for (const saagen::Variant& variant : catalogue.variants()) {
+    if (domain != "alpha2" && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) continue;
     std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
                              variant.needs_tangents ? "yes" : "no", variant.summary);
     std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
@@ -100,10 +105,10 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   saagen::cli::check_named_once("--variant", arguments.variants);
   saagen::EmitOptions options;
   options.target = arguments.target;
-  options.variants = arguments.variants;
   options.prefix = arguments.prefix;
-  if (arguments.sigma2) options.option_values["sigma2"] = *arguments.sigma2;
-  if (arguments.kappa) options.option_values["kappa"] = *arguments.kappa;
+  // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
+  const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
+  saagen::apply_settings(catalogue, settings, options);
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
 
@@ -208,6 +213,8 @@ int main(int argc, char** argv) {
   CLI::App* list = app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions");
   list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
   list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
+  std::string list_domain = "alpha2";
+  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")->capture_default_str();
 
   EmitArguments emit_arguments;
   std::string sigma2;
@@ -215,6 +222,10 @@ int main(int argc, char** argv) {
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
   emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
+  std::string preset;
+  std::string domain;
+  CLI::Option* preset_option = emit->add_option("--preset", preset, "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
+  CLI::Option* domain_option = emit->add_option("--domain", domain, "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
   emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
   CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
   CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
@@ -231,7 +242,7 @@ int main(int argc, char** argv) {
 
   // Scene manifests (issue 6): `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
   std::vector<CLI::Option*> per_variant_options;
-  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded"}) {
+  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain"}) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
@@ -260,7 +271,7 @@ int main(int argc, char** argv) {
     // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
     // the other commands keep the screen-space SAA catalogue.
     const Catalogue& every_variant = saagen::glints::catalogue();
-    if (*list) return run_list(every_variant, list_json, list_prefix);
+    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).id);
     if (*emit && scene.emit_from_manifest()) {
       saagen::cli::check_output_named("--output", emit_arguments.output_directory);
       return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
@@ -272,6 +283,8 @@ int main(int argc, char** argv) {
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
       if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
+      if (*preset_option) emit_arguments.preset = preset;
+      if (*domain_option) emit_arguments.domain = domain;
       return run_emit(every_variant, emit_arguments);
     }
     if (*validate) return run_validate(every_variant, validate_directory);

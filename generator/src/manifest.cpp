@@ -1,6 +1,8 @@
 #include "saagen/manifest.hpp"
 #include "saagen/planner.hpp"
 
+#include "saagen/engines.hpp"
+
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
@@ -199,6 +201,32 @@ void read_options(Manifest& manifest, const TableReader& top, const Catalogue& c
       top.fail_key(constant.option, fmt::format("{} is out of range", *value), allowed);
     }
     manifest.option_values[constant.option] = *value;
+  }
+}
+
+// `preset` and `domain` (saagen/engines.hpp): the preset's constants fill the options the file
+// does not set; `domain` defaults to the preset's.
+void read_engine_settings(Manifest& manifest, const TableReader& top) {
+  std::vector<std::string> preset_names, domain_names;
+  for (const Preset& preset : presets()) preset_names.push_back(preset.id);
+  for (const RoughnessDomain& domain : roughness_domains()) domain_names.push_back(domain.id);
+  manifest.preset = top.choice("preset", preset_names);
+  if (manifest.preset) {
+    const Preset& preset = find_preset(*manifest.preset);
+    manifest.option_values.emplace("sigma2", preset.sigma2);
+    manifest.option_values.emplace("kappa", preset.kappa);
+    manifest.domain = preset.domain;
+  }
+  if (const auto domain = top.choice("domain", domain_names)) manifest.domain = *domain;
+}
+
+// A preset's variant serves the deferred materials that name none.
+void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
+  if (!manifest.preset) return;
+  const Preset& preset = find_preset(*manifest.preset);
+  if (!catalogue.find_variant(preset.variant)) return;
+  for (Material& material : manifest.materials) {
+    if (!material.variant && material.path == RenderPath::deferred) material.variant = preset.variant;
   }
 }
 
@@ -461,7 +489,7 @@ const std::vector<std::string>& manifest_keys() {
     for (const Constant& constant : Catalogue::builtin().constants()) {
       if (!constant.option.empty()) names.push_back(constant.option);
     }
-    names.push_back("material");
+    names.insert(names.end(), {"preset", "domain", "material"});
     return names;
   }();
   return keys;
@@ -513,7 +541,9 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 
   if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
   read_options(manifest, top, catalogue);
+  read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);
+  apply_preset_variant(manifest, catalogue);
   return manifest;
 }
 

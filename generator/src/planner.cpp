@@ -1,5 +1,7 @@
 #include "saagen/planner.hpp"
 
+#include "saagen/engines.hpp"
+
 #include "saagen/compiler.hpp"
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
@@ -593,7 +595,9 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       }
       plan.variant = variant.id;
       plan.rule = "manifest";
-      plan.reason = "named by the manifest's `variant` key";
+      plan.reason = material.positions.count("variant") || !manifest.preset
+                        ? "named by the manifest's `variant` key"
+                        : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
     } else {
       const Rule& rule = rule_for(material);
       plan.variant = rule.variant;
@@ -666,6 +670,7 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
   options.target = target;
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
+  options.domain = manifest.domain;
   const auto form = target_precision(target, precision);
   if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
   options.precision = *form;
@@ -688,8 +693,10 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     for (const std::string& target : manifest.targets) {
       const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
       const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
-      if (!baselines.count(key)) baselines[key] = kernel_instructions(catalogue, file, shade_statements(catalogue, material, nullptr));
-      const std::size_t with_filter = kernel_instructions(catalogue, file, shade_statements(catalogue, material, &material_plan));
+      // The bundle's functions are in the manifest's roughness domain (its wrappers included).
+      const Catalogue& emitted = domain_catalogue(catalogue, manifest.domain);
+      if (!baselines.count(key)) baselines[key] = kernel_instructions(emitted, file, shade_statements(catalogue, material, nullptr));
+      const std::size_t with_filter = kernel_instructions(emitted, file, shade_statements(catalogue, material, &material_plan));
       material_plan.cost[target] = static_cast<long>(with_filter) - static_cast<long>(baselines[key]);
     }
   }
@@ -735,7 +742,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
 
-    const Function& wrapper = *catalogue.find_function(material_plan.wrapper);
+    // Under another roughness domain the material calls the wrapper's converting form.
+    const Function& planned = *catalogue.find_function(material_plan.wrapper);
+    const bool converted = manifest.domain != "alpha2" && takes_and_returns_roughness(planned);
+    const Function& wrapper =
+        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
     std::vector<std::string> parameters;
     for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
     text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
@@ -748,7 +759,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
                           prefixed_name(manifest.prefix, "ndf_clamp_tau"));
     } else {
-      text += "  shade     the engine's own BRDF with the filtered roughness (alpha^2 domain)\n";
+      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n", converted ? manifest.domain : "alpha^2");
     }
     if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
     if (!material_plan.cost.empty()) {
@@ -764,7 +775,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 
   text += "\nfiles\n";
   for (const EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
-    const auto functions = catalogue.closure(file.marker.functions);
+    const auto functions = domain_catalogue(catalogue, file.marker.domain).closure(file.marker.functions);
     text += fmt::format("  {}  {} public function(s), {} in the closure\n", file.file_name, file.marker.functions.size(), functions.size());
   }
   return text;
@@ -791,8 +802,13 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         for (const std::string& id : material_plan.variants) {
           if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
         }
+        // Under another roughness domain the material calls the wrapper's converting form.
+        const Function* wrapper = catalogue.find_function(material_plan.wrapper);
+        const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
+                                       ? domain_function_name(material_plan.wrapper, manifest.domain)
+                                       : material_plan.wrapper;
         std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
-                                       material_plan.variant, prefixed_name(manifest.prefix, material_plan.wrapper),
+                                       material_plan.variant, prefixed_name(manifest.prefix, called),
                                        material_plan.per_axis ? " once per axis" : "");
         if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
         request.notes.push_back(note);

@@ -1,6 +1,7 @@
 #include "saagen/validation.hpp"
 
 #include "saagen/dialect.hpp"
+#include "saagen/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/target.hpp"
 
@@ -148,7 +149,7 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
       request.stage = stage == ShaderStage::compute ? target.core_validation_stage : stage;
       request.client = client;
       request.hlsl_native_16bit = target.native_16bit;
-      request.sources = validation_sources(catalogue, *marker, file_name, content, stage);
+      request.sources = validation_sources(domain_catalogue(catalogue, marker->domain), *marker, file_name, content, stage);
       const CompileResult result = compile_to_spirv(request);
       validation.checks.push_back({client_name(client) + " " + stage_name(request.stage), result.ok, result.log, result.spirv.size()});
     }

@@ -52,6 +52,10 @@ struct Manifest {
   // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
   // planner.hpp); empty: kDefaultGpuFamily (vega10).
   std::string gpu_family;
+  // `preset`: an engine's form (saagen/engines.hpp): its sigma2 and kappa where the file sets
+  // none, its variant for deferred materials that name none, and its roughness domain.
+  std::optional<std::string> preset;
+  std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.
