@@ -12,7 +12,7 @@ import sys
 import xml.etree.ElementTree as ET
 from collections import defaultdict
 
-BOUND = re.compile(r"\[ bound    \] (\S+): (?:no bounded comparisons|.*worst \|got - expected\| / bound = (\S+))")
+BOUND = re.compile(r"\[ bound    \] (\S+): (?:no bounded comparisons|.*worst \|got - expected\| / bound = ([0-9.eE+-]*[0-9]))")
 VALIDATION = re.compile(r"^\[validation\] (error|warning):", re.M)
 UNSUPPORTED = re.compile(r"^(unsupported on [^\n]*)", re.M)
 

@@ -82,7 +82,9 @@ TEST(Catalogue, EveryDerivativeVariantHasACoreAndAFragmentWrapper) {
     const bool is_brdf = variant.id.rfind("brdf-", 0) == 0;
     EXPECT_TRUE(roles.count(is_brdf ? saagen::FunctionRole::evaluate : saagen::FunctionRole::core)) << variant.id;
     // The texture-space prefilter-* variants take texture samples, not derivatives: core only.
-    if (variant.id.rfind("prefilter-", 0) != 0) EXPECT_TRUE(roles.count(saagen::FunctionRole::fragment)) << variant.id;
+    if (variant.id.rfind("prefilter-", 0) != 0) {
+      EXPECT_TRUE(roles.count(saagen::FunctionRole::fragment)) << variant.id;
+    }
   }
 }
 

@@ -145,7 +145,9 @@ TEST(GlintHash, SeedsAreCoherentAcrossLevels) {
                 const int child_lod = g::cell_dictionary_lod(params, 2 * i, 2 * j, level);
                 ASSERT_EQ(parent_lod < 0, child_lod < 0);
                 // The same Gaussian offset on log4 n = l + 1 and l (until the clamp to [0, L - 1]).
-                if (child_lod > 0 && parent_lod < params.lods - 1) ASSERT_EQ(parent_lod, child_lod + 1) << level;
+                if (child_lod > 0 && parent_lod < params.lods - 1) {
+                    ASSERT_EQ(parent_lod, child_lod + 1) << level;
+                }
             }
         }
     }

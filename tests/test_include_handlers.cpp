@@ -55,7 +55,7 @@ TEST(IncludeNames, BadNamesAreOneLineCliMessages) {
   EXPECT_EQ(message("saagen/brdf-ggx.glsl?domain=perceptual"),
             "saagen/brdf-ggx.glsl?domain=perceptual: --domain perceptual: variant 'brdf-ggx' takes or returns no scalar or per-axis "
             "roughness; emit it with --domain alpha2");
-  for (const std::string& name : {"saagen/unreal.glsl", "saagen/hdrp.glsl?preset=bevy", "saagen/x", "saagen/deferred-avg.glsl?precision=fp64"}) {
+  for (const std::string name : {"saagen/unreal.glsl", "saagen/hdrp.glsl?preset=bevy", "saagen/x", "saagen/deferred-avg.glsl?precision=fp64"}) {
     const std::string text = message(name);
     EXPECT_EQ(text.rfind(name + ": ", 0), 0u) << text;
     EXPECT_EQ(text.find('\n'), std::string::npos) << text;

@@ -54,10 +54,7 @@ Vec3 safe_normalize(const Params& p, Vec3 v) {
 Vec3 half_vector(const Params& p, Vec3 i, Vec3 o) {
     const Vec3 sum = i + o;
     if (!p.guards) return normalize(sum);
-    const double largest = std::max({std::fabs(sum.x), std::fabs(sum.y), std::fabs(sum.z)});
-    // normalize(sum / largest) in the template: the same direction, and in double |sum|^2 cannot
-    // underflow above DIVISOR_MIN, so normalize(sum) (bit-identical to the unguarded form).
-    return largest >= p.guard_constants().divisor_min ? normalize(sum) : Vec3{0.0, 0.0, 1.0};
+    return dot(sum, sum) >= p.guard_constants().divisor_min ? normalize(sum) : Vec3{0.0, 0.0, 1.0};
 }
 
 // Kaplanyan et al. 2016 (T&K 2019 Listing 1): slope h.xy / |h.z|; guarded: / max(|h.z|, SLOPE_MIN_Z).

@@ -76,9 +76,8 @@ Vec3 clamp_derivative3(const Params& p, Vec3 d);
 
 // Guard helper: v * rsqrt(max(dot(v, v), TINY_POSITIVE)); a zero vector stays zero.
 Vec3 safe_normalize(const Params& p, Vec3 v);
-// Template brdf_half_vector: normalize(i + o); guarded: (0, 0, 1) where every component of
-// i + o is below DIVISOR_MIN (on the device: i + o divided by its largest component first, so
-// that its squared length cannot underflow; the same direction in double).
+// Template brdf_half_vector: normalize(i + o); guarded: (0, 0, 1) where |i + o|^2 is below
+// DIVISOR_MIN (there the device's rsqrt may see 0 or a flushed denormal).
 Vec3 half_vector(const Params& p, Vec3 i, Vec3 o);
 
 // Slope-space half vector h.xy / |h.z| (Kaplanyan et al. 2016; T&K 2019 Listing 1). The paper's
