@@ -19,9 +19,6 @@ packages=(
   # the report test opens the generated HTML report in headless Chromium; chromium also ships
   # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium
-  # the WebGL2 tests of the GLSL ES target and the three.js example: puppeteer-core and three from
-  # the npm registry, pinned by package-lock.json (npm ci below; no browser download)
-  nodejs npm
 )
 
 missing=()
@@ -30,6 +27,15 @@ for package in "${packages[@]}"; do
     missing+=("$package")
   fi
 done
+
+# Node.js and npm for the WebGL2 tests of the GLSL ES target and the three.js example
+# (puppeteer-core and three from the npm registry, pinned by package-lock.json; npm ci below, no
+# browser download). Debian's packages only where no node/npm is on the PATH: a Node.js from
+# another source (e.g. NodeSource's nodejs, which bundles npm and conflicts with Debian's npm)
+# is used as it is.
+if ! command -v node > /dev/null || ! command -v npm > /dev/null; then
+  missing+=(nodejs npm)
+fi
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
