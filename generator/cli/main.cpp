@@ -100,7 +100,17 @@ std::vector<std::string> spirv_library_variants(const Catalogue& catalogue, cons
   return ids;
 }
 
-int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
+// The glint templates join an emission only where a glint variant is named, or where every
+// variant is emitted to a target other than SPIR-V libraries (built from the SAA templates alone).
+const Catalogue& emission_catalogue(const Catalogue& every_variant, const saagen::EmitOptions& options) {
+  const Catalogue& builtin = Catalogue::builtin();
+  if (options.variants.empty()) return options.target != saagen::spirv_library_target ? every_variant : builtin;
+  const bool names_a_glint = std::any_of(options.variants.begin(), options.variants.end(),
+                                         [&](const std::string& id) { return builtin.find_variant(id) == nullptr; });
+  return names_a_glint ? every_variant : builtin;
+}
+
+int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
   saagen::cli::check_output_named("--output", arguments.output_directory);
   saagen::cli::check_named_once("--variant", arguments.variants);
   saagen::EmitOptions options;
@@ -108,9 +118,10 @@ int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   options.prefix = arguments.prefix;
   // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
   const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
-  saagen::apply_settings(catalogue, settings, options);
+  saagen::apply_settings(every_variant, settings, options);
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
+  const Catalogue& catalogue = emission_catalogue(every_variant, options);
 
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {

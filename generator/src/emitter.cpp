@@ -66,9 +66,9 @@ class FileWriter {
         option_values_(option_values), names_(build_name_map(catalogue, options.prefix)) {}
 
   EmittedFile write(const Variant& variant) {
-    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, option_values_, options_.precision, options_.guards, {}, options_.domain};
     const auto functions = catalogue_.closure(variant.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
+    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, options_of(constants), options_.precision, options_.guards, {}, options_.domain};
     const std::string form = form_suffix();
     const std::string guard = macro_prefix(options_.prefix) + upper(variant.id) + upper(form) + "_" + upper(target_.file_extension);
 
@@ -91,10 +91,10 @@ class FileWriter {
 
   // A bundle: the closure of request.functions, with the same conventions as write().
   EmittedFile write_bundle(const BundleRequest& request) {
-    EmissionMarker marker{target_.name, request.variants, options_.prefix, option_values_, options_.precision, options_.guards,
-                          request.functions, options_.domain};
     const auto functions = catalogue_.closure(request.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
+    EmissionMarker marker{target_.name, request.variants, options_.prefix, options_of(constants), options_.precision, options_.guards,
+                          request.functions, options_.domain};
     const std::string form = form_suffix();
     const std::string guard = macro_prefix(options_.prefix) + "BUNDLE_" + upper(request.name) + upper(form) + "_" + upper(target_.file_extension);
 
@@ -238,6 +238,21 @@ class FileWriter {
   const TargetSyntax target_;  // with the emission precision applied
   const EmitOptions& options_;
   const std::map<std::string, double>& option_values_;
+
+  // The options a file records in its marker (`validate` re-emits with them): the built-in
+  // templates' (sigma2, kappa), which every file records, and those of the glint templates only
+  // where the file uses them.
+  template <class Constants>
+  std::map<std::string, double> options_of(const Constants& constants) const {
+    std::map<std::string, double> used;
+    for (const auto& [option, value] : option_values_) {
+      const auto& builtin_constants = Catalogue::builtin().constants();
+      const bool builtin = std::any_of(builtin_constants.begin(), builtin_constants.end(), [&](const Constant& c) { return c.option == option; });
+      const bool referenced = std::any_of(constants.begin(), constants.end(), [&](const Constant* c) { return c->option == option; });
+      if (builtin || referenced) used.emplace(option, value);
+    }
+    return used;
+  }
   NameMap names_;
 };
 

@@ -165,14 +165,14 @@ std::string domain_function_name(std::string_view function, std::string_view dom
 const Catalogue& domain_catalogue(const Catalogue& catalogue, std::string_view domain_id) {
   const RoughnessDomain& domain = find_domain(domain_id);
   if (domain.to_alpha2.empty()) return catalogue;
-  if (&catalogue != &Catalogue::builtin()) {
-    throw Error(fmt::format("--domain {}: roughness domains compose with the built-in templates only; emit with --domain alpha2", domain.id));
-  }
+  // One extended catalogue per (catalogue, domain): the built-in templates, or those plus the
+  // glint templates (whose functions take no alpha^2 and stay as they are).
   static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<Catalogue>, std::less<>> cache;
+  static std::map<std::pair<const Catalogue*, std::string>, std::unique_ptr<Catalogue>> cache;
   const std::lock_guard lock(mutex);
-  auto found = cache.find(domain.id);
-  if (found == cache.end()) found = cache.emplace(domain.id, std::make_unique<Catalogue>(build_domain_catalogue(catalogue, domain))).first;
+  const auto key = std::make_pair(&catalogue, domain.id);
+  auto found = cache.find(key);
+  if (found == cache.end()) found = cache.emplace(key, std::make_unique<Catalogue>(build_domain_catalogue(catalogue, domain))).first;
   return *found->second;
 }
 
