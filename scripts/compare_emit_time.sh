@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Compares the whole-process emission time of two saagen binaries in one run: every variant for
+# every target and precision (glsl fp32/fp16, hlsl fp32/min16, spirv), the two binaries
+# interleaved ROUNDS times; prints each one's median seconds and the ratio AFTER / BEFORE.
+#
+# Usage: scripts/compare_emit_time.sh BEFORE_BINARY AFTER_BINARY [ROUNDS]
+set -euo pipefail
+
+if [[ $# -lt 2 ]]; then
+  echo "usage: $0 BEFORE_BINARY AFTER_BINARY [ROUNDS]" >&2
+  exit 2
+fi
+before=$(realpath "$1")
+after=$(realpath "$2")
+rounds=${3:-7}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+emit_everything() {  # binary output_directory
+  rm -rf "$2"
+  "$1" emit --target glsl -o "$2/glsl" > /dev/null
+  "$1" emit --target glsl --precision fp16 -o "$2/glsl16" > /dev/null
+  "$1" emit --target hlsl -o "$2/hlsl" > /dev/null
+  "$1" emit --target hlsl --precision min16 -o "$2/hlsl16" > /dev/null
+  "$1" emit --target spirv -o "$2/spirv" > /dev/null
+}
+
+seconds() {  # binary output_directory
+  local start end
+  start=$(date +%s.%N)
+  emit_everything "$1" "$2"
+  end=$(date +%s.%N)
+  echo "$end - $start" | bc -l
+}
+
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+: > "$work/before.txt"
+: > "$work/after.txt"
+for ((round = 0; round < rounds; ++round)); do
+  seconds "$before" "$work/out" >> "$work/before.txt"
+  seconds "$after" "$work/out" >> "$work/after.txt"
+done
+before_median=$(median < "$work/before.txt")
+after_median=$(median < "$work/after.txt")
+printf 'before: median %.3f s over %d rounds (%s)\n' "$before_median" "$rounds" "$before"
+printf 'after:  median %.3f s over %d rounds (%s)\n' "$after_median" "$rounds" "$after"
+printf 'ratio after/before: %.3f\n' "$(echo "$after_median / $before_median" | bc -l)"
