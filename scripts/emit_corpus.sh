@@ -48,6 +48,6 @@ done
 "$saagen" list > "$out/list.txt"
 "$saagen" list --json > "$out/list.json"
 "$saagen" validate > "$out/validate.txt" 2>&1
-"$saagen" validate "$out/emit/glsl/fp16" > "$out/validate-glsl-fp16.txt" 2>&1
+(cd "$out" && "$saagen" validate emit/glsl/fp16 > validate-glsl-fp16.txt 2>&1)
 "$saagen" glints validate > "$out/glints-validate.txt" 2>&1
 echo "corpus written to $out: $(find "$out" -type f | wc -l) files"

@@ -2,6 +2,7 @@
 
 #include "saagen/dialect.hpp"
 #include "saagen/error.hpp"
+#include "saagen/syntax_tree.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -197,7 +198,7 @@ class FileWriter {
       out << fmt::format("//   {}: {}\n", parameter.name, parameter.meaning);
     }
     out << fmt::format("//   returns: {}\n", function.return_meaning);
-    const std::string body = translate(target_, dialect::resolve_guards(function.body, options_.guards), names_);
+    const std::string body = dialect::print_c_like(*function.tree, target_, names_, options_.guards);
     out << signature(target_, function, options_.prefix) << "\n{\n" << suffix_float_literals(body, target_.literal_suffix) << "}\n";
     out << "#endif\n";
     if (function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));

@@ -68,6 +68,12 @@ struct TargetSyntax {
   static TargetSyntax parse(std::string_view json_text, std::string_view source_name);
 };
 
+// The sections of a skeleton source file under targets/ (e.g. "glsl/validate_fragment.glsl"):
+// a line "// saagen-section: NAME" starts section NAME, which holds the lines up to the next
+// such line; text before the first one is the file's own comment. Throws saagen::Error naming
+// `source` (the table that names the file) when the file is not embedded in this build.
+std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_view file, std::string_view source);
+
 // The tables compiled into this build, by name ("glsl", "hlsl").
 const TargetSyntax& builtin_target(std::string_view name);
 std::vector<std::string> builtin_target_names();
