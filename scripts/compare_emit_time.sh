@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Compares the whole-process emission time of two saagen binaries in one run: every variant for
 # every target and precision (glsl fp32/fp16, hlsl fp32/min16, spirv), the two binaries
-# interleaved ROUNDS times; prints each one's median seconds and the ratio AFTER / BEFORE.
+# interleaved ROUNDS times; prints each one's median CPU seconds (user + system, which a shared
+# machine's load disturbs less than wall time) and the ratio AFTER / BEFORE.
 #
 # Usage: scripts/compare_emit_time.sh BEFORE_BINARY AFTER_BINARY [ROUNDS]
 set -euo pipefail
@@ -25,12 +26,10 @@ emit_everything() {  # binary output_directory
   "$1" emit --target spirv -o "$2/spirv" > /dev/null
 }
 
-seconds() {  # binary output_directory
-  local start end
-  start=$(date +%s.%N)
-  emit_everything "$1" "$2"
-  end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+seconds() {  # binary output_directory: CPU seconds of the five processes
+  local TIMEFORMAT='%U %S' times
+  times=$({ time emit_everything "$1" "$2"; } 2>&1)
+  echo "$times" | awk '{ print $1 + $2 }'
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
@@ -43,6 +42,6 @@ for ((round = 0; round < rounds; ++round)); do
 done
 before_median=$(median < "$work/before.txt")
 after_median=$(median < "$work/after.txt")
-printf 'before: median %.3f s over %d rounds (%s)\n' "$before_median" "$rounds" "$before"
-printf 'after:  median %.3f s over %d rounds (%s)\n' "$after_median" "$rounds" "$after"
+printf 'before: median %.3f CPU s over %d rounds (%s)\n' "$before_median" "$rounds" "$before"
+printf 'after:  median %.3f CPU s over %d rounds (%s)\n' "$after_median" "$rounds" "$after"
 printf 'ratio after/before: %.3f\n' "$(echo "$after_median / $before_median" | bc -l)"

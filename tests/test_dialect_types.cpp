@@ -151,7 +151,9 @@ TEST(DialectPrinter, KeepsTheParenthesesPrecedenceNeeds) {
   EXPECT_EQ(without_grouping("(a > b ? a : b) * c"), "    return (a > b ? a : b) * c;\n");
   EXPECT_EQ(without_grouping("(v * a).x"), "    return (v * a).x;\n");
   EXPECT_EQ(without_grouping("real((n & 3) + 1)"), "    return real((n & 3) + 1);\n");
-  EXPECT_EQ(without_grouping("real(n & (3 + 1))"), "    return real(n & 3 + 1);\n");
+  EXPECT_EQ(without_grouping("real(n & (3 + 1))"), "    return real(n & (3 + 1));\n");
+  EXPECT_EQ(without_grouping("(a + b) < c ? a : b"), "    return a + b < c ? a : b;\n");
+  EXPECT_EQ(without_grouping("real((n & 3) << 1)"), "    return real((n & 3) << 1);\n");
   EXPECT_EQ(without_grouping("(a < b) == (b < c) ? a : b"), "    return (a < b) == (b < c) ? a : b;\n");
 }
 

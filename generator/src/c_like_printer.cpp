@@ -38,7 +38,16 @@ int precedence(const Expr& expr) {
 bool needs_parentheses(const Expr& parent, std::size_t position, const Expr& child) {
   const int inner = precedence(child);
   switch (parent.kind) {
-    case ExprKind::binary: return position == 0 ? inner < precedence(parent) : inner <= precedence(parent);
+    case ExprKind::binary: {
+      // Bitwise, equality, relational and shift operators mixed with each other, and arithmetic
+      // inside bitwise or shift operators, are grouped although C would not need it (a < b == c;
+      // n & 3 + 1): as compilers warn (-Wparentheses), and as WGSL requires.
+      const int outer = precedence(parent);
+      const bool bitwise_or_shift = (outer >= 5 && outer <= 7) || outer == 10;
+      const bool mixed = child.kind == ExprKind::binary && child.text != parent.text &&
+                         ((inner >= 5 && inner <= 10 && outer >= 5 && outer <= 10) || (bitwise_or_shift && inner >= 11));
+      return mixed || (position == 0 ? inner < outer : inner <= outer);
+    }
     case ExprKind::assign: return position == 0 ? inner < 14 : inner < 1;
     case ExprKind::ternary: return position == 0 ? inner <= 2 : inner < 2;
     case ExprKind::unary: return inner < 13 || (child.kind == ExprKind::unary && child.text == parent.text);

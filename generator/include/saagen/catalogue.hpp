@@ -37,7 +37,7 @@ struct Function {
   // The body's typed syntax tree (saagen/syntax_tree.hpp), checked when the catalogue loads.
   std::shared_ptr<const dialect::Body> tree;
   // Template functions and constants this body references directly, with guards (the default)
-  // and in the unguarded paper form; see dialect::resolve_guards.
+  // and in the unguarded paper form (guarded(safe, paper) resolved either way).
   std::vector<std::string> calls;
   std::vector<std::string> constants;
   std::vector<std::string> paper_calls;

@@ -81,8 +81,10 @@ std::vector<std::string> builtin_target_names();
 // Maps unprefixed template names (functions, constants) to the names they get in the output.
 using NameMap = std::map<std::string, std::string, std::less<>>;
 
-// Rewrites dialect code into the target language: types, intrinsic calls (arguments are
-// rewritten recursively) and template names. Whitespace and comments are kept.
+// Rewrites a dialect snippet token by token into the target language: types, intrinsic calls
+// (arguments rewritten recursively) and template names; whitespace and comments are kept. Used
+// for the harness's glue (kernel bodies, validation calls), which use the skeletons' macros;
+// template bodies are printed from their typed tree (dialect::print_c_like).
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
 
 // Appends `suffix` to every floating-point literal in `code` (numbers with '.' or an exponent);
