@@ -118,12 +118,30 @@ const std::vector<IntrinsicSignature>& intrinsics() {
   return table;
 }
 
-bool is_intrinsic(std::string_view name) {
-  return std::any_of(intrinsics().begin(), intrinsics().end(), [&](const IntrinsicSignature& s) { return s.name == name; });
+namespace {
+
+// The overloads of each intrinsic, by name.
+using IntrinsicIndex = std::map<std::string, std::vector<const IntrinsicSignature*>, std::less<>>;
+
+IntrinsicIndex index_by_name(const std::vector<IntrinsicSignature>& table) {
+  IntrinsicIndex index;
+  for (const IntrinsicSignature& signature : table) index[signature.name].push_back(&signature);
+  return index;
 }
 
+const IntrinsicIndex& builtin_index() {
+  static const IntrinsicIndex index = index_by_name(intrinsics());
+  return index;
+}
+
+}  // namespace
+
+bool is_intrinsic(std::string_view name) { return builtin_index().count(name) > 0; }
+
 bool is_derivative_intrinsic(std::string_view name) {
-  return std::any_of(intrinsics().begin(), intrinsics().end(), [&](const IntrinsicSignature& s) { return s.name == name && s.derivative; });
+  const auto found = builtin_index().find(name);
+  return found != builtin_index().end() &&
+         std::any_of(found->second.begin(), found->second.end(), [](const IntrinsicSignature* s) { return s->derivative; });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -147,7 +165,8 @@ class Checker {
  public:
   Checker(const FunctionSignature& signature, const CheckContext& context, const SourcePlace& place)
       : signature_(signature), context_(context), place_(place),
-        intrinsics_(context.intrinsics ? *context.intrinsics : intrinsics()) {}
+        own_index_(context.intrinsics ? index_by_name(*context.intrinsics) : IntrinsicIndex()),
+        intrinsics_(context.intrinsics ? own_index_ : builtin_index()) {}
 
   void check(Body& body) {
     scopes_.emplace_back();
@@ -234,8 +253,7 @@ class Checker {
   void declaration(Stmt& stmt) {
     const Type type = *Type::from_name(stmt.type_name);
     if (find_local(stmt.name) || (context_.constants && context_.constants->count(stmt.name)) ||
-        (context_.functions && context_.functions->count(stmt.name)) || Type::from_name(stmt.name) ||
-        std::any_of(intrinsics_.begin(), intrinsics_.end(), [&](const auto& s) { return s.name == stmt.name; })) {
+        (context_.functions && context_.functions->count(stmt.name)) || Type::from_name(stmt.name) || is_known_intrinsic(stmt.name)) {
       fail(stmt.line, fmt::format("'{}' is already declared (a parameter, local, constant, function or intrinsic); choose another name", stmt.name));
     }
     if (stmt.value) {
@@ -310,9 +328,7 @@ class Checker {
     fail(expr.line, fmt::format("'{}' is not declared; declare it (TYPE {} = ...) before its use, or name a parameter or a constant", expr.text, expr.text));
   }
 
-  bool is_known_intrinsic(std::string_view name) const {
-    return std::any_of(intrinsics_.begin(), intrinsics_.end(), [&](const IntrinsicSignature& s) { return s.name == name; });
-  }
+  bool is_known_intrinsic(std::string_view name) const { return intrinsics_.count(name) > 0; }
 
   Type unary(Expr& expr) {
     const Type operand = expression(*expr.operands[0]);
@@ -399,10 +415,9 @@ class Checker {
     }
     expr.call_kind = CallKind::intrinsic;
     std::vector<std::string> offered;
-    for (const IntrinsicSignature& signature : intrinsics_) {
-      if (signature.name != expr.text) continue;
-      if (signature.parameters == types) return signature.result;
-      offered.push_back(fmt::format("({})", describe_types(signature.parameters)));
+    for (const IntrinsicSignature* signature : intrinsics_.find(expr.text)->second) {
+      if (signature->parameters == types) return signature->result;
+      offered.push_back(fmt::format("({})", describe_types(signature->parameters)));
     }
     fail(expr.line, fmt::format("no {} takes ({}); it takes {}; convert the arguments explicitly", expr.text, describe_types(types),
                                 fmt::join(offered, " or ")));
@@ -493,7 +508,8 @@ class Checker {
   const FunctionSignature& signature_;
   const CheckContext& context_;
   const SourcePlace& place_;
-  const std::vector<IntrinsicSignature>& intrinsics_;
+  const IntrinsicIndex own_index_;
+  const IntrinsicIndex& intrinsics_;
   std::vector<std::map<std::string, Local, std::less<>>> scopes_;
   int loop_depth_ = 0;
 
