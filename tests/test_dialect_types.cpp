@@ -135,6 +135,45 @@ TEST(DialectPrinter, RoundTripsLayoutCommentsAndStatements) {
   EXPECT_EQ(printed(checked(code)), code);
 }
 
+// The tree's structure as an S-expression, guards resolved to the safe form and the template's
+// grouping parentheses left out.
+std::string structure(const dialect::Expr& expr) {
+  if (expr.kind == dialect::ExprKind::group) return structure(*expr.operands[0]);
+  if (expr.kind == dialect::ExprKind::guarded) return structure(*expr.operands[0]);
+  std::string text = "(" + std::to_string(static_cast<int>(expr.kind)) + " " + expr.text;
+  for (const auto& operand : expr.operands) text += " " + structure(*operand);
+  return text + ")";
+}
+
+std::string structure(const dialect::Stmt& stmt) {
+  std::string text = "[" + std::to_string(static_cast<int>(stmt.kind)) + " " + stmt.type_name + " " + stmt.name;
+  if (stmt.init) text += " " + structure(*stmt.init);
+  if (stmt.value) text += " " + structure(*stmt.value);
+  if (stmt.step) text += " " + structure(*stmt.step);
+  for (const auto& inner : stmt.body) text += " " + structure(*inner);
+  return text + "]";
+}
+
+std::string structure(const dialect::Body& body) {
+  std::string text;
+  for (const auto& stmt : body.statements) text += structure(*stmt);
+  return text;
+}
+
+// Every builtin template, printed without its own parentheses (only those precedence needs),
+// parses back to the same tree: the printer's precedence is C's.
+TEST(DialectPrinter, EveryTemplatePrintedWithoutItsParenthesesParsesBackToTheSameTree) {
+  for (const Catalogue* catalogue : {&Catalogue::builtin(), &saagen::glints::catalogue()}) {
+    for (const saagen::Function& function : catalogue->functions()) {
+      const dialect::SourcePlace place{function.source_file, function.body_line, function.name};
+      dialect::Body bare = dialect::parse_body(function.body, place);
+      dialect::drop_grouping(bare);
+      const std::string printed_bare = dialect::print_c_like(bare, dialect_spelling(), {}, true);
+      EXPECT_EQ(structure(dialect::parse_body(printed_bare, place)), structure(*function.tree)) << function.name << ":\n" << printed_bare;
+    }
+  }
+}
+
 TEST(DialectPrinter, KeepsTheParenthesesPrecedenceNeeds) {
   const auto without_grouping = [](const std::string& expression) {
     dialect::Body body = checked("    return " + expression + ";\n");
