@@ -17,6 +17,9 @@ packages=(
   # the report test opens the generated HTML report in headless Chromium; chromium also ships
   # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium
+  # the WebGL2 tests of the GLSL ES target and the three.js example: puppeteer-core and three from
+  # the npm registry, pinned by package-lock.json (npm ci below; no browser download)
+  nodejs npm
 )
 
 missing=()
@@ -28,12 +31,22 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-sudo_cmd=()
-[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# npm packages exactly as package-lock.json pins them, when node_modules is missing or older than
+# the lockfile. puppeteer-core downloads no browser (the tests use /usr/bin/chromium);
+# --ignore-scripts runs no package's install scripts.
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [ ! -f "$root/node_modules/.package-lock.json" ] || [ "$root/package-lock.json" -nt "$root/node_modules/.package-lock.json" ]; then
+  echo "install-deps: npm ci in $root"
+  (cd "$root" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund)
+else
+  echo "install-deps: node_modules matches package-lock.json"
+fi

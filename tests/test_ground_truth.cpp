@@ -11,11 +11,9 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -45,14 +43,6 @@ void expect_orthonormal_frame(const SurfaceHit& h, double tol = 1e-12) {
     EXPECT_NEAR(ref::dot(h.normal, h.tangent), 0.0, tol);
     expect_vec_near(h.bitangent, ref::cross(h.normal, h.tangent), tol, "b = n x t");
 }
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// CPU time of the whole process (all threads), to tell the renderer's cost from waiting for a
-// core on a loaded machine: on an idle machine, wall time ~ CPU time / threads.
-double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 // RMSE of a against b over the pixels where mask(i) holds.
 template <class Mask>
@@ -676,46 +666,4 @@ TEST(Cache, RoundTripAndKey) {
 // ---------------------------------------------------------------------------------------------
 // Throughput
 
-// Ground-truth speed on this machine: the sphere at 64 x 64 x 1024 spp, four alphas (one pass
-// of rays serves all materials), extrapolated to 256 x 256. Informational (printed); the only
-// assertion is a loose sanity bound.
-TEST(GroundTruth, Throughput) {
-    const Scene scene = make_scene(SceneId::sphere);
-    const std::vector<Material> materials{{0.01, false}, {0.05, false}, {0.1, false}, {0.3, false}};
-    GroundTruthSettings settings;
-    settings.width = settings.height = 64;
-    const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = process_cpu_seconds();
-    render_ground_truth(scene, settings, materials);
-    const double s = seconds_since(start);
-    const double cpu = process_cpu_seconds() - cpu_start;
-    const double samples = 64.0 * 64.0 * 1024.0;
-    std::printf("ground truth sphere 64x64x1024 spp, 4 alphas, %d threads: %.2f s wall (%.2f s CPU),"
-                " %.2f Msamples/s; 256x256 extrapolated: %.1f s\n",
-                resolve_threads(0), s, cpu, samples / s / 1e6, s * 16.0);
-    EXPECT_LT(s, 60.0);
-}
-
-// The full-size timing (the target: 256 x 256 x 1024 spp in <= 30 s on 2 cores), one
-// scene at a time, every scene, four alphas x Fresnel on/off per pass. ~1 min in total.
-TEST(GroundTruth, DISABLED_Throughput256) {
-    std::vector<Material> materials;
-    for (double alpha : {0.01, 0.05, 0.1, 0.3})
-        for (bool fresnel : {false, true}) materials.push_back({alpha, fresnel});
-    for (SceneId id : all_scenes()) {
-        const Scene scene = make_scene(id);
-        GroundTruthSettings settings;
-        for (int n_materials : {1, 8}) {
-            const auto start = std::chrono::steady_clock::now();
-            const double cpu_start = process_cpu_seconds();
-            render_ground_truth(scene, settings, std::span(materials).first(n_materials));
-            const double s = seconds_since(start);
-            const double cpu = process_cpu_seconds() - cpu_start;
-            std::printf("ground truth %-10s 256x256x1024 spp, %d material(s), %d threads: %.2f s wall"
-                        " (%.2f s CPU), %.2f Msamples/s\n",
-                        std::string(scene_name(id)).c_str(), n_materials, resolve_threads(0), s,
-                        cpu, 256.0 * 256.0 * 1024.0 / s / 1e6);
-            EXPECT_LT(s, 30.0) << scene_name(id);
-        }
-    }
-}
+// Throughput: bench/bench_reference.cpp (BM_GroundTruthSphere64).

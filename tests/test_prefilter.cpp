@@ -134,7 +134,9 @@ TEST(Toksvig, TwoNormalsAtPlusMinusThetaGiveTheAnalyticVariance) {
     EXPECT_NEAR(ref::toksvig_variance(ref::Params{}, std::cos(theta)), variance, 1e-15);
     EXPECT_NEAR(value_at(image, 1, 0), std::min(1.0, 2.0 * variance), kFloatUlp * 2.0 * variance + 1e-15) << theta;
     const double lean_half_trace = 0.5 * std::tan(theta) * std::tan(theta);
-    if (theta == 0.05) EXPECT_NEAR(variance / lean_half_trace, 1.0, 1e-3);  // 2 cos / (1 + cos)
+    if (theta == 0.05) {
+      EXPECT_NEAR(variance / lean_half_trace, 1.0, 1e-3);  // 2 cos / (1 + cos)
+    }
   }
   // L = 0 (opposite normals cancel) is guarded: finite, and the roughness saturates.
   EXPECT_TRUE(std::isfinite(ref::toksvig_variance(ref::Params{}, 0.0)));

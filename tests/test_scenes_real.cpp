@@ -10,10 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <string>
 #include <vector>
 
@@ -522,23 +520,4 @@ TEST(Scenes, GroundTruthSmoke) {
     }
 }
 
-// The trade's cost per content scene: 256 x 256 x 1024 spp, the trade's 8 materials, 2 threads
-// (target <= 60 s each). Disabled (about a minute); run with --gtest_also_run_disabled_tests.
-TEST(Scenes, DISABLED_GroundTruthTime256) {
-    GroundTruthSettings settings;
-    settings.threads = 2;
-    std::vector<Material> materials;
-    for (double alpha : {0.01, 0.05, 0.1, 0.3})
-        for (bool fresnel : {false, true}) materials.push_back({alpha, fresnel});
-    for (SceneId id : content_scenes()) {
-        const Scene scene = make_scene(id);
-        const auto start = std::chrono::steady_clock::now();
-        const std::clock_t cpu_start = std::clock();
-        render_ground_truth(scene, settings, materials);
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-        std::printf("%s: 256x256x1024, 8 materials, 2 threads: %.1f s wall, %.1f s CPU\n",
-                    std::string(scene_name(id)).c_str(), wall, cpu);
-        EXPECT_LT(cpu / 2.0, 60.0) << scene_name(id);  // wall time on an idle 2-core machine
-    }
-}
+// The ground truth's cost per content scene: bench/bench_reference.cpp (BM_GroundTruthContent).

@@ -110,8 +110,11 @@ TEST(RealContent, PrefilteringHalvesTonemappedRmseButHazeTriplesFlip) {
 TEST(RealContent, OnASmoothMeshNoSaaHasTheLowestFlip) {
     const TradeTable& t = table(SceneId::torus_knot, 0.05);
     const double none = row(t, Variant::none).flip_ldr;
-    for (const TradeRow& r : t.rows)
-        if (r.variant != Variant::none) EXPECT_GT(r.flip_ldr, none) << configuration_id(r);
+    for (const TradeRow& r : t.rows) {
+        if (r.variant != Variant::none) {
+            EXPECT_GT(r.flip_ldr, none) << configuration_id(r);
+        }
+    }
 }
 
 // Better than the paper for GGX: the kernel's sigma^2 = 0.25 is Beckmann's variance match (T&K

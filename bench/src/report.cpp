@@ -429,12 +429,6 @@ const char* kMetricNote =
     "std in tonemapped values divided by the ground truth's (1 = as the converged animation; flicker error = |ratio - 1|). "
     "Engines cost what deferred-sum costs (same operations).";
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw Error(fmt::format("{}: cannot write", path.string()));
-}
-
 std::string html_escape(std::string_view text) {
   std::string out;
   for (char c : text) {

@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
   std::string sigma2;
   std::string kappa;
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
-  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
+  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
   emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
   CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
   emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
   emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
   emit->add_option("--precision", emit_arguments.precision,
-                   "fp32, fp16 (GLSL float16_t) or min16 (HLSL min16float)")->capture_default_str();
+                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump) or min16 (HLSL min16float)")->capture_default_str();
   emit->add_flag("--unguarded", emit_arguments.unguarded,
                  "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
 

@@ -29,14 +29,18 @@ EShLanguage to_glslang_stage(ShaderStage stage) {
 }
 
 spv_target_env to_spirv_env(ClientApi client) {
-  return client == ClientApi::vulkan ? SPV_ENV_VULKAN_1_1 : SPV_ENV_OPENGL_4_5;
+  return client == ClientApi::vulkan ? SPV_ENV_VULKAN_1_1 : SPV_ENV_OPENGL_4_5;  // opengl_es produces no module
 }
 
 void configure_environment(glslang::TShader& shader, const CompileRequest& request) {
   const EShLanguage stage = to_glslang_stage(request.stage);
   const bool hlsl = request.language == SourceLanguage::hlsl;
   const glslang::EShSource source = hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl;
-  if (request.client == ClientApi::vulkan) {
+  if (request.client == ClientApi::opengl_es) {
+    // No client: glslang checks the source against the ES profile its #version line names
+    // (300 es), as an OpenGL ES / WebGL2 driver's front end does, and generates no SPIR-V.
+    shader.setEnvInput(source, stage, glslang::EShClientNone, 0);
+  } else if (request.client == ClientApi::vulkan) {
     shader.setEnvInput(source, stage, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_1);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_3);
@@ -49,6 +53,7 @@ void configure_environment(glslang::TShader& shader, const CompileRequest& reque
 }
 
 EShMessages message_flags(const CompileRequest& request) {
+  if (request.client == ClientApi::opengl_es) return EShMsgDefault;
   int flags = EShMsgSpvRules;
   if (request.client == ClientApi::vulkan) flags |= EShMsgVulkanRules;
   if (request.language == SourceLanguage::hlsl) {
@@ -90,6 +95,10 @@ CompileResult compile_to_spirv(const CompileRequest& request) {
   program.addShader(shader.get());
   if (!program.link(messages)) {
     result.log = program.getInfoLog();
+    return result;
+  }
+  if (request.client == ClientApi::opengl_es) {
+    result.ok = true;  // parsed and linked; an ES 3.00 shader has no SPIR-V form
     return result;
   }
   // glslang's HLSL front end links a missing entry function as an empty one, with a warning.

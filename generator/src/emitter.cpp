@@ -35,8 +35,9 @@ std::string float_literal(double value) {
   return text;
 }
 
+// Types in signatures and constant declarations (with a precision qualifier in GLSL ES).
 std::string type_name(const TargetSyntax& target, const std::string& dialect_type) {
-  return target.types.at(dialect_type);
+  return target.declaration_type(dialect_type);
 }
 
 std::string signature(const TargetSyntax& target, const Function& function, std::string_view prefix) {
@@ -77,6 +78,7 @@ class FileWriter {
     write_variant_header(out, variant);
     write_constants_header(out, constants);
     write_usage_header(out, variant);
+    write_intrinsic_notes(out, functions);
     out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
     if (!target_.preamble.empty()) out << "\n" << target_.preamble;
     for (const Constant* constant : constants) write_constant(out, *constant);
@@ -119,6 +121,7 @@ class FileWriter {
     out << fmt::format("// Define {}CORE_ONLY before including this file in stages without screen-space\n"
                        "// derivatives (compute, ray tracing): it removes the [fragment] functions.\n",
                        macro_prefix(options_.prefix));
+    write_intrinsic_notes(out, functions);
     out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
     if (!target_.preamble.empty()) out << "\n" << target_.preamble;
     for (const Constant* constant : constants) write_constant(out, *constant);
@@ -174,6 +177,21 @@ class FileWriter {
                        macro_prefix(options_.prefix));
   }
 
+  // The target's notes on the intrinsics the emitted functions use (what it substitutes for
+  // an intrinsic it lacks), each once, in the table's order.
+  void write_intrinsic_notes(std::ostringstream& out, const std::vector<const Function*>& functions) const {
+    for (const auto& [intrinsic, note] : target_.intrinsic_notes) {
+      const bool used = std::any_of(functions.begin(), functions.end(), [&](const Function* function) {
+        const auto names = dialect::referenced_names(*function->tree, options_.guards);
+        return std::find(names.begin(), names.end(), intrinsic) != names.end();
+      });
+      if (!used) continue;
+      std::istringstream lines(note);
+      out << "// Note:\n";
+      for (std::string line; std::getline(lines, line);) out << "//   " << line << "\n";
+    }
+  }
+
   double value_of(const Constant& constant) const {
     if (constant.option.empty()) return options_.precision != "fp32" && constant.half_value ? *constant.half_value : constant.value;
     return option_values_.at(constant.option);
@@ -199,7 +217,8 @@ class FileWriter {
     }
     out << fmt::format("//   returns: {}\n", function.return_meaning);
     const std::string body = dialect::print_c_like(*function.tree, target_, names_, options_.guards);
-    out << signature(target_, function, options_.prefix) << "\n{\n" << suffix_float_literals(body, target_.literal_suffix) << "}\n";
+    out << signature(target_, function, options_.prefix) << "\n{\n" << target_.function_prologue
+        << suffix_float_literals(body, target_.literal_suffix) << "}\n";
     out << "#endif\n";
     if (function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
   }

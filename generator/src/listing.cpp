@@ -10,7 +10,7 @@ using Json = nlohmann::json;
 
 Json type_spellings(const std::string& dialect_type) {
   Json spellings = Json::object();
-  for (const std::string& target : builtin_target_names()) spellings[target] = builtin_target(target).types.at(dialect_type);
+  for (const std::string& target : builtin_target_names()) spellings[target] = builtin_target(target).declaration_type(dialect_type);
   return spellings;
 }
 

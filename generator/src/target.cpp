@@ -49,7 +49,36 @@ ValidationSkeleton parse_skeleton(const Json& value, std::string_view source) {
 ClientApi parse_client(const std::string& name, std::string_view source) {
   if (name == "vulkan") return ClientApi::vulkan;
   if (name == "opengl") return ClientApi::opengl;
-  throw Error(fmt::format("{}: validation client '{}' is not vulkan or opengl", source, name));
+  if (name == "opengl_es") return ClientApi::opengl_es;
+  throw Error(fmt::format("{}: validation client '{}' is not vulkan, opengl or opengl_es", source, name));
+}
+
+ShaderStage parse_core_stage(const Json& validation, std::string_view source) {
+  if (!validation.contains("core_stage")) return ShaderStage::compute;
+  const std::string name = require_string(validation, "core_stage", source);
+  if (name == "compute") return ShaderStage::compute;
+  if (name == "vertex") return ShaderStage::vertex;
+  throw Error(fmt::format("{}: validation core_stage '{}' is not compute or vertex", source, name));
+}
+
+// Reads the optional "intrinsic_notes": intrinsic -> note text.
+void read_notes(const Json& object, std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
+  if (!object.contains("intrinsic_notes")) return;
+  for (const auto& [intrinsic, note] : object.at("intrinsic_notes").items()) {
+    if (!note.is_string()) throw Error(fmt::format("{}: 'intrinsic_notes.{}' must be a string", source, intrinsic));
+    out[intrinsic] = note.get<std::string>();
+  }
+}
+
+// Reads an optional object of strings keyed by dialect type; every key must be a known type.
+void read_type_spellings(const Json& object, const char* key, const std::map<std::string, std::string, std::less<>>& known,
+                         std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
+  if (!object.contains(key)) return;
+  for (const auto& [type, spelling] : object.at(key).items()) {
+    if (!known.count(type)) throw Error(fmt::format("{}: '{}' spells unknown type '{}'", source, key, type));
+    if (!spelling.is_string()) throw Error(fmt::format("{}: '{}.{}' must be a string", source, key, type));
+    out[type] = spelling.get<std::string>();
+  }
 }
 
 // Replaces {0}, {1}, ... in `pattern` with the translated arguments.
@@ -182,7 +211,11 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   }
   for (const auto& [key, value] : require(json, "intrinsics", source).items()) target.intrinsics[key] = value.get<std::string>();
   target.constant_declaration = require_string(json, "constant_declaration", source);
+  read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
+  if (json.contains("function_prologue")) target.function_prologue = require_string(json, "function_prologue", source);
+  read_notes(json, target.intrinsic_notes, source);
   const Json& validation = require(json, "validation", source);
+  target.core_validation_stage = parse_core_stage(validation, source);
   for (const Json& client : require(validation, "clients", source)) {
     target.validation_clients.push_back(parse_client(client.get<std::string>(), source));
   }
@@ -209,6 +242,9 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
       precision.preamble = require_string(entry, "preamble", source);
     }
     precision.native_16bit = entry.value("native_16bit", false);
+    read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
+    if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
+    read_notes(entry, precision.intrinsic_notes, source);
     target.precisions[name] = std::move(precision);
   }
   if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
@@ -266,7 +302,15 @@ TargetSyntax TargetSyntax::with_precision(std::string_view precision) const {
   result.literal_suffix = found->second.literal_suffix;
   result.preamble = found->second.preamble;
   result.native_16bit = found->second.native_16bit;
+  for (const auto& [type, spelling] : found->second.declaration_types) result.declaration_types[type] = spelling;
+  if (found->second.function_prologue) result.function_prologue = *found->second.function_prologue;
+  for (const auto& [intrinsic, note] : found->second.intrinsic_notes) result.intrinsic_notes[intrinsic] = note;
   return result;
+}
+
+const std::string& TargetSyntax::declaration_type(const std::string& dialect_type) const {
+  const auto found = declaration_types.find(dialect_type);
+  return found != declaration_types.end() ? found->second : types.at(dialect_type);
 }
 
 namespace {

@@ -54,7 +54,9 @@ std::string substitute(std::string text, std::string_view key, const std::string
   return text;
 }
 
-std::string client_name(ClientApi client) { return client == ClientApi::vulkan ? "vulkan" : "opengl"; }
+std::string client_name(ClientApi client) {
+  return client == ClientApi::vulkan ? "vulkan" : client == ClientApi::opengl ? "opengl" : "opengl_es";
+}
 std::string stage_name(ShaderStage stage) {
   return stage == ShaderStage::compute ? "compute" : stage == ShaderStage::fragment ? "fragment" : "vertex";
 }
@@ -136,12 +138,13 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
     for (ShaderStage stage : {ShaderStage::fragment, ShaderStage::compute}) {
       CompileRequest request;
       request.language = target.language;
-      request.stage = stage;
+      // The core-only check runs in a stage without derivatives: compute, or vertex for GLSL ES 3.00.
+      request.stage = stage == ShaderStage::compute ? target.core_validation_stage : stage;
       request.client = client;
       request.hlsl_native_16bit = target.native_16bit;
       request.sources = validation_sources(catalogue, *marker, file_name, content, stage);
       const CompileResult result = compile_to_spirv(request);
-      validation.checks.push_back({client_name(client) + " " + stage_name(stage), result.ok, result.log, result.spirv.size()});
+      validation.checks.push_back({client_name(client) + " " + stage_name(request.stage), result.ok, result.log, result.spirv.size()});
     }
   }
   return validation;

@@ -50,7 +50,7 @@ double Brdf::ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const {
 // Guarded: the cosines floored at LAMBDA_MIN_Z, as in Lambda.
 double Brdf::ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
+    const Vec3 h = half_vector(params, i, o);
     return ggx_ndf_matrix(h, a, tau) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
 }
 
@@ -73,7 +73,7 @@ double Brdf::ggx_lambda_axis(Vec3 w, Vec2 alpha2) const {
 // T&K 2019 Sec. 2.2 with the axis-aligned GGX NDF and height-correlated G2.
 double Brdf::ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
+    const Vec3 h = half_vector(params, i, o);
     if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
     const double g2 = 1.0 / (1.0 + ggx_lambda_axis(i, alpha2) + ggx_lambda_axis(o, alpha2));
     return ggx_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
@@ -121,7 +121,7 @@ double Brdf::beckmann_lambda_matrix(Vec3 w, Sym2 a) const {
 // T&K 2019 Sec. 2.2 with the matrix Beckmann NDF. Guarded: the cosines floored.
 double Brdf::beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
+    const Vec3 h = half_vector(params, i, o);
     if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
     const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
     return beckmann_ndf_matrix(h, a, tau) * g2 / (4.0 * cosines(i, o));
@@ -141,7 +141,7 @@ double Brdf::beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const {
 double Brdf::beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
     const Sym2 a{alpha2.x, 0.0, alpha2.y};
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = normalize(i + o);
+    const Vec3 h = half_vector(params, i, o);
     if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
     const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
     return beckmann_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
@@ -197,10 +197,10 @@ double beckmann_lambda_exact(double a_param) {
 // Fragment wrappers on a quad
 
 namespace {
-// The half vectors the filtered wrappers differentiate: normalize(i + o); guarded
-// safe_normalize(i + o), which keeps i = -o (a zero sum) from putting NaN into the quad.
+// The half vectors the filtered wrappers differentiate: normalize(i + o), guarded as in
+// half_vector, which keeps i = -o (a zero sum) from putting NaN into the quad.
 Quad<Vec3> filtered_half_vectors(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o) {
-    const auto half = [&](int q) { return p.guards ? safe_normalize(p, i[q] + o[q]) : normalize(i[q] + o[q]); };
+    const auto half = [&](int q) { return half_vector(p, i[q], o[q]); };
     return {half(0), half(1), half(2), half(3)};
 }
 }  // namespace

@@ -299,6 +299,23 @@ namespace {
 
 Vec2 rotate(Vec2 q, double c, double s) { return {c * q.x + s * q.y, c * q.y - s * q.x}; }
 
+// A cell's product of lookups, product(cos theta, sin theta); with trig_side != 0 its low or high
+// end over the corners of the box the spec allows cos and sin (Dictionary::trig_side). The box is
+// far below a texel of the dictionary, so the piecewise-linear lookups are linear across it but
+// for at most one kink, and the corners hold the ends.
+template <class Product>
+double cell_product(const Dictionary& dictionary, const PatchCell& cell, Product product) {
+    if (dictionary.trig_side == 0) return product(cell.cos_theta, cell.sin_theta);
+    double end = product(cell.cos_theta, cell.sin_theta);
+    for (const double dc : {-kTrigAllowance, kTrigAllowance}) {
+        for (const double ds : {-kTrigAllowance, kTrigAllowance}) {
+            const double v = product(cell.cos_theta + dc, cell.sin_theta + ds);
+            end = dictionary.trig_side < 0 ? std::min(end, v) : std::max(end, v);
+        }
+    }
+    return end;
+}
+
 }  // namespace
 
 double patch_sdf(const Dictionary& dictionary, const Patch& patch, Vec2 slope, const Roughness& roughness) {
@@ -306,9 +323,11 @@ double patch_sdf(const Dictionary& dictionary, const Patch& patch, Vec2 slope, c
     double mixture = 0.0;
     for (const PatchCell& cell : patch.cells) {
         if (cell.weight == 0.0) continue;
-        const Vec2 o = rotate(q, cell.cos_theta, cell.sin_theta);
-        mixture += cell.weight * dictionary_lod_value(dictionary, o.x, cell.random.dx, cell.level) *
-                   dictionary_lod_value(dictionary, o.y, cell.random.dy, cell.level);
+        mixture += cell.weight * cell_product(dictionary, cell, [&](double c, double s) {
+                       const Vec2 o = rotate(q, c, s);
+                       return dictionary_lod_value(dictionary, o.x, cell.random.dx, cell.level) *
+                              dictionary_lod_value(dictionary, o.y, cell.random.dy, cell.level);
+                   });
     }
     return mixture / transform_determinant(dictionary.params, roughness);
 }
@@ -322,11 +341,11 @@ double patch_sdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec2
     double mixture = 0.0;
     for (const PatchCell& cell : patch.cells) {
         if (cell.weight == 0.0) continue;
-        const Vec2 o = rotate(q, cell.cos_theta, cell.sin_theta);
-        const Vec2 o_dx = rotate(dq_dx, cell.cos_theta, cell.sin_theta);
-        const Vec2 o_dy = rotate(dq_dy, cell.cos_theta, cell.sin_theta);
-        mixture += cell.weight * dictionary_grad_value(dictionary, o.x, o_dx.x, o_dy.x, cell.random.dx, cell.level) *
-                   dictionary_grad_value(dictionary, o.y, o_dx.y, o_dy.y, cell.random.dy, cell.level);
+        mixture += cell.weight * cell_product(dictionary, cell, [&](double c, double s) {
+                       const Vec2 o = rotate(q, c, s), o_dx = rotate(dq_dx, c, s), o_dy = rotate(dq_dy, c, s);
+                       return dictionary_grad_value(dictionary, o.x, o_dx.x, o_dy.x, cell.random.dx, cell.level) *
+                              dictionary_grad_value(dictionary, o.y, o_dx.y, o_dy.y, cell.random.dy, cell.level);
+                   });
     }
     return mixture / transform_determinant(params, roughness);
 }

@@ -51,6 +51,15 @@ Vec3 safe_normalize(const Params& p, Vec3 v) {
     return v / std::sqrt(max(dot(v, v), p.guard_constants().tiny_positive));
 }
 
+Vec3 half_vector(const Params& p, Vec3 i, Vec3 o) {
+    const Vec3 sum = i + o;
+    if (!p.guards) return normalize(sum);
+    const double largest = std::max({std::fabs(sum.x), std::fabs(sum.y), std::fabs(sum.z)});
+    // normalize(sum / largest) in the template: the same direction, and in double |sum|^2 cannot
+    // underflow above DIVISOR_MIN, so normalize(sum) (bit-identical to the unguarded form).
+    return largest >= p.guard_constants().divisor_min ? normalize(sum) : Vec3{0.0, 0.0, 1.0};
+}
+
 // Kaplanyan et al. 2016 (T&K 2019 Listing 1): slope h.xy / |h.z|; guarded: / max(|h.z|, SLOPE_MIN_Z).
 Vec2 half_vector_slope_form(const Params& p, Vec3 half_ts) {
     const double z = std::fabs(half_ts.z);
@@ -160,11 +169,11 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 // w = 0.5 - 2 frac(floor(frag_coord) * 0.5) is +0.5 on even and -0.5 on odd pixel coordinates,
 // so n + ddx_fine(n) w.x + ddy_fine(n) w.y moves half-way towards each edge neighbour.
 Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord,
-                              int pixel) {
+                              int pixel, Derivative average) {
     const Vec2 neighbour_direction =
         Vec2{0.5, 0.5} - 2.0 * frac(floor(frag_coord[pixel]) * 0.5);
-    return normal_ws[pixel] + ddx_fine(normal_ws, pixel) * neighbour_direction.x +
-           ddy_fine(normal_ws, pixel) * neighbour_direction.y;
+    return normal_ws[pixel] + ddx(normal_ws, pixel, average) * neighbour_direction.x +
+           ddy(normal_ws, pixel, average) * neighbour_direction.y;
 }
 
 Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
@@ -203,9 +212,9 @@ double deferred_previous_fragment_quad(const Params& p, double alpha2,
                                        const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
                                        const Quad<Vec3>& bitangent_ws,
                                        const Quad<Vec2>& frag_coord, int pixel,
-                                       Derivative mode) {
+                                       Derivative mode, Derivative average) {
     const Quad<Vec2> slope = map_indexed(normal_ws, [&](Vec3 n, int q) {
-        const Vec3 average_ts = to_tangent_space(quad_average_normal_quad(normal_ws, frag_coord, q),
+        const Vec3 average_ts = to_tangent_space(quad_average_normal_quad(normal_ws, frag_coord, q, average),
                                                  tangent_ws[q], bitangent_ws[q], n);
         const double z = std::fabs(average_ts.z);
         return average_ts.xy() / (p.guards ? max(z, p.guard_constants().slope_min_z) : z);
@@ -219,9 +228,10 @@ double deferred_previous_fragment_quad(const Params& p, double alpha2,
 // then ddx/ddy of projected at the requested pixel.
 double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
                                   const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
-                                  const Quad<Vec2>& frag_coord, int pixel, Derivative mode) {
+                                  const Quad<Vec2>& frag_coord, int pixel, Derivative mode,
+                                  Derivative average) {
     const Quad<Vec2> projected = map_indexed(normal_ws, [&](Vec3 n, int q) {
-        const Vec3 sum = quad_average_normal_quad(normal_ws, frag_coord, q);
+        const Vec3 sum = quad_average_normal_quad(normal_ws, frag_coord, q, average);
         const Vec3 average = p.guards ? safe_normalize(p, sum) : normalize(sum);
         return to_tangent_space(average, tangent_ws[q], bitangent_ws[q], n).xy();
     });

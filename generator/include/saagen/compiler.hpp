@@ -11,7 +11,9 @@ namespace saagen {
 enum class SourceLanguage { glsl, hlsl };
 enum class ShaderStage { vertex, fragment, compute };
 // The API that consumes the SPIR-V. GLSL can target both; HLSL targets Vulkan only.
-enum class ClientApi { vulkan, opengl };
+// opengl_es is source-level only: GLSL ES 3.00 (WebGL2, OpenGL ES 3.0) has no SPIR-V form, so
+// glslang's ES front end parses and links it, and no module is produced.
+enum class ClientApi { vulkan, opengl, opengl_es };
 
 // One named piece of source text. Pieces are concatenated in order; the names appear in
 // diagnostics so that an error points at the emitted file, not at the generated harness.

@@ -6,6 +6,7 @@
 #include "saagen/compiler.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,6 +27,10 @@ struct Precision {
   std::string literal_suffix;
   std::string preamble;
   bool native_16bit = false;
+  // Optional overrides of TargetSyntax::declaration_types, function_prologue and intrinsic_notes.
+  std::map<std::string, std::string, std::less<>> declaration_types;
+  std::optional<std::string> function_prologue;
+  std::map<std::string, std::string, std::less<>> intrinsic_notes;
 };
 
 struct TargetSyntax {
@@ -37,7 +42,20 @@ struct TargetSyntax {
   // dialect intrinsic -> pattern with {0}, {1}, ... for the arguments
   std::map<std::string, std::string, std::less<>> intrinsics;
   std::string constant_declaration;  // with {type}, {name}, {value}
+  // Optional (key "declaration_types"): the spelling of a type where it declares something
+  // (parameters, return types, constants) when it differs from a constructor's, as in GLSL ES,
+  // where a declaration carries a precision qualifier ("highp float") and a constructor cannot.
+  std::map<std::string, std::string, std::less<>> declaration_types;
+  // Optional: statements opening every emitted function body (GLSL ES default-precision
+  // statements, which are scoped to the body and so leave the includer's defaults alone).
+  std::string function_prologue;
+  // Optional (key "intrinsic_notes"): a note for the header of every file one of whose functions
+  // uses the intrinsic (how the target approximates what it lacks).
+  std::map<std::string, std::string, std::less<>> intrinsic_notes;
   std::vector<ClientApi> validation_clients;
+  // The stage that validates the file under <PREFIX>CORE_ONLY (key "core_stage"; compute unless
+  // the target has no compute shaders).
+  ShaderStage core_validation_stage = ShaderStage::compute;
   ValidationSkeleton fragment_skeleton;
   ValidationSkeleton compute_skeleton;
   // Skeletons that run emitted functions over buffers ("compute", "quad_compute",
@@ -60,6 +78,8 @@ struct TargetSyntax {
   // Replaces {prefix} and {macro_prefix} in the intrinsic patterns and the preamble (precision
   // helpers are emitted under the emission's prefix).
   TargetSyntax with_prefix(std::string_view prefix, std::string_view macro_prefix) const;
+  // The declaration spelling of a dialect type (declaration_types, else types).
+  const std::string& declaration_type(const std::string& dialect_type) const;
   std::string literal_suffix;      // set by with_precision
   std::string preamble;            // set by with_precision
   bool native_16bit = false;       // set by with_precision

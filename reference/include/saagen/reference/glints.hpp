@@ -119,7 +119,16 @@ struct Dictionary {
     // factor 1 +- (3 + 2|x|) 2^-23.
     int log2_side = 0;
     int exp2_side = 0;
+    // trig_side: each cell's rotation (cos theta, sin theta) off by the spec's 2^-11 absolute
+    // error of cos and sin in [-pi, pi] (the shader reduces theta to that range), plus the fp32
+    // rounding of the reduced angle (< 2^-20): every cell's product of lookups is taken at the
+    // low (-1) or high (+1) end over the four corners of that box (kTrigAllowance).
+    int trig_side = 0;
 };
+
+// The absolute error the Vulkan spec allows cos and sin in [-pi, pi] (2^-11), plus the rounding
+// of the reduced angle 2 pi turn - pi in fp32 (two roundings of at most 2^-24 2 pi each).
+inline constexpr double kTrigAllowance = 0x1.0p-11 + 0x1.0p-20;
 
 // x_max = 2 sqrt(2) alpha_dict: the dictionary holds |x| < x_max (4 sigma_o).
 double dictionary_range(const Params& params);

@@ -76,6 +76,10 @@ Vec3 clamp_derivative3(const Params& p, Vec3 d);
 
 // Guard helper: v * rsqrt(max(dot(v, v), TINY_POSITIVE)); a zero vector stays zero.
 Vec3 safe_normalize(const Params& p, Vec3 v);
+// Template brdf_half_vector: normalize(i + o); guarded: (0, 0, 1) where every component of
+// i + o is below DIVISOR_MIN (on the device: i + o divided by its largest component first, so
+// that its squared length cannot underflow; the same direction in double).
+Vec3 half_vector(const Params& p, Vec3 i, Vec3 o);
 
 // Slope-space half vector h.xy / |h.z| (Kaplanyan et al. 2016; T&K 2019 Listing 1). The paper's
 // slope (supplemental Eq. 5) is -h.xy / h.z; Sigma is quadratic in it, so the sign is immaterial.
@@ -150,8 +154,10 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 // n + ddx_fine(n) w.x + ddy_fine(n) w.y, w = 0.5 - 2 frac(floor(frag_coord) / 2). Not normalised.
 // Note: for the top-left pixel this is (n_tr + n_bl) / 2, for the top-right (n_tl + n_br) / 2:
 // each pixel gets the mean of its two edge neighbours.
+// `average` is the derivative the average takes: fine in GLSL and HLSL; GLSL ES 3.00 has only
+// the plain dFdx/dFdy, fine or coarse as the implementation chooses.
 Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord,
-                              int pixel);
+                              int pixel, Derivative average = Derivative::fine);
 
 Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
                                        int pixel, Derivative mode = Derivative::coarse);
@@ -173,11 +179,13 @@ double deferred_previous_fragment_quad(const Params& p, double alpha2,
                                        const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
                                        const Quad<Vec3>& bitangent_ws,
                                        const Quad<Vec2>& frag_coord, int pixel,
-                                       Derivative mode = Derivative::coarse);
+                                       Derivative mode = Derivative::coarse,
+                                       Derivative average = Derivative::fine);
 double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
                                   const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
                                   const Quad<Vec2>& frag_coord, int pixel,
-                                  Derivative mode = Derivative::coarse);
+                                  Derivative mode = Derivative::coarse,
+                                  Derivative average = Derivative::fine);
 
 double deferred_max_tangent_free_fragment_quad(const Params& p, double alpha2,
                                                const Quad<Vec3>& normal_ws, int pixel,

@@ -1,0 +1,128 @@
+// The three.js example (examples/threejs/) in headless Chromium, WebGL2 on SwiftShader: a saagen
+// GLSL ES snippet installed into MeshPhysicalMaterial compiles, renders, and changes the picture
+// where the filter acts (small glossy spheres: high curvature per pixel at roughness 0.05), and
+// nowhere else; clearcoat is filtered too; two configurations never share a program.
+//   node tests/webgl/threejs_test.mjs SAAGEN_CLI
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { launchChromium, openPage, serveDirectory } from './browser.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const cli = process.argv[2];
+if (!cli) {
+  console.error('usage: node tests/webgl/threejs_test.mjs PATH_TO_SAAGEN_CLI');
+  process.exit(2);
+}
+if (!fs.existsSync(path.join(root, 'node_modules/three/package.json'))) {
+  console.error(`${root}/package.json: node_modules is missing; run npm ci in ${root} (scripts/install-deps.sh does)`);
+  process.exit(2);
+}
+
+const failures = [];
+function check(condition, what) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!condition) failures.push(what);
+}
+
+const output = fs.mkdtempSync(path.join(os.tmpdir(), 'saagen-threejs-'));
+execFileSync(cli, ['emit', '--target', 'gles', '--variant', 'deferred-sum', '--variant', 'deferred-avg', '--output', output]);
+const snippet = fs.readFileSync(path.join(output, 'saa_deferred_sum.essl'), 'utf8');
+const avgSnippet = fs.readFileSync(path.join(output, 'saa_deferred_avg.essl'), 'utf8');
+fs.rmSync(output, { recursive: true, force: true });
+
+const { server, origin } = await serveDirectory(root);
+const { browser, close } = await launchChromium();
+try {
+  const { page, errors } = await openPage(browser, `${origin}/tests/webgl/threejs.html`);
+  await page.waitForFunction('window.saagenReady === true', { timeout: 20000 });
+  const result = await page.evaluate((snippet, avgSnippet) => {
+    const { createRenderer, renderScene, SIZE } = window.saagenScene;
+    const fresh = (mode, options = {}) => {
+      const canvas = document.createElement('canvas');
+      const renderer = createRenderer(canvas);
+      const pixels = renderScene(renderer, mode, { snippet, ...options });
+      const log = [];
+      for (const program of renderer.info.programs ?? []) {
+        const gl = renderer.getContext();
+        const info = gl.getProgramInfoLog(program.program);
+        if (info) log.push(info);
+      }
+      renderer.dispose();
+      return { pixels, log };
+    };
+    // Luminance of the sRGB bytes, 0..1.
+    const luminance = (p, i) => (0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2]) / 255;
+    const stats = (pixels) => {
+      let peak = 0, lit = 0, sum = 0;
+      for (let i = 0; i < pixels.length; i += 4) {
+        const y = luminance(pixels, i);
+        peak = Math.max(peak, y); sum += y; if (y > 0) ++lit;
+      }
+      let bright = 0;
+      for (let i = 0; i < pixels.length; i += 4) if (luminance(pixels, i) >= 0.5 * peak) ++bright;
+      return { peak, lit, bright, mean: sum / (pixels.length / 4) };
+    };
+    const compare = (a, b) => {
+      let differing = 0, outside = 0;
+      for (let i = 0; i < a.length; i += 4) {
+        const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]));
+        const covered = a[i] + a[i + 1] + a[i + 2] + b[i] + b[i + 1] + b[i + 2] > 0;
+        if (d > 2) { ++differing; if (!covered) ++outside; }
+      }
+      return { differing, outside };
+    };
+    const three = fresh('three'), unfiltered = fresh('unfiltered'), saagen = fresh('saagen');
+    const noClearcoatFilter = (() => {
+      const canvas = document.createElement('canvas');
+      const renderer = createRenderer(canvas);
+      return renderScene(renderer, 'saagen', { snippet, clearcoatFilter: false });
+    })();
+    const avg = fresh('saagen', { snippet: avgSnippet, wrapper: 'deferred_avg_fragment' });
+    // One renderer, configurations in turn: a shared program would repeat the first picture.
+    const shared = createRenderer(document.createElement('canvas'));
+    const sequence = ['unfiltered', 'saagen', 'three'].map((mode) => renderScene(shared, mode, { snippet }));
+    const sharedAvg = renderScene(shared, 'saagen', { snippet: avgSnippet, wrapper: 'deferred_avg_fragment' });
+    const programs = shared.info.programs.length;
+    const equal = (a, b) => compare(a, b).differing === 0;
+    return {
+      size: SIZE,
+      stats: { three: stats(three.pixels), unfiltered: stats(unfiltered.pixels), saagen: stats(saagen.pixels), avg: stats(avg.pixels) },
+      saagenVsUnfiltered: compare(saagen.pixels, unfiltered.pixels),
+      saagenVsThree: compare(saagen.pixels, three.pixels),
+      clearcoat: compare(saagen.pixels, noClearcoatFilter),
+      sequenceMatchesFresh: [equal(sequence[0], unfiltered.pixels), equal(sequence[1], saagen.pixels), equal(sequence[2], three.pixels),
+                             equal(sharedAvg, avg.pixels)],
+      programs,
+      avgVsSum: compare(avg.pixels, saagen.pixels),
+    };
+  }, snippet, avgSnippet);
+  console.log(JSON.stringify(result.stats));
+  const { stats } = result;
+  check(errors.length === 0, `no console errors or exceptions (${errors.slice(0, 3).join(' | ')})`);
+  // Every sphere pixel is lit by the ambient term (a few grazing ones round to black without the
+  // filter's wider lobe).
+  check(stats.unfiltered.lit > 5000 && stats.saagen.lit >= stats.unfiltered.lit && stats.saagen.lit === stats.three.lit,
+        `the spheres render (${stats.saagen.lit} lit pixels; unfiltered ${stats.unfiltered.lit}, three.js ${stats.three.lit})`);
+  check(result.saagenVsUnfiltered.differing > 200,
+        `the filter changes the picture where it acts: ${result.saagenVsUnfiltered.differing} pixels differ by > 2/255 from the unfiltered render`);
+  check(result.saagenVsUnfiltered.outside === 0, `and nowhere outside the spheres (${result.saagenVsUnfiltered.outside})`);
+  // Raising roughness spreads a highlight (the peak saturates at 1 in both): the bright area, at
+  // least half the peak, grows, and so does the mean (a wider lobe is not lost between pixels).
+  check(stats.saagen.bright > 2 * stats.unfiltered.bright && stats.saagen.mean > stats.unfiltered.mean,
+        `highlights widen: ${stats.saagen.bright} vs ${stats.unfiltered.bright} bright pixels, mean ${stats.saagen.mean.toFixed(5)} vs ${stats.unfiltered.mean.toFixed(5)}`);
+  check(result.clearcoat.differing > 50, `the clearcoat roughness is filtered too (${result.clearcoat.differing} pixels change without it)`);
+  check(result.avgVsSum.differing > 0, `another variant gives another picture (${result.avgVsSum.differing} pixels)`);
+  check(result.sequenceMatchesFresh.every(Boolean) && result.programs >= 4,
+        `one renderer, four configurations: ${result.programs} programs, each picture as from a fresh renderer (${result.sequenceMatchesFresh})`);
+  console.log(`three.js: saagen vs three.js as shipped: ${result.saagenVsThree.differing} pixels differ`);
+} finally {
+  await close();
+  server.close();
+}
+if (failures.length > 0) {
+  console.error(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
