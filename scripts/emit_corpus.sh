@@ -28,9 +28,11 @@ emit_forms() {  # target precision...
 }
 
 emit_forms glsl fp32 fp16
+emit_forms gles fp32 fp16
 emit_forms hlsl fp32 min16
 "$saagen" emit --target spirv -o "$out/emit/spirv/fp32"
 "$saagen" emit --target glsl --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/glsl/options"
+"$saagen" emit --target gles --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/gles/options"
 
 (cd "$root/examples" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest")
 
@@ -49,5 +51,6 @@ done
 "$saagen" list --json > "$out/list.json"
 "$saagen" validate > "$out/validate.txt" 2>&1
 (cd "$out" && "$saagen" validate emit/glsl/fp16 > validate-glsl-fp16.txt 2>&1)
+(cd "$out" && "$saagen" validate emit/gles/fp16 > validate-gles-fp16.txt 2>&1)
 "$saagen" glints validate > "$out/glints-validate.txt" 2>&1
 echo "corpus written to $out: $(find "$out" -type f | wc -l) files"
