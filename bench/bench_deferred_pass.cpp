@@ -19,6 +19,7 @@
 #include "saagen/emitter.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
+#include "saagen/report/shading_scene.hpp"
 #include "saagen/spirv_library.hpp"
 
 #include <saagen/harness/harness.hpp>
@@ -37,26 +38,6 @@
 #include <vector>
 
 namespace {
-
-// The baseline: the passes' interface, the roughness copied (the normal is read and enters the
-// result through a term that cannot be folded away).
-constexpr const char* baseline_glsl = R"(#version 450
-#extension GL_EXT_samplerless_texture_functions : require
-layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform texture2D normal_gbuffer;
-layout(set = 0, binding = 1) uniform texture2D roughness_gbuffer;
-layout(set = 0, binding = 2, r32f) uniform writeonly image2D filtered;
-layout(push_constant) uniform Constants { uvec2 size; uint roughness_channel; uint flags; } constants;
-void main()
-{
-    uint lane = gl_LocalInvocationIndex;
-    uvec2 pixel = gl_WorkGroupID.xy * 8u + uvec2(lane & 7u, lane >> 3u);
-    ivec2 source = ivec2(min(pixel, constants.size - 1u));
-    vec3 n = texelFetch(normal_gbuffer, source, 0).xyz;
-    float r = texelFetch(roughness_gbuffer, source, 0)[constants.roughness_channel & 3u];
-    if (all(lessThan(pixel, constants.size))) imageStore(filtered, ivec2(pixel), vec4(min(r, r + abs(n.x) * 1e-30)));
-}
-)";
 
 struct Options {
   std::uint32_t width = 1920, height = 1080;
@@ -143,7 +124,7 @@ int run(int argc, char** argv) {
   {
     saagen::CompileRequest request;
     request.stage = saagen::ShaderStage::compute;
-    request.sources = {{"baseline.comp", baseline_glsl}};
+    request.sources = {{"baseline.comp", saagen::report::deferred_copy_glsl}};
     const auto compiled = saagen::compile_to_spirv(request);
     if (!compiled.ok) throw std::runtime_error("the baseline does not compile: " + compiled.log);
     entries.push_back({"baseline (copy)", compiled.spirv, false, nullptr, {}, {}});

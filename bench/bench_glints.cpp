@@ -4,7 +4,10 @@
 // baseline (glint_brdf_fragment: textureLod on a dictionary without MIPs), interleaved in one run
 // on the harness device (lavapipe by default), as Chermain et al. 2021 Table 1 compares them.
 //
-//   build/bench/bench_glints [--device NAME] [--quick] [--size N] [--rounds N]
+//   build/bench/bench_glints [--device NAME] [--quick] [--size N] [--rounds N] [--max-anisotropy A]
+//
+// --max-anisotropy (glint_max_anisotropy, default 8): 1 makes every footprint isotropic (the
+// ellipse a disc on the major axis: fewer cells, the level of the major axis).
 //
 // Prints per target: median ms of each, the median and quartiles of the per-round ratio GGAA /
 // baseline (ABBA order), optimized SPIR-V instruction counts, the mean shaded value of both
@@ -86,10 +89,11 @@ struct Shader {
     std::size_t optimized_instructions = 0;
 };
 
-Shader compile(const std::string& target, const std::string& variant, const std::string& call, std::uint32_t size) {
+Shader compile(const std::string& target, const std::string& variant, const std::string& call, std::uint32_t size, double max_anisotropy) {
     saagen::EmitOptions options;
     options.target = target;
     options.variants = {variant};
+    options.option_values["glint_max_anisotropy"] = max_anisotropy;
     const auto file = saagen::glints::emit(options).front();
     saagen::KernelRequest request;
     request.kind = saagen::KernelKind::fragment;
@@ -142,14 +146,17 @@ Image summarise(const std::vector<float>& values, const std::string& what) {
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     std::uint32_t size = 512, rounds = 12;
+    double max_anisotropy = 8.0;
     std::string device;
     for (std::size_t k = 0; k < args.size(); ++k) {
         if (args[k] == "--quick") size = 128, rounds = 3;
         else if (args[k] == "--size" && k + 1 < args.size()) size = static_cast<std::uint32_t>(std::stoul(args[++k]));
         else if (args[k] == "--rounds" && k + 1 < args.size()) rounds = static_cast<std::uint32_t>(std::stoul(args[++k]));
         else if (args[k] == "--device" && k + 1 < args.size()) device = args[++k];
+        else if (args[k] == "--max-anisotropy" && k + 1 < args.size()) max_anisotropy = std::stod(args[++k]);
         else {
-            std::cerr << "bench_glints: unknown argument '" << args[k] << "' (use --device NAME, --quick, --size N, --rounds N)\n";
+            std::cerr << "bench_glints: unknown argument '" << args[k]
+                      << "' (use --device NAME, --quick, --size N, --rounds N, --max-anisotropy A)\n";
             return 2;
         }
     }
@@ -160,13 +167,14 @@ int main(int argc, char** argv) {
         const auto dictionary = saagen::glints::generate_dictionary({});
         const auto with_mips = saagen::glints::dictionary_texture(dictionary, true);
         const auto without_mips = saagen::glints::dictionary_texture(dictionary, false);
-        std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA)\n", context.info().name, size, size, rounds);
+        std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA); max anisotropy {}\n", context.info().name, size, size, rounds,
+                                 max_anisotropy);
         std::cout << fmt::format("dictionary: N = 192, L = 16, R = 64, RGBA16F: {:.0f} KiB without MIPs, {:.0f} KiB with MIPs (+{:.1f} %)\n",
                                  saagen::glints::texture_bytes(without_mips) / 1024.0, saagen::glints::texture_bytes(with_mips) / 1024.0,
                                  100.0 * (double(saagen::glints::texture_bytes(with_mips)) / double(saagen::glints::texture_bytes(without_mips)) - 1.0));
         for (const std::string target : {"glsl", "hlsl"}) {
-            const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", size);
-            const Shader baseline = compile(target, "glints", "glint_brdf_fragment", size);
+            const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", size, max_anisotropy);
+            const Shader baseline = compile(target, "glints", "glint_brdf_fragment", size, max_anisotropy);
             const auto make_run = [&](const Shader& shader, const saagen::glints::DictionaryTexture& texture) {
                 hx::FragmentRun run;
                 run.fragment.spirv = shader.spirv;

@@ -9,6 +9,8 @@ packages=(
   # Debian's glslang CMake config names /usr/bin/glslangValidator as an imported target and
   # fails without it; saagen compiles in-process and never runs the tool.
   glslang-tools
+  # shaderc: the include handler for engines that compile with shaderc (saagen::shaderc)
+  libshaderc-dev
   libvulkan-dev mesa-vulkan-drivers
   # Khronos validation layer: every GPU test runs with it on (SAAGEN_VK_VALIDATION=1, issue 11)
   vulkan-validationlayers

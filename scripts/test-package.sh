@@ -19,7 +19,7 @@ step() { echo "test-package: $*"; }
 
 step "install $build_dir -> $work/prefix"
 cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
-for file in bin/saagen include/saagen/planner.hpp include/saagen/manifest.hpp; do
+for file in bin/saagen include/saagen/planner.hpp include/saagen/manifest.hpp include/saagen/saagen.h include/saagen/shaderc_includer.hpp; do
   [ -e "$work/prefix/$file" ] || fail "$file was not installed"
 done
 config=$(find "$work/prefix" -name saagenConfig.cmake)
@@ -43,6 +43,8 @@ for spv in forward_lit.frag.spv gbuffer.frag.spv; do
 done
 "$work/prefix/bin/saagen" validate "$consumer/saagen" > "$work/validate.log" || { cat "$work/validate.log"; fail "saagen validate"; }
 "$consumer/runtime_permutation" || fail "runtime_permutation (saagen::saagen at run time)"
+"$consumer/c_api_consumer" || fail "c_api_consumer (the C API from C)"
+"$consumer/shaderc_consumer" || fail "shaderc_consumer (saagen::shaderc include handler)"
 
 step "second build: nothing to do"
 mtime_before=$(stat -c %.9Y "$generated")

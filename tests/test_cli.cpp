@@ -44,7 +44,7 @@ TEST_F(Cli, ListJsonIsTheContract) {
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["prefix"], "eng_");
   EXPECT_EQ(json["core_only_macro"], "ENG_CORE_ONLY");
-  ASSERT_EQ(json["variants"].size(), 13u);
+  ASSERT_EQ(json["variants"].size(), 15u);  // 13 SAA variants, glints, glints-ggaa
   for (const auto& variant : json["variants"]) {
     for (const char* key : {"id", "summary", "paper", "equation", "render_path", "needs_tangents", "domain", "functions"}) {
       EXPECT_TRUE(variant.contains(key)) << key;
@@ -80,7 +80,7 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const fs::path out = scratch_ / "out";
   const CliRun first = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  EXPECT_EQ(files_in(out).size(), 13u);
+  EXPECT_EQ(files_in(out).size(), 15u);  // the glint variants included
   EXPECT_TRUE(files_in(out).count("saa_deferred_avg.hlsl"));
   const auto stamp = fs::last_write_time(out / "saa_deferred_avg.hlsl");
   const std::string bytes = read_text(out / "saa_deferred_avg.hlsl");
@@ -88,10 +88,10 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const CliRun second = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(second.exit_code, 0);
   EXPECT_EQ(second.out.find("wrote"), std::string::npos) << second.out;
-  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 13);
+  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 15);
   EXPECT_EQ(fs::last_write_time(out / "saa_deferred_avg.hlsl"), stamp);  // no needless rebuilds
   EXPECT_EQ(read_text(out / "saa_deferred_avg.hlsl"), bytes);
-  EXPECT_EQ(files_in(out).size(), 13u);  // no temporaries left behind
+  EXPECT_EQ(files_in(out).size(), 15u);  // no temporaries left behind
 }
 
 TEST_F(Cli, EmitSelectedVariantsWithOptions) {
@@ -105,13 +105,63 @@ TEST_F(Cli, EmitSelectedVariantsWithOptions) {
   EXPECT_NE(text.find("const float my_KAPPA = 0.1;"), std::string::npos);
 }
 
+// Presets and roughness domains: the engine's variant, constants and domain in one option;
+// explicit options win; bad names are one line.
+TEST_F(Cli, EmitPresetsAndDomains) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "--preset", "filament", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "--preset", "hdrp", "--kappa", "0.1", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "-v", "forward-axis-slope", "--domain", "alpha", "-o", out.string()}).exit_code, 0);
+  EXPECT_EQ(files_in(out), (std::set<std::string>{"saa_deferred_sum_perceptual.glsl", "saa_deferred_sum_smoothness.hlsl",
+                                                  "saa_forward_axis_slope_alpha.glsl"}));
+  const std::string filament = read_text(out / "saa_deferred_sum_perceptual.glsl");
+  EXPECT_NE(filament.find("const float saa_SIGMA2 = 0.15;"), std::string::npos);
+  EXPECT_NE(filament.find("float saa_deferred_sum_fragment_perceptual(float perceptual_roughness, vec3 normal_ws)"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_deferred_sum_smoothness.hlsl").find("static const float saa_KAPPA = 0.1;"), std::string::npos);
+  EXPECT_NE(read_text(out / "saa_forward_axis_slope_alpha.glsl").find("vec2 saa_forward_axis_slope_alpha(vec2 alpha,"), std::string::npos);
+  const CliRun validate = saagen({"validate", out.string()});
+  EXPECT_NE(validate.out.find("3 file(s) validated, 0 failed"), std::string::npos) << validate.out << validate.err;
+
+  const fs::path refused = scratch_ / "refused";
+  expect_one_line_error(saagen({"emit", "--preset", "unreal", "-o", refused.string()}),
+                        "--preset 'unreal' is not a preset; use one of hdrp, filament, filament-taa, o3de, bevy, vsgl");
+  expect_one_line_error(saagen({"emit", "--domain", "linear", "-o", refused.string()}), "--domain 'linear' is not a roughness domain");
+  expect_one_line_error(saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", refused.string()}),
+                        "variant 'brdf-ggx' takes or returns no scalar or per-axis roughness");
+  EXPECT_FALSE(fs::exists(refused));
+
+  const auto listing = nlohmann::json::parse(saagen({"list", "--json", "--domain", "smoothness"}).out);
+  EXPECT_EQ(listing["roughness_domain"], "smoothness");
+  EXPECT_EQ(listing["presets"].size(), 6u);
+  for (const auto& variant : listing["variants"]) {
+    EXPECT_NE(std::find(variant["roughness_domains"].begin(), variant["roughness_domains"].end(), "smoothness"), variant["roughness_domains"].end());
+  }
+}
+
+// `saagen compile` resolves <saagen/...> names as the include handlers do: generated in memory.
+TEST_F(Cli, CompileGeneratesSaagenIncludeNames) {
+  const fs::path shader = scratch_ / "material.frag";
+  std::ofstream(shader) << "#version 450\n#include <saagen/filament.glsl>\nlayout(location = 0) in vec3 n;\n"
+                           "layout(location = 0) out vec4 colour;\n"
+                           "void main() { colour = vec4(saa_deferred_sum_fragment_perceptual(0.3, normalize(n))); }\n";
+  const CliRun run = saagen({"compile", shader.string(), "-o", (scratch_ / "material.spv").string()});
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "material.spv"));
+
+  const fs::path bad = scratch_ / "bad.frag";
+  std::ofstream(bad) << "#version 450\n#include <saagen/filament.glsl?domain=linear>\nvoid main() {}\n";
+  expect_one_line_error(saagen({"compile", bad.string(), "-o", (scratch_ / "bad.spv").string()}),
+                        bad.string() + ":2: saagen/filament.glsl?domain=linear: --domain 'linear' is not a roughness domain");
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
 TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const fs::path out = scratch_ / "out";
   ASSERT_EQ(saagen({"emit", "-t", "glsl", "-o", out.string()}).exit_code, 0);
   ASSERT_EQ(saagen({"emit", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
   const CliRun good = saagen({"validate", out.string()});
   EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
-  EXPECT_NE(good.out.find("26 file(s) validated, 0 failed"), std::string::npos) << good.out;
+  EXPECT_NE(good.out.find("30 file(s) validated, 0 failed"), std::string::npos) << good.out;
 
   // A hand edit that breaks the code is caught and named.
   const fs::path edited = out / "saa_deferred_max.hlsl";
@@ -121,14 +171,14 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const CliRun bad = saagen({"validate", out.string()});
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.out.find("FAIL " + edited.string()), std::string::npos) << bad.out;
-  EXPECT_NE(bad.out.find("26 file(s) validated, 1 failed"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("30 file(s) validated, 1 failed"), std::string::npos) << bad.out;
 }
 
 TEST_F(Cli, ValidateWithoutDirectoryChecksEverything) {
   const CliRun run = saagen({"validate"});
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
-  // 13 variants for each of glsl, gles and hlsl.
-  EXPECT_NE(run.out.find("39 file(s) validated, 0 failed"), std::string::npos) << run.out;
+  // 15 variants (glints included) for each of glsl, gles and hlsl.
+  EXPECT_NE(run.out.find("45 file(s) validated, 0 failed"), std::string::npos) << run.out;
 }
 
 TEST_F(Cli, RejectsBadInputWithOneLineAndWritesNothing) {
@@ -172,7 +222,7 @@ TEST_F(Cli, RefusesToOverwriteForeignFilesUnlessForced) {
   EXPECT_EQ(read_text(out / "saa_deferred_sum.glsl"), "// my own shader\n");
   const CliRun forced = saagen({"emit", "--force", "-o", out.string()});
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
-  EXPECT_EQ(files_in(out).size(), 13u);
+  EXPECT_EQ(files_in(out).size(), 15u);
 }
 
 TEST_F(Cli, HelpOnEveryCommand) {

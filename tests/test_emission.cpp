@@ -190,7 +190,7 @@ TEST(Emission, EmitsOnlyTheClosureOfTheVariant) {
   const auto brdf = emit_one("glsl", "brdf-ggx");
   // The filtered BRDF wrapper pulls the projected forward filter and its helpers.
   EXPECT_NE(brdf.content.find("vec3 saa_forward_aniso_projected_fragment("), std::string::npos);
-  EXPECT_NE(brdf.content.find("vec3 saa_filter_roughness_matrix("), std::string::npos);
+  EXPECT_NE(brdf.content.find("vec3 saa_roughness_matrix_from_bounded_derivatives("), std::string::npos);
   EXPECT_EQ(brdf.content.find("saa_beckmann"), std::string::npos);
 }
 

@@ -1,4 +1,4 @@
-// Issue 7: `saagen glints emit|validate|dictionary|lean` as whole processes.
+// `saagen glints emit|validate|dictionary|lean`, and the glint variants of `saagen list|emit`, as whole processes.
 #include "saagen/error.hpp"
 #include "saagen/glints.hpp"
 
@@ -37,8 +37,92 @@ TEST_F(GlintCli, EmitsAndValidatesTheSnippets) {
     // A second emission leaves the files alone.
     const auto again = saagen({"glints", "emit", "--kernel-scale", "1", "-o", out.string()});
     EXPECT_NE(again.out.find("unchanged"), std::string::npos);
-    // The SAA commands are unaffected: `saagen list` shows no glint variant.
-    EXPECT_EQ(saagen({"list"}).out.find("glints"), std::string::npos);
+}
+
+// Glints are variants like the others: `saagen list` shows them with the dictionary they read,
+// `saagen emit --variant` writes them for GLSL and HLSL, and a SPIR-V library module (which cannot
+// leave the dictionary binding to its consumer) is refused in one line.
+TEST_F(GlintCli, GlintsAreListedAndEmittedLikeTheOtherVariants) {
+    const auto list = saagen({"list"});
+    ASSERT_EQ(list.exit_code, 0) << list.err;
+    EXPECT_NE(list.out.find("glints-ggaa"), std::string::npos);
+    EXPECT_NE(list.out.find("resources: glint_dictionary"), std::string::npos) << list.out;
+    const auto json = nlohmann::json::parse(saagen({"list", "--json"}).out);
+    const auto ggaa = std::find_if(json["variants"].begin(), json["variants"].end(), [](const auto& v) { return v["id"] == "glints-ggaa"; });
+    ASSERT_NE(ggaa, json["variants"].end());
+    EXPECT_EQ((*ggaa)["paper"].get<std::string>().rfind("Chermain", 0), 0u);
+    EXPECT_FALSE((*ggaa)["equation"].get<std::string>().empty());
+    EXPECT_EQ((*ggaa)["render_path"], "forward");
+    ASSERT_EQ((*ggaa)["resources"].size(), 1u);
+    EXPECT_EQ((*ggaa)["resources"][0]["name"], "glint_dictionary");
+    EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["glsl"].get<std::string>().find("sampler1DArray"), std::string::npos);
+    EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["hlsl"].get<std::string>().find("Texture1DArray"), std::string::npos);
+    for (const auto& variant : json["variants"]) {
+        if (variant["id"].get<std::string>().rfind("glints", 0) != 0) EXPECT_TRUE(variant["resources"].empty()) << variant["id"];
+    }
+
+    const fs::path out = scratch_ / "emitted";
+    for (const std::string target : {"glsl", "hlsl"}) {
+        const auto run = saagen({"emit", "--target", target, "--variant", "glints-ggaa", "-o", out.string()});
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+    }
+    EXPECT_TRUE(fs::exists(out / "saa_glints_ggaa.glsl"));
+    EXPECT_TRUE(fs::exists(out / "saa_glints_ggaa.hlsl"));
+    const auto validate = saagen({"validate", out.string()});
+    EXPECT_EQ(validate.exit_code, 0) << validate.out << validate.err;
+
+    const auto spirv = saagen({"emit", "--target", "spirv", "--variant", "glints-ggaa", "-o", (scratch_ / "spv").string()});
+    EXPECT_NE(spirv.exit_code, 0);
+    EXPECT_NE(spirv.err.find("glint_dictionary"), std::string::npos) << spirv.err;
+    EXPECT_EQ(std::count(spirv.err.begin(), spirv.err.end(), '\n'), 1) << spirv.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "spv"));
+    const auto every = saagen({"emit", "--target", "spirv", "-o", (scratch_ / "spv_all").string()});
+    ASSERT_EQ(every.exit_code, 0) << every.err;
+    EXPECT_EQ(every.out.find("glints"), std::string::npos) << every.out;
+}
+
+// A scene manifest with glints = true: the planner picks the glint variant (GGAA for accuracy,
+// the textureLod baseline for speed) with lean_roughness for normal maps, and `emit --manifest`
+// writes the dictionary next to the bundle.
+TEST_F(GlintCli, ManifestWithGlintsPlansTheGlintVariantAndWritesTheDictionary) {
+    const fs::path manifest = scratch_ / "glints.toml";
+    std::ofstream(manifest) << "name = \"sparkle\"\ntargets = [\"glsl\", \"hlsl\"]\n"
+                               "[[material]]\nname = \"paint\"\npath = \"forward\"\ntangents = true\nnormal_maps = true\nglints = true\n"
+                               "[[material]]\nname = \"flakes\"\npath = \"forward\"\ntangents = true\nglints = true\nprefer = \"speed\"\n"
+                               "[[material]]\nname = \"ground\"\npath = \"deferred\"\n";
+    const auto plan = saagen({"plan", manifest.string()});
+    ASSERT_EQ(plan.exit_code, 0) << plan.err;
+    EXPECT_NE(plan.out.find("variant   glints-ggaa  [G1]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("variant   glints  [G2]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("saa_sparkle_glint_dictionary.ktx2"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("variant   deferred-avg"), std::string::npos) << plan.out;
+
+    const fs::path out = scratch_ / "bundle";
+    const auto emit = saagen({"emit", "--manifest", manifest.string(), "-o", out.string()});
+    ASSERT_EQ(emit.exit_code, 0) << emit.err;
+    const std::string bundle = read_text(out / "saa_sparkle.glsl");
+    for (const char* function : {"saa_glint_brdf_filtered_fragment", "saa_glint_brdf_fragment", "saa_lean_roughness", "saa_glint_dictionary_grad_value"}) {
+        EXPECT_NE(bundle.find(function), std::string::npos) << function;
+    }
+    const std::string bytes = read_text(out / "saa_sparkle_glint_dictionary.ktx2");
+    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    EXPECT_EQ(image.width, 64u);
+    EXPECT_EQ(image.layers, 16u * 192u / 4u);
+    const auto validate = saagen({"validate", out.string()});
+    EXPECT_EQ(validate.exit_code, 0) << validate.out << validate.err;
+    // Unchanged on a second run.
+    const auto again = saagen({"emit", "--manifest", manifest.string(), "-o", out.string()});
+    EXPECT_EQ(again.out.find("wrote"), std::string::npos) << again.out;
+
+    // glints = true on a deferred material: one line with the file position, nothing written.
+    const fs::path bad = scratch_ / "bad.toml";
+    std::ofstream(bad) << "name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nglints = true\n";
+    const auto rejected = saagen({"emit", "--manifest", bad.string(), "-o", (scratch_ / "bad_out").string()});
+    EXPECT_NE(rejected.exit_code, 0);
+    EXPECT_NE(rejected.err.find("bad.toml:6:"), std::string::npos) << rejected.err;
+    EXPECT_NE(rejected.err.find("glints = true needs path = \"forward\" and tangents = true"), std::string::npos) << rejected.err;
+    EXPECT_EQ(std::count(rejected.err.begin(), rejected.err.end(), '\n'), 1) << rejected.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "bad_out"));
 }
 
 TEST_F(GlintCli, RejectsBadOptionsInOneLine) {

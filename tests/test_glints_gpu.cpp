@@ -16,14 +16,14 @@
 // Added to it, T = max |f' - f| over the reference f' whose transcendentals sit at either end of
 // what the Vulkan specification allows ("Precision and Operation of SPIR-V Instructions"): the
 // footprint LOD's log2(size) off by 3 ulp (|log2 size| 3 2^-23; 2^-21 absolute inside [0.5, 2]),
-// the cell scale exp2(x), x = log_density / (2 ln 2) - level (up to ~14), off by a factor
-// 1 +- (3 + 2|x|) 2^-23 (g::Dictionary::log2_side, exp2_side): up to ~30 ulp, far more than the
-// 2^-21 input perturbations cover. Plus T_trig, the same for each cell's rotation: cos and sin
-// within 2^-11 absolute of the exact value in [-pi, pi] (the snippet reduces the angle to that
-// range; outside it the spec bounds nothing), every cell's product at the low or high end of that
-// box (g::Dictionary::trig_side). SwiftShader uses about 0.4 of that allowance (1.9e-4), lavapipe
-// 1e-7. Division (2.5 ulp), inversesqrt (2 ulp) and sqrt (inherited) stay within the 4e-6 |f|
-// term and the perturbations.
+// the cell scale exp2(x), x = log_density / (2 ln 2) - level (up to ~14), and the EWA weights
+// exp(-2 r^2), off by a factor 1 +- (3 + 2|x|) 2^-23 (g::Dictionary::log2_side, exp2_side): up
+// to ~30 ulp, far more than the 2^-21 input perturbations cover. Plus T_trig, the same for each
+// cell's rotation: cos and sin within 2^-11 absolute of the exact value in [-pi, pi] (the
+// snippet's angle lies in that range; outside it the spec bounds nothing), every cell's product
+// at the low or high end of that box (g::Dictionary::trig_side). SwiftShader uses about 0.4 of
+// that allowance (1.9e-4), lavapipe 1e-7. Division (2.5 ulp), inversesqrt (2 ulp) and sqrt
+// (inherited) stay within the 4e-6 |f| term and the perturbations.
 //
 // The sampler itself is held to what the Vulkan specification lets any implementation do
 // (ref::glints::SamplerTolerance, from the device's mipmapPrecisionBits and
@@ -267,7 +267,9 @@ std::vector<Scenario> scenarios(std::size_t count) {
         // Footprint: l_P uniform in [-0.5, 16] (clamped at both ends), random shape.
         const double lod = -0.5 + 16.5 * unit(random);
         const double size = std::exp2(lod - s.log_density * 0.721347520444482);
-        const double angle = 6.283185307179586 * unit(random), shape = 0.2 + 0.8 * unit(random);
+        // One in eight beyond the 8:1 anisotropy clamp (2020 Alg. 1 line 4), the rest up to 5:1.
+        const double angle = 6.283185307179586 * unit(random);
+        const double shape = all.size() % 8 == 1 ? 0.01 + 0.11 * unit(random) : 0.2 + 0.8 * unit(random);
         s.duv_dx = {size * std::cos(angle), size * std::sin(angle)};
         s.duv_dy = {-shape * size * std::sin(angle + 0.3), shape * size * std::cos(angle + 0.3)};
         // Three in four near the uv origin; one in four anywhere in [-0.2, 1.2]^2, where the cell
@@ -384,9 +386,18 @@ struct SnippetCase {
     std::string target;
     std::string variant;
     std::string function;
+    // Emission options other than the defaults (the reference gets the same).
+    double relative_area = 1.0;
+    double max_anisotropy = 8.0;
 };
 
 void PrintTo(const SnippetCase& c, std::ostream* os) { *os << c.target << " " << c.function; }
+
+g::Dictionary configured(g::Dictionary dictionary, const SnippetCase& c) {
+    dictionary.params.relative_area = c.relative_area;
+    dictionary.params.max_anisotropy = c.max_anisotropy;
+    return dictionary;
+}
 
 class GlintSnippetOnGpu : public ::testing::TestWithParam<SnippetCase> {};
 
@@ -400,6 +411,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     saagen::EmitOptions options;
     options.target = c.target;
     options.variants = {c.variant};
+    options.option_values = {{"glint_relative_area", c.relative_area}, {"glint_max_anisotropy", c.max_anisotropy}};
     const auto file = saagen::glints::emit(options).front();
     saagen::KernelRequest request;
     request.body = saagen::load_call_store_body(catalogue, c.function, request);
@@ -419,7 +431,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     // Nominal: the exact LOD rule. Low / high: every lookup at the end of what the spec allows.
     // On lavapipe, the tight check feeds the reference lavapipe's LOD arithmetic.
     const bool lavapipe = on_lavapipe();
-    g::Dictionary dictionary = saagen::test::default_reference_dictionary(g::LodModel::exact);
+    g::Dictionary dictionary = configured(saagen::test::default_reference_dictionary(g::LodModel::exact), c);
     const auto reference = reference_functions(dictionary).at(c.function);
     g::Dictionary low_dictionary = dictionary, high_dictionary = dictionary;
     low_dictionary.tolerance = high_dictionary.tolerance = &spec_tolerance();
@@ -427,13 +439,13 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     high_dictionary.side = 1;
     const auto low_reference = reference_functions(low_dictionary).at(c.function);
     const auto high_reference = reference_functions(high_dictionary).at(c.function);
-    const auto lavapipe_reference = reference_functions(saagen::test::default_reference_dictionary(g::LodModel::lavapipe)).at(c.function);
+    const auto lavapipe_reference = reference_functions(configured(saagen::test::default_reference_dictionary(g::LodModel::lavapipe), c)).at(c.function);
     // The reference with the footprint's log2 and the cell scale's exp2 at either end of the
     // spec's allowance (g::Dictionary::log2_side, exp2_side), for the transcendental term.
     std::vector<ReferenceFunction> transcendental_references;
     for (const int log2_side : {-1, 1}) {
         for (const int exp2_side : {-1, 1}) {
-            g::Dictionary d = saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+            g::Dictionary d = configured(saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact), c);
             d.log2_side = log2_side;
             d.exp2_side = exp2_side;
             transcendental_references.push_back(reference_functions(d).at(c.function));
@@ -443,7 +455,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
     // (g::Dictionary::trig_side).
     std::vector<ReferenceFunction> trig_references;
     for (const int trig_side : {-1, 1}) {
-        g::Dictionary d = saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+        g::Dictionary d = configured(saagen::test::default_reference_dictionary(lavapipe ? g::LodModel::lavapipe : g::LodModel::exact), c);
         d.trig_side = trig_side;
         trig_references.push_back(reference_functions(d).at(c.function));
     }
@@ -681,11 +693,14 @@ std::vector<SnippetCase> snippet_cases() {
         cases.push_back({target, "glints-ggaa", "glint_brdf_filtered"});
         cases.push_back({target, "glints-ggaa", "lean_roughness"});
     }
+    // The relative area (half the cells empty) and a lower anisotropy clamp.
+    cases.push_back({"glsl", "glints-ggaa", "glint_sdf_filtered", 0.5, 4.0});
     return cases;
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFunction, GlintSnippetOnGpu, ::testing::ValuesIn(snippet_cases()), [](const auto& info) {
-    return info.param.target + "_" + info.param.function;
+    const bool defaults = info.param.relative_area == 1.0 && info.param.max_anisotropy == 8.0;
+    return info.param.target + "_" + info.param.function + (defaults ? "" : "_area_half_anisotropy_4");
 });
 
 }  // namespace

@@ -96,7 +96,8 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_EQ(manifest.materials[2].path, saagen::RenderPath::deferred);
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, "fp16");
-  EXPECT_EQ(car.position.line, 22);
+  EXPECT_EQ(manifest.gpu_family, "vega10");
+  EXPECT_EQ(car.position.line, 23);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -140,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, sigma2, kappa, material"},
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, preset, domain, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
@@ -202,8 +203,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"no_material", header,
                 "scene.toml:1:1: missing key 'material'; allowed: an array of tables, one [[material]] per material"},
         BadCase{"glints", header + forward_material + "glints = true\n",
-                "scene.toml:5:10: key 'glints' of material 'm': the planner does not plan glint filtering; emit the glint "
-                "snippets with `saagen glints emit`; allowed: false"},
+                "scene.toml:5:10: key 'glints' of material 'm': the glinty BRDF is evaluated per light in the tangent frame: "
+                "glints = true needs path = \"forward\" and tangents = true; allowed: false, or true with path = \"forward\" and "
+                "tangents = true"},
         BadCase{"fp16_unknown_precision", header + forward_material + "precision = \"fp64\"\n",
                 "scene.toml:5:13: key 'precision' of material 'm': unknown value \"fp64\"; allowed: \"fp32\", \"fp16\""},
         BadCase{"bundle_name_collides", header + "name = \"deferred_sum\"\n" + forward_material,
@@ -304,11 +306,12 @@ TEST(Planner, ManifestsBuiltInCodeAreCheckedToo) {
 
 TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
   const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
-      {"target": "glsl", "variant": "deferred-avg", "ratio_median": 1.05, "error": 0.02},
-      {"target": "hlsl", "variant": "deferred-avg", "ratio_median": 1.07, "error": 0.02},
-      {"target": "glsl", "variant": "deferred-sum", "ratio_median": 1.02, "error": 0.05},
-      {"target": "glsl", "variant": "deferred-projected-space", "ratio_median": 1.10, "error": 0.01},
-      {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.00, "error": 0.00}]})",
+      {"target": "glsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.05, "ratio_median": 0.9, "error": 0.02},
+      {"target": "hlsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.07, "error": 0.02},
+      {"target": "glsl", "variant": "deferred-sum", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.02, "error": 0.05},
+      {"target": "glsl", "variant": "deferred-sum", "isa_family": "navi21", "isa_inverse_throughput_ratio": 2.0},
+      {"target": "glsl", "variant": "deferred-projected-space", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.10, "error": 0.01},
+      {"target": "glsl", "variant": "forward-axis-projected", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.00, "error": 0.00}]})",
                                                              "trade.json");
   const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"fast\"\npath = \"deferred\"\nprefer = \"speed\"\n" +
                                           "[[material]]\nname = \"exact\"\npath = \"deferred\"\n");
@@ -320,6 +323,51 @@ TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
   EXPECT_NE(plan.materials.at(0).reason.find("deferred-sum 1.02, deferred-avg 1.06, deferred-projected-space 1.1"), std::string::npos)
       << plan.materials.at(0).reason;
   EXPECT_EQ(plan.materials.at(1).variant, "deferred-projected-space");
+}
+
+// Speed is ranked by the ISA cost model (the committed table for the manifest's gpu_family,
+// default vega10), never by lavapipe time: a table with only time ratios does not decide it.
+TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
+  const saagen::IsaTable& isa = saagen::committed_isa_costs();
+  ASSERT_FALSE(isa.rows.empty());
+  const saagen::TradeTable table =
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "ratio_median": 0.5}]})", "time.json");
+  for (const std::string family : {"vega10", "navi21"}) {
+    const saagen::Manifest manifest =
+        parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family + "\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n");
+    EXPECT_EQ(manifest.gpu_family, family);
+    const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
+    // The cheapest eligible variant on this family's ISA figures; the rule's deferred-avg when it
+    // is within kIsaTieTolerance of it.
+    std::string cheapest = "deferred-avg";
+    double lowest = *isa.forward_ratio(family, "deferred-avg", {"glsl"});
+    for (const std::string variant : {"deferred-sum", "deferred-projected-space", "deferred-max"}) {
+      const double ratio = *isa.forward_ratio(family, variant, {"glsl"});
+      if (ratio < lowest) lowest = ratio, cheapest = variant;
+    }
+    if (*isa.forward_ratio(family, "deferred-avg", {"glsl"}) <= lowest * (1.0 + saagen::kIsaTieTolerance)) cheapest = "deferred-avg";
+    EXPECT_EQ(plan.materials.at(0).variant, cheapest) << family << ": " << plan.materials.at(0).reason;
+    EXPECT_NE(plan.materials.at(0).variant, "deferred-projected-space") << "lavapipe time decided";
+  }
+  EXPECT_THROW((void)parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"gfx3000\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\n"),
+               saagen::Error);
+}
+
+// `saagen bench --json` measures a variant's tangent-free form as a configuration of its own;
+// for a material without tangents, speed ranks deferred-max by that form's ISA figure.
+TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
+  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"variant": "deferred-max-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.01},
+      {"variant": "deferred-max", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5},
+      {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.1}]})",
+                                                             "bench.json");
+  const saagen::ScenePlan plan = saagen::plan_scene(
+      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"), &table);
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-max") << plan.materials.at(0).reason;
+  const saagen::TradeTable unknown =
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
+  EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &unknown),
+               saagen::Error);
 }
 
 TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
@@ -626,6 +674,63 @@ TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("bad.frag:3"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
+}
+
+}  // namespace
+
+namespace {
+
+// `preset` and `domain` (examples/INTEGRATION.md, "Engines"): the preset's sigma2, kappa, variant
+// for deferred materials and roughness domain; keys the file sets win.
+const std::string deferred_material = "[[material]]\nname = \"d\"\npath = \"deferred\"\n";
+
+TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
+  const auto files = emit_text(header + "preset = \"hdrp\"\n" + deferred_material);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].file_name, "saa_scene_smoothness.glsl");
+  const auto marker = saagen::find_marker(files[0].content);
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-sum"}));
+  EXPECT_EQ(marker->domain, "smoothness");
+  EXPECT_EQ(marker->option_values.at("sigma2"), 0.1);
+  EXPECT_EQ(marker->option_values.at("kappa"), 0.04);
+  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_sum_smoothness", "deferred_sum_fragment_smoothness"}));
+  EXPECT_NE(files[0].content.find("d (deferred): deferred-sum -> saa_deferred_sum_fragment_smoothness"), std::string::npos);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+
+  const auto overridden = emit_text(header + "preset = \"hdrp\"\ndomain = \"perceptual\"\nkappa = 0.1\n" + deferred_material);
+  const auto marker2 = saagen::find_marker(overridden.at(0).content);
+  EXPECT_EQ(marker2->domain, "perceptual");
+  EXPECT_EQ(marker2->option_values.at("kappa"), 0.1);
+  EXPECT_EQ(marker2->option_values.at("sigma2"), 0.1);
+}
+
+// A domain reaches the plan's text, its costs and the bundle next to materials without one (a
+// forward-aniso material keeps its alpha^2 matrix form).
+TEST(Planner, PlansAndCostsInTheManifestsDomain) {
+  const std::string text = header + "preset = \"filament\"\n" + deferred_material +
+                           "[[material]]\nname = \"paint\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n";
+  const saagen::Manifest manifest = parse(text);
+  saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  saagen::measure_costs(Catalogue::builtin(), manifest, plan);
+  const std::string printed = saagen::format_plan(Catalogue::builtin(), manifest, plan);
+  EXPECT_NE(printed.find("call      saa_deferred_sum_fragment_perceptual(perceptual_roughness, normal_ws)"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("the variant of the manifest's preset \"filament\""), std::string::npos) << printed;
+  EXPECT_NE(printed.find("call      saa_forward_aniso_projected_fragment(alpha2, half_ts)"), std::string::npos) << printed;
+  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), 0);
+  const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
+  ASSERT_EQ(files.size(), 1u);
+  const saagen::FileValidation validation = saagen::validate_file(Catalogue::builtin(), files[0].file_name, files[0].content);
+  EXPECT_TRUE(validation.ok()) << validation.summary();
+}
+
+TEST(Manifest, BadPresetOrDomainIsOneLine) {
+  EXPECT_EQ(error_of(header + "preset = \"unreal\"\n" + deferred_material),
+            "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
+            "\"vsgl\"");
+  EXPECT_EQ(error_of(header + "domain = \"linear\"\n" + deferred_material),
+            "scene.toml:2:10: key 'domain': unknown value \"linear\"; allowed: \"alpha2\", \"alpha\", \"perceptual\", \"smoothness\"");
 }
 
 }  // namespace

@@ -416,6 +416,18 @@ TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
   expect_one_line_error(timed({"bench", "--preset", "quick", "--threads", "-1"}, &seconds), "--threads -1");
 }
 
+// `saagen bench --isa`: an unknown family or an ISA option without --isa fails in one line before
+// anything is compiled or rendered.
+TEST_F(Safety, IsaOptionsAreCheckedFirst) {
+  double seconds = 0.0;
+  expect_one_line_error(timed({"bench", "--isa", "gfx3000", "--isa-only"}, &seconds), "unknown GPU family 'gfx3000'; allowed: ");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(timed({"bench", "--isa", "vega10,", "--isa-only"}, &seconds), "unknown GPU family ''");
+  expect_one_line_error(timed({"bench", "--isa-only"}, &seconds), "--isa-only and --isa-table need --isa");
+  expect_one_line_error(timed({"bench", "--isa-table", (scratch_ / "t.json").string()}, &seconds), "need --isa");
+  EXPECT_FALSE(fs::exists(scratch_ / "t.json"));
+}
+
 TEST_F(Safety, TradeTablesWithNegativeErrorsOrUnknownIdsAreRefused) {
   const fs::path manifest = fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml";
   write(scratch_ / "negative.json", R"({"rows": [{"variant": "deferred-sum", "error": -1}]})");

@@ -1,5 +1,7 @@
 #include "saagen/report/findings.hpp"
 
+#include "saagen/planner.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -101,9 +103,16 @@ bool serves(const std::string& configuration, Path path) {
 // Engines' forms cost what deferred-sum costs: the same operations (two normal derivatives, their
 // squared lengths, a min and an add; the pow-based forms of Unreal and Babylon.js add one
 // transcendental). bench_shading measures deferred-sum.
+namespace {
+
+std::string costed_variant(const std::string& configuration) {
+  return is_engine_configuration(configuration) ? std::string("deferred-sum") : configuration.substr(0, configuration.find(':'));
+}
+
+}  // namespace
+
 std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time) {
-  const std::string variant =
-      is_engine_configuration(configuration) ? std::string("deferred-sum") : configuration.substr(0, configuration.find(':'));
+  const std::string variant = costed_variant(configuration);
   if (variant == "none") return time ? 1.0 : 0.0;
   if (!costs) return std::nullopt;
   const VariantCost* cost = costs->find(variant);
@@ -111,10 +120,22 @@ std::optional<double> configuration_cost(const CostTable* costs, const std::stri
   return time ? cost->time_ratio : cost->delta_instructions;
 }
 
+std::optional<double> configuration_isa_cost(const CostTable* costs, const std::string& configuration) {
+  const std::string variant = costed_variant(configuration);
+  if (variant == "none") return 1.0;
+  if (!costs) return std::nullopt;
+  const VariantCost* cost = costs->find(variant);
+  return cost ? cost->isa_ratio : std::nullopt;
+}
+
 bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b) {
   // The optimized SPIR-V delta first: deterministic, while lavapipe's time ratios of the cheap
   // filters differ by less than their own quartile spread (bench_shading: 0.95-1.0, p25-p75
   // +-0.06), which would order equal-cost forms by noise.
+  // ACO's ISA estimate first: deterministic and a GPU's cost model; within kIsaTieTolerance
+  // (about two instructions of these shaders) costs count as equal, as in the planner.
+  const auto isa_a = configuration_isa_cost(costs, a), isa_b = configuration_isa_cost(costs, b);
+  if (isa_a && isa_b) return *isa_a <= *isa_b * (1.0 + kIsaTieTolerance);
   for (bool time : {false, true}) {
     const auto ca = configuration_cost(costs, a, time), cb = configuration_cost(costs, b, time);
     if (ca && cb) return *ca <= *cb;

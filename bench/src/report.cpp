@@ -192,7 +192,8 @@ std::string sheet_name(const render::ImageSet& set) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The cost-vs-error plot (SVG): x = lavapipe time ratio when measured, else the SPIR-V delta;
+// The cost-vs-error plot (SVG): x = the ISA inverse-throughput ratio when measured, else the
+// lavapipe time ratio, else the SPIR-V delta;
 // y = mean tonemapped RMSE.
 
 std::optional<double> cost_of(const CostTable* costs, const std::string& configuration, bool time) {
@@ -200,10 +201,12 @@ std::optional<double> cost_of(const CostTable* costs, const std::string& configu
 }
 
 std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable* costs) {
+  const bool isa = costs && !costs->isa_family.empty();
   const bool time = costs && std::any_of(costs->rows.begin(), costs->rows.end(), [](const VariantCost& c) { return c.time_ratio.has_value(); });
   std::vector<std::tuple<std::string, double, double>> points;
   for (const VariantSummary& row : summary) {
-    if (const auto cost = cost_of(costs, row.variant, time)) points.emplace_back(row.variant, *cost, row.rmse_tonemapped);
+    const auto cost = isa ? configuration_isa_cost(costs, row.variant) : cost_of(costs, row.variant, time);
+    if (cost) points.emplace_back(row.variant, *cost, row.rmse_tonemapped);
   }
   const double width = 720, height = 480, left = 70, right = 200, top = 30, bottom = 60;
   double x_min = 1e300, x_max = -1e300, y_max = 0.0;
@@ -225,7 +228,8 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
     svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="end">{:.3g}</text>)s", left - 6, sy(y) + 4, y) << "\n";
   }
   svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">{}</text>)s", (left + width - right) / 2, height - 15,
-                     time ? "cost: GPU time with SAA / without (lavapipe)" : "cost: optimized SPIR-V instructions added") << "\n";
+                     isa    ? "cost: ACO inverse throughput with SAA / without (RADV " + costs->isa_family + ")"
+                     : time ? std::string("cost: GPU time with SAA / without (lavapipe)") : std::string("cost: optimized SPIR-V instructions added")) << "\n";
   svg << fmt::format(R"s(<text x="16" y="{}" transform="rotate(-90 16 {})" text-anchor="middle">error: mean tonemapped RMSE</text>)s",
                      (top + height - bottom) / 2, (top + height - bottom) / 2) << "\n";
   for (const auto& [name, x, y] : points) {
@@ -311,8 +315,10 @@ std::vector<std::string> metric_cells(const Metrics& m) {
           fmt::format("{:.3f}", m.flicker_display)};
 }
 
+// ISA inverse-throughput ratio (primary), lavapipe time ratio (secondary), SPIR-V delta.
 std::vector<std::string> cost_cells(const CostTable* costs, const std::string& configuration) {
-  return {optional_number(cost_of(costs, configuration, true), "{:.3f}"), optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
+  return {optional_number(configuration_isa_cost(costs, configuration), "{:.3f}"), optional_number(cost_of(costs, configuration, true), "{:.3f}"),
+          optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
 }
 
 Metrics metrics_of(const VariantSummary& s) {
@@ -323,7 +329,7 @@ TextTable summary_table(const std::vector<VariantSummary>& summary, const CostTa
   TextTable t;
   t.headers = {"configuration"};
   t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
-  t.headers.insert(t.headers.end(), {"time ratio", "dSPIR-V"});
+  t.headers.insert(t.headers.end(), {"ISA inv.thr", "time ratio", "dSPIR-V"});
   for (const VariantSummary& row : summary) {
     std::vector<std::string> cells{row.variant};
     for (auto& c : metric_cells(metrics_of(row))) cells.push_back(c);
@@ -337,7 +343,7 @@ TextTable content_table(const render::TradeTable& table, Content content, const 
   TextTable t;
   t.headers = {"configuration"};
   t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
-  t.headers.insert(t.headers.end(), {"time ratio", "dSPIR-V"});
+  t.headers.insert(t.headers.end(), {"ISA inv.thr", "time ratio", "dSPIR-V"});
   const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
@@ -355,7 +361,7 @@ std::string percent_change(double ours, double theirs) {
 }
 
 TextTable recommendation_table(const std::vector<Recommendation>& recs, const CostTable* costs) {
-  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "HDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "time ratio", "dSPIR-V"}, {}};
+  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "HDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "ISA inv.thr", "time ratio", "dSPIR-V"}, {}};
   for (const Recommendation& r : recs) {
     std::vector<std::string> cells{std::string(path_name(r.path)), std::string(content_name(r.content)), r.configuration,
                                    fmt::format("{:.4f}", r.metrics.flip_ldr), fmt::format("{:.4f}", r.metrics.flip_hdr),
@@ -455,7 +461,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
                             const std::vector<std::string>& sheets) {
   std::ostringstream md;
   md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
-  if (costs) md << "Cost from `" << costs->source << "` (" << costs->device << ").\n\n";
+  if (costs) md << "Cost: " << costs->describe() << ".\n\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
   md << "## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
   for (Content content : kContents)
@@ -476,7 +482,7 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
           "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}</style>\n"
           "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n<p>" << html_escape(config_line(table)) << "</p>\n<p>"
        << html_escape(kMetricNote) << "</p>\n";
-  if (costs) html << "<p>Cost from <code>" << html_escape(costs->source) << "</code> (" << html_escape(costs->device) << ").</p>\n";
+  if (costs) html << "<p>Cost: " << html_escape(costs->describe()) << ".</p>\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t); });
   html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
   for (Content content : kContents)
@@ -502,6 +508,22 @@ const VariantCost* CostTable::find(std::string_view variant) const {
     if (row.variant == variant) return &row;
   }
   return nullptr;
+}
+
+std::string CostTable::describe() const {
+  std::vector<std::string> models;
+  if (!isa_family.empty()) models.push_back(fmt::format("ISA inv.thr: ACO inverse-throughput ratio on RADV {} (null hardware, `saagen bench --isa`)", isa_family));
+  if (!source.empty()) models.push_back(fmt::format("time ratio and dSPIR-V: {} ({})", source, device));
+  return models.empty() ? std::string("no cost model") : fmt::format("{}", fmt::join(models, "; "));
+}
+
+void add_isa_costs(CostTable& table, const std::string& family, const std::vector<std::pair<std::string, double>>& ratios) {
+  table.isa_family = family;
+  for (const auto& [variant, ratio] : ratios) {
+    auto found = std::find_if(table.rows.begin(), table.rows.end(), [&](const VariantCost& row) { return row.variant == variant; });
+    if (found == table.rows.end()) found = table.rows.insert(table.rows.end(), VariantCost{variant, {}, {}, {}});
+    found->isa_ratio = ratio;
+  }
 }
 
 CostTable load_cost_table(const fs::path& path) {
@@ -534,7 +556,7 @@ CostTable load_cost_table(const fs::path& path) {
   }
   for (const std::string& variant : order) {
     const auto& [ratios, deltas] = by_variant[variant];
-    VariantCost cost{variant, {}, {}};
+    VariantCost cost{variant, {}, {}, {}};
     if (!ratios.empty()) cost.time_ratio = mean(ratios);
     if (!deltas.empty()) cost.delta_instructions = mean(deltas);
     table.rows.push_back(cost);
@@ -627,6 +649,10 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                             {"rmse_tonemapped", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
                             {"flip_hdr", row.flip_hdr},        {"flicker", row.flicker},
                             {"flicker_display", row.flicker_display}};
+    if (const auto ratio = configuration_isa_cost(costs, row.variant); ratio && costs && !costs->isa_family.empty()) {
+      entry["isa_inverse_throughput_ratio"] = *ratio;
+      entry["isa_family"] = costs->isa_family;
+    }
     if (const auto ratio = cost_of(costs, row.variant, true)) entry["ratio_median"] = *ratio;
     if (const auto delta = cost_of(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
     rows.push_back(entry);

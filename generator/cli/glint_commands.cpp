@@ -41,10 +41,12 @@ std::string raw_level_bytes(const glints::Dictionary& dictionary) {
 }
 
 // The glint catalogue names its options glint_*; the command line spells them --count, --lods,
-// --alpha and --kernel-scale.
+// --alpha, --kernel-scale, --max-anisotropy and --relative-area.
 std::string with_option_names(std::string message) {
   for (const auto& [internal, option] : {std::pair{"--glint_count", "--count"}, std::pair{"--glint_lods", "--lods"},
-                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"}}) {
+                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"},
+                                         std::pair{"--glint_max_anisotropy", "--max-anisotropy"},
+                                         std::pair{"--glint_relative_area", "--relative-area"}}) {
     for (auto at = message.find(internal); at != std::string::npos; at = message.find(internal)) message.replace(at, std::strlen(internal), option);
   }
   return message;
@@ -71,6 +73,8 @@ GlintCommands::GlintCommands(CLI::App& app) {
   emit_->add_option("--lods", lods_, "LODs L of the dictionary (default 16)");
   emit_->add_option("--alpha", alpha_, "Beckmann roughness of the dictionary (default 0.5)");
   emit_->add_option("--kernel-scale", kernel_scale_, "s_K of GGAA (default 0.5)");
+  emit_->add_option("--max-anisotropy", max_anisotropy_, "Largest footprint anisotropy before the minor axis is widened, in [1, 8] (default 8)");
+  emit_->add_option("--relative-area", relative_area_, "Microfacet relative area: probability that a cell holds microfacets, in (0, 1] (default 1)");
   emit_->add_option("--output,-o", output_directory_, "Output directory")->required();
   emit_->add_flag("--force", force_, "Overwrite files that saagen did not write");
 
@@ -115,6 +119,8 @@ int GlintCommands::run_emit() const {
   if (lods_) options.option_values["glint_lods"] = *lods_;
   if (alpha_) options.option_values["glint_alpha"] = *alpha_;
   if (kernel_scale_) options.option_values["glint_kernel_scale"] = *kernel_scale_;
+  if (max_anisotropy_) options.option_values["glint_max_anisotropy"] = *max_anisotropy_;
+  if (relative_area_) options.option_values["glint_relative_area"] = *relative_area_;
   std::vector<OutputFile> outputs;
   std::vector<EmittedFile> files;
   try {

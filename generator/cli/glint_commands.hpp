@@ -37,6 +37,8 @@ class GlintCommands {
   std::string precision_ = "fp32";
   bool unguarded_ = false;
   std::optional<double> kernel_scale_;
+  std::optional<double> max_anisotropy_;
+  std::optional<double> relative_area_;
   std::string output_directory_;
   bool force_ = false;
   // shared by emit (shader constants) and dictionary (generation)

@@ -2,11 +2,14 @@
 // nothing is written unless everything that would be written has been produced first.
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
+#include "saagen/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/glints.hpp"
 #include "saagen/input.hpp"
 #include "saagen/listing.hpp"
 #include "saagen/output.hpp"
 #include "saagen/spirv_library.hpp"
+#include "saagen/target.hpp"
 #include "saagen/validation.hpp"
 #include "arguments.hpp"
 #include "pass_commands.hpp"
@@ -41,18 +44,27 @@ struct EmitArguments {
   bool force = false;
   std::string precision = "fp32";
   bool unguarded = false;
+  std::optional<std::string> preset;  // an engine's variant, sigma^2, kappa and domain
+  std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
 };
 
-int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
+int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
   saagen::validate_prefix(prefix);
   if (json) {
-    std::cout << saagen::catalogue_json(catalogue, prefix).dump(2) << "\n";
+    std::cout << saagen::catalogue_json(base_catalogue, prefix, domain).dump(2) << "\n";
     return 0;
   }
+  const Catalogue& catalogue = saagen::domain_catalogue(base_catalogue, domain);
   for (const saagen::Variant& variant : catalogue.variants()) {
+    if (domain != "alpha2" && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) continue;
     std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
                              variant.needs_tangents ? "yes" : "no", variant.summary);
     std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
+    const auto resources = saagen::resources_used(saagen::builtin_target("glsl"), catalogue, variant.functions);
+    if (!resources.empty()) {
+      std::cout << fmt::format("{:<26} resources: {} (declared by the including shader; `saagen list --json` shows how)\n", "",
+                               fmt::join(resources, ", "));
+    }
     for (const std::string& name : variant.functions) {
       const saagen::Function& function = *catalogue.find_function(name);
       std::vector<std::string> parameters;
@@ -64,20 +76,45 @@ int run_list(const Catalogue& catalogue, bool json, const std::string& prefix) {
   return 0;
 }
 
+// The variants a SPIR-V library module can hold: a module cannot leave a resource (the glint
+// dictionary) for its consumer to declare, so those variants are left out of "all variants" and
+// rejected when named.
+std::vector<std::string> spirv_library_variants(const Catalogue& catalogue, const std::vector<std::string>& named) {
+  const saagen::TargetSyntax& glsl = saagen::builtin_target("glsl");
+  const auto reads_resource = [&](const saagen::Variant& variant) { return !saagen::resources_used(glsl, catalogue, variant.functions).empty(); };
+  std::vector<std::string> ids;
+  for (const saagen::Variant& variant : catalogue.variants()) {
+    const bool asked = named.empty() || std::find(named.begin(), named.end(), variant.id) != named.end();
+    if (!asked) continue;
+    if (!reads_resource(variant)) {
+      ids.push_back(variant.id);
+    } else if (!named.empty()) {
+      throw saagen::Error(fmt::format("--variant {}: a SPIR-V library module cannot leave the {} binding to the including shader; "
+                                      "emit it with --target glsl or hlsl",
+                                      variant.id, fmt::join(saagen::resources_used(glsl, catalogue, variant.functions), ", ")));
+    }
+  }
+  for (const std::string& id : named) {
+    if (!catalogue.find_variant(id)) ids.push_back(id);  // unknown ids keep the emitter's own message
+  }
+  return ids;
+}
+
 int run_emit(const Catalogue& catalogue, const EmitArguments& arguments) {
   saagen::cli::check_output_named("--output", arguments.output_directory);
   saagen::cli::check_named_once("--variant", arguments.variants);
   saagen::EmitOptions options;
   options.target = arguments.target;
-  options.variants = arguments.variants;
   options.prefix = arguments.prefix;
-  if (arguments.sigma2) options.option_values["sigma2"] = *arguments.sigma2;
-  if (arguments.kappa) options.option_values["kappa"] = *arguments.kappa;
+  // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
+  const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
+  saagen::apply_settings(catalogue, settings, options);
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
 
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {
+    options.variants = spirv_library_variants(catalogue, options.variants);
     // Issue 8: per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
@@ -176,6 +213,8 @@ int main(int argc, char** argv) {
   CLI::App* list = app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions");
   list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
   list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
+  std::string list_domain = "alpha2";
+  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")->capture_default_str();
 
   EmitArguments emit_arguments;
   std::string sigma2;
@@ -183,6 +222,10 @@ int main(int argc, char** argv) {
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
   emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
+  std::string preset;
+  std::string domain;
+  CLI::Option* preset_option = emit->add_option("--preset", preset, "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
+  CLI::Option* domain_option = emit->add_option("--domain", domain, "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
   emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
   CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
   CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
@@ -199,11 +242,11 @@ int main(int argc, char** argv) {
 
   // Scene manifests (issue 6): `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
   std::vector<CLI::Option*> per_variant_options;
-  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded"}) {
+  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain"}) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
-  const saagen::cli::GlintCommands glints(app);  // issue 7: `saagen glints ...`
+  const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
   // The speed/accuracy trade (issue 4): `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
   // The deferred roughness-limiter pass (issue 8): `pass`; see pass_commands.cpp.
@@ -225,7 +268,10 @@ int main(int argc, char** argv) {
 
   try {
     const Catalogue& catalogue = Catalogue::builtin();
-    if (*list) return run_list(catalogue, list_json, list_prefix);
+    // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
+    // the other commands keep the screen-space SAA catalogue.
+    const Catalogue& every_variant = saagen::glints::catalogue();
+    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).id);
     if (*emit && scene.emit_from_manifest()) {
       saagen::cli::check_output_named("--output", emit_arguments.output_directory);
       return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
@@ -237,9 +283,11 @@ int main(int argc, char** argv) {
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
       if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
-      return run_emit(catalogue, emit_arguments);
+      if (*preset_option) emit_arguments.preset = preset;
+      if (*domain_option) emit_arguments.domain = domain;
+      return run_emit(every_variant, emit_arguments);
     }
-    if (*validate) return run_validate(catalogue, validate_directory);
+    if (*validate) return run_validate(every_variant, validate_directory);
     if (glints.requested()) return glints.run();
     if (deferred_pass.requested()) return deferred_pass.run(catalogue);
     if (texture.requested()) return texture.run();

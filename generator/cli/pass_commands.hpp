@@ -31,6 +31,8 @@ class PassCommand {
   std::string kappa_;
   CLI::Option* sigma2_option_ = nullptr;
   CLI::Option* kappa_option_ = nullptr;
+  std::string preset_;
+  CLI::Option* preset_option_ = nullptr;
 };
 
 }  // namespace saagen::cli

@@ -30,6 +30,9 @@ class ReportCommands {
     std::optional<double> sigma2, kappa;
     double prefilter_scale = 1.0;
     bool force = false;
+    // GPU families whose ISA statistics (Mesa's ACO on RADV null hardware) give the cost column:
+    // "vega10,navi21"; the first family's figures rank the variants.
+    std::string isa_families;
   };
 
  private:
@@ -39,6 +42,8 @@ class ReportCommands {
   Common bench_common_;
   std::string bench_json_;
   bool bench_every_case_ = false;
+  bool bench_isa_only_ = false;     // the ISA tables only, no ground-truth rendering
+  std::string bench_isa_table_;     // write the ISA statistics as JSON (the planner's table format)
 
   CLI::App* report_ = nullptr;
   Common report_common_;

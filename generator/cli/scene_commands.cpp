@@ -3,6 +3,8 @@
 #include "saagen/compiler.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/glints.hpp"
+#include "saagen/include_handler.hpp"
 #include "saagen/input.hpp"
 #include "saagen/manifest.hpp"
 #include "saagen/output.hpp"
@@ -33,7 +35,16 @@ std::optional<std::string> include_target(std::string_view line, const std::stri
   index = line.find_first_not_of(" \t", index + 7);
   if (index == std::string_view::npos) throw Error(fmt::format("{}: #include names no file", where));
   const char open = line[index];
-  if (open != '"') throw Error(fmt::format("{}: only #include \"FILE\" is supported (searched next to the file, then in -I directories)", where));
+  // <saagen/...> names a snippet generated in memory (saagen/include_handler.hpp); "..." a file.
+  if (open == '<' && line.substr(index + 1, 7) == "saagen/") {
+    const auto close = line.find('>', index + 1);
+    if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
+    return std::string(line.substr(index + 1, close - index - 1));
+  }
+  if (open != '"') {
+    throw Error(fmt::format("{}: only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported",
+                            where));
+  }
   const auto close = line.find('"', index + 1);
   if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
   return std::string(line.substr(index + 1, close - index - 1));
@@ -67,7 +78,8 @@ class IncludeExpander {
         continue;
       }
       if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-      expand(resolve(*included, file, number), depth + 1);
+      if (is_saagen_include(*included)) add_generated(*included, fmt::format("{}:{}", file.string(), number));
+      else expand(resolve(*included, file, number), depth + 1);
       chunk = fmt::format("#line {}\n", number + 1);
     }
     if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
@@ -79,6 +91,18 @@ class IncludeExpander {
   bool native_16bit() const { return native_16bit_; }
 
  private:
+  // A saagen/ name: the snippet generated in memory, as the include handlers resolve it.
+  void add_generated(const std::string& name, const std::string& where) {
+    EmittedFile file;
+    try {
+      file = resolve_include(name, {});
+    } catch (const Error& error) {
+      throw Error(fmt::format("{}: {}", where, error.what()));
+    }
+    native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
+    pieces_.push_back({name, file.content});
+  }
+
   fs::path resolve(const std::string& name, const fs::path& from, int line) const {
     std::vector<fs::path> candidates = {from.parent_path() / name};
     for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
@@ -174,7 +198,7 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   emit->add_flag("--list-outputs", emit_list_outputs_, "With --manifest: print the files it would write, one per line, and write nothing")
       ->needs(manifest);
 
-  compile_ = app.add_subcommand("compile", "Compile a shader (GLSL or HLSL, #include \"...\" resolved) to SPIR-V in-process, with spirv-val");
+  compile_ = app.add_subcommand("compile", "Compile a shader (GLSL or HLSL; #include \"...\" resolved, #include <saagen/...> generated) to SPIR-V in-process, with spirv-val");
   compile_->add_option("FILE", compile_input_, "Shader source")->required();
   compile_->add_option("--output,-o", compile_output_, "SPIR-V output file")->required();
   compile_->add_option("--stage,-S", compile_stage_, "vert, frag or comp (default: from the extension .vert/.frag/.comp)")
@@ -188,6 +212,16 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   compile_->add_flag("--force", compile_force_, "Overwrite an output file that saagen did not write");
 }
 
+namespace {
+
+// A manifest with glints = true is planned over the catalogue that holds the glint variants; any
+// other keeps the SAA catalogue (its bundles and plans stay byte for byte as they were).
+const Catalogue& catalogue_for(const Manifest& manifest, const Catalogue& catalogue) {
+  return plans_glints(manifest) ? glints::catalogue() : catalogue;
+}
+
+}  // namespace
+
 int SceneCommands::run_plan(const Catalogue& catalogue) const {
   if (plan_rules_) std::cout << rules_text();
   if (plan_manifest_.empty()) {
@@ -196,22 +230,29 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   }
   if (plan_rules_) std::cout << "\n";
   const Manifest manifest = load_manifest(plan_manifest_, catalogue);
+  const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
   std::optional<TradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
-  ScenePlan plan = plan_scene(catalogue, manifest, table ? &*table : nullptr);
-  if (!plan_no_cost_) measure_costs(catalogue, manifest, plan);
-  std::cout << format_plan(catalogue, manifest, plan);
+  ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
+  if (!plan_no_cost_) measure_costs(scene_catalogue, manifest, plan);
+  std::cout << format_plan(scene_catalogue, manifest, plan);
   return 0;
 }
 
 int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& output_directory, bool force) const {
   const Manifest manifest = load_manifest(emit_manifest_, catalogue);
+  const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
   std::optional<TradeTable> table;
   if (!emit_trade_table_.empty()) table = load_trade_table(emit_trade_table_);
-  const ScenePlan plan = plan_scene(catalogue, manifest, table ? &*table : nullptr);
+  const ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
   std::vector<OutputFile> outputs;
-  for (EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
+  for (EmittedFile& file : emit_scene(scene_catalogue, manifest, plan)) {
     outputs.push_back({fs::path(output_directory) / file.file_name, std::move(file.content)});
+  }
+  if (plans_glints(manifest)) {
+    // The dictionary the glint variants sample (the default one, matching the default options).
+    const std::vector<std::uint8_t> bytes = glints::default_dictionary_ktx2();
+    outputs.push_back({fs::path(output_directory) / glint_dictionary_file_name(manifest), std::string(bytes.begin(), bytes.end())});
   }
   if (emit_list_outputs_) {
     for (const OutputFile& output : outputs) std::cout << output.path.string() << "\n";

@@ -28,7 +28,7 @@ TextureCommands::TextureCommands(CLI::App& app) {
   prefilter_->add_option("IN", input_, "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size")->required();
   prefilter_->add_option("--output,-o", output_, "Output .ktx2 file")->required();
   prefilter_->add_option("--method", method_, "toksvig (one roughness channel) or lean (slope moments)")->capture_default_str();
-  prefilter_->add_option("--domain", domain_, "Domain of --roughness and of the toksvig output: alpha2, alpha or perceptual (alpha = r^2)")->capture_default_str();
+  prefilter_->add_option("--domain", domain_, "Domain of --roughness and of the toksvig output: alpha2, alpha, perceptual (alpha = r^2) or smoothness (1 - r)")->capture_default_str();
   prefilter_->add_option("--roughness", roughness_, "Constant base roughness in that domain, in [0, 1]")->capture_default_str();
   prefilter_->add_flag("--float32", float32_, "toksvig: R32_SFLOAT instead of R16_SFLOAT");
   prefilter_->add_flag("--force", force_, "Overwrite a file that saagen did not write");

@@ -350,8 +350,17 @@ Catalogue Catalogue::parse(const std::vector<TemplateSource>& sources) {
   for (const TemplateSource& source : sources) {
     TemplateParser(source, catalogue.variants_, catalogue.functions_, catalogue.constants_).parse();
   }
+  catalogue.sources_ = sources;
   catalogue.link();
   return catalogue;
+}
+
+Catalogue Catalogue::with_variants(std::vector<Variant> variants) const {
+  Catalogue copy = *this;
+  copy.variants_ = std::move(variants);
+  copy.function_index_.clear();
+  copy.link();
+  return copy;
 }
 
 const Catalogue& Catalogue::builtin() {

@@ -1,6 +1,7 @@
 #include "saagen/emitter.hpp"
 
 #include "saagen/dialect.hpp"
+#include "saagen/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/syntax_tree.hpp"
 
@@ -66,7 +67,7 @@ class FileWriter {
         option_values_(option_values), names_(build_name_map(catalogue, options.prefix)) {}
 
   EmittedFile write(const Variant& variant) {
-    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, option_values_, options_.precision, options_.guards, {}};
+    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, option_values_, options_.precision, options_.guards, {}, options_.domain};
     const auto functions = catalogue_.closure(variant.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
     const std::string form = form_suffix();
@@ -92,7 +93,7 @@ class FileWriter {
   // A bundle: the closure of request.functions, with the same conventions as write().
   EmittedFile write_bundle(const BundleRequest& request) {
     EmissionMarker marker{target_.name, request.variants, options_.prefix, option_values_, options_.precision, options_.guards,
-                          request.functions};
+                          request.functions, options_.domain};
     const auto functions = catalogue_.closure(request.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
     const std::string form = form_suffix();
@@ -135,6 +136,7 @@ class FileWriter {
   // "_fp16", "_unguarded", ...: keeps the forms apart in file names and header guards.
   std::string form_suffix() const {
     std::string suffix;
+    if (options_.domain != "alpha2") suffix += "_" + options_.domain;
     if (options_.precision != "fp32") suffix += "_" + options_.precision;
     if (!options_.guards) suffix += "_unguarded";
     return suffix;
@@ -317,8 +319,12 @@ void check_representable(const std::map<std::string, double>& given, std::string
 
 }  // namespace
 
-std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOptions& options) {
+std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
+  // Another roughness domain: the same variants with their roughness in and out converted
+  // (saagen/engines.hpp); variants without a roughness in and out are not emitted in it.
+  const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
+  const bool converted = &catalogue != &base_catalogue;
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);  // throws for a precision the target lacks
   const auto option_values = resolve_options(catalogue, options.option_values);
@@ -326,11 +332,17 @@ std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOpt
 
   std::vector<const Variant*> selected;
   if (options.variants.empty()) {
-    for (const Variant& variant : catalogue.variants()) selected.push_back(&variant);
+    for (const Variant& variant : catalogue.variants()) {
+      if (!converted || variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) selected.push_back(&variant);
+    }
   } else {
     for (const std::string& id : options.variants) {
       const Variant* variant = catalogue.find_variant(id);
       if (!variant) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
+      if (converted && !variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(id))) {
+        throw Error(fmt::format("--domain {}: variant '{}' takes or returns no scalar or per-axis roughness; emit it with --domain alpha2",
+                                options.domain, id));
+      }
       if (std::find(selected.begin(), selected.end(), variant) == selected.end()) selected.push_back(variant);
     }
   }
@@ -341,8 +353,17 @@ std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOpt
   return files;
 }
 
-EmittedFile emit_bundle(const Catalogue& catalogue, const EmitOptions& options, const BundleRequest& request) {
+EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& options, const BundleRequest& base_request) {
   validate_prefix(options.prefix);
+  // Another roughness domain: the functions with roughness in and out become their wrappers.
+  const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
+  BundleRequest request = base_request;
+  if (&catalogue != &base_catalogue) {
+    for (std::string& name : request.functions) {
+      const Function* function = base_catalogue.find_function(name);
+      if (function && takes_and_returns_roughness(*function)) name = domain_function_name(name, options.domain);
+    }
+  }
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);
   const auto option_values = resolve_options(catalogue, options.option_values);
@@ -365,6 +386,7 @@ std::string marker_line(const EmissionMarker& marker) {
   if (marker.precision != "fp32") line += " precision=" + marker.precision;
   if (!marker.guards) line += " guards=off";
   if (!marker.functions.empty()) line += fmt::format(" functions={}", fmt::join(marker.functions, ","));
+  if (marker.domain != "alpha2") line += " domain=" + marker.domain;
   return line;
 }
 
@@ -384,6 +406,7 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
     else if (key == "prefix") marker.prefix = value;
     else if (key == "precision") marker.precision = value;
     else if (key == "guards") marker.guards = value != "off";
+    else if (key == "domain") marker.domain = value;
     else if (key == "functions") {
       std::istringstream names(value);
       for (std::string name; std::getline(names, name, ',');) marker.functions.push_back(name);

@@ -645,6 +645,11 @@ const Catalogue& catalogue() {
     return glint_catalogue;
 }
 
+std::vector<std::uint8_t> default_dictionary_ktx2() {
+  const DictionaryParams params;
+  return write_ktx2(dictionary_ktx2(dictionary_texture(generate_dictionary(params), true), params));
+}
+
 std::vector<EmittedFile> emit(const EmitOptions& options) {
     EmitOptions glint_options = options;
     if (glint_options.variants.empty()) glint_options.variants = {"glints", "glints-ggaa"};

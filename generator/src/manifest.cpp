@@ -1,9 +1,13 @@
 #include "saagen/manifest.hpp"
+#include "saagen/planner.hpp"
+
+#include "saagen/engines.hpp"
 
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -200,6 +204,32 @@ void read_options(Manifest& manifest, const TableReader& top, const Catalogue& c
   }
 }
 
+// `preset` and `domain` (saagen/engines.hpp): the preset's constants fill the options the file
+// does not set; `domain` defaults to the preset's.
+void read_engine_settings(Manifest& manifest, const TableReader& top) {
+  std::vector<std::string> preset_names, domain_names;
+  for (const Preset& preset : presets()) preset_names.push_back(preset.id);
+  for (const RoughnessDomain& domain : roughness_domains()) domain_names.push_back(domain.id);
+  manifest.preset = top.choice("preset", preset_names);
+  if (manifest.preset) {
+    const Preset& preset = find_preset(*manifest.preset);
+    manifest.option_values.emplace("sigma2", preset.sigma2);
+    manifest.option_values.emplace("kappa", preset.kappa);
+    manifest.domain = preset.domain;
+  }
+  if (const auto domain = top.choice("domain", domain_names)) manifest.domain = *domain;
+}
+
+// A preset's variant serves the deferred materials that name none.
+void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
+  if (!manifest.preset) return;
+  const Preset& preset = find_preset(*manifest.preset);
+  if (!catalogue.find_variant(preset.variant)) return;
+  for (Material& material : manifest.materials) {
+    if (!material.variant && material.path == RenderPath::deferred) material.variant = preset.variant;
+  }
+}
+
 Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index,
                        const std::vector<std::string>& precisions, const Catalogue& catalogue) {
   Material material;
@@ -225,8 +255,11 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   material.tangents = reader.boolean("tangents").value_or(false);
   if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
   material.normal_maps = reader.boolean("normal_maps").value_or(false);
-  if (reader.boolean("glints").value_or(false)) {
-    reader.fail_key("glints", "the planner does not plan glint filtering; emit the glint snippets with `saagen glints emit`", "false");
+  material.glints = reader.boolean("glints").value_or(false);
+  if (material.glints && (material.path != RenderPath::forward || !material.tangents)) {
+    reader.fail_key("glints",
+                    "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
+                    "false, or true with path = \"forward\" and tangents = true");
   }
   if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
@@ -240,7 +273,9 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
       return std::any_of(variant.functions.begin(), variant.functions.end(),
                          [&](const std::string& function) { return catalogue.find_function(function)->role == role; });
     };
-    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment)) filters.push_back(variant.id);
+    // Variants that read a resource (the glint dictionary) are planned through `glints = true`.
+    const bool reads_resource = !resources_used(builtin_target("glsl"), catalogue, variant.functions).empty();
+    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment) && !reads_resource) filters.push_back(variant.id);
   }
   if (const auto variant = reader.string("variant", quoted_list(filters))) {
     if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
@@ -249,6 +284,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
                       fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
                       quoted_list(filters));
     }
+    if (material.glints) reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
     material.variant = *variant;
   }
 
@@ -449,11 +485,11 @@ std::string Manifest::where(SourcePosition position) const {
 
 const std::vector<std::string>& manifest_keys() {
   static const std::vector<std::string> keys = [] {
-    std::vector<std::string> names = {"name", "targets", "prefix"};
+    std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family"};
     for (const Constant& constant : Catalogue::builtin().constants()) {
       if (!constant.option.empty()) names.push_back(constant.option);
     }
-    names.push_back("material");
+    names.insert(names.end(), {"preset", "domain", "material"});
     return names;
   }();
   return keys;
@@ -503,8 +539,11 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
     manifest.name = *name;
   }
 
+  if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
   read_options(manifest, top, catalogue);
+  read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);
+  apply_preset_variant(manifest, catalogue);
   return manifest;
 }
 

@@ -1,10 +1,13 @@
 #include "saagen/planner.hpp"
 
+#include "saagen/engines.hpp"
+
 #include "saagen/compiler.hpp"
 #include "saagen/error.hpp"
 #include "saagen/input.hpp"
 #include "saagen/kernels.hpp"
 #include "saagen/target.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,6 +18,10 @@
 #include <cmath>
 
 namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -115,10 +122,18 @@ std::string ineligibility(const Variant& variant, const Material& material) {
   return {};
 }
 
+// The resources (the glint dictionary) a variant's functions read; such a variant is planned
+// only for a material that asks for it (glints = true), never as a screen-space filter.
+std::vector<std::string> variant_resources(const Catalogue& catalogue, const Variant& variant) {
+  return resources_used(builtin_target("glsl"), catalogue, variant.functions);
+}
+
 std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
   std::vector<const Variant*> eligible;
   for (const Variant& variant : catalogue.variants()) {
-    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty()) eligible.push_back(&variant);
+    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+      eligible.push_back(&variant);
+    }
   }
   return eligible;
 }
@@ -167,6 +182,35 @@ void choose_functions(const Catalogue& catalogue, const Material& material, Mate
 SourcePosition key_position(const Material& material, std::string_view key) {
   const auto found = material.positions.find(key);
   return found != material.positions.end() ? found->second : material.position;
+}
+
+// The glint rules: the glinty BRDF (Chermain et al. 2020, with the 2021 slope correlation) is
+// the material's specular BRDF; accuracy takes GGAA, speed the textureLod baseline.
+constexpr const char* kGlintAccuracyReason =
+    "glints = true, prefer accuracy: GGAA (textureGrad on the dictionary's MIP chain) lowers RMSE and flicker against a 1024-spp "
+    "ground truth on both measured curved scenes (docs/GLINTS.md)";
+constexpr const char* kGlintSpeedReason =
+    "glints = true, prefer speed: the textureLod baseline, about 1.7x faster than GGAA on lavapipe, with more glint aliasing on "
+    "curved surfaces (docs/GLINTS.md)";
+
+void plan_glints(const Catalogue& catalogue, const Manifest& manifest, const Material& material, MaterialPlan& plan) {
+  const bool speed = material.prefer == Preference::speed;
+  plan.variant = speed ? "glints" : "glints-ggaa";
+  plan.rule = speed ? "G2" : "G1";
+  plan.reason = speed ? kGlintSpeedReason : kGlintAccuracyReason;
+  const Variant* variant = catalogue.find_variant(plan.variant);
+  if (!variant || variant_resources(catalogue, *variant).empty()) {
+    throw Error(manifest.where(key_position(material, "glints")) +
+                fmt::format("key 'glints' of material '{}': this catalogue has no glint variant \"{}\"; plan with the full catalogue "
+                            "(saagen::glints::catalogue())",
+                            material.name, plan.variant));
+  }
+  if (material.normal_maps) {
+    plan.prefilter = "lean";
+    plan.normal_advice =
+        "LEAN: write the normal map's moments with `saagen glints lean`, sample both layers with the footprint, and pass "
+        "lean_roughness(alpha, mean, second) as roughness and the mean as mean_slope";
+  }
 }
 
 std::string fixed(double value) { return fmt::format("{:.4g}", value); }
@@ -271,6 +315,82 @@ std::optional<double> TradeTable::cost(std::string_view variant) const {
 
 std::optional<double> TradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &TradeRow::error); }
 
+std::optional<double> TradeTable::isa_cost(std::string_view variant, std::string_view family) const {
+  std::vector<TradeRow> of_family;
+  for (const TradeRow& row : rows) {
+    if (row.isa_family == family) of_family.push_back(row);
+  }
+  return mean_of(of_family, variant, &TradeRow::isa_ratio);
+}
+
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
+  double sum = 0.0;
+  int count = 0;
+  for (const IsaRow& row : rows) {
+    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
+    if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
+    sum += row.inverse_throughput_ratio;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name) {
+  IsaTable table;
+  table.source_name = std::string(source_name);
+  const auto fail = [&](std::string_view what) {
+    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
+  };
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    fail(fmt::format("not valid JSON (byte {})", error.byte));
+  }
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
+      !document["families"].is_array()) {
+    fail("needs \"families\" and \"rows\" arrays");
+  }
+  table.driver = document.value("driver", std::string());
+  for (const auto& family : document["families"]) {
+    if (!family.is_string()) fail("\"families\" must hold strings");
+    table.families.push_back(family.get<std::string>());
+  }
+  for (const auto& row : document["rows"]) {
+    const auto text = [&](const char* key) {
+      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
+      return row[key].get<std::string>();
+    };
+    const auto number = [&](const char* key) {
+      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
+      return row[key].get<double>();
+    };
+    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
+    entry.instructions = number("instructions");
+    entry.vgprs = number("vgprs");
+    entry.sgprs = number("sgprs");
+    entry.subgroups_per_simd = number("subgroups_per_simd");
+    entry.latency = number("latency");
+    entry.inverse_throughput = number("inverse_throughput");
+    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
+    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    table.rows.push_back(std::move(entry));
+  }
+  return table;
+}
+
+const IsaTable& committed_isa_costs() {
+  static const IsaTable table = [] {
+    constexpr const char* name = "generator/data/isa_cost.json";
+    const auto& files = embedded::files();
+    const auto found = files.find(name);
+    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+    return parse_isa_table(found->second, name);
+  }();
+  return table;
+}
+
 bool TradeTable::has_errors() const {
   return std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.error.has_value(); });
 }
@@ -313,6 +433,12 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     entry.cost_ratio = number(row, "ratio_median", index);
     entry.delta_instructions = number(row, "delta_spirv_instructions", index);
     entry.error = number(row, "error", index);
+    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
+    if (entry.isa_ratio) {
+      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+      entry.isa_family = row["isa_family"].get<std::string>();
+      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
+    }
     if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
     if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
     table.rows.push_back(std::move(entry));
@@ -393,9 +519,15 @@ void choose_normal_handling(const TradeTable& table, const std::vector<const Var
 void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
-    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline.
+    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free").
     const std::string& id = table.rows[index].variant;
-    const std::string base = parse_configuration(id).variant;
+    std::string base = parse_configuration(id).variant;
+    constexpr std::string_view tangent_free_suffix = "-tangent-free";
+    if (base.size() > tangent_free_suffix.size() && base.ends_with(tangent_free_suffix)) {
+      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
+      if (variant && has_tangent_free_form(*variant)) base = variant->id;
+    }
     if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
       throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
                               index, id.substr(0, 40)));
@@ -441,6 +573,13 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     MaterialPlan plan;
     plan.material = material.name;
     plan.precision = material.precision;
+    if (material.glints) {
+      plan_glints(catalogue, manifest, material, plan);
+      choose_functions(catalogue, material, plan);
+      plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
+      scene.materials.push_back(std::move(plan));
+      continue;
+    }
     const auto eligible = eligible_variants(catalogue, material);
 
     if (material.variant) {
@@ -456,31 +595,58 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       }
       plan.variant = variant.id;
       plan.rule = "manifest";
-      plan.reason = "named by the manifest's `variant` key";
+      plan.reason = material.positions.count("variant") || !manifest.preset
+                        ? "named by the manifest's `variant` key"
+                        : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
     } else {
       const Rule& rule = rule_for(material);
       plan.variant = rule.variant;
       plan.rule = rule.id;
       plan.reason = rule.why;
-      if (table) {
-        const bool speed = material.prefer == Preference::speed;
+      const bool speed = material.prefer == Preference::speed;
+      if (table || speed) {
+        // Speed: the ISA cost on the manifest's GPU family, from the trade table when it has
+        // figures for that family, else from the committed table. Accuracy: the table's error.
+        const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const TradeRow& row) {
+                                     return row.isa_ratio && row.isa_family == family;
+                                   });
+        const std::string source = table_has_isa ? table->source_name
+                                                 : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
         std::vector<std::pair<double, const Variant*>> ranked;
         for (const Variant* variant : eligible) {
-          if (const auto value = speed ? table->cost(variant->id) : table->error(variant->id)) ranked.emplace_back(*value, variant);
+          // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+          const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
+                                         ? variant->id + "-tangent-free"
+                                         : variant->id;
+          const auto value = !speed              ? table->error(variant->id)
+                             : table_has_isa     ? table->isa_cost(costed, family)
+                                                 : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
+          if (value) ranked.emplace_back(*value, variant);
         }
         // Ties keep the rule's choice first, then catalogue order.
         std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
           if (a.first != b.first) return a.first < b.first;
           return a.second->id == rule.variant && b.second->id != rule.variant;
         });
-        if (!ranked.empty()) {
+        const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+        // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
+        // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
+        // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
+        const auto rule_entry = std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+        const bool rule_ties = speed && !ranked.empty() && rule_entry != ranked.end() &&
+                               rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+        if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
           plan.variant = ranked.front().second->id;
-          plan.rule = "trade table";
-          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", speed ? "cost" : "error", table->source_name,
-                                    describe_choice(ranked, speed ? "cost" : "error"), rule.id, rule.variant);
+          plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, speed ? source : table->source_name,
+                                    describe_choice(ranked, metric), rule.id, rule.variant);
+        } else if (!ranked.empty()) {
+          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
+                                     metric, source, describe_choice(ranked, metric));
         } else {
-          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", table->source_name,
-                                     speed ? "cost" : "error", ids_of(eligible), rule.id);
+          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", speed ? source : table->source_name,
+                                     metric, ids_of(eligible), rule.id);
         }
       }
     }
@@ -504,6 +670,7 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
   options.target = target;
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
+  options.domain = manifest.domain;
   const auto form = target_precision(target, precision);
   if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
   options.precision = *form;
@@ -515,6 +682,7 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
   for (std::size_t index = 0; index < plan.materials.size(); ++index) {
     MaterialPlan& material_plan = plan.materials[index];
     const Material& material = manifest.materials.at(index);
+    if (material.glints) continue;  // no SAA filter to cost: the glinty BRDF replaces the BRDF (docs/GLINTS.md, cost)
     const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
     BundleRequest request;
     request.name = "cost_" + material.name;
@@ -525,8 +693,10 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     for (const std::string& target : manifest.targets) {
       const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
       const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
-      if (!baselines.count(key)) baselines[key] = kernel_instructions(catalogue, file, shade_statements(catalogue, material, nullptr));
-      const std::size_t with_filter = kernel_instructions(catalogue, file, shade_statements(catalogue, material, &material_plan));
+      // The bundle's functions are in the manifest's roughness domain (its wrappers included).
+      const Catalogue& emitted = domain_catalogue(catalogue, manifest.domain);
+      if (!baselines.count(key)) baselines[key] = kernel_instructions(emitted, file, shade_statements(catalogue, material, nullptr));
+      const std::size_t with_filter = kernel_instructions(emitted, file, shade_statements(catalogue, material, &material_plan));
       material_plan.cost[target] = static_cast<long>(with_filter) - static_cast<long>(baselines[key]);
     }
   }
@@ -541,10 +711,14 @@ std::string rules_text() {
                         rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
   text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
-          "anisotropic = true with tangents = false is rejected; glints = true is rejected (glint snippets come from `saagen glints emit`; the planner does not plan them).\n"
+          "anisotropic = true with tangents = false is rejected.\n"
+          "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
+          "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
           "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
-          "With --trade-table, prefer = \"speed\" takes the eligible variant of lowest measured cost (ratio_median, else\n"
-          "delta_spirv_instructions) and prefer = \"accuracy\" the one of lowest measured \"error\" when the table has errors.\n";
+          "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
+          "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
+          "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
+          "lowest measured \"error\" when the table has errors.\n";
   return text;
 }
 
@@ -563,20 +737,29 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     if (material.normal_maps) traits.push_back("normal maps");
     traits.push_back(material.precision);
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
+    if (material.glints) traits.push_back("glints");
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
 
-    const Function& wrapper = *catalogue.find_function(material_plan.wrapper);
+    // Under another roughness domain the material calls the wrapper's converting form.
+    const Function& planned = *catalogue.find_function(material_plan.wrapper);
+    const bool converted = manifest.domain != "alpha2" && takes_and_returns_roughness(planned);
+    const Function& wrapper =
+        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
     std::vector<std::string> parameters;
     for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
     text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
                         wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
-    if (material_plan.brdf) {
+    if (material.glints) {
+      text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
+      text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+                          glint_dictionary_file_name(manifest));
+    } else if (material_plan.brdf) {
       text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
                           prefixed_name(manifest.prefix, "ndf_clamp_tau"));
     } else {
-      text += "  shade     the engine's own BRDF with the filtered roughness (alpha^2 domain)\n";
+      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n", converted ? manifest.domain : "alpha^2");
     }
     if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
     if (!material_plan.cost.empty()) {
@@ -592,7 +775,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 
   text += "\nfiles\n";
   for (const EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
-    const auto functions = catalogue.closure(file.marker.functions);
+    const auto functions = domain_catalogue(catalogue, file.marker.domain).closure(file.marker.functions);
     text += fmt::format("  {}  {} public function(s), {} in the closure\n", file.file_name, file.marker.functions.size(), functions.size());
   }
   return text;
@@ -619,8 +802,13 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         for (const std::string& id : material_plan.variants) {
           if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
         }
+        // Under another roughness domain the material calls the wrapper's converting form.
+        const Function* wrapper = catalogue.find_function(material_plan.wrapper);
+        const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
+                                       ? domain_function_name(material_plan.wrapper, manifest.domain)
+                                       : material_plan.wrapper;
         std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
-                                       material_plan.variant, prefixed_name(manifest.prefix, material_plan.wrapper),
+                                       material_plan.variant, prefixed_name(manifest.prefix, called),
                                        material_plan.per_axis ? " once per axis" : "");
         if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
         request.notes.push_back(note);
@@ -629,6 +817,16 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
     }
   }
   return files;
+}
+
+}  // namespace saagen
+
+namespace saagen {
+
+std::string glint_dictionary_file_name(const Manifest& manifest) { return manifest.prefix + manifest.name + "_glint_dictionary.ktx2"; }
+
+bool plans_glints(const Manifest& manifest) {
+  return std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.glints; });
 }
 
 }  // namespace saagen

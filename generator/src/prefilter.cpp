@@ -1,5 +1,7 @@
 #include "saagen/prefilter.hpp"
 
+#include "saagen/engines.hpp"
+
 #include "saagen/error.hpp"
 
 #include <fmt/format.h>
@@ -189,11 +191,13 @@ Method parse_method(std::string_view text) {
     throw Error(fmt::format("--method '{}' is not one of toksvig, lean", text));
 }
 
+// The domains are those of saagen/engines.hpp (one definition for emission and textures).
 Domain parse_domain(std::string_view text) {
-    if (text == "alpha2") return Domain::alpha2;
-    if (text == "alpha") return Domain::alpha;
-    if (text == "perceptual") return Domain::perceptual;
-    throw Error(fmt::format("--domain '{}' is not one of alpha2, alpha, perceptual", text));
+    const std::string_view id = find_domain(text).id;
+    if (id == "alpha") return Domain::alpha;
+    if (id == "perceptual") return Domain::perceptual;
+    if (id == "smoothness") return Domain::smoothness;
+    return Domain::alpha2;
 }
 
 std::string_view to_string(Method method) { return method == Method::toksvig ? "toksvig" : "lean"; }
@@ -203,6 +207,7 @@ std::string_view to_string(Domain domain) {
         case Domain::alpha2: return "alpha2";
         case Domain::alpha: return "alpha";
         case Domain::perceptual: return "perceptual";
+        case Domain::smoothness: return "smoothness";
     }
     return "alpha2";
 }
@@ -212,6 +217,7 @@ double from_alpha2(double alpha2, Domain domain) {
         case Domain::alpha2: return alpha2;
         case Domain::alpha: return std::sqrt(alpha2);
         case Domain::perceptual: return std::sqrt(std::sqrt(alpha2));
+        case Domain::smoothness: return 1.0 - std::sqrt(std::sqrt(alpha2));
     }
     return alpha2;
 }
@@ -221,6 +227,7 @@ double to_alpha2(double value, Domain domain) {
         case Domain::alpha2: return value;
         case Domain::alpha: return value * value;
         case Domain::perceptual: return (value * value) * (value * value);
+        case Domain::smoothness: return ((1.0 - value) * (1.0 - value)) * ((1.0 - value) * (1.0 - value));
     }
     return value;
 }

@@ -441,6 +441,11 @@ std::vector<std::uint32_t> assemble_spirv(const std::string& text) {
 
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
+  if (options.domain != "alpha2") {
+    throw Error(fmt::format("--target spirv emits alpha2 only, and the preset or --domain asks for {}; add --domain alpha2, or use "
+                            "--target glsl or hlsl",
+                            options.domain));
+  }
   if (!builtin_target("glsl").precisions.count(options.precision)) {
     std::vector<std::string> names;
     for (const auto& [name, precision] : builtin_target("glsl").precisions) names.push_back(name);

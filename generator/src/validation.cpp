@@ -1,6 +1,7 @@
 #include "saagen/validation.hpp"
 
 #include "saagen/dialect.hpp"
+#include "saagen/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/target.hpp"
 
@@ -63,7 +64,7 @@ std::string stage_name(ShaderStage stage) {
 
 }  // namespace
 
-std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
+std::vector<std::string> resources_used(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
   if (target.resources.empty()) return {};
   std::vector<std::string> used;
   for (const Function* function : catalogue.closure(roots)) {
@@ -74,13 +75,19 @@ std::string resource_declarations(const TargetSyntax& target, const Catalogue& c
       }
     }
   }
-  std::string declarations;
+  std::vector<std::string> names;
   for (const auto& [name, resource] : target.resources) {
     const bool needed = std::any_of(resource.intrinsics.begin(), resource.intrinsics.end(), [&](const std::string& intrinsic) {
       return std::find(used.begin(), used.end(), intrinsic) != used.end();
     });
-    if (needed) declarations += resource.declaration;
+    if (needed) names.push_back(name);
   }
+  return names;
+}
+
+std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
+  std::string declarations;
+  for (const std::string& name : resources_used(target, catalogue, roots)) declarations += target.resources.find(name)->second.declaration;
   return declarations;
 }
 
@@ -142,7 +149,7 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
       request.stage = stage == ShaderStage::compute ? target.core_validation_stage : stage;
       request.client = client;
       request.hlsl_native_16bit = target.native_16bit;
-      request.sources = validation_sources(catalogue, *marker, file_name, content, stage);
+      request.sources = validation_sources(domain_catalogue(catalogue, marker->domain), *marker, file_name, content, stage);
       const CompileResult result = compile_to_spirv(request);
       validation.checks.push_back({client_name(client) + " " + stage_name(request.stage), result.ok, result.log, result.spirv.size()});
     }

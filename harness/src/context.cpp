@@ -1,6 +1,8 @@
 #include "saagen/harness/context.hpp"
 
 #include "saagen/harness/error.hpp"
+#include "instance.hpp"
+#include "saagen/harness/isa.hpp"
 
 #include <fmt/format.h>
 
@@ -88,12 +90,15 @@ bool layer_available(const char* name) {
   return false;
 }
 
+}  // namespace
+
 // Creates an instance with no surface extensions (headless), at the highest API version up to
 // 1.3 that the loader offers (at least 1.1). With SAAGEN_VK_VALIDATION set, the Khronos
 // validation layer and VK_EXT_debug_utils are enabled and `messenger` reports to
 // on_validation_message (instance creation and destruction too, through pNext). Throws with an
 // install hint when the loader finds no driver or the layer is missing.
-VkInstance create_headless_instance(std::uint32_t& api_version, VkDebugUtilsMessengerEXT* messenger = nullptr) {
+
+VkInstance create_headless_instance(std::uint32_t& api_version, VkDebugUtilsMessengerEXT* messenger) {
   api_version = VK_API_VERSION_1_1;
   std::uint32_t loader_version = VK_API_VERSION_1_0;
   if (vkEnumerateInstanceVersion(&loader_version) == VK_SUCCESS && loader_version >= VK_API_VERSION_1_1) {
@@ -147,6 +152,8 @@ void destroy_instance(VkInstance instance, VkDebugUtilsMessengerEXT messenger) {
   }
   vkDestroyInstance(instance, nullptr);
 }
+
+namespace {
 
 std::vector<VkPhysicalDevice> enumerate_devices(VkInstance instance) {
   std::uint32_t count = 0;
@@ -306,6 +313,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   try {
     select_physical_device(options);
     query_device_info();
+    if (is_null_hardware(physical_device_)) throw NullHardwareDevice(info_.summary());
     create_device();
   } catch (...) {
     if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, nullptr);

@@ -192,14 +192,55 @@ std::int32_t mix(std::int32_t v) {
     return static_cast<std::int32_t>(u);
 }
 
-CellRandom cell_random(int i, int j, int level, int count) {
-    const std::int32_t seed = mix(mix(mix(static_cast<std::int32_t>(static_cast<std::uint32_t>(level) + 1013u)) ^ i) ^ j);
+std::int32_t cell_seed(int i, int j, int level, bool coherent) {
+    if (!coherent) return mix(mix(mix(static_cast<std::int32_t>(static_cast<std::uint32_t>(level) + 1013u)) ^ i) ^ j);
+    // (i << level) on 32-bit ints, wrapping like the shader.
+    const std::uint32_t si = static_cast<std::uint32_t>(i) << level, sj = static_cast<std::uint32_t>(j) << level;
+    return mix(mix(static_cast<std::int32_t>(si + 1013u)) ^ static_cast<std::int32_t>(sj));
+}
+
+namespace {
+
+// Bits 17..31 of the mixed seed ^ salt: a uniform 15-bit integer.
+int random_bits(std::int32_t seed, std::int32_t salt) {
+    return static_cast<int>((static_cast<std::uint32_t>(mix(seed ^ salt)) >> 17) & 32767u);
+}
+
+constexpr double kZeta = 2.0;  // the authors' density randomisation (2020 Alg. 3)
+
+}  // namespace
+
+CellRandom cell_random(int i, int j, int level, int count, bool coherent) {
+    const std::int32_t seed = cell_seed(i, j, level, coherent);
     CellRandom random;
     random.dx = (mix(seed) & 2147483647) % count;
     random.dy = (mix(seed ^ 1431655765) & 2147483647) % count;
-    const std::uint32_t turn = (static_cast<std::uint32_t>(mix(seed ^ 858993459)) >> 17) & 32767u;
-    random.turn = static_cast<double>(turn) * kTurn;
+    random.turn = static_cast<double>(random_bits(seed, 858993459) - 16384) * kTurn;
     return random;
+}
+
+std::array<int, 16> zeta_thresholds() {
+    std::array<int, 16> thresholds{};
+    for (int k = -8; k < 8; ++k) {
+        const double phi = 0.5 * std::erfc(-(k + 0.5) / kZeta / std::sqrt(2.0));
+        thresholds[static_cast<std::size_t>(k + 8)] = static_cast<int>(std::nearbyint(32768.0 * phi));
+    }
+    return thresholds;
+}
+
+int zeta_offset(int u) {
+    static const std::array<int, 16> thresholds = zeta_thresholds();
+    int offset = -8;
+    for (const int t : thresholds) offset += u >= t ? 1 : 0;
+    return offset;
+}
+
+int cell_dictionary_lod(const Params& params, int i, int j, int level) {
+    const std::int32_t seed = cell_seed(i, j, level, params.coherent_seeds);
+    const int area = random_bits(seed, 16711935);
+    const int zeta = random_bits(seed, 252645135);
+    if (!(area < static_cast<int>(params.relative_area * 32768.0))) return -1;  // an integer comparison, as the templates
+    return std::clamp(level + zeta_offset(zeta), 0, params.lods - 1);
 }
 
 Vec2 inverse_transform(const Params& params, Vec2 v, const Roughness& roughness) {
@@ -213,9 +254,20 @@ double transform_determinant(const Params& params, const Roughness& roughness) {
     return roughness.alpha_x * roughness.alpha_y * std::sqrt(1.0 - rho * rho) / (params.alpha_dict * params.alpha_dict);
 }
 
+FootprintAxes footprint_axes(const Params& params, Vec2 duv_dx, Vec2 duv_dy) {
+    const bool x_major = dot(duv_dx, duv_dx) >= dot(duv_dy, duv_dy);
+    FootprintAxes axes{x_major ? duv_dx : duv_dy, x_major ? duv_dy : duv_dx};
+    const double major_length = length(axes.major), minor_length = length(axes.minor);
+    const double widest = major_length / params.max_anisotropy;
+    if (minor_length > widest) return axes;
+    axes.minor = minor_length > kTinyPositive ? axes.minor * (widest / minor_length)
+                                              : Vec2{-axes.major.y, axes.major.x} * (1.0 / params.max_anisotropy);
+    return axes;
+}
+
 double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
-    const double size = std::max(length(duv_dx), length(duv_dy));
-    return clamp(std::log2(std::max(size, kTinyPositive)) + log_density * kInv2Ln2, 0.0, params.lods - 1.0);
+    const double minor = length(footprint_axes(params, duv_dx, duv_dy).minor);
+    return clamp(std::log2(std::max(minor, kTinyPositive)) + log_density * kInv2Ln2, 0.0, params.lods - 1.0);
 }
 
 namespace {
@@ -255,42 +307,91 @@ double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_d
     return select_channel(texel, distribution % 4);
 }
 
-Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
+namespace {
+
+constexpr double kEwaEdge = 0.1353352832366127;  // GLINT_EWA_EDGE = exp(-2)
+constexpr int kMaxCells = 256;                    // GLINT_MAX_CELLS
+constexpr int kMaxRows = 40;                      // GLINT_MAX_ROWS
+
+// The cells of one level under the footprint ellipse (glint_level_sdf): EWA weights W_P =
+// exp(-2 r^2) - exp(-2) of the ellipse x^T S^-1 x < 1, S = a a^T + b b^T + I in cells,
+// normalised by their sum, times the level's weight. exp_side: the shader's exp at either end of
+// the Vulkan allowance (3 + 2|x| ulp, x = -2 r^2).
+void add_level_cells(const Dictionary& dictionary, Vec2 uv, const FootprintAxes& axes, double log_density, int level,
+                     double level_weight, Patch& patch) {
     const Params& params = dictionary.params;
-    Patch patch;
-    if (dictionary.log2_side == 0) {
-        patch.lod = footprint_lod(params, duv_dx, duv_dy, log_density);
-    } else {
-        // Vulkan spec, "Precision and Operation of SPIR-V Instructions": log, log2: 3 ULP outside
-        // [0.5, 2.0], absolute error < 2^-21 inside.
-        const double size = std::max(std::max(length(duv_dx), length(duv_dy)), kTinyPositive);
-        const double exact = std::log2(size);
-        const double allowance = (size >= 0.5 && size <= 2.0) ? 0x1.0p-21 : 3.0 * 0x1.0p-23 * std::fabs(exact);
-        patch.lod = clamp(exact + dictionary.log2_side * allowance + log_density * kInv2Ln2, 0.0, params.lods - 1.0);
-    }
-    const double level = std::floor(patch.lod);
-    const double t = patch.lod - level;
-    const double levels[2] = {level, std::min(level + 1.0, params.lods - 1.0)};
-    const double level_weights[2] = {1.0 - t, t};
-    for (int k = 0; k < 2; ++k) {
-        // Vulkan spec, "Precision and Operation of SPIR-V Instructions": exp2(x): 3 + 2|x| ULP.
-        const double exponent = log_density * kInv2Ln2 - levels[k];
-        const double scale = std::exp2(exponent) * (1.0 + dictionary.exp2_side * (3.0 + 2.0 * std::fabs(exponent)) * 0x1.0p-23);
-        const Vec2 c{uv.x * scale - 0.5, uv.y * scale - 0.5};
-        const Vec2 base{std::floor(c.x), std::floor(c.y)};
-        const Vec2 f{c.x - base.x, c.y - base.y};
-        const int i = static_cast<int>(base.x), j = static_cast<int>(base.y), l = static_cast<int>(levels[k]);
-        const int di[4] = {0, 1, 0, 1}, dj[4] = {0, 0, 1, 1};
-        const double w[4] = {(1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y};
-        for (int n = 0; n < 4; ++n) {
-            PatchCell& cell = patch.cells[static_cast<std::size_t>(4 * k + n)];
-            cell.weight = level_weights[k] * w[n];
-            cell.level = l;
-            cell.random = cell_random(i + di[n], j + dj[n], l, params.count);
+    // Vulkan spec, "Precision and Operation of SPIR-V Instructions": exp2(x): 3 + 2|x| ULP.
+    const double exponent = log_density * kInv2Ln2 - level;
+    const double scale = std::exp2(exponent) * (1.0 + dictionary.exp2_side * (3.0 + 2.0 * std::fabs(exponent)) * 0x1.0p-23);
+    const Vec2 c{uv.x * scale - 0.5, uv.y * scale - 0.5};
+    const Vec2 a = axes.major * scale, b = axes.minor * scale;
+    const double sxx = a.x * a.x + b.x * b.x + 1.0, sxy = a.x * a.y + b.x * b.y, syy = a.y * a.y + b.y * b.y + 1.0;
+    const double conditional = (sxx * syy - sxy * sxy) / syy;
+    const double reach = std::sqrt(syy);
+    const int first_row = static_cast<int>(std::ceil(c.y - reach));
+    const int last_row = std::min(static_cast<int>(std::floor(c.y + reach)), first_row + kMaxRows);
+    const std::size_t begin = patch.cells.size();
+    double total = 0.0;
+    int visited = 0;
+    for (int j = first_row; j <= last_row; ++j) {
+        const double dy = j - c.y;
+        const double centre = c.x + sxy / syy * dy;
+        const double half_width = std::sqrt(std::max(conditional * (1.0 - dy * dy / syy), 0.0));
+        const int last_column = static_cast<int>(std::floor(centre + half_width));
+        for (int i = static_cast<int>(std::ceil(centre - half_width)); i <= last_column && visited < kMaxCells; ++i) {
+            const double dx = i - centre;
+            const double x = -2.0 * (dx * dx / conditional + dy * dy / syy);
+            const double e = std::exp(x) * (1.0 + dictionary.exp2_side * (3.0 + 2.0 * std::fabs(x)) * 0x1.0p-23);
+            const double weight = std::max(e - kEwaEdge, 0.0);
+            total += weight;
+            ++visited;
+            const int lod = cell_dictionary_lod(params, i, j, level);
+            if (lod < 0 || weight == 0.0) continue;
+            PatchCell cell;
+            cell.weight = weight;
+            cell.level = lod;
+            cell.spatial_level = level;
+            cell.i = i;
+            cell.j = j;
+            cell.random = cell_random(i, j, level, params.count, params.coherent_seeds);
             const double angle = 2.0 * kPi * cell.random.turn;
             cell.cos_theta = std::cos(angle);
             cell.sin_theta = std::sin(angle);
+            patch.cells.push_back(cell);
         }
+    }
+    const double norm = level_weight / std::max(total, kTinyPositive);
+    for (std::size_t n = begin; n < patch.cells.size(); ++n) patch.cells[n].weight *= norm;
+}
+
+// log2 of the minor axis' length, at either end of the Vulkan allowance when log2_side != 0:
+// 3 ulp outside [0.5, 2.0], absolute error < 2^-21 inside.
+double minor_log2(const Dictionary& dictionary, const FootprintAxes& axes) {
+    const double minor = std::max(length(axes.minor), kTinyPositive);
+    const double exact = std::log2(minor);
+    const double allowance = (minor >= 0.5 && minor <= 2.0) ? 0x1.0p-21 : 3.0 * 0x1.0p-23 * std::fabs(exact);
+    return exact + dictionary.log2_side * allowance;
+}
+
+}  // namespace
+
+Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density) {
+    const Params& params = dictionary.params;
+    Patch patch;
+    FootprintAxes axes = footprint_axes(params, duv_dx, duv_dy);
+    const double unclamped = minor_log2(dictionary, axes) + log_density * kInv2Ln2;
+    patch.lod = clamp(unclamped, 0.0, params.lods - 1.0);
+    // Above the coarsest level the ellipse shrinks to a minor axis of one cell of level L - 1.
+    const double shrink = std::exp2(-std::max(unclamped - (params.lods - 1.0), 0.0));
+    axes.major = axes.major * shrink;
+    axes.minor = axes.minor * shrink;
+    const double level = std::floor(patch.lod);
+    const double t = patch.lod - level;
+    const int levels[2] = {static_cast<int>(level), static_cast<int>(std::min(level + 1.0, params.lods - 1.0))};
+    const double level_weights[2] = {1.0 - t, t};
+    for (int k = 0; k < 2; ++k) {
+        if (level_weights[k] == 0.0) continue;
+        add_level_cells(dictionary, uv, axes, log_density, levels[k], level_weights[k], patch);
     }
     return patch;
 }

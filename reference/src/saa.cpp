@@ -262,4 +262,25 @@ double deferred_projected_space_fragment_quad(const Params& p, double alpha2,
                                     ddy(normal_ws, pixel, mode));
 }
 
+double alpha2_from_domain(RoughnessDomain domain, double value) {
+    switch (domain) {
+        case RoughnessDomain::alpha2: return value;
+        case RoughnessDomain::alpha: return value * value;
+        case RoughnessDomain::perceptual: return (value * value) * (value * value);  // alpha = r^2
+        case RoughnessDomain::smoothness: return alpha2_from_domain(RoughnessDomain::perceptual, 1.0 - value);
+    }
+    return value;
+}
+
+double domain_from_alpha2(RoughnessDomain domain, double alpha2) {
+    const auto ends = [&](double root) { return alpha2 >= 1.0 ? 1.0 : alpha2 <= 0.0 ? 0.0 : root; };
+    switch (domain) {
+        case RoughnessDomain::alpha2: return alpha2;
+        case RoughnessDomain::alpha: return ends(std::sqrt(alpha2));
+        case RoughnessDomain::perceptual: return ends(std::sqrt(std::sqrt(alpha2)));
+        case RoughnessDomain::smoothness: return 1.0 - domain_from_alpha2(RoughnessDomain::perceptual, alpha2);
+    }
+    return alpha2;
+}
+
 }  // namespace saagen::ref

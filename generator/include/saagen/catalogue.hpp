@@ -111,8 +111,16 @@ class Catalogue {
   // The constants referenced by `functions`, in template order.
   std::vector<const Constant*> constants_used(const std::vector<const Function*>& functions, bool guarded = true) const;
 
+  // The template sources this catalogue was parsed from (a derived catalogue re-parses them with
+  // more functions: saagen/engines.hpp).
+  const std::vector<TemplateSource>& sources() const { return sources_; }
+  // A copy whose variants are `variants` (same functions and constants); throws saagen::Error
+  // when a variant names an unknown function.
+  Catalogue with_variants(std::vector<Variant> variants) const;
+
  private:
   void link();
+  std::vector<TemplateSource> sources_;
   std::vector<Variant> variants_;
   std::vector<Function> functions_;
   std::vector<Constant> constants_;

@@ -20,6 +20,9 @@ struct EmitOptions {
   std::map<std::string, double> option_values;  // e.g. {"sigma2", 0.25}; missing: the default
   std::string precision = "fp32";  // a precision of the target table: fp32, fp16, min16 (HLSL)
   bool guards = true;              // false: the unguarded paper form (for comparison)
+  // Roughness domain of the emitted functions' roughness in and out (saagen/engines.hpp):
+  // alpha2 (the templates' own), alpha, perceptual or smoothness.
+  std::string domain = "alpha2";
 };
 
 // What one emitted file holds, as written in its marker line, so that a file on disk can be
@@ -34,6 +37,7 @@ struct EmissionMarker {
   // A bundle's public functions (`functions=` in the marker); empty: every public function of
   // `variants` (a per-variant file).
   std::vector<std::string> functions;
+  std::string domain = "alpha2";  // `domain=` in the marker, written when not alpha2
 };
 
 struct EmittedFile {

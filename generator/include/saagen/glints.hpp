@@ -138,6 +138,10 @@ Ktx2Image lean_ktx2(const std::vector<MomentLevel>& levels);
 // by templates/glints/*.saa. Variants "glints" (textureLod baseline) and "glints-ggaa".
 const Catalogue& catalogue();
 
+// The default dictionary (generate_dictionary({}) with its MIP chain) as KTX2 bytes: what a scene
+// bundle with glints = true ships next to its shader files.
+std::vector<std::uint8_t> default_dictionary_ktx2();
+
 // emit_variants over catalogue(); options.variants empty means both glint variants. Option
 // names: glint_count, glint_lods, glint_alpha, glint_kernel_scale (and sigma2/kappa, unused).
 // Throws saagen::Error when glint_count is not a multiple of 4.

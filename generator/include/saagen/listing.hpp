@@ -11,6 +11,8 @@ namespace saagen {
 
 // Every variant with its functions' emitted names and parameters (dialect types plus their
 // spelling in each built-in target), and every emission option with its default and range.
-nlohmann::json catalogue_json(const Catalogue& catalogue, std::string_view prefix);
+// `domain` (saagen/engines.hpp) lists the functions as emitted with that roughness domain; the
+// listing states it ("roughness_domain"), each variant's domains, and the domains and presets.
+nlohmann::json catalogue_json(const Catalogue& catalogue, std::string_view prefix, std::string_view domain = "alpha2");
 
 }  // namespace saagen

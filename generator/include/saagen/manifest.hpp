@@ -34,7 +34,7 @@ struct Material {
   bool tangents = false;
   Ndf ndf = Ndf::ggx;
   bool normal_maps = false;
-  bool glints = false;                 // always false after parsing: glints are not available yet
+  bool glints = false;                 // the glinty BRDF (forward, tangents): the planner picks a glint variant
   std::string precision = "fp32";      // "fp32" or "fp16" (per target: see target_precision)
   Preference prefer = Preference::accuracy;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
@@ -49,6 +49,13 @@ struct Manifest {
   std::vector<std::string> targets;
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // only the options the file sets (sigma2, kappa)
+  // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
+  // planner.hpp); empty: kDefaultGpuFamily (vega10).
+  std::string gpu_family;
+  // `preset`: an engine's form (saagen/engines.hpp): its sigma2 and kappa where the file sets
+  // none, its variant for deferred materials that name none, and its roughness domain.
+  std::optional<std::string> preset;
+  std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.

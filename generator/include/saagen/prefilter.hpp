@@ -25,8 +25,9 @@ namespace saagen::prefilter {
 
 enum class Method { toksvig, lean };
 // alpha2: alpha^2; alpha: GGX/Beckmann alpha; perceptual: r with alpha = r^2 (Burley 2012, the
-// roughness glTF, Filament and Unreal store).
-enum class Domain { alpha2, alpha, perceptual };
+// roughness glTF, Filament and Unreal store); smoothness: Unity's 1 - r. The ids and meanings are
+// saagen/engines.hpp's roughness_domains().
+enum class Domain { alpha2, alpha, perceptual, smoothness };
 
 // Both throw saagen::Error naming the allowed values.
 Method parse_method(std::string_view text);

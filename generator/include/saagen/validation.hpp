@@ -32,6 +32,10 @@ struct FileValidation {
 std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
                                             const std::string& file_name, const std::string& content, ShaderStage stage);
 
+// The names of the target's resources (TargetSyntax::resources) that the functions `roots` read
+// through their dependency closure in `catalogue`, in the table's order; empty when none.
+std::vector<std::string> resources_used(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots);
+
 // The target's resource declarations (TargetSyntax::resources) that the functions `roots`
 // need, through their dependency closure in `catalogue`; empty when they sample nothing.
 // `target` must have its prefix applied (with_prefix).

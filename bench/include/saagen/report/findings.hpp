@@ -62,8 +62,10 @@ bool is_engine_configuration(const std::string& configuration);
 // the cost table does not have it. The feed changes inputs, not code; engines cost what
 // deferred-sum costs (see findings.cpp).
 std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time);
-// Whether a's cost is at most b's (the SPIR-V delta when both have one, else the time ratio;
-// true when neither is known, and the caller says so).
+// The ISA inverse-throughput ratio of a configuration (VariantCost::isa_ratio), same conventions.
+std::optional<double> configuration_isa_cost(const CostTable* costs, const std::string& configuration);
+// Whether a's cost is at most b's (the ISA ratio when both have one, within kIsaTieTolerance;
+// else the SPIR-V delta, else the time ratio; true when none is known, and the caller says so).
 bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
 
 struct Recommendation {

@@ -24,6 +24,21 @@ class UnsupportedFeature : public std::runtime_error {
   std::string feature_;
 };
 
+// A device that cannot execute: RADV's null-hardware device (RADV_FORCE_FAMILY set), which only
+// compiles (saagen/harness/isa.hpp). VulkanContext throws it before creating a logical device, so
+// nothing is ever dispatched on it; summary() describes the physical device.
+class NullHardwareDevice : public std::runtime_error {
+ public:
+  explicit NullHardwareDevice(std::string summary)
+      : std::runtime_error(summary + " is RADV's null-hardware device (RADV_FORCE_FAMILY is set): it compiles but cannot execute; "
+                                     "unset RADV_FORCE_FAMILY to run on a real device, or read its ISA statistics with `saagen bench --isa FAMILY`"),
+        summary_(std::move(summary)) {}
+  const std::string& summary() const { return summary_; }
+
+ private:
+  std::string summary_;
+};
+
 // "VK_ERROR_DEVICE_LOST", or "VkResult(-1000012000)" for codes this build does not name.
 std::string vk_result_name(VkResult result);
 

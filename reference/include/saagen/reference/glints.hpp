@@ -97,6 +97,11 @@ struct Params {
     int lods = 16;              // L LODs
     double alpha_dict = 0.5;    // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
     double kernel_scale = 0.5;  // s_K (2021 Eq. 19)
+    double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
+    double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Alg. 3)
+    // Level-coherent seeds (2020 Eq. 8), as the templates. false: the seed mixes the level in
+    // (each level draws independently), only to measure what coherence buys under a zoom.
+    bool coherent_seeds = true;
 };
 
 // The dictionary as the shader sees it: its texture (RGBA, 4 distributions per texel; layer =
@@ -113,21 +118,21 @@ struct Dictionary {
     // The precision the Vulkan specification grants the shader's transcendentals (section
     // "Precision and Operation of SPIR-V Instructions"), applied at the end of the allowance given
     // by the sign (-1, 0 = exact, +1); the tests take the change of the result as part of their
-    // bound. log2_side: the footprint LOD's log2(size) off by 3 ulp of the result outside
+    // bound. log2_side: the footprint LOD's log2(|minor axis|) off by 3 ulp of the result outside
     // [0.5, 2] (at most 3 2^-23 |log2 size|), by 2^-21 absolute inside. exp2_side: the cell
-    // scale exp2(x), x = log_density / (2 ln 2) - level, off by (3 + 2|x|) ulp, i.e. by a
-    // factor 1 +- (3 + 2|x|) 2^-23.
+    // scale exp2(x), x = log_density / (2 ln 2) - level, and the EWA weights exp(x), x = -2 r^2,
+    // off by (3 + 2|x|) ulp, i.e. by a factor 1 +- (3 + 2|x|) 2^-23.
     int log2_side = 0;
     int exp2_side = 0;
     // trig_side: each cell's rotation (cos theta, sin theta) off by the spec's 2^-11 absolute
-    // error of cos and sin in [-pi, pi] (the shader reduces theta to that range), plus the fp32
-    // rounding of the reduced angle (< 2^-20): every cell's product of lookups is taken at the
+    // error of cos and sin in [-pi, pi] (where the shader's theta lies), plus the fp32
+    // rounding of the angle (< 2^-20): every cell's product of lookups is taken at the
     // low (-1) or high (+1) end over the four corners of that box (kTrigAllowance).
     int trig_side = 0;
 };
 
 // The absolute error the Vulkan spec allows cos and sin in [-pi, pi] (2^-11), plus the rounding
-// of the reduced angle 2 pi turn - pi in fp32 (two roundings of at most 2^-24 2 pi each).
+// of the angle 2 pi turn in fp32 (at most two roundings of 2^-24 2 pi each).
 inline constexpr double kTrigAllowance = 0x1.0p-11 + 0x1.0p-20;
 
 // x_max = 2 sqrt(2) alpha_dict: the dictionary holds |x| < x_max (4 sigma_o).
@@ -143,20 +148,42 @@ struct Roughness {
 // The 32-bit integer mixer shared with the templates (wrapping arithmetic).
 std::int32_t mix(std::int32_t v);
 
+// The seed of cell (i, j) at level l: that of its corner child (i 2^l, j 2^l) at level 0, so a
+// cell shares distributions, rotation and LOD offset with that child (2020 Eq. 8, Alg. 3).
+std::int32_t cell_seed(int i, int j, int level, bool coherent = true);
+
 // The random choices of cell (i, j) at level l: distributions d_x, d_y in [0, count) and the
-// rotation as a fraction of a turn, turn / 32768 (exact in fp32).
+// rotation as a fraction of a turn, (turn - 2^14) / 2^15 in [-1/2, 1/2) (exact in fp32).
 struct CellRandom {
     int dx = 0;
     int dy = 0;
     double turn = 0.0;
 };
-CellRandom cell_random(int i, int j, int level, int count);
+CellRandom cell_random(int i, int j, int level, int count, bool coherent = true);
+
+// round(zeta N(0, 1)), zeta = 2, for a uniform 15-bit integer u, by inverse CDF: the number of
+// thresholds round(32768 Phi((k + 1/2) / zeta)), k = -8..7, that u reaches, minus 8 (2020 Alg. 3).
+int zeta_offset(int u);
+// The thresholds themselves (computed here from erfc; the templates spell them as literals).
+std::array<int, 16> zeta_thresholds();
+
+// The dictionary LOD of cell (i, j) at level l: clamp(l + zeta_offset, 0, L - 1), or -1 when the
+// cell is empty (probability 1 - relative_area) (2020 Alg. 3 lines 3-9).
+int cell_dictionary_lod(const Params& params, int i, int j, int level);
 
 // A^-1 v (Eq. 18 without the rotation) and det M = det A.
 Vec2 inverse_transform(const Params& params, Vec2 v, const Roughness& roughness);
 double transform_determinant(const Params& params, const Roughness& roughness);
 
-// l_P = clamp(log2(max(|duv_dx|, |duv_dy|)) + log_density / (2 ln 2), 0, L - 1).
+// The footprint ellipse's axes in uv: the longer derivative is the major axis, the other is
+// lengthened to at least major / max_anisotropy (2020 Alg. 1 lines 3-5).
+struct FootprintAxes {
+    Vec2 major;
+    Vec2 minor;
+};
+FootprintAxes footprint_axes(const Params& params, Vec2 duv_dx, Vec2 duv_dy);
+
+// l_P = clamp(log2(|minor|) + log_density / (2 ln 2), 0, L - 1) (2020 Alg. 1 line 6).
 double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_density);
 
 // One 1D distribution at x: textureLod at mip 0 / textureGrad with the kernel-scaled
@@ -164,17 +191,21 @@ double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_
 double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level);
 double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_dx, double dx_dy, int distribution, int level);
 
-// The footprint's cells: for each of the two levels of Eq. 3 the four cells, their weights
-// (w(l) W_P(l, s)) and random choices. Depends only on uv, the footprint and the density.
+// The footprint's cells: for each of the two levels of Eq. 3 the cells under the footprint
+// ellipse, their weights (w(l) W_P(l, s) / sum_s W_P(l, s), EWA) and random choices; empty cells
+// (relative area) are left out but count in the normalisation. Depends only on uv, the footprint
+// and the density.
 struct PatchCell {
     double weight = 0.0;
-    int level = 0;
+    int level = 0;           // the dictionary LOD the cell reads (after zeta)
+    int spatial_level = 0;   // the level of the cell grid
+    int i = 0, j = 0;        // the cell at that level
     CellRandom random;
     double cos_theta = 1.0;
     double sin_theta = 0.0;
 };
 struct Patch {
-    std::array<PatchCell, 8> cells;
+    std::vector<PatchCell> cells;
     double lod = 0.0;  // l_P
 };
 Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density);

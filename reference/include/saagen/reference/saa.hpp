@@ -137,6 +137,13 @@ double deferred_max_tangent_free(const Params& p, double alpha2, Vec3 dn_dx, Vec
 // T&K 2019 Eq. 4: saturate(alpha^2 + min(2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
 double deferred_sum(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
 
+// Roughness domains engines store (templates/05-domains.saa, templates/engines.json): alpha^2,
+// alpha, perceptual r (alpha = r^2) and Unity smoothness s = 1 - r. The conversions to alpha^2
+// and back; from alpha^2 they give exactly 0 and 1 at the ends of [0, 1].
+enum class RoughnessDomain { alpha2, alpha, perceptual, smoothness };
+double alpha2_from_domain(RoughnessDomain domain, double value);
+double domain_from_alpha2(RoughnessDomain domain, double alpha2);
+
 // T&K 2019 Eq. 5: saturate(alpha^2 + min(sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
 double deferred_avg(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
 

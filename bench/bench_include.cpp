@@ -1,0 +1,128 @@
+// Include-handler overhead: the time to compile a user shader that includes a saagen snippet
+// through saagen's include handler (generated in memory) against the same shader compiled with
+// the emitted file on disk, through shaderc and through glslang. Interleaved rounds, medians,
+// ratios measured in one run.
+//   build/bench/bench_include [--rounds N]
+#include "include_shaders.hpp"
+
+#include "saagen/include_handler.hpp"
+#include "saagen/output.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <unistd.h>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* include_name = "saagen/deferred-avg.glsl?domain=perceptual";
+constexpr const char* call = "saa_deferred_avg_perceptual";
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The on-disk baseline: a name is a path under `root` (what a file-system includer does).
+class DiskShadercIncluder : public shaderc::CompileOptions::IncluderInterface {
+ public:
+  explicit DiskShadercIncluder(fs::path root) : root_(std::move(root)) {}
+  shaderc_include_result* GetInclude(const char* requested, shaderc_include_type, const char*, size_t) override {
+    auto* file = new File{(root_ / requested).string(), {}, {}};
+    file->content = read_text(file->path);
+    file->result = {file->path.c_str(), file->path.size(), file->content.c_str(), file->content.size(), file};
+    return &file->result;
+  }
+  void ReleaseInclude(shaderc_include_result* result) override { delete static_cast<File*>(result->user_data); }
+
+ private:
+  struct File {
+    std::string path, content;
+    shaderc_include_result result;
+  };
+  fs::path root_;
+};
+
+class DiskGlslangIncluder : public glslang::TShader::Includer {
+ public:
+  explicit DiskGlslangIncluder(fs::path root) : root_(std::move(root)) {}
+  IncludeResult* includeSystem(const char* name, const char*, size_t) override {
+    auto* content = new std::string(read_text(root_ / name));
+    return new IncludeResult((root_ / name).string(), content->data(), content->size(), content);
+  }
+  void releaseInclude(IncludeResult* result) override {
+    if (!result) return;
+    delete static_cast<std::string*>(result->userData);
+    delete result;
+  }
+
+ private:
+  fs::path root_;
+};
+
+double milliseconds(const std::function<void()>& body) {
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int rounds = 21;
+  if (argc == 3 && std::string(argv[1]) == "--rounds") rounds = std::max(1, std::atoi(argv[2]));
+
+  // The emitted file on disk, under the name the shader includes.
+  const fs::path root = fs::temp_directory_path() / ("saagen_bench_include_" + std::to_string(::getpid()));
+  const saagen::EmittedFile file = saagen::resolve_include(include_name, {});
+  saagen::write_outputs({{root / "saa_deferred_avg_perceptual.glsl", file.content}}, false);
+  const std::string include_handler = std::string("#include <") + include_name + ">";
+  const std::string include_disk = "#include <saa_deferred_avg_perceptual.glsl>";
+
+  std::vector<double> shaderc_handler, shaderc_disk, glslang_handler, glslang_disk;
+  bool ok = true;
+  for (int round = 0; round < rounds; ++round) {
+    shaderc_handler.push_back(milliseconds([&] {
+      ok &= saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader(include_handler, call, false), false,
+                                               std::make_unique<saagen::ShadercIncluder>()).ok;
+    }));
+    shaderc_disk.push_back(milliseconds([&] {
+      ok &= saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader(include_disk, call, false), false,
+                                               std::make_unique<DiskShadercIncluder>(root)).ok;
+    }));
+    glslang_handler.push_back(milliseconds([&] {
+      saagen::GlslangIncluder includer;
+      ok &= saagen::test::compile_with_glslang(saagen::test::glsl_user_shader(include_handler, call, true), false, includer).ok;
+    }));
+    glslang_disk.push_back(milliseconds([&] {
+      DiskGlslangIncluder includer(root);
+      ok &= saagen::test::compile_with_glslang(saagen::test::glsl_user_shader(include_disk, call, true), false, includer).ok;
+    }));
+  }
+  fs::remove_all(root);
+  if (!ok) {
+    std::fprintf(stderr, "bench_include: a compile failed\n");
+    return 1;
+  }
+  std::printf("include-handler overhead, %d interleaved rounds, medians (%s):\n", rounds, include_name);
+  std::printf("  shaderc  handler %.2f ms  on disk %.2f ms  ratio %.3f\n", median(shaderc_handler), median(shaderc_disk),
+              median(shaderc_handler) / median(shaderc_disk));
+  std::printf("  glslang  handler %.2f ms  on disk %.2f ms  ratio %.3f\n", median(glslang_handler), median(glslang_disk),
+              median(glslang_handler) / median(glslang_disk));
+  return 0;
+}

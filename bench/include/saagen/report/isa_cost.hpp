@@ -1,0 +1,62 @@
+// The ISA cost model of the trade report: every SAA variant's shaders compiled by Mesa's ACO for
+// real AMD GPU families on RADV's null-hardware devices (saagen/harness/isa.hpp), nothing
+// executed. Per family, variant and target (GLSL, HLSL) it reads, for the forward-shading
+// fragment shader bench_shading times (shading_scene.hpp) and for the deferred roughness-limiter
+// compute pass, the ISA statistics and their ratio to the same shader without SAA.
+//
+// `saagen bench --isa FAMILY[,FAMILY]` prints format_isa_table() and puts isa_json() into the trade
+// JSON; the planner's committed table (generator/data/isa_cost.json) is isa_json() of vega10 and
+// navi21 (`saagen bench --isa vega10,navi21 --isa-table FILE` regenerates it).
+#pragma once
+
+#include <saagen/harness/isa.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace saagen::report {
+
+// Which shader a row measures.
+inline constexpr const char* isa_forward_shader = "forward";          // the bench_shading fragment shader
+inline constexpr const char* isa_deferred_shader = "deferred-pass";   // the deferred compute pass
+inline constexpr const char* isa_baseline = "no-saa";                 // the variant id of the baselines
+
+struct IsaCostRow {
+  std::string family;
+  std::string shader;   // isa_forward_shader or isa_deferred_shader
+  std::string target;   // glsl or hlsl
+  std::string variant;  // a catalogue variant, a deferred pass id, or isa_baseline
+  harness::IsaStatistics statistics;
+  harness::IsaStatistics baseline;  // the same shader without SAA (the copy pass for deferred-pass)
+  double instructions_ratio() const { return statistics.instructions / baseline.instructions; }
+  double inverse_throughput_ratio() const { return statistics.inverse_throughput / baseline.inverse_throughput; }
+  double latency_ratio() const { return statistics.latency / baseline.latency; }
+};
+
+struct IsaCostTable {
+  std::string driver;  // e.g. "Mesa 22.3.6"
+  std::vector<std::string> families;
+  std::vector<IsaCostRow> rows;  // baselines first per family, shader and target
+};
+
+// Families from "vega10,navi21": each must be one of harness::isa_families(). Throws
+// saagen::Error with the allowed names.
+std::vector<std::string> parse_isa_families(const std::string& list);
+
+using IsaProgressFn = std::function<void(const std::string&)>;
+IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress = {});
+
+// Terminal tables: per family and shader, variant x target with instructions, VGPRs, SGPRs,
+// subgroups per SIMD, latency, inverse throughput and the ratios to no SAA, next to the paper's
+// Table 2 ratio (forward shader).
+std::string format_isa_table(const IsaCostTable& table);
+
+// {"cost_model": "...", "driver", "rows": [{"family", "shader", "target", "variant",
+// "instructions", "vgprs", "sgprs", "subgroups_per_simd", "latency", "inverse_throughput",
+// "instructions_ratio", "inverse_throughput_ratio", "latency_ratio"}]}
+nlohmann::json isa_json(const IsaCostTable& table);
+
+}  // namespace saagen::report

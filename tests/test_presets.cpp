@@ -1,0 +1,200 @@
+// Engine presets and roughness domains on the double-precision reference.
+//
+// Each preset (templates/engines.json) is checked against an independent float64 implementation
+// of that engine's formula, written here from the engine's own math (not from the templates), in
+// the engine's roughness domain, over >= 10^5 inputs; the largest |difference| is printed and
+// recorded. saagen's side is the reference filter (reference/saa.cpp) with the preset's sigma^2,
+// kappa and variant, wrapped in the reference's domain conversions.
+#include "saagen/engines.hpp"
+#include "saagen/error.hpp"
+#include "saagen/target.hpp"
+#include "saagen/validation.hpp"
+#include "saagen/reference/render/engines.hpp"
+#include "saagen/reference/saa.hpp"
+#include "engine_forms.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+
+namespace {
+
+namespace ref = saagen::ref;
+using ref::Vec3;
+using ref::RoughnessDomain;
+using saagen::test::EngineForm;
+using saagen::test::engine_forms;
+
+RoughnessDomain reference_domain(const std::string& id) {
+  if (id == "alpha") return RoughnessDomain::alpha;
+  if (id == "perceptual") return RoughnessDomain::perceptual;
+  if (id == "smoothness") return RoughnessDomain::smoothness;
+  return RoughnessDomain::alpha2;
+}
+
+// saagen's side: the preset's variant on the reference, in the preset's domain.
+double saagen_preset(const saagen::Preset& preset, double value, Vec3 du, Vec3 dv) {
+  const ref::Params params{preset.sigma2, preset.kappa};
+  const RoughnessDomain domain = reference_domain(preset.domain);
+  const double alpha2 = ref::alpha2_from_domain(domain, value);
+  double filtered = 0.0;
+  if (preset.variant == "deferred-sum") filtered = ref::deferred_sum(params, alpha2, du, dv);
+  else if (preset.variant == "deferred-avg") filtered = ref::deferred_avg(params, alpha2, du, dv);
+  else ADD_FAILURE() << "no reference dispatch for " << preset.variant;
+  return ref::domain_from_alpha2(domain, filtered);
+}
+
+// Inputs: the roughness uniform in [0, 1] with both ends, derivative magnitudes log-uniform over
+// 1e-4..10 (the kernel below, at and above every cap), random directions.
+struct Input {
+  double value;
+  Vec3 du, dv;
+};
+
+std::vector<Input> inputs(std::size_t count) {
+  std::mt19937_64 random(20261124);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto direction = [&] {
+    const double z = 2.0 * unit(random) - 1.0, phi = 6.283185307179586 * unit(random), r = std::sqrt(1.0 - z * z);
+    return Vec3{r * std::cos(phi), r * std::sin(phi), z};
+  };
+  std::vector<Input> all;
+  for (std::size_t index = 0; index < count; ++index) {
+    const double value = index % 50 == 0 ? 0.0 : index % 50 == 1 ? 1.0 : unit(random);
+    const double m1 = std::pow(10.0, -4.0 + 5.0 * unit(random)), m2 = std::pow(10.0, -4.0 + 5.0 * unit(random));
+    all.push_back({value, m1 * direction(), m2 * direction()});
+  }
+  return all;
+}
+
+}  // namespace
+
+// Every preset named in the issue exists and points at a catalogue variant and domain.
+TEST(Presets, EveryEngineHasAPreset) {
+  for (const char* id : {"hdrp", "filament", "filament-taa", "o3de", "bevy", "vsgl"}) {
+    const saagen::Preset& preset = saagen::find_preset(id);
+    EXPECT_NO_THROW(saagen::find_domain(preset.domain)) << id;
+    EXPECT_TRUE(saagen::Catalogue::builtin().find_variant(preset.variant)) << id;
+  }
+  EXPECT_THROW(saagen::find_preset("unreal"), saagen::Error);
+}
+
+// Same operations up to the order of a few roundings: the difference is a few ulps of the
+// result's scale (values in [0, 1]); r = a^(1/4) divides a relative error of a by 4. 1e-15 is
+// 4.5 ulp of 1 (2^-52 = 2.2e-16), the tolerance shared/REFERENCES.md states the equivalences at.
+TEST(Presets, MatchTheEnginesFormulasInTheirDomain) {
+  const auto forms = engine_forms();
+  const std::vector<Input> all = inputs(200000);
+  for (const saagen::Preset& preset : saagen::presets()) {
+    ASSERT_TRUE(forms.count(preset.id)) << "no engine form written for preset " << preset.id;
+    const EngineForm& engine = forms.at(preset.id);
+    double worst = 0.0;
+    for (const Input& input : all) {
+      const double difference = std::fabs(saagen_preset(preset, input.value, input.du, input.dv) - engine(input.value, input.du, input.dv));
+      worst = std::max(worst, difference);
+    }
+    std::printf("preset %-13s max |difference| %.3g in %s over %zu inputs\n", preset.id.c_str(), worst, preset.domain.c_str(), all.size());
+    ::testing::Test::RecordProperty("max_difference_" + preset.id, std::to_string(worst));
+    EXPECT_LE(worst, 1e-15) << preset.id;
+  }
+}
+
+// The trade report's engine rows (reference/render/engines.cpp) and the presets carry the same
+// constants: the rows equal the presets' filters in alpha^2 (same operations, a few ulps).
+TEST(Presets, AgreeWithTheTradeReportsEngineRows) {
+  const std::vector<Input> all = inputs(100000);
+  const saagen::Preset& hdrp_preset = saagen::find_preset("hdrp");
+  const saagen::Preset& filament_preset = saagen::find_preset("filament");
+  for (const Input& input : all) {
+    const double alpha = input.value;
+    ASSERT_NEAR(saagen::render::hdrp_alpha2(alpha, input.du, input.dv),
+                ref::deferred_sum({hdrp_preset.sigma2, hdrp_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
+    ASSERT_NEAR(saagen::render::filament_alpha2(alpha, input.du, input.dv),
+                ref::deferred_sum({filament_preset.sigma2, filament_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
+  }
+}
+
+// The conversions at the ends of the range: 0 and 1 exactly, denormals, the saturation bound,
+// and a round trip through alpha^2 that gives back the value when the kernel is 0.
+TEST(Domains, ExactAtTheEndsOfTheRange) {
+  for (RoughnessDomain domain : {RoughnessDomain::alpha, RoughnessDomain::perceptual, RoughnessDomain::smoothness}) {
+    const bool smooth = domain == RoughnessDomain::smoothness;
+    // Roughness 0 and 1 (smoothness 1 and 0) map to alpha^2 0 and 1 and back, exactly.
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 1.0 : 0.0), 0.0);
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 0.0 : 1.0), 1.0);
+    EXPECT_EQ(ref::domain_from_alpha2(domain, 0.0), smooth ? 1.0 : 0.0);
+    EXPECT_EQ(ref::domain_from_alpha2(domain, 1.0), smooth ? 0.0 : 1.0);
+    // The saturation bound: a filter output of exactly 1 is roughness 1 (smoothness 0).
+    const ref::Params params{0.25, 1.0};
+    const Vec3 huge{10.0, 0.0, 0.0};
+    EXPECT_EQ(ref::domain_from_alpha2(domain, ref::deferred_sum(params, ref::alpha2_from_domain(domain, 0.5), huge, huge)),
+              smooth ? 0.0 : 1.0);
+    // Denormal alpha^2 (below DBL_MIN): finite, in [0, 1], monotone with 0.
+    const double denormal = std::numeric_limits<double>::denorm_min();
+    const double converted = ref::domain_from_alpha2(domain, denormal);
+    EXPECT_TRUE(std::isfinite(converted));
+    EXPECT_GE(converted, 0.0);
+    EXPECT_LE(converted, 1.0);
+    // A denormal value in the domain goes to alpha^2 0 (it underflows), never below.
+    EXPECT_EQ(ref::alpha2_from_domain(domain, smooth ? 1.0 - 0x1p-53 : denormal), smooth ? 0x1p-212 : 0.0);
+  }
+}
+
+// With a zero kernel the wrapper returns its input: sqrt(fl(x^2)) = x for correctly rounded
+// arithmetic (no underflow), so alpha and r round-trip exactly; smoothness goes through 1 - s,
+// exact for s in [0.5, 1] (Sterbenz) and within half an ulp of 1 below.
+TEST(Domains, RoundTripWithoutKernelIsExact) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(1e-60, 1.0);
+  const Vec3 zero{0.0, 0.0, 0.0};
+  const ref::Params params;
+  for (int i = 0; i < 100000; ++i) {
+    const double value = unit(random);
+    for (RoughnessDomain domain : {RoughnessDomain::alpha, RoughnessDomain::perceptual}) {
+      ASSERT_EQ(ref::domain_from_alpha2(domain, ref::deferred_avg(params, ref::alpha2_from_domain(domain, value), zero, zero)), value);
+    }
+    const double back = ref::domain_from_alpha2(RoughnessDomain::smoothness,
+                                                ref::deferred_avg(params, ref::alpha2_from_domain(RoughnessDomain::smoothness, value), zero, zero));
+    if (value >= 0.5) ASSERT_EQ(back, value);
+    else ASSERT_LE(std::fabs(back - value), 0x1p-53);
+  }
+}
+
+TEST(Domains, UnknownNamesAreOneLine) {
+  try {
+    saagen::find_domain("linear");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "--domain 'linear' is not a roughness domain; use one of alpha2, alpha, perceptual, smoothness");
+  }
+}
+
+// Every variant with roughness in and out, in every domain and target (and each target's half
+// precision in the perceptual domain): emitted and compiled in-process (glslang, spirv-val).
+TEST(Domains, EveryConvertibleVariantValidatesInEveryDomainAndTarget) {
+  const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
+  std::size_t files = 0;
+  for (const saagen::RoughnessDomain& domain : saagen::roughness_domains()) {
+    if (domain.to_alpha2.empty()) continue;
+    for (const std::string& target : saagen::builtin_target_names()) {
+      for (const auto& [precision, form] : saagen::builtin_target(target).precisions) {
+        if (precision != "fp32" && domain.id != "perceptual") continue;
+        saagen::EmitOptions options;
+        options.target = target;
+        options.domain = domain.id;
+        options.precision = precision;
+        for (const saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
+          const saagen::FileValidation validation = saagen::validate_file(catalogue, file.file_name, file.content);
+          EXPECT_TRUE(validation.ok()) << validation.summary();
+          ++files;
+        }
+      }
+    }
+  }
+  EXPECT_GE(files, 9u * 3u * 2u);
+}
