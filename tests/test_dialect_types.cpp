@@ -128,6 +128,7 @@ TEST(DialectPrinter, RoundTripsLayoutCommentsAndStatements) {
       "    {\n"
       "        k = (k ^ i) & 65535;  // trailing comment\n"
       "    }\n"
+      "    for (int i = 0; i < 2; ++i) k += i--;\n"
       "    if (s <= 0.0 || k == 0) return -s;\n"
       "    else if (!(s > 1.0)) return s;\n"
       "    return s + v.x\n"

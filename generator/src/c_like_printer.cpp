@@ -28,7 +28,8 @@ int precedence(const Expr& expr) {
       return 0;
     case ExprKind::unary: return 13;
     case ExprKind::member:
-    case ExprKind::index: return 14;
+    case ExprKind::index:
+    case ExprKind::postfix: return 14;
     default: return 15;
   }
 }
@@ -52,7 +53,8 @@ bool needs_parentheses(const Expr& parent, std::size_t position, const Expr& chi
     case ExprKind::ternary: return position == 0 ? inner <= 2 : inner < 2;
     case ExprKind::unary: return inner < 13 || (child.kind == ExprKind::unary && child.text == parent.text);
     case ExprKind::member:
-    case ExprKind::index: return position == 0 && inner < 14;
+    case ExprKind::index:
+    case ExprKind::postfix: return position == 0 && inner < 14;
     default: return false;
   }
 }
@@ -88,6 +90,7 @@ class CLikePrinter {
                ":" + operand(expr, 2, " ");
       case ExprKind::call: return call(expr);
       case ExprKind::member: return operand(expr, 0, "") + "." + expr.text;
+      case ExprKind::postfix: return operand(expr, 0, "") + expr.text;
       case ExprKind::index: return operand(expr, 0, "") + "[" + spaced(*expr.operands[1], "") + spacing(expr.separators[0], "") + "]";
       case ExprKind::guarded: return "(" + expression(*expr.operands[guarded_ ? 0 : 1]) + ")";
     }

@@ -268,7 +268,12 @@ class Parser {
       expr->operands.push_back(unary());
       return expr;
     }
-    if (next_is("++") || next_is("--")) fail(line(), "increment and decrement are not in the dialect; write x = x + 1 (or x += 1)");
+    if (next_is("++") || next_is("--")) {
+      const Lexeme& op = take();
+      auto expr = node(ExprKind::unary, op, std::string(op.text));
+      expr->operands.push_back(unary());
+      return expr;
+    }
     return postfix(primary());
   }
 
@@ -297,7 +302,14 @@ class Parser {
         index->separators.push_back(std::string(expect("]", "to close the index").leading));
         expr = std::move(index);
       } else if (next_is("++") || next_is("--")) {
-        fail(line(), "increment and decrement are not in the dialect; write x = x + 1 (or x += 1)");
+        auto step = std::make_unique<Expr>();
+        step->kind = ExprKind::postfix;
+        step->text = std::string(take().text);
+        step->line = expr->line;
+        step->leading = std::move(expr->leading);
+        expr->leading.clear();
+        step->operands.push_back(std::move(expr));
+        expr = std::move(step);
       } else {
         return expr;
       }

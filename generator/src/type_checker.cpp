@@ -292,7 +292,8 @@ class Checker {
       case ExprKind::literal: return literal(expr);
       case ExprKind::name: return name(expr);
       case ExprKind::group: return expression(*expr.operands[0]);
-      case ExprKind::unary: return unary(expr);
+      case ExprKind::unary: return expr.text == "++" || expr.text == "--" ? step(expr) : unary(expr);
+      case ExprKind::postfix: return step(expr);
       case ExprKind::binary: return binary(expr);
       case ExprKind::ternary: return ternary(expr);
       case ExprKind::call: return call(expr);
@@ -337,6 +338,29 @@ class Checker {
                                          : operand.base == Type::Base::real || operand == Type::integer();
     if (!fits) fail(expr.line, fmt::format("unary '{}' does not apply to {}; convert the operand explicitly", expr.text, operand.name()));
     return operand;
+  }
+
+  // ++x, x++, --x, x--: an int or real variable, which becomes mutable.
+  Type step(Expr& expr) {
+    const Type type = expression(*expr.operands[0]);
+    mark_assigned(expr, *expr.operands[0]);
+    if (type != Type::integer() && type != Type::real()) {
+      fail(expr.line, fmt::format("'{}' needs an int or real variable, not {}", expr.text, type.name()));
+    }
+    return type;
+  }
+
+  // Records that `target` (a variable, or a swizzle of one) is assigned.
+  void mark_assigned(const Expr& expr, Expr& target_expression) {
+    Expr* target = &target_expression;
+    while (target->kind == ExprKind::member) target = target->operands[0].get();
+    if (target->kind != ExprKind::name) fail(expr.line, fmt::format("'{}' assigns to something that is not a variable", expr.text));
+    const Local* local = find_local(target->text);
+    if (!local) fail(expr.line, fmt::format("'{}' is not a local or a parameter; only those can be assigned", target->text));
+    if (local->declaration) local->declaration->is_mutable = true;
+    else if (std::find(assigned_parameters_.begin(), assigned_parameters_.end(), target->text) == assigned_parameters_.end()) {
+      assigned_parameters_.push_back(target->text);
+    }
   }
 
   Type binary(Expr& expr) {
@@ -475,15 +499,7 @@ class Checker {
   }
 
   Type assign(Expr& expr) {
-    Expr* target = expr.operands[0].get();
-    while (target->kind == ExprKind::member) target = target->operands[0].get();
-    if (target->kind != ExprKind::name) fail(expr.line, fmt::format("'{}' assigns to something that is not a variable", expr.text));
-    const Local* local = find_local(target->text);
-    if (!local) fail(expr.line, fmt::format("'{}' is not a local or a parameter; only those can be assigned", target->text));
-    if (local->declaration) local->declaration->is_mutable = true;
-    else if (std::find(assigned_parameters_.begin(), assigned_parameters_.end(), target->text) == assigned_parameters_.end()) {
-      assigned_parameters_.push_back(target->text);
-    }
+    mark_assigned(expr, *expr.operands[0]);
     const Type assigned = expression(*expr.operands[0]);
     const Type value = expression(*expr.operands[1]);
     const std::string_view op = std::string_view(expr.text).substr(0, expr.text.size() - 1);

@@ -39,7 +39,8 @@ enum class ExprKind {
   literal,   // text: the number as written
   name,      // text: a local, a parameter or a template constant
   group,     // (operand): parentheses written in the template
-  unary,     // text: - ! ~ (prefix)
+  unary,     // text: - ! ~ ++ -- (prefix)
+  postfix,   // text: ++ or -- after operand 0
   binary,    // text: the operator
   ternary,   // condition ? operand 1 : operand 2
   call,      // text: the callee; operands: the arguments
