@@ -240,12 +240,21 @@ class Parser {
     return expr;
   }
 
-  std::unique_ptr<Expr> binary(std::size_t level) {
-    if (level == binary_levels.size()) return unary();
-    auto left = binary(level + 1);
-    const auto& operators = binary_levels[level];
-    while (!at_end() && peek().kind == TokenKind::punctuation &&
-           std::find(operators.begin(), operators.end(), peek().text) != operators.end() && !peek().text.empty()) {
+  // The binding level of a binary operator (index into binary_levels), or -1.
+  int binary_level(const Lexeme& lexeme) const {
+    if (lexeme.kind != TokenKind::punctuation) return -1;
+    for (std::size_t level = 0; level < binary_levels.size(); ++level) {
+      for (std::string_view op : binary_levels[level]) {
+        if (!op.empty() && op == lexeme.text) return static_cast<int>(level);
+      }
+    }
+    return -1;
+  }
+
+  // Precedence climbing: operators of level >= min_level, left-associative.
+  std::unique_ptr<Expr> binary(int min_level) {
+    auto left = unary();
+    for (int level = at_end() ? -1 : binary_level(peek()); level >= min_level; level = at_end() ? -1 : binary_level(peek())) {
       const Lexeme& op = take();
       auto expr = std::make_unique<Expr>();
       expr->kind = ExprKind::binary;
