@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 namespace {
 
 using saagen::Catalogue;
@@ -140,6 +143,36 @@ TEST(TargetTable, ReportsMissingKeysAndTypes) {
     FAIL();
   } catch (const saagen::Error& error) {
     EXPECT_STREQ(error.what(), "targets/x.json: 'types' has no spelling for dialect type 'real2'");
+  }
+}
+
+// Skeletons live as source files under targets/<language>/, split by "// saagen-section: NAME"
+// lines; the tables name them, and a table naming a file this build lacks is refused.
+TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {
+  const saagen::TargetSyntax& glsl = saagen::builtin_target("glsl");
+  EXPECT_EQ(glsl.fragment_skeleton.prologue, "#version 450\n");
+  EXPECT_EQ(glsl.compute_skeleton.prologue, "#version 450\n#define {core_only_macro}\n");
+  EXPECT_EQ(saagen::builtin_target("hlsl").fragment_skeleton.prologue, "");
+  EXPECT_NE(glsl.kernel_skeletons.at("quad_compute").prologue.find("#extension GL_KHR_shader_subgroup_quad : require\n"), std::string::npos);
+  EXPECT_EQ(glsl.with_precision("fp16").preamble.rfind("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n", 0), 0u);
+  const auto pass = saagen::skeleton_sections("hlsl/deferred_pass.hlsl", "test");
+  std::vector<std::string> names;
+  for (const auto& [name, text] : pass) names.push_back(name);
+  EXPECT_EQ(names, (std::vector<std::string>{"main", "prologue", "resources", "tangent_resources"}));
+  EXPECT_EQ(pass.at("main").substr(pass.at("main").size() - 8), "{body}}\n");
+
+  std::ifstream file(SAAGEN_SOURCE_DIR "/targets/glsl.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string table = text.str();
+  const std::string named = "\"glsl/validate_fragment.glsl\"";
+  ASSERT_NE(table.find(named), std::string::npos);
+  table.replace(table.find(named), named.size(), "\"glsl/missing.glsl\"");
+  try {
+    saagen::TargetSyntax::parse(table, "targets/x.json");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "targets/x.json: skeleton file targets/glsl/missing.glsl is not in this build; add it under targets/ and rebuild");
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include "saagen/dialect.hpp"
 #include "saagen/error.hpp"
+#include "saagen/syntax_tree.hpp"
 
 #include <fmt/format.h>
 
@@ -198,6 +199,7 @@ class TemplateParser {
       else fail(file_, value.number, fmt::format("unknown function key '{}'; allowed: role, cite, returns, param", key));
     }
     require_keys(file_, line, "@function " + name, seen, {"role", "cite", "returns"});
+    function.body_line = next_ < lines_.size() ? lines_[next_].number + 1 : line;
     function.body = read_body(name, line);
     functions_.push_back(std::move(function));
   }
@@ -389,14 +391,24 @@ void Catalogue::link() {
     }
   }
 
-  // Direct references: identifiers that name a function or a constant (member accesses
-  // excluded), in the guarded form and in the paper form.
-  const auto collect = [&](const Function& function, const std::string& code, std::vector<std::string>& calls,
+  for (const Function& function : functions_) {
+    if (dialect::is_intrinsic(function.name)) {
+      fail(function.source_file, function.line, fmt::format("function name '{}' is a dialect intrinsic; choose another name", function.name));
+    }
+  }
+  std::map<std::string, dialect::FunctionSignature, std::less<>> signatures;
+  for (const Function& function : functions_) {
+    dialect::FunctionSignature& signature = signatures[function.name];
+    signature.result = *dialect::Type::from_name(function.return_type);
+    for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
+  }
+  std::map<std::string, dialect::Type, std::less<>> constant_types;
+  for (const Constant& constant : constants_) constant_types[constant.name] = *dialect::Type::from_name(constant.type);
+
+  // Direct references: names of functions and constants, in the guarded form and in the paper form.
+  const auto collect = [&](const Function& function, const std::vector<std::string>& names, std::vector<std::string>& calls,
                            std::vector<std::string>& constants) {
-    const auto tokens = dialect::tokenize(code);
-    for (std::size_t index = 0; index < tokens.size(); ++index) {
-      if (tokens[index].kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens, index)) continue;
-      const std::string name(tokens[index].text);
+    for (const std::string& name : names) {
       if (function_index_.count(name) && name != function.name && !contains(calls, name)) calls.push_back(name);
       if (constant_names.count(name) && !contains(constants, name)) constants.push_back(name);
     }
@@ -410,15 +422,18 @@ void Catalogue::link() {
         fail(function.source_file, function.line,
              fmt::format("{} uses '{}': the dialect has no matrices; write the product with dot products", function.name, name));
       }
-      if (contains(dialect::derivative_intrinsics(), name)) function.fragment_only = true;
+    }
+    // The typed tree: parsed and checked here, at load time, with the body's own lines.
+    const dialect::SourcePlace place{function.source_file, function.body_line, function.name};
+    auto tree = std::make_shared<dialect::Body>(dialect::parse_body(function.body, place));
+    dialect::check_body(*tree, signatures.at(function.name), {&signatures, &constant_types, nullptr}, place);
+    for (const std::string& name : dialect::referenced_names(*tree, std::nullopt)) {
+      if (dialect::is_derivative_intrinsic(name)) function.fragment_only = true;
       if (name == "guarded") function.has_guards = true;
     }
-    try {
-      collect(function, dialect::resolve_guards(function.body, true), function.calls, function.constants);
-      collect(function, dialect::resolve_guards(function.body, false), function.paper_calls, function.paper_constants);
-    } catch (const Error& error) {
-      fail(function.source_file, function.line, fmt::format("{}: {}", function.name, error.what()));
-    }
+    collect(function, dialect::referenced_names(*tree, true), function.calls, function.constants);
+    collect(function, dialect::referenced_names(*tree, false), function.paper_calls, function.paper_constants);
+    function.tree = std::move(tree);
   }
 
   // Fragment-only propagates from callees to callers (a fixed point over the call graph).

@@ -36,6 +36,14 @@ PassSkeleton pass_skeleton(const std::string& target) {
   const auto json = nlohmann::json::parse(found->second);
   if (!json.contains("deferred_pass")) throw Error(fmt::format("{}: no 'deferred_pass' skeleton", name));
   const auto& entry = json.at("deferred_pass");
+  if (entry.is_string()) {
+    const auto sections = skeleton_sections(entry.get<std::string>(), name);
+    const auto section = [&](const char* key) {
+      if (!sections.count(key)) throw Error(fmt::format("{}: the deferred_pass skeleton needs a section '{}'", name, key));
+      return sections.at(key);
+    };
+    return {section("prologue"), section("resources"), section("tangent_resources"), section("main")};
+  }
   const auto field = [&](const char* key) {
     if (!entry.contains(key) || !entry.at(key).is_string()) throw Error(fmt::format("{}: deferred_pass needs the string '{}'", name, key));
     return entry.at(key).get<std::string>();

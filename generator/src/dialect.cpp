@@ -1,6 +1,5 @@
 #include "saagen/dialect.hpp"
 
-#include "saagen/error.hpp"
 
 #include <cctype>
 #include <string>
@@ -72,63 +71,8 @@ bool is_member_access(const std::vector<Token>& tokens, std::size_t index) {
   return false;
 }
 
-namespace {
-
-// Appends the text of tokens[begin, end) to out, resolving guards recursively.
-void append_resolved(const std::vector<Token>& tokens, std::size_t begin, std::size_t end, bool guarded, std::string& out) {
-  for (std::size_t index = begin; index < end; ++index) {
-    const Token& token = tokens[index];
-    const std::size_t open = next_significant(tokens, index);
-    if (token.kind != TokenKind::identifier || token.text != "guarded" || is_member_access(tokens, index) ||
-        open >= end || tokens[open].text != "(") {
-      out += token.text;
-      continue;
-    }
-    // Split the two arguments at depth 1.
-    std::vector<std::pair<std::size_t, std::size_t>> arguments;
-    int depth = 0;
-    std::size_t argument_begin = open + 1, close = end;
-    for (std::size_t scan = open; scan < end; ++scan) {
-      const std::string_view text = tokens[scan].text;
-      if (text == "(") ++depth;
-      else if (text == ")" && --depth == 0) {
-        arguments.emplace_back(argument_begin, scan);
-        close = scan;
-        break;
-      } else if (text == "," && depth == 1) {
-        arguments.emplace_back(argument_begin, scan);
-        argument_begin = scan + 1;
-      }
-    }
-    if (close == end || arguments.size() != 2) throw Error("guarded(...) takes exactly two arguments: guarded(safe, paper)");
-    const auto [chosen_begin, chosen_end] = arguments[guarded ? 0 : 1];
-    std::string chosen;
-    append_resolved(tokens, chosen_begin, chosen_end, guarded, chosen);
-    const auto first = chosen.find_first_not_of(" \t\n");
-    const auto last = chosen.find_last_not_of(" \t\n");
-    out += '(';
-    if (first != std::string::npos) out.append(chosen, first, last - first + 1);
-    out += ')';
-    index = close;
-  }
-}
-
-}  // namespace
-
-std::string resolve_guards(std::string_view code, bool guarded) {
-  const auto tokens = tokenize(code);
-  std::string out;
-  append_resolved(tokens, 0, tokens.size(), guarded, out);
-  return out;
-}
-
 const std::vector<std::string>& type_names() {
   static const std::vector<std::string> names = {"real", "real2", "real3", "real4", "bool", "int"};
-  return names;
-}
-
-const std::vector<std::string>& derivative_intrinsics() {
-  static const std::vector<std::string> names = {"ddx", "ddy", "ddx_fine", "ddy_fine", "ddx_coarse", "ddy_coarse"};
   return names;
 }
 

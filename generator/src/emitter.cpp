@@ -3,6 +3,7 @@
 #include "saagen/dialect.hpp"
 #include "saagen/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/syntax_tree.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -183,12 +184,8 @@ class FileWriter {
   void write_intrinsic_notes(std::ostringstream& out, const std::vector<const Function*>& functions) const {
     for (const auto& [intrinsic, note] : target_.intrinsic_notes) {
       const bool used = std::any_of(functions.begin(), functions.end(), [&](const Function* function) {
-        const std::string body = dialect::resolve_guards(function->body, options_.guards);
-        const auto tokens = dialect::tokenize(body);
-        for (std::size_t index = 0; index < tokens.size(); ++index) {
-          if (tokens[index].kind == dialect::TokenKind::identifier && tokens[index].text == intrinsic && !dialect::is_member_access(tokens, index)) return true;
-        }
-        return false;
+        const auto names = dialect::referenced_names(*function->tree, options_.guards);
+        return std::find(names.begin(), names.end(), intrinsic) != names.end();
       });
       if (!used) continue;
       std::istringstream lines(note);
@@ -221,7 +218,7 @@ class FileWriter {
       out << fmt::format("//   {}: {}\n", parameter.name, parameter.meaning);
     }
     out << fmt::format("//   returns: {}\n", function.return_meaning);
-    const std::string body = translate(target_, dialect::resolve_guards(function.body, options_.guards), names_);
+    const std::string body = dialect::print_c_like(*function.tree, target_, names_, options_.guards);
     out << signature(target_, function, options_.prefix) << "\n{\n" << target_.function_prologue
         << suffix_float_literals(body, target_.literal_suffix) << "}\n";
     out << "#endif\n";

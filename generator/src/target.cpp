@@ -31,8 +31,19 @@ std::string require_string(const Json& object, const char* key, std::string_view
   return value.get<std::string>();
 }
 
-ValidationSkeleton parse_skeleton(const Json& object, std::string_view source) {
-  return {require_string(object, "prologue", source), require_string(object, "epilogue", source)};
+// A skeleton is either inline ({"prologue": ..., "epilogue": ...}) or, readable, the name of a
+// source file under targets/ whose sections hold the two parts (see skeleton_sections).
+ValidationSkeleton parse_skeleton(const Json& value, std::string_view source) {
+  if (value.is_string()) {
+    const auto sections = skeleton_sections(value.get<std::string>(), source);
+    const auto section = [&](const char* name) {
+      const auto found = sections.find(name);
+      if (found == sections.end()) throw Error(fmt::format("{}: skeleton {} has no section '{}'", source, value.get<std::string>(), name));
+      return found->second;
+    };
+    return {section("prologue"), section("epilogue")};
+  }
+  return {require_string(value, "prologue", source), require_string(value, "epilogue", source)};
 }
 
 ClientApi parse_client(const std::string& name, std::string_view source) {
@@ -154,6 +165,32 @@ class Translator {
 
 }  // namespace
 
+std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_view file, std::string_view source) {
+  static constexpr std::string_view marker = "// saagen-section: ";
+  const std::string path = "targets/" + std::string(file);
+  const auto& files = embedded::files();
+  const auto found = files.find(path);
+  if (found == files.end()) throw Error(fmt::format("{}: skeleton file {} is not in this build; add it under targets/ and rebuild", source, path));
+  std::map<std::string, std::string, std::less<>> sections;
+  std::string* current = nullptr;  // the text before the first marker is the file's own comment
+  const std::string_view text = found->second;
+  for (std::size_t begin = 0; begin < text.size();) {
+    auto end = text.find('\n', begin);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    const std::string_view line = text.substr(begin, end - begin);
+    if (line.starts_with(marker)) {
+      std::string name(line.substr(marker.size()));
+      while (!name.empty() && (name.back() == '\n' || name.back() == '\r' || name.back() == ' ')) name.pop_back();
+      if (sections.count(name)) throw Error(fmt::format("{}: section '{}' appears twice", path, name));
+      current = &sections[name];
+    } else if (current) {
+      *current += line;
+    }
+    begin = end;
+  }
+  return sections;
+}
+
 TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
   Json json;
   try {
@@ -197,7 +234,13 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
       precision.intrinsics[intrinsic] = pattern.get<std::string>();
     }
     precision.literal_suffix = require_string(entry, "literal_suffix", source);
-    precision.preamble = require_string(entry, "preamble", source);
+    if (entry.contains("preamble_file")) {
+      const auto sections = skeleton_sections(require_string(entry, "preamble_file", source), source);
+      if (!sections.count("preamble")) throw Error(fmt::format("{}: the preamble file of {} has no section 'preamble'", source, name));
+      precision.preamble = sections.at("preamble");
+    } else {
+      precision.preamble = require_string(entry, "preamble", source);
+    }
     precision.native_16bit = entry.value("native_16bit", false);
     read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
     if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);

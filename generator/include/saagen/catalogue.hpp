@@ -3,12 +3,16 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace saagen {
+namespace dialect {
+struct Body;
+}
 
 enum class FunctionRole { core, fragment, evaluate, helper };
 std::string_view to_string(FunctionRole role);
@@ -29,8 +33,11 @@ struct Function {
   std::string body;  // dialect code between the braces, without them
   std::string source_file;
   int line = 0;
+  int body_line = 0;  // the line of the body's first statement line
+  // The body's typed syntax tree (saagen/syntax_tree.hpp), checked when the catalogue loads.
+  std::shared_ptr<const dialect::Body> tree;
   // Template functions and constants this body references directly, with guards (the default)
-  // and in the unguarded paper form; see dialect::resolve_guards.
+  // and in the unguarded paper form (guarded(safe, paper) resolved either way).
   std::vector<std::string> calls;
   std::vector<std::string> constants;
   std::vector<std::string> paper_calls;

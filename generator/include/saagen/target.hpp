@@ -88,6 +88,12 @@ struct TargetSyntax {
   static TargetSyntax parse(std::string_view json_text, std::string_view source_name);
 };
 
+// The sections of a skeleton source file under targets/ (e.g. "glsl/validate_fragment.glsl"):
+// a line "// saagen-section: NAME" starts section NAME, which holds the lines up to the next
+// such line; text before the first one is the file's own comment. Throws saagen::Error naming
+// `source` (the table that names the file) when the file is not embedded in this build.
+std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_view file, std::string_view source);
+
 // The tables compiled into this build, by name ("glsl", "hlsl").
 const TargetSyntax& builtin_target(std::string_view name);
 std::vector<std::string> builtin_target_names();
@@ -95,8 +101,10 @@ std::vector<std::string> builtin_target_names();
 // Maps unprefixed template names (functions, constants) to the names they get in the output.
 using NameMap = std::map<std::string, std::string, std::less<>>;
 
-// Rewrites dialect code into the target language: types, intrinsic calls (arguments are
-// rewritten recursively) and template names. Whitespace and comments are kept.
+// Rewrites a dialect snippet token by token into the target language: types, intrinsic calls
+// (arguments rewritten recursively) and template names; whitespace and comments are kept. Used
+// for the harness's glue (kernel bodies, validation calls), which use the skeletons' macros;
+// template bodies are printed from their typed tree (dialect::print_c_like).
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
 
 // Appends `suffix` to every floating-point literal in `code` (numbers with '.' or an exponent);

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Emits every output of the generator that comes from the templates into one directory, so that
+# two builds can be compared byte for byte (`diff -r OLD NEW`): every variant x target x
+# precision (guarded and unguarded), SPIR-V library modules, the example manifest bundles, the
+# deferred pass skeletons, the glint snippets, `list --json` and the `validate` report.
+#
+# Usage: scripts/emit_corpus.sh SAAGEN_BINARY OUTPUT_DIRECTORY
+set -euo pipefail
+
+if [[ $# -ne 2 ]]; then
+  echo "usage: $0 SAAGEN_BINARY OUTPUT_DIRECTORY" >&2
+  exit 2
+fi
+saagen=$(realpath "$1")
+out=$2
+root=$(cd "$(dirname "$0")/.." && pwd)
+rm -rf "$out"
+mkdir -p "$out"
+out=$(realpath "$out")
+
+emit_forms() {  # target precision...
+  local target=$1
+  shift
+  for precision in "$@"; do
+    "$saagen" emit --target "$target" --precision "$precision" -o "$out/emit/$target/$precision"
+    "$saagen" emit --target "$target" --precision "$precision" --unguarded -o "$out/emit/$target/$precision-unguarded"
+  done
+}
+
+emit_forms glsl fp32 fp16
+emit_forms gles fp32 fp16
+emit_forms hlsl fp32 min16
+"$saagen" emit --target spirv -o "$out/emit/spirv/fp32"
+"$saagen" emit --target glsl --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/glsl/options"
+"$saagen" emit --target gles --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/gles/options"
+
+(cd "$root/examples" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest")
+
+"$saagen" pass -o "$out/pass/fine"
+"$saagen" pass --derivatives coarse --output-format r16f -o "$out/pass/coarse"
+"$saagen" pass --unguarded -o "$out/pass/unguarded"
+
+for target in glsl hlsl; do
+  "$saagen" glints emit --target "$target" -o "$out/glints/$target/fp32"
+  "$saagen" glints emit --target "$target" --unguarded -o "$out/glints/$target/fp32-unguarded"
+done
+"$saagen" glints emit --target glsl --precision fp16 -o "$out/glints/glsl/fp16"
+"$saagen" glints emit --target hlsl --precision min16 -o "$out/glints/hlsl/min16"
+
+"$saagen" list > "$out/list.txt"
+"$saagen" list --json > "$out/list.json"
+"$saagen" validate > "$out/validate.txt" 2>&1
+(cd "$out" && "$saagen" validate emit/glsl/fp16 > validate-glsl-fp16.txt 2>&1)
+(cd "$out" && "$saagen" validate emit/gles/fp16 > validate-gles-fp16.txt 2>&1)
+"$saagen" glints validate > "$out/glints-validate.txt" 2>&1
+echo "corpus written to $out: $(find "$out" -type f | wc -l) files"
