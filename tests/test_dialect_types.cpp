@@ -90,7 +90,9 @@ TEST(DialectTypes, TypesEveryBuiltinTemplate) {
     for (const saagen::Function& function : catalogue->functions()) {
       ASSERT_NE(function.tree, nullptr) << function.name;
       for (const auto& stmt : function.tree->statements) {
-        if (stmt->kind == dialect::StmtKind::return_value) EXPECT_EQ(stmt->value->type.name(), function.return_type) << function.name;
+        if (stmt->kind == dialect::StmtKind::return_value) {
+          EXPECT_EQ(stmt->value->type.name(), function.return_type) << function.name;
+        }
       }
     }
   }

@@ -58,7 +58,9 @@ TEST_F(GlintCli, GlintsAreListedAndEmittedLikeTheOtherVariants) {
     EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["glsl"].get<std::string>().find("sampler1DArray"), std::string::npos);
     EXPECT_NE((*ggaa)["resources"][0]["example_declaration"]["hlsl"].get<std::string>().find("Texture1DArray"), std::string::npos);
     for (const auto& variant : json["variants"]) {
-        if (variant["id"].get<std::string>().rfind("glints", 0) != 0) EXPECT_TRUE(variant["resources"].empty()) << variant["id"];
+        if (variant["id"].get<std::string>().rfind("glints", 0) != 0) {
+            EXPECT_TRUE(variant["resources"].empty()) << variant["id"];
+        }
     }
 
     const fs::path out = scratch_ / "emitted";
