@@ -1,4 +1,4 @@
-// Codegen time for all variants x targets. Goals (issue 2): emission alone <= 50 ms and with
+// Codegen time for all variants x targets. Goals: emission alone <= 50 ms and with
 // in-process validation <= 2 s, whole process, on the 2-core CI machine.
 //   build/bench/bench_codegen --benchmark_min_time=0.5
 #include "saagen/catalogue.hpp"

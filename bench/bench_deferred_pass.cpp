@@ -1,4 +1,4 @@
-// Cost of the deferred roughness-limiter pass (issue 8): the emitted .spv of every pass
+// Cost of the deferred roughness-limiter pass: the emitted .spv of every pass
 // (saagen/deferred_pass.hpp) runs on the harness device (lavapipe by default) over a G-buffer
 // rendered by the issue-4 renderer (the bump_plane scene: every pixel on the surface), and is
 // timed with GPU timestamps around the dispatch. A baseline shader with the same bindings reads

@@ -1,4 +1,4 @@
-// Cost of geometric glint anti-aliasing (issue 7): a fragment kernel shades a glinty sphere
+// Cost of geometric glint anti-aliasing: a fragment kernel shades a glinty sphere
 // (saagen glint snippet, GLSL and HLSL) once with GGAA (glint_brdf_filtered_fragment: ddx/ddy of
 // the projected half vector, textureGrad on the MIP-mapped dictionary) and once with the 2020
 // baseline (glint_brdf_fragment: textureLod on a dictionary without MIPs), interleaved in one run

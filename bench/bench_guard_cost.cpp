@@ -1,4 +1,4 @@
-// Issue 5: what the guards cost. For every variant and target, a fragment kernel calls each
+// What the guards cost. For every variant and target, a fragment kernel calls each
 // public function of the variant (arguments loaded from a buffer, results stored), compiled
 // in-process, optimized with spirv-opt -O (saagen::optimize_spirv) and counted
 // (saagen::count_spirv_instructions), once guarded (saagen's default) and once in the unguarded

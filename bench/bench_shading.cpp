@@ -1,4 +1,4 @@
-// Measured shading cost of every SAA variant (issue 3, "Measured"): one fragment kernel per
+// Measured shading cost of every SAA variant: one fragment kernel per
 // variant and target shades a bumpy sphere with the GGX specular term, filtered through the
 // variant's fragment wrapper, and is timed against the same shading without SAA in the same run.
 //

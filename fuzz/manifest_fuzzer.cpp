@@ -1,4 +1,4 @@
-// libFuzzer target: scene manifest parser, planner and bundle emitter (issue 6).
+// libFuzzer target: scene manifest parser, planner and bundle emitter.
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"

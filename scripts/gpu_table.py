@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Per GPU suite x device: tests run / passed / unsupported, the worst error as a fraction of its
-bound, and the validation-layer message count, from ctest's JUnit output (issue 11).
+bound, and the validation-layer message count, from ctest's JUnit output.
 
     ctest --test-dir build -L vulkan -j2 --output-junit gpu.xml; python3 scripts/gpu_table.py build/gpu.xml
 

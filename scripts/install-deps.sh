@@ -12,7 +12,7 @@ packages=(
   # shaderc: the include handler for engines that compile with shaderc (saagen::shaderc)
   libshaderc-dev
   libvulkan-dev mesa-vulkan-drivers
-  # Khronos validation layer: every GPU test runs with it on (SAAGEN_VK_VALIDATION=1, issue 11)
+  # Khronos validation layer: every GPU test runs with it on (SAAGEN_VK_VALIDATION=1)
   vulkan-validationlayers
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The engine-integration package (issue 6), end to end: installs saagen from a build directory
+# The engine-integration package, end to end: installs saagen from a build directory
 # into a temporary prefix, configures and builds a copy of examples/cmake-consumer from scratch
 # against it (generation from its manifest, two shaders compiled to SPIR-V, a program linked
 # against saagen::saagen), runs that program, and checks the build-step dependencies:

@@ -1,4 +1,4 @@
-// Shared plumbing for the glint suites (issue 7): the default dictionary (generated once per
+// Shared plumbing for the glint suites: the default dictionary (generated once per
 // process), its texture as the reference's software sampler sees it, and helpers.
 #pragma once
 

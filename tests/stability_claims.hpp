@@ -1,4 +1,4 @@
-// Issue 5: what every public function of every variant guarantees (docs/STABILITY.md), as code.
+// What every public function of every variant guarantees (docs/STABILITY.md), as code.
 // The property tests (test_stability_properties), the adversarial sweep (test_stability_sweep)
 // and the half-precision test (test_precision) judge outputs with these claims.
 //

@@ -1,4 +1,4 @@
-// Issue 5: adversarial inputs for the stability sweep and the precision test, packed in the
+// Adversarial inputs for the stability sweep and the precision test, packed in the
 // parameter order of a function (as saagen::load_call_store_body loads them) or of a fragment
 // wrapper's per-pixel fields (every parameter except frag_coord, pixels in quads).
 //

@@ -1,4 +1,4 @@
-// Issue 7, accuracy: the glinty BRDF at one sample per pixel with and without GGAA, and with LEAN
+// Accuracy: the glinty BRDF at one sample per pixel with and without GGAA, and with LEAN
 // (rho) / LEAN (rho = 0) / no LEAN, against a supersampled ground truth, in the issue-4 renderer's
 // scenes (saagen::render: analytic shapes, cameras, lights, the sigma^2 = 0.25 Gaussian pixel
 // filter, the image metrics and the flicker metric).

@@ -1,4 +1,4 @@
-// Issue 7: the glint dictionary (Chermain et al. 2020 / 2021), its MIP chain, the KTX2 file it is
+// The glint dictionary (Chermain et al. 2020 / 2021), its MIP chain, the KTX2 file it is
 // written to, and the LEAN moment chains. CPU only. docs/GLINTS.md states the tolerances used here.
 #include "glint_support.hpp"
 

@@ -1,4 +1,4 @@
-// Issue 7: the glint snippets (templates/glints/) are emitted for GLSL and HLSL and pass the
+// The glint snippets (templates/glints/) are emitted for GLSL and HLSL and pass the
 // in-process validation (glslang + spirv-val, fragment and compute, every client API of the
 // target), with the dictionary declared by the validation skeleton (targets/*.json "resources").
 #include "saagen/glints.hpp"

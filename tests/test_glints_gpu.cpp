@@ -1,4 +1,4 @@
-// Issue 7 on a Vulkan device (lavapipe in CI): the dictionary bound as a sampled 1D array image
+// The glints on a Vulkan device (lavapipe in CI): the dictionary bound as a sampled 1D array image
 // with its MIP chain (RGBA16F, LINEAR/LINEAR/LINEAR, MIRRORED_REPEAT), read with explicit
 // gradients in compute shaders.
 //   - GlintSamplerOnGpu: textureGrad / textureLod against the software sampler of the reference,

@@ -1,4 +1,4 @@
-// Issue 7: the double-precision glint reference (saagen/reference/glints.hpp): the software
+// The double-precision glint reference (saagen/reference/glints.hpp): the software
 // Vulkan sampler, the cell hash, the energy of the (filtered) patch SDF, the covariance that M
 // (Eq. 18) gives the converged SDF, LEAN, and the BRDF's symmetries. CPU only.
 #include "glint_support.hpp"

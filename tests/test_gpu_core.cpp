@@ -1,4 +1,4 @@
-// Issue 3: every core and evaluate function of every variant, for every target, runs on a
+// Every core and evaluate function of every variant, for every target, runs on a
 // Vulkan device (lavapipe) over 131072 inputs -- a structured grid over h_z, roughness,
 // derivative magnitude and direction, then seeded random draws -- and is compared element by
 // element with the double-precision reference evaluated on the same (fp32-rounded) inputs.

@@ -1,4 +1,4 @@
-// Issue 3: the fragment wrappers with derivatives taken as a GPU takes them. Each wrapper runs
+// The fragment wrappers with derivatives taken as a GPU takes them. Each wrapper runs
 //  1. in a fragment shader over a full-screen triangle (real ddx/ddy of a 2x2 quad), and
 //  2. in a compute shader that emulates the quads with subgroup quad operations (the emitted
 //     wrapper unchanged, its derivative intrinsics redirected to quad operations), with plain

@@ -1,4 +1,4 @@
-// Tests of the ground-truth renderer (reference/src/render, issue 4): analytic scenes against
+// Tests of the ground-truth renderer (reference/src/render): analytic scenes against
 // hand-derived hits and normals, the pixel filter's moments, convergence of the ground truth,
 // agreement of the 1-spp image with the ground truth where nothing aliases, the renderer's use
 // of the reference quad functions, the flicker metric, thread-count independence and the cache.

@@ -61,7 +61,7 @@ std::string lowercase(std::string text) {
 // The device every run test uses (SAAGEN_VK_DEVICE is honoured). Created once per process and
 // destroyed by a gtest environment before main returns: left to static destruction at exit,
 // vkDestroyDevice on SwiftShader joins worker threads after the driver's own statics are gone,
-// and the process died with SIGSEGV after every test had passed (issue 11).
+// and the process died with SIGSEGV after every test had passed.
 std::unique_ptr<VulkanContext> shared;
 
 class SharedContextEnvironment : public ::testing::Environment {

@@ -1,4 +1,4 @@
-// Kernels compile for every function, target and kind: the GPU harness (issue 3) depends on
+// Kernels compile for every function, target and kind: the GPU harness depends on
 // them, and this suite needs no Vulkan device.
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"

@@ -1,4 +1,4 @@
-// Scene manifests (issue 6): parsing and its one-line errors (file:line:column, key, what is
+// Scene manifests: parsing and its one-line errors (file:line:column, key, what is
 // allowed), the planner's rules and trade table, minimal emission (exactly the dependency
 // closure; removing a material removes its code), and the bundle's validation and CLI.
 #include "saagen/catalogue.hpp"

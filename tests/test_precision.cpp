@@ -1,4 +1,4 @@
-// Issue 5: half precision. Every public function of every variant, emitted as GLSL fp16
+// Half precision. Every public function of every variant, emitted as GLSL fp16
 // (float16_t, GL_EXT_shader_explicit_arithmetic_types_float16; derivatives taken in fp32) and as
 // HLSL min16 (min16float), runs on the device over 65536 realistic inputs and is compared with
 // the double reference evaluated on the same fp32 inputs with the half guard constants

@@ -1,4 +1,4 @@
-// Issue 4's report: `saagen report` writes a self-contained report whose every image loads in a
+// The trade report: `saagen report` writes a self-contained report whose every image loads in a
 // headless browser (Debian's chromium, installed by scripts/install-deps.sh; a missing browser
 // fails this test, it never skips), and `saagen bench` prints and writes the trade table.
 #include <gtest/gtest.h>

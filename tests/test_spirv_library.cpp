@@ -1,4 +1,4 @@
-// Issue 8: linkable SPIR-V library modules and the C/C++ headers that embed them.
+// Linkable SPIR-V library modules and the C/C++ headers that embed them.
 //
 // - Every variant's library is a valid SPIR-V 1.3 module (universal rules; Vulkan's reject the
 //   Linkage capability itself) with Linkage, no entry point, and an Export decoration named by

@@ -1,4 +1,4 @@
-// Issue 5: property-based tests (rapidcheck) of the stability guarantees (stability_claims.hpp),
+// Property-based tests (rapidcheck) of the stability guarantees (stability_claims.hpp),
 // on the double-precision reference and on the emitted code run through the harness.
 //
 // Each property is written once against an Evaluator: the reference (saagen::ref, Params{}:

@@ -1,4 +1,4 @@
-// Issue 5: the adversarial sweep on lavapipe. Every public function of every variant, for every
+// The adversarial sweep on lavapipe. Every public function of every variant, for every
 // target, runs over 2^20 (> 10^6) adversarial inputs (stability_inputs.hpp) in its guarded form
 // (saagen's default emission) and in the unguarded paper form, on the same inputs, each with the
 // device's min/max/clamp and with NaN-propagating ones ("strict": strict_nan_prelude, which

@@ -1,5 +1,5 @@
 // The quality orderings that Tokuyoshi & Kaplanyan 2019 (T&K19) report, checked on saagen's
-// analytic scenes with the ground-truth renderer (reference/src/render, issue 4). Every
+// analytic scenes with the ground-truth renderer (reference/src/render). Every
 // assertion prints the figures it compares.
 //
 // Configuration: 128 x 128 pixels, ground truth with 32 x 32 = 1024 stratified samples per
@@ -13,7 +13,7 @@
 // sub-pixel glints); a ground-truth error uncorrelated with the variants' own errors adds about
 // the same term to every variant's squared RMSE, so it narrows the gaps rather than reordering.
 //
-// What holds and what does not (figures at 128 x 128; issue 4's report has 256 x 256):
+// What holds and what does not (figures at 128 x 128; the report has 256 x 256):
 //   * Deferred, T&K19 Sec. 5 / slides "avg best, previous worst": holds on the normal-mapped
 //     bump plane and on the thin tubes (high curvature) at every alpha, in linear RMSE per case
 //     and in tonemapped RMSE aggregated over the set. It does NOT hold in linear RMSE on the

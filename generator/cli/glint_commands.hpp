@@ -1,4 +1,4 @@
-// The glint commands of the CLI (issue 7): `saagen glints emit|validate|dictionary|lean`. Kept
+// The glint commands of the CLI: `saagen glints emit|validate|dictionary|lean`. Kept
 // apart from main.cpp, which only registers and dispatches them. docs/GLINTS.md.
 #pragma once
 

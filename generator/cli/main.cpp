@@ -126,7 +126,7 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {
     options.variants = spirv_library_variants(catalogue, options.variants);
-    // Issue 8: per variant a linkable SPIR-V library module and a C/C++ header embedding it.
+    // Per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
       outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
@@ -251,16 +251,16 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process (all variants and targets when no DIR)");
   validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
 
-  // Scene manifests (issue 6): `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
+  // Scene manifests: `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
   std::vector<CLI::Option*> per_variant_options;
   for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain"}) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
   const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
-  // The speed/accuracy trade (issue 4): `bench`, `report`; see report_commands.cpp.
+  // The speed/accuracy trade: `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
-  // The deferred roughness-limiter pass (issue 8): `pass`; see pass_commands.cpp.
+  // The deferred roughness-limiter pass: `pass`; see pass_commands.cpp.
   const saagen::cli::PassCommand deferred_pass(app);
   // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
   const saagen::cli::TextureCommands texture(app);

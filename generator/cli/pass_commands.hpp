@@ -1,4 +1,4 @@
-// The deferred roughness-limiter pass command of the CLI (issue 8): `saagen pass -o DIR` writes,
+// The deferred roughness-limiter pass command of the CLI: `saagen pass -o DIR` writes,
 // per deferred pass, the compute shader as GLSL (.comp), HLSL (.hlsl) and SPIR-V (.spv) and a
 // C/C++ header (.h) describing bindings and push constants. Kept apart from main.cpp, which
 // only registers and dispatches it.

@@ -1,4 +1,4 @@
-// The trade-off commands of the CLI (issue 4): `saagen bench` prints the speed/accuracy table,
+// The trade-off commands of the CLI: `saagen bench` prints the speed/accuracy table,
 // `saagen report -o DIR` writes it as a self-contained report. Kept apart from main.cpp, which
 // only registers and dispatches them.
 #pragma once

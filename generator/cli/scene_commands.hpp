@@ -1,4 +1,4 @@
-// The scene-manifest commands of the CLI (issue 6): `saagen plan`, `saagen emit --manifest`
+// The scene-manifest commands of the CLI: `saagen plan`, `saagen emit --manifest`
 // and `saagen compile`. Kept apart from main.cpp, which only registers and dispatches them.
 #pragma once
 

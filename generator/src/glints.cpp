@@ -1,4 +1,4 @@
-// Glints (issue 7): dictionary generation, MIP chains, KTX2, LEAN moments, glint emission.
+// Glints: dictionary generation, MIP chains, KTX2, LEAN moments, glint emission.
 // See saagen/glints.hpp and docs/GLINTS.md.
 #include "saagen/glints.hpp"
 

@@ -1,4 +1,4 @@
-// The deferred roughness-limiter compute pass (issue 8): complete, ready-to-dispatch compute
+// The deferred roughness-limiter compute pass: complete, ready-to-dispatch compute
 // shaders that read a normal G-buffer (and a tangent G-buffer for the tangent-frame forms) and
 // a roughness G-buffer, and write the roughness filtered by one deferred variant's fragment
 // wrapper -- the templates' Eq. 1 / 4 / 5 / Listing 3 / projected-space math, unchanged.
@@ -12,7 +12,7 @@
 //
 // Derivatives: a compute shader has no ddx/ddy, so lanes form 2x2 pixel quads (Vulkan's quad:
 // four consecutive subgroup invocations) and the wrapper's derivative intrinsics are redirected
-// to subgroup quad operations, exactly as in issue 3's quad-emulating kernels:
+// to subgroup quad operations, exactly as in the quad-emulating kernels:
 //   fine   ddx at (x, y) = v(x | 1, y) - v(x & ~1, y), ddy = v(x, y | 1) - v(x, y & ~1);
 //   coarse one difference per quad, from the top-left pixel's row and column.
 // The template's explicit ddx_fine/ddy_fine are always fine; `derivatives` chooses what plain

@@ -57,7 +57,7 @@ std::map<std::string, double> resolve_options(const Catalogue& catalogue, const 
 // One file per requested variant, in catalogue order. Validates every input before emitting.
 std::vector<EmittedFile> emit_variants(const Catalogue& catalogue, const EmitOptions& options);
 
-// A bundle (issue 6, scene manifests): one file holding exactly the dependency closure of the
+// A bundle: one file holding exactly the dependency closure of the
 // given public functions, drawn from several variants, with the same header, guards, marker
 // and CORE_ONLY conventions as a per-variant file. File: <prefix><name>[_<precision>].<ext>.
 struct BundleRequest {

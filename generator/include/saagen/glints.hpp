@@ -1,4 +1,4 @@
-// Glints (issue 7): the dictionary of multi-scale 1D slope distributions of Chermain et al. 2020
+// Glints: the dictionary of multi-scale 1D slope distributions of Chermain et al. 2020
 // with its MIP chains (Chermain et al. 2021), a KTX2 writer and reader for it, LEAN moment MIP
 // chains of normal maps, and the emission of the glint snippets (templates/glints/). The math
 // and the file layouts are in docs/GLINTS.md.

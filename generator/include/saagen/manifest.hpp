@@ -1,4 +1,4 @@
-// Scene manifests (issue 6): a TOML file naming the targets, the emission options and, per
+// Scene manifests: a TOML file naming the targets, the emission options and, per
 // material, what the planner needs to pick a variant. The format is documented with an example
 // in examples/scene.saagen.toml and examples/INTEGRATION.md.
 //

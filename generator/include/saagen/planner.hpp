@@ -1,4 +1,4 @@
-// The planner (issue 6): picks, for every material of a scene manifest, the SAA variant and the
+// The planner: picks, for every material of a scene manifest, the SAA variant and the
 // functions it needs, from documented rules or from a measured trade table, and turns the plan
 // into one bundle file per target (and precision) holding exactly the dependency closure.
 //
@@ -39,7 +39,7 @@
 
 namespace saagen {
 
-// Measured trade-offs (issue 4): bench_shading --json writes {"rows": [{"target", "variant",
+// Measured trade-offs: bench_shading --json writes {"rows": [{"target", "variant",
 // "ratio_median", "delta_spirv_instructions", ...}]}; a row may also carry "error" (lower is
 // better), which `saagen bench` is to write. Rows of several targets are averaged per variant.
 struct TradeRow {

@@ -1,4 +1,4 @@
-// SPIR-V for users who cannot #include (issue 8): linkable library modules and C/C++ headers
+// SPIR-V for users who cannot #include: linkable library modules and C/C++ headers
 // that embed SPIR-V words.
 //
 // A library module holds one variant's core and evaluate functions (the GLSL emission compiled

@@ -1,4 +1,4 @@
-// The speed/accuracy trade report (issue 4): the ground-truth trade table of saagen::render
+// The speed/accuracy trade report: the ground-truth trade table of saagen::render
 // joined with the measured cost of each variant (bench_shading --json: lavapipe time ratio and
 // optimized SPIR-V instruction delta), printed for the terminal (`saagen bench`) and written as a
 // self-contained report (`saagen report -o DIR`: index.html, report.md, PNG sheets, an SVG plot).
