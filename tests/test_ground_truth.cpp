@@ -4,9 +4,8 @@
 // of the reference quad functions, the flicker metric, thread-count independence and the cache.
 //
 // Runtime: the images are small (16 x 16 to 64 x 64) and sample counts are reduced where a
-// test allows (each says why), so the whole binary runs in a few seconds on 2 cores; the full
-// 256 x 256 x 1024-spp timing is the disabled test DISABLED_Throughput256 (run it with
-// --gtest_also_run_disabled_tests).
+// test allows (each says why), so the whole binary runs in a few seconds on 2 cores; the
+// renderer's throughput is in bench/bench_reference.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
