@@ -46,6 +46,8 @@ struct EmitArguments {
   bool unguarded = false;
   std::optional<std::string> preset;  // an engine's variant, sigma^2, kappa and domain
   std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
+  std::string import_path;            // module targets: naga_oil's #define_import_path
+  std::string module_name = "module";  // module targets: the stem of the one module of several variants
 };
 
 int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
@@ -121,6 +123,7 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
   saagen::apply_settings(every_variant, settings, options);
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
+  options.import_path = arguments.import_path;
   const Catalogue& catalogue = emission_catalogue(every_variant, options);
 
   std::vector<saagen::OutputFile> outputs;
@@ -131,10 +134,21 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
       outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
     }
+  } else if (saagen::builtin_target(options.target).module && options.variants.size() > 1) {
+    // A language without includes (WGSL) cannot take two files that both define the shared
+    // helpers: several variants make one module holding their dependency closure once.
+    saagen::validate_prefix(arguments.module_name);
+    const saagen::BundleRequest request{arguments.module_name, saagen::public_functions(catalogue, options.variants), options.variants, {}};
+    saagen::EmittedFile file = saagen::emit_bundle(catalogue, options, request);
+    outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
   } else {
-    for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) {
-      outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+    std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, options);
+    if (!options.import_path.empty() && files.size() > 1) {
+      throw saagen::Error(fmt::format("--import-path {}: names one module, but {} files would be written; name the variants with --variant "
+                                      "(several make one module)",
+                                      options.import_path, files.size()));
     }
+    for (saagen::EmittedFile& file : files) outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
   }
   const saagen::WriteReport report = saagen::write_outputs(outputs, arguments.force);
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
@@ -186,11 +200,24 @@ std::vector<std::pair<std::string, std::string>> all_emitted_files(const Catalog
   return files;
 }
 
+bool is_wgsl(const std::string& content) {
+  const auto marker = saagen::find_marker(content);
+  return marker && marker->target == "wgsl";
+}
+
 int run_validate(const Catalogue& catalogue, const std::string& directory) {
   const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
+  // The WGSL files go to Tint together (one run of the WebGPU runner), the others one by one.
+  std::vector<std::pair<std::string, std::string>> wgsl_files;
+  for (const auto& file : files) {
+    if (is_wgsl(file.second)) wgsl_files.push_back(file);
+  }
+  std::vector<saagen::FileValidation> wgsl_validations;
+  if (!wgsl_files.empty()) wgsl_validations = saagen::validate_wgsl_files(catalogue, wgsl_files);
   int failures = 0;
+  std::size_t next_wgsl = 0;
   for (const auto& [name, content] : files) {
-    const saagen::FileValidation validation = validate_one(catalogue, name, content);
+    const saagen::FileValidation validation = is_wgsl(content) ? wgsl_validations[next_wgsl++] : validate_one(catalogue, name, content);
     std::cout << validation.summary() << "\n";
     if (!validation.ok()) {
       ++failures;
@@ -231,7 +258,7 @@ int main(int argc, char** argv) {
   std::string sigma2;
   std::string kappa;
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
-  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
+  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
   std::string preset;
   std::string domain;
@@ -243,17 +270,22 @@ int main(int argc, char** argv) {
   emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
   emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
   emit->add_option("--precision", emit_arguments.precision,
-                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump) or min16 (HLSL min16float)")->capture_default_str();
+                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")->capture_default_str();
   emit->add_flag("--unguarded", emit_arguments.unguarded,
                  "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
+  emit->add_option("--import-path", emit_arguments.import_path,
+                   "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
+  emit->add_option("--module", emit_arguments.module_name,
+                   "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")->capture_default_str();
 
   std::string validate_directory;
-  CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process (all variants and targets when no DIR)");
+  CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");
   validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
 
   // Scene manifests: `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
   std::vector<CLI::Option*> per_variant_options;
-  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain"}) {
+  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain",
+                           "--import-path", "--module"}) {
     if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
   }
   const saagen::cli::SceneCommands scene(app, emit, per_variant_options);

@@ -2,6 +2,8 @@
 // expressions keep the dialect's C syntax; the target's syntax table spells the types and the
 // intrinsics (patterns with {0}, {1}, ...); template names get the emission's prefix. Line breaks
 // and comments of the template are kept where they are; spacing inside a line is canonical.
+#include "printer_common.hpp"
+
 #include "saagen/error.hpp"
 #include "saagen/syntax_tree.hpp"
 #include "saagen/target.hpp"
@@ -11,7 +13,7 @@
 #include <algorithm>
 
 namespace saagen::dialect {
-namespace {
+namespace printing {
 
 // C's binding strength: 1 assignment ... 12 multiplicative, 13 prefix, 14 postfix, 15 primary.
 int precedence(const Expr& expr) {
@@ -65,6 +67,28 @@ bool has_line_break(std::string_view layout) { return layout.find('\n') != std::
 std::string spacing(std::string_view layout, std::string_view canonical) {
   return std::string(has_line_break(layout) ? layout : canonical);
 }
+
+std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
+  std::string out;
+  for (std::size_t index = 0; index < pattern.size(); ++index) {
+    const auto close = pattern.find('}', index);
+    if (pattern[index] == '{' && close != std::string::npos && close > index + 1 &&
+        std::all_of(pattern.begin() + static_cast<long>(index) + 1, pattern.begin() + static_cast<long>(close), ::isdigit)) {
+      const std::size_t argument = std::stoul(pattern.substr(index + 1, close - index - 1));
+      if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
+      out += arguments[argument];
+      index = close;
+      continue;
+    }
+    out += pattern[index];
+  }
+  return out;
+}
+
+}  // namespace printing
+
+namespace {
+using namespace printing;
 
 class CLikePrinter {
  public:
@@ -132,24 +156,6 @@ class CLikePrinter {
       out += (index == 0 ? "" : ",") + spaced(*expr.operands[index], index == 0 ? "" : " ");
     }
     return out + spacing(expr.separators[0], "") + ")";
-  }
-
-  // Replaces {0}, {1}, ... in an intrinsic pattern of the syntax table with the arguments.
-  static std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
-    std::string out;
-    for (std::size_t index = 0; index < pattern.size(); ++index) {
-      const auto close = pattern.find('}', index);
-      if (pattern[index] == '{' && close != std::string::npos && close > index + 1 &&
-          std::all_of(pattern.begin() + static_cast<long>(index) + 1, pattern.begin() + static_cast<long>(close), ::isdigit)) {
-        const std::size_t argument = std::stoul(pattern.substr(index + 1, close - index - 1));
-        if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
-        out += arguments[argument];
-        index = close;
-        continue;
-      }
-      out += pattern[index];
-    }
-    return out;
   }
 
   // A statement without its leading layout.

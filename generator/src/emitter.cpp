@@ -4,6 +4,7 @@
 #include "saagen/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/syntax_tree.hpp"
+#include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -41,13 +42,35 @@ std::string type_name(const TargetSyntax& target, const std::string& dialect_typ
   return target.declaration_type(dialect_type);
 }
 
-std::string signature(const TargetSyntax& target, const Function& function, std::string_view prefix) {
+std::string replace_all_in(std::string text, std::string_view from, const std::string& to) {
+  for (auto position = text.find(from); position != std::string::npos; position = text.find(from, position + to.size())) {
+    text.replace(position, from.size(), to);
+  }
+  return text;
+}
+
+// The resources a function reads directly or through its callees, as a module language passes
+// them: parameter declarations or call arguments (TargetSyntax::Resource), joined; empty when none.
+std::string resource_list(const TargetSyntax& target, const Catalogue& catalogue, const std::string& function,
+                          std::string TargetSyntax::Resource::*what) {
+  if (!target.module) return {};
+  std::vector<std::string> items;
+  for (const std::string& name : resources_used(target, catalogue, {function})) items.push_back(target.resources.at(name).*what);
+  return fmt::format("{}", fmt::join(items, ", "));
+}
+
+// The function's signature in the target's form (TargetSyntax::signature and ::parameter).
+std::string signature(const TargetSyntax& target, const Catalogue& catalogue, const Function& function, std::string_view prefix) {
   std::vector<std::string> parameters;
   for (const Parameter& parameter : function.parameters) {
-    parameters.push_back(type_name(target, parameter.type) + " " + parameter.name);
+    std::string text = replace_all_in(target.parameter, "{type}", type_name(target, parameter.type));
+    parameters.push_back(replace_all_in(std::move(text), "{name}", dialect::parameter_name(target, function.tree.get(), parameter.name)));
   }
-  return fmt::format("{} {}({})", type_name(target, function.return_type), prefixed_name(prefix, function.name),
-                     fmt::join(parameters, ", "));
+  const std::string resources = resource_list(target, catalogue, function.name, &TargetSyntax::Resource::parameters);
+  if (!resources.empty()) parameters.push_back(resources);
+  std::string text = replace_all_in(target.signature, "{result}", type_name(target, function.return_type));
+  text = replace_all_in(std::move(text), "{name}", prefixed_name(prefix, function.name));
+  return replace_all_in(std::move(text), "{parameters}", fmt::format("{}", fmt::join(parameters, ", ")));
 }
 
 NameMap build_name_map(const Catalogue& catalogue, std::string_view prefix) {
@@ -64,12 +87,14 @@ class FileWriter {
       : catalogue_(catalogue),
         target_(target.with_precision(options.precision).with_prefix(options.prefix, macro_prefix(options.prefix))),
         options_(options),
-        option_values_(option_values), names_(build_name_map(catalogue, options.prefix)) {}
+        option_values_(option_values), names_(build_name_map(catalogue, options.prefix)),
+        call_arguments_(resource_arguments(target_, catalogue)) {}
 
   EmittedFile write(const Variant& variant) {
     const auto functions = catalogue_.closure(variant.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
-    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, options_of(constants), options_.precision, options_.guards, {}, options_.domain};
+    EmissionMarker marker{target_.name, {variant.id}, options_.prefix, options_of(constants), options_.precision, options_.guards, {}, options_.domain,
+                           options_.import_path};
     const std::string form = form_suffix();
     const std::string guard = macro_prefix(options_.prefix) + upper(variant.id) + upper(form) + "_" + upper(target_.file_extension);
 
@@ -80,11 +105,7 @@ class FileWriter {
     write_constants_header(out, constants);
     write_usage_header(out, variant);
     write_intrinsic_notes(out, functions);
-    out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
-    if (!target_.preamble.empty()) out << "\n" << target_.preamble;
-    for (const Constant* constant : constants) write_constant(out, *constant);
-    for (const Function* function : functions) write_function(out, *function);
-    out << fmt::format("\n#endif  // {}\n", guard);
+    write_definitions(out, guard, constants, functions);
 
     return EmittedFile{prefixed_name(options_.prefix, "") + upper_to_file(variant.id) + form + "." + target_.file_extension,
                        out.str(), std::move(marker)};
@@ -95,7 +116,7 @@ class FileWriter {
     const auto functions = catalogue_.closure(request.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
     EmissionMarker marker{target_.name, request.variants, options_.prefix, options_of(constants), options_.precision, options_.guards,
-                          request.functions, options_.domain};
+                          request.functions, options_.domain, options_.import_path};
     const std::string form = form_suffix();
     const std::string guard = macro_prefix(options_.prefix) + "BUNDLE_" + upper(request.name) + upper(form) + "_" + upper(target_.file_extension);
 
@@ -117,17 +138,11 @@ class FileWriter {
     out << "// Functions:\n";
     for (const std::string& name : request.functions) {
       const Function& function = *catalogue_.find_function(name);
-      out << fmt::format("//   {}  [{}]\n", signature(target_, function, options_.prefix), to_string(function.role));
+      out << fmt::format("//   {}  [{}]\n", signature(target_, catalogue_, function, options_.prefix), to_string(function.role));
     }
-    out << fmt::format("// Define {}CORE_ONLY before including this file in stages without screen-space\n"
-                       "// derivatives (compute, ray tracing): it removes the [fragment] functions.\n",
-                       macro_prefix(options_.prefix));
+    write_stage_note(out, functions);
     write_intrinsic_notes(out, functions);
-    out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
-    if (!target_.preamble.empty()) out << "\n" << target_.preamble;
-    for (const Constant* constant : constants) write_constant(out, *constant);
-    for (const Function* function : functions) write_function(out, *function);
-    out << fmt::format("\n#endif  // {}\n", guard);
+    write_definitions(out, guard, constants, functions);
 
     return EmittedFile{prefixed_name(options_.prefix, request.name) + form + "." + target_.file_extension, out.str(), std::move(marker)};
   }
@@ -172,11 +187,42 @@ class FileWriter {
     out << "// Functions:\n";
     for (const std::string& name : variant.functions) {
       const Function& function = *catalogue_.find_function(name);
-      out << fmt::format("//   {}  [{}]\n", signature(target_, function, options_.prefix), to_string(function.role));
+      out << fmt::format("//   {}  [{}]\n", signature(target_, catalogue_, function, options_.prefix), to_string(function.role));
     }
-    out << fmt::format("// Define {}CORE_ONLY before including this file in stages without screen-space\n"
-                       "// derivatives (compute, ray tracing): it removes the [fragment] functions.\n",
-                       macro_prefix(options_.prefix));
+    write_stage_note(out, catalogue_.closure(variant.functions, options_.guards));
+  }
+
+  // How a stage without derivatives uses the file, and how resources are passed.
+  void write_stage_note(std::ostringstream& out, const std::vector<const Function*>& functions) const {
+    if (!target_.module) {
+      out << fmt::format("// Define {}CORE_ONLY before including this file in stages without screen-space\n"
+                         "// derivatives (compute, ray tracing): it removes the [fragment] functions.\n",
+                         macro_prefix(options_.prefix));
+      return;
+    }
+    out << "// The [fragment] functions take screen-space derivatives: call them from fragment entry points\n"
+           "// only (WGSL checks it per entry point); the others run in any stage.\n";
+    std::vector<std::string> roots;
+    for (const Function* function : functions) roots.push_back(function->name);
+    for (const std::string& resource : resources_used(target_, catalogue_, roots)) {
+      out << fmt::format("// Functions reading the {} take ({}) as their last parameters.\n", resource, target_.resources.at(resource).parameters);
+    }
+  }
+
+  // The file's definitions: in an include file, inside the include guard with the precision's
+  // preamble; in a module, after the import path and the preamble (enable directives come first).
+  void write_definitions(std::ostringstream& out, const std::string& guard, const std::vector<const Constant*>& constants,
+                         const std::vector<const Function*>& functions) const {
+    if (target_.module) {
+      if (!options_.import_path.empty()) out << "\n#define_import_path " << options_.import_path << "\n";
+      if (!target_.preamble.empty()) out << "\n" << target_.preamble;
+    } else {
+      out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
+      if (!target_.preamble.empty()) out << "\n" << target_.preamble;
+    }
+    for (const Constant* constant : constants) write_constant(out, *constant);
+    for (const Function* function : functions) write_function(out, *function);
+    if (!target_.module) out << fmt::format("\n#endif  // {}\n", guard);
   }
 
   // The target's notes on the intrinsics the emitted functions use (what it substitutes for
@@ -205,24 +251,46 @@ class FileWriter {
     replace_all(declaration, "{type}", type_name(target_, constant.type));
     replace_all(declaration, "{name}", prefixed_name(options_.prefix, constant.name));
     replace_all(declaration, "{value}", suffix_float_literals(float_literal(value_of(constant)), target_.literal_suffix));
-    out << fmt::format("\n#ifndef {0}\n#define {0}\n// {1}\n{2}\n#endif\n", guard, constant.meaning, declaration);
+    if (target_.module) out << fmt::format("\n// {}\n{}\n", constant.meaning, declaration);
+    else out << fmt::format("\n#ifndef {0}\n#define {0}\n// {1}\n{2}\n#endif\n", guard, constant.meaning, declaration);
   }
 
   void write_function(std::ostringstream& out, const Function& function) const {
     const std::string guard = macro_prefix(options_.prefix) + "FN_" + upper(function.name);
+    const bool guarded_definition = !target_.module;
     out << "\n";
-    if (function.fragment_only) out << fmt::format("#ifndef {}CORE_ONLY\n", macro_prefix(options_.prefix));
-    out << fmt::format("#ifndef {0}\n#define {0}\n", guard);
+    if (guarded_definition && function.fragment_only) out << fmt::format("#ifndef {}CORE_ONLY\n", macro_prefix(options_.prefix));
+    if (guarded_definition) out << fmt::format("#ifndef {0}\n#define {0}\n", guard);
     out << fmt::format("// [{}] {}\n", to_string(function.role), function.cite);
     for (const Parameter& parameter : function.parameters) {
       out << fmt::format("//   {}: {}\n", parameter.name, parameter.meaning);
     }
     out << fmt::format("//   returns: {}\n", function.return_meaning);
-    const std::string body = dialect::print_c_like(*function.tree, target_, names_, options_.guards);
-    out << signature(target_, function, options_.prefix) << "\n{\n" << target_.function_prologue
+    const dialect::FunctionSignature types = dialect_signature(function);
+    const dialect::PrintOptions print{&names_, options_.guards, &call_arguments_, &types};
+    const std::string body = dialect::print_body(*function.tree, target_, print);
+    out << signature(target_, catalogue_, function, options_.prefix) << (target_.module ? " {\n" : "\n{\n") << target_.function_prologue
         << suffix_float_literals(body, target_.literal_suffix) << "}\n";
-    out << "#endif\n";
-    if (function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
+    if (guarded_definition) out << "#endif\n";
+    if (guarded_definition && function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
+  }
+
+  static dialect::FunctionSignature dialect_signature(const Function& function) {
+    dialect::FunctionSignature types;
+    types.result = *dialect::Type::from_name(function.return_type);
+    for (const Parameter& parameter : function.parameters) types.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
+    return types;
+  }
+
+  // In a module language, the resources each function reads, as call arguments.
+  static std::map<std::string, std::string, std::less<>> resource_arguments(const TargetSyntax& target, const Catalogue& catalogue) {
+    std::map<std::string, std::string, std::less<>> arguments;
+    if (!target.module || target.resources.empty()) return arguments;
+    for (const Function& function : catalogue.functions()) {
+      const std::string list = resource_list(target, catalogue, function.name, &TargetSyntax::Resource::arguments);
+      if (!list.empty()) arguments[function.name] = list;
+    }
+    return arguments;
   }
 
   static void replace_all(std::string& text, std::string_view from, const std::string& to) {
@@ -251,6 +319,7 @@ class FileWriter {
     return used;
   }
   NameMap names_;
+  std::map<std::string, std::string, std::less<>> call_arguments_;
 };
 
 std::optional<double> parse_double(std::string_view text) {
@@ -332,6 +401,30 @@ void check_representable(const std::map<std::string, double>& given, std::string
   }
 }
 
+// The naga_oil module path: `::`-separated identifiers, on one line.
+void check_import_path(const TargetSyntax& target, std::string_view path) {
+  if (path.empty()) return;
+  if (!target.module) {
+    throw Error(fmt::format("--import-path is for module targets (wgsl); target {} has includes and include guards instead", target.name));
+  }
+  bool valid = path.size() <= 128;
+  std::size_t segment_length = 0;
+  for (std::size_t index = 0; valid && index < path.size(); ++index) {
+    const char c = path[index];
+    if (c == ':') {
+      valid = segment_length > 0 && index + 1 < path.size() && path[index + 1] == ':';
+      ++index;
+      segment_length = 0;
+    } else {
+      valid = c == '_' || std::isalpha(static_cast<unsigned char>(c)) || (segment_length > 0 && std::isdigit(static_cast<unsigned char>(c)));
+      ++segment_length;
+    }
+  }
+  if (!valid || segment_length == 0) {
+    throw Error(fmt::format("invalid import path '{}': write identifiers joined by '::' (e.g. saagen::deferred_sum), at most 128 characters", path));
+  }
+}
+
 }  // namespace
 
 std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const EmitOptions& options) {
@@ -342,6 +435,7 @@ std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const Em
   const bool converted = &catalogue != &base_catalogue;
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);  // throws for a precision the target lacks
+  check_import_path(target, options.import_path);
   const auto option_values = resolve_options(catalogue, options.option_values);
   check_representable(options.option_values, options.precision);
 
@@ -381,6 +475,7 @@ EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& opti
   }
   const TargetSyntax& target = builtin_target(options.target);
   (void)target.with_precision(options.precision);
+  check_import_path(target, options.import_path);
   const auto option_values = resolve_options(catalogue, options.option_values);
   check_representable(options.option_values, options.precision);
   if (request.functions.empty() || request.variants.empty()) throw Error(fmt::format("bundle '{}' has no function", request.name));
@@ -402,6 +497,7 @@ std::string marker_line(const EmissionMarker& marker) {
   if (!marker.guards) line += " guards=off";
   if (!marker.functions.empty()) line += fmt::format(" functions={}", fmt::join(marker.functions, ","));
   if (marker.domain != "alpha2") line += " domain=" + marker.domain;
+  if (!marker.import_path.empty()) line += " import_path=" + marker.import_path;
   return line;
 }
 
@@ -422,6 +518,7 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
     else if (key == "precision") marker.precision = value;
     else if (key == "guards") marker.guards = value != "off";
     else if (key == "domain") marker.domain = value;
+    else if (key == "import_path") marker.import_path = value;
     else if (key == "functions") {
       std::istringstream names(value);
       for (std::string name; std::getline(names, name, ',');) marker.functions.push_back(name);

@@ -1,11 +1,14 @@
 #include "saagen/kernels.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/syntax_tree.hpp"
 #include "saagen/target.hpp"
 #include "saagen/validation.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <regex>
 
 namespace saagen {
 namespace {
@@ -35,7 +38,66 @@ std::string intrinsic_name(const TargetSyntax& target, const std::string& dialec
   return found->second.substr(0, found->second.find('('));
 }
 
+// The file with its plain derivative calls (the table's ddx and ddy) spelt as the fine or the
+// coarse ones: what a driver that picks that form for the plain ones runs.
+std::string redirect_plain_derivatives(const TargetSyntax& target, const std::string& content, bool fine) {
+  std::string out = content;
+  for (const char* axis : {"x", "y"}) {
+    const std::string plain = intrinsic_name(target, fmt::format("dd{}", axis));
+    const std::string chosen = intrinsic_name(target, fmt::format("dd{}_{}", axis, fine ? "fine" : "coarse"));
+    out = std::regex_replace(out, std::regex("\\b" + plain + "\\("), chosen + "(");
+  }
+  return out;
+}
+
+dialect::Type dialect_type(const std::string& name) {
+  const auto type = dialect::Type::from_name(name);
+  if (!type) throw Error(fmt::format("glue: unknown dialect type '{}'", name));
+  return *type;
+}
+
 }  // namespace
+
+const GlueSymbols& kernel_glue_symbols() {
+  static const GlueSymbols symbols{
+      {{"saagen_index", "int"}, {"saagen_frag_coord", "real2"}},
+      {{"SAAGEN_LOAD", "real", {"int"}}, {"SAAGEN_STORE", "", {"int", "real"}}},
+      {{"SAAGEN_LOAD", "saagen_load"}, {"SAAGEN_STORE", "saagen_store"}}};
+  return symbols;
+}
+
+std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogue, std::string_view code, const NameMap& names,
+                           const GlueSymbols& symbols) {
+  if (!target.module) return translate(target, code, names);
+  std::map<std::string, dialect::FunctionSignature, std::less<>> functions;
+  std::map<std::string, std::string, std::less<>> resource_arguments;
+  for (const Function& function : catalogue.functions()) {
+    dialect::FunctionSignature& signature = functions[function.name];
+    signature.result = dialect_type(function.return_type);
+    for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(dialect_type(parameter.type), parameter.name);
+    std::vector<std::string> arguments;
+    for (const std::string& resource : resources_used(target, catalogue, {function.name})) {
+      arguments.push_back(target.resources.at(resource).caller_arguments);
+    }
+    if (!arguments.empty()) resource_arguments[function.name] = fmt::format("{}", fmt::join(arguments, ", "));
+  }
+  for (const GlueSymbols::Callable& callable : symbols.functions) {
+    dialect::FunctionSignature& signature = functions[callable.name];
+    if (!callable.result.empty()) signature.result = dialect_type(callable.result);
+    for (const std::string& type : callable.parameters) signature.parameters.emplace_back(dialect_type(type), "");
+  }
+  std::map<std::string, dialect::Type, std::less<>> constants;
+  for (const Constant& constant : catalogue.constants()) constants[constant.name] = dialect_type(constant.type);
+  dialect::FunctionSignature glue;  // no result; the skeleton's variables are its parameters
+  for (const auto& [name, type] : symbols.variables) glue.parameters.emplace_back(dialect_type(type), name);
+
+  const dialect::SourcePlace place{"saagen-glue", 1, "glue"};
+  dialect::Body body = dialect::parse_body(code, place);
+  dialect::check_body(body, glue, {&functions, &constants, nullptr}, place);
+  NameMap spellings = names;
+  for (const auto& [name, spelling] : symbols.spellings) spellings[name] = spelling;
+  return dialect::print_body(body, target, {&spellings, true, &resource_arguments, nullptr});
+}
 
 std::uint32_t component_count(const std::string& dialect_type) {
   if (dialect_type == "real" || dialect_type == "int" || dialect_type == "bool") return 1;
@@ -90,7 +152,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
 
   NameMap names;
   for (const Function& function : catalogue.functions()) names[function.name] = prefixed_name(marker->prefix, function.name);
-  const std::string body = translate(target, request.body, names);
+  const std::string body = translate_glue(target, catalogue, request.body, names, kernel_glue_symbols());
 
   // The plain derivative macros expand to the target's coarse or fine spelling: the built-ins of
   // the base table, which the half-precision derivative helpers call on fp32 values (the
@@ -107,6 +169,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
     text = substitute(std::move(text), "{width}", std::to_string(request.width));
     text = substitute(std::move(text), "{plain_ddx}", plain_ddx);
     text = substitute(std::move(text), "{plain_ddy}", plain_ddy);
+    for (const char* type : {"real", "real2", "real3", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
     return text;
   };
   std::vector<SourcePiece> pieces;
@@ -120,8 +183,11 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
     }
   }
   const std::string resources = resource_declarations(target, catalogue, roots);
-  if (!resources.empty()) pieces.push_back({"saagen-kernel-resources", resources});
-  pieces.push_back({file_name, content});
+  // An include needs its resources declared before it; a module starts with its enable
+  // directives, and WGSL's module-scope declarations may come in any order.
+  if (!resources.empty() && !target.module) pieces.push_back({"saagen-kernel-resources", resources});
+  pieces.push_back({file_name, request.redirect_plain_derivatives ? redirect_plain_derivatives(base, content, fine) : content});
+  if (!resources.empty() && target.module) pieces.push_back({"saagen-kernel-resources", resources});
   pieces.push_back({"saagen-kernel-main", substitute(fill(skeleton->second.epilogue), "{body}", body)});
   return pieces;
 }

@@ -41,14 +41,20 @@ Json resources_json(const Catalogue& catalogue, const Variant& variant, std::str
   Json resources = Json::array();
   std::vector<std::string> names;
   Json declarations = Json::object();
+  Json passed = Json::object();
   for (const std::string& target_name : builtin_target_names()) {
     const TargetSyntax target = builtin_target(target_name).with_prefix(prefix, macro_prefix(prefix));
     for (const std::string& name : resources_used(target, catalogue, variant.functions)) {
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-      declarations[name][target_name] = target.resources.find(name)->second.declaration;
+      const TargetSyntax::Resource& resource = target.resources.find(name)->second;
+      declarations[name][target_name] = resource.declaration;
+      // A module language passes the resource to the functions that read it.
+      if (target.module) passed[name][target_name] = resource.parameters;
     }
   }
-  for (const std::string& name : names) resources.push_back({{"name", name}, {"example_declaration", declarations[name]}});
+  for (const std::string& name : names) {
+    resources.push_back({{"name", name}, {"example_declaration", declarations[name]}, {"parameters", passed.value(name, Json::object())}});
+  }
   return resources;
 }
 

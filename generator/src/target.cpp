@@ -203,12 +203,21 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   target.description = require_string(json, "description", source);
   target.file_extension = require_string(json, "file_extension", source);
   const std::string language = require_string(json, "language", source);
-  if (language != "glsl" && language != "hlsl") throw Error(fmt::format("{}: language '{}' is not glsl or hlsl", source, language));
-  target.language = language == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  if (language != "glsl" && language != "hlsl" && language != "wgsl") {
+    throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
+  }
+  target.language = language == "hlsl" ? SourceLanguage::hlsl : language == "wgsl" ? SourceLanguage::wgsl : SourceLanguage::glsl;
+  target.module = json.value("module", false);
+  if (json.contains("signature")) target.signature = require_string(json, "signature", source);
+  if (json.contains("parameter")) target.parameter = require_string(json, "parameter", source);
+  if (json.contains("reserved_words")) {
+    for (const Json& word : json.at("reserved_words")) target.reserved_words.push_back(word.get<std::string>());
+  }
   for (const auto& [key, value] : require(json, "types", source).items()) target.types[key] = value.get<std::string>();
   for (const std::string& type : dialect::type_names()) {
     if (!target.types.count(type)) throw Error(fmt::format("{}: 'types' has no spelling for dialect type '{}'", source, type));
   }
+  target.wide_types = target.types;
   for (const auto& [key, value] : require(json, "intrinsics", source).items()) target.intrinsics[key] = value.get<std::string>();
   target.constant_declaration = require_string(json, "constant_declaration", source);
   read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
@@ -253,6 +262,12 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
       Resource resource;
       for (const Json& intrinsic : require(entry, "intrinsics", source)) resource.intrinsics.push_back(intrinsic.get<std::string>());
       resource.declaration = require_string(entry, "declaration", source);
+      resource.parameters = entry.value("parameters", "");
+      resource.arguments = entry.value("arguments", "");
+      resource.caller_arguments = entry.value("caller_arguments", "");
+      if (target.module && (resource.parameters.empty() || resource.arguments.empty() || resource.caller_arguments.empty())) {
+        throw Error(fmt::format("{}: resource {} of a module target needs 'parameters', 'arguments' and 'caller_arguments'", source, name));
+      }
       target.resources[name] = std::move(resource);
     }
   }

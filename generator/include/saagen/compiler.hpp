@@ -8,7 +8,8 @@
 
 namespace saagen {
 
-enum class SourceLanguage { glsl, hlsl };
+// WGSL is not compiled here: Tint (Dawn) validates it; see saagen/validation.hpp.
+enum class SourceLanguage { glsl, hlsl, wgsl };
 enum class ShaderStage { vertex, fragment, compute };
 // The API that consumes the SPIR-V. GLSL can target both; HLSL targets Vulkan only.
 // opengl_es is source-level only: GLSL ES 3.00 (WebGL2, OpenGL ES 3.0) has no SPIR-V form, so

@@ -39,6 +39,9 @@ struct KernelRequest {
   std::uint32_t width = 0;          // framebuffer / emulated image width in pixels (even)
   std::uint32_t workgroup_size = 64;
   PlainDerivative plain_derivative = PlainDerivative::coarse;
+  // Also for the other kinds: the emitted file's plain ddx/ddy calls are spelt as
+  // plain_derivative's (a target without macros, WGSL, cannot redirect them in the skeleton).
+  bool redirect_plain_derivatives = false;
 };
 
 // Source pieces for compile_to_spirv: skeleton prologue, the emitted file, skeleton epilogue
@@ -55,6 +58,31 @@ CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::str
 // vector component by component), calls it, and stores every component of the result. Sets
 // the request's strides.
 std::string load_call_store_body(const Catalogue& catalogue, const std::string& function_name, KernelRequest& request);
+
+// The names a glue body (dialect statements of a kernel or of validation) may use besides the
+// catalogue's functions: the skeleton's variables, its functions, and how the target spells them.
+struct GlueSymbols {
+  std::vector<std::pair<std::string, std::string>> variables;  // name, dialect type
+  // name, dialect result type ("" for none), dialect parameter types
+  struct Callable {
+    std::string name;
+    std::string result;
+    std::vector<std::string> parameters;
+  };
+  std::vector<Callable> functions;
+  NameMap spellings;  // glue name -> the skeleton's name, where they differ
+};
+
+// The symbols of the kernel skeletons: SAAGEN_LOAD, SAAGEN_STORE, saagen_index, saagen_frag_coord.
+const GlueSymbols& kernel_glue_symbols();
+
+// A glue body in the target's language. C-like targets: token by token (saagen::translate), the
+// skeleton's macros doing the rest. Module targets (WGSL): parsed, type-checked against the
+// catalogue and `symbols`, and printed from the typed tree; calls of functions that read a
+// resource pass the skeleton's resource declarations (TargetSyntax::Resource::caller_arguments).
+// `names`: the catalogue's names as emitted. `target` has its precision and prefix applied.
+std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogue, std::string_view code, const NameMap& names,
+                           const GlueSymbols& symbols);
 
 // Number of floats in a dialect type (real3 -> 3).
 std::uint32_t component_count(const std::string& dialect_type);

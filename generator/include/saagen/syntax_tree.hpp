@@ -133,7 +133,8 @@ struct CheckContext {
   const std::vector<IntrinsicSignature>* intrinsics = nullptr;  // null: intrinsics()
 };
 
-// Types every expression, marks assigned locals mutable, and refuses (saagen::Error, "file:line:
+// Types every expression, marks assigned locals mutable (a signature whose result is none checks a
+// body of statements that returns nothing, such as harness glue), and refuses (saagen::Error, "file:line:
 // function: what; what to do") a body that mixes types without a conversion, calls an unknown
 // function, uses an undeclared name or returns a value of the wrong type.
 void check_body(Body& body, const FunctionSignature& signature, const CheckContext& context, const SourcePlace& place);
@@ -155,5 +156,30 @@ using NameMap = std::map<std::string, std::string, std::less<>>;
 std::string print_c_like(const Body& body, const TargetSyntax& target, const NameMap& names, bool guarded);
 // One expression, without its leading layout.
 std::string print_c_like(const Expr& expression, const TargetSyntax& target, const NameMap& names, bool guarded);
+
+// What printing a body needs besides the tree and the target's table.
+struct PrintOptions {
+  const NameMap* names = nullptr;  // template names -> emitted names
+  bool guarded = true;             // guards resolved to the safe form (else the paper form)
+  // Arguments appended to the calls of a template function (unprefixed name -> text), in a module
+  // language: the resources the callee reads (TargetSyntax::Resource).
+  const std::map<std::string, std::string, std::less<>>* call_arguments = nullptr;
+  // The function's signature, when the body is a function's: a module language copies the
+  // parameters the body assigns into locals (WGSL parameters are immutable). Null for glue,
+  // whose free names are the skeleton's variables.
+  const FunctionSignature* signature = nullptr;
+};
+
+// Prints a body in WGSL: `let` for locals never reassigned and `var` for the others, every
+// declaration typed, `select` for ?:, braces around every branch and loop body, shift amounts
+// converted to u32, and locals or parameters called like a reserved word renamed (a trailing '_').
+// Increments and assignments print as statements only (WGSL has no such expressions); a template
+// that uses one as a value is refused with saagen::Error.
+std::string print_wgsl(const Body& body, const TargetSyntax& target, const PrintOptions& options);
+// The body in the target's language (TargetSyntax::language).
+std::string print_body(const Body& body, const TargetSyntax& target, const PrintOptions& options);
+// The name a parameter has in a signature printed for `target`: renamed when it is a reserved
+// word, and suffixed "_in" where a module language copies it into a mutable local.
+std::string parameter_name(const TargetSyntax& target, const Body* body, const std::string& name);
 
 }  // namespace saagen::dialect

@@ -42,6 +42,17 @@ struct TargetSyntax {
   // dialect intrinsic -> pattern with {0}, {1}, ... for the arguments
   std::map<std::string, std::string, std::less<>> intrinsics;
   std::string constant_declaration;  // with {type}, {name}, {value}
+  // A function's signature and one parameter (keys "signature" and "parameter"; the C form by
+  // default): {result} {name}({parameters}) and {type} {name}.
+  std::string signature = "{result} {name}({parameters})";
+  std::string parameter = "{type} {name}";
+  // Key "module": the file is a self-contained module of a language without a preprocessor
+  // (WGSL): no include guards, no CORE_ONLY macro; the language checks per entry point that
+  // fragment-only functions are reached from fragment entry points only.
+  bool module = false;
+  // Key "reserved_words": words a template local or parameter may not be called in this language
+  // (keywords, reserved words, built-ins the printer emits); the printer appends '_' to such a name.
+  std::vector<std::string> reserved_words;
   // Optional (key "declaration_types"): the spelling of a type where it declares something
   // (parameters, return types, constants) when it differs from a constructor's, as in GLSL ES,
   // where a declaration carries a precision qualifier ("highp float") and a constructor cannot.
@@ -66,9 +77,16 @@ struct TargetSyntax {
   // templates/glints/): the intrinsics that read one, and the declaration that validation and
   // kernel skeletons put before an emitted file whose functions use them ({macro_prefix} is
   // substituted by with_prefix). Emitted files never declare resources: the includer does.
+  // In a module language (WGSL), a resource is passed, not named by a macro: "parameters" are
+  // appended to every function that reads it directly or through a callee, "arguments" to every
+  // call of such a function inside the file, and "caller_arguments" (the declaration's names) to
+  // the calls of the validation and kernel glue.
   struct Resource {
     std::vector<std::string> intrinsics;
     std::string declaration;
+    std::string parameters;
+    std::string arguments;
+    std::string caller_arguments;
   };
   std::map<std::string, Resource, std::less<>> resources;
 
@@ -80,6 +98,9 @@ struct TargetSyntax {
   TargetSyntax with_prefix(std::string_view prefix, std::string_view macro_prefix) const;
   // The declaration spelling of a dialect type (declaration_types, else types).
   const std::string& declaration_type(const std::string& dialect_type) const;
+  // The fp32 spellings of the dialect types, whatever the precision (intrinsic patterns of a
+  // narrower precision widen with {wide_type}; set by parse).
+  std::map<std::string, std::string, std::less<>> wide_types;
   std::string literal_suffix;      // set by with_precision
   std::string preamble;            // set by with_precision
   bool native_16bit = false;       // set by with_precision

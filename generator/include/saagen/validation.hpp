@@ -8,6 +8,8 @@
 #include "saagen/emitter.hpp"
 #include "saagen/target.hpp"
 
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,20 @@ std::vector<std::string> resources_used(const TargetSyntax& target, const Catalo
 // need, through their dependency closure in `catalogue`; empty when they sample nothing.
 // `target` must have its prefix applied (with_prefix).
 std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots);
+
+// Validates emitted WGSL files with Tint: each file inside a fragment and a compute entry point
+// that call its public functions (the compute one leaves the [fragment] functions out), compiled
+// by Dawn for Node (harness/webgpu/run.mjs, on SwiftShader's Vulkan) in one run for all files. A
+// check passes with zero errors and zero warnings. Throws saagen::Error when the runner cannot
+// run (no Node.js, no npm packages, no Vulkan ICD).
+std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, const std::vector<std::pair<std::string, std::string>>& files);
+
+// The WebGPU runner (harness/webgpu/run.mjs): `node RUNNER DIR` runs DIR/jobs.json and writes
+// DIR/results.json. The command is `$SAAGEN_NODE` (node) and `$SAAGEN_WEBGPU_RUNNER` (the
+// checkout's runner by default), shell-quoted; run_webgpu_jobs writes `jobs` to `directory`,
+// runs it, and returns the parsed results, or throws saagen::Error with the runner's first line.
+std::string webgpu_runner_command();
+nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs, const std::filesystem::path& directory);
 
 // Validates an emitted file's content. Throws saagen::Error when the content has no saagen
 // marker or names an unknown target/variant.
