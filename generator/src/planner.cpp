@@ -691,6 +691,8 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     request.variants = material_plan.variants;
     request.variants.push_back("brdf-" + std::string(to_string(material.ndf)));
     for (const std::string& target : manifest.targets) {
+      // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
+      if (builtin_target(target).module) continue;
       const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
       const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
       // The bundle's functions are in the manifest's roughness domain (its wrappers included).
@@ -770,6 +772,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
                           fmt::join(costs, ", "), material.precision, material_plan.brdf ? " + matrix BRDF" : " + axis BRDF",
                           to_string(material.ndf));
+    }
+    for (const std::string& target : manifest.targets) {
+      if (builtin_target(target).module && !material.glints) {
+        text += fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target);
+      }
     }
   }
 
