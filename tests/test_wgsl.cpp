@@ -45,6 +45,19 @@
 
 namespace {
 
+// Emission options set field by field (designated initializers would leave members unnamed).
+saagen::EmitOptions wgsl_options(const std::string& precision = "fp32", bool guards = true, const std::string& domain = "alpha2",
+                                 std::vector<std::string> variants = {}, const std::string& import_path = "") {
+  saagen::EmitOptions options;
+  options.target = "wgsl";
+  options.precision = precision;
+  options.guards = guards;
+  options.domain = domain;
+  options.variants = std::move(variants);
+  options.import_path = import_path;
+  return options;
+}
+
 namespace fs = std::filesystem;
 namespace ref = saagen::ref;
 using saagen::Catalogue;
@@ -143,15 +156,15 @@ std::vector<std::pair<std::string, std::string>> files_to_validate(bool with_f16
     options.target = "wgsl";
     for (saagen::EmittedFile& file : saagen::emit_variants(every_variant, options)) files.emplace_back(file.file_name, std::move(file.content));
   };
-  add({});
-  if (with_f16) add({.precision = "fp16"});
-  add({.guards = false});
+  add(wgsl_options());
+  if (with_f16) add(wgsl_options("fp16"));
+  add(wgsl_options("fp32", false));
   for (const char* domain : {"alpha", "perceptual", "smoothness"}) {
-    add({.domain = domain});
-    if (with_f16) add({.precision = "fp16", .domain = domain});
+    add(wgsl_options("fp32", true, domain));
+    if (with_f16) add(wgsl_options("fp16", true, domain));
   }
   // Several variants in one module, with the naga_oil header a module importer strips.
-  saagen::EmitOptions options{.target = "wgsl"};
+  const saagen::EmitOptions options = wgsl_options();
   const std::vector<std::string> variants = {"forward-aniso-projected", "deferred-sum", "brdf-ggx", "deferred-max"};
   const saagen::BundleRequest request{"scene", saagen::public_functions(Catalogue::builtin(), variants), variants, {}};
   files.emplace_back("saa_scene.wgsl", saagen::emit_bundle(Catalogue::builtin(), options, request).content);
