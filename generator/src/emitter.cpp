@@ -358,6 +358,25 @@ void validate_prefix(std::string_view prefix) {
   }
 }
 
+void validate_import_path(std::string_view path) {
+  bool valid = !path.empty() && path.size() <= 128;
+  std::size_t segment_length = 0;
+  for (std::size_t index = 0; valid && index < path.size(); ++index) {
+    const char c = path[index];
+    if (c == ':') {
+      valid = segment_length > 0 && index + 1 < path.size() && path[index + 1] == ':';
+      ++index;
+      segment_length = 0;
+    } else {
+      valid = c == '_' || std::isalpha(static_cast<unsigned char>(c)) || (segment_length > 0 && std::isdigit(static_cast<unsigned char>(c)));
+      ++segment_length;
+    }
+  }
+  if (!valid || segment_length == 0) {
+    throw Error(fmt::format("invalid import path '{}': write identifiers joined by '::' (e.g. saagen::deferred_sum), at most 128 characters", path));
+  }
+}
+
 std::map<std::string, double> resolve_options(const Catalogue& catalogue, const std::map<std::string, double>& given) {
   std::map<std::string, double> values;
   for (const Constant& constant : catalogue.constants()) {
@@ -401,28 +420,12 @@ void check_representable(const std::map<std::string, double>& given, std::string
   }
 }
 
-// The naga_oil module path: `::`-separated identifiers, on one line.
 void check_import_path(const TargetSyntax& target, std::string_view path) {
   if (path.empty()) return;
   if (!target.module) {
     throw Error(fmt::format("--import-path is for module targets (wgsl); target {} has includes and include guards instead", target.name));
   }
-  bool valid = path.size() <= 128;
-  std::size_t segment_length = 0;
-  for (std::size_t index = 0; valid && index < path.size(); ++index) {
-    const char c = path[index];
-    if (c == ':') {
-      valid = segment_length > 0 && index + 1 < path.size() && path[index + 1] == ':';
-      ++index;
-      segment_length = 0;
-    } else {
-      valid = c == '_' || std::isalpha(static_cast<unsigned char>(c)) || (segment_length > 0 && std::isdigit(static_cast<unsigned char>(c)));
-      ++segment_length;
-    }
-  }
-  if (!valid || segment_length == 0) {
-    throw Error(fmt::format("invalid import path '{}': write identifiers joined by '::' (e.g. saagen::deferred_sum), at most 128 characters", path));
-  }
+  validate_import_path(path);
 }
 
 }  // namespace

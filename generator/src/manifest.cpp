@@ -489,7 +489,7 @@ const std::vector<std::string>& manifest_keys() {
     for (const Constant& constant : Catalogue::builtin().constants()) {
       if (!constant.option.empty()) names.push_back(constant.option);
     }
-    names.insert(names.end(), {"preset", "domain", "material"});
+    names.insert(names.end(), {"preset", "domain", "import_path", "material"});
     return names;
   }();
   return keys;
@@ -540,6 +540,17 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
   }
 
   if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
+  const std::string import_rule = "identifiers joined by '::' (e.g. \"saagen::scene\"), for a module target (wgsl) in targets";
+  if (const auto path = top.string("import_path", import_rule)) {
+    try {
+      validate_import_path(*path);
+    } catch (const Error&) {
+      top.fail_key("import_path", fmt::format("\"{}\" is not a module path", show(*path)), import_rule);
+    }
+    const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(), [](const std::string& target) { return builtin_target(target).module; });
+    if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
+    manifest.import_path = *path;
+  }
   read_options(manifest, top, catalogue);
   read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);

@@ -671,6 +671,9 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
   options.domain = manifest.domain;
+  if (builtin_target(target).module && !manifest.import_path.empty()) {
+    options.import_path = precision == "fp32" ? manifest.import_path : manifest.import_path + "_" + precision;
+  }
   const auto form = target_precision(target, precision);
   if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
   options.precision = *form;

@@ -69,6 +69,14 @@ const GlueSymbols& validation_glue_symbols() {
   return symbols;
 }
 
+// naga_oil's `#define_import_path` line, which its composer strips before WGSL sees the module,
+// turned into a comment on the same line (the module's line numbers stay).
+std::string without_import_path(std::string content) {
+  const auto directive = content.find("\n#define_import_path ");
+  if (directive != std::string::npos) content.insert(directive + 1, "// ");
+  return content;
+}
+
 std::string client_name(ClientApi client) {
   return client == ClientApi::vulkan ? "vulkan" : client == ClientApi::opengl ? "opengl" : "opengl_es";
 }
@@ -150,7 +158,7 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
   // An include needs its resources declared before it; a module opens with its enable directives.
   const std::string resources = resource_declarations(target, catalogue, functions);
   if (!resources.empty() && !target.module) pieces.push_back({"saagen-validation-resources", resources});
-  pieces.push_back({file_name, content});
+  pieces.push_back({file_name, target.module ? without_import_path(content) : content});
   if (!resources.empty() && target.module) pieces.push_back({"saagen-validation-resources", resources});
   pieces.push_back({"saagen-validation-main", substitute(fill(skeleton.epilogue), "{calls}", calls)});
   return pieces;
@@ -297,8 +305,15 @@ std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, cons
   std::vector<FileValidation> validations;
   for (const auto& [file_name, content] : files) validations.push_back({file_name, {}});
   const auto& list = results.at("results");
+  const auto features = results.value("features", nlohmann::json::array());
+  const bool has_f16 = std::find(features.begin(), features.end(), "shader-f16") != features.end();
   for (std::size_t index = 0; index < modules.size(); ++index) {
     const Module& module = modules[index];
+    // An f16 module compiles only on a device with shader-f16: without it, it is not judged.
+    if (!has_f16 && find_marker(files[module.file].second)->precision != "fp32") {
+      validations[module.file].checks.push_back({module.check + " skipped: the WebGPU adapter offers no shader-f16", true, "", 0});
+      continue;
+    }
     const nlohmann::json& result = list.at(index);
     const std::string& file_name = files[module.file].first;
     std::string log;

@@ -54,6 +54,10 @@ struct EmittedFile {
 // at most 32 characters, no "__", not starting with "gl_".
 void validate_prefix(std::string_view prefix);
 
+// Throws saagen::Error unless `path` is a naga_oil module path: identifiers joined by "::", at
+// most 128 characters (EmitOptions::import_path).
+void validate_import_path(std::string_view path);
+
 // Resolves option values against the catalogue (defaults, range checks); throws saagen::Error
 // naming the option and its allowed interval.
 std::map<std::string, double> resolve_options(const Catalogue& catalogue, const std::map<std::string, double>& given);

@@ -56,6 +56,9 @@ struct Manifest {
   // none, its variant for deferred materials that name none, and its roughness domain.
   std::optional<std::string> preset;
   std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
+  // `import_path`: the naga_oil module path of the module-language (WGSL) bundles; the fp16
+  // bundle's is PATH_fp16. Empty: none.
+  std::string import_path;
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.
