@@ -28,7 +28,8 @@ for package in "${packages[@]}"; do
   fi
 done
 
-# Node.js and npm for the WebGL2 tests of the GLSL ES target and the three.js example
+# Node.js and npm for the WebGL2 tests of the GLSL ES target and the three.js example, and for
+# the WGSL target: Tint validation and WebGPU runs through the npm package webgpu (Dawn for Node)
 # (puppeteer-core and three from the npm registry, pinned by package-lock.json; npm ci below, no
 # browser download). Debian's packages only where no node/npm is on the PATH: a Node.js from
 # another source (e.g. NodeSource's nodejs, which bundles npm and conflicts with Debian's npm)
