@@ -28,12 +28,11 @@ for package in "${packages[@]}"; do
   fi
 done
 
-# Node.js and npm for the WebGL2 tests of the GLSL ES target and the three.js example, and for
-# the WGSL target: Tint validation and WebGPU runs through the npm package webgpu (Dawn for Node)
-# (puppeteer-core and three from the npm registry, pinned by package-lock.json; npm ci below, no
-# browser download). Debian's packages only where no node/npm is on the PATH: a Node.js from
-# another source (e.g. NodeSource's nodejs, which bundles npm and conflicts with Debian's npm)
-# is used as it is.
+# Node.js and npm for the WebGL2 tests of the GLSL ES target, the three.js example and the WGSL
+# target's WebGPU runs (puppeteer-core, three and webgpu, i.e. Dawn for Node, from the npm
+# registry, pinned by package-lock.json; npm ci below, no browser download). Debian's packages
+# only where no node/npm is on the PATH: a Node.js from another source (e.g. NodeSource's
+# nodejs, which bundles npm and conflicts with Debian's npm) is used as it is.
 if ! command -v node > /dev/null || ! command -v npm > /dev/null; then
   missing+=(nodejs npm)
 fi
@@ -51,7 +50,10 @@ fi
 
 # npm packages exactly as package-lock.json pins them, when node_modules is missing or older than
 # the lockfile. puppeteer-core downloads no browser (the tests use /usr/bin/chromium);
-# --ignore-scripts runs no package's install scripts.
+# --ignore-scripts runs no package's install scripts. webgpu ships its prebuilt Dawn for Node
+# addon (dist/linux-x64/dawn.node) inside the package, so it needs none: its postinstall only
+# clears macOS's quarantine attribute. harness/webgpu runs it on SwiftShader's Vulkan ICD, which
+# the chromium package above installs.
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if [ ! -f "$root/node_modules/.package-lock.json" ] || [ "$root/package-lock.json" -nt "$root/node_modules/.package-lock.json" ]; then
   echo "install-deps: npm ci in $root"

@@ -10,7 +10,8 @@
 // runner itself worked, however many jobs failed; otherwise (no adapter, DIR not a directory,
 // jobs.json unreadable or not an array, results.json unwritable) exit status 1 and one line on
 // stderr. Nothing bounds a job's time (a shader that never ends hangs the runner): the caller
-// puts its own time limit on the process.
+// puts its own time limit on the process. stdout is not part of the protocol: it ends with the
+// runner's one-line summary, and Dawn prints its shader compilation logs (warnings) there too.
 //
 // jobs.json: an array of jobs. Fields of every job:
 //   id     string matching [A-Za-z0-9_][A-Za-z0-9_.-]* (at most 200 characters), unique in the run
@@ -61,7 +62,8 @@
 //                                   // module did not compile, a pipeline was refused, a WebGPU
 //                                   // call failed, an error escaped the scopes, the device was lost
 //         ms: number } ] }          // the job's time
-// A job that failed never stops the ones after it; a lost device is opened anew for them.
+// A job that failed never stops the ones after it; a lost device is opened anew for them (if
+// that fails, the runner exits with status 1 and writes no results.json).
 import fs from 'node:fs';
 import path from 'node:path';
 import { openDevice } from './device.mjs';
@@ -89,7 +91,7 @@ function header(session) {
 
 // A second job with an id already seen would overwrite the first one's output file.
 function duplicateResult(job) {
-  return { id: job.id, messages: [], error: `duplicate job id ${job.id}` };
+  return { id: job.id, messages: [], error: `duplicate job id ${job.id}`, ms: 0 };
 }
 
 // Runs every job; a lost device is replaced so that the jobs after the one that lost it still

@@ -124,6 +124,7 @@ export class JobRunner {
       result.error = messageOf(error);
     }
     this.noteDeviceTrouble(result);
+    if (result.error !== undefined && result.id !== null && ID_PATTERN.test(result.id)) this.clearOutput(result.id);
     result.ms = Math.round((performance.now() - started) * 10) / 10;
     return result;
   }
@@ -184,8 +185,8 @@ export class JobRunner {
     const compiled = await this.compiledModule(job.code, result);
     const pipeline = await this.cachedPipeline(compiled, 'fragment', () => this.device.createRenderPipeline(
       this.renderPipelineDescriptor(layout.pipelineLayout, compiled.module, 'fs')));
-    const view = this.renderTarget(width, height);
     const bytes = await this.execute(input, outputBytes, 'fragment', (encoder, bindGroup) => {
+      const view = this.renderTarget(width, height); // here, inside execute's error scopes
       const pass = encoder.beginRenderPass({
         colorAttachments: [{ view, loadOp: 'clear', clearValue: [0, 0, 0, 0], storeOp: 'store' }] });
       pass.setPipeline(pipeline);
@@ -273,10 +274,13 @@ export class JobRunner {
 
   outputBytes(job) {
     const bytes = positiveInteger(job, 'output_floats') * 4;
-    if (bytes > this.limits.maxStorageBufferBindingSize) {
-      throw new JobError(`output_floats ${job.output_floats} exceeds the storage binding limit of ${this.limits.maxStorageBufferBindingSize} bytes`);
-    }
+    this.checkBindingSize(bytes, `output_floats ${job.output_floats}`);
     return bytes;
+  }
+
+  checkBindingSize(bytes, what) {
+    const limit = this.limits.maxStorageBufferBindingSize;
+    if (bytes > limit) throw new JobError(`${what} exceeds the storage binding limit of ${limit} bytes`);
   }
 
   textureSide(job, field) {
@@ -298,9 +302,7 @@ export class JobRunner {
       throw new JobError(`cannot read input ${job.input}: ${error.code ?? messageOf(error)}`);
     }
     if (bytes.length % 4 !== 0) throw new JobError(`input ${job.input} is ${bytes.length} bytes, not a whole number of f32`);
-    if (bytes.length > this.limits.maxStorageBufferBindingSize) {
-      throw new JobError(`input ${job.input} exceeds the storage binding limit of ${this.limits.maxStorageBufferBindingSize} bytes`);
-    }
+    this.checkBindingSize(bytes.length, `input ${job.input}`);
     return bytes.length === 0 ? null : bytes;
   }
 

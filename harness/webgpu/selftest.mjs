@@ -155,7 +155,10 @@ function resultChecks(dir, byId) {
       const result = byId.too_wide_workgroup;
       return result.error && errorsOf(result).length === 0 && result.pipeline_errors.length === 1 ? null : JSON.stringify(result);
     },
-    'too many invocations refused': () => (byId.too_many_invocations.error?.includes('invocations') ? null : JSON.stringify(byId.too_many_invocations)),
+    'too many invocations refused': () => {
+      const result = byId.too_many_invocations;
+      return result.error?.includes('invocations') ? null : JSON.stringify(result);
+    },
     'compute: output = input * 2 + 1': () => outputCheck(dir, byId.doubling, COMPUTE_COUNT, (i) => inputValue(i) * 2 + 1),
     'compute without input: output = 1': () => outputCheck(dir, byId.doubling_no_input, 100, () => 1),
     'fragment: output = position.x + 1000 * position.y': () => outputCheck(dir, byId.positions, FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
@@ -177,7 +180,8 @@ function runnerChecks(dir, run) {
     'runner stderr empty': () => (run.stderr === '' ? null : run.stderr),
     'missing DIR: exit status 1, one line on stderr': () => {
       const missing = runRunner(path.join(dir, 'missing'));
-      return missing.status === 1 && /^run\.mjs: .*\n$/.test(missing.stderr) ? null : `status ${missing.status}: ${missing.stderr}`;
+      const oneLine = /^run\.mjs: .*\n$/.test(missing.stderr);
+      return missing.status === 1 && oneLine ? null : `status ${missing.status}: ${missing.stderr}`;
     },
   };
 }
@@ -225,7 +229,8 @@ function padding(kb, seed) {
   let length = 0;
   for (let k = 0; length < kb * 1024; ++k) {
     const body = k === 0 ? 'x' : `pad_${k - 1}(x)`;
-    const text = `fn pad_${k}(x: f32) -> f32 {\n  let scaled = ${body} * 1.0000001 + ${seed}.0e-30;\n  return max(scaled, -3.0e38);\n}\n`;
+    const text = `fn pad_${k}(x: f32) -> f32 {\n  let scaled = ${body} * 1.0000001 + ${seed}.0e-30;\n` +
+                 '  return max(scaled, -3.0e38);\n}\n';
     functions.push(text);
     length += text.length;
   }
@@ -251,8 +256,9 @@ function bench(count, padKb) {
   const results = JSON.parse(fs.readFileSync(path.join(dir, 'results.json'), 'utf8'));
   const failed = results.results.filter((result) => result.error);
   const moduleKb = (jobs[0].code.length / 1024).toFixed(1);
+  const ownSeconds = (results.elapsed_ms / 1000).toFixed(2);
   console.log(`bench: ${count} compute jobs x ${invocations} invocations, modules of ${moduleKb} KB: ` +
-              `${run.seconds.toFixed(2)} s wall (runner's own: ${(results.elapsed_ms / 1000).toFixed(2)} s), ${failed.length} failed`);
+              `${run.seconds.toFixed(2)} s wall (runner's own: ${ownSeconds} s), ${failed.length} failed`);
   if (failed.length > 0) console.log(`first failure: ${failed[0].error}`);
   fs.rmSync(dir, { recursive: true, force: true });
   return failed.length === 0 ? 0 : 1;
