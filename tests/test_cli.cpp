@@ -177,8 +177,8 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
 TEST_F(Cli, ValidateWithoutDirectoryChecksEverything) {
   const CliRun run = saagen({"validate"});
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
-  // 15 variants (glints included) for each of glsl, gles and hlsl.
-  EXPECT_NE(run.out.find("45 file(s) validated, 0 failed"), std::string::npos) << run.out;
+  // 15 variants (glints included) for each of glsl, gles, hlsl and wgsl (Tint).
+  EXPECT_NE(run.out.find("60 file(s) validated, 0 failed"), std::string::npos) << run.out;
 }
 
 TEST_F(Cli, RejectsBadInputWithOneLineAndWritesNothing) {

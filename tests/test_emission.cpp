@@ -250,7 +250,7 @@ TEST(Emission, UnknownVariantAndTargetAreRejected) {
     saagen::emit_variants(Catalogue::builtin(), options);
     FAIL();
   } catch (const saagen::Error& error) {
-    EXPECT_STREQ(error.what(), "unknown target 'metal'; choose one of: gles, glsl, hlsl");
+    EXPECT_STREQ(error.what(), "unknown target 'metal'; choose one of: gles, glsl, hlsl, wgsl");
   }
 }
 

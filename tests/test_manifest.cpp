@@ -141,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, preset, domain, material"},
+                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, preset, domain, import_path, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
@@ -150,7 +150,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"wrong_type_boolean", header + forward_material + "tangents = \"yes\"\n",
                 "scene.toml:5:12: key 'tangents' of material 'm': must be a boolean, got a string; allowed: true, false"},
         BadCase{"wrong_type_targets", "targets = \"glsl\"\n" + forward_material,
-                "scene.toml:1:11: key 'targets': must be an array, got a string; allowed: an array of \"gles\", \"glsl\", \"hlsl\""},
+                "scene.toml:1:11: key 'targets': must be an array, got a string; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"wrong_type_material", header + "material = 3\n",
                 "scene.toml:2:12: key 'material': must be an array of tables, got an integer; allowed: an array of tables, one "
                 "[[material]] per material"},
@@ -164,13 +164,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:5:11: key 'variant' of material 'm': not a filter variant (the BRDF is planned from 'ndf'): "
                 "\"brdf-ggx\"; allowed: " + filters},
         BadCase{"unknown_target", "targets = [\"glsl\", \"metal\"]\n" + forward_material,
-                "scene.toml:1:20: key 'targets': unknown target \"metal\"; allowed: \"gles\", \"glsl\", \"hlsl\""},
+                "scene.toml:1:20: key 'targets': unknown target \"metal\"; allowed: \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"duplicate_target", "targets = [\"glsl\", \"glsl\"]\n" + forward_material,
-                "scene.toml:1:20: key 'targets': \"glsl\" is listed twice; allowed: each of \"gles\", \"glsl\", \"hlsl\" at most once"},
+                "scene.toml:1:20: key 'targets': \"glsl\" is listed twice; allowed: each of \"gles\", \"glsl\", \"hlsl\", \"wgsl\" at most once"},
         BadCase{"empty_targets", "targets = []\n" + forward_material,
-                "scene.toml:1:11: key 'targets': the array is empty; allowed: an array of \"gles\", \"glsl\", \"hlsl\""},
+                "scene.toml:1:11: key 'targets': the array is empty; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"missing_targets", forward_material,
-                "scene.toml:1:1: missing key 'targets'; allowed: an array of \"gles\", \"glsl\", \"hlsl\""},
+                "scene.toml:1:1: missing key 'targets'; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"sigma2_out_of_range", header + "sigma2 = 5\n" + forward_material,
                 "scene.toml:2:10: key 'sigma2': 5 is out of range; allowed: a number in (0, 4] (variance sigma^2 of the Gaussian "
                 "pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},

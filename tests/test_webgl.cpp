@@ -22,6 +22,7 @@
 // ES lets plain dFdx/dFdy be fine or coarse (section 8.9); the device's choice is probed, and
 // the reference takes the same (for the quad average too: ES has no dFdxFine).
 #include "core_cases.hpp"
+#include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
 #include "saagen/catalogue.hpp"
@@ -47,6 +48,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace ref = saagen::ref;
 using saagen::Catalogue;
+using saagen::test::Worst;
 
 constexpr std::uint32_t kCoreSide = 128;  // core results: a 128 x 128 target, one element per pixel
 constexpr std::uint32_t kCoreElements = kCoreSide * kCoreSide;
@@ -202,11 +204,8 @@ const BrowserRun& browser_run() {
       return result;
     }
     for (const Case& c : all) {
-      std::ifstream in(directory / (c.id + ".out.f32"), std::ios::binary | std::ios::ate);
-      if (!in) continue;
-      std::vector<float> values(static_cast<std::size_t>(in.tellg()) / sizeof(float));
-      in.seekg(0);
-      in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
+      std::vector<float> values = saagen::test::read_floats(directory / (c.id + ".out.f32"));
+      if (values.empty()) continue;
       result.outputs[c.id] = std::move(values);
     }
     fs::remove_all(directory);
@@ -234,24 +233,6 @@ ref::Derivative browser_plain_derivative() {
   (void)printed;
   return mode;
 }
-
-struct Worst {
-  double ratio = 0.0;  // worst |got - expected| / bound
-  double error = 0.0, bound = 0.0, expected = 0.0;
-  float got = 0.0f;
-  std::size_t failing = 0, count = 0;
-  void add(float value, double reference, double limit) {
-    ++count;
-    const double e = std::isnan(value) ? INFINITY : std::fabs(static_cast<double>(value) - reference);
-    const double r = e / limit;
-    if (!(r <= 1.0)) ++failing;
-    if (!(r <= ratio)) ratio = r, error = e, bound = limit, expected = reference, got = value;
-  }
-  std::string summary(const std::string& what) const {
-    return fmt::format("{}: worst error / bound {:.3g} (error {:.3g}, bound {:.3g}, got {:.9g}, reference {:.9g}); {} of {} outside", what, ratio,
-                       error, bound, got, expected, failing, count);
-  }
-};
 
 class InWebGl2 : public ::testing::TestWithParam<Case> {};
 

@@ -19,6 +19,7 @@
 // core functions 2e-5 * S (core_cases.hpp), wrappers 16 ulps of the condition + 2e-5 |f|
 // (wrapper_cases.hpp).
 #include "core_cases.hpp"
+#include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
 #include "saagen/catalogue.hpp"
@@ -45,22 +46,12 @@
 
 namespace {
 
-// Emission options set field by field (designated initializers would leave members unnamed).
-saagen::EmitOptions wgsl_options(const std::string& precision = "fp32", bool guards = true, const std::string& domain = "alpha2",
-                                 std::vector<std::string> variants = {}, const std::string& import_path = "") {
-  saagen::EmitOptions options;
-  options.target = "wgsl";
-  options.precision = precision;
-  options.guards = guards;
-  options.domain = domain;
-  options.variants = std::move(variants);
-  options.import_path = import_path;
-  return options;
-}
-
 namespace fs = std::filesystem;
 namespace ref = saagen::ref;
 using saagen::Catalogue;
+using saagen::test::read_floats;
+using saagen::test::wgsl_options;
+using saagen::test::Worst;
 
 constexpr std::uint32_t kCoreElements = 16384;
 constexpr std::uint32_t kCoreSubsample = saagen::test::core::element_count / kCoreElements;  // one in 8
@@ -178,15 +169,6 @@ struct RunnerRun {
   std::string error;
 };
 
-std::vector<float> read_floats(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return {};
-  std::vector<float> values(static_cast<std::size_t>(in.tellg()) / sizeof(float));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
-  return values;
-}
-
 const RunnerRun& runner_run() {
   static const RunnerRun run = [] {
     RunnerRun result;
@@ -224,24 +206,6 @@ bool adapter_has_f16() {
   const auto& features = runner_run().results.value("features", nlohmann::json::array());
   return std::find(features.begin(), features.end(), "shader-f16") != features.end();
 }
-
-struct Worst {
-  double ratio = 0.0;  // worst |got - expected| / bound
-  double error = 0.0, bound = 0.0, expected = 0.0;
-  float got = 0.0f;
-  std::size_t failing = 0, count = 0;
-  void add(float value, double reference, double limit) {
-    ++count;
-    const double e = std::isnan(value) ? INFINITY : std::fabs(static_cast<double>(value) - reference);
-    const double r = e / limit;
-    if (!(r <= 1.0)) ++failing;
-    if (!(r <= ratio)) ratio = r, error = e, bound = limit, expected = reference, got = value;
-  }
-  std::string summary(const std::string& what) const {
-    return fmt::format("{}: worst error / bound {:.3g} (error {:.3g}, bound {:.3g}, got {:.9g}, reference {:.9g}); {} of {} outside", what, ratio,
-                       error, bound, got, expected, failing, count);
-  }
-};
 
 class OnWebGpu : public ::testing::TestWithParam<Case> {};
 

@@ -2,6 +2,8 @@
 // module -- no preprocessor, every function and constant defined once, no ?: (select instead), no
 // increment or assignment used as a value, every declaration typed, braces around every branch --
 // and several variants make one module. Tint's verdict and the runs are in test_wgsl.
+#include "web_support.hpp"
+
 #include "saagen/catalogue.hpp"
 #include "saagen/emitter.hpp"
 #include "saagen/error.hpp"
@@ -17,20 +19,8 @@
 
 namespace {
 
-// Emission options set field by field (designated initializers would leave members unnamed).
-saagen::EmitOptions wgsl_options(const std::string& precision = "fp32", bool guards = true, const std::string& domain = "alpha2",
-                                 std::vector<std::string> variants = {}, const std::string& import_path = "") {
-  saagen::EmitOptions options;
-  options.target = "wgsl";
-  options.precision = precision;
-  options.guards = guards;
-  options.domain = domain;
-  options.variants = std::move(variants);
-  options.import_path = import_path;
-  return options;
-}
-
 using saagen::Catalogue;
+using saagen::test::wgsl_options;
 
 std::vector<saagen::EmittedFile> emit_all(saagen::EmitOptions options) {
   options.target = "wgsl";

@@ -32,10 +32,12 @@ double parse_number(std::string_view key, const std::string& text) {
   return value;
 }
 
-// The built-in target whose files carry `extension` (glsl, essl for gles, hlsl).
+// The built-in target whose files carry `extension` (glsl, essl for gles, hlsl). Module languages
+// (WGSL) have no #include for a handler to serve.
 std::string target_of_extension(std::string_view extension) {
   std::vector<std::string> known;
   for (const std::string& name : builtin_target_names()) {
+    if (builtin_target(name).module) continue;
     const std::string& target_extension = builtin_target(name).file_extension;
     if (target_extension == extension) return name;
     known.push_back("." + target_extension);
