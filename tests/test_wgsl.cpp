@@ -56,12 +56,6 @@ using saagen::test::Worst;
 constexpr std::uint32_t kCoreElements = 16384;
 constexpr std::uint32_t kCoreSubsample = saagen::test::core::element_count / kCoreElements;  // one in 8
 
-std::string joined(const std::vector<saagen::SourcePiece>& pieces) {
-  std::string text;
-  for (const auto& piece : pieces) text += piece.text + (piece.text.ends_with('\n') ? "" : "\n");
-  return text;
-}
-
 saagen::EmittedFile emit(const std::string& variant, const std::string& precision = "fp32") {
   saagen::EmitOptions options;
   options.target = "wgsl";
@@ -135,7 +129,7 @@ nlohmann::json job_for(const fs::path& directory, const Case& c, std::vector<flo
     job["invocations"] = kCoreElements;
     job["output_floats"] = std::size_t{kCoreElements} * request.output_stride;
   }
-  job["code"] = joined(saagen::kernel_sources(Catalogue::builtin(), file.file_name, file.content, request));
+  job["code"] = saagen::joined_source(saagen::kernel_sources(Catalogue::builtin(), file.file_name, file.content, request));
   return job;
 }
 

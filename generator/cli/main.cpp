@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <regex>
 
 namespace {
 
@@ -137,7 +138,9 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
   } else if (saagen::builtin_target(options.target).module && options.variants.size() > 1) {
     // A language without includes (WGSL) cannot take two files that both define the shared
     // helpers: several variants make one module holding their dependency closure once.
-    saagen::validate_prefix(arguments.module_name);
+    if (!std::regex_match(arguments.module_name, std::regex("[A-Za-z][A-Za-z0-9_]{0,63}"))) {
+      throw saagen::Error(fmt::format("--module '{}': not a name; use a letter, then letters, digits or '_' (at most 64 characters)", arguments.module_name));
+    }
     const saagen::BundleRequest request{arguments.module_name, saagen::public_functions(catalogue, options.variants), options.variants, {}};
     saagen::EmittedFile file = saagen::emit_bundle(catalogue, options, request);
     outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});

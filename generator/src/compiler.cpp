@@ -154,4 +154,10 @@ std::vector<std::uint32_t> optimize_spirv(const std::vector<std::uint32_t>& spir
   return optimized;
 }
 
+std::string joined_source(const std::vector<SourcePiece>& pieces) {
+  std::string text;
+  for (const SourcePiece& piece : pieces) text += piece.text + (piece.text.ends_with('\n') ? "" : "\n");
+  return text;
+}
+
 }  // namespace saagen

@@ -51,13 +51,6 @@ PassSkeleton pass_skeleton(const std::string& target) {
   return {field("prologue"), field("resources"), field("tangent_resources"), field("main")};
 }
 
-std::string substitute(std::string text, std::string_view key, const std::string& value) {
-  for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
-    text.replace(position, key.size(), value);
-  }
-  return text;
-}
-
 std::string intrinsic_name(const TargetSyntax& target, const std::string& dialect_name) {
   const auto found = target.intrinsics.find(dialect_name);
   if (found == target.intrinsics.end()) return dialect_name;

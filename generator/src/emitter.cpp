@@ -42,35 +42,19 @@ std::string type_name(const TargetSyntax& target, const std::string& dialect_typ
   return target.declaration_type(dialect_type);
 }
 
-std::string replace_all_in(std::string text, std::string_view from, const std::string& to) {
-  for (auto position = text.find(from); position != std::string::npos; position = text.find(from, position + to.size())) {
-    text.replace(position, from.size(), to);
-  }
-  return text;
-}
-
-// The resources a function reads directly or through its callees, as a module language passes
-// them: parameter declarations or call arguments (TargetSyntax::Resource), joined; empty when none.
-std::string resource_list(const TargetSyntax& target, const Catalogue& catalogue, const std::string& function,
-                          std::string TargetSyntax::Resource::*what) {
-  if (!target.module) return {};
-  std::vector<std::string> items;
-  for (const std::string& name : resources_used(target, catalogue, {function})) items.push_back(target.resources.at(name).*what);
-  return fmt::format("{}", fmt::join(items, ", "));
-}
-
-// The function's signature in the target's form (TargetSyntax::signature and ::parameter).
-std::string signature(const TargetSyntax& target, const Catalogue& catalogue, const Function& function, std::string_view prefix) {
+// The function's signature in the target's form (TargetSyntax::signature and ::parameter), with
+// the parameters of the resources it reads in a module language (`resource_parameters`).
+std::string signature(const TargetSyntax& target, const Function& function, std::string_view prefix,
+                      const std::map<std::string, std::string, std::less<>>& resource_parameters) {
   std::vector<std::string> parameters;
   for (const Parameter& parameter : function.parameters) {
-    std::string text = replace_all_in(target.parameter, "{type}", type_name(target, parameter.type));
-    parameters.push_back(replace_all_in(std::move(text), "{name}", dialect::parameter_name(target, function.tree.get(), parameter.name)));
+    const std::string text = substitute(target.parameter, "{type}", type_name(target, parameter.type));
+    parameters.push_back(substitute(text, "{name}", dialect::parameter_name(target, function.tree.get(), parameter.name)));
   }
-  const std::string resources = resource_list(target, catalogue, function.name, &TargetSyntax::Resource::parameters);
-  if (!resources.empty()) parameters.push_back(resources);
-  std::string text = replace_all_in(target.signature, "{result}", type_name(target, function.return_type));
-  text = replace_all_in(std::move(text), "{name}", prefixed_name(prefix, function.name));
-  return replace_all_in(std::move(text), "{parameters}", fmt::format("{}", fmt::join(parameters, ", ")));
+  if (const auto resources = resource_parameters.find(function.name); resources != resource_parameters.end()) parameters.push_back(resources->second);
+  std::string text = substitute(target.signature, "{result}", type_name(target, function.return_type));
+  text = substitute(std::move(text), "{name}", prefixed_name(prefix, function.name));
+  return substitute(std::move(text), "{parameters}", fmt::format("{}", fmt::join(parameters, ", ")));
 }
 
 NameMap build_name_map(const Catalogue& catalogue, std::string_view prefix) {
@@ -88,7 +72,8 @@ class FileWriter {
         target_(target.with_precision(options.precision).with_prefix(options.prefix, macro_prefix(options.prefix))),
         options_(options),
         option_values_(option_values), names_(build_name_map(catalogue, options.prefix)),
-        call_arguments_(resource_arguments(target_, catalogue)) {}
+        resource_parameters_(resource_lists(target_, catalogue, &TargetSyntax::Resource::parameters)),
+        call_arguments_(resource_lists(target_, catalogue, &TargetSyntax::Resource::arguments)) {}
 
   EmittedFile write(const Variant& variant) {
     const auto functions = catalogue_.closure(variant.functions, options_.guards);
@@ -138,7 +123,7 @@ class FileWriter {
     out << "// Functions:\n";
     for (const std::string& name : request.functions) {
       const Function& function = *catalogue_.find_function(name);
-      out << fmt::format("//   {}  [{}]\n", signature(target_, catalogue_, function, options_.prefix), to_string(function.role));
+      out << fmt::format("//   {}  [{}]\n", signature(target_, function, options_.prefix, resource_parameters_), to_string(function.role));
     }
     write_stage_note(out, functions);
     write_intrinsic_notes(out, functions);
@@ -187,7 +172,7 @@ class FileWriter {
     out << "// Functions:\n";
     for (const std::string& name : variant.functions) {
       const Function& function = *catalogue_.find_function(name);
-      out << fmt::format("//   {}  [{}]\n", signature(target_, catalogue_, function, options_.prefix), to_string(function.role));
+      out << fmt::format("//   {}  [{}]\n", signature(target_, function, options_.prefix, resource_parameters_), to_string(function.role));
     }
     write_stage_note(out, catalogue_.closure(variant.functions, options_.guards));
   }
@@ -247,10 +232,9 @@ class FileWriter {
 
   void write_constant(std::ostringstream& out, const Constant& constant) const {
     const std::string guard = macro_prefix(options_.prefix) + "CONST_" + upper(constant.name);
-    std::string declaration = target_.constant_declaration;
-    replace_all(declaration, "{type}", type_name(target_, constant.type));
-    replace_all(declaration, "{name}", prefixed_name(options_.prefix, constant.name));
-    replace_all(declaration, "{value}", suffix_float_literals(float_literal(value_of(constant)), target_.literal_suffix));
+    std::string declaration = substitute(target_.constant_declaration, "{type}", type_name(target_, constant.type));
+    declaration = substitute(std::move(declaration), "{name}", prefixed_name(options_.prefix, constant.name));
+    declaration = substitute(std::move(declaration), "{value}", suffix_float_literals(float_literal(value_of(constant)), target_.literal_suffix));
     if (target_.module) out << fmt::format("\n// {}\n{}\n", constant.meaning, declaration);
     else out << fmt::format("\n#ifndef {0}\n#define {0}\n// {1}\n{2}\n#endif\n", guard, constant.meaning, declaration);
   }
@@ -269,7 +253,7 @@ class FileWriter {
     const dialect::FunctionSignature types = dialect_signature(function);
     const dialect::PrintOptions print{&names_, options_.guards, &call_arguments_, &types};
     const std::string body = dialect::print_body(*function.tree, target_, print);
-    out << signature(target_, catalogue_, function, options_.prefix) << (target_.module ? " {\n" : "\n{\n") << target_.function_prologue
+    out << signature(target_, function, options_.prefix, resource_parameters_) << (target_.module ? " {\n" : "\n{\n") << target_.function_prologue
         << suffix_float_literals(body, target_.literal_suffix) << "}\n";
     if (guarded_definition) out << "#endif\n";
     if (guarded_definition && function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
@@ -280,23 +264,6 @@ class FileWriter {
     types.result = *dialect::Type::from_name(function.return_type);
     for (const Parameter& parameter : function.parameters) types.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
     return types;
-  }
-
-  // In a module language, the resources each function reads, as call arguments.
-  static std::map<std::string, std::string, std::less<>> resource_arguments(const TargetSyntax& target, const Catalogue& catalogue) {
-    std::map<std::string, std::string, std::less<>> arguments;
-    if (!target.module || target.resources.empty()) return arguments;
-    for (const Function& function : catalogue.functions()) {
-      const std::string list = resource_list(target, catalogue, function.name, &TargetSyntax::Resource::arguments);
-      if (!list.empty()) arguments[function.name] = list;
-    }
-    return arguments;
-  }
-
-  static void replace_all(std::string& text, std::string_view from, const std::string& to) {
-    for (auto position = text.find(from); position != std::string::npos; position = text.find(from, position + to.size())) {
-      text.replace(position, from.size(), to);
-    }
   }
 
   const Catalogue& catalogue_;
@@ -319,7 +286,8 @@ class FileWriter {
     return used;
   }
   NameMap names_;
-  std::map<std::string, std::string, std::less<>> call_arguments_;
+  std::map<std::string, std::string, std::less<>> resource_parameters_;  // module languages: what each function takes
+  std::map<std::string, std::string, std::less<>> call_arguments_;       // and what its callers pass
 };
 
 std::optional<double> parse_double(std::string_view text) {

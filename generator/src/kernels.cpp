@@ -22,13 +22,6 @@ std::string_view kind_name(KernelKind kind) {
   return "compute";
 }
 
-std::string substitute(std::string text, std::string_view key, const std::string& value) {
-  for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
-    text.replace(position, key.size(), value);
-  }
-  return text;
-}
-
 const char* const swizzle = "xyzw";
 
 // The target's name for a dialect intrinsic: "ddx_fine" -> "dFdxFine" in GLSL.
@@ -70,17 +63,12 @@ std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogu
                            const GlueSymbols& symbols) {
   if (!target.module) return translate(target, code, names);
   std::map<std::string, dialect::FunctionSignature, std::less<>> functions;
-  std::map<std::string, std::string, std::less<>> resource_arguments;
   for (const Function& function : catalogue.functions()) {
     dialect::FunctionSignature& signature = functions[function.name];
     signature.result = dialect_type(function.return_type);
     for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(dialect_type(parameter.type), parameter.name);
-    std::vector<std::string> arguments;
-    for (const std::string& resource : resources_used(target, catalogue, {function.name})) {
-      arguments.push_back(target.resources.at(resource).caller_arguments);
-    }
-    if (!arguments.empty()) resource_arguments[function.name] = fmt::format("{}", fmt::join(arguments, ", "));
   }
+  const auto resource_arguments = resource_lists(target, catalogue, &TargetSyntax::Resource::caller_arguments);
   for (const GlueSymbols::Callable& callable : symbols.functions) {
     dialect::FunctionSignature& signature = functions[callable.name];
     if (!callable.result.empty()) signature.result = dialect_type(callable.result);
@@ -169,8 +157,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
     text = substitute(std::move(text), "{width}", std::to_string(request.width));
     text = substitute(std::move(text), "{plain_ddx}", plain_ddx);
     text = substitute(std::move(text), "{plain_ddy}", plain_ddy);
-    for (const char* type : {"real", "real2", "real3", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
-    return text;
+    return substitute_type_placeholders(std::move(text), target);
   };
   std::vector<SourcePiece> pieces;
   const std::string prologue = fill(skeleton->second.prologue);

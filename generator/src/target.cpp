@@ -328,6 +328,18 @@ const std::string& TargetSyntax::declaration_type(const std::string& dialect_typ
   return found != declaration_types.end() ? found->second : types.at(dialect_type);
 }
 
+std::string substitute(std::string text, std::string_view key, std::string_view value) {
+  for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
+    text.replace(position, key.size(), value);
+  }
+  return text;
+}
+
+std::string substitute_type_placeholders(std::string text, const TargetSyntax& target) {
+  for (const char* type : {"real", "real2", "real3", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
+  return text;
+}
+
 namespace {
 std::string replace_placeholders(std::string text, std::string_view prefix, std::string_view macro_prefix) {
   for (const auto& [key, value] : {std::pair<std::string_view, std::string_view>{"{prefix}", prefix}, {"{macro_prefix}", macro_prefix}}) {

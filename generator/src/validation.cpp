@@ -7,6 +7,7 @@
 #include "saagen/target.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -56,13 +57,6 @@ std::string calls_in_dialect(const Catalogue& catalogue, const std::vector<std::
   return calls;
 }
 
-std::string substitute(std::string text, std::string_view key, const std::string& value) {
-  for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
-    text.replace(position, key.size(), value);
-  }
-  return text;
-}
-
 // The validation skeletons' variables: the input vector and the accumulator.
 const GlueSymbols& validation_glue_symbols() {
   static const GlueSymbols symbols{{{"saagen_seed", "real4"}, {"acc", "real"}}, {}, {}};
@@ -107,6 +101,18 @@ std::vector<std::string> resources_used(const TargetSyntax& target, const Catalo
   return names;
 }
 
+std::map<std::string, std::string, std::less<>> resource_lists(const TargetSyntax& target, const Catalogue& catalogue,
+                                                               std::string TargetSyntax::Resource::*what) {
+  std::map<std::string, std::string, std::less<>> lists;
+  if (!target.module || target.resources.empty()) return lists;
+  for (const Function& function : catalogue.functions()) {
+    std::vector<std::string> items;
+    for (const std::string& name : resources_used(target, catalogue, {function.name})) items.push_back(target.resources.at(name).*what);
+    if (!items.empty()) lists[function.name] = fmt::format("{}", fmt::join(items, ", "));
+  }
+  return lists;
+}
+
 std::string resource_declarations(const TargetSyntax& target, const Catalogue& catalogue, const std::vector<std::string>& roots) {
   std::string declarations;
   for (const std::string& name : resources_used(target, catalogue, roots)) declarations += target.resources.find(name)->second.declaration;
@@ -148,9 +154,7 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 
   const std::string core_only = macro_prefix(marker.prefix) + "CORE_ONLY";
   const auto fill = [&](std::string text) {
-    text = substitute(std::move(text), "{core_only_macro}", core_only);
-    for (const char* type : {"real", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
-    return text;
+    return substitute_type_placeholders(substitute(std::move(text), "{core_only_macro}", core_only), target);
   };
   std::vector<SourcePiece> pieces;
   const std::string prologue = fill(skeleton.prologue);
@@ -227,12 +231,6 @@ int lines_before(const std::vector<SourcePiece>& pieces, const std::string& file
   return lines;
 }
 
-std::string joined(const std::vector<SourcePiece>& pieces) {
-  std::string text;
-  for (const SourcePiece& piece : pieces) text += piece.text + (piece.text.ends_with('\n') ? "" : "\n");
-  return text;
-}
-
 // One Tint message as "file:line:column: type: message", lines of the emitted file counted in it.
 std::string describe_message(const nlohmann::json& message, const std::string& file_name, int offset, int file_lines) {
   const int line = message.value("line", 0);
@@ -295,7 +293,7 @@ std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, cons
       const std::string stage_word = stage == ShaderStage::fragment ? "fragment" : "compute";
       jobs.push_back({{"id", fmt::format("m{}", modules.size())},
                       {"kind", "compile"},
-                      {"code", joined(pieces)},
+                      {"code", joined_source(pieces)},
                       {"entry_points", nlohmann::json::array({{{"stage", stage_word}, {"name", entry}}})}});
       modules.push_back({index, "tint " + stage_word, lines_before(pieces, file_name), file_lines});
     }

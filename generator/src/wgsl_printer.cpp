@@ -52,13 +52,6 @@ bool is_reserved(const TargetSyntax& target, std::string_view name) {
 
 std::string local_name(const TargetSyntax& target, const std::string& name) { return is_reserved(target, name) ? name + "_" : name; }
 
-std::string replace_all(std::string text, std::string_view from, std::string_view to) {
-  for (auto position = text.find(from); position != std::string::npos; position = text.find(from, position + to.size())) {
-    text.replace(position, from.size(), to);
-  }
-  return text;
-}
-
 class WgslPrinter {
  public:
   WgslPrinter(const TargetSyntax& target, const PrintOptions& options) : target_(target), options_(options) {}
@@ -146,8 +139,8 @@ class WgslPrinter {
       if (pattern != target_.intrinsics.end()) {
         std::vector<std::string> values;
         for (const auto& argument : expr.operands) values.push_back(expression(*argument));
-        std::string typed = replace_all(pattern->second, "{type}", target_.types.at(expr.type.name()));
-        typed = replace_all(std::move(typed), "{wide_type}", target_.wide_types.at(expr.type.name()));
+        std::string typed = substitute(pattern->second, "{type}", target_.types.at(expr.type.name()));
+        typed = substitute(std::move(typed), "{wide_type}", target_.wide_types.at(expr.type.name()));
         return expand_pattern(typed, values);
       }
       return expr.text + "(" + arguments(expr) + spacing(expr.separators[0], "") + ")";

@@ -23,6 +23,9 @@ struct SourcePiece {
   std::string text;
 };
 
+// The pieces as one text, each ending with a line break (a WGSL module handed to Tint).
+std::string joined_source(const std::vector<SourcePiece>& pieces);
+
 struct CompileRequest {
   SourceLanguage language = SourceLanguage::glsl;
   ShaderStage stage = ShaderStage::fragment;

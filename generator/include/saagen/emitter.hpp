@@ -25,7 +25,7 @@ struct EmitOptions {
   std::string domain = "alpha2";
   // A module language (WGSL) only: the module path that Bevy's shader imports (naga_oil) give the
   // file, written as `#define_import_path PATH`; empty: none (a plain WGSL module).
-  std::string import_path;
+  std::string import_path{};
 };
 
 // What one emitted file holds, as written in its marker line, so that a file on disk can be
@@ -41,7 +41,7 @@ struct EmissionMarker {
   // `variants` (a per-variant file).
   std::vector<std::string> functions;
   std::string domain = "alpha2";  // `domain=` in the marker, written when not alpha2
-  std::string import_path;        // `import_path=` in the marker, written when set
+  std::string import_path{};      // `import_path=` in the marker, written when set
 };
 
 struct EmittedFile {

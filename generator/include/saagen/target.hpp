@@ -128,6 +128,12 @@ using NameMap = std::map<std::string, std::string, std::less<>>;
 // template bodies are printed from their typed tree (dialect::print_c_like).
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
 
+// `text` with every `key` replaced by `value`: the placeholders of patterns and skeletons.
+std::string substitute(std::string text, std::string_view key, std::string_view value);
+// {real}, {real2}, {real3} and {real4} replaced by the target's spellings of those types (the
+// skeletons of a precision declare their glue in it).
+std::string substitute_type_placeholders(std::string text, const TargetSyntax& target);
+
 // Appends `suffix` to every floating-point literal in `code` (numbers with '.' or an exponent);
 // comments are left alone. Used for half-precision literals (1.0hf).
 std::string suffix_float_literals(std::string_view code, std::string_view suffix);
