@@ -565,9 +565,10 @@ TEST(OneSpp, RendererUsesReferenceQuadFunctions) {
 // ---------------------------------------------------------------------------------------------
 // Metrics
 
-// A static animation (rotation 0 per frame) has zero flicker for every variant: identical
-// frames have a temporal variance of exactly 0 (Welford's update), for the ground truth too.
-// Tiny sizes: only the identity of the frames matters.
+// A static animation (no rotation, no pan) has zero flicker and zero temporal difference error
+// for every variant: identical frames have a temporal variance of exactly 0 (Welford's update)
+// and frame differences of exactly 0, for the ground truth too. Tiny sizes: only the identity of
+// the frames matters.
 TEST(Metrics, StaticSceneHasZeroFlicker) {
     TradeConfig config;
     config.width = config.height = 16;
@@ -576,6 +577,7 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
     config.flicker_strata = 4;
     config.frames = 4;
     config.rotation_degrees_per_frame = 0.0;
+    config.pan_pixels_per_frame = {0.0, 0.0};
     config.scenes = {SceneId::sphere, SceneId::bump_plane};
     config.alphas = {0.01};
     config.fresnel_modes = {false};
@@ -590,6 +592,9 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
         EXPECT_EQ(row.reference_temporal_stddev, 0.0);
         EXPECT_EQ(row.temporal_stddev_display, 0.0);
         EXPECT_EQ(row.reference_temporal_stddev_display, 0.0);
+        EXPECT_EQ(row.tde, 0.0);
+        EXPECT_EQ(row.tde_excess_flicker, 0.0);
+        EXPECT_EQ(row.tde_lost_motion, 0.0);
     }
     // And a moving one does change from frame to frame, for the variant and the ground truth.
     config.rotation_degrees_per_frame = 0.25;
@@ -602,6 +607,13 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
     EXPECT_NE(moving.rows[0].flicker, 0.0);
     EXPECT_GT(moving.rows[0].temporal_stddev_display, 0.0);
     EXPECT_GT(moving.rows[0].flicker_display, 0.0);
+    EXPECT_GT(moving.rows[0].tde, 0.0);
+    // The pan alone moves the image too.
+    config.rotation_degrees_per_frame = 0.0;
+    config.pan_pixels_per_frame = {0.11, 0.37};
+    const TradeTable panned = compute_trade_table(config);
+    EXPECT_GT(panned.rows[0].tde, 0.0);
+    EXPECT_GT(panned.rows[0].reference_temporal_stddev, 0.0);
 }
 
 // The metrics on hand-made images.

@@ -116,11 +116,6 @@ double srgb_eotf(double v) {  // sRGB-encoded -> linear (IEC 61966-2-1)
     return std::pow((v + 0.055) / 1.055, 2.4);
 }
 
-double srgb_oetf(double v) {  // linear -> sRGB-encoded (IEC 61966-2-1)
-    if (v <= 0.0031308) return v * 12.92;
-    return 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
-
 double clamp01(double v) {  // NaN -> 0
     if (!(v > 0.0)) return 0.0;
     return v < 1.0 ? v : 1.0;
@@ -476,7 +471,7 @@ double upper_median(std::vector<double>& v) {
     return *mid;
 }
 
-RgbImage grey_to_rgb(const Image& img, bool srgb_encode) {
+RgbImage grey_to_rgb(const Image& img, bool encode) {
     if (img.width < 0 || img.height < 0 ||
         img.pixels.size() !=
             static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height))
@@ -487,7 +482,7 @@ RgbImage grey_to_rgb(const Image& img, bool srgb_encode) {
     out.rgb.resize(3 * img.pixels.size());
     for (std::size_t i = 0; i < img.pixels.size(); ++i) {
         float v = img.pixels[i];
-        if (srgb_encode) v = static_cast<float>(srgb_oetf(clamp01(v)));
+        if (encode) v = static_cast<float>(srgb_encode(v));  // image.hpp
         out.rgb[3 * i] = out.rgb[3 * i + 1] = out.rgb[3 * i + 2] = v;
     }
     return out;

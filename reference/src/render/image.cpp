@@ -13,6 +13,21 @@ double tonemap(double x) {
     return x / (1.0 + x);
 }
 
+double srgb_encode(double display_linear) {
+    const double v = display_linear > 0.0 ? std::min(display_linear, 1.0) : 0.0;  // NaN -> 0
+    if (v <= 0.0031308) return v * 12.92;
+    return 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+double display_value(double radiance) { return srgb_encode(tonemap(radiance)); }
+
+Image display_image(const Image& radiance) {
+    Image out(radiance.width, radiance.height);
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        out.pixels[i] = static_cast<float>(display_value(radiance.pixels[i]));
+    return out;
+}
+
 ImageError compare_images(const Image& image, const Image& reference) {
     if (image.width != reference.width || image.height != reference.height)
         throw std::invalid_argument("compare_images: size mismatch");
@@ -83,6 +98,50 @@ double flicker(const TemporalStats& image, const TemporalStats& reference) {
     double s = 0.0;
     for (std::size_t i = 0; i < image.size(); ++i) s += image.stddev(i) - reference.stddev(i);
     return s / image.size();
+}
+
+namespace {
+
+void check_same_size(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument("temporal difference error: frame size mismatch");
+}
+
+}  // namespace
+
+void TemporalDifference::add_pair(const Image& previous, const Image& current,
+                                  const Image& reference_previous,
+                                  const Image& reference_current) {
+    check_same_size(previous, current);
+    check_same_size(previous, reference_previous);
+    check_same_size(previous, reference_current);
+    for (std::size_t i = 0; i < current.size(); ++i) {
+        const double d_image = static_cast<double>(current.pixels[i]) - previous.pixels[i];
+        const double d_reference =
+            static_cast<double>(reference_current.pixels[i]) - reference_previous.pixels[i];
+        const double excess = std::fabs(d_image) - std::fabs(d_reference);
+        sum_tde_ += std::fabs(d_image - d_reference);
+        sum_excess_ += std::max(0.0, excess);
+        sum_lost_ += std::max(0.0, -excess);
+    }
+    samples_ += current.size();
+    ++pairs_;
+}
+
+TemporalError TemporalDifference::mean() const {
+    if (samples_ == 0) return {};
+    const double n = static_cast<double>(samples_);
+    return {sum_tde_ / n, sum_excess_ / n, sum_lost_ / n};
+}
+
+TemporalError temporal_difference_error(std::span<const Image> frames,
+                                        std::span<const Image> reference) {
+    if (frames.size() != reference.size())
+        throw std::invalid_argument("temporal difference error: frame count mismatch");
+    TemporalDifference accumulated;
+    for (std::size_t t = 1; t < frames.size(); ++t)
+        accumulated.add_pair(frames[t - 1], frames[t], reference[t - 1], reference[t]);
+    return accumulated.mean();
 }
 
 }  // namespace saagen::render

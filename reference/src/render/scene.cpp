@@ -407,6 +407,21 @@ Ray Camera::generate(double fx, double fy, int width, int height) const {
     return {position, normalize(forward + sx * right + sy * true_up)};
 }
 
+Camera Camera::panned(double right_pixels, double up_pixels, int height) const {
+    const Vec3 to_target = look_at - position;
+    const Vec3 forward = normalize(to_target);
+    const Vec3 right = normalize(cross(forward, up));
+    const Vec3 true_up = cross(right, forward);
+    // Film height at the look-at distance d: 2 d tan(fov / 2), over `height` pixels.
+    const double pixel =
+        2.0 * length(to_target) * std::tan(0.5 * fov_y_degrees * kPi / 180.0) / height;
+    const Vec3 offset = pixel * (right_pixels * right + up_pixels * true_up);
+    Camera c = *this;
+    c.position = position + offset;
+    c.look_at = look_at + offset;
+    return c;
+}
+
 Camera Camera::cropped(int size, int full_size) const {
     Camera c = *this;
     const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);

@@ -160,6 +160,15 @@ std::vector<Material> trade_materials(const TradeConfig& config) {
     return materials;
 }
 
+Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame) {
+    const Scene rotated =
+        make_scene(id, frame * config.rotation_degrees_per_frame * kPi / 180.0);
+    const double steps = frame - 0.5 * (config.frames - 1);  // centred on the unpanned view
+    return rotated.with_camera(rotated.camera().panned(steps * config.pan_pixels_per_frame.x,
+                                                       steps * config.pan_pixels_per_frame.y,
+                                                       config.flicker_height));
+}
+
 const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel,
                                  NormalFeed feed, Prefilter prefilter) const {
     for (const TradeRow& row : rows)
@@ -355,16 +364,20 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
             if (config.keep_images) table.images.push_back(std::move(set));
         }
 
-        // Flicker: the rotating animation at the flicker resolution, in linear and display values.
+        // Temporal metrics: the animation at the flicker resolution; TDE in display values,
+        // the temporal standard deviations in linear and tonemapped values.
         if (config.frames > 0) {
             const int fw = config.flicker_width, fh = config.flicker_height;
+            const std::size_t n_rows = n_materials * n_keys;
             std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
             std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
-            std::vector<TemporalStats> variant_stats(n_materials * n_keys, TemporalStats(fw, fh));
-            std::vector<TemporalStats> variant_display(n_materials * n_keys, TemporalStats(fw, fh));
+            std::vector<TemporalStats> variant_stats(n_rows, TemporalStats(fw, fh));
+            std::vector<TemporalStats> variant_display(n_rows, TemporalStats(fw, fh));
+            std::vector<TemporalDifference> differences(n_rows);
+            std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
+            std::vector<Image> previous_variant(n_rows);
             for (int frame = 0; frame < config.frames; ++frame) {
-                const double angle = frame * config.rotation_degrees_per_frame * kPi / 180.0;
-                const Scene moved = make_scene(id, angle);
+                const Scene moved = trade_animation_frame(config, id, frame);
                 const std::string stage = "flicker " + name + " frame " +
                                           std::to_string(frame + 1) + "/" +
                                           std::to_string(config.frames);
@@ -372,14 +385,22 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 base += flicker_gt;
                 const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
                 for (std::size_t m = 0; m < n_materials; ++m) {
+                    Image reference_frame = display_image(frame_gt.images[m]);
                     reference_stats[m].add(frame_gt.images[m]);
                     reference_display[m].add(tonemapped(frame_gt.images[m]));
                     for (std::size_t k = 0; k < n_keys; ++k) {
+                        const std::size_t r = m * n_keys + k;
                         const Image image = shade(frame_buffer, keys[k], materials[m]);
-                        variant_stats[m * n_keys + k].add(image);
-                        variant_display[m * n_keys + k].add(tonemapped(image));
+                        variant_stats[r].add(image);
+                        variant_display[r].add(tonemapped(image));
+                        Image frame_display = display_image(image);
+                        if (frame > 0)
+                            differences[r].add_pair(previous_variant[r], frame_display,
+                                                    previous_reference[m], reference_frame);
+                        previous_variant[r] = std::move(frame_display);
                         base += flicker_pixels;
                     }
+                    previous_reference[m] = std::move(reference_frame);
                 }
                 report(stage, base);
             }
@@ -387,13 +408,16 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 const double reference_std = mean_temporal_stddev(reference_stats[m]);
                 const double reference_std_display = mean_temporal_stddev(reference_display[m]);
                 for (std::size_t k = 0; k < n_keys; ++k) {
-                    TradeRow& row = table.rows[first_row + m * n_keys + k];
-                    const TemporalStats& stats = variant_stats[m * n_keys + k];
-                    row.flicker = flicker(stats, reference_stats[m]);
-                    row.temporal_stddev = mean_temporal_stddev(stats);
+                    const std::size_t r = m * n_keys + k;
+                    TradeRow& row = table.rows[first_row + r];
+                    const TemporalError temporal = differences[r].mean();
+                    row.tde = temporal.tde;
+                    row.tde_excess_flicker = temporal.excess_flicker;
+                    row.tde_lost_motion = temporal.lost_motion;
+                    row.flicker = flicker(variant_stats[r], reference_stats[m]);
+                    row.temporal_stddev = mean_temporal_stddev(variant_stats[r]);
                     row.reference_temporal_stddev = reference_std;
-                    row.temporal_stddev_display =
-                        mean_temporal_stddev(variant_display[m * n_keys + k]);
+                    row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
                     row.reference_temporal_stddev_display = reference_std_display;
                     row.flicker_display = reference_std_display > 0.0
                                               ? row.temporal_stddev_display / reference_std_display
@@ -412,16 +436,19 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
 std::string format_trade_table(const TradeTable& table) {
     std::ostringstream s;
     char line[256];
-    std::snprintf(line, sizeof line, "%-16s %6s %3s %-36s %12s %10s %12s %8s %8s %10s %10s\n",
-                  "scene", "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error",
-                  "ldr_flip", "hdr_flip", "flicker", "flicker_tm");
+    std::snprintf(line, sizeof line,
+                  "%-16s %6s %3s %-36s %12s %10s %12s %8s %8s %9s %9s %9s %10s %10s\n", "scene",
+                  "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error", "ldr_flip",
+                  "hdr_flip", "tde", "tde_excess", "tde_lost", "flicker", "flicker_tm");
     s << line;
     for (const TradeRow& r : table.rows) {
         std::snprintf(line, sizeof line,
-                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %8.5f %8.5f %10.5f %10.4f%s\n",
+                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %8.5f %8.5f %9.5f %9.5f %9.5f "
+                      "%10.5f %10.4f%s\n",
                       std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no",
                       configuration_id(r).c_str(), r.rmse_linear, r.rmse_tonemapped, r.max_error,
-                      r.flip_ldr, r.flip_hdr, r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
+                      r.flip_ldr, r.flip_hdr, r.tde, r.tde_excess_flicker, r.tde_lost_motion,
+                      r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
         s << line;
     }
     return s.str();
@@ -430,14 +457,14 @@ std::string format_trade_table(const TradeTable& table) {
 std::string trade_table_csv(const TradeTable& table) {
     std::ostringstream s;
     s.precision(9);
-    s << "scene,alpha,fresnel,variant,feed,prefilter,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,flicker,"
-         "temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
+    s << "scene,alpha,fresnel,variant,feed,prefilter,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,"
+         "tde,tde_excess_flicker,tde_lost_motion,flicker,temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
          "reference_temporal_stddev_display,non_finite\n";
     for (const TradeRow& r : table.rows)
         s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
           << variant_id(r.variant) << "," << feed_name(r.feed) << "," << prefilter_name(r.prefilter) << "," << r.rmse_linear << ","
           << r.rmse_tonemapped << "," << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << ","
-          << r.flicker << ","
+          << r.tde << "," << r.tde_excess_flicker << "," << r.tde_lost_motion << "," << r.flicker << ","
           << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display
           << "," << r.temporal_stddev_display << "," << r.reference_temporal_stddev_display << ","
           << r.non_finite << "\n";

@@ -135,7 +135,7 @@ double mean(const std::vector<float>& map);
 // Convenience for saagen's single-channel (grey) images, R = G = B = the pixel value.
 // ldr_flip_mean_grey: the inputs are display-referred linear values in [0,1] (e.g. tonemap()ped,
 // NOT yet sRGB-encoded; clamped to [0,1]). FLIP's input is the sRGB-encoded signal, so each value
-// is first encoded with the sRGB OETF (IEC 61966-2-1: 12.92 v for v <= 0.0031308, else
+// is first encoded with the sRGB OETF (srgb_encode(), image.hpp: 12.92 v for v <= 0.0031308, else
 // 1.055 v^(1/2.4) - 0.055) and then passed to ldr_flip_map (whose first step decodes it again).
 double ldr_flip_mean_grey(const Image& reference_display, const Image& test_display);
 // hdr_flip_mean_grey: linear radiance, automatic exposures; mean(hdr_flip_map(...)).

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace saagen::render {
@@ -29,6 +30,16 @@ struct Image {
 // of low-roughness highlights so that the tonemapped RMSE measures what a viewer sees rather
 // than a handful of pixels. Negative values (never produced) are clamped to 0.
 double tonemap(double x);
+
+// The sRGB encoding (IEC 61966-2-1 OETF: 12.92 v for v <= 0.0031308, else 1.055 v^(1/2.4) -
+// 0.055) of a display-linear value, clamped to [0, 1] first (NaN -> 0): the signal LDR-FLIP
+// takes and a PNG stores.
+double srgb_encode(double display_linear);
+
+// What a viewer's display receives for a radiance: srgb_encode(tonemap(radiance)), in [0, 1].
+// The values LDR-FLIP compares and the temporal difference error is measured in.
+double display_value(double radiance);
+Image display_image(const Image& radiance);
 
 // Error metrics of an image against a reference of the same size, over all pixels (background
 // pixels included; both images are 0 there unless a silhouette pixel is partially covered).
@@ -73,5 +84,47 @@ double flicker(const TemporalStats& image, const TemporalStats& reference);
 
 // Mean over pixels of the temporal standard deviation (the two terms of flicker()).
 double mean_temporal_stddev(const TemporalStats& stats);
+
+// Temporal difference error (TDE) of an animation I against the ground-truth animation R: the
+// pixel-level form of the tLP of Chu et al. 2020 ("Learning temporal coherence via
+// self-supervision for GAN-based video generation", TecoGAN, Sec. 4), which compares the
+// frame-to-frame changes of a result with those of the reference instead of the frames alone:
+//   tde            = mean over pixels and consecutive frame pairs of |dI - dR|,
+//                    dI = I_t - I_{t-1}, dR = R_t - R_{t-1};
+//   excess_flicker = mean of max(0, |dI| - |dR|)  (changes the reference does not make: aliasing);
+//   lost_motion    = mean of max(0, |dR| - |dI|)  (changes the reference makes that are missing:
+//                    a highlight blurred or clamped away).
+// A temporal standard deviation ratio rewards lost highlights (a blurred animation has a small
+// std); TDE penalises both. excess_flicker + lost_motion = mean ||dI| - |dR|| <= tde; the rest
+// is change of the wrong sign (|dI - dR| > ||dI| - |dR|| only where dI and dR have opposite
+// signs). Meant for display values (display_image()), single-channel images of one size.
+struct TemporalError {
+    double tde = 0.0;
+    double excess_flicker = 0.0;
+    double lost_motion = 0.0;
+};
+
+// Accumulates TemporalError over frame pairs, one pair at a time (an animation need not be kept
+// in memory): add_pair(I_{t-1}, I_t, R_{t-1}, R_t) for t = 1 .. frames - 1.
+class TemporalDifference {
+public:
+    void add_pair(const Image& previous, const Image& current, const Image& reference_previous,
+                  const Image& reference_current);
+    int pairs() const { return pairs_; }
+    // Means over every pixel of every pair added; zeros before the first pair.
+    TemporalError mean() const;
+
+private:
+    int pairs_ = 0;
+    std::size_t samples_ = 0;
+    double sum_tde_ = 0.0;
+    double sum_excess_ = 0.0;
+    double sum_lost_ = 0.0;
+};
+
+// TemporalError of a whole animation (frames and reference of the same length, >= 2 frames for
+// a non-zero result).
+TemporalError temporal_difference_error(std::span<const Image> frames,
+                                        std::span<const Image> reference);
 
 }  // namespace saagen::render

@@ -9,8 +9,9 @@
 //
 // Conventions: right-handed world space, +y up; the camera looks towards -z; pixel (x, y) has
 // its centre at film position (x + 0.5, y + 0.5) with y growing downwards (quad.hpp's layout).
-// The whole shape can rotate about the world vertical axis through a per-scene pivot (the
-// temporal-flicker animation); camera and light stay fixed.
+// The whole shape can rotate about the world vertical axis through a per-scene pivot, and the
+// camera can pan parallel to its film (Camera::panned): the trade's animation (trade.hpp); the
+// light stays fixed.
 //
 // The standard scenes (make_scene):
 //   sphere      unit sphere at the origin, camera at z = 4, directional light from the upper
@@ -233,6 +234,11 @@ struct Camera {
     // the pixel footprint of a `full_size` image: the centre crop of the full image (square
     // images: the aspect ratio is width / height of the image rendered).
     Camera cropped(int size, int full_size) const;
+
+    // The same camera translated parallel to its film, position and look-at point alike, by
+    // (right, up) pixels of an image `height` pixels high, measured at the look-at distance: a
+    // point at that distance is seen (right, up) pixels the other way, (fx - right, fy + up).
+    Camera panned(double right_pixels, double up_pixels, int height) const;
 
     // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
     // width x height image.
