@@ -194,6 +194,100 @@ double beckmann_lambda_exact(double a_param) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Filtered GGX that keeps GGX's tails (saagen's fit; brdf.hpp, docs/FILTERED_GGX.md)
+
+namespace {
+// 1 + a / (1 + b r + c sqrt(r)): 1 + a at r = 0, -> 1 as r grows.
+double decaying_factor(double a, double b, double c, double r) {
+    return 1.0 + a / (1.0 + b * r + c * std::sqrt(r));
+}
+}  // namespace
+
+// Coefficients fitted by minimax of the L1 distance to the exact isotropic convolution over
+// r in [1e-3, 2e5] (tests/test_filtered_ggx.cpp recomputes the distances).
+FilteredGgxLobes filtered_ggx_lobes(double ratio) {
+    const double r = max(ratio, 0.0);
+    FilteredGgxLobes lobes;
+    lobes.tail_scale = 1.0 + 2.0 * r * decaying_factor(0.7912, 0.1440, 0.3224, r);
+    lobes.core_kernel = decaying_factor(0.3174, 0.3369, 0.1435, r);
+    const double weight_factor = 1.0 + 0.9370 * (1.0 - 0.8963 / (0.8963 + r));
+    lobes.tail_weight = min(1.0, weight_factor / lobes.tail_scale);
+    return lobes;
+}
+
+double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) {
+    const double tiny = kGuardConstantsFp32.tiny_positive;
+    return 0.25 * ((a.xx - alpha2.x) / max(alpha2.x, tiny) + (a.yy - alpha2.y) / max(alpha2.y, tiny));
+}
+
+double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) {
+    const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
+    const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
+    const Sym2 core = unfiltered + lobes.core_kernel * (a - unfiltered);
+    return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) +
+           (1.0 - lobes.tail_weight) * beckmann_ndf_matrix(h, core, ndf_clamp_tau(alpha2));
+}
+
+double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
+    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+    const Brdf brdf;
+    const Vec3 h = half_vector(brdf.params, i, o);
+    return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) /
+           (4.0 * max(i.z, kGuardConstantsFp32.lambda_min_z) * max(o.z, kGuardConstantsFp32.lambda_min_z));
+}
+
+double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
+    return ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
+}
+
+double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) {
+    return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
+}
+
+namespace {
+// integral_0^inf e^-w f(w) dw by the trapezoid rule in u = ln w (the integrand is smooth and
+// decays doubly exponentially at both ends in u, so the rule converges geometrically).
+template <class F>
+double exponential_mixture(F f) {
+    constexpr double kStep = 0.02, kLow = -70.0, kHigh = 5.0;
+    double sum = 0.0;
+    for (double u = kLow; u < kHigh; u += kStep) {
+        const double w = std::exp(u);
+        sum += w * std::exp(-w) * f(w);
+    }
+    return sum * kStep;
+}
+}  // namespace
+
+// GGX's slope distribution is a Gaussian scale mixture (a Student-t with 2 degrees of freedom):
+// P(s) = integral_0^inf e^-w N(s; 0, alpha^2 / (2w) I) dw. Convolving with N(0, k I) adds k to
+// every component's variance.
+double filtered_ggx_slope_density(double rho, double alpha2, double k) {
+    return exponential_mixture([&](double w) {
+        const double variance = alpha2 / (2.0 * w) + k;
+        return std::exp(-rho * rho / (2.0 * variance)) / (2.0 * kPi * variance);
+    });
+}
+
+double filtered_ggx_mass_beyond(double radius, double alpha2, double k) {
+    return exponential_mixture([&](double w) {
+        return std::exp(-radius * radius / (2.0 * (alpha2 / (2.0 * w) + k)));
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
+// The single GGX roughness for the filtered lobe (brdf.hpp): fitted to the core-mass criterion.
+
+double ggx_kernel_scale(double alpha2, double kernel) {
+    const double k = max(kernel, 0.0);
+    return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, kGuardConstantsFp32.tiny_positive);
+}
+
+double ggx_filtered_alpha2(double alpha2, double kernel) {
+    return alpha2 + max(kernel, 0.0) * ggx_kernel_scale(alpha2, kernel);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a quad
 
 namespace {

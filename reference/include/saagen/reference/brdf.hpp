@@ -87,6 +87,59 @@ double quadratic_form_floor(const Params& p, Sym2 a, double det_a, double det, V
 double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 
 // ---------------------------------------------------------------------------------------------
+// Filtered GGX that keeps GGX's tails (saagen; docs/FILTERED_GGX.md)
+//
+// The papers add the kernel K = 2 Sigma to alpha^2: exact for Beckmann (Gaussian slopes, the
+// variances add), not for GGX, whose slope distribution is a Student-t with 2 degrees of
+// freedom: GGX(A0) convolved with N(0, Sigma) keeps GGX(A0)'s s^-4 tails, while GGX(A0 + K)
+// scales them by det(A0 + K)^(3/2) / det(A0)^(3/2). The exact filtered distribution is the
+// scale mixture integral_0^inf e^-w N(0, A0 / (2w) + Sigma) dw (GGX as a Gaussian scale mixture;
+// filtered_ggx_slope_density below). saagen's closed form: a GGX lobe with the unfiltered shape
+// scaled by lambda, carrying the tails, plus a Beckmann core with the kernel,
+//   D = w GGX(lambda A0) + (1 - w) Beckmann(A0 + c K),  w = min(1, w_f / lambda),
+//   lambda = 1 + 2 r c_t(r),  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2 when isotropic),
+// c_t, c and w_f rational functions of r fitted (minimax over r in [1e-3, 2e5]) to the exact
+// isotropic convolution: L1 <= 0.022, mass beyond 4 sqrt(k) within 18 %. Both lobes are
+// normalised, so the energy (integral of D cos) is 1.
+
+// The three fitted functions of r: lambda (the tail lobe's scale of A0), c (the core's kernel
+// factor) and w (the tail lobe's weight).
+struct FilteredGgxLobes {
+    double tail_scale = 1.0;   // lambda
+    double core_kernel = 1.0;  // c
+    double tail_weight = 1.0;  // w
+};
+FilteredGgxLobes filtered_ggx_lobes(double ratio);
+
+// r = (K00 / ax^2 + K11 / ay^2) / 4 of a filtered matrix A = diag(alpha2) + K.
+double filtered_ggx_ratio(Sym2 a, Vec2 alpha2);
+
+// D of the mixture above for the filtered matrix A and the unfiltered (ax^2, ay^2).
+double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2);
+// f = G2 D / (4 i.z o.z) with that D and the papers' G2 of A (masking of the filtered surface).
+double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2);
+// Axis-aligned forms: the filtered (ax'^2, ay'^2) and the unfiltered (ax^2, ay^2).
+double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2);
+double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2);
+
+// The exact filtered slope density of GGX(alpha2) convolved with an isotropic Gaussian of
+// per-axis variance k, at slope radius rho (numerical quadrature of the scale mixture), and its
+// mass beyond radius R. For tests and fits, not for shaders.
+double filtered_ggx_slope_density(double rho, double alpha2, double k);
+double filtered_ggx_mass_beyond(double radius, double alpha2, double k);
+
+// ---------------------------------------------------------------------------------------------
+// The single GGX roughness that stands for the filtered lobe (saagen; docs/FILTERED_GGX.md):
+// for engines that keep their own BRDF and only change alpha^2. Criterion: the GGX lobe whose
+// mass within the kernel's core, radius 2 sqrt(k), equals the exact filtered lobe's (which, for
+// a small kernel, matches the peak density). Fitted within 3.2 % over r in [1e-3, 2e5]:
+//   alpha'^2 = alpha^2 + kernel g,  g = (p0 alpha^2 + p1 kernel / 2) / (2 alpha^2 + p2 kernel),
+// kernel = 2 k the papers' alpha^2-domain kernel, p = (2.687, 0.782, 1.210). g -> 2.687 / 2 for
+// a small kernel, 0.323 for a large one (the papers: 1).
+double ggx_kernel_scale(double alpha2, double kernel);
+double ggx_filtered_alpha2(double alpha2, double kernel);
+
+// ---------------------------------------------------------------------------------------------
 // The functions above under explicit Params (guards on/off, fp32 or half guard constants); only
 // params.guards and params.half_precision matter. (A struct rather than overloads: the free
 // functions must stay single functions, which callers pass around as values.)
