@@ -56,9 +56,29 @@ TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   ASSERT_EQ(report_exit_, 0) << read_text(scratch_ / "report.log");
   const fs::path dir = scratch_ / "report";
   for (const char* file : {"index.html", "report.md", "cost_vs_error.svg"}) EXPECT_TRUE(fs::exists(dir / file)) << file;
-  int sheets = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) sheets += entry.path().extension() == ".png";
+  int sheets = 0, strips = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".png") continue;
+    const std::string name = entry.path().filename().string();
+    sheets += name.rfind("sheet_", 0) == 0;
+    strips += name.rfind("strip_", 0) == 0;
+  }
   EXPECT_EQ(sheets, 8);  // quick preset: 4 scenes x 2 alphas, without Fresnel
+  EXPECT_EQ(strips, 4);  // one per scene
+  // The page opens with the verdict and the strips, before any table.
+  const std::string html = read_text(dir / "index.html");
+  const auto verdict = html.find("<h2>Verdict"), strip = html.find("strip_sphere.png"), first_table = html.find("<table>");
+  ASSERT_NE(verdict, std::string::npos);
+  ASSERT_NE(strip, std::string::npos);
+  EXPECT_LT(verdict, strip);
+  EXPECT_LT(strip, first_table);
+  for (const char* text : {"deferred, curved: ", "forward, bump: ", "LDR-FLIP", "TDE", "Where the recommendation loses, per scene"})
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  // The run's log (stderr is a file here): one line per stage, no carriage-return frames.
+  const std::string log = read_text(scratch_ / "report.log");
+  EXPECT_EQ(log.find('\r'), std::string::npos);
+  EXPECT_NE(log.find("[  0%] ground truth sphere\n"), std::string::npos) << log.substr(0, 300);
+  EXPECT_NE(log.find("flicker bump_plane frame 4/4\n"), std::string::npos);
   const std::string markdown = read_text(dir / "report.md");
   EXPECT_NE(markdown.find("| deferred-avg |"), std::string::npos);
   EXPECT_NE(markdown.find("test fixture"), std::string::npos);
@@ -72,7 +92,7 @@ TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   EXPECT_EQ(orange, 7u);
   EXPECT_NE(svg.find(">engine-godot<"), std::string::npos);
   for (const char* section : {"## Recommended configuration", "## Switching from an engine's shipped form", "## Per scene:",
-                              "| engine-hdrp | curved |", "LDR-FLIP", "HDR-FLIP", "flicker tm ratio"})
+                              "| engine-hdrp | curved |", "LDR-FLIP", "HDR-FLIP", "TDE", "excess flicker", "lost motion", "flicker tm ratio"})
     EXPECT_NE(markdown.find(section), std::string::npos) << section;
 }
 
@@ -89,7 +109,7 @@ TEST_F(Report, EveryImageLoadsInHeadlessChromium) {
   const std::string page = read_text(dom);
   ASSERT_TRUE(std::regex_search(page, match, std::regex(R"(images loaded: (\d+)/(\d+))"))) << page.substr(0, 500);
   EXPECT_EQ(match[1].str(), match[2].str());
-  EXPECT_EQ(match[2].str(), "9");  // 8 sheets and the plot
+  EXPECT_EQ(match[2].str(), "13");  // 4 strips, 8 sheets and the plot
 }
 
 TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
@@ -100,11 +120,28 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
   const std::string table = read_text(scratch_ / "bench.txt");
   EXPECT_NE(table.find("RMSE tonemapped"), std::string::npos);
   EXPECT_NE(table.find("deferred-projected-space"), std::string::npos);
+  // It ends with the verdict: one headline per path and content, LDR-FLIP and TDE against none and
+  // the best engine, and where the recommendation loses (the quick preset has no normal maps).
+  const auto verdict = table.rfind("Verdict: what to use");
+  ASSERT_NE(verdict, std::string::npos);
+  EXPECT_EQ(table.find("where it does not"), std::string::npos);  // the long loss lists are the report's
+  for (const char* headline : {"\n  forward, curved: ", "\n  deferred, curved: ", "\n  forward, bump: ", "\n  deferred, bump: "})
+    EXPECT_NE(table.find(headline, verdict), std::string::npos) << headline;
+  EXPECT_NE(table.find("TDE ", verdict), std::string::npos);
+  EXPECT_NE(table.find("(none ", verdict), std::string::npos);
+  EXPECT_NE(table.find("best engine engine-", verdict), std::string::npos);
   const auto document = nlohmann::json::parse(read_text(json));
   // none + 10 variants + 6 engines, and the 10 variants fed the geometric normal (the bump plane
   // has normal detail).
   ASSERT_EQ(document["rows"].size(), 27u);
-  for (const auto& row : document["rows"]) EXPECT_TRUE(row["error"].is_number());
+  for (const auto& row : document["rows"]) {
+    EXPECT_TRUE(row["error"].is_number());
+    // TDE and its parts: excess + lost <= TDE (image.hpp).
+    ASSERT_TRUE(row["tde"].is_number()) << row.dump();
+    EXPECT_GT(row["tde"].get<double>(), 0.0) << row["variant"];
+    EXPECT_LE(row["tde_excess_flicker"].get<double>() + row["tde_lost_motion"].get<double>(), row["tde"].get<double>() * (1.0 + 1e-12));
+  }
+  for (const auto& row : document["by_content"]) EXPECT_TRUE(row["tde"].is_number());
   // 3 scenes without normal detail x 2 alphas x 17 configurations + the bump plane's 2 x 27.
   EXPECT_EQ(document["cases"].size(), 3u * 2u * 17u + 2u * 27u);
 }

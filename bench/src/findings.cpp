@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 namespace saagen::report {
 
@@ -60,25 +61,42 @@ Content content_of(render::SceneId scene) {
   return render::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
 }
 
-double flicker_error(const Metrics& m) { return std::fabs(m.flicker_display - 1.0); }
+Metrics row_metrics(const render::TradeRow& row) {
+  Metrics m;
+  m.rmse_linear = row.rmse_linear;
+  m.rmse_tonemapped = row.rmse_tonemapped;
+  m.max_error = row.max_error;
+  m.flip_ldr = row.flip_ldr;
+  m.flip_hdr = row.flip_hdr;
+  m.tde = row.tde;
+  m.tde_excess_flicker = row.tde_excess_flicker;
+  m.tde_lost_motion = row.tde_lost_motion;
+  m.flicker = row.flicker;
+  m.flicker_display = row.flicker_display;
+  m.cases = 1;
+  return m;
+}
+
+namespace {
+
+// The averaged fields of Metrics (max_error is a maximum, cases a count).
+constexpr double Metrics::*kMeanFields[] = {&Metrics::rmse_linear, &Metrics::rmse_tonemapped, &Metrics::flip_ldr,
+                                            &Metrics::flip_hdr,    &Metrics::tde,             &Metrics::tde_excess_flicker,
+                                            &Metrics::tde_lost_motion, &Metrics::flicker,     &Metrics::flicker_display};
+
+}  // namespace
 
 Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
   Metrics m;
   for (const render::TradeRow& row : table.rows) {
     if (row.fresnel || render::configuration_id(row) != configuration || !keep(row)) continue;
-    m.rmse_linear += row.rmse_linear;
-    m.rmse_tonemapped += row.rmse_tonemapped;
-    m.max_error = std::max(m.max_error, row.max_error);
-    m.flip_ldr += row.flip_ldr;
-    m.flip_hdr += row.flip_hdr;
-    m.flicker += row.flicker;
-    m.flicker_display += row.flicker_display;
+    const Metrics r = row_metrics(row);
+    for (auto field : kMeanFields) m.*field += r.*field;
+    m.max_error = std::max(m.max_error, r.max_error);
     ++m.cases;
   }
-  if (m.cases) {
-    const double n = static_cast<double>(m.cases);
-    m.rmse_linear /= n, m.rmse_tonemapped /= n, m.flip_ldr /= n, m.flip_hdr /= n, m.flicker /= n, m.flicker_display /= n;
-  }
+  if (m.cases)
+    for (auto field : kMeanFields) m.*field /= static_cast<double>(m.cases);
   return m;
 }
 
@@ -196,19 +214,56 @@ std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const 
         const Metrics base = mean_metrics(table, id, on_scene);
         if (!base.cases) continue;
         verdict.baselines.emplace_back(id, base);
-        const Metrics& r = verdict.recommended;
-        const auto lose = [&](const char* metric, double ours, double theirs) {
-          if (ours > theirs) verdict.losses.push_back(fmt::format("{}: {} {:.4g} > {:.4g}", id, metric, ours, theirs));
-        };
-        lose("tonemapped RMSE", r.rmse_tonemapped, base.rmse_tonemapped);
-        lose("LDR-FLIP", r.flip_ldr, base.flip_ldr);
-        lose("HDR-FLIP", r.flip_hdr, base.flip_hdr);
-        lose("flicker error", flicker_error(r), flicker_error(base));
+        for (const VerdictMetric& metric : kVerdictMetrics)
+          if (verdict.recommended.*metric.value > base.*metric.value)
+            verdict.losses.push_back({id, metric.name, verdict.recommended.*metric.value, base.*metric.value});
       }
       verdicts.push_back(std::move(verdict));
     }
   }
   return verdicts;
+}
+
+std::string describe(const Loss& loss) {
+  return fmt::format("{}: {} {:.4g} > {:.4g}", loss.baseline, loss.metric, loss.ours, loss.theirs);
+}
+
+namespace {
+
+// The engine with the lowest mean `value` on a content type ("" when the table has no engine).
+std::pair<std::string, Metrics> best_engine(const render::TradeTable& table, Content content, double Metrics::*value) {
+  std::pair<std::string, Metrics> best;
+  for (const std::string& id : configurations_of(table, content)) {
+    if (!is_engine_configuration(id)) continue;
+    const Metrics m = mean_metrics(table, id, content_filter(content));
+    if (best.first.empty() || m.*value < best.second.*value) best = {id, m};
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+  const std::vector<SceneVerdict> per_scene = scene_verdicts(table, recs);
+  std::vector<Verdict> out;
+  for (const Recommendation& rec : recs) {
+    Verdict v;
+    v.recommendation = rec;
+    v.none = mean_metrics(table, "none", content_filter(rec.content));
+    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::flip_ldr);
+    std::tie(v.best_engine_motion, v.engine_motion) = best_engine(table, rec.content, &Metrics::tde);
+    for (const VerdictMetric& metric : kVerdictMetrics) {
+      const double ours = rec.metrics.*metric.value;
+      if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});
+      const auto [engine, engine_metrics] = best_engine(table, rec.content, metric.value);
+      if (!engine.empty() && ours > engine_metrics.*metric.value) v.losses.push_back({engine, metric.name, ours, engine_metrics.*metric.value});
+    }
+    for (const SceneVerdict& scene : per_scene)
+      if (scene.path == rec.path && content_of(scene.scene) == rec.content && !scene.losses.empty())
+        v.scene_losses.emplace_back(scene.scene, scene.losses);
+    out.push_back(std::move(v));
+  }
+  return out;
 }
 
 }  // namespace saagen::report

@@ -16,6 +16,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #include <stb/stb_image_write.h>
@@ -46,22 +48,18 @@ std::uint8_t to_byte(double value) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0));
 }
 
-double srgb_encode(double linear) {
-  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
-
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
 };
 
 Rgb display(double radiance) {
-  const std::uint8_t v = to_byte(srgb_encode(render::tonemap(radiance)));
+  const std::uint8_t v = to_byte(render::display_value(radiance));
   return {v, v, v};
 }
 
 Rgb difference_colour(double radiance, double reference) {
   const double d = (render::tonemap(radiance) - render::tonemap(reference)) / difference_full_scale;
-  const double m = srgb_encode(std::min(std::fabs(d), 1.0));
+  const double m = render::srgb_encode(std::min(std::fabs(d), 1.0));
   return d >= 0.0 ? Rgb{to_byte(m), 0, 0} : Rgb{0, 0, to_byte(m)};
 }
 
@@ -146,13 +144,19 @@ void draw_text(std::vector<std::uint8_t>& pixels, int image_width, int image_hei
   }
 }
 
-// One sheet (PNG bytes): a label band, then row 0 the ground truth and each configuration, row 1 an empty
+// A labelled image (PNG tile) beside the ground truth.
+struct Tile {
+  std::string label;
+  const render::Image* image;
+};
+
+// One sheet (PNG bytes): a label band, then row 0 the ground truth and each tile, row 1 an empty
 // cell then the difference maps; a 2-pixel grey gutter between tiles.
-std::string sheet_png(const render::ImageSet& set) {
-  const int scale = display_scale(set.reference);
-  const int tile_w = set.reference.width / scale, tile_h = set.reference.height / scale, gutter = 2;
+std::string grid_png(const render::Image& reference, const std::vector<Tile>& tiles) {
+  const int scale = display_scale(reference);
+  const int tile_w = reference.width / scale, tile_h = reference.height / scale, gutter = 2;
   const int band = kLabelLines * kLabelLineHeight + 4;
-  const int columns = 1 + static_cast<int>(set.variants.size());
+  const int columns = 1 + static_cast<int>(tiles.size());
   const int width = columns * tile_w + (columns - 1) * gutter, height = band + 2 * tile_h + gutter;
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height * 3, 96);
   for (std::size_t i = 0; i < static_cast<std::size_t>(width) * band * 3; ++i) pixels[i] = 32;
@@ -167,17 +171,16 @@ std::string sheet_png(const render::ImageSet& set) {
       draw_text(pixels, width, height, column * (tile_w + gutter) + 2, 2 + static_cast<int>(l) * kLabelLineHeight, lines[l]);
   };
   label(0, "ground truth");
-  for (std::size_t k = 0; k < set.variants.size(); ++k)
-    label(static_cast<int>(k) + 1, render::configuration_id(set.variants[k].variant, set.variants[k].feed, set.variants[k].prefilter));
+  for (std::size_t k = 0; k < tiles.size(); ++k) label(static_cast<int>(k) + 1, tiles[k].label);
   for (int y = 0; y < tile_h; ++y) {
     for (int x = 0; x < tile_w; ++x) {
-      const double reference = box(set.reference, x, y, scale);
-      put(0, 0, x, y, display(reference));
+      const double value_reference = box(reference, x, y, scale);
+      put(0, 0, x, y, display(value_reference));
       put(0, 1, x, y, {0, 0, 0});
-      for (std::size_t k = 0; k < set.variants.size(); ++k) {
-        const double value = box(set.variants[k].image, x, y, scale);
+      for (std::size_t k = 0; k < tiles.size(); ++k) {
+        const double value = box(*tiles[k].image, x, y, scale);
         put(static_cast<int>(k) + 1, 0, x, y, display(value));
-        put(static_cast<int>(k) + 1, 1, x, y, difference_colour(value, reference));
+        put(static_cast<int>(k) + 1, 1, x, y, difference_colour(value, value_reference));
       }
     }
   }
@@ -185,6 +188,17 @@ std::string sheet_png(const render::ImageSet& set) {
   const auto append = [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size)); };
   if (!stbi_write_png_to_func(append, &png, width, height, 3, pixels.data(), width * 3)) throw Error("cannot encode a PNG sheet");
   return with_text_chunk(png, "Software", std::string(output_tag) + " report");
+}
+
+std::string configuration_of(const render::ImageSet::Rendered& rendered) {
+  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter);
+}
+
+// Every configuration of a (scene, material) beside the ground truth.
+std::string sheet_png(const render::ImageSet& set) {
+  std::vector<Tile> tiles;
+  for (const auto& rendered : set.variants) tiles.push_back({configuration_of(rendered), &rendered.image});
+  return grid_png(set.reference, tiles);
 }
 
 std::string sheet_name(const render::ImageSet& set) {
@@ -306,13 +320,13 @@ std::string as_html(const TextTable& table) {
   return text + "</table>\n";
 }
 
-const std::vector<std::string> kMetricHeaders{"RMSE linear", "RMSE tonemapped", "LDR-FLIP", "HDR-FLIP", "max error", "flicker",
-                                              "flicker tm ratio"};
+const std::vector<std::string> kMetricHeaders{"RMSE linear", "RMSE tonemapped", "LDR-FLIP", "HDR-FLIP", "max error",
+                                              "TDE",         "excess flicker",  "lost motion", "flicker tm ratio"};
 
 std::vector<std::string> metric_cells(const Metrics& m) {
-  return {fmt::format("{:.4g}", m.rmse_linear), fmt::format("{:.4g}", m.rmse_tonemapped), fmt::format("{:.4f}", m.flip_ldr),
-          fmt::format("{:.4f}", m.flip_hdr),    fmt::format("{:.4g}", m.max_error),       fmt::format("{:+.4f}", m.flicker),
-          fmt::format("{:.3f}", m.flicker_display)};
+  return {fmt::format("{:.4g}", m.rmse_linear),     fmt::format("{:.4g}", m.rmse_tonemapped),    fmt::format("{:.4f}", m.flip_ldr),
+          fmt::format("{:.4f}", m.flip_hdr),        fmt::format("{:.4g}", m.max_error),          fmt::format("{:.5f}", m.tde),
+          fmt::format("{:.5f}", m.tde_excess_flicker), fmt::format("{:.5f}", m.tde_lost_motion), fmt::format("{:.3f}", m.flicker_display)};
 }
 
 // ISA inverse-throughput ratio (primary), lavapipe time ratio (secondary), SPIR-V delta.
@@ -322,7 +336,12 @@ std::vector<std::string> cost_cells(const CostTable* costs, const std::string& c
 }
 
 Metrics metrics_of(const VariantSummary& s) {
-  return {s.rmse_linear, s.rmse_tonemapped, s.max_error, s.flip_ldr, s.flip_hdr, s.flicker, s.flicker_display, s.cases};
+  Metrics m;
+  m.rmse_linear = s.rmse_linear, m.rmse_tonemapped = s.rmse_tonemapped, m.max_error = s.max_error;
+  m.flip_ldr = s.flip_ldr, m.flip_hdr = s.flip_hdr;
+  m.tde = s.tde, m.tde_excess_flicker = s.tde_excess_flicker, m.tde_lost_motion = s.tde_lost_motion;
+  m.flicker = s.flicker, m.flicker_display = s.flicker_display, m.cases = s.cases;
+  return m;
 }
 
 TextTable summary_table(const std::vector<VariantSummary>& summary, const CostTable* costs) {
@@ -361,11 +380,11 @@ std::string percent_change(double ours, double theirs) {
 }
 
 TextTable recommendation_table(const std::vector<Recommendation>& recs, const CostTable* costs) {
-  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "HDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "ISA inv.thr", "time ratio", "dSPIR-V"}, {}};
+  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "TDE", "HDR-FLIP", "RMSE tonemapped", "ISA inv.thr", "time ratio", "dSPIR-V"}, {}};
   for (const Recommendation& r : recs) {
     std::vector<std::string> cells{std::string(path_name(r.path)), std::string(content_name(r.content)), r.configuration,
-                                   fmt::format("{:.4f}", r.metrics.flip_ldr), fmt::format("{:.4f}", r.metrics.flip_hdr),
-                                   fmt::format("{:.4g}", r.metrics.rmse_tonemapped), fmt::format("{:.3f}", r.metrics.flicker_display)};
+                                   fmt::format("{:.4f}", r.metrics.flip_ldr), fmt::format("{:.5f}", r.metrics.tde),
+                                   fmt::format("{:.4f}", r.metrics.flip_hdr), fmt::format("{:.4g}", r.metrics.rmse_tonemapped)};
     for (auto& c : cost_cells(costs, r.configuration)) cells.push_back(c);
     t.rows.push_back(cells);
   }
@@ -373,8 +392,8 @@ TextTable recommendation_table(const std::vector<Recommendation>& recs, const Co
 }
 
 TextTable switch_table(const std::vector<EngineSwitch>& switches) {
-  TextTable t{{"switching from", "content", "engine LDR-FLIP", "best saagen at <= cost", "LDR-FLIP", "change LDR-FLIP", "change HDR-FLIP",
-               "change RMSE tm", "flicker tm ratio (engine -> saagen)"},
+  TextTable t{{"switching from", "content", "engine LDR-FLIP", "best saagen at <= cost", "LDR-FLIP", "change LDR-FLIP", "change TDE",
+               "change HDR-FLIP", "change RMSE tm"},
               {}};
   for (const EngineSwitch& s : switches) {
     if (s.configuration.empty()) {
@@ -384,20 +403,23 @@ TextTable switch_table(const std::vector<EngineSwitch>& switches) {
     }
     t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), s.configuration,
                       fmt::format("{:.4f}", s.saagen_metrics.flip_ldr), percent_change(s.saagen_metrics.flip_ldr, s.engine_metrics.flip_ldr),
+                      percent_change(s.saagen_metrics.tde, s.engine_metrics.tde),
                       percent_change(s.saagen_metrics.flip_hdr, s.engine_metrics.flip_hdr),
-                      percent_change(s.saagen_metrics.rmse_tonemapped, s.engine_metrics.rmse_tonemapped),
-                      fmt::format("{:.3f} -> {:.3f}", s.engine_metrics.flicker_display, s.saagen_metrics.flicker_display)});
+                      percent_change(s.saagen_metrics.rmse_tonemapped, s.engine_metrics.rmse_tonemapped)});
   }
   return t;
 }
 
+// Compact: whether the recommendation beats none and every engine on the scene, and how many
+// (baseline, metric) pairs it loses; the losses themselves are in the report (loss_lists_*).
 TextTable verdict_table(const std::vector<SceneVerdict>& verdicts) {
-  TextTable t{{"scene", "path", "recommended", "LDR-FLIP", "RMSE tonemapped", "flicker tm ratio", "beats none and every engine", "where it does not"}, {}};
+  TextTable t{{"scene", "path", "recommended", "LDR-FLIP", "TDE", "RMSE tonemapped", "beats none and every engine"}, {}};
   for (const SceneVerdict& v : verdicts) {
     t.rows.push_back({std::string(render::scene_name(v.scene)), std::string(path_name(v.path)), v.configuration,
-                      fmt::format("{:.4f}", v.recommended.flip_ldr), fmt::format("{:.4g}", v.recommended.rmse_tonemapped),
-                      fmt::format("{:.3f}", v.recommended.flicker_display), v.losses.empty() ? "yes" : "no",
-                      v.losses.empty() ? "" : fmt::format("{}", fmt::join(v.losses, "; "))});
+                      fmt::format("{:.4f}", v.recommended.flip_ldr), fmt::format("{:.5f}", v.recommended.tde),
+                      fmt::format("{:.4g}", v.recommended.rmse_tonemapped),
+                      v.losses.empty() ? "yes" : fmt::format("no: {} of {} comparisons lost", v.losses.size(),
+                                                             v.baselines.size() * std::size(kVerdictMetrics))});
   }
   return t;
 }
@@ -408,8 +430,7 @@ TextTable cases_table(const render::TradeTable& table) {
   for (const render::TradeRow& row : table.rows) {
     std::vector<std::string> cells{std::string(render::scene_name(row.scene)), fmt::format("{}", row.alpha), row.fresnel ? "yes" : "no",
                                    render::configuration_id(row)};
-    const Metrics m{row.rmse_linear, row.rmse_tonemapped, row.max_error, row.flip_ldr, row.flip_hdr, row.flicker, row.flicker_display, 1};
-    for (auto& c : metric_cells(m)) cells.push_back(c);
+    for (auto& c : metric_cells(row_metrics(row))) cells.push_back(c);
     t.rows.push_back(cells);
   }
   return t;
@@ -424,16 +445,154 @@ void for_each_finding(const render::TradeTable& table, const CostTable* costs, S
   section(std::string("Switching from an engine's shipped form: the best saagen configuration at equal or lower cost") +
               (costs ? "" : " (no cost file: cost not compared)"),
           switch_table(engine_switches(table, costs)));
-  section("Per scene: the recommendation against no SAA and every engine (tonemapped RMSE, LDR-FLIP, HDR-FLIP, flicker error)",
+  section("Per scene: the recommendation against no SAA and every engine (LDR-FLIP, TDE, HDR-FLIP, tonemapped RMSE)",
           verdict_table(scene_verdicts(table, recs)));
 }
+
+// ---------------------------------------------------------------------------------------------
+// The short verdict: per render path and content, what to use and by how much it beats no SAA
+// and the best engine form, in LDR-FLIP and TDE, then plainly where it loses.
+
+// "engine-hdrp 0.0150, -20 %"
+std::string against(const std::string& name, double theirs, double ours, int digits) {
+  const double percent = theirs > 0.0 ? 100.0 * (ours - theirs) / theirs : 0.0;
+  const std::string change = theirs <= 0.0                ? std::string()
+                             : std::fabs(percent) < 10.0 ? fmt::format(", {:+.1f} %", percent)
+                                                         : fmt::format(", {:+.0f} %", percent);
+  return fmt::format("{} {:.{}f}{}", name, theirs, digits, change);
+}
+
+std::string metric_comparison(const char* metric, double ours, double none, const std::string& engine, double engine_value, int digits) {
+  std::string text = fmt::format("{} {:.{}f} ({}", metric, ours, digits, against("none", none, ours, digits));
+  if (!engine.empty()) text += "; best engine " + against(engine, engine_value, ours, digits);
+  return text + ")";
+}
+
+std::string headline(const Verdict& v) {
+  const Recommendation& r = v.recommendation;
+  return fmt::format("{}, {}: {} -- {}, {}", path_name(r.path), content_name(r.content), r.configuration,
+                     metric_comparison("LDR-FLIP", r.metrics.flip_ldr, v.none.flip_ldr, v.best_engine_image, v.engine_image.flip_ldr, 4),
+                     metric_comparison("TDE", r.metrics.tde, v.none.tde, v.best_engine_motion, v.engine_motion.tde, 5));
+}
+
+// "HDR-FLIP to engine-godot (0.0512 vs 0.0498)", per content-mean loss.
+std::string mean_losses(const Verdict& v) {
+  std::vector<std::string> parts;
+  for (const Loss& loss : v.losses) parts.push_back(fmt::format("{} to {} ({:.4g} vs {:.4g})", loss.metric, loss.baseline, loss.ours, loss.theirs));
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// "tubes: TDE (none + 2 engines), HDR-FLIP (engine-godot)": per scene, each lost metric and whom
+// it is lost to (engines counted past two).
+std::string scene_losses(const Verdict& v) {
+  std::vector<std::string> scenes;
+  for (const auto& [scene, losses] : v.scene_losses) {
+    std::vector<std::string> metrics;
+    for (const VerdictMetric& metric : kVerdictMetrics) {
+      bool none = false;
+      std::vector<std::string> engines;
+      for (const Loss& loss : losses) {
+        if (loss.metric != metric.name) continue;
+        if (loss.baseline == "none") none = true;
+        else engines.push_back(loss.baseline);
+      }
+      if (!none && engines.empty()) continue;
+      std::vector<std::string> whom;
+      if (none) whom.push_back("none");
+      if (engines.size() > 2) whom.push_back(fmt::format("{} engines", engines.size()));
+      else whom.insert(whom.end(), engines.begin(), engines.end());
+      metrics.push_back(fmt::format("{} ({})", metric.name, fmt::join(whom, " + ")));
+    }
+    scenes.push_back(fmt::format("{}: {}", render::scene_name(scene), fmt::join(metrics, ", ")));
+  }
+  return fmt::format("{}", fmt::join(scenes, "; "));
+}
+
+// The verdict lines of one recommendation: the headline, then where it loses (or that it does not).
+std::vector<std::string> verdict_lines(const Verdict& v) {
+  std::vector<std::string> lines{headline(v)};
+  if (!v.losses.empty()) lines.push_back("loses on the content means: " + mean_losses(v));
+  if (!v.scene_losses.empty()) lines.push_back("loses per scene: " + scene_losses(v));
+  if (v.losses.empty() && v.scene_losses.empty())
+    lines.push_back("beats none and every engine on LDR-FLIP, TDE, HDR-FLIP and tonemapped RMSE, on every scene");
+  return lines;
+}
+
+// Verdicts grouped by render path, then content type.
+std::vector<Verdict> ordered_verdicts(const render::TradeTable& table) {
+  std::vector<Verdict> all = verdicts(table, recommend(table));
+  std::stable_sort(all.begin(), all.end(), [](const Verdict& a, const Verdict& b) {
+    return a.recommendation.path < b.recommendation.path;
+  });
+  return all;
+}
+
+constexpr const char* kVerdictTitle =
+    "Verdict: what to use per render path and content (means over the content's scenes and alphas, no Fresnel; lower is better; "
+    "LDR-FLIP = image error, TDE = temporal difference error of the animation in display values; % = change from the baseline)";
+
+// ---------------------------------------------------------------------------------------------
+// Image strips: per scene, the ground truth, no SAA, the best engine form and the
+// recommendations, at the alpha where no SAA errs most (largest LDR-FLIP).
+
+struct Strip {
+  std::string file;
+  std::string caption;
+  std::string png;
+};
+
+const render::ImageSet::Rendered* find_rendered(const render::ImageSet& set, const std::string& configuration) {
+  for (const auto& rendered : set.variants)
+    if (configuration_of(rendered) == configuration) return &rendered;
+  return nullptr;
+}
+
+std::string strip_name(render::SceneId scene) { return fmt::format("strip_{}.png", render::scene_name(scene)); }
+
+const render::ImageSet* worst_case_for_none(const render::TradeTable& table, render::SceneId scene) {
+  const render::ImageSet* worst = nullptr;
+  double worst_error = -1.0;
+  for (const render::ImageSet& set : table.images) {
+    if (set.scene != scene || set.material.fresnel) continue;
+    const render::TradeRow* none = table.find(Variant::none, scene, set.material.alpha, false);
+    if (none && none->flip_ldr > worst_error) worst = &set, worst_error = none->flip_ldr;
+  }
+  return worst;
+}
+
+std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Verdict>& all) {
+  std::vector<Strip> out;
+  for (render::SceneId scene : table.config.scenes) {
+    const render::ImageSet* set = worst_case_for_none(table, scene);
+    if (!set) continue;
+    std::vector<std::pair<std::string, std::string>> columns{{"none", "none"}};  // label, configuration
+    for (const Verdict& v : all) {
+      if (v.recommendation.content != content_of(scene)) continue;
+      if (!v.best_engine_image.empty() && columns.size() == 1) columns.emplace_back("best engine: " + v.best_engine_image, v.best_engine_image);
+      columns.emplace_back(fmt::format("{}: {}", path_name(v.recommendation.path), v.recommendation.configuration), v.recommendation.configuration);
+    }
+    std::vector<Tile> tiles;
+    std::vector<std::string> labels{"ground truth"};
+    for (const auto& [label, configuration] : columns)
+      if (const auto* rendered = find_rendered(*set, configuration)) tiles.push_back({label, &rendered->image}), labels.push_back(label);
+    out.push_back({strip_name(scene),
+                   fmt::format("{}, alpha {} (where no SAA errs most): {}", render::scene_name(scene), set->material.alpha, fmt::join(labels, ", ")),
+                   grid_png(set->reference, tiles)});
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pages.
 
 const char* kMetricNote =
     "Metrics against the supersampled ground truth: RMSE of linear radiance; RMSE after Reinhard's x/(1+x); mean LDR-FLIP of the "
     "tonemapped images (Andersson et al. 2020, 67 pixels per degree); mean HDR-FLIP of the linear images (Andersson et al. 2021); "
-    "flicker = mean per-pixel temporal std of the 1-spp animation minus the ground truth's (linear); flicker tm ratio = the same "
-    "std in tonemapped values divided by the ground truth's (1 = as the converged animation; flicker error = |ratio - 1|). "
-    "Engines cost what deferred-sum costs (same operations).";
+    "TDE = temporal difference error of the animation in display values (tonemapped, sRGB-encoded): mean over pixels and frame "
+    "pairs of |(I_t - I_t-1) - (R_t - R_t-1)| against the ground truth R (the pixel-level tLP of Chu et al. 2020), split into "
+    "excess flicker (changes the ground truth does not make) and lost motion (changes it makes that are missing); flicker tm "
+    "ratio (secondary) = the mean per-pixel temporal std of the tonemapped frames divided by the ground truth's, which rewards "
+    "a highlight blurred away. Engines cost what deferred-sum costs (same operations).";
 
 std::string html_escape(std::string_view text) {
   std::string out;
@@ -448,22 +607,49 @@ std::string html_escape(std::string_view text) {
 
 std::string config_line(const render::TradeTable& table) {
   const render::TradeConfig& c = table.config;
-  return fmt::format("{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); flicker over {} frames at "
-                     "{} deg/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; ground truth {:.1f} s "
-                     "({} cache hits, {} misses)",
-                     c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.flicker_width,
-                     c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2, c.params.kappa,
-                     c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds, table.cache_hits,
-                     table.cache_misses);
+  return fmt::format("{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
+                     "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
+                     "ground truth {:.1f} s ({} cache hits, {} misses)",
+                     c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x,
+                     c.pan_pixels_per_frame.y, c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2,
+                     c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds,
+                     table.cache_hits, table.cache_misses);
 }
 
+// Per scene and path with losses: "scene, path, configuration" and each loss.
+std::vector<std::pair<std::string, std::vector<std::string>>> loss_lists(const render::TradeTable& table) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> lists;
+  for (const SceneVerdict& v : scene_verdicts(table, recommend(table))) {
+    if (v.losses.empty()) continue;
+    std::vector<std::string> items;
+    for (const Loss& loss : v.losses) items.push_back(describe(loss));
+    lists.emplace_back(fmt::format("{}, {}: {}", render::scene_name(v.scene), path_name(v.path), v.configuration), items);
+  }
+  return lists;
+}
+
+constexpr const char* kLossListTitle = "Where the recommendation loses, per scene (against none and every engine)";
+
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                            const std::vector<std::string>& sheets) {
+                            const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips) {
   std::ostringstream md;
-  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n" << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
+  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n";
+  for (const Verdict& v : ordered_verdicts(table)) {
+    const std::vector<std::string> lines = verdict_lines(v);
+    md << "- **" << lines.front() << "**\n";
+    for (std::size_t i = 1; i < lines.size(); ++i) md << "  - " << lines[i] << "\n";
+  }
+  md << "\n";
+  for (const Strip& strip : image_strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
+  md << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
   if (costs) md << "Cost: " << costs->describe() << ".\n\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
-  md << "## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
+  md << "## " << kLossListTitle << "\n\n";
+  for (const auto& [heading, items] : loss_lists(table)) {
+    md << "- " << heading << "\n";
+    for (const std::string& item : items) md << "  - " << item << "\n";
+  }
+  md << "\n## Summary (means over every scene and alpha, no Fresnel)\n\n" << as_markdown(summary_table(summary, costs));
   for (Content content : kContents)
     md << "\n## " << content_name(content) << " scenes (means over their scenes and alphas)\n\n"
        << as_markdown(content_table(table, content, costs));
@@ -474,16 +660,46 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   return md.str();
 }
 
+std::string html_verdict(const render::TradeTable& table) {
+  std::string html = fmt::format("<h2>{}</h2>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle));
+  for (const Verdict& v : ordered_verdicts(table)) {
+    const std::vector<std::string> lines = verdict_lines(v);
+    html += "<li><b>" + html_escape(lines.front()) + "</b>";
+    for (std::size_t i = 1; i < lines.size(); ++i) html += "<br>" + html_escape(lines[i]);
+    html += "</li>\n";
+  }
+  return html + "</ul>\n";
+}
+
+std::string html_loss_lists(const render::TradeTable& table) {
+  std::string html = fmt::format("<h2>{}</h2>\n<ul>\n", html_escape(kLossListTitle));
+  for (const auto& [heading, items] : loss_lists(table)) {
+    html += "<li>" + html_escape(heading) + "<ul>";
+    for (const std::string& item : items) html += "<li>" + html_escape(item) + "</li>";
+    html += "</ul></li>\n";
+  }
+  return html + "</ul>\n";
+}
+
 std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                        const std::vector<std::string>& sheets, const std::vector<std::string>& columns) {
+                        const std::vector<std::string>& sheets, const std::vector<std::string>& columns,
+                        const std::vector<Strip>& image_strips) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<!-- " << output_tag << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
           "<style>body{font-family:sans-serif;margin:2em;max-width:1500px}table{border-collapse:collapse}"
-          "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}</style>\n"
-          "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n<p>" << html_escape(config_line(table)) << "</p>\n<p>"
-       << html_escape(kMetricNote) << "</p>\n";
+          "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}"
+          "ul.verdict li{margin-bottom:0.6em}figure{margin:1em 0}</style>\n"
+          "</head><body>\n<h1>saagen speed/accuracy trade report</h1>\n"
+       << html_verdict(table);
+  html << "<h2>Per scene: ground truth, no SAA, best engine form, recommendation</h2>\n<p>Top: images; bottom: tonemapped difference "
+          "from the ground truth (red brighter, blue darker, full colour at 0.25).</p>\n";
+  for (const Strip& strip : image_strips)
+    html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>" << html_escape(strip.caption)
+         << "</figcaption></figure>\n";
+  html << "<p>" << html_escape(config_line(table)) << "</p>\n<p>" << html_escape(kMetricNote) << "</p>\n";
   if (costs) html << "<p>Cost: " << html_escape(costs->describe()) << ".</p>\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t); });
+  html << html_loss_lists(table);
   html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
   for (Content content : kContents)
     html << "<h2>" << content_name(content) << " scenes</h2>\n" << as_html(content_table(table, content, costs));
@@ -576,8 +792,11 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
   std::vector<VariantSummary> summary;
   for (const std::string& id : order) {
     VariantSummary entry{id};
-    std::vector<double> linear, tonemapped, flicker, flicker_display, flip_ldr, flip_hdr;
+    std::vector<double> linear, tonemapped, flicker, flicker_display, flip_ldr, flip_hdr, tde, excess, lost;
     for (const render::TradeRow* row : by_configuration[id]) {
+      tde.push_back(row->tde);
+      excess.push_back(row->tde_excess_flicker);
+      lost.push_back(row->tde_lost_motion);
       flip_ldr.push_back(row->flip_ldr);
       flip_hdr.push_back(row->flip_hdr);
       linear.push_back(row->rmse_linear);
@@ -589,6 +808,9 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
     entry.cases = linear.size();
     entry.rmse_linear = mean(linear);
     entry.rmse_tonemapped = mean(tonemapped);
+    entry.tde = mean(tde);
+    entry.tde_excess_flicker = mean(excess);
+    entry.tde_lost_motion = mean(lost);
     entry.flicker = mean(flicker);
     entry.flicker_display = mean(flicker_display);
     entry.flip_ldr = mean(flip_ldr);
@@ -642,13 +864,24 @@ std::string format_findings(const render::TradeTable& table, const CostTable* co
   return text;
 }
 
+std::string format_verdict(const render::TradeTable& table) {
+  std::string text = std::string(kVerdictTitle) + ":\n";
+  for (const Verdict& v : ordered_verdicts(table)) {
+    const std::vector<std::string> lines = verdict_lines(v);
+    text += "  " + lines.front() + "\n";
+    for (std::size_t i = 1; i < lines.size(); ++i) text += "      " + lines[i] + "\n";
+  }
+  return text;
+}
+
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
     nlohmann::json entry = {{"variant", row.variant},         {"error", row.flip_ldr},
                             {"rmse_tonemapped", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
-                            {"flip_hdr", row.flip_hdr},        {"flicker", row.flicker},
-                            {"flicker_display", row.flicker_display}};
+                            {"flip_hdr", row.flip_hdr},        {"tde", row.tde},
+                            {"tde_excess_flicker", row.tde_excess_flicker}, {"tde_lost_motion", row.tde_lost_motion},
+                            {"flicker", row.flicker},          {"flicker_display", row.flicker_display}};
     if (const auto ratio = configuration_isa_cost(costs, row.variant); ratio && costs && !costs->isa_family.empty()) {
       entry["isa_inverse_throughput_ratio"] = *ratio;
       entry["isa_family"] = costs->isa_family;
@@ -662,8 +895,9 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
     cases.push_back({{"scene", std::string(render::scene_name(row.scene))}, {"alpha", row.alpha}, {"fresnel", row.fresnel},
                      {"variant", id_of(row.variant)}, {"feed", std::string(render::feed_name(row.feed))},
                      {"configuration", render::configuration_id(row)}, {"rmse_linear", row.rmse_linear},
-                     {"rmse_tonemapped", row.rmse_tonemapped}, {"max_error", row.max_error}, {"flicker", row.flicker},
-                     {"flip_ldr", row.flip_ldr}, {"flip_hdr", row.flip_hdr}, {"flicker_display", row.flicker_display}});
+                     {"rmse_tonemapped", row.rmse_tonemapped}, {"max_error", row.max_error}, {"flip_ldr", row.flip_ldr},
+                     {"flip_hdr", row.flip_hdr}, {"tde", row.tde}, {"tde_excess_flicker", row.tde_excess_flicker},
+                     {"tde_lost_motion", row.tde_lost_motion}, {"flicker", row.flicker}, {"flicker_display", row.flicker_display}});
   }
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
@@ -673,17 +907,22 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       const Metrics m = mean_metrics(table, id, keep);
       if (!m.cases) continue;
       by_content.push_back({{"content", std::string(content_name(content))}, {"configuration", id}, {"error", m.flip_ldr},
-                            {"rmse_tonemapped", m.rmse_tonemapped}, {"flip_hdr", m.flip_hdr}, {"flicker_display", m.flicker_display}});
+                            {"rmse_tonemapped", m.rmse_tonemapped}, {"flip_hdr", m.flip_hdr}, {"tde", m.tde},
+                            {"tde_excess_flicker", m.tde_excess_flicker}, {"tde_lost_motion", m.tde_lost_motion},
+                            {"flicker_display", m.flicker_display}});
     }
   }
   return {{"generator", std::string(output_tag) + " saagen bench"},
-          {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"}, {"config", config_line(table)},
+          {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
+          {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
+          {"config", config_line(table)},
           {"rows", rows}, {"by_content", by_content}, {"cases", cases}};
 }
 
 std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {
   std::vector<fs::path> paths = {dir / "index.html", dir / "report.md", dir / "cost_vs_error.svg"};
   for (const render::SceneId scene : config.scenes) {
+    paths.push_back(dir / strip_name(scene));
     for (const double alpha : config.alphas) {
       render::ImageSet set;
       set.scene = scene;
@@ -704,19 +943,33 @@ std::vector<std::string> write_report(const render::TradeTable& table, const Cos
     outputs.push_back({dir / sheets.back(), sheet_png(set)});
   }
   std::vector<std::string> columns{"ground truth"};
-  for (const auto& rendered : table.images.front().variants) columns.push_back(render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter));
+  for (const auto& rendered : table.images.front().variants) columns.push_back(configuration_of(rendered));
+
+  const std::vector<Strip> image_strips = strips(table, ordered_verdicts(table));
+  for (const Strip& strip : image_strips) outputs.push_back({dir / strip.file, strip.png});
 
   const auto summary = summarize(table);
   outputs.push_back({dir / "cost_vs_error.svg", plot_svg(summary, costs)});
-  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets)});
-  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns)});
+  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, image_strips)});
+  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns, image_strips)});
   write_outputs(outputs, force);
-  std::vector<std::string> images = sheets;
+  std::vector<std::string> images;
+  for (const Strip& strip : image_strips) images.push_back(strip.file);
+  images.insert(images.end(), sheets.begin(), sheets.end());
   images.push_back("cost_vs_error.svg");
   return images;
 }
 
 render::TradeProgressFn progress_bar() {
+  // On a terminal, one redrawn line; in a log (stderr not a terminal), one line per stage.
+  if (!::isatty(STDERR_FILENO)) {
+    return [last_stage = std::string()](const render::TradeProgress& progress) mutable {
+      if (progress.stage == last_stage) return;
+      last_stage = progress.stage;
+      const double fraction = progress.total ? static_cast<double>(progress.done) / static_cast<double>(progress.total) : 0.0;
+      std::cerr << fmt::format("[{:3.0f}%] {}\n", fraction * 100.0, progress.stage) << std::flush;
+    };
+  }
   return [](const render::TradeProgress& progress) {
     const double fraction = progress.total ? static_cast<double>(progress.done) / static_cast<double>(progress.total) : 0.0;
     const int filled = static_cast<int>(fraction * 30.0);

@@ -136,6 +136,8 @@ int ReportCommands::run_bench() const {
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
   if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force);
+  // Last, what a reader needs first: what to use, by how much, and where it loses.
+  std::cout << "\n" << report::format_verdict(table);
   return 0;
 }
 
@@ -146,7 +148,8 @@ int ReportCommands::run_report() const {
   measure_isa(report_common_.isa_families, costs, std::cerr);
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
-  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n", report_directory_, images.size());
+  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());
+  std::cout << report::format_verdict(table);
   return 0;
 }
 

@@ -5,11 +5,11 @@
 //
 // Display-referred criteria (what a viewer sees):
 //   image    mean LDR-FLIP of the tonemapped frame-0 images (ties: tonemapped RMSE);
-//   motion   flicker error |flicker_display - 1|: how far the tonemapped temporal variation is
-//            from the converged animation's (0: as the ground truth; a variant that aliases
-//            is above 1, one that blurs the moving highlight away is below 1).
-// A configuration "beats" another on a metric when its value is lower (flicker: its flicker
-// error is lower).
+//   motion   mean temporal difference error (TDE, image.hpp) of the display-value animation:
+//            how far the frame-to-frame changes are from the converged animation's (0: as the
+//            ground truth). It counts both excess flicker (aliasing) and lost motion (a highlight
+//            blurred away), where the old temporal-std ratio rewarded the latter.
+// A configuration "beats" another on a metric when its value is lower.
 #pragma once
 
 #include "saagen/report/report.hpp"
@@ -39,11 +39,15 @@ struct Metrics {
   double max_error = 0.0;  // the largest
   double flip_ldr = 0.0;
   double flip_hdr = 0.0;
+  double tde = 0.0;
+  double tde_excess_flicker = 0.0;
+  double tde_lost_motion = 0.0;
   double flicker = 0.0;
-  double flicker_display = 0.0;
+  double flicker_display = 0.0;  // secondary: tonemapped temporal std / the ground truth's
   std::size_t cases = 0;
 };
-double flicker_error(const Metrics& m);
+// The metrics of one trade row (cases = 1).
+Metrics row_metrics(const render::TradeRow& row);
 
 using RowFilter = std::function<bool(const render::TradeRow&)>;
 // Means of one configuration (render::configuration_id) over the non-Fresnel rows `keep` accepts.
@@ -90,16 +94,51 @@ struct EngineSwitch {
 // LDR-FLIP among those whose cost is at most the engine's.
 std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
 
+// The metrics a verdict compares, in the order they are reported: LDR-FLIP, TDE, HDR-FLIP,
+// tonemapped RMSE (all lower-is-better).
+struct VerdictMetric {
+  const char* name;
+  double Metrics::*value;
+};
+inline constexpr VerdictMetric kVerdictMetrics[] = {{"LDR-FLIP", &Metrics::flip_ldr},
+                                                    {"TDE", &Metrics::tde},
+                                                    {"HDR-FLIP", &Metrics::flip_hdr},
+                                                    {"tonemapped RMSE", &Metrics::rmse_tonemapped}};
+
+// A metric on which the recommendation is worse than a baseline.
+struct Loss {
+  std::string baseline;  // "none" or an engine configuration
+  std::string metric;    // a kVerdictMetrics name
+  double ours = 0.0;
+  double theirs = 0.0;
+};
+std::string describe(const Loss& loss);  // "engine-filament: LDR-FLIP 0.0312 > 0.0305"
+
 struct SceneVerdict {
   render::SceneId scene = render::SceneId::sphere;
   Path path = Path::deferred;
   std::string configuration;                                  // the recommendation for its content
   Metrics recommended;                                        // over the scene's alphas
   std::vector<std::pair<std::string, Metrics>> baselines;     // none and every engine
-  std::vector<std::string> losses;  // "engine-filament: LDR-FLIP 0.0312 > 0.0305", one per lost metric
+  std::vector<Loss> losses;                                   // one per baseline and lost metric
 };
-// Per scene and path: the recommendation against no SAA and every engine, on tonemapped RMSE,
-// LDR-FLIP, HDR-FLIP and flicker error.
+// Per scene and path: the recommendation against no SAA and every engine, on every
+// kVerdictMetrics metric.
 std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+
+// The short verdict per render path and content type: the recommendation against no SAA and the
+// best engine form on that content (the lowest mean of each metric over the engines), and every
+// place it loses: content means (losses) and single scenes (scene_losses, from scene_verdicts).
+struct Verdict {
+  Recommendation recommendation;
+  Metrics none;
+  std::string best_engine_image;  // the engine with the lowest mean LDR-FLIP ("" without engines)
+  Metrics engine_image;
+  std::string best_engine_motion;  // the engine with the lowest mean TDE
+  Metrics engine_motion;
+  std::vector<Loss> losses;  // against none and, per metric, that metric's best engine
+  std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
+};
+std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
 
 }  // namespace saagen::report
