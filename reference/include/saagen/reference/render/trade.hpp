@@ -42,9 +42,9 @@
 // the same per-pixel sample pattern (the pixel seeds do not depend on the frame), so the
 // ground truth's residual Monte-Carlo error is correlated from frame to frame and changes only
 // as the surface moves under the pattern: its temporal standard deviation measures mostly the
-// motion of the converged image, not sampler noise. Measured at 128 x 128 over 8 frames, the
-// mean temporal standard deviation of the ground truth at 256 spp is within 2 % of the 1024-spp
-// value for every scene and alpha except the bump plane at alpha = 0.01 (0.84 at 256 spp, 0.69
+// motion of the converged image, not sampler noise. Measured at 128 x 128 over 8 frames of the
+// rotation alone (before the pan), the mean temporal standard deviation of the ground truth at
+// 256 spp is within 2 % of the 1024-spp value for every scene and alpha except the bump plane at alpha = 0.01 (0.84 at 256 spp, 0.69
 // at 1024, 1.19 at 64: its sub-pixel glints are not converged), so that case's flicker is biased
 // low by ~0.15-0.25 (against 1-spp standard deviations of 0.5 - 2.3). Set flicker_strata = 32
 // for 1024 spp (4 x the cost).
