@@ -44,10 +44,10 @@
 // as the surface moves under the pattern: its temporal standard deviation measures mostly the
 // motion of the converged image, not sampler noise. Measured at 128 x 128 over 8 frames of the
 // rotation alone (before the pan), the mean temporal standard deviation of the ground truth at
-// 256 spp is within 2 % of the 1024-spp value for every scene and alpha except the bump plane at alpha = 0.01 (0.84 at 256 spp, 0.69
-// at 1024, 1.19 at 64: its sub-pixel glints are not converged), so that case's flicker is biased
-// low by ~0.15-0.25 (against 1-spp standard deviations of 0.5 - 2.3). Set flicker_strata = 32
-// for 1024 spp (4 x the cost).
+// 256 spp is within 2 % of the 1024-spp value for every scene and alpha except the bump plane
+// at alpha = 0.01 (0.84 at 256 spp, 0.69 at 1024, 1.19 at 64: its sub-pixel glints are not
+// converged), so that case's flicker is biased low by ~0.15-0.25 (against 1-spp standard
+// deviations of 0.5 - 2.3). Set flicker_strata = 32 for 1024 spp (4 x the cost).
 //
 // Ground-truth images can be cached on disk (cache_dir): one file per (scene, rotation, camera
 // (hence the pan), size, samples, seed, filter, material list), named by a 64-bit FNV-1a hash of a text key holding
