@@ -527,9 +527,10 @@ std::vector<Verdict> ordered_verdicts(const render::TradeTable& table) {
   return all;
 }
 
-constexpr const char* kVerdictTitle =
-    "Verdict: what to use per render path and content (means over the content's scenes and alphas, no Fresnel; lower is better; "
-    "LDR-FLIP = image error, TDE = temporal difference error of the animation in display values; % = change from the baseline)";
+constexpr const char* kVerdictTitle = "Verdict: what to use per render path and content";
+constexpr const char* kVerdictNote =
+    "means over the content's scenes and alphas, no Fresnel; lower is better; LDR-FLIP = image error, TDE = temporal difference "
+    "error of the animation in display values; % = change from the baseline";
 
 // ---------------------------------------------------------------------------------------------
 // Image strips: per scene, the ground truth, no SAA, the best engine form and the
@@ -633,7 +634,8 @@ constexpr const char* kLossListTitle = "Where the recommendation loses, per scen
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips) {
   std::ostringstream md;
-  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n";
+  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n("
+     << kVerdictNote << ")\n\n";
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     md << "- **" << lines.front() << "**\n";
@@ -661,7 +663,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
 }
 
 std::string html_verdict(const render::TradeTable& table) {
-  std::string html = fmt::format("<h2>{}</h2>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle));
+  std::string html = fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(kVerdictNote));
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     html += "<li><b>" + html_escape(lines.front()) + "</b>";
@@ -865,7 +867,7 @@ std::string format_findings(const render::TradeTable& table, const CostTable* co
 }
 
 std::string format_verdict(const render::TradeTable& table) {
-  std::string text = std::string(kVerdictTitle) + ":\n";
+  std::string text = fmt::format("{}\n({}):\n", kVerdictTitle, kVerdictNote);
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     text += "  " + lines.front() + "\n";
