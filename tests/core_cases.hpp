@@ -121,6 +121,18 @@ inline void push(std::vector<float>& out, Vec2 v) { push(out, v.x), push(out, v.
 inline void push(std::vector<float>& out, Vec3 v) { push(out, v.x), push(out, v.y), push(out, v.z); }
 inline void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), push(out, m.yy); }
 
+// Whether a function reads a filtered matrix `a` next to the unfiltered `alpha2` it was filtered
+// from (the tail-preserving filtered GGX): then `a` = diag(alpha2) + the roughness matrix, a
+// kernel on top of the material, as the forward variants return.
+inline bool takes_unfiltered_alpha2(const saagen::Function& function) {
+  bool a = false, alpha2 = false;
+  for (const saagen::Parameter& parameter : function.parameters) {
+    a = a || parameter.name == "a";
+    alpha2 = alpha2 || parameter.name == "alpha2";
+  }
+  return a && alpha2;
+}
+
 // Packs the inputs of `function` for one scenario, by parameter name (see templates/*.saa).
 inline void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params, std::vector<float>& out) {
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
@@ -138,7 +150,9 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
     else if (name == "h") push(out, function.name.find("g2") != std::string::npos ? ref::normalize(s.i + s.o) : s.h);
     else if (name == "w" || name == "i") push(out, s.i);
     else if (name == "o") push(out, s.o);
-    else if (name == "a") push(out, matrix);
+    else if (name == "a") push(out, takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
+    else if (name == "filtered") push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
+    else if (name == "kernel") push(out, matrix.xx);
     else if (name == "tau") push(out, ref::sym2_determinant(matrix) * s.tau_scale);
     else if (name == "mean_length") push(out, texel.mean_length);
     else if (name == "slope_mean") push(out, texel.slope_mean);
@@ -279,6 +293,12 @@ inline std::map<std::string, ReferenceFunction> reference_functions(const ref::P
   };
   table["ggx_brdf_axis"] = brdf_axis(ref::ggx_brdf_axis, false);
   table["beckmann_brdf_axis"] = brdf_axis(ref::beckmann_brdf_axis, true);
+  // The tail-preserving filtered GGX and the single-roughness mapping: the shared reference and its scale.
+  for (const char* name : {"ggx_ndf_filtered_matrix", "ggx_brdf_filtered_matrix", "ggx_brdf_filtered_axis", "ggx_filtered_alpha2"}) {
+    const std::string function = name;
+    table[function] = {[=](Inputs& in) { return *saagen::test::filtered_ggx_reference(function, p, in); },
+                       [=](Inputs& in) { return *saagen::test::filtered_ggx_reference(function, p, in, true); }};
+  }
   // Normal-map prefiltering (templates/40-prefilter.saa): the shared reference and its scale.
   for (const saagen::Function& function : Catalogue::builtin().functions()) {
     const std::string name = function.name;

@@ -4,6 +4,7 @@
 
 #include "saagen/reference/reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -56,6 +57,9 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
   if (name == "deferred_avg_fragment") return output_values(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_projected_space_fragment") return output_values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "ggx_brdf_filtered_fragment") return output_values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
+  if (name == "ggx_brdf_tail_filtered_fragment") {
+    return output_values(ref::ggx_brdf_tail_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
+  }
   if (name == "beckmann_brdf_filtered_fragment") {
     return output_values(ref::beckmann_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   }
@@ -93,6 +97,62 @@ inline PrefilterInputs prefilter_inputs(std::uint64_t index) {
 
 inline bool is_prefilter_parameter(const std::string& name) {
   return name == "mean_length" || name == "slope_mean" || name == "slope_second";
+}
+
+// The tail-preserving filtered GGX (templates/30-brdf.saa; docs/FILTERED_GGX.md) on inputs read in
+// parameter order; nullopt for other functions. With `magnitudes`, the magnitude scale S of the
+// output for the 2e-5 S fp32 rounding bound: each lobe's magnitude times (1 + the conditioning of
+// its matrix, + the exponent for the Beckmann core), summed, times (1 + the conditioning of the
+// filtered matrix) for the BRDF's G2 (the matrix BRDFs' scale, core_cases.hpp).
+template <class In>
+std::optional<std::vector<double>> filtered_ggx_reference(const std::string& name, const ref::Params& p, In& in, bool magnitudes = false) {
+  using ref::Sym2;
+  using ref::Vec2;
+  using ref::Vec3;
+  const ref::Brdf brdf{p};
+  const auto conditioning = [](Sym2 a) {
+    const double mean = 0.5 * (a.xx + a.yy), spread = std::sqrt(0.25 * (a.xx - a.yy) * (a.xx - a.yy) + a.xy * a.xy);
+    return (mean + spread) / std::max(mean - spread, 1e-30);
+  };
+  const auto ndf_scale = [&](Vec3 h, Sym2 a, Vec2 alpha2) {
+    const ref::FilteredGgxLobes lobes = ref::filtered_ggx_lobes(brdf.filtered_ggx_ratio(a, alpha2));
+    const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
+    const Sym2 core = unfiltered + lobes.core_kernel * (a - unfiltered);
+    const Sym2 tail = lobes.tail_scale * unfiltered;
+    const double tau = alpha2.x * alpha2.y;
+    double exponent = 0.0;
+    if (h.z > 0.0) exponent = ref::sym2_quadratic_form({core.yy, -core.xy, core.xx}, {h.x / h.z, h.y / h.z}) / std::max(ref::sym2_determinant(core), tau);
+    return std::fabs(lobes.tail_weight * brdf.ggx_ndf_axis(h, {tail.xx, tail.yy})) * (1.0 + conditioning(tail)) +
+           std::fabs((1.0 - lobes.tail_weight) * brdf.beckmann_ndf_matrix(h, core, tau)) * (1.0 + conditioning(core) + exponent);
+  };
+  const auto brdf_value = [&](Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
+    if (!magnitudes) return brdf.ggx_brdf_filtered_matrix(i, o, a, alpha2);
+    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+    const Vec3 h = ref::normalize(i + o);
+    const double g2 = brdf.ggx_g2_matrix(i, o, h, a) / (4.0 * std::max(i.z, 1e-7) * std::max(o.z, 1e-7));
+    return ndf_scale(h, a, alpha2) * g2 * (1.0 + conditioning(a));
+  };
+  if (name == "ggx_ndf_filtered_matrix") {
+    const Vec3 h = in.vec3();
+    const Sym2 a = in.sym2();
+    const Vec2 alpha2 = in.vec2();
+    return output_values(magnitudes ? ndf_scale(h, a, alpha2) * (1.0 + conditioning(a)) : brdf.ggx_ndf_filtered_matrix(h, a, alpha2));
+  }
+  if (name == "ggx_brdf_filtered_matrix") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    const Sym2 a = in.sym2();
+    return output_values(brdf_value(i, o, a, in.vec2()));
+  }
+  if (name == "ggx_brdf_filtered_axis") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    const Vec2 filtered = in.vec2();
+    return output_values(brdf_value(i, o, {filtered.x, 0.0, filtered.y}, in.vec2()));
+  }
+  if (name == "ggx_filtered_alpha2") {
+    const double a = in.real(), kernel = in.real();
+    return output_values(magnitudes ? std::fabs(brdf.ggx_filtered_alpha2(std::fabs(a), std::fabs(kernel))) : brdf.ggx_filtered_alpha2(a, kernel));
+  }
+  return std::nullopt;
 }
 
 // The reference of prefilter function `name` on inputs read in parameter order (In: real, vec2,

@@ -218,7 +218,7 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
   for (const Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2") {
-      if (is_brdf(function)) pack.vec2(material.alpha2);
+      if (is_brdf(function)) parameter.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
       else for (std::uint32_t k = 0; k < (parameter.type == "real" ? 1u : 2u); ++k) pack.real(filter_alpha2(rng));
     } else if (name.rfind("dslope_", 0) == 0 || name.rfind("dproj_", 0) == 0 || name.rfind("dn_", 0) == 0) {
       const std::uint32_t count = parameter.type == "real2" ? 2 : 3;
@@ -236,6 +236,10 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       pack.sym2(material.a);
     } else if (name == "tau") {
       pack.real(material.tau);
+    } else if (name == "filtered") {
+      pack.vec2({material.a.xx, material.a.yy});
+    } else if (name == "kernel") {
+      pack.real(material.a.xx - material.alpha2.x);
     } else if (name == "mean_length") {
       pack.real(adversarial_mean_length(rng));
     } else if (name == "slope_mean" || name == "slope_second") {

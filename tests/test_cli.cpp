@@ -126,8 +126,14 @@ TEST_F(Cli, EmitPresetsAndDomains) {
   expect_one_line_error(saagen({"emit", "--preset", "unreal", "-o", refused.string()}),
                         "--preset 'unreal' is not a preset; use one of hdrp, filament, filament-taa, o3de, bevy, vsgl");
   expect_one_line_error(saagen({"emit", "--domain", "linear", "-o", refused.string()}), "--domain 'linear' is not a roughness domain");
-  expect_one_line_error(saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", refused.string()}),
-                        "variant 'brdf-ggx' takes or returns no scalar or per-axis roughness");
+  expect_one_line_error(saagen({"emit", "-v", "brdf-beckmann", "--domain", "perceptual", "-o", refused.string()}),
+                        "variant 'brdf-beckmann' takes or returns no scalar or per-axis roughness");
+  // brdf-ggx's single-roughness mapping composes with every domain (its kernel stays alpha^2).
+  const fs::path ggx_domain = scratch_ / "ggx-perceptual";
+  const CliRun ggx = saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", ggx_domain.string()});
+  EXPECT_EQ(ggx.exit_code, 0) << ggx.err;
+  EXPECT_NE(read_text(ggx_domain / "saa_brdf_ggx_perceptual.glsl").find("float saa_ggx_filtered_alpha2_perceptual(float perceptual_roughness, float kernel)"),
+            std::string::npos);
   EXPECT_FALSE(fs::exists(refused));
 
   const auto listing = nlohmann::json::parse(saagen({"list", "--json", "--domain", "smoothness"}).out);

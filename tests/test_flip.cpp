@@ -92,10 +92,6 @@ float reference_pooled_mean(const std::vector<float>& map) {
     return sum / static_cast<float>(map.size());
 }
 
-double srgb_encode(double v) {
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
-
 }  // namespace
 
 // ---- Published outputs of the reference implementation -------------------------------------

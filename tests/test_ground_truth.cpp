@@ -582,10 +582,11 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
     config.alphas = {0.01};
     config.fresnel_modes = {false};
     const TradeTable table = compute_trade_table(config);
-    // Per scene: every variant and engine; the bump plane's normal detail adds the geometric
-    // feed of every variant but the baseline.
-    const std::size_t per_scene = all_variants().size() + all_engines().size();
-    ASSERT_EQ(table.rows.size(), 2 * per_scene + (all_variants().size() - 1));
+    // Per scene: every variant and engine, and each further lobe of the lobe variants; the bump
+    // plane's normal detail adds the geometric feed of every variant but the baseline (lobes too).
+    const std::size_t lobe_rows = config.lobe_variants.size() * config.lobes.size();
+    const std::size_t per_scene = all_variants().size() + all_engines().size() + lobe_rows;
+    ASSERT_EQ(table.rows.size(), 2 * per_scene + (all_variants().size() - 1) + lobe_rows);
     for (const TradeRow& row : table.rows) {
         EXPECT_EQ(row.flicker, 0.0) << configuration_id(row) << " " << scene_name(row.scene);
         EXPECT_EQ(row.temporal_stddev, 0.0);

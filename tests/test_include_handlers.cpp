@@ -52,8 +52,8 @@ TEST(IncludeNames, BadNamesAreOneLineCliMessages) {
   EXPECT_EQ(message("saagen/deferred-avg.glsl?colour=red"),
             "saagen/deferred-avg.glsl?colour=red: unknown option 'colour'; use prefix, sigma2, kappa, preset, domain, precision, guards");
   EXPECT_EQ(message("saagen/deferred-avg.wgsl"), "saagen/deferred-avg.wgsl: unknown extension '.wgsl'; use .essl, .glsl, .hlsl");
-  EXPECT_EQ(message("saagen/brdf-ggx.glsl?domain=perceptual"),
-            "saagen/brdf-ggx.glsl?domain=perceptual: --domain perceptual: variant 'brdf-ggx' takes or returns no scalar or per-axis "
+  EXPECT_EQ(message("saagen/brdf-beckmann.glsl?domain=perceptual"),
+            "saagen/brdf-beckmann.glsl?domain=perceptual: --domain perceptual: variant 'brdf-beckmann' takes or returns no scalar or per-axis "
             "roughness; emit it with --domain alpha2");
   for (const std::string name : {"saagen/unreal.glsl", "saagen/hdrp.glsl?preset=bevy", "saagen/x", "saagen/deferred-avg.glsl?precision=fp64"}) {
     const std::string text = message(name);

@@ -83,7 +83,7 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
     for (const saagen::Parameter& p : f.parameters) {
       const std::string& name = p.name;
       if (name == "alpha2") {
-        if (stab::is_brdf(f)) pack.vec2(material.alpha2);
+        if (stab::is_brdf(f)) p.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
         else {
           const double a = realistic_alpha(rng, 0.01);
           smallest = a;
@@ -102,6 +102,10 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
         pack.sym2(material.a);
       } else if (name == "tau") {
         pack.real(material.tau);
+      } else if (name == "filtered") {
+        pack.vec2({material.a.xx, material.a.yy});
+      } else if (name == "kernel") {
+        pack.real(material.a.xx - material.alpha2.x);
       } else if (name == "mean_length") {
         pack.real(saagen::test::prefilter_inputs(seed * kElements + e).mean_length);
       } else if (name == "slope_mean") {
@@ -172,6 +176,7 @@ std::vector<double> values(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 std::vector<double> reference_core(const ref::Params& p, const std::string& name, const float* x) {
   Reader in(x);
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
+  if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
   const ref::Brdf brdf{p};
   if (name.rfind("forward_aniso_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_matrix(p, a, du, in.vec2())); }
   if (name.rfind("forward_axis_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_rectangle(p, a, du, in.vec2())); }

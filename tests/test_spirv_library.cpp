@@ -29,6 +29,7 @@
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/linker.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -126,7 +127,7 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
     std::cout << fmt::format("[ size     ] {:<34} {:>6} bytes {:>5} instructions, {} export(s)\n", library.file_name,
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
-  EXPECT_EQ(exported, 33u);  // as test_kernels: 4 forward + 6 deferred cores, 8 GGX + 6 Beckmann evaluators, 9 prefilter cores
+  EXPECT_EQ(exported, 37u);  // as test_kernels: 4 forward + 6 deferred cores, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -302,6 +303,10 @@ void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), p
 
 // The inputs of a function, by parameter name (templates/*.saa).
 void pack(const saagen::Function& function, const Draw& d, std::vector<float>& out) {
+  // A filtered matrix next to the unfiltered alpha2 (the tail-preserving filtered GGX) is a kernel
+  // on top of the material.
+  const bool reads_alpha2 = std::any_of(function.parameters.begin(), function.parameters.end(),
+                                        [](const saagen::Parameter& p) { return p.name == "alpha2"; });
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2") parameter.type == "real" ? push(out, d.alpha2.x) : push(out, d.alpha2);
@@ -315,8 +320,10 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
     else if (name == "w") push(out, d.w);
     else if (name == "i") push(out, d.i);
     else if (name == "o") push(out, d.o);
-    else if (name == "a") push(out, d.a);
+    else if (name == "a") push(out, reads_alpha2 ? Sym2{d.alpha2.x, 0.0, d.alpha2.y} + d.a : d.a);
     else if (name == "tau") push(out, d.tau);
+    else if (name == "filtered") push(out, Vec2{d.a.xx, d.a.yy});
+    else if (name == "kernel") push(out, d.a.xx - d.alpha2.x);
     else if (name == "mean_length") push(out, d.texel.mean_length);
     else if (name == "slope_mean") push(out, d.texel.slope_mean);
     else if (name == "slope_second") push(out, d.texel.slope_second);
@@ -357,6 +364,10 @@ Expected reference(const std::string& name, Reader in) {
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) {
     const auto scale = *saagen::test::prefilter_reference(name, p, terms, true);
     return {*prefiltered, std::max(max_abs(*prefiltered), max_abs(scale))};
+  }
+  if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) {
+    const auto scale = *saagen::test::filtered_ggx_reference(name, p, terms, true);
+    return {*filtered, std::max(max_abs(*filtered), max_abs(scale))};
   }
   const auto filter2 = [&](auto f) {  // (alpha2 real2, du, dv)
     const Vec2 a = in.vec2(), du = in.vec2(), dv = in.vec2();

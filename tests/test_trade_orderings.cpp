@@ -90,8 +90,8 @@ struct Data {
         throw std::runtime_error("missing images");
     }
     const Image& image(SceneId scene, double alpha, Variant v) {
-        for (const auto& [variant, feed, prefilter, img] : images(scene, alpha).variants)
-            if (variant == v && feed == NormalFeed::shading && prefilter == Prefilter::none) return img;
+        for (const auto& [variant, feed, prefilter, lobe, img] : images(scene, alpha).variants)
+            if (variant == v && feed == NormalFeed::shading && prefilter == Prefilter::none && lobe == Lobe::papers) return img;
         throw std::runtime_error("missing image");
     }
     const Image& reference(SceneId scene, double alpha) { return images(scene, alpha).reference; }

@@ -191,7 +191,7 @@ std::string grid_png(const render::Image& reference, const std::vector<Tile>& ti
 }
 
 std::string configuration_of(const render::ImageSet::Rendered& rendered) {
-  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter);
+  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe);
 }
 
 // Every configuration of a (scene, material) beside the ground truth.

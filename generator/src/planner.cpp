@@ -469,14 +469,16 @@ TradeTable load_trade_table(const std::filesystem::path& path) {
 
 namespace {
 
-// A configuration id's parts: "deferred-avg:geometric+toksvig" -> deferred-avg, geometric, toksvig.
+// A configuration id's parts: "deferred-avg:geometric+toksvig/tail" -> deferred-avg, geometric,
+// toksvig, tail (the lobe the filtered roughness is evaluated with; "papers" when absent).
 struct Configuration {
-  std::string variant, feed = "shading", prefilter = "none";
+  std::string variant, feed = "shading", prefilter = "none", lobe = "papers";
 };
 
 Configuration parse_configuration(const std::string& id) {
   Configuration c;
   std::string rest = id;
+  if (const auto slash = rest.find('/'); slash != std::string::npos) c.lobe = rest.substr(slash + 1), rest.resize(slash);
   if (const auto plus = rest.find('+'); plus != std::string::npos) c.prefilter = rest.substr(plus + 1), rest.resize(plus);
   if (const auto colon = rest.find(':'); colon != std::string::npos) c.feed = rest.substr(colon + 1), rest.resize(colon);
   c.variant = rest;

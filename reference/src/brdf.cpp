@@ -215,12 +215,15 @@ FilteredGgxLobes filtered_ggx_lobes(double ratio) {
     return lobes;
 }
 
-double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) {
-    const double tiny = kGuardConstantsFp32.tiny_positive;
-    return 0.25 * ((a.xx - alpha2.x) / max(alpha2.x, tiny) + (a.yy - alpha2.y) / max(alpha2.y, tiny));
+// The template's floor of alpha^2 (TINY_POSITIVE) and cap of r (FILTERED_RATIO_MAX) hold in both
+// forms (not guarded() sites): past the cap the tail lobe weighs < 1e-6 (fp16: 1e-4) and r's
+// products would overflow.
+double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
+    const double r = 0.25 * ((a.xx - alpha2.x) / max(alpha2.x, tiny()) + (a.yy - alpha2.y) / max(alpha2.y, tiny()));
+    return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
 }
 
-double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) {
+double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
     const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
     const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
     const Sym2 core = unfiltered + lobes.core_kernel * (a - unfiltered);
@@ -228,20 +231,31 @@ double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) {
            (1.0 - lobes.tail_weight) * beckmann_ndf_matrix(h, core, ndf_clamp_tau(alpha2));
 }
 
-double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
+double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {
     if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Brdf brdf;
-    const Vec3 h = half_vector(brdf.params, i, o);
-    return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) /
-           (4.0 * max(i.z, kGuardConstantsFp32.lambda_min_z) * max(o.z, kGuardConstantsFp32.lambda_min_z));
+    const Vec3 h = half_vector(params, i, o);
+    return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
 }
 
-double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
-    return ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
-}
-
-double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) {
+double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const {
     return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
+}
+
+double Brdf::ggx_filtered_alpha2(double alpha2, double kernel) const {
+    const double k = max(kernel, 0.0);
+    return alpha2 + k * (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, tiny());
+}
+
+double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) { return Brdf{}.filtered_ggx_ratio(a, alpha2); }
+double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) { return Brdf{}.ggx_ndf_filtered_matrix(h, a, alpha2); }
+double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
+    return Brdf{}.ggx_brdf_filtered_matrix(i, o, a, alpha2);
+}
+double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
+    return Brdf{}.ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
+}
+double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) {
+    return Brdf{}.ggx_brdf_filtered_axis(i, o, filtered, alpha2);
 }
 
 namespace {
@@ -283,9 +297,7 @@ double ggx_kernel_scale(double alpha2, double kernel) {
     return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, kGuardConstantsFp32.tiny_positive);
 }
 
-double ggx_filtered_alpha2(double alpha2, double kernel) {
-    return alpha2 + max(kernel, 0.0) * ggx_kernel_scale(alpha2, kernel);
-}
+double ggx_filtered_alpha2(double alpha2, double kernel) { return Brdf{}.ggx_filtered_alpha2(alpha2, kernel); }
 
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a quad
@@ -306,6 +318,14 @@ double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, con
     const Quad<Vec3> half = filtered_half_vectors(p, i, o);
     const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
     return Brdf{p}.ggx_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
+}
+
+// Template ggx_brdf_tail_filtered_fragment: the same kernel, the tail-preserving filtered GGX.
+double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
+                                            Vec2 alpha2, int pixel, Derivative mode) {
+    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
+    const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
+    return Brdf{p}.ggx_brdf_filtered_matrix(i[pixel], o[pixel], a, alpha2);
 }
 
 // Template beckmann_brdf_filtered_fragment: as above with the matrix Beckmann BRDF.

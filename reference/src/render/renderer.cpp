@@ -115,6 +115,15 @@ std::string_view prefilter_name(Prefilter prefilter) {
     return "?";
 }
 
+std::string_view lobe_name(Lobe lobe) {
+    switch (lobe) {
+        case Lobe::papers: return "papers";
+        case Lobe::tail: return "tail";
+        case Lobe::mapped: return "mapped";
+    }
+    return "?";
+}
+
 NormalFeed engine_feed(Variant engine) {
     switch (engine) {
         case Variant::engine_godot:
@@ -379,7 +388,7 @@ Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Par
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params,
                        ref::Derivative mode, NormalFeed feed, Prefilter prefilter,
-                       double prefilter_scale) {
+                       double prefilter_scale, Lobe lobe) {
     const PixelFields& f = gbuffer.at(x, y);
     PixelShade out;
     if (!f.hit) return out;
@@ -391,22 +400,37 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
     // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
     const double texture_isotropic = 0.5 * ref::trace(texture);
     double brdf = 0.0;
+    // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
+    const Lobe evaluated = variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe;
     auto isotropic = [&](double filtered) {
         filtered = variant == Variant::deferred_projected_space
                        ? ref::projected_space_add(filtered, texture_isotropic)
                        : ref::saturate(filtered + texture_isotropic);
+        if (evaluated == Lobe::mapped) filtered = ref::ggx_filtered_alpha2(a2, filtered - a2);
         out.roughness = {filtered, 0.0, filtered};
-        brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, {filtered, filtered});
+        brdf = evaluated == Lobe::tail
+                   ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, {filtered, filtered}, alpha2)
+                   : ref::ggx_brdf_axis(f.light_ts, f.view_ts, {filtered, filtered});
     };
     auto axis = [&](Vec2 filtered) {
         filtered = {ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)};
+        if (evaluated == Lobe::mapped)
+            filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
         out.roughness = {filtered.x, 0.0, filtered.y};
-        brdf = ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
+        brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
+                                       : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
     };
     auto matrix = [&](Sym2 a) {
         a = a + texture;
+        if (evaluated == Lobe::mapped) {
+            const Sym2 unfiltered{a2, 0.0, a2};
+            const Sym2 kernel = a - unfiltered;
+            a = unfiltered + ref::ggx_kernel_scale(a2, 0.5 * ref::trace(kernel)) * kernel;
+        }
         out.roughness = a;
-        brdf = ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
+        brdf = evaluated == Lobe::tail
+                   ? ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, a, alpha2)
+                   : ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
     };
 
     if (variant == Variant::none) {
@@ -463,13 +487,13 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params, ref::Derivative mode, int threads,
-                     NormalFeed feed, Prefilter prefilter, double prefilter_scale) {
+                     NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
     Image image(gbuffer.width, gbuffer.height);
     parallel_rows(gbuffer.height, threads, [&](int y) {
         for (int x = 0; x < gbuffer.width; ++x)
             image.at(x, y) = static_cast<float>(
                 shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter,
-                            prefilter_scale).radiance);
+                            prefilter_scale, lobe).radiance);
     });
     return image;
 }

@@ -1,6 +1,7 @@
 // The SAA quality trade table (see trade.hpp).
 #include "saagen/reference/render/trade.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -170,10 +171,11 @@ Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame) {
 }
 
 const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel,
-                                 NormalFeed feed, Prefilter prefilter) const {
+                                 NormalFeed feed, Prefilter prefilter, Lobe lobe) const {
     for (const TradeRow& row : rows)
         if (row.variant == variant && row.scene == scene && row.alpha == alpha &&
-            row.fresnel == fresnel && row.feed == feed && row.prefilter == prefilter)
+            row.fresnel == fresnel && row.feed == feed && row.prefilter == prefilter &&
+            row.lobe == lobe)
             return &row;
     return nullptr;
 }
@@ -184,16 +186,17 @@ std::vector<Variant> default_trade_variants() {
     return variants;
 }
 
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter) {
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe) {
     std::string id(variant_id(variant));
     if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none)
         id += ":geometric";
     if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
+    if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
     return id;
 }
 
 std::string configuration_id(const TradeRow& row) {
-    return configuration_id(row.variant, row.feed, row.prefilter);
+    return configuration_id(row.variant, row.feed, row.prefilter, row.lobe);
 }
 
 bool scene_has_normal_map(SceneId id) {
@@ -211,7 +214,26 @@ struct RowKey {
     Variant variant;
     NormalFeed feed;
     Prefilter prefilter = Prefilter::none;
+    Lobe lobe = Lobe::papers;
 };
+
+// Each key of a variant in config.lobe_variants once more per further lobe, after the papers'.
+std::vector<RowKey> with_lobes(const TradeConfig& config, const std::vector<RowKey>& keys) {
+    std::vector<RowKey> out;
+    for (const RowKey& key : keys) {
+        out.push_back(key);
+        const bool has_lobes = std::find(config.lobe_variants.begin(), config.lobe_variants.end(),
+                                         key.variant) != config.lobe_variants.end();
+        if (!has_lobes) continue;
+        for (Lobe lobe : config.lobes) {
+            if (lobe == Lobe::papers) continue;
+            RowKey with_lobe = key;
+            with_lobe.lobe = lobe;
+            out.push_back(with_lobe);
+        }
+    }
+    return out;
+}
 
 // The rows of a scene, in config.variants order; a variant's feeds in config.feeds order. The
 // baseline reads no normal; engines read their own; the geometric feed adds rows only where
@@ -229,12 +251,12 @@ std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
                     keys.push_back({v, feed});
         }
     }
-    if (!scene_has_normal_map(scene)) return keys;
-    for (Variant v : config.prefiltered_variants)
-        for (Prefilter prefilter : config.prefilters)
-            keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric,
-                            prefilter});
-    return keys;
+    if (scene_has_normal_map(scene))
+        for (Variant v : config.prefiltered_variants)
+            for (Prefilter prefilter : config.prefilters)
+                keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric,
+                                prefilter});
+    return with_lobes(config, keys);
 }
 
 Image tonemapped(const Image& image) {
@@ -312,7 +334,8 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     };
     auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
         return render_variant(gbuffer, key.variant, material, config.params, config.derivative,
-                              config.threads, key.feed, key.prefilter, config.prefilter_scale);
+                              config.threads, key.feed, key.prefilter, config.prefilter_scale,
+                              key.lobe);
     };
 
     std::uint64_t base = 0;
@@ -344,6 +367,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 row.variant = key.variant;
                 row.feed = key.feed;
                 row.prefilter = key.prefilter;
+                row.lobe = key.lobe;
                 row.scene = id;
                 row.alpha = materials[m].alpha;
                 row.fresnel = materials[m].fresnel;
@@ -357,7 +381,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                 }
                 table.rows.push_back(row);
                 if (config.keep_images)
-                    set.variants.push_back({key.variant, key.feed, key.prefilter, std::move(image)});
+                    set.variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(image)});
                 base += main_pixels;
                 report("1-spp variants " + name, base);
             }
@@ -457,12 +481,12 @@ std::string format_trade_table(const TradeTable& table) {
 std::string trade_table_csv(const TradeTable& table) {
     std::ostringstream s;
     s.precision(9);
-    s << "scene,alpha,fresnel,variant,feed,prefilter,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,"
+    s << "scene,alpha,fresnel,variant,feed,prefilter,lobe,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,"
          "tde,tde_excess_flicker,tde_lost_motion,flicker,temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
          "reference_temporal_stddev_display,non_finite\n";
     for (const TradeRow& r : table.rows)
         s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
-          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << prefilter_name(r.prefilter) << "," << r.rmse_linear << ","
+          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << prefilter_name(r.prefilter) << "," << lobe_name(r.lobe) << "," << r.rmse_linear << ","
           << r.rmse_tonemapped << "," << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << ","
           << r.tde << "," << r.tde_excess_flicker << "," << r.tde_lost_motion << "," << r.flicker << ","
           << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display

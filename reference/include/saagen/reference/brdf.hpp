@@ -158,6 +158,11 @@ struct Brdf {
     double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
     double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
     double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
+    double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
+    double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
+    double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
+    double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
+    double ggx_filtered_alpha2(double alpha2, double kernel) const;
 
  private:
     // guarded(safe, paper) of the templates.
@@ -176,6 +181,10 @@ struct Brdf {
 double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
                                        Vec2 alpha2, int pixel,
                                        Derivative mode = Derivative::coarse);
+// Template ggx_brdf_tail_filtered_fragment: the same kernel, saagen's tail-preserving filtered GGX.
+double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
+                                            Vec2 alpha2, int pixel,
+                                            Derivative mode = Derivative::coarse);
 double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i,
                                             const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                             Derivative mode = Derivative::coarse);

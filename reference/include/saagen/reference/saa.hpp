@@ -30,9 +30,10 @@ struct GuardConstants {
     double slope_max = 0.0;       // SLOPE_MAX: slope moments clamped to +-this, second moments to this^2
     double exp_arg_max = 0.0;     // EXP_ARG_MAX (30-brdf.saa): exp(-x) = 0 for x >= this (rounds to 0 in fp32 anyway)
     double divisor_min = 0.0;     // DIVISOR_MIN (30-brdf.saa): 2^-126, Vulkan's x / y is bounded for |y| >= this
+    double filtered_ratio_max = 0.0;  // FILTERED_RATIO_MAX (30-brdf.saa): r of the filtered GGX capped here
 };
-inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4, 104.0, 1.1754943508222875e-38};
-inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0, 17.5, 6.103515625e-5};
+inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4, 104.0, 1.1754943508222875e-38, 1e6};
+inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0, 17.5, 6.103515625e-5, 1e4};
 
 // The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {

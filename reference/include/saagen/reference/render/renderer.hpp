@@ -135,6 +135,17 @@ NormalFeed engine_feed(Variant engine);
 enum class Prefilter { none, toksvig, lean };
 std::string_view prefilter_name(Prefilter prefilter);  // "none", "toksvig", "lean"
 
+// The lobe a filtered roughness is evaluated with (brdf.hpp, docs/FILTERED_GGX.md):
+//   papers   GGX of the filtered roughness (alpha^2 + kernel), as the papers do;
+//   tail     the tail-preserving filtered GGX: a GGX lobe of the unfiltered roughness's shape
+//            plus a Beckmann core carrying the kernel (ggx_brdf_filtered_matrix / _axis);
+//   mapped   one GGX lobe of alpha'^2 = ggx_filtered_alpha2(alpha^2, kernel), the roughness an
+//            engine that keeps its own BRDF would feed (for a matrix: the kernel scaled by
+//            ggx_kernel_scale of the mean alpha^2 and the mean kernel).
+// Ignored by `none` and the engines' forms, which evaluate their own roughness with GGX.
+enum class Lobe { papers, tail, mapped };
+std::string_view lobe_name(Lobe lobe);  // "papers", "tail", "mapped"
+
 // The specular radiance of one light at a surface point, in the tangent frame.
 // brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
 double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
@@ -266,12 +277,14 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
                        const Material& material, const ref::Params& params = {},
                        ref::Derivative mode = ref::Derivative::coarse,
                        NormalFeed feed = NormalFeed::shading,
-                       Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0);
+                       Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0,
+                       Lobe lobe = Lobe::papers);
 
 Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
                      const ref::Params& params = {},
                      ref::Derivative mode = ref::Derivative::coarse, int threads = 0,
                      NormalFeed feed = NormalFeed::shading,
-                     Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0);
+                     Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0,
+                     Lobe lobe = Lobe::papers);
 
 }  // namespace saagen::render

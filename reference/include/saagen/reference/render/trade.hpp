@@ -102,6 +102,13 @@ struct TradeConfig {
         Variant::none, Variant::forward_aniso_projected, Variant::forward_axis_projected,
         Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
     double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
+    // The lobes the filters' roughness is evaluated with (renderer.hpp, Lobe): every variant in
+    // `variants` and `prefiltered_variants` with the papers' GGX; those also in `lobe_variants`
+    // once more with each further lobe here (rows "VARIANT/tail", "VARIANT/mapped").
+    std::vector<Lobe> lobes{Lobe::tail, Lobe::mapped};
+    std::vector<Variant> lobe_variants{
+        Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_max,
+        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
     ref::Params params{};
     ref::Derivative derivative = ref::Derivative::coarse;
     std::uint64_t seed = 0x5aa6e11ULL;
@@ -115,6 +122,7 @@ struct TradeRow {
     Variant variant = Variant::none;
     NormalFeed feed = NormalFeed::shading;
     Prefilter prefilter = Prefilter::none;
+    Lobe lobe = Lobe::papers;
     SceneId scene = SceneId::sphere;
     double alpha = 0.0;
     bool fresnel = false;
@@ -152,6 +160,7 @@ struct ImageSet {
         Variant variant;
         NormalFeed feed;
         Prefilter prefilter;
+        Lobe lobe;
         Image image;
     };
     std::vector<Rendered> variants;  // 1-spp images, in row order
@@ -168,7 +177,7 @@ struct TradeTable {
 
     const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel,
                          NormalFeed feed = NormalFeed::shading,
-                         Prefilter prefilter = Prefilter::none) const;
+                         Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers) const;
 };
 
 struct TradeProgress {
@@ -202,8 +211,10 @@ std::string ground_truth_cache_file(const std::string& key);
 // The configuration a row measures: the variant id, with ":geometric" appended when a saagen
 // variant is fed the geometric normal, and "+toksvig" / "+lean" with a prefiltered normal map
 // ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
-// "engine-hdrp").
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none);
+// "engine-hdrp"), and "/tail" or "/mapped" for a lobe other than the papers'
+// ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped").
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none,
+                             Lobe lobe = Lobe::papers);
 std::string configuration_id(const TradeRow& row);
 
 // Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.
