@@ -196,22 +196,17 @@ double beckmann_lambda_exact(double a_param) {
 // ---------------------------------------------------------------------------------------------
 // Filtered GGX that keeps GGX's tails (saagen's fit; brdf.hpp, docs/FILTERED_GGX.md)
 
-namespace {
-// 1 + a / (1 + b r + c sqrt(r)): 1 + a at r = 0, -> 1 as r grows.
-double decaying_factor(double a, double b, double c, double r) {
-    return 1.0 + a / (1.0 + b * r + c * std::sqrt(r));
-}
-}  // namespace
-
 // Coefficients fitted by minimax of the L1 distance to the exact isotropic convolution over
-// r in [1e-3, 2e5] (tests/test_filtered_ggx.cpp recomputes the distances).
+// r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 15 % (tests/test_filtered_ggx.cpp
+// recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s far tail exactly.
 FilteredGgxLobes filtered_ggx_lobes(double ratio) {
     const double r = max(ratio, 0.0);
     FilteredGgxLobes lobes;
-    lobes.tail_scale = 1.0 + 2.0 * r * decaying_factor(0.7912, 0.1440, 0.3224, r);
-    lobes.core_kernel = decaying_factor(0.3174, 0.3369, 0.1435, r);
-    const double weight_factor = 1.0 + 0.9370 * (1.0 - 0.8963 / (0.8963 + r));
-    lobes.tail_weight = min(1.0, weight_factor / lobes.tail_scale);
+    lobes.tail_scale = 1.0 + 2.0 * r * (1.5788 - 0.1028 / (1.0 + 0.1256 * r));
+    lobes.tail_weight = 1.0 / lobes.tail_scale;
+    lobes.shoulder_kernel = 3.4707 + 2.5583 / (0.0929 + r);
+    lobes.shoulder_fraction = 0.1712 / (1.0 + 0.6105 * r);
+    lobes.core_kernel = 1.0 + 0.1447 / (1.0 + 0.0881 * r);
     return lobes;
 }
 
@@ -226,9 +221,11 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
     const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
     const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
-    const Sym2 core = unfiltered + lobes.core_kernel * (a - unfiltered);
-    return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) +
-           (1.0 - lobes.tail_weight) * beckmann_ndf_matrix(h, core, ndf_clamp_tau(alpha2));
+    const Sym2 kernel = a - unfiltered;
+    const double tau = ndf_clamp_tau(alpha2);
+    const double beckmann = lobes.shoulder_fraction * beckmann_ndf_matrix(h, unfiltered + lobes.shoulder_kernel * kernel, tau) +
+                            (1.0 - lobes.shoulder_fraction) * beckmann_ndf_matrix(h, unfiltered + lobes.core_kernel * kernel, tau);
+    return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
 }
 
 double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {

@@ -94,20 +94,23 @@ double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 // freedom: GGX(A0) convolved with N(0, Sigma) keeps GGX(A0)'s s^-4 tails, while GGX(A0 + K)
 // scales them by det(A0 + K)^(3/2) / det(A0)^(3/2). The exact filtered distribution is the
 // scale mixture integral_0^inf e^-w N(0, A0 / (2w) + Sigma) dw (GGX as a Gaussian scale mixture;
-// filtered_ggx_slope_density below). saagen's closed form: a GGX lobe with the unfiltered shape
-// scaled by lambda, carrying the tails, plus a Beckmann core with the kernel,
-//   D = w GGX(lambda A0) + (1 - w) Beckmann(A0 + c K),  w = min(1, w_f / lambda),
-//   lambda = 1 + 2 r c_t(r),  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2 when isotropic),
-// c_t, c and w_f rational functions of r fitted (minimax over r in [1e-3, 2e5]) to the exact
-// isotropic convolution: L1 <= 0.022, mass beyond 4 sqrt(k) within 18 %. Both lobes are
-// normalised, so the energy (integral of D cos) is 1.
+// filtered_ggx_slope_density below). saagen's closed form keeps the far tail exactly and puts
+// the kernel into two Beckmann lobes (Gaussian slopes: there the variances add):
+//   D = w GGX(lambda A0) + (1 - w) [f Beckmann(A0 + c_s K) + (1 - f) Beckmann(A0 + c_c K)],
+//   w = 1 / lambda,  lambda = 1 + 2 r c_t(r),  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2
+//   when isotropic),
+// with c_t, c_s (the shoulder's kernel factor), f (its share) and c_c (the core's) rational
+// functions of r fitted (minimax over r in [1e-3, 2e5]) to the exact isotropic convolution:
+// L1 <= 0.012, mass beyond 4 sqrt(k) within 8 %; GGX(A0)'s far tail is kept exactly in every
+// direction (w lambda = 1). Every lobe is normalised, so the energy (integral of D cos) is 1.
 
-// The three fitted functions of r: lambda (the tail lobe's scale of A0), c (the core's kernel
-// factor) and w (the tail lobe's weight).
+// The fitted functions of r.
 struct FilteredGgxLobes {
-    double tail_scale = 1.0;   // lambda
-    double core_kernel = 1.0;  // c
-    double tail_weight = 1.0;  // w
+    double tail_scale = 1.0;         // lambda
+    double tail_weight = 1.0;        // w = 1 / lambda
+    double shoulder_kernel = 1.0;    // c_s
+    double shoulder_fraction = 0.0;  // f
+    double core_kernel = 1.0;        // c_c
 };
 FilteredGgxLobes filtered_ggx_lobes(double ratio);
 
