@@ -6,11 +6,40 @@ import { installSaagen } from './saagen-three.js';
 
 export const SIZE = 256;
 
+// A tangent-space normal map of round bumps (8 x 8 per texture), with its MIP chain: the detail
+// the geometric normal does not see and the normal-mapped one does.
+export function bumpNormalMap(size = 64, bumps = 8, height = 0.6) {
+  const data = new Uint8Array(size * size * 4);
+  const period = size / bumps;
+  for (let y = 0; y < size; ++y) {
+    for (let x = 0; x < size; ++x) {
+      // Slopes of h = height * cos(2 pi x / period) * cos(2 pi y / period), in texels.
+      const u = 2 * Math.PI * (x + 0.5) / period, v = 2 * Math.PI * (y + 0.5) / period;
+      const sx = -height * Math.sin(u) * Math.cos(v), sy = -height * Math.cos(u) * Math.sin(v);
+      const length = Math.hypot(sx, sy, 1);
+      const i = 4 * (y * size + x);
+      data[i] = Math.round(127.5 * (1 - sx / length));
+      data[i + 1] = Math.round(127.5 * (1 - sy / length));
+      data[i + 2] = Math.round(127.5 * (1 + 1 / length));
+      data[i + 3] = 255;
+    }
+  }
+  const texture = new THREE.DataTexture(data, size, size, THREE.RGBAFormat);
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  texture.repeat.set(4, 2);
+  texture.magFilter = THREE.LinearFilter;
+  texture.minFilter = THREE.LinearMipmapLinearFilter;
+  texture.generateMipmaps = true;
+  texture.needsUpdate = true;
+  return texture;
+}
+
 // Renders one frame of the scene in `mode` ('three': three.js as shipped, with its own geometric
 // roughness; 'unfiltered': without it; 'saagen': the snippet's filter) and returns the RGBA8 pixels
 // (bottom row first, as gl.readPixels returns them). clearcoatFilter: false leaves the clearcoat
-// roughness unfiltered.
-export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_sum_fragment', roughness = 0.05, clearcoatFilter = true } = {}) {
+// roughness unfiltered; normal: the normal the filter reads ('geometric' or 'shading', see
+// installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer and clearcoat).
+export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true } = {}) {
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0x000000);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
@@ -21,8 +50,11 @@ export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_
   scene.add(new THREE.AmbientLight(0xffffff, 0.5));  // the spheres' diffuse, so every sphere pixel is lit
 
   const material = new THREE.MeshPhysicalMaterial({ color: 0x303030, metalness: 0.0, roughness, clearcoat: 1.0, clearcoatRoughness: roughness });
-  if (mode !== 'three') installSaagen(material, { snippet, wrapper, filter: mode === 'saagen', clearcoat: clearcoatFilter });
-  // A grid of spheres 12 to 40 pixels across: per-pixel normal changes of 0.05 to 0.2.
+  if (normalMap) {
+    material.normalMap = bumpNormalMap();
+    material.clearcoatNormalMap = material.normalMap;
+  }
+  if (mode !== 'three') installSaagen(material, { snippet, wrapper, normal, filter: mode === 'saagen', clearcoat: clearcoatFilter });
   const geometry = new THREE.SphereGeometry(1, 64, 32);
   for (let row = 0; row < 3; ++row) {
     for (let column = 0; column < 3; ++column) {

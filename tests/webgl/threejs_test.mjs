@@ -1,7 +1,9 @@
 // The three.js example (examples/threejs/) in headless Chromium, WebGL2 on SwiftShader: a saagen
 // GLSL ES snippet installed into MeshPhysicalMaterial compiles, renders, and changes the picture
 // where the filter acts (small glossy spheres: high curvature per pixel at roughness 0.05), and
-// nowhere else; clearcoat is filtered too; two configurations never share a program.
+// nowhere else; clearcoat is filtered too; two configurations never share a program; the filter
+// reads the geometric normal by default and the normal-mapped one with normal: 'shading' (the same
+// picture without a normal map, another with one).
 //   node tests/webgl/threejs_test.mjs SAAGEN_CLI
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -86,6 +88,14 @@ try {
     const sequence = ['unfiltered', 'saagen', 'three'].map((mode) => renderScene(shared, mode, { snippet }));
     const sharedAvg = renderScene(shared, 'saagen', { snippet: avgSnippet, wrapper: 'deferred_avg_fragment' });
     const programs = shared.info.programs.length;
+    // Which normal: without a normal map the geometric and shading normals are the same vector;
+    // with one, only the shading normal carries the map's detail into the kernel.
+    const shading = fresh('saagen', { normal: 'shading' });
+    const mappedUnfiltered = fresh('unfiltered', { normalMap: true });
+    const mappedGeometric = fresh('saagen', { normalMap: true });
+    const mappedShading = fresh('saagen', { normalMap: true, normal: 'shading' });
+    const sharedMapped = createRenderer(document.createElement('canvas'));
+    const mappedSequence = ['geometric', 'shading'].map((normal) => renderScene(sharedMapped, 'saagen', { snippet, normalMap: true, normal }));
     const equal = (a, b) => compare(a, b).differing === 0;
     return {
       size: SIZE,
@@ -97,6 +107,13 @@ try {
                              equal(sharedAvg, avg.pixels)],
       programs,
       avgVsSum: compare(avg.pixels, saagen.pixels),
+      shadingVsGeometric: compare(shading.pixels, saagen.pixels),
+      mapped: {
+        geometricVsUnfiltered: compare(mappedGeometric.pixels, mappedUnfiltered.pixels),
+        shadingVsGeometric: compare(mappedShading.pixels, mappedGeometric.pixels),
+        geometricVsNoMap: compare(mappedGeometric.pixels, saagen.pixels),
+        sequenceMatchesFresh: [equal(mappedSequence[0], mappedGeometric.pixels), equal(mappedSequence[1], mappedShading.pixels)],
+      },
     };
   }, snippet, avgSnippet);
   console.log(JSON.stringify(result.stats));
@@ -117,6 +134,16 @@ try {
   check(result.avgVsSum.differing > 0, `another variant gives another picture (${result.avgVsSum.differing} pixels)`);
   check(result.sequenceMatchesFresh.every(Boolean) && result.programs >= 4,
         `one renderer, four configurations: ${result.programs} programs, each picture as from a fresh renderer (${result.sequenceMatchesFresh})`);
+  check(result.shadingVsGeometric.differing === 0,
+        `without a normal map, normal: 'shading' gives the default (geometric) picture (${result.shadingVsGeometric.differing} pixels differ)`);
+  const { mapped } = result;
+  check(mapped.geometricVsNoMap.differing > 200, `the normal map changes the picture (${mapped.geometricVsNoMap.differing} pixels)`);
+  check(mapped.geometricVsUnfiltered.differing > 200 && mapped.geometricVsUnfiltered.outside === 0,
+        `with a normal map, the geometric-normal filter acts on the spheres (${mapped.geometricVsUnfiltered.differing} pixels) and nowhere else (${mapped.geometricVsUnfiltered.outside})`);
+  check(mapped.shadingVsGeometric.differing > 200 && mapped.shadingVsGeometric.outside === 0,
+        `with a normal map, normal: 'shading' reads the mapped normal: ${mapped.shadingVsGeometric.differing} pixels differ from the geometric-normal picture`);
+  check(mapped.sequenceMatchesFresh.every(Boolean),
+        `one renderer keeps the geometric and shading configurations apart (${mapped.sequenceMatchesFresh})`);
   console.log(`three.js: saagen vs three.js as shipped: ${result.saagenVsThree.differing} pixels differ`);
 } finally {
   await close();
