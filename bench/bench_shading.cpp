@@ -403,7 +403,7 @@ int run_bench(const Options& options) {
     std::vector<Row> rows;
     std::vector<double> all_baseline_samples;
     for (const VariantCase& variant : variant_cases()) {
-      const saagen::EmittedFile& file = file_of(variant.id);
+      const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
       const Shader shader =
           build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
                        body_with(variant.shade, options.size, options.size), options.size);

@@ -193,8 +193,11 @@ TEST(Emission, EmitsOnlyTheClosureOfTheVariant) {
   // The filtered BRDF wrapper pulls the projected forward filter and its helpers.
   EXPECT_NE(brdf.content.find("vec3 saa_forward_aniso_projected_fragment("), std::string::npos);
   EXPECT_NE(brdf.content.find("vec3 saa_roughness_matrix_from_bounded_derivatives("), std::string::npos);
-  // The tail-preserving filtered GGX pulls the Beckmann NDF for its core, and nothing else of Beckmann.
-  EXPECT_NE(brdf.content.find("float saa_beckmann_ndf_matrix("), std::string::npos);
+  // The tail-preserving filtered GGX evaluates its Beckmann lobes itself (with Beckmann's exp
+  // guard) and pulls nothing else of the Beckmann variant.
+  EXPECT_NE(brdf.content.find("float saa_filtered_beckmann_lobe("), std::string::npos);
+  EXPECT_NE(brdf.content.find("float saa_beckmann_falloff("), std::string::npos);
+  EXPECT_EQ(brdf.content.find("saa_beckmann_ndf"), std::string::npos);
   EXPECT_EQ(brdf.content.find("saa_beckmann_brdf"), std::string::npos);
   EXPECT_EQ(brdf.content.find("saa_beckmann_lambda"), std::string::npos);
 }

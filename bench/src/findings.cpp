@@ -123,8 +123,13 @@ bool serves(const std::string& configuration, Path path) {
 // transcendental). bench_shading measures deferred-sum.
 namespace {
 
+// The shader a configuration costs: its variant and lobe ("deferred-avg:geometric+lean/tail" ->
+// "deferred-avg/tail"); the feed and the prefilter change inputs, not the variant's code.
 std::string costed_variant(const std::string& configuration) {
-  return is_engine_configuration(configuration) ? std::string("deferred-sum") : configuration.substr(0, configuration.find(':'));
+  if (is_engine_configuration(configuration)) return "deferred-sum";
+  const std::size_t slash = configuration.find('/');
+  const std::string lobe = slash == std::string::npos ? "" : configuration.substr(slash);
+  return configuration.substr(0, configuration.find_first_of(":+/")) + lobe;
 }
 
 }  // namespace

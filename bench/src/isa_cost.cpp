@@ -68,7 +68,7 @@ struct ForwardCase {
 
 std::vector<ForwardCase> forward_cases() {
   std::vector<ForwardCase> cases;
-  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, variant.id, variant.shade});
+  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shade});
   cases.push_back({"deferred-max-tangent-free", "deferred-max",
                    "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n"
                    "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"});

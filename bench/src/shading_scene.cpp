@@ -138,8 +138,35 @@ const std::vector<VariantCase>& variant_cases() {
        "    real filtered = deferred_projected_space_fragment(alpha2_material, normal);\n"
        "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
        std::nullopt},  // Tokuyoshi & Kaplanyan 2021: not in the 2019 table
+      // saagen's lobes (docs/FILTERED_GGX.md): the tail-preserving filtered GGX BRDF, and the
+      // single GGX roughness an engine keeping its own BRDF feeds.
+      {"forward-aniso-projected/tail",
+       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n",
+       std::nullopt},
+      {"forward-axis-projected/tail",
+       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n",
+       std::nullopt},
+      {"deferred-sum/tail",
+       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
+       std::nullopt},
+      {"deferred-avg/tail",
+       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
+       std::nullopt},
+      {"deferred-avg/mapped",
+       "    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::nullopt},
   };
   return cases;
+}
+
+std::string catalogue_variant(const VariantCase& variant) {
+  const std::string id = variant.id;
+  return id.substr(0, id.find('/'));
 }
 
 std::string body_with(const std::string& shade, std::uint32_t width, std::uint32_t height) {

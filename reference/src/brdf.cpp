@@ -218,13 +218,37 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
     return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
 }
 
+// Template filtered_beckmann_lobe: Beckmann(A0 + c K) from the terms every lobe shares,
+// adj(A0 + c K) = adj(A0) + c adj(K), det(A0 + c K) = det(A0) + c det_mixed + c^2 det(K).
+// Guarded: det floored at det(A0) + c det_mixed (det(K) >= 0 for a PSD kernel; a numerically
+// rank-1 kernel cancels it to any sign) and TINY_POSITIVE, the exponent at |h.xy|^2 / (tr(M)
+// h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in beckmann_ndf_matrix.
+double Brdf::filtered_beckmann_lobe(double c, const FilteredGgxTerms& t) const {
+    const double det_floor = t.det_a0 + c * t.det_mixed;
+    const double det = max(det_floor + c * c * t.det_k, guarded(max(det_floor, tiny()), t.det_a0));
+    const double spread = (t.quad_a0 + c * t.quad_k) / det;
+    const double exponent =
+        guarded(max(spread, t.length2 / max(t.trace_a0 + c * t.trace_k, tiny())) / max(t.cos2, tiny()), spread / t.cos2);
+    const double divisor = kPi * std::sqrt(det) * guarded(max(t.cos2 * t.cos2, tiny()), t.cos2 * t.cos2);
+    return falloff(exponent) / this->divisor(divisor);
+}
+
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
+    if (h.z <= 0.0) return 0.0;
     const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
-    const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
-    const Sym2 kernel = a - unfiltered;
-    const double tau = ndf_clamp_tau(alpha2);
-    const double beckmann = lobes.shoulder_fraction * beckmann_ndf_matrix(h, unfiltered + lobes.shoulder_kernel * kernel, tau) +
-                            (1.0 - lobes.shoulder_fraction) * beckmann_ndf_matrix(h, unfiltered + lobes.core_kernel * kernel, tau);
+    const Sym2 kernel = a - Sym2{alpha2.x, 0.0, alpha2.y};
+    FilteredGgxTerms t;
+    t.quad_a0 = alpha2.y * h.x * h.x + alpha2.x * h.y * h.y;
+    t.quad_k = kernel.yy * h.x * h.x - 2.0 * kernel.xy * h.x * h.y + kernel.xx * h.y * h.y;
+    t.det_a0 = alpha2.x * alpha2.y;
+    t.det_mixed = alpha2.x * kernel.yy + alpha2.y * kernel.xx;
+    t.det_k = kernel.xx * kernel.yy - kernel.xy * kernel.xy;
+    t.length2 = h.x * h.x + h.y * h.y;
+    t.trace_a0 = alpha2.x + alpha2.y;
+    t.trace_k = kernel.xx + kernel.yy;
+    t.cos2 = h.z * h.z;
+    const double beckmann = lobes.shoulder_fraction * filtered_beckmann_lobe(lobes.shoulder_kernel, t) +
+                            (1.0 - lobes.shoulder_fraction) * filtered_beckmann_lobe(lobes.core_kernel, t);
     return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
 }
 

@@ -35,6 +35,9 @@ struct VariantCase {
   std::optional<std::array<double, 3>> paper_ms;
 };
 const std::vector<VariantCase>& variant_cases();
+// The catalogue variant whose emitted file defines a case's wrapper: the id before a lobe suffix
+// ("deferred-avg/tail" -> "deferred-avg"; the lobe's BRDF comes from brdf-ggx, always included).
+std::string catalogue_variant(const VariantCase& variant);
 
 // The kernel body (template dialect) shading with `shade` on a width x height framebuffer.
 std::string body_with(const std::string& shade, std::uint32_t width, std::uint32_t height);

@@ -162,6 +162,12 @@ struct Brdf {
     double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
     double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
     double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
+    // The terms the filtered GGX's Beckmann lobes share (template filtered_beckmann_lobe).
+    struct FilteredGgxTerms {
+        double quad_a0 = 0.0, quad_k = 0.0, det_a0 = 0.0, det_mixed = 0.0, det_k = 0.0;
+        double length2 = 0.0, trace_a0 = 0.0, trace_k = 0.0, cos2 = 0.0;
+    };
+    double filtered_beckmann_lobe(double c, const FilteredGgxTerms& terms) const;
     double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
     double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
     double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
