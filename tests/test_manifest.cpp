@@ -261,25 +261,38 @@ INSTANTIATE_TEST_SUITE_P(
     Planner, Rules,
     ::testing::Values(
         RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n", "F1", "forward-aniso-projected",
-                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_matrix", "ndf_clamp_tau"}},
+                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
         RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n", "F1", "forward-aniso-projected",
                  {"forward_aniso_projected", "forward_aniso_projected_fragment", "beckmann_brdf_matrix", "ndf_clamp_tau"}},
         RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n", "F2", "forward-axis-projected",
-                 {"forward_axis_projected", "forward_axis_projected_fragment"}},
+                 {"forward_axis_projected", "forward_axis_projected_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"forward\"\ntangents = true\n", "F3", "forward-aniso-projected",
-                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_matrix", "ndf_clamp_tau"}},
-        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "F4", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "D2", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n", "manifest", "deferred-sum", {"deferred_sum", "deferred_sum_fragment"}},
+                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
+        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "F4", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "D2", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n", "manifest", "deferred-sum", {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
-                 {"deferred_max", "deferred_max_fragment"}},
+                 {"deferred_max", "deferred_max_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
-                 {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment"}}),
+                 {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment", "ggx_brdf_filtered_axis"}}),
     [](const ::testing::TestParamInfo<RuleCase>& info) { return "case" + std::to_string(info.index) + "_" + info.param.rule; });
+
+// Where the trade measured no filter beating every filter (deferred, curved content without
+// normal maps), the plan says so with the figures; the filter is still planned for who wants it.
+TEST(Planner, SaysWhereNoFilterWins) {
+  const auto advice = [](const std::string& keys) {
+    const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\n" + keys);
+    return saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).no_filter_advice;
+  };
+  EXPECT_NE(advice("path = \"deferred\"\n").find("no filter beats every deferred filter"), std::string::npos);
+  EXPECT_EQ(advice("path = \"deferred\"\nnormal_maps = true\n"), "");
+  EXPECT_EQ(advice("path = \"forward\"\ntangents = true\n"), "");
+  EXPECT_EQ(advice("path = \"deferred\"\nndf = \"beckmann\"\n"), "");
+}
 
 TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
   const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\n");
@@ -490,7 +503,7 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
   EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));
   EXPECT_TRUE(defined.count("forward_aniso_projected"));  // the wrapper pulls its core
-  EXPECT_TRUE(defined.count("ggx_brdf_matrix"));          // forward anisotropic pulls the matrix BRDF
+  EXPECT_TRUE(defined.count("ggx_brdf_filtered_matrix")); // forward anisotropic GGX pulls the tail-preserving filtered GGX
   EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));    // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
   EXPECT_FALSE(defined.count("deferred_sum"));
   EXPECT_FALSE(defined.count("ggx_brdf_axis"));
@@ -536,14 +549,16 @@ TEST(Bundle, IsDeterministicAndValidatesInProcess) {
   }
 }
 
-// An all-GGX scene that does not set sigma2 gets the GGX-fitted kernel (a quarter of the paper's
-// Beckmann match, measured by the trade); a scene with a Beckmann material, or one that sets
-// sigma2, keeps what it says.
+// An all-GGX scene that does not set sigma2 gets the kernel measured best with the
+// tail-preserving filtered GGX it is shaded with (the pixel filter's own 0.25, said with its
+// reason); a scene with a Beckmann material, or one that sets sigma2, keeps what it says.
 TEST(Planner, AllGgxScenesGetTheGgxFittedKernel) {
   const auto ggx = emit_text(header + forward_material);
   EXPECT_EQ(saagen::find_marker(ggx.at(0).content)->option_values.at("sigma2"), saagen::kGgxSigma2);
+  EXPECT_EQ(saagen::kGgxSigma2, 0.25);
   const saagen::Manifest manifest = parse(header + forward_material);
-  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, saagen::plan_scene(Catalogue::builtin(), manifest)).find("options: sigma2 = 0.0625"),
+  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, saagen::plan_scene(Catalogue::builtin(), manifest))
+                .find("options: sigma2 = 0.25 (every material is GGX, shaded with the tail-preserving filtered GGX"),
             std::string::npos);
   const auto mixed = emit_text(header + forward_material + "[[material]]\nname = \"b\"\npath = \"deferred\"\nndf = \"beckmann\"\n");
   EXPECT_EQ(saagen::find_marker(mixed.at(0).content)->option_values.at("sigma2"), 0.25);
@@ -559,8 +574,8 @@ TEST(Bundle, MarkerRecordsThePublicFunctions) {
   ASSERT_TRUE(marker);
   EXPECT_EQ(marker->target, "glsl");
   EXPECT_EQ(marker->prefix, "eng_");
-  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-avg"}));
-  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_avg", "deferred_avg_fragment"}));
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-avg", "brdf-ggx"}));
+  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}));
   EXPECT_EQ(marker->option_values.at("sigma2"), 0.5);
   EXPECT_NE(files[0].content.find("#ifndef ENG_BUNDLE_SCENE_GLSL"), std::string::npos);
   EXPECT_NE(files[0].content.find("#ifndef ENG_CORE_ONLY"), std::string::npos);

@@ -54,7 +54,7 @@ fn radiance(s: Surface, a: vec3<f32>) -> f32 {
     let light = normalize(vec3<f32>(0.35, 0.45, 0.82));
     let i = to_tangent(light, s);
     let o = to_tangent(vec3<f32>(0.0, 0.0, 1.0), s);
-    let brdf = saa_ggx_brdf_matrix(i, o, a, saa_ndf_clamp_tau(ALPHA2));
+    let brdf = saa_ggx_brdf_filtered_matrix(i, o, a, ALPHA2);
     return select(0.0, LIGHT_RADIANCE * brdf * max(i.z, 0.0), s.hit);
 }
 

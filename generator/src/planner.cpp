@@ -70,12 +70,28 @@ const std::vector<Rule>& rules() {
 // saagen's trade on its normal-mapped scenes (a sphere with a MIP-mapped normal map, features of
 // ~4 px and ~0.5 px), mean LDR-FLIP over the scenes and six alphas (`saagen bench --preset full
 // --sigma2 0.0625`, the "normal-mapped" rows of its JSON; README "Does it make images better?").
+// With the papers' GGX(alpha^2 + K) (Beckmann materials, and engines that keep their own BRDF):
 constexpr const char* kMeasuredNormalAdvice =
     "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
     "normal-mapped normal, 0.1465 with Toksvig prefiltering; forward-aniso-projected 0.0331, 0.0390, 0.1457 with LEAN";
+// With the tail-preserving filtered GGX the planner shades GGX materials with (`saagen bench --preset
+// medium`, the "normal-mapped" rows of its JSON; docs/FILTERED_GGX.md):
+constexpr const char* kMeasuredNormalAdviceTail =
+    "mean LDR-FLIP on normal-mapped scenes with the tail-preserving filtered GGX, sigma2 0.25: deferred-avg 0.0381 on the "
+    "normal-mapped normal, 0.0411 on the vertex normal, 0.0415 with Toksvig prefiltering; deferred-sum 0.0367; no SAA 0.0411";
 
-// `saagen bench --preset full` at sigma2 0.0625 against 0.25 (README "Measured").
-constexpr const char* kMeasuredGgxKernelGain = "29 % for forward-aniso-projected (0.0622 -> 0.0444) and 31 % for deferred-avg (0.0881 -> 0.0612), tonemapped RMSE by 18 % and 15 %";
+// `saagen bench --preset medium --sigma2 X --json trade.json; python3 scripts/beats_baselines.py
+// trade.json tail` (docs/FILTERED_GGX.md).
+constexpr const char* kMeasuredGgxKernelGain =
+    "with the tail-preserving filtered GGX, scene x path rows where the best configuration beats no SAA and every engine in "
+    "LDR-FLIP and TDE: 4 of 14 at 0.25, 5 at 0.125, 2 at 0.0625";
+
+// The same trade on curved content (sphere, torus, tubes, torus knot; no normal map) in the
+// deferred path: no filter beats every deferred form there (docs/FILTERED_GGX.md).
+constexpr const char* kMeasuredDeferredCurved =
+    "on curved content without normal maps no filter beats every deferred filter in saagen's trade (mean LDR-FLIP 0.0346 vs "
+    "0.0550 for deferred-avg with the tail-preserving GGX, TDE 0.0169 vs 0.0179): the isotropic deferred kernels over-filter "
+    "(docs/DEFERRED_KERNEL.md); consider no SAA here, or the forward path's forward-aniso-projected (0.0291)";
 
 bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
 
@@ -146,7 +162,8 @@ std::string ids_of(const std::vector<const Variant*>& variants) {
 
 // The material's functions from the chosen variant: its fragment wrappers and their cores;
 // for a variant with a tangent-free form, the form that matches the material's tangents.
-void choose_functions(const Catalogue& catalogue, const Material& material, MaterialPlan& plan) {
+// own_brdf: the manifest names an engine's preset, whose own BRDF the filtered roughness feeds.
+void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
   const Variant& variant = *catalogue.find_variant(plan.variant);
   const bool split = has_tangent_free_form(variant);
   const auto wanted = [&](const std::string& name) {
@@ -163,7 +180,13 @@ void choose_functions(const Catalogue& catalogue, const Material& material, Mate
   plan.variants.push_back(variant.id);
 
   const Function& wrapper = *catalogue.find_function(plan.wrapper);
-  if (wrapper.return_type == "real3") {  // a roughness matrix: only the matrix BRDFs take it
+  if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
+    const std::string brdf = wrapper.return_type == "real3" ? "ggx_brdf_filtered_matrix" : "ggx_brdf_filtered_axis";
+    if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx")) throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
+    plan.brdf = brdf;
+    plan.functions.push_back(brdf);
+    plan.variants.push_back("brdf-ggx");
+  } else if (wrapper.return_type == "real3") {  // a roughness matrix: only the matrix BRDFs take it
     const std::string brdf = std::string(to_string(material.ndf)) + "_brdf_matrix";
     const std::string brdf_variant = "brdf-" + std::string(to_string(material.ndf));
     if (!catalogue.find_function(brdf) || !catalogue.find_function("ndf_clamp_tau") || !catalogue.find_variant(brdf_variant)) {
@@ -250,19 +273,22 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   const std::string material_alpha2 = material.anisotropic ? "alpha2" : "real2(alpha2.x, alpha2.x)";
   if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
-  if (wrapper.return_type == "real3") {
-    return fmt::format("    real3 filtered = {};\n    real value = {}(i_ts, o_ts, filtered, ndf_clamp_tau({}));\n",
-                       call_with(wrapper, material_alpha2), *plan->brdf, material_alpha2);
-  }
-  if (wrapper.return_type == "real2") {
-    return fmt::format("    real2 filtered = {};\n    real value = {}(i_ts, o_ts, filtered);\n", call_with(wrapper, material_alpha2), axis_brdf);
-  }
+  // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
+  // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
+  const bool tail = plan->brdf && plan->brdf->rfind("ggx_brdf_filtered_", 0) == 0;
+  const auto value = [&](const std::string& filtered) {
+    if (tail) return fmt::format("    real value = {}(i_ts, o_ts, {}, {});\n", *plan->brdf, filtered, material_alpha2);
+    if (wrapper.return_type == "real3") {
+      return fmt::format("    real value = {}(i_ts, o_ts, {}, ndf_clamp_tau({}));\n", *plan->brdf, filtered, material_alpha2);
+    }
+    return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, filtered);
+  };
+  if (wrapper.return_type == "real3") return fmt::format("    real3 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
+  if (wrapper.return_type == "real2") return fmt::format("    real2 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
   if (plan->per_axis) {
-    return fmt::format("    real2 filtered = real2({}, {});\n    real value = {}(i_ts, o_ts, filtered);\n", call_with(wrapper, "alpha2.x"),
-                       call_with(wrapper, "alpha2.y"), axis_brdf);
+    return fmt::format("    real2 filtered = real2({}, {});\n", call_with(wrapper, "alpha2.x"), call_with(wrapper, "alpha2.y")) + value("filtered");
   }
-  return fmt::format("    real filtered = {};\n    real value = {}(i_ts, o_ts, real2(filtered, filtered));\n", call_with(wrapper, "alpha2.x"),
-                     axis_brdf);
+  return fmt::format("    real filtered = {};\n", call_with(wrapper, "alpha2.x")) + value("real2(filtered, filtered)");
 }
 
 std::size_t kernel_instructions(const Catalogue& catalogue, const EmittedFile& file, const std::string& shade) {
@@ -486,12 +512,12 @@ Configuration parse_configuration(const std::string& id) {
 }
 
 // Without a trade table: what saagen's own trade measured (README "Does it make images better?").
-std::string measured_normal_advice(const MaterialPlan& plan) {
+std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
   return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
-                     plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to GGX roughness (it lowers "
-                                                                          "tonemapped RMSE but its long tails add haze)")
+                     plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
+                                                                          "tonemapped RMSE but adds haze)")
                                               : fmt::format(", prefilter the map ({})", plan.prefilter),
-                     kMeasuredNormalAdvice);
+                     ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
 }
 
 // With a trade table's content rows: the lowest-error configuration of the material's variant on
@@ -549,8 +575,8 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   if (all_ggx && !manifest.option_values.count("sigma2")) {
     scene.option_values["sigma2"] = kGgxSigma2;
     scene.options_reason = fmt::format(
-        "sigma2 = {} (every material is GGX: a quarter of the paper's Beckmann-matched 0.25 lowers mean LDR-FLIP over saagen's "
-        "scenes by {}; set sigma2 in the manifest to override)",
+        "sigma2 = {} (every material is GGX, shaded with the tail-preserving filtered GGX: the pixel filter's own variance; {}; "
+        "set sigma2 in the manifest to override)",
         kGgxSigma2, kMeasuredGgxKernelGain);
   }
   // Manifests built in code (not parsed) get the checks that protect the emitted text.
@@ -577,7 +603,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     plan.precision = material.precision;
     if (material.glints) {
       plan_glints(catalogue, manifest, material, plan);
-      choose_functions(catalogue, material, plan);
+      choose_functions(catalogue, material, manifest.preset.has_value(), plan);
       plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
       scene.materials.push_back(std::move(plan));
       continue;
@@ -657,11 +683,15 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
       }
       if (plan.normal_advice.empty()) {
-        plan.feed = "geometric";  // what the measurements favour (kMeasuredNormalAdvice)
-        plan.normal_advice = measured_normal_advice(plan);
+        // What the measurements favour: the normal-mapped normal with the tail-preserving GGX the
+        // planner shades GGX with, the vertex normal with the papers' lobe.
+        plan.feed = material.ndf == Ndf::ggx ? "shading" : "geometric";
+        plan.normal_advice = measured_normal_advice(plan, material.ndf);
       }
     }
-    choose_functions(catalogue, material, plan);
+    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && !material.normal_maps && !material.variant)
+      plan.no_filter_advice = kMeasuredDeferredCurved;
+    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
     scene.materials.push_back(std::move(plan));
   }
   return scene;
@@ -717,7 +747,9 @@ std::string rules_text() {
     text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic), tri(rule.tangents),
                         rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
-  text += "forward-aniso-* also emit <ndf>_brdf_matrix and ndf_clamp_tau (ndf = \"ggx\" or \"beckmann\").\n"
+  text += "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
+          "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
+          "beckmann_brdf_matrix and ndf_clamp_tau.\n"
           "anisotropic = true with tangents = false is rejected.\n"
           "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
           "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
@@ -762,6 +794,13 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
       text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
                           glint_dictionary_file_name(manifest));
+    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
+      text += fmt::format("  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf));
+    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
+      text += fmt::format("  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
+                          "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf));
     } else if (material_plan.brdf) {
       text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
                           prefixed_name(manifest.prefix, "ndf_clamp_tau"));
@@ -769,13 +808,17 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n", converted ? manifest.domain : "alpha^2");
     }
     if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
+    if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
     if (!material_plan.cost.empty()) {
       std::vector<std::string> costs;
       for (const std::string& target : manifest.targets) {
         if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target, material_plan.cost.at(target)));
       }
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
-                          fmt::join(costs, ", "), material.precision, material_plan.brdf ? " + matrix BRDF" : " + axis BRDF",
+                          fmt::join(costs, ", "), material.precision,
+                          !material_plan.brdf ? " + axis BRDF"
+                          : material_plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0 ? " + the tail-preserving filtered GGX"
+                                                                                     : " + matrix BRDF",
                           to_string(material.ndf));
     }
     for (const std::string& target : manifest.targets) {

@@ -21,7 +21,8 @@ layout(set = 1, binding = 1) uniform sampler2D normal_map;  // tangent space
 layout(location = 0) out vec4 out_radiance;
 
 void main() {
-  // Per-pixel frame around the normal-mapped normal: the filter must see the map's detail.
+  // Per-pixel frame around the normal-mapped normal: with the tail-preserving filtered GGX the
+  // plan shades with, the filter measured best seeing the map's detail (`saagen plan`).
   vec3 n = normalize(in_normal_ws);
   vec3 t = normalize(in_tangent_ws.xyz - n * dot(n, in_tangent_ws.xyz));
   vec3 b = cross(n, t) * in_tangent_ws.w;
@@ -38,6 +39,6 @@ void main() {
 
   vec2 alpha2 = material.alpha * material.alpha;
   vec3 roughness_matrix = saa_forward_aniso_projected_fragment(alpha2, half_ts);
-  float specular = saa_ggx_brdf_matrix(i_ts, o_ts, roughness_matrix, saa_ndf_clamp_tau(alpha2));
+  float specular = saa_ggx_brdf_filtered_matrix(i_ts, o_ts, roughness_matrix, alpha2);
   out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
 }

@@ -12,6 +12,10 @@
 //   F5    forward   no           no        any       deferred-avg             -
 //   D1    deferred  any          any       accuracy  deferred-avg             -
 //   D2    deferred  any          any       speed     deferred-avg             -
+//   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
+//   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
+//   filter (docs/FILTERED_GGX.md). Deferred GGX materials without normal maps get the measured
+//   advice that no filter beats every deferred filter on such content (MaterialPlan::no_filter_advice).
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
 //   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
@@ -116,7 +120,13 @@ struct MaterialPlan {
   std::vector<std::string> functions;  // public functions the material calls (closure roots)
   std::vector<std::string> variants;   // the variants those functions belong to
   std::string wrapper;                 // the fragment wrapper to call
-  std::optional<std::string> brdf;     // the matrix BRDF to shade with (forward-aniso-*)
+  // The BRDF to shade with: for GGX the tail-preserving filtered GGX (ggx_brdf_filtered_matrix for
+  // a roughness matrix, ggx_brdf_filtered_axis otherwise); for Beckmann the matrix BRDF of the
+  // forward-aniso-* filters; none: the engine's own BRDF.
+  std::optional<std::string> brdf;
+  // Where saagen's trade measured no filter beating every filter for this material's content and
+  // path: that advice with its figures (the filter is still planned and emitted); empty otherwise.
+  std::string no_filter_advice;
   bool per_axis = false;               // isotropic filter on anisotropic roughness: once per axis
   std::string precision = "fp32";
   std::map<std::string, long> cost;    // target -> optimized SPIR-V instructions added
@@ -137,9 +147,11 @@ struct ScenePlan {
   std::string options_reason;
 };
 
-// The pixel-filter variance saagen measured best for GGX (a quarter of T&K 2019's Beckmann
-// match 0.25): `saagen bench --sigma2 0.0625` against 0.25 (README "Measured").
-inline constexpr double kGgxSigma2 = 0.0625;
+// The pixel-filter variance saagen plans for GGX: with the tail-preserving filtered GGX the
+// planner shades with, the pixel filter's own variance (T&K 2019's 0.25, the ground truth's
+// filter) measured best (`saagen bench --preset medium --sigma2 X`; docs/FILTERED_GGX.md). With
+// the papers' GGX(alpha^2 + K) a quarter of it was better only because it shrank the halo.
+inline constexpr double kGgxSigma2 = 0.25;
 
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).
