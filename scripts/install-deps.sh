@@ -19,6 +19,9 @@ packages=(
   # the report test opens the generated HTML report in headless Chromium; chromium also ships
   # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium
+  # clang: test.sh compiles the library and CLI with it too, so that scripts/sanitize.sh and
+  # scripts/fuzz.sh (clang's sanitizers and libFuzzer) cannot break unseen
+  clang
 )
 
 missing=()

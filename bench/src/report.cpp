@@ -737,7 +737,9 @@ std::string CostTable::describe() const {
 
 void add_isa_costs(CostTable& table, const std::string& family, const std::vector<std::pair<std::string, double>>& ratios) {
   table.isa_family = family;
-  for (const auto& [variant, ratio] : ratios) {
+  for (const auto& variant_ratio : ratios) {  // not a structured binding: clang 14 cannot capture one in a lambda
+    const std::string& variant = variant_ratio.first;
+    const double ratio = variant_ratio.second;
     auto found = std::find_if(table.rows.begin(), table.rows.end(), [&](const VariantCost& row) { return row.variant == variant; });
     if (found == table.rows.end()) found = table.rows.insert(table.rows.end(), VariantCost{variant, {}, {}, {}});
     found->isa_ratio = ratio;

@@ -213,7 +213,11 @@ class FileWriter {
   // The target's notes on the intrinsics the emitted functions use (what it substitutes for
   // an intrinsic it lacks), each once, in the table's order.
   void write_intrinsic_notes(std::ostringstream& out, const std::vector<const Function*>& functions) const {
-    for (const auto& [intrinsic, note] : target_.intrinsic_notes) {
+    // Named copies, not structured bindings, in lambdas: clang 14 cannot capture a structured
+    // binding (C++20 allows it from clang 16).
+    for (const auto& intrinsic_note : target_.intrinsic_notes) {
+      const auto& intrinsic = intrinsic_note.first;
+      const auto& note = intrinsic_note.second;
       const bool used = std::any_of(functions.begin(), functions.end(), [&](const Function* function) {
         const auto names = dialect::referenced_names(*function->tree, options_.guards);
         return std::find(names.begin(), names.end(), intrinsic) != names.end();
@@ -277,7 +281,9 @@ class FileWriter {
   template <class Constants>
   std::map<std::string, double> options_of(const Constants& constants) const {
     std::map<std::string, double> used;
-    for (const auto& [option, value] : option_values_) {
+    for (const auto& option_value : option_values_) {  // not a structured binding: see write_intrinsic_notes
+      const auto& option = option_value.first;
+      const auto& value = option_value.second;
       const auto& builtin_constants = Catalogue::builtin().constants();
       const bool builtin = std::any_of(builtin_constants.begin(), builtin_constants.end(), [&](const Constant& c) { return c.option == option; });
       const bool referenced = std::any_of(constants.begin(), constants.end(), [&](const Constant* c) { return c->option == option; });
