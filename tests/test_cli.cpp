@@ -68,6 +68,18 @@ TEST_F(Cli, ListJsonIsTheContract) {
   EXPECT_EQ(json["options"][0]["default"], 0.25);
 }
 
+// The trade's numeric options refuse NaN and infinities (CLI::Range alone lets NaN through, and a
+// NaN sigma^2 rendered every row alike with exit 0), in one line, before any rendering.
+TEST_F(Cli, BenchRefusesNonFiniteNumbers) {
+  for (const std::string command : {"bench", "report"}) {
+    expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "nan"}), "--sigma2: not a finite number in [1e-06, 16]");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--kappa", "nan"}), "--kappa: not a finite number in [1e-06, 1]");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--prefilter-scale", "nan"}), "--prefilter-scale: not a finite number in [0, 4]");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "inf"}), "--sigma2: not a finite number");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "1e999"}), "--sigma2: not a finite number");
+  }
+}
+
 TEST_F(Cli, ListPrintsEveryVariant) {
   const CliRun run = saagen({"list"});
   ASSERT_EQ(run.exit_code, 0);

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -79,6 +81,21 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
 #endif
 }
 
+// CLI::Range lets NaN through (every comparison with NaN is false), and a NaN sigma^2 renders every
+// row alike with exit 0: a finite number in [low, high], nothing else.
+CLI::Validator finite_range(double low, double high) {
+  const std::string range = fmt::format("[{}, {}]", low, high);
+  return CLI::Validator(
+      [low, high, range](std::string& text) {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool whole = !text.empty() && end == text.c_str() + text.size();
+        if (!whole || !std::isfinite(value) || value < low || value > high) return fmt::format("not a finite number in {}", range);
+        return std::string();
+      },
+      "FINITE in " + range);
+}
+
 }  // namespace
 
 void ReportCommands::add_common(CLI::App* command, Common& common) {
@@ -88,10 +105,10 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
   command->add_option("--threads", common.threads, "Render threads (0: all cores)")->capture_default_str();
   command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
-      ->check(CLI::Range(1e-6, 16.0));
-  command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(CLI::Range(1e-6, 1.0));
+      ->check(finite_range(1e-6, 16.0));
+  command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(finite_range(1e-6, 1.0));
   command->add_option("--prefilter-scale", common.prefilter_scale, "Scale of the prefiltered normal-map roughness to measure")
-      ->check(CLI::Range(0.0, 4.0))
+      ->check(finite_range(0.0, 4.0))
       ->capture_default_str();
   command->add_option("--isa", common.isa_families,
                       "GPU families (comma-separated: vega10, navi21, navi10, polaris10) whose ISA statistics from Mesa's ACO "
