@@ -121,18 +121,6 @@ inline void push(std::vector<float>& out, Vec2 v) { push(out, v.x), push(out, v.
 inline void push(std::vector<float>& out, Vec3 v) { push(out, v.x), push(out, v.y), push(out, v.z); }
 inline void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), push(out, m.yy); }
 
-// Whether a function reads a filtered matrix `a` next to the unfiltered `alpha2` it was filtered
-// from (the tail-preserving filtered GGX): then `a` = diag(alpha2) + the roughness matrix, a
-// kernel on top of the material, as the forward variants return.
-inline bool takes_unfiltered_alpha2(const saagen::Function& function) {
-  bool a = false, alpha2 = false;
-  for (const saagen::Parameter& parameter : function.parameters) {
-    a = a || parameter.name == "a";
-    alpha2 = alpha2 || parameter.name == "alpha2";
-  }
-  return a && alpha2;
-}
-
 // Packs the inputs of `function` for one scenario, by parameter name (see templates/*.saa).
 inline void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params, std::vector<float>& out) {
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
@@ -150,7 +138,7 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
     else if (name == "h") push(out, function.name.find("g2") != std::string::npos ? ref::normalize(s.i + s.o) : s.h);
     else if (name == "w" || name == "i") push(out, s.i);
     else if (name == "o") push(out, s.o);
-    else if (name == "a") push(out, takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
+    else if (name == "a") push(out, saagen::test::takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
     else if (name == "filtered") push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
     else if (name == "kernel") push(out, matrix.xx);
     else if (name == "tau") push(out, ref::sym2_determinant(matrix) * s.tau_scale);

@@ -2,6 +2,7 @@
 // inputs back as doubles, and evaluating a fragment wrapper's reference on a 2x2 quad by name.
 #pragma once
 
+#include "saagen/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
 
 #include <algorithm>
@@ -28,6 +29,18 @@ class FloatReader {
   const float* data_;
   std::size_t next_ = 0;
 };
+
+// Whether a function reads a filtered matrix `a` next to the unfiltered `alpha2` it was filtered
+// from (the tail-preserving filtered GGX): then `a` = diag(alpha2) + the roughness matrix, a
+// kernel on top of the material, as the forward variants return.
+inline bool takes_unfiltered_alpha2(const saagen::Function& function) {
+  bool a = false, alpha2 = false;
+  for (const saagen::Parameter& parameter : function.parameters) {
+    a = a || parameter.name == "a";
+    alpha2 = alpha2 || parameter.name == "alpha2";
+  }
+  return a && alpha2;
+}
 
 inline std::vector<double> output_values(double v) { return {v}; }
 inline std::vector<double> output_values(ref::Vec2 v) { return {v.x, v.y}; }

@@ -303,10 +303,7 @@ void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), p
 
 // The inputs of a function, by parameter name (templates/*.saa).
 void pack(const saagen::Function& function, const Draw& d, std::vector<float>& out) {
-  // A filtered matrix next to the unfiltered alpha2 (the tail-preserving filtered GGX) is a kernel
-  // on top of the material.
-  const bool reads_alpha2 = std::any_of(function.parameters.begin(), function.parameters.end(),
-                                        [](const saagen::Parameter& p) { return p.name == "alpha2"; });
+  const bool reads_alpha2 = saagen::test::takes_unfiltered_alpha2(function);
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2") parameter.type == "real" ? push(out, d.alpha2.x) : push(out, d.alpha2);

@@ -268,6 +268,11 @@ std::string call_with(const Function& function, const std::string& alpha2) {
   return fmt::format("{}({})", function.name, fmt::join(arguments, ", "));
 }
 
+// Whether the plan shades with the tail-preserving filtered GGX (ggx_brdf_filtered_matrix / _axis).
+bool shades_with_tail_preserving_ggx(const MaterialPlan& plan) {
+  return plan.brdf && plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0;
+}
+
 std::string shade_statements(const Catalogue& catalogue, const Material& material, const MaterialPlan* plan) {
   const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
   const std::string material_alpha2 = material.anisotropic ? "alpha2" : "real2(alpha2.x, alpha2.x)";
@@ -275,7 +280,7 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
   // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
   // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
-  const bool tail = plan->brdf && plan->brdf->rfind("ggx_brdf_filtered_", 0) == 0;
+  const bool tail = shades_with_tail_preserving_ggx(*plan);
   const auto value = [&](const std::string& filtered) {
     if (tail) return fmt::format("    real value = {}(i_ts, o_ts, {}, {});\n", *plan->brdf, filtered, material_alpha2);
     if (wrapper.return_type == "real3") {
@@ -817,7 +822,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
                           fmt::join(costs, ", "), material.precision,
                           !material_plan.brdf ? " + axis BRDF"
-                          : material_plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0 ? " + the tail-preserving filtered GGX"
+                          : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
                                                                                      : " + matrix BRDF",
                           to_string(material.ndf));
     }

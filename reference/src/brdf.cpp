@@ -262,9 +262,16 @@ double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) 
     return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
 }
 
+namespace {
+// The single-roughness mapping's kernel factor g (brdf.hpp), the divisor floored at `floor`.
+double kernel_scale(double alpha2, double k, double floor) {
+    return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, floor);
+}
+}  // namespace
+
 double Brdf::ggx_filtered_alpha2(double alpha2, double kernel) const {
     const double k = max(kernel, 0.0);
-    return alpha2 + k * (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, tiny());
+    return alpha2 + k * kernel_scale(alpha2, k, tiny());
 }
 
 double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) { return Brdf{}.filtered_ggx_ratio(a, alpha2); }
@@ -314,8 +321,7 @@ double filtered_ggx_mass_beyond(double radius, double alpha2, double k) {
 // The single GGX roughness for the filtered lobe (brdf.hpp): fitted to the core-mass criterion.
 
 double ggx_kernel_scale(double alpha2, double kernel) {
-    const double k = max(kernel, 0.0);
-    return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, kGuardConstantsFp32.tiny_positive);
+    return kernel_scale(alpha2, max(kernel, 0.0), kGuardConstantsFp32.tiny_positive);
 }
 
 double ggx_filtered_alpha2(double alpha2, double kernel) { return Brdf{}.ggx_filtered_alpha2(alpha2, kernel); }

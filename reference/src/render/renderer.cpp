@@ -402,23 +402,22 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
     double brdf = 0.0;
     // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
     const Lobe evaluated = variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe;
-    auto isotropic = [&](double filtered) {
-        filtered = variant == Variant::deferred_projected_space
-                       ? ref::projected_space_add(filtered, texture_isotropic)
-                       : ref::saturate(filtered + texture_isotropic);
-        if (evaluated == Lobe::mapped) filtered = ref::ggx_filtered_alpha2(a2, filtered - a2);
-        out.roughness = {filtered, 0.0, filtered};
-        brdf = evaluated == Lobe::tail
-                   ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, {filtered, filtered}, alpha2)
-                   : ref::ggx_brdf_axis(f.light_ts, f.view_ts, {filtered, filtered});
-    };
-    auto axis = [&](Vec2 filtered) {
-        filtered = {ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)};
+    // Per-axis filtered roughness (texture term included) through the lobe.
+    auto shade_axis = [&](Vec2 filtered) {
         if (evaluated == Lobe::mapped)
             filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
         out.roughness = {filtered.x, 0.0, filtered.y};
         brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
                                        : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
+    };
+    auto isotropic = [&](double filtered) {
+        filtered = variant == Variant::deferred_projected_space
+                       ? ref::projected_space_add(filtered, texture_isotropic)
+                       : ref::saturate(filtered + texture_isotropic);
+        shade_axis({filtered, filtered});
+    };
+    auto axis = [&](Vec2 filtered) {
+        shade_axis({ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)});
     };
     auto matrix = [&](Sym2 a) {
         a = a + texture;
