@@ -1,10 +1,10 @@
 // Codegen time for all variants x targets. Goals: emission alone <= 50 ms and with
 // in-process validation <= 2 s, whole process, on the 2-core CI machine.
 //   build/bench/bench_codegen --benchmark_min_time=0.5
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
-#include "saagen/target.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
 // Cost of the deferred roughness-limiter pass: the emitted .spv of every pass
-// (saagen/deferred_pass.hpp) runs on the harness device (lavapipe by default) over a G-buffer
+// (saagen/products/deferred_pass.hpp) runs on the harness device (lavapipe by default) over a G-buffer
 // rendered by the issue-4 renderer (the bump_plane scene: every pixel on the surface), and is
 // timed with GPU timestamps around the dispatch. A baseline shader with the same bindings reads
 // the normal and roughness texels and writes the roughness unfiltered: the pass's cost above it is
@@ -13,14 +13,14 @@
 // compile or validate, or when a pass leaves the roughness unchanged everywhere (not wired in).
 #include "deferred_pass_runner.hpp"
 
-#include "saagen/catalogue.hpp"
-#include "saagen/compiler.hpp"
-#include "saagen/deferred_pass.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/products/deferred_pass.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/report/shading_scene.hpp"
-#include "saagen/spirv_library.hpp"
+#include "saagen/products/spirv_library.hpp"
 
 #include <saagen/harness/harness.hpp>
 

@@ -13,9 +13,9 @@
 // baseline (ABBA order), optimized SPIR-V instruction counts, the mean shaded value of both
 // images, and the dictionary's memory with and without MIPs. Exits non-zero with one line when a
 // shader does not compile or the image is empty or non-finite.
-#include "saagen/compiler.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <saagen/harness/harness.hpp>
 

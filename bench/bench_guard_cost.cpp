@@ -9,10 +9,10 @@
 //
 // --check fails (exit 1) unless the guards cost something exactly in the functions whose
 // dependency closure holds a guarded(...) site, and nothing elsewhere.
-#include "saagen/catalogue.hpp"
-#include "saagen/compiler.hpp"
-#include "saagen/emitter.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 

@@ -5,8 +5,8 @@
 //   build/bench/bench_include [--rounds N]
 #include "include_shaders.hpp"
 
-#include "saagen/include_handler.hpp"
-#include "saagen/output.hpp"
+#include "saagen/integrate/include_handler.hpp"
+#include "saagen/io/output.hpp"
 
 #include <algorithm>
 #include <chrono>

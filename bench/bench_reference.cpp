@@ -1,7 +1,7 @@
 // CPU cost of the double-precision side: the default glint dictionary's generation and the
 // supersampled ground truth's throughput (Msamples/s, extrapolated to the trade's 256 x 256 x
 // 1024 spp). Timing lives here, never in the unit tests.
-#include "saagen/glints.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/reference/render/render.hpp"
 
 #include <benchmark/benchmark.h>

@@ -15,10 +15,10 @@
 // It exits non-zero with one line on stderr when a shader fails to compile or validate, when a
 // shaded value on the sphere is non-finite or negative, or when a variant leaves the image
 // (almost) unchanged, which would mean the filter is not wired in and the timings are meaningless.
-#include "saagen/catalogue.hpp"
-#include "saagen/compiler.hpp"
-#include "saagen/emitter.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/validate/kernels.hpp"
 #include "saagen/report/shading_scene.hpp"
 
 #include <saagen/harness/harness.hpp>

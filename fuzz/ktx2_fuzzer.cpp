@@ -1,7 +1,7 @@
 // libFuzzer target: the KTX2 reader (read_ktx2). Accepted files must write back (write_ktx2) and
 // read again to the same image; rejected ones must fail with one "KTX2: ..." line.
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
+#include "saagen/products/glints.hpp"
 
 #include "fuzz_support.hpp"
 

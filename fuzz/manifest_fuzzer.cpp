@@ -1,9 +1,9 @@
 // libFuzzer target: scene manifest parser, planner and bundle emitter.
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/manifest.hpp"
-#include "saagen/planner.hpp"
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
 
 #include <cstddef>
 #include <cstdint>

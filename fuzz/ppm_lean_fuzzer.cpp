@@ -2,7 +2,7 @@
 // what it accepts (lean_moments, lean_ktx2, write_ktx2, read back). Rejected input must fail with
 // one "normal map: ..." line; accepted input must give a full MIP chain down to 1x1.
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
+#include "saagen/products/glints.hpp"
 
 #include "fuzz_support.hpp"
 

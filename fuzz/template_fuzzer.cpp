@@ -2,9 +2,9 @@
 // checks, linking); an accepted catalogue is emitted for GLSL and HLSL, guarded and unguarded,
 // and every output must be ASCII with a marker that reads back. The tokenizer must give back its
 // input exactly. Rejected templates must fail with one line.
-#include "saagen/catalogue.hpp"
-#include "saagen/dialect.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/front/dialect.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
 
 #include "fuzz_support.hpp"

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
-saagen=./build/generator/saagen
+saagen=./build/cli/saagen
 
 "$saagen" plan examples/scene.saagen.toml --no-cost
 "$saagen" emit --manifest examples/scene.saagen.toml -o out/scene

@@ -19,7 +19,7 @@
 
 #include "reference_dispatch.hpp"
 
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Runs a deferred roughness-limiter pass (saagen/deferred_pass.hpp) on a Vulkan device with the
+// Runs a deferred roughness-limiter pass (saagen/products/deferred_pass.hpp) on a Vulkan device with the
 // resources its header describes: sampled images for the G-buffers (normal, roughness, tangent)
 // and a storage image for the output, push constants, (ceil(w/8), ceil(h/8)) workgroups, and
 // GPU timestamps around the dispatch. The harness (saagen::harness) binds only buffers and
@@ -7,7 +7,7 @@
 // bench/bench_deferred_pass.cpp.
 #pragma once
 
-#include "saagen/deferred_pass.hpp"
+#include "saagen/products/deferred_pass.hpp"
 
 #include <saagen/harness/bytes.hpp>
 #include <saagen/harness/context.hpp>

@@ -2,7 +2,7 @@
 // process), its texture as the reference's software sampler sees it, and helpers.
 #pragma once
 
-#include "saagen/glints.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/reference/glints.hpp"
 
 #include <cstdint>

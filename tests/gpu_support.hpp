@@ -3,9 +3,9 @@
 // element-wise comparison against the double-precision reference with per-element bounds.
 #pragma once
 
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <saagen/harness/harness.hpp>
 

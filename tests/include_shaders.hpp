@@ -2,8 +2,8 @@
 // the include-handler tests and the overhead benchmark.
 #pragma once
 
-#include "saagen/glslang_includer.hpp"
-#include "saagen/shaderc_includer.hpp"
+#include "saagen/integrate/glslang_includer.hpp"
+#include "saagen/integrate/shaderc_includer.hpp"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/SPIRV/GlslangToSpv.h>

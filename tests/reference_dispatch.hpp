@@ -2,7 +2,7 @@
 // inputs back as doubles, and evaluating a fragment wrapper's reference on a 2x2 quad by name.
 #pragma once
 
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
 
 #include <algorithm>

@@ -17,7 +17,7 @@
 // A non-finite input (+-Inf or NaN in some component) is injected into 1 element (quad) in 8.
 #pragma once
 
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
 
 #include <cmath>

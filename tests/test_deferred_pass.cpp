@@ -1,4 +1,4 @@
-// The deferred roughness-limiter compute pass (saagen/deferred_pass.hpp), emitted as
+// The deferred roughness-limiter compute pass (saagen/products/deferred_pass.hpp), emitted as
 // GLSL, HLSL, SPIR-V and a C/C++ header, run on the Vulkan device (lavapipe) over G-buffers
 // rendered by the issue-4 renderer (saagen::render: sphere, torus, tubes, bump_plane; 96 x 96,
 // and the sphere at an odd 75 x 61 for the borders) and compared pixel by pixel with the
@@ -21,7 +21,8 @@
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
-#include "saagen/spirv_library.hpp"
+#include "saagen/products/binary_validation.hpp"
+#include "saagen/products/spirv_library.hpp"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,11 +1,11 @@
 // The typed dialect: the parser and type checker refuse each class of mistake at load time with
 // file:line and what to do; the C-like printer reproduces a template and adds exactly the
 // parentheses precedence needs; the tree carries types and mutability for other printers.
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/syntax_tree.hpp"
-#include "saagen/target.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/front/syntax_tree.hpp"
+#include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Emission: every variant x target compiles and validates in-process; output is deterministic,
 // prefixed, documented, and free of target matrix conventions.
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include "engine_forms.hpp"
 #include "include_shaders.hpp"
 
-#include "saagen/engines.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <cmath>

@@ -2,13 +2,13 @@
 // unguarded, passes glslang's ES front end (profile es, version 300) in a fragment shader and,
 // under <PREFIX>CORE_ONLY, in a vertex shader; the include states the precision of every
 // declaration itself, maps fp16 to mediump, and says what replaces the fine derivatives.
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/manifest.hpp"
-#include "saagen/planner.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // `saagen glints emit|validate|dictionary|lean`, and the glint variants of `saagen list|emit`, as whole processes.
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
+#include "saagen/products/glints.hpp"
 
 #include "cli_support.hpp"
 

@@ -1,9 +1,9 @@
 // The glint snippets (templates/glints/) are emitted for GLSL and HLSL and pass the
 // in-process validation (glslang + spirv-val, fragment and compute, every client API of the
 // target), with the dictionary declared by the validation skeleton (targets/*.json "resources").
-#include "saagen/glints.hpp"
-#include "saagen/kernels.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/validate/kernels.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include "saagen/error.hpp"
 

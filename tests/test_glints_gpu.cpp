@@ -37,7 +37,7 @@
 // measured, docs/GLINTS.md) with the fp32 bound alone.
 #include "glint_support.hpp"
 
-#include "saagen/kernels.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <saagen/harness/harness.hpp>
 

@@ -1,4 +1,4 @@
-// The include handlers (saagen/glslang_includer.hpp, saagen/shaderc_includer.hpp): user shaders
+// The include handlers (saagen/integrate/glslang_includer.hpp, saagen/integrate/shaderc_includer.hpp): user shaders
 // that #include saagen snippets by name compile through glslang and shaderc, GLSL and HLSL, with
 // options from the handler and from the name; a bad name or option fails the compile with the
 // CLI's one-line message.

@@ -2,10 +2,10 @@
 // forward-shading fragment shader of bench_shading and the deferred pass) on RADV's
 // null-hardware devices, and the planner's committed table (generator/data/isa_cost.json,
 // embedded) is that measurement for vega10 and navi21. Compilation only.
-#include "saagen/catalogue.hpp"
-#include "saagen/deferred_pass.hpp"
-#include "saagen/planner.hpp"
-#include "saagen/manifest.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/products/deferred_pass.hpp"
+#include "saagen/scene/planner.hpp"
+#include "saagen/scene/manifest.hpp"
 #include "saagen/report/isa_cost.hpp"
 #include "saagen/report/report.hpp"
 #include "saagen/report/shading_scene.hpp"

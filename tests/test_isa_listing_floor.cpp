@@ -17,8 +17,8 @@
 // The goal is no more ISA instructions and no higher inverse throughput than the listing, for
 // every variant on both families; where saagen's guarded form still costs more, the budget below
 // states the excess and what it buys (docs/STABILITY.md, "GPU cost against the listings").
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/report/shading_scene.hpp"
 
 #include <saagen/harness/isa.hpp>

@@ -1,9 +1,9 @@
 // Kernels compile for every function, target and kind: the GPU harness depends on
 // them, and this suite needs no Vulkan device.
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <gtest/gtest.h>
 

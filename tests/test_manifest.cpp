@@ -1,12 +1,12 @@
 // Scene manifests: parsing and its one-line errors (file:line:column, key, what is
 // allowed), the planner's rules and trade table, minimal emission (exactly the dependency
 // closure; removing a material removes its code), and the bundle's validation and CLI.
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/manifest.hpp"
-#include "saagen/planner.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <gtest/gtest.h>
 

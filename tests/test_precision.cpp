@@ -344,7 +344,7 @@ class HalfPrecision : public ::testing::TestWithParam<PrecisionCase> {};
 TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
   const saagen::Variant& variant = *Catalogue::builtin().find_variant(GetParam().variant);
   auto fp16 = saagen::test::emit_variant("glsl", variant.id, "fp16");
-  // generator/src/kernels.cpp spells a quad_compute kernel's plain-derivative macros with the
+  // generator/validate/kernels.cpp spells a quad_compute kernel's plain-derivative macros with the
   // precision's intrinsic table (dFdx -> saa_ddx_coarse_fp16, which has no float overload and is
   // what the fp16 helpers call back). Until that is fixed, redefine them as the fp32 table does:
   // the kernel then is what the fixed generator emits.

@@ -9,7 +9,7 @@
 #include "cli_support.hpp"
 
 #include "saagen/error.hpp"
-#include "saagen/prefilter.hpp"
+#include "saagen/products/prefilter.hpp"
 #include "saagen/reference/render/normal_map.hpp"
 #include "saagen/reference/reference.hpp"
 

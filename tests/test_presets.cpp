@@ -5,10 +5,10 @@
 // the engine's roughness domain, over >= 10^5 inputs; the largest |difference| is printed and
 // recorded. saagen's side is the reference filter (reference/saa.cpp) with the preset's sigma^2,
 // kappa and variant, wrapped in the reference's domain conversions.
-#include "saagen/engines.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
-#include "saagen/target.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
 #include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/saa.hpp"
 #include "engine_forms.hpp"

@@ -4,10 +4,10 @@
 //
 // The full disk is emulated with RLIMIT_FSIZE (`ulimit -f` in the child shell, SIGXFSZ ignored
 // so that write() fails with EFBIG): tmpfs and loop mounts need privileges a test cannot assume.
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/manifest.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/scene/manifest.hpp"
 
 #include "cli_support.hpp"
 

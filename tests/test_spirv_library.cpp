@@ -22,9 +22,9 @@
 #include "reference_dispatch.hpp"
 
 #include "saagen/error.hpp"
-#include "saagen/listing.hpp"
+#include "saagen/emit/listing.hpp"
 #include "saagen/reference/reference.hpp"
-#include "saagen/spirv_library.hpp"
+#include "saagen/products/spirv_library.hpp"
 
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/linker.hpp>

@@ -24,8 +24,8 @@
 #if SAAGEN_STABILITY_DEVICE
 #include "gpu_support.hpp"
 #else
-#include "saagen/catalogue.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // The template dialect: parsing rules, the error each mistake produces (file:line: what to do),
 // and the translation of types, intrinsics and names into each target.
-#include "saagen/catalogue.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/error.hpp"
-#include "saagen/target.hpp"
+#include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
 

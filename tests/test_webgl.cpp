@@ -25,10 +25,10 @@
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/target.hpp"
+#include "saagen/target/target.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -22,14 +22,14 @@
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
-#include "saagen/engines.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/kernels.hpp"
-#include "saagen/target.hpp"
-#include "saagen/validation.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/validate/kernels.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -4,12 +4,12 @@
 // and several variants make one module. Tint's verdict and the runs are in test_wgsl.
 #include "web_support.hpp"
 
-#include "saagen/catalogue.hpp"
-#include "saagen/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/glints.hpp"
-#include "saagen/syntax_tree.hpp"
-#include "saagen/target.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/front/syntax_tree.hpp"
+#include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // per-output bound, the raw float files the runners write, and WGSL emission options.
 #pragma once
 
-#include "saagen/emitter.hpp"
+#include "saagen/emit/emitter.hpp"
 
 #include <fmt/format.h>
 

@@ -12,8 +12,8 @@
 // itself (test_gpu_core).
 #pragma once
 
-#include "saagen/catalogue.hpp"
-#include "saagen/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/kernels.hpp"
 #include "saagen/reference/reference.hpp"
 
 #include <fmt/format.h>

@@ -1,11 +1,11 @@
 // Run-time generation with the installed library (saagen::saagen): an engine that builds shader
 // permutations on demand describes the material, plans it, emits the bundle in memory and
 // (optionally) validates it with the in-process compiler. Exits non-zero on any failure.
-#include <saagen/catalogue.hpp>
+#include <saagen/front/catalogue.hpp>
 #include <saagen/error.hpp>
-#include <saagen/manifest.hpp>
-#include <saagen/planner.hpp>
-#include <saagen/validation.hpp>
+#include <saagen/scene/manifest.hpp>
+#include <saagen/scene/planner.hpp>
+#include <saagen/validate/validation.hpp>
 
 #include <cstdio>
 

@@ -1,6 +1,6 @@
 // An engine that compiles shaders with shaderc at run time: `#include <saagen/filament.glsl>`
 // resolved by saagen's include handler, the snippet generated in memory.
-#include <saagen/shaderc_includer.hpp>
+#include <saagen/integrate/shaderc_includer.hpp>
 
 #include <iostream>
 #include <memory>

@@ -1,6 +1,6 @@
 #include "saagen/harness/shader.hpp"
 
-#include <saagen/compiler.hpp>
+#include <saagen/validate/compiler.hpp>
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
 // GLSL ES 3.00 skeleton that validates an emitted file under CORE_ONLY in a vertex shader (ES 3.00
-// has no compute stage; the table's core_stage; saagen validate, generator/src/validation.cpp). Section
+// has no compute stage; the table's core_stage; saagen validate, generator/validate/validation.cpp). Section
 // prologue goes before the emitted file, epilogue after it; {core_only_macro} is the CORE_ONLY macro
 // of the emission and {calls} one statement per function.
 // saagen-section: prologue

@@ -1,5 +1,5 @@
 // HLSL skeleton that validates an emitted file in a compute shader (saagen validate; see
-// generator/src/validation.cpp). Section prologue goes before the emitted file, epilogue after it;
+// generator/validate/validation.cpp). Section prologue goes before the emitted file, epilogue after it;
 // {core_only_macro} is the CORE_ONLY macro of the emission and {calls} one statement per function.
 // saagen-section: prologue
 #define {core_only_macro}

@@ -1,5 +1,5 @@
 // WGSL skeleton that validates an emitted module in a compute entry point (saagen validate; see
-// generator/src/validation.cpp): the calls leave out the [fragment] functions, which WGSL allows
+// generator/validate/validation.cpp): the calls leave out the [fragment] functions, which WGSL allows
 // in a module used by compute entry points as long as none of them calls one.
 // saagen-section: prologue
 // saagen-section: epilogue

@@ -1,5 +1,5 @@
 // WGSL skeleton that validates an emitted module in a fragment entry point (saagen validate; see
-// generator/src/validation.cpp). WGSL has no includes: the module is compiled as prologue + the
+// generator/validate/validation.cpp). WGSL has no includes: the module is compiled as prologue + the
 // emitted module + epilogue, one WGSL module. {calls} is one statement per public function;
 // The seed is the pixel position, which no compiler can fold; {real} and {real4} spell the emission precision's scalar and vector types.
 // saagen-section: prologue

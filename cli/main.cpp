@@ -1,0 +1,325 @@
+// saagen: the command-line front end. Every failure prints one line on stderr and exits non-zero;
+// nothing is written unless everything that would be written has been produced first.
+#include "saagen/front/catalogue.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/emit/engines.hpp"
+#include "saagen/error.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/io/input.hpp"
+#include "saagen/emit/listing.hpp"
+#include "saagen/io/output.hpp"
+#include "saagen/products/binary_validation.hpp"
+#include "saagen/products/spirv_library.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
+#include "arguments.hpp"
+#include "pass_commands.hpp"
+#include "report_commands.hpp"
+#include "glint_commands.hpp"
+#include "scene_commands.hpp"
+#include "texture_commands.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <regex>
+
+namespace {
+
+namespace fs = std::filesystem;
+using saagen::Catalogue;
+
+constexpr int exit_usage = 2;
+constexpr int exit_failure = 1;
+
+struct EmitArguments {
+  std::string target = "glsl";
+  std::vector<std::string> variants;
+  std::string prefix = "saa_";
+  std::optional<double> sigma2;
+  std::optional<double> kappa;
+  std::string output_directory;
+  bool force = false;
+  std::string precision = "fp32";
+  bool unguarded = false;
+  std::optional<std::string> preset;  // an engine's variant, sigma^2, kappa and domain
+  std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
+  std::string import_path;            // module targets: naga_oil's #define_import_path
+  std::string module_name = "module";  // module targets: the stem of the one module of several variants
+};
+
+int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
+  saagen::validate_prefix(prefix);
+  if (json) {
+    std::cout << saagen::catalogue_json(base_catalogue, prefix, domain).dump(2) << "\n";
+    return 0;
+  }
+  const Catalogue& catalogue = saagen::domain_catalogue(base_catalogue, domain);
+  for (const saagen::Variant& variant : catalogue.variants()) {
+    if (domain != "alpha2" && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) continue;
+    std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
+                             variant.needs_tangents ? "yes" : "no", variant.summary);
+    std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
+    const auto resources = saagen::resources_read(catalogue, variant.functions);
+    if (!resources.empty()) {
+      std::cout << fmt::format("{:<26} resources: {} (declared by the including shader; `saagen list --json` shows how)\n", "",
+                               fmt::join(resources, ", "));
+    }
+    for (const std::string& name : variant.functions) {
+      const saagen::Function& function = *catalogue.find_function(name);
+      std::vector<std::string> parameters;
+      for (const saagen::Parameter& parameter : function.parameters) parameters.push_back(parameter.type + " " + parameter.name);
+      std::cout << fmt::format("{:<26}   {} {}{}({})  [{}]\n", "", function.return_type, prefix, function.name,
+                               fmt::join(parameters, ", "), to_string(function.role));
+    }
+  }
+  return 0;
+}
+
+// The glint templates join an emission only where a glint variant is named, or where every
+// variant is emitted to a target other than SPIR-V libraries (built from the SAA templates alone).
+const Catalogue& emission_catalogue(const Catalogue& every_variant, const saagen::EmitOptions& options) {
+  const Catalogue& builtin = Catalogue::builtin();
+  if (options.variants.empty()) return options.target != saagen::spirv_library_target ? every_variant : builtin;
+  const bool names_a_glint = std::any_of(options.variants.begin(), options.variants.end(),
+                                         [&](const std::string& id) { return builtin.find_variant(id) == nullptr; });
+  return names_a_glint ? every_variant : builtin;
+}
+
+int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
+  saagen::cli::check_output_named("--output", arguments.output_directory);
+  saagen::cli::check_named_once("--variant", arguments.variants);
+  saagen::EmitOptions options;
+  options.target = arguments.target;
+  options.prefix = arguments.prefix;
+  // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
+  const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
+  saagen::apply_settings(every_variant, settings, options);
+  options.precision = arguments.precision;
+  options.guards = !arguments.unguarded;
+  options.import_path = arguments.import_path;
+  const Catalogue& catalogue = emission_catalogue(every_variant, options);
+
+  std::vector<saagen::OutputFile> outputs;
+  if (options.target == saagen::spirv_library_target) {
+    options.variants = spirv_library_variants(catalogue, options.variants);
+    // Per variant a linkable SPIR-V library module and a C/C++ header embedding it.
+    for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
+      outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
+      outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
+    }
+  } else if (saagen::builtin_target(options.target).module && options.variants.size() > 1) {
+    // A language without includes (WGSL) cannot take two files that both define the shared
+    // helpers: several variants make one module holding their dependency closure once.
+    if (!std::regex_match(arguments.module_name, std::regex("[A-Za-z][A-Za-z0-9_]{0,63}"))) {
+      throw saagen::Error(fmt::format("--module '{}': not a name; use a letter, then letters, digits or '_' (at most 64 characters)", arguments.module_name));
+    }
+    const saagen::BundleRequest request{arguments.module_name, saagen::public_functions(catalogue, options.variants), options.variants, {}};
+    saagen::EmittedFile file = saagen::emit_bundle(catalogue, options, request);
+    outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+  } else {
+    std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, options);
+    if (!options.import_path.empty() && files.size() > 1) {
+      throw saagen::Error(fmt::format("--import-path {}: names one module, but {} files would be written; name the variants with --variant "
+                                      "(several make one module)",
+                                      options.import_path, files.size()));
+    }
+    for (saagen::EmittedFile& file : files) outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+  }
+  const saagen::WriteReport report = saagen::write_outputs(outputs, arguments.force);
+  for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
+  for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
+  return 0;
+}
+
+std::string read_file(const fs::path& path) { return saagen::read_input_file(path, saagen::source_size_limit, "a file written by `saagen emit`"); }
+
+// A marker that names no known target or precision makes the file invalid: the message names it.
+saagen::FileValidation validate_one(const Catalogue& catalogue, const std::string& name, const std::string& content) {
+  try {
+    const auto marker = saagen::find_marker(content);
+    return marker && saagen::is_spirv_or_pass_marker(*marker) ? saagen::validate_spirv_or_pass_file(catalogue, name, content)
+                                                             : saagen::validate_file(catalogue, name, content);
+  } catch (const saagen::Error& error) {
+    const std::string message = error.what();
+    throw saagen::Error(message.rfind(name, 0) == 0 ? message : fmt::format("{}: bad saagen marker: {}", name, message));
+  }
+}
+
+// Files `saagen emit` wrote in a directory: known target extensions holding a marker line.
+std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path& directory) {
+  std::error_code error;
+  if (!fs::is_directory(directory, error)) {
+    throw saagen::Error(fmt::format("{}: not a directory; pass the directory `saagen emit -o` wrote", directory.string()));
+  }
+  std::vector<std::string> extensions;
+  for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
+  extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const fs::path& path : saagen::cli::regular_files_in(directory)) {
+    if (std::find(extensions.begin(), extensions.end(), path.extension().string()) == extensions.end()) continue;
+    std::string content = read_file(path);
+    if (saagen::find_marker(content)) files.emplace_back(path.string(), std::move(content));
+  }
+  if (files.empty()) throw saagen::Error(fmt::format("{}: holds no file written by saagen; run `saagen emit -o {}` first", directory.string(), directory.string()));
+  return files;
+}
+
+// Without a directory: every variant for every built-in target, emitted in memory.
+std::vector<std::pair<std::string, std::string>> all_emitted_files(const Catalogue& catalogue) {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& target : saagen::builtin_target_names()) {
+    saagen::EmitOptions options;
+    options.target = target;
+    for (saagen::EmittedFile& file : saagen::emit_variants(catalogue, options)) files.emplace_back(file.file_name, std::move(file.content));
+  }
+  return files;
+}
+
+bool is_wgsl(const std::string& content) {
+  const auto marker = saagen::find_marker(content);
+  return marker && marker->target == "wgsl";
+}
+
+int run_validate(const Catalogue& catalogue, const std::string& directory) {
+  const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
+  // The WGSL files go to Tint together (one run of the WebGPU runner), the others one by one.
+  std::vector<std::pair<std::string, std::string>> wgsl_files;
+  for (const auto& file : files) {
+    if (is_wgsl(file.second)) wgsl_files.push_back(file);
+  }
+  std::vector<saagen::FileValidation> wgsl_validations;
+  if (!wgsl_files.empty()) wgsl_validations = saagen::validate_wgsl_files(catalogue, wgsl_files);
+  int failures = 0;
+  std::size_t next_wgsl = 0;
+  for (const auto& [name, content] : files) {
+    const saagen::FileValidation validation = is_wgsl(content) ? wgsl_validations[next_wgsl++] : validate_one(catalogue, name, content);
+    std::cout << validation.summary() << "\n";
+    if (!validation.ok()) {
+      ++failures;
+      for (const saagen::ValidationCheck& check : validation.checks) {
+        if (!check.ok) std::cerr << check.name << ":\n" << check.log;
+      }
+    }
+  }
+  std::cout << fmt::format("{} file(s) validated, {} failed\n", files.size(), failures);
+  return failures == 0 ? 0 : exit_failure;
+}
+
+// CLI11 prints multi-line messages; saagen prints one line and the command's --help hint.
+int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
+  if (error.get_exit_code() == 0) return app.exit(error);
+  std::string message = error.what();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::cerr << "saagen: error: " << message << " (run `saagen --help`)\n";
+  return exit_usage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"saagen: emits geometric specular anti-aliasing shader snippets (GLSL, HLSL) and validates them in-process"};
+  app.set_version_flag("--version", std::string(saagen::version()));
+  app.require_subcommand(1);
+
+  bool list_json = false;
+  std::string list_prefix = "saa_";
+  CLI::App* list = app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions");
+  list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
+  list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
+  std::string list_domain = "alpha2";
+  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")->capture_default_str();
+
+  EmitArguments emit_arguments;
+  std::string sigma2;
+  std::string kappa;
+  CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
+  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
+  emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
+  std::string preset;
+  std::string domain;
+  CLI::Option* preset_option = emit->add_option("--preset", preset, "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
+  CLI::Option* domain_option = emit->add_option("--domain", domain, "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
+  emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
+  CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
+  CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
+  emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
+  emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
+  emit->add_option("--precision", emit_arguments.precision,
+                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")->capture_default_str();
+  emit->add_flag("--unguarded", emit_arguments.unguarded,
+                 "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
+  emit->add_option("--import-path", emit_arguments.import_path,
+                   "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
+  emit->add_option("--module", emit_arguments.module_name,
+                   "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")->capture_default_str();
+
+  std::string validate_directory;
+  CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");
+  validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
+
+  // Scene manifests: `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
+  std::vector<CLI::Option*> per_variant_options;
+  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain",
+                           "--import-path", "--module"}) {
+    if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
+  }
+  const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
+  const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
+  // The speed/accuracy trade: `bench`, `report`; see report_commands.cpp.
+  const saagen::cli::ReportCommands trade(app);
+  // The deferred roughness-limiter pass: `pass`; see pass_commands.cpp.
+  const saagen::cli::PassCommand deferred_pass(app);
+  // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
+  const saagen::cli::TextureCommands texture(app);
+
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
+        return command->get_name() == argv[1];
+      }).empty()) {
+    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
+    return exit_usage;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return report_parse_error(app, error);
+  }
+
+  try {
+    const Catalogue& catalogue = Catalogue::builtin();
+    // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
+    // the other commands keep the screen-space SAA catalogue.
+    const Catalogue& every_variant = saagen::glints::catalogue();
+    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).id);
+    if (*emit && scene.emit_from_manifest()) {
+      saagen::cli::check_output_named("--output", emit_arguments.output_directory);
+      return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
+    }
+    if (scene.plan_requested()) return scene.run_plan(catalogue);
+    if (scene.compile_requested()) return scene.run_compile();
+    if (trade.bench_requested()) return trade.run_bench();
+    if (trade.report_requested()) return trade.run_report();
+    if (*emit) {
+      if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
+      if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
+      if (*preset_option) emit_arguments.preset = preset;
+      if (*domain_option) emit_arguments.domain = domain;
+      return run_emit(every_variant, emit_arguments);
+    }
+    if (*validate) return run_validate(every_variant, validate_directory);
+    if (glints.requested()) return glints.run();
+    if (deferred_pass.requested()) return deferred_pass.run(catalogue);
+    if (texture.requested()) return texture.run();
+  } catch (const saagen::Error& error) {
+    std::cerr << "saagen: error: " << error.what() << "\n";
+    return exit_failure;
+  } catch (const std::exception& error) {
+    std::cerr << "saagen: internal error: " << error.what() << "\n";
+    return exit_failure;
+  }
+  return exit_failure;
+}

@@ -1,0 +1,173 @@
+#include "report_commands.hpp"
+
+#include "saagen/error.hpp"
+#include "saagen/io/output.hpp"
+#include "saagen/report/report.hpp"
+#ifdef SAAGEN_HAVE_ISA_COST
+#include "saagen/report/isa_cost.hpp"
+#endif
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <optional>
+
+namespace saagen::cli {
+namespace {
+
+std::optional<report::CostTable> load_costs(const std::string& path) {
+  if (path.empty()) return std::nullopt;
+  return report::load_cost_table(path);
+}
+
+// The configuration of a run, its options checked before any rendering.
+render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
+  if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
+  if (!common.cache_dir.empty()) {
+    std::error_code error;
+    if (std::filesystem::exists(common.cache_dir, error) && !std::filesystem::is_directory(common.cache_dir, error)) {
+      throw Error(fmt::format("--cache {}: exists and is not a directory; pass a directory for the ground-truth cache", common.cache_dir));
+    }
+  }
+  render::TradeConfig config = report::preset_config(common.preset);
+  config.cache_dir = common.cache_dir;
+  config.threads = common.threads;
+  config.keep_images = keep_images;
+  if (common.sigma2) config.params.sigma2 = *common.sigma2;
+  if (common.kappa) config.params.kappa = *common.kappa;
+  config.prefilter_scale = common.prefilter_scale;
+  return config;
+}
+
+// The ISA statistics of `families` ("" measures nothing), printed as tables to `out`, and
+// their forward-shading inverse-throughput ratios (first family, mean over GLSL and HLSL) added
+// to `costs` as the primary cost column.
+std::optional<nlohmann::json> measure_isa(const std::string& families, std::optional<report::CostTable>& costs, std::ostream& out) {
+  if (families.empty()) return std::nullopt;
+#ifdef SAAGEN_HAVE_ISA_COST
+  const std::vector<std::string> parsed = report::parse_isa_families(families);
+  report::IsaCostTable table;
+  try {
+    table = report::measure_isa_costs(parsed, [](const std::string& step) { std::cerr << step << "\n"; });
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& error) {
+    throw Error(fmt::format("--isa {}: {}", families, error.what()));
+  }
+  out << report::format_isa_table(table);
+  std::map<std::string, std::vector<double>> ratios;
+  std::vector<std::string> order;
+  for (const report::IsaCostRow& row : table.rows) {
+    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline) continue;
+    if (!ratios.count(row.variant)) order.push_back(row.variant);
+    ratios[row.variant].push_back(row.inverse_throughput_ratio());
+  }
+  std::vector<std::pair<std::string, double>> means;
+  for (const std::string& variant : order) {
+    double sum = 0.0;
+    for (double ratio : ratios[variant]) sum += ratio;
+    means.emplace_back(variant, sum / static_cast<double>(ratios[variant].size()));
+  }
+  if (!costs) costs.emplace();
+  report::add_isa_costs(*costs, parsed.front(), means);
+  return report::isa_json(table);
+#else
+  (void)costs;
+  (void)out;
+  throw Error(fmt::format("--isa {}: this saagen was built without the Vulkan harness (SAAGEN_BUILD_HARNESS=OFF); rebuild with it", families));
+#endif
+}
+
+// CLI::Range lets NaN through (every comparison with NaN is false), and a NaN sigma^2 renders every
+// row alike with exit 0: a finite number in [low, high], nothing else.
+CLI::Validator finite_range(double low, double high) {
+  const std::string range = fmt::format("[{}, {}]", low, high);
+  return CLI::Validator(
+      [low, high, range](std::string& text) {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool whole = !text.empty() && end == text.c_str() + text.size();
+        if (!whole || !std::isfinite(value) || value < low || value > high) return fmt::format("not a finite number in {}", range);
+        return std::string();
+      },
+      "FINITE in " + range);
+}
+
+}  // namespace
+
+void ReportCommands::add_common(CLI::App* command, Common& common) {
+  command->add_option("--preset", common.preset, "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
+      ->capture_default_str();
+  command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
+  command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
+  command->add_option("--threads", common.threads, "Render threads (0: all cores)")->capture_default_str();
+  command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
+      ->check(finite_range(1e-6, 16.0));
+  command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(finite_range(1e-6, 1.0));
+  command->add_option("--prefilter-scale", common.prefilter_scale, "Scale of the prefiltered normal-map roughness to measure")
+      ->check(finite_range(0.0, 4.0))
+      ->capture_default_str();
+  command->add_option("--isa", common.isa_families,
+                      "GPU families (comma-separated: vega10, navi21, navi10, polaris10) whose ISA statistics from Mesa's ACO "
+                      "compiler (RADV null hardware, no GPU needed) give the cost column; the first family ranks the variants");
+  command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
+}
+
+ReportCommands::ReportCommands(CLI::App& app) {
+  bench_ = app.add_subcommand("bench", "Render the ground truths and print the speed/accuracy trade table of every variant");
+  add_common(bench_, bench_common_);
+  bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)");
+  bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
+  bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
+  bench_->add_option("--isa-table", bench_isa_table_,
+                     "With --isa: also write the ISA statistics as JSON (generator/data/isa_cost.json, the planner's table, is this "
+                     "file for --isa vega10,navi21)");
+
+  report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, cost-vs-error plot");
+  add_common(report_, report_common_);
+  report_->add_option("--output,-o", report_directory_, "Report directory")->required();
+}
+
+int ReportCommands::run_bench() const {
+  // Inputs and outputs are checked first: a bad file or path fails before rendering.
+  if ((bench_isa_only_ || !bench_isa_table_.empty()) && bench_common_.isa_families.empty()) {
+    throw Error("--isa-only and --isa-table need --isa FAMILY[,FAMILY] (e.g. --isa vega10,navi21)");
+  }
+  auto costs = load_costs(bench_common_.cost_json);
+  const render::TradeConfig config = configure(bench_common_, false);
+  if (!bench_json_.empty()) check_output_paths({bench_json_}, bench_common_.force);
+  if (!bench_isa_table_.empty()) check_output_paths({bench_isa_table_}, bench_common_.force);
+  const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
+  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force);
+  if (bench_isa_only_) return 0;
+  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
+  const auto summary = report::summarize(table);
+  const report::CostTable* cost_table = costs ? &*costs : nullptr;
+  if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
+  std::cout << report::format_summary(summary, cost_table);
+  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}-spp ground truth; cost: {})\n",
+                           table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
+                           cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
+  std::cout << report::format_findings(table, cost_table);
+  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force);
+  // Last, what a reader needs first: what to use, by how much, and where it loses.
+  std::cout << "\n" << report::format_verdict(table);
+  return 0;
+}
+
+int ReportCommands::run_report() const {
+  auto costs = load_costs(report_common_.cost_json);
+  const render::TradeConfig config = configure(report_common_, true);
+  check_output_paths(report::report_paths(config, report_directory_), report_common_.force);
+  measure_isa(report_common_.isa_families, costs, std::cerr);
+  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
+  const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
+  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());
+  std::cout << report::format_verdict(table);
+  return 0;
+}
+
+}  // namespace saagen::cli

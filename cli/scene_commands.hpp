@@ -1,0 +1,56 @@
+// The scene-manifest commands of the CLI: `saagen plan`, `saagen emit --manifest`
+// and `saagen compile`. Kept apart from main.cpp, which only registers and dispatches them.
+#pragma once
+
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace saagen::cli {
+
+class SceneCommands {
+ public:
+  // Adds `plan` and `compile` to the app, and --manifest, --trade-table, --list-outputs to
+  // `emit`. `emit_exclusive` are emit's per-variant options that --manifest replaces.
+  SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CLI::Option*>& emit_exclusive);
+
+  bool plan_requested() const { return plan_->parsed(); }
+  bool compile_requested() const { return compile_->parsed(); }
+  bool emit_from_manifest() const { return !emit_manifest_.empty(); }
+
+  int run_plan(const Catalogue& catalogue) const;
+  int run_emit(const Catalogue& catalogue, const std::string& output_directory, bool force) const;
+  int run_compile() const;
+
+ private:
+  // Stage, language, client and entry point from the options and the input's extension.
+  CompileRequest compile_settings(const std::filesystem::path& input) const;
+
+  CLI::App* plan_ = nullptr;
+  std::string plan_manifest_;
+  std::string plan_trade_table_;
+  bool plan_no_cost_ = false;
+  bool plan_rules_ = false;
+
+  std::string emit_manifest_;
+  std::string emit_trade_table_;
+  bool emit_list_outputs_ = false;
+
+  CLI::App* compile_ = nullptr;
+  std::string compile_input_;
+  std::string compile_output_;
+  std::string compile_stage_;
+  std::string compile_language_;
+  std::string compile_client_ = "vulkan";
+  std::string compile_entry_ = "main";
+  std::vector<std::string> compile_include_dirs_;
+  bool compile_optimize_ = false;
+  bool compile_force_ = false;
+};
+
+}  // namespace saagen::cli

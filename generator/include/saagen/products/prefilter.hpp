@@ -1,0 +1,85 @@
+// Normal-map prefiltering (`saagen texture prefilter`): the MIP chain of a tangent-space normal map
+// turned into the texture-space roughness of Kaplanyan et al. 2016 Sec. 4, as KTX2.
+//
+//   toksvig  one channel (R16_SFLOAT, or R32_SFLOAT): per texel of every level, the base roughness
+//            combined with Toksvig's variance sigma^2 = (1 - L) / L of the texel's mean-normal
+//            length L (Toksvig 2005): alpha'^2 = saturate(alpha^2 + 2 sigma^2), written in the
+//            requested domain. Engines sample it in place of their roughness map.
+//   lean     the LEAN slope moments (Olano & Baker 2010) in the layout of glints::lean_ktx2:
+//            R32G32B32A32_SFLOAT, a 2-layer array, layer 0 = (E[x], E[y], E[x^2], E[y^2]),
+//            layer 1 = (E[xy], 0, 0, 0), s = -n.xy / n.z. The shader forms the covariance
+//            (saa_lean_covariance) and the roughness (saa_prefilter_lean*).
+// The levels are box reductions of level 0, as reference/render/normal_map.hpp defines them.
+// The key "saagen.prefilter" holds the layout as JSON. docs: README.md "Normal-map prefiltering".
+#pragma once
+
+#include "saagen/products/glints.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen::prefilter {
+
+enum class Method { toksvig, lean };
+// alpha2: alpha^2; alpha: GGX/Beckmann alpha; perceptual: r with alpha = r^2 (Burley 2012, the
+// roughness glTF, Filament and Unreal store); smoothness: Unity's 1 - r. The ids and meanings are
+// saagen/emit/engines.hpp's roughness_domains().
+enum class Domain { alpha2, alpha, perceptual, smoothness };
+
+// Both throw saagen::Error naming the allowed values.
+Method parse_method(std::string_view text);
+Domain parse_domain(std::string_view text);
+std::string_view to_string(Method method);
+std::string_view to_string(Domain domain);
+
+// alpha^2 to the domain's value and back (inverse of each other on [0, 1]).
+double from_alpha2(double alpha2, Domain domain);
+double to_alpha2(double value, Domain domain);
+
+// Level 0 of a tangent-space normal map: unit normals with z > 0, 3 per texel, row-major.
+struct NormalImage {
+    int width = 0;
+    int height = 0;
+    std::vector<double> normals;
+};
+
+// From encoded channels in [0, 1] (n = 2 c - 1), `channels` >= 3 per texel (extra ones ignored),
+// or, with `encoded` false, from signed components. Each texel is normalised; throws
+// saagen::Error (naming `what`) when the sizes are not powers of two or a texel is not a
+// tangent-space normal (z <= 0 or length outside [0.8, 1.2]).
+NormalImage normals_from_channels(int width, int height, int channels, std::span<const double> values, bool encoded,
+                                  const std::string& what);
+// A PNG (8 or 16 bits, RGB or RGBA) or KTX2 (R8G8B8A8_UNORM encoded as above; R16G16B16A16_SFLOAT
+// or R32G32B32A32_SFLOAT holding signed components) file's bytes; level 0 is used.
+NormalImage read_normal_map(std::span<const std::uint8_t> bytes, const std::string& what);
+
+// One level: per texel the mean of the level-0 unit normals (3 values), of their slopes
+// s = -n.xy / n.z (2) and of s s^T as (xx, xy, yy) (3). A non-square map halves its longer side alone.
+struct Level {
+    int width = 0;
+    int height = 0;
+    std::vector<double> mean_normal;
+    std::vector<double> slope_mean;
+    std::vector<double> slope_second;
+};
+std::vector<Level> build_levels(const NormalImage& image);
+
+// Toksvig 2005 with alpha^2 = 2 sigma^2: saturate(alpha^2 + 2 max((1 - L) / max(L, 1e-30), 0)).
+double toksvig_alpha2(double base_alpha2, double mean_length);
+
+struct Options {
+    Method method = Method::toksvig;
+    Domain domain = Domain::perceptual;
+    double roughness = 0.0;   // base roughness, in `domain`, in [0, 1]
+    bool float32 = false;     // toksvig: R32_SFLOAT instead of R16_SFLOAT
+    void validate() const;    // throws saagen::Error
+};
+
+// The KTX2 image with the full MIP chain and the "saagen.prefilter" JSON (and a saagen marker,
+// so that `saagen` may later replace the file without --force).
+glints::Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options);
+
+}  // namespace saagen::prefilter

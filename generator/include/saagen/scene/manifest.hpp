@@ -1,0 +1,84 @@
+// Scene manifests: a TOML file naming the targets, the emission options and, per
+// material, what the planner needs to pick a variant. The format is documented with an example
+// in examples/scene.saagen.toml and examples/INTEGRATION.md.
+//
+// Every problem is reported as one line: "FILE:LINE:COLUMN: key 'KEY' ...: what is wrong;
+// allowed: ...". toml++ gives every key and value its source position.
+#pragma once
+
+#include "saagen/front/catalogue.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen {
+
+struct SourcePosition {
+  int line = 0;
+  int column = 0;
+};
+
+enum class Preference { accuracy, speed };
+enum class Ndf { ggx, beckmann };
+std::string_view to_string(Preference preference);
+std::string_view to_string(Ndf ndf);
+
+struct Material {
+  std::string name;
+  RenderPath path = RenderPath::forward;  // forward or deferred (never any)
+  bool anisotropic = false;
+  bool tangents = false;
+  Ndf ndf = Ndf::ggx;
+  bool normal_maps = false;
+  bool glints = false;                 // the glinty BRDF (forward, tangents): the planner picks a glint variant
+  std::string precision = "fp32";      // "fp32" or "fp16" (per target: see target_precision)
+  Preference prefer = Preference::accuracy;
+  std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
+  SourcePosition position;             // of the [[material]] header
+  // Position of each key given in the file (values), for diagnostics found after parsing.
+  std::map<std::string, SourcePosition, std::less<>> positions;
+};
+
+struct Manifest {
+  std::string source_name;     // the file name used in diagnostics
+  std::string name = "scene";  // the bundle's name: files are <prefix><name>[_<precision>].<ext>
+  std::vector<std::string> targets;
+  std::string prefix = "saa_";
+  std::map<std::string, double> option_values;  // only the options the file sets (sigma2, kappa)
+  // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
+  // planner.hpp); empty: kDefaultGpuFamily (vega10).
+  std::string gpu_family;
+  // `preset`: an engine's form (saagen/emit/engines.hpp): its sigma2 and kappa where the file sets
+  // none, its variant for deferred materials that name none, and its roughness domain.
+  std::optional<std::string> preset;
+  std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
+  // `import_path`: the naga_oil module path of the module-language (WGSL) bundles; the fp16
+  // bundle's is PATH_fp16. Empty: none.
+  std::string import_path;
+  std::vector<Material> materials;
+
+  // "FILE:LINE:COLUMN: " for a position in this manifest.
+  std::string where(SourcePosition position) const;
+};
+
+// The target's precision for a manifest precision: the same name when the target has it, and
+// for "fp16" a target without an fp16 form falls back to "min16" (HLSL min16float); nullopt
+// when the target has neither.
+std::optional<std::string> target_precision(std::string_view target, std::string_view precision);
+
+// Keys a manifest may have, for documentation and for the unknown-key message.
+const std::vector<std::string>& manifest_keys();
+const std::vector<std::string>& material_keys();
+
+// Parses and checks a manifest's text. Throws saagen::Error (one line, as above) on the first
+// problem: TOML syntax, unknown keys, wrong types, unknown values or variants, out-of-range
+// options, an unsafe prefix or name, duplicate material names, unavailable features.
+Manifest parse_manifest(std::string_view text, std::string_view source_name, const Catalogue& catalogue);
+// Reads the file and parses it; the path (as given) names it in diagnostics.
+Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue);
+
+}  // namespace saagen

@@ -1,0 +1,56 @@
+// In-process validation of emitted files: each file is compiled by glslang inside a generated
+// fragment shader that calls every function and a compute shader that calls every function
+// without derivatives, for every client API the target supports, and checked with spirv-val.
+#pragma once
+
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/target/target.hpp"
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+namespace saagen {
+
+struct ValidationCheck {
+  std::string name;  // e.g. "vulkan fragment"
+  bool ok = false;
+  std::string log;
+  std::size_t spirv_words = 0;
+};
+
+struct FileValidation {
+  std::string file_name;
+  std::vector<ValidationCheck> checks;
+  bool ok() const;
+  std::string summary() const;  // one line: "OK  saa_deferred_sum.glsl  (vulkan fragment, ...)" or the first error
+};
+
+// The shader source that validation compiles for `content` (an emitted file described by
+// `marker`) in the given stage: prologue + the file + calls to its functions.
+std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
+                                            const std::string& file_name, const std::string& content, ShaderStage stage);
+
+// Validates emitted WGSL files with Tint: each file inside a fragment and a compute entry point
+// that call its public functions (the compute one leaves the [fragment] functions out), compiled
+// by Dawn for Node (harness/webgpu/run.mjs, on SwiftShader's Vulkan) in one run for all files. A
+// check passes with zero errors and zero warnings. Throws saagen::Error when the runner cannot
+// run (no Node.js, no npm packages, no Vulkan ICD).
+std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, const std::vector<std::pair<std::string, std::string>>& files);
+
+// The WebGPU runner (harness/webgpu/run.mjs): `node RUNNER DIR` runs DIR/jobs.json and writes
+// DIR/results.json. The command is `$SAAGEN_NODE` (node) and `$SAAGEN_WEBGPU_RUNNER` (the
+// checkout's runner by default), shell-quoted; run_webgpu_jobs writes `jobs` to `directory`,
+// runs it, and returns the parsed results, or throws saagen::Error with the runner's first line.
+std::string webgpu_runner_command();
+nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs, const std::filesystem::path& directory);
+
+// Validates an emitted file's content. Throws saagen::Error when the content has no saagen
+// marker or names an unknown target/variant.
+FileValidation validate_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content);
+
+}  // namespace saagen

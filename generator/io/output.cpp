@@ -1,0 +1,282 @@
+#include "saagen/io/output.hpp"
+
+#include "saagen/emit/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/io/input.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <optional>
+#include <set>
+#include <span>
+#include <sys/stat.h>
+#include <system_error>
+#include <unistd.h>
+
+namespace saagen {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Existing outputs larger than this are never read back: they are foreign unless forced.
+constexpr std::size_t existing_read_limit = std::size_t{512} << 20;
+
+std::string error_text(int error) { return std::generic_category().message(error); }
+
+// What lies at an output path, inspected without following a link there.
+struct Existing {
+  bool exists = false;
+  bool link = false;
+  bool too_large = false;
+  std::string bytes;
+};
+
+std::string read_descriptor(int fd, const fs::path& path) {
+  std::string bytes;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t count = ::read(fd, buffer, sizeof buffer);
+    if (count < 0 && errno == EINTR) continue;
+    if (count < 0) throw Error(fmt::format("{}: cannot be read ({}); check its permissions", path.string(), error_text(errno)));
+    if (count == 0) return bytes;
+    bytes.append(buffer, static_cast<std::size_t>(count));
+  }
+}
+
+Existing inspect(const fs::path& path) {
+  Existing existing;
+  struct stat status {};
+  if (::lstat(path.c_str(), &status) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR) return existing;
+    throw Error(fmt::format("{}: cannot be inspected ({}); check the directory's permissions", path.string(), error_text(errno)));
+  }
+  existing.exists = true;
+  if (S_ISLNK(status.st_mode)) {
+    existing.link = true;
+    return existing;
+  }
+  if (S_ISDIR(status.st_mode)) {
+    throw Error(fmt::format("{}: is a directory; remove it or choose another output path", path.string()));
+  }
+  if (!S_ISREG(status.st_mode)) {
+    throw Error(fmt::format("{}: exists and is not a regular file; remove it or choose another output path", path.string()));
+  }
+  if (static_cast<std::size_t>(status.st_size) > existing_read_limit) {
+    existing.too_large = true;
+    return existing;
+  }
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw Error(fmt::format("{}: cannot be read ({}); check its permissions", path.string(), error_text(errno)));
+  try {
+    existing.bytes = read_descriptor(fd, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+  return existing;
+}
+
+std::uint64_t fnv1a64(std::string_view bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (const char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+std::string sidecar_fingerprint(std::string_view bytes) { return fmt::format("bytes={} fnv1a64={:016x}", bytes.size(), fnv1a64(bytes)); }
+
+fs::path sidecar_path(const fs::path& path) { return fs::path(path.string() + ".saagen"); }
+
+bool ktx2_written_by_saagen(std::string_view bytes) {
+  static constexpr char identifier[] = "\xABKTX 20\xBB\r\n\x1A\n";
+  if (bytes.substr(0, 12) != std::string_view(identifier, 12)) return false;
+  try {
+    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    const glints::Ktx2Image image = glints::read_ktx2(std::span<const std::uint8_t>(data, bytes.size()));
+    return std::any_of(image.key_values.begin(), image.key_values.end(), [](const auto& entry) { return entry.first.rfind("saagen.", 0) == 0; });
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+bool sidecar_vouches_for(const fs::path& path, std::string_view bytes) {
+  const Existing sidecar = inspect(sidecar_path(path));
+  if (!sidecar.exists || sidecar.link || sidecar.too_large) return false;
+  return sidecar.bytes.find(output_tag) != std::string::npos && sidecar.bytes.find(sidecar_fingerprint(bytes)) != std::string::npos;
+}
+
+fs::path directory_of(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
+
+// The directory exists and is writable, or its nearest existing ancestor is a writable directory.
+void check_directory(const fs::path& directory) {
+  fs::path existing = directory;
+  struct stat status {};
+  while (::stat(existing.c_str(), &status) != 0) {
+    const int error = errno;
+    const fs::path parent = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+    if (error != ENOENT || parent == existing) {
+      throw Error(fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(), error_text(error)));
+    }
+    existing = parent;
+  }
+  if (!S_ISDIR(status.st_mode)) {
+    throw Error(fmt::format("{}: cannot create the output directory ({} is not a directory); choose a writable path", directory.string(),
+                            existing.string()));
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    throw Error(fmt::format("{}: cannot write in this directory; choose a writable output path", existing.string()));
+  }
+}
+
+void check_named_once(const std::vector<fs::path>& paths) {
+  std::set<fs::path> seen;
+  for (const fs::path& path : paths) {
+    if (path.empty() || !path.has_filename()) throw Error(fmt::format("'{}': not a file name; pass an output path", path.string()));
+    if (!seen.insert(fs::absolute(path).lexically_normal()).second) {
+      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name?); name each output once", path.string()));
+    }
+  }
+}
+
+// Whether the path must be written (false: it already holds exactly these bytes). Throws when the
+// path may not be written.
+bool needs_writing(const fs::path& path, const std::optional<std::string_view>& content, bool force) {
+  check_directory(directory_of(path));
+  const Existing existing = inspect(path);
+  if (!existing.exists) return true;
+  if (existing.link && !force) {
+    throw Error(fmt::format("{}: is a symbolic link; saagen never writes through one (remove it, or pass --force to replace the link itself)",
+                            path.string()));
+  }
+  if (existing.link) return true;
+  if (content && !existing.too_large && existing.bytes == *content) return false;
+  if (!force && (existing.too_large || !written_by_saagen(path, existing.bytes))) {
+    throw Error(fmt::format("{}: exists and was not written by saagen; refusing to overwrite it (use --force)", path.string()));
+  }
+  return true;
+}
+
+void ensure_directory(const fs::path& directory) {
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error || !fs::is_directory(directory)) {
+    throw Error(fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(),
+                            error ? error.message() : "not a directory"));
+  }
+}
+
+mode_t creation_mode() {
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return 0666 & ~mask;
+}
+
+void write_all(int fd, std::string_view content, const fs::path& path) {
+  while (!content.empty()) {
+    const ssize_t count = ::write(fd, content.data(), content.size());
+    if (count < 0 && errno == EINTR) continue;
+    if (count <= 0) {
+      const int error = count < 0 ? errno : ENOSPC;
+      throw Error(fmt::format("{}: write failed ({}); free some space or choose another output path", path.string(), error_text(error)));
+    }
+    content.remove_prefix(static_cast<std::size_t>(count));
+  }
+}
+
+// A new file `.NAME.saagen-XXXXXX` beside `path`, created exclusively (never through a link),
+// holding `content`. The caller removes it on failure.
+class Temporaries {
+ public:
+  Temporaries() = default;
+  Temporaries(const Temporaries&) = delete;
+  Temporaries& operator=(const Temporaries&) = delete;
+  ~Temporaries() {
+    for (const fs::path& path : paths_) ::unlink(path.c_str());
+  }
+
+  const fs::path& create(const fs::path& path, std::string_view content) {
+    // append() rather than operator+: GCC 12 reports a spurious -Wrestrict on the latter.
+    std::string leaf = ".";
+    leaf.append(path.filename().string()).append(".saagen-XXXXXX");
+    std::string name = (directory_of(path) / leaf).string();
+    const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+    if (fd < 0) {
+      throw Error(fmt::format("{}: cannot write in this directory ({}); choose a writable output path", directory_of(path).string(),
+                              error_text(errno)));
+    }
+    paths_.emplace_back(name);
+    try {
+      if (::fchmod(fd, mode_) != 0) throw Error(fmt::format("{}: cannot set its permissions ({})", name, error_text(errno)));
+      write_all(fd, content, path);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    if (::close(fd) != 0) {
+      throw Error(fmt::format("{}: write failed ({}); free some space or choose another output path", path.string(), error_text(errno)));
+    }
+    return paths_.back();
+  }
+
+  // The temporaries have been renamed: nothing left to remove.
+  void release() { paths_.clear(); }
+
+ private:
+  std::vector<fs::path> paths_;
+  mode_t mode_ = creation_mode();
+};
+
+}  // namespace
+
+bool written_by_saagen(const fs::path& path, std::string_view bytes) {
+  if (find_marker(bytes) || bytes.find(output_tag) != std::string_view::npos) return true;
+  if (ktx2_written_by_saagen(bytes)) return true;
+  return sidecar_vouches_for(path, bytes);
+}
+
+OutputFile ownership_sidecar(const fs::path& path, std::string_view bytes, std::string_view description) {
+  return {sidecar_path(path), fmt::format("{} sidecar of {}\n{}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes), description)};
+}
+
+void check_output_paths(const std::vector<fs::path>& paths, bool force) {
+  check_named_once(paths);
+  for (const fs::path& path : paths) needs_writing(path, std::nullopt, force);
+}
+
+WriteReport write_outputs(const std::vector<OutputFile>& files, bool force) {
+  std::vector<fs::path> paths;
+  for (const OutputFile& file : files) paths.push_back(file.path);
+  check_named_once(paths);
+
+  WriteReport report;
+  std::vector<const OutputFile*> to_write;
+  for (const OutputFile& file : files) {
+    if (needs_writing(file.path, std::string_view(file.content), force)) to_write.push_back(&file);
+    else report.unchanged.push_back(file.path);
+  }
+
+  Temporaries temporaries;
+  std::vector<fs::path> staged;
+  for (const OutputFile* file : to_write) {
+    ensure_directory(directory_of(file->path));
+    staged.push_back(temporaries.create(file->path, file->content));
+  }
+  for (std::size_t index = 0; index < to_write.size(); ++index) {
+    if (::rename(staged[index].c_str(), to_write[index]->path.c_str()) != 0) {
+      throw Error(fmt::format("{}: cannot replace the file ({})", to_write[index]->path.string(), error_text(errno)));
+    }
+    report.written.push_back(to_write[index]->path);
+  }
+  temporaries.release();
+  return report;
+}
+
+}  // namespace saagen

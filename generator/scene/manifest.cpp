@@ -1,0 +1,566 @@
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
+
+#include "saagen/emit/engines.hpp"
+
+#include "saagen/emit/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/io/input.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+// toml++ is used header-only and privately: nothing of it appears in saagen's headers, so the
+// installed library adds no dependency for engines.
+#define TOML_HEADER_ONLY 1
+#define TOML_EXCEPTIONS 1
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+
+namespace saagen {
+namespace {
+
+// A value as it may be shown in a one-line message: printable ASCII, at most 40 characters.
+std::string show(std::string_view text, std::size_t limit = 40) {
+  std::string shown;
+  for (char c : text.substr(0, limit)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '\\') shown += c;
+    else shown += fmt::format("\\x{:02x}", byte);
+  }
+  if (text.size() > limit) shown += "...";
+  return shown;
+}
+
+std::string quoted_list(const std::vector<std::string>& values) {
+  std::vector<std::string> quoted;
+  for (const std::string& value : values) quoted.push_back("\"" + value + "\"");
+  return fmt::format("{}", fmt::join(quoted, ", "));
+}
+
+std::string_view type_phrase(toml::node_type type) {
+  switch (type) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a floating-point number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "nothing";
+  }
+}
+
+SourcePosition position_of(const toml::source_region& region) {
+  return {static_cast<int>(region.begin.line), static_cast<int>(region.begin.column)};
+}
+
+bool is_identifier(std::string_view text, bool allow_dash) {
+  if (text.empty() || text.size() > 64 || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
+  return std::all_of(text.begin(), text.end(), [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allow_dash && c == '-');
+  });
+}
+
+// Reads one table's keys, in file order, checking each against the allowed set and its type.
+class TableReader {
+ public:
+  TableReader(const Manifest& manifest, const toml::table& table, std::string context, const std::vector<std::string>& allowed)
+      : manifest_(manifest), table_(table), context_(std::move(context)) {
+    std::vector<std::pair<SourcePosition, std::string>> keys;
+    for (auto&& [key, node] : table) keys.emplace_back(position_of(key.source()), std::string(key.str()));
+    std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
+      return std::tie(a.first.line, a.first.column, a.second) < std::tie(b.first.line, b.first.column, b.second);
+    });
+    for (const auto& [position, key] : keys) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        fail(position, fmt::format("unknown key '{}'{}; allowed keys: {}", show(key), context_, fmt::join(allowed, ", ")));
+      }
+    }
+  }
+
+  const toml::node* find(std::string_view key) const { return table_.get(key); }
+  bool has(std::string_view key) const { return find(key) != nullptr; }
+
+  SourcePosition position(std::string_view key) const {
+    const toml::node* node = find(key);
+    return node ? position_of(node->source()) : position_of(table_.source());
+  }
+
+  [[noreturn]] void fail(SourcePosition position, const std::string& message) const {
+    throw Error(manifest_.where(position) + message);
+  }
+  [[noreturn]] void fail_key(std::string_view key, const std::string& problem, const std::string& allowed) const {
+    fail(position(key), fmt::format("key '{}'{}: {}; allowed: {}", key, context_, problem, allowed));
+  }
+  [[noreturn]] void missing(std::string_view key, const std::string& allowed) const {
+    fail(position_of(table_.source()), fmt::format("missing key '{}'{}; allowed: {}", key, context_, allowed));
+  }
+  [[noreturn]] void wrong_type(std::string_view key, const toml::node& node, const std::string& allowed) const {
+    fail(position_of(node.source()), fmt::format("key '{}'{}: must be {}, got {}; allowed: {}", key, context_,
+                                                 allowed_type_of(allowed), type_phrase(node.type()), allowed));
+  }
+
+  std::optional<std::string> string(std::string_view key, const std::string& allowed) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_string()) wrong_type(key, *node, allowed);
+    return std::string(node->as_string()->get());
+  }
+
+  // One of `values` (strings).
+  std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& values) const {
+    const std::string allowed = quoted_list(values);
+    const auto value = string(key, allowed);
+    if (value && std::find(values.begin(), values.end(), *value) == values.end()) {
+      fail_key(key, fmt::format("unknown value \"{}\"", show(*value)), allowed);
+    }
+    return value;
+  }
+
+  std::optional<bool> boolean(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean()) wrong_type(key, *node, "true, false");
+    return node->as_boolean()->get();
+  }
+
+  std::optional<double> number(std::string_view key, const std::string& allowed) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (node->is_integer()) return static_cast<double>(node->as_integer()->get());
+    if (!node->is_floating_point()) wrong_type(key, *node, allowed);
+    return node->as_floating_point()->get();
+  }
+
+  const std::string& context() const { return context_; }
+
+ private:
+  static std::string allowed_type_of(const std::string& allowed) {
+    if (allowed == "true, false") return "a boolean";
+    if (allowed.rfind("a number", 0) == 0) return "a number";
+    if (allowed.rfind("an array of tables", 0) == 0) return "an array of tables";
+    if (allowed.rfind("an array", 0) == 0) return "an array";
+    return "a string";
+  }
+
+  const Manifest& manifest_;
+  const toml::table& table_;
+  std::string context_;
+};
+
+// The manifest precisions every target can emit: fp32 always, fp16 when each target has a
+// half-precision form (see target_precision).
+std::vector<std::string> precisions_of_all(const std::vector<std::string>& targets) {
+  std::vector<std::string> common = {"fp32"};
+  const bool half = std::all_of(targets.begin(), targets.end(), [](const std::string& target) { return target_precision(target, "fp16").has_value(); });
+  if (half) common.push_back("fp16");
+  return common;
+}
+
+void read_targets(Manifest& manifest, const TableReader& top) {
+  const std::vector<std::string> names = builtin_target_names();
+  const std::string allowed = "an array of " + quoted_list(names);
+  const toml::node* node = top.find("targets");
+  if (!node) top.missing("targets", allowed);
+  if (!node->is_array()) top.wrong_type("targets", *node, allowed);
+  const toml::array& array = *node->as_array();
+  if (array.empty()) top.fail_key("targets", "the array is empty", allowed);
+  for (const toml::node& element : array) {
+    const SourcePosition position = position_of(element.source());
+    if (!element.is_string()) {
+      top.fail(position, fmt::format("key 'targets': every element must be a string, got {}; allowed: {}", type_phrase(element.type()),
+                                     quoted_list(names)));
+    }
+    const std::string target(element.as_string()->get());
+    if (std::find(names.begin(), names.end(), target) == names.end()) {
+      top.fail(position, fmt::format("key 'targets': unknown target \"{}\"; allowed: {}", show(target), quoted_list(names)));
+    }
+    if (std::find(manifest.targets.begin(), manifest.targets.end(), target) != manifest.targets.end()) {
+      top.fail(position, fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", target, quoted_list(names)));
+    }
+    manifest.targets.push_back(target);
+  }
+}
+
+void read_options(Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
+  for (const Constant& constant : catalogue.constants()) {
+    if (constant.option.empty()) continue;
+    const std::string allowed = fmt::format("a number in {} ({}; default {})", constant.range->describe(), constant.meaning, constant.value);
+    const auto value = top.number(constant.option, allowed);
+    if (!value) continue;
+    if (!std::isfinite(*value) || !constant.range->contains(*value)) {
+      top.fail_key(constant.option, fmt::format("{} is out of range", *value), allowed);
+    }
+    manifest.option_values[constant.option] = *value;
+  }
+}
+
+// `preset` and `domain` (saagen/emit/engines.hpp): the preset's constants fill the options the file
+// does not set; `domain` defaults to the preset's.
+void read_engine_settings(Manifest& manifest, const TableReader& top) {
+  std::vector<std::string> preset_names, domain_names;
+  for (const Preset& preset : presets()) preset_names.push_back(preset.id);
+  for (const RoughnessDomain& domain : roughness_domains()) domain_names.push_back(domain.id);
+  manifest.preset = top.choice("preset", preset_names);
+  if (manifest.preset) {
+    const Preset& preset = find_preset(*manifest.preset);
+    manifest.option_values.emplace("sigma2", preset.sigma2);
+    manifest.option_values.emplace("kappa", preset.kappa);
+    manifest.domain = preset.domain;
+  }
+  if (const auto domain = top.choice("domain", domain_names)) manifest.domain = *domain;
+}
+
+// A preset's variant serves the deferred materials that name none.
+void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
+  if (!manifest.preset) return;
+  const Preset& preset = find_preset(*manifest.preset);
+  if (!catalogue.find_variant(preset.variant)) return;
+  for (Material& material : manifest.materials) {
+    if (!material.variant && material.path == RenderPath::deferred) material.variant = preset.variant;
+  }
+}
+
+Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index,
+                       const std::vector<std::string>& precisions, const Catalogue& catalogue) {
+  Material material;
+  material.position = position_of(table.source());
+  // The context names the material by its name once it is known to be a safe identifier.
+  std::string context = fmt::format(" of material #{}", index + 1);
+  if (const toml::node* name = table.get("name"); name && name->is_string() && is_identifier(name->as_string()->get(), true)) {
+    context = fmt::format(" of material '{}'", name->as_string()->get());
+  }
+  const TableReader reader(manifest, table, context, material_keys());
+
+  const std::string name_rule = "an identifier: a letter, then letters, digits, '_' or '-' (at most 64 characters)";
+  const auto name = reader.string("name", name_rule);
+  if (!name) reader.missing("name", name_rule);
+  if (!is_identifier(*name, true)) reader.fail_key("name", fmt::format("\"{}\" is not an identifier", show(*name)), name_rule);
+  material.name = *name;
+
+  const auto path = reader.choice("path", {"forward", "deferred"});
+  if (!path) reader.missing("path", "\"forward\", \"deferred\"");
+  material.path = *path == "forward" ? RenderPath::forward : RenderPath::deferred;
+
+  material.anisotropic = reader.boolean("anisotropic").value_or(false);
+  material.tangents = reader.boolean("tangents").value_or(false);
+  if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
+  material.normal_maps = reader.boolean("normal_maps").value_or(false);
+  material.glints = reader.boolean("glints").value_or(false);
+  if (material.glints && (material.path != RenderPath::forward || !material.tangents)) {
+    reader.fail_key("glints",
+                    "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
+                    "false, or true with path = \"forward\" and tangents = true");
+  }
+  if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
+  if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
+    material.prefer = *prefer == "accuracy" ? Preference::accuracy : Preference::speed;
+  }
+
+  std::vector<std::string> filters;
+  for (const Variant& variant : catalogue.variants()) {
+    // Screen-space filters: core functions and a fragment wrapper (the planner's is_filter).
+    const auto has_role = [&](FunctionRole role) {
+      return std::any_of(variant.functions.begin(), variant.functions.end(),
+                         [&](const std::string& function) { return catalogue.find_function(function)->role == role; });
+    };
+    // Variants that read a resource (the glint dictionary) are planned through `glints = true`.
+    const bool reads_resource = !resources_read(catalogue, variant.functions).empty();
+    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment) && !reads_resource) filters.push_back(variant.id);
+  }
+  if (const auto variant = reader.string("variant", quoted_list(filters))) {
+    if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
+      const bool is_brdf = catalogue.find_variant(*variant) != nullptr;
+      reader.fail_key("variant",
+                      fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
+                      quoted_list(filters));
+    }
+    if (material.glints) reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
+    material.variant = *variant;
+  }
+
+  for (auto&& [key, node] : table) material.positions[std::string(key.str())] = position_of(node.source());
+  return material;
+}
+
+void read_materials(Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
+  const std::string allowed = "an array of tables, one [[material]] per material";
+  const toml::node* node = top.find("material");
+  if (!node) top.missing("material", allowed);
+  if (!node->is_array()) top.wrong_type("material", *node, allowed);
+  const toml::array& array = *node->as_array();
+  if (array.empty()) top.fail_key("material", "the array is empty", allowed);
+  const auto precisions = precisions_of_all(manifest.targets);
+  std::map<std::string, SourcePosition> first_seen;
+  for (std::size_t index = 0; index < array.size(); ++index) {
+    const toml::node& element = *array.get(index);
+    if (!element.is_table()) {
+      top.fail(position_of(element.source()), fmt::format("key 'material': element #{} must be a table, got {}; allowed: {}", index + 1,
+                                                          type_phrase(element.type()), allowed));
+    }
+    Material material = read_material(manifest, *element.as_table(), index, precisions, catalogue);
+    const SourcePosition name_position = material.positions.at("name");
+    if (const auto seen = first_seen.find(material.name); seen != first_seen.end()) {
+      top.fail(name_position, fmt::format("key 'name' of material #{}: duplicate material name \"{}\" (first defined at {}:{}:{}); "
+                                          "allowed: a name no other material has",
+                                          index + 1, material.name, manifest.source_name, seen->second.line, seen->second.column));
+    }
+    first_seen[material.name] = name_position;
+    manifest.materials.push_back(std::move(material));
+  }
+}
+
+// How deep a manifest may nest: dotted-key parts plus the arrays and inline tables around them.
+// A scene manifest needs 2; toml++ recurses once per level and overflows the stack on deep input.
+constexpr int nesting_limit = 32;
+
+// What the pre-parse scan found: where, and the message's text after the position.
+struct TextProblem {
+  SourcePosition position;
+  std::string message;
+};
+
+// Scans TOML text before toml++ parses it, for what toml++ 3.3 cannot take safely:
+// - nesting deeper than nesting_limit (dots are counted in keys, i.e. table headers, before '=' and
+//   inside inline tables; brackets in values; strings and comments are skipped);
+// - non-ASCII characters outside comments: toml++ 3.3 classifies them as whitespace through an
+//   unreachable branch (undefined behaviour) in keys, in bare values (which may swallow quotes)
+//   and in multi-line strings. TOML's bare keys and every value saagen accepts are ASCII, so no
+//   valid manifest is lost.
+class ManifestScanner {
+ public:
+  explicit ManifestScanner(std::string_view text) : text_(text) {}
+
+  std::optional<TextProblem> first_problem() {
+    bool line_start = true;
+    for (at_ = 0; at_ < text_.size() && !problem_; ++at_) {
+      const char c = text_[at_];
+      if (c == '\n') {
+        newline();
+        line_start = true;
+        continue;
+      }
+      if (c == ' ' || c == '\t' || c == '\r') continue;
+      if (line_start && containers_.empty()) start_line(c);
+      line_start = false;
+      if (c == '#') skip_comment();
+      else if (c == '"' || c == '\'') skip_string(c);
+      else if (static_cast<unsigned char>(c) >= 0x80) non_ascii();
+      else if (!step(c)) report(fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at most {} "
+                                           "(a scene manifest needs 2)", nesting_limit, nesting_limit));
+    }
+    return problem_;
+  }
+
+ private:
+  void start_line(char first) {
+    in_key_ = true;
+    key_dots_ = 0;
+    header_ = first == '[';
+  }
+
+  // One structural character; false when it nests too deeply.
+  bool step(char c) {
+    if (header_) {
+      if (c == ']') in_key_ = false;
+      else if (c == '.' && in_key_) ++key_dots_;
+      return depth() <= nesting_limit;
+    }
+    if (in_key_) {
+      if (c == '=') in_key_ = false;
+      else if (c == '.') ++key_dots_;
+      else if (c == '}' && !containers_.empty()) containers_.pop_back();  // `{}` or a trailing `}`
+      return depth() <= nesting_limit;
+    }
+    if (c == '[' || c == '{') {
+      containers_.push_back({c, key_dots_});
+      in_key_ = c == '{';
+      key_dots_ = 0;
+    } else if ((c == ']' || c == '}') && !containers_.empty()) {
+      key_dots_ = containers_.back().outer_dots;
+      containers_.pop_back();
+    } else if (c == ',' && !containers_.empty() && containers_.back().bracket == '{') {
+      in_key_ = true;
+      key_dots_ = 0;
+    }
+    return depth() <= nesting_limit;
+  }
+
+  int depth() const {
+    int outer = 0;
+    for (const Container& container : containers_) outer += container.outer_dots + 1;
+    return outer + key_dots_ + 1;
+  }
+
+  void non_ascii() {
+    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment; allowed: ASCII keys and values (every name and value saagen reads is ASCII)",
+                       static_cast<unsigned char>(text_[at_])));
+  }
+
+  void report(std::string message) {
+    if (!problem_) problem_ = TextProblem{position(), std::move(message)};
+  }
+
+  void newline() {
+    ++line_;
+    line_at_ = at_ + 1;
+  }
+
+  void skip_comment() {
+    while (at_ + 1 < text_.size() && text_[at_ + 1] != '\n') ++at_;
+  }
+
+  // From the opening quote to the closing one (""" and ''' strings span lines); strings must be
+  // ASCII too.
+  void skip_string(char quote) {
+    const bool triple = text_.substr(at_, 3) == std::string(3, quote);
+    at_ += triple ? 3 : 1;
+    for (; at_ < text_.size(); ++at_) {
+      const char c = text_[at_];
+      if (static_cast<unsigned char>(c) >= 0x80) return non_ascii();
+      if (c == '\\' && quote == '"') {
+        ++at_;
+        if (at_ < text_.size() && text_[at_] == '\n') newline();
+        else if (at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
+      } else if (c == '\n') {
+        newline();
+        if (!triple) return;
+      } else if (c == quote && (!triple || text_.substr(at_, 3) == std::string(3, quote))) {
+        if (triple) at_ += 2;
+        return;
+      }
+    }
+  }
+
+  SourcePosition position() const { return {line_, static_cast<int>(at_ - line_at_) + 1}; }
+
+  struct Container {
+    char bracket;
+    int outer_dots;  // the dots of the key this container is the value of
+  };
+  std::string_view text_;
+  std::size_t at_ = 0;
+  std::size_t line_at_ = 0;
+  int line_ = 1;
+  bool in_key_ = true;
+  bool header_ = false;
+  int key_dots_ = 0;
+  std::vector<Container> containers_;
+  std::optional<TextProblem> problem_;
+};
+
+// Size, nesting and characters are checked before toml++ sees the text (see ManifestScanner).
+void check_manifest_limits(const Manifest& manifest, std::string_view text) {
+  if (text.size() > manifest_size_limit) {
+    throw Error(manifest.where({1, 1}) + fmt::format("the manifest is larger than {} KiB; allowed: a scene manifest of at most {} KiB",
+                                                     manifest_size_limit >> 10, manifest_size_limit >> 10));
+  }
+  if (const auto problem = ManifestScanner(text).first_problem()) throw Error(manifest.where(problem->position) + problem->message);
+}
+
+}  // namespace
+
+std::optional<std::string> target_precision(std::string_view target, std::string_view precision) {
+  const auto& precisions = builtin_target(target).precisions;
+  if (precisions.count(std::string(precision))) return std::string(precision);
+  if (precision == "fp16" && precisions.count("min16")) return std::string("min16");
+  return std::nullopt;
+}
+
+std::string_view to_string(Preference preference) { return preference == Preference::accuracy ? "accuracy" : "speed"; }
+std::string_view to_string(Ndf ndf) { return ndf == Ndf::ggx ? "ggx" : "beckmann"; }
+
+std::string Manifest::where(SourcePosition position) const {
+  return fmt::format("{}:{}:{}: ", source_name, std::max(position.line, 1), std::max(position.column, 1));
+}
+
+const std::vector<std::string>& manifest_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family"};
+    for (const Constant& constant : Catalogue::builtin().constants()) {
+      if (!constant.option.empty()) names.push_back(constant.option);
+    }
+    names.insert(names.end(), {"preset", "domain", "import_path", "material"});
+    return names;
+  }();
+  return keys;
+}
+
+const std::vector<std::string>& material_keys() {
+  static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
+                                                "glints",      "precision", "prefer",   "variant"};
+  return keys;
+}
+
+Manifest parse_manifest(std::string_view text, std::string_view source_name, const Catalogue& catalogue) {
+  Manifest manifest;
+  manifest.source_name = std::string(source_name);
+  check_manifest_limits(manifest, text);
+  toml::table document;
+  try {
+    document = toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& error) {
+    throw Error(manifest.where(position_of(error.source())) +
+                fmt::format("not valid TOML: {}; allowed: TOML 1.0 (see examples/scene.saagen.toml)", show(error.description(), 200)));
+  }
+
+  const TableReader top(manifest, document, "", manifest_keys());
+  read_targets(manifest, top);
+
+  const std::string prefix_rule = "letters, digits and '_', starting with a letter, at most 32 characters, no '__', not 'gl_'";
+  if (const auto prefix = top.string("prefix", prefix_rule)) {
+    try {
+      validate_prefix(*prefix);
+    } catch (const Error&) {
+      top.fail_key("prefix", fmt::format("\"{}\" is not a safe identifier prefix", show(*prefix)), prefix_rule);
+    }
+    manifest.prefix = *prefix;
+  }
+
+  const std::string name_rule = "an identifier: a letter, then letters, digits or '_' (at most 64 characters); default \"scene\"";
+  if (const auto name = top.string("name", name_rule)) {
+    if (!is_identifier(*name, false)) top.fail_key("name", fmt::format("\"{}\" is not an identifier", show(*name)), name_rule);
+    for (const Variant& variant : catalogue.variants()) {
+      std::string stem = variant.id;
+      std::replace(stem.begin(), stem.end(), '-', '_');
+      if (stem == *name) {
+        top.fail_key("name", fmt::format("\"{}\" would collide with the file `saagen emit` writes for {}", *name, variant.id), name_rule);
+      }
+    }
+    manifest.name = *name;
+  }
+
+  if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
+  const std::string import_rule = "identifiers joined by '::' (e.g. \"saagen::scene\"), for a module target (wgsl) in targets";
+  if (const auto path = top.string("import_path", import_rule)) {
+    try {
+      validate_import_path(*path);
+    } catch (const Error&) {
+      top.fail_key("import_path", fmt::format("\"{}\" is not a module path", show(*path)), import_rule);
+    }
+    const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(), [](const std::string& target) { return builtin_target(target).module; });
+    if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
+    manifest.import_path = *path;
+  }
+  read_options(manifest, top, catalogue);
+  read_engine_settings(manifest, top);
+  read_materials(manifest, top, catalogue);
+  apply_preset_variant(manifest, catalogue);
+  return manifest;
+}
+
+Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue) {
+  const std::string text = read_input_file(path, manifest_size_limit, "a scene manifest (see examples/scene.saagen.toml)");
+  return parse_manifest(text, path.string(), catalogue);
+}
+
+}  // namespace saagen

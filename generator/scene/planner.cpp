@@ -1,0 +1,892 @@
+#include "saagen/scene/planner.hpp"
+
+#include "saagen/emit/engines.hpp"
+
+#include "saagen/validate/compiler.hpp"
+#include "saagen/error.hpp"
+#include "saagen/io/input.hpp"
+#include "saagen/validate/kernels.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Rules
+
+enum class Tri { no, yes, any };
+
+struct Rule {
+  const char* id;
+  RenderPath path;
+  Tri anisotropic;
+  Tri tangents;
+  std::optional<Preference> prefer;  // nullopt: any
+  const char* variant;
+  const char* why;
+};
+
+// Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
+// with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
+const std::vector<Rule>& rules() {
+  static const std::vector<Rule> table = {
+      {"F1", RenderPath::forward, Tri::yes, Tri::yes, Preference::accuracy, "forward-aniso-projected",
+       "the full roughness matrix keeps the filtered lobe's orientation, and projected derivatives shrink the kernel as h_z "
+       "at grazing angles where slope derivatives blow up (T&K 2019 Sec. 3.2); shade with the matrix BRDF"},
+      {"F2", RenderPath::forward, Tri::yes, Tri::yes, Preference::speed, "forward-axis-projected",
+       "axis-aligned filtering feeds the engine's own anisotropic BRDF (no matrix BRDF to evaluate) and is the more "
+       "temporally stable form (T&K 2019); projected derivatives as in F1"},
+      {"F3", RenderPath::forward, Tri::no, Tri::yes, Preference::accuracy, "forward-aniso-projected",
+       "an isotropic material still filters to an anisotropic lobe along the pixel footprint; the matrix form keeps it "
+       "(T&K 2019 Sec. 3.2); shade with the matrix BRDF"},
+      {"F4", RenderPath::forward, Tri::no, Tri::yes, Preference::speed, "deferred-avg",
+       "the cheapest filter (Table 2: x1.02-1.05 against x1.13-1.31 for forward-*), tangent-free, feeding the engine's "
+       "isotropic BRDF; it works in a forward pass unchanged"},
+      {"F5", RenderPath::forward, Tri::no, Tri::no, std::nullopt, "deferred-avg",
+       "without tangents only the tangent-free filters apply; deferred-avg has the lowest error of them (T&K 2019 Eq. 5) "
+       "and is the cheapest"},
+      {"D1", RenderPath::deferred, Tri::any, Tri::any, Preference::accuracy, "deferred-avg",
+       "tangent-free, from the G-buffer normal; the lowest error of the deferred filters (T&K 2019 Eq. 5)"},
+      {"D2", RenderPath::deferred, Tri::any, Tri::any, Preference::speed, "deferred-avg",
+       "also the cheapest deferred filter (Table 2: x1.02-1.05), so speed and accuracy agree; deferred-sum (Eq. 4, the "
+       "conservative bound) is available with variant = \"deferred-sum\""},
+  };
+  return table;
+}
+
+// saagen's trade on its normal-mapped scenes (a sphere with a MIP-mapped normal map, features of
+// ~4 px and ~0.5 px), mean LDR-FLIP over the scenes and six alphas (`saagen bench --preset full
+// --sigma2 0.0625`, the "normal-mapped" rows of its JSON; README "Does it make images better?").
+// With the papers' GGX(alpha^2 + K) (Beckmann materials, and engines that keep their own BRDF):
+constexpr const char* kMeasuredNormalAdvice =
+    "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
+    "normal-mapped normal, 0.1465 with Toksvig prefiltering; forward-aniso-projected 0.0331, 0.0390, 0.1457 with LEAN";
+// With the tail-preserving filtered GGX the planner shades GGX materials with (`saagen bench --preset
+// medium`, the "normal-mapped" rows of its JSON; docs/FILTERED_GGX.md):
+constexpr const char* kMeasuredNormalAdviceTail =
+    "mean LDR-FLIP on normal-mapped scenes with the tail-preserving filtered GGX, sigma2 0.25: deferred-avg 0.0381 on the "
+    "normal-mapped normal, 0.0411 on the vertex normal, 0.0415 with Toksvig prefiltering; deferred-sum 0.0367; no SAA 0.0411";
+
+// `saagen bench --preset medium --sigma2 X --json trade.json; python3 scripts/beats_baselines.py
+// trade.json tail` (docs/FILTERED_GGX.md).
+constexpr const char* kMeasuredGgxKernelGain =
+    "with the tail-preserving filtered GGX, scene x path rows where the best configuration beats no SAA and every engine in "
+    "LDR-FLIP and TDE: 4 of 14 at 0.25, 5 at 0.125, 2 at 0.0625";
+
+// The same trade on curved content (sphere, torus, tubes, torus knot; no normal map) in the
+// deferred path: no filter beats every deferred form there (docs/FILTERED_GGX.md).
+constexpr const char* kMeasuredDeferredCurved =
+    "on curved content without normal maps no filter beats every deferred filter in saagen's trade (mean LDR-FLIP 0.0346 vs "
+    "0.0550 for deferred-avg with the tail-preserving GGX, TDE 0.0169 vs 0.0179): the isotropic deferred kernels over-filter "
+    "(docs/DEFERRED_KERNEL.md); consider no SAA here, or the forward path's forward-aniso-projected (0.0291)";
+
+bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
+
+const Rule& rule_for(const Material& material) {
+  for (const Rule& rule : rules()) {
+    if (rule.path == material.path && matches(rule.anisotropic, material.anisotropic) && matches(rule.tangents, material.tangents) &&
+        (!rule.prefer || *rule.prefer == material.prefer)) {
+      return rule;
+    }
+  }
+  throw Error(fmt::format("internal error: no planner rule for material '{}'", material.name));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Eligibility
+
+// A screen-space filter the planner can assign: core functions and a fragment wrapper. The
+// prefilter-* variants (texture-space, core only) combine with a filter instead; they are not
+// planned per material.
+bool is_filter(const Catalogue& catalogue, const Variant& variant) {
+  const auto has_role = [&](FunctionRole role) {
+    return std::any_of(variant.functions.begin(), variant.functions.end(),
+                       [&](const std::string& name) { return catalogue.find_function(name)->role == role; });
+  };
+  return has_role(FunctionRole::core) && has_role(FunctionRole::fragment);
+}
+
+bool has_tangent_free_form(const Variant& variant) {
+  return std::any_of(variant.functions.begin(), variant.functions.end(),
+                     [](const std::string& name) { return name.find("tangent_free") != std::string::npos; });
+}
+
+// Empty when the material can use the variant, else why not.
+std::string ineligibility(const Variant& variant, const Material& material) {
+  if (variant.path == RenderPath::forward && material.path != RenderPath::forward) {
+    return fmt::format("{} filters the half vector of each light in a forward pass; this material's path is deferred", variant.id);
+  }
+  if (variant.needs_tangents && !material.tangents && !has_tangent_free_form(variant)) {
+    return fmt::format("{} needs tangents = true (it filters in the tangent frame)", variant.id);
+  }
+  if (material.anisotropic && material.path == RenderPath::forward && variant.path != RenderPath::forward) {
+    return fmt::format("{} filters isotropic roughness; an anisotropic forward material takes a forward-* filter", variant.id);
+  }
+  return {};
+}
+
+// The resources (the glint dictionary) a variant's functions read; such a variant is planned
+// only for a material that asks for it (glints = true), never as a screen-space filter.
+std::vector<std::string> variant_resources(const Catalogue& catalogue, const Variant& variant) {
+  return resources_read(catalogue, variant.functions);
+}
+
+std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
+  std::vector<const Variant*> eligible;
+  for (const Variant& variant : catalogue.variants()) {
+    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+      eligible.push_back(&variant);
+    }
+  }
+  return eligible;
+}
+
+std::string ids_of(const std::vector<const Variant*>& variants) {
+  std::vector<std::string> ids;
+  for (const Variant* variant : variants) ids.push_back("\"" + variant->id + "\"");
+  return fmt::format("{}", fmt::join(ids, ", "));
+}
+
+// The material's functions from the chosen variant: its fragment wrappers and their cores;
+// for a variant with a tangent-free form, the form that matches the material's tangents.
+// own_brdf: the manifest names an engine's preset, whose own BRDF the filtered roughness feeds.
+void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
+  const Variant& variant = *catalogue.find_variant(plan.variant);
+  const bool split = has_tangent_free_form(variant);
+  const auto wanted = [&](const std::string& name) {
+    if (!split) return true;
+    return (name.find("tangent_free") != std::string::npos) == !material.tangents;
+  };
+  for (const std::string& name : variant.functions) {
+    const Function& function = *catalogue.find_function(name);
+    if (!wanted(name) || (function.role != FunctionRole::core && function.role != FunctionRole::fragment)) continue;
+    plan.functions.push_back(name);
+    if (function.role == FunctionRole::fragment && plan.wrapper.empty()) plan.wrapper = name;
+  }
+  if (plan.wrapper.empty()) throw Error(fmt::format("internal error: variant {} has no fragment wrapper", variant.id));
+  plan.variants.push_back(variant.id);
+
+  const Function& wrapper = *catalogue.find_function(plan.wrapper);
+  if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
+    const std::string brdf = wrapper.return_type == "real3" ? "ggx_brdf_filtered_matrix" : "ggx_brdf_filtered_axis";
+    if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx")) throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
+    plan.brdf = brdf;
+    plan.functions.push_back(brdf);
+    plan.variants.push_back("brdf-ggx");
+  } else if (wrapper.return_type == "real3") {  // a roughness matrix: only the matrix BRDFs take it
+    const std::string brdf = std::string(to_string(material.ndf)) + "_brdf_matrix";
+    const std::string brdf_variant = "brdf-" + std::string(to_string(material.ndf));
+    if (!catalogue.find_function(brdf) || !catalogue.find_function("ndf_clamp_tau") || !catalogue.find_variant(brdf_variant)) {
+      throw Error(fmt::format("internal error: the catalogue lacks {} or ndf_clamp_tau", brdf));
+    }
+    plan.brdf = brdf;
+    plan.functions.push_back(brdf);
+    plan.functions.push_back("ndf_clamp_tau");
+    plan.variants.push_back(brdf_variant);
+  }
+  plan.per_axis = material.anisotropic && wrapper.return_type == "real";
+}
+
+// Where a key of the material was written; its [[material]] header when it was not (or when
+// the manifest was built in code rather than parsed).
+SourcePosition key_position(const Material& material, std::string_view key) {
+  const auto found = material.positions.find(key);
+  return found != material.positions.end() ? found->second : material.position;
+}
+
+// The glint rules: the glinty BRDF (Chermain et al. 2020, with the 2021 slope correlation) is
+// the material's specular BRDF; accuracy takes GGAA, speed the textureLod baseline.
+constexpr const char* kGlintAccuracyReason =
+    "glints = true, prefer accuracy: GGAA (textureGrad on the dictionary's MIP chain) lowers RMSE and flicker against a 1024-spp "
+    "ground truth on both measured curved scenes (docs/GLINTS.md)";
+constexpr const char* kGlintSpeedReason =
+    "glints = true, prefer speed: the textureLod baseline, about 1.7x faster than GGAA on lavapipe, with more glint aliasing on "
+    "curved surfaces (docs/GLINTS.md)";
+
+void plan_glints(const Catalogue& catalogue, const Manifest& manifest, const Material& material, MaterialPlan& plan) {
+  const bool speed = material.prefer == Preference::speed;
+  plan.variant = speed ? "glints" : "glints-ggaa";
+  plan.rule = speed ? "G2" : "G1";
+  plan.reason = speed ? kGlintSpeedReason : kGlintAccuracyReason;
+  const Variant* variant = catalogue.find_variant(plan.variant);
+  if (!variant || variant_resources(catalogue, *variant).empty()) {
+    throw Error(manifest.where(key_position(material, "glints")) +
+                fmt::format("key 'glints' of material '{}': this catalogue has no glint variant \"{}\"; plan with the full catalogue "
+                            "(saagen::glints::catalogue())",
+                            material.name, plan.variant));
+  }
+  if (material.normal_maps) {
+    plan.prefilter = "lean";
+    plan.normal_advice =
+        "LEAN: write the normal map's moments with `saagen glints lean`, sample both layers with the footprint, and pass "
+        "lean_roughness(alpha, mean, second) as roughness and the mean as mean_slope";
+  }
+}
+
+std::string fixed(double value) { return fmt::format("{:.4g}", value); }
+
+// ---------------------------------------------------------------------------------------------
+// Cost kernels
+
+// A fragment-shader body in the dialect: a bumpy frame from the pixel position and the input
+// buffer, so every derivative is live; {shade} defines `real value`.
+constexpr const char* cost_body = R"(    real2 frag_coord = real2(saagen_frag_coord);
+    real2 bump = frag_coord * real(SAAGEN_LOAD(0));
+    real3 normal_ws = normalize(real3(sin(bump.x), cos(bump.y), real(SAAGEN_LOAD(1))));
+    real3 tangent_ws = normalize(real3(normal_ws.z, real(SAAGEN_LOAD(2)), -normal_ws.x));
+    real3 bitangent_ws = cross(normal_ws, tangent_ws);
+    real3 light_ws = normalize(real3(real(SAAGEN_LOAD(3)), real(SAAGEN_LOAD(4)), real(SAAGEN_LOAD(5))));
+    real3 view_ws = normalize(real3(frag_coord * real(SAAGEN_LOAD(6)), real(SAAGEN_LOAD(7))));
+    real3 i_ts = real3(dot(light_ws, tangent_ws), dot(light_ws, bitangent_ws), dot(light_ws, normal_ws));
+    real3 o_ts = real3(dot(view_ws, tangent_ws), dot(view_ws, bitangent_ws), dot(view_ws, normal_ws));
+    real3 half_ts = normalize(i_ts + o_ts);
+    real2 alpha2 = real2(real(SAAGEN_LOAD(8)), real(SAAGEN_LOAD(9)));
+{shade}    SAAGEN_STORE(0, value);
+)";
+
+std::string call_with(const Function& function, const std::string& alpha2) {
+  std::vector<std::string> arguments;
+  for (const Parameter& parameter : function.parameters) {
+    if (parameter.name == "alpha2") arguments.push_back(alpha2);
+    else if (parameter.name == "half_ts" || parameter.name == "normal_ws" || parameter.name == "tangent_ws" ||
+             parameter.name == "bitangent_ws" || parameter.name == "frag_coord") arguments.push_back(parameter.name);
+    else throw Error(fmt::format("internal error: the cost kernel has no value for parameter '{}' of {}", parameter.name, function.name));
+  }
+  return fmt::format("{}({})", function.name, fmt::join(arguments, ", "));
+}
+
+// Whether the plan shades with the tail-preserving filtered GGX (ggx_brdf_filtered_matrix / _axis).
+bool shades_with_tail_preserving_ggx(const MaterialPlan& plan) {
+  return plan.brdf && plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0;
+}
+
+std::string shade_statements(const Catalogue& catalogue, const Material& material, const MaterialPlan* plan) {
+  const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
+  const std::string material_alpha2 = material.anisotropic ? "alpha2" : "real2(alpha2.x, alpha2.x)";
+  if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
+  const Function& wrapper = *catalogue.find_function(plan->wrapper);
+  // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
+  // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
+  const bool tail = shades_with_tail_preserving_ggx(*plan);
+  const auto value = [&](const std::string& filtered) {
+    if (tail) return fmt::format("    real value = {}(i_ts, o_ts, {}, {});\n", *plan->brdf, filtered, material_alpha2);
+    if (wrapper.return_type == "real3") {
+      return fmt::format("    real value = {}(i_ts, o_ts, {}, ndf_clamp_tau({}));\n", *plan->brdf, filtered, material_alpha2);
+    }
+    return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, filtered);
+  };
+  if (wrapper.return_type == "real3") return fmt::format("    real3 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
+  if (wrapper.return_type == "real2") return fmt::format("    real2 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
+  if (plan->per_axis) {
+    return fmt::format("    real2 filtered = real2({}, {});\n", call_with(wrapper, "alpha2.x"), call_with(wrapper, "alpha2.y")) + value("filtered");
+  }
+  return fmt::format("    real filtered = {};\n", call_with(wrapper, "alpha2.x")) + value("real2(filtered, filtered)");
+}
+
+std::size_t kernel_instructions(const Catalogue& catalogue, const EmittedFile& file, const std::string& shade) {
+  KernelRequest request;
+  request.kind = KernelKind::fragment;
+  request.body = cost_body;
+  request.body.replace(request.body.find("{shade}"), 7, shade);
+  request.output_stride = 1;
+  request.width = 64;
+  const CompileRequest compile = kernel_compile_request(catalogue, file.file_name, file.content, request);
+  const CompileResult compiled = compile_to_spirv(compile);
+  if (!compiled.ok) {
+    throw Error(fmt::format("{}: the cost kernel failed to compile: {}", file.file_name, compiled.log.substr(0, compiled.log.find('\n'))));
+  }
+  const auto optimized = optimize_spirv(compiled.spirv, ClientApi::vulkan);
+  if (optimized.empty()) throw Error(fmt::format("{}: spirv-opt failed on the cost kernel", file.file_name));
+  return count_spirv_instructions(optimized);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Trade table
+
+std::optional<double> mean_of(const std::vector<TradeRow>& rows, std::string_view variant, std::optional<double> TradeRow::*field) {
+  double sum = 0.0;
+  int count = 0;
+  for (const TradeRow& row : rows) {
+    if (row.variant == variant && (row.*field)) {
+      sum += *(row.*field);
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+std::string describe_choice(const std::vector<std::pair<double, const Variant*>>& ranked, std::string_view metric) {
+  std::vector<std::string> parts;
+  for (const auto& [value, variant] : ranked) parts.push_back(fmt::format("{} {}", variant->id, fixed(value)));
+  return fmt::format("{} measured over the eligible variants: {}", metric, fmt::join(parts, ", "));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+std::optional<double> TradeTable::cost(std::string_view variant) const {
+  const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.cost_ratio.has_value(); });
+  return mean_of(rows, variant, any_ratio ? &TradeRow::cost_ratio : &TradeRow::delta_instructions);
+}
+
+std::optional<double> TradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &TradeRow::error); }
+
+std::optional<double> TradeTable::isa_cost(std::string_view variant, std::string_view family) const {
+  std::vector<TradeRow> of_family;
+  for (const TradeRow& row : rows) {
+    if (row.isa_family == family) of_family.push_back(row);
+  }
+  return mean_of(of_family, variant, &TradeRow::isa_ratio);
+}
+
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
+  double sum = 0.0;
+  int count = 0;
+  for (const IsaRow& row : rows) {
+    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
+    if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
+    sum += row.inverse_throughput_ratio;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name) {
+  IsaTable table;
+  table.source_name = std::string(source_name);
+  const auto fail = [&](std::string_view what) {
+    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
+  };
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    fail(fmt::format("not valid JSON (byte {})", error.byte));
+  }
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
+      !document["families"].is_array()) {
+    fail("needs \"families\" and \"rows\" arrays");
+  }
+  table.driver = document.value("driver", std::string());
+  for (const auto& family : document["families"]) {
+    if (!family.is_string()) fail("\"families\" must hold strings");
+    table.families.push_back(family.get<std::string>());
+  }
+  for (const auto& row : document["rows"]) {
+    const auto text = [&](const char* key) {
+      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
+      return row[key].get<std::string>();
+    };
+    const auto number = [&](const char* key) {
+      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
+      return row[key].get<double>();
+    };
+    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
+    entry.instructions = number("instructions");
+    entry.vgprs = number("vgprs");
+    entry.sgprs = number("sgprs");
+    entry.subgroups_per_simd = number("subgroups_per_simd");
+    entry.latency = number("latency");
+    entry.inverse_throughput = number("inverse_throughput");
+    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
+    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    table.rows.push_back(std::move(entry));
+  }
+  return table;
+}
+
+const IsaTable& committed_isa_costs() {
+  static const IsaTable table = [] {
+    constexpr const char* name = "generator/data/isa_cost.json";
+    const auto& files = embedded::files();
+    const auto found = files.find(name);
+    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+    return parse_isa_table(found->second, name);
+  }();
+  return table;
+}
+
+bool TradeTable::has_errors() const {
+  return std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.error.has_value(); });
+}
+
+TradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
+  TradeTable table;
+  table.source_name = std::string(source_name);
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
+  }
+  const auto fail = [&](std::size_t index, std::string_view what) {
+    throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
+                            "\"delta_spirv_instructions\": number, \"error\": number}}",
+                            source_name, index, what));
+  };
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
+    throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
+  }
+  const auto number = [&](const nlohmann::json& row, const char* key, std::size_t index) -> std::optional<double> {
+    if (!row.contains(key)) return std::nullopt;
+    if (!row[key].is_number()) fail(index, fmt::format("\"{}\" must be a number", key));
+    const double value = row[key].get<double>();
+    if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
+    return value;
+  };
+  const nlohmann::json& rows = document["rows"];
+  for (std::size_t index = 0; index < rows.size(); ++index) {
+    const nlohmann::json& row = rows[index];
+    if (!row.is_object()) fail(index, "must be an object");
+    if (!row.contains("variant") || !row["variant"].is_string()) fail(index, "needs a string \"variant\"");
+    TradeRow entry;
+    entry.variant = row["variant"].get<std::string>();
+    if (row.contains("target")) {
+      if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
+      entry.target = row["target"].get<std::string>();
+    }
+    entry.cost_ratio = number(row, "ratio_median", index);
+    entry.delta_instructions = number(row, "delta_spirv_instructions", index);
+    entry.error = number(row, "error", index);
+    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
+    if (entry.isa_ratio) {
+      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+      entry.isa_family = row["isa_family"].get<std::string>();
+      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
+    }
+    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
+    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
+    table.rows.push_back(std::move(entry));
+  }
+  if (document.contains("by_content")) {
+    const nlohmann::json& content_rows = document["by_content"];
+    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"by_content\" must be an array", source_name));
+    for (std::size_t index = 0; index < content_rows.size(); ++index) {
+      const nlohmann::json& row = content_rows[index];
+      const auto text = [&](const char* key) {
+        if (!row.is_object() || !row.contains(key) || !row[key].is_string())
+          throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
+        return row[key].get<std::string>();
+      };
+      ContentRow entry{text("content"), text("configuration"), 0.0};
+      const auto error = number(row, "error", index);
+      if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
+      entry.error = *error;
+      table.content_rows.push_back(std::move(entry));
+    }
+  }
+  return table;
+}
+
+TradeTable load_trade_table(const std::filesystem::path& path) {
+  return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
+}
+
+namespace {
+
+// A configuration id's parts: "deferred-avg:geometric+toksvig/tail" -> deferred-avg, geometric,
+// toksvig, tail (the lobe the filtered roughness is evaluated with; "papers" when absent).
+struct Configuration {
+  std::string variant, feed = "shading", prefilter = "none", lobe = "papers";
+};
+
+Configuration parse_configuration(const std::string& id) {
+  Configuration c;
+  std::string rest = id;
+  if (const auto slash = rest.find('/'); slash != std::string::npos) c.lobe = rest.substr(slash + 1), rest.resize(slash);
+  if (const auto plus = rest.find('+'); plus != std::string::npos) c.prefilter = rest.substr(plus + 1), rest.resize(plus);
+  if (const auto colon = rest.find(':'); colon != std::string::npos) c.feed = rest.substr(colon + 1), rest.resize(colon);
+  c.variant = rest;
+  return c;
+}
+
+// Without a trade table: what saagen's own trade measured (README "Does it make images better?").
+std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
+  return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
+                     plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
+                                                                          "tonemapped RMSE but adds haze)")
+                                              : fmt::format(", prefilter the map ({})", plan.prefilter),
+                     ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
+}
+
+// With a trade table's content rows: the lowest-error configuration of the material's variant on
+// normal-mapped content, and, when the planner chooses the variant by accuracy, of any eligible one.
+void choose_normal_handling(const TradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
+                            MaterialPlan& plan) {
+  std::optional<ContentRow> best;
+  std::vector<std::string> figures;
+  for (const ContentRow& row : table.content_rows) {
+    if (row.content != "normal-mapped") continue;
+    const Configuration c = parse_configuration(row.configuration);
+    const bool allowed = choose_variant ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
+                                        : c.variant == plan.variant;
+    if (!allowed) continue;
+    figures.push_back(fmt::format("{} {}", row.configuration, fixed(row.error)));
+    if (!best || row.error < best->error) best = row;
+  }
+  if (!best) return;
+  const Configuration c = parse_configuration(best->configuration);
+  plan.variant = c.variant;
+  plan.feed = c.feed;
+  plan.prefilter = c.prefilter;
+  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {})", best->configuration,
+                                   table.source_name, fmt::join(figures, ", "));
+}
+
+void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
+  for (std::size_t index = 0; index < table.rows.size(); ++index) {
+    // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
+    // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free").
+    const std::string& id = table.rows[index].variant;
+    std::string base = parse_configuration(id).variant;
+    constexpr std::string_view tangent_free_suffix = "-tangent-free";
+    if (base.size() > tangent_free_suffix.size() && base.ends_with(tangent_free_suffix)) {
+      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
+      if (variant && has_tangent_free_form(*variant)) base = variant->id;
+    }
+    if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
+      throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
+                              index, id.substr(0, 40)));
+    }
+  }
+}
+
+}  // namespace
+
+ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
+  if (table) check_trade_table_ids(catalogue, *table);
+  ScenePlan scene;
+  if (table) scene.trade_table = table->source_name;
+  scene.option_values = manifest.option_values;
+  const bool all_ggx = std::all_of(manifest.materials.begin(), manifest.materials.end(),
+                                   [](const Material& m) { return m.ndf == Ndf::ggx; });
+  if (all_ggx && !manifest.option_values.count("sigma2")) {
+    scene.option_values["sigma2"] = kGgxSigma2;
+    scene.options_reason = fmt::format(
+        "sigma2 = {} (every material is GGX, shaded with the tail-preserving filtered GGX: the pixel filter's own variance; {}; "
+        "set sigma2 in the manifest to override)",
+        kGgxSigma2, kMeasuredGgxKernelGain);
+  }
+  // Manifests built in code (not parsed) get the checks that protect the emitted text.
+  const auto identifier = [](std::string_view text, bool dash) {
+    return !text.empty() && text.size() <= 64 && std::isalpha(static_cast<unsigned char>(text[0])) &&
+           std::all_of(text.begin(), text.end(), [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (dash && c == '-'); });
+  };
+  if (!identifier(manifest.name, false)) throw Error(fmt::format("{}: the scene name must be an identifier", manifest.source_name));
+  if (manifest.materials.empty()) throw Error(fmt::format("{}: the manifest has no material", manifest.source_name));
+  for (const Material& material : manifest.materials) {
+    if (!identifier(material.name, true) || material.path == RenderPath::any) {
+      throw Error(manifest.where(material.position) + "a material needs an identifier name and a forward or deferred path");
+    }
+    const std::string context = fmt::format(" of material '{}'", material.name);
+    if (material.anisotropic && !material.tangents) {
+      const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
+      throw Error(manifest.where(position) +
+                  fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
+                              "tangent frame); allowed: tangents = true, or anisotropic = false",
+                              context));
+    }
+    MaterialPlan plan;
+    plan.material = material.name;
+    plan.precision = material.precision;
+    if (material.glints) {
+      plan_glints(catalogue, manifest, material, plan);
+      choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+      plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
+      scene.materials.push_back(std::move(plan));
+      continue;
+    }
+    const auto eligible = eligible_variants(catalogue, material);
+
+    if (material.variant) {
+      const Variant* found = catalogue.find_variant(*material.variant);
+      if (!found || !is_filter(catalogue, *found)) {
+        throw Error(manifest.where(key_position(material, "variant")) +
+                    fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
+      }
+      const Variant& variant = *found;
+      if (const std::string why = ineligibility(variant, material); !why.empty()) {
+        throw Error(manifest.where(key_position(material, "variant")) +
+                    fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
+      }
+      plan.variant = variant.id;
+      plan.rule = "manifest";
+      plan.reason = material.positions.count("variant") || !manifest.preset
+                        ? "named by the manifest's `variant` key"
+                        : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
+    } else {
+      const Rule& rule = rule_for(material);
+      plan.variant = rule.variant;
+      plan.rule = rule.id;
+      plan.reason = rule.why;
+      const bool speed = material.prefer == Preference::speed;
+      if (table || speed) {
+        // Speed: the ISA cost on the manifest's GPU family, from the trade table when it has
+        // figures for that family, else from the committed table. Accuracy: the table's error.
+        const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const TradeRow& row) {
+                                     return row.isa_ratio && row.isa_family == family;
+                                   });
+        const std::string source = table_has_isa ? table->source_name
+                                                 : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
+        std::vector<std::pair<double, const Variant*>> ranked;
+        for (const Variant* variant : eligible) {
+          // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+          const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
+                                         ? variant->id + "-tangent-free"
+                                         : variant->id;
+          const auto value = !speed              ? table->error(variant->id)
+                             : table_has_isa     ? table->isa_cost(costed, family)
+                                                 : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
+          if (value) ranked.emplace_back(*value, variant);
+        }
+        // Ties keep the rule's choice first, then catalogue order.
+        std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+          if (a.first != b.first) return a.first < b.first;
+          return a.second->id == rule.variant && b.second->id != rule.variant;
+        });
+        const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+        // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
+        // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
+        // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
+        const auto rule_entry = std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+        const bool rule_ties = speed && !ranked.empty() && rule_entry != ranked.end() &&
+                               rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+        if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
+          plan.variant = ranked.front().second->id;
+          plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, speed ? source : table->source_name,
+                                    describe_choice(ranked, metric), rule.id, rule.variant);
+        } else if (!ranked.empty()) {
+          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
+                                     metric, source, describe_choice(ranked, metric));
+        } else {
+          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", speed ? source : table->source_name,
+                                     metric, ids_of(eligible), rule.id);
+        }
+      }
+    }
+    if (material.normal_maps) {
+      if (table && !table->content_rows.empty()) {
+        choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
+      }
+      if (plan.normal_advice.empty()) {
+        // What the measurements favour: the normal-mapped normal with the tail-preserving GGX the
+        // planner shades GGX with, the vertex normal with the papers' lobe.
+        plan.feed = material.ndf == Ndf::ggx ? "shading" : "geometric";
+        plan.normal_advice = measured_normal_advice(plan, material.ndf);
+      }
+    }
+    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && !material.normal_maps && !material.variant)
+      plan.no_filter_advice = kMeasuredDeferredCurved;
+    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+    scene.materials.push_back(std::move(plan));
+  }
+  return scene;
+}
+
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision) {
+  EmitOptions options;
+  options.target = target;
+  options.prefix = manifest.prefix;
+  options.option_values = plan.option_values;
+  options.domain = manifest.domain;
+  if (builtin_target(target).module && !manifest.import_path.empty()) {
+    options.import_path = precision == "fp32" ? manifest.import_path : manifest.import_path + "_" + precision;
+  }
+  const auto form = target_precision(target, precision);
+  if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
+  options.precision = *form;
+  return options;
+}
+
+void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePlan& plan) {
+  std::map<std::string, std::size_t> baselines;  // target|precision|ndf|anisotropic -> instructions
+  for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+    MaterialPlan& material_plan = plan.materials[index];
+    const Material& material = manifest.materials.at(index);
+    if (material.glints) continue;  // no SAA filter to cost: the glinty BRDF replaces the BRDF (docs/GLINTS.md, cost)
+    const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
+    BundleRequest request;
+    request.name = "cost_" + material.name;
+    request.functions = material_plan.functions;
+    request.functions.push_back(axis_brdf);
+    request.variants = material_plan.variants;
+    request.variants.push_back("brdf-" + std::string(to_string(material.ndf)));
+    for (const std::string& target : manifest.targets) {
+      // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
+      if (builtin_target(target).module) continue;
+      const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
+      const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
+      // The bundle's functions are in the manifest's roughness domain (its wrappers included).
+      const Catalogue& emitted = domain_catalogue(catalogue, manifest.domain);
+      if (!baselines.count(key)) baselines[key] = kernel_instructions(emitted, file, shade_statements(catalogue, material, nullptr));
+      const std::size_t with_filter = kernel_instructions(emitted, file, shade_statements(catalogue, material, &material_plan));
+      material_plan.cost[target] = static_cast<long>(with_filter) - static_cast<long>(baselines[key]);
+    }
+  }
+}
+
+std::string rules_text() {
+  std::string text = fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", "rule", "path", "anisotropic", "tangents", "prefer",
+                                 "variant", "why");
+  const auto tri = [](Tri value) { return value == Tri::any ? "any" : value == Tri::yes ? "yes" : "no"; };
+  for (const Rule& rule : rules()) {
+    text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic), tri(rule.tangents),
+                        rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
+  }
+  text += "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
+          "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
+          "beckmann_brdf_matrix and ndf_clamp_tau.\n"
+          "anisotropic = true with tangents = false is rejected.\n"
+          "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
+          "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
+          "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
+          "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
+          "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
+          "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
+          "lowest measured \"error\" when the table has errors.\n";
+  return text;
+}
+
+std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
+  std::string text = fmt::format("scene '{}' from {}: targets {}, prefix {}", manifest.name, manifest.source_name,
+                                 fmt::join(manifest.targets, ", "), manifest.prefix);
+  for (const auto& [option, value] : resolve_options(catalogue, plan.option_values)) text += fmt::format(", {} = {}", option, value);
+  text += plan.trade_table.empty() ? "; rules (no trade table)\n" : fmt::format("; trade table {}\n", plan.trade_table);
+  if (!plan.options_reason.empty()) text += fmt::format("options: {}\n", plan.options_reason);
+
+  for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+    const MaterialPlan& material_plan = plan.materials[index];
+    const Material& material = manifest.materials.at(index);
+    std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
+                                       material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
+    if (material.normal_maps) traits.push_back("normal maps");
+    traits.push_back(material.precision);
+    traits.push_back("prefer " + std::string(to_string(material.prefer)));
+    if (material.glints) traits.push_back("glints");
+    text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
+    text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
+    text += fmt::format("  why       {}\n", material_plan.reason);
+
+    // Under another roughness domain the material calls the wrapper's converting form.
+    const Function& planned = *catalogue.find_function(material_plan.wrapper);
+    const bool converted = manifest.domain != "alpha2" && takes_and_returns_roughness(planned);
+    const Function& wrapper =
+        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
+    std::vector<std::string> parameters;
+    for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
+    text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
+                        wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
+    if (material.glints) {
+      text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
+      text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+                          glint_dictionary_file_name(manifest));
+    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
+      text += fmt::format("  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf));
+    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
+      text += fmt::format("  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
+                          "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf));
+    } else if (material_plan.brdf) {
+      text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
+                          prefixed_name(manifest.prefix, "ndf_clamp_tau"));
+    } else {
+      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n", converted ? manifest.domain : "alpha^2");
+    }
+    if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
+    if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
+    if (!material_plan.cost.empty()) {
+      std::vector<std::string> costs;
+      for (const std::string& target : manifest.targets) {
+        if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target, material_plan.cost.at(target)));
+      }
+      text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
+                          fmt::join(costs, ", "), material.precision,
+                          !material_plan.brdf ? " + axis BRDF"
+                          : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
+                                                                                     : " + matrix BRDF",
+                          to_string(material.ndf));
+    }
+    for (const std::string& target : manifest.targets) {
+      if (builtin_target(target).module && !material.glints) {
+        text += fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target);
+      }
+    }
+  }
+
+  text += "\nfiles\n";
+  for (const EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
+    const auto functions = domain_catalogue(catalogue, file.marker.domain).closure(file.marker.functions);
+    text += fmt::format("  {}  {} public function(s), {} in the closure\n", file.file_name, file.marker.functions.size(), functions.size());
+  }
+  return text;
+}
+
+std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
+  std::vector<std::string> precisions;
+  for (const MaterialPlan& material_plan : plan.materials) {
+    if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end()) precisions.push_back(material_plan.precision);
+  }
+  std::stable_partition(precisions.begin(), precisions.end(), [](const std::string& name) { return name == "fp32"; });
+
+  std::vector<EmittedFile> files;
+  for (const std::string& target : manifest.targets) {
+    for (const std::string& precision : precisions) {
+      BundleRequest request;
+      request.name = manifest.name;
+      for (std::size_t index = 0; index < plan.materials.size(); ++index) {
+        const MaterialPlan& material_plan = plan.materials[index];
+        if (material_plan.precision != precision) continue;
+        for (const std::string& name : material_plan.functions) {
+          if (std::find(request.functions.begin(), request.functions.end(), name) == request.functions.end()) request.functions.push_back(name);
+        }
+        for (const std::string& id : material_plan.variants) {
+          if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
+        }
+        // Under another roughness domain the material calls the wrapper's converting form.
+        const Function* wrapper = catalogue.find_function(material_plan.wrapper);
+        const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
+                                       ? domain_function_name(material_plan.wrapper, manifest.domain)
+                                       : material_plan.wrapper;
+        std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
+                                       material_plan.variant, prefixed_name(manifest.prefix, called),
+                                       material_plan.per_axis ? " once per axis" : "");
+        if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
+        request.notes.push_back(note);
+      }
+      files.push_back(emit_bundle(catalogue, emit_options(manifest, plan, target, precision), request));
+    }
+  }
+  return files;
+}
+
+}  // namespace saagen
+
+namespace saagen {
+
+std::string glint_dictionary_file_name(const Manifest& manifest) { return manifest.prefix + manifest.name + "_glint_dictionary.ktx2"; }
+
+bool plans_glints(const Manifest& manifest) {
+  return std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.glints; });
+}
+
+}  // namespace saagen

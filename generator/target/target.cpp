@@ -1,0 +1,380 @@
+#include "saagen/target/target.hpp"
+
+#include "saagen/front/dialect.hpp"
+#include "saagen/error.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
+namespace {
+
+using Json = nlohmann::json;
+
+const Json& require(const Json& object, const char* key, std::string_view source) {
+  if (!object.is_object() || !object.contains(key)) {
+    throw Error(fmt::format("{}: missing key '{}' in the target table", source, key));
+  }
+  return object.at(key);
+}
+
+std::string require_string(const Json& object, const char* key, std::string_view source) {
+  const Json& value = require(object, key, source);
+  if (!value.is_string()) throw Error(fmt::format("{}: key '{}' must be a string", source, key));
+  return value.get<std::string>();
+}
+
+// A skeleton is either inline ({"prologue": ..., "epilogue": ...}) or, readable, the name of a
+// source file under targets/ whose sections hold the two parts (see skeleton_sections).
+ValidationSkeleton parse_skeleton(const Json& value, std::string_view source) {
+  if (value.is_string()) {
+    const auto sections = skeleton_sections(value.get<std::string>(), source);
+    const auto section = [&](const char* name) {
+      const auto found = sections.find(name);
+      if (found == sections.end()) throw Error(fmt::format("{}: skeleton {} has no section '{}'", source, value.get<std::string>(), name));
+      return found->second;
+    };
+    return {section("prologue"), section("epilogue")};
+  }
+  return {require_string(value, "prologue", source), require_string(value, "epilogue", source)};
+}
+
+ClientApi parse_client(const std::string& name, std::string_view source) {
+  if (name == "vulkan") return ClientApi::vulkan;
+  if (name == "opengl") return ClientApi::opengl;
+  if (name == "opengl_es") return ClientApi::opengl_es;
+  throw Error(fmt::format("{}: validation client '{}' is not vulkan, opengl or opengl_es", source, name));
+}
+
+ShaderStage parse_core_stage(const Json& validation, std::string_view source) {
+  if (!validation.contains("core_stage")) return ShaderStage::compute;
+  const std::string name = require_string(validation, "core_stage", source);
+  if (name == "compute") return ShaderStage::compute;
+  if (name == "vertex") return ShaderStage::vertex;
+  throw Error(fmt::format("{}: validation core_stage '{}' is not compute or vertex", source, name));
+}
+
+// Reads the optional "intrinsic_notes": intrinsic -> note text.
+void read_notes(const Json& object, std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
+  if (!object.contains("intrinsic_notes")) return;
+  for (const auto& [intrinsic, note] : object.at("intrinsic_notes").items()) {
+    if (!note.is_string()) throw Error(fmt::format("{}: 'intrinsic_notes.{}' must be a string", source, intrinsic));
+    out[intrinsic] = note.get<std::string>();
+  }
+}
+
+// Reads an optional object of strings keyed by dialect type; every key must be a known type.
+void read_type_spellings(const Json& object, const char* key, const std::map<std::string, std::string, std::less<>>& known,
+                         std::map<std::string, std::string, std::less<>>& out, std::string_view source) {
+  if (!object.contains(key)) return;
+  for (const auto& [type, spelling] : object.at(key).items()) {
+    if (!known.count(type)) throw Error(fmt::format("{}: '{}' spells unknown type '{}'", source, key, type));
+    if (!spelling.is_string()) throw Error(fmt::format("{}: '{}.{}' must be a string", source, key, type));
+    out[type] = spelling.get<std::string>();
+  }
+}
+
+// Replaces {0}, {1}, ... in `pattern` with the translated arguments.
+std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
+  std::string result;
+  for (std::size_t index = 0; index < pattern.size(); ++index) {
+    const char c = pattern[index];
+    const auto close = pattern.find('}', index);
+    if (c == '{' && close != std::string::npos) {
+      const std::string slot = pattern.substr(index + 1, close - index - 1);
+      if (!slot.empty() && std::all_of(slot.begin(), slot.end(), ::isdigit)) {
+        const std::size_t argument = std::stoul(slot);
+        if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
+        result += arguments[argument];
+        index = close;
+        continue;
+      }
+    }
+    result += c;
+  }
+  return result;
+}
+
+class Translator {
+ public:
+  Translator(const TargetSyntax& target, const NameMap& names, const std::vector<dialect::Token>& tokens)
+      : target_(target), names_(names), tokens_(tokens) {}
+
+  std::string range(std::size_t begin, std::size_t end) const {
+    std::string out;
+    for (std::size_t index = begin; index < end; ++index) {
+      const dialect::Token& token = tokens_[index];
+      if (token.kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens_, index)) {
+        out += token.text;
+        continue;
+      }
+      const std::size_t open = dialect::next_significant(tokens_, index);
+      const auto intrinsic = target_.intrinsics.find(token.text);
+      if (intrinsic != target_.intrinsics.end() && open < end && tokens_[open].text == "(") {
+        std::size_t close = open;
+        const auto arguments = call_arguments(open, end, close);
+        out += expand_pattern(intrinsic->second, arguments);
+        index = close;
+        continue;
+      }
+      if (const auto type = target_.types.find(token.text); type != target_.types.end()) out += type->second;
+      else if (const auto name = names_.find(token.text); name != names_.end()) out += name->second;
+      else out += token.text;
+    }
+    return out;
+  }
+
+ private:
+  // Splits the arguments of the call whose '(' is at `open`; sets `close` to its ')'.
+  std::vector<std::string> call_arguments(std::size_t open, std::size_t end, std::size_t& close) const {
+    std::vector<std::string> arguments;
+    int depth = 0;
+    std::size_t argument_begin = open + 1;
+    for (std::size_t index = open; index < end; ++index) {
+      const std::string_view text = tokens_[index].text;
+      if (text == "(") ++depth;
+      else if (text == ")" && --depth == 0) {
+        arguments.push_back(trimmed(range(argument_begin, index)));
+        close = index;
+        return arguments;
+      } else if (text == "," && depth == 1) {
+        arguments.push_back(trimmed(range(argument_begin, index)));
+        argument_begin = index + 1;
+      }
+    }
+    throw Error("unbalanced parentheses in template code");
+  }
+
+  static std::string trimmed(const std::string& text) {
+    const auto first = text.find_first_not_of(" \t\n");
+    if (first == std::string::npos) return {};
+    return text.substr(first, text.find_last_not_of(" \t\n") - first + 1);
+  }
+
+  const TargetSyntax& target_;
+  const NameMap& names_;
+  const std::vector<dialect::Token>& tokens_;
+};
+
+}  // namespace
+
+std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_view file, std::string_view source) {
+  static constexpr std::string_view marker = "// saagen-section: ";
+  const std::string path = "targets/" + std::string(file);
+  const auto& files = embedded::files();
+  const auto found = files.find(path);
+  if (found == files.end()) throw Error(fmt::format("{}: skeleton file {} is not in this build; add it under targets/ and rebuild", source, path));
+  std::map<std::string, std::string, std::less<>> sections;
+  std::string* current = nullptr;  // the text before the first marker is the file's own comment
+  const std::string_view text = found->second;
+  for (std::size_t begin = 0; begin < text.size();) {
+    auto end = text.find('\n', begin);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    const std::string_view line = text.substr(begin, end - begin);
+    if (line.starts_with(marker)) {
+      std::string name(line.substr(marker.size()));
+      while (!name.empty() && (name.back() == '\n' || name.back() == '\r' || name.back() == ' ')) name.pop_back();
+      if (sections.count(name)) throw Error(fmt::format("{}: section '{}' appears twice", path, name));
+      current = &sections[name];
+    } else if (current) {
+      *current += line;
+    }
+    begin = end;
+  }
+  return sections;
+}
+
+TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
+  Json json;
+  try {
+    json = Json::parse(json_text);
+  } catch (const Json::parse_error& error) {
+    throw Error(fmt::format("{}: {}", source, error.what()));
+  }
+  TargetSyntax target;
+  target.name = require_string(json, "name", source);
+  target.description = require_string(json, "description", source);
+  target.file_extension = require_string(json, "file_extension", source);
+  const std::string language = require_string(json, "language", source);
+  if (language != "glsl" && language != "hlsl" && language != "wgsl") {
+    throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
+  }
+  target.language = language == "hlsl" ? SourceLanguage::hlsl : language == "wgsl" ? SourceLanguage::wgsl : SourceLanguage::glsl;
+  target.module = json.value("module", false);
+  if (json.contains("signature")) target.signature = require_string(json, "signature", source);
+  if (json.contains("parameter")) target.parameter = require_string(json, "parameter", source);
+  if (json.contains("reserved_words")) {
+    for (const Json& word : json.at("reserved_words")) target.reserved_words.push_back(word.get<std::string>());
+  }
+  for (const auto& [key, value] : require(json, "types", source).items()) target.types[key] = value.get<std::string>();
+  for (const std::string& type : dialect::type_names()) {
+    if (!target.types.count(type)) throw Error(fmt::format("{}: 'types' has no spelling for dialect type '{}'", source, type));
+  }
+  target.wide_types = target.types;
+  for (const auto& [key, value] : require(json, "intrinsics", source).items()) target.intrinsics[key] = value.get<std::string>();
+  target.constant_declaration = require_string(json, "constant_declaration", source);
+  read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
+  if (json.contains("function_prologue")) target.function_prologue = require_string(json, "function_prologue", source);
+  read_notes(json, target.intrinsic_notes, source);
+  const Json& validation = require(json, "validation", source);
+  target.core_validation_stage = parse_core_stage(validation, source);
+  for (const Json& client : require(validation, "clients", source)) {
+    target.validation_clients.push_back(parse_client(client.get<std::string>(), source));
+  }
+  target.fragment_skeleton = parse_skeleton(require(validation, "fragment", source), source);
+  target.compute_skeleton = parse_skeleton(require(validation, "compute", source), source);
+  for (const auto& [kind, skeleton] : require(json, "kernels", source).items()) {
+    target.kernel_skeletons[kind] = parse_skeleton(skeleton, source);
+  }
+  for (const auto& [name, entry] : require(json, "precisions", source).items()) {
+    Precision precision;
+    for (const auto& [type, spelling] : require(entry, "types", source).items()) {
+      if (!target.types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
+      precision.types[type] = spelling.get<std::string>();
+    }
+    for (const auto& [intrinsic, pattern] : require(entry, "intrinsics", source).items()) {
+      precision.intrinsics[intrinsic] = pattern.get<std::string>();
+    }
+    precision.literal_suffix = require_string(entry, "literal_suffix", source);
+    if (entry.contains("preamble_file")) {
+      const auto sections = skeleton_sections(require_string(entry, "preamble_file", source), source);
+      if (!sections.count("preamble")) throw Error(fmt::format("{}: the preamble file of {} has no section 'preamble'", source, name));
+      precision.preamble = sections.at("preamble");
+    } else {
+      precision.preamble = require_string(entry, "preamble", source);
+    }
+    precision.native_16bit = entry.value("native_16bit", false);
+    read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
+    if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
+    read_notes(entry, precision.intrinsic_notes, source);
+    target.precisions[name] = std::move(precision);
+  }
+  if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
+  if (json.contains("resources")) {
+    for (const auto& [name, entry] : json.at("resources").items()) {
+      Resource resource;
+      for (const Json& intrinsic : require(entry, "intrinsics", source)) resource.intrinsics.push_back(intrinsic.get<std::string>());
+      resource.declaration = require_string(entry, "declaration", source);
+      resource.parameters = entry.value("parameters", "");
+      resource.arguments = entry.value("arguments", "");
+      resource.caller_arguments = entry.value("caller_arguments", "");
+      if (target.module && (resource.parameters.empty() || resource.arguments.empty() || resource.caller_arguments.empty())) {
+        throw Error(fmt::format("{}: resource {} of a module target needs 'parameters', 'arguments' and 'caller_arguments'", source, name));
+      }
+      target.resources[name] = std::move(resource);
+    }
+  }
+  return target;
+}
+
+namespace {
+const std::map<std::string, TargetSyntax, std::less<>>& builtin_targets() {
+  static const auto targets = [] {
+    std::map<std::string, TargetSyntax, std::less<>> table;
+    for (const auto& [name, text] : embedded::files()) {
+      if (name.rfind("targets/", 0) != 0 || name.size() < 5 || name.substr(name.size() - 5) != ".json") continue;
+      TargetSyntax target = TargetSyntax::parse(text, name);
+      table.emplace(target.name, std::move(target));
+    }
+    return table;
+  }();
+  return targets;
+}
+}  // namespace
+
+const TargetSyntax& builtin_target(std::string_view name) {
+  const auto& targets = builtin_targets();
+  const auto found = targets.find(name);
+  if (found == targets.end()) {
+    throw Error(fmt::format("unknown target '{}'; choose one of: {}", name, fmt::join(builtin_target_names(), ", ")));
+  }
+  return found->second;
+}
+
+std::vector<std::string> builtin_target_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, target] : builtin_targets()) names.push_back(name);
+  return names;
+}
+
+TargetSyntax TargetSyntax::with_precision(std::string_view precision) const {
+  const auto found = precisions.find(precision);
+  if (found == precisions.end()) {
+    std::vector<std::string> names;
+    for (const auto& [name, entry] : precisions) names.push_back(name);
+    throw Error(fmt::format("target {} has no precision '{}'; choose one of: {}", name, precision, fmt::join(names, ", ")));
+  }
+  TargetSyntax result = *this;
+  for (const auto& [type, spelling] : found->second.types) result.types[type] = spelling;
+  for (const auto& [intrinsic, pattern] : found->second.intrinsics) result.intrinsics[intrinsic] = pattern;
+  result.literal_suffix = found->second.literal_suffix;
+  result.preamble = found->second.preamble;
+  result.native_16bit = found->second.native_16bit;
+  for (const auto& [type, spelling] : found->second.declaration_types) result.declaration_types[type] = spelling;
+  if (found->second.function_prologue) result.function_prologue = *found->second.function_prologue;
+  for (const auto& [intrinsic, note] : found->second.intrinsic_notes) result.intrinsic_notes[intrinsic] = note;
+  return result;
+}
+
+const std::string& TargetSyntax::declaration_type(const std::string& dialect_type) const {
+  const auto found = declaration_types.find(dialect_type);
+  return found != declaration_types.end() ? found->second : types.at(dialect_type);
+}
+
+std::string substitute(std::string text, std::string_view key, std::string_view value) {
+  for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
+    text.replace(position, key.size(), value);
+  }
+  return text;
+}
+
+std::string substitute_type_placeholders(std::string text, const TargetSyntax& target) {
+  for (const char* type : {"real", "real2", "real3", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
+  return text;
+}
+
+namespace {
+std::string replace_placeholders(std::string text, std::string_view prefix, std::string_view macro_prefix) {
+  for (const auto& [key, value] : {std::pair<std::string_view, std::string_view>{"{prefix}", prefix}, {"{macro_prefix}", macro_prefix}}) {
+    for (auto position = text.find(key); position != std::string::npos; position = text.find(key, position + value.size())) {
+      text.replace(position, key.size(), value);
+    }
+  }
+  return text;
+}
+}  // namespace
+
+TargetSyntax TargetSyntax::with_prefix(std::string_view prefix, std::string_view macro_prefix) const {
+  TargetSyntax result = *this;
+  for (auto& [intrinsic, pattern] : result.intrinsics) pattern = replace_placeholders(pattern, prefix, macro_prefix);
+  result.preamble = replace_placeholders(result.preamble, prefix, macro_prefix);
+  for (auto& [name, resource] : result.resources) resource.declaration = replace_placeholders(resource.declaration, prefix, macro_prefix);
+  return result;
+}
+
+std::string suffix_float_literals(std::string_view code, std::string_view suffix) {
+  if (suffix.empty()) return std::string(code);
+  std::string out;
+  for (const dialect::Token& token : dialect::tokenize(code)) {
+    out += token.text;
+    const bool is_float = token.kind == dialect::TokenKind::number &&
+                          token.text.find_first_of(".eE") != std::string_view::npos &&
+                          std::isdigit(static_cast<unsigned char>(token.text.back()));
+    if (is_float) out += suffix;
+  }
+  return out;
+}
+
+std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names) {
+  const auto tokens = dialect::tokenize(code);
+  return Translator(target, names, tokens).range(0, tokens.size());
+}
+
+}  // namespace saagen

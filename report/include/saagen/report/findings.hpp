@@ -1,0 +1,145 @@
+// What the trade table says: per content type and render path, the configuration that wins on
+// the display-referred metrics; per engine, the best saagen configuration at equal or lower cost;
+// per scene, whether the recommendation beats no SAA and every engine's shipped form. The advice
+// of `saagen bench`, `saagen report` and the planner comes from here.
+//
+// Display-referred criteria (what a viewer sees):
+//   image    mean LDR-FLIP of the tonemapped frame-0 images (ties: tonemapped RMSE);
+//   motion   mean temporal difference error (TDE, image.hpp) of the display-value animation:
+//            how far the frame-to-frame changes are from the converged animation's (0: as the
+//            ground truth). It counts both excess flicker (aliasing) and lost motion (a highlight
+//            blurred away), where the old temporal-std ratio rewarded the latter.
+// A configuration "beats" another on a metric when its value is lower.
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+#include "saagen/report/cost_table.hpp"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen::report {
+
+// The content types advice is given for, each a set of scenes every configuration is measured on:
+//   curved         smooth geometry, the normal is the geometry's (sphere, torus, tubes, mesh);
+//   normal-mapped  a tangent-space normal map texture with MIPs on curved geometry;
+//   bump           analytic bump shading (the bump plane: normals with detail but no texture,
+//                  hence no prefiltering).
+enum class Content { curved, normal_mapped, bump };
+inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump};
+std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump"
+Content content_of(render::SceneId scene);
+
+// Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).
+struct Metrics {
+  double rmse_linear = 0.0;
+  double rmse_tonemapped = 0.0;
+  double max_error = 0.0;  // the largest
+  double flip_ldr = 0.0;
+  double flip_hdr = 0.0;
+  double tde = 0.0;
+  double tde_excess_flicker = 0.0;
+  double tde_lost_motion = 0.0;
+  double flicker = 0.0;
+  double flicker_display = 0.0;  // secondary: tonemapped temporal std / the ground truth's
+  std::size_t cases = 0;
+};
+// The metrics of one trade row (cases = 1).
+Metrics row_metrics(const render::TradeRow& row);
+
+using RowFilter = std::function<bool(const render::TradeRow&)>;
+// Means of one configuration (render::configuration_id) over the non-Fresnel rows `keep` accepts.
+Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep);
+// The configurations of a table in row order.
+std::vector<std::string> configurations(const render::TradeTable& table);
+
+enum class Path { forward, deferred };
+std::string_view path_name(Path path);
+// Whether a configuration belongs to a path: forward-* and deferred-* by name; none and the
+// engines to both.
+bool serves(const std::string& configuration, Path path);
+bool is_engine_configuration(const std::string& configuration);
+
+// The cost of a configuration, lavapipe time ratio (time) or optimized SPIR-V delta; nullopt when
+// the cost table does not have it. The feed changes inputs, not code; engines cost what
+// deferred-sum costs (see findings.cpp).
+std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time);
+// The ISA inverse-throughput ratio of a configuration (VariantCost::isa_ratio), same conventions.
+std::optional<double> configuration_isa_cost(const CostTable* costs, const std::string& configuration);
+// Whether a's cost is at most b's (the ISA ratio when both have one, within kIsaTieTolerance;
+// else the SPIR-V delta, else the time ratio; true when none is known, and the caller says so).
+bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
+
+struct Recommendation {
+  Path path = Path::deferred;
+  Content content = Content::curved;
+  std::string configuration;
+  Metrics metrics;
+};
+// Per path and content type present in the table: the saagen configuration with the lowest mean
+// LDR-FLIP over that content's scenes.
+std::vector<Recommendation> recommend(const render::TradeTable& table);
+const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
+
+struct EngineSwitch {
+  std::string engine;
+  Content content = Content::curved;
+  std::string configuration;  // the best saagen configuration at equal or lower cost; empty: none
+  Metrics engine_metrics;
+  Metrics saagen_metrics;
+};
+// Per engine and content type: the saagen configuration (either path) with the lowest mean
+// LDR-FLIP among those whose cost is at most the engine's.
+std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
+
+// The metrics a verdict compares, in the order they are reported: LDR-FLIP, TDE, HDR-FLIP,
+// tonemapped RMSE (all lower-is-better).
+struct VerdictMetric {
+  const char* name;
+  double Metrics::*value;
+};
+inline constexpr VerdictMetric kVerdictMetrics[] = {{"LDR-FLIP", &Metrics::flip_ldr},
+                                                    {"TDE", &Metrics::tde},
+                                                    {"HDR-FLIP", &Metrics::flip_hdr},
+                                                    {"tonemapped RMSE", &Metrics::rmse_tonemapped}};
+
+// A metric on which the recommendation is worse than a baseline.
+struct Loss {
+  std::string baseline;  // "none" or an engine configuration
+  std::string metric;    // a kVerdictMetrics name
+  double ours = 0.0;
+  double theirs = 0.0;
+};
+std::string describe(const Loss& loss);  // "engine-filament: LDR-FLIP 0.0312 > 0.0305"
+
+struct SceneVerdict {
+  render::SceneId scene = render::SceneId::sphere;
+  Path path = Path::deferred;
+  std::string configuration;                                  // the recommendation for its content
+  Metrics recommended;                                        // over the scene's alphas
+  std::vector<std::pair<std::string, Metrics>> baselines;     // none and every engine
+  std::vector<Loss> losses;                                   // one per baseline and lost metric
+};
+// Per scene and path: the recommendation against no SAA and every engine, on every
+// kVerdictMetrics metric.
+std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+
+// The short verdict per render path and content type: the recommendation against no SAA and the
+// best engine form on that content (the lowest mean of each metric over the engines), and every
+// place it loses: content means (losses) and single scenes (scene_losses, from scene_verdicts).
+struct Verdict {
+  Recommendation recommendation;
+  Metrics none;
+  std::string best_engine_image;  // the engine with the lowest mean LDR-FLIP ("" without engines)
+  Metrics engine_image;
+  std::string best_engine_motion;  // the engine with the lowest mean TDE
+  Metrics engine_motion;
+  std::vector<Loss> losses;  // against none and, per metric, that metric's best engine
+  std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
+};
+std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+
+}  // namespace saagen::report

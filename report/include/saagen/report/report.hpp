@@ -1,0 +1,77 @@
+// The speed/accuracy trade report: the ground-truth trade table of saagen::render
+// joined with the measured cost of each variant (bench_shading --json: lavapipe time ratio and
+// optimized SPIR-V instruction delta), printed for the terminal (`saagen bench`) and written as a
+// self-contained report (`saagen report -o DIR`: index.html, report.md, PNG sheets, an SVG plot).
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+#include "saagen/report/cost_table.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace saagen::report {
+
+// Means over the table's scenes and alphas, without Fresnel (with Fresnel the radiance is ~25x
+// dimmer and the orderings are the same).
+// Means over the cases (scenes x alphas, no Fresnel) of one configuration: a variant, or a
+// variant fed the geometric normal ("deferred-avg:geometric"), or an engine's shipped form.
+struct VariantSummary {
+  std::string variant;  // render::configuration_id
+  double rmse_linear = 0.0;
+  double rmse_tonemapped = 0.0;
+  double max_error = 0.0;  // the largest over the cases
+  double tde = 0.0;  // temporal difference error (trade.hpp) and its two parts
+  double tde_excess_flicker = 0.0;
+  double tde_lost_motion = 0.0;
+  double flicker = 0.0;
+  double flicker_display = 0.0;  // secondary: tonemapped temporal std relative to the ground truth's
+  double flip_ldr = 0.0;
+  double flip_hdr = 0.0;
+  std::size_t cases = 0;
+};
+
+std::vector<VariantSummary> summarize(const render::TradeTable& table);
+
+// The preset configurations: "full" (256 x 256, 1024 spp, 32 flicker frames, every scene, alpha
+// and Fresnel mode) and "quick" (64 x 64, 64 spp, 4 frames; for smoke tests).
+render::TradeConfig preset_config(std::string_view preset);
+
+// Terminal table: one row per variant (means), with the cost columns when known.
+std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs);
+
+// The findings (findings.hpp) as terminal tables: recommendation per path and content, engine
+// switches, per-scene verdicts.
+std::string format_findings(const render::TradeTable& table, const CostTable* costs);
+
+// The short verdict (findings.hpp, verdicts()): per render path and content type, what to use,
+// how much it beats no SAA and the best engine form in LDR-FLIP and TDE, and where it loses.
+// Printed last by `saagen bench` and `saagen report`, and at the top of the report.
+std::string format_verdict(const render::TradeTable& table);
+
+// Rows in the format bench_shading --json uses, each carrying "error" (mean LDR-FLIP),
+// so that `saagen plan --trade-table` can choose by accuracy; plus the full trade rows.
+nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
+
+// Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg, DIR/sheet_<scene>_<alpha>.png
+// (the ground truth beside every variant's 1-spp image, over false-colour difference maps) and
+// DIR/strip_<scene>.png (the ground truth, no SAA, the best engine form and the recommendations
+// at the alpha where no SAA errs most; the report opens with these and the verdict).
+// The table must have been computed with keep_images. Returns the image files written.
+// Written all or nothing through saagen's output layer (saagen/io/output.hpp): files saagen did not
+// write are kept unless `force`.
+std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
+                                      bool force = false);
+// The paths write_report will write for a configuration, to check them before rendering.
+std::vector<std::filesystem::path> report_paths(const render::TradeConfig& config, const std::filesystem::path& dir);
+
+// A progress callback drawing a one-line bar on stderr ("\r[#####.....]  42%  ground truth sphere");
+// when stderr is not a terminal, one line per stage instead ("[ 42%] ground truth sphere").
+render::TradeProgressFn progress_bar();
+
+}  // namespace saagen::report

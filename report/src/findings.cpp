@@ -1,0 +1,274 @@
+#include "saagen/report/findings.hpp"
+
+#include "saagen/scene/planner.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace saagen::report {
+
+namespace {
+
+bool starts_with(const std::string& text, std::string_view prefix) { return text.rfind(prefix, 0) == 0; }
+
+bool is_saagen_configuration(const std::string& configuration) {
+  return configuration != "none" && !is_engine_configuration(configuration);
+}
+
+// Image criterion: LDR-FLIP, then tonemapped RMSE.
+bool better_image(const Metrics& a, const Metrics& b) {
+  if (a.flip_ldr != b.flip_ldr) return a.flip_ldr < b.flip_ldr;
+  return a.rmse_tonemapped < b.rmse_tonemapped;
+}
+
+RowFilter content_filter(Content content) {
+  return [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+}
+
+std::vector<Content> contents_of(const render::TradeTable& table) {
+  std::vector<Content> contents;
+  for (render::SceneId scene : table.config.scenes)
+    if (std::find(contents.begin(), contents.end(), content_of(scene)) == contents.end()) contents.push_back(content_of(scene));
+  return contents;
+}
+
+// The configurations measured on every scene of a content type (the geometric feed exists only
+// where the scene has normal detail).
+std::vector<std::string> configurations_of(const render::TradeTable& table, Content content) {
+  std::vector<std::string> ids;
+  for (const std::string& id : configurations(table))
+    if (mean_metrics(table, id, content_filter(content)).cases > 0) ids.push_back(id);
+  return ids;
+}
+
+}  // namespace
+
+std::string_view content_name(Content content) {
+  switch (content) {
+    case Content::curved: return "curved";
+    case Content::normal_mapped: return "normal-mapped";
+    case Content::bump: return "bump";
+  }
+  return "?";
+}
+
+Content content_of(render::SceneId scene) {
+  if (render::scene_has_normal_map(scene)) return Content::normal_mapped;
+  return render::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
+}
+
+Metrics row_metrics(const render::TradeRow& row) {
+  Metrics m;
+  m.rmse_linear = row.rmse_linear;
+  m.rmse_tonemapped = row.rmse_tonemapped;
+  m.max_error = row.max_error;
+  m.flip_ldr = row.flip_ldr;
+  m.flip_hdr = row.flip_hdr;
+  m.tde = row.tde;
+  m.tde_excess_flicker = row.tde_excess_flicker;
+  m.tde_lost_motion = row.tde_lost_motion;
+  m.flicker = row.flicker;
+  m.flicker_display = row.flicker_display;
+  m.cases = 1;
+  return m;
+}
+
+namespace {
+
+// The averaged fields of Metrics (max_error is a maximum, cases a count).
+constexpr double Metrics::*kMeanFields[] = {&Metrics::rmse_linear, &Metrics::rmse_tonemapped, &Metrics::flip_ldr,
+                                            &Metrics::flip_hdr,    &Metrics::tde,             &Metrics::tde_excess_flicker,
+                                            &Metrics::tde_lost_motion, &Metrics::flicker,     &Metrics::flicker_display};
+
+}  // namespace
+
+Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
+  Metrics m;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel || render::configuration_id(row) != configuration || !keep(row)) continue;
+    const Metrics r = row_metrics(row);
+    for (auto field : kMeanFields) m.*field += r.*field;
+    m.max_error = std::max(m.max_error, r.max_error);
+    ++m.cases;
+  }
+  if (m.cases)
+    for (auto field : kMeanFields) m.*field /= static_cast<double>(m.cases);
+  return m;
+}
+
+std::vector<std::string> configurations(const render::TradeTable& table) {
+  std::vector<std::string> ids;
+  for (const render::TradeRow& row : table.rows) {
+    const std::string id = render::configuration_id(row);
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  }
+  return ids;
+}
+
+std::string_view path_name(Path path) { return path == Path::forward ? "forward" : "deferred"; }
+
+bool is_engine_configuration(const std::string& configuration) { return starts_with(configuration, "engine-"); }
+
+bool serves(const std::string& configuration, Path path) {
+  if (configuration == "none" || is_engine_configuration(configuration)) return true;
+  return starts_with(configuration, path == Path::forward ? "forward-" : "deferred-");
+}
+
+// Engines' forms cost what deferred-sum costs: the same operations (two normal derivatives, their
+// squared lengths, a min and an add; the pow-based forms of Unreal and Babylon.js add one
+// transcendental). bench_shading measures deferred-sum.
+namespace {
+
+// The shader a configuration costs: its variant and lobe ("deferred-avg:geometric+lean/tail" ->
+// "deferred-avg/tail"); the feed and the prefilter change inputs, not the variant's code.
+std::string costed_variant(const std::string& configuration) {
+  if (is_engine_configuration(configuration)) return "deferred-sum";
+  const std::size_t slash = configuration.find('/');
+  const std::string lobe = slash == std::string::npos ? "" : configuration.substr(slash);
+  return configuration.substr(0, configuration.find_first_of(":+/")) + lobe;
+}
+
+}  // namespace
+
+std::optional<double> configuration_cost(const CostTable* costs, const std::string& configuration, bool time) {
+  const std::string variant = costed_variant(configuration);
+  if (variant == "none") return time ? 1.0 : 0.0;
+  if (!costs) return std::nullopt;
+  const VariantCost* cost = costs->find(variant);
+  if (!cost) return std::nullopt;
+  return time ? cost->time_ratio : cost->delta_instructions;
+}
+
+std::optional<double> configuration_isa_cost(const CostTable* costs, const std::string& configuration) {
+  const std::string variant = costed_variant(configuration);
+  if (variant == "none") return 1.0;
+  if (!costs) return std::nullopt;
+  const VariantCost* cost = costs->find(variant);
+  return cost ? cost->isa_ratio : std::nullopt;
+}
+
+bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b) {
+  // The optimized SPIR-V delta first: deterministic, while lavapipe's time ratios of the cheap
+  // filters differ by less than their own quartile spread (bench_shading: 0.95-1.0, p25-p75
+  // +-0.06), which would order equal-cost forms by noise.
+  // ACO's ISA estimate first: deterministic and a GPU's cost model; within kIsaTieTolerance
+  // (about two instructions of these shaders) costs count as equal, as in the planner.
+  const auto isa_a = configuration_isa_cost(costs, a), isa_b = configuration_isa_cost(costs, b);
+  if (isa_a && isa_b) return *isa_a <= *isa_b * (1.0 + kIsaTieTolerance);
+  for (bool time : {false, true}) {
+    const auto ca = configuration_cost(costs, a, time), cb = configuration_cost(costs, b, time);
+    if (ca && cb) return *ca <= *cb;
+  }
+  return true;
+}
+
+std::vector<Recommendation> recommend(const render::TradeTable& table) {
+  std::vector<Recommendation> recs;
+  for (Content content : contents_of(table)) {
+    for (Path path : {Path::forward, Path::deferred}) {
+      std::optional<Recommendation> best;
+      for (const std::string& id : configurations_of(table, content)) {
+        if (!is_saagen_configuration(id) || !serves(id, path)) continue;
+        const Metrics m = mean_metrics(table, id, content_filter(content));
+        if (!best || better_image(m, best->metrics)) best = Recommendation{path, content, id, m};
+      }
+      if (best) recs.push_back(*best);
+    }
+  }
+  return recs;
+}
+
+const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content) {
+  for (const Recommendation& rec : recs)
+    if (rec.path == path && rec.content == content) return &rec;
+  return nullptr;
+}
+
+std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs) {
+  std::vector<EngineSwitch> switches;
+  for (Content content : contents_of(table)) {
+    const std::vector<std::string> ids = configurations_of(table, content);
+    for (const std::string& engine : ids) {
+      if (!is_engine_configuration(engine)) continue;
+      EngineSwitch entry{engine, content, "", mean_metrics(table, engine, content_filter(content)), {}};
+      for (const std::string& id : ids) {
+        if (!is_saagen_configuration(id) || !costs_at_most(costs, id, engine)) continue;
+        const Metrics m = mean_metrics(table, id, content_filter(content));
+        if (entry.configuration.empty() || better_image(m, entry.saagen_metrics)) entry.configuration = id, entry.saagen_metrics = m;
+      }
+      switches.push_back(entry);
+    }
+  }
+  return switches;
+}
+
+std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+  std::vector<SceneVerdict> verdicts;
+  for (render::SceneId scene : table.config.scenes) {
+    const RowFilter on_scene = [scene](const render::TradeRow& row) { return row.scene == scene; };
+    for (Path path : {Path::forward, Path::deferred}) {
+      const Recommendation* rec = find_recommendation(recs, path, content_of(scene));
+      if (!rec) continue;
+      SceneVerdict verdict{scene, path, rec->configuration, mean_metrics(table, rec->configuration, on_scene), {}, {}};
+      for (const std::string& id : configurations(table)) {
+        if (id != "none" && !is_engine_configuration(id)) continue;
+        const Metrics base = mean_metrics(table, id, on_scene);
+        if (!base.cases) continue;
+        verdict.baselines.emplace_back(id, base);
+        for (const VerdictMetric& metric : kVerdictMetrics)
+          if (verdict.recommended.*metric.value > base.*metric.value)
+            verdict.losses.push_back({id, metric.name, verdict.recommended.*metric.value, base.*metric.value});
+      }
+      verdicts.push_back(std::move(verdict));
+    }
+  }
+  return verdicts;
+}
+
+std::string describe(const Loss& loss) {
+  return fmt::format("{}: {} {:.4g} > {:.4g}", loss.baseline, loss.metric, loss.ours, loss.theirs);
+}
+
+namespace {
+
+// The engine with the lowest mean `value` on a content type ("" when the table has no engine).
+std::pair<std::string, Metrics> best_engine(const render::TradeTable& table, Content content, double Metrics::*value) {
+  std::pair<std::string, Metrics> best;
+  for (const std::string& id : configurations_of(table, content)) {
+    if (!is_engine_configuration(id)) continue;
+    const Metrics m = mean_metrics(table, id, content_filter(content));
+    if (best.first.empty() || m.*value < best.second.*value) best = {id, m};
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+  const std::vector<SceneVerdict> per_scene = scene_verdicts(table, recs);
+  std::vector<Verdict> out;
+  for (const Recommendation& rec : recs) {
+    Verdict v;
+    v.recommendation = rec;
+    v.none = mean_metrics(table, "none", content_filter(rec.content));
+    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::flip_ldr);
+    std::tie(v.best_engine_motion, v.engine_motion) = best_engine(table, rec.content, &Metrics::tde);
+    for (const VerdictMetric& metric : kVerdictMetrics) {
+      const double ours = rec.metrics.*metric.value;
+      if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});
+      const auto [engine, engine_metrics] = best_engine(table, rec.content, metric.value);
+      if (!engine.empty() && ours > engine_metrics.*metric.value) v.losses.push_back({engine, metric.name, ours, engine_metrics.*metric.value});
+    }
+    for (const SceneVerdict& scene : per_scene)
+      if (scene.path == rec.path && content_of(scene.scene) == rec.content && !scene.losses.empty())
+        v.scene_losses.emplace_back(scene.scene, scene.losses);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+}  // namespace saagen::report

@@ -1,0 +1,199 @@
+#include "saagen/report/isa_cost.hpp"
+
+#include "saagen/front/catalogue.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/products/deferred_pass.hpp"
+#include "saagen/emit/emitter.hpp"
+#include "saagen/error.hpp"
+#include "saagen/report/shading_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+namespace saagen::report {
+namespace {
+
+namespace hx = saagen::harness;
+
+// The framebuffer size baked into the scene's literals; it changes no instruction.
+constexpr std::uint32_t scene_size = 1024;
+
+const char* const cost_model_name =
+    "ISA statistics of Mesa's ACO compiler (RADV null-hardware device, RADV_FORCE_FAMILY): instructions, VGPRs, SGPRs, "
+    "subgroups per SIMD, latency and inverse throughput estimates in cycles";
+
+hx::IsaLayout scene_layout() {
+  return {{hx::IsaBinding::storage_buffer(0), hx::IsaBinding::storage_buffer(1)}, 0, {VK_FORMAT_R32_SFLOAT}};
+}
+
+hx::IsaLayout pass_layout(bool tangents) {
+  namespace abi = deferred_pass_abi;
+  hx::IsaLayout layout;
+  layout.bindings = {{abi::binding_normal, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
+                     {abi::binding_roughness, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
+                     {abi::binding_output, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+  if (tangents) layout.bindings.push_back({abi::binding_tangent, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE});
+  layout.push_constant_bytes = sizeof(DeferredPassConstants);
+  return layout;
+}
+
+std::vector<std::uint32_t> compute_spirv(const std::string& target, const std::string& name, const std::string& source) {
+  CompileRequest request;
+  request.language = target == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  request.stage = ShaderStage::compute;
+  request.sources = {{name, source}};
+  const CompileResult compiled = compile_to_spirv(request);
+  if (!compiled.ok) throw Error(fmt::format("{} {}: does not compile: {}", target, name, compiled.log.substr(0, compiled.log.find('\n'))));
+  std::vector<std::uint32_t> optimized = optimize_spirv(compiled.spirv, ClientApi::vulkan);
+  if (optimized.empty()) throw Error(fmt::format("{} {}: spirv-opt failed", target, name));
+  return optimized;
+}
+
+const EmittedFile& file_of(const std::vector<EmittedFile>& files, const std::string& variant) {
+  for (const EmittedFile& file : files) {
+    if (file.marker.variants.size() == 1 && file.marker.variants.front() == variant) return file;
+  }
+  throw Error(fmt::format("no emitted file for variant {}", variant));
+}
+
+// What the forward shader is measured with: bench_shading's variant cases, plus the
+// tangent-free form of deferred-max, which the trade measures as a configuration of its own.
+struct ForwardCase {
+  std::string id;
+  std::string file_variant;  // the catalogue variant whose emitted file defines the wrapper
+  std::string shade;
+};
+
+std::vector<ForwardCase> forward_cases() {
+  std::vector<ForwardCase> cases;
+  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shade});
+  cases.push_back({"deferred-max-tangent-free", "deferred-max",
+                   "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n"
+                   "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"});
+  return cases;
+}
+
+// The forward-shading rows of one family and target: the no-SAA baseline, then every variant.
+void measure_forward(const hx::IsaCompiler& compiler, const std::string& target, std::vector<IsaCostRow>& rows) {
+  EmitOptions emit;
+  emit.target = target;
+  const std::vector<EmittedFile> files = emit_variants(Catalogue::builtin(), emit);
+  const EmittedFile& brdf = file_of(files, "brdf-ggx");
+  const auto baseline = compiler.fragment(
+      scene_shader_spirv(target, brdf.file_name, brdf.content, body_with(baseline_shade, scene_size, scene_size), scene_size),
+      scene_layout());
+  rows.push_back({compiler.family(), isa_forward_shader, target, isa_baseline, baseline, baseline});
+  for (const ForwardCase& item : forward_cases()) {
+    const EmittedFile& file = file_of(files, item.file_variant);
+    const auto spirv = scene_shader_spirv(target, file.file_name, file.content + "\n" + brdf.content,
+                                          body_with(item.shade, scene_size, scene_size), scene_size);
+    rows.push_back({compiler.family(), isa_forward_shader, target, item.id, compiler.fragment(spirv, scene_layout()), baseline});
+  }
+}
+
+// The deferred-pass rows of one family and target: the copy baseline, then every pass.
+void measure_deferred(const hx::IsaCompiler& compiler, const std::string& target, const std::vector<DeferredPass>& passes,
+                      std::vector<IsaCostRow>& rows) {
+  const auto baseline = compiler.compute(
+      compute_spirv(target, "deferred_copy", target == "hlsl" ? deferred_copy_hlsl : deferred_copy_glsl), pass_layout(false));
+  rows.push_back({compiler.family(), isa_deferred_shader, target, isa_baseline, baseline, baseline});
+  for (const DeferredPass& pass : passes) {
+    const auto spirv = compute_spirv(target, pass.stem, target == "hlsl" ? pass.hlsl : pass.glsl);
+    rows.push_back({compiler.family(), isa_deferred_shader, target, pass.kind.id, compiler.compute(spirv, pass_layout(pass.kind.tangents)),
+                    baseline});
+  }
+}
+
+// Paper, Table 2: the Sponza ratio of a variant, when the paper measured it.
+std::string paper_ratio(const std::string& variant) {
+  for (const VariantCase& known : variant_cases()) {
+    if (known.id == variant && known.paper_ms) {
+      std::array<double, 3> ratios{};
+      for (std::size_t scene = 0; scene < 3; ++scene) ratios[scene] = (*known.paper_ms)[scene] / paper_no_saa_ms[scene];
+      return fmt::format("x{:.2f}-{:.2f}", *std::min_element(ratios.begin(), ratios.end()), *std::max_element(ratios.begin(), ratios.end()));
+    }
+  }
+  return "-";
+}
+
+}  // namespace
+
+std::vector<std::string> parse_isa_families(const std::string& list) {
+  std::vector<std::string> families;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    const auto& known = hx::isa_families();
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw Error(fmt::format("--isa: unknown GPU family '{}'; allowed: {} (comma-separated)", name, fmt::join(known, ", ")));
+    }
+    if (std::find(families.begin(), families.end(), name) == families.end()) families.push_back(name);
+    start = comma + 1;
+  }
+  return families;
+}
+
+IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress) {
+  IsaCostTable table;
+  table.families = families;
+  const std::vector<DeferredPass> passes = emit_deferred_passes(Catalogue::builtin(), {});
+  for (const std::string& family : families) {
+    if (progress) progress(fmt::format("ISA statistics on {}", family));
+    const hx::IsaCompiler compiler(family);
+    table.driver = compiler.driver_info();
+    for (const std::string target : {"glsl", "hlsl"}) measure_forward(compiler, target, table.rows);
+    for (const std::string target : {"glsl", "hlsl"}) measure_deferred(compiler, target, passes, table.rows);
+  }
+  return table;
+}
+
+std::string format_isa_table(const IsaCostTable& table) {
+  std::string text = fmt::format("GPU cost model: {}; {}\n", cost_model_name, table.driver);
+  std::string family, shader;
+  for (const IsaCostRow& row : table.rows) {
+    if (row.family != family || row.shader != shader) {
+      family = row.family;
+      shader = row.shader;
+      const auto& stats = row.statistics;
+      text += fmt::format("\n{} ({}), {} shader{}\n", family, stats.device_name,
+                          shader == isa_forward_shader ? "forward-shading fragment" : "deferred-pass compute",
+                          shader == isa_forward_shader ? " (bench_shading's scene; no SAA = unfiltered GGX)" : " (no SAA = the copy pass)");
+      text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n", "variant", "tgt", "instr", "VGPR", "SGPR",
+                          "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency", shader == isa_forward_shader ? "paper Table 2" : "");
+    }
+    const auto& s = row.statistics;
+    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant, row.target, s.instructions,
+                        s.vgprs, s.sgprs, s.subgroups_per_simd, s.latency, s.inverse_throughput, row.instructions_ratio(),
+                        row.inverse_throughput_ratio(), row.latency_ratio(), shader == isa_forward_shader ? paper_ratio(row.variant) : "");
+  }
+  text += "\ninstr: ISA instructions; waves: subgroups per SIMD (occupancy); latency, inv.thr: ACO's estimates in cycles per wave\n"
+          "(inverse throughput: the cost at full occupancy); x ...: ratio to no SAA; paper: Tokuyoshi & Kaplanyan 2019 Table 2,\n"
+          "measured time ratio on an RX Vega 56 (vega10) over Sponza, Bistro and San Miguel\n";
+  return text;
+}
+
+nlohmann::json isa_json(const IsaCostTable& table) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const IsaCostRow& row : table.rows) {
+    const auto& s = row.statistics;
+    rows.push_back({{"family", row.family},
+                    {"shader", row.shader},
+                    {"target", row.target},
+                    {"variant", row.variant},
+                    {"instructions", s.instructions},
+                    {"vgprs", s.vgprs},
+                    {"sgprs", s.sgprs},
+                    {"subgroups_per_simd", s.subgroups_per_simd},
+                    {"latency", s.latency},
+                    {"inverse_throughput", s.inverse_throughput},
+                    {"instructions_ratio", row.instructions_ratio()},
+                    {"inverse_throughput_ratio", row.inverse_throughput_ratio()},
+                    {"latency_ratio", row.latency_ratio()}});
+  }
+  return {{"cost_model", cost_model_name}, {"driver", table.driver}, {"families", table.families}, {"rows", rows}};
+}
+
+}  // namespace saagen::report

@@ -1,0 +1,232 @@
+// The scene bench_shading times and `saagen bench --isa` compiles: one fragment kernel per
+// variant that shades a bumpy sphere with the GGX specular term through the variant's fragment
+// wrapper, and the same shading without SAA.
+#include "saagen/report/shading_scene.hpp"
+
+#include "saagen/validate/compiler.hpp"
+#include "saagen/error.hpp"
+#include "saagen/validate/kernels.hpp"
+
+#include <fmt/format.h>
+
+namespace saagen::report {
+namespace {
+
+// The kernel body, written once in the template dialect: a parameter block (generated below from
+// scene_parameters) followed by the scene. {shade} is replaced by the statements that compute
+// `real value` from the scene quantities (a small table per variant).
+//
+// Camera at the origin looking down -z. A ray that misses the sphere uses the point of closest
+// approach instead of the hit point, so every quantity (and every derivative of it) stays finite
+// and the derivative intrinsics run in uniform control flow; such pixels store -1.
+constexpr const char* scene_body = R"(    real2 ndc = saagen_frag_coord * inverse_size * 2.0 - 1.0;
+    real3 ray = normalize(real3(ndc.x * tan_half_fov * inverse_size.y / inverse_size.x, -ndc.y * tan_half_fov, -1.0));
+    real3 light_ws = normalize(light_direction);
+    real3 centre = real3(0.0, 0.0, -centre_distance);
+    real closest = dot(ray, centre);
+    real discriminant = closest * closest - dot(centre, centre) + radius * radius;
+    bool hit = discriminant > 0.0;
+    real3 position = (closest - sqrt(max(discriminant, 0.0))) * ray;
+    real3 sphere_normal = normalize(position - centre);
+    // Procedural bumps: the normal tilts along the tangential part of the gradient cos(q) of
+    // sin(q.x) + sin(q.y) + sin(q.z), q = frequency * object-space point.
+    real3 gradient = cos(sphere_normal * bump_frequency);
+    real3 normal = normalize(sphere_normal - bump_amplitude * (gradient - sphere_normal * dot(gradient, sphere_normal)));
+    // Tangent frame: the longitude direction cross((0, 1, 0), normal), smooth away from the
+    // poles (which lie just outside the visible hemisphere).
+    real3 tangent = real3(normal.z, 0.0, -normal.x);
+    tangent = tangent * rsqrt(max(dot(tangent, tangent), 1e-12));
+    real3 bitangent = cross(normal, tangent);
+    real3 view_ws = -ray;
+    real3 i_ts = real3(dot(light_ws, tangent), dot(light_ws, bitangent), dot(light_ws, normal));
+    real3 o_ts = real3(dot(view_ws, tangent), dot(view_ws, bitangent), dot(view_ws, normal));
+    real3 half_ts = normalize(i_ts + o_ts);
+    real2 alpha2 = real2(alpha2_material, alpha2_material);
+{shade}    SAAGEN_STORE(0, hit ? value : -1.0);
+)";
+
+}  // namespace
+
+std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t height) {
+  return {
+      {"real", "alpha2_material", {0.0025f}},  // alpha = 0.05
+      {"real2", "inverse_size", {1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height)}},
+      {"real", "tan_half_fov", {0.5f}},  // about 53 degrees vertically
+      {"real3", "light_direction", {-0.45f, 0.55f, 0.7f}},  // towards the light: upper left, in front
+      {"real", "centre_distance", {3.0f}},
+      {"real", "radius", {1.25f}},           // the sphere covers about 65% of the frame
+      {"real", "bump_amplitude", {0.25f}},   // normal tilt (radians, roughly)
+      {"real", "bump_frequency", {120.0f}},  // bumps of about 20 px at 1000 px: strong specular aliasing
+  };
+}
+
+// The input buffer: every parameter's components, then a sentinel 1.0.
+std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height) {
+  std::vector<float> buffer;
+  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+    buffer.insert(buffer.end(), parameter.values.begin(), parameter.values.end());
+  }
+  buffer.push_back(1.0f);
+  return buffer;
+}
+
+// The parameter block of the body. Every parameter is loaded (so nothing folds), but lavapipe
+// (Mesa 22.3) returns 0 from buffer loads in helper invocations, which the quads along the
+// internal edge of the clipped full-screen triangle (the diagonal x = y) use for derivatives; a
+// loaded sentinel detects such lanes, which then take the same values as literals. On a driver
+// that loads in helper lanes the literals are never selected.
+static std::string parameter_block(std::uint32_t width, std::uint32_t height) {
+  std::string block = fmt::format("    bool load_missing = SAAGEN_LOAD({}) == 0.0;\n", parameter_buffer(width, height).size() - 1);
+  std::uint32_t offset = 0;
+  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+    std::string literal, loaded;
+    for (std::size_t component = 0; component < parameter.values.size(); ++component) {
+      literal += fmt::format("{}{:.9e}", component == 0 ? "" : ", ", parameter.values[component]);
+      loaded += fmt::format("{}SAAGEN_LOAD({})", component == 0 ? "" : ", ", offset++);
+    }
+    if (parameter.values.size() > 1) {
+      literal = fmt::format("{}({})", parameter.type, literal);
+      loaded = fmt::format("{}({})", parameter.type, loaded);
+    }
+    block += fmt::format("    {} {} = load_missing ? {} : {};\n", parameter.type, parameter.name, literal, loaded);
+  }
+  return block;
+}
+
+// Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF.
+const char* const baseline_shade = "    real value = ggx_brdf_axis(i_ts, o_ts, alpha2);\n";
+
+// Paper, Table 2 (Tokuyoshi & Kaplanyan 2019): forward shading at 8K in ms, for Sponza, Bistro
+// and San Miguel, without SAA and with each variant. The bench shows the range of the ratios.
+const std::array<double, 3> paper_no_saa_ms = {1.80, 2.06, 3.65};
+
+const std::vector<VariantCase>& variant_cases() {
+  static const std::vector<VariantCase> cases = {
+      {"forward-aniso-slope",
+       "    real3 filtered = forward_aniso_slope_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
+       std::array<double, 3>{2.34, 2.60, 4.16}},
+      {"forward-aniso-projected",
+       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
+       std::array<double, 3>{2.31, 2.57, 4.12}},
+      {"forward-axis-slope",
+       "    real2 filtered = forward_axis_slope_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
+       std::array<double, 3>{2.35, 2.61, 4.15}},
+      {"forward-axis-projected",
+       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
+       std::array<double, 3>{2.30, 2.56, 4.12}},
+      {"deferred-previous",
+       "    real filtered = deferred_previous_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{2.35, 2.58, 4.16}},
+      {"deferred-max",
+       "    real filtered = deferred_max_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{2.40, 2.62, 4.19}},
+      {"deferred-sum",
+       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{1.90, 2.16, 3.74}},
+      {"deferred-avg",
+       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::array<double, 3>{1.88, 2.17, 3.74}},
+      {"deferred-projected-space",
+       "    real filtered = deferred_projected_space_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::nullopt},  // Tokuyoshi & Kaplanyan 2021: not in the 2019 table
+      // saagen's lobes (docs/FILTERED_GGX.md): the tail-preserving filtered GGX BRDF, and the
+      // single GGX roughness an engine keeping its own BRDF feeds.
+      {"forward-aniso-projected/tail",
+       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n",
+       std::nullopt},
+      {"forward-axis-projected/tail",
+       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n",
+       std::nullopt},
+      {"deferred-sum/tail",
+       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
+       std::nullopt},
+      {"deferred-avg/tail",
+       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
+       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
+       std::nullopt},
+      {"deferred-avg/mapped",
+       "    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n"
+       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       std::nullopt},
+  };
+  return cases;
+}
+
+std::string catalogue_variant(const VariantCase& variant) {
+  const std::string id = variant.id;
+  return id.substr(0, id.find('/'));
+}
+
+std::string body_with(const std::string& shade, std::uint32_t width, std::uint32_t height) {
+  std::string body = scene_body;
+  body.replace(body.find("{shade}"), 7, shade);
+  return parameter_block(width, height) + body;
+}
+
+std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const std::string& file_name, const std::string& content,
+                                              const std::string& body, std::uint32_t width) {
+  KernelRequest request;
+  request.kind = KernelKind::fragment;
+  request.body = body;
+  request.output_stride = 1;
+  request.width = width;
+  CompileRequest compile;
+  compile.language = target == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  compile.stage = ShaderStage::fragment;
+  compile.sources = kernel_sources(Catalogue::builtin(), file_name, content, request);
+  const CompileResult compiled = compile_to_spirv(compile);
+  if (!compiled.ok) throw Error(fmt::format("{} {}: the scene shader does not compile: {}", target, file_name, compiled.log.substr(0, compiled.log.find('\n'))));
+  std::vector<std::uint32_t> optimized = optimize_spirv(compiled.spirv, ClientApi::vulkan);
+  if (optimized.empty()) throw Error(fmt::format("{} {}: spirv-opt failed on the scene shader", target, file_name));
+  return optimized;
+}
+
+// The deferred pass's baseline: the passes' interface (deferred_pass_abi), the roughness copied;
+// the normal is read and enters the result through a term that cannot be folded away.
+const char* const deferred_copy_glsl = R"(#version 450
+#extension GL_EXT_samplerless_texture_functions : require
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform texture2D normal_gbuffer;
+layout(set = 0, binding = 1) uniform texture2D roughness_gbuffer;
+layout(set = 0, binding = 2, r32f) uniform writeonly image2D filtered;
+layout(push_constant) uniform Constants { uvec2 size; uint roughness_channel; uint flags; } constants;
+void main()
+{
+    uint lane = gl_LocalInvocationIndex;
+    uvec2 pixel = gl_WorkGroupID.xy * 8u + uvec2(lane & 7u, lane >> 3u);
+    ivec2 source = ivec2(min(pixel, constants.size - 1u));
+    vec3 n = texelFetch(normal_gbuffer, source, 0).xyz;
+    float r = texelFetch(roughness_gbuffer, source, 0)[constants.roughness_channel & 3u];
+    if (all(lessThan(pixel, constants.size))) imageStore(filtered, ivec2(pixel), vec4(min(r, r + abs(n.x) * 1e-30)));
+}
+)";
+
+const char* const deferred_copy_hlsl = R"([[vk::binding(0, 0)]] Texture2D<float4> normal_gbuffer : register(t0);
+[[vk::binding(1, 0)]] Texture2D<float4> roughness_gbuffer : register(t1);
+[[vk::binding(2, 0)]] RWTexture2D<float> filtered : register(u0);
+struct Constants { uint2 size; uint roughness_channel; uint flags; };
+[[vk::push_constant]] ConstantBuffer<Constants> constants;
+[numthreads(64, 1, 1)]
+void main(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
+{
+    uint2 pixel = group.xy * 8 + uint2(lane & 7, lane >> 3);
+    int2 source = int2(min(pixel, constants.size - 1));
+    float3 n = normal_gbuffer.Load(int3(source, 0)).xyz;
+    float r = roughness_gbuffer.Load(int3(source, 0))[constants.roughness_channel & 3];
+    if (all(pixel < constants.size)) filtered[pixel] = min(r, r + abs(n.x) * 1e-30);
+}
+)";
+
+}  // namespace saagen::report
