@@ -8,7 +8,7 @@
 #include "saagen/io/input.hpp"
 #include "saagen/emit/listing.hpp"
 #include "saagen/io/output.hpp"
-#include "saagen/products/binary_validation.hpp"
+#include "saagen/products/output_validation.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
@@ -138,18 +138,6 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
 
 std::string read_file(const fs::path& path) { return saagen::read_input_file(path, saagen::source_size_limit, "a file written by `saagen emit`"); }
 
-// A marker that names no known target or precision makes the file invalid: the message names it.
-saagen::FileValidation validate_one(const Catalogue& catalogue, const std::string& name, const std::string& content) {
-  try {
-    const auto marker = saagen::find_marker(content);
-    return marker && saagen::is_spirv_or_pass_marker(*marker) ? saagen::validate_spirv_or_pass_file(catalogue, name, content)
-                                                             : saagen::validate_file(catalogue, name, content);
-  } catch (const saagen::Error& error) {
-    const std::string message = error.what();
-    throw saagen::Error(message.rfind(name, 0) == 0 ? message : fmt::format("{}: bad saagen marker: {}", name, message));
-  }
-}
-
 // Files `saagen emit` wrote in a directory: known target extensions holding a marker line.
 std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path& directory) {
   std::error_code error;
@@ -180,24 +168,10 @@ std::vector<std::pair<std::string, std::string>> all_emitted_files(const Catalog
   return files;
 }
 
-bool is_wgsl(const std::string& content) {
-  const auto marker = saagen::find_marker(content);
-  return marker && marker->target == "wgsl";
-}
-
 int run_validate(const Catalogue& catalogue, const std::string& directory) {
   const auto files = directory.empty() ? all_emitted_files(catalogue) : emitted_files_in(directory);
-  // The WGSL files go to Tint together (one run of the WebGPU runner), the others one by one.
-  std::vector<std::pair<std::string, std::string>> wgsl_files;
-  for (const auto& file : files) {
-    if (is_wgsl(file.second)) wgsl_files.push_back(file);
-  }
-  std::vector<saagen::FileValidation> wgsl_validations;
-  if (!wgsl_files.empty()) wgsl_validations = saagen::validate_wgsl_files(catalogue, wgsl_files);
   int failures = 0;
-  std::size_t next_wgsl = 0;
-  for (const auto& [name, content] : files) {
-    const saagen::FileValidation validation = is_wgsl(content) ? wgsl_validations[next_wgsl++] : validate_one(catalogue, name, content);
+  saagen::validate_outputs(catalogue, files, [&](const saagen::FileValidation& validation) {
     std::cout << validation.summary() << "\n";
     if (!validation.ok()) {
       ++failures;
@@ -205,7 +179,7 @@ int run_validate(const Catalogue& catalogue, const std::string& directory) {
         if (!check.ok) std::cerr << check.name << ":\n" << check.log;
       }
     }
-  }
+  });
   std::cout << fmt::format("{} file(s) validated, {} failed\n", files.size(), failures);
   return failures == 0 ? 0 : exit_failure;
 }

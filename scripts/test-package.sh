@@ -19,7 +19,7 @@ step() { echo "test-package: $*"; }
 
 step "install $build_dir -> $work/prefix"
 cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
-for file in bin/saagen include/saagen/planner.hpp include/saagen/manifest.hpp include/saagen/saagen.h include/saagen/shaderc_includer.hpp; do
+for file in bin/saagen include/saagen/scene/planner.hpp include/saagen/scene/manifest.hpp include/saagen/saagen.h include/saagen/integrate/shaderc_includer.hpp; do
   [ -e "$work/prefix/$file" ] || fail "$file was not installed"
 done
 config=$(find "$work/prefix" -name saagenConfig.cmake)

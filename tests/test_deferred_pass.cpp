@@ -21,7 +21,7 @@
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
-#include "saagen/products/binary_validation.hpp"
+#include "saagen/products/output_validation.hpp"
 #include "saagen/products/spirv_library.hpp"
 
 #include <cmath>

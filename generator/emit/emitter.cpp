@@ -254,20 +254,13 @@ class FileWriter {
       out << fmt::format("//   {}: {}\n", parameter.name, parameter.meaning);
     }
     out << fmt::format("//   returns: {}\n", function.return_meaning);
-    const dialect::FunctionSignature types = dialect_signature(function);
+    const dialect::FunctionSignature types = signature_of(function);
     const dialect::PrintOptions print{&names_, options_.guards, &call_arguments_, &types};
     const std::string body = dialect::print_body(*function.tree, target_, print);
     out << signature(target_, function, options_.prefix, resource_parameters_) << (target_.module ? " {\n" : "\n{\n") << target_.function_prologue
         << suffix_float_literals(body, target_.literal_suffix) << "}\n";
     if (guarded_definition) out << "#endif\n";
     if (guarded_definition && function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
-  }
-
-  static dialect::FunctionSignature dialect_signature(const Function& function) {
-    dialect::FunctionSignature types;
-    types.result = *dialect::Type::from_name(function.return_type);
-    for (const Parameter& parameter : function.parameters) types.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
-    return types;
   }
 
   const Catalogue& catalogue_;
@@ -301,6 +294,15 @@ std::optional<double> parse_double(std::string_view text) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
   return value;
+}
+
+// Another roughness domain converts a variant's roughness in and out; one with neither cannot be
+// emitted in it.
+void require_roughness_io(const Catalogue& catalogue, const Variant& variant, std::string_view domain) {
+  if (!variant_has_roughness_io(catalogue, variant)) {
+    throw Error(fmt::format("--domain {}: variant '{}' takes or returns no scalar or per-axis roughness; emit it with --domain alpha2",
+                            domain, variant.id));
+  }
 }
 
 }  // namespace
@@ -370,9 +372,7 @@ std::map<std::string, double> resolve_options(const Catalogue& catalogue, const 
 std::vector<std::string> public_functions(const Catalogue& catalogue, const std::vector<std::string>& variant_ids) {
   std::vector<std::string> names;
   for (const std::string& id : variant_ids) {
-    const Variant* variant = catalogue.find_variant(id);
-    if (!variant) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
-    for (const std::string& name : variant->functions) {
+    for (const std::string& name : catalogue.variant(id).functions) {
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
   }
@@ -419,12 +419,7 @@ void apply_settings(const Catalogue& catalogue, const EmitSettings& settings, Em
   const RoughnessDomain& domain = find_domain(options.domain);
   if (domain.to_alpha2.empty()) return;
   for (const std::string& id : options.variants) {
-    const Variant* variant = catalogue.find_variant(id);
-    if (!variant) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
-    if (!variant_has_roughness_io(catalogue, *variant)) {
-      throw Error(fmt::format("--domain {}: variant '{}' takes or returns no scalar or per-axis roughness; emit it with --domain alpha2",
-                              domain.id, id));
-    }
+    require_roughness_io(catalogue, catalogue.variant(id), domain.id);
   }
 }
 
@@ -447,12 +442,8 @@ std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const Em
     }
   } else {
     for (const std::string& id : options.variants) {
-      const Variant* variant = catalogue.find_variant(id);
-      if (!variant) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
-      if (converted && !variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(id))) {
-        throw Error(fmt::format("--domain {}: variant '{}' takes or returns no scalar or per-axis roughness; emit it with --domain alpha2",
-                                options.domain, id));
-      }
+      const Variant* variant = &catalogue.variant(id);
+      if (converted) require_roughness_io(base_catalogue, base_catalogue.variant(id), options.domain);
       if (std::find(selected.begin(), selected.end(), variant) == selected.end()) selected.push_back(variant);
     }
   }
@@ -484,7 +475,7 @@ EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& opti
     if (!catalogue.find_function(name)) throw Error(fmt::format("bundle '{}': unknown function '{}'", request.name, name));
   }
   for (const std::string& id : request.variants) {
-    if (!catalogue.find_variant(id)) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
+    (void)catalogue.variant(id);  // throws for an unknown id
   }
   FileWriter writer(catalogue, target, options, option_values);
   return writer.write_bundle(request);

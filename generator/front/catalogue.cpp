@@ -363,17 +363,18 @@ Catalogue Catalogue::with_variants(std::vector<Variant> variants) const {
   return copy;
 }
 
-const Catalogue& Catalogue::builtin() {
-  static const Catalogue catalogue = [] {
-    std::vector<TemplateSource> sources;
-    for (const auto& [name, text] : embedded::files()) {
-      if (name.rfind("templates/", 0) == 0 && name.size() > 4 && name.substr(name.size() - 4) == ".saa") {
-        sources.push_back({name, std::string(text)});
-      }
+std::vector<TemplateSource> builtin_template_sources() {
+  std::vector<TemplateSource> sources;
+  for (const auto& [name, text] : embedded::files()) {
+    if (name.rfind("templates/", 0) == 0 && name.size() > 4 && name.substr(name.size() - 4) == ".saa") {
+      sources.push_back({name, std::string(text)});
     }
-    // File names carry a numeric prefix: the embedded table's name order is catalogue order.
-    return parse(sources);
-  }();
+  }
+  return sources;
+}
+
+const Catalogue& Catalogue::builtin() {
+  static const Catalogue catalogue = parse(builtin_template_sources());
   return catalogue;
 }
 
@@ -398,9 +399,7 @@ void Catalogue::link() {
   }
   std::map<std::string, dialect::FunctionSignature, std::less<>> signatures;
   for (const Function& function : functions_) {
-    dialect::FunctionSignature& signature = signatures[function.name];
-    signature.result = *dialect::Type::from_name(function.return_type);
-    for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
+    signatures[function.name] = signature_of(function);
   }
   std::map<std::string, dialect::Type, std::less<>> constant_types;
   for (const Constant& constant : constants_) constant_types[constant.name] = *dialect::Type::from_name(constant.type);
@@ -477,6 +476,12 @@ const Variant* Catalogue::find_variant(std::string_view id) const {
   return nullptr;
 }
 
+const Variant& Catalogue::variant(std::string_view id) const {
+  const Variant* found = find_variant(id);
+  if (!found) throw Error(fmt::format("unknown variant '{}'; run `saagen list` to see the ids", id));
+  return *found;
+}
+
 const Function* Catalogue::find_function(std::string_view name) const {
   const auto found = function_index_.find(name);
   return found == function_index_.end() ? nullptr : &functions_[found->second];
@@ -541,6 +546,21 @@ std::vector<std::string> resources_read(const Catalogue& catalogue, const std::v
     }
   }
   return {names.begin(), names.end()};
+}
+
+bool is_screen_space_filter(const Catalogue& catalogue, const Variant& variant) {
+  const auto has_role = [&](FunctionRole role) {
+    return std::any_of(variant.functions.begin(), variant.functions.end(),
+                       [&](const std::string& name) { return catalogue.find_function(name)->role == role; });
+  };
+  return has_role(FunctionRole::core) && has_role(FunctionRole::fragment);
+}
+
+dialect::FunctionSignature signature_of(const Function& function) {
+  dialect::FunctionSignature signature;
+  signature.result = *dialect::Type::from_name(function.return_type);
+  for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
+  return signature;
 }
 
 }  // namespace saagen

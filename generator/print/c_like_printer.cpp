@@ -68,23 +68,6 @@ std::string spacing(std::string_view layout, std::string_view canonical) {
   return std::string(has_line_break(layout) ? layout : canonical);
 }
 
-std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
-  std::string out;
-  for (std::size_t index = 0; index < pattern.size(); ++index) {
-    const auto close = pattern.find('}', index);
-    if (pattern[index] == '{' && close != std::string::npos && close > index + 1 &&
-        std::all_of(pattern.begin() + static_cast<long>(index) + 1, pattern.begin() + static_cast<long>(close), ::isdigit)) {
-      const std::size_t argument = std::stoul(pattern.substr(index + 1, close - index - 1));
-      if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
-      out += arguments[argument];
-      index = close;
-      continue;
-    }
-    out += pattern[index];
-  }
-  return out;
-}
-
 }  // namespace printing
 
 namespace {

@@ -18,7 +18,5 @@ bool needs_parentheses(const Expr& parent, std::size_t position, const Expr& chi
 bool has_line_break(std::string_view layout);
 // The template's layout where it breaks the line, else the canonical spacing.
 std::string spacing(std::string_view layout, std::string_view canonical);
-// Replaces {0}, {1}, ... in an intrinsic pattern of a syntax table with the arguments.
-std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments);
 
 }  // namespace saagen::dialect::printing

@@ -315,7 +315,7 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
       emit.option_values = options.option_values;
       emit.guards = options.guards;
       const EmittedFile file = emit_variants(catalogue, emit).front();
-      const bool glsl = target == "glsl";
+      const bool glsl = builtin_target(target).language == SourceLanguage::glsl;
       std::string source = pass_source(catalogue, target, file, kind, options,
                                        header_for(glsl ? deferred_pass_glsl_target : deferred_pass_hlsl_target));
       const std::string name = pass.stem + (glsl ? ".comp" : ".hlsl");

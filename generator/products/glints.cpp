@@ -17,9 +17,6 @@
 #include <thread>
 
 namespace saagen {
-namespace embedded {
-const std::map<std::string, std::string_view>& files();
-}
 namespace embedded_glints {
 const std::map<std::string, std::string_view>& files();
 }
@@ -633,12 +630,7 @@ Ktx2Image lean_ktx2(const std::vector<MomentLevel>& levels) {
 
 const Catalogue& catalogue() {
     static const Catalogue glint_catalogue = [] {
-        std::vector<TemplateSource> sources;
-        for (const auto& [name, text] : embedded::files()) {
-            if (name.rfind("templates/", 0) == 0 && name.size() > 4 && name.substr(name.size() - 4) == ".saa") {
-                sources.push_back({name, std::string(text)});
-            }
-        }
+        std::vector<TemplateSource> sources = builtin_template_sources();
         for (const auto& [name, text] : embedded_glints::files()) sources.push_back({name, std::string(text)});
         return Catalogue::parse(sources);
     }();

@@ -268,14 +268,9 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
-    // Screen-space filters: core functions and a fragment wrapper (the planner's is_filter).
-    const auto has_role = [&](FunctionRole role) {
-      return std::any_of(variant.functions.begin(), variant.functions.end(),
-                         [&](const std::string& function) { return catalogue.find_function(function)->role == role; });
-    };
     // Variants that read a resource (the glint dictionary) are planned through `glints = true`.
     const bool reads_resource = !resources_read(catalogue, variant.functions).empty();
-    if (has_role(FunctionRole::core) && has_role(FunctionRole::fragment) && !reads_resource) filters.push_back(variant.id);
+    if (is_screen_space_filter(catalogue, variant) && !reads_resource) filters.push_back(variant.id);
   }
   if (const auto variant = reader.string("variant", quoted_list(filters))) {
     if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {

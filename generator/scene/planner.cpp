@@ -108,17 +108,6 @@ const Rule& rule_for(const Material& material) {
 // ---------------------------------------------------------------------------------------------
 // Eligibility
 
-// A screen-space filter the planner can assign: core functions and a fragment wrapper. The
-// prefilter-* variants (texture-space, core only) combine with a filter instead; they are not
-// planned per material.
-bool is_filter(const Catalogue& catalogue, const Variant& variant) {
-  const auto has_role = [&](FunctionRole role) {
-    return std::any_of(variant.functions.begin(), variant.functions.end(),
-                       [&](const std::string& name) { return catalogue.find_function(name)->role == role; });
-  };
-  return has_role(FunctionRole::core) && has_role(FunctionRole::fragment);
-}
-
 bool has_tangent_free_form(const Variant& variant) {
   return std::any_of(variant.functions.begin(), variant.functions.end(),
                      [](const std::string& name) { return name.find("tangent_free") != std::string::npos; });
@@ -147,7 +136,7 @@ std::vector<std::string> variant_resources(const Catalogue& catalogue, const Var
 std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
   std::vector<const Variant*> eligible;
   for (const Variant& variant : catalogue.variants()) {
-    if (is_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+    if (is_screen_space_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
       eligible.push_back(&variant);
     }
   }
@@ -617,7 +606,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
 
     if (material.variant) {
       const Variant* found = catalogue.find_variant(*material.variant);
-      if (!found || !is_filter(catalogue, *found)) {
+      if (!found || !is_screen_space_filter(catalogue, *found)) {
         throw Error(manifest.where(key_position(material, "variant")) +
                     fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
       }

@@ -81,26 +81,6 @@ void read_type_spellings(const Json& object, const char* key, const std::map<std
   }
 }
 
-// Replaces {0}, {1}, ... in `pattern` with the translated arguments.
-std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
-  std::string result;
-  for (std::size_t index = 0; index < pattern.size(); ++index) {
-    const char c = pattern[index];
-    const auto close = pattern.find('}', index);
-    if (c == '{' && close != std::string::npos) {
-      const std::string slot = pattern.substr(index + 1, close - index - 1);
-      if (!slot.empty() && std::all_of(slot.begin(), slot.end(), ::isdigit)) {
-        const std::size_t argument = std::stoul(slot);
-        if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
-        result += arguments[argument];
-        index = close;
-        continue;
-      }
-    }
-    result += c;
-  }
-  return result;
-}
 
 class Translator {
  public:
@@ -298,6 +278,12 @@ const TargetSyntax& builtin_target(std::string_view name) {
   return found->second;
 }
 
+const TargetSyntax* find_builtin_target(std::string_view name) {
+  const auto& targets = builtin_targets();
+  const auto found = targets.find(name);
+  return found == targets.end() ? nullptr : &found->second;
+}
+
 std::vector<std::string> builtin_target_names() {
   std::vector<std::string> names;
   for (const auto& [name, target] : builtin_targets()) names.push_back(name);
@@ -375,6 +361,26 @@ std::string suffix_float_literals(std::string_view code, std::string_view suffix
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names) {
   const auto tokens = dialect::tokenize(code);
   return Translator(target, names, tokens).range(0, tokens.size());
+}
+
+std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {
+  std::string result;
+  for (std::size_t index = 0; index < pattern.size(); ++index) {
+    const char c = pattern[index];
+    const auto close = pattern.find('}', index);
+    if (c == '{' && close != std::string::npos) {
+      const std::string slot = pattern.substr(index + 1, close - index - 1);
+      if (!slot.empty() && std::all_of(slot.begin(), slot.end(), ::isdigit)) {
+        const std::size_t argument = std::stoul(slot);
+        if (argument >= arguments.size()) throw Error(fmt::format("intrinsic pattern '{}' needs argument {{{}}}", pattern, argument));
+        result += arguments[argument];
+        index = close;
+        continue;
+      }
+    }
+    result += c;
+  }
+  return result;
 }
 
 }  // namespace saagen

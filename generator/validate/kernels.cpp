@@ -63,11 +63,7 @@ std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogu
                            const GlueSymbols& symbols) {
   if (!target.module) return translate(target, code, names);
   std::map<std::string, dialect::FunctionSignature, std::less<>> functions;
-  for (const Function& function : catalogue.functions()) {
-    dialect::FunctionSignature& signature = functions[function.name];
-    signature.result = dialect_type(function.return_type);
-    for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(dialect_type(parameter.type), parameter.name);
-  }
+  for (const Function& function : catalogue.functions()) functions[function.name] = signature_of(function);
   const auto resource_arguments = resource_lists(target, catalogue, &TargetSyntax::Resource::caller_arguments);
   for (const GlueSymbols::Callable& callable : symbols.functions) {
     dialect::FunctionSignature& signature = functions[callable.name];

@@ -2,6 +2,8 @@
 // Parsing checks the dialect's rules and reports problems as "file:line: what; what to do".
 #pragma once
 
+#include "saagen/front/syntax_tree.hpp"
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -101,6 +103,8 @@ class Catalogue {
   const std::vector<Constant>& constants() const { return constants_; }
 
   const Variant* find_variant(std::string_view id) const;
+  // The variant `id`; throws saagen::Error "unknown variant 'ID'; run `saagen list` to see the ids".
+  const Variant& variant(std::string_view id) const;
   const Function* find_function(std::string_view name) const;
   const Constant* find_constant(std::string_view name) const;
   const Constant* find_option(std::string_view option) const;
@@ -130,6 +134,17 @@ class Catalogue {
 // The resources that the dependency closure of `roots` reads (the dialect's intrinsics marked
 // `resource NAME` in templates/intrinsics.sig, e.g. glint_dictionary), sorted: what an includer
 // must declare, in every target (each target table spells the declaration).
+// The templates compiled into this build (templates/*.saa), in file-name order: the files carry
+// a numeric prefix, so that order is catalogue order.
+std::vector<TemplateSource> builtin_template_sources();
+
+// A screen-space filter the planner can assign per material: core functions and a fragment
+// wrapper. The prefilter-* variants (texture-space, core only) and the BRDFs are not.
+bool is_screen_space_filter(const Catalogue& catalogue, const Variant& variant);
+
+// The type checker's view of a template function: its result and parameter types.
+dialect::FunctionSignature signature_of(const Function& function);
+
 std::vector<std::string> resources_read(const Catalogue& catalogue, const std::vector<std::string>& roots);
 
 }  // namespace saagen

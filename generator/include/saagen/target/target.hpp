@@ -117,6 +117,7 @@ std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_vi
 
 // The tables compiled into this build, by name ("glsl", "hlsl").
 const TargetSyntax& builtin_target(std::string_view name);
+const TargetSyntax* find_builtin_target(std::string_view name);  // null when there is no such table
 std::vector<std::string> builtin_target_names();
 
 // Maps unprefixed template names (functions, constants) to the names they get in the output.
@@ -127,6 +128,10 @@ using NameMap = std::map<std::string, std::string, std::less<>>;
 // for the harness's glue (kernel bodies, validation calls), which use the skeletons' macros;
 // template bodies are printed from their typed tree (dialect::print_c_like).
 std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
+
+// An intrinsic's pattern (the tables' "intrinsics": "mix({0}, {1}, {2})") with {N} replaced by
+// arguments[N]; throws saagen::Error when the pattern names an argument that is not there.
+std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments);
 
 // `text` with every `key` replaced by `value`: the placeholders of patterns and skeletons.
 std::string substitute(std::string text, std::string_view key, std::string_view value);

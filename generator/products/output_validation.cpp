@@ -1,8 +1,9 @@
-#include "saagen/products/binary_validation.hpp"
+#include "saagen/products/output_validation.hpp"
 
 #include "saagen/error.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/products/spirv_library.hpp"
+#include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
@@ -58,6 +59,44 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
     validation.checks.push_back({"vulkan compute pass", result.ok, result.log, result.spirv.size()});
   }
   return validation;
+}
+
+namespace {
+
+// A marker that names no known target or precision makes the file invalid: the message names it.
+FileValidation validate_one(const Catalogue& catalogue, const std::string& name, const std::string& content) {
+  try {
+    const auto marker = find_marker(content);
+    return marker && is_spirv_or_pass_marker(*marker) ? validate_spirv_or_pass_file(catalogue, name, content)
+                                                       : validate_file(catalogue, name, content);
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    throw Error(message.rfind(name, 0) == 0 ? message : fmt::format("{}: bad saagen marker: {}", name, message));
+  }
+}
+
+// Tint validates a module language's files (WGSL), all in one run.
+bool validated_by_tint(const std::string& content) {
+  const auto marker = find_marker(content);
+  if (!marker || is_spirv_or_pass_marker(*marker)) return false;
+  const TargetSyntax* target = find_builtin_target(marker->target);
+  return target && target->language == SourceLanguage::wgsl;
+}
+
+}  // namespace
+
+void validate_outputs(const Catalogue& catalogue, const std::vector<std::pair<std::string, std::string>>& files,
+                      const std::function<void(const FileValidation&)>& each) {
+  std::vector<std::pair<std::string, std::string>> tint_files;
+  for (const auto& file : files) {
+    if (validated_by_tint(file.second)) tint_files.push_back(file);
+  }
+  std::vector<FileValidation> tint_validations;
+  if (!tint_files.empty()) tint_validations = validate_wgsl_files(catalogue, tint_files);
+  std::size_t next_tint = 0;
+  for (const auto& [name, content] : files) {
+    each(validated_by_tint(content) ? tint_validations[next_tint++] : validate_one(catalogue, name, content));
+  }
 }
 
 }  // namespace saagen
