@@ -300,6 +300,45 @@ TEST_F(Safety, ReportAndBenchKeepForeignFilesAndFailBeforeRendering) {
   EXPECT_EQ(read_text(scratch_ / "notes.txt"), "my notes\n");
 }
 
+// No command writes over one of its own inputs, with or without --force, whatever name the output
+// has (compared by file identity); one file named twice among one run's outputs is refused.
+TEST_F(Safety, NoCommandWritesOverItsInputsNorOneFileTwice) {
+  const std::string manifest = "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n";
+  write(scratch_ / "out" / "saa_scene.glsl", manifest);
+  expect_one_line_error(saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "out").string(), "--force"}),
+                        "saa_scene.glsl: is an input of this command");
+  EXPECT_EQ(read_text(scratch_ / "out" / "saa_scene.glsl"), manifest);
+  ASSERT_EQ(saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "bundle").string()}).exit_code, 0);
+
+  write(scratch_ / "in.ktx2", "not decoded: refused before decoding");
+  expect_one_line_error(saagen({"texture", "prefilter", (scratch_ / "in.ktx2").string(), "-o", (scratch_ / "in.ktx2").string(), "--force"}),
+                        "in.ktx2: is an input of this command");
+  fs::create_hard_link(scratch_ / "in.ktx2", scratch_ / "hard.ktx2");  // another name of the same file
+  expect_one_line_error(saagen({"texture", "prefilter", (scratch_ / "in.ktx2").string(), "-o", (scratch_ / "hard.ktx2").string(), "--force"}),
+                        "hard.ktx2: is an input of this command");
+  EXPECT_EQ(read_text(scratch_ / "in.ktx2"), "not decoded: refused before decoding");
+  write(scratch_ / "n.ppm", "P6 1 1 255\n\x80\x80\xff");
+  expect_one_line_error(saagen({"glints", "lean", (scratch_ / "n.ppm").string(), "-o", (scratch_ / "n.ppm").string(), "--force"}),
+                        "n.ppm: is an input of this command");
+
+  // Two outputs of one run that are one file: through a linked directory, or a hard link.
+  fs::create_directory_symlink(".", scratch_ / "L");
+  auto twice = small_dictionary(scratch_ / "r.f32");
+  twice.insert(twice.end(), {"--raw", (scratch_ / "L" / "r.f32").string()});
+  expect_one_line_error(saagen(twice), "two names of one file");
+  EXPECT_FALSE(fs::exists(scratch_ / "r.f32"));
+  write(scratch_ / "a.f32", "x");
+  ASSERT_EQ(saagen({"glints", "dictionary", "--count", "4", "--lods", "2", "--resolution", "4", "-o", (scratch_ / "d.ktx2").string(), "--raw",
+                    (scratch_ / "a.f32").string(), "--force"}).exit_code, 0);
+  fs::create_hard_link(scratch_ / "a.f32", scratch_ / "b.ktx2");
+  auto hard = small_dictionary(scratch_ / "b.ktx2");
+  hard.insert(hard.end(), {"--raw", (scratch_ / "a.f32").string(), "--force"});
+  expect_one_line_error(saagen(hard), "two names of one file");
+  expect_one_line_error(saagen({"bench", "--preset", "quick", "--isa", "vega10", "--isa-table", (scratch_ / "t.json").string(), "--json",
+                                (scratch_ / "L" / "t.json").string()}),
+                        "would be written twice");
+}
+
 // ---------------------------------------------------------------------------------------------
 // 4. All or nothing: repeated arguments are refused before writing; a failed write (a full disk)
 // leaves no temporary and no changed file.

@@ -138,10 +138,13 @@ int ReportCommands::run_bench() const {
   }
   auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, false);
-  if (!bench_json_.empty()) check_output_paths({bench_json_}, bench_common_.force);
-  if (!bench_isa_table_.empty()) check_output_paths({bench_isa_table_}, bench_common_.force);
+  // Both outputs together (never one file twice), and never over the --cost table.
+  std::vector<std::filesystem::path> outputs;
+  if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
+  if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
+  check_output_paths(outputs, bench_common_.force, {bench_common_.cost_json});
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
-  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force);
+  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
   if (bench_isa_only_) return 0;
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto summary = report::summarize(table);
@@ -152,7 +155,8 @@ int ReportCommands::run_bench() const {
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
-  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force);
+  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force,
+                                           {bench_common_.cost_json});
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;
@@ -161,7 +165,7 @@ int ReportCommands::run_bench() const {
 int ReportCommands::run_report() const {
   auto costs = load_costs(report_common_.cost_json);
   const render::TradeConfig config = configure(report_common_, true);
-  check_output_paths(report::report_paths(config, report_directory_), report_common_.force);
+  check_output_paths(report::report_paths(config, report_directory_), report_common_.force, {report_common_.cost_json});
   measure_isa(report_common_.isa_families, costs, std::cerr);
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);

@@ -238,12 +238,42 @@ void check_directory(const fs::path& directory) {
   }
 }
 
+// The identity of an existing file (device and inode), without following a link at `path`.
+std::optional<std::pair<dev_t, ino_t>> identity(const fs::path& path, bool follow) {
+  struct stat status {};
+  if ((follow ? ::stat(path.c_str(), &status) : ::lstat(path.c_str(), &status)) != 0) return std::nullopt;
+  return std::make_pair(status.st_dev, status.st_ino);
+}
+
+// Names are compared with their directory resolved (a linked directory names the same place) and
+// existing files by identity (a hard link is the same file).
 void check_named_once(const std::vector<fs::path>& paths) {
   std::set<fs::path> seen;
+  std::set<std::pair<dev_t, ino_t>> seen_files;
   for (const fs::path& path : paths) {
     if (path.empty() || !path.has_filename()) throw Error(fmt::format("'{}': not a file name; pass an output path", path.string()));
-    if (!seen.insert(fs::absolute(path).lexically_normal()).second) {
-      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name?); name each output once", path.string()));
+    const fs::path absolute = fs::absolute(path).lexically_normal();
+    std::error_code error;
+    fs::path directory = fs::weakly_canonical(absolute.parent_path(), error);
+    if (error) directory = absolute.parent_path();
+    const auto file = identity(path, false);
+    if (!seen.insert(directory / absolute.filename()).second || (file && !seen_files.insert(*file).second)) {
+      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name, or two names of one file); name each output once",
+                              path.string()));
+    }
+  }
+}
+
+// No output is one of the command's inputs, whatever its name (not even with --force).
+void check_not_inputs(const std::vector<fs::path>& paths, const std::vector<fs::path>& inputs) {
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const auto read = identity(input, true);
+    if (!read) continue;
+    for (const fs::path& path : paths) {
+      if (identity(path, false) == read) {
+        throw Error(fmt::format("{}: is an input of this command ({}); choose another output path", path.string(), input.string()));
+      }
     }
   }
 }
@@ -351,15 +381,17 @@ OutputFile ownership_sidecar(const fs::path& path, std::string_view bytes, std::
   return {sidecar_path(path), fmt::format("{} sidecar of {}\n{}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes), description)};
 }
 
-void check_output_paths(const std::vector<fs::path>& paths, bool force) {
+void check_output_paths(const std::vector<fs::path>& paths, bool force, const std::vector<fs::path>& inputs) {
   check_named_once(paths);
+  check_not_inputs(paths, inputs);
   for (const fs::path& path : paths) needs_writing(path, std::nullopt, force);
 }
 
-WriteReport write_outputs(const std::vector<OutputFile>& files, bool force) {
+WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, const std::vector<fs::path>& inputs) {
   std::vector<fs::path> paths;
   for (const OutputFile& file : files) paths.push_back(file.path);
   check_named_once(paths);
+  check_not_inputs(paths, inputs);
 
   WriteReport report;
   std::vector<const OutputFile*> to_write;
