@@ -489,6 +489,70 @@ TEST_F(Safety, DevicesFifosAndHugeInputsAreRefusedFast) {
   EXPECT_LT(seconds, 10.0);
 }
 
+// Every reader behind the input layer: texture prefilter's normal map (devices, FIFOs, directories,
+// and images declaring more texels than saagen reads, refused from the header before decoding), the
+// bench's ground-truth cache (a FIFO at a cached name, an unwritable cache directory), and trade
+// and cost tables holding a number beyond a double's range.
+TEST_F(Safety, EveryReaderRefusesWhatWouldHangOrExhaustMemory) {
+  const std::string out = (scratch_ / "o.ktx2").string();
+  double seconds = 0.0;
+  expect_one_line_error(timed({"texture", "prefilter", "/dev/zero", "-o", out}, &seconds), "/dev/zero: is not a regular file");
+  EXPECT_LT(seconds, 10.0);
+  ASSERT_EQ(::mkfifo((scratch_ / "fifo.png").c_str(), 0600), 0);
+  expect_one_line_error(timed({"texture", "prefilter", (scratch_ / "fifo.png").string(), "-o", out}, &seconds), "is not a regular file");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(saagen({"texture", "prefilter", scratch_.string(), "-o", out}), "is a directory; pass a PNG or KTX2 normal map");
+
+  // A 60-byte PNG declaring 16384 x 16384 RGB texels (stb_image ignores the CRCs, left zero).
+  const auto be32 = [](std::uint32_t value) {
+    std::string bytes;
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((value >> shift) & 0xffu);
+    return bytes;
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) { return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(0); };
+  const std::string ihdr = be32(16384) + be32(16384) + std::string("\x08\x02\x00\x00\x00", 5);
+  write(scratch_ / "huge.png", std::string("\x89PNG\r\n\x1A\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", std::string("x\x01", 2)) + chunk("IEND", ""));
+  expect_one_line_error(timed({"texture", "prefilter", (scratch_ / "huge.png").string(), "-o", out}, &seconds),
+                        "huge.png: 16384 x 16384 texels is larger than saagen reads (at most 8192 a side and 4096 x 4096 in all)");
+  EXPECT_LT(seconds, 10.0);
+  std::string ktx2 = std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) + std::string(68, '\0');
+  ktx2[22] = '\x01';  // pixelWidth 65536
+  ktx2[24] = '\x01';  // pixelHeight 1
+  write(scratch_ / "wide.ktx2", ktx2);
+  expect_one_line_error(saagen({"texture", "prefilter", (scratch_ / "wide.ktx2").string(), "-o", out}), "65536 x 1 texels is larger");
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun help = saagen({"texture", "prefilter", "--help"});
+  EXPECT_NE(help.out.find("at most 8192 texels a side and 4096 x 4096 in all"), std::string::npos) << help.out;
+
+  // Trade and cost tables with 1e999: one line naming the file, not an internal error.
+  const fs::path manifest = fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml";
+  write(scratch_ / "overflow.json", R"({"rows": [{"variant": "deferred-sum", "error": 1e999}]})");
+  expect_one_line_error(saagen({"plan", manifest.string(), "--no-cost", "--trade-table", (scratch_ / "overflow.json").string()}),
+                        (scratch_ / "overflow.json").string() + ": holds a number beyond a double's range");
+  expect_one_line_error(saagen({"bench", "--preset", "quick", "--cost", (scratch_ / "overflow.json").string()}),
+                        (scratch_ / "overflow.json").string() + ": holds a number beyond a double's range");
+
+  // A cache directory that takes no file would cache nothing, silently.
+  expect_one_line_error(saagen({"bench", "--preset", "quick", "--cache", "/proc/self"}), "--cache /proc/self: cannot write in /proc/self");
+  expect_one_line_error(saagen({"bench", "--preset", "quick", "--cache", "/proc/self/sub/dir"}), "cannot write in /proc/self");
+}
+
+// A FIFO planted at a cached ground truth's name is a cache miss, not a hang; the fresh ground
+// truth replaces it.
+TEST_F(Safety, AFifoInTheBenchCacheIsAMissNotAHang) {
+  const fs::path cache = scratch_ / "cache";
+  ASSERT_EQ(saagen({"bench", "--preset", "quick", "--cache", cache.string()}).exit_code, 0);
+  const std::set<std::string> cached = entries(cache);
+  ASSERT_FALSE(cached.empty());
+  const fs::path planted = cache / *cached.begin();
+  fs::remove(planted);
+  ASSERT_EQ(::mkfifo(planted.c_str(), 0600), 0);
+  const CliRun run = run_shell("timeout 300 " + shell_quote(SAAGEN_CLI_PATH) + " bench --preset quick --cache " + shell_quote(cache.string()));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::is_regular_file(planted));
+  EXPECT_EQ(entries(cache), cached);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 9. Messages: one line that names the file or the option and says what to do.
 

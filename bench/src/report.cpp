@@ -753,6 +753,8 @@ CostTable load_cost_table(const fs::path& path) {
     document = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", path.string(), error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", path.string()));
   }
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
     throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", path.string()));

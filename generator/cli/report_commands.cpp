@@ -9,7 +9,11 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
+#include <fcntl.h>
+#include <system_error>
+#include <unistd.h>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -23,6 +27,25 @@ std::optional<report::CostTable> load_costs(const std::string& path) {
   return report::load_cost_table(path);
 }
 
+// A cache that cannot be written would cache nothing, silently (e.g. /proc/self): the directory,
+// or its nearest existing ancestor when it is still to be created, must take a new file. Probed
+// by creating (and removing) one, which also holds for root, whom access() always answers yes.
+void check_cache_writable(const std::string& cache_dir) {
+  std::filesystem::path existing = std::filesystem::absolute(cache_dir);
+  std::error_code error;
+  while (!std::filesystem::exists(existing, error) && existing.has_parent_path() && existing.parent_path() != existing) {
+    existing = existing.parent_path();
+  }
+  std::string probe = (existing / ".saagen-cache-probe-XXXXXX").string();
+  const int fd = ::mkostemp(probe.data(), O_CLOEXEC);
+  if (fd < 0) {
+    throw Error(fmt::format("--cache {}: cannot write in {} ({}); pass a writable directory for the ground-truth cache", cache_dir,
+                            existing.string(), std::generic_category().message(errno)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -31,6 +54,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     if (std::filesystem::exists(common.cache_dir, error) && !std::filesystem::is_directory(common.cache_dir, error)) {
       throw Error(fmt::format("--cache {}: exists and is not a directory; pass a directory for the ground-truth cache", common.cache_dir));
     }
+    check_cache_writable(common.cache_dir);
   }
   render::TradeConfig config = report::preset_config(common.preset);
   config.cache_dir = common.cache_dir;

@@ -378,6 +378,8 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     document = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::parse_error& error) {
     fail(fmt::format("not valid JSON (byte {})", error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    fail("holds a number beyond a double's range");
   }
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
       !document["families"].is_array()) {
@@ -434,6 +436,8 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     document = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
   }
   const auto fail = [&](std::size_t index, std::string_view what) {
     throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
