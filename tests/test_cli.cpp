@@ -252,4 +252,25 @@ TEST_F(Cli, HelpOnEveryCommand) {
   }
 }
 
+// What a command prints must reach standard output: a full device there is a failure in one line
+// with a non-zero exit, for every printing command (it was exit 0 with the output lost).
+TEST_F(Cli, StandardOutputWriteFailuresAreOneLineAndNonZero) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string manifest = (fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml").string();
+  const std::vector<std::vector<std::string>> commands = {
+      {"list", "--json"}, {"list"}, {"plan", manifest, "--no-cost"}, {"plan", "--rules"},
+      {"emit", "--manifest", manifest, "-o", (scratch_ / "m").string(), "--list-outputs"},
+      {"emit", "-v", "deferred-sum", "-o", (scratch_ / "e").string()}, {"--version"}, {"--help"}};
+  for (const auto& arguments : commands) {
+    std::string command = saagen::test::shell_quote(SAAGEN_CLI_PATH);
+    for (const std::string& argument : arguments) command.append(" ").append(saagen::test::shell_quote(argument));
+    const fs::path err = scratch_ / "err.txt";
+    const int status = std::system((command + " >/dev/full 2>" + saagen::test::shell_quote(err.string())).c_str());
+    const std::string text = read_text(err);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << command;
+    EXPECT_EQ(text, "saagen: error: standard output: write failed (No space left on device); check the file or pipe it goes to\n") << command;
+  }
+  EXPECT_EQ(saagen({"list", "--json"}).exit_code, 0);  // a working stdout is still exit 0
+}
+
 }  // namespace
