@@ -13,6 +13,7 @@
 #include "cli_support.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -594,6 +595,21 @@ TEST_F(Safety, IsaOptionsAreCheckedFirst) {
   expect_one_line_error(timed({"bench", "--isa", "vega10,", "--isa-only"}, &seconds), "unknown GPU family ''");
   expect_one_line_error(timed({"bench", "--isa-only"}, &seconds), "--isa-only and --isa-table need --isa");
   expect_one_line_error(timed({"bench", "--isa-table", (scratch_ / "t.json").string()}, &seconds), "need --isa");
+  EXPECT_FALSE(fs::exists(scratch_ / "t.json"));
+}
+
+// The ISA table carries saagen's tag, so that the documented regeneration command can be run again
+// over its own file; --json (the trade table) with --isa-only (no trade computed) is refused.
+TEST_F(Safety, TheIsaTableIsRewrittenWithoutForceAndJsonNeedsTheTrade) {
+  const fs::path table = scratch_ / "i.json";
+  const CliRun first = saagen({"bench", "--isa", "vega10", "--isa-only", "--isa-table", table.string()});
+  if (first.err.find("built without the Vulkan harness") != std::string::npos) GTEST_SKIP() << first.err;
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const CliRun second = saagen({"bench", "--isa", "vega10", "--isa-only", "--isa-table", table.string()});
+  EXPECT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_EQ(nlohmann::json::parse(read_text(table)).at("generator"), "saagen-output: saagen bench --isa");
+  expect_one_line_error(saagen({"bench", "--isa", "vega10", "--isa-only", "--json", (scratch_ / "t.json").string()}),
+                        "--isa-only computes no trade table to write");
   EXPECT_FALSE(fs::exists(scratch_ / "t.json"));
 }
 

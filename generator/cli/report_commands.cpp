@@ -160,6 +160,10 @@ int ReportCommands::run_bench() const {
   if ((bench_isa_only_ || !bench_isa_table_.empty()) && bench_common_.isa_families.empty()) {
     throw Error("--isa-only and --isa-table need --isa FAMILY[,FAMILY] (e.g. --isa vega10,navi21)");
   }
+  if (bench_isa_only_ && !bench_json_.empty()) {
+    throw Error(fmt::format("--json {}: --isa-only computes no trade table to write; drop --isa-only, or write the ISA statistics with --isa-table FILE",
+                            bench_json_));
+  }
   auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, false);
   // Both outputs together (never one file twice), and never over the --cost table.
