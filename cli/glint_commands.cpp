@@ -199,7 +199,7 @@ int GlintCommands::run_dictionary() const {
 
 int GlintCommands::run_lean() const {
   check_output_named("--output", output_file_);
-  check_output_paths({output_file_}, force_);
+  check_output_paths({output_file_}, force_, {normal_map_});
   const std::vector<std::uint8_t> bytes = read_image(normal_map_, "a binary PPM (P6) normal map");
   glints::SlopeMap map;
   try {
@@ -208,7 +208,7 @@ int GlintCommands::run_lean() const {
     throw Error(fmt::format("{}: {}", normal_map_, error.what()));
   }
   const auto levels = glints::lean_moments(map);
-  print_report(write_outputs({{output_file_, as_string(glints::write_ktx2(glints::lean_ktx2(levels)))}}, force_));
+  print_report(write_outputs({{output_file_, as_string(glints::write_ktx2(glints::lean_ktx2(levels)))}}, force_, {normal_map_}));
   std::cout << fmt::format("LEAN moments {} x {}, {} levels\n", map.width, map.height, levels.size());
   return 0;
 }

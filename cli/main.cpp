@@ -24,6 +24,9 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <regex>
@@ -184,9 +187,20 @@ int run_validate(const Catalogue& catalogue, const std::string& directory) {
   return failures == 0 ? 0 : exit_failure;
 }
 
+// What the command printed must have reached standard output: a full disk or a closed file there
+// (`saagen list --json > /dev/full`) is a failure, in one line, not exit 0.
+int finish_standard_output(int code) {
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || std::cout.fail();
+  if (!failed) return code;
+  const int error = errno;
+  std::cerr << "saagen: error: standard output: write failed (" << (error ? std::strerror(error) : "I/O error")
+            << "); check the file or pipe it goes to\n";
+  return exit_failure;
+}
+
 // CLI11 prints multi-line messages; saagen prints one line and the command's --help hint.
 int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
-  if (error.get_exit_code() == 0) return app.exit(error);
+  if (error.get_exit_code() == 0) return finish_standard_output(app.exit(error));  // --help, --version
   std::string message = error.what();
   std::replace(message.begin(), message.end(), '\n', ' ');
   std::cerr << "saagen: error: " << message << " (run `saagen --help`)\n";
@@ -263,7 +277,7 @@ int main(int argc, char** argv) {
     return report_parse_error(app, error);
   }
 
-  try {
+  const auto dispatch = [&]() -> int {
     const Catalogue& catalogue = Catalogue::builtin();
     // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
     // the other commands keep the screen-space SAA catalogue.
@@ -288,6 +302,10 @@ int main(int argc, char** argv) {
     if (glints.requested()) return glints.run();
     if (deferred_pass.requested()) return deferred_pass.run(catalogue);
     if (texture.requested()) return texture.run();
+    return exit_failure;
+  };
+  try {
+    return finish_standard_output(dispatch());
   } catch (const saagen::Error& error) {
     std::cerr << "saagen: error: " << error.what() << "\n";
     return exit_failure;
@@ -295,5 +313,4 @@ int main(int argc, char** argv) {
     std::cerr << "saagen: internal error: " << error.what() << "\n";
     return exit_failure;
   }
-  return exit_failure;
 }

@@ -9,7 +9,11 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
+#include <fcntl.h>
+#include <system_error>
+#include <unistd.h>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -23,6 +27,25 @@ std::optional<report::CostTable> load_costs(const std::string& path) {
   return report::load_cost_table(path);
 }
 
+// A cache that cannot be written would cache nothing, silently (e.g. /proc/self): the directory,
+// or its nearest existing ancestor when it is still to be created, must take a new file. Probed
+// by creating (and removing) one, which also holds for root, whom access() always answers yes.
+void check_cache_writable(const std::string& cache_dir) {
+  std::filesystem::path existing = std::filesystem::absolute(cache_dir);
+  std::error_code error;
+  while (!std::filesystem::exists(existing, error) && existing.has_parent_path() && existing.parent_path() != existing) {
+    existing = existing.parent_path();
+  }
+  std::string probe = (existing / ".saagen-cache-probe-XXXXXX").string();
+  const int fd = ::mkostemp(probe.data(), O_CLOEXEC);
+  if (fd < 0) {
+    throw Error(fmt::format("--cache {}: cannot write in {} ({}); pass a writable directory for the ground-truth cache", cache_dir,
+                            existing.string(), std::generic_category().message(errno)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -31,6 +54,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     if (std::filesystem::exists(common.cache_dir, error) && !std::filesystem::is_directory(common.cache_dir, error)) {
       throw Error(fmt::format("--cache {}: exists and is not a directory; pass a directory for the ground-truth cache", common.cache_dir));
     }
+    check_cache_writable(common.cache_dir);
   }
   render::TradeConfig config = report::preset_config(common.preset);
   config.cache_dir = common.cache_dir;
@@ -136,12 +160,19 @@ int ReportCommands::run_bench() const {
   if ((bench_isa_only_ || !bench_isa_table_.empty()) && bench_common_.isa_families.empty()) {
     throw Error("--isa-only and --isa-table need --isa FAMILY[,FAMILY] (e.g. --isa vega10,navi21)");
   }
+  if (bench_isa_only_ && !bench_json_.empty()) {
+    throw Error(fmt::format("--json {}: --isa-only computes no trade table to write; drop --isa-only, or write the ISA statistics with --isa-table FILE",
+                            bench_json_));
+  }
   auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, false);
-  if (!bench_json_.empty()) check_output_paths({bench_json_}, bench_common_.force);
-  if (!bench_isa_table_.empty()) check_output_paths({bench_isa_table_}, bench_common_.force);
+  // Both outputs together (never one file twice), and never over the --cost table.
+  std::vector<std::filesystem::path> outputs;
+  if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
+  if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
+  check_output_paths(outputs, bench_common_.force, {bench_common_.cost_json});
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
-  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force);
+  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
   if (bench_isa_only_) return 0;
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto summary = report::summarize(table);
@@ -152,7 +183,8 @@ int ReportCommands::run_bench() const {
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
-  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force);
+  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force,
+                                           {bench_common_.cost_json});
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;
@@ -161,7 +193,7 @@ int ReportCommands::run_bench() const {
 int ReportCommands::run_report() const {
   auto costs = load_costs(report_common_.cost_json);
   const render::TradeConfig config = configure(report_common_, true);
-  check_output_paths(report::report_paths(config, report_directory_), report_common_.force);
+  check_output_paths(report::report_paths(config, report_directory_), report_common_.force, {report_common_.cost_json});
   measure_isa(report_common_.isa_families, costs, std::cerr);
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);

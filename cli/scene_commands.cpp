@@ -258,7 +258,8 @@ int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& outpu
     for (const OutputFile& output : outputs) std::cout << output.path.string() << "\n";
     return 0;
   }
-  const WriteReport report = write_outputs(outputs, force);
+  // The manifest and the trade table are never written over, not even with --force.
+  const WriteReport report = write_outputs(outputs, force, {emit_manifest_, emit_trade_table_});
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
   for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
   return 0;

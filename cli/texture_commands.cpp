@@ -1,6 +1,7 @@
 #include "texture_commands.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/prefilter.hpp"
 
@@ -13,10 +14,10 @@
 namespace saagen::cli {
 namespace {
 
+// A regular file of at most 256 MiB (a device, FIFO or directory is refused at once).
 std::vector<std::uint8_t> read_input(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(fmt::format("{}: cannot be read (missing file?)", path));
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
+  const std::string bytes = read_input_file(path, image_size_limit, "a PNG or KTX2 normal map");
+  return std::vector<std::uint8_t>(bytes.begin(), bytes.end());
 }
 
 }  // namespace
@@ -25,7 +26,8 @@ TextureCommands::TextureCommands(CLI::App& app) {
   texture_ = app.add_subcommand("texture", "Texture tools: normal-map prefiltering (README.md, \"Normal-map prefiltering\")");
   texture_->require_subcommand(1);
   prefilter_ = texture_->add_subcommand("prefilter", "Normal map (PNG or KTX2) to a KTX2 MIP chain of Toksvig roughness or LEAN slope moments");
-  prefilter_->add_option("IN", input_, "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size")->required();
+  prefilter_->add_option("IN", input_, "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size, "
+                            "at most 8192 texels a side and 4096 x 4096 in all, a file of at most 256 MiB")->required();
   prefilter_->add_option("--output,-o", output_, "Output .ktx2 file")->required();
   prefilter_->add_option("--method", method_, "toksvig (one roughness channel) or lean (slope moments)")->capture_default_str();
   prefilter_->add_option("--domain", domain_, "Domain of --roughness and of the toksvig output: alpha2, alpha, perceptual (alpha = r^2) or smoothness (1 - r)")->capture_default_str();
@@ -41,9 +43,11 @@ int TextureCommands::run() const {
   options.roughness = roughness_;
   options.float32 = float32_;
   options.validate();
-  const auto levels = prefilter::build_levels(prefilter::read_normal_map(read_input(input_), input_));
+  const std::vector<std::uint8_t> input = read_input(input_);
+  check_output_paths({output_}, force_, {input_});  // before decoding; never over the input, not even with --force
+  const auto levels = prefilter::build_levels(prefilter::read_normal_map(input, input_));
   const auto bytes = glints::write_ktx2(prefilter::prefilter_ktx2(levels, options));
-  const WriteReport report = write_outputs({{output_, std::string(bytes.begin(), bytes.end())}}, force_);
+  const WriteReport report = write_outputs({{output_, std::string(bytes.begin(), bytes.end())}}, force_, {input_});
   const char* verb = report.written.empty() ? "unchanged" : "wrote    ";
   std::cout << fmt::format("{} {} ({} x {}, {} levels, {})\n", verb, output_, levels.front().width, levels.front().height, levels.size(),
                            prefilter::to_string(options.method));

@@ -69,6 +69,7 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
   if (name == "deferred_sum_fragment") return output_values(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_avg_fragment") return output_values(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_projected_space_fragment") return output_values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_aniso_fragment") return output_values(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
   if (name == "ggx_brdf_filtered_fragment") return output_values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   if (name == "ggx_brdf_tail_filtered_fragment") {
     return output_values(ref::ggx_brdf_tail_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));

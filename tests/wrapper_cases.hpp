@@ -138,6 +138,7 @@ inline std::vector<double> reference_wrapper(const std::string& name, const std:
   if (name == "deferred_sum_fragment") return as_outputs(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_avg_fragment") return as_outputs(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_projected_space_fragment") return as_outputs(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_aniso_fragment") return as_outputs(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
   if (name == "ggx_brdf_filtered_fragment") return as_outputs(ref::ggx_brdf_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
   if (name == "ggx_brdf_tail_filtered_fragment") return as_outputs(ref::ggx_brdf_tail_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
   if (name == "beckmann_brdf_filtered_fragment") return as_outputs(ref::beckmann_brdf_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));

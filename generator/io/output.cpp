@@ -6,6 +6,7 @@
 #include "saagen/io/input.hpp"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -95,22 +96,123 @@ std::string sidecar_fingerprint(std::string_view bytes) { return fmt::format("by
 
 fs::path sidecar_path(const fs::path& path) { return fs::path(path.string() + ".saagen"); }
 
+std::string_view ktx2_identifier() { return {"\xABKTX 20\xBB\r\n\x1A\n", 12}; }
+std::string_view png_signature() { return {"\x89PNG\r\n\x1A\n", 8}; }
+
+// A KTX2 file that parses and carries one of the key/value entries saagen writes.
 bool ktx2_written_by_saagen(std::string_view bytes) {
-  static constexpr char identifier[] = "\xABKTX 20\xBB\r\n\x1A\n";
-  if (bytes.substr(0, 12) != std::string_view(identifier, 12)) return false;
+  static const std::set<std::string, std::less<>> keys = {"saagen.glints", "saagen.lean", "saagen.prefilter", "saagen.marker"};
   try {
     const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
     const glints::Ktx2Image image = glints::read_ktx2(std::span<const std::uint8_t>(data, bytes.size()));
-    return std::any_of(image.key_values.begin(), image.key_values.end(), [](const auto& entry) { return entry.first.rfind("saagen.", 0) == 0; });
+    return std::any_of(image.key_values.begin(), image.key_values.end(), [](const auto& entry) { return keys.count(entry.first) != 0; });
   } catch (const Error&) {
     return false;
   }
 }
 
+std::uint32_t big_endian32(std::string_view bytes, std::size_t at) {
+  std::uint32_t value = 0;
+  for (std::size_t index = 0; index < 4; ++index) value = value << 8 | static_cast<unsigned char>(bytes[at + index]);
+  return value;
+}
+
+// A PNG whose chunks before the image data hold saagen's tEXt chunk: keyword "Software", text
+// starting with the output tag (bench/src/report.cpp writes it right after IHDR).
+bool png_written_by_saagen(std::string_view bytes) {
+  const std::string prefix = std::string("Software") + '\0' + std::string(output_tag);
+  for (std::size_t at = 8; at + 12 <= bytes.size();) {
+    const std::uint32_t length = big_endian32(bytes, at);
+    if (length > bytes.size() - at - 12) return false;
+    const std::string_view type = bytes.substr(at + 4, 4);
+    if (type == "IDAT" || type == "IEND") return false;
+    if (type == "tEXt" && bytes.substr(at + 8, length).substr(0, prefix.size()) == prefix) return true;
+    at += 12 + std::size_t{length};
+  }
+  return false;
+}
+
+bool is_spirv(std::string_view bytes) {
+  return bytes.size() >= 20 && bytes.size() % 4 == 0 && bytes.substr(0, 4) == std::string_view("\x03\x02\x23\x07", 4);
+}
+
+// A little-endian SPIR-V module with an OpSourceExtension or OpModuleProcessed instruction whose
+// string is saagen's tag: the output tag (`compile`) or an emission marker line (libraries, passes).
+bool spirv_written_by_saagen(std::string_view bytes) {
+  constexpr std::uint32_t op_source_extension = 4, op_module_processed = 330, op_function = 54;
+  const auto word = [&](std::size_t index) {
+    std::uint32_t value = 0;
+    for (std::size_t byte = 0; byte < 4; ++byte) value |= std::uint32_t(static_cast<unsigned char>(bytes[index * 4 + byte])) << (8 * byte);
+    return value;
+  };
+  const std::size_t words = bytes.size() / 4;
+  for (std::size_t index = 5; index < words;) {
+    const std::uint32_t length = word(index) >> 16, opcode = word(index) & 0xffffu;
+    if (length == 0 || length > words - index || opcode == op_function) return false;
+    if (opcode == op_source_extension || opcode == op_module_processed) {
+      const std::string_view operand = bytes.substr((index + 1) * 4, (length - 1) * 4);
+      const std::string_view text = operand.substr(0, operand.find('\0'));
+      if (text.substr(0, output_tag.size()) == output_tag) return true;
+      if (text.substr(0, 17) == "// saagen-marker:" && find_marker(text)) return true;
+    }
+    index += length;
+  }
+  return false;
+}
+
+bool is_json_object(std::string_view bytes) {
+  const auto first = bytes.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && bytes[first] == '{';
+}
+
+// A JSON object whose top-level "generator" is the output tag naming a saagen command.
+bool json_written_by_saagen(std::string_view bytes) {
+  const nlohmann::json json = nlohmann::json::parse(bytes, nullptr, false);
+  if (!json.is_object()) return false;
+  const auto generator = json.find("generator");
+  if (generator == json.end() || !generator->is_string()) return false;
+  return generator->get_ref<const std::string&>().rfind(std::string(output_tag) + " saagen ", 0) == 0;
+}
+
+// The line at `at` (without its end of line) and where the next one starts.
+std::string_view line_at(std::string_view bytes, std::size_t at, std::size_t* next) {
+  if (at >= bytes.size()) {
+    *next = bytes.size();
+    return {};
+  }
+  auto end = bytes.find('\n', at);
+  if (end == std::string_view::npos) end = bytes.size();
+  *next = std::min(end + 1, bytes.size());
+  std::string_view line = bytes.substr(at, end - at);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+// A text file that starts the way saagen starts it: the generated-by line, then a marker line
+// that parses (emitted shaders, headers, passes); or the tag as the first line, bare (sidecars)
+// or as a comment (Markdown, SVG; HTML after its doctype line).
+bool text_written_by_saagen(std::string_view bytes) {
+  std::size_t second = 0, third = 0;
+  const std::string_view first_line = line_at(bytes, 0, &second);
+  const std::string_view second_line = line_at(bytes, second, &third);
+  if (first_line.rfind("// Generated by saagen ", 0) == 0) {
+    return second_line.rfind("// saagen-marker:", 0) == 0 && find_marker(second_line).has_value();
+  }
+  const auto is_tag_line = [](std::string_view line) {
+    if (line.substr(0, output_tag.size()) == output_tag) return line.size() > output_tag.size();
+    const std::string opening = "<!-- " + std::string(output_tag) + " ";
+    return line.rfind(opening, 0) == 0 && line.size() >= opening.size() + 4 && line.substr(line.size() - 4) == " -->";
+  };
+  if (is_tag_line(first_line)) return true;
+  return first_line == "<!DOCTYPE html>" && is_tag_line(second_line);
+}
+
 bool sidecar_vouches_for(const fs::path& path, std::string_view bytes) {
   const Existing sidecar = inspect(sidecar_path(path));
   if (!sidecar.exists || sidecar.link || sidecar.too_large) return false;
-  return sidecar.bytes.find(output_tag) != std::string::npos && sidecar.bytes.find(sidecar_fingerprint(bytes)) != std::string::npos;
+  // Its own form: the tag line naming this file, then the fingerprint line.
+  const std::string expected = fmt::format("{} sidecar of {}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes));
+  return sidecar.bytes.rfind(expected, 0) == 0;
 }
 
 fs::path directory_of(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
@@ -136,12 +238,42 @@ void check_directory(const fs::path& directory) {
   }
 }
 
+// The identity of an existing file (device and inode), without following a link at `path`.
+std::optional<std::pair<dev_t, ino_t>> identity(const fs::path& path, bool follow) {
+  struct stat status {};
+  if ((follow ? ::stat(path.c_str(), &status) : ::lstat(path.c_str(), &status)) != 0) return std::nullopt;
+  return std::make_pair(status.st_dev, status.st_ino);
+}
+
+// Names are compared with their directory resolved (a linked directory names the same place) and
+// existing files by identity (a hard link is the same file).
 void check_named_once(const std::vector<fs::path>& paths) {
   std::set<fs::path> seen;
+  std::set<std::pair<dev_t, ino_t>> seen_files;
   for (const fs::path& path : paths) {
     if (path.empty() || !path.has_filename()) throw Error(fmt::format("'{}': not a file name; pass an output path", path.string()));
-    if (!seen.insert(fs::absolute(path).lexically_normal()).second) {
-      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name?); name each output once", path.string()));
+    const fs::path absolute = fs::absolute(path).lexically_normal();
+    std::error_code error;
+    fs::path directory = fs::weakly_canonical(absolute.parent_path(), error);
+    if (error) directory = absolute.parent_path();
+    const auto file = identity(path, false);
+    if (!seen.insert(directory / absolute.filename()).second || (file && !seen_files.insert(*file).second)) {
+      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name, or two names of one file); name each output once",
+                              path.string()));
+    }
+  }
+}
+
+// No output is one of the command's inputs, whatever its name (not even with --force).
+void check_not_inputs(const std::vector<fs::path>& paths, const std::vector<fs::path>& inputs) {
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const auto read = identity(input, true);
+    if (!read) continue;
+    for (const fs::path& path : paths) {
+      if (identity(path, false) == read) {
+        throw Error(fmt::format("{}: is an input of this command ({}); choose another output path", path.string(), input.string()));
+      }
     }
   }
 }
@@ -237,24 +369,29 @@ class Temporaries {
 }  // namespace
 
 bool written_by_saagen(const fs::path& path, std::string_view bytes) {
-  if (find_marker(bytes) || bytes.find(output_tag) != std::string_view::npos) return true;
-  if (ktx2_written_by_saagen(bytes)) return true;
-  return sidecar_vouches_for(path, bytes);
+  // The format decides where the tag must be; a tag anywhere else (a README quoting it) is not.
+  if (bytes.substr(0, 12) == ktx2_identifier()) return ktx2_written_by_saagen(bytes) || sidecar_vouches_for(path, bytes);
+  if (bytes.substr(0, 8) == png_signature()) return png_written_by_saagen(bytes) || sidecar_vouches_for(path, bytes);
+  if (is_spirv(bytes)) return spirv_written_by_saagen(bytes) || sidecar_vouches_for(path, bytes);
+  if (is_json_object(bytes)) return json_written_by_saagen(bytes) || sidecar_vouches_for(path, bytes);
+  return text_written_by_saagen(bytes) || sidecar_vouches_for(path, bytes);
 }
 
 OutputFile ownership_sidecar(const fs::path& path, std::string_view bytes, std::string_view description) {
   return {sidecar_path(path), fmt::format("{} sidecar of {}\n{}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes), description)};
 }
 
-void check_output_paths(const std::vector<fs::path>& paths, bool force) {
+void check_output_paths(const std::vector<fs::path>& paths, bool force, const std::vector<fs::path>& inputs) {
   check_named_once(paths);
+  check_not_inputs(paths, inputs);
   for (const fs::path& path : paths) needs_writing(path, std::nullopt, force);
 }
 
-WriteReport write_outputs(const std::vector<OutputFile>& files, bool force) {
+WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, const std::vector<fs::path>& inputs) {
   std::vector<fs::path> paths;
   for (const OutputFile& file : files) paths.push_back(file.path);
   check_named_once(paths);
+  check_not_inputs(paths, inputs);
 
   WriteReport report;
   std::vector<const OutputFile*> to_write;

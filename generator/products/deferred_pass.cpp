@@ -263,7 +263,8 @@ std::vector<DeferredPassKind> deferred_pass_kinds(const Catalogue& catalogue) {
     if (variant.path != RenderPath::deferred) continue;
     for (const std::string& name : variant.functions) {
       const Function& function = *catalogue.find_function(name);
-      if (function.role != FunctionRole::fragment) continue;
+      // A pass writes one roughness: a wrapper returning a tensor (deferred-aniso) is not one.
+      if (function.role != FunctionRole::fragment || function.return_type != "real") continue;
       std::string id = name.substr(0, name.rfind("_fragment"));
       std::replace(id.begin(), id.end(), '_', '-');
       const bool tangents = std::any_of(function.parameters.begin(), function.parameters.end(),

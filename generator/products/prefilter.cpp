@@ -35,6 +35,14 @@ void check_size(int width, int height, const std::string& what) {
     }
 }
 
+// The declared size, before decoding: a small file may declare a huge image.
+void check_dimensions(long long width, long long height, const std::string& what) {
+    if (width > max_normal_map_side || height > max_normal_map_side || width * height > max_normal_map_texels) {
+        throw Error(fmt::format("{}: {} x {} texels is larger than saagen reads (at most {} a side and {} x {} in all); downscale the normal map",
+                                what, width, height, max_normal_map_side, 4096, 4096));
+    }
+}
+
 bool starts_with(std::span<const std::uint8_t> bytes, std::initializer_list<std::uint8_t> prefix) {
     return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
 }
@@ -43,6 +51,8 @@ NormalImage read_png(std::span<const std::uint8_t> bytes, const std::string& wha
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = static_cast<int>(bytes.size());
     int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(data, size, &width, &height, &channels)) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
+    check_dimensions(width, height, what);
     const bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
     std::vector<double> values;
     if (sixteen) {
@@ -77,6 +87,12 @@ std::vector<double> ktx2_level0_values(const glints::Ktx2Image& image) {
 }
 
 NormalImage read_ktx2_normals(std::span<const std::uint8_t> bytes, const std::string& what) {
+    if (bytes.size() >= 28) {  // pixelWidth and pixelHeight, little-endian, checked before the levels are read
+        const auto u32 = [&](std::size_t at) {
+            return std::uint32_t(bytes[at]) | std::uint32_t(bytes[at + 1]) << 8 | std::uint32_t(bytes[at + 2]) << 16 | std::uint32_t(bytes[at + 3]) << 24;
+        };
+        check_dimensions(u32(20), u32(24), what);
+    }
     glints::Ktx2Image image;
     try {
         image = glints::read_ktx2(bytes);

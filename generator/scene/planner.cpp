@@ -367,6 +367,8 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     document = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::parse_error& error) {
     fail(fmt::format("not valid JSON (byte {})", error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    fail("holds a number beyond a double's range");
   }
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
       !document["families"].is_array()) {
@@ -423,6 +425,8 @@ TradeTable parse_trade_table(std::string_view json_text, std::string_view source
     document = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
   }
   const auto fail = [&](std::size_t index, std::string_view what) {
     throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
@@ -708,6 +712,9 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
 
 void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePlan& plan) {
   std::map<std::string, std::size_t> baselines;  // target|precision|ndf|anisotropic -> instructions
+  // One compile per distinct configuration: materials that differ only by name (a manifest of
+  // thousands repeats a few dozen configurations) share the cost of the first one.
+  std::map<std::string, long> costs;
   for (std::size_t index = 0; index < plan.materials.size(); ++index) {
     MaterialPlan& material_plan = plan.materials[index];
     const Material& material = manifest.materials.at(index);
@@ -722,13 +729,22 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     for (const std::string& target : manifest.targets) {
       // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
       if (builtin_target(target).module) continue;
-      const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
       const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
+      const std::string shade = shade_statements(catalogue, material, &material_plan);
+      // Everything the cost depends on: the baseline's key, the bundle's closure, the kernel's body.
+      const std::string configuration =
+          fmt::format("{}\n{}\n{}\n{}", key, fmt::join(request.functions, ","), fmt::join(request.variants, ","), shade);
+      if (const auto known = costs.find(configuration); known != costs.end()) {
+        material_plan.cost[target] = known->second;
+        continue;
+      }
+      const EmittedFile file = emit_bundle(catalogue, emit_options(manifest, plan, target, material.precision), request);
       // The bundle's functions are in the manifest's roughness domain (its wrappers included).
       const Catalogue& emitted = domain_catalogue(catalogue, manifest.domain);
       if (!baselines.count(key)) baselines[key] = kernel_instructions(emitted, file, shade_statements(catalogue, material, nullptr));
-      const std::size_t with_filter = kernel_instructions(emitted, file, shade_statements(catalogue, material, &material_plan));
+      const std::size_t with_filter = kernel_instructions(emitted, file, shade);
       material_plan.cost[target] = static_cast<long>(with_filter) - static_cast<long>(baselines[key]);
+      costs.emplace(configuration, material_plan.cost[target]);
     }
   }
 }

@@ -327,6 +327,21 @@ double ggx_kernel_scale(double alpha2, double kernel) {
 double ggx_filtered_alpha2(double alpha2, double kernel) { return Brdf{}.ggx_filtered_alpha2(alpha2, kernel); }
 
 // ---------------------------------------------------------------------------------------------
+// deferred-aniso's lighting pass (template deferred_aniso_roughness / deferred_aniso_brdf).
+Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
+                              double alpha2) {
+    const double cosine = dot(normal_ws, half_vector(p, light_ws, view_ws));
+    return Sym2{alpha2, 0.0, alpha2} + (cosine * cosine) * tensor;
+}
+
+double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
+                           double alpha2) {
+    const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+    const Sym2 a = deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2);
+    return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws),
+                                            to_tangent_space(view_ws, t, b, normal_ws), a, {alpha2, alpha2});
+}
+
 // Fragment wrappers on a quad
 
 namespace {

@@ -159,6 +159,47 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
     return (a + kernel_scaled) / (1.0 + kernel_scaled);
 }
 
+// Duff et al. 2017 (JCGT 6(1)) Listing 3, with s = +1 at n.z = 0 as the template's n.z >= 0.
+Vec3 normal_frame_tangent(Vec3 n) {
+    const double s = n.z >= 0.0 ? 1.0 : -1.0;
+    const double a = -1.0 / (s + n.z);
+    return {1.0 + s * n.x * n.x * a, s * n.x * n.y * a, -s * n.x};
+}
+
+Vec3 normal_frame_bitangent(Vec3 n) {
+    const double s = n.z >= 0.0 ? 1.0 : -1.0;
+    const double a = -1.0 / (s + n.z);
+    return {n.x * n.y * a, s + n.y * n.y * a, -n.y};
+}
+
+// min(lambda, bound) through the spectral decomposition of M / tr(M) (template
+// sym2_clamp_eigenvalues): min(l2, bound) I + (min(l1, bound) - min(l2, bound)) P1.
+Sym2 sym2_clamp_eigenvalues(const Params& p, Sym2 m, double bound) {
+    const double trace = m.xx + m.yy;
+    if (trace <= bound) return m;
+    const double tiny = p.guard_constants().tiny_positive;
+    if (trace < tiny) return {bound, 0.0, bound};
+    const Sym2 unit{m.xx / trace, m.xy / trace, m.yy / trace};
+    const double half_trace = 0.5 * (unit.xx + unit.yy);
+    const double half_difference = 0.5 * (unit.xx - unit.yy);
+    const double spread = std::sqrt(half_difference * half_difference + unit.xy * unit.xy);
+    const double larger = min(trace * (half_trace + spread), bound);
+    const double smaller = std::clamp(trace * (half_trace - spread), 0.0, larger);
+    const double inverse = 0.5 / max(spread, tiny);
+    const Sym2 projector{saturate(0.5 + half_difference * inverse), std::clamp(unit.xy * inverse, -0.5, 0.5),
+                         saturate(0.5 - half_difference * inverse)};
+    return Sym2{smaller, 0.0, smaller} + (larger - smaller) * projector;
+}
+
+// The normal matrix 2 sigma^2 Dn^T Dn (T&K 2019 Sec. 2.2) in the frame built from n.
+Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
+    const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
+    const Vec3 dy = p.guards ? clamp_derivative3(p, dn_dy) : dn_dy;
+    const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+    const Sym2 rows = sym2_from_derivative_rows({dot(dx, t), dot(dx, b)}, {dot(dy, t), dot(dy, b)});
+    return (2.0 * p.sigma2) * sym2_clamp_eigenvalues(p, rows, p.kappa / (2.0 * p.sigma2));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a quad
 
@@ -257,6 +298,11 @@ double deferred_projected_space_fragment_quad(const Params& p, double alpha2,
                                               Derivative mode) {
     return deferred_projected_space(p, alpha2, ddx(normal_ws, pixel, mode),
                                     ddy(normal_ws, pixel, mode));
+}
+
+Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel,
+                                  Derivative mode) {
+    return deferred_aniso(p, ddx(normal_ws, pixel, mode), ddy(normal_ws, pixel, mode), normal_ws[pixel]);
 }
 
 double alpha2_from_domain(RoughnessDomain domain, double value) {

@@ -5,6 +5,7 @@
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/io/output.hpp"
 #include "saagen/report/shading_scene.hpp"
 
 #include <fmt/format.h>
@@ -193,7 +194,9 @@ nlohmann::json isa_json(const IsaCostTable& table) {
                     {"inverse_throughput_ratio", row.inverse_throughput_ratio()},
                     {"latency_ratio", row.latency_ratio()}});
   }
-  return {{"cost_model", cost_model_name}, {"driver", table.driver}, {"families", table.families}, {"rows", rows}};
+  // "generator": the ownership tag, so that `--isa-table F` may rewrite its own file without --force.
+  return {{"cost_model", cost_model_name}, {"driver", table.driver}, {"families", table.families},
+          {"generator", std::string(output_tag) + " saagen bench --isa"}, {"rows", rows}};
 }
 
 }  // namespace saagen::report

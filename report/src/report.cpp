@@ -231,8 +231,8 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
   const auto sx = [&](double x) { return left + (x - x_min) / (x_max - x_min) * (width - left - right); };
   const auto sy = [&](double y) { return height - bottom - y / y_max * (height - top - bottom); };
   std::ostringstream svg;
+  svg << "<!-- " << output_tag << " report -->\n";  // first: where saagen looks for its tag (output.cpp)
   svg << fmt::format(R"s(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="12">)s", width, height) << "\n";
-  svg << "<!-- " << output_tag << " report -->\n";
   svg << fmt::format(R"s(<rect width="{}" height="{}" fill="white"/>)s", width, height) << "\n";
   svg << fmt::format(R"s(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="black"/><line x1="{0}" y1="{1}" x2="{0}" y2="{3}" stroke="black"/>)s",
                      left, height - bottom, width - right, top) << "\n";
@@ -753,6 +753,8 @@ CostTable load_cost_table(const fs::path& path) {
     document = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", path.string(), error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", path.string()));
   }
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
     throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", path.string()));

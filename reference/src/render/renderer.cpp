@@ -21,7 +21,7 @@ using ref::to_tangent_space;
 
 namespace {
 
-constexpr std::array<Variant, 11> kAllVariants{
+constexpr std::array<Variant, 12> kAllVariants{
     Variant::none,
     Variant::forward_aniso_slope,
     Variant::forward_aniso_projected,
@@ -33,6 +33,7 @@ constexpr std::array<Variant, 11> kAllVariants{
     Variant::deferred_sum,
     Variant::deferred_avg,
     Variant::deferred_projected_space,
+    Variant::deferred_aniso,
 };
 
 constexpr std::array<Variant, 6> kAllEngines{
@@ -77,6 +78,7 @@ std::string_view variant_id(Variant v) {
         case Variant::deferred_sum: return "deferred-sum";
         case Variant::deferred_avg: return "deferred-avg";
         case Variant::deferred_projected_space: return "deferred-projected-space";
+        case Variant::deferred_aniso: return "deferred-aniso";
         case Variant::engine_hdrp: return "engine-hdrp";
         case Variant::engine_filament: return "engine-filament";
         case Variant::engine_godot: return "engine-godot";
@@ -383,6 +385,24 @@ Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Par
     return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
 }
 
+// deferred-aniso as the emitted passes compute it: the geometry pass's tensor in the frame built
+// from the fed normal, the lighting pass's A = diag(alpha^2) + (n.h)^2 K there; then A carried
+// into the pixel's shading frame (t, b), A' = M A M^T with M = [t'.t b'.t; t'.b b'.b], so that
+// the texture term and every lobe apply as to the forward matrix. With the shading feed the two
+// frames share n and M is a rotation: the BRDF is deferred_aniso_brdf's (tail lobe).
+Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields& f, const ref::Quad<Vec3>& normal,
+                                   int pixel, ref::Derivative mode, double alpha2) {
+    const Vec3 n = normal[pixel];
+    const Sym2 tensor = ref::deferred_aniso_fragment_quad(params, normal, pixel, mode);
+    const Sym2 a = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n, tensor, alpha2);
+    const Vec3 t = ref::normal_frame_tangent(n), b = ref::normal_frame_bitangent(n);
+    const double m00 = dot(t, f.tangent), m01 = dot(b, f.tangent), m10 = dot(t, f.bitangent), m11 = dot(b, f.bitangent);
+    // Rows of M A: (m00 a.xx + m01 a.xy, m00 a.xy + m01 a.yy), (m10 a.xx + m11 a.xy, m10 a.xy + m11 a.yy).
+    const double r0x = m00 * a.xx + m01 * a.xy, r0y = m00 * a.xy + m01 * a.yy;
+    const double r1x = m10 * a.xx + m11 * a.xy, r1y = m10 * a.xy + m11 * a.yy;
+    return {r0x * m00 + r0y * m01, r0x * m10 + r0y * m11, r1x * m10 + r1y * m11};
+}
+
 }  // namespace
 
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
@@ -476,6 +496,9 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
             case Variant::deferred_projected_space:
                 isotropic(ref::deferred_projected_space_fragment_quad(params, a2, in.normal, q.pixel,
                                                                       mode));
+                break;
+            case Variant::deferred_aniso:
+                matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2));
                 break;
             default: throw std::invalid_argument("shade_pixel: unknown variant");
         }

@@ -47,6 +47,9 @@ bool read_pod(std::istream& in, T& value) {
 
 bool load_cache(const std::filesystem::path& path, const std::string& key, int width, int height,
                 std::size_t count, GroundTruth& gt) {
+    // Only a regular file is read: a FIFO (or device) planted at the name would block the open.
+    std::error_code kind_error;
+    if (!std::filesystem::is_regular_file(path, kind_error)) return false;
     std::ifstream in(path, std::ios::binary);
     if (!in) return false;
     char magic[8];

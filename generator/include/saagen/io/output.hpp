@@ -34,16 +34,19 @@ bool written_by_saagen(const std::filesystem::path& path, std::string_view bytes
 // named `<path>.saagen` holding the tag, a description and the bytes' size and hash.
 OutputFile ownership_sidecar(const std::filesystem::path& path, std::string_view bytes, std::string_view description);
 
-// Checks, before any long work, that every path could be written: not empty, named once, not a
-// directory, a symbolic link or a special file, saagen's own unless `force`, and inside a
-// directory that exists and is writable or can be created. Throws saagen::Error (one line).
-void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force);
+// Checks, before any long work, that every path could be written: not empty, named once (by
+// file identity: two names of one file, through a linked directory or a hard link, are one), not
+// one of the command's `inputs` (compared by device and inode, not by name; not even with
+// `force`), not a directory, a symbolic link or a special file, saagen's own unless `force`, and
+// inside a directory that exists and is writable or can be created. Throws saagen::Error (one line).
+void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force,
+                        const std::vector<std::filesystem::path>& inputs = {});
 
 // Writes every file through a temporary created exclusively (mkstemp) in its own directory and a
-// rename, after checking every path as check_output_paths does. Nothing is renamed until every
+// rename, after checking every path as check_output_paths does (`inputs` included). Nothing is renamed until every
 // temporary is complete; on any failure (full disk included) every temporary is removed and
 // saagen::Error is thrown. A symbolic link at a path is refused; with `force` the link itself is
 // replaced (what it points to is never written).
-WriteReport write_outputs(const std::vector<OutputFile>& files, bool force);
+WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, const std::vector<std::filesystem::path>& inputs = {});
 
 }  // namespace saagen

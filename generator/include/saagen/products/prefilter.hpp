@@ -52,6 +52,11 @@ struct NormalImage {
 // tangent-space normal (z <= 0 or length outside [0.8, 1.2]).
 NormalImage normals_from_channels(int width, int height, int channels, std::span<const double> values, bool encoded,
                                   const std::string& what);
+// The largest normal map read: at most this many texels a side and in all (4096 x 4096), checked
+// from the PNG or KTX2 header before anything is decoded or allocated.
+inline constexpr int max_normal_map_side = 8192;
+inline constexpr long long max_normal_map_texels = 4096LL * 4096LL;
+
 // A PNG (8 or 16 bits, RGB or RGBA) or KTX2 (R8G8B8A8_UNORM encoded as above; R16G16B16A16_SFLOAT
 // or R32G32B32A32_SFLOAT holding signed components) file's bytes; level 0 is used.
 NormalImage read_normal_map(std::span<const std::uint8_t> bytes, const std::string& what);

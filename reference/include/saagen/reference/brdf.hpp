@@ -184,6 +184,18 @@ struct Brdf {
 };
 
 // ---------------------------------------------------------------------------------------------
+// The lighting pass of deferred-aniso (templates/20-deferred.saa; docs/DEFERRED_KERNEL.md):
+// world-space light, view and normal, the G-buffer tensor K of deferred_aniso.
+
+// A = diag(alpha^2) + (n.h)^2 K, h = normalize(l + v) (guarded as half_vector), in the frame
+// (normal_frame_tangent(n), normal_frame_bitangent(n), n).
+Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
+                              double alpha2);
+// The tail-preserving filtered GGX of that A, the light and view expressed in the same frame.
+double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
+                           double alpha2);
+
+// ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad (quad.hpp): the template differentiates the projected half
 // vector normalize(i + o) with plain ddx/ddy (forward_aniso_projected_fragment), then evaluates
 // the matrix BRDF of this pixel with tau = ndf_clamp_tau(alpha2), both under p's guards.

@@ -152,6 +152,26 @@ double deferred_avg(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
 // k = min(2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), kappa).
 double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3 dn_dy);
 
+// Anisotropic deferred filtering (deferred-aniso; docs/DEFERRED_KERNEL.md).
+
+// The orthonormal frame (t, b, n) built from n alone (Duff et al. 2017, JCGT 6(1), Listing 3):
+// s = sign(n.z) (+1 at n.z = 0), a = -1 / (s + n.z),
+// t = (1 + s n.x^2 a, s n.x n.y a, -s n.x), b = (n.x n.y a, s + n.y^2 a, -n.y).
+Vec3 normal_frame_tangent(Vec3 n);
+Vec3 normal_frame_bitangent(Vec3 n);
+
+// The matrix function min(lambda, bound) of a symmetric positive semidefinite 2x2 matrix:
+// unchanged when tr(M) <= bound, bound I when both eigenvalues reach it, else
+// min(l2, bound) I + (min(l1, bound) - min(l2, bound)) P1, P1 = (M - l2 I) / (l1 - l2); eigenvalues
+// taken of M / tr(M) as the template does.
+Sym2 sym2_clamp_eigenvalues(const Params& p, Sym2 m, double bound);
+
+// The G-buffer tensor K = 2 sigma^2 Dn^T Dn, Dn the rows (dn_dx, dn_dy) in the frame of
+// normal_frame_tangent / normal_frame_bitangent(normal_ws), each eigenvalue clamped to kappa
+// (the clamp on Dn^T Dn with bound kappa / (2 sigma^2), then the scale). Guarded: derivatives
+// clamped (clamp_derivative3).
+Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
+
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad. `pixel` is the quad index 0..3 (quad.hpp); `mode` says how
 // the wrapper's plain ddx/ddy are evaluated (the template's explicit ddx_fine/ddy_fine are
@@ -204,5 +224,8 @@ double deferred_avg_fragment_quad(const Params& p, double alpha2, const Quad<Vec
 double deferred_projected_space_fragment_quad(const Params& p, double alpha2,
                                               const Quad<Vec3>& normal_ws, int pixel,
                                               Derivative mode = Derivative::coarse);
+// deferred_aniso on the plain ddx/ddy (mode) of the normal, with this pixel's normal.
+Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel,
+                                  Derivative mode = Derivative::coarse);
 
 }  // namespace saagen::ref

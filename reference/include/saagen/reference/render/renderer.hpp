@@ -90,6 +90,9 @@ enum class Variant {
     deferred_sum,
     deferred_avg,
     deferred_projected_space,
+    // The normal-variation tensor in the G-buffer, (n.h)^2 per light into the matrix BRDF
+    // (templates/20-deferred.saa; docs/DEFERRED_KERNEL.md).
+    deferred_aniso,
     // The forms engines ship (shared/REFERENCES.md; engines.hpp): reference-renderer rows of the
     // trade only, never emitted. Each reads the normal its engine feeds it (engine_feed()).
     engine_hdrp,

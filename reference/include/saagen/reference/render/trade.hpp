@@ -108,7 +108,8 @@ struct TradeConfig {
     std::vector<Lobe> lobes{Lobe::tail, Lobe::mapped};
     std::vector<Variant> lobe_variants{
         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_max,
-        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
+        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space,
+        Variant::deferred_aniso};
     ref::Params params{};
     ref::Derivative derivative = ref::Derivative::coarse;
     std::uint64_t seed = 0x5aa6e11ULL;

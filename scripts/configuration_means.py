@@ -1,0 +1,42 @@
+#!/usr/bin/env python3
+"""Per scene of a `saagen bench --json` table: mean LDR-FLIP / TDE (over the scene's alphas, no
+Fresnel) of the named configurations, of no SAA and of the best engine form by LDR-FLIP, as a
+Markdown table (the per-row figures of docs/DEFERRED_KERNEL.md).
+
+    python3 scripts/configuration_means.py trade.json CONFIGURATION...
+
+e.g. `python3 scripts/configuration_means.py trade.json deferred-aniso/tail deferred-avg/tail
+forward-aniso-projected/tail`."""
+import collections
+import json
+import sys
+
+
+def scene_means(cases):
+    sums = collections.defaultdict(lambda: collections.defaultdict(lambda: [0.0, 0.0, 0]))
+    for case in cases:
+        if case['fresnel']:
+            continue
+        entry = sums[case['scene']][case['configuration']]
+        entry[0] += case['flip_ldr']
+        entry[1] += case['tde']
+        entry[2] += 1
+    return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    table = json.load(open(sys.argv[1]))
+    names = sys.argv[2:] + ['none']
+    print('| scene | ' + ' | '.join(names) + ' | best engine |')
+    print('|---|' + '---:|' * (len(names) + 1))
+    for scene, means in scene_means(table['cases']).items():
+        engines = {c: v for c, v in means.items() if c.startswith('engine-')}
+        best = min(engines, key=lambda c: engines[c][0])
+        cells = [f'{means[n][0]:.4f} / {means[n][1]:.5f}' if n in means else '-' for n in names]
+        print(f'| {scene} | ' + ' | '.join(cells) + f' | {best[len("engine-"):]} {engines[best][0]:.4f} / {engines[best][1]:.5f} |')
+
+
+if __name__ == '__main__':
+    main()
