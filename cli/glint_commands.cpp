@@ -184,7 +184,7 @@ int GlintCommands::run_dictionary() const {
 
   const glints::Dictionary dictionary = glints::generate_dictionary(params);
   const glints::DictionaryTexture texture = glints::dictionary_texture(dictionary, !no_mips_);
-  std::vector<OutputFile> outputs = {{output_file_, as_string(glints::write_ktx2(glints::dictionary_ktx2(texture, params)))}};
+  std::vector<OutputFile> outputs = {{output_file_, as_string(write_ktx2(glints::dictionary_ktx2(texture, params)))}};
   if (!raw_file_.empty()) {
     std::string raw = raw_level_bytes(dictionary);
     outputs.push_back(ownership_sidecar(raw_file_, raw, fmt::format("level 0 of {} before rounding: little-endian float32, layer-major, 4 per texel",
@@ -208,7 +208,7 @@ int GlintCommands::run_lean() const {
     throw Error(fmt::format("{}: {}", normal_map_, error.what()));
   }
   const auto levels = glints::lean_moments(map);
-  print_report(write_outputs({{output_file_, as_string(glints::write_ktx2(glints::lean_ktx2(levels)))}}, force_, {normal_map_}));
+  print_report(write_outputs({{output_file_, as_string(write_ktx2(glints::lean_ktx2(levels)))}}, force_, {normal_map_}));
   std::cout << fmt::format("LEAN moments {} x {}, {} levels\n", map.width, map.height, levels.size());
   return 0;
 }

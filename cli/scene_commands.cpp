@@ -231,7 +231,7 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   if (plan_rules_) std::cout << "\n";
   const Manifest manifest = load_manifest(plan_manifest_, catalogue);
   const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
-  std::optional<TradeTable> table;
+  std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
   ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
   if (!plan_no_cost_) measure_costs(scene_catalogue, manifest, plan);
@@ -242,7 +242,7 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
 int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& output_directory, bool force) const {
   const Manifest manifest = load_manifest(emit_manifest_, catalogue);
   const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
-  std::optional<TradeTable> table;
+  std::optional<MeasuredTradeTable> table;
   if (!emit_trade_table_.empty()) table = load_trade_table(emit_trade_table_);
   const ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
   std::vector<OutputFile> outputs;

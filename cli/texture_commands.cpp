@@ -46,7 +46,7 @@ int TextureCommands::run() const {
   const std::vector<std::uint8_t> input = read_input(input_);
   check_output_paths({output_}, force_, {input_});  // before decoding; never over the input, not even with --force
   const auto levels = prefilter::build_levels(prefilter::read_normal_map(input, input_));
-  const auto bytes = glints::write_ktx2(prefilter::prefilter_ktx2(levels, options));
+  const auto bytes = write_ktx2(prefilter::prefilter_ktx2(levels, options));
   const WriteReport report = write_outputs({{output_, std::string(bytes.begin(), bytes.end())}}, force_, {input_});
   const char* verb = report.written.empty() ? "unchanged" : "wrote    ";
   std::cout << fmt::format("{} {} ({} x {}, {} levels, {})\n", verb, output_, levels.front().width, levels.front().height, levels.size(),

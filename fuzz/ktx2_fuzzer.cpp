@@ -12,15 +12,15 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using saagen::fuzz::finding;
   constexpr const char* target = "ktx2_fuzzer";
-  saagen::glints::Ktx2Image image;
+  saagen::Ktx2Image image;
   try {
-    image = saagen::glints::read_ktx2(std::span<const std::uint8_t>(data, size));
+    image = saagen::read_ktx2(std::span<const std::uint8_t>(data, size));
   } catch (const saagen::Error& error) {
     saagen::fuzz::check_message(target, error.what(), "KTX2: ");
     return 0;
   }
   try {
-    const auto again = saagen::glints::read_ktx2(saagen::glints::write_ktx2(image));
+    const auto again = saagen::read_ktx2(saagen::write_ktx2(image));
     if (again.levels != image.levels || again.width != image.width || again.height != image.height || again.layers != image.layers ||
         again.vk_format != image.vk_format) {
       finding(target, "the image does not read back after write_ktx2", "levels or header differ");

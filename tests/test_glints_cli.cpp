@@ -107,7 +107,7 @@ TEST_F(GlintCli, ManifestWithGlintsPlansTheGlintVariantAndWritesTheDictionary) {
         EXPECT_NE(bundle.find(function), std::string::npos) << function;
     }
     const std::string bytes = read_text(out / "saa_sparkle_glint_dictionary.ktx2");
-    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    const auto image = saagen::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
     EXPECT_EQ(image.width, 64u);
     EXPECT_EQ(image.layers, 16u * 192u / 4u);
     const auto validate = saagen({"validate", out.string()});
@@ -144,7 +144,7 @@ TEST_F(GlintCli, WritesTheDictionaryAndRawData) {
                              "--raw", raw.string()});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const std::string bytes = read_text(file);
-    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    const auto image = saagen::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
     EXPECT_EQ(image.width, 32u);
     EXPECT_EQ(image.layers, 12u);  // 6 LODs x 8 / 4
     EXPECT_EQ(image.levels.size(), 6u);
@@ -166,7 +166,7 @@ TEST_F(GlintCli, WritesLeanMomentsOfAPpmNormalMap) {
     const auto run = saagen({"glints", "lean", (scratch_ / "normals.ppm").string(), "-o", file.string()});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const std::string bytes = read_text(file);
-    const auto image = saagen::glints::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    const auto image = saagen::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
     EXPECT_EQ(image.vk_format, 109u);
     EXPECT_EQ(image.width, 4u);
     EXPECT_EQ(image.layers, 2u);

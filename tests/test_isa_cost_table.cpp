@@ -103,7 +103,7 @@ TEST(IsaCost, TheTradeJsonCarriesTheIsaCostThePlannerRanksSpeedBy) {
   summary[0].variant = "deferred-sum";
   summary[1].variant = "deferred-avg";
   const nlohmann::json json = saagen::report::trade_json(saagen::render::TradeTable{}, summary, &costs);
-  const saagen::TradeTable table = saagen::parse_trade_table(json.dump(), "bench.json");
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(json.dump(), "bench.json");
   ASSERT_EQ(table.isa_cost("deferred-sum", "navi21"), 1.0);
   EXPECT_FALSE(table.isa_cost("deferred-sum", "vega10").has_value());
   const auto plan_for = [&](const std::string& family) {

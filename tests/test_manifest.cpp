@@ -318,7 +318,7 @@ TEST(Planner, ManifestsBuiltInCodeAreCheckedToo) {
 }
 
 TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
-  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
       {"target": "glsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.05, "ratio_median": 0.9, "error": 0.02},
       {"target": "hlsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.07, "error": 0.02},
       {"target": "glsl", "variant": "deferred-sum", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.02, "error": 0.05},
@@ -343,7 +343,7 @@ TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
 TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
   const saagen::IsaTable& isa = saagen::committed_isa_costs();
   ASSERT_FALSE(isa.rows.empty());
-  const saagen::TradeTable table =
+  const saagen::MeasuredTradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "ratio_median": 0.5}]})", "time.json");
   for (const std::string family : {"vega10", "navi21"}) {
     const saagen::Manifest manifest =
@@ -369,7 +369,7 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
 // `saagen bench --json` measures a variant's tangent-free form as a configuration of its own;
 // for a material without tangents, speed ranks deferred-max by that form's ISA figure.
 TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
-  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
       {"variant": "deferred-max-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.01},
       {"variant": "deferred-max", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5},
       {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.1}]})",
@@ -377,14 +377,14 @@ TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
   const saagen::ScenePlan plan = saagen::plan_scene(
       Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"), &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-max") << plan.materials.at(0).reason;
-  const saagen::TradeTable unknown =
+  const saagen::MeasuredTradeTable unknown =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
   EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &unknown),
                saagen::Error);
 }
 
 TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
-  const saagen::TradeTable table =
+  const saagen::MeasuredTradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
   EXPECT_FALSE(table.has_errors());
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
@@ -397,7 +397,7 @@ TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
 // configuration on normal-mapped content; an accuracy material may change variant for it, a
 // material whose variant the manifest names keeps it and gets that variant's best handling.
 TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
-  const saagen::TradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
       {"content": "curved", "configuration": "deferred-sum", "error": 0.01},
       {"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.14},
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.12},

@@ -49,7 +49,7 @@ std::vector<Vec3> bumpy_normals(int size) {
   });
 }
 
-double value_at(const saagen::glints::Ktx2Image& image, std::size_t level, std::size_t index) {
+double value_at(const saagen::Ktx2Image& image, std::size_t level, std::size_t index) {
   const auto& bytes = image.levels[level];
   if (image.type_size == 2) return saagen::glints::from_half(static_cast<std::uint16_t>(bytes[2 * index] | bytes[2 * index + 1] << 8));
   float f = 0.0f;
@@ -57,12 +57,12 @@ double value_at(const saagen::glints::Ktx2Image& image, std::size_t level, std::
   return f;
 }
 
-saagen::glints::Ktx2Image round_trip(const std::vector<pf::Level>& levels, const pf::Options& options) {
-  const auto bytes = saagen::glints::write_ktx2(pf::prefilter_ktx2(levels, options));
-  return saagen::glints::read_ktx2(bytes);
+saagen::Ktx2Image round_trip(const std::vector<pf::Level>& levels, const pf::Options& options) {
+  const auto bytes = saagen::write_ktx2(pf::prefilter_ktx2(levels, options));
+  return saagen::read_ktx2(bytes);
 }
 
-std::string key_value(const saagen::glints::Ktx2Image& image, const std::string& key) {
+std::string key_value(const saagen::Ktx2Image& image, const std::string& key) {
   for (const auto& [k, v] : image.key_values)
     if (k == key) return v;
   return {};
@@ -273,7 +273,7 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   const auto run = saagen({"texture", "prefilter", input.string(), "-o", output.string(), "--method", "toksvig", "--domain", "perceptual",
                            "--roughness", "0.4"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto image = saagen::glints::read_ktx2(bytes_of(output));
+  const auto image = saagen::read_ktx2(bytes_of(output));
   EXPECT_EQ(image.vk_format, 76u);
   EXPECT_EQ(image.width, 8u);
   ASSERT_EQ(image.levels.size(), 4u);
@@ -284,7 +284,7 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   EXPECT_DOUBLE_EQ(json["base_roughness"].get<double>(), 0.4);
   // The library on the decoded PNG gives the same file, byte for byte.
   const auto decoded = pf::read_normal_map(bytes_of(input), "normals.png");
-  const auto expected = saagen::glints::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, pf::Domain::perceptual, 0.4}));
+  const auto expected = saagen::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, pf::Domain::perceptual, 0.4}));
   EXPECT_EQ(bytes_of(output), expected);
   EXPECT_NEAR(value_at(image, 0, 0), 0.4, kHalfUlp);  // level 0: no spread, the base roughness
   for (std::size_t level = 1; level < image.levels.size(); ++level) EXPECT_GE(value_at(image, level, 0), 0.4 - kHalfUlp);
@@ -303,7 +303,7 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
 TEST_F(TexturePrefilterCli, Ktx2InputToLeanMoments) {
   const int size = 4;
   const auto normals = bumpy_normals(size);
-  saagen::glints::Ktx2Image input;
+  saagen::Ktx2Image input;
   input.vk_format = 109;
   input.type_size = 4;
   input.width = input.height = size;
@@ -316,11 +316,11 @@ TEST_F(TexturePrefilterCli, Ktx2InputToLeanMoments) {
       input.levels[0].insert(input.levels[0].end(), b, b + 4);
     }
   const fs::path in_path = scratch_ / "normals.ktx2", out_path = scratch_ / "lean.ktx2";
-  const auto bytes = saagen::glints::write_ktx2(input);
+  const auto bytes = saagen::write_ktx2(input);
   std::ofstream(in_path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   const auto run = saagen({"texture", "prefilter", in_path.string(), "-o", out_path.string(), "--method", "lean"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto image = saagen::glints::read_ktx2(bytes_of(out_path));
+  const auto image = saagen::read_ktx2(bytes_of(out_path));
   EXPECT_EQ(image.vk_format, 109u);
   EXPECT_EQ(image.levels.size(), 3u);
   const Vec2 s = saagen::render::normal_slope(normals[0]);

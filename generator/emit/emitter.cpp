@@ -19,22 +19,12 @@
 namespace saagen {
 namespace {
 
-constexpr std::string_view marker_tag = "// saagen-marker:";
-
 std::string upper(std::string_view text) {
   std::string result(text);
   for (char& c : result) {
     c = c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   }
   return result;
-}
-
-// Shortest text that reads back as the same double and is a floating-point literal in GLSL
-// and HLSL (it always has a '.' or an exponent).
-std::string float_literal(double value) {
-  std::string text = fmt::format("{}", value);
-  if (text.find_first_of(".eE") == std::string::npos) text += ".0";
-  return text;
 }
 
 // Types in signatures and constant declarations (with a precision qualifier in GLSL ES).
@@ -163,7 +153,7 @@ class FileWriter {
     if (constants.empty()) return;
     out << "// Constants:\n";
     for (const Constant* constant : constants) {
-      out << fmt::format("//   {} = {}: {}{}\n", prefixed_name(options_.prefix, constant->name), float_literal(value_of(*constant)),
+      out << fmt::format("//   {} = {}: {}{}\n", prefixed_name(options_.prefix, constant->name), decimal_literal(value_of(*constant)),
                          constant->meaning, constant->option.empty() ? "" : fmt::format(" (option --{})", constant->option));
     }
   }
@@ -238,7 +228,7 @@ class FileWriter {
     const std::string guard = macro_prefix(options_.prefix) + "CONST_" + upper(constant.name);
     std::string declaration = substitute(target_.constant_declaration, "{type}", type_name(target_, constant.type));
     declaration = substitute(std::move(declaration), "{name}", prefixed_name(options_.prefix, constant.name));
-    declaration = substitute(std::move(declaration), "{value}", suffix_float_literals(float_literal(value_of(constant)), target_.literal_suffix));
+    declaration = substitute(std::move(declaration), "{value}", suffix_float_literals(decimal_literal(value_of(constant)), target_.literal_suffix));
     if (target_.module) out << fmt::format("\n// {}\n{}\n", constant.meaning, declaration);
     else out << fmt::format("\n#ifndef {0}\n#define {0}\n// {1}\n{2}\n#endif\n", guard, constant.meaning, declaration);
   }
@@ -288,13 +278,6 @@ class FileWriter {
   std::map<std::string, std::string, std::less<>> resource_parameters_;  // module languages: what each function takes
   std::map<std::string, std::string, std::less<>> call_arguments_;       // and what its callers pass
 };
-
-std::optional<double> parse_double(std::string_view text) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
-}
 
 // Another roughness domain converts a variant's roughness in and out; one with neither cannot be
 // emitted in it.
@@ -479,50 +462,6 @@ EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& opti
   }
   FileWriter writer(catalogue, target, options, option_values);
   return writer.write_bundle(request);
-}
-
-std::string marker_line(const EmissionMarker& marker) {
-  std::string line = fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target,
-                                 fmt::join(marker.variants, ","), marker.prefix);
-  for (const auto& [option, value] : marker.option_values) line += fmt::format(" {}={}", option, float_literal(value));
-  if (marker.precision != "fp32") line += " precision=" + marker.precision;
-  if (!marker.guards) line += " guards=off";
-  if (!marker.functions.empty()) line += fmt::format(" functions={}", fmt::join(marker.functions, ","));
-  if (marker.domain != "alpha2") line += " domain=" + marker.domain;
-  if (!marker.import_path.empty()) line += " import_path=" + marker.import_path;
-  return line;
-}
-
-std::optional<EmissionMarker> find_marker(std::string_view content) {
-  const auto start = content.find(marker_tag);
-  if (start == std::string_view::npos) return std::nullopt;
-  auto end = content.find('\n', start);
-  if (end == std::string_view::npos) end = content.size();
-  std::istringstream fields{std::string(content.substr(start + marker_tag.size(), end - start - marker_tag.size()))};
-  EmissionMarker marker;
-  for (std::string field; fields >> field;) {
-    const auto equals = field.find('=');
-    if (equals == std::string::npos) return std::nullopt;
-    const std::string key = field.substr(0, equals);
-    const std::string value = field.substr(equals + 1);
-    if (key == "target") marker.target = value;
-    else if (key == "prefix") marker.prefix = value;
-    else if (key == "precision") marker.precision = value;
-    else if (key == "guards") marker.guards = value != "off";
-    else if (key == "domain") marker.domain = value;
-    else if (key == "import_path") marker.import_path = value;
-    else if (key == "functions") {
-      std::istringstream names(value);
-      for (std::string name; std::getline(names, name, ',');) marker.functions.push_back(name);
-    }
-    else if (key == "variants") {
-      std::istringstream ids(value);
-      for (std::string id; std::getline(ids, id, ',');) marker.variants.push_back(id);
-    } else if (const auto number = parse_double(value)) marker.option_values[key] = *number;
-    else return std::nullopt;
-  }
-  if (marker.target.empty() || marker.prefix.empty() || marker.variants.empty()) return std::nullopt;
-  return marker;
 }
 
 }  // namespace saagen

@@ -1,8 +1,8 @@
 #include "saagen/io/output.hpp"
 
-#include "saagen/emit/emitter.hpp"
+#include "saagen/io/marker.hpp"
 #include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
+#include "saagen/io/ktx2.hpp"
 #include "saagen/io/input.hpp"
 
 #include <fmt/format.h>
@@ -104,7 +104,7 @@ bool ktx2_written_by_saagen(std::string_view bytes) {
   static const std::set<std::string, std::less<>> keys = {"saagen.glints", "saagen.lean", "saagen.prefilter", "saagen.marker"};
   try {
     const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-    const glints::Ktx2Image image = glints::read_ktx2(std::span<const std::uint8_t>(data, bytes.size()));
+    const Ktx2Image image = read_ktx2(std::span<const std::uint8_t>(data, bytes.size()));
     return std::any_of(image.key_values.begin(), image.key_values.end(), [](const auto& entry) { return keys.count(entry.first) != 0; });
   } catch (const Error&) {
     return false;

@@ -69,7 +69,7 @@ NormalImage read_png(std::span<const std::uint8_t> bytes, const std::string& wha
     return normals_from_channels(width, height, channels, values, true, what);
 }
 
-std::vector<double> ktx2_level0_values(const glints::Ktx2Image& image) {
+std::vector<double> ktx2_level0_values(const Ktx2Image& image) {
     const std::vector<std::uint8_t>& level = image.levels.front();
     std::vector<double> values;
     if (image.vk_format == kFormatRgba8Unorm) {
@@ -93,9 +93,9 @@ NormalImage read_ktx2_normals(std::span<const std::uint8_t> bytes, const std::st
         };
         check_dimensions(u32(20), u32(24), what);
     }
-    glints::Ktx2Image image;
+    Ktx2Image image;
     try {
-        image = glints::read_ktx2(bytes);
+        image = read_ktx2(bytes);
     } catch (const Error& error) {
         throw Error(fmt::format("{}: {}", what, error.what()));
     }
@@ -294,9 +294,9 @@ void Options::validate() const {
     if (float32 && method == Method::lean) throw Error("--float32 applies to --method toksvig; LEAN moments are always R32G32B32A32_SFLOAT");
 }
 
-glints::Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options) {
+Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options) {
     options.validate();
-    glints::Ktx2Image image;
+    Ktx2Image image;
     const bool toksvig = options.method == Method::toksvig;
     image.vk_format = toksvig ? (options.float32 ? kFormatR32Sfloat : kFormatR16Sfloat) : kFormatRgba32Sfloat;
     image.type_size = toksvig && !options.float32 ? 2 : 4;

@@ -1,5 +1,5 @@
 #include "saagen/scene/manifest.hpp"
-#include "saagen/scene/planner.hpp"
+#include "saagen/scene/cost_tables.hpp"
 
 #include "saagen/emit/engines.hpp"
 

@@ -18,10 +18,6 @@
 #include <cmath>
 
 namespace saagen {
-namespace embedded {
-const std::map<std::string, std::string_view>& files();
-}
-
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -302,22 +298,6 @@ std::size_t kernel_instructions(const Catalogue& catalogue, const EmittedFile& f
   return count_spirv_instructions(optimized);
 }
 
-// ---------------------------------------------------------------------------------------------
-// Trade table
-
-std::optional<double> mean_of(const std::vector<TradeRow>& rows, std::string_view variant, std::optional<double> TradeRow::*field) {
-  double sum = 0.0;
-  int count = 0;
-  for (const TradeRow& row : rows) {
-    if (row.variant == variant && (row.*field)) {
-      sum += *(row.*field);
-      ++count;
-    }
-  }
-  if (count == 0) return std::nullopt;
-  return sum / count;
-}
-
 std::string describe_choice(const std::vector<std::pair<double, const Variant*>>& ranked, std::string_view metric) {
   std::vector<std::string> parts;
   for (const auto& [value, variant] : ranked) parts.push_back(fmt::format("{} {}", variant->id, fixed(value)));
@@ -328,168 +308,6 @@ std::string describe_choice(const std::vector<std::pair<double, const Variant*>>
 
 // ---------------------------------------------------------------------------------------------
 
-std::optional<double> TradeTable::cost(std::string_view variant) const {
-  const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.cost_ratio.has_value(); });
-  return mean_of(rows, variant, any_ratio ? &TradeRow::cost_ratio : &TradeRow::delta_instructions);
-}
-
-std::optional<double> TradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &TradeRow::error); }
-
-std::optional<double> TradeTable::isa_cost(std::string_view variant, std::string_view family) const {
-  std::vector<TradeRow> of_family;
-  for (const TradeRow& row : rows) {
-    if (row.isa_family == family) of_family.push_back(row);
-  }
-  return mean_of(of_family, variant, &TradeRow::isa_ratio);
-}
-
-std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
-  double sum = 0.0;
-  int count = 0;
-  for (const IsaRow& row : rows) {
-    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
-    if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
-    sum += row.inverse_throughput_ratio;
-    ++count;
-  }
-  if (count == 0) return std::nullopt;
-  return sum / count;
-}
-
-IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name) {
-  IsaTable table;
-  table.source_name = std::string(source_name);
-  const auto fail = [&](std::string_view what) {
-    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
-  };
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& error) {
-    fail(fmt::format("not valid JSON (byte {})", error.byte));
-  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
-    fail("holds a number beyond a double's range");
-  }
-  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
-      !document["families"].is_array()) {
-    fail("needs \"families\" and \"rows\" arrays");
-  }
-  table.driver = document.value("driver", std::string());
-  for (const auto& family : document["families"]) {
-    if (!family.is_string()) fail("\"families\" must hold strings");
-    table.families.push_back(family.get<std::string>());
-  }
-  for (const auto& row : document["rows"]) {
-    const auto text = [&](const char* key) {
-      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
-      return row[key].get<std::string>();
-    };
-    const auto number = [&](const char* key) {
-      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
-      return row[key].get<double>();
-    };
-    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
-    entry.instructions = number("instructions");
-    entry.vgprs = number("vgprs");
-    entry.sgprs = number("sgprs");
-    entry.subgroups_per_simd = number("subgroups_per_simd");
-    entry.latency = number("latency");
-    entry.inverse_throughput = number("inverse_throughput");
-    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
-    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
-    table.rows.push_back(std::move(entry));
-  }
-  return table;
-}
-
-const IsaTable& committed_isa_costs() {
-  static const IsaTable table = [] {
-    constexpr const char* name = "generator/data/isa_cost.json";
-    const auto& files = embedded::files();
-    const auto found = files.find(name);
-    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
-    return parse_isa_table(found->second, name);
-  }();
-  return table;
-}
-
-bool TradeTable::has_errors() const {
-  return std::any_of(rows.begin(), rows.end(), [](const TradeRow& row) { return row.error.has_value(); });
-}
-
-TradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
-  TradeTable table;
-  table.source_name = std::string(source_name);
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
-  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
-    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
-  }
-  const auto fail = [&](std::size_t index, std::string_view what) {
-    throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
-                            "\"delta_spirv_instructions\": number, \"error\": number}}",
-                            source_name, index, what));
-  };
-  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
-    throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
-  }
-  const auto number = [&](const nlohmann::json& row, const char* key, std::size_t index) -> std::optional<double> {
-    if (!row.contains(key)) return std::nullopt;
-    if (!row[key].is_number()) fail(index, fmt::format("\"{}\" must be a number", key));
-    const double value = row[key].get<double>();
-    if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
-    return value;
-  };
-  const nlohmann::json& rows = document["rows"];
-  for (std::size_t index = 0; index < rows.size(); ++index) {
-    const nlohmann::json& row = rows[index];
-    if (!row.is_object()) fail(index, "must be an object");
-    if (!row.contains("variant") || !row["variant"].is_string()) fail(index, "needs a string \"variant\"");
-    TradeRow entry;
-    entry.variant = row["variant"].get<std::string>();
-    if (row.contains("target")) {
-      if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
-      entry.target = row["target"].get<std::string>();
-    }
-    entry.cost_ratio = number(row, "ratio_median", index);
-    entry.delta_instructions = number(row, "delta_spirv_instructions", index);
-    entry.error = number(row, "error", index);
-    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
-    if (entry.isa_ratio) {
-      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
-      entry.isa_family = row["isa_family"].get<std::string>();
-      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
-    }
-    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
-    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
-    table.rows.push_back(std::move(entry));
-  }
-  if (document.contains("by_content")) {
-    const nlohmann::json& content_rows = document["by_content"];
-    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"by_content\" must be an array", source_name));
-    for (std::size_t index = 0; index < content_rows.size(); ++index) {
-      const nlohmann::json& row = content_rows[index];
-      const auto text = [&](const char* key) {
-        if (!row.is_object() || !row.contains(key) || !row[key].is_string())
-          throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
-        return row[key].get<std::string>();
-      };
-      ContentRow entry{text("content"), text("configuration"), 0.0};
-      const auto error = number(row, "error", index);
-      if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
-      entry.error = *error;
-      table.content_rows.push_back(std::move(entry));
-    }
-  }
-  return table;
-}
-
-TradeTable load_trade_table(const std::filesystem::path& path) {
-  return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
-}
 
 namespace {
 
@@ -520,7 +338,7 @@ std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
 
 // With a trade table's content rows: the lowest-error configuration of the material's variant on
 // normal-mapped content, and, when the planner chooses the variant by accuracy, of any eligible one.
-void choose_normal_handling(const TradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
+void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
                             MaterialPlan& plan) {
   std::optional<ContentRow> best;
   std::vector<std::string> figures;
@@ -542,7 +360,7 @@ void choose_normal_handling(const TradeTable& table, const std::vector<const Var
                                    table.source_name, fmt::join(figures, ", "));
 }
 
-void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) {
+void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
     // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
@@ -563,7 +381,7 @@ void check_trade_table_ids(const Catalogue& catalogue, const TradeTable& table) 
 
 }  // namespace
 
-ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const TradeTable* table) {
+ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table) {
   if (table) check_trade_table_ids(catalogue, *table);
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
@@ -634,7 +452,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // Speed: the ISA cost on the manifest's GPU family, from the trade table when it has
         // figures for that family, else from the committed table. Accuracy: the table's error.
         const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
-        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const TradeRow& row) {
+        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const MeasuredTradeRow& row) {
                                      return row.isa_ratio && row.isa_family == family;
                                    });
         const std::string source = table_has_isa ? table->source_name

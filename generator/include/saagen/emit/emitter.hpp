@@ -2,6 +2,7 @@
 #pragma once
 
 #include "saagen/front/catalogue.hpp"
+#include "saagen/io/marker.hpp"
 #include "saagen/target/target.hpp"
 
 #include <map>
@@ -27,22 +28,6 @@ struct EmitOptions {
   // A module language (WGSL) only: the module path that Bevy's shader imports (naga_oil) give the
   // file, written as `#define_import_path PATH`; empty: none (a plain WGSL module).
   std::string import_path{};
-};
-
-// What one emitted file holds, as written in its marker line, so that a file on disk can be
-// validated (and recognised as saagen's) without the options that produced it.
-struct EmissionMarker {
-  std::string target;
-  std::vector<std::string> variants;
-  std::string prefix;
-  std::map<std::string, double> option_values;
-  std::string precision = "fp32";
-  bool guards = true;
-  // A bundle's public functions (`functions=` in the marker); empty: every public function of
-  // `variants` (a per-variant file).
-  std::vector<std::string> functions;
-  std::string domain = "alpha2";  // `domain=` in the marker, written when not alpha2
-  std::string import_path{};      // `import_path=` in the marker, written when set
 };
 
 struct EmittedFile {
@@ -92,10 +77,6 @@ struct BundleRequest {
 // Uses options.target, prefix, option_values, precision and guards (not options.variants).
 EmittedFile emit_bundle(const Catalogue& catalogue, const EmitOptions& options, const BundleRequest& request);
 
-// The marker line written into every emitted file, and its parser (nullopt when the text holds
-// no marker: the file was not written by saagen).
-std::string marker_line(const EmissionMarker& marker);
-std::optional<EmissionMarker> find_marker(std::string_view content);
 
 // Public functions of the given variants, in order, without duplicates.
 std::vector<std::string> public_functions(const Catalogue& catalogue, const std::vector<std::string>& variant_ids);

@@ -85,6 +85,6 @@ struct Options {
 
 // The KTX2 image with the full MIP chain and the "saagen.prefilter" JSON (and a saagen marker,
 // so that `saagen` may later replace the file without --force).
-glints::Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options);
+Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options);
 
 }  // namespace saagen::prefilter

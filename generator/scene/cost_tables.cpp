@@ -1,0 +1,199 @@
+#include "saagen/scene/cost_tables.hpp"
+
+#include "saagen/error.hpp"
+#include "saagen/io/input.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace saagen {
+namespace embedded {
+const std::map<std::string, std::string_view>& files();
+}
+
+namespace {
+
+std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::string_view variant, std::optional<double> MeasuredTradeRow::*field) {
+  double sum = 0.0;
+  int count = 0;
+  for (const MeasuredTradeRow& row : rows) {
+    if (row.variant == variant && (row.*field)) {
+      sum += *(row.*field);
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+}  // namespace
+
+std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
+  const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.cost_ratio.has_value(); });
+  return mean_of(rows, variant, any_ratio ? &MeasuredTradeRow::cost_ratio : &MeasuredTradeRow::delta_instructions);
+}
+
+std::optional<double> MeasuredTradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &MeasuredTradeRow::error); }
+
+std::optional<double> MeasuredTradeTable::isa_cost(std::string_view variant, std::string_view family) const {
+  std::vector<MeasuredTradeRow> of_family;
+  for (const MeasuredTradeRow& row : rows) {
+    if (row.isa_family == family) of_family.push_back(row);
+  }
+  return mean_of(of_family, variant, &MeasuredTradeRow::isa_ratio);
+}
+
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
+  double sum = 0.0;
+  int count = 0;
+  for (const IsaRow& row : rows) {
+    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
+    if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
+    sum += row.inverse_throughput_ratio;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name) {
+  IsaTable table;
+  table.source_name = std::string(source_name);
+  const auto fail = [&](std::string_view what) {
+    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
+  };
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    fail(fmt::format("not valid JSON (byte {})", error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    fail("holds a number beyond a double's range");
+  }
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array() || !document.contains("families") ||
+      !document["families"].is_array()) {
+    fail("needs \"families\" and \"rows\" arrays");
+  }
+  table.driver = document.value("driver", std::string());
+  for (const auto& family : document["families"]) {
+    if (!family.is_string()) fail("\"families\" must hold strings");
+    table.families.push_back(family.get<std::string>());
+  }
+  for (const auto& row : document["rows"]) {
+    const auto text = [&](const char* key) {
+      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
+      return row[key].get<std::string>();
+    };
+    const auto number = [&](const char* key) {
+      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
+      return row[key].get<double>();
+    };
+    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
+    entry.instructions = number("instructions");
+    entry.vgprs = number("vgprs");
+    entry.sgprs = number("sgprs");
+    entry.subgroups_per_simd = number("subgroups_per_simd");
+    entry.latency = number("latency");
+    entry.inverse_throughput = number("inverse_throughput");
+    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
+    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    table.rows.push_back(std::move(entry));
+  }
+  return table;
+}
+
+const IsaTable& committed_isa_costs() {
+  static const IsaTable table = [] {
+    constexpr const char* name = "generator/data/isa_cost.json";
+    const auto& files = embedded::files();
+    const auto found = files.find(name);
+    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+    return parse_isa_table(found->second, name);
+  }();
+  return table;
+}
+
+bool MeasuredTradeTable::has_errors() const {
+  return std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.error.has_value(); });
+}
+
+MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
+  MeasuredTradeTable table;
+  table.source_name = std::string(source_name);
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", source_name, error.byte));
+  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
+    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
+  }
+  const auto fail = [&](std::size_t index, std::string_view what) {
+    throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
+                            "\"delta_spirv_instructions\": number, \"error\": number}}",
+                            source_name, index, what));
+  };
+  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
+    throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
+  }
+  const auto number = [&](const nlohmann::json& row, const char* key, std::size_t index) -> std::optional<double> {
+    if (!row.contains(key)) return std::nullopt;
+    if (!row[key].is_number()) fail(index, fmt::format("\"{}\" must be a number", key));
+    const double value = row[key].get<double>();
+    if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
+    return value;
+  };
+  const nlohmann::json& rows = document["rows"];
+  for (std::size_t index = 0; index < rows.size(); ++index) {
+    const nlohmann::json& row = rows[index];
+    if (!row.is_object()) fail(index, "must be an object");
+    if (!row.contains("variant") || !row["variant"].is_string()) fail(index, "needs a string \"variant\"");
+    MeasuredTradeRow entry;
+    entry.variant = row["variant"].get<std::string>();
+    if (row.contains("target")) {
+      if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
+      entry.target = row["target"].get<std::string>();
+    }
+    entry.cost_ratio = number(row, "ratio_median", index);
+    entry.delta_instructions = number(row, "delta_spirv_instructions", index);
+    entry.error = number(row, "error", index);
+    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
+    if (entry.isa_ratio) {
+      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+      entry.isa_family = row["isa_family"].get<std::string>();
+      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
+    }
+    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
+    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
+    table.rows.push_back(std::move(entry));
+  }
+  if (document.contains("by_content")) {
+    const nlohmann::json& content_rows = document["by_content"];
+    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"by_content\" must be an array", source_name));
+    for (std::size_t index = 0; index < content_rows.size(); ++index) {
+      const nlohmann::json& row = content_rows[index];
+      const auto text = [&](const char* key) {
+        if (!row.is_object() || !row.contains(key) || !row[key].is_string())
+          throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
+        return row[key].get<std::string>();
+      };
+      ContentRow entry{text("content"), text("configuration"), 0.0};
+      const auto error = number(row, "error", index);
+      if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
+      entry.error = *error;
+      table.content_rows.push_back(std::move(entry));
+    }
+  }
+  return table;
+}
+
+MeasuredTradeTable load_trade_table(const std::filesystem::path& path) {
+  return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
+}
+
+}  // namespace saagen
