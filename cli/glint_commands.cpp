@@ -67,7 +67,7 @@ GlintCommands::GlintCommands(CLI::App& app) {
   emit_->add_option("--target,-t", target_, "glsl or hlsl")->capture_default_str();
   emit_->add_option("--variant,-v", variants_, "glints or glints-ggaa (repeatable); both when none is named");
   emit_->add_option("--prefix", prefix_, "Prefix of every global name")->capture_default_str();
-  emit_->add_option("--precision", precision_, "fp32, fp16 (GLSL) or min16 (HLSL)")->capture_default_str();
+  emit_->add_option("--precision", precision_, "fp32 only: the glint BRDF has no derived or proven half-precision bound")->capture_default_str();
   emit_->add_flag("--unguarded", unguarded_, "Emit the papers' unguarded formulas (for comparison)");
   emit_->add_option("--count", count_, "Distributions N in the dictionary (multiple of 4; default 192)");
   emit_->add_option("--lods", lods_, "LODs L of the dictionary (default 16)");

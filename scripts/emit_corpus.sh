@@ -44,8 +44,6 @@ for target in glsl hlsl; do
   "$saagen" glints emit --target "$target" -o "$out/glints/$target/fp32"
   "$saagen" glints emit --target "$target" --unguarded -o "$out/glints/$target/fp32-unguarded"
 done
-"$saagen" glints emit --target glsl --precision fp16 -o "$out/glints/glsl/fp16"
-"$saagen" glints emit --target hlsl --precision min16 -o "$out/glints/hlsl/min16"
 
 "$saagen" list > "$out/list.txt"
 "$saagen" list --json > "$out/list.json"

@@ -206,6 +206,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:5:10: key 'glints' of material 'm': the glinty BRDF is evaluated per light in the tangent frame: "
                 "glints = true needs path = \"forward\" and tangents = true; allowed: false, or true with path = \"forward\" and "
                 "tangents = true"},
+        BadCase{"glints_in_half_precision", header + forward_material + "tangents = true\nglints = true\nprecision = \"fp16\"\n",
+                "scene.toml:7:13: key 'precision' of material 'm': the glinty BRDF is numerically supported in fp32 only (no "
+                "half-precision error bound is derived or proven); allowed: \"fp32\" with glints = true"},
         BadCase{"fp16_unknown_precision", header + forward_material + "precision = \"fp64\"\n",
                 "scene.toml:5:13: key 'precision' of material 'm': unknown value \"fp64\"; allowed: \"fp32\", \"fp16\""},
         BadCase{"bundle_name_collides", header + "name = \"deferred_sum\"\n" + forward_material,

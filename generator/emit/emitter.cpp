@@ -145,6 +145,9 @@ class FileWriter {
     out << fmt::format("//   Render path: {}; tangent frame {}\n", to_string(variant.path),
                        variant.needs_tangents ? "required" : "not needed");
     out << fmt::format("//   Domain:      {}\n", variant.domain);
+    if (!variant.precisions.empty()) {
+      out << fmt::format("//   Precisions:  {} only (no error bound is derived or proven for the others)\n", fmt::join(variant.precisions, ", "));
+    }
     out << fmt::format("//   Target:      {}; precision {}; {}\n", target_.description, options_.precision,
                        options_.guards ? "guarded where the paper form breaks" : "UNGUARDED paper form (for comparison only)");
   }
@@ -278,6 +281,15 @@ class FileWriter {
   std::map<std::string, std::string, std::less<>> resource_parameters_;  // module languages: what each function takes
   std::map<std::string, std::string, std::less<>> call_arguments_;       // and what its callers pass
 };
+
+// A variant with a `precisions:` list is emitted only in those: outside them no error bound holds.
+void require_precision(const Variant& variant, std::string_view precision) {
+  if (!supports_precision(variant, precision)) {
+    throw Error(fmt::format("--precision {}: variant '{}' is numerically supported in {} only (no error bound is derived or proven for {}); "
+                            "emit it with --precision {}",
+                            precision, variant.id, fmt::join(variant.precisions, ", "), precision, variant.precisions.front()));
+  }
+}
 
 // Another roughness domain converts a variant's roughness in and out; one with neither cannot be
 // emitted in it.
@@ -431,6 +443,7 @@ std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const Em
     }
   }
 
+  for (const Variant* variant : selected) require_precision(*variant, options.precision);
   FileWriter writer(catalogue, target, options, option_values);
   std::vector<EmittedFile> files;
   for (const Variant* variant : selected) files.push_back(writer.write(*variant));
@@ -458,7 +471,7 @@ EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& opti
     if (!catalogue.find_function(name)) throw Error(fmt::format("bundle '{}': unknown function '{}'", request.name, name));
   }
   for (const std::string& id : request.variants) {
-    (void)catalogue.variant(id);  // throws for an unknown id
+    require_precision(catalogue.variant(id), options.precision);
   }
   FileWriter writer(catalogue, target, options, option_values);
   return writer.write_bundle(request);

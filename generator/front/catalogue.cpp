@@ -163,7 +163,8 @@ class TemplateParser {
       else if (key == "functions") variant.functions = split_words(text);
       else if (key == "path") variant.path = parse_path(text, value.number);
       else if (key == "tangents") variant.needs_tangents = parse_yes_no(text, value.number);
-      else fail(file_, value.number, fmt::format("unknown variant key '{}'; allowed: summary, paper, equation, path, tangents, domain, functions", key));
+      else if (key == "precisions") variant.precisions = split_words(text);
+      else fail(file_, value.number, fmt::format("unknown variant key '{}'; allowed: summary, paper, equation, path, tangents, domain, functions, precisions", key));
     }
     require_keys(file_, line, "@variant " + id, seen, {"summary", "paper", "equation", "path", "tangents", "domain", "functions"});
     variants_.push_back(std::move(variant));
@@ -561,6 +562,10 @@ dialect::FunctionSignature signature_of(const Function& function) {
   signature.result = *dialect::Type::from_name(function.return_type);
   for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
   return signature;
+}
+
+bool supports_precision(const Variant& variant, std::string_view precision) {
+  return variant.precisions.empty() || std::find(variant.precisions.begin(), variant.precisions.end(), precision) != variant.precisions.end();
 }
 
 }  // namespace saagen

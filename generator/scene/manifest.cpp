@@ -262,6 +262,10 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
                     "false, or true with path = \"forward\" and tangents = true");
   }
   if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
+  if (material.glints && material.precision != "fp32") {
+    reader.fail_key("precision", "the glinty BRDF is numerically supported in fp32 only (no half-precision error bound is derived or proven)",
+                    "\"fp32\" with glints = true");
+  }
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
     material.prefer = *prefer == "accuracy" ? Preference::accuracy : Preference::speed;
   }

@@ -82,6 +82,9 @@ struct Variant {
   bool needs_tangents = false;
   std::string domain;
   std::vector<std::string> functions;  // public functions, in documentation order
+  // `precisions:` the precisions the variant is numerically supported in (each with a derived
+  // and proven error bound); empty: every precision of the target.
+  std::vector<std::string> precisions;
   std::string source_file;
   int line = 0;
 };
@@ -134,6 +137,9 @@ class Catalogue {
 // The resources that the dependency closure of `roots` reads (the dialect's intrinsics marked
 // `resource NAME` in templates/intrinsics.sig, e.g. glint_dictionary), sorted: what an includer
 // must declare, in every target (each target table spells the declaration).
+// Whether `variant` may be emitted in `precision` (its `precisions:` list, or any when it has none).
+bool supports_precision(const Variant& variant, std::string_view precision);
+
 // The templates compiled into this build (templates/*.saa), in file-name order: the files carry
 // a numeric prefix, so that order is catalogue order.
 std::vector<TemplateSource> builtin_template_sources();
