@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/products/glints.hpp"
+#include "saagen/products/prefilter.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/validate/validation.hpp"
@@ -93,8 +94,8 @@ GlintCommands::GlintCommands(CLI::App& app) {
   dictionary_->add_option("--output,-o", output_file_, "Output .ktx2 file")->required();
   dictionary_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 
-  lean_ = glints_->add_subcommand("lean", "Pre-compute the LEAN moment MIP chain of a normal map (binary PPM) as KTX2");
-  lean_->add_option("NORMAL_MAP", normal_map_, "Tangent-space normal map, binary PPM (P6, 8 bits)")->required();
+  lean_ = glints_->add_subcommand("lean", "Pre-compute the LEAN moment MIP chain of a normal map (PNG, KTX2 or binary PPM) as KTX2");
+  lean_->add_option("NORMAL_MAP", normal_map_, "Tangent-space normal map: PNG or KTX2 (read as `texture prefilter` reads them), or binary PPM (P6, 8 bits)")->required();
   lean_->add_option("--output,-o", output_file_, "Output .ktx2 file")->required();
   lean_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 }
@@ -200,13 +201,8 @@ int GlintCommands::run_dictionary() const {
 int GlintCommands::run_lean() const {
   check_output_named("--output", output_file_);
   check_output_paths({output_file_}, force_, {normal_map_});
-  const std::vector<std::uint8_t> bytes = read_image(normal_map_, "a binary PPM (P6) normal map");
-  glints::SlopeMap map;
-  try {
-    map = glints::slopes_from_ppm(bytes);
-  } catch (const Error& error) {
-    throw Error(fmt::format("{}: {}", normal_map_, error.what()));
-  }
+  const std::vector<std::uint8_t> bytes = read_image(normal_map_, "a PNG, KTX2 or binary PPM (P6) normal map");
+  const glints::SlopeMap map = prefilter::read_lean_slopes(bytes, normal_map_);
   const auto levels = glints::lean_moments(map);
   print_report(write_outputs({{output_file_, as_string(write_ktx2(glints::lean_ktx2(levels)))}}, force_, {normal_map_}));
   std::cout << fmt::format("LEAN moments {} x {}, {} levels\n", map.width, map.height, levels.size());

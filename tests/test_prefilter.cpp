@@ -266,6 +266,41 @@ class TexturePrefilterCli : public saagen::test::CliTest {
   }
 };
 
+// `glints lean` reads normal maps with texture prefilter's reader: the same 8-bit normals as a PNG
+// and as a binary PPM give the same LEAN moments (the PPM decoding n = 2 c / 255 - 1 is the PNG's
+// n = 2 (c / 255) - 1; doubling is exact, so both normalise the same doubles), to one float ulp.
+TEST_F(TexturePrefilterCli, GlintsLeanReadsThePngAsItsPpm) {
+  const int size = 8;
+  const auto normals = bumpy_normals(size);
+  const fs::path png = write_png("normals.png", size, size, normals);
+  std::string ppm = "P6\n8 8\n255\n";
+  for (const Vec3& n : normals)
+    for (double c : {n.x, n.y, n.z}) ppm += static_cast<char>(std::lround(255.0 * (c + 1.0) / 2.0));
+  std::ofstream(scratch_ / "normals.ppm", std::ios::binary) << ppm;
+  const fs::path from_png = scratch_ / "png.ktx2", from_ppm = scratch_ / "ppm.ktx2";
+  const auto png_run = saagen({"glints", "lean", png.string(), "-o", from_png.string()});
+  const auto ppm_run = saagen({"glints", "lean", (scratch_ / "normals.ppm").string(), "-o", from_ppm.string()});
+  ASSERT_EQ(png_run.exit_code, 0) << png_run.err;
+  ASSERT_EQ(ppm_run.exit_code, 0) << ppm_run.err;
+  const auto a = saagen::read_ktx2(bytes_of(from_png)), b = saagen::read_ktx2(bytes_of(from_ppm));
+  ASSERT_EQ(a.levels.size(), 4u);
+  ASSERT_EQ(a.levels.size(), b.levels.size());
+  for (std::size_t level = 0; level < a.levels.size(); ++level) {
+    ASSERT_EQ(a.levels[level].size(), b.levels[level].size());
+    for (std::size_t at = 0; at + 4 <= a.levels[level].size(); at += 4) {
+      float x = 0, y = 0;
+      std::memcpy(&x, a.levels[level].data() + at, 4);
+      std::memcpy(&y, b.levels[level].data() + at, 4);
+      EXPECT_LE(std::abs(x - y), std::ldexp(std::max(std::abs(x), std::abs(y)), -23) + 1e-30) << "level " << level << " byte " << at;
+    }
+  }
+  // Neither format: one line naming the file and the formats read.
+  std::ofstream(scratch_ / "normals.txt") << "not an image";
+  const auto refused = saagen({"glints", "lean", (scratch_ / "normals.txt").string(), "-o", (scratch_ / "txt.ktx2").string()});
+  expect_one_line_failure(refused, scratch_ / "txt.ktx2");
+  EXPECT_NE(refused.err.find("normals.txt: neither a PNG, a KTX2 nor a binary PPM (P6) file"), std::string::npos) << refused.err;
+}
+
 TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   const int size = 8;
   const auto normals = bumpy_normals(size);

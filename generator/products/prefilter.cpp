@@ -274,6 +274,25 @@ NormalImage read_normal_map(std::span<const std::uint8_t> bytes, const std::stri
     throw Error(fmt::format("{}: neither a PNG nor a KTX2 file", what));
 }
 
+glints::SlopeMap read_lean_slopes(std::span<const std::uint8_t> bytes, const std::string& what) {
+    if (starts_with(bytes, {'P', '6'})) {
+        try {
+            return glints::slopes_from_ppm(bytes);
+        } catch (const Error& error) {
+            throw Error(fmt::format("{}: {}", what, error.what()));
+        }
+    }
+    if (!starts_with(bytes, {0x89, 'P', 'N', 'G'}) && !starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0'})) {
+        throw Error(fmt::format("{}: neither a PNG, a KTX2 nor a binary PPM (P6) file", what));
+    }
+    const NormalImage image = read_normal_map(bytes, what);
+    if (static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) > glints::lean_texel_limit) {
+        throw Error(fmt::format("{}: normal map: {} x {} is larger than {} texels (2048 x 2048); downsample it", what, image.width,
+                                image.height, glints::lean_texel_limit));
+    }
+    return glints::slopes_from_normals(image.width, image.height, image.normals);
+}
+
 std::vector<Level> build_levels(const NormalImage& image) {
     check_size(image.width, image.height, "normal map");
     Level base{image.width, image.height, {}, {}, {}};

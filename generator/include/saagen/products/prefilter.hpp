@@ -61,6 +61,11 @@ inline constexpr long long max_normal_map_texels = 4096LL * 4096LL;
 // or R32G32B32A32_SFLOAT holding signed components) file's bytes; level 0 is used.
 NormalImage read_normal_map(std::span<const std::uint8_t> bytes, const std::string& what);
 
+// The normal map of `saagen glints lean`: what read_normal_map reads (PNG, KTX2), or a binary PPM
+// (P6, 8 bits), as slopes; at most glints::lean_texel_limit texels. Throws saagen::Error naming
+// `what`.
+glints::SlopeMap read_lean_slopes(std::span<const std::uint8_t> bytes, const std::string& what);
+
 // One level: per texel the mean of the level-0 unit normals (3 values), of their slopes
 // s = -n.xy / n.z (2) and of s s^T as (xx, xy, yy) (3). A non-square map halves its longer side alone.
 struct Level {
