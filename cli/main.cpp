@@ -109,7 +109,6 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
 
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {
-    options.variants = spirv_library_variants(catalogue, options.variants);
     // Per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});

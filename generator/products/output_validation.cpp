@@ -1,5 +1,6 @@
 #include "saagen/products/output_validation.hpp"
 
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/products/spirv_library.hpp"
@@ -32,8 +33,9 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
     const auto words = words_of(check);
     if (!words.empty()) {
       std::vector<std::string> exports;
-      for (const std::string& name : public_functions(catalogue, marker->variants)) {
-        if (!catalogue.find_function(name)->fragment_only) exports.push_back(prefixed_name(marker->prefix, name));
+      const Catalogue& domain = domain_catalogue(catalogue, marker->domain);
+      for (const std::string& name : public_functions(domain, marker->variants)) {
+        if (!domain.find_function(name)->fragment_only) exports.push_back(prefixed_name(marker->prefix, name));
       }
       check.log = validate_spirv_library(words, exports);
       check.ok = check.log.empty();

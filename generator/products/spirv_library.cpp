@@ -1,6 +1,7 @@
 #include "saagen/products/spirv_library.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/emit/listing.hpp"
 #include "saagen/target/target.hpp"
 
@@ -279,11 +280,15 @@ std::vector<std::pair<std::string, std::string>> export_decorations(const std::v
 
 std::uint32_t numeric_id(const std::string& id) { return static_cast<std::uint32_t>(std::stoul(id.substr(1))); }
 
-SpirvLibrary build_library(const Catalogue& catalogue, const EmitOptions& options, const Variant& variant) {
+// `base_catalogue`'s variant, compiled from its GLSL emission in options.domain: the exports are
+// the functions as emitted in that domain (the domain wrappers where roughness goes in and out).
+SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& options, const Variant& base_variant) {
   EmitOptions glsl = options;
   glsl.target = "glsl";
-  glsl.variants = {variant.id};
-  const EmittedFile file = emit_variants(catalogue, glsl).front();
+  glsl.variants = {base_variant.id};
+  const EmittedFile file = emit_variants(base_catalogue, glsl).front();
+  const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
+  const Variant& variant = catalogue.variant(base_variant.id);
 
   CompileRequest request;
   request.language = SourceLanguage::glsl;
@@ -376,7 +381,7 @@ SpirvLibrary build_library(const Catalogue& catalogue, const EmitOptions& option
   }
 
   // Reflection: the `saagen list --json` entries of the exported functions plus their SPIR-V types.
-  const nlohmann::json catalogue_entry = catalogue_json(catalogue, library.marker.prefix);
+  const nlohmann::json catalogue_entry = catalogue_json(base_catalogue, library.marker.prefix, options.domain);
   nlohmann::json functions = nlohmann::json::array();
   for (const SpirvExport& entry : library.exports) {
     for (const auto& json_variant : catalogue_entry.at("variants")) {
@@ -440,37 +445,33 @@ std::vector<std::uint32_t> assemble_spirv(const std::string& text) {
 
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
-  if (options.domain != "alpha2") {
-    throw Error(fmt::format("--target spirv emits alpha2 only, and the preset or --domain asks for {}; add --domain alpha2, or use "
-                            "--target glsl or hlsl",
-                            options.domain));
-  }
+  const bool converted = find_domain(options.domain).id != "alpha2";
   if (!builtin_target("glsl").precisions.count(options.precision)) {
     std::vector<std::string> names;
     for (const auto& [name, precision] : builtin_target("glsl").precisions) names.push_back(name);
     throw Error(fmt::format("the spirv target compiles the GLSL emission, which has no precision '{}'; choose one of: {}",
                             options.precision, fmt::join(names, ", ")));
   }
+  // The variants a module can hold (spirv_library_variants); unnamed, in another domain, those with
+  // a roughness in and out (as `emit` does).
   std::vector<const Variant*> variants;
-  if (options.variants.empty()) {
-    for (const Variant& variant : catalogue.variants()) variants.push_back(&variant);
-  } else {
-    for (const std::string& id : options.variants) {
-      const Variant* variant = catalogue.find_variant(id);
-      if (!variant) {
-        std::vector<std::string> ids;
-        for (const Variant& known : catalogue.variants()) ids.push_back(known.id);
-        throw Error(fmt::format("unknown variant '{}'; choose one of: {}", id, fmt::join(ids, ", ")));
-      }
-      variants.push_back(variant);
+  for (const std::string& id : spirv_library_variants(catalogue, options.variants)) {
+    const Variant* variant = catalogue.find_variant(id);
+    if (!variant) {
+      std::vector<std::string> ids;
+      for (const Variant& known : catalogue.variants()) ids.push_back(known.id);
+      throw Error(fmt::format("unknown variant '{}'; choose one of: {}", id, fmt::join(ids, ", ")));
     }
+    if (options.variants.empty() && converted && !variant_has_roughness_io(catalogue, *variant)) continue;
+    variants.push_back(variant);
   }
   std::vector<SpirvLibrary> libraries;
   for (const Variant* variant : variants) libraries.push_back(build_library(catalogue, options, *variant));
   return libraries;
 }
 
-std::string spirv_library_header(const Catalogue& catalogue, const SpirvLibrary& library) {
+std::string spirv_library_header(const Catalogue& base_catalogue, const SpirvLibrary& library) {
+  const Catalogue& catalogue = domain_catalogue(base_catalogue, library.marker.domain);
   const Variant& variant = *catalogue.find_variant(library.marker.variants.front());
   const std::string stem = library.file_name.substr(0, library.file_name.rfind('.'));
   const std::string guard = upper_identifier(library.header_name);

@@ -54,9 +54,12 @@ struct SpirvLibrary {
   nlohmann::json reflection;  // exported functions as in `saagen list --json`, plus their SPIR-V types
 };
 
-// One library per requested variant (options.variants; empty: every variant), in catalogue
-// order. options.target is ignored (the GLSL emission is compiled); precision, guards, prefix
-// and option values apply. Throws saagen::Error when a step fails (with the tool's message).
+// One library per requested variant (options.variants; empty: every variant a module can hold,
+// see spirv_library_variants, and in a roughness domain other than alpha2 those with a roughness
+// in and out), in catalogue order. options.target is ignored (the GLSL emission is compiled);
+// precision, guards, prefix, option values and the domain apply: in another domain the exports
+// are the domain's wrappers, as `emit --domain` names them. Throws saagen::Error when a step
+// fails (with the tool's message).
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options);
 
 // The C/C++ header of a library: include guard, the marker line as a comment, the words as a
