@@ -17,6 +17,7 @@
 #include "deferred_pass_runner.hpp"
 #include "gpu_support.hpp"
 
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/renderer.hpp"
@@ -57,6 +58,7 @@ double material_alpha(std::uint32_t x, std::uint32_t y) { return 0.03 + 0.25 * (
 float encode_roughness(double alpha, std::uint32_t domain) {
   if (domain == abi::domain_alpha) return static_cast<float>(alpha);
   if (domain == abi::domain_perceptual) return static_cast<float>(std::sqrt(alpha));
+  if (domain == abi::domain_smoothness) return static_cast<float>(1.0 - std::sqrt(alpha));
   return static_cast<float>(alpha * alpha);
 }
 
@@ -137,12 +139,14 @@ double decode_alpha2(const saagen::test::GBufferImages& g, std::uint32_t x, std:
   const double r = g.roughness[(std::size_t{y} * g.width + x) * 4 + e.channel];
   if (e.domain == abi::domain_alpha) return r * r;
   if (e.domain == abi::domain_perceptual) return (r * r) * (r * r);
+  if (e.domain == abi::domain_smoothness) return ((1.0 - r) * (1.0 - r)) * ((1.0 - r) * (1.0 - r));
   return r;
 }
 
 double encode_output(double alpha2, std::uint32_t domain) {
   if (domain == abi::domain_alpha) return std::sqrt(alpha2);
   if (domain == abi::domain_perceptual) return std::sqrt(std::sqrt(alpha2));
+  if (domain == abi::domain_smoothness) return 1.0 - std::sqrt(std::sqrt(alpha2));
   return alpha2;
 }
 
@@ -413,7 +417,13 @@ TEST(DeferredPassOnGpu, RoughnessDomainsChannelsAndUnormEncodings) {
       {abi::domain_alpha, 2, false, false},
       {abi::domain_perceptual, 3, true, true},
       {abi::domain_alpha2, 1, true, false},
+      {abi::domain_smoothness, 0, false, true},
   };
+  // The flag values are the indices of roughness_domains(), whose conversions the pass calls.
+  ASSERT_EQ(saagen::roughness_domains().size(), 4u);
+  EXPECT_EQ(saagen::roughness_domains()[abi::domain_alpha].id, "alpha");
+  EXPECT_EQ(saagen::roughness_domains()[abi::domain_perceptual].id, "perceptual");
+  EXPECT_EQ(saagen::roughness_domains()[abi::domain_smoothness].id, "smoothness");
   for (const std::string id : {"deferred-max", "deferred-projected-space"}) {
     const auto pass = emit_pass(id);
     for (const Encoding& encoding : encodings) {

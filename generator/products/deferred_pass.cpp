@@ -2,6 +2,7 @@
 
 #include "saagen/validate/compiler.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
@@ -70,6 +71,30 @@ std::string upper_identifier(std::string_view text) {
 
 // The pass body in the template dialect: decode the G-buffer texels, build the frame, call the
 // wrapper with every argument chosen by parameter name, encode and store.
+// One statement per roughness domain other than alpha^2: `to = CONVERSION(from)` when the pass's
+// domain flag is the domain's index (roughness_domains(): 0 alpha^2, 1 alpha, 2 perceptual,
+// 3 smoothness; deferred_pass_abi), calling the conversions of templates/05-domains.saa.
+std::string domain_conversions(std::string_view to, std::string_view from, std::string RoughnessDomain::*conversion) {
+  std::string statements;
+  const auto& domains = roughness_domains();
+  for (std::size_t index = 0; index < domains.size(); ++index) {
+    const std::string& function = domains[index].*conversion;
+    if (!function.empty()) statements += fmt::format("    if (saagen_domain == {}) {} = {}({});\n", index, to, function, from);
+  }
+  return statements;
+}
+
+// The template functions the pass calls besides its wrapper: every domain conversion.
+std::vector<std::string> domain_conversion_functions() {
+  std::vector<std::string> names;
+  for (const RoughnessDomain& domain : roughness_domains()) {
+    for (const std::string& name : {domain.to_alpha2, domain.from_alpha2}) {
+      if (!name.empty()) names.push_back(name);
+    }
+  }
+  return names;
+}
+
 std::string pass_body(const Function& wrapper, bool tangents) {
   std::string body =
       "    // The normal: signed, or unorm-encoded (n * 0.5 + 0.5); renormalised, since G-buffer\n"
@@ -90,12 +115,11 @@ std::string pass_body(const Function& wrapper, bool tangents) {
         "    real3 saagen_b = cross(saagen_n, saagen_t) * (saagen_tangent_texel.w < 0.0 ? -1.0 : 1.0);\n";
   }
   body +=
-      "    // Roughness in, in its domain: alpha^2, alpha, or perceptual r (alpha = r^2).\n"
+      "    // Roughness in, in its domain: alpha^2, alpha, perceptual r (alpha = r^2) or smoothness 1 - r.\n"
       "    real saagen_r = SAAGEN_ROUGHNESS;\n"
       "    int saagen_domain = SAAGEN_DOMAIN;\n"
-      "    real saagen_alpha2 = saagen_r;\n"
-      "    if (saagen_domain == 1) saagen_alpha2 = saagen_r * saagen_r;\n"
-      "    if (saagen_domain == 2) saagen_alpha2 = (saagen_r * saagen_r) * (saagen_r * saagen_r);\n";
+      "    real saagen_alpha2 = saagen_r;\n";
+  body += domain_conversions("saagen_alpha2", "saagen_r", &RoughnessDomain::to_alpha2);
   std::vector<std::string> arguments;
   for (const Parameter& parameter : wrapper.parameters) {
     if (parameter.name == "alpha2" && parameter.type == "real") arguments.push_back("saagen_alpha2");
@@ -109,11 +133,10 @@ std::string pass_body(const Function& wrapper, bool tangents) {
   body += fmt::format(
       "    // Every lane calls the wrapper (its derivatives need the whole quad).\n"
       "    real saagen_filtered = {}({});\n"
-      "    // Filtered roughness out, in the domain it came in.\n"
-      "    if (saagen_domain == 1) saagen_filtered = sqrt(saagen_filtered);\n"
-      "    if (saagen_domain == 2) saagen_filtered = sqrt(sqrt(saagen_filtered));\n"
-      "    SAAGEN_STORE(saagen_filtered);\n",
+      "    // Filtered roughness out, in the domain it came in.\n",
       wrapper.name, fmt::join(arguments, ", "));
+  body += domain_conversions("saagen_filtered", "saagen_filtered", &RoughnessDomain::from_alpha2);
+  body += "    SAAGEN_STORE(saagen_filtered);\n";
   return body;
 }
 
@@ -311,11 +334,13 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
     for (const std::string target : {"glsl", "hlsl"}) {
       EmitOptions emit;
       emit.target = target;
-      emit.variants = {kind.variant};
       emit.prefix = options.prefix;
       emit.option_values = options.option_values;
       emit.guards = options.guards;
-      const EmittedFile file = emit_variants(catalogue, emit).front();
+      // The wrapper's closure and the domain conversions the pass body calls, in one file.
+      std::vector<std::string> functions = {kind.wrapper};
+      for (const std::string& name : domain_conversion_functions()) functions.push_back(name);
+      const EmittedFile file = emit_bundle(catalogue, emit, {"pass_" + underscored(kind.id), functions, {kind.variant}, {}});
       const bool glsl = builtin_target(target).language == SourceLanguage::glsl;
       std::string source = pass_source(catalogue, target, file, kind, options,
                                        header_for(glsl ? deferred_pass_glsl_target : deferred_pass_hlsl_target));

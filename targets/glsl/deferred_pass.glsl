@@ -27,7 +27,7 @@ layout(push_constant) uniform {prefix}pass_constants_block
 {
     uvec2 size;              // image size in pixels
     uint roughness_channel;  // 0..3: the roughness G-buffer channel read
-    uint flags;              // bits 0-1: domain (0 alpha^2, 1 alpha, 2 perceptual r = sqrt(alpha)); 4: normal unorm; 8: tangent unorm
+    uint flags;              // bits 0-1: domain (0 alpha^2, 1 alpha, 2 perceptual r = sqrt(alpha), 3 smoothness 1 - r); 4: normal unorm; 8: tangent unorm
 } {prefix}pass_constants;
 #define SAAGEN_NORMAL_TEXEL texelFetch({prefix}pass_normal, saagen_source, 0)
 #define SAAGEN_ROUGHNESS texelFetch({prefix}pass_roughness, saagen_source, 0)[{prefix}pass_constants.roughness_channel & 3u]

@@ -22,7 +22,7 @@ struct {prefix}pass_constants_block
 {
     uint2 size;              // image size in pixels
     uint roughness_channel;  // 0..3: the roughness G-buffer channel read
-    uint flags;              // bits 0-1: domain (0 alpha^2, 1 alpha, 2 perceptual r = sqrt(alpha)); 4: normal unorm; 8: tangent unorm
+    uint flags;              // bits 0-1: domain (0 alpha^2, 1 alpha, 2 perceptual r = sqrt(alpha), 3 smoothness 1 - r); 4: normal unorm; 8: tangent unorm
 };
 [[vk::push_constant]] ConstantBuffer<{prefix}pass_constants_block> {prefix}pass_constants;
 #define SAAGEN_NORMAL_TEXEL {prefix}pass_normal.Load(int3(saagen_source, 0))

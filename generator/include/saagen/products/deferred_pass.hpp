@@ -53,6 +53,7 @@ inline constexpr std::uint32_t local_size = 64;        // local_size_x; y = z = 
 inline constexpr std::uint32_t domain_alpha2 = 0;      // the G-buffer holds alpha^2
 inline constexpr std::uint32_t domain_alpha = 1;       // alpha (GGX/Beckmann width)
 inline constexpr std::uint32_t domain_perceptual = 2;  // perceptual roughness r, alpha = r^2
+inline constexpr std::uint32_t domain_smoothness = 3;  // perceptual smoothness s = 1 - r (the order of roughness_domains())
 inline constexpr std::uint32_t flag_normal_unorm = 4;  // normal stored as n * 0.5 + 0.5
 inline constexpr std::uint32_t flag_tangent_unorm = 8; // tangent .xyz stored as t * 0.5 + 0.5
 }  // namespace deferred_pass_abi
