@@ -202,7 +202,7 @@ std::vector<std::string> pass_description(const Catalogue& catalogue, const Defe
   }
   lines.insert(lines.end(), {
       "Push constants (16 bytes, compute stage): uint32 width, height, roughness_channel (0..3), flags:",
-      "  bits 0-1 the roughness domain: 0 alpha^2, 1 alpha, 2 perceptual r (alpha = r^2);",
+      "  bits 0-1 the roughness domain: 0 alpha^2, 1 alpha, 2 perceptual r (alpha = r^2), 3 smoothness 1 - r;",
       "  4 normal unorm-encoded; 8 tangent unorm-encoded.",
       fmt::format("Derivatives: quads of 2 x 2 pixels from (x & ~1, y & ~1); plain ddx/ddy are {} (ddx_fine/ddy_fine are", 
                   options.derivatives == PlainDerivative::fine ? "fine, per row / column" : "coarse, one per quad from the top-left pixel"),
