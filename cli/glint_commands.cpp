@@ -41,18 +41,6 @@ std::string raw_level_bytes(const glints::Dictionary& dictionary) {
   return bytes;
 }
 
-// The glint catalogue names its options glint_*; the command line spells them --count, --lods,
-// --alpha, --kernel-scale, --max-anisotropy and --relative-area.
-std::string with_option_names(std::string message) {
-  for (const auto& [internal, option] : {std::pair{"--glint_count", "--count"}, std::pair{"--glint_lods", "--lods"},
-                                         std::pair{"--glint_alpha", "--alpha"}, std::pair{"--glint_kernel_scale", "--kernel-scale"},
-                                         std::pair{"--glint_max_anisotropy", "--max-anisotropy"},
-                                         std::pair{"--glint_relative_area", "--relative-area"}}) {
-    for (auto at = message.find(internal); at != std::string::npos; at = message.find(internal)) message.replace(at, std::strlen(internal), option);
-  }
-  return message;
-}
-
 void print_report(const WriteReport& report) {
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
   for (const fs::path& path : report.unchanged) std::cout << "unchanged " << path.string() << "\n";
@@ -70,12 +58,7 @@ GlintCommands::GlintCommands(CLI::App& app) {
   emit_->add_option("--prefix", prefix_, "Prefix of every global name")->capture_default_str();
   emit_->add_option("--precision", precision_, "fp32 only: the glint BRDF has no derived or proven half-precision bound")->capture_default_str();
   emit_->add_flag("--unguarded", unguarded_, "Emit the papers' unguarded formulas (for comparison)");
-  emit_->add_option("--count", count_, "Distributions N in the dictionary (multiple of 4; default 192)");
-  emit_->add_option("--lods", lods_, "LODs L of the dictionary (default 16)");
-  emit_->add_option("--alpha", alpha_, "Beckmann roughness of the dictionary (default 0.5)");
-  emit_->add_option("--kernel-scale", kernel_scale_, "s_K of GGAA (default 0.5)");
-  emit_->add_option("--max-anisotropy", max_anisotropy_, "Largest footprint anisotropy before the minor axis is widened, in [1, 8] (default 8)");
-  emit_->add_option("--relative-area", relative_area_, "Microfacet relative area: probability that a cell holds microfacets, in (0, 1] (default 1)");
+  glint_options_.add_to(emit_, "");
   emit_->add_option("--output,-o", output_directory_, "Output directory")->required();
   emit_->add_flag("--force", force_, "Overwrite files that saagen did not write");
 
@@ -83,10 +66,10 @@ GlintCommands::GlintCommands(CLI::App& app) {
   validate_->add_option("DIR", validate_directory_, "Directory written by `saagen glints emit`");
 
   dictionary_ = glints_->add_subcommand("dictionary", "Generate the dictionary texture (KTX2: RGBA16F 1D array with MIPs)");
-  dictionary_->add_option("--count", count_, "Distributions N (multiple of 4; default 192)");
-  dictionary_->add_option("--lods", lods_, "LODs L (default 16)");
+  dictionary_->add_option("--count", glint_options_.count, "Distributions N (multiple of 4; default 192)");
+  dictionary_->add_option("--lods", glint_options_.lods, "LODs L (default 16)");
   dictionary_->add_option("--resolution", resolution_, "Texels per distribution (power of two)")->capture_default_str();
-  dictionary_->add_option("--alpha", alpha_, "Beckmann roughness alpha_dict of the last LOD (default 0.5)");
+  dictionary_->add_option("--alpha", glint_options_.alpha, "Beckmann roughness alpha_dict of the last LOD (default 0.5)");
   dictionary_->add_option("--lobe-sigma", lobe_sigma_, "Standard deviation of a lobe")->capture_default_str();
   dictionary_->add_option("--seed", seed_, "Random seed")->capture_default_str();
   dictionary_->add_flag("--no-mips", no_mips_, "Level 0 only (the textureLod baseline needs no MIPs)");
@@ -116,18 +99,13 @@ int GlintCommands::run_emit() const {
   options.prefix = prefix_;
   options.precision = precision_;
   options.guards = !unguarded_;
-  if (count_) options.option_values["glint_count"] = *count_;
-  if (lods_) options.option_values["glint_lods"] = *lods_;
-  if (alpha_) options.option_values["glint_alpha"] = *alpha_;
-  if (kernel_scale_) options.option_values["glint_kernel_scale"] = *kernel_scale_;
-  if (max_anisotropy_) options.option_values["glint_max_anisotropy"] = *max_anisotropy_;
-  if (relative_area_) options.option_values["glint_relative_area"] = *relative_area_;
+  glint_options_.apply(options);
   std::vector<OutputFile> outputs;
   std::vector<EmittedFile> files;
   try {
     files = glints::emit(options);
   } catch (const Error& error) {
-    throw Error(with_option_names(error.what()));
+    throw Error(GlintOptions::spelled(error.what(), ""));
   }
   for (EmittedFile& file : files) outputs.push_back({fs::path(output_directory_) / file.file_name, std::move(file.content)});
   print_report(write_outputs(outputs, force_));
@@ -171,9 +149,9 @@ int GlintCommands::run_validate() const {
 int GlintCommands::run_dictionary() const {
   check_output_named("--output", output_file_);
   glints::DictionaryParams params;
-  if (count_) params.count = *count_;
-  if (lods_) params.lods = *lods_;
-  if (alpha_) params.alpha = *alpha_;
+  if (glint_options_.count) params.count = *glint_options_.count;
+  if (glint_options_.lods) params.lods = *glint_options_.lods;
+  if (glint_options_.alpha) params.alpha = *glint_options_.alpha;
   params.resolution = resolution_;
   params.lobe_sigma = lobe_sigma_;
   params.seed = seed_;

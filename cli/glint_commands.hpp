@@ -2,6 +2,8 @@
 // apart from main.cpp, which only registers and dispatches them. docs/GLINTS.md.
 #pragma once
 
+#include "glint_options.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -36,15 +38,10 @@ class GlintCommands {
   std::string prefix_ = "saa_";
   std::string precision_ = "fp32";
   bool unguarded_ = false;
-  std::optional<double> kernel_scale_;
-  std::optional<double> max_anisotropy_;
-  std::optional<double> relative_area_;
   std::string output_directory_;
   bool force_ = false;
-  // shared by emit (shader constants) and dictionary (generation)
-  std::optional<int> count_;
-  std::optional<int> lods_;
-  std::optional<double> alpha_;
+  // shared by emit (shader constants) and dictionary (count, lods and alpha: generation)
+  GlintOptions glint_options_;
   // dictionary
   int resolution_ = 64;
   double lobe_sigma_ = 0.02;

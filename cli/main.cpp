@@ -13,6 +13,7 @@
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
 #include "arguments.hpp"
+#include "glint_options.hpp"
 #include "pass_commands.hpp"
 #include "report_commands.hpp"
 #include "glint_commands.hpp"
@@ -53,6 +54,7 @@ struct EmitArguments {
   std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
   std::string import_path;            // module targets: naga_oil's #define_import_path
   std::string module_name = "module";  // module targets: the stem of the one module of several variants
+  saagen::cli::GlintOptions glint;     // the glint variants' options (--glint-count, ...)
 };
 
 int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
@@ -93,7 +95,19 @@ const Catalogue& emission_catalogue(const Catalogue& every_variant, const saagen
   return names_a_glint ? every_variant : builtin;
 }
 
+int emit_files(const Catalogue& every_variant, const EmitArguments& arguments);
+
+// The library names the glint options by their constants (--glint_count): the messages use the
+// command line's spelling (--glint-count).
 int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
+  try {
+    return emit_files(every_variant, arguments);
+  } catch (const saagen::Error& error) {
+    throw saagen::Error(saagen::cli::GlintOptions::spelled(error.what(), "glint-"));
+  }
+}
+
+int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   saagen::cli::check_output_named("--output", arguments.output_directory);
   saagen::cli::check_named_once("--variant", arguments.variants);
   saagen::EmitOptions options;
@@ -105,7 +119,12 @@ int run_emit(const Catalogue& every_variant, const EmitArguments& arguments) {
   options.precision = arguments.precision;
   options.guards = !arguments.unguarded;
   options.import_path = arguments.import_path;
+  arguments.glint.apply(options);
   const Catalogue& catalogue = emission_catalogue(every_variant, options);
+  if (arguments.glint.any() && !catalogue.find_variant("glints")) {
+    throw saagen::Error("--glint-* options set the glint variants' constants, and none is emitted; add --variant glints or glints-ggaa "
+                        "(or name no variant)");
+  }
 
   std::vector<saagen::OutputFile> outputs;
   if (options.target == saagen::spirv_library_target) {
@@ -244,6 +263,7 @@ int main(int argc, char** argv) {
                    "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
   emit->add_option("--module", emit_arguments.module_name,
                    "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")->capture_default_str();
+  emit_arguments.glint.add_to(emit, "glint-");
 
   std::string validate_directory;
   CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");

@@ -212,16 +212,6 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   compile_->add_flag("--force", compile_force_, "Overwrite an output file that saagen did not write");
 }
 
-namespace {
-
-// A manifest with glints = true is planned over the catalogue that holds the glint variants; any
-// other keeps the SAA catalogue (its bundles and plans stay byte for byte as they were).
-const Catalogue& catalogue_for(const Manifest& manifest, const Catalogue& catalogue) {
-  return plans_glints(manifest) ? glints::catalogue() : catalogue;
-}
-
-}  // namespace
-
 int SceneCommands::run_plan(const Catalogue& catalogue) const {
   if (plan_rules_) std::cout << rules_text();
   if (plan_manifest_.empty()) {
@@ -230,28 +220,28 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   }
   if (plan_rules_) std::cout << "\n";
   const Manifest manifest = load_manifest(plan_manifest_, catalogue);
-  const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
+  const Catalogue& planned = scene_catalogue(manifest, catalogue);
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
-  ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
-  if (!plan_no_cost_) measure_costs(scene_catalogue, manifest, plan);
-  std::cout << format_plan(scene_catalogue, manifest, plan);
+  ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
+  if (!plan_no_cost_) measure_costs(planned, manifest, plan);
+  std::cout << format_plan(planned, manifest, plan);
   return 0;
 }
 
 int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& output_directory, bool force) const {
   const Manifest manifest = load_manifest(emit_manifest_, catalogue);
-  const Catalogue& scene_catalogue = catalogue_for(manifest, catalogue);
+  const Catalogue& planned = scene_catalogue(manifest, catalogue);
   std::optional<MeasuredTradeTable> table;
   if (!emit_trade_table_.empty()) table = load_trade_table(emit_trade_table_);
-  const ScenePlan plan = plan_scene(scene_catalogue, manifest, table ? &*table : nullptr);
+  const ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
   std::vector<OutputFile> outputs;
-  for (EmittedFile& file : emit_scene(scene_catalogue, manifest, plan)) {
+  for (EmittedFile& file : emit_scene(planned, manifest, plan)) {
     outputs.push_back({fs::path(output_directory) / file.file_name, std::move(file.content)});
   }
   if (plans_glints(manifest)) {
-    // The dictionary the glint variants sample (the default one, matching the default options).
-    const std::vector<std::uint8_t> bytes = glints::default_dictionary_ktx2();
+    // The dictionary the glint variants sample, generated with the manifest's glint options.
+    const std::vector<std::uint8_t> bytes = glints::dictionary_ktx2_for(manifest.option_values);
     outputs.push_back({fs::path(output_directory) / glint_dictionary_file_name(manifest), std::string(bytes.begin(), bytes.end())});
   }
   if (emit_list_outputs_) {

@@ -127,6 +127,52 @@ TEST_F(GlintCli, ManifestWithGlintsPlansTheGlintVariantAndWritesTheDictionary) {
     EXPECT_FALSE(fs::exists(scratch_ / "bad_out"));
 }
 
+// The glint options reach every way of emitting the glint variants: `emit --glint-*` and a
+// manifest's glint_* keys set the constants, and the manifest's dictionary is generated with its
+// glint_count, glint_lods and glint_alpha; without a glint variant or material they are refused.
+TEST_F(GlintCli, GlintOptionsOnEmitAndInManifests) {
+    const fs::path out = scratch_ / "emit";
+    const auto emitted = saagen({"emit", "--variant", "glints-ggaa", "--glint-count", "64", "--glint-relative-area", "0.5", "-o", out.string()});
+    ASSERT_EQ(emitted.exit_code, 0) << emitted.err;
+    const std::string snippet = read_text(out / "saa_glints_ggaa.glsl");
+    EXPECT_NE(snippet.find("saa_GLINT_COUNT = 64.0"), std::string::npos);
+    EXPECT_NE(snippet.find("saa_GLINT_RELATIVE_AREA = 0.5"), std::string::npos);
+    const auto no_glint = saagen({"emit", "--variant", "deferred-avg", "--glint-count", "64", "-o", (scratch_ / "none").string()});
+    EXPECT_EQ(no_glint.exit_code, 1);
+    EXPECT_NE(no_glint.err.find("--glint-* options set the glint variants' constants"), std::string::npos) << no_glint.err;
+    const auto out_of_range = saagen({"emit", "--variant", "glints", "--glint-count", "3", "-o", (scratch_ / "range").string()});
+    EXPECT_EQ(out_of_range.exit_code, 1);
+    EXPECT_NE(out_of_range.err.find("--glint-count 3 is out of range"), std::string::npos) << out_of_range.err;
+    EXPECT_FALSE(fs::exists(scratch_ / "none"));
+
+    const fs::path manifest = scratch_ / "options.toml";
+    std::ofstream(manifest) << "name = \"sparkle\"\ntargets = [\"glsl\"]\nglint_count = 32\nglint_lods = 8\nglint_max_anisotropy = 4\n"
+                               "[[material]]\nname = \"paint\"\npath = \"forward\"\ntangents = true\nglints = true\n";
+    const fs::path bundle = scratch_ / "bundle";
+    const auto scene = saagen({"emit", "--manifest", manifest.string(), "-o", bundle.string()});
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    const std::string text = read_text(bundle / "saa_sparkle.glsl");
+    EXPECT_NE(text.find("saa_GLINT_COUNT = 32.0"), std::string::npos);
+    EXPECT_NE(text.find("saa_GLINT_MAX_ANISOTROPY = 4.0"), std::string::npos);
+    const std::string bytes = read_text(bundle / "saa_sparkle_glint_dictionary.ktx2");
+    const auto dictionary = saagen::read_ktx2(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    EXPECT_EQ(dictionary.layers, 8u * 32u / 4u);  // L LODs x N / 4 RGBA layers
+    EXPECT_EQ(dictionary.levels.size(), 7u);  // log2(64) + 1 MIP levels of the 64-texel distributions
+    const auto entry = std::find_if(dictionary.key_values.begin(), dictionary.key_values.end(),
+                                    [](const auto& key_value) { return key_value.first == "saagen.glints"; });
+    ASSERT_NE(entry, dictionary.key_values.end());
+    const auto description = nlohmann::json::parse(entry->second);
+    EXPECT_EQ(description.at("count"), 32);
+    EXPECT_EQ(description.at("lods"), 8);
+
+    const fs::path plain = scratch_ / "plain.toml";
+    std::ofstream(plain) << "targets = [\"glsl\"]\nglint_count = 32\n[[material]]\nname = \"m\"\npath = \"forward\"\n";
+    const auto refused = saagen({"plan", plain.string()});
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_NE(refused.err.find("plain.toml:2:15: key 'glint_count': a glint option, and no material has glints = true"), std::string::npos)
+        << refused.err;
+}
+
 TEST_F(GlintCli, RejectsBadOptionsInOneLine) {
     const auto run = saagen({"glints", "emit", "--count", "98", "-o", (scratch_ / "x").string()});
     EXPECT_NE(run.exit_code, 0);

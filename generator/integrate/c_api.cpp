@@ -106,8 +106,9 @@ saagen_files* saagen_emit_manifest(const char* manifest_toml, const char* source
   if (!manifest_toml && null_argument("manifest_toml")) return nullptr;
   saagen_files* result = nullptr;
   guarded_call([&] {
-    const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
-    const saagen::Manifest manifest = saagen::parse_manifest(manifest_toml, source_name ? source_name : "manifest", catalogue);
+    const saagen::Manifest manifest =
+        saagen::parse_manifest(manifest_toml, source_name ? source_name : "manifest", saagen::Catalogue::builtin());
+    const saagen::Catalogue& catalogue = saagen::scene_catalogue(manifest, saagen::Catalogue::builtin());
     const saagen::ScenePlan plan = saagen::plan_scene(catalogue, manifest);
     auto files = std::make_unique<saagen_files>();
     for (saagen::EmittedFile& file : saagen::emit_scene(catalogue, manifest, plan)) {

@@ -402,8 +402,18 @@ const Catalogue& catalogue() {
     return glint_catalogue;
 }
 
-std::vector<std::uint8_t> default_dictionary_ktx2() {
-  const DictionaryParams params;
+std::vector<std::uint8_t> default_dictionary_ktx2() { return dictionary_ktx2_for({}); }
+
+std::vector<std::uint8_t> dictionary_ktx2_for(const std::map<std::string, double>& option_values) {
+  DictionaryParams params;
+  const auto option = [&](const char* name, double fallback) {
+    const auto found = option_values.find(name);
+    return found == option_values.end() ? fallback : found->second;
+  };
+  params.count = static_cast<int>(option("glint_count", params.count));
+  params.lods = static_cast<int>(option("glint_lods", params.lods));
+  params.alpha = option("glint_alpha", params.alpha);
+  params.validate();
   return write_ktx2(dictionary_ktx2(dictionary_texture(generate_dictionary(params), true), params));
 }
 

@@ -1,4 +1,6 @@
 #include "saagen/scene/manifest.hpp"
+
+#include "saagen/products/glints.hpp"
 #include "saagen/scene/cost_tables.hpp"
 
 #include "saagen/emit/engines.hpp"
@@ -191,8 +193,14 @@ void read_targets(Manifest& manifest, const TableReader& top) {
   }
 }
 
+// The emission options of `catalogue` and of the glint catalogue (glint_count, ...: they apply to
+// the materials with glints = true; check_glint_options refuses them without one).
 void read_options(Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
-  for (const Constant& constant : catalogue.constants()) {
+  std::vector<Constant> constants = catalogue.constants();
+  for (const Constant& constant : glints::catalogue().constants()) {
+    if (!constant.option.empty() && !catalogue.find_option(constant.option)) constants.push_back(constant);
+  }
+  for (const Constant& constant : constants) {
     if (constant.option.empty()) continue;
     const std::string allowed = fmt::format("a number in {} ({}; default {})", constant.range->describe(), constant.meaning, constant.value);
     const auto value = top.number(constant.option, allowed);
@@ -201,6 +209,15 @@ void read_options(Manifest& manifest, const TableReader& top, const Catalogue& c
       top.fail_key(constant.option, fmt::format("{} is out of range", *value), allowed);
     }
     manifest.option_values[constant.option] = *value;
+  }
+}
+
+void check_glint_options(const Manifest& manifest, const TableReader& top, const Catalogue& catalogue) {
+  if (plans_glints(manifest)) return;
+  for (const auto& [option, value] : manifest.option_values) {
+    if (!catalogue.find_option(option)) {
+      top.fail_key(option, "a glint option, and no material has glints = true", "the key with a material that sets glints = true");
+    }
   }
 }
 
@@ -485,7 +502,7 @@ std::string Manifest::where(SourcePosition position) const {
 const std::vector<std::string>& manifest_keys() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family"};
-    for (const Constant& constant : Catalogue::builtin().constants()) {
+    for (const Constant& constant : glints::catalogue().constants()) {  // the SAA options, then the glint options
       if (!constant.option.empty()) names.push_back(constant.option);
     }
     names.insert(names.end(), {"preset", "domain", "import_path", "material"});
@@ -553,6 +570,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
   read_options(manifest, top, catalogue);
   read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);
+  check_glint_options(manifest, top, catalogue);
   apply_preset_variant(manifest, catalogue);
   return manifest;
 }
@@ -560,6 +578,12 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue) {
   const std::string text = read_input_file(path, manifest_size_limit, "a scene manifest (see examples/scene.saagen.toml)");
   return parse_manifest(text, path.string(), catalogue);
+}
+
+std::string glint_dictionary_file_name(const Manifest& manifest) { return manifest.prefix + manifest.name + "_glint_dictionary.ktx2"; }
+
+bool plans_glints(const Manifest& manifest) {
+  return std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.glints; });
 }
 
 }  // namespace saagen

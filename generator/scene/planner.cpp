@@ -1,5 +1,7 @@
 #include "saagen/scene/planner.hpp"
 
+#include "saagen/products/glints.hpp"
+
 #include "saagen/emit/engines.hpp"
 
 #include "saagen/validate/compiler.hpp"
@@ -702,14 +704,8 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
   return files;
 }
 
-}  // namespace saagen
-
-namespace saagen {
-
-std::string glint_dictionary_file_name(const Manifest& manifest) { return manifest.prefix + manifest.name + "_glint_dictionary.ktx2"; }
-
-bool plans_glints(const Manifest& manifest) {
-  return std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.glints; });
+const Catalogue& scene_catalogue(const Manifest& manifest, const Catalogue& catalogue) {
+  return plans_glints(manifest) ? glints::catalogue() : catalogue;
 }
 
 }  // namespace saagen

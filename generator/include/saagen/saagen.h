@@ -47,7 +47,10 @@ int saagen_list_json(const char* prefix, const char* domain, char** out_json);
 int saagen_emit(const char* request, char** out_file_name, char** out_text);
 
 /* A scene manifest (TOML text, the format of `saagen emit --manifest`) planned and emitted to
- * memory: one bundle per target and precision. `source_name` names the text in messages. */
+ * memory: one bundle per target and precision. `source_name` names the text in messages. With a
+ * glints = true material the bundles hold the glint BRDF; its dictionary texture (binary, so not
+ * among these texts) is what `saagen glints dictionary --count N --lods L --alpha A` writes for
+ * the manifest's glint_count, glint_lods and glint_alpha (defaults 192, 16, 0.5). */
 typedef struct saagen_files saagen_files;
 saagen_files* saagen_emit_manifest(const char* manifest_toml, const char* source_name);
 size_t saagen_files_count(const saagen_files* files);

@@ -81,4 +81,10 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 // Reads the file and parses it; the path (as given) names it in diagnostics.
 Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catalogue);
 
+// The glint dictionary written next to the bundles when a material has glints = true:
+// <prefix><name>_glint_dictionary.ktx2 (glints::dictionary_ktx2_for the manifest's options: the
+// dictionary its glint_count, glint_lods and glint_alpha describe).
+std::string glint_dictionary_file_name(const Manifest& manifest);
+bool plans_glints(const Manifest& manifest);
+
 }  // namespace saagen

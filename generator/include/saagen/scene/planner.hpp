@@ -103,10 +103,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 // The emission options of a manifest for one target and precision.
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision);
 
-// The glint dictionary written next to the bundles when a material has glints = true:
-// <prefix><name>_glint_dictionary.ktx2 (the default dictionary, matching the default options).
-std::string glint_dictionary_file_name(const Manifest& manifest);
-bool plans_glints(const Manifest& manifest);
+
+// The catalogue a manifest is planned and emitted over: the glint catalogue when a material has
+// glints = true (it holds the SAA variants too), else `catalogue` (plans and bundles without
+// glints stay byte for byte as they are).
+const Catalogue& scene_catalogue(const Manifest& manifest, const Catalogue& catalogue);
 
 // One bundle per target and precision used by the materials (fp32 first): files
 // <prefix><name>[_<precision>].<ext>, holding only the closure of the materials' functions.
