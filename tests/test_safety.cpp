@@ -9,6 +9,7 @@
 #include "saagen/glints.hpp"
 #include "saagen/manifest.hpp"
 #include "saagen/output.hpp"
+#include "saagen/saagen.h"
 
 #include "cli_support.hpp"
 
@@ -572,6 +573,39 @@ TEST_F(Safety, MessagesNameTheFileOrOption) {
                         (scratch_ / "bad.comp").string() + ":3: 'undefined_call'");
   EXPECT_FALSE(fs::exists(scratch_ / "e"));
   EXPECT_FALSE(fs::exists(scratch_ / "g"));
+}
+
+// Text quoted into a message (an argument, a file name, a manifest value) can neither break the
+// one line nor drive the terminal: control characters are escaped; a huge quote keeps the
+// message's beginning and its end (what to do). The same for the C API's last error.
+TEST_F(Safety, MessagesEscapeControlCharactersAndStayShort) {
+  const CliRun escaped = saagen({"emit", "-v", "a\nb\x1b[31mc\t", "-o", (scratch_ / "e").string()});
+  expect_one_line_error(escaped, "unknown variant 'a\\nb\\x1b[31mc\\t'");
+  EXPECT_EQ(escaped.err.find('\x1b'), std::string::npos);
+  const CliRun huge = saagen({"emit", "-v", std::string(100000, 'x'), "-o", (scratch_ / "e").string()});
+  expect_one_line_error(huge, "bytes left out ...]");
+  EXPECT_LT(huge.err.size(), saagen::max_message_bytes + 64);
+  EXPECT_NE(huge.err.find("run `saagen list` to see the ids\n"), std::string::npos) << huge.err;
+  for (const auto& [run, expected] : {std::pair{saagen({"fo\no"}), std::string("unknown command 'fo\\no'")},
+                                      std::pair{saagen({"emit", "--bogus\x07", "-o", (scratch_ / "e").string()}), std::string("--bogus\\x07")}}) {
+    EXPECT_EQ(run.exit_code, 2);  // usage errors
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+  write(scratch_ / "m.toml", "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprecision = \"fp\\u001b16\"\n");
+  const CliRun manifest = saagen({"plan", (scratch_ / "m.toml").string()});
+  expect_one_line_error(manifest, "m.toml:6:");
+  EXPECT_EQ(manifest.err.find('\x1b'), std::string::npos) << manifest.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "e"));
+
+  EXPECT_STREQ(saagen::Error("a\nb\r\x01").what(), "a\\nb\\r\\x01");
+  EXPECT_EQ(saagen::one_line("already\\none line"), "already\\none line");  // escaping twice changes nothing
+  char* name = nullptr;
+  char* text = nullptr;
+  EXPECT_NE(saagen_emit("deferred-sum.glsl?prefix=x\ny\x1b", &name, &text), 0);
+  const std::string last = saagen_last_error();
+  EXPECT_EQ(last.find_first_of("\n\x1b"), std::string::npos) << last;
+  EXPECT_NE(last.find("x\\ny\\x1b"), std::string::npos) << last;
 }
 
 TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
