@@ -608,6 +608,54 @@ TEST_F(Safety, MessagesEscapeControlCharactersAndStayShort) {
   EXPECT_NE(last.find("x\\ny\\x1b"), std::string::npos) << last;
 }
 
+// Numbers that would be wrong rather than refused: --seed wrapped (-1) or saturated (2^64) by the
+// option parser; kappa = -0.0 emitted as "-0.0"; a manifest value that rounds to 0 in the
+// materials' precision reported as a command-line option, without its file:line:column.
+TEST_F(Safety, SeedsNegativeZeroAndManifestNumbersAreExact) {
+  for (const std::string seed : {"-1", "18446744073709551616", "1e23", "0x10", " 5", "", "+5"}) {
+    auto arguments = small_dictionary(scratch_ / "d.ktx2");
+    arguments.insert(arguments.end(), {"--seed", seed});
+    expect_one_line_error(saagen(arguments), "--seed '" + seed + "': not a whole number in [0, 18446744073709551615]");
+  }
+  EXPECT_FALSE(fs::exists(scratch_ / "d.ktx2"));
+  auto largest = small_dictionary(scratch_ / "d.ktx2");
+  largest.insert(largest.end(), {"--seed", "18446744073709551615"});
+  ASSERT_EQ(saagen(largest).exit_code, 0);
+  const std::string with_largest = read_text(scratch_ / "d.ktx2");
+  largest.back() = "0";
+  ASSERT_EQ(saagen(largest).exit_code, 0);
+  EXPECT_NE(read_text(scratch_ / "d.ktx2"), with_largest);  // the seed is used, not clamped
+
+  ASSERT_EQ(saagen({"emit", "-v", "deferred-sum", "--kappa", "-0", "-o", (scratch_ / "k").string()}).exit_code, 0);
+  const std::string emitted = read_text(scratch_ / "k" / "saa_deferred_sum.glsl");
+  EXPECT_NE(emitted.find("const float saa_KAPPA = 0.0;"), std::string::npos);
+  EXPECT_NE(emitted.find(" kappa=0.0 "), std::string::npos);
+  EXPECT_EQ(emitted.find("-0.0"), std::string::npos);
+  const std::string manifest_head = "name = \"scene\"\ntargets = [\"glsl\"]\n";
+  const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\n";
+  write(scratch_ / "zero.toml", manifest_head + "kappa = -0.0\n" + material);
+  ASSERT_EQ(saagen({"emit", "--manifest", (scratch_ / "zero.toml").string(), "-o", (scratch_ / "z").string()}).exit_code, 0);
+  EXPECT_EQ(read_text(scratch_ / "z" / "saa_scene.glsl").find("-0.0"), std::string::npos);
+
+  write(scratch_ / "tiny.toml", manifest_head + "sigma2 = 1e-10\n" + material + "precision = \"fp16\"\n");
+  for (const std::string command : {"plan", "emit"}) {
+    std::vector<std::string> arguments = {command};
+    if (command == "emit") arguments.push_back("--manifest");
+    arguments.insert(arguments.end(), {(scratch_ / "tiny.toml").string(), "--no-cost"});
+    if (command == "emit") arguments.back() = "-o", arguments.push_back((scratch_ / "t").string());
+    expect_one_line_error(saagen(arguments), "tiny.toml:3:10: key 'sigma2': 1e-10 is below the smallest normal fp16 number");
+  }
+  write(scratch_ / "subnormal.toml", manifest_head + "kappa = 1e-310\n" + material);
+  expect_one_line_error(saagen({"plan", (scratch_ / "subnormal.toml").string()}), "subnormal.toml:3:9: key 'kappa': 1e-310 is below the smallest normal fp32 number");
+  for (const std::string value : {"nan", "inf", "-inf", "-nan"}) {
+    for (const std::string key : {"sigma2", "kappa"}) {
+      write(scratch_ / "bad.toml", manifest_head + key + " = " + value + "\n" + material);
+      expect_one_line_error(saagen({"plan", (scratch_ / "bad.toml").string()}), "bad.toml:3:" + std::to_string(key.size() + 4) + ": key '" + key + "'");
+    }
+  }
+  EXPECT_FALSE(fs::exists(scratch_ / "t"));
+}
+
 TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
   write(scratch_ / "a-file", "x");
   double seconds = 0.0;

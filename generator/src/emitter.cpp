@@ -32,6 +32,7 @@ std::string upper(std::string_view text) {
 // Shortest text that reads back as the same double and is a floating-point literal in GLSL
 // and HLSL (it always has a '.' or an exponent).
 std::string float_literal(double value) {
+  if (value == 0.0) value = 0.0;  // -0.0 (kappa = -0.0) is written 0.0
   std::string text = fmt::format("{}", value);
   if (text.find_first_of(".eE") == std::string::npos) text += ".0";
   return text;
@@ -362,7 +363,7 @@ std::map<std::string, double> resolve_options(const Catalogue& catalogue, const 
     if (!std::isfinite(value) || !constant->range->contains(value)) {
       throw Error(fmt::format("--{} {} is out of range: allowed {} ({})", option, value, constant->range->describe(), constant->meaning));
     }
-    values[option] = value;
+    values[option] = value == 0.0 ? 0.0 : value;  // no -0.0 downstream
   }
   return values;
 }
