@@ -177,6 +177,7 @@ std::vector<double> reference_core(const ref::Params& p, const std::string& name
   Reader in(x);
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
+  if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
   const ref::Brdf brdf{p};
   if (name.rfind("forward_aniso_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_matrix(p, a, du, in.vec2())); }
   if (name.rfind("forward_axis_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_rectangle(p, a, du, in.vec2())); }
