@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <csignal>
 #include <set>
 #include <sys/wait.h>
 #include <sys/stat.h>
@@ -380,6 +381,22 @@ TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
                                                         (scratch_ / "g" / "d.f32").string()});
   EXPECT_EQ(dictionary.exit_code, 1) << dictionary.err;
   EXPECT_EQ(entries(scratch_ / "g"), std::set<std::string>{});
+}
+
+// A signal that ends the process while outputs are staged (here the file-size limit's SIGXFSZ,
+// not ignored; Ctrl-C and SIGTERM take the same handler) removes the temporaries first, and no
+// output has been renamed yet: the directory is as it was. They were left behind.
+TEST_F(Safety, ASignalDuringStagingLeavesNoTemporary) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "-o", out.string(), "--sigma2", "0.5"}).exit_code, 0);
+  std::map<std::string, std::string> before;
+  for (const std::string& name : entries(out)) before[name] = read_text(out / name);
+  std::string command = "ulimit -f 8; exec " + shell_quote(SAAGEN_CLI_PATH) + " emit -o " + shell_quote(out.string());
+  const CliRun run = run_shell(command);
+  EXPECT_EQ(run.exit_code, 128 + SIGXFSZ) << run.err;  // ended by the signal, as before
+  std::map<std::string, std::string> after;
+  for (const std::string& name : entries(out)) after[name] = read_text(out / name);
+  EXPECT_EQ(after, before);
 }
 
 // ---------------------------------------------------------------------------------------------
