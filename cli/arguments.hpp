@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <cerrno>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +39,17 @@ inline double parse_number(std::string_view option, const std::string& text) {
   const double value = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || std::isspace(static_cast<unsigned char>(text.front()))) {
     throw Error(fmt::format("{} '{}': not a number; pass a decimal number", option, text));
+  }
+  return value;
+}
+
+// A whole decimal number in [0, 2^64 - 1], nothing else: no sign, no exponent, no fraction, no
+// spaces, no wrap-around (-1) or saturation (2^64).
+inline std::uint64_t parse_unsigned(std::string_view option, const std::string& text) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    throw Error(fmt::format("{} '{}': not a whole number in [0, 18446744073709551615]; pass a decimal number without sign or exponent", option, text));
   }
   return value;
 }

@@ -71,7 +71,7 @@ GlintCommands::GlintCommands(CLI::App& app) {
   dictionary_->add_option("--resolution", resolution_, "Texels per distribution (power of two)")->capture_default_str();
   dictionary_->add_option("--alpha", glint_options_.alpha, "Beckmann roughness alpha_dict of the last LOD (default 0.5)");
   dictionary_->add_option("--lobe-sigma", lobe_sigma_, "Standard deviation of a lobe")->capture_default_str();
-  dictionary_->add_option("--seed", seed_, "Random seed")->capture_default_str();
+  dictionary_->add_option("--seed", seed_, "Random seed, a whole number in [0, 2^64 - 1]")->capture_default_str();
   dictionary_->add_flag("--no-mips", no_mips_, "Level 0 only (the textureLod baseline needs no MIPs)");
   dictionary_->add_option("--raw", raw_file_, "Also write the unrounded level-0 densities as little-endian float32 (.f32), layer-major, 4 per texel");
   dictionary_->add_option("--output,-o", output_file_, "Output .ktx2 file")->required();
@@ -154,7 +154,7 @@ int GlintCommands::run_dictionary() const {
   if (glint_options_.alpha) params.alpha = *glint_options_.alpha;
   params.resolution = resolution_;
   params.lobe_sigma = lobe_sigma_;
-  params.seed = seed_;
+  params.seed = parse_unsigned("--seed", seed_);
   params.validate();
   // Every output path is checked before the generation starts, and written together.
   std::vector<fs::path> paths = {output_file_};

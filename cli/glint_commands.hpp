@@ -45,7 +45,7 @@ class GlintCommands {
   // dictionary
   int resolution_ = 64;
   double lobe_sigma_ = 0.02;
-  std::uint64_t seed_ = 2021;
+  std::string seed_ = "2021";  // parsed strictly (parse_unsigned): CLI11 wrapped -1 and saturated 2^64
   bool no_mips_ = false;
   std::string output_file_;
   std::string raw_file_;

@@ -219,9 +219,10 @@ int finish_standard_output(int code) {
 // CLI11 prints multi-line messages; saagen prints one line and the command's --help hint.
 int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
   if (error.get_exit_code() == 0) return finish_standard_output(app.exit(error));  // --help, --version
+  // CLI11's own line breaks become spaces; anything else quoted from the arguments is escaped.
   std::string message = error.what();
   std::replace(message.begin(), message.end(), '\n', ' ');
-  std::cerr << "saagen: error: " << message << " (run `saagen --help`)\n";
+  std::cerr << "saagen: error: " << saagen::one_line(message) << " (run `saagen --help`)\n";
   return exit_usage;
 }
 
@@ -287,7 +288,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
         return command->get_name() == argv[1];
       }).empty()) {
-    std::cerr << "saagen: error: unknown command '" << argv[1] << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
+    std::cerr << "saagen: error: unknown command '" << saagen::one_line(argv[1]) << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
     return exit_usage;
   }
   try {
@@ -329,7 +330,7 @@ int main(int argc, char** argv) {
     std::cerr << "saagen: error: " << error.what() << "\n";
     return exit_failure;
   } catch (const std::exception& error) {
-    std::cerr << "saagen: internal error: " << error.what() << "\n";
+    std::cerr << "saagen: internal error: " << saagen::one_line(error.what()) << "\n";
     return exit_failure;
   }
 }

@@ -15,15 +15,7 @@
 //    factor; inputs keep it <= 100), plus the Beckmann exponent e (exp amplifies a relative
 //    error of e by e). Smith Lambda is a difference (-0.5 + ..., or Walter's fit whose
 //    numerator has roots near a = 1.55), so its scale is the sum of the magnitudes of its terms.
-//  - deferred-aniso (templates/20-deferred.saa): the tensor's S is the unclamped trace
-//    2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), which bounds every entry: the products round relative to
-//    it, and where the kappa clamp acts the smaller eigenvalue of a nearly rank-1 matrix is known
-//    only to eps times the trace. The lighting pass's A: S = alpha^2 + |Kxx| + |Kyy|. Its BRDF
-//    is the filtered GGX's scale plus the frame: the directions enter through dot products with
-//    a frame built in fp32 (a few ulps of absolute error delta in i_ts, o_ts, h_ts), which moves
-//    the NDF's quadratic form h.xy^T M^-1 h.xy / h_z^2 by <= 2 |h.xy| delta / (alpha^2 h_z^2) for
-//    every lobe M >= alpha^2 I (relative error of the GGX lobe twice that), and the cosines
-//    i.z, o.z by delta: S += |f| (4 |h.xy| / (alpha^2 h_z^2) + 1 / i.z + 1 / o.z).
+//  - deferred-aniso (templates/20-deferred.saa): reference_dispatch.hpp, deferred_aniso_reference.
 #pragma once
 
 #include "reference_dispatch.hpp"
@@ -200,48 +192,14 @@ inline double beckmann_exponent(Vec3 h, Sym2 a, double tau) {
   return ref::sym2_quadratic_form({a.yy, -a.xy, a.xx}, {h.x / h.z, h.y / h.z}) / det;
 }
 
-// A list of values read as the Inputs of a reference (filtered_ggx_reference's `In`).
-struct ValueList {
-  std::vector<double> values;
-  std::size_t next = 0;
-  double real() { return values.at(next++); }
-  Vec2 vec2() { const double x = real(); return {x, real()}; }
-  Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  Sym2 sym2() { const double xx = real(), xy = real(); return {xx, xy, real()}; }
-};
-
-// deferred-aniso's three core/evaluate functions and their scales (see the file comment).
+// deferred-aniso's core and evaluate functions: the shared reference and its scale
+// (reference_dispatch.hpp, deferred_aniso_reference).
 inline void deferred_aniso_references(const ref::Params& p, std::map<std::string, ReferenceFunction>& table) {
-  table["deferred_aniso"] = {
-      [=](Inputs& in) { const Vec3 dx = in.vec3(), dy = in.vec3(); return outputs(ref::deferred_aniso(p, dx, dy, in.vec3())); },
-      [=](Inputs& in) { const Vec3 dx = in.vec3(), dy = in.vec3(); return std::vector<double>{2.0 * ref::isotropic_kernel_sum(p, dx, dy)}; }};
-  table["deferred_aniso_roughness"] = {
-      [=](Inputs& in) {
-        const Vec3 l = in.vec3(), v = in.vec3(), n = in.vec3(); const Sym2 k = in.sym2();
-        return outputs(ref::deferred_aniso_roughness(p, l, v, n, k, in.real()));
-      },
-      [](Inputs& in) {
-        in.vec3(), in.vec3(), in.vec3(); const Sym2 k = in.sym2();
-        return std::vector<double>{std::fabs(in.real()) + std::fabs(k.xx) + std::fabs(k.yy)};
-      }};
-  table["deferred_aniso_brdf"] = {
-      [=](Inputs& in) {
-        const Vec3 l = in.vec3(), v = in.vec3(), n = in.vec3(); const Sym2 k = in.sym2();
-        return outputs(ref::deferred_aniso_brdf(p, l, v, n, k, in.real()));
-      },
-      [=](Inputs& in) {
-        const Vec3 l = in.vec3(), v = in.vec3(), n = in.vec3(); const Sym2 k = in.sym2(); const double alpha2 = in.real();
-        const Vec3 t = ref::normal_frame_tangent(n), b = ref::normal_frame_bitangent(n);
-        const Vec3 i = ref::to_tangent_space(l, t, b, n), o = ref::to_tangent_space(v, t, b, n);
-        const Sym2 a = ref::deferred_aniso_roughness(p, l, v, n, k, alpha2);
-        ValueList list{{i.x, i.y, i.z, o.x, o.y, o.z, a.xx, a.xy, a.yy, alpha2, alpha2}};
-        const double lobes = saagen::test::filtered_ggx_reference("ggx_brdf_filtered_matrix", p, list, true)->at(0);
-        const double value = std::fabs(ref::deferred_aniso_brdf(p, l, v, n, k, alpha2));
-        if (i.z <= 0.0 || o.z <= 0.0) return std::vector<double>{lobes};
-        const Vec3 h = ref::normalize(i + o);
-        const double frame = 4.0 * std::sqrt(h.x * h.x + h.y * h.y) / std::max(alpha2 * h.z * h.z, 1e-30) + 1.0 / i.z + 1.0 / o.z;
-        return std::vector<double>{lobes + value * frame};
-      }};
+  for (const char* name : {"deferred_aniso", "deferred_aniso_roughness", "deferred_aniso_brdf"}) {
+    const std::string function = name;
+    table[function] = {[=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in); },
+                       [=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in, true); }};
+  }
 }
 
 inline std::map<std::string, ReferenceFunction> reference_functions(const ref::Params& p) {

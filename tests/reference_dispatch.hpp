@@ -240,4 +240,55 @@ std::optional<std::vector<double>> prefilter_reference(const std::string& name, 
   return std::nullopt;
 }
 
+// A list of doubles read as the inputs of a reference (the `In` of the dispatchers below).
+struct ValueList {
+  std::vector<double> values;
+  std::size_t next = 0;
+  double real() { return values.at(next++); }
+  ref::Vec2 vec2() { const double x = real(); return {x, real()}; }
+  ref::Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
+  ref::Sym2 sym2() { const double xx = real(), xy = real(); return {xx, xy, real()}; }
+};
+
+// deferred-aniso's core and evaluate functions (templates/20-deferred.saa) on inputs read in
+// parameter order (In: real, vec3, sym2); nullopt for other functions. With `magnitudes`, the
+// magnitude scale S of each output for the 2e-5 S fp32 rounding bound (core_cases.hpp):
+//  - deferred_aniso: the unclamped trace 2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), which bounds every
+//    entry: the products round relative to it, and where the kappa clamp acts the smaller
+//    eigenvalue of a nearly rank-1 matrix is known only to eps times the trace;
+//  - deferred_aniso_roughness: alpha^2 + |Kxx| + |Kyy|;
+//  - deferred_aniso_brdf: the filtered GGX's scale, plus the frame: the directions enter through
+//    dot products with a frame built in fp32 (a few ulps of absolute error delta in i_ts, o_ts,
+//    h_ts), which moves the NDF's quadratic form h.xy^T M^-1 h.xy / h_z^2 by at most
+//    2 |h.xy| delta / (alpha^2 h_z^2) for every lobe M >= alpha^2 I (the GGX lobe's relative
+//    error is twice that) and the cosines i.z, o.z by delta:
+//    S += |f| (4 |h.xy| / (alpha^2 h_z^2) + 1 / i.z + 1 / o.z).
+template <class In>
+std::optional<std::vector<double>> deferred_aniso_reference(const std::string& name, const ref::Params& p, In& in, bool magnitudes = false) {
+  if (name == "deferred_aniso") {
+    const ref::Vec3 dx = in.vec3(), dy = in.vec3(), normal = in.vec3();
+    if (magnitudes) return std::vector<double>(3, 2.0 * ref::isotropic_kernel_sum(p, dx, dy));
+    return output_values(ref::deferred_aniso(p, dx, dy, normal));
+  }
+  if (name != "deferred_aniso_roughness" && name != "deferred_aniso_brdf") return std::nullopt;
+  const ref::Vec3 light = in.vec3(), view = in.vec3(), normal = in.vec3();
+  const ref::Sym2 tensor = in.sym2();
+  const double alpha2 = in.real();
+  if (name == "deferred_aniso_roughness") {
+    if (magnitudes) return std::vector<double>(3, std::fabs(alpha2) + std::fabs(tensor.xx) + std::fabs(tensor.yy));
+    return output_values(ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2));
+  }
+  const double value = ref::deferred_aniso_brdf(p, light, view, normal, tensor, alpha2);
+  if (!magnitudes) return output_values(value);
+  const ref::Vec3 t = ref::normal_frame_tangent(normal), b = ref::normal_frame_bitangent(normal);
+  const ref::Vec3 i = ref::to_tangent_space(light, t, b, normal), o = ref::to_tangent_space(view, t, b, normal);
+  const ref::Sym2 a = ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2);
+  ValueList lobe_inputs{{i.x, i.y, i.z, o.x, o.y, o.z, a.xx, a.xy, a.yy, alpha2, alpha2}};
+  const double lobes = filtered_ggx_reference("ggx_brdf_filtered_matrix", p, lobe_inputs, true)->at(0);
+  if (i.z <= 0.0 || o.z <= 0.0) return std::vector<double>{lobes};
+  const ref::Vec3 h = ref::normalize(i + o);
+  const double frame = 4.0 * std::sqrt(h.x * h.x + h.y * h.y) / std::max(alpha2 * h.z * h.z, 1e-30) + 1.0 / i.z + 1.0 / o.z;
+  return std::vector<double>{lobes + std::fabs(value) * frame};
+}
+
 }  // namespace saagen::test

@@ -21,6 +21,13 @@
 //    Products below FLT_MIN = 2^-126 underflow (or flush to zero, which Vulkan allows): K11 can
 //    come out 0 while its exact value is up to 2 sigma^2 * 2 FLT_MIN <= 16 FLT_MIN (sigma^2 <= 4),
 //    and A01^2 <= A00 K11 then exceeds A00 A11 by at most 16 FLT_MIN A00 = 2^-122 A00.
+//  - kTensorSlack: deferred-aniso's tensor entries <= kappa (diagonal), kappa / 2 (off-diagonal)
+//    plus 2^-21. The bound kappa / (2 sigma^2) rounds once, the clamped diagonal
+//    smaller + (larger - smaller) p (p in [0, 1]) three times, the scale by 2 sigma^2 (exact
+//    power-of-two factor times a rounded SIGMA2) once more: 5 units of 2^-24 of kappa <= 1,
+//    2^-21 = 8. Its PSD check is kPsdSlack's: the unclamped branch is Delta^T Delta as above,
+//    the clamped one s I + c P1 with P1's smaller diagonal entry written without cancellation,
+//    so det(P1) = p00 p11 - p01^2 is a few units of 2^-24 of p01^2 <= p00 p11.
 #pragma once
 
 #include "saagen/reference/reference.hpp"
@@ -44,12 +51,15 @@ enum class Claim {
   covariance,        // lean_covariance: finite, diagonal >= 0, det >= -(rounding)
   prefiltered,       // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
   prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
+  kernel_tensor,     // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
+  tensor_roughness,  // deferred_aniso_roughness: finite, A00, A11 >= alpha^2, det A >= -(rounding) (for a PSD tensor)
 };
 
 inline constexpr double kKappaSlack = 0x1p-22;
 inline constexpr double kProjectedSlack = 0x1p-22;
 inline constexpr double kPsdSlack = 0x1p-20;
 inline constexpr double kPsdUnderflow = 0x1p-122;
+inline constexpr double kTensorSlack = 0x1p-21;
 // Walter et al.'s rational Lambda fit has numerator roots at a = 1.5498 and 1.6296, so for
 // 1.5498 < a < 1.6 it is slightly negative: its minimum is -6.0e-5 (at a = 1.585); GGX's Lambda
 // is >= 0 up to rounding of -0.5 + x with x >= 0.5.
@@ -62,6 +72,9 @@ inline Claim claim_of(std::string_view function) {
   if (function == "lean_covariance") return Claim::covariance;
   if (starts("prefilter_") && function.ends_with("_projected")) return Claim::prefiltered_projected;
   if (starts("prefilter_")) return Claim::prefiltered;
+  if (function == "deferred_aniso" || function == "deferred_aniso_fragment") return Claim::kernel_tensor;
+  if (function == "deferred_aniso_roughness") return Claim::tensor_roughness;
+  if (function == "deferred_aniso_brdf") return Claim::brdf_value;
   if (starts("deferred_projected_space")) return Claim::projected_space;
   if (starts("forward_axis_") || starts("deferred_")) return Claim::saturated;
   if (function == "ndf_clamp_tau") return Claim::clamp_tau;
@@ -81,6 +94,8 @@ inline std::string_view describe(Claim claim) {
     case Claim::covariance: return "finite; S00, S11 >= 0; det S >= -2^-20 S00 S11 - 2^-122 (S00 + S11)";
     case Claim::prefiltered: return "finite; min(a,1) <= a' <= 1 (texture term unclamped)";
     case Claim::prefiltered_projected: return "finite; saturate(a) <= a' <= 1 (+-2^-22)";
+    case Claim::kernel_tensor: return "finite; K00, K11 in [0, kappa], |K01| <= kappa / 2 (+2^-21); PSD: det K >= -2^-20 K00 K11 - 2^-122 (K00 + K11)";
+    case Claim::tensor_roughness: return "finite; A00, A11 >= alpha^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
   }
   return "";
 }
@@ -130,6 +145,22 @@ inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, 
       if (out[0] < a - kProjectedSlack) fail("a' < saturate(a)");
       if (out[0] > 1.0 + kProjectedSlack) fail("a' > 1");
       if (out[0] - a > kappa + kProjectedSlack) fail("a' - a > kappa");
+      break;
+    }
+    case Claim::kernel_tensor: {
+      if (out[0] < 0.0 || out[2] < 0.0) fail("negative K00 or K11");
+      if (out[0] > kappa + kTensorSlack || out[2] > kappa + kTensorSlack) fail("K00 or K11 > kappa");
+      if (std::fabs(out[1]) > 0.5 * kappa + kTensorSlack) fail("|K01| > kappa / 2");
+      if (out[0] * out[2] - out[1] * out[1] < -kPsdSlack * out[0] * out[2] - kPsdUnderflow * (out[0] + out[2])) {
+        fail("det K < 0 beyond rounding");
+      }
+      break;
+    }
+    case Claim::tensor_roughness: {
+      if (out[0] < alpha2[0] || out[2] < alpha2[0]) fail("A00 or A11 < alpha^2");
+      if (out[0] * out[2] - out[1] * out[1] < -kPsdSlack * out[0] * out[2] - kPsdUnderflow * (out[0] + out[2])) {
+        fail("det A < 0 beyond rounding");
+      }
       break;
     }
     case Claim::covariance: {

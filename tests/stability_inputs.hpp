@@ -205,9 +205,15 @@ inline Layout layout_of(const Function& function) {
   return layout;
 }
 
+// deferred-aniso's lighting pass (deferred_aniso_roughness, deferred_aniso_brdf): evaluated with
+// the material's alpha^2 as the BRDFs are, on the tensor the geometry pass wrote.
+inline bool is_tensor_lighting(const Function& function) {
+  return function.role == FunctionRole::evaluate && function.name.rfind("deferred_aniso_", 0) == 0;
+}
+
 inline bool is_brdf(const Function& function) {
   return function.name.find("ggx") != std::string::npos || function.name.find("beckmann") != std::string::npos ||
-         function.name == "ndf_clamp_tau";
+         function.name == "ndf_clamp_tau" || is_tensor_lighting(function);
 }
 
 // One element of adversarial inputs for a core/evaluate function, appended to `out`.
@@ -240,6 +246,16 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       pack.vec2({material.a.xx, material.a.yy});
     } else if (name == "kernel") {
       pack.real(material.a.xx - material.alpha2.x);
+    } else if (name == "normal_ws") {
+      pack.vec3(adversarial_direction(rng));
+    } else if (name == "light_ws") {
+      pack.vec3(i);
+    } else if (name == "view_ws") {
+      pack.vec3(o);
+    } else if (name == "tensor") {
+      // The PSD kernel S of A = diag(alpha^2) + S: the lighting pass's claims hold for any PSD
+      // tensor, not only the kappa-clamped one deferred_aniso writes.
+      pack.sym2(material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y});
     } else if (name == "mean_length") {
       pack.real(adversarial_mean_length(rng));
     } else if (name == "slope_mean" || name == "slope_second") {

@@ -44,7 +44,7 @@ TEST_F(Cli, ListJsonIsTheContract) {
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["prefix"], "eng_");
   EXPECT_EQ(json["core_only_macro"], "ENG_CORE_ONLY");
-  ASSERT_EQ(json["variants"].size(), 15u);  // 13 SAA variants, glints, glints-ggaa
+  ASSERT_EQ(json["variants"].size(), 16u);  // 14 SAA variants, glints, glints-ggaa
   for (const auto& variant : json["variants"]) {
     for (const char* key : {"id", "summary", "paper", "equation", "render_path", "needs_tangents", "domain", "functions"}) {
       EXPECT_TRUE(variant.contains(key)) << key;
@@ -92,7 +92,7 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const fs::path out = scratch_ / "out";
   const CliRun first = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  EXPECT_EQ(files_in(out).size(), 15u);  // the glint variants included
+  EXPECT_EQ(files_in(out).size(), 16u);  // the glint variants included
   EXPECT_TRUE(files_in(out).count("saa_deferred_avg.hlsl"));
   const auto stamp = fs::last_write_time(out / "saa_deferred_avg.hlsl");
   const std::string bytes = read_text(out / "saa_deferred_avg.hlsl");
@@ -100,10 +100,10 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
   const CliRun second = saagen({"emit", "--target", "hlsl", "-o", out.string()});
   ASSERT_EQ(second.exit_code, 0);
   EXPECT_EQ(second.out.find("wrote"), std::string::npos) << second.out;
-  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 15);
+  EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 16);
   EXPECT_EQ(fs::last_write_time(out / "saa_deferred_avg.hlsl"), stamp);  // no needless rebuilds
   EXPECT_EQ(read_text(out / "saa_deferred_avg.hlsl"), bytes);
-  EXPECT_EQ(files_in(out).size(), 15u);  // no temporaries left behind
+  EXPECT_EQ(files_in(out).size(), 16u);  // no temporaries left behind
 }
 
 TEST_F(Cli, EmitSelectedVariantsWithOptions) {
@@ -179,7 +179,7 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   ASSERT_EQ(saagen({"emit", "-t", "hlsl", "-o", out.string()}).exit_code, 0);
   const CliRun good = saagen({"validate", out.string()});
   EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
-  EXPECT_NE(good.out.find("30 file(s) validated, 0 failed"), std::string::npos) << good.out;
+  EXPECT_NE(good.out.find("32 file(s) validated, 0 failed"), std::string::npos) << good.out;
 
   // A hand edit that breaks the code is caught and named.
   const fs::path edited = out / "saa_deferred_max.hlsl";
@@ -189,14 +189,14 @@ TEST_F(Cli, ValidateChecksWhatEmitWrote) {
   const CliRun bad = saagen({"validate", out.string()});
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.out.find("FAIL " + edited.string()), std::string::npos) << bad.out;
-  EXPECT_NE(bad.out.find("30 file(s) validated, 1 failed"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("32 file(s) validated, 1 failed"), std::string::npos) << bad.out;
 }
 
 TEST_F(Cli, ValidateWithoutDirectoryChecksEverything) {
   const CliRun run = saagen({"validate"});
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
-  // 15 variants (glints included) for each of glsl, gles, hlsl and wgsl (Tint).
-  EXPECT_NE(run.out.find("60 file(s) validated, 0 failed"), std::string::npos) << run.out;
+  // 16 variants (glints included) for each of glsl, gles, hlsl and wgsl (Tint).
+  EXPECT_NE(run.out.find("64 file(s) validated, 0 failed"), std::string::npos) << run.out;
 }
 
 TEST_F(Cli, RejectsBadInputWithOneLineAndWritesNothing) {
@@ -240,7 +240,7 @@ TEST_F(Cli, RefusesToOverwriteForeignFilesUnlessForced) {
   EXPECT_EQ(read_text(out / "saa_deferred_sum.glsl"), "// my own shader\n");
   const CliRun forced = saagen({"emit", "--force", "-o", out.string()});
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
-  EXPECT_EQ(files_in(out).size(), 15u);
+  EXPECT_EQ(files_in(out).size(), 16u);
 }
 
 TEST_F(Cli, HelpOnEveryCommand) {

@@ -70,7 +70,7 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, EveryVariantAndTarget, ::testing::ValuesIn(a
 TEST(Catalogue, HasEveryVariantOfTheMission) {
   const std::vector<std::string> expected = {
       "forward-aniso-slope", "forward-aniso-projected", "forward-axis-slope", "forward-axis-projected",
-      "deferred-previous", "deferred-max", "deferred-sum", "deferred-avg", "deferred-projected-space",
+      "deferred-previous", "deferred-max", "deferred-sum", "deferred-avg", "deferred-projected-space", "deferred-aniso",
       "brdf-ggx", "brdf-beckmann", "prefilter-toksvig", "prefilter-lean"};
   EXPECT_EQ(variant_ids(), expected);
 }

@@ -97,7 +97,7 @@ TEST_F(GlintCli, ManifestWithGlintsPlansTheGlintVariantAndWritesTheDictionary) {
     EXPECT_NE(plan.out.find("variant   glints-ggaa  [G1]"), std::string::npos) << plan.out;
     EXPECT_NE(plan.out.find("variant   glints  [G2]"), std::string::npos) << plan.out;
     EXPECT_NE(plan.out.find("saa_sparkle_glint_dictionary.ktx2"), std::string::npos) << plan.out;
-    EXPECT_NE(plan.out.find("variant   deferred-avg"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("variant   deferred-aniso  [D0]"), std::string::npos) << plan.out;
 
     const fs::path out = scratch_ / "bundle";
     const auto emit = saagen({"emit", "--manifest", manifest.string(), "-o", out.string()});

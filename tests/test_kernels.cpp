@@ -57,7 +57,7 @@ TEST_P(KernelsPerTarget, EveryCoreAndEvaluateFunctionRunsInACompute) {
       ++compiled;
     }
   }
-  EXPECT_EQ(compiled, 37);  // 4 forward + 6 deferred cores, 12 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores
+  EXPECT_EQ(compiled, 40);  // 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores
 }
 
 TEST_P(KernelsPerTarget, EveryFragmentWrapperRunsInAFragmentShaderAndUnderQuadEmulation) {

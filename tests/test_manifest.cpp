@@ -132,7 +132,7 @@ TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) {
 const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, glints, precision, prefer, variant";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
-    "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\"";
+    "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
 
 INSTANTIATE_TEST_SUITE_P(
     Errors, BadManifest,
@@ -222,10 +222,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "variant = \"forward-axis-projected\"\n",
                 "scene.toml:6:11: key 'variant' of material 'm': forward-axis-projected filters the half vector of each light in a "
                 "forward pass; this material's path is deferred; allowed: \"deferred-previous\", \"deferred-max\", \"deferred-sum\", "
-                "\"deferred-avg\", \"deferred-projected-space\""},
+                "\"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\""},
         BadCase{"variant_needs_tangents", header + forward_material + "variant = \"deferred-previous\"\n",
                 "scene.toml:5:11: key 'variant' of material 'm': deferred-previous needs tangents = true (it filters in the tangent "
-                "frame); allowed: \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\""}),
+                "frame); allowed: \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\""}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.what); });
 
 TEST(Manifest, UnreadableFileNamesItself) {
@@ -275,7 +275,10 @@ INSTANTIATE_TEST_SUITE_P(
         RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "F4", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"forward\"\nprefer = \"speed\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\n", "D0", "deferred-aniso",
+                 {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
+        RuleCase{"path = \"deferred\"\nnormal_maps = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
         RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "D2", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n", "manifest", "deferred-sum", {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
@@ -285,17 +288,41 @@ INSTANTIATE_TEST_SUITE_P(
                  {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment", "ggx_brdf_filtered_axis"}}),
     [](const ::testing::TestParamInfo<RuleCase>& info) { return "case" + std::to_string(info.index) + "_" + info.param.rule; });
 
-// Where the trade measured no filter beating every filter (deferred, curved content without
-// normal maps), the plan says so with the figures; the filter is still planned for who wants it.
+// Where the trade measured the isotropic deferred kernels losing to no SAA (deferred, curved
+// content without normal maps) and the plan keeps one (prefer speed), it says so with the
+// figures and names deferred-aniso; a plan that takes deferred-aniso (rule D0) needs no advice.
 TEST(Planner, SaysWhereNoFilterWins) {
   const auto advice = [](const std::string& keys) {
     const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\n" + keys);
     return saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).no_filter_advice;
   };
-  EXPECT_NE(advice("path = \"deferred\"\n").find("no filter beats every deferred filter"), std::string::npos);
+  EXPECT_EQ(advice("path = \"deferred\"\n"), "");
+  const std::string speed = advice("path = \"deferred\"\nprefer = \"speed\"\n");
+  EXPECT_NE(speed.find("the isotropic deferred kernels lose to no SAA"), std::string::npos) << speed;
+  EXPECT_NE(speed.find("deferred-aniso"), std::string::npos) << speed;
   EXPECT_EQ(advice("path = \"deferred\"\nnormal_maps = true\n"), "");
   EXPECT_EQ(advice("path = \"forward\"\ntangents = true\n"), "");
   EXPECT_EQ(advice("path = \"deferred\"\nndf = \"beckmann\"\n"), "");
+}
+
+// deferred-aniso (D0): the G-buffer tensor from the wrapper, then its lighting pass's BRDF per
+// light; isotropic GGX materials only.
+TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {
+  const saagen::Catalogue& catalogue = Catalogue::builtin();
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n");
+  const saagen::ScenePlan plan = saagen::plan_scene(catalogue, manifest);
+  EXPECT_EQ(plan.materials.at(0).wrapper, "deferred_aniso_fragment");
+  EXPECT_EQ(plan.materials.at(0).brdf, std::optional<std::string>("deferred_aniso_brdf"));
+  const std::string text = saagen::format_plan(catalogue, manifest, plan);
+  EXPECT_NE(text.find("deferred_aniso_brdf(light_ws, view_ws, normal_ws, tensor, alpha2) per light"), std::string::npos) << text;
+  for (const char* keys : {"ndf = \"beckmann\"\n", "anisotropic = true\ntangents = true\n"}) {
+    try {
+      saagen::plan_scene(catalogue, parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nvariant = \"deferred-aniso\"\n" + keys));
+      ADD_FAILURE() << "deferred-aniso accepted with " << keys;
+    } catch (const saagen::Error& error) {
+      EXPECT_NE(std::string(error.what()).find("deferred-aniso"), std::string::npos) << error.what();
+    }
+  }
 }
 
 TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
@@ -317,7 +344,7 @@ TEST(Planner, ManifestsBuiltInCodeAreCheckedToo) {
   EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), manifest), saagen::Error);
   manifest.materials[0].variant.reset();
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
-  EXPECT_EQ(plan.materials.at(0).variant, "deferred-avg");
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-aniso");  // rule D0: GGX, no normal maps, accuracy
   EXPECT_EQ(saagen::emit_scene(Catalogue::builtin(), manifest, plan).at(0).file_name, "saa_scene.glsl");
 }
 
@@ -392,8 +419,8 @@ TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
   EXPECT_FALSE(table.has_errors());
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
-  EXPECT_EQ(plan.materials.at(0).variant, "deferred-avg");
-  EXPECT_EQ(plan.materials.at(0).rule, "D1");
+  EXPECT_EQ(plan.materials.at(0).variant, "deferred-aniso");
+  EXPECT_EQ(plan.materials.at(0).rule, "D0");
   EXPECT_NE(plan.materials.at(0).reason.find("t.json has no error"), std::string::npos) << plan.materials.at(0).reason;
 }
 

@@ -9,6 +9,7 @@
 #include "saagen/products/glints.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/saagen.h"
 
 #include "cli_support.hpp"
 
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <csignal>
 #include <set>
 #include <sys/wait.h>
 #include <sys/stat.h>
@@ -381,6 +383,22 @@ TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
   EXPECT_EQ(entries(scratch_ / "g"), std::set<std::string>{});
 }
 
+// A signal that ends the process while outputs are staged (here the file-size limit's SIGXFSZ,
+// not ignored; Ctrl-C and SIGTERM take the same handler) removes the temporaries first, and no
+// output has been renamed yet: the directory is as it was. They were left behind.
+TEST_F(Safety, ASignalDuringStagingLeavesNoTemporary) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(saagen({"emit", "-o", out.string(), "--sigma2", "0.5"}).exit_code, 0);
+  std::map<std::string, std::string> before;
+  for (const std::string& name : entries(out)) before[name] = read_text(out / name);
+  std::string command = "ulimit -f 8; exec " + shell_quote(SAAGEN_CLI_PATH) + " emit -o " + shell_quote(out.string());
+  const CliRun run = run_shell(command);
+  EXPECT_EQ(run.exit_code, 128 + SIGXFSZ) << run.err;  // ended by the signal, as before
+  std::map<std::string, std::string> after;
+  for (const std::string& name : entries(out)) after[name] = read_text(out / name);
+  EXPECT_EQ(after, before);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 5. Concurrent runs to one output do not collide; unchanged outputs are not rewritten.
 
@@ -572,6 +590,87 @@ TEST_F(Safety, MessagesNameTheFileOrOption) {
                         (scratch_ / "bad.comp").string() + ":3: 'undefined_call'");
   EXPECT_FALSE(fs::exists(scratch_ / "e"));
   EXPECT_FALSE(fs::exists(scratch_ / "g"));
+}
+
+// Text quoted into a message (an argument, a file name, a manifest value) can neither break the
+// one line nor drive the terminal: control characters are escaped; a huge quote keeps the
+// message's beginning and its end (what to do). The same for the C API's last error.
+TEST_F(Safety, MessagesEscapeControlCharactersAndStayShort) {
+  const CliRun escaped = saagen({"emit", "-v", "a\nb\x1b[31mc\t", "-o", (scratch_ / "e").string()});
+  expect_one_line_error(escaped, "unknown variant 'a\\nb\\x1b[31mc\\t'");
+  EXPECT_EQ(escaped.err.find('\x1b'), std::string::npos);
+  const CliRun huge = saagen({"emit", "-v", std::string(100000, 'x'), "-o", (scratch_ / "e").string()});
+  expect_one_line_error(huge, "bytes left out ...]");
+  EXPECT_LT(huge.err.size(), saagen::max_message_bytes + 64);
+  EXPECT_NE(huge.err.find("run `saagen list` to see the ids\n"), std::string::npos) << huge.err;
+  for (const auto& [run, expected] : {std::pair{saagen({"fo\no"}), std::string("unknown command 'fo\\no'")},
+                                      std::pair{saagen({"emit", "--bogus\x07", "-o", (scratch_ / "e").string()}), std::string("--bogus\\x07")}}) {
+    EXPECT_EQ(run.exit_code, 2);  // usage errors
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+  write(scratch_ / "m.toml", "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprecision = \"fp\\u001b16\"\n");
+  const CliRun manifest = saagen({"plan", (scratch_ / "m.toml").string()});
+  expect_one_line_error(manifest, "m.toml:6:");
+  EXPECT_EQ(manifest.err.find('\x1b'), std::string::npos) << manifest.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "e"));
+
+  EXPECT_STREQ(saagen::Error("a\nb\r\x01").what(), "a\\nb\\r\\x01");
+  EXPECT_EQ(saagen::one_line("already\\none line"), "already\\none line");  // escaping twice changes nothing
+  char* name = nullptr;
+  char* text = nullptr;
+  EXPECT_NE(saagen_emit("deferred-sum.glsl?prefix=x\ny\x1b", &name, &text), 0);
+  const std::string last = saagen_last_error();
+  EXPECT_EQ(last.find_first_of("\n\x1b"), std::string::npos) << last;
+  EXPECT_NE(last.find("x\\ny\\x1b"), std::string::npos) << last;
+}
+
+// Numbers that would be wrong rather than refused: --seed wrapped (-1) or saturated (2^64) by the
+// option parser; kappa = -0.0 emitted as "-0.0"; a manifest value that rounds to 0 in the
+// materials' precision reported as a command-line option, without its file:line:column.
+TEST_F(Safety, SeedsNegativeZeroAndManifestNumbersAreExact) {
+  for (const std::string seed : {"-1", "18446744073709551616", "1e23", "0x10", " 5", "", "+5"}) {
+    auto arguments = small_dictionary(scratch_ / "d.ktx2");
+    arguments.insert(arguments.end(), {"--seed", seed});
+    expect_one_line_error(saagen(arguments), "--seed '" + seed + "': not a whole number in [0, 18446744073709551615]");
+  }
+  EXPECT_FALSE(fs::exists(scratch_ / "d.ktx2"));
+  auto largest = small_dictionary(scratch_ / "d.ktx2");
+  largest.insert(largest.end(), {"--seed", "18446744073709551615"});
+  ASSERT_EQ(saagen(largest).exit_code, 0);
+  const std::string with_largest = read_text(scratch_ / "d.ktx2");
+  largest.back() = "0";
+  ASSERT_EQ(saagen(largest).exit_code, 0);
+  EXPECT_NE(read_text(scratch_ / "d.ktx2"), with_largest);  // the seed is used, not clamped
+
+  ASSERT_EQ(saagen({"emit", "-v", "deferred-sum", "--kappa", "-0", "-o", (scratch_ / "k").string()}).exit_code, 0);
+  const std::string emitted = read_text(scratch_ / "k" / "saa_deferred_sum.glsl");
+  EXPECT_NE(emitted.find("const float saa_KAPPA = 0.0;"), std::string::npos);
+  EXPECT_NE(emitted.find(" kappa=0.0 "), std::string::npos);
+  EXPECT_EQ(emitted.find("-0.0"), std::string::npos);
+  const std::string manifest_head = "name = \"scene\"\ntargets = [\"glsl\"]\n";
+  const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\n";
+  write(scratch_ / "zero.toml", manifest_head + "kappa = -0.0\n" + material);
+  ASSERT_EQ(saagen({"emit", "--manifest", (scratch_ / "zero.toml").string(), "-o", (scratch_ / "z").string()}).exit_code, 0);
+  EXPECT_EQ(read_text(scratch_ / "z" / "saa_scene.glsl").find("-0.0"), std::string::npos);
+
+  write(scratch_ / "tiny.toml", manifest_head + "sigma2 = 1e-10\n" + material + "precision = \"fp16\"\n");
+  for (const std::string command : {"plan", "emit"}) {
+    std::vector<std::string> arguments = {command};
+    if (command == "emit") arguments.push_back("--manifest");
+    arguments.insert(arguments.end(), {(scratch_ / "tiny.toml").string(), "--no-cost"});
+    if (command == "emit") arguments.back() = "-o", arguments.push_back((scratch_ / "t").string());
+    expect_one_line_error(saagen(arguments), "tiny.toml:3:10: key 'sigma2': 1e-10 is below the smallest normal fp16 number");
+  }
+  write(scratch_ / "subnormal.toml", manifest_head + "kappa = 1e-310\n" + material);
+  expect_one_line_error(saagen({"plan", (scratch_ / "subnormal.toml").string()}), "subnormal.toml:3:9: key 'kappa': 1e-310 is below the smallest normal fp32 number");
+  for (const std::string value : {"nan", "inf", "-inf", "-nan"}) {
+    for (const std::string key : {"sigma2", "kappa"}) {
+      write(scratch_ / "bad.toml", manifest_head + key + " = " + value + "\n" + material);
+      expect_one_line_error(saagen({"plan", (scratch_ / "bad.toml").string()}), "bad.toml:3:" + std::to_string(key.size() + 4) + ": key '" + key + "'");
+    }
+  }
+  EXPECT_FALSE(fs::exists(scratch_ / "t"));
 }
 
 TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {

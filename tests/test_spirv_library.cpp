@@ -129,7 +129,7 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
     std::cout << fmt::format("[ size     ] {:<34} {:>6} bytes {:>5} instructions, {} export(s)\n", library.file_name,
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
-  EXPECT_EQ(exported, 37u);  // as test_kernels: 4 forward + 6 deferred cores, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores
+  EXPECT_EQ(exported, 40u);  // as test_kernels: 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -323,6 +323,10 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
     else if (name == "tau") push(out, d.tau);
     else if (name == "filtered") push(out, Vec2{d.a.xx, d.a.yy});
     else if (name == "kernel") push(out, d.a.xx - d.alpha2.x);
+    else if (name == "normal_ws") push(out, d.h);
+    else if (name == "light_ws") push(out, d.i);
+    else if (name == "view_ws") push(out, d.o);
+    else if (name == "tensor") push(out, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h));
     else if (name == "mean_length") push(out, d.texel.mean_length);
     else if (name == "slope_mean") push(out, d.texel.slope_mean);
     else if (name == "slope_second") push(out, d.texel.slope_second);
@@ -367,6 +371,10 @@ Expected reference(const std::string& name, Reader in) {
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) {
     const auto scale = *saagen::test::filtered_ggx_reference(name, p, terms, true);
     return {*filtered, std::max(max_abs(*filtered), max_abs(scale))};
+  }
+  if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) {
+    const auto scale = *saagen::test::deferred_aniso_reference(name, p, terms, true);
+    return {*tensor, std::max(max_abs(*tensor), max_abs(scale))};
   }
   const auto filter2 = [&](auto f) {  // (alpha2 real2, du, dv)
     const Vec2 a = in.vec2(), du = in.vec2(), dv = in.vec2();

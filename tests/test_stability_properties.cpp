@@ -178,6 +178,14 @@ rc::Gen<Element> gen_core_element(const Function& f) {
         push(e, Vec2{material.a.xx, material.a.yy});
       } else if (p.name == "kernel") {
         push(e, material.a.xx - material.alpha2.x);
+      } else if (p.name == "normal_ws") {
+        push(e, *gen_direction());
+      } else if (p.name == "light_ws") {
+        push(e, i);
+      } else if (p.name == "view_ws") {
+        push(e, o);
+      } else if (p.name == "tensor") {
+        push(e, material.a - Sym2{material.alpha2.x, 0.0, material.alpha2.y});
       } else if (p.name == "mean_length") {
         push(e, *gen_mean_length());
       } else if (p.name == "slope_mean" || p.name == "slope_second") {
@@ -295,6 +303,7 @@ Values reference_core(const ref::Params& p, const std::string& name, const doubl
   Reader in(x);
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
+  if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
   const ref::Brdf brdf{p};
   if (name == "forward_aniso_slope" || name == "forward_aniso_projected") {
     const Vec2 a = in.vec2(), du = in.vec2();
@@ -583,7 +592,13 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
   }
   const auto out = evaluator.run(f, pairs);
   const double slack = 4.0 * evaluator.unit();
-  const bool matrix = stab::claim_of(f.name) == stab::Claim::roughness_matrix;
+  // deferred-aniso's tensor min(lambda, kappa) of s^2 Delta^T Delta keeps its eigenvectors and
+  // raises each eigenvalue: it grows in the PSD order, and only as long as the derivatives scale
+  // as a whole (no component clamped at DERIVATIVE_MAX, which turns them); its diagonal follows
+  // from that order, with the same slack (rounding turns the eigenvectors by a few units of 2^-24,
+  // which moves a diagonal entry by that much times the eigenvalue gap, not times the entry).
+  const bool tensor = stab::claim_of(f.name) == stab::Claim::kernel_tensor;
+  const bool matrix = stab::claim_of(f.name) == stab::Claim::roughness_matrix || tensor;
   for (std::size_t e = 0; e < batch.size(); ++e) {
     const Values& low = out[2 * e];
     const Values& high = out[2 * e + 1];
@@ -597,13 +612,28 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
     // and Operation of SPIR-V Instructions), so an entry below FLT_MIN may be off by FLT_MIN in
     // absolute terms: two entries of the difference, each from both matrices, 4 FLT_MIN.
     const double flushed = 4.0 * double(FLT_MIN);
-    if (high[0] < low[0] * (1.0 - slack) - flushed || high[2] < low[2] * (1.0 - slack) - flushed) RC_FAIL(what);
-    if (max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e])) {
+    const bool scaled_whole = max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e]);
+    // deferred-aniso's tensor: the fp32 inputs s d are rounded (u = 2^-24, whatever the
+    // evaluator's own rounding), which moves det(Delta) by up to 4u |du| |dv| and so the smaller
+    // eigenvalue det(Delta)^2 / l1 by up to 8u |det(Delta)| <= 4u tr(Delta^T Delta): 8u times the
+    // unclamped trace T = 2 sigma^2 tr(Delta^T Delta) of K covers it, before any clamp (the
+    // property says nothing once 8u T exceeds kappa, derivatives beyond ~1e3).
+    double tensor_slack = 0.0;
+    if (tensor) {
+      if (!scaled_whole) continue;
+      Reader terms(pairs[2 * e + 1].data());
+      tensor_slack = 8.0 * 0x1p-24 * (*saagen::test::deferred_aniso_reference(f.name, ref::Params{}, terms, true))[0];
+      const double turned = 0x1p-20 * (high[0] + high[2] + low[0] + low[2]) + tensor_slack + flushed;
+      if (high[0] < low[0] - turned || high[2] < low[2] - turned) RC_FAIL(what);
+    } else if (high[0] < low[0] * (1.0 - slack) - flushed || high[2] < low[2] * (1.0 - slack) - flushed) {
+      RC_FAIL(what);
+    }
+    if (scaled_whole) {
       // Weyl: rounding the entries (fp32 inputs s d, and the arithmetic) moves the smallest
       // eigenvalue of the difference by at most a few units of 2^-24 times their size, plus the
       // denormal flush above.
       const double lambda = sym2_min_eigenvalue(high[0] - low[0], high[1] - low[1], high[2] - low[2]);
-      if (lambda < -0x1p-20 * (high[0] + high[2] + low[0] + low[2]) - flushed) RC_FAIL(what);
+      if (lambda < -0x1p-20 * (high[0] + high[2] + low[0] + low[2]) - tensor_slack - flushed) RC_FAIL(what);
     }
   }
 }
@@ -681,6 +711,20 @@ bool isotropic(const Function& f) {
 bool filter(const Function& f) { return !stab::is_brdf(f); }
 
 #if SAAGEN_STABILITY_DEVICE
+// deferred_aniso_fragment's magnitude scale on a quad of normals (4 x 3 values): the unclamped
+// trace 2 sigma^2 (|ddx n|^2 + |ddy n|^2) is at most 2 sigma^2 times twice the largest squared
+// difference of two of the quad's normals, whatever derivative (coarse or fine) the device takes.
+double wrapper_tensor_scale(const Element& quad) {
+  double largest = 0.0;
+  for (int p = 0; p < 4; ++p)
+    for (int q = 0; q < 4; ++q) {
+      double d2 = 0.0;
+      for (int k = 0; k < 3; ++k) d2 += (quad[3 * p + k] - quad[3 * q + k]) * (quad[3 * p + k] - quad[3 * q + k]);
+      largest = std::max(largest, d2);
+    }
+  return 2.0 * ref::Params{}.sigma2 * 2.0 * largest;
+}
+
 // The device matches the guarded reference on adversarial finite inputs (the reference mirrors
 // every guard): |gpu - ref| <= 4e-6 for alpha^2 outputs (fp32 rounding of a kernel that is then
 // clamped to kappa <= 1: a few units of 2^-24 relative, far below 4e-6), 1e-5 (A00 + A11) for the
@@ -699,6 +743,14 @@ void matches_guarded_reference(Evaluator& device, const Function& f, const std::
     if (const auto scale = saagen::test::prefilter_reference(f.name, ref::Params{}, terms, true)) {
       bound = std::max(bound, 2e-5 * *std::max_element(scale->begin(), scale->end()));
     }
+    // deferred-aniso's tensor: rounding relative to the unclamped trace 2 sigma^2 (|dx|^2 + |dy|^2)
+    // (reference_dispatch.hpp): the frame built in fp32 is off by eps, which a derivative's
+    // component along n (adversarial inputs have any) carries into K.
+    Reader tensor_terms(batch[k / per].data());
+    if (const auto scale = saagen::test::deferred_aniso_reference(f.name, ref::Params{}, tensor_terms, true)) {
+      bound = std::max(bound, 2e-5 * *std::max_element(scale->begin(), scale->end()));
+    }
+    if (f.name == "deferred_aniso_fragment") bound = std::max(bound, 2e-5 * wrapper_tensor_scale(batch[k / per]));
     for (std::size_t c = 0; c < g.size(); ++c) {
       if (!(std::fabs(g[c] - x[c]) <= bound))
         RC_FAIL(fmt::format("{} {}: inputs {} (pixel {}): device {} vs reference {}", device.name(), f.name, show(batch[k / per]), k % per, show(g), show(x)));
@@ -780,7 +832,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
           const std::uint32_t count = saagen::component_count(param.type);
           if (is_derivative(param.name))
             for (std::uint32_t k = 0; k < count; ++k) e[offset + k] = std::copysign(std::min(std::fabs(e[offset + k]), 1e9), e[offset + k]);
-          if (count == 3 && param.name != "a") {
+          if (count == 3 && param.name != "a" && param.name != "tensor") {
             Vec3 v{e[offset], e[offset + 1], e[offset + 2]};
             if (!is_derivative(param.name)) {
               // unit vectors with z >= 0.01 (slopes, cosines and Lambda away from their guards)
@@ -789,7 +841,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
               e[offset] = as_float(v.x), e[offset + 1] = as_float(v.y), e[offset + 2] = as_float(v.z);
             }
           }
-          if (param.name == "a") {  // well conditioned: a00 = a11 = 1 + |a01|
+          if (param.name == "a" || param.name == "tensor") {  // well conditioned: a00 = a11 = 2 + |a01|
             e[offset + 1] = std::clamp(e[offset + 1], -1.0, 1.0);
             e[offset] = e[offset + 2] = as_float(2.0 + std::fabs(e[offset + 1]));
           }
@@ -830,9 +882,11 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
       // The guarded Beckmann NDF also takes exp(-x) as 0 past EXP_ARG_MAX = 104 (0 in fp32
       // anyway): what it drops is below e^-104 / (pi sqrt(tau) h_z^4) / (4 i.z o.z) <=
       // 6.8e-46 / (pi 1e-10 1e-8) / 4e-4 < 1e-14 here (tau >= 1e-20, cosines >= 0.01).
-      // The tail-preserving filtered GGX evaluates a Beckmann core: the same bound.
+      // The tail-preserving filtered GGX evaluates a Beckmann core: the same bound (also through
+      // deferred-aniso's lighting pass).
       const bool beckmann = f->name.find("beckmann") != std::string::npos || f->name.find("filtered_matrix") != std::string::npos ||
-                            f->name.find("filtered_axis") != std::string::npos || f->name.find("tail_filtered") != std::string::npos;
+                            f->name.find("filtered_axis") != std::string::npos || f->name.find("tail_filtered") != std::string::npos ||
+                            f->name == "deferred_aniso_brdf";
       const double relative = beckmann ? 1e-5 : 1e-12;
       for (std::size_t k = 0; k < a.size(); ++k)
         for (std::size_t c = 0; c < a[k].size(); ++c)

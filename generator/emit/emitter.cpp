@@ -359,7 +359,7 @@ std::map<std::string, double> resolve_options(const Catalogue& catalogue, const 
     if (!std::isfinite(value) || !constant->range->contains(value)) {
       throw Error(fmt::format("--{} {} is out of range: allowed {} ({})", option, value, constant->range->describe(), constant->meaning));
     }
-    values[option] = value;
+    values[option] = value == 0.0 ? 0.0 : value;  // no -0.0 downstream
   }
   return values;
 }

@@ -46,7 +46,7 @@ bool guarded_call(Body&& body) {
   } catch (const std::bad_alloc&) {
     last_error = "out of memory";
   } catch (const std::exception& error) {
-    last_error = std::string("internal error: ") + error.what();
+    last_error = saagen::one_line(std::string("internal error: ") + error.what());
   }
   return false;
 }

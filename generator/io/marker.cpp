@@ -14,6 +14,7 @@ constexpr std::string_view marker_tag = "// saagen-marker:";
 }  // namespace
 
 std::string decimal_literal(double value) {
+  if (value == 0.0) value = 0.0;  // -0.0 (kappa = -0.0) is written 0.0
   std::string text = fmt::format("{}", value);
   if (text.find_first_of(".eE") == std::string::npos) text += ".0";
   return text;

@@ -9,7 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <memory>
+#include <mutex>
 #include <cstring>
 #include <fcntl.h>
 #include <optional>
@@ -323,26 +328,104 @@ void write_all(int fd, std::string_view content, const fs::path& path) {
   }
 }
 
+// Temporaries that a signal ending the process (Ctrl-C, SIGTERM, SIGHUP, a file-size limit's
+// SIGXFSZ) would leave behind: their names sit in fixed slots that the handler, which may only
+// make async-signal-safe calls, unlinks before the signal takes its previous action. Handlers are
+// installed while temporaries exist, and only for signals whose action is the default one (an
+// ignored signal stays ignored: `trap '' XFSZ` still makes write() fail with EFBIG).
+class SignalCleanup {
+ public:
+  static constexpr int signals[] = {SIGINT, SIGTERM, SIGHUP, SIGXFSZ};
+
+  // Holds the handlers installed while alive (nested and concurrent holders share them).
+  SignalCleanup() {
+    const std::lock_guard lock(mutex_);
+    if (holders_++ > 0) return;
+    for (std::size_t index = 0; index < std::size(signals); ++index) {
+      struct sigaction current {};
+      installed_[index] = false;
+      if (::sigaction(signals[index], nullptr, &current) != 0 || current.sa_handler != SIG_DFL || (current.sa_flags & SA_SIGINFO)) continue;
+      struct sigaction action {};
+      action.sa_handler = &SignalCleanup::handle;
+      sigemptyset(&action.sa_mask);
+      previous_[index] = current;
+      installed_[index] = ::sigaction(signals[index], &action, nullptr) == 0;
+    }
+  }
+  ~SignalCleanup() {
+    const std::lock_guard lock(mutex_);
+    if (--holders_ > 0) return;
+    for (std::size_t index = 0; index < std::size(signals); ++index) {
+      if (installed_[index]) ::sigaction(signals[index], &previous_[index], nullptr);
+      installed_[index] = false;
+    }
+  }
+  SignalCleanup(const SignalCleanup&) = delete;
+  SignalCleanup& operator=(const SignalCleanup&) = delete;
+
+  // A temporary's name (its storage outlives the registration); false when every slot is taken
+  // (that temporary is then removed by the destructor alone).
+  static bool add(const char* name) {
+    for (auto& slot : slots_) {
+      const char* empty = nullptr;
+      if (slot.compare_exchange_strong(empty, name)) return true;
+    }
+    return false;
+  }
+  static void remove(const char* name) {
+    for (auto& slot : slots_) {
+      const char* expected = name;
+      if (slot.compare_exchange_strong(expected, nullptr)) return;
+    }
+  }
+
+ private:
+  static void handle(int signal) {
+    for (auto& slot : slots_) {
+      if (const char* name = slot.load()) ::unlink(name);
+    }
+    for (std::size_t index = 0; index < std::size(signals); ++index) {
+      if (signals[index] == signal) ::sigaction(signal, &previous_[index], nullptr);
+    }
+    ::raise(signal);  // the previous (default) action: the process ends as it would have
+  }
+
+  static inline std::mutex mutex_;
+  static inline int holders_ = 0;
+  static inline struct sigaction previous_[std::size(signals)] = {};
+  static inline bool installed_[std::size(signals)] = {};
+  static inline std::array<std::atomic<const char*>, 4096> slots_ = {};
+};
+
 // A new file `.NAME.saagen-XXXXXX` beside `path`, created exclusively (never through a link),
-// holding `content`. The caller removes it on failure.
+// holding `content`. The caller removes it on failure; so does a signal that ends the process.
 class Temporaries {
  public:
   Temporaries() = default;
   Temporaries(const Temporaries&) = delete;
   Temporaries& operator=(const Temporaries&) = delete;
   ~Temporaries() {
-    for (const fs::path& path : paths_) ::unlink(path.c_str());
+    for (const auto& name : names_) {
+      ::unlink(name->c_str());
+      SignalCleanup::remove(name->c_str());
+    }
   }
 
   const fs::path& create(const fs::path& path, std::string_view content) {
     // append() rather than operator+: GCC 12 reports a spurious -Wrestrict on the latter.
     std::string leaf = ".";
     leaf.append(path.filename().string()).append(".saagen-XXXXXX");
-    std::string name = (directory_of(path) / leaf).string();
+    auto owned = std::make_unique<std::string>((directory_of(path) / leaf).string());
+    std::string& name = *owned;
+    names_.push_back(std::move(owned));  // before mkostemp fills in the name: a signal in between finds it
+    SignalCleanup::add(name.c_str());
     const int fd = ::mkostemp(name.data(), O_CLOEXEC);
     if (fd < 0) {
+      const int error = errno;
+      SignalCleanup::remove(name.c_str());
+      names_.pop_back();
       throw Error(fmt::format("{}: cannot write in this directory ({}); choose a writable output path", directory_of(path).string(),
-                              error_text(errno)));
+                              error_text(error)));
     }
     paths_.emplace_back(name);
     try {
@@ -359,9 +442,15 @@ class Temporaries {
   }
 
   // The temporaries have been renamed: nothing left to remove.
-  void release() { paths_.clear(); }
+  void release() {
+    for (const auto& name : names_) SignalCleanup::remove(name->c_str());
+    names_.clear();
+    paths_.clear();
+  }
 
  private:
+  SignalCleanup cleanup_;
+  std::vector<std::unique_ptr<std::string>> names_;  // stable storage for the signal handler's slots
   std::vector<fs::path> paths_;
   mode_t mode_ = creation_mode();
 };

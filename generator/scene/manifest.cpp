@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace saagen {
@@ -218,6 +219,19 @@ void check_glint_options(const Manifest& manifest, const TableReader& top, const
     if (!catalogue.find_option(option)) {
       top.fail_key(option, "a glint option, and no material has glints = true", "the key with a material that sets glints = true");
     }
+  }
+}
+
+// A value the file sets that a material's precision would emit as 0 (below the smallest normal
+// number) is named at its key, file:line:column, not as a command-line option it never was.
+void check_options_representable(const Manifest& manifest, const TableReader& top) {
+  const bool half = std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.precision != "fp32"; });
+  const double smallest_normal = half ? 0x1.0p-14 : static_cast<double>(std::numeric_limits<float>::min());
+  const char* precision = half ? "fp16" : "fp32";
+  for (const auto& [option, value] : manifest.option_values) {
+    if (!top.has(option) || value == 0.0 || std::fabs(value) >= smallest_normal) continue;
+    top.fail_key(option, fmt::format("{} is below the smallest normal {} number and would be emitted as 0", value, precision),
+                 fmt::format("a number of at least {:g} (with {} materials)", smallest_normal, precision));
   }
 }
 
@@ -571,6 +585,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
   read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);
   check_glint_options(manifest, top, catalogue);
+  check_options_representable(manifest, top);
   apply_preset_variant(manifest, catalogue);
   return manifest;
 }

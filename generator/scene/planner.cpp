@@ -35,7 +35,20 @@ struct Rule {
   std::optional<Preference> prefer;  // nullopt: any
   const char* variant;
   const char* why;
+  // Content conditions (any when absent): the NDF and whether the material has normal maps.
+  std::optional<Ndf> ndf = std::nullopt;
+  Tri normal_maps = Tri::any;
 };
+
+// saagen's trade on curved content without normal maps (sphere, torus, tubes, torus knot; `saagen
+// bench --preset medium`, the "curved" rows of its JSON; docs/DEFERRED_KERNEL.md), with the
+// tail-preserving filtered GGX the planner shades GGX with.
+constexpr const char* kMeasuredDeferredAniso =
+    "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, each eigenvalue clamped to kappa) and the "
+    "lighting pass scales it by (n.h)^2 per light into the roughness matrix of the tail-preserving filtered GGX, which keeps "
+    "the kernel's orientation (across a tube, not along it) that the isotropic deferred kernels lose; on curved content without "
+    "normal maps: mean LDR-FLIP 0.0294 vs 0.0550 for deferred-avg and 0.0346 for no SAA, TDE 0.0139 vs 0.0179 and 0.0169 "
+    "(forward-aniso-projected 0.0291, 0.0138; docs/DEFERRED_KERNEL.md). Costs 3 G-buffer values and a matrix BRDF per light";
 
 // Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
 // with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
@@ -56,6 +69,8 @@ const std::vector<Rule>& rules() {
       {"F5", RenderPath::forward, Tri::no, Tri::no, std::nullopt, "deferred-avg",
        "without tangents only the tangent-free filters apply; deferred-avg has the lowest error of them (T&K 2019 Eq. 5) "
        "and is the cheapest"},
+      {"D0", RenderPath::deferred, Tri::no, Tri::any, Preference::accuracy, "deferred-aniso", kMeasuredDeferredAniso, Ndf::ggx,
+       Tri::no},
       {"D1", RenderPath::deferred, Tri::any, Tri::any, Preference::accuracy, "deferred-avg",
        "tangent-free, from the G-buffer normal; the lowest error of the deferred filters (T&K 2019 Eq. 5)"},
       {"D2", RenderPath::deferred, Tri::any, Tri::any, Preference::speed, "deferred-avg",
@@ -85,18 +100,21 @@ constexpr const char* kMeasuredGgxKernelGain =
     "LDR-FLIP and TDE: 4 of 14 at 0.25, 5 at 0.125, 2 at 0.0625";
 
 // The same trade on curved content (sphere, torus, tubes, torus knot; no normal map) in the
-// deferred path: no filter beats every deferred form there (docs/FILTERED_GGX.md).
+// deferred path, for a material that does not get deferred-aniso (prefer speed, or a variant
+// named): the isotropic deferred kernels lose to no SAA there (docs/DEFERRED_KERNEL.md).
 constexpr const char* kMeasuredDeferredCurved =
-    "on curved content without normal maps no filter beats every deferred filter in saagen's trade (mean LDR-FLIP 0.0346 vs "
-    "0.0550 for deferred-avg with the tail-preserving GGX, TDE 0.0169 vs 0.0179): the isotropic deferred kernels over-filter "
-    "(docs/DEFERRED_KERNEL.md); consider no SAA here, or the forward path's forward-aniso-projected (0.0291)";
+    "on curved content without normal maps the isotropic deferred kernels lose to no SAA in saagen's trade (mean LDR-FLIP "
+    "0.0550 for deferred-avg with the tail-preserving GGX vs 0.0346, TDE 0.0179 vs 0.0169): they blur the highlight along a "
+    "tube to cover it across; deferred-aniso (rule D0, prefer = \"accuracy\") reaches 0.0294 and TDE 0.0139 for 3 G-buffer "
+    "values and a matrix BRDF per light (docs/DEFERRED_KERNEL.md)";
 
 bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
 
 const Rule& rule_for(const Material& material) {
   for (const Rule& rule : rules()) {
     if (rule.path == material.path && matches(rule.anisotropic, material.anisotropic) && matches(rule.tangents, material.tangents) &&
-        (!rule.prefer || *rule.prefer == material.prefer)) {
+        (!rule.prefer || *rule.prefer == material.prefer) && (!rule.ndf || *rule.ndf == material.ndf) &&
+        matches(rule.normal_maps, material.normal_maps)) {
       return rule;
     }
   }
@@ -111,8 +129,21 @@ bool has_tangent_free_form(const Variant& variant) {
                      [](const std::string& name) { return name.find("tangent_free") != std::string::npos; });
 }
 
+// The functions of a variant's lighting pass (role evaluate): deferred-aniso's, which turn the
+// tensor its wrapper writes into a roughness matrix and a BRDF value per light.
+std::vector<std::string> lighting_pass(const Catalogue& catalogue, const Variant& variant) {
+  std::vector<std::string> names;
+  for (const std::string& name : variant.functions)
+    if (catalogue.find_function(name)->role == FunctionRole::evaluate) names.push_back(name);
+  return names;
+}
+
 // Empty when the material can use the variant, else why not.
-std::string ineligibility(const Variant& variant, const Material& material) {
+std::string ineligibility(const Catalogue& catalogue, const Variant& variant, const Material& material) {
+  if (!lighting_pass(catalogue, variant).empty()) {
+    if (material.anisotropic) return fmt::format("{} filters isotropic roughness (its frame is built from the normal alone)", variant.id);
+    if (material.ndf != Ndf::ggx) return fmt::format("{}'s lighting pass evaluates the tail-preserving filtered GGX; ndf = \"ggx\" only", variant.id);
+  }
   if (variant.path == RenderPath::forward && material.path != RenderPath::forward) {
     return fmt::format("{} filters the half vector of each light in a forward pass; this material's path is deferred", variant.id);
   }
@@ -134,7 +165,7 @@ std::vector<std::string> variant_resources(const Catalogue& catalogue, const Var
 std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
   std::vector<const Variant*> eligible;
   for (const Variant& variant : catalogue.variants()) {
-    if (is_screen_space_filter(catalogue, variant) && ineligibility(variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+    if (is_screen_space_filter(catalogue, variant) && ineligibility(catalogue, variant, material).empty() && variant_resources(catalogue, variant).empty()) {
       eligible.push_back(&variant);
     }
   }
@@ -167,6 +198,16 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
   plan.variants.push_back(variant.id);
 
   const Function& wrapper = *catalogue.find_function(plan.wrapper);
+  if (const auto lighting = lighting_pass(catalogue, variant); !lighting.empty()) {
+    // The wrapper writes a tensor for the G-buffer; the variant's lighting pass turns it into the
+    // roughness matrix per light (deferred_aniso_roughness, for the engine's own matrix BRDF) and
+    // shades with the tail-preserving filtered GGX (deferred_aniso_brdf).
+    for (const std::string& name : lighting) {
+      plan.functions.push_back(name);
+      if (catalogue.find_function(name)->return_type == "real" && material.ndf == Ndf::ggx && !own_brdf) plan.brdf = name;
+    }
+    return;
+  }
   if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
     const std::string brdf = wrapper.return_type == "real3" ? "ggx_brdf_filtered_matrix" : "ggx_brdf_filtered_axis";
     if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx")) throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
@@ -257,7 +298,14 @@ std::string call_with(const Function& function, const std::string& alpha2) {
 
 // Whether the plan shades with the tail-preserving filtered GGX (ggx_brdf_filtered_matrix / _axis).
 bool shades_with_tail_preserving_ggx(const MaterialPlan& plan) {
-  return plan.brdf && plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0;
+  return plan.brdf && (plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0 || *plan.brdf == "deferred_aniso_brdf");
+}
+
+// Whether the plan's BRDF is a lighting pass that reads the G-buffer tensor (deferred_aniso_brdf).
+bool shades_from_tensor(const Catalogue& catalogue, const MaterialPlan& plan) {
+  if (!plan.brdf) return false;
+  const Function& brdf = *catalogue.find_function(*plan.brdf);
+  return std::any_of(brdf.parameters.begin(), brdf.parameters.end(), [](const Parameter& parameter) { return parameter.name == "tensor"; });
 }
 
 std::string shade_statements(const Catalogue& catalogue, const Material& material, const MaterialPlan* plan) {
@@ -265,6 +313,10 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   const std::string material_alpha2 = material.anisotropic ? "alpha2" : "real2(alpha2.x, alpha2.x)";
   if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
+  if (shades_from_tensor(catalogue, *plan)) {  // the geometry pass's tensor, then the lighting pass per light
+    return fmt::format("    real3 tensor = {};\n    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n", call_with(wrapper, "alpha2.x"),
+                       *plan->brdf);
+  }
   // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
   // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
   const bool tail = shades_with_tail_preserving_ggx(*plan);
@@ -435,7 +487,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
                     fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
       }
       const Variant& variant = *found;
-      if (const std::string why = ineligibility(variant, material); !why.empty()) {
+      if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
         throw Error(manifest.where(key_position(material, "variant")) +
                     fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
       }
@@ -507,7 +559,8 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         plan.normal_advice = measured_normal_advice(plan, material.ndf);
       }
     }
-    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && !material.normal_maps && !material.variant)
+    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && !material.normal_maps && !material.variant &&
+        plan.variant != "deferred-aniso")
       plan.no_filter_advice = kMeasuredDeferredCurved;
     choose_functions(catalogue, material, manifest.preset.has_value(), plan);
     scene.materials.push_back(std::move(plan));
@@ -577,7 +630,9 @@ std::string rules_text() {
     text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic), tri(rule.tangents),
                         rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
-  text += "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
+  text += "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
+          "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it.\n"
+          "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
           "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
           "beckmann_brdf_matrix and ndf_clamp_tau.\n"
           "anisotropic = true with tangents = false is rejected.\n"
@@ -624,6 +679,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
       text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
                           glint_dictionary_file_name(manifest));
+    } else if (shades_from_tensor(catalogue, material_plan)) {
+      text += fmt::format("  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
+                          "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
+                          "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "deferred_aniso_roughness"));
     } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
       text += fmt::format("  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
                           prefixed_name(manifest.prefix, *material_plan.brdf));

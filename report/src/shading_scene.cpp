@@ -156,6 +156,12 @@ const std::vector<VariantCase>& variant_cases() {
        "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
        "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
        std::nullopt},
+      // deferred-aniso (docs/DEFERRED_KERNEL.md): the geometry pass's tensor and the lighting
+      // pass's BRDF in one shader, as a forward renderer would run both.
+      {"deferred-aniso/tail",
+       "    real3 tensor = deferred_aniso_fragment(normal);\n"
+       "    real value = deferred_aniso_brdf(light_ws, view_ws, normal, tensor, alpha2_material);\n",
+       std::nullopt},
       {"deferred-avg/mapped",
        "    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n"
        "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",

@@ -10,12 +10,16 @@
 //   F3    forward   no           yes       accuracy  forward-aniso-projected  <ndf>_brdf_matrix, ndf_clamp_tau
 //   F4    forward   no           yes       speed     deferred-avg             -
 //   F5    forward   no           no        any       deferred-avg             -
+//   D0    deferred  no           any       accuracy  deferred-aniso           deferred_aniso_roughness, deferred_aniso_brdf
+//         (GGX without normal maps: the G-buffer tensor, (n.h)^2 per light; docs/DEFERRED_KERNEL.md)
 //   D1    deferred  any          any       accuracy  deferred-avg             -
 //   D2    deferred  any          any       speed     deferred-avg             -
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
 //   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
-//   filter (docs/FILTERED_GGX.md). Deferred GGX materials without normal maps get the measured
-//   advice that no filter beats every deferred filter on such content (MaterialPlan::no_filter_advice).
+//   filter (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf.
+//   Deferred GGX materials without normal maps that do not get deferred-aniso (prefer speed) get
+//   the measured advice that the isotropic deferred kernels lose to no SAA on such content
+//   (MaterialPlan::no_filter_advice).
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
 //   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
