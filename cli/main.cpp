@@ -89,7 +89,7 @@ int run_list(const Catalogue& base_catalogue, bool json, const std::string& pref
 // variant is emitted to a target other than SPIR-V libraries (built from the SAA templates alone).
 const Catalogue& emission_catalogue(const Catalogue& every_variant, const saagen::EmitOptions& options) {
   const Catalogue& builtin = Catalogue::builtin();
-  if (options.variants.empty()) return options.target != saagen::spirv_library_target ? every_variant : builtin;
+  if (options.variants.empty()) return saagen::output_kind(options.target) != saagen::OutputKind::spirv_library ? every_variant : builtin;
   const bool names_a_glint = std::any_of(options.variants.begin(), options.variants.end(),
                                          [&](const std::string& id) { return builtin.find_variant(id) == nullptr; });
   return names_a_glint ? every_variant : builtin;
@@ -127,7 +127,7 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   }
 
   std::vector<saagen::OutputFile> outputs;
-  if (options.target == saagen::spirv_library_target) {
+  if (saagen::output_kind(options.target) == saagen::OutputKind::spirv_library) {
     // Per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});

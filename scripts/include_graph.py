@@ -18,6 +18,7 @@ import sys
 WINGS = ['base', 'io', 'front', 'target', 'print', 'emit', 'validate', 'products', 'scene', 'integrate']
 TOOLS = ['report', 'cli']
 INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^>"]+)[>"]', re.M)
+LITERAL = re.compile(r'R"\((?:.|\n)*?\)"|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])\'')  # raw, string and char literals
 FUNCTION = re.compile(r'^[A-Za-z][^;{}()]*\b(\w+)\([^;]*\)\s*(const\s*)?(->[^{;]*)?\{\s*$', re.M)
 
 
@@ -135,7 +136,7 @@ def longest_functions(root, files, count):
     for path in files:
         if not path.endswith('.cpp'):
             continue
-        text = open(os.path.join(root, path), encoding='utf-8').read()
+        text = LITERAL.sub('""', open(os.path.join(root, path), encoding='utf-8').read())
         for match in FUNCTION.finditer(text):
             depth, end = 0, match.end() - 1
             for end in range(match.end() - 1, len(text)):

@@ -160,8 +160,9 @@ TEST(Gles, ManifestsPlanAndEmitGles) {
   }
 }
 
+// fp32 only: the glint variants refuse half precision (GlintEmission.HalfPrecisionIsRefusedAndListedAsUnsupported).
 TEST(Gles, GlintSnippetsPassTheEsFrontEnd) {
-  for (const std::string precision : {"fp32", "fp16"}) {
+  for (const std::string precision : {"fp32"}) {
     for (const auto& file : saagen::glints::emit(gles_options(precision))) {
       const auto validation = saagen::validate_file(saagen::glints::catalogue(), file.file_name, file.content);
       EXPECT_TRUE(validation.ok()) << validation.summary() << "\n" << validation.checks.front().log;

@@ -432,8 +432,11 @@ std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const Em
 
   std::vector<const Variant*> selected;
   if (options.variants.empty()) {
+    // Every variant: in another domain those with a roughness in and out, in a precision those
+    // supported in it (a named one outside either is refused below).
     for (const Variant& variant : catalogue.variants()) {
-      if (!converted || variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) selected.push_back(&variant);
+      const bool in_domain = !converted || variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id));
+      if (in_domain && supports_precision(variant, options.precision)) selected.push_back(&variant);
     }
   } else {
     for (const std::string& id : options.variants) {

@@ -12,8 +12,7 @@
 namespace saagen {
 
 bool is_spirv_or_pass_marker(const EmissionMarker& marker) {
-  return marker.target == spirv_library_target || marker.target == deferred_pass_glsl_target ||
-         marker.target == deferred_pass_hlsl_target || marker.target == deferred_pass_spirv_target;
+  return output_kind(marker.target) != OutputKind::snippet;
 }
 
 FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content) {
@@ -28,7 +27,8 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
       return {};
     }
   };
-  if (marker->target == spirv_library_target) {
+  const OutputKind kind = output_kind(marker->target);
+  if (kind == OutputKind::spirv_library) {
     ValidationCheck check{"spirv library (universal 1.3, Linkage)", false, {}, 0};
     const auto words = words_of(check);
     if (!words.empty()) {
@@ -42,7 +42,7 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
       check.spirv_words = words.size();
     }
     validation.checks.push_back(std::move(check));
-  } else if (marker->target == deferred_pass_spirv_target) {
+  } else if (kind == OutputKind::pass_spirv) {
     ValidationCheck check{"vulkan compute pass", false, {}, 0};
     const auto words = words_of(check);
     if (!words.empty()) {
@@ -53,7 +53,7 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
     validation.checks.push_back(std::move(check));
   } else {
     CompileRequest request;
-    request.language = marker->target == deferred_pass_hlsl_target ? SourceLanguage::hlsl : SourceLanguage::glsl;
+    request.language = kind == OutputKind::pass_hlsl ? SourceLanguage::hlsl : SourceLanguage::glsl;
     request.stage = ShaderStage::compute;
     request.client = ClientApi::vulkan;
     request.sources = {{file_name, content}};

@@ -11,6 +11,31 @@
 
 namespace saagen {
 
+// What a marker's `target=` names: a snippet of a target table (glsl, gles, hlsl, wgsl), or one of
+// the binary products, whose pseudo-targets are spelled here and nowhere else.
+enum class OutputKind { snippet, spirv_library, pass_glsl, pass_hlsl, pass_spirv };
+
+// The `target=` of a product's marker: "spirv" (library modules and their headers, and the
+// `--target` that asks for them), "pass-glsl", "pass-hlsl", "pass-spirv" (the deferred pass files).
+constexpr std::string_view marker_target(OutputKind kind) {
+  switch (kind) {
+    case OutputKind::spirv_library: return "spirv";
+    case OutputKind::pass_glsl: return "pass-glsl";
+    case OutputKind::pass_hlsl: return "pass-hlsl";
+    case OutputKind::pass_spirv: return "pass-spirv";
+    case OutputKind::snippet: break;
+  }
+  return "";
+}
+
+// The kind a marker target names: a product's pseudo-target, else a snippet.
+constexpr OutputKind output_kind(std::string_view target) {
+  for (OutputKind kind : {OutputKind::spirv_library, OutputKind::pass_glsl, OutputKind::pass_hlsl, OutputKind::pass_spirv}) {
+    if (target == marker_target(kind)) return kind;
+  }
+  return OutputKind::snippet;
+}
+
 // What one emitted file holds, as written in its marker line, so that a file on disk can be
 // validated (and recognised as saagen's) without the options that produced it.
 struct EmissionMarker {

@@ -36,11 +36,6 @@
 
 namespace saagen {
 
-// Marker targets of the pass files (`saagen validate DIR` compiles / validates them).
-inline constexpr std::string_view deferred_pass_glsl_target = "pass-glsl";
-inline constexpr std::string_view deferred_pass_hlsl_target = "pass-hlsl";
-inline constexpr std::string_view deferred_pass_spirv_target = "pass-spirv";
-
 // The resource interface shared by every pass (descriptor set 0).
 namespace deferred_pass_abi {
 inline constexpr std::uint32_t binding_normal = 0;     // sampled image: .xyz normal

@@ -34,9 +34,6 @@
 
 namespace saagen {
 
-// The marker target of library modules and their headers.
-inline constexpr std::string_view spirv_library_target = "spirv";
-
 // One function a library exports.
 struct SpirvExport {
   std::string name;           // the linkage name: the emitted (prefixed) name, e.g. saa_deferred_sum
