@@ -97,7 +97,7 @@ constexpr const char* kMeasuredNormalAdviceTail =
 // trade.json tail` (docs/FILTERED_GGX.md).
 constexpr const char* kMeasuredGgxKernelGain =
     "with the tail-preserving filtered GGX, scene x path rows where the best configuration beats no SAA and every engine in "
-    "LDR-FLIP and TDE: 4 of 14 at 0.25, 5 at 0.125, 2 at 0.0625";
+    "LDR-FLIP and TDE: 6 of 14 at 0.25, 8 at 0.125, 4 at 0.0625 (4, 5 and 2 without deferred-aniso)";
 
 // The same trade on curved content (sphere, torus, tubes, torus knot; no normal map) in the
 // deferred path, for a material that does not get deferred-aniso (prefer speed, or a variant
