@@ -123,7 +123,7 @@ std::uint32_t big_endian32(std::string_view bytes, std::size_t at) {
 }
 
 // A PNG whose chunks before the image data hold saagen's tEXt chunk: keyword "Software", text
-// starting with the output tag (bench/src/report.cpp writes it right after IHDR).
+// starting with the output tag (report/src/report.cpp writes it right after IHDR).
 bool png_written_by_saagen(std::string_view bytes) {
   const std::string prefix = std::string("Software") + '\0' + std::string(output_tag);
   for (std::size_t at = 8; at + 12 <= bytes.size();) {
