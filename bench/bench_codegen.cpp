@@ -1,8 +1,8 @@
 // Codegen time for all variants x targets. Goals: emission alone <= 50 ms and with
 // in-process validation <= 2 s, whole process, on the 2-core CI machine.
 //   build/bench/bench_codegen --benchmark_min_time=0.5
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
 
@@ -63,8 +63,7 @@ void BM_ProcessEmitAllVariantsAllTargets(benchmark::State& state) {
   const auto directory = std::filesystem::temp_directory_path() / "saagen-bench-emit";
   std::filesystem::remove_all(directory);
   // Both targets in one process would need a new CLI flag; two processes are what a build runs.
-  run_cli(state, "emit -t glsl -o '" + directory.string() + "' && '" + SAAGEN_CLI_PATH + "' emit -t hlsl -o '" +
-                     directory.string() + "'");
+  run_cli(state, "emit -t glsl -o '" + directory.string() + "' && '" + SAAGEN_CLI_PATH + "' emit -t hlsl -o '" + directory.string() + "'");
   std::filesystem::remove_all(directory);
 }
 BENCHMARK(BM_ProcessEmitAllVariantsAllTargets)->Unit(benchmark::kMillisecond);

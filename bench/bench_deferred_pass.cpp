@@ -13,16 +13,14 @@
 // compile or validate, or when a pass leaves the roughness unchanged everywhere (not wired in).
 #include "deferred_pass_runner.hpp"
 
-#include "saagen/front/catalogue.hpp"
-#include "saagen/validate/compiler.hpp"
-#include "saagen/products/deferred_pass.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/products/deferred_pass.hpp"
+#include "saagen/products/spirv_library.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/report/shading_scene.hpp"
-#include "saagen/products/spirv_library.hpp"
-
-#include <saagen/harness/harness.hpp>
+#include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -33,6 +31,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <saagen/harness/harness.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -129,7 +128,8 @@ int run(int argc, char** argv) {
     if (!compiled.ok) throw std::runtime_error("the baseline does not compile: " + compiled.log);
     entries.push_back({"baseline (copy)", compiled.spirv, false, nullptr, {}, {}});
   }
-  nlohmann::json json = {{"device", context.info().summary()}, {"width", options.width}, {"height", options.height}, {"rounds", options.rounds}};
+  nlohmann::json json = {
+      {"device", context.info().summary()}, {"width", options.width}, {"height", options.height}, {"rounds", options.rounds}};
   for (const saagen::DeferredPass& pass : saagen::emit_deferred_passes(saagen::Catalogue::builtin(), {})) {
     if (const std::string log = saagen::validate_spirv(pass.spirv, saagen::ClientApi::vulkan); !log.empty()) {
       throw std::runtime_error(pass.stem + ".spv is invalid: " + log);
@@ -169,9 +169,13 @@ int run(int argc, char** argv) {
     std::cout << fmt::format("{:<26} {:>10.3f} {:>10.3f} {:>12.3f} {:>12.3f} {:>8} {:>7}  {:.5f}\n", entry.name, ms, ms / megapixels,
                              (ms - baseline) / megapixels, lowest / megapixels, entry.spirv.size() * 4,
                              saagen::count_spirv_instructions(entry.spirv), mean);
-    passes.push_back({{"pass", entry.name}, {"median_ms", ms}, {"ms_per_megapixel", ms / megapixels},
-                      {"ms_per_megapixel_above_baseline", (ms - baseline) / megapixels}, {"min_ms_per_megapixel", lowest / megapixels},
-                      {"spirv_bytes", entry.spirv.size() * 4}, {"spirv_instructions", saagen::count_spirv_instructions(entry.spirv)},
+    passes.push_back({{"pass", entry.name},
+                      {"median_ms", ms},
+                      {"ms_per_megapixel", ms / megapixels},
+                      {"ms_per_megapixel_above_baseline", (ms - baseline) / megapixels},
+                      {"min_ms_per_megapixel", lowest / megapixels},
+                      {"spirv_bytes", entry.spirv.size() * 4},
+                      {"spirv_instructions", saagen::count_spirv_instructions(entry.spirv)},
                       {"samples_ms", entry.gpu_ms}});
   }
   json["passes"] = passes;
@@ -181,8 +185,10 @@ int run(int argc, char** argv) {
   for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(saagen::Catalogue::builtin(), {})) {
     std::cout << fmt::format("{:<34} {:>8} {:>7} {:>8}\n", library.file_name, library.words.size() * 4,
                              saagen::count_spirv_instructions(library.words), library.exports.size());
-    modules.push_back({{"module", library.file_name}, {"bytes", library.words.size() * 4},
-                       {"instructions", saagen::count_spirv_instructions(library.words)}, {"exports", library.exports.size()}});
+    modules.push_back({{"module", library.file_name},
+                       {"bytes", library.words.size() * 4},
+                       {"instructions", saagen::count_spirv_instructions(library.words)},
+                       {"exports", library.exports.size()}});
   }
   json["libraries"] = modules;
   if (!options.json.empty()) {

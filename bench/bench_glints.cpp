@@ -13,11 +13,9 @@
 // baseline (ABBA order), optimized SPIR-V instruction counts, the mean shaded value of both
 // images, and the dictionary's memory with and without MIPs. Exits non-zero with one line when a
 // shader does not compile or the image is empty or non-finite.
-#include "saagen/validate/compiler.hpp"
 #include "saagen/products/glints.hpp"
+#include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
-
-#include <saagen/harness/harness.hpp>
 
 #include <fmt/format.h>
 
@@ -26,6 +24,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <saagen/harness/harness.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,169 +59,177 @@ constexpr const char* scene_body = R"(    real2 ndc = saagen_frag_coord * (2.0 /
 )";
 
 struct Failure : std::runtime_error {
-    using std::runtime_error::runtime_error;
+  using std::runtime_error::runtime_error;
 };
 
 std::string body(const std::string& call, std::uint32_t size) {
-    std::string text = scene_body;
-    text.replace(text.find("{size}"), 6, std::to_string(size));
-    text.replace(text.find("{call}"), 6, call);
-    return text;
+  std::string text = scene_body;
+  text.replace(text.find("{size}"), 6, std::to_string(size));
+  text.replace(text.find("{call}"), 6, call);
+  return text;
 }
 
 hx::ImageBinding dictionary_binding(const saagen::glints::DictionaryTexture& texture) {
-    hx::ImageBinding image;
-    image.binding = 2;
-    image.image.kind = hx::ImageKind::image_1d_array;
-    image.image.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    image.image.width = texture.width;
-    image.image.layers = texture.layers;
-    for (const auto& level : texture.levels) image.image.levels.push_back(hx::to_bytes(level));
-    image.sampler.mag_filter = image.sampler.min_filter = VK_FILTER_LINEAR;
-    image.sampler.mipmap_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    image.sampler.address(VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT);
-    return image;
+  hx::ImageBinding image;
+  image.binding = 2;
+  image.image.kind = hx::ImageKind::image_1d_array;
+  image.image.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  image.image.width = texture.width;
+  image.image.layers = texture.layers;
+  for (const auto& level : texture.levels) image.image.levels.push_back(hx::to_bytes(level));
+  image.sampler.mag_filter = image.sampler.min_filter = VK_FILTER_LINEAR;
+  image.sampler.mipmap_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  image.sampler.address(VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT);
+  return image;
 }
 
 struct Shader {
-    std::vector<std::uint32_t> spirv;
-    std::size_t optimized_instructions = 0;
+  std::vector<std::uint32_t> spirv;
+  std::size_t optimized_instructions = 0;
 };
 
 Shader compile(const std::string& target, const std::string& variant, const std::string& call, std::uint32_t size, double max_anisotropy) {
-    saagen::EmitOptions options;
-    options.target = target;
-    options.variants = {variant};
-    options.option_values["glint_max_anisotropy"] = max_anisotropy;
-    const auto file = saagen::glints::emit(options).front();
-    saagen::KernelRequest request;
-    request.kind = saagen::KernelKind::fragment;
-    request.body = body(call, size);
-    request.output_stride = 1;
-    request.width = size;
-    const auto result = saagen::compile_to_spirv(saagen::kernel_compile_request(saagen::glints::catalogue(), file.file_name, file.content, request));
-    if (!result.ok) throw Failure(fmt::format("{} {}: the kernel does not compile: {}", target, variant, result.log.substr(0, result.log.find('\n'))));
-    return {result.spirv, saagen::count_spirv_instructions(saagen::optimize_spirv(result.spirv, saagen::ClientApi::vulkan))};
+  saagen::EmitOptions options;
+  options.target = target;
+  options.variants = {variant};
+  options.option_values["glint_max_anisotropy"] = max_anisotropy;
+  const auto file = saagen::glints::emit(options).front();
+  saagen::KernelRequest request;
+  request.kind = saagen::KernelKind::fragment;
+  request.body = body(call, size);
+  request.output_stride = 1;
+  request.width = size;
+  const auto result =
+      saagen::compile_to_spirv(saagen::kernel_compile_request(saagen::glints::catalogue(), file.file_name, file.content, request));
+  if (!result.ok)
+    throw Failure(fmt::format("{} {}: the kernel does not compile: {}", target, variant, result.log.substr(0, result.log.find('\n'))));
+  return {result.spirv, saagen::count_spirv_instructions(saagen::optimize_spirv(result.spirv, saagen::ClientApi::vulkan))};
 }
 
 double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? NAN : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
+  std::sort(v.begin(), v.end());
+  return v.empty() ? NAN : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 double quantile(std::vector<double> v, double q) {
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(q * (v.size() - 1) + 0.5)];
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * (v.size() - 1) + 0.5)];
 }
 
 struct Image {
-    double mean = 0.0;
-    std::size_t lit = 0;
+  double mean = 0.0;
+  std::size_t lit = 0;
 };
 
 // Pixels whose value GGAA changes by more than 1e-4 relative: GGAA is wired in and filtering.
 std::size_t changed(const std::vector<float>& a, const std::vector<float>& b) {
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < a.size(); ++k) count += std::fabs(a[k] - b[k]) > 1e-4f * std::max(std::fabs(a[k]), std::fabs(b[k])) + 1e-12f;
-    return count;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) count += std::fabs(a[k] - b[k]) > 1e-4f * std::max(std::fabs(a[k]), std::fabs(b[k])) + 1e-12f;
+  return count;
 }
 
 Image summarise(const std::vector<float>& values, const std::string& what) {
-    Image image;
-    std::size_t covered = 0;
-    for (float v : values) {
-        if (v == -1.0f) continue;
-        if (!std::isfinite(v) || v < 0.0f) throw Failure(fmt::format("{}: a shaded value is {}", what, v));
-        ++covered;
-        image.mean += v;
-        image.lit += v > 0.0f;
-    }
-    if (covered == 0 || image.lit == 0) throw Failure(fmt::format("{}: the sphere is missing or black", what));
-    image.mean /= static_cast<double>(covered);
-    return image;
+  Image image;
+  std::size_t covered = 0;
+  for (float v : values) {
+    if (v == -1.0f) continue;
+    if (!std::isfinite(v) || v < 0.0f) throw Failure(fmt::format("{}: a shaded value is {}", what, v));
+    ++covered;
+    image.mean += v;
+    image.lit += v > 0.0f;
+  }
+  if (covered == 0 || image.lit == 0) throw Failure(fmt::format("{}: the sphere is missing or black", what));
+  image.mean /= static_cast<double>(covered);
+  return image;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> args(argv + 1, argv + argc);
-    std::uint32_t size = 512, rounds = 12;
-    double max_anisotropy = 8.0;
-    std::string device;
-    for (std::size_t k = 0; k < args.size(); ++k) {
-        if (args[k] == "--quick") size = 128, rounds = 3;
-        else if (args[k] == "--size" && k + 1 < args.size()) size = static_cast<std::uint32_t>(std::stoul(args[++k]));
-        else if (args[k] == "--rounds" && k + 1 < args.size()) rounds = static_cast<std::uint32_t>(std::stoul(args[++k]));
-        else if (args[k] == "--device" && k + 1 < args.size()) device = args[++k];
-        else if (args[k] == "--max-anisotropy" && k + 1 < args.size()) max_anisotropy = std::stod(args[++k]);
-        else {
-            std::cerr << "bench_glints: unknown argument '" << args[k]
-                      << "' (use --device NAME, --quick, --size N, --rounds N, --max-anisotropy A)\n";
-            return 2;
-        }
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::uint32_t size = 512, rounds = 12;
+  double max_anisotropy = 8.0;
+  std::string device;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    if (args[k] == "--quick")
+      size = 128, rounds = 3;
+    else if (args[k] == "--size" && k + 1 < args.size())
+      size = static_cast<std::uint32_t>(std::stoul(args[++k]));
+    else if (args[k] == "--rounds" && k + 1 < args.size())
+      rounds = static_cast<std::uint32_t>(std::stoul(args[++k]));
+    else if (args[k] == "--device" && k + 1 < args.size())
+      device = args[++k];
+    else if (args[k] == "--max-anisotropy" && k + 1 < args.size())
+      max_anisotropy = std::stod(args[++k]);
+    else {
+      std::cerr << "bench_glints: unknown argument '" << args[k]
+                << "' (use --device NAME, --quick, --size N, --rounds N, --max-anisotropy A)\n";
+      return 2;
     }
-    size &= ~1u;
-    try {
-        if (!device.empty()) setenv("SAAGEN_VK_DEVICE", device.c_str(), 1);
-        hx::VulkanContext context;
-        const auto dictionary = saagen::glints::generate_dictionary({});
-        const auto with_mips = saagen::glints::dictionary_texture(dictionary, true);
-        const auto without_mips = saagen::glints::dictionary_texture(dictionary, false);
-        std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA); max anisotropy {}\n", context.info().name, size, size, rounds,
-                                 max_anisotropy);
-        std::cout << fmt::format("dictionary: N = 192, L = 16, R = 64, RGBA16F: {:.0f} KiB without MIPs, {:.0f} KiB with MIPs (+{:.1f} %)\n",
-                                 saagen::glints::texture_bytes(without_mips) / 1024.0, saagen::glints::texture_bytes(with_mips) / 1024.0,
-                                 100.0 * (double(saagen::glints::texture_bytes(with_mips)) / double(saagen::glints::texture_bytes(without_mips)) - 1.0));
-        for (const std::string target : {"glsl", "hlsl"}) {
-            const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", size, max_anisotropy);
-            const Shader baseline = compile(target, "glints", "glint_brdf_fragment", size, max_anisotropy);
-            const auto make_run = [&](const Shader& shader, const saagen::glints::DictionaryTexture& texture) {
-                hx::FragmentRun run;
-                run.fragment.spirv = shader.spirv;
-                run.width = run.height = size;
-                run.images = {dictionary_binding(texture)};
-                run.buffers = {hx::input_buffer(0, std::vector<float>{0.0f}), hx::output_buffer<float>(1, std::size_t{size} * size)};
-                return run;
-            };
-            hx::FragmentProgram ggaa_program(context, make_run(ggaa, with_mips));
-            hx::FragmentProgram baseline_program(context, make_run(baseline, without_mips));
-            const bool timestamps = context.info().timestamps_supported();
-            std::vector<double> ggaa_ms, baseline_ms, ratios;
-            hx::RunResult ggaa_result, baseline_result;
-            const auto time = [&](hx::FragmentProgram& program, hx::RunResult& result) {
-                result = program.run({.repetitions = 1, .gpu_timestamps = timestamps});
-                return timestamps ? result.timing.gpu_ms.front() : result.timing.host_ms.front();
-            };
-            time(ggaa_program, ggaa_result);  // warm-up
-            time(baseline_program, baseline_result);
-            for (std::uint32_t round = 0; round < rounds; ++round) {
-                double a = 0.0, b = 0.0;
-                if (round % 2 == 0) {
-                    b = time(baseline_program, baseline_result);
-                    a = time(ggaa_program, ggaa_result);
-                } else {
-                    a = time(ggaa_program, ggaa_result);
-                    b = time(baseline_program, baseline_result);
-                }
-                ggaa_ms.push_back(a);
-                baseline_ms.push_back(b);
-                ratios.push_back(a / b);
-            }
-            const Image ggaa_image = summarise(ggaa_result.buffer_as<float>(1), target + " GGAA");
-            const Image baseline_image = summarise(baseline_result.buffer_as<float>(1), target + " baseline");
-            const std::size_t filtered = changed(ggaa_result.buffer_as<float>(1), baseline_result.buffer_as<float>(1));
-            if (filtered == 0) throw Failure(target + ": GGAA leaves the image unchanged; the timings would be meaningless");
-            std::cout << fmt::format(
-                "{}: GGAA {:.3f} ms, textureLod baseline {:.3f} ms; overhead {:+.1f} % (quartiles {:+.1f} .. {:+.1f} %; paper: +0.6 .. +4.2 % on an RTX 2080)\n"
-                "{}:   optimized SPIR-V instructions: GGAA {}, baseline {} ({:+d}); mean shaded value GGAA {:.5f}, baseline {:.5f}; lit pixels {} / {}; "
-                "pixels GGAA changes: {}\n",
-                target, median(ggaa_ms), median(baseline_ms), 100.0 * (median(ratios) - 1.0), 100.0 * (quantile(ratios, 0.25) - 1.0),
-                100.0 * (quantile(ratios, 0.75) - 1.0), target, ggaa.optimized_instructions, baseline.optimized_instructions,
-                static_cast<long>(ggaa.optimized_instructions) - static_cast<long>(baseline.optimized_instructions), ggaa_image.mean,
-                baseline_image.mean, ggaa_image.lit, baseline_image.lit, filtered);
+  }
+  size &= ~1u;
+  try {
+    if (!device.empty()) setenv("SAAGEN_VK_DEVICE", device.c_str(), 1);
+    hx::VulkanContext context;
+    const auto dictionary = saagen::glints::generate_dictionary({});
+    const auto with_mips = saagen::glints::dictionary_texture(dictionary, true);
+    const auto without_mips = saagen::glints::dictionary_texture(dictionary, false);
+    std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA); max anisotropy {}\n", context.info().name, size, size, rounds,
+                             max_anisotropy);
+    std::cout << fmt::format(
+        "dictionary: N = 192, L = 16, R = 64, RGBA16F: {:.0f} KiB without MIPs, {:.0f} KiB with MIPs (+{:.1f} %)\n",
+        saagen::glints::texture_bytes(without_mips) / 1024.0, saagen::glints::texture_bytes(with_mips) / 1024.0,
+        100.0 * (double(saagen::glints::texture_bytes(with_mips)) / double(saagen::glints::texture_bytes(without_mips)) - 1.0));
+    for (const std::string target : {"glsl", "hlsl"}) {
+      const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", size, max_anisotropy);
+      const Shader baseline = compile(target, "glints", "glint_brdf_fragment", size, max_anisotropy);
+      const auto make_run = [&](const Shader& shader, const saagen::glints::DictionaryTexture& texture) {
+        hx::FragmentRun run;
+        run.fragment.spirv = shader.spirv;
+        run.width = run.height = size;
+        run.images = {dictionary_binding(texture)};
+        run.buffers = {hx::input_buffer(0, std::vector<float>{0.0f}), hx::output_buffer<float>(1, std::size_t{size} * size)};
+        return run;
+      };
+      hx::FragmentProgram ggaa_program(context, make_run(ggaa, with_mips));
+      hx::FragmentProgram baseline_program(context, make_run(baseline, without_mips));
+      const bool timestamps = context.info().timestamps_supported();
+      std::vector<double> ggaa_ms, baseline_ms, ratios;
+      hx::RunResult ggaa_result, baseline_result;
+      const auto time = [&](hx::FragmentProgram& program, hx::RunResult& result) {
+        result = program.run({.repetitions = 1, .gpu_timestamps = timestamps});
+        return timestamps ? result.timing.gpu_ms.front() : result.timing.host_ms.front();
+      };
+      time(ggaa_program, ggaa_result);  // warm-up
+      time(baseline_program, baseline_result);
+      for (std::uint32_t round = 0; round < rounds; ++round) {
+        double a = 0.0, b = 0.0;
+        if (round % 2 == 0) {
+          b = time(baseline_program, baseline_result);
+          a = time(ggaa_program, ggaa_result);
+        } else {
+          a = time(ggaa_program, ggaa_result);
+          b = time(baseline_program, baseline_result);
         }
-    } catch (const std::exception& error) {
-        std::cerr << "bench_glints: " << error.what() << "\n";
-        return 1;
+        ggaa_ms.push_back(a);
+        baseline_ms.push_back(b);
+        ratios.push_back(a / b);
+      }
+      const Image ggaa_image = summarise(ggaa_result.buffer_as<float>(1), target + " GGAA");
+      const Image baseline_image = summarise(baseline_result.buffer_as<float>(1), target + " baseline");
+      const std::size_t filtered = changed(ggaa_result.buffer_as<float>(1), baseline_result.buffer_as<float>(1));
+      if (filtered == 0) throw Failure(target + ": GGAA leaves the image unchanged; the timings would be meaningless");
+      std::cout << fmt::format(
+          "{}: GGAA {:.3f} ms, textureLod baseline {:.3f} ms; overhead {:+.1f} % (quartiles {:+.1f} .. {:+.1f} %; paper: +0.6 .. +4.2 % on an RTX 2080)\n"
+          "{}:   optimized SPIR-V instructions: GGAA {}, baseline {} ({:+d}); mean shaded value GGAA {:.5f}, baseline {:.5f}; lit pixels {} / {}; "
+          "pixels GGAA changes: {}\n",
+          target, median(ggaa_ms), median(baseline_ms), 100.0 * (median(ratios) - 1.0), 100.0 * (quantile(ratios, 0.25) - 1.0),
+          100.0 * (quantile(ratios, 0.75) - 1.0), target, ggaa.optimized_instructions, baseline.optimized_instructions,
+          static_cast<long>(ggaa.optimized_instructions) - static_cast<long>(baseline.optimized_instructions), ggaa_image.mean,
+          baseline_image.mean, ggaa_image.lit, baseline_image.lit, filtered);
     }
-    return 0;
+  } catch (const std::exception& error) {
+    std::cerr << "bench_glints: " << error.what() << "\n";
+    return 1;
+  }
+  return 0;
 }

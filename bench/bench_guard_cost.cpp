@@ -9,9 +9,9 @@
 //
 // --check fails (exit 1) unless the guards cost something exactly in the functions whose
 // dependency closure holds a guarded(...) site, and nothing elsewhere.
+#include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/validate/compiler.hpp"
-#include "saagen/emit/emitter.hpp"
 #include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
@@ -41,7 +41,8 @@ std::string calls_body(const std::vector<std::string>& functions, std::uint32_t&
         continue;
       }
       std::string loads;
-      for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k) loads += fmt::format("{}SAAGEN_LOAD({}u)", k ? ", " : "", input++);
+      for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k)
+        loads += fmt::format("{}SAAGEN_LOAD({}u)", k ? ", " : "", input++);
       const std::string variable = fmt::format("saagen_a{}_{}", index, p.name);
       body += fmt::format("    {} {} = {}({});\n", p.type, variable, p.type, loads);
       arguments += variable;
@@ -49,7 +50,8 @@ std::string calls_body(const std::vector<std::string>& functions, std::uint32_t&
     body += fmt::format("    {} saagen_r{} = {}({});\n", f.return_type, index, name, arguments);
     const std::uint32_t count = saagen::component_count(f.return_type);
     for (std::uint32_t k = 0; k < count; ++k) {
-      body += fmt::format("    SAAGEN_STORE({}u, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyz"[k]);
+      body +=
+          fmt::format("    SAAGEN_STORE({}u, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyz"[k]);
     }
     ++index;
   }
@@ -67,7 +69,8 @@ std::size_t optimized_instructions(const std::string& target, const std::string&
   request.kind = saagen::KernelKind::fragment;
   request.width = 64;
   request.body = calls_body(functions, request.output_stride);
-  const auto compiled = saagen::compile_to_spirv(saagen::kernel_compile_request(Catalogue::builtin(), file.file_name, file.content, request));
+  const auto compiled =
+      saagen::compile_to_spirv(saagen::kernel_compile_request(Catalogue::builtin(), file.file_name, file.content, request));
   if (!compiled.ok) throw std::runtime_error(fmt::format("{} {}: kernel does not compile: {}", target, variant, compiled.log));
   const auto optimized = saagen::optimize_spirv(compiled.spirv, saagen::ClientApi::vulkan);
   if (optimized.empty()) throw std::runtime_error(fmt::format("{} {}: spirv-opt failed", target, variant));

@@ -16,8 +16,9 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
-#include <unistd.h>
 #include <string>
+
+#include <unistd.h>
 
 namespace {
 
@@ -99,11 +100,13 @@ int main(int argc, char** argv) {
   for (int round = 0; round < rounds; ++round) {
     shaderc_handler.push_back(milliseconds([&] {
       ok &= saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader(include_handler, call, false), false,
-                                               std::make_unique<saagen::ShadercIncluder>()).ok;
+                                               std::make_unique<saagen::ShadercIncluder>())
+                .ok;
     }));
     shaderc_disk.push_back(milliseconds([&] {
       ok &= saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader(include_disk, call, false), false,
-                                               std::make_unique<DiskShadercIncluder>(root)).ok;
+                                               std::make_unique<DiskShadercIncluder>(root))
+                .ok;
     }));
     glslang_handler.push_back(milliseconds([&] {
       saagen::GlslangIncluder includer;

@@ -15,13 +15,11 @@
 // It exits non-zero with one line on stderr when a shader fails to compile or validate, when a
 // shaded value on the sphere is non-finite or negative, or when a variant leaves the image
 // (almost) unchanged, which would mean the filter is not wired in and the timings are meaningless.
-#include "saagen/front/catalogue.hpp"
-#include "saagen/validate/compiler.hpp"
 #include "saagen/emit/emitter.hpp"
-#include "saagen/validate/kernels.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/report/shading_scene.hpp"
-
-#include <saagen/harness/harness.hpp>
+#include "saagen/validate/compiler.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,6 +34,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <saagen/harness/harness.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,8 +53,8 @@ using saagen::report::body_with;
 using saagen::report::paper_no_saa_ms;
 using saagen::report::parameter_buffer;
 using saagen::report::scene_parameters;
-using saagen::report::VariantCase;
 using saagen::report::variant_cases;
+using saagen::report::VariantCase;
 
 // ---------------------------------------------------------------------------------------------
 // Options
@@ -142,8 +141,8 @@ std::string first_line(const std::string& text) {
   return line;
 }
 
-Shader build_shader(const std::string& target, const std::string& what, const saagen::EmittedFile& primary,
-                    const std::string& content, const std::string& body, std::uint32_t width) {
+Shader build_shader(const std::string& target, const std::string& what, const saagen::EmittedFile& primary, const std::string& content,
+                    const std::string& body, std::uint32_t width) {
   saagen::KernelRequest request;
   request.kind = saagen::KernelKind::fragment;
   request.body = body;
@@ -187,8 +186,8 @@ ImageStats check_image(const std::string& target, const std::string& what, const
   }
   const double coverage = static_cast<double>(stats.on_sphere) / static_cast<double>(values.size());
   if (coverage < 0.3 || coverage > 0.95) {
-    throw Failure(fmt::format("{} {}: the sphere covers {:.1f}% of the frame (expected 30-95%): broken scene or output binding",
-                              target, what, 100.0 * coverage));
+    throw Failure(fmt::format("{} {}: the sphere covers {:.1f}% of the frame (expected 30-95%): broken scene or output binding", target,
+                              what, 100.0 * coverage));
   }
   stats.mean = sum / static_cast<double>(stats.on_sphere);
   if (!(stats.mean > 0.0)) throw Failure(fmt::format("{} {}: the shaded image is black", target, what));
@@ -203,8 +202,7 @@ class Kernel {
     run.width = size;
     run.height = size;
     run.color_formats = {VK_FORMAT_R32_SFLOAT};
-    run.buffers = {hx::input_buffer(0, input),
-                   hx::output_buffer<float>(1, static_cast<std::size_t>(size) * size)};
+    run.buffers = {hx::input_buffer(0, input), hx::output_buffer<float>(1, static_cast<std::size_t>(size) * size)};
     program_ = std::make_unique<hx::FragmentProgram>(context, run);
   }
 
@@ -287,13 +285,13 @@ void write_csv(const std::string& path, const std::vector<Row>& rows, const Opti
       if (character == '"') quoted_device += '"';
       quoted_device += character;
     }
-    out << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{:.5f},{:.5f},{},{},{},{},{},{},{},\"{}\"\n", row.target,
-                       row.variant, row.ms, row.baseline_ms, row.ratio, row.ratio_p25, row.ratio_p75, row.ms_min, row.baseline_ms_min, row.ratio_of_minima, row.instructions,
-                       row.delta_instructions, row.pixel_change, row.mean_change,
-                       optional_number(row.paper_range, [](const auto& r) { return r[0]; }),
+    out << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{:.5f},{:.5f},{},{},{},{},{},{},{},\"{}\"\n",
+                       row.target, row.variant, row.ms, row.baseline_ms, row.ratio, row.ratio_p25, row.ratio_p75, row.ms_min,
+                       row.baseline_ms_min, row.ratio_of_minima, row.instructions, row.delta_instructions, row.pixel_change,
+                       row.mean_change, optional_number(row.paper_range, [](const auto& r) { return r[0]; }),
                        optional_number(row.paper_range, [](const auto& r) { return r[1]; }),
-                       optional_number(row.paper_sponza, [](double v) { return v; }), options.size, options.size,
-                       options.repetitions, time_source, quoted_device);
+                       optional_number(row.paper_sponza, [](double v) { return v; }), options.size, options.size, options.repetitions,
+                       time_source, quoted_device);
   }
   if (!out) throw Failure(fmt::format("cannot write {}", path));
 }
@@ -363,9 +361,10 @@ int run_bench(const Options& options) {
   if (!info.fragment_stores_and_atomics) throw Failure("the device lacks fragmentStoresAndAtomics (fragment storage writes)");
   const bool timestamps = info.timestamps_supported();
   const char* time_source = timestamps ? "GPU timestamp" : "host wall-clock";
-  fmt::print("scene: bumpy GGX sphere, alpha 0.05, {0}x{0} px, {1} warm-up + {2} timed rounds per variant, "
-             "baseline and variant interleaved (ABBA)\n",
-             options.size, options.warmup, options.repetitions);
+  fmt::print(
+      "scene: bumpy GGX sphere, alpha 0.05, {0}x{0} px, {1} warm-up + {2} timed rounds per variant, "
+      "baseline and variant interleaved (ABBA)\n",
+      options.size, options.warmup, options.repetitions);
 
   const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
   {
@@ -375,9 +374,10 @@ int run_bench(const Options& options) {
     if (wrong == 0) {
       fmt::print("helper invocations: buffer loads ok (derivatives of loaded values are exact on every pixel)\n");
     } else {
-      fmt::print("helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
-                 "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
-                 wrong, static_cast<std::size_t>(options.size) * options.size);
+      fmt::print(
+          "helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
+          "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
+          wrong, static_cast<std::size_t>(options.size) * options.size);
     }
   }
   std::vector<Row> all_rows;
@@ -393,8 +393,8 @@ int run_bench(const Options& options) {
     };
     const saagen::EmittedFile& brdf = file_of("brdf-ggx");
 
-    const Shader baseline_shader = build_shader(target, "no-saa", brdf, brdf.content,
-                                                body_with(baseline_shade, options.size, options.size), options.size);
+    const Shader baseline_shader =
+        build_shader(target, "no-saa", brdf, brdf.content, body_with(baseline_shade, options.size, options.size), options.size);
     Kernel baseline(context, baseline_shader, options.size, parameter_buffer(options.size, options.size));
     baseline.run_once(timestamps);
     const std::vector<float> baseline_image = baseline.output();
@@ -404,9 +404,8 @@ int run_bench(const Options& options) {
     std::vector<double> all_baseline_samples;
     for (const VariantCase& variant : variant_cases()) {
       const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
-      const Shader shader =
-          build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
-                       body_with(variant.shade, options.size, options.size), options.size);
+      const Shader shader = build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
+                                         body_with(variant.shade, options.size, options.size), options.size);
       Kernel kernel(context, shader, options.size, parameter_buffer(options.size, options.size));
 
       std::vector<double> variant_samples, baseline_samples, ratios;
@@ -427,8 +426,8 @@ int run_bench(const Options& options) {
       const std::vector<float> image = kernel.output();
       const ImageStats stats = check_image(target, variant.id, image);
       if (stats.on_sphere != baseline_stats.on_sphere) {
-        throw Failure(fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant.id, stats.on_sphere,
-                                  baseline_stats.on_sphere));
+        throw Failure(
+            fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant.id, stats.on_sphere, baseline_stats.on_sphere));
       }
       double absolute_change = 0.0;
       for (std::size_t index = 0; index < image.size(); ++index) {
@@ -437,8 +436,8 @@ int run_bench(const Options& options) {
       const double pixel_change = absolute_change / static_cast<double>(stats.on_sphere) / baseline_stats.mean;
       const double mean_change = (stats.mean - baseline_stats.mean) / baseline_stats.mean;
       if (pixel_change < minimum_pixel_change) {
-        throw Failure(fmt::format("{} {}: the image differs from no SAA by only {:.3f}% per pixel: the filter is not wired in",
-                                  target, variant.id, 100.0 * pixel_change));
+        throw Failure(fmt::format("{} {}: the image differs from no SAA by only {:.3f}% per pixel: the filter is not wired in", target,
+                                  variant.id, 100.0 * pixel_change));
       }
       all_baseline_samples.insert(all_baseline_samples.end(), baseline_samples.begin(), baseline_samples.end());
 

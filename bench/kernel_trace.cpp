@@ -65,17 +65,17 @@ struct Options {
 
 // Every kernel of one pixel, alpha^2 domain, before the kappa clamp.
 struct PixelKernels {
-  double forward = 0.0;      // tr(A - diag(alpha^2)) / 2, forward-aniso-projected
+  double forward = 0.0;              // tr(A - diag(alpha^2)) / 2, forward-aniso-projected
   double forward_eigen_ratio = 0.0;  // lambda_min / lambda_max of A - diag(alpha^2) (0: a line)
-  double frame_only = 0.0;   // the same with the world half vector held fixed
-  double tilt_only = 0.0;    // ... and the frame parallel-transported (no twist)
-  double normal_sum = 0.0;   // |dn_x|^2 + |dn_y|^2 (world-space shading normal, coarse)
-  double half_z = 0.0;       // n.h
+  double frame_only = 0.0;           // the same with the world half vector held fixed
+  double tilt_only = 0.0;            // ... and the frame parallel-transported (no twist)
+  double normal_sum = 0.0;           // |dn_x|^2 + |dn_y|^2 (world-space shading normal, coarse)
+  double half_z = 0.0;               // n.h
   double deferred_sum = 0.0;
   double deferred_avg = 0.0;
   double deferred_max = 0.0;
   double deferred_projected_space = 0.0;
-  bool saturated = false;    // a deferred form hit saturate's 1
+  bool saturated = false;  // a deferred form hit saturate's 1
 };
 
 // v rotated by the smallest rotation that takes unit `from` to unit `to` (Rodrigues):
@@ -88,8 +88,7 @@ Vec3 rotate_between(Vec3 from, Vec3 to, Vec3 v) {
 
 // tr(A - diag(alpha^2)) / 2 = sigma^2 (|d h.xy/dx|^2 + |d h.xy/dy|^2) from forward-aniso-projected
 // (T&K 2019 Sec. 3.2) on a quad of tangent-space half vectors.
-double forward_isotropic_kernel(const ref::Params& params, double alpha2, const Quad<Vec3>& half_ts,
-                                int pixel) {
+double forward_isotropic_kernel(const ref::Params& params, double alpha2, const Quad<Vec3>& half_ts, int pixel) {
   const Sym2 a = ref::forward_aniso_projected_fragment_quad(params, {alpha2, alpha2}, half_ts, pixel, kMode);
   return 0.5 * ref::trace(a - Sym2{alpha2, 0.0, alpha2});
 }
@@ -104,18 +103,15 @@ double forward_eigen_ratio(const ref::Params& params, double alpha2, const Quad<
 
 // The world half vector of the shaded pixel expressed in every quad pixel's own frame.
 Quad<Vec3> half_in_partner_frames(const render::QuadFields& q, Vec3 half_ws) {
-  return ref::map_indexed(q.normal, [&](Vec3 n, int p) {
-    return ref::to_tangent_space(half_ws, q.tangent[p], q.bitangent[p], n);
-  });
+  return ref::map_indexed(q.normal, [&](Vec3 n, int p) { return ref::to_tangent_space(half_ws, q.tangent[p], q.bitangent[p], n); });
 }
 
 // The world half vector of the shaded pixel in frames parallel-transported from the shaded
 // pixel's frame to each partner's normal: only the tilt of the normal changes the coordinates.
 Quad<Vec3> half_in_transported_frames(const render::QuadFields& q, Vec3 half_ws) {
   const Vec3 n0 = q.normal[q.pixel], t0 = q.tangent[q.pixel], b0 = q.bitangent[q.pixel];
-  return ref::map(q.normal, [&](Vec3 n) {
-    return ref::to_tangent_space(half_ws, rotate_between(n0, n, t0), rotate_between(n0, n, b0), n);
-  });
+  return ref::map(q.normal,
+                  [&](Vec3 n) { return ref::to_tangent_space(half_ws, rotate_between(n0, n, t0), rotate_between(n0, n, b0), n); });
 }
 
 // Filtered alpha^2 minus alpha^2 of every deferred form, kappa out of the way.
@@ -124,10 +120,8 @@ void add_deferred_kernels(const render::QuadFields& q, double alpha2, PixelKerne
   unclamped.kappa = 1e30;
   const double sum = ref::deferred_sum_fragment_quad(unclamped, alpha2, q.normal, q.pixel, kMode);
   const double avg = ref::deferred_avg_fragment_quad(unclamped, alpha2, q.normal, q.pixel, kMode);
-  const double max = ref::deferred_max_fragment_quad(unclamped, alpha2, q.normal, q.tangent, q.bitangent,
-                                                     q.frag_coord, q.pixel, kMode);
-  const double projected =
-      ref::deferred_projected_space_fragment_quad(unclamped, alpha2, q.normal, q.pixel, kMode);
+  const double max = ref::deferred_max_fragment_quad(unclamped, alpha2, q.normal, q.tangent, q.bitangent, q.frag_coord, q.pixel, kMode);
+  const double projected = ref::deferred_projected_space_fragment_quad(unclamped, alpha2, q.normal, q.pixel, kMode);
   k.deferred_sum = sum - alpha2;
   k.deferred_avg = avg - alpha2;
   k.deferred_max = max - alpha2;
@@ -178,10 +172,8 @@ std::vector<Form> compared_forms() {
       {"deferred-avg (Eq. 5)", [](const PixelKernels& k) { return k.deferred_avg; }},
       {"deferred-max (Eq. 1)", [](const PixelKernels& k) { return k.deferred_max; }},
       {"deferred-projected-space", [](const PixelKernels& k) { return k.deferred_projected_space; }},
-      {"candidate: sigma^2 (n.h)^2 S",
-       [sigma2](const PixelKernels& k) { return sigma2 * k.half_z * k.half_z * k.normal_sum; }},
-      {"candidate: sigma^2 (n.h) S",
-       [sigma2](const PixelKernels& k) { return sigma2 * k.half_z * k.normal_sum; }},
+      {"candidate: sigma^2 (n.h)^2 S", [sigma2](const PixelKernels& k) { return sigma2 * k.half_z * k.half_z * k.normal_sum; }},
+      {"candidate: sigma^2 (n.h) S", [sigma2](const PixelKernels& k) { return sigma2 * k.half_z * k.normal_sum; }},
       {"diagnostic: forward, h fixed", [](const PixelKernels& k) { return k.frame_only; }},
       {"diagnostic: forward, h fixed, no twist", [](const PixelKernels& k) { return k.tilt_only; }},
   };
@@ -255,8 +247,8 @@ RatioStats ratio_stats(const std::vector<PixelKernels>& kernels, const KernelOf&
 }
 
 struct ConstantFit {
-  double constant = NAN;      // exp(mean(ln forward - ln basis))
-  double residual_sd = NAN;   // sd of ln forward - ln(c basis): how well c basis tracks the forward kernel
+  double constant = NAN;     // exp(mean(ln forward - ln basis))
+  double residual_sd = NAN;  // sd of ln forward - ln(c basis): how well c basis tracks the forward kernel
   std::size_t pixels = 0;
 };
 
@@ -297,17 +289,17 @@ SceneCounts scene_counts(const std::vector<PixelKernels>& kernels) {
 
 void print_ratio_table(std::string_view title, const std::vector<PixelKernels>& kernels) {
   const SceneCounts c = scene_counts(kernels);
-  std::cout << fmt::format("### {}\n\n{} hit pixels; forward kernel zero at {}, |dn|^2 zero at {}; "
-                           "a deferred form saturated (alpha'^2 = 1) at {}; median lambda_min / lambda_max of the "
-                           "forward kernel matrix {:.3f}.\n\n",
-                           title, c.hit, c.zero_forward, c.zero_normal, c.saturated, c.median_eigen_ratio);
+  std::cout << fmt::format(
+      "### {}\n\n{} hit pixels; forward kernel zero at {}, |dn|^2 zero at {}; "
+      "a deferred form saturated (alpha'^2 = 1) at {}; median lambda_min / lambda_max of the "
+      "forward kernel matrix {:.3f}.\n\n",
+      title, c.hit, c.zero_forward, c.zero_normal, c.saturated, c.median_eigen_ratio);
   std::cout << "| form | pixels | median r | mean r | median ln r | mean ln r | sd ln r | r > 2 |\n"
                "|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Form& form : compared_forms()) {
     const RatioStats s = ratio_stats(kernels, form.kernel);
-    std::cout << fmt::format("| {} | {} | {:.3f} | {:.3f} | {:+.3f} | {:+.3f} | {:.3f} | {:.1f} % |\n", form.name,
-                             s.pixels, s.median_ratio, s.mean_ratio, s.median_log, s.mean_log, s.sd_log,
-                             100.0 * s.over_twice);
+    std::cout << fmt::format("| {} | {} | {:.3f} | {:.3f} | {:+.3f} | {:+.3f} | {:.3f} | {:.1f} % |\n", form.name, s.pixels, s.median_ratio,
+                             s.mean_ratio, s.median_log, s.mean_log, s.sd_log, 100.0 * s.over_twice);
   }
   std::cout << "\n";
 }
@@ -339,9 +331,12 @@ Options parse_options(int argc, char** argv) {
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(fmt::format("{} needs a value", arg));
-    if (arg == "--size") options.size = std::atoi(argv[++i]);
-    else if (arg == "--alpha") options.alpha = std::atof(argv[++i]);
-    else throw std::invalid_argument(fmt::format("unknown option {}", arg));
+    if (arg == "--size")
+      options.size = std::atoi(argv[++i]);
+    else if (arg == "--alpha")
+      options.alpha = std::atof(argv[++i]);
+    else
+      throw std::invalid_argument(fmt::format("unknown option {}", arg));
   }
   if (options.size < 2 || options.alpha < 0.0 || options.alpha > 1.0)
     throw std::invalid_argument("--size must be >= 2 and --alpha in [0, 1]");
@@ -363,7 +358,6 @@ std::vector<SceneKernels> every_scene_kernels(const Options& options) {
   return scenes;
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Image check
 
@@ -382,9 +376,8 @@ struct Filtered {
 double lobe_brdf(ImageLobe lobe, const render::PixelFields& f, const Filtered& filtered, double alpha2) {
   const Vec2 unfiltered{alpha2, alpha2};
   if (filtered.matrix)
-    return lobe == ImageLobe::papers
-               ? ref::ggx_brdf_matrix(f.light_ts, f.view_ts, filtered.a, ref::ndf_clamp_tau(unfiltered))
-               : ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, filtered.a, unfiltered);
+    return lobe == ImageLobe::papers ? ref::ggx_brdf_matrix(f.light_ts, f.view_ts, filtered.a, ref::ndf_clamp_tau(unfiltered))
+                                     : ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, filtered.a, unfiltered);
   const Vec2 isotropic{filtered.alpha2, filtered.alpha2};
   return lobe == ImageLobe::papers ? ref::ggx_brdf_axis(f.light_ts, f.view_ts, isotropic)
                                    : ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, isotropic, unfiltered);
@@ -413,8 +406,7 @@ Sym2 candidate_matrix(const render::QuadFields& q, double half_z, double alpha2)
   const ref::Params params;
   const Vec3 t = q.tangent[q.pixel], b = q.bitangent[q.pixel];
   const Vec3 dn_dx = ref::ddx(q.normal, q.pixel, kMode), dn_dy = ref::ddy(q.normal, q.pixel, kMode);
-  const Sym2 rows = ref::sym2_from_derivative_rows({ref::dot(dn_dx, t), ref::dot(dn_dx, b)},
-                                                   {ref::dot(dn_dy, t), ref::dot(dn_dy, b)});
+  const Sym2 rows = ref::sym2_from_derivative_rows({ref::dot(dn_dx, t), ref::dot(dn_dx, b)}, {ref::dot(dn_dy, t), ref::dot(dn_dy, b)});
   return Sym2{alpha2, 0.0, alpha2} + (2.0 * params.sigma2 * half_z * half_z) * rows;
 }
 
@@ -431,18 +423,25 @@ const std::vector<std::string>& image_methods() {
   return names;
 }
 
-Filtered method_roughness(std::size_t method, const render::PixelFields& f, const render::QuadFields& q,
-                          double alpha2) {
+Filtered method_roughness(std::size_t method, const render::PixelFields& f, const render::QuadFields& q, double alpha2) {
   const ref::Params params;
   switch (method) {
-    case 0: return {false, {}, alpha2};
-    case 1: return {true, ref::forward_aniso_projected_fragment_quad(params, {alpha2, alpha2}, q.half_ts, q.pixel, kMode), 0.0};
-    case 2: return {false, {}, ref::deferred_avg_fragment_quad(params, alpha2, q.normal, q.pixel, kMode)};
-    case 3: return {false, {}, ref::deferred_sum_fragment_quad(params, alpha2, q.normal, q.pixel, kMode)};
-    case 4: return {false, {}, candidate_alpha2(q, f.half_ts.z, 2.0, alpha2)};
-    case 5: return {false, {}, candidate_alpha2(q, f.half_ts.z, 1.0, alpha2)};
-    case 6: return {false, {}, forward_isotropised_alpha2(q, alpha2)};
-    default: return {true, candidate_matrix(q, f.half_ts.z, alpha2), 0.0};
+    case 0:
+      return {false, {}, alpha2};
+    case 1:
+      return {true, ref::forward_aniso_projected_fragment_quad(params, {alpha2, alpha2}, q.half_ts, q.pixel, kMode), 0.0};
+    case 2:
+      return {false, {}, ref::deferred_avg_fragment_quad(params, alpha2, q.normal, q.pixel, kMode)};
+    case 3:
+      return {false, {}, ref::deferred_sum_fragment_quad(params, alpha2, q.normal, q.pixel, kMode)};
+    case 4:
+      return {false, {}, candidate_alpha2(q, f.half_ts.z, 2.0, alpha2)};
+    case 5:
+      return {false, {}, candidate_alpha2(q, f.half_ts.z, 1.0, alpha2)};
+    case 6:
+      return {false, {}, forward_isotropised_alpha2(q, alpha2)};
+    default:
+      return {true, candidate_matrix(q, f.half_ts.z, alpha2), 0.0};
   }
 }
 
@@ -457,8 +456,7 @@ std::vector<render::Image> method_images(const render::GBuffer& gbuffer, double 
       const render::QuadFields q = render::gather_quad(gbuffer, x, y);
       for (std::size_t m = 0; m < images.size(); ++m) {
         const Filtered filtered = method_roughness(m, f, q, alpha2);
-        const double brdf = m == 0 ? ref::ggx_brdf_axis(f.light_ts, f.view_ts, {alpha2, alpha2})
-                                   : lobe_brdf(lobe, f, filtered, alpha2);
+        const double brdf = m == 0 ? ref::ggx_brdf_axis(f.light_ts, f.view_ts, {alpha2, alpha2}) : lobe_brdf(lobe, f, filtered, alpha2);
         images[m].at(x, y) = static_cast<float>(render::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, false));
       }
     }
@@ -480,8 +478,8 @@ double largest_relative_difference(const render::Image& a, const render::Image& 
 
 // The papers-lobe images must be the renderer's own (render_variant) for the catalogue variants.
 void check_against_renderer(const render::GBuffer& gbuffer, double alpha, const std::vector<render::Image>& images) {
-  const render::Variant variants[] = {render::Variant::none, render::Variant::forward_aniso_projected,
-                                      render::Variant::deferred_avg, render::Variant::deferred_sum};
+  const render::Variant variants[] = {render::Variant::none, render::Variant::forward_aniso_projected, render::Variant::deferred_avg,
+                                      render::Variant::deferred_sum};
   for (std::size_t m = 0; m < std::size(variants); ++m) {
     const double d = largest_relative_difference(images[m], render::render_variant(gbuffer, variants[m], {alpha, false}));
     if (d > 1e-5) throw std::runtime_error(fmt::format("{} differs from render_variant by {}", image_methods()[m], d));
@@ -495,10 +493,10 @@ void print_image_check(const Options& options, ImageLobe lobe, std::string_view 
   render::GroundTruthSettings settings;
   settings.width = settings.height = options.size;
   settings.strata = 16;
-  std::cout << fmt::format("### Image check, {}: LDR-FLIP / tonemapped RMSE against a {}-spp ground truth, {} x {}, "
-                           "no Fresnel, kappa = {}\n\n| scene | alpha |",
-                           lobe_title, settings.strata * settings.strata, options.size, options.size,
-                           ref::Params{}.kappa);
+  std::cout << fmt::format(
+      "### Image check, {}: LDR-FLIP / tonemapped RMSE against a {}-spp ground truth, {} x {}, "
+      "no Fresnel, kappa = {}\n\n| scene | alpha |",
+      lobe_title, settings.strata * settings.strata, options.size, options.size, ref::Params{}.kappa);
   for (const std::string& name : image_methods()) std::cout << " " << name << " |";
   std::cout << "\n|---|---:|";
   for (std::size_t i = 0; i < image_methods().size(); ++i) std::cout << "---:|";
@@ -530,10 +528,11 @@ void print_image_check(const Options& options, ImageLobe lobe, std::string_view 
 int main(int argc, char** argv) try {
   const Options options = parse_options(argc, argv);
   const std::vector<SceneKernels> scenes = every_scene_kernels(options);
-  std::cout << fmt::format("## Kernel trace: {} x {}, alpha = {}, sigma^2 = {}, coarse derivatives, shading "
-                           "normal; r = form / forward, forward = tr(A - diag(alpha^2)) / 2 of "
-                           "forward-aniso-projected, S = |dn_x|^2 + |dn_y|^2\n\n",
-                           options.size, options.size, options.alpha, ref::Params{}.sigma2);
+  std::cout << fmt::format(
+      "## Kernel trace: {} x {}, alpha = {}, sigma^2 = {}, coarse derivatives, shading "
+      "normal; r = form / forward, forward = tr(A - diag(alpha^2)) / 2 of "
+      "forward-aniso-projected, S = |dn_x|^2 + |dn_y|^2\n\n",
+      options.size, options.size, options.alpha, ref::Params{}.sigma2);
   std::vector<PixelKernels> pooled;
   for (const SceneKernels& scene : scenes) {
     print_ratio_table(scene.name, scene.kernels);

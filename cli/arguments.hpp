@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdint>
-#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -49,7 +49,8 @@ inline std::uint64_t parse_unsigned(std::string_view option, const std::string& 
   std::uint64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-    throw Error(fmt::format("{} '{}': not a whole number in [0, 18446744073709551615]; pass a decimal number without sign or exponent", option, text));
+    throw Error(fmt::format("{} '{}': not a whole number in [0, 18446744073709551615]; pass a decimal number without sign or exponent",
+                            option, text));
   }
   return value;
 }

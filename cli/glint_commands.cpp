@@ -1,19 +1,20 @@
 #include "glint_commands.hpp"
 
+#include "arguments.hpp"
+
 #include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
-#include "saagen/products/prefilter.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/products/prefilter.hpp"
 #include "saagen/validate/validation.hpp"
-#include "arguments.hpp"
 
 #include <fmt/format.h>
 
-#include <filesystem>
-#include <iostream>
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
+#include <iostream>
 
 namespace saagen::cli {
 namespace {
@@ -56,7 +57,8 @@ GlintCommands::GlintCommands(CLI::App& app) {
   emit_->add_option("--target,-t", target_, "glsl or hlsl")->capture_default_str();
   emit_->add_option("--variant,-v", variants_, "glints or glints-ggaa (repeatable); both when none is named");
   emit_->add_option("--prefix", prefix_, "Prefix of every global name")->capture_default_str();
-  emit_->add_option("--precision", precision_, "fp32 only: the glint BRDF has no derived or proven half-precision bound")->capture_default_str();
+  emit_->add_option("--precision", precision_, "fp32 only: the glint BRDF has no derived or proven half-precision bound")
+      ->capture_default_str();
   emit_->add_flag("--unguarded", unguarded_, "Emit the papers' unguarded formulas (for comparison)");
   glint_options_.add_to(emit_, "");
   emit_->add_option("--output,-o", output_directory_, "Output directory")->required();
@@ -73,12 +75,16 @@ GlintCommands::GlintCommands(CLI::App& app) {
   dictionary_->add_option("--lobe-sigma", lobe_sigma_, "Standard deviation of a lobe")->capture_default_str();
   dictionary_->add_option("--seed", seed_, "Random seed, a whole number in [0, 2^64 - 1]")->capture_default_str();
   dictionary_->add_flag("--no-mips", no_mips_, "Level 0 only (the textureLod baseline needs no MIPs)");
-  dictionary_->add_option("--raw", raw_file_, "Also write the unrounded level-0 densities as little-endian float32 (.f32), layer-major, 4 per texel");
+  dictionary_->add_option("--raw", raw_file_,
+                          "Also write the unrounded level-0 densities as little-endian float32 (.f32), layer-major, 4 per texel");
   dictionary_->add_option("--output,-o", output_file_, "Output .ktx2 file")->required();
   dictionary_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 
   lean_ = glints_->add_subcommand("lean", "Pre-compute the LEAN moment MIP chain of a normal map (PNG, KTX2 or binary PPM) as KTX2");
-  lean_->add_option("NORMAL_MAP", normal_map_, "Tangent-space normal map: PNG or KTX2 (read as `texture prefilter` reads them), or binary PPM (P6, 8 bits)")->required();
+  lean_
+      ->add_option("NORMAL_MAP", normal_map_,
+                   "Tangent-space normal map: PNG or KTX2 (read as `texture prefilter` reads them), or binary PPM (P6, 8 bits)")
+      ->required();
   lean_->add_option("--output,-o", output_file_, "Output .ktx2 file")->required();
   lean_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 }
@@ -166,8 +172,9 @@ int GlintCommands::run_dictionary() const {
   std::vector<OutputFile> outputs = {{output_file_, as_string(write_ktx2(glints::dictionary_ktx2(texture, params)))}};
   if (!raw_file_.empty()) {
     std::string raw = raw_level_bytes(dictionary);
-    outputs.push_back(ownership_sidecar(raw_file_, raw, fmt::format("level 0 of {} before rounding: little-endian float32, layer-major, 4 per texel",
-                                                                    fs::path(output_file_).filename().string())));
+    outputs.push_back(ownership_sidecar(raw_file_, raw,
+                                        fmt::format("level 0 of {} before rounding: little-endian float32, layer-major, 4 per texel",
+                                                    fs::path(output_file_).filename().string())));
     outputs.push_back({raw_file_, std::move(raw)});
   }
   print_report(write_outputs(outputs, force_));

@@ -1,24 +1,25 @@
 // saagen: the command-line front end. Every failure prints one line on stderr and exits non-zero;
 // nothing is written unless everything that would be written has been produced first.
-#include "saagen/front/catalogue.hpp"
+#include "arguments.hpp"
+#include "glint_commands.hpp"
+#include "glint_options.hpp"
+#include "pass_commands.hpp"
+#include "report_commands.hpp"
+#include "scene_commands.hpp"
+#include "texture_commands.hpp"
+
 #include "saagen/emit/emitter.hpp"
 #include "saagen/emit/engines.hpp"
-#include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
-#include "saagen/io/input.hpp"
 #include "saagen/emit/listing.hpp"
+#include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/products/output_validation.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
-#include "arguments.hpp"
-#include "glint_options.hpp"
-#include "pass_commands.hpp"
-#include "report_commands.hpp"
-#include "glint_commands.hpp"
-#include "scene_commands.hpp"
-#include "texture_commands.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -50,9 +51,9 @@ struct EmitArguments {
   bool force = false;
   std::string precision = "fp32";
   bool unguarded = false;
-  std::optional<std::string> preset;  // an engine's variant, sigma^2, kappa and domain
-  std::optional<std::string> domain;  // roughness domain of the functions' roughness in and out
-  std::string import_path;            // module targets: naga_oil's #define_import_path
+  std::optional<std::string> preset;   // an engine's variant, sigma^2, kappa and domain
+  std::optional<std::string> domain;   // roughness domain of the functions' roughness in and out
+  std::string import_path;             // module targets: naga_oil's #define_import_path
   std::string module_name = "module";  // module targets: the stem of the one module of several variants
   saagen::cli::GlintOptions glint;     // the glint variants' options (--glint-count, ...)
 };
@@ -66,8 +67,8 @@ int run_list(const Catalogue& base_catalogue, bool json, const std::string& pref
   const Catalogue& catalogue = saagen::domain_catalogue(base_catalogue, domain);
   for (const saagen::Variant& variant : catalogue.variants()) {
     if (domain != "alpha2" && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) continue;
-    std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path),
-                             variant.needs_tangents ? "yes" : "no", variant.summary);
+    std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path), variant.needs_tangents ? "yes" : "no",
+                             variant.summary);
     std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
     const auto resources = saagen::resources_read(catalogue, variant.functions);
     if (!resources.empty()) {
@@ -78,8 +79,8 @@ int run_list(const Catalogue& base_catalogue, bool json, const std::string& pref
       const saagen::Function& function = *catalogue.find_function(name);
       std::vector<std::string> parameters;
       for (const saagen::Parameter& parameter : function.parameters) parameters.push_back(parameter.type + " " + parameter.name);
-      std::cout << fmt::format("{:<26}   {} {}{}({})  [{}]\n", "", function.return_type, prefix, function.name,
-                               fmt::join(parameters, ", "), to_string(function.role));
+      std::cout << fmt::format("{:<26}   {} {}{}({})  [{}]\n", "", function.return_type, prefix, function.name, fmt::join(parameters, ", "),
+                               to_string(function.role));
     }
   }
   return 0;
@@ -122,8 +123,9 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   arguments.glint.apply(options);
   const Catalogue& catalogue = emission_catalogue(every_variant, options);
   if (arguments.glint.any() && !catalogue.find_variant("glints")) {
-    throw saagen::Error("--glint-* options set the glint variants' constants, and none is emitted; add --variant glints or glints-ggaa "
-                        "(or name no variant)");
+    throw saagen::Error(
+        "--glint-* options set the glint variants' constants, and none is emitted; add --variant glints or glints-ggaa "
+        "(or name no variant)");
   }
 
   std::vector<saagen::OutputFile> outputs;
@@ -137,7 +139,8 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
     // A language without includes (WGSL) cannot take two files that both define the shared
     // helpers: several variants make one module holding their dependency closure once.
     if (!std::regex_match(arguments.module_name, std::regex("[A-Za-z][A-Za-z0-9_]{0,63}"))) {
-      throw saagen::Error(fmt::format("--module '{}': not a name; use a letter, then letters, digits or '_' (at most 64 characters)", arguments.module_name));
+      throw saagen::Error(fmt::format("--module '{}': not a name; use a letter, then letters, digits or '_' (at most 64 characters)",
+                                      arguments.module_name));
     }
     const saagen::BundleRequest request{arguments.module_name, saagen::public_functions(catalogue, options.variants), options.variants, {}};
     saagen::EmittedFile file = saagen::emit_bundle(catalogue, options, request);
@@ -145,11 +148,13 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   } else {
     std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, options);
     if (!options.import_path.empty() && files.size() > 1) {
-      throw saagen::Error(fmt::format("--import-path {}: names one module, but {} files would be written; name the variants with --variant "
-                                      "(several make one module)",
-                                      options.import_path, files.size()));
+      throw saagen::Error(
+          fmt::format("--import-path {}: names one module, but {} files would be written; name the variants with --variant "
+                      "(several make one module)",
+                      options.import_path, files.size()));
     }
-    for (saagen::EmittedFile& file : files) outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
+    for (saagen::EmittedFile& file : files)
+      outputs.push_back({fs::path(arguments.output_directory) / file.file_name, std::move(file.content)});
   }
   const saagen::WriteReport report = saagen::write_outputs(outputs, arguments.force);
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";
@@ -157,7 +162,9 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   return 0;
 }
 
-std::string read_file(const fs::path& path) { return saagen::read_input_file(path, saagen::source_size_limit, "a file written by `saagen emit`"); }
+std::string read_file(const fs::path& path) {
+  return saagen::read_input_file(path, saagen::source_size_limit, "a file written by `saagen emit`");
+}
 
 // Files `saagen emit` wrote in a directory: known target extensions holding a marker line.
 std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path& directory) {
@@ -166,7 +173,8 @@ std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path
     throw saagen::Error(fmt::format("{}: not a directory; pass the directory `saagen emit -o` wrote", directory.string()));
   }
   std::vector<std::string> extensions;
-  for (const std::string& target : saagen::builtin_target_names()) extensions.push_back("." + saagen::builtin_target(target).file_extension);
+  for (const std::string& target : saagen::builtin_target_names())
+    extensions.push_back("." + saagen::builtin_target(target).file_extension);
   extensions.insert(extensions.end(), {".spv", ".comp"});  // SPIR-V libraries and deferred passes
   std::vector<std::pair<std::string, std::string>> files;
   for (const fs::path& path : saagen::cli::regular_files_in(directory)) {
@@ -174,7 +182,9 @@ std::vector<std::pair<std::string, std::string>> emitted_files_in(const fs::path
     std::string content = read_file(path);
     if (saagen::find_marker(content)) files.emplace_back(path.string(), std::move(content));
   }
-  if (files.empty()) throw saagen::Error(fmt::format("{}: holds no file written by saagen; run `saagen emit -o {}` first", directory.string(), directory.string()));
+  if (files.empty())
+    throw saagen::Error(
+        fmt::format("{}: holds no file written by saagen; run `saagen emit -o {}` first", directory.string(), directory.string()));
   return files;
 }
 
@@ -239,35 +249,47 @@ int main(int argc, char** argv) {
   list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
   list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
   std::string list_domain = "alpha2";
-  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")->capture_default_str();
+  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")
+      ->capture_default_str();
 
   EmitArguments emit_arguments;
   std::string sigma2;
   std::string kappa;
   CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
-  emit->add_option("--target,-t", emit_arguments.target, "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")->capture_default_str();
+  emit->add_option(
+          "--target,-t", emit_arguments.target,
+          "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")
+      ->capture_default_str();
   emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
   std::string preset;
   std::string domain;
-  CLI::Option* preset_option = emit->add_option("--preset", preset, "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
-  CLI::Option* domain_option = emit->add_option("--domain", domain, "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
+  CLI::Option* preset_option = emit->add_option(
+      "--preset", preset,
+      "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
+  CLI::Option* domain_option = emit->add_option(
+      "--domain", domain,
+      "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
   emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
   CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
-  CLI::Option* kappa_option = emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
+  CLI::Option* kappa_option =
+      emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
   emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
   emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
   emit->add_option("--precision", emit_arguments.precision,
-                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")->capture_default_str();
-  emit->add_flag("--unguarded", emit_arguments.unguarded,
-                 "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
+                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")
+      ->capture_default_str();
+  emit->add_flag("--unguarded", emit_arguments.unguarded, "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
   emit->add_option("--import-path", emit_arguments.import_path,
                    "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
   emit->add_option("--module", emit_arguments.module_name,
-                   "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")->capture_default_str();
+                   "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")
+      ->capture_default_str();
   emit_arguments.glint.add_to(emit, "glint-");
 
   std::string validate_directory;
-  CLI::App* validate = app.add_subcommand("validate", "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");
+  CLI::App* validate = app.add_subcommand(
+      "validate",
+      "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");
   validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
 
   // Scene manifests: `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
@@ -285,10 +307,11 @@ int main(int argc, char** argv) {
   // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
   const saagen::cli::TextureCommands texture(app);
 
-  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* command) {
-        return command->get_name() == argv[1];
-      }).empty()) {
-    std::cerr << "saagen: error: unknown command '" << saagen::one_line(argv[1]) << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
+  if (argc > 1 && argv[1][0] != '-' &&
+      app.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; }).empty()) {
+    std::cerr
+        << "saagen: error: unknown command '" << saagen::one_line(argv[1])
+        << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
     return exit_usage;
   }
   try {

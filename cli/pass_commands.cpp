@@ -1,9 +1,10 @@
 #include "pass_commands.hpp"
 
+#include "arguments.hpp"
+
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
-#include "arguments.hpp"
 
 #include <fmt/format.h>
 
@@ -18,9 +19,10 @@ PassCommand::PassCommand(CLI::App& app) {
   command_->add_option("--variant,-v", options_.passes,
                        "Pass id (repeatable): deferred-previous, deferred-max, deferred-max-tangent-free, deferred-sum, "
                        "deferred-avg, deferred-projected-space; all when none is named");
-  preset_option_ = command_->add_option("--preset", preset_,
-                                       "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (pass, sigma^2 and kappa; "
-                                       "the roughness domain is the pass's run-time flag; explicit options win)");
+  preset_option_ =
+      command_->add_option("--preset", preset_,
+                           "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (pass, sigma^2 and kappa; "
+                           "the roughness domain is the pass's run-time flag; explicit options win)");
   command_->add_option("--prefix", options_.prefix, "Prefix of every global name in the output")->capture_default_str();
   sigma2_option_ = command_->add_option("--sigma2", sigma2_, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
   kappa_option_ = command_->add_option("--kappa", kappa_, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");

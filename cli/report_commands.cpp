@@ -11,13 +11,14 @@
 
 #include <cerrno>
 #include <cmath>
-#include <fcntl.h>
-#include <system_error>
-#include <unistd.h>
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace saagen::cli {
 namespace {
@@ -101,7 +102,8 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
 #else
   (void)costs;
   (void)out;
-  throw Error(fmt::format("--isa {}: this saagen was built without the Vulkan harness (SAAGEN_BUILD_HARNESS=OFF); rebuild with it", families));
+  throw Error(
+      fmt::format("--isa {}: this saagen was built without the Vulkan harness (SAAGEN_BUILD_HARNESS=OFF); rebuild with it", families));
 #endif
 }
 
@@ -123,7 +125,10 @@ CLI::Validator finite_range(double low, double high) {
 }  // namespace
 
 void ReportCommands::add_common(CLI::App* command, Common& common) {
-  command->add_option("--preset", common.preset, "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
+  command
+      ->add_option(
+          "--preset", common.preset,
+          "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
       ->capture_default_str();
   command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
@@ -161,8 +166,9 @@ int ReportCommands::run_bench() const {
     throw Error("--isa-only and --isa-table need --isa FAMILY[,FAMILY] (e.g. --isa vega10,navi21)");
   }
   if (bench_isa_only_ && !bench_json_.empty()) {
-    throw Error(fmt::format("--json {}: --isa-only computes no trade table to write; drop --isa-only, or write the ISA statistics with --isa-table FILE",
-                            bench_json_));
+    throw Error(fmt::format(
+        "--json {}: --isa-only computes no trade table to write; drop --isa-only, or write the ISA statistics with --isa-table FILE",
+        bench_json_));
   }
   auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, false);
@@ -172,7 +178,8 @@ int ReportCommands::run_bench() const {
   if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
   check_output_paths(outputs, bench_common_.force, {bench_common_.cost_json});
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
-  if (isa && !bench_isa_table_.empty()) write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
+  if (isa && !bench_isa_table_.empty())
+    write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
   if (bench_isa_only_) return 0;
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto summary = report::summarize(table);
@@ -183,8 +190,9 @@ int ReportCommands::run_bench() const {
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
-  if (!bench_json_.empty()) write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force,
-                                           {bench_common_.cost_json});
+  if (!bench_json_.empty())
+    write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force,
+                  {bench_common_.cost_json});
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;

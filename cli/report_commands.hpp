@@ -42,8 +42,8 @@ class ReportCommands {
   Common bench_common_;
   std::string bench_json_;
   bool bench_every_case_ = false;
-  bool bench_isa_only_ = false;     // the ISA tables only, no ground-truth rendering
-  std::string bench_isa_table_;     // write the ISA statistics as JSON (the planner's table format)
+  bool bench_isa_only_ = false;  // the ISA tables only, no ground-truth rendering
+  std::string bench_isa_table_;  // write the ISA statistics as JSON (the planner's table format)
 
   CLI::App* report_ = nullptr;
   Common report_common_;

@@ -1,16 +1,16 @@
 #include "scene_commands.hpp"
 
-#include "saagen/validate/compiler.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
 #include "saagen/integrate/include_handler.hpp"
 #include "saagen/io/input.hpp"
-#include "saagen/scene/manifest.hpp"
 #include "saagen/io/output.hpp"
-#include "saagen/scene/planner.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/products/spirv_library.hpp"
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
 
@@ -42,8 +42,8 @@ std::optional<std::string> include_target(std::string_view line, const std::stri
     return std::string(line.substr(index + 1, close - index - 1));
   }
   if (open != '"') {
-    throw Error(fmt::format("{}: only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported",
-                            where));
+    throw Error(fmt::format(
+        "{}: only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported", where));
   }
   const auto close = line.find('"', index + 1);
   if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
@@ -78,8 +78,10 @@ class IncludeExpander {
         continue;
       }
       if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-      if (is_saagen_include(*included)) add_generated(*included, fmt::format("{}:{}", file.string(), number));
-      else expand(resolve(*included, file, number), depth + 1);
+      if (is_saagen_include(*included))
+        add_generated(*included, fmt::format("{}:{}", file.string(), number));
+      else
+        expand(resolve(*included, file, number), depth + 1);
       chunk = fmt::format("#line {}\n", number + 1);
     }
     if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
@@ -145,8 +147,10 @@ std::string first_compiler_message(const std::string& log) {
   std::vector<std::string> errors;
   std::istringstream lines(log);
   for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("ERROR: ", 0) == 0 && line.find("compilation errors.") == std::string::npos) errors.push_back(line.substr(7));
-    else if (line.rfind("spirv-val: ", 0) == 0) errors.push_back(line);
+    if (line.rfind("ERROR: ", 0) == 0 && line.find("compilation errors.") == std::string::npos)
+      errors.push_back(line.substr(7));
+    else if (line.rfind("spirv-val: ", 0) == 0)
+      errors.push_back(line);
   }
   if (errors.empty()) {
     const auto end = log.find('\n');
@@ -191,14 +195,16 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
 
-  CLI::Option* manifest = emit->add_option("--manifest,-m", emit_manifest_,
-                                           "Scene manifest: one bundle per target with only the functions its materials need");
+  CLI::Option* manifest =
+      emit->add_option("--manifest,-m", emit_manifest_, "Scene manifest: one bundle per target with only the functions its materials need");
   for (CLI::Option* option : emit_exclusive) manifest->excludes(option);
   emit->add_option("--trade-table", emit_trade_table_, "With --manifest: the measured trade table the planner reads")->needs(manifest);
   emit->add_flag("--list-outputs", emit_list_outputs_, "With --manifest: print the files it would write, one per line, and write nothing")
       ->needs(manifest);
 
-  compile_ = app.add_subcommand("compile", "Compile a shader (GLSL or HLSL; #include \"...\" resolved, #include <saagen/...> generated) to SPIR-V in-process, with spirv-val");
+  compile_ = app.add_subcommand(
+      "compile",
+      "Compile a shader (GLSL or HLSL; #include \"...\" resolved, #include <saagen/...> generated) to SPIR-V in-process, with spirv-val");
   compile_->add_option("FILE", compile_input_, "Shader source")->required();
   compile_->add_option("--output,-o", compile_output_, "SPIR-V output file")->required();
   compile_->add_option("--stage,-S", compile_stage_, "vert, frag or comp (default: from the extension .vert/.frag/.comp)")
@@ -289,8 +295,10 @@ CompileRequest SceneCommands::compile_settings(const fs::path& input) const {
   const std::string extension = input.extension().string();
   std::string stage = compile_stage_;
   if (stage.empty()) {
-    if (extension == ".vert" || extension == ".frag" || extension == ".comp") stage = extension.substr(1);
-    else throw Error(fmt::format("{}: cannot tell the stage from the extension; pass --stage vert, frag or comp", input.string()));
+    if (extension == ".vert" || extension == ".frag" || extension == ".comp")
+      stage = extension.substr(1);
+    else
+      throw Error(fmt::format("{}: cannot tell the stage from the extension; pass --stage vert, frag or comp", input.string()));
   }
   const std::string language = !compile_language_.empty() ? compile_language_ : extension == ".hlsl" ? "hlsl" : "glsl";
   if (language == "glsl" && compile_entry_ != "main") {

@@ -25,12 +25,19 @@ std::vector<std::uint8_t> read_input(const std::string& path) {
 TextureCommands::TextureCommands(CLI::App& app) {
   texture_ = app.add_subcommand("texture", "Texture tools: normal-map prefiltering (README.md, \"Normal-map prefiltering\")");
   texture_->require_subcommand(1);
-  prefilter_ = texture_->add_subcommand("prefilter", "Normal map (PNG or KTX2) to a KTX2 MIP chain of Toksvig roughness or LEAN slope moments");
-  prefilter_->add_option("IN", input_, "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size, "
-                            "at most 8192 texels a side and 4096 x 4096 in all, a file of at most 256 MiB")->required();
+  prefilter_ =
+      texture_->add_subcommand("prefilter", "Normal map (PNG or KTX2) to a KTX2 MIP chain of Toksvig roughness or LEAN slope moments");
+  prefilter_
+      ->add_option("IN", input_,
+                   "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size, "
+                   "at most 8192 texels a side and 4096 x 4096 in all, a file of at most 256 MiB")
+      ->required();
   prefilter_->add_option("--output,-o", output_, "Output .ktx2 file")->required();
   prefilter_->add_option("--method", method_, "toksvig (one roughness channel) or lean (slope moments)")->capture_default_str();
-  prefilter_->add_option("--domain", domain_, "Domain of --roughness and of the toksvig output: alpha2, alpha, perceptual (alpha = r^2) or smoothness (1 - r)")->capture_default_str();
+  prefilter_
+      ->add_option("--domain", domain_,
+                   "Domain of --roughness and of the toksvig output: alpha2, alpha, perceptual (alpha = r^2) or smoothness (1 - r)")
+      ->capture_default_str();
   prefilter_->add_option("--roughness", roughness_, "Constant base roughness in that domain, in [0, 1]")->capture_default_str();
   prefilter_->add_flag("--float32", float32_, "toksvig: R32_SFLOAT instead of R16_SFLOAT");
   prefilter_->add_flag("--force", force_, "Overwrite a file that saagen did not write");

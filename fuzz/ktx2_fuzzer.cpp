@@ -1,9 +1,9 @@
 // libFuzzer target: the KTX2 reader (read_ktx2). Accepted files must write back (write_ktx2) and
 // read again to the same image; rejected ones must fail with one "KTX2: ..." line.
+#include "fuzz_support.hpp"
+
 #include "saagen/error.hpp"
 #include "saagen/products/glints.hpp"
-
-#include "fuzz_support.hpp"
 
 #include <cstddef>
 #include <cstdint>

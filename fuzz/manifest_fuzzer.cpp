@@ -1,7 +1,7 @@
 // libFuzzer target: scene manifest parser, planner and bundle emitter.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 

@@ -1,10 +1,10 @@
 // libFuzzer target: the binary PPM reader (slopes_from_ppm) and the LEAN moment chain built from
 // what it accepts (lean_moments, lean_ktx2, write_ktx2, read back). Rejected input must fail with
 // one "normal map: ..." line; accepted input must give a full MIP chain down to 1x1.
+#include "fuzz_support.hpp"
+
 #include "saagen/error.hpp"
 #include "saagen/products/glints.hpp"
-
-#include "fuzz_support.hpp"
 
 #include <cstddef>
 #include <cstdint>

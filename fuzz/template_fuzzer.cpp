@@ -2,12 +2,12 @@
 // checks, linking); an accepted catalogue is emitted for GLSL and HLSL, guarded and unguarded,
 // and every output must be ASCII with a marker that reads back. The tokenizer must give back its
 // input exactly. Rejected templates must fail with one line.
-#include "saagen/front/catalogue.hpp"
-#include "saagen/front/dialect.hpp"
+#include "fuzz_support.hpp"
+
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-
-#include "fuzz_support.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/front/dialect.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -27,7 +27,8 @@ void check_tokenizer(std::string_view text) {
 void check_file(const saagen::EmittedFile& file) {
   for (char c : file.content) {
     const auto byte = static_cast<unsigned char>(c);
-    if (byte != '\n' && (byte < 0x20 || byte >= 0x7f)) saagen::fuzz::finding(target, "non-ASCII or control byte in emitted output", file.file_name);
+    if (byte != '\n' && (byte < 0x20 || byte >= 0x7f))
+      saagen::fuzz::finding(target, "non-ASCII or control byte in emitted output", file.file_name);
   }
   const auto marker = saagen::find_marker(file.content);
   if (!marker || marker->variants != file.marker.variants) saagen::fuzz::finding(target, "marker does not read back", file.file_name);

@@ -35,23 +35,23 @@
 namespace saagen::test::core {
 
 namespace ref = saagen::ref;
-using saagen::Catalogue;
 using ref::Sym2;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
 
 constexpr std::uint32_t element_count = 131072;  // >= 1e5, a multiple of the workgroup size
 constexpr double rounding_bound = 2e-5;
 
 // One input configuration; every parameter of every function is derived from it.
 struct Scenario {
-  Vec3 h;             // unit half vector / normal in tangent space
+  Vec3 h;  // unit half vector / normal in tangent space
   double alpha_x = 0.1, alpha_y = 0.1;
-  Vec3 dh_x, dh_y;    // derivatives of h along screen x and y, tangent to the sphere at h
-  Vec3 i, o;          // unit light and view directions
+  Vec3 dh_x, dh_y;          // derivatives of h along screen x and y, tangent to the sphere at h
+  Vec3 i, o;                // unit light and view directions
   double anisotropy = 1.0;  // eigenvalue ratio of the BRDF roughness matrix, in [1, 100]
   double matrix_angle = 0.0;
-  double tau_scale = 1.0;   // tau = det(A) * tau_scale: both sides of the clamp
+  double tau_scale = 1.0;  // tau = det(A) * tau_scale: both sides of the clamp
 };
 
 inline Vec3 direction(double z, double azimuth) {
@@ -123,34 +123,57 @@ inline void push(std::vector<float>& out, Vec3 v) { push(out, v.x), push(out, v.
 inline void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), push(out, m.yy); }
 
 // Packs the inputs of `function` for one scenario, by parameter name (see templates/*.saa).
-inline void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params, std::vector<float>& out) {
+inline void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params,
+                        std::vector<float>& out) {
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
   const saagen::test::PrefilterInputs texel = saagen::test::prefilter_inputs(index);
   const Sym2 matrix = roughness_matrix(s);
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
-    if (name == "alpha2") parameter.type == "real" ? push(out, alpha2.x) : push(out, alpha2);
-    else if (name == "dslope_dx") push(out, ref::slope_differential(s.h, s.dh_x));
-    else if (name == "dslope_dy") push(out, ref::slope_differential(s.h, s.dh_y));
-    else if (name == "dproj_dx") push(out, ref::projected_differential(s.h, s.dh_x));
-    else if (name == "dproj_dy") push(out, ref::projected_differential(s.h, s.dh_y));
-    else if (name == "dn_dx") push(out, s.dh_x);
-    else if (name == "dn_dy") push(out, s.dh_y);
-    else if (name == "h") push(out, function.name.find("g2") != std::string::npos ? ref::normalize(s.i + s.o) : s.h);
-    else if (name == "w" || name == "i") push(out, s.i);
-    else if (name == "o") push(out, s.o);
-    else if (name == "a") push(out, saagen::test::takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
-    else if (name == "filtered") push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
-    else if (name == "kernel") push(out, matrix.xx);
-    else if (name == "tau") push(out, ref::sym2_determinant(matrix) * s.tau_scale);
-    else if (name == "normal_ws") push(out, s.h);
-    else if (name == "light_ws") push(out, s.i);
-    else if (name == "view_ws") push(out, s.o);
-    else if (name == "tensor") push(out, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h));
-    else if (name == "mean_length") push(out, texel.mean_length);
-    else if (name == "slope_mean") push(out, texel.slope_mean);
-    else if (name == "slope_second") push(out, texel.slope_second);
-    else throw std::runtime_error("no input generator for parameter " + name + " of " + function.name);
+    if (name == "alpha2")
+      parameter.type == "real" ? push(out, alpha2.x) : push(out, alpha2);
+    else if (name == "dslope_dx")
+      push(out, ref::slope_differential(s.h, s.dh_x));
+    else if (name == "dslope_dy")
+      push(out, ref::slope_differential(s.h, s.dh_y));
+    else if (name == "dproj_dx")
+      push(out, ref::projected_differential(s.h, s.dh_x));
+    else if (name == "dproj_dy")
+      push(out, ref::projected_differential(s.h, s.dh_y));
+    else if (name == "dn_dx")
+      push(out, s.dh_x);
+    else if (name == "dn_dy")
+      push(out, s.dh_y);
+    else if (name == "h")
+      push(out, function.name.find("g2") != std::string::npos ? ref::normalize(s.i + s.o) : s.h);
+    else if (name == "w" || name == "i")
+      push(out, s.i);
+    else if (name == "o")
+      push(out, s.o);
+    else if (name == "a")
+      push(out, saagen::test::takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
+    else if (name == "filtered")
+      push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
+    else if (name == "kernel")
+      push(out, matrix.xx);
+    else if (name == "tau")
+      push(out, ref::sym2_determinant(matrix) * s.tau_scale);
+    else if (name == "normal_ws")
+      push(out, s.h);
+    else if (name == "light_ws")
+      push(out, s.i);
+    else if (name == "view_ws")
+      push(out, s.o);
+    else if (name == "tensor")
+      push(out, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h));
+    else if (name == "mean_length")
+      push(out, texel.mean_length);
+    else if (name == "slope_mean")
+      push(out, texel.slope_mean);
+    else if (name == "slope_second")
+      push(out, texel.slope_second);
+    else
+      throw std::runtime_error("no input generator for parameter " + name + " of " + function.name);
   }
 }
 
@@ -159,9 +182,19 @@ class Inputs {
  public:
   explicit Inputs(const float* data) : data_(data) {}
   double real() { return data_[next_++]; }
-  Vec2 vec2() { const double x = real(); return {x, real()}; }
-  Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  Sym2 sym2() { const double xx = real(), xy = real(); return {xx, xy, real()}; }
+  Vec2 vec2() {
+    const double x = real();
+    return {x, real()};
+  }
+  Vec3 vec3() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
+  Sym2 sym2() {
+    const double xx = real(), xy = real();
+    return {xx, xy, real()};
+  }
+
  private:
   const float* data_;
   std::size_t next_ = 0;
@@ -206,30 +239,48 @@ inline std::map<std::string, ReferenceFunction> reference_functions(const ref::P
   std::map<std::string, ReferenceFunction> table;
   // Filters: value on the inputs, scale on the absolute values of the derivative inputs.
   const auto forward = [&](auto filter) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const Vec2 a = in.vec2(); const Vec2 du = in.vec2(); return outputs(filter(p, a, du, in.vec2())); },
-        [=](Inputs& in) {
-          const Vec2 a = in.vec2(); const Vec2 du = abs2(in.vec2());
-          auto s = outputs(filter(p, a, du, abs2(in.vec2())));
-          for (double& v : s) v = std::fabs(v);
-          return s;
-        }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec2 a = in.vec2();
+                               const Vec2 du = in.vec2();
+                               return outputs(filter(p, a, du, in.vec2()));
+                             },
+                             [=](Inputs& in) {
+                               const Vec2 a = in.vec2();
+                               const Vec2 du = abs2(in.vec2());
+                               auto s = outputs(filter(p, a, du, abs2(in.vec2())));
+                               for (double& v : s) v = std::fabs(v);
+                               return s;
+                             }};
   };
   table["forward_aniso_slope"] = forward(ref::forward_aniso_slope);
   table["forward_aniso_projected"] = forward(ref::forward_aniso_projected);
   table["forward_axis_slope"] = forward(ref::forward_axis_slope);
   table["forward_axis_projected"] = forward(ref::forward_axis_projected);
   const auto planar = [&](auto filter) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const double a = in.real(); const Vec2 du = in.vec2(); return outputs(filter(p, a, du, in.vec2())); },
-        [=](Inputs& in) { const double a = in.real(); const Vec2 du = abs2(in.vec2()); return outputs(filter(p, a, du, abs2(in.vec2()))); }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const double a = in.real();
+                               const Vec2 du = in.vec2();
+                               return outputs(filter(p, a, du, in.vec2()));
+                             },
+                             [=](Inputs& in) {
+                               const double a = in.real();
+                               const Vec2 du = abs2(in.vec2());
+                               return outputs(filter(p, a, du, abs2(in.vec2())));
+                             }};
   };
   table["deferred_previous"] = planar(ref::deferred_previous);
   table["deferred_max"] = planar(ref::deferred_max);
   const auto spatial = [&](auto filter) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const double a = in.real(); const Vec3 dx = in.vec3(); return outputs(filter(p, a, dx, in.vec3())); },
-        [=](Inputs& in) { const double a = in.real(); const Vec3 dx = abs3(in.vec3()); return outputs(filter(p, a, dx, abs3(in.vec3()))); }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const double a = in.real();
+                               const Vec3 dx = in.vec3();
+                               return outputs(filter(p, a, dx, in.vec3()));
+                             },
+                             [=](Inputs& in) {
+                               const double a = in.real();
+                               const Vec3 dx = abs3(in.vec3());
+                               return outputs(filter(p, a, dx, abs3(in.vec3())));
+                             }};
   };
   table["deferred_max_tangent_free"] = spatial(ref::deferred_max_tangent_free);
   table["deferred_sum"] = spatial(ref::deferred_sum);
@@ -240,17 +291,30 @@ inline std::map<std::string, ReferenceFunction> reference_functions(const ref::P
                             [](Inputs& in) { return outputs(std::fabs(ref::ndf_clamp_tau(in.vec2()))); }};
   const auto ndf = [](auto function, bool beckmann) {
     const auto scale = [=](Inputs& in) {
-      const Vec3 h = in.vec3(); const Sym2 a = in.sym2(); const double tau = in.real();
+      const Vec3 h = in.vec3();
+      const Sym2 a = in.sym2();
+      const double tau = in.real();
       return brdf_scale(function(h, a, tau), a, beckmann ? beckmann_exponent(h, a, tau) : 0.0);
     };
-    return ReferenceFunction{[=](Inputs& in) { const Vec3 h = in.vec3(); const Sym2 a = in.sym2(); return outputs(function(h, a, in.real())); },
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec3 h = in.vec3();
+                               const Sym2 a = in.sym2();
+                               return outputs(function(h, a, in.real()));
+                             },
                              scale};
   };
   table["ggx_ndf_matrix"] = ndf(ref::ggx_ndf_matrix, false);
   table["beckmann_ndf_matrix"] = ndf(ref::beckmann_ndf_matrix, true);
   const auto lambda = [](auto function, auto term_magnitude) {
-    return ReferenceFunction{[=](Inputs& in) { const Vec3 w = in.vec3(); return outputs(function(w, in.sym2())); },
-                             [=](Inputs& in) { const Vec3 w = in.vec3(); const Sym2 a = in.sym2(); return brdf_scale(term_magnitude(w, a), a); }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec3 w = in.vec3();
+                               return outputs(function(w, in.sym2()));
+                             },
+                             [=](Inputs& in) {
+                               const Vec3 w = in.vec3();
+                               const Sym2 a = in.sym2();
+                               return brdf_scale(term_magnitude(w, a), a);
+                             }};
   };
   table["ggx_lambda_matrix"] = lambda(ref::ggx_lambda_matrix, [](Vec3 w, Sym2 a) { return 1.0 + ref::ggx_lambda_matrix(w, a); });
   table["beckmann_lambda_matrix"] = lambda(ref::beckmann_lambda_matrix, [](Vec3 w, Sym2 a) {
@@ -259,39 +323,62 @@ inline std::map<std::string, ReferenceFunction> reference_functions(const ref::P
     const double x = std::fabs(w.z) / std::sqrt(q);
     return (1.0 + 1.259 * x + 0.396 * x * x) / (3.535 * x + 2.181 * x * x);
   });
-  table["ggx_g2_matrix"] = {
-      [](Inputs& in) { const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3(); return outputs(ref::ggx_g2_matrix(i, o, h, in.sym2())); },
-      [](Inputs& in) { const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3(); const Sym2 a = in.sym2();
-                       return brdf_scale(ref::ggx_g2_matrix(i, o, h, a), a); }};
+  table["ggx_g2_matrix"] = {[](Inputs& in) {
+                              const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
+                              return outputs(ref::ggx_g2_matrix(i, o, h, in.sym2()));
+                            },
+                            [](Inputs& in) {
+                              const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
+                              const Sym2 a = in.sym2();
+                              return brdf_scale(ref::ggx_g2_matrix(i, o, h, a), a);
+                            }};
   const auto brdf_matrix = [](auto function, bool beckmann) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const Vec3 i = in.vec3(), o = in.vec3(); const Sym2 a = in.sym2(); return outputs(function(i, o, a, in.real())); },
-        [=](Inputs& in) {
-          const Vec3 i = in.vec3(), o = in.vec3(); const Sym2 a = in.sym2(); const double tau = in.real();
-          return brdf_scale(function(i, o, a, tau), a, beckmann ? beckmann_exponent(ref::normalize(i + o), a, tau) : 0.0);
-        }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec3 i = in.vec3(), o = in.vec3();
+                               const Sym2 a = in.sym2();
+                               return outputs(function(i, o, a, in.real()));
+                             },
+                             [=](Inputs& in) {
+                               const Vec3 i = in.vec3(), o = in.vec3();
+                               const Sym2 a = in.sym2();
+                               const double tau = in.real();
+                               return brdf_scale(function(i, o, a, tau), a,
+                                                 beckmann ? beckmann_exponent(ref::normalize(i + o), a, tau) : 0.0);
+                             }};
   };
   table["ggx_brdf_matrix"] = brdf_matrix(ref::ggx_brdf_matrix, false);
   table["beckmann_brdf_matrix"] = brdf_matrix(ref::beckmann_brdf_matrix, true);
   const auto axis = [](auto function, bool beckmann) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const Vec3 h = in.vec3(); return outputs(function(h, in.vec2())); },
-        [=](Inputs& in) {
-          const Vec3 h = in.vec3(); const Vec2 a2 = in.vec2(); const Sym2 a{a2.x, 0.0, a2.y};
-          return brdf_scale(function(h, a2), a, beckmann ? beckmann_exponent(h, a, a2.x * a2.y) : 0.0);
-        }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec3 h = in.vec3();
+                               return outputs(function(h, in.vec2()));
+                             },
+                             [=](Inputs& in) {
+                               const Vec3 h = in.vec3();
+                               const Vec2 a2 = in.vec2();
+                               const Sym2 a{a2.x, 0.0, a2.y};
+                               return brdf_scale(function(h, a2), a, beckmann ? beckmann_exponent(h, a, a2.x * a2.y) : 0.0);
+                             }};
   };
   table["ggx_ndf_axis"] = axis(ref::ggx_ndf_axis, false);
   table["ggx_lambda_axis"] = axis([](Vec3 w, Vec2 a2) { return 1.0 + ref::ggx_lambda_axis(w, a2); }, false);
-  table["ggx_lambda_axis"].value = [](Inputs& in) { const Vec3 w = in.vec3(); return outputs(ref::ggx_lambda_axis(w, in.vec2())); };
+  table["ggx_lambda_axis"].value = [](Inputs& in) {
+    const Vec3 w = in.vec3();
+    return outputs(ref::ggx_lambda_axis(w, in.vec2()));
+  };
   table["beckmann_ndf_axis"] = axis(ref::beckmann_ndf_axis, true);
   const auto brdf_axis = [](auto function, bool beckmann) {
-    return ReferenceFunction{
-        [=](Inputs& in) { const Vec3 i = in.vec3(), o = in.vec3(); return outputs(function(i, o, in.vec2())); },
-        [=](Inputs& in) {
-          const Vec3 i = in.vec3(), o = in.vec3(); const Vec2 a2 = in.vec2(); const Sym2 a{a2.x, 0.0, a2.y};
-          return brdf_scale(function(i, o, a2), a, beckmann ? beckmann_exponent(ref::normalize(i + o), a, a2.x * a2.y) : 0.0);
-        }};
+    return ReferenceFunction{[=](Inputs& in) {
+                               const Vec3 i = in.vec3(), o = in.vec3();
+                               return outputs(function(i, o, in.vec2()));
+                             },
+                             [=](Inputs& in) {
+                               const Vec3 i = in.vec3(), o = in.vec3();
+                               const Vec2 a2 = in.vec2();
+                               const Sym2 a{a2.x, 0.0, a2.y};
+                               return brdf_scale(function(i, o, a2), a,
+                                                 beckmann ? beckmann_exponent(ref::normalize(i + o), a, a2.x * a2.y) : 0.0);
+                             }};
   };
   table["ggx_brdf_axis"] = brdf_axis(ref::ggx_brdf_axis, false);
   table["beckmann_brdf_axis"] = brdf_axis(ref::beckmann_brdf_axis, true);

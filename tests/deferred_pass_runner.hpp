@@ -9,12 +9,11 @@
 
 #include "saagen/products/deferred_pass.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <saagen/harness/bytes.hpp>
 #include <saagen/harness/context.hpp>
 #include <saagen/harness/error.hpp>
-
-#include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -95,8 +94,8 @@ class DeferredPassRunner {
   }
 
   struct Result {
-    std::vector<float> output;  // width * height values, rows top to bottom
-    std::vector<double> gpu_ms; // per repetition (empty without timestamps)
+    std::vector<float> output;   // width * height values, rows top to bottom
+    std::vector<double> gpu_ms;  // per repetition (empty without timestamps)
   };
 
   // Dispatches `repetitions` times (one submission each, timed), then reads the output back.
@@ -126,16 +125,16 @@ class DeferredPassRunner {
           barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
           barrier.image = images_[output_image].image;
           barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-          vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                               1, &barrier);
+          vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                               &barrier);
           const VkBufferImageCopy copy = region(0);
           vkCmdCopyImageToBuffer(commands, images_[output_image].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging_, 1, &copy);
           barrier.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
           barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
           barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
           barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-          vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
-                               1, &barrier);
+          vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                               &barrier);
         } else {
           VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
           barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

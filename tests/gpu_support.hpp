@@ -3,15 +3,14 @@
 // element-wise comparison against the double-precision reference with per-element bounds.
 #pragma once
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/validate/kernels.hpp"
-
-#include <saagen/harness/harness.hpp>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <saagen/harness/harness.hpp>
 #include <string>
 #include <vector>
 

@@ -6,12 +6,12 @@
 #include "saagen/integrate/shaderc_includer.hpp"
 
 #include <glslang/Public/ResourceLimits.h>
-#include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/Public/ShaderLang.h>
-#include <shaderc/shaderc.hpp>
+#include <glslang/SPIRV/GlslangToSpv.h>
 
 #include <cstdint>
 #include <memory>
+#include <shaderc/shaderc.hpp>
 #include <string>
 #include <vector>
 
@@ -21,8 +21,8 @@ namespace saagen::test {
 // filtered value: `include` is the #include line, `call` the function it calls.
 inline std::string glsl_user_shader(const std::string& include, const std::string& call, bool include_extension,
                                     const std::string& core_only_macro = "SAA_CORE_ONLY") {
-  return std::string("#version 450\n") + (include_extension ? "#extension GL_GOOGLE_include_directive : require\n" : "") +
-         "#define " + core_only_macro + "\n" + include + "\n" +
+  return std::string("#version 450\n") + (include_extension ? "#extension GL_GOOGLE_include_directive : require\n" : "") + "#define " +
+         core_only_macro + "\n" + include + "\n" +
          "layout(local_size_x = 64) in;\n"
          "layout(std430, set = 0, binding = 0) readonly buffer Inputs { float values[]; } inputs;\n"
          "layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float values[]; } outputs;\n"
@@ -31,7 +31,9 @@ inline std::string glsl_user_shader(const std::string& include, const std::strin
          "  float value = inputs.values[7u * i];\n"
          "  vec3 dn_dx = vec3(inputs.values[7u * i + 1u], inputs.values[7u * i + 2u], inputs.values[7u * i + 3u]);\n"
          "  vec3 dn_dy = vec3(inputs.values[7u * i + 4u], inputs.values[7u * i + 5u], inputs.values[7u * i + 6u]);\n"
-         "  outputs.values[i] = " + call + "(value, dn_dx, dn_dy);\n"
+         "  outputs.values[i] = " +
+         call +
+         "(value, dn_dx, dn_dy);\n"
          "}\n";
 }
 
@@ -45,7 +47,9 @@ inline std::string hlsl_user_shader(const std::string& include, const std::strin
          "  uint i = id.x;\n"
          "  float3 dn_dx = float3(inputs[7 * i + 1], inputs[7 * i + 2], inputs[7 * i + 3]);\n"
          "  float3 dn_dy = float3(inputs[7 * i + 4], inputs[7 * i + 5], inputs[7 * i + 6]);\n"
-         "  outputs[i] = " + call + "(inputs[7 * i], dn_dx, dn_dy);\n"
+         "  outputs[i] = " +
+         call +
+         "(inputs[7 * i], dn_dx, dn_dy);\n"
          "}\n";
 }
 
@@ -80,7 +84,8 @@ inline Compiled compile_with_glslang(const std::string& source, bool hlsl, glsla
   return compiled;
 }
 
-inline Compiled compile_with_shaderc(const std::string& source, bool hlsl, std::unique_ptr<shaderc::CompileOptions::IncluderInterface> includer) {
+inline Compiled compile_with_shaderc(const std::string& source, bool hlsl,
+                                     std::unique_ptr<shaderc::CompileOptions::IncluderInterface> includer) {
   shaderc::Compiler compiler;
   shaderc::CompileOptions options;
   if (includer) options.SetIncluder(std::move(includer));

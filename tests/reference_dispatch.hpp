@@ -21,9 +21,18 @@ class FloatReader {
  public:
   explicit FloatReader(const float* data) : data_(data) {}
   double real() { return data_[next_++]; }
-  ref::Vec2 vec2() { const double x = real(); return {x, real()}; }
-  ref::Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  ref::Sym2 sym2() { const double x = real(), y = real(); return {x, y, real()}; }
+  ref::Vec2 vec2() {
+    const double x = real();
+    return {x, real()};
+  }
+  ref::Vec3 vec3() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
+  ref::Sym2 sym2() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
 
  private:
   const float* data_;
@@ -56,21 +65,27 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
   const auto& h = vectors["half_ts"];
   const auto& n = vectors["normal_ws"];
   if (name == "forward_aniso_slope_fragment") return output_values(ref::forward_aniso_slope_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_aniso_projected_fragment") return output_values(ref::forward_aniso_projected_fragment_quad(p, alpha2, h, pixel, mode));
+  if (name == "forward_aniso_projected_fragment")
+    return output_values(ref::forward_aniso_projected_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "forward_axis_slope_fragment") return output_values(ref::forward_axis_slope_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "forward_axis_projected_fragment") return output_values(ref::forward_axis_projected_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "deferred_previous_fragment") {
-    return output_values(ref::deferred_previous_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
+    return output_values(
+        ref::deferred_previous_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
   }
   if (name == "deferred_max_fragment") {
-    return output_values(ref::deferred_max_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
+    return output_values(
+        ref::deferred_max_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
   }
-  if (name == "deferred_max_tangent_free_fragment") return output_values(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_max_tangent_free_fragment")
+    return output_values(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_sum_fragment") return output_values(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_avg_fragment") return output_values(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_projected_space_fragment") return output_values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_projected_space_fragment")
+    return output_values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_aniso_fragment") return output_values(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
-  if (name == "ggx_brdf_filtered_fragment") return output_values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
+  if (name == "ggx_brdf_filtered_fragment")
+    return output_values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   if (name == "ggx_brdf_tail_filtered_fragment") {
     return output_values(ref::ggx_brdf_tail_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   }
@@ -136,7 +151,8 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
     const auto beckmann_part = [&](double weight, double kernel_factor) {
       const Sym2 m = unfiltered + kernel_factor * (a - unfiltered);
       double exponent = 0.0;
-      if (h.z > 0.0) exponent = ref::sym2_quadratic_form({m.yy, -m.xy, m.xx}, {h.x / h.z, h.y / h.z}) / std::max(ref::sym2_determinant(m), tau);
+      if (h.z > 0.0)
+        exponent = ref::sym2_quadratic_form({m.yy, -m.xy, m.xx}, {h.x / h.z, h.y / h.z}) / std::max(ref::sym2_determinant(m), tau);
       return std::fabs(weight * brdf.beckmann_ndf_matrix(h, m, tau)) * (1.0 + conditioning(m) + exponent);
     };
     return std::fabs(lobes.tail_weight * brdf.ggx_ndf_axis(h, {tail.xx, tail.yy})) * (1.0 + conditioning(tail)) +
@@ -168,7 +184,8 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
   }
   if (name == "ggx_filtered_alpha2") {
     const double a = in.real(), kernel = in.real();
-    return output_values(magnitudes ? std::fabs(brdf.ggx_filtered_alpha2(std::fabs(a), std::fabs(kernel))) : brdf.ggx_filtered_alpha2(a, kernel));
+    return output_values(magnitudes ? std::fabs(brdf.ggx_filtered_alpha2(std::fabs(a), std::fabs(kernel)))
+                                    : brdf.ggx_filtered_alpha2(a, kernel));
   }
   return std::nullopt;
 }
@@ -245,9 +262,18 @@ struct ValueList {
   std::vector<double> values;
   std::size_t next = 0;
   double real() { return values.at(next++); }
-  ref::Vec2 vec2() { const double x = real(); return {x, real()}; }
-  ref::Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  ref::Sym2 sym2() { const double xx = real(), xy = real(); return {xx, xy, real()}; }
+  ref::Vec2 vec2() {
+    const double x = real();
+    return {x, real()};
+  }
+  ref::Vec3 vec3() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
+  ref::Sym2 sym2() {
+    const double xx = real(), xy = real();
+    return {xx, xy, real()};
+  }
 };
 
 // deferred-aniso's core and evaluate functions (templates/20-deferred.saa) on inputs read in
@@ -264,7 +290,8 @@ struct ValueList {
 //    error is twice that) and the cosines i.z, o.z by delta:
 //    S += |f| (4 |h.xy| / (alpha^2 h_z^2) + 1 / i.z + 1 / o.z).
 template <class In>
-std::optional<std::vector<double>> deferred_aniso_reference(const std::string& name, const ref::Params& p, In& in, bool magnitudes = false) {
+std::optional<std::vector<double>> deferred_aniso_reference(const std::string& name, const ref::Params& p, In& in,
+                                                            bool magnitudes = false) {
   if (name == "deferred_aniso") {
     const ref::Vec3 dx = in.vec3(), dy = in.vec3(), normal = in.vec3();
     if (magnitudes) return std::vector<double>(3, 2.0 * ref::isotropic_kernel_sum(p, dx, dy));

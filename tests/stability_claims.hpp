@@ -41,18 +41,18 @@
 namespace saagen::stability {
 
 enum class Claim {
-  roughness_matrix,  // forward-aniso-*: A finite, A00 >= ax^2, A11 >= ay^2, det(A) >= -(rounding)
-  saturated,         // forward-axis-*, deferred-{previous,max,sum,avg}: min(a, 1) <= out <= 1, out - a <= kappa
-  projected_space,   // deferred-projected-space: a = saturate(alpha^2) <= out <= 1, out - a <= kappa
-  brdf_value,        // NDFs, G2, BRDFs: finite, >= 0
-  smith_lambda,      // Lambdas: finite, >= kLambdaFloor (Walter's Beckmann fit dips below 0)
-  clamp_tau,         // ndf_clamp_tau: finite, >= 0
-  variance,          // toksvig_variance: finite, >= 0
-  covariance,        // lean_covariance: finite, diagonal >= 0, det >= -(rounding)
-  prefiltered,       // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
+  roughness_matrix,       // forward-aniso-*: A finite, A00 >= ax^2, A11 >= ay^2, det(A) >= -(rounding)
+  saturated,              // forward-axis-*, deferred-{previous,max,sum,avg}: min(a, 1) <= out <= 1, out - a <= kappa
+  projected_space,        // deferred-projected-space: a = saturate(alpha^2) <= out <= 1, out - a <= kappa
+  brdf_value,             // NDFs, G2, BRDFs: finite, >= 0
+  smith_lambda,           // Lambdas: finite, >= kLambdaFloor (Walter's Beckmann fit dips below 0)
+  clamp_tau,              // ndf_clamp_tau: finite, >= 0
+  variance,               // toksvig_variance: finite, >= 0
+  covariance,             // lean_covariance: finite, diagonal >= 0, det >= -(rounding)
+  prefiltered,            // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
   prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
-  kernel_tensor,     // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
-  tensor_roughness,  // deferred_aniso_roughness: finite, A00, A11 >= alpha^2, det A >= -(rounding) (for a PSD tensor)
+  kernel_tensor,          // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
+  tensor_roughness,       // deferred_aniso_roughness: finite, A00, A11 >= alpha^2, det A >= -(rounding) (for a PSD tensor)
 };
 
 inline constexpr double kKappaSlack = 0x1p-22;
@@ -84,18 +84,30 @@ inline Claim claim_of(std::string_view function) {
 
 inline std::string_view describe(Claim claim) {
   switch (claim) {
-    case Claim::roughness_matrix: return "finite; A00 >= ax^2, A11 >= ay^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
-    case Claim::saturated: return "finite; min(a,1) <= a' <= 1; a' - a <= kappa";
-    case Claim::projected_space: return "finite; saturate(a) <= a' <= 1 (+-2^-22); a' - a <= kappa";
-    case Claim::brdf_value: return "finite; >= 0";
-    case Claim::smith_lambda: return "finite; >= -1e-4";
-    case Claim::clamp_tau: return "finite; >= 0";
-    case Claim::variance: return "finite; >= 0";
-    case Claim::covariance: return "finite; S00, S11 >= 0; det S >= -2^-20 S00 S11 - 2^-122 (S00 + S11)";
-    case Claim::prefiltered: return "finite; min(a,1) <= a' <= 1 (texture term unclamped)";
-    case Claim::prefiltered_projected: return "finite; saturate(a) <= a' <= 1 (+-2^-22)";
-    case Claim::kernel_tensor: return "finite; K00, K11 in [0, kappa], |K01| <= kappa / 2 (+2^-21); PSD: det K >= -2^-20 K00 K11 - 2^-122 (K00 + K11)";
-    case Claim::tensor_roughness: return "finite; A00, A11 >= alpha^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
+    case Claim::roughness_matrix:
+      return "finite; A00 >= ax^2, A11 >= ay^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
+    case Claim::saturated:
+      return "finite; min(a,1) <= a' <= 1; a' - a <= kappa";
+    case Claim::projected_space:
+      return "finite; saturate(a) <= a' <= 1 (+-2^-22); a' - a <= kappa";
+    case Claim::brdf_value:
+      return "finite; >= 0";
+    case Claim::smith_lambda:
+      return "finite; >= -1e-4";
+    case Claim::clamp_tau:
+      return "finite; >= 0";
+    case Claim::variance:
+      return "finite; >= 0";
+    case Claim::covariance:
+      return "finite; S00, S11 >= 0; det S >= -2^-20 S00 S11 - 2^-122 (S00 + S11)";
+    case Claim::prefiltered:
+      return "finite; min(a,1) <= a' <= 1 (texture term unclamped)";
+    case Claim::prefiltered_projected:
+      return "finite; saturate(a) <= a' <= 1 (+-2^-22)";
+    case Claim::kernel_tensor:
+      return "finite; K00, K11 in [0, kappa], |K01| <= kappa / 2 (+2^-21); PSD: det K >= -2^-20 K00 K11 - 2^-122 (K00 + K11)";
+    case Claim::tensor_roughness:
+      return "finite; A00, A11 >= alpha^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
   }
   return "";
 }
@@ -108,8 +120,7 @@ struct Verdict {
   bool ok() const { return !non_finite && !out_of_bound; }
 };
 
-inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, std::span<const double> out,
-                     bool explain = false) {
+inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, std::span<const double> out, bool explain = false) {
   Verdict verdict;
   for (double v : out) {
     if (!std::isfinite(v)) verdict.non_finite = true;

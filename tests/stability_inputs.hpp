@@ -77,37 +77,57 @@ inline double adversarial_component(Rng& rng) {
   static constexpr float specials[] = {0.0f, 1e-40f, 1e-30f, 1e-6f, 1e-3f, 1.0f, 1e3f, 1e6f, 1e9f, 1e10f, 1e19f, 1e20f, 1e30f, kFloatMax};
   double magnitude;
   switch (rng.below(4)) {
-    case 0: magnitude = specials[rng.below(std::size(specials))]; break;
-    case 1: magnitude = std::pow(10.0, rng.uniform(-6.0, 1.0)); break;  // typical per-pixel changes
-    default: magnitude = std::min<double>(std::pow(10.0, rng.uniform(-45.0, 38.6)), kFloatMax); break;
+    case 0:
+      magnitude = specials[rng.below(std::size(specials))];
+      break;
+    case 1:
+      magnitude = std::pow(10.0, rng.uniform(-6.0, 1.0));
+      break;  // typical per-pixel changes
+    default:
+      magnitude = std::min<double>(std::pow(10.0, rng.uniform(-45.0, 38.6)), kFloatMax);
+      break;
   }
   return static_cast<float>(rng.chance(2) ? -magnitude : magnitude);
 }
 
 inline double non_finite_value(Rng& rng) {
   switch (rng.below(3)) {
-    case 0: return std::numeric_limits<double>::infinity();
-    case 1: return -std::numeric_limits<double>::infinity();
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case 0:
+      return std::numeric_limits<double>::infinity();
+    case 1:
+      return -std::numeric_limits<double>::infinity();
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
 // alpha^2 of a filter: 0, alpha^2 for alpha log-uniform in [1e-4, 1], 1, or (1, 4].
 inline double filter_alpha2(Rng& rng) {
   switch (rng.below(10)) {
-    case 0: return 0.0;
-    case 1: return 1.0;
-    case 2: return rng.uniform(1.0, 4.0);
-    default: { const double alpha = std::pow(10.0, rng.uniform(-4.0, 0.0)); return alpha * alpha; }
+    case 0:
+      return 0.0;
+    case 1:
+      return 1.0;
+    case 2:
+      return rng.uniform(1.0, 4.0);
+    default: {
+      const double alpha = std::pow(10.0, rng.uniform(-4.0, 0.0));
+      return alpha * alpha;
+    }
   }
 }
 
 // alpha^2 of a BRDF: alpha log-uniform in [1e-4, 1], or exactly 1e-8 or 1.
 inline double brdf_alpha2(Rng& rng) {
   switch (rng.below(10)) {
-    case 0: return 1e-8;
-    case 1: return 1.0;
-    default: { const double alpha = std::pow(10.0, rng.uniform(-4.0, 0.0)); return alpha * alpha; }
+    case 0:
+      return 1e-8;
+    case 1:
+      return 1.0;
+    default: {
+      const double alpha = std::pow(10.0, rng.uniform(-4.0, 0.0));
+      return alpha * alpha;
+    }
   }
 }
 
@@ -117,9 +137,12 @@ inline double brdf_alpha2(Rng& rng) {
 inline double adversarial_mean_length(Rng& rng) {
   static constexpr double specials[] = {0.0, 1e-45, 1e-38, 1e-30, 1e-7, 0.5, 1.0 - 0x1p-24, 1.0, 1.0 + 0x1p-23, 2.0};
   switch (rng.below(4)) {
-    case 0: return specials[rng.below(std::size(specials))];
-    case 1: return adversarial_component(rng);
-    default: return rng.uniform();
+    case 0:
+      return specials[rng.below(std::size(specials))];
+    case 1:
+      return adversarial_component(rng);
+    default:
+      return rng.uniform();
   }
 }
 
@@ -170,9 +193,15 @@ inline Material adversarial_material(Rng& rng, double max_kernel = kMaxKernel) {
     m.a = m.a + ref::Sym2{l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c};
   }
   switch (rng.below(6)) {
-    case 0: m.tau = 0.0; break;
-    case 1: m.tau = ref::sym2_determinant(m.a) * rng.uniform(0.5, 1.5); break;
-    default: m.tau = ref::ndf_clamp_tau(m.alpha2); break;
+    case 0:
+      m.tau = 0.0;
+      break;
+    case 1:
+      m.tau = ref::sym2_determinant(m.a) * rng.uniform(0.5, 1.5);
+      break;
+    default:
+      m.tau = ref::ndf_clamp_tau(m.alpha2);
+      break;
   }
   return m;
 }
@@ -224,8 +253,10 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
   for (const Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2") {
-      if (is_brdf(function)) parameter.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
-      else for (std::uint32_t k = 0; k < (parameter.type == "real" ? 1u : 2u); ++k) pack.real(filter_alpha2(rng));
+      if (is_brdf(function))
+        parameter.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
+      else
+        for (std::uint32_t k = 0; k < (parameter.type == "real" ? 1u : 2u); ++k) pack.real(filter_alpha2(rng));
     } else if (name.rfind("dslope_", 0) == 0 || name.rfind("dproj_", 0) == 0 || name.rfind("dn_", 0) == 0) {
       const std::uint32_t count = parameter.type == "real2" ? 2 : 3;
       for (std::uint32_t k = 0; k < count; ++k) pack.real(adversarial_component(rng));
@@ -233,7 +264,7 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       // G2 gets the half vector of its i and o; the NDFs any direction.
       const ref::Vec3 sum = i + o;
       pack.vec3(function.name.find("g2") != std::string::npos && ref::dot(sum, sum) > 0.0 ? ref::normalize(sum)
-                                                                                        : adversarial_direction(rng));
+                                                                                          : adversarial_direction(rng));
     } else if (name == "w" || name == "i") {
       pack.vec3(i);
     } else if (name == "o") {
@@ -287,21 +318,29 @@ inline void quad_vectors(Rng& rng, ref::Vec3 out[4]) {
   const std::uint32_t mode = rng.below(6);
   for (int p = 0; p < 4; ++p) {
     switch (mode) {
-      case 0: out[p] = base; break;  // zero derivatives
-      case 1: {                      // smooth: differences from 1e-7 to 0.1
+      case 0:
+        out[p] = base;
+        break;   // zero derivatives
+      case 1: {  // smooth: differences from 1e-7 to 0.1
         const double step = std::pow(10.0, rng.uniform(-7.0, -1.0));
         const ref::Vec3 moved = base + step * random_unit(rng);
         out[p] = ref::dot(moved, moved) > 0.0 ? ref::normalize(moved) : base;
         break;
       }
-      case 2: out[p] = adversarial_direction(rng); break;  // unrelated pixels
-      case 3: {                                            // h_z crosses 0 inside the quad
+      case 2:
+        out[p] = adversarial_direction(rng);
+        break;   // unrelated pixels
+      case 3: {  // h_z crosses 0 inside the quad
         static constexpr double zs[] = {0.0, 1e-30, -1e-30, 1e-7, -1e-7, 1e-4, -1e-4, 1e-2};
         out[p] = with_z(base, zs[rng.below(std::size(zs))]);
         break;
       }
-      case 4: out[p] = rng.chance(2) ? ref::Vec3{} : base; break;  // zero vectors
-      default: out[p] = rng.uniform() * (rng.chance(2) ? base : adversarial_direction(rng)); break;  // shorter than 1
+      case 4:
+        out[p] = rng.chance(2) ? ref::Vec3{} : base;
+        break;  // zero vectors
+      default:
+        out[p] = rng.uniform() * (rng.chance(2) ? base : adversarial_direction(rng));
+        break;  // shorter than 1
     }
   }
 }
@@ -323,9 +362,15 @@ inline void quad_frames(Rng& rng, const ref::Vec3 n[4], ref::Vec3 t[4], ref::Vec
         b[p] = -std::sin(angle) * u + std::cos(angle) * v;
         break;
       }
-      case 1: t[p] = rng.chance(2) ? ref::Vec3{} : random_unit(rng), b[p] = ref::Vec3{}; break;  // zero
-      case 2: t[p] = n[p], b[p] = n[p]; break;                                                   // parallel to n
-      default: t[p] = rng.uniform() * random_unit(rng), b[p] = rng.uniform() * random_unit(rng); break;
+      case 1:
+        t[p] = rng.chance(2) ? ref::Vec3{} : random_unit(rng), b[p] = ref::Vec3{};
+        break;  // zero
+      case 2:
+        t[p] = n[p], b[p] = n[p];
+        break;  // parallel to n
+      default:
+        t[p] = rng.uniform() * random_unit(rng), b[p] = rng.uniform() * random_unit(rng);
+        break;
     }
   }
 }
@@ -401,7 +446,8 @@ inline std::string wrapper_body(const Function& wrapper, std::uint32_t stride) {
   body += "    " + wrapper.return_type + " saagen_result = " + wrapper.name + "(" + arguments + ");\n";
   const std::uint32_t results = wrapper.return_type == "real" ? 1 : wrapper.return_type == "real2" ? 2 : 3;
   for (std::uint32_t k = 0; k < results; ++k) {
-    body += "    SAAGEN_STORE(" + std::to_string(k) + "u, saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyz"[k]) + ");\n";
+    body += "    SAAGEN_STORE(" + std::to_string(k) + "u, saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyz"[k]) +
+            ");\n";
   }
   return body;
 }
@@ -427,9 +473,11 @@ inline std::string strict_nan_prelude(const std::string& target) {
     text += f3 + " " + name + "(" + f3 + " a, float b) { return " + name + "(a, " + f3 + "(b, b, b)); }\n";
   }
   for (const std::string& type : {f1, f2, f3}) {
-    text += type + " saagen_strict_clamp(" + type + " x, " + type + " lo, " + type + " hi) { return saagen_strict_min(saagen_strict_max(x, lo), hi); }\n";
+    text += type + " saagen_strict_clamp(" + type + " x, " + type + " lo, " + type +
+            " hi) { return saagen_strict_min(saagen_strict_max(x, lo), hi); }\n";
     if (type != f1) {
-      text += type + " saagen_strict_clamp(" + type + " x, float lo, float hi) { return saagen_strict_min(saagen_strict_max(x, lo), hi); }\n";
+      text +=
+          type + " saagen_strict_clamp(" + type + " x, float lo, float hi) { return saagen_strict_min(saagen_strict_max(x, lo), hi); }\n";
     }
   }
   text += "#define min(a, b) saagen_strict_min(a, b)\n#define max(a, b) saagen_strict_max(a, b)\n";

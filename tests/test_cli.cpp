@@ -11,6 +11,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+
 #include <sys/wait.h>
 
 namespace {
@@ -35,7 +36,6 @@ class Cli : public saagen::test::CliTest {
     for (const auto& entry : fs::directory_iterator(directory)) names.insert(entry.path().filename().string());
     return names;
   }
-
 };
 
 TEST_F(Cli, ListJsonIsTheContract) {
@@ -74,7 +74,8 @@ TEST_F(Cli, BenchRefusesNonFiniteNumbers) {
   for (const std::string command : {"bench", "report"}) {
     expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "nan"}), "--sigma2: not a finite number in [1e-06, 16]");
     expect_one_line_error(saagen({command, "--preset", "quick", "--kappa", "nan"}), "--kappa: not a finite number in [1e-06, 1]");
-    expect_one_line_error(saagen({command, "--preset", "quick", "--prefilter-scale", "nan"}), "--prefilter-scale: not a finite number in [0, 4]");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--prefilter-scale", "nan"}),
+                          "--prefilter-scale: not a finite number in [0, 4]");
     expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "inf"}), "--sigma2: not a finite number");
     expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "1e999"}), "--sigma2: not a finite number");
   }
@@ -109,7 +110,7 @@ TEST_F(Cli, EmitWritesEveryVariantThenLeavesUnchangedFilesAlone) {
 TEST_F(Cli, EmitSelectedVariantsWithOptions) {
   const fs::path out = scratch_ / "out";
   const CliRun run = saagen({"emit", "-t", "glsl", "-v", "deferred-sum", "--variant", "forward-axis-projected", "--prefix", "my_",
-                          "--sigma2", "0.5", "--kappa", "0.1", "-o", out.string()});
+                             "--sigma2", "0.5", "--kappa", "0.1", "-o", out.string()});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(files_in(out), (std::set<std::string>{"my_deferred_sum.glsl", "my_forward_axis_projected.glsl"}));
   const std::string text = read_text(out / "my_deferred_sum.glsl");
@@ -144,7 +145,8 @@ TEST_F(Cli, EmitPresetsAndDomains) {
   const fs::path ggx_domain = scratch_ / "ggx-perceptual";
   const CliRun ggx = saagen({"emit", "-v", "brdf-ggx", "--domain", "perceptual", "-o", ggx_domain.string()});
   EXPECT_EQ(ggx.exit_code, 0) << ggx.err;
-  EXPECT_NE(read_text(ggx_domain / "saa_brdf_ggx_perceptual.glsl").find("float saa_ggx_filtered_alpha2_perceptual(float perceptual_roughness, float kernel)"),
+  EXPECT_NE(read_text(ggx_domain / "saa_brdf_ggx_perceptual.glsl")
+                .find("float saa_ggx_filtered_alpha2_perceptual(float perceptual_roughness, float kernel)"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(refused));
 
@@ -152,7 +154,8 @@ TEST_F(Cli, EmitPresetsAndDomains) {
   EXPECT_EQ(listing["roughness_domain"], "smoothness");
   EXPECT_EQ(listing["presets"].size(), 6u);
   for (const auto& variant : listing["variants"]) {
-    EXPECT_NE(std::find(variant["roughness_domains"].begin(), variant["roughness_domains"].end(), "smoothness"), variant["roughness_domains"].end());
+    EXPECT_NE(std::find(variant["roughness_domains"].begin(), variant["roughness_domains"].end(), "smoothness"),
+              variant["roughness_domains"].end());
   }
 }
 
@@ -258,9 +261,14 @@ TEST_F(Cli, StandardOutputWriteFailuresAreOneLineAndNonZero) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const std::string manifest = (fs::path(SAAGEN_SOURCE_DIR) / "examples" / "scene.saagen.toml").string();
   const std::vector<std::vector<std::string>> commands = {
-      {"list", "--json"}, {"list"}, {"plan", manifest, "--no-cost"}, {"plan", "--rules"},
+      {"list", "--json"},
+      {"list"},
+      {"plan", manifest, "--no-cost"},
+      {"plan", "--rules"},
       {"emit", "--manifest", manifest, "-o", (scratch_ / "m").string(), "--list-outputs"},
-      {"emit", "-v", "deferred-sum", "-o", (scratch_ / "e").string()}, {"--version"}, {"--help"}};
+      {"emit", "-v", "deferred-sum", "-o", (scratch_ / "e").string()},
+      {"--version"},
+      {"--help"}};
   for (const auto& arguments : commands) {
     std::string command = saagen::test::shell_quote(SAAGEN_CLI_PATH);
     for (const std::string& argument : arguments) command.append(" ").append(saagen::test::shell_quote(argument));
@@ -268,7 +276,8 @@ TEST_F(Cli, StandardOutputWriteFailuresAreOneLineAndNonZero) {
     const int status = std::system((command + " >/dev/full 2>" + saagen::test::shell_quote(err.string())).c_str());
     const std::string text = read_text(err);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << command;
-    EXPECT_EQ(text, "saagen: error: standard output: write failed (No space left on device); check the file or pipe it goes to\n") << command;
+    EXPECT_EQ(text, "saagen: error: standard output: write failed (No space left on device); check the file or pipe it goes to\n")
+        << command;
   }
   EXPECT_EQ(saagen({"list", "--json"}).exit_code, 0);  // a working stdout is still exit 0
 }
@@ -299,7 +308,10 @@ TEST_F(Cli, PlanCostsEachDistinctConfigurationOnce) {
   const auto manifest = [&](std::size_t count) {
     std::string text = "name = \"scene\"\ntargets = [\"glsl\", \"hlsl\"]\n";
     for (std::size_t index = 0; index < count; ++index) {
-      text.append("[[material]]\nname = \"m").append(std::to_string(index)).append("\"\n").append(configurations[index % configurations.size()]);
+      text.append("[[material]]\nname = \"m")
+          .append(std::to_string(index))
+          .append("\"\n")
+          .append(configurations[index % configurations.size()]);
     }
     return text;
   };

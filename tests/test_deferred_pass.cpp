@@ -19,11 +19,11 @@
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/products/output_validation.hpp"
+#include "saagen/products/spirv_library.hpp"
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
-#include "saagen/products/output_validation.hpp"
-#include "saagen/products/spirv_library.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -39,10 +39,10 @@ namespace {
 namespace fs = std::filesystem;
 namespace ref = saagen::ref;
 namespace abi = saagen::deferred_pass_abi;
-using saagen::Catalogue;
 using ref::Quad;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
 
 // ---------------------------------------------------------------------------------------------
 // G-buffers from the issue-4 renderer
@@ -79,9 +79,7 @@ TestGBuffer render(saagen::render::SceneId id, int width, int height, const Enco
   auto& images = out.images;
   images.width = static_cast<std::uint32_t>(width);
   images.height = static_cast<std::uint32_t>(height);
-  const auto encode_vector = [](Vec3 v, bool unorm) {
-    return unorm ? Vec3{v.x * 0.5 + 0.5, v.y * 0.5 + 0.5, v.z * 0.5 + 0.5} : v;
-  };
+  const auto encode_vector = [](Vec3 v, bool unorm) { return unorm ? Vec3{v.x * 0.5 + 0.5, v.y * 0.5 + 0.5, v.z * 0.5 + 0.5} : v; };
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const auto& f = gbuffer.at(x, y);
@@ -158,13 +156,20 @@ double reference_pass(const std::string& wrapper, double alpha2, const std::arra
   const Quad<Vec3> t{q[0].t, q[1].t, q[2].t, q[3].t};
   const Quad<Vec3> b{q[0].b, q[1].b, q[2].b, q[3].b};
   double filtered = 0.0;
-  if (wrapper == "deferred_previous_fragment") filtered = ref::deferred_previous_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
-  else if (wrapper == "deferred_max_fragment") filtered = ref::deferred_max_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
-  else if (wrapper == "deferred_max_tangent_free_fragment") filtered = ref::deferred_max_tangent_free_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_sum_fragment") filtered = ref::deferred_sum_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_avg_fragment") filtered = ref::deferred_avg_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_projected_space_fragment") filtered = ref::deferred_projected_space_fragment_quad(p, alpha2, n, pixel, mode);
-  else throw std::runtime_error("no reference for " + wrapper);
+  if (wrapper == "deferred_previous_fragment")
+    filtered = ref::deferred_previous_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
+  else if (wrapper == "deferred_max_fragment")
+    filtered = ref::deferred_max_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
+  else if (wrapper == "deferred_max_tangent_free_fragment")
+    filtered = ref::deferred_max_tangent_free_fragment_quad(p, alpha2, n, pixel, mode);
+  else if (wrapper == "deferred_sum_fragment")
+    filtered = ref::deferred_sum_fragment_quad(p, alpha2, n, pixel, mode);
+  else if (wrapper == "deferred_avg_fragment")
+    filtered = ref::deferred_avg_fragment_quad(p, alpha2, n, pixel, mode);
+  else if (wrapper == "deferred_projected_space_fragment")
+    filtered = ref::deferred_projected_space_fragment_quad(p, alpha2, n, pixel, mode);
+  else
+    throw std::runtime_error("no reference for " + wrapper);
   return encode_output(filtered, domain);
 }
 
@@ -204,13 +209,15 @@ Expected reference_image(const saagen::DeferredPassKind& kind, const saagen::tes
               double& xk = component(moved[source].*field, k);
               const double original = xk, step = 1e-7 * std::max(std::fabs(original), 1e-6);
               xk = original + step;
-              condition += std::fabs(reference_pass(kind.wrapper, alpha2, moved, frag, pixel, mode, e.domain) - value) / step * std::fabs(original);
+              condition +=
+                  std::fabs(reference_pass(kind.wrapper, alpha2, moved, frag, pixel, mode, e.domain) - value) / step * std::fabs(original);
             }
           }
         }
         const std::size_t index = std::size_t{y} * g.width + x;
         out.values[index] = value;
-        out.bounds[index] = 16.0 * std::ldexp(condition, -24) + (2e-5 + (half_output ? std::ldexp(1.0, -10) : 0.0)) * std::fabs(value) + 1e-30;
+        out.bounds[index] =
+            16.0 * std::ldexp(condition, -24) + (2e-5 + (half_output ? std::ldexp(1.0, -10) : 0.0)) * std::fabs(value) + 1e-30;
       }
     }
   }
@@ -243,14 +250,16 @@ std::vector<std::uint32_t> spirv_of(const saagen::DeferredPass& pass, const std:
 saagen::harness::CompareReport run_and_compare(const saagen::DeferredPass& pass, const std::vector<std::uint32_t>& spirv,
                                                const TestGBuffer& gbuffer, const Encoding& encoding, ref::Derivative mode,
                                                const std::string& what, VkFormat format = VK_FORMAT_R32_SFLOAT) {
-  saagen::test::DeferredPassRunner runner(saagen::test::gpu(), spirv, pass.kind.tangents, format, gbuffer.images.width, gbuffer.images.height);
+  saagen::test::DeferredPassRunner runner(saagen::test::gpu(), spirv, pass.kind.tangents, format, gbuffer.images.width,
+                                          gbuffer.images.height);
   runner.upload(gbuffer.images);
   const saagen::DeferredPassConstants constants{gbuffer.images.width, gbuffer.images.height, encoding.channel, encoding.flags()};
   const auto got = runner.run(constants).output;
   const Expected expected = reference_image(pass.kind, gbuffer.images, encoding, mode, format == VK_FORMAT_R16_SFLOAT);
   const std::uint32_t width = gbuffer.images.width;
-  return saagen::harness::compare_with_bounds(got, expected.values, expected.bounds, what,
-                                              [width](std::size_t index) { return fmt::format("pixel ({}, {})", index % width, index / width); });
+  return saagen::harness::compare_with_bounds(got, expected.values, expected.bounds, what, [width](std::size_t index) {
+    return fmt::format("pixel ({}, {})", index % width, index / width);
+  });
 }
 
 void require_quads() {
@@ -351,8 +360,10 @@ int main() { saa_pass_constants c{1920, 1080, 3, SAA_PASS_DOMAIN_PERCEPTUAL}; re
                                          "int main(void) { saa_pass_constants c = {8, 8, 0, SAA_PASS_FLAG_NORMAL_UNORM}; "
                                          "return (int)(c.flags != 4u || saa_pass_deferred_sum_spv_word_count == 0); }\n";
   const std::string compiler = SAAGEN_TEST_CXX_COMPILER;
-  EXPECT_EQ(run_command(fmt::format("cd {} && {} -std=c++17 -Wall -Wextra -Werror -o main main.cpp && ./main", directory.string(), compiler)), 0);
-  EXPECT_EQ(run_command(fmt::format("cd {} && {} -x c -std=c99 -Wall -Werror -o mainc main.c && ./mainc", directory.string(), compiler)), 0);
+  EXPECT_EQ(
+      run_command(fmt::format("cd {} && {} -std=c++17 -Wall -Wextra -Werror -o main main.cpp && ./main", directory.string(), compiler)), 0);
+  EXPECT_EQ(run_command(fmt::format("cd {} && {} -x c -std=c99 -Wall -Werror -o mainc main.c && ./mainc", directory.string(), compiler)),
+            0);
   fs::remove_all(directory);
 }
 

@@ -1,10 +1,10 @@
 // The typed dialect: the parser and type checker refuse each class of mistake at load time with
 // file:line and what to do; the C-like printer reproduces a template and adds exactly the
 // parentheses precedence needs; the tree carries types and mutability for other printers.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/front/syntax_tree.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
@@ -38,8 +38,9 @@ TEST(DialectTypes, RefusesMixedTypesWithoutAConversion) {
   EXPECT_EQ(load_error(function_template("real", "    return x < 1 ? x : 0.0;\n")),
             "templates/test.saa:7: f: '<' between real and int: compare values of one type; convert one side explicitly");
   // GLSL would splat real2(x); HLSL and WGSL do not, so the dialect does not either.
-  EXPECT_EQ(load_error(function_template("real2", "    return real2(x);\n")),
-            "templates/test.saa:7: f: real2(...) needs 2 components but (real) give 1; list every component (HLSL does not splat one scalar)");
+  EXPECT_EQ(
+      load_error(function_template("real2", "    return real2(x);\n")),
+      "templates/test.saa:7: f: real2(...) needs 2 components but (real) give 1; list every component (HLSL does not splat one scalar)");
   EXPECT_EQ(load_error(function_template("real", "    return x > 0.0 ? x : 1;\n")),
             "templates/test.saa:7: f: the branches of '?:' are real and int; convert one explicitly so that both have one type");
   EXPECT_EQ(load_error(function_template("real", "    if (x) return x;\n    return 0.0;\n")),
@@ -62,8 +63,9 @@ TEST(DialectTypes, RefusesUnknownFunctionsAndWrongArguments) {
 }
 
 TEST(DialectTypes, RefusesWrongReturnTypesAndMissingReturns) {
-  EXPECT_EQ(load_error(function_template("real", "    return real2(x, x);\n")),
-            "templates/test.saa:7: f: returns real2 but the function is declared 'returns: real'; convert explicitly or fix the 'returns:' line");
+  EXPECT_EQ(
+      load_error(function_template("real", "    return real2(x, x);\n")),
+      "templates/test.saa:7: f: returns real2 but the function is declared 'returns: real'; convert explicitly or fix the 'returns:' line");
   EXPECT_EQ(load_error(function_template("real", "    if (x > 0.0) return x;\n")),
             "templates/test.saa:7: f: the body can end without returning real; end every path with a return");
   EXPECT_EQ(load_error(function_template("real", "    return guarded(max(x, 1e-4), real2(x, x).x) + guarded(x, 1);\n")),
@@ -75,11 +77,13 @@ TEST(DialectTypes, RefusesSyntaxErrorsAtTheirLine) {
             "templates/test.saa:8: f: expected ';' at the end of the statement, found 'return'");
   EXPECT_EQ(load_error(function_template("real", "    return guarded(x);\n")),
             "templates/test.saa:7: f: guarded(...) takes exactly two arguments: guarded(safe, paper)");
-  EXPECT_EQ(load_error(function_template("real", "    float y = x;\n    return y;\n")),
-            "templates/test.saa:7: f: 'float' is not a dialect type; declare locals as TYPE NAME = VALUE with real, real2, real3, real4, int or bool");
-  EXPECT_EQ(load_error(function_template("real", "    return 1.0f;\n")),
-            "templates/test.saa:7: f: '1.0f' is not a dialect number; write decimal numbers without suffixes (2.0, 1e-4, 3): the emitter adds "
-            "precision suffixes");
+  EXPECT_EQ(
+      load_error(function_template("real", "    float y = x;\n    return y;\n")),
+      "templates/test.saa:7: f: 'float' is not a dialect type; declare locals as TYPE NAME = VALUE with real, real2, real3, real4, int or bool");
+  EXPECT_EQ(
+      load_error(function_template("real", "    return 1.0f;\n")),
+      "templates/test.saa:7: f: '1.0f' is not a dialect number; write decimal numbers without suffixes (2.0, 1e-4, 3): the emitter adds "
+      "precision suffixes");
 }
 
 // Every builtin template type-checks: each function keeps its typed tree, each return has the
@@ -113,8 +117,11 @@ dialect::Body checked(const std::string& code, const std::string& returns = "rea
   const std::map<std::string, dialect::FunctionSignature, std::less<>> functions;
   const std::map<std::string, dialect::Type, std::less<>> constants;
   dialect::FunctionSignature signature{*dialect::Type::from_name(returns),
-                                       {{dialect::Type::real(), "a"}, {dialect::Type::real(), "b"}, {dialect::Type::real(), "c"},
-                                        {dialect::Type::real(3), "v"}, {dialect::Type::integer(), "n"}}};
+                                       {{dialect::Type::real(), "a"},
+                                        {dialect::Type::real(), "b"},
+                                        {dialect::Type::real(), "c"},
+                                        {dialect::Type::real(3), "v"},
+                                        {dialect::Type::integer(), "n"}}};
   dialect::check_body(body, signature, {&functions, &constants, nullptr}, {"templates/test.saa", 1, "f"});
   return body;
 }

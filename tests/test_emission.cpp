@@ -1,8 +1,8 @@
 // Emission: every variant x target compiles and validates in-process; output is deterministic,
 // prefixed, documented, and free of target matrix conventions.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/validate/validation.hpp"
 
 #include <gtest/gtest.h>
@@ -60,18 +60,27 @@ std::vector<VariantTarget> all_pairs() {
   return pairs;
 }
 
-INSTANTIATE_TEST_SUITE_P(Catalogue, EveryVariantAndTarget, ::testing::ValuesIn(all_pairs()),
-                         [](const auto& info) {
-                           std::string name = info.param.target + "_" + info.param.variant;
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Catalogue, EveryVariantAndTarget, ::testing::ValuesIn(all_pairs()), [](const auto& info) {
+  std::string name = info.param.target + "_" + info.param.variant;
+  for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name;
+});
 
 TEST(Catalogue, HasEveryVariantOfTheMission) {
-  const std::vector<std::string> expected = {
-      "forward-aniso-slope", "forward-aniso-projected", "forward-axis-slope", "forward-axis-projected",
-      "deferred-previous", "deferred-max", "deferred-sum", "deferred-avg", "deferred-projected-space", "deferred-aniso",
-      "brdf-ggx", "brdf-beckmann", "prefilter-toksvig", "prefilter-lean"};
+  const std::vector<std::string> expected = {"forward-aniso-slope",
+                                             "forward-aniso-projected",
+                                             "forward-axis-slope",
+                                             "forward-axis-projected",
+                                             "deferred-previous",
+                                             "deferred-max",
+                                             "deferred-sum",
+                                             "deferred-avg",
+                                             "deferred-projected-space",
+                                             "deferred-aniso",
+                                             "brdf-ggx",
+                                             "brdf-beckmann",
+                                             "prefilter-toksvig",
+                                             "prefilter-lean"};
   EXPECT_EQ(variant_ids(), expected);
 }
 
@@ -265,8 +274,8 @@ TEST(Prefix, AcceptsSafeIdentifiers) {
 }
 
 TEST(Prefix, RejectsAnythingThatCouldInjectCodeOrCollide) {
-  for (const std::string& prefix : std::vector<std::string>{"", "9a", "_a", "a b", "a;b", "a(", "a\nb", "a//", "#define", "gl_x", "GL_x", "a__b",
-                                   "saa-", std::string(33, 'a')}) {
+  for (const std::string& prefix : std::vector<std::string>{"", "9a", "_a", "a b", "a;b", "a(", "a\nb", "a//", "#define", "gl_x", "GL_x",
+                                                            "a__b", "saa-", std::string(33, 'a')}) {
     EXPECT_THROW(saagen::validate_prefix(prefix), saagen::Error) << "accepted: " << prefix;
   }
 }
@@ -309,9 +318,7 @@ struct Form {
   bool guards;
 };
 
-void PrintTo(const Form& form, std::ostream* os) {
-  *os << form.target << " " << form.precision << (form.guards ? "" : " unguarded");
-}
+void PrintTo(const Form& form, std::ostream* os) { *os << form.target << " " << form.precision << (form.guards ? "" : " unguarded"); }
 
 class EveryForm : public ::testing::TestWithParam<Form> {};
 

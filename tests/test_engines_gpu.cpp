@@ -9,8 +9,8 @@
 // (Vulkan spec, "Precision and Operation of SPIR-V Instructions"), and r = a^(1/4) divides a
 // relative error of a by 4. 2e-5 covers that with the same margin as test_gpu_core.cpp; 2^-24
 // is the final 1 - r rounding of the smoothness domain.
-#include "gpu_support.hpp"
 #include "engine_forms.hpp"
+#include "gpu_support.hpp"
 #include "include_shaders.hpp"
 
 #include "saagen/emit/engines.hpp"
@@ -53,10 +53,10 @@ Batch make_batch(bool smoothness) {
   const Vec3 zero{0, 0, 0}, huge{10, 0, 0};
   // (input, derivatives) -> exact output with kappa = 1: the ends, the saturation bound, denormals.
   const std::vector<std::tuple<float, Vec3, float>> ends = {
-      {smooth_end, zero, smooth_end},           // roughness 0 stays exactly 0
-      {rough_end, zero, rough_end},             // roughness 1 stays exactly 1
-      {rough_end, huge, rough_end},             // saturated at 1
-      {0.5f, huge, rough_end},                  // the saturation bound: kernel 1 -> roughness 1
+      {smooth_end, zero, smooth_end},                               // roughness 0 stays exactly 0
+      {rough_end, zero, rough_end},                                 // roughness 1 stays exactly 1
+      {rough_end, huge, rough_end},                                 // saturated at 1
+      {0.5f, huge, rough_end},                                      // the saturation bound: kernel 1 -> roughness 1
       {smoothness ? 1.0f - denormal : denormal, zero, smooth_end},  // underflows to alpha^2 = 0
   };
   for (const auto& [value, derivative, result] : ends) {
@@ -71,7 +71,8 @@ Batch make_batch(bool smoothness) {
       const double z = 2 * unit(random) - 1, phi = 6.283185307179586 * unit(random), r = std::sqrt(1 - z * z);
       return Vec3{m * r * std::cos(phi), m * r * std::sin(phi), m * z};
     };
-    push(static_cast<float>(unit(random)), direction(std::pow(10.0, -4 + 5 * unit(random))), direction(std::pow(10.0, -4 + 5 * unit(random))));
+    push(static_cast<float>(unit(random)), direction(std::pow(10.0, -4 + 5 * unit(random))),
+         direction(std::pow(10.0, -4 + 5 * unit(random))));
   }
   return batch;
 }
@@ -123,7 +124,8 @@ TEST_P(DomainWrappersOnGpu, MatchTheReferenceAndAreExactAtTheEnds) {
     const float* in = batch.inputs.data() + 7 * i;
     const Vec3 dx{in[1], in[2], in[3]}, dy{in[4], in[5], in[6]};
     const double alpha2 = ref::alpha2_from_domain(domain, in[0]);
-    const double filtered = std::string(c.variant) == "deferred-sum" ? ref::deferred_sum(params, alpha2, dx, dy) : ref::deferred_avg(params, alpha2, dx, dy);
+    const double filtered =
+        std::string(c.variant) == "deferred-sum" ? ref::deferred_sum(params, alpha2, dx, dy) : ref::deferred_avg(params, alpha2, dx, dy);
     const double expected = ref::domain_from_alpha2(domain, filtered);
     const double scale = smoothness ? 1.0 - expected : std::fabs(expected);
     const double bound = 2e-5 * scale + 0x1p-24;
@@ -138,7 +140,8 @@ TEST_P(DomainWrappersOnGpu, MatchTheReferenceAndAreExactAtTheEnds) {
 INSTANTIATE_TEST_SUITE_P(Domains, DomainWrappersOnGpu,
                          ::testing::Values(DomainCase{"glsl", "alpha", "deferred-sum"}, DomainCase{"glsl", "perceptual", "deferred-sum"},
                                            DomainCase{"glsl", "smoothness", "deferred-sum"}, DomainCase{"hlsl", "alpha", "deferred-avg"},
-                                           DomainCase{"hlsl", "perceptual", "deferred-avg"}, DomainCase{"hlsl", "smoothness", "deferred-avg"}),
+                                           DomainCase{"hlsl", "perceptual", "deferred-avg"},
+                                           DomainCase{"hlsl", "smoothness", "deferred-avg"}),
                          [](const auto& info) {
                            std::string name = std::string(info.param.target) + "_" + info.param.domain + "_" + info.param.variant;
                            for (char& ch : name) ch = ch == '-' ? '_' : ch;
@@ -155,9 +158,9 @@ TEST_P(PresetOnGpu, IncludedThroughShadercMatchesTheEngine) {
   std::string function = "saa_" + preset.variant;
   for (char& ch : function) ch = ch == '-' ? '_' : ch;
   if (preset.domain != "alpha2") function = saagen::domain_function_name(function, preset.domain);
-  const auto compiled = saagen::test::compile_with_shaderc(
-      saagen::test::glsl_user_shader("#include <saagen/" + preset.id + ".glsl>", function, false), false,
-      std::make_unique<saagen::ShadercIncluder>());
+  const auto compiled =
+      saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader("#include <saagen/" + preset.id + ".glsl>", function, false), false,
+                                         std::make_unique<saagen::ShadercIncluder>());
   ASSERT_TRUE(compiled.ok) << compiled.log;
   const bool smoothness = preset.domain == "smoothness";
   const Batch batch = make_batch(smoothness);

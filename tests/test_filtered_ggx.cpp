@@ -10,6 +10,8 @@
 // Targets: L1 <= 0.03 and the mass beyond 4 sqrt(k) within 25 % of the exact one over alpha^2 in
 // [1e-6, 0.5] and k in [0, kappa] (kappa = 0.18: k is the per-axis slope variance, the kernel
 // added to alpha^2 is 2k), and energy within 1e-3 of 1.
+#include "saagen/reference/reference.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,8 +19,6 @@
 #include <cstdio>
 #include <functional>
 #include <vector>
-
-#include "saagen/reference/reference.hpp"
 
 using namespace saagen::ref;
 
@@ -31,64 +31,62 @@ constexpr double kKappa = 0.18;
 using SlopeDensity = std::function<double(double sx, double sy)>;
 
 SlopeDensity from_ndf(std::function<double(Vec3)> ndf) {
-    return [ndf](double sx, double sy) {
-        const double cos2 = 1.0 / (1.0 + sx * sx + sy * sy);
-        const double c = std::sqrt(cos2);
-        return ndf({-sx * c, -sy * c, c}) * cos2 * cos2;
-    };
+  return [ndf](double sx, double sy) {
+    const double cos2 = 1.0 / (1.0 + sx * sx + sy * sy);
+    const double c = std::sqrt(cos2);
+    return ndf({-sx * c, -sy * c, c}) * cos2 * cos2;
+  };
 }
 
 struct RadialGrid {
-    std::vector<double> radius;
-    std::vector<double> weight;  // 2 pi rho d rho (isotropic densities)
+  std::vector<double> radius;
+  std::vector<double> weight;  // 2 pi rho d rho (isotropic densities)
 };
 
 RadialGrid radial_grid(double scale, int count = 400) {
-    RadialGrid g;
-    const double low = std::log(1e-4 * scale), high = std::log(1e5 * scale);
-    const double step = (high - low) / count;
-    for (int i = 0; i < count; ++i) {
-        const double rho = std::exp(low + (i + 0.5) * step);
-        g.radius.push_back(rho);
-        g.weight.push_back(2.0 * kPi * rho * rho * step);
-    }
-    return g;
+  RadialGrid g;
+  const double low = std::log(1e-4 * scale), high = std::log(1e5 * scale);
+  const double step = (high - low) / count;
+  for (int i = 0; i < count; ++i) {
+    const double rho = std::exp(low + (i + 0.5) * step);
+    g.radius.push_back(rho);
+    g.weight.push_back(2.0 * kPi * rho * rho * step);
+  }
+  return g;
 }
 
 struct LobeDistance {
-    double l1 = 0.0;
-    double energy = 0.0;
+  double l1 = 0.0;
+  double energy = 0.0;
 };
 
 // L1 distance of an isotropic density to the exact filtered one, and its total mass.
 LobeDistance isotropic_distance(const SlopeDensity& model, double alpha2, double k) {
-    const RadialGrid g = radial_grid(std::sqrt(alpha2 + 2.0 * k));
-    LobeDistance d;
-    for (std::size_t i = 0; i < g.radius.size(); ++i) {
-        const double p = model(g.radius[i], 0.0);
-        d.l1 += g.weight[i] * std::fabs(p - filtered_ggx_slope_density(g.radius[i], alpha2, k));
-        d.energy += g.weight[i] * p;
-    }
-    return d;
+  const RadialGrid g = radial_grid(std::sqrt(alpha2 + 2.0 * k));
+  LobeDistance d;
+  for (std::size_t i = 0; i < g.radius.size(); ++i) {
+    const double p = model(g.radius[i], 0.0);
+    d.l1 += g.weight[i] * std::fabs(p - filtered_ggx_slope_density(g.radius[i], alpha2, k));
+    d.energy += g.weight[i] * p;
+  }
+  return d;
 }
 
 // Mass of an isotropic density beyond radius R.
 double mass_beyond(const SlopeDensity& model, double radius, double scale) {
-    const RadialGrid g = radial_grid(scale, 800);
-    double mass = 0.0;
-    for (std::size_t i = 0; i < g.radius.size(); ++i)
-        if (g.radius[i] > radius) mass += g.weight[i] * model(g.radius[i], 0.0);
-    return mass;
+  const RadialGrid g = radial_grid(scale, 800);
+  double mass = 0.0;
+  for (std::size_t i = 0; i < g.radius.size(); ++i)
+    if (g.radius[i] > radius) mass += g.weight[i] * model(g.radius[i], 0.0);
+  return mass;
 }
 
 SlopeDensity tail_preserving(double alpha2, double k) {
-    return from_ndf([=](Vec3 h) {
-        return ggx_ndf_filtered_axis(h, {alpha2 + 2.0 * k, alpha2 + 2.0 * k}, {alpha2, alpha2});
-    });
+  return from_ndf([=](Vec3 h) { return ggx_ndf_filtered_axis(h, {alpha2 + 2.0 * k, alpha2 + 2.0 * k}, {alpha2, alpha2}); });
 }
 
 SlopeDensity papers_lobe(double alpha2, double k) {
-    return from_ndf([=](Vec3 h) { return ggx_ndf_axis(h, {alpha2 + 2.0 * k, alpha2 + 2.0 * k}); });
+  return from_ndf([=](Vec3 h) { return ggx_ndf_axis(h, {alpha2 + 2.0 * k, alpha2 + 2.0 * k}); });
 }
 
 const std::vector<double> kAlpha2s{1e-6, 1e-5, 6.25e-6, 4e-5, 1e-4, 1e-3, 2.5e-3, 0.01, 0.1, 0.5};
@@ -99,69 +97,66 @@ const std::vector<double> kKernels{0.0, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.05, kKap
 // The quadrature: k = 0 gives GGX's closed form 1 / (pi alpha^2 (1 + rho^2 / alpha^2)^2), and
 // alpha^2 -> 0 a Gaussian of variance k, to 1e-9 relative (trapezoid rule in ln w, step 0.02).
 TEST(FilteredGgx, ExactConvolutionQuadrature) {
-    for (double alpha2 : {1e-6, 1e-2, 0.5})
-        for (double t : {0.0, 0.3, 1.0, 3.0, 100.0}) {
-            const double rho = t * std::sqrt(alpha2);
-            const double q = 1.0 + rho * rho / alpha2;
-            EXPECT_NEAR(filtered_ggx_slope_density(rho, alpha2, 0.0), 1.0 / (kPi * alpha2 * q * q),
-                        1e-9 / (kPi * alpha2 * q * q));
-            EXPECT_NEAR(filtered_ggx_mass_beyond(rho, alpha2, 0.0), alpha2 / (alpha2 + rho * rho), 1e-9);
-        }
-    const double k = 1e-3;
-    for (double t : {0.0, 1.0, 3.0}) {
-        const double rho = t * std::sqrt(k);
-        EXPECT_NEAR(filtered_ggx_slope_density(rho, 1e-30, k), std::exp(-t * t / 2.0) / (2.0 * kPi * k),
-                    1e-9 / k);
+  for (double alpha2 : {1e-6, 1e-2, 0.5})
+    for (double t : {0.0, 0.3, 1.0, 3.0, 100.0}) {
+      const double rho = t * std::sqrt(alpha2);
+      const double q = 1.0 + rho * rho / alpha2;
+      EXPECT_NEAR(filtered_ggx_slope_density(rho, alpha2, 0.0), 1.0 / (kPi * alpha2 * q * q), 1e-9 / (kPi * alpha2 * q * q));
+      EXPECT_NEAR(filtered_ggx_mass_beyond(rho, alpha2, 0.0), alpha2 / (alpha2 + rho * rho), 1e-9);
     }
+  const double k = 1e-3;
+  for (double t : {0.0, 1.0, 3.0}) {
+    const double rho = t * std::sqrt(k);
+    EXPECT_NEAR(filtered_ggx_slope_density(rho, 1e-30, k), std::exp(-t * t / 2.0) / (2.0 * kPi * k), 1e-9 / k);
+  }
 }
 
 // The (alpha^2, k) table: L1 and tail mass of the tail-preserving lobe, next to the papers'
 // GGX(alpha^2 + 2k). Printed for the documentation (docs/FILTERED_GGX.md).
 TEST(FilteredGgx, IsotropicDistanceTailAndEnergy) {
-    std::printf("%9s %9s | %8s %8s | %10s %10s %10s | %8s\n", "alpha^2", "k", "L1 saagen", "L1 paper",
-                "tail exact", "saagen", "paper", "energy");
-    double worst_l1 = 0.0, worst_tail = 0.0, worst_energy = 0.0;
-    for (double alpha2 : kAlpha2s)
-        for (double k : kKernels) {
-            const SlopeDensity model = tail_preserving(alpha2, k);
-            const LobeDistance d = isotropic_distance(model, alpha2, k);
-            const LobeDistance paper = isotropic_distance(papers_lobe(alpha2, k), alpha2, k);
-            const double scale = std::sqrt(alpha2 + 2.0 * k);
-            const double radius = 4.0 * std::sqrt(k);
-            const double exact_tail = filtered_ggx_mass_beyond(radius, alpha2, k);
-            const double model_tail = mass_beyond(model, radius, scale);
-            const double paper_tail = (alpha2 + 2.0 * k) / (alpha2 + 2.0 * k + radius * radius);
-            std::printf("%9.3g %9.3g | %8.4f %8.4f | %10.4g %10.4g %10.4g | %8.6f\n", alpha2, k, d.l1,
-                        paper.l1, exact_tail, model_tail, paper_tail, d.energy);
-            EXPECT_LE(d.l1, 0.03) << "alpha^2 " << alpha2 << " k " << k;
-            EXPECT_NEAR(model_tail / exact_tail, 1.0, 0.25) << "alpha^2 " << alpha2 << " k " << k;
-            EXPECT_NEAR(d.energy, 1.0, 1e-3) << "alpha^2 " << alpha2 << " k " << k;
-            worst_l1 = std::max(worst_l1, d.l1);
-            worst_tail = std::max(worst_tail, std::fabs(std::log(model_tail / exact_tail)));
-            worst_energy = std::max(worst_energy, std::fabs(d.energy - 1.0));
-        }
-    std::printf("worst: L1 %.4f, tail ratio within %.1f %%, energy within %.2e\n", worst_l1,
-                100.0 * (std::exp(worst_tail) - 1.0), worst_energy);
+  std::printf("%9s %9s | %8s %8s | %10s %10s %10s | %8s\n", "alpha^2", "k", "L1 saagen", "L1 paper", "tail exact", "saagen", "paper",
+              "energy");
+  double worst_l1 = 0.0, worst_tail = 0.0, worst_energy = 0.0;
+  for (double alpha2 : kAlpha2s)
+    for (double k : kKernels) {
+      const SlopeDensity model = tail_preserving(alpha2, k);
+      const LobeDistance d = isotropic_distance(model, alpha2, k);
+      const LobeDistance paper = isotropic_distance(papers_lobe(alpha2, k), alpha2, k);
+      const double scale = std::sqrt(alpha2 + 2.0 * k);
+      const double radius = 4.0 * std::sqrt(k);
+      const double exact_tail = filtered_ggx_mass_beyond(radius, alpha2, k);
+      const double model_tail = mass_beyond(model, radius, scale);
+      const double paper_tail = (alpha2 + 2.0 * k) / (alpha2 + 2.0 * k + radius * radius);
+      std::printf("%9.3g %9.3g | %8.4f %8.4f | %10.4g %10.4g %10.4g | %8.6f\n", alpha2, k, d.l1, paper.l1, exact_tail, model_tail,
+                  paper_tail, d.energy);
+      EXPECT_LE(d.l1, 0.03) << "alpha^2 " << alpha2 << " k " << k;
+      EXPECT_NEAR(model_tail / exact_tail, 1.0, 0.25) << "alpha^2 " << alpha2 << " k " << k;
+      EXPECT_NEAR(d.energy, 1.0, 1e-3) << "alpha^2 " << alpha2 << " k " << k;
+      worst_l1 = std::max(worst_l1, d.l1);
+      worst_tail = std::max(worst_tail, std::fabs(std::log(model_tail / exact_tail)));
+      worst_energy = std::max(worst_energy, std::fabs(d.energy - 1.0));
+    }
+  std::printf("worst: L1 %.4f, tail ratio within %.1f %%, energy within %.2e\n", worst_l1, 100.0 * (std::exp(worst_tail) - 1.0),
+              worst_energy);
 }
 
 // The papers' lobe fails the same targets (the reason for the mixture): L1 0.2 - 0.4 once the
 // kernel dominates alpha^2.
 TEST(FilteredGgx, PapersLobeMissesTheTargets) {
-    const double alpha2 = 1e-4, k = 1e-3;
-    EXPECT_GT(isotropic_distance(papers_lobe(alpha2, k), alpha2, k).l1, 0.3);
-    const double radius = 4.0 * std::sqrt(k);
-    EXPECT_GT((alpha2 + 2.0 * k) / (alpha2 + 2.0 * k + radius * radius),
-              5.0 * filtered_ggx_mass_beyond(radius, alpha2, k));
+  const double alpha2 = 1e-4, k = 1e-3;
+  EXPECT_GT(isotropic_distance(papers_lobe(alpha2, k), alpha2, k).l1, 0.3);
+  const double radius = 4.0 * std::sqrt(k);
+  EXPECT_GT((alpha2 + 2.0 * k) / (alpha2 + 2.0 * k + radius * radius), 5.0 * filtered_ggx_mass_beyond(radius, alpha2, k));
 }
 
 // Unfiltered input (A = diag(alpha2)): the lobe is GGX(alpha2) itself.
 TEST(FilteredGgx, NoKernelIsGgx) {
-    for (double alpha2 : {1e-4, 0.1})
-        for (double t : {0.0, 0.5, 2.0}) {
-            const Vec3 h = normalize(Vec3{t * std::sqrt(alpha2), 0.3 * t * std::sqrt(alpha2), 1.0});
-            EXPECT_NEAR(ggx_ndf_filtered_axis(h, {alpha2, alpha2}, {alpha2, alpha2}),
-                        ggx_ndf_axis(h, {alpha2, alpha2}), 1e-12 * ggx_ndf_axis(h, {alpha2, alpha2}));
-        }
+  for (double alpha2 : {1e-4, 0.1})
+    for (double t : {0.0, 0.5, 2.0}) {
+      const Vec3 h = normalize(Vec3{t * std::sqrt(alpha2), 0.3 * t * std::sqrt(alpha2), 1.0});
+      EXPECT_NEAR(ggx_ndf_filtered_axis(h, {alpha2, alpha2}, {alpha2, alpha2}), ggx_ndf_axis(h, {alpha2, alpha2}),
+                  1e-12 * ggx_ndf_axis(h, {alpha2, alpha2}));
+    }
 }
 
 namespace {
@@ -169,38 +164,37 @@ namespace {
 // 2D L1 distance of the matrix lobe to the exact anisotropic convolution
 // integral e^-w N(0, A0 / (2w) + Sigma) dw (A0 = diag(alpha2), Sigma = K / 2), on a polar grid.
 double gaussian2(Sym2 c, double x, double y) {
-    const double det = c.xx * c.yy - c.xy * c.xy;
-    const double q = (c.yy * x * x - 2.0 * c.xy * x * y + c.xx * y * y) / det;
-    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(det));
+  const double det = c.xx * c.yy - c.xy * c.xy;
+  const double q = (c.yy * x * x - 2.0 * c.xy * x * y + c.xx * y * y) / det;
+  return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(det));
 }
 
 double exact_anisotropic(Vec2 alpha2, Sym2 sigma, double x, double y) {
-    double sum = 0.0;
-    constexpr double kStep = 0.04;
-    for (double u = -60.0; u < 5.0; u += kStep) {
-        const double w = std::exp(u);
-        const Sym2 c{alpha2.x / (2.0 * w) + sigma.xx, sigma.xy, alpha2.y / (2.0 * w) + sigma.yy};
-        sum += w * std::exp(-w) * gaussian2(c, x, y);
-    }
-    return sum * kStep;
+  double sum = 0.0;
+  constexpr double kStep = 0.04;
+  for (double u = -60.0; u < 5.0; u += kStep) {
+    const double w = std::exp(u);
+    const Sym2 c{alpha2.x / (2.0 * w) + sigma.xx, sigma.xy, alpha2.y / (2.0 * w) + sigma.yy};
+    sum += w * std::exp(-w) * gaussian2(c, x, y);
+  }
+  return sum * kStep;
 }
 
 double anisotropic_l1(const SlopeDensity& model, Vec2 alpha2, Sym2 sigma) {
-    const double large = std::sqrt(std::max(alpha2.x + 2.0 * sigma.xx, alpha2.y + 2.0 * sigma.yy));
-    const double small = std::sqrt(std::min(alpha2.x, alpha2.y));
-    const int radii = 160, angles = 48;
-    const double low = std::log(1e-3 * small), high = std::log(1e4 * large);
-    const double dr = (high - low) / radii, dt = kPi / angles;
-    double l1 = 0.0;
-    for (int i = 0; i < radii; ++i) {
-        const double rho = std::exp(low + (i + 0.5) * dr);
-        for (int j = 0; j < angles; ++j) {
-            const double t = (j + 0.5) * dt, x = rho * std::cos(t), y = rho * std::sin(t);
-            l1 += 2.0 * rho * rho * dr * dt *
-                  std::fabs(model(x, y) - exact_anisotropic(alpha2, sigma, x, y));
-        }
+  const double large = std::sqrt(std::max(alpha2.x + 2.0 * sigma.xx, alpha2.y + 2.0 * sigma.yy));
+  const double small = std::sqrt(std::min(alpha2.x, alpha2.y));
+  const int radii = 160, angles = 48;
+  const double low = std::log(1e-3 * small), high = std::log(1e4 * large);
+  const double dr = (high - low) / radii, dt = kPi / angles;
+  double l1 = 0.0;
+  for (int i = 0; i < radii; ++i) {
+    const double rho = std::exp(low + (i + 0.5) * dr);
+    for (int j = 0; j < angles; ++j) {
+      const double t = (j + 0.5) * dt, x = rho * std::cos(t), y = rho * std::sin(t);
+      l1 += 2.0 * rho * rho * dr * dt * std::fabs(model(x, y) - exact_anisotropic(alpha2, sigma, x, y));
     }
-    return l1;
+  }
+  return l1;
 }
 
 }  // namespace
@@ -209,41 +203,40 @@ double anisotropic_l1(const SlopeDensity& model, Vec2 alpha2, Sym2 sigma) {
 // fit is isotropic, so these cases are measured, not fitted: the lobe must beat the papers'
 // GGX(A0 + K) on every one. Printed for the documentation.
 TEST(FilteredGgx, MatrixFormBeatsThePapersLobe) {
-    struct Case { Vec2 alpha2; Sym2 sigma; };
-    const Case cases[] = {
-        {{1e-4, 1e-4}, {1e-3, 0.0, 1e-3}},    {{1e-4, 1e-4}, {1e-3, 0.0, 1e-4}},
-        {{1e-4, 1e-4}, {1e-3, 8e-4, 1e-3}},   {{1e-2, 1e-4}, {1e-3, 0.0, 1e-3}},
-        {{0.01, 0.01}, {0.003, 0.002, 0.006}}, {{0.1, 0.1}, {0.02, -0.01, 0.01}},
-    };
-    for (const Case& c : cases) {
-        const Sym2 a{c.alpha2.x + 2.0 * c.sigma.xx, 2.0 * c.sigma.xy, c.alpha2.y + 2.0 * c.sigma.yy};
-        const double saagen = anisotropic_l1(
-            from_ndf([&](Vec3 h) { return ggx_ndf_filtered_matrix(h, a, c.alpha2); }), c.alpha2, c.sigma);
-        const double paper = anisotropic_l1(
-            from_ndf([&](Vec3 h) { return ggx_ndf_matrix(h, a, ndf_clamp_tau(c.alpha2)); }), c.alpha2, c.sigma);
-        std::printf("alpha2 (%g, %g) Sigma (%g, %g, %g): L1 saagen %.4f, paper %.4f\n", c.alpha2.x,
-                    c.alpha2.y, c.sigma.xx, c.sigma.xy, c.sigma.yy, saagen, paper);
-        EXPECT_LT(saagen, paper);
-    }
+  struct Case {
+    Vec2 alpha2;
+    Sym2 sigma;
+  };
+  const Case cases[] = {
+      {{1e-4, 1e-4}, {1e-3, 0.0, 1e-3}}, {{1e-4, 1e-4}, {1e-3, 0.0, 1e-4}},     {{1e-4, 1e-4}, {1e-3, 8e-4, 1e-3}},
+      {{1e-2, 1e-4}, {1e-3, 0.0, 1e-3}}, {{0.01, 0.01}, {0.003, 0.002, 0.006}}, {{0.1, 0.1}, {0.02, -0.01, 0.01}},
+  };
+  for (const Case& c : cases) {
+    const Sym2 a{c.alpha2.x + 2.0 * c.sigma.xx, 2.0 * c.sigma.xy, c.alpha2.y + 2.0 * c.sigma.yy};
+    const double saagen = anisotropic_l1(from_ndf([&](Vec3 h) { return ggx_ndf_filtered_matrix(h, a, c.alpha2); }), c.alpha2, c.sigma);
+    const double paper = anisotropic_l1(from_ndf([&](Vec3 h) { return ggx_ndf_matrix(h, a, ndf_clamp_tau(c.alpha2)); }), c.alpha2, c.sigma);
+    std::printf("alpha2 (%g, %g) Sigma (%g, %g, %g): L1 saagen %.4f, paper %.4f\n", c.alpha2.x, c.alpha2.y, c.sigma.xx, c.sigma.xy,
+                c.sigma.yy, saagen, paper);
+    EXPECT_LT(saagen, paper);
+  }
 }
 
 // The single-roughness mapping meets its criterion: the GGX lobe of alpha'^2 holds the exact
 // filtered lobe's mass within 2 sqrt(k), to the fit's 3.2 % in alpha'^2 - alpha^2 terms
 // (tolerance 4 %: the fit's worst case plus quadrature).
 TEST(FilteredGgx, SingleRoughnessMatchesCoreMass) {
-    for (double alpha2 : kAlpha2s)
-        for (double k : kKernels) {
-            if (k == 0.0) {
-                EXPECT_EQ(ggx_filtered_alpha2(alpha2, 0.0), alpha2);
-                continue;
-            }
-            const double radius2 = 4.0 * k;
-            const double core = 1.0 - filtered_ggx_mass_beyond(std::sqrt(radius2), alpha2, k);
-            const double criterion = radius2 * (1.0 - core) / core;  // GGX: mass within R = R^2 / (a^2 + R^2)
-            EXPECT_NEAR(ggx_filtered_alpha2(alpha2, 2.0 * k) / criterion, 1.0, 0.04)
-                << "alpha^2 " << alpha2 << " k " << k;
-        }
-    // Limits: the papers add 2k; the mapping adds 2.687 k for a small kernel, 0.646 k for a large one.
-    EXPECT_NEAR(ggx_kernel_scale(1.0, 1e-9), 2.687 / 2.0, 1e-6);
-    EXPECT_NEAR(ggx_kernel_scale(1e-9, 1.0), 0.391 / 1.210, 1e-6);
+  for (double alpha2 : kAlpha2s)
+    for (double k : kKernels) {
+      if (k == 0.0) {
+        EXPECT_EQ(ggx_filtered_alpha2(alpha2, 0.0), alpha2);
+        continue;
+      }
+      const double radius2 = 4.0 * k;
+      const double core = 1.0 - filtered_ggx_mass_beyond(std::sqrt(radius2), alpha2, k);
+      const double criterion = radius2 * (1.0 - core) / core;  // GGX: mass within R = R^2 / (a^2 + R^2)
+      EXPECT_NEAR(ggx_filtered_alpha2(alpha2, 2.0 * k) / criterion, 1.0, 0.04) << "alpha^2 " << alpha2 << " k " << k;
+    }
+  // Limits: the papers add 2k; the mapping adds 2.687 k for a small kernel, 0.646 k for a large one.
+  EXPECT_NEAR(ggx_kernel_scale(1.0, 1e-9), 2.687 / 2.0, 1e-6);
+  EXPECT_NEAR(ggx_kernel_scale(1e-9, 1.0), 0.391 / 1.210, 1e-6);
 }

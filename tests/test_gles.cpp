@@ -2,9 +2,9 @@
 // unguarded, passes glslang's ES front end (profile es, version 300) in a fragment shader and,
 // under <PREFIX>CORE_ONLY, in a vertex shader; the include states the precision of every
 // declaration itself, maps fp16 to mediump, and says what replaces the fine derivatives.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
@@ -115,7 +115,8 @@ TEST(Gles, ValidationRejectsADeclarationWithoutPrecision) {
   auto file = emit_one("deferred-max");
   const std::string statement = "    precision highp float;\n";
   ASSERT_NE(file.content.find(statement), std::string::npos);
-  for (auto at = file.content.find(statement); at != std::string::npos; at = file.content.find(statement)) file.content.erase(at, statement.size());
+  for (auto at = file.content.find(statement); at != std::string::npos; at = file.content.find(statement))
+    file.content.erase(at, statement.size());
   const auto validation = saagen::validate_file(Catalogue::builtin(), file.file_name, file.content);
   ASSERT_FALSE(validation.checks.empty());
   EXPECT_FALSE(validation.checks[0].ok);

@@ -26,7 +26,7 @@ using ref::Quad;
 using ref::Vec2;
 using ref::Vec3;
 
-constexpr int kSize = 256;  // TradeConfig's width and height
+constexpr int kSize = 256;                        // TradeConfig's width and height
 const double kAlphas[] = {0.01, 0.05, 0.1, 0.3};  // TradeConfig's alphas
 
 struct Difference {
@@ -34,7 +34,7 @@ struct Difference {
   double sum = 0.0;
   double sum_fine = 0.0;  // sum of alpha'^2 with the fine form, for a relative figure
   long count = 0;
-  long changed = 0;       // pixels whose alpha'^2 moves by more than 1e-3 of its value
+  long changed = 0;  // pixels whose alpha'^2 moves by more than 1e-3 of its value
 };
 
 // alpha'^2 of a wrapper with the quad average taken fine or coarse; the wrapper's own plain
@@ -97,10 +97,11 @@ TEST(GlesQuadAverage, CoarseSubstituteErrorOnTheTradeScenes) {
         }
       }
       ASSERT_GT(d.count, 0);
-      std::cout << fmt::format("[ quad-avg ] {:<17} {:<18} |coarse - fine| in alpha'^2: mean {:.2e} ({:.2f}% of mean alpha'^2), max {:.2e}; "
-                               "{:.1f}% of pixel-alphas move by > 0.1%\n",
-                               render::scene_name(id), previous ? "deferred-previous" : "deferred-max", d.sum / d.count,
-                               100.0 * d.sum / d.sum_fine, d.max, 100.0 * d.changed / d.count);
+      std::cout << fmt::format(
+          "[ quad-avg ] {:<17} {:<18} |coarse - fine| in alpha'^2: mean {:.2e} ({:.2f}% of mean alpha'^2), max {:.2e}; "
+          "{:.1f}% of pixel-alphas move by > 0.1%\n",
+          render::scene_name(id), previous ? "deferred-previous" : "deferred-max", d.sum / d.count, 100.0 * d.sum / d.sum_fine, d.max,
+          100.0 * d.changed / d.count);
       // Both forms add a kernel in [0, kappa] to the same alpha^2 (deferred_previous and
       // deferred_max clamp it by kappa before saturating), so they differ by at most kappa.
       EXPECT_LE(d.max, p.kappa);

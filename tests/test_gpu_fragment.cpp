@@ -28,18 +28,17 @@
 namespace {
 
 namespace ref = saagen::ref;
-using saagen::Catalogue;
 using ref::Quad;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
 using namespace saagen::test::wrappers;
 
 // The kernels' input buffer is bound but unused.
 const std::vector<float> scene_parameters = {0.0f};
 
 saagen::harness::CompareReport check_against_reference(const std::string& wrapper, std::uint32_t outputs_per_pixel,
-                                                      const std::vector<float>& out, ref::Derivative mode,
-                                                      const std::string& what) {
+                                                       const std::vector<float>& out, ref::Derivative mode, const std::string& what) {
   const WrapperComparison comparison = reference_with_bounds(wrapper, outputs_per_pixel, out, mode);
   return saagen::harness::compare_with_bounds(comparison.got, comparison.expected, comparison.bound, what);
 }
@@ -98,9 +97,9 @@ TEST_P(WrapperOnGpu, FragmentShaderMatchesReferenceOnQuadDifferences) {
   run.buffers = {saagen::harness::input_buffer(0, scene_parameters),
                  saagen::harness::output_buffer<float>(1, std::size_t{width} * height * stride)};
   const auto out = saagen::harness::run_fragment(saagen::test::gpu(), run).buffer_as<float>(1);
-  const auto report = check_against_reference(c.wrapper, saagen::component_count(wrapper.return_type), out, mode,
-                                              fmt::format("{} {} fragment (plain ddx {})", c.target, c.wrapper,
-                                                          mode == ref::Derivative::fine ? "fine" : "coarse"));
+  const auto report = check_against_reference(
+      c.wrapper, saagen::component_count(wrapper.return_type), out, mode,
+      fmt::format("{} {} fragment (plain ddx {})", c.target, c.wrapper, mode == ref::Derivative::fine ? "fine" : "coarse"));
   expect_match(report);
 }
 
@@ -120,10 +119,9 @@ TEST_P(WrapperOnGpu, QuadEmulatingComputeMatchesReferenceForCoarseAndFine) {
     run.groups = {width * height / kernel.workgroup_size, 1, 1};
     const auto out = saagen::harness::run_compute(saagen::test::gpu(), run).buffer_as<float>(1);
     const bool fine = plain == saagen::PlainDerivative::fine;
-    const auto report = check_against_reference(c.wrapper, saagen::component_count(wrapper.return_type), out,
-                                                fine ? ref::Derivative::fine : ref::Derivative::coarse,
-                                                fmt::format("{} {} quad compute (plain ddx {})", c.target, c.wrapper,
-                                                            fine ? "fine" : "coarse"));
+    const auto report = check_against_reference(
+        c.wrapper, saagen::component_count(wrapper.return_type), out, fine ? ref::Derivative::fine : ref::Derivative::coarse,
+        fmt::format("{} {} quad compute (plain ddx {})", c.target, c.wrapper, fine ? "fine" : "coarse"));
     expect_match(report);
   }
 }

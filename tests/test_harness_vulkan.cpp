@@ -3,8 +3,6 @@
 // No test skips: when no Vulkan device is available, creating the context throws and the tests
 // fail with the harness's message (so CI=true runs cannot pass silently without a device).
 // Select another device with SAAGEN_VK_DEVICE=<name substring>.
-#include <saagen/harness/harness.hpp>
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <saagen/harness/harness.hpp>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -158,8 +157,7 @@ TEST(HarnessDevice, MissingDriverSaysWhatToInstall) {
 
 TEST(HarnessDevice, TakesDeviceFlagFromArgv) {
   std::string storage[] = {"prog", "--device", "llvm", "--gtest_filter=x", "--device=other"};
-  char* argv[] = {storage[0].data(), storage[1].data(), storage[2].data(), storage[3].data(), storage[4].data(),
-                  nullptr};
+  char* argv[] = {storage[0].data(), storage[1].data(), storage[2].data(), storage[3].data(), storage[4].data(), nullptr};
   int argc = 5;
   EXPECT_EQ(take_device_flag(argc, argv), "other");  // the last one wins
   ASSERT_EQ(argc, 2);
@@ -204,14 +202,12 @@ void main() {
   std::vector<double> unfused(large_count);
   std::vector<double> expected_sqrt(large_count);
   for (std::size_t i = 0; i < large_count; ++i) {
-    fused[i] = std::fma(a[i], b[i], c[i]);   // the float overload: a*b+c rounded once
+    fused[i] = std::fma(a[i], b[i], c[i]);       // the float overload: a*b+c rounded once
     const volatile float product = a[i] * b[i];  // volatile: rounded to float, never contracted
     unfused[i] = product + c[i];
     expected_sqrt[i] = std::sqrt(std::fabs(a[i]));
   }
-  auto describe = [&](std::size_t i) {
-    return "a=" + std::to_string(a[i]) + " b=" + std::to_string(b[i]) + " c=" + std::to_string(c[i]);
-  };
+  auto describe = [&](std::size_t i) { return "a=" + std::to_string(a[i]) + " b=" + std::to_string(b[i]) + " c=" + std::to_string(c[i]); };
   // Vulkan does not require GLSL fma() (GLSL.std.450 Fma) to be fused: its precision is that of
   // OpFMul followed by OpFAdd (guaranteed fusion needs VK_KHR_shader_fma). Lavapipe in Mesa 22.3
   // rounds twice. So the device must match one of the two CPU models exactly, for every
@@ -222,7 +218,9 @@ void main() {
   EXPECT_EQ(fused_report.compared, large_count);
   EXPECT_TRUE(fused_report.ok() || unfused_report.ok()) << fused_report.summary() << "\n" << unfused_report.summary();
   std::cout << "[harness] GLSL fma() on " << context().info().name << " is "
-            << (fused_report.ok() ? "fused (one rounding)" : unfused_report.ok() ? "mul+add (two roundings)" : "neither")
+            << (fused_report.ok()     ? "fused (one rounding)"
+                : unfused_report.ok() ? "mul+add (two roundings)"
+                                      : "neither")
             << "\n";
   // sqrt is exact on lavapipe (llvm.sqrt -> vsqrtps, correctly rounded). Vulkan only requires
   // the precision of 1.0 / inversesqrt(x), so another device might need a few ulp here.
@@ -245,7 +243,7 @@ void cs_main(uint3 id : SV_DispatchThreadID) {
   output_values[id.x] = sqrt(input_values[id.x]) * 0.5f + 1.0f;
 }
 )",
-                                            "cs_main");
+                                        "cs_main");
   const std::vector<float> x = random_floats(large_count, 0.0f, 1.0e6f, 4);
   ComputeRun run;
   run.shader = shader;
@@ -258,8 +256,8 @@ void cs_main(uint3 id : SV_DispatchThreadID) {
   // Evaluated in float, step by step, as the shader does: *0.5 is exact, so no contraction can
   // change the result even if the compiler fused the multiply-add.
   for (std::size_t i = 0; i < large_count; ++i) expected[i] = std::sqrt(x[i]) * 0.5f + 1.0f;
-  const CompareReport report = compare(result.buffer_as<float>(1), expected, {}, "hlsl sqrt",
-                                       [&](std::size_t i) { return "x=" + std::to_string(x[i]); });
+  const CompareReport report =
+      compare(result.buffer_as<float>(1), expected, {}, "hlsl sqrt", [&](std::size_t i) { return "x=" + std::to_string(x[i]); });
   EXPECT_EQ(report.compared, large_count);
   EXPECT_TRUE(report.ok()) << report.summary();
 }
@@ -303,9 +301,8 @@ void main() {
   } else {
     EXPECT_TRUE(first.timing.gpu_ms.empty());
   }
-  std::cout << "[harness] 256-element dispatch: host median " << Timing::median(first.timing.host_ms)
-            << " ms, gpu median " << Timing::median(first.timing.gpu_ms) << " ms, pipeline "
-            << first.timing.pipeline_create_ms << " ms\n";
+  std::cout << "[harness] 256-element dispatch: host median " << Timing::median(first.timing.host_ms) << " ms, gpu median "
+            << Timing::median(first.timing.gpu_ms) << " ms, pipeline " << first.timing.pipeline_create_ms << " ms\n";
 
   // The same pipeline with new inputs, without GPU timestamps.
   std::vector<float> halves(count, 0.5f);
@@ -327,9 +324,9 @@ constexpr std::uint32_t fb_size = 64;
 constexpr float field_scale = 1.0f / 64.0f;
 
 struct Derivatives {
-  std::vector<float> f;                                       // f at each pixel, row-major
+  std::vector<float> f;  // f at each pixel, row-major
   std::vector<float> ddx_fine, ddy_fine, ddx_coarse, ddy_coarse;
-  std::vector<float> ddx_default, ddy_default;                // dFdx / dFdy (fragment only)
+  std::vector<float> ddx_default, ddy_default;  // dFdx / dFdy (fragment only)
 };
 
 // f(x, y) = x*x*y at pixel centres, in fp32; see field() in the shaders.
@@ -438,11 +435,16 @@ TEST(HarnessFragment, DerivativesAreQuadDifferences) {
   const bool coarse_top_left = compare(d.ddx_coarse, q.ddx_coarse, {}).ok() && compare(d.ddy_coarse, q.ddy_coarse, {}).ok();
   const bool coarse_is_fine = compare(d.ddx_coarse, q.ddx_fine, {}).ok() && compare(d.ddy_coarse, q.ddy_fine, {}).ok();
   const bool default_is_fine = compare(d.ddx_default, q.ddx_fine, {}).ok() && compare(d.ddy_default, q.ddy_fine, {}).ok();
-  const bool default_is_coarse =
-      compare(d.ddx_default, d.ddx_coarse, {}).ok() && compare(d.ddy_default, d.ddy_coarse, {}).ok();
+  const bool default_is_coarse = compare(d.ddx_default, d.ddx_coarse, {}).ok() && compare(d.ddy_default, d.ddy_coarse, {}).ok();
   std::cout << "[harness] on " << context().info().name << ": dFdxCoarse/dFdyCoarse are "
-            << (coarse_is_fine ? "per-pixel (= fine)" : coarse_top_left ? "per quad, from the top-left pixel" : "neither")
-            << "; dFdx/dFdy are " << (default_is_fine ? "fine" : default_is_coarse ? "coarse" : "neither") << "\n";
+            << (coarse_is_fine    ? "per-pixel (= fine)"
+                : coarse_top_left ? "per quad, from the top-left pixel"
+                                  : "neither")
+            << "; dFdx/dFdy are "
+            << (default_is_fine     ? "fine"
+                : default_is_coarse ? "coarse"
+                                    : "neither")
+            << "\n";
   EXPECT_TRUE(coarse_top_left || coarse_is_fine)
       << compare(d.ddx_coarse, q.ddx_coarse, {}, "dFdxCoarse vs top-left", pixel_label).summary() << "\n"
       << compare(d.ddx_coarse, q.ddx_fine, {}, "dFdxCoarse vs fine", pixel_label).summary();
@@ -457,10 +459,9 @@ TEST(HarnessFragment, DerivativesAreQuadDifferences) {
 
 TEST(HarnessCompute, SubgroupQuadDerivativesMatchFragment) {
   const SubgroupInfo& subgroup = context().info().subgroup;
-  ASSERT_TRUE(subgroup.supports(VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_QUAD_BIT,
-                                VK_SHADER_STAGE_COMPUTE_BIT))
-      << context().info().name << " does not support subgroup quad operations in compute shaders ("
-      << subgroup.describe() << "): 2x2-quad derivatives cannot be emulated in compute on this device";
+  ASSERT_TRUE(subgroup.supports(VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_QUAD_BIT, VK_SHADER_STAGE_COMPUTE_BIT))
+      << context().info().name << " does not support subgroup quad operations in compute shaders (" << subgroup.describe()
+      << "): 2x2-quad derivatives cannot be emulated in compute on this device";
   ASSERT_EQ(subgroup.size % 4, 0u) << subgroup.describe();
 
   ComputeRun run;
@@ -524,8 +525,7 @@ void main() {
 
 // Texel value of (level, layer, x): all four channels identify it.
 std::array<float, 4> texel_id(std::uint32_t level, std::uint32_t layer, std::uint32_t x) {
-  return {static_cast<float>(level), static_cast<float>(layer), static_cast<float>(x),
-          static_cast<float>(1000 * level + 100 * layer + x)};
+  return {static_cast<float>(level), static_cast<float>(layer), static_cast<float>(x), static_cast<float>(1000 * level + 100 * layer + x)};
 }
 
 TEST(HarnessImage, Sampled1DArrayWithMipsNearest) {
@@ -651,8 +651,7 @@ void main() {
   run.images = {image};
   run.buffers = {output_buffer<float>(1, 16)};
   const std::vector<float> got = run_compute(context(), run).buffer_as<float>(1);
-  const std::vector<double> expected = {1.0,   0.0,   0.0,   1.0, 1.5,   10.0,  0.0,   1.0,
-                                        101.0, 100.0, 100.0, 1.0, 100.5, 100.0, 100.0, 1.0};
+  const std::vector<double> expected = {1.0, 0.0, 0.0, 1.0, 1.5, 10.0, 0.0, 1.0, 101.0, 100.0, 100.0, 1.0, 100.5, 100.0, 100.0, 1.0};
   const CompareReport report = compare(got, expected, {}, "RGBA16F bilinear");
   EXPECT_TRUE(report.ok()) << report.summary();
 }
@@ -664,11 +663,9 @@ TEST(HarnessCompare, ToleranceNanAndInfinity) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   const std::vector<float> got = {1.0f, 2.0f, nan, inf, -inf, nan, 5.0f, 100.5f};
-  const std::vector<double> expected = {1.0, 2.001, 3.0, static_cast<double>(inf), static_cast<double>(-inf),
-                                        std::nan(""), static_cast<double>(inf), 100.0};
-  const CompareReport report = compare(got, expected, {0.01, 0.001}, "mixed", [](std::size_t i) {
-    return "label" + std::to_string(i);
-  });
+  const std::vector<double> expected = {
+      1.0, 2.001, 3.0, static_cast<double>(inf), static_cast<double>(-inf), std::nan(""), static_cast<double>(inf), 100.0};
+  const CompareReport report = compare(got, expected, {0.01, 0.001}, "mixed", [](std::size_t i) { return "label" + std::to_string(i); });
   EXPECT_EQ(report.compared, 8u);
   // Fail: NaN for 3.0 (#2), 5 for +inf (#6), 100.5 for 100 (0.5 > 0.01 + 0.1). Pass: the rest.
   EXPECT_EQ(report.failing, 3u);
@@ -729,11 +726,11 @@ TEST(HarnessBytes, HalfConversionRoundTripsAndRounds) {
     ASSERT_EQ(float_to_half(value), bits) << bits;
   }
   EXPECT_EQ(half_to_float(0x3c00u), 1.0f);
-  EXPECT_EQ(half_to_float(0x0001u), std::ldexp(1.0f, -24));                 // smallest subnormal
-  EXPECT_EQ(float_to_half(1.0f + std::ldexp(1.0f, -11)), 0x3c00u);         // tie -> even (down)
-  EXPECT_EQ(float_to_half(1.0f + 3 * std::ldexp(1.0f, -11)), 0x3c02u);     // tie -> even (up)
-  EXPECT_EQ(float_to_half(65520.0f), 0x7c00u);                             // rounds to infinity
-  EXPECT_EQ(float_to_half(std::ldexp(1.0f, -25)), 0x0000u);                // tie with zero -> zero
+  EXPECT_EQ(half_to_float(0x0001u), std::ldexp(1.0f, -24));             // smallest subnormal
+  EXPECT_EQ(float_to_half(1.0f + std::ldexp(1.0f, -11)), 0x3c00u);      // tie -> even (down)
+  EXPECT_EQ(float_to_half(1.0f + 3 * std::ldexp(1.0f, -11)), 0x3c02u);  // tie -> even (up)
+  EXPECT_EQ(float_to_half(65520.0f), 0x7c00u);                          // rounds to infinity
+  EXPECT_EQ(float_to_half(std::ldexp(1.0f, -25)), 0x0000u);             // tie with zero -> zero
   EXPECT_EQ(float_to_half(std::ldexp(1.5f, -25)), 0x0001u);
   EXPECT_TRUE(std::isnan(half_to_float(float_to_half(std::nanf("")))));
 }

@@ -4,11 +4,11 @@
 // embedded) is that measurement for vega10 and navi21. Compilation only.
 #include "saagen/front/catalogue.hpp"
 #include "saagen/products/deferred_pass.hpp"
-#include "saagen/scene/planner.hpp"
-#include "saagen/scene/manifest.hpp"
 #include "saagen/report/isa_cost.hpp"
 #include "saagen/report/report.hpp"
 #include "saagen/report/shading_scene.hpp"
+#include "saagen/scene/manifest.hpp"
+#include "saagen/scene/planner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,8 +85,9 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
     const saagen::IsaRow& a = committed.rows[index];
     const saagen::IsaRow& b = expected.rows[index];
     EXPECT_EQ(a.family + a.shader + a.target + a.variant, b.family + b.shader + b.target + b.variant);
-    EXPECT_EQ(a.instructions, b.instructions) << b.family << " " << b.target << " " << b.variant
-                                              << ": regenerate generator/data/isa_cost.json (saagen bench --isa vega10,navi21 --isa-only --isa-table FILE)";
+    EXPECT_EQ(a.instructions, b.instructions)
+        << b.family << " " << b.target << " " << b.variant
+        << ": regenerate generator/data/isa_cost.json (saagen bench --isa vega10,navi21 --isa-only --isa-table FILE)";
     EXPECT_EQ(a.inverse_throughput, b.inverse_throughput) << b.family << " " << b.target << " " << b.variant;
     EXPECT_EQ(a.vgprs, b.vgprs) << b.family << " " << b.target << " " << b.variant;
   }

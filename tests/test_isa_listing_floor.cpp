@@ -17,17 +17,16 @@
 // The goal is no more ISA instructions and no higher inverse throughput than the listing, for
 // every variant on both families; where saagen's guarded form still costs more, the budget below
 // states the excess and what it buys (docs/STABILITY.md, "GPU cost against the listings").
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/report/shading_scene.hpp"
-
-#include <saagen/harness/isa.hpp>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <map>
 #include <memory>
+#include <saagen/harness/isa.hpp>
 #include <string>
 #include <vector>
 
@@ -84,7 +83,9 @@ std::vector<FloorCase> floor_cases() {
   static const std::string projected = std::string("    real2 halfvector2D = half_ts.xy;\n");
   static const std::string aniso_slope = slope + matrix_listing_tail, aniso_projected = projected + matrix_listing_tail;
   static const std::string axis_slope = slope + rectangle_listing_tail, axis_projected = projected + rectangle_listing_tail;
-  static const std::string previous = std::string(average_normal) + R"(    real3 avgNormalTS = real3(dot(avgNormal, tangent_ws), dot(avgNormal, bitangent_ws), dot(avgNormal, normal_ws));
+  static const std::string previous =
+      std::string(average_normal) +
+      R"(    real3 avgNormalTS = real3(dot(avgNormal, tangent_ws), dot(avgNormal, bitangent_ws), dot(avgNormal, normal_ws));
     real2 avgNormal2D = avgNormalTS.xy / abs(avgNormalTS.z);
     real2 deltaU = ddx(avgNormal2D);
     real2 deltaV = ddy(avgNormal2D);
@@ -127,7 +128,8 @@ std::vector<FloorCase> floor_cases() {
       {"forward-aniso-slope", "    real3 result = forward_aniso_slope_fragment(alpha2, half_ts);\n", aniso_slope.c_str()},
       {"forward-aniso-projected", "    real3 result = forward_aniso_projected_fragment(alpha2, half_ts);\n", aniso_projected.c_str()},
       {"forward-axis-slope", "    real3 result = real3(forward_axis_slope_fragment(alpha2, half_ts), 0.0);\n", axis_slope.c_str()},
-      {"forward-axis-projected", "    real3 result = real3(forward_axis_projected_fragment(alpha2, half_ts), 0.0);\n", axis_projected.c_str()},
+      {"forward-axis-projected", "    real3 result = real3(forward_axis_projected_fragment(alpha2, half_ts), 0.0);\n",
+       axis_projected.c_str()},
       {"deferred-previous",
        "    real3 result = real3(deferred_previous_fragment(alpha2.x, normal_ws, tangent_ws, bitangent_ws, saagen_frag_coord), 0.0, 0.0);\n",
        previous.c_str()},
@@ -167,12 +169,9 @@ Budget budget_for(const std::string& variant, const std::string& family) {
       "; budget: the slope guard plus clamp_derivative2 on four derivative components, the half forms' overflow guard "
       "(docs/STABILITY.md)";
   static const std::map<std::string, Budget> budgets = {
-      {"forward-aniso-slope@vega10", {13, 40, slope_clamp}},
-      {"forward-aniso-slope@navi21", {8, 12, slope_clamp}},
-      {"forward-axis-slope@vega10", {2, 4, slope_guard}},
-      {"forward-axis-slope@navi21", {1, 2, slope_guard}},
-      {"deferred-previous@vega10", {2, 4, slope_guard}},
-      {"deferred-previous@navi21", {1, 2, slope_guard}},
+      {"forward-aniso-slope@vega10", {13, 40, slope_clamp}}, {"forward-aniso-slope@navi21", {8, 12, slope_clamp}},
+      {"forward-axis-slope@vega10", {2, 4, slope_guard}},    {"forward-axis-slope@navi21", {1, 2, slope_guard}},
+      {"deferred-previous@vega10", {2, 4, slope_guard}},     {"deferred-previous@navi21", {1, 2, slope_guard}},
   };
   const auto found = budgets.find(variant + "@" + family);
   return found == budgets.end() ? Budget{} : found->second;
@@ -206,7 +205,8 @@ constexpr std::uint32_t kernel_width = 64;
 hx::IsaStatistics compile_filter(const hx::IsaCompiler& compiler, const std::string& target, const saagen::EmittedFile& file,
                                  const char* filter) {
   const hx::IsaLayout layout{{hx::IsaBinding::storage_buffer(0), hx::IsaBinding::storage_buffer(1)}, 0, {VK_FORMAT_R32_SFLOAT}};
-  return compiler.fragment(saagen::report::scene_shader_spirv(target, file.file_name, file.content, body_for(filter), kernel_width), layout);
+  return compiler.fragment(saagen::report::scene_shader_spirv(target, file.file_name, file.content, body_for(filter), kernel_width),
+                           layout);
 }
 
 TEST_P(IsaFloor, EmittedWrappersCostNoMoreThanThePapersListings) {
@@ -220,12 +220,13 @@ TEST_P(IsaFloor, EmittedWrappersCostNoMoreThanThePapersListings) {
       const hx::IsaStatistics emitted = compile_filter(compiler(), target, file, item.emitted);
       const hx::IsaStatistics listing = compile_filter(compiler(), target, file, item.listing);
       const Budget budget = budget_for(item.variant, family);
-      std::cout << fmt::format("[ listing  ] {:<8} {:<5} {:<25} instructions {:>3} vs listing {:>3} ({:+}), VGPRs {:>3} vs {:>3}, "
-                               "waves {:>2} vs {:>2}, inverse throughput {:>4} vs {:>4} ({:+.1f} %), latency {:>4} vs {:>4}\n",
-                               family, target, item.variant, emitted.instructions, listing.instructions,
-                               emitted.instructions - listing.instructions, emitted.vgprs, listing.vgprs, emitted.subgroups_per_simd,
-                               listing.subgroups_per_simd, emitted.inverse_throughput, listing.inverse_throughput,
-                               100.0 * (emitted.inverse_throughput / listing.inverse_throughput - 1.0), emitted.latency, listing.latency);
+      std::cout << fmt::format(
+          "[ listing  ] {:<8} {:<5} {:<25} instructions {:>3} vs listing {:>3} ({:+}), VGPRs {:>3} vs {:>3}, "
+          "waves {:>2} vs {:>2}, inverse throughput {:>4} vs {:>4} ({:+.1f} %), latency {:>4} vs {:>4}\n",
+          family, target, item.variant, emitted.instructions, listing.instructions, emitted.instructions - listing.instructions,
+          emitted.vgprs, listing.vgprs, emitted.subgroups_per_simd, listing.subgroups_per_simd, emitted.inverse_throughput,
+          listing.inverse_throughput, 100.0 * (emitted.inverse_throughput / listing.inverse_throughput - 1.0), emitted.latency,
+          listing.latency);
       EXPECT_LE(emitted.instructions, listing.instructions + budget.instructions)
           << target << " " << item.variant << " on " << family << ": more ISA instructions than the paper's listing" << budget.reason;
       EXPECT_LE(emitted.inverse_throughput, listing.inverse_throughput + budget.inverse_throughput)

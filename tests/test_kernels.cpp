@@ -1,8 +1,8 @@
 // Kernels compile for every function, target and kind: the GPU harness depends on
 // them, and this suite needs no Vulkan device.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/validate/kernels.hpp"
 
 #include <gtest/gtest.h>
@@ -11,8 +11,7 @@ namespace {
 
 using saagen::Catalogue;
 
-saagen::CompileResult compile_kernel(const saagen::EmittedFile& file, const saagen::KernelRequest& request,
-                                     saagen::ShaderStage stage) {
+saagen::CompileResult compile_kernel(const saagen::EmittedFile& file, const saagen::KernelRequest& request, saagen::ShaderStage stage) {
   auto compile = saagen::kernel_compile_request(Catalogue::builtin(), file.file_name, file.content, request);
   compile.stage = stage;
   return saagen::compile_to_spirv(compile);
@@ -57,7 +56,8 @@ TEST_P(KernelsPerTarget, EveryCoreAndEvaluateFunctionRunsInACompute) {
       ++compiled;
     }
   }
-  EXPECT_EQ(compiled, 40);  // 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores
+  EXPECT_EQ(compiled,
+            40);  // 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores
 }
 
 TEST_P(KernelsPerTarget, EveryFragmentWrapperRunsInAFragmentShaderAndUnderQuadEmulation) {

@@ -1,9 +1,9 @@
 // Scene manifests: parsing and its one-line errors (file:line:column, key, what is
 // allowed), the planner's rules and trade table, minimal emission (exactly the dependency
 // closure; removing a material removes its code), and the bundle's validation and CLI.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 #include "saagen/validate/validation.hpp"
@@ -16,6 +16,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -125,9 +126,7 @@ void PrintTo(const BadCase& c, std::ostream* os) { *os << c.what; }
 
 class BadManifest : public ::testing::TestWithParam<BadCase> {};
 
-TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) {
-  EXPECT_EQ(error_of(GetParam().text), GetParam().message);
-}
+TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
 const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, glints, precision, prefer, variant";
 const std::string filters =
@@ -140,9 +139,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"toml_syntax", header + "prefix = = 1\n",
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
-        BadCase{"unknown_top_key", header + "colour = 1\n" + forward_material,
-                "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
-                "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, material"},
+        BadCase{
+            "unknown_top_key", header + "colour = 1\n" + forward_material,
+            "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
+            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
@@ -150,8 +150,9 @@ INSTANTIATE_TEST_SUITE_P(
                 "Gaussian pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},
         BadCase{"wrong_type_boolean", header + forward_material + "tangents = \"yes\"\n",
                 "scene.toml:5:12: key 'tangents' of material 'm': must be a boolean, got a string; allowed: true, false"},
-        BadCase{"wrong_type_targets", "targets = \"glsl\"\n" + forward_material,
-                "scene.toml:1:11: key 'targets': must be an array, got a string; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
+        BadCase{
+            "wrong_type_targets", "targets = \"glsl\"\n" + forward_material,
+            "scene.toml:1:11: key 'targets': must be an array, got a string; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"wrong_type_material", header + "material = 3\n",
                 "scene.toml:2:12: key 'material': must be an array of tables, got an integer; allowed: an array of tables, one "
                 "[[material]] per material"},
@@ -163,11 +164,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "scene.toml:5:11: key 'variant' of material 'm': unknown variant \"deferred-fancy\"; allowed: " + filters},
         BadCase{"brdf_is_not_a_filter", header + forward_material + "variant = \"brdf-ggx\"\n",
                 "scene.toml:5:11: key 'variant' of material 'm': not a filter variant (the BRDF is planned from 'ndf'): "
-                "\"brdf-ggx\"; allowed: " + filters},
+                "\"brdf-ggx\"; allowed: " +
+                    filters},
         BadCase{"unknown_target", "targets = [\"glsl\", \"metal\"]\n" + forward_material,
                 "scene.toml:1:20: key 'targets': unknown target \"metal\"; allowed: \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
-        BadCase{"duplicate_target", "targets = [\"glsl\", \"glsl\"]\n" + forward_material,
-                "scene.toml:1:20: key 'targets': \"glsl\" is listed twice; allowed: each of \"gles\", \"glsl\", \"hlsl\", \"wgsl\" at most once"},
+        BadCase{
+            "duplicate_target", "targets = [\"glsl\", \"glsl\"]\n" + forward_material,
+            "scene.toml:1:20: key 'targets': \"glsl\" is listed twice; allowed: each of \"gles\", \"glsl\", \"hlsl\", \"wgsl\" at most once"},
         BadCase{"empty_targets", "targets = []\n" + forward_material,
                 "scene.toml:1:11: key 'targets': the array is empty; allowed: an array of \"gles\", \"glsl\", \"hlsl\", \"wgsl\""},
         BadCase{"missing_targets", forward_material,
@@ -218,8 +221,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"anisotropic_without_tangents", header + forward_material + "anisotropic = true\n",
                 "scene.toml:5:15: key 'tangents' of material 'm': anisotropic = true needs tangents = true (an anisotropic BRDF is "
                 "defined in a tangent frame); allowed: tangents = true, or anisotropic = false"},
-        BadCase{"forward_variant_in_deferred", header + "[[material]]\nname = \"m\"\npath = \"deferred\"\ntangents = true\n"
-                "variant = \"forward-axis-projected\"\n",
+        BadCase{"forward_variant_in_deferred",
+                header + "[[material]]\nname = \"m\"\npath = \"deferred\"\ntangents = true\n"
+                         "variant = \"forward-axis-projected\"\n",
                 "scene.toml:6:11: key 'variant' of material 'm': forward-axis-projected filters the half vector of each light in a "
                 "forward pass; this material's path is deferred; allowed: \"deferred-previous\", \"deferred-max\", \"deferred-sum\", "
                 "\"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\""},
@@ -264,27 +268,59 @@ TEST_P(Rules, PickTheDocumentedVariantAndFunctions) {
 INSTANTIATE_TEST_SUITE_P(
     Planner, Rules,
     ::testing::Values(
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n", "F1", "forward-aniso-projected",
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n",
+                 "F1",
+                 "forward-aniso-projected",
                  {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n", "F1", "forward-aniso-projected",
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n",
+                 "F1",
+                 "forward-aniso-projected",
                  {"forward_aniso_projected", "forward_aniso_projected_fragment", "beckmann_brdf_matrix", "ndf_clamp_tau"}},
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n", "F2", "forward-axis-projected",
+        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n",
+                 "F2",
+                 "forward-axis-projected",
                  {"forward_axis_projected", "forward_axis_projected_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"forward\"\ntangents = true\n", "F3", "forward-aniso-projected",
+        RuleCase{"path = \"forward\"\ntangents = true\n",
+                 "F3",
+                 "forward-aniso-projected",
                  {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
-        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "F4", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n",
+                 "F4",
+                 "deferred-avg",
+                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\n", "D0", "deferred-aniso",
+        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n",
+                 "F5",
+                 "deferred-avg",
+                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\n",
+                 "D0",
+                 "deferred-aniso",
                  {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
-        RuleCase{"path = \"deferred\"\nnormal_maps = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nnormal_maps = true\n",
+                 "D1",
+                 "deferred-avg",
+                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "D2", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n", "manifest", "deferred-sum", {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
+        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n",
+                 "D1",
+                 "deferred-avg",
+                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n",
+                 "D2",
+                 "deferred-avg",
+                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n",
+                 "manifest",
+                 "deferred-sum",
+                 {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+        RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n",
+                 "manifest",
+                 "deferred-max",
                  {"deferred_max", "deferred_max_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n", "manifest", "deferred-max",
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n",
+                 "manifest",
+                 "deferred-max",
                  {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment", "ggx_brdf_filtered_axis"}}),
     [](const ::testing::TestParamInfo<RuleCase>& info) { return "case" + std::to_string(info.index) + "_" + info.param.rule; });
 
@@ -317,7 +353,8 @@ TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {
   EXPECT_NE(text.find("deferred_aniso_brdf(light_ws, view_ws, normal_ws, tensor, alpha2) per light"), std::string::npos) << text;
   for (const char* keys : {"ndf = \"beckmann\"\n", "anisotropic = true\ntangents = true\n"}) {
     try {
-      saagen::plan_scene(catalogue, parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nvariant = \"deferred-aniso\"\n" + keys));
+      saagen::plan_scene(catalogue,
+                         parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nvariant = \"deferred-aniso\"\n" + keys));
       ADD_FAILURE() << "deferred-aniso accepted with " << keys;
     } catch (const saagen::Error& error) {
       EXPECT_NE(std::string(error.what()).find("deferred-aniso"), std::string::npos) << error.what();
@@ -326,7 +363,8 @@ TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {
 }
 
 TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
-  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\n");
+  const saagen::Manifest manifest =
+      parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\n");
   EXPECT_TRUE(saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).per_axis);
 }
 
@@ -356,7 +394,7 @@ TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
       {"target": "glsl", "variant": "deferred-sum", "isa_family": "navi21", "isa_inverse_throughput_ratio": 2.0},
       {"target": "glsl", "variant": "deferred-projected-space", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.10, "error": 0.01},
       {"target": "glsl", "variant": "forward-axis-projected", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.00, "error": 0.00}]})",
-                                                             "trade.json");
+                                                                     "trade.json");
   const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"fast\"\npath = \"deferred\"\nprefer = \"speed\"\n" +
                                           "[[material]]\nname = \"exact\"\npath = \"deferred\"\n");
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
@@ -377,8 +415,8 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
   const saagen::MeasuredTradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "ratio_median": 0.5}]})", "time.json");
   for (const std::string family : {"vega10", "navi21"}) {
-    const saagen::Manifest manifest =
-        parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family + "\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n");
+    const saagen::Manifest manifest = parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family +
+                                            "\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n");
     EXPECT_EQ(manifest.gpu_family, family);
     const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
     // The cheapest eligible variant on this family's ISA figures; the rule's deferred-avg when it
@@ -393,8 +431,9 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
     EXPECT_EQ(plan.materials.at(0).variant, cheapest) << family << ": " << plan.materials.at(0).reason;
     EXPECT_NE(plan.materials.at(0).variant, "deferred-projected-space") << "lavapipe time decided";
   }
-  EXPECT_THROW((void)parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"gfx3000\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\n"),
-               saagen::Error);
+  EXPECT_THROW(
+      (void)parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"gfx3000\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\n"),
+      saagen::Error);
 }
 
 // `saagen bench --json` measures a variant's tangent-free form as a configuration of its own;
@@ -404,21 +443,23 @@ TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
       {"variant": "deferred-max-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.01},
       {"variant": "deferred-max", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5},
       {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.1}]})",
-                                                             "bench.json");
+                                                                     "bench.json");
   const saagen::ScenePlan plan = saagen::plan_scene(
       Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"), &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-max") << plan.materials.at(0).reason;
-  const saagen::MeasuredTradeTable unknown =
-      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
-  EXPECT_THROW((void)saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &unknown),
-               saagen::Error);
+  const saagen::MeasuredTradeTable unknown = saagen::parse_trade_table(
+      R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
+  EXPECT_THROW(
+      (void)saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &unknown),
+      saagen::Error);
 }
 
 TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
   const saagen::MeasuredTradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
   EXPECT_FALSE(table.has_errors());
-  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
+  const saagen::ScenePlan plan =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-aniso");
   EXPECT_EQ(plan.materials.at(0).rule, "D0");
   EXPECT_NE(plan.materials.at(0).reason.find("t.json has no error"), std::string::npos) << plan.materials.at(0).reason;
@@ -434,10 +475,11 @@ TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.12},
       {"content": "normal-mapped", "configuration": "deferred-sum:geometric", "error": 0.11},
       {"content": "normal-mapped", "configuration": "engine-godot", "error": 0.01}]})",
-                                                             "trade.json");
-  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\nnormal_maps = true\n" +
-                                          "[[material]]\nname = \"b\"\npath = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-avg\"\n" +
-                                          "[[material]]\nname = \"c\"\npath = \"deferred\"\n");
+                                                                     "trade.json");
+  const saagen::Manifest manifest =
+      parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\nnormal_maps = true\n" +
+            "[[material]]\nname = \"b\"\npath = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-avg\"\n" +
+            "[[material]]\nname = \"c\"\npath = \"deferred\"\n");
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-sum");
   EXPECT_EQ(plan.materials.at(0).feed, "geometric");
@@ -452,8 +494,8 @@ TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
 }
 
 TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
-  const saagen::ScenePlan plan = saagen::plan_scene(
-      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"));
+  const saagen::ScenePlan plan =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"));
   EXPECT_NE(plan.materials.at(0).normal_advice.find("measured: "), std::string::npos) << plan.materials.at(0).normal_advice;
 }
 
@@ -468,8 +510,9 @@ TEST(Planner, BadTradeTablesAreRejected) {
   };
   EXPECT_EQ(error_of_table("{"), "t.json: not valid JSON (byte 2); pass the file `bench_shading --json` writes");
   EXPECT_EQ(error_of_table("[]"), "t.json: no \"rows\" array; pass the file `bench_shading --json` writes");
-  EXPECT_NE(error_of_table(R"({"rows": [{"variant": "x", "ratio_median": "fast"}]})").find("t.json: rows[0]: \"ratio_median\" must be a number"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of_table(R"({"rows": [{"variant": "x", "ratio_median": "fast"}]})").find("t.json: rows[0]: \"ratio_median\" must be a number"),
+      std::string::npos);
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "error": 1}]})"),
             "t.json: by_content[0]: needs a string \"configuration\"");
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
@@ -527,15 +570,16 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
     // Nothing else of the catalogue appears, not even in a comment.
     for (const saagen::Function& function : Catalogue::builtin().functions()) {
       if (defined.count(function.name)) continue;
-      EXPECT_FALSE(std::regex_search(file.content, std::regex("\\bsaa_" + function.name + "\\b"))) << file.file_name << ": " << function.name;
+      EXPECT_FALSE(std::regex_search(file.content, std::regex("\\bsaa_" + function.name + "\\b")))
+          << file.file_name << ": " << function.name;
     }
   }
   // The fp32 GLSL bundle: car_paint, brushed_metal and terrain; not the deferred-sum family.
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
   EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));
-  EXPECT_TRUE(defined.count("forward_aniso_projected"));  // the wrapper pulls its core
-  EXPECT_TRUE(defined.count("ggx_brdf_filtered_matrix")); // forward anisotropic GGX pulls the tail-preserving filtered GGX
-  EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));    // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
+  EXPECT_TRUE(defined.count("forward_aniso_projected"));   // the wrapper pulls its core
+  EXPECT_TRUE(defined.count("ggx_brdf_filtered_matrix"));  // forward anisotropic GGX pulls the tail-preserving filtered GGX
+  EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));     // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
   EXPECT_FALSE(defined.count("deferred_sum"));
   EXPECT_FALSE(defined.count("ggx_brdf_axis"));
 }
@@ -661,7 +705,8 @@ TEST_F(SceneCli, BadManifestIsOneLineWithPosition) {
   write(scratch_ / "bad.toml", header + forward_material + "ndf = \"phong\"\n");
   const CliRun run = saagen("plan '" + (scratch_ / "bad.toml").string() + "' --no-cost");
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("bad.toml:5:7: key 'ndf' of material 'm': unknown value \"phong\"; allowed: \"ggx\", \"beckmann\""), std::string::npos)
+  EXPECT_NE(run.err.find("bad.toml:5:7: key 'ndf' of material 'm': unknown value \"phong\"; allowed: \"ggx\", \"beckmann\""),
+            std::string::npos)
       << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
 }
@@ -709,14 +754,15 @@ TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
         "layout(location = 0) out vec4 color;\n"
         "void main() { color = vec4(saa_deferred_avg_fragment(0.04, normalize(normal_ws))); }\n");
   CliRun run = saagen("compile '" + (scratch_ / "shaders" / "lit.frag").string() + "' -I '" + out.string() + "' -o '" +
-                   (scratch_ / "lit.spv").string() + "'");
+                      (scratch_ / "lit.spv").string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   EXPECT_GT(fs::file_size(scratch_ / "lit.spv"), 100u);
   EXPECT_EQ(read_text(scratch_ / "lit.spv").substr(0, 4), std::string("\x03\x02\x23\x07", 4));  // SPIR-V magic
 
   // An error names the file and the line after the include.
   write(scratch_ / "shaders" / "bad.frag", "#version 450\n#include \"saa_scene.glsl\"\nvoid main() { undefined_call(); }\n");
-  run = saagen("compile '" + (scratch_ / "shaders" / "bad.frag").string() + "' -I '" + out.string() + "' -o '" + (scratch_ / "bad.spv").string() + "'");
+  run = saagen("compile '" + (scratch_ / "shaders" / "bad.frag").string() + "' -I '" + out.string() + "' -o '" +
+               (scratch_ / "bad.spv").string() + "'");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("bad.frag:3"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(scratch_ / "bad.spv"));
@@ -772,9 +818,10 @@ TEST(Planner, PlansAndCostsInTheManifestsDomain) {
 }
 
 TEST(Manifest, BadPresetOrDomainIsOneLine) {
-  EXPECT_EQ(error_of(header + "preset = \"unreal\"\n" + deferred_material),
-            "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
-            "\"vsgl\"");
+  EXPECT_EQ(
+      error_of(header + "preset = \"unreal\"\n" + deferred_material),
+      "scene.toml:2:10: key 'preset': unknown value \"unreal\"; allowed: \"hdrp\", \"filament\", \"filament-taa\", \"o3de\", \"bevy\", "
+      "\"vsgl\"");
   EXPECT_EQ(error_of(header + "domain = \"linear\"\n" + deferred_material),
             "scene.toml:2:10: key 'domain': unknown value \"linear\"; allowed: \"alpha2\", \"alpha\", \"perceptual\", \"smoothness\"");
 }

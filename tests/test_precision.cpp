@@ -32,12 +32,12 @@ namespace {
 
 namespace ref = saagen::ref;
 namespace stab = saagen::stability;
-using saagen::Catalogue;
-using saagen::Function;
 using ref::Quad;
 using ref::Sym2;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
+using saagen::Function;
 
 constexpr std::uint32_t kElements = 65536;
 constexpr std::uint32_t kWidth = 256;  // wrappers: a 256 x 256 emulated image
@@ -89,7 +89,8 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
     for (const saagen::Parameter& p : f.parameters) {
       const std::string& name = p.name;
       if (name == "alpha2") {
-        if (stab::is_brdf(f)) p.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
+        if (stab::is_brdf(f))
+          p.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
         else {
           const double a = realistic_alpha(rng, 0.01);
           smallest = a;
@@ -146,7 +147,8 @@ Inputs wrapper_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
     const Vec3 base = stab::upper_direction(rng, 0.1), light = stab::upper_direction(rng, 0.1);
     const double step = std::pow(10.0, rng.uniform(-4.0, std::log10(0.3)));
     const Vec3 dx = step * stab::random_unit(rng), dy = step * stab::random_unit(rng);
-    const double ax = realistic_alpha(rng, stab::is_brdf(f) ? min_alpha : 0.01), ay = rng.chance(2) ? ax : realistic_alpha(rng, stab::is_brdf(f) ? min_alpha : 0.01);
+    const double ax = realistic_alpha(rng, stab::is_brdf(f) ? min_alpha : 0.01),
+                 ay = rng.chance(2) ? ax : realistic_alpha(rng, stab::is_brdf(f) ? min_alpha : 0.01);
     for (int p = 0; p < 4; ++p) {
       const Vec3 n = ref::normalize(base + (p & 1) * dx + (p >> 1) * dy);
       const Vec3 axis = std::fabs(n.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
@@ -193,10 +195,24 @@ std::vector<double> reference_core(const ref::Params& p, const std::string& name
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
   if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
   const ref::Brdf brdf{p};
-  if (name.rfind("forward_aniso_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_matrix(p, a, du, in.vec2())); }
-  if (name.rfind("forward_axis_", 0) == 0) { const Vec2 a = in.vec2(), du = in.vec2(); return values(ref::filter_roughness_rectangle(p, a, du, in.vec2())); }
-  if (name == "deferred_previous") { const double a = in.real(); const Vec2 du = in.vec2(); return values(ref::deferred_previous(p, a, du, in.vec2())); }
-  if (name == "deferred_max") { const double a = in.real(); const Vec2 du = in.vec2(); return values(ref::deferred_max(p, a, du, in.vec2())); }
+  if (name.rfind("forward_aniso_", 0) == 0) {
+    const Vec2 a = in.vec2(), du = in.vec2();
+    return values(ref::filter_roughness_matrix(p, a, du, in.vec2()));
+  }
+  if (name.rfind("forward_axis_", 0) == 0) {
+    const Vec2 a = in.vec2(), du = in.vec2();
+    return values(ref::filter_roughness_rectangle(p, a, du, in.vec2()));
+  }
+  if (name == "deferred_previous") {
+    const double a = in.real();
+    const Vec2 du = in.vec2();
+    return values(ref::deferred_previous(p, a, du, in.vec2()));
+  }
+  if (name == "deferred_max") {
+    const double a = in.real();
+    const Vec2 du = in.vec2();
+    return values(ref::deferred_max(p, a, du, in.vec2()));
+  }
   if (name.rfind("deferred_", 0) == 0) {
     const double a = in.real();
     const Vec3 dx = in.vec3(), dy = in.vec3();
@@ -206,18 +222,58 @@ std::vector<double> reference_core(const ref::Params& p, const std::string& name
     return values(ref::deferred_projected_space(p, a, dx, dy));
   }
   if (name == "ndf_clamp_tau") return values(ref::ndf_clamp_tau(in.vec2()));
-  if (name == "ggx_ndf_matrix") { const Vec3 h = in.vec3(); const Sym2 a = in.sym2(); return values(brdf.ggx_ndf_matrix(h, a, in.real())); }
-  if (name == "beckmann_ndf_matrix") { const Vec3 h = in.vec3(); const Sym2 a = in.sym2(); return values(brdf.beckmann_ndf_matrix(h, a, in.real())); }
-  if (name == "ggx_lambda_matrix") { const Vec3 w = in.vec3(); return values(brdf.ggx_lambda_matrix(w, in.sym2())); }
-  if (name == "beckmann_lambda_matrix") { const Vec3 w = in.vec3(); return values(brdf.beckmann_lambda_matrix(w, in.sym2())); }
-  if (name == "ggx_g2_matrix") { const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3(); return values(brdf.ggx_g2_matrix(i, o, h, in.sym2())); }
-  if (name == "ggx_brdf_matrix") { const Vec3 i = in.vec3(), o = in.vec3(); const Sym2 a = in.sym2(); return values(brdf.ggx_brdf_matrix(i, o, a, in.real())); }
-  if (name == "beckmann_brdf_matrix") { const Vec3 i = in.vec3(), o = in.vec3(); const Sym2 a = in.sym2(); return values(brdf.beckmann_brdf_matrix(i, o, a, in.real())); }
-  if (name == "ggx_ndf_axis") { const Vec3 h = in.vec3(); return values(brdf.ggx_ndf_axis(h, in.vec2())); }
-  if (name == "ggx_lambda_axis") { const Vec3 w = in.vec3(); return values(brdf.ggx_lambda_axis(w, in.vec2())); }
-  if (name == "beckmann_ndf_axis") { const Vec3 h = in.vec3(); return values(brdf.beckmann_ndf_axis(h, in.vec2())); }
-  if (name == "ggx_brdf_axis") { const Vec3 i = in.vec3(), o = in.vec3(); return values(brdf.ggx_brdf_axis(i, o, in.vec2())); }
-  if (name == "beckmann_brdf_axis") { const Vec3 i = in.vec3(), o = in.vec3(); return values(brdf.beckmann_brdf_axis(i, o, in.vec2())); }
+  if (name == "ggx_ndf_matrix") {
+    const Vec3 h = in.vec3();
+    const Sym2 a = in.sym2();
+    return values(brdf.ggx_ndf_matrix(h, a, in.real()));
+  }
+  if (name == "beckmann_ndf_matrix") {
+    const Vec3 h = in.vec3();
+    const Sym2 a = in.sym2();
+    return values(brdf.beckmann_ndf_matrix(h, a, in.real()));
+  }
+  if (name == "ggx_lambda_matrix") {
+    const Vec3 w = in.vec3();
+    return values(brdf.ggx_lambda_matrix(w, in.sym2()));
+  }
+  if (name == "beckmann_lambda_matrix") {
+    const Vec3 w = in.vec3();
+    return values(brdf.beckmann_lambda_matrix(w, in.sym2()));
+  }
+  if (name == "ggx_g2_matrix") {
+    const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
+    return values(brdf.ggx_g2_matrix(i, o, h, in.sym2()));
+  }
+  if (name == "ggx_brdf_matrix") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    const Sym2 a = in.sym2();
+    return values(brdf.ggx_brdf_matrix(i, o, a, in.real()));
+  }
+  if (name == "beckmann_brdf_matrix") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    const Sym2 a = in.sym2();
+    return values(brdf.beckmann_brdf_matrix(i, o, a, in.real()));
+  }
+  if (name == "ggx_ndf_axis") {
+    const Vec3 h = in.vec3();
+    return values(brdf.ggx_ndf_axis(h, in.vec2()));
+  }
+  if (name == "ggx_lambda_axis") {
+    const Vec3 w = in.vec3();
+    return values(brdf.ggx_lambda_axis(w, in.vec2()));
+  }
+  if (name == "beckmann_ndf_axis") {
+    const Vec3 h = in.vec3();
+    return values(brdf.beckmann_ndf_axis(h, in.vec2()));
+  }
+  if (name == "ggx_brdf_axis") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    return values(brdf.ggx_brdf_axis(i, o, in.vec2()));
+  }
+  if (name == "beckmann_brdf_axis") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    return values(brdf.beckmann_brdf_axis(i, o, in.vec2()));
+  }
   throw std::runtime_error("no reference for " + name);
 }
 
@@ -293,7 +349,8 @@ Measured measure(const Function& f, const Inputs& in, const std::vector<float>& 
   const std::uint32_t elements = is_wrapper(f) ? kWidth * kWidth : kElements;
   for (std::uint32_t e = 0; e < elements; ++e) {
     if (in.min_alpha[e] < min_alpha) continue;
-    const auto expected = is_wrapper(f) ? reference_wrapper(params, f, in, e) : reference_core(params, f.name, in.data.data() + std::size_t{e} * in.layout.stride);
+    const auto expected = is_wrapper(f) ? reference_wrapper(params, f, in, e)
+                                        : reference_core(params, f.name, in.data.data() + std::size_t{e} * in.layout.stride);
     for (std::uint32_t k = 0; k < in.outputs; ++k) {
       const double g = got[std::size_t{e} * in.outputs + k], x = expected[k];
       ++m.count;
@@ -302,8 +359,8 @@ Measured measure(const Function& f, const Inputs& in, const std::vector<float>& 
         continue;
       }
       const double error = relative_metric(f) ? std::fabs(g - x) / scale_of(f, x)
-                           : matrix ? std::fabs(g - x) / std::max(1.0, expected[0] + expected[2])
-                                    : std::fabs(g - x);
+                           : matrix           ? std::fabs(g - x) / std::max(1.0, expected[0] + expected[2])
+                                              : std::fabs(g - x);
       if (error > m.max_error) m.max_error = error, m.worst = e;
     }
   }
@@ -396,9 +453,9 @@ TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
       }
       const Measured stated = measure(f, in, got, min_alpha);
       const double limit = half ? bound.fp16 : bound.min16;
-      std::string line = fmt::format("[ precision] {:<7} {:<36} max {} error {:.3g} (bound {:.3g}) over {} outputs{}", half ? "fp16" : "min16", name,
-                                     relative_metric(f) ? "relative" : "absolute", stated.max_error, limit, stated.count,
-                                     relative_metric(f) ? fmt::format(" with alpha >= {}", min_alpha) : "");
+      std::string line = fmt::format("[ precision] {:<7} {:<36} max {} error {:.3g} (bound {:.3g}) over {} outputs{}",
+                                     half ? "fp16" : "min16", name, relative_metric(f) ? "relative" : "absolute", stated.max_error, limit,
+                                     stated.count, relative_metric(f) ? fmt::format(" with alpha >= {}", min_alpha) : "");
       if (relative_metric(f)) {
         const Measured all = measure(f, in, got, 0.01);
         line += fmt::format("; alpha >= 0.01: max relative error {:.3g}, {} non-finite", all.max_error, all.non_finite);

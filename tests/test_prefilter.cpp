@@ -10,8 +10,8 @@
 
 #include "saagen/error.hpp"
 #include "saagen/products/prefilter.hpp"
-#include "saagen/reference/render/normal_map.hpp"
 #include "saagen/reference/reference.hpp"
+#include "saagen/reference/render/normal_map.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -113,7 +113,8 @@ TEST(PrefilterLevels, LeanMomentsMatchTheReferenceNormalMapWithinFloatRounding) 
         const double expected[5] = {t.slope_mean.x, t.slope_mean.y, t.slope_second.xx, t.slope_second.yy, t.slope_second.xy};
         const double got[5] = {value_at(image, level, 4 * i), value_at(image, level, 4 * i + 1), value_at(image, level, 4 * i + 2),
                                value_at(image, level, 4 * i + 3), value_at(image, level, 4 * (texels + i))};
-        for (int k = 0; k < 5; ++k) ASSERT_LE(std::fabs(got[k] - expected[k]), kFloatUlp * std::fabs(expected[k]) + 1e-12) << level << " " << k;
+        for (int k = 0; k < 5; ++k)
+          ASSERT_LE(std::fabs(got[k] - expected[k]), kFloatUlp * std::fabs(expected[k]) + 1e-12) << level << " " << k;
       }
   }
   const auto json = nlohmann::json::parse(key_value(image, "saagen.prefilter"));
@@ -262,7 +263,8 @@ class TexturePrefilterCli : public saagen::test::CliTest {
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_EQ(run.err.rfind("saagen: error: ", 0), 0u) << run.err;
     EXPECT_FALSE(fs::exists(output));
-    for (const auto& entry : fs::directory_iterator(scratch_)) EXPECT_EQ(entry.path().filename().string().find("saagen-tmp"), std::string::npos);
+    for (const auto& entry : fs::directory_iterator(scratch_))
+      EXPECT_EQ(entry.path().filename().string().find("saagen-tmp"), std::string::npos);
   }
 };
 
@@ -319,12 +321,14 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   EXPECT_DOUBLE_EQ(json["base_roughness"].get<double>(), 0.4);
   // The library on the decoded PNG gives the same file, byte for byte.
   const auto decoded = pf::read_normal_map(bytes_of(input), "normals.png");
-  const auto expected = saagen::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, pf::Domain::perceptual, 0.4}));
+  const auto expected =
+      saagen::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, pf::Domain::perceptual, 0.4}));
   EXPECT_EQ(bytes_of(output), expected);
   EXPECT_NEAR(value_at(image, 0, 0), 0.4, kHalfUlp);  // level 0: no spread, the base roughness
   for (std::size_t level = 1; level < image.levels.size(); ++level) EXPECT_GE(value_at(image, level, 0), 0.4 - kHalfUlp);
   // Running again leaves the file alone; a file saagen did not write is not replaced.
-  const auto again = saagen({"texture", "prefilter", input.string(), "-o", output.string(), "--domain", "perceptual", "--roughness", "0.4"});
+  const auto again =
+      saagen({"texture", "prefilter", input.string(), "-o", output.string(), "--domain", "perceptual", "--roughness", "0.4"});
   EXPECT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.out.find("unchanged"), std::string::npos) << again.out;
   const fs::path foreign = scratch_ / "foreign.ktx2";

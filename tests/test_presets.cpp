@@ -5,13 +5,14 @@
 // the engine's roughness domain, over >= 10^5 inputs; the largest |difference| is printed and
 // recorded. saagen's side is the reference filter (reference/saa.cpp) with the preset's sigma^2,
 // kappa and variant, wrapped in the reference's domain conversions.
+#include "engine_forms.hpp"
+
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
-#include "saagen/target/target.hpp"
-#include "saagen/validate/validation.hpp"
 #include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/saa.hpp"
-#include "engine_forms.hpp"
+#include "saagen/target/target.hpp"
+#include "saagen/validate/validation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,10 +26,10 @@
 namespace {
 
 namespace ref = saagen::ref;
-using ref::Vec3;
 using ref::RoughnessDomain;
-using saagen::test::EngineForm;
+using ref::Vec3;
 using saagen::test::engine_forms;
+using saagen::test::EngineForm;
 
 RoughnessDomain reference_domain(const std::string& id) {
   if (id == "alpha") return RoughnessDomain::alpha;
@@ -43,9 +44,12 @@ double saagen_preset(const saagen::Preset& preset, double value, Vec3 du, Vec3 d
   const RoughnessDomain domain = reference_domain(preset.domain);
   const double alpha2 = ref::alpha2_from_domain(domain, value);
   double filtered = 0.0;
-  if (preset.variant == "deferred-sum") filtered = ref::deferred_sum(params, alpha2, du, dv);
-  else if (preset.variant == "deferred-avg") filtered = ref::deferred_avg(params, alpha2, du, dv);
-  else ADD_FAILURE() << "no reference dispatch for " << preset.variant;
+  if (preset.variant == "deferred-sum")
+    filtered = ref::deferred_sum(params, alpha2, du, dv);
+  else if (preset.variant == "deferred-avg")
+    filtered = ref::deferred_avg(params, alpha2, du, dv);
+  else
+    ADD_FAILURE() << "no reference dispatch for " << preset.variant;
   return ref::domain_from_alpha2(domain, filtered);
 }
 
@@ -158,10 +162,12 @@ TEST(Domains, RoundTripWithoutKernelIsExact) {
     for (RoughnessDomain domain : {RoughnessDomain::alpha, RoughnessDomain::perceptual}) {
       ASSERT_EQ(ref::domain_from_alpha2(domain, ref::deferred_avg(params, ref::alpha2_from_domain(domain, value), zero, zero)), value);
     }
-    const double back = ref::domain_from_alpha2(RoughnessDomain::smoothness,
-                                                ref::deferred_avg(params, ref::alpha2_from_domain(RoughnessDomain::smoothness, value), zero, zero));
-    if (value >= 0.5) ASSERT_EQ(back, value);
-    else ASSERT_LE(std::fabs(back - value), 0x1p-53);
+    const double back = ref::domain_from_alpha2(
+        RoughnessDomain::smoothness, ref::deferred_avg(params, ref::alpha2_from_domain(RoughnessDomain::smoothness, value), zero, zero));
+    if (value >= 0.5)
+      ASSERT_EQ(back, value);
+    else
+      ASSERT_LE(std::fabs(back - value), 0x1p-53);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+
 #include <sys/wait.h>
 
 namespace {
@@ -35,15 +36,23 @@ class Report : public ::testing::Test {
     fs::create_directories(scratch_);
     // A cost file in bench_shading's --json format, so the plot and the cost columns are drawn.
     nlohmann::json rows = nlohmann::json::array();
-    const char* variants[] = {"forward-aniso-slope", "forward-aniso-projected", "forward-axis-slope", "forward-axis-projected",
-                              "deferred-previous", "deferred-max", "deferred-sum", "deferred-avg", "deferred-projected-space"};
+    const char* variants[] = {"forward-aniso-slope",
+                              "forward-aniso-projected",
+                              "forward-axis-slope",
+                              "forward-axis-projected",
+                              "deferred-previous",
+                              "deferred-max",
+                              "deferred-sum",
+                              "deferred-avg",
+                              "deferred-projected-space"};
     double ratio = 1.0;
     for (const char* variant : variants) {
       rows.push_back({{"target", "glsl"}, {"variant", variant}, {"ratio_median", ratio += 0.01}, {"delta_spirv_instructions", 20}});
     }
     std::ofstream(scratch_ / "cost.json") << nlohmann::json{{"device", "test fixture"}, {"rows", rows}}.dump();
-    const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' report --preset quick --cost '" + (scratch_ / "cost.json").string() +
-                                "' -o '" + (scratch_ / "report").string() + "' > '" + (scratch_ / "report.log").string() + "' 2>&1";
+    const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' report --preset quick --cost '" +
+                                (scratch_ / "cost.json").string() + "' -o '" + (scratch_ / "report").string() + "' > '" +
+                                (scratch_ / "report.log").string() + "' 2>&1";
     report_exit_ = run(command);
   }
   static void TearDownTestSuite() { fs::remove_all(scratch_); }
@@ -91,8 +100,9 @@ TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   for (std::size_t at = svg.find("#e67e22"); at != std::string::npos; at = svg.find("#e67e22", at + 1)) ++orange;
   EXPECT_EQ(orange, 7u);
   EXPECT_NE(svg.find(">engine-godot<"), std::string::npos);
-  for (const char* section : {"## Recommended configuration", "## Switching from an engine's shipped form", "## Per scene:",
-                              "| engine-hdrp | curved |", "LDR-FLIP", "HDR-FLIP", "TDE", "excess flicker", "lost motion", "flicker tm ratio"})
+  for (const char* section :
+       {"## Recommended configuration", "## Switching from an engine's shipped form", "## Per scene:", "| engine-hdrp | curved |",
+        "LDR-FLIP", "HDR-FLIP", "TDE", "excess flicker", "lost motion", "flicker tm ratio"})
     EXPECT_NE(markdown.find(section), std::string::npos) << section;
 }
 
@@ -101,9 +111,9 @@ TEST_F(Report, EveryImageLoadsInHeadlessChromium) {
   const fs::path dom = scratch_ / "dom.html";
   const std::string command =
       "chromium --headless --no-sandbox --disable-gpu --disable-background-networking --disable-component-update "
-      "--disable-sync --no-first-run --user-data-dir='" + (scratch_ / "profile").string() +
-      "' --virtual-time-budget=10000 --dump-dom 'file://" + (scratch_ / "report" / "index.html").string() + "' > '" + dom.string() +
-      "' 2> /dev/null";
+      "--disable-sync --no-first-run --user-data-dir='" +
+      (scratch_ / "profile").string() + "' --virtual-time-budget=10000 --dump-dom 'file://" +
+      (scratch_ / "report" / "index.html").string() + "' > '" + dom.string() + "' 2> /dev/null";
   ASSERT_EQ(run(command), 0) << "chromium did not run; scripts/install-deps.sh installs it";
   std::smatch match;
   const std::string page = read_text(dom);

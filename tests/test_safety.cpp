@@ -4,27 +4,28 @@
 //
 // The full disk is emulated with RLIMIT_FSIZE (`ulimit -f` in the child shell, SIGXFSZ ignored
 // so that write() fails with EFBIG): tmpfs and loop mounts need privileges a test cannot assume.
-#include "saagen/front/catalogue.hpp"
-#include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
-#include "saagen/scene/manifest.hpp"
-#include "saagen/io/output.hpp"
-#include "saagen/saagen.h"
-
 #include "cli_support.hpp"
+
+#include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/io/output.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/saagen.h"
+#include "saagen/scene/manifest.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <csignal>
 #include <set>
-#include <sys/wait.h>
+
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace {
@@ -163,14 +164,19 @@ TEST(ManifestLimits, NestingAndSizeAreCappedBeforeParsing) {
   EXPECT_NE(error_of("# " + std::string(2 << 20, 'x') + "\n").find("larger than 1024 KiB"), std::string::npos);
   // Non-ASCII outside comments never reaches toml++ 3.3, whose whitespace classification of
   // U+00A1..U+0499 and others is undefined behaviour (in keys, bare values and strings).
-  EXPECT_EQ(error_of("targets = [\"glsl\"]\npa\xcc\x88th = 1\n").rfind("m.toml:2:3: non-ASCII byte 0xcc", 0), 0u) << error_of("pa\xcc\x88th = 1\n");
-  EXPECT_EQ(error_of("x = \"\"\"a \\\n\xc2\xa1" "b\"\"\"\n").rfind("m.toml:2:1: non-ASCII", 0), 0u);
+  EXPECT_EQ(error_of("targets = [\"glsl\"]\npa\xcc\x88th = 1\n").rfind("m.toml:2:3: non-ASCII byte 0xcc", 0), 0u)
+      << error_of("pa\xcc\x88th = 1\n");
+  EXPECT_EQ(error_of("x = \"\"\"a \\\n\xc2\xa1"
+                     "b\"\"\"\n")
+                .rfind("m.toml:2:1: non-ASCII", 0),
+            0u);
   EXPECT_EQ(error_of("t = 1\"caf\xc3\xa9\"\n").rfind("m.toml:1:10: non-ASCII", 0), 0u);  // a bare value swallowing a quote
   EXPECT_EQ(error_of("# caf\xc3\xa9\ntargets = []\n").find("non-ASCII"), std::string::npos);
   // Dots in values, strings and comments are not nesting.
-  const std::string fine = "targets = [\"glsl\"] # a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\n"
-                           "name = \"a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\"\n"
-                           "sigma2 = 0.25\n[[material]]\nname = \"m\"\npath = \"deferred\"\n";
+  const std::string fine =
+      "targets = [\"glsl\"] # a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\n"
+      "name = \"a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\"\n"
+      "sigma2 = 0.25\n[[material]]\nname = \"m\"\npath = \"deferred\"\n";
   EXPECT_NE(error_of(fine).find("is not an identifier"), std::string::npos) << error_of(fine);
 }
 
@@ -225,12 +231,14 @@ TEST(Ownership, TheTagCountsOnlyWhereTheFormatPutsIt) {
   const auto spirv = [](std::uint32_t opcode, const std::string& text) {
     std::vector<std::uint32_t> words = {0x07230203u, 0x00010000u, 0u, 10u, 0u};
     std::vector<std::uint32_t> literal((text.size() + 4) / 4, 0u);
-    for (std::size_t index = 0; index < text.size(); ++index) literal[index / 4] |= std::uint32_t(static_cast<unsigned char>(text[index])) << (8 * (index % 4));
+    for (std::size_t index = 0; index < text.size(); ++index)
+      literal[index / 4] |= std::uint32_t(static_cast<unsigned char>(text[index])) << (8 * (index % 4));
     if (opcode == 7) literal.insert(literal.begin(), 1u);  // OpString's result id
     words.push_back(static_cast<std::uint32_t>((literal.size() + 1) << 16) | opcode);
     words.insert(words.end(), literal.begin(), literal.end());
     std::string bytes;
-    for (const std::uint32_t word : words) for (int shift = 0; shift < 32; shift += 8) bytes += static_cast<char>((word >> shift) & 0xffu);
+    for (const std::uint32_t word : words)
+      for (int shift = 0; shift < 32; shift += 8) bytes += static_cast<char>((word >> shift) & 0xffu);
     return bytes;
   };
   EXPECT_TRUE(owned(spirv(4, "saagen-output: compiled from s.frag")));
@@ -308,17 +316,20 @@ TEST_F(Safety, ReportAndBenchKeepForeignFilesAndFailBeforeRendering) {
 TEST_F(Safety, NoCommandWritesOverItsInputsNorOneFileTwice) {
   const std::string manifest = "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n";
   write(scratch_ / "out" / "saa_scene.glsl", manifest);
-  expect_one_line_error(saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "out").string(), "--force"}),
-                        "saa_scene.glsl: is an input of this command");
+  expect_one_line_error(
+      saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "out").string(), "--force"}),
+      "saa_scene.glsl: is an input of this command");
   EXPECT_EQ(read_text(scratch_ / "out" / "saa_scene.glsl"), manifest);
-  ASSERT_EQ(saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "bundle").string()}).exit_code, 0);
+  ASSERT_EQ(saagen({"emit", "--manifest", (scratch_ / "out" / "saa_scene.glsl").string(), "-o", (scratch_ / "bundle").string()}).exit_code,
+            0);
 
   write(scratch_ / "in.ktx2", "not decoded: refused before decoding");
   expect_one_line_error(saagen({"texture", "prefilter", (scratch_ / "in.ktx2").string(), "-o", (scratch_ / "in.ktx2").string(), "--force"}),
                         "in.ktx2: is an input of this command");
   fs::create_hard_link(scratch_ / "in.ktx2", scratch_ / "hard.ktx2");  // another name of the same file
-  expect_one_line_error(saagen({"texture", "prefilter", (scratch_ / "in.ktx2").string(), "-o", (scratch_ / "hard.ktx2").string(), "--force"}),
-                        "hard.ktx2: is an input of this command");
+  expect_one_line_error(
+      saagen({"texture", "prefilter", (scratch_ / "in.ktx2").string(), "-o", (scratch_ / "hard.ktx2").string(), "--force"}),
+      "hard.ktx2: is an input of this command");
   EXPECT_EQ(read_text(scratch_ / "in.ktx2"), "not decoded: refused before decoding");
   write(scratch_ / "n.ppm", "P6 1 1 255\n\x80\x80\xff");
   expect_one_line_error(saagen({"glints", "lean", (scratch_ / "n.ppm").string(), "-o", (scratch_ / "n.ppm").string(), "--force"}),
@@ -331,8 +342,10 @@ TEST_F(Safety, NoCommandWritesOverItsInputsNorOneFileTwice) {
   expect_one_line_error(saagen(twice), "two names of one file");
   EXPECT_FALSE(fs::exists(scratch_ / "r.f32"));
   write(scratch_ / "a.f32", "x");
-  ASSERT_EQ(saagen({"glints", "dictionary", "--count", "4", "--lods", "2", "--resolution", "4", "-o", (scratch_ / "d.ktx2").string(), "--raw",
-                    (scratch_ / "a.f32").string(), "--force"}).exit_code, 0);
+  ASSERT_EQ(saagen({"glints", "dictionary", "--count", "4", "--lods", "2", "--resolution", "4", "-o", (scratch_ / "d.ktx2").string(),
+                    "--raw", (scratch_ / "a.f32").string(), "--force"})
+                .exit_code,
+            0);
   fs::create_hard_link(scratch_ / "a.f32", scratch_ / "b.ktx2");
   auto hard = small_dictionary(scratch_ / "b.ktx2");
   hard.insert(hard.end(), {"--raw", (scratch_ / "a.f32").string(), "--force"});
@@ -377,8 +390,8 @@ TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
   for (const std::string& name : entries(out)) after[name] = read_text(out / name);
   EXPECT_EQ(after, before);  // no temporary left, every file as it was
 
-  const CliRun dictionary = saagen_with_file_limit(16, {"glints", "dictionary", "-o", (scratch_ / "g" / "d.ktx2").string(), "--raw",
-                                                        (scratch_ / "g" / "d.f32").string()});
+  const CliRun dictionary = saagen_with_file_limit(
+      16, {"glints", "dictionary", "-o", (scratch_ / "g" / "d.ktx2").string(), "--raw", (scratch_ / "g" / "d.f32").string()});
   EXPECT_EQ(dictionary.exit_code, 1) << dictionary.err;
   EXPECT_EQ(entries(scratch_ / "g"), std::set<std::string>{});
 }
@@ -408,7 +421,10 @@ TEST_F(Safety, ConcurrentRunsToOneOutputAllSucceedAndUnchangedFilesKeepTheirInod
   for (const int run : {0, 1}) {
     std::string command = shell_quote(SAAGEN_CLI_PATH);
     for (const std::string& argument : small_dictionary(output)) command.append(" ").append(shell_quote(argument));
-    pair.append(command).append(" >/dev/null 2>>").append(shell_quote((scratch_ / "errors.txt").string())).append(run == 0 ? " & " : "; wait");
+    pair.append(command)
+        .append(" >/dev/null 2>>")
+        .append(shell_quote((scratch_ / "errors.txt").string()))
+        .append(run == 0 ? " & " : "; wait");
   }
   for (int round = 0; round < 10; ++round) {
     fs::remove_all(scratch_ / "cc");
@@ -416,7 +432,8 @@ TEST_F(Safety, ConcurrentRunsToOneOutputAllSucceedAndUnchangedFilesKeepTheirInod
   }
   EXPECT_EQ(read_text(scratch_ / "errors.txt"), "");
   EXPECT_EQ(entries(scratch_ / "cc"), std::set<std::string>{"d.ktx2"});
-  struct stat first {}, second {};
+  struct stat first {
+  }, second{};
   ASSERT_EQ(::stat(output.c_str(), &first), 0);
   const CliRun again = saagen(small_dictionary(output));
   EXPECT_NE(again.out.find("unchanged"), std::string::npos) << again.out;
@@ -472,9 +489,13 @@ TEST_F(Safety, LeanErrorsNameTheFile) {
 
 TEST_F(Safety, EntryPointsAreChecked) {
   write(scratch_ / "h.hlsl", "RWStructuredBuffer<float> b;\n[numthreads(1, 1, 1)] void cs_main() { b[0] = 1.0; }\n");
-  expect_one_line_error(saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "nope", "-o", (scratch_ / "h.spv").string()}),
-                        "entry point 'nope' not found");
-  EXPECT_EQ(saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "cs_main", "-o", (scratch_ / "h.spv").string()}).exit_code, 0);
+  expect_one_line_error(
+      saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "nope", "-o", (scratch_ / "h.spv").string()}),
+      "entry point 'nope' not found");
+  EXPECT_EQ(
+      saagen({"compile", (scratch_ / "h.hlsl").string(), "--stage", "comp", "--entry", "cs_main", "-o", (scratch_ / "h.spv").string()})
+          .exit_code,
+      0);
   write(scratch_ / "g.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
   expect_one_line_error(saagen({"compile", (scratch_ / "g.comp").string(), "--entry", "cs_main", "-o", (scratch_ / "g.spv").string()}),
                         "--entry applies to HLSL only");
@@ -528,9 +549,12 @@ TEST_F(Safety, EveryReaderRefusesWhatWouldHangOrExhaustMemory) {
     for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((value >> shift) & 0xffu);
     return bytes;
   };
-  const auto chunk = [&](const std::string& type, const std::string& data) { return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(0); };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(0);
+  };
   const std::string ihdr = be32(16384) + be32(16384) + std::string("\x08\x02\x00\x00\x00", 5);
-  write(scratch_ / "huge.png", std::string("\x89PNG\r\n\x1A\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", std::string("x\x01", 2)) + chunk("IEND", ""));
+  write(scratch_ / "huge.png",
+        std::string("\x89PNG\r\n\x1A\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", std::string("x\x01", 2)) + chunk("IEND", ""));
   expect_one_line_error(timed({"texture", "prefilter", (scratch_ / "huge.png").string(), "-o", out}, &seconds),
                         "huge.png: 16384 x 16384 texels is larger than saagen reads (at most 8192 a side and 4096 x 4096 in all)");
   EXPECT_LT(seconds, 10.0);
@@ -566,7 +590,8 @@ TEST_F(Safety, AFifoInTheBenchCacheIsAMissNotAHang) {
   const fs::path planted = cache / *cached.begin();
   fs::remove(planted);
   ASSERT_EQ(::mkfifo(planted.c_str(), 0600), 0);
-  const CliRun run = run_shell("timeout 300 " + shell_quote(SAAGEN_CLI_PATH) + " bench --preset quick --cache " + shell_quote(cache.string()));
+  const CliRun run =
+      run_shell("timeout 300 " + shell_quote(SAAGEN_CLI_PATH) + " bench --preset quick --cache " + shell_quote(cache.string()));
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(fs::is_regular_file(planted));
   EXPECT_EQ(entries(cache), cached);
@@ -603,13 +628,15 @@ TEST_F(Safety, MessagesEscapeControlCharactersAndStayShort) {
   expect_one_line_error(huge, "bytes left out ...]");
   EXPECT_LT(huge.err.size(), saagen::max_message_bytes + 64);
   EXPECT_NE(huge.err.find("run `saagen list` to see the ids\n"), std::string::npos) << huge.err;
-  for (const auto& [run, expected] : {std::pair{saagen({"fo\no"}), std::string("unknown command 'fo\\no'")},
-                                      std::pair{saagen({"emit", "--bogus\x07", "-o", (scratch_ / "e").string()}), std::string("--bogus\\x07")}}) {
+  for (const auto& [run, expected] :
+       {std::pair{saagen({"fo\no"}), std::string("unknown command 'fo\\no'")},
+        std::pair{saagen({"emit", "--bogus\x07", "-o", (scratch_ / "e").string()}), std::string("--bogus\\x07")}}) {
     EXPECT_EQ(run.exit_code, 2);  // usage errors
     EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   }
-  write(scratch_ / "m.toml", "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprecision = \"fp\\u001b16\"\n");
+  write(scratch_ / "m.toml",
+        "name = \"scene\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprecision = \"fp\\u001b16\"\n");
   const CliRun manifest = saagen({"plan", (scratch_ / "m.toml").string()});
   expect_one_line_error(manifest, "m.toml:6:");
   EXPECT_EQ(manifest.err.find('\x1b'), std::string::npos) << manifest.err;
@@ -663,11 +690,13 @@ TEST_F(Safety, SeedsNegativeZeroAndManifestNumbersAreExact) {
     expect_one_line_error(saagen(arguments), "tiny.toml:3:10: key 'sigma2': 1e-10 is below the smallest normal fp16 number");
   }
   write(scratch_ / "subnormal.toml", manifest_head + "kappa = 1e-310\n" + material);
-  expect_one_line_error(saagen({"plan", (scratch_ / "subnormal.toml").string()}), "subnormal.toml:3:9: key 'kappa': 1e-310 is below the smallest normal fp32 number");
+  expect_one_line_error(saagen({"plan", (scratch_ / "subnormal.toml").string()}),
+                        "subnormal.toml:3:9: key 'kappa': 1e-310 is below the smallest normal fp32 number");
   for (const std::string value : {"nan", "inf", "-inf", "-nan"}) {
     for (const std::string key : {"sigma2", "kappa"}) {
       write(scratch_ / "bad.toml", manifest_head + key + " = " + value + "\n" + material);
-      expect_one_line_error(saagen({"plan", (scratch_ / "bad.toml").string()}), "bad.toml:3:" + std::to_string(key.size() + 4) + ": key '" + key + "'");
+      expect_one_line_error(saagen({"plan", (scratch_ / "bad.toml").string()}),
+                            "bad.toml:3:" + std::to_string(key.size() + 4) + ": key '" + key + "'");
     }
   }
   EXPECT_FALSE(fs::exists(scratch_ / "t"));
@@ -676,7 +705,8 @@ TEST_F(Safety, SeedsNegativeZeroAndManifestNumbersAreExact) {
 TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
   write(scratch_ / "a-file", "x");
   double seconds = 0.0;
-  expect_one_line_error(timed({"report", "--preset", "quick", "-o", (scratch_ / "a-file").string()}, &seconds), "cannot create the output directory");
+  expect_one_line_error(timed({"report", "--preset", "quick", "-o", (scratch_ / "a-file").string()}, &seconds),
+                        "cannot create the output directory");
   EXPECT_LT(seconds, 10.0);
   expect_one_line_error(timed({"bench", "--preset", "quick", "--json", (scratch_ / "a-file" / "t.json").string()}, &seconds),
                         "cannot create the output directory");

@@ -7,6 +7,8 @@
 //
 // Runtime: G-buffers at the base 256 x 256 view of the unit sphere cost ~4 ray casts per pixel,
 // the ground-truth smoke renders are 16 x 16 x 16 spp; the binary runs in a few seconds.
+#include "saagen/reference/render/render.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,8 +16,6 @@
 #include <cstdio>
 #include <string>
 #include <vector>
-
-#include "saagen/reference/render/render.hpp"
 
 using namespace saagen::render;
 namespace ref = saagen::ref;
@@ -26,50 +26,46 @@ namespace {
 
 constexpr double kPi = ref::kPi;
 
-double angle_between(Vec3 a, Vec3 b) {
-    return std::atan2(ref::length(ref::cross(a, b)), ref::dot(a, b));
-}
+double angle_between(Vec3 a, Vec3 b) { return std::atan2(ref::length(ref::cross(a, b)), ref::dot(a, b)); }
 
 // Orthonormal, right-handed (b = n x t) frame.
 void expect_frame(Vec3 n, Vec3 t, Vec3 b, const std::string& what, double tol = 1e-12) {
-    EXPECT_NEAR(ref::length(n), 1.0, tol) << what;
-    EXPECT_NEAR(ref::length(t), 1.0, tol) << what;
-    EXPECT_NEAR(ref::dot(n, t), 0.0, tol) << what;
-    EXPECT_LT(ref::length(b - ref::cross(n, t)), tol) << what;
+  EXPECT_NEAR(ref::length(n), 1.0, tol) << what;
+  EXPECT_NEAR(ref::length(t), 1.0, tol) << what;
+  EXPECT_NEAR(ref::dot(n, t), 0.0, tol) << what;
+  EXPECT_LT(ref::length(b - ref::cross(n, t)), tol) << what;
 }
 
 // The sphere's uv (scene.hpp) at a point of the unit sphere, times the tiling.
-Vec2 sphere_uv(Vec3 p, Vec2 tiling) {
-    return tiling * Vec2{std::atan2(p.x, p.z) / (2.0 * kPi) + 0.5, 1.0 - std::acos(p.y) / kPi};
-}
+Vec2 sphere_uv(Vec3 p, Vec2 tiling) { return tiling * Vec2{std::atan2(p.x, p.z) / (2.0 * kPi) + 0.5, 1.0 - std::acos(p.y) / kPi}; }
 
 // The analytic first hit of a ray with the unit sphere at the origin (the unrotated nmap
 // scenes); false on a miss.
 bool unit_sphere_hit(const Ray& r, Vec3& p) {
-    const double b = ref::dot(r.origin, r.direction);
-    const double c = ref::dot(r.origin, r.origin) - 1.0;
-    const double disc = b * b - c;
-    if (disc < 0.0) return false;
-    p = r.origin + (-b - std::sqrt(disc)) * r.direction;
-    return true;
+  const double b = ref::dot(r.origin, r.direction);
+  const double c = ref::dot(r.origin, r.origin) - 1.0;
+  const double disc = b * b - c;
+  if (disc < 0.0) return false;
+  p = r.origin + (-b - std::sqrt(disc)) * r.direction;
+  return true;
 }
 
 // Texture uv seen through film position (fx, fy) of a size x size view of an nmap scene.
 Vec2 film_uv(const Scene& scene, double fx, double fy, int size) {
-    Vec3 p;
-    EXPECT_TRUE(unit_sphere_hit(scene.camera().generate(fx, fy, size, size), p));
-    return sphere_uv(p, scene.uv_tiling());
+  Vec3 p;
+  EXPECT_TRUE(unit_sphere_hit(scene.camera().generate(fx, fy, size, size), p));
+  return sphere_uv(p, scene.uv_tiling());
 }
 
 // log2 of the analytic texel footprint at film position (fx, fy): rho = max(|d(uv size)/dx|,
 // |d(uv size)/dy|) (Vulkan's isotropic rho) with the derivatives of the exact film -> uv map
 // taken by central differences (step 1e-3 px: truncation error ~1e-7 of the derivative).
 double analytic_lod(const Scene& scene, double fx, double fy, int size) {
-    const double e = 1e-3;
-    const double texels = kContentNormalMapSize;
-    const Vec2 dx = (film_uv(scene, fx + e, fy, size) - film_uv(scene, fx - e, fy, size)) / (2.0 * e);
-    const Vec2 dy = (film_uv(scene, fx, fy + e, size) - film_uv(scene, fx, fy - e, size)) / (2.0 * e);
-    return std::log2(std::max(ref::length(dx) * texels, ref::length(dy) * texels));
+  const double e = 1e-3;
+  const double texels = kContentNormalMapSize;
+  const Vec2 dx = (film_uv(scene, fx + e, fy, size) - film_uv(scene, fx - e, fy, size)) / (2.0 * e);
+  const Vec2 dy = (film_uv(scene, fx, fy + e, size) - film_uv(scene, fx, fy - e, size)) / (2.0 * e);
+  return std::log2(std::max(ref::length(dx) * texels, ref::length(dy) * texels));
 }
 
 // Bound of the linear-interpolation error over a triangle of parameter legs (hu, hv) for a
@@ -79,27 +75,26 @@ double analytic_lod(const Scene& scene, double fx, double fy, int size) {
 // Cauchy-Schwarz, sum_i l_i |du_i dv_i| <= hu hv / 4. So |e| <= (fuu hu^2 + 2 fuv hu hv +
 // fvv hv^2) / 8.
 double interpolation_bound(double fuu, double fuv, double fvv, double hu, double hv) {
-    return (fuu * hu * hu + 2.0 * fuv * hu * hv + fvv * hv * hv) / 8.0;
+  return (fuu * hu * hu + 2.0 * fuv * hu * hv + fvv * hv * hv) / 8.0;
 }
 
 // Largest second-derivative norms of a vector field of (u, v) over the unit square, by central
 // differences on a grid (step h; sampled every `stride` vertices of a fine grid).
 template <class F>
 void max_second_derivatives(F&& f, double& fuu, double& fuv, double& fvv) {
-    const double h = 1e-4;
-    fuu = fuv = fvv = 0.0;
-    for (int i = 0; i < 2048; ++i)
-        for (int j = 0; j < 48; ++j) {
-            const Vec2 x{(i + 0.5) / 2048.0, (j + 0.5) / 48.0};
-            const Vec3 c = f(x);
-            const Vec3 uu = (f(x + Vec2{h, 0.0}) - 2.0 * c + f(x - Vec2{h, 0.0})) / (h * h);
-            const Vec3 vv = (f(x + Vec2{0.0, h}) - 2.0 * c + f(x - Vec2{0.0, h})) / (h * h);
-            const Vec3 uv = (f(x + Vec2{h, h}) - f(x + Vec2{h, -h}) - f(x + Vec2{-h, h}) +
-                             f(x + Vec2{-h, -h})) / (4.0 * h * h);
-            fuu = std::max(fuu, ref::length(uu));
-            fuv = std::max(fuv, ref::length(uv));
-            fvv = std::max(fvv, ref::length(vv));
-        }
+  const double h = 1e-4;
+  fuu = fuv = fvv = 0.0;
+  for (int i = 0; i < 2048; ++i)
+    for (int j = 0; j < 48; ++j) {
+      const Vec2 x{(i + 0.5) / 2048.0, (j + 0.5) / 48.0};
+      const Vec3 c = f(x);
+      const Vec3 uu = (f(x + Vec2{h, 0.0}) - 2.0 * c + f(x - Vec2{h, 0.0})) / (h * h);
+      const Vec3 vv = (f(x + Vec2{0.0, h}) - 2.0 * c + f(x - Vec2{0.0, h})) / (h * h);
+      const Vec3 uv = (f(x + Vec2{h, h}) - f(x + Vec2{h, -h}) - f(x + Vec2{-h, h}) + f(x + Vec2{-h, -h})) / (4.0 * h * h);
+      fuu = std::max(fuu, ref::length(uu));
+      fuv = std::max(fuv, ref::length(uv));
+      fvv = std::max(fvv, ref::length(vv));
+    }
 }
 
 }  // namespace
@@ -111,32 +106,31 @@ void max_second_derivatives(F&& f, double& fuu, double& fuv, double& fvv) {
 // rays aimed at random points of the knot's bounding box from random directions, and agree on
 // misses.
 TEST(Mesh, BvhEqualsBruteForce) {
-    const TriangleMesh& mesh = *content_torus_knot_mesh();
-    EXPECT_EQ(mesh.triangles().size(), 2u * 512u * 24u);
-    EXPECT_LE(mesh.bvh_depth(), 20);  // median splits of 24576 triangles into leaves of <= 4
-    Rng rng(12345);
-    int hits = 0;
-    const int n_rays = 3000;
-    for (int i = 0; i < n_rays; ++i) {
-        // Origin on a sphere of radius 4, target uniform in [-1.7, 1.7]^2 x [-0.7, 0.7].
-        const double z = 2.0 * rng.next_double() - 1.0, phi = 2.0 * kPi * rng.next_double();
-        const double s = std::sqrt(1.0 - z * z);
-        const Vec3 origin = 4.0 * Vec3{s * std::cos(phi), s * std::sin(phi), z};
-        const Vec3 target{3.4 * rng.next_double() - 1.7, 3.4 * rng.next_double() - 1.7,
-                          1.4 * rng.next_double() - 0.7};
-        const Ray ray{origin, ref::normalize(target - origin)};
-        SurfaceHit a, b;
-        const bool hit_a = mesh.intersect(ray, 0.0, a);
-        const bool hit_b = mesh.intersect_brute_force(ray, 0.0, b);
-        ASSERT_EQ(hit_a, hit_b) << "ray " << i;
-        if (!hit_a) continue;
-        ++hits;
-        EXPECT_EQ(a.t, b.t) << "ray " << i;
-        EXPECT_EQ(a.uv, b.uv) << "ray " << i;
-        EXPECT_EQ(a.normal, b.normal) << "ray " << i;
-    }
-    std::printf("BVH vs brute force: %d rays, %d hits\n", n_rays, hits);
-    EXPECT_GT(hits, n_rays / 5);  // the comparison must cover many hits, not just misses
+  const TriangleMesh& mesh = *content_torus_knot_mesh();
+  EXPECT_EQ(mesh.triangles().size(), 2u * 512u * 24u);
+  EXPECT_LE(mesh.bvh_depth(), 20);  // median splits of 24576 triangles into leaves of <= 4
+  Rng rng(12345);
+  int hits = 0;
+  const int n_rays = 3000;
+  for (int i = 0; i < n_rays; ++i) {
+    // Origin on a sphere of radius 4, target uniform in [-1.7, 1.7]^2 x [-0.7, 0.7].
+    const double z = 2.0 * rng.next_double() - 1.0, phi = 2.0 * kPi * rng.next_double();
+    const double s = std::sqrt(1.0 - z * z);
+    const Vec3 origin = 4.0 * Vec3{s * std::cos(phi), s * std::sin(phi), z};
+    const Vec3 target{3.4 * rng.next_double() - 1.7, 3.4 * rng.next_double() - 1.7, 1.4 * rng.next_double() - 0.7};
+    const Ray ray{origin, ref::normalize(target - origin)};
+    SurfaceHit a, b;
+    const bool hit_a = mesh.intersect(ray, 0.0, a);
+    const bool hit_b = mesh.intersect_brute_force(ray, 0.0, b);
+    ASSERT_EQ(hit_a, hit_b) << "ray " << i;
+    if (!hit_a) continue;
+    ++hits;
+    EXPECT_EQ(a.t, b.t) << "ray " << i;
+    EXPECT_EQ(a.uv, b.uv) << "ray " << i;
+    EXPECT_EQ(a.normal, b.normal) << "ray " << i;
+  }
+  std::printf("BVH vs brute force: %d rays, %d hits\n", n_rays, hits);
+  EXPECT_GT(hits, n_rays / 5);  // the comparison must cover many hits, not just misses
 }
 
 // Interpolated normals and positions against the analytic tube at the same (interpolated) uv,
@@ -145,55 +139,56 @@ TEST(Mesh, BvhEqualsBruteForce) {
 // The normal error e of the interpolated vector turns into an angle <= |e| / (1 - |e|) after
 // normalisation. Vertex normals and tangents must be the analytic ones (rounding only).
 TEST(Mesh, KnotNormalsMatchAnalyticTube) {
-    const TorusKnot& knot = content_torus_knot();
-    const TriangleMesh& mesh = *content_torus_knot_mesh();
-    for (const MeshVertex& v : mesh.vertices()) {
-        const Vec2 uv{std::fmod(v.uv.x, 1.0), std::fmod(v.uv.y, 1.0)};
-        ASSERT_LT(ref::length(v.normal - knot.normal(uv)), 1e-14);
-        ASSERT_LT(ref::length(v.tangent - knot.tangent(uv)), 1e-14);
-        ASSERT_LT(std::fabs(ref::dot(v.normal, v.tangent)), 1e-14);  // T is orthogonal to N1, N2
-    }
+  const TorusKnot& knot = content_torus_knot();
+  const TriangleMesh& mesh = *content_torus_knot_mesh();
+  for (const MeshVertex& v : mesh.vertices()) {
+    const Vec2 uv{std::fmod(v.uv.x, 1.0), std::fmod(v.uv.y, 1.0)};
+    ASSERT_LT(ref::length(v.normal - knot.normal(uv)), 1e-14);
+    ASSERT_LT(ref::length(v.tangent - knot.tangent(uv)), 1e-14);
+    ASSERT_LT(std::fabs(ref::dot(v.normal, v.tangent)), 1e-14);  // T is orthogonal to N1, N2
+  }
 
-    double nuu, nuv, nvv, suu, suv, svv;
-    max_second_derivatives([&](Vec2 uv) { return knot.normal(uv); }, nuu, nuv, nvv);
-    max_second_derivatives([&](Vec2 uv) { return knot.point(uv); }, suu, suv, svv);
-    // n turns by 2 pi per unit v in the plane normal to T: |n_vv| = (2 pi)^2.
-    EXPECT_NEAR(nvv, 4.0 * kPi * kPi, 1e-3 * 4.0 * kPi * kPi);
-    const double hu = 1.0 / knot.segments, hv = 1.0 / knot.sides;
-    const double e_normal = 1.05 * interpolation_bound(nuu, nuv, nvv, hu, hv);
-    const double angle_bound = e_normal / (1.0 - e_normal);
-    const double position_bound = 1.05 * interpolation_bound(suu, suv, svv, hu, hv);
+  double nuu, nuv, nvv, suu, suv, svv;
+  max_second_derivatives([&](Vec2 uv) { return knot.normal(uv); }, nuu, nuv, nvv);
+  max_second_derivatives([&](Vec2 uv) { return knot.point(uv); }, suu, suv, svv);
+  // n turns by 2 pi per unit v in the plane normal to T: |n_vv| = (2 pi)^2.
+  EXPECT_NEAR(nvv, 4.0 * kPi * kPi, 1e-3 * 4.0 * kPi * kPi);
+  const double hu = 1.0 / knot.segments, hv = 1.0 / knot.sides;
+  const double e_normal = 1.05 * interpolation_bound(nuu, nuv, nvv, hu, hv);
+  const double angle_bound = e_normal / (1.0 - e_normal);
+  const double position_bound = 1.05 * interpolation_bound(suu, suv, svv, hu, hv);
 
-    Rng rng(777);
-    double worst_angle = 0.0, worst_distance = 0.0;
-    const Ray dummy{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
-    for (int i = 0; i < 20000; ++i) {
-        const int tri = static_cast<int>(rng.next_double() * mesh.triangles().size());
-        double b1 = rng.next_double(), b2 = rng.next_double();
-        if (b1 + b2 > 1.0) {
-            b1 = 1.0 - b1;
-            b2 = 1.0 - b2;
-        }
-        SurfaceHit hit;
-        mesh.fill_hit(tri, dummy, 0.0, b1, b2, hit);
-        const auto& t = mesh.triangles()[tri];
-        const Vec3 x = (1.0 - b1 - b2) * mesh.vertices()[t[0]].position +
-                       b1 * mesh.vertices()[t[1]].position + b2 * mesh.vertices()[t[2]].position;
-        worst_angle = std::max(worst_angle, angle_between(hit.normal, knot.normal(hit.uv)));
-        worst_distance = std::max(worst_distance, ref::length(x - knot.point(hit.uv)));
-        expect_frame(hit.normal, hit.tangent, hit.bitangent, "mesh hit frame");
+  Rng rng(777);
+  double worst_angle = 0.0, worst_distance = 0.0;
+  const Ray dummy{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
+  for (int i = 0; i < 20000; ++i) {
+    const int tri = static_cast<int>(rng.next_double() * mesh.triangles().size());
+    double b1 = rng.next_double(), b2 = rng.next_double();
+    if (b1 + b2 > 1.0) {
+      b1 = 1.0 - b1;
+      b2 = 1.0 - b2;
     }
-    std::printf("knot: |n_uu| %.1f |n_uv| %.1f |n_vv| %.2f -> normal bound %.5f rad, worst %.5f; "
-                "position bound %.5f, worst %.5f\n",
-                nuu, nuv, nvv, angle_bound, worst_angle, position_bound, worst_distance);
-    EXPECT_LT(worst_angle, angle_bound);
-    EXPECT_LT(worst_distance, position_bound);
-    // The bound must be tight enough to mean something: the tube's 24 sides alone give
-    // (2 pi / 24)^2 / 8 = 0.0086 rad. The observed error sits well below it because |n_vv| =
-    // (2 pi)^2 points along -n, and renormalisation removes that part of the interpolation
-    // error (nlerp between two unit normals stays on their great circle), but not 10x below.
-    EXPECT_LT(angle_bound, 0.02);
-    EXPECT_GT(worst_angle, 0.1 * angle_bound);
+    SurfaceHit hit;
+    mesh.fill_hit(tri, dummy, 0.0, b1, b2, hit);
+    const auto& t = mesh.triangles()[tri];
+    const Vec3 x =
+        (1.0 - b1 - b2) * mesh.vertices()[t[0]].position + b1 * mesh.vertices()[t[1]].position + b2 * mesh.vertices()[t[2]].position;
+    worst_angle = std::max(worst_angle, angle_between(hit.normal, knot.normal(hit.uv)));
+    worst_distance = std::max(worst_distance, ref::length(x - knot.point(hit.uv)));
+    expect_frame(hit.normal, hit.tangent, hit.bitangent, "mesh hit frame");
+  }
+  std::printf(
+      "knot: |n_uu| %.1f |n_uv| %.1f |n_vv| %.2f -> normal bound %.5f rad, worst %.5f; "
+      "position bound %.5f, worst %.5f\n",
+      nuu, nuv, nvv, angle_bound, worst_angle, position_bound, worst_distance);
+  EXPECT_LT(worst_angle, angle_bound);
+  EXPECT_LT(worst_distance, position_bound);
+  // The bound must be tight enough to mean something: the tube's 24 sides alone give
+  // (2 pi / 24)^2 / 8 = 0.0086 rad. The observed error sits well below it because |n_vv| =
+  // (2 pi)^2 points along -n, and renormalisation removes that part of the interpolation
+  // error (nlerp between two unit normals stays on their great circle), but not 10x below.
+  EXPECT_LT(angle_bound, 0.02);
+  EXPECT_GT(worst_angle, 0.1 * angle_bound);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -205,42 +200,40 @@ TEST(Mesh, KnotNormalsMatchAnalyticTube) {
 // to the geometric normal, dpdu x dpdv is along the geometric normal, and the shading normal
 // tilts by no more than the map's largest tilt (30 degrees by the slope bound).
 TEST(Frames, GeometricAndShadingFramesAreOrthonormal) {
-    std::vector<SceneId> ids{content_scenes().begin(), content_scenes().end()};
-    ids.insert(ids.end(), all_scenes().begin(), all_scenes().end());
-    const int size = 48;
-    for (SceneId id : ids) {
-        const Scene scene = make_scene(id, 0.05);
-        const std::string name(scene_name(id));
-        int hits = 0;
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x) {
-                SurfaceHit h;
-                if (!scene.intersect(scene.camera().generate(x + 0.5, y + 0.5, size, size), h)) continue;
-                ++hits;
-                expect_frame(h.normal, h.tangent, h.bitangent, name + " shading");
-                expect_frame(h.geometric_normal, h.geometric_tangent, h.geometric_bitangent,
-                             name + " geometric");
-                const Vec3 plane = ref::cross(h.dpdu, h.dpdv);
-                if (id == SceneId::bump_plane) {
-                    EXPECT_LT(ref::length(h.geometric_normal - Vec3{0.0, 1.0, 0.0}), 1e-15);
-                } else if (scene.normal_map()) {
-                    const Vec3 n = h.geometric_normal;
-                    const Vec3 t = ref::normalize(h.dpdu - ref::dot(h.dpdu, n) * n);
-                    EXPECT_LT(ref::length(h.geometric_tangent - t), 1e-14) << name;
-                    EXPECT_EQ(h.bitangent_sign, 1.0) << name;
-                    EXPECT_LT(angle_between(h.normal, h.geometric_normal), 30.0 * kPi / 180.0) << name;
-                } else {
-                    EXPECT_EQ(h.geometric_normal, h.normal) << name;
-                    EXPECT_EQ(h.geometric_tangent, h.tangent) << name;
-                }
-                // The analytic shapes' dpdu x dpdv is along the normal (up to sign);
-                // a mesh's is the face normal, within the tessellation angle of the vertex normal.
-                const double tilt = std::asin(std::min(1.0, ref::length(ref::cross(
-                    ref::normalize(plane), h.geometric_normal))));
-                EXPECT_LT(tilt, id == SceneId::torus_knot ? 0.2 : 1e-9) << name;
-            }
-        EXPECT_GT(hits, size * size / 5) << name;
-    }
+  std::vector<SceneId> ids{content_scenes().begin(), content_scenes().end()};
+  ids.insert(ids.end(), all_scenes().begin(), all_scenes().end());
+  const int size = 48;
+  for (SceneId id : ids) {
+    const Scene scene = make_scene(id, 0.05);
+    const std::string name(scene_name(id));
+    int hits = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        SurfaceHit h;
+        if (!scene.intersect(scene.camera().generate(x + 0.5, y + 0.5, size, size), h)) continue;
+        ++hits;
+        expect_frame(h.normal, h.tangent, h.bitangent, name + " shading");
+        expect_frame(h.geometric_normal, h.geometric_tangent, h.geometric_bitangent, name + " geometric");
+        const Vec3 plane = ref::cross(h.dpdu, h.dpdv);
+        if (id == SceneId::bump_plane) {
+          EXPECT_LT(ref::length(h.geometric_normal - Vec3{0.0, 1.0, 0.0}), 1e-15);
+        } else if (scene.normal_map()) {
+          const Vec3 n = h.geometric_normal;
+          const Vec3 t = ref::normalize(h.dpdu - ref::dot(h.dpdu, n) * n);
+          EXPECT_LT(ref::length(h.geometric_tangent - t), 1e-14) << name;
+          EXPECT_EQ(h.bitangent_sign, 1.0) << name;
+          EXPECT_LT(angle_between(h.normal, h.geometric_normal), 30.0 * kPi / 180.0) << name;
+        } else {
+          EXPECT_EQ(h.geometric_normal, h.normal) << name;
+          EXPECT_EQ(h.geometric_tangent, h.tangent) << name;
+        }
+        // The analytic shapes' dpdu x dpdv is along the normal (up to sign);
+        // a mesh's is the face normal, within the tessellation angle of the vertex normal.
+        const double tilt = std::asin(std::min(1.0, ref::length(ref::cross(ref::normalize(plane), h.geometric_normal))));
+        EXPECT_LT(tilt, id == SceneId::torus_knot ? 0.2 : 1e-9) << name;
+      }
+    EXPECT_GT(hits, size * size / 5) << name;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -251,39 +244,39 @@ TEST(Frames, GeometricAndShadingFramesAreOrthonormal) {
 // rho, b = n x t (v grows upwards, so the bitangent sign is +1). At a uv chosen on a texel
 // centre the bilinear sample is that texel's normal.
 TEST(NormalMapped, GroundTruthNormalIsLevel0Bilinear) {
-    const Scene scene = make_scene(SceneId::nmap_sphere);
-    const NormalMap& map = *scene.normal_map();
-    const int texels = kContentNormalMapSize;
-    // Texel (700, 260) of the tiled texture: uv = ((700.5, 260.5) / 512), u / 2 and v in the
-    // sphere's own parameterisation; its point p(u, v) on the unit sphere.
-    const Vec2 texel_uv{700.5 / texels, 260.5 / texels};
-    const double phi = 2.0 * kPi * (texel_uv.x / 2.0 - 0.5), theta = kPi * (1.0 - texel_uv.y);
-    const Vec3 p{std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi)};
-    const Ray ray{scene.camera().position, ref::normalize(p - scene.camera().position)};
-    SurfaceHit hit;
-    ASSERT_TRUE(scene.intersect(ray, hit));
-    EXPECT_LT(ref::length(hit.position - p), 1e-12);
-    EXPECT_NEAR(hit.uv.x, texel_uv.x, 1e-12);
-    EXPECT_NEAR(hit.uv.y, texel_uv.y, 1e-12);
-    EXPECT_EQ(hit.bitangent_sign, 1.0);
+  const Scene scene = make_scene(SceneId::nmap_sphere);
+  const NormalMap& map = *scene.normal_map();
+  const int texels = kContentNormalMapSize;
+  // Texel (700, 260) of the tiled texture: uv = ((700.5, 260.5) / 512), u / 2 and v in the
+  // sphere's own parameterisation; its point p(u, v) on the unit sphere.
+  const Vec2 texel_uv{700.5 / texels, 260.5 / texels};
+  const double phi = 2.0 * kPi * (texel_uv.x / 2.0 - 0.5), theta = kPi * (1.0 - texel_uv.y);
+  const Vec3 p{std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi)};
+  const Ray ray{scene.camera().position, ref::normalize(p - scene.camera().position)};
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect(ray, hit));
+  EXPECT_LT(ref::length(hit.position - p), 1e-12);
+  EXPECT_NEAR(hit.uv.x, texel_uv.x, 1e-12);
+  EXPECT_NEAR(hit.uv.y, texel_uv.y, 1e-12);
+  EXPECT_EQ(hit.bitangent_sign, 1.0);
 
-    const Vec3 n = p;
-    const Vec3 t = ref::normalize(Vec3{p.z, 0.0, -p.x});
-    const Vec3 b = ref::cross(n, t);
-    auto tbn = [&](Vec3 m) { return ref::normalize(m.x * t + m.y * b + m.z * n); };
-    const Vec3 expected = tbn(ref::normalize(map.bilinear(0, hit.uv).normal));
-    EXPECT_LT(angle_between(hit.normal, expected), 1e-12);
-    // On the texel centre the bilinear weights are (1, 0, 0, 0) up to |uv error| * 512 ~ 1e-9.
-    EXPECT_LT(angle_between(hit.normal, tbn(map.texel(0, 700, 260).normal)), 1e-8);
-    // The map tilts that normal away from the geometric one (it is not a no-op).
-    EXPECT_GT(angle_between(hit.normal, hit.geometric_normal), 1e-3);
-    expect_frame(hit.normal, hit.tangent, hit.bitangent, "mapped frame");
+  const Vec3 n = p;
+  const Vec3 t = ref::normalize(Vec3{p.z, 0.0, -p.x});
+  const Vec3 b = ref::cross(n, t);
+  auto tbn = [&](Vec3 m) { return ref::normalize(m.x * t + m.y * b + m.z * n); };
+  const Vec3 expected = tbn(ref::normalize(map.bilinear(0, hit.uv).normal));
+  EXPECT_LT(angle_between(hit.normal, expected), 1e-12);
+  // On the texel centre the bilinear weights are (1, 0, 0, 0) up to |uv error| * 512 ~ 1e-9.
+  EXPECT_LT(angle_between(hit.normal, tbn(map.texel(0, 700, 260).normal)), 1e-8);
+  // The map tilts that normal away from the geometric one (it is not a no-op).
+  EXPECT_GT(angle_between(hit.normal, hit.geometric_normal), 1e-3);
+  expect_frame(hit.normal, hit.tangent, hit.bitangent, "mapped frame");
 
-    // intersect_surface gives the unmapped hit.
-    SurfaceHit base;
-    ASSERT_TRUE(scene.intersect_surface(ray, base));
-    EXPECT_EQ(base.normal, hit.geometric_normal);
-    EXPECT_EQ(base.uv, hit.uv);
+  // intersect_surface gives the unmapped hit.
+  SurfaceHit base;
+  ASSERT_TRUE(scene.intersect_surface(ray, base));
+  EXPECT_EQ(base.normal, hit.geometric_normal);
+  EXPECT_EQ(base.uv, hit.uv);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -295,37 +288,36 @@ TEST(NormalMapped, GroundTruthNormalIsLevel0Bilinear) {
 // shaded pixel by at most the derivative's variation over the quad: 1.5 x the spread of the
 // analytic LOD over the quad's four centres (1.5 for the curvature within the quad) + 1e-6.
 TEST(NormalMapped, OneSppLodIsLog2OfAnalyticFootprint) {
-    const int size = 256;
-    for (SceneId id : {SceneId::nmap_sphere, SceneId::nmap_sphere_fine}) {
-        const Scene scene = make_scene(id);
-        const GBuffer g = render_gbuffer(scene, size, size, 2);
-        Rng rng(99);
-        int checked = 0;
-        double worst = 0.0;
-        for (int i = 0; i < 400; ++i) {
-            const int x = 40 + static_cast<int>(rng.next_double() * 176);
-            const int y = 40 + static_cast<int>(rng.next_double() * 176);
-            const int x0 = x & ~1, y0 = y & ~1;
-            bool quad_on_sphere = true;
-            for (int q = 0; q < 4; ++q) quad_on_sphere = quad_on_sphere && g.at(x0 + (q & 1), y0 + q / 2).hit;
-            // Stay away from the rim, where the footprint changes by octaves across a quad.
-            const double r = std::hypot(x + 0.5 - size / 2.0, y + 0.5 - size / 2.0);
-            if (!quad_on_sphere || r > 80.0) continue;
-            const PixelFields& f = g.at(x, y);
-            ASSERT_TRUE(f.has_normal_map);
-            const double expected = analytic_lod(scene, x + 0.5, y + 0.5, size);
-            double spread = 0.0;
-            for (int q = 0; q < 4; ++q)
-                spread = std::max(spread, std::fabs(analytic_lod(scene, x0 + (q & 1) + 0.5, y0 + q / 2 + 0.5, size) - expected));
-            const double tol = 1.5 * spread + 1e-6;
-            EXPECT_NEAR(f.lod, expected, tol) << scene_name(id) << " pixel " << x << "," << y;
-            worst = std::max(worst, std::fabs(f.lod - expected) / tol);
-            ++checked;
-        }
-        std::printf("%s: %d pixels, worst |lod - analytic| / tolerance %.3f\n",
-                    std::string(scene_name(id)).c_str(), checked, worst);
-        EXPECT_GT(checked, 150);
+  const int size = 256;
+  for (SceneId id : {SceneId::nmap_sphere, SceneId::nmap_sphere_fine}) {
+    const Scene scene = make_scene(id);
+    const GBuffer g = render_gbuffer(scene, size, size, 2);
+    Rng rng(99);
+    int checked = 0;
+    double worst = 0.0;
+    for (int i = 0; i < 400; ++i) {
+      const int x = 40 + static_cast<int>(rng.next_double() * 176);
+      const int y = 40 + static_cast<int>(rng.next_double() * 176);
+      const int x0 = x & ~1, y0 = y & ~1;
+      bool quad_on_sphere = true;
+      for (int q = 0; q < 4; ++q) quad_on_sphere = quad_on_sphere && g.at(x0 + (q & 1), y0 + q / 2).hit;
+      // Stay away from the rim, where the footprint changes by octaves across a quad.
+      const double r = std::hypot(x + 0.5 - size / 2.0, y + 0.5 - size / 2.0);
+      if (!quad_on_sphere || r > 80.0) continue;
+      const PixelFields& f = g.at(x, y);
+      ASSERT_TRUE(f.has_normal_map);
+      const double expected = analytic_lod(scene, x + 0.5, y + 0.5, size);
+      double spread = 0.0;
+      for (int q = 0; q < 4; ++q)
+        spread = std::max(spread, std::fabs(analytic_lod(scene, x0 + (q & 1) + 0.5, y0 + q / 2 + 0.5, size) - expected));
+      const double tol = 1.5 * spread + 1e-6;
+      EXPECT_NEAR(f.lod, expected, tol) << scene_name(id) << " pixel " << x << "," << y;
+      worst = std::max(worst, std::fabs(f.lod - expected) / tol);
+      ++checked;
     }
+    std::printf("%s: %d pixels, worst |lod - analytic| / tolerance %.3f\n", std::string(scene_name(id)).c_str(), checked, worst);
+    EXPECT_GT(checked, 150);
+  }
 }
 
 // Quad partners off the sphere take the uv of the tangent-plane extrapolation: the partner's
@@ -335,87 +327,86 @@ TEST(NormalMapped, OneSppLodIsLog2OfAnalyticFootprint) {
 // tiling.y. Checked on every rim pixel whose quad has a partner that misses, through the stored
 // coarse derivatives.
 TEST(NormalMapped, QuadPartnerExtrapolationIsTangentPlane) {
-    const int size = 64;
-    const Scene scene = make_scene(SceneId::nmap_sphere);
-    const Vec2 tiling = scene.uv_tiling();
-    const GBuffer g = render_gbuffer(scene, size, size, 2);
-    int checked = 0;
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const PixelFields& f = g.at(x, y);
-            if (!f.hit) continue;
-            const int x0 = x & ~1, y0 = y & ~1;
-            bool partner_missing = false;
-            for (int q = 0; q < 3; ++q) partner_missing = partner_missing || !g.at(x0 + (q & 1), y0 + q / 2).hit;
-            if (!partner_missing) continue;
-            const Vec3 p = f.position;
-            const double rho = std::hypot(p.x, p.z);
-            const Vec3 dpdu = (2.0 * kPi / tiling.x) * Vec3{p.z, 0.0, -p.x};
-            const Vec3 dpdv = (kPi / tiling.y) * Vec3{-p.y * p.x / rho, rho, -p.y * p.z / rho};
-            auto uv_of = [&](int px, int py) {
-                const Ray r = scene.camera().generate(px + 0.5, py + 0.5, size, size);
-                Vec3 hit_point;
-                if (unit_sphere_hit(r, hit_point)) return sphere_uv(hit_point, tiling);
-                const double t = ref::dot(p - r.origin, p) / ref::dot(r.direction, p);
-                const Vec3 d = r.origin + t * r.direction - p;
-                return sphere_uv(p, tiling) + Vec2{ref::dot(d, dpdu) / ref::dot(dpdu, dpdu),
-                                                   ref::dot(d, dpdv) / ref::dot(dpdv, dpdv)};
-            };
-            const Vec2 uv0 = uv_of(x0, y0);
-            const Vec2 ddx = uv_of(x0 + 1, y0) - uv0, ddy = uv_of(x0, y0 + 1) - uv0;
-            const double scale = std::max(ref::length(ddx), ref::length(ddy));
-            EXPECT_LT(ref::length(f.duv_dx - ddx), 1e-9 * (1.0 + scale)) << x << "," << y;
-            EXPECT_LT(ref::length(f.duv_dy - ddy), 1e-9 * (1.0 + scale)) << x << "," << y;
-            ++checked;
-        }
-    std::printf("rim quads with a missing partner checked: %d\n", checked);
-    EXPECT_GT(checked, 40);
+  const int size = 64;
+  const Scene scene = make_scene(SceneId::nmap_sphere);
+  const Vec2 tiling = scene.uv_tiling();
+  const GBuffer g = render_gbuffer(scene, size, size, 2);
+  int checked = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const PixelFields& f = g.at(x, y);
+      if (!f.hit) continue;
+      const int x0 = x & ~1, y0 = y & ~1;
+      bool partner_missing = false;
+      for (int q = 0; q < 3; ++q) partner_missing = partner_missing || !g.at(x0 + (q & 1), y0 + q / 2).hit;
+      if (!partner_missing) continue;
+      const Vec3 p = f.position;
+      const double rho = std::hypot(p.x, p.z);
+      const Vec3 dpdu = (2.0 * kPi / tiling.x) * Vec3{p.z, 0.0, -p.x};
+      const Vec3 dpdv = (kPi / tiling.y) * Vec3{-p.y * p.x / rho, rho, -p.y * p.z / rho};
+      auto uv_of = [&](int px, int py) {
+        const Ray r = scene.camera().generate(px + 0.5, py + 0.5, size, size);
+        Vec3 hit_point;
+        if (unit_sphere_hit(r, hit_point)) return sphere_uv(hit_point, tiling);
+        const double t = ref::dot(p - r.origin, p) / ref::dot(r.direction, p);
+        const Vec3 d = r.origin + t * r.direction - p;
+        return sphere_uv(p, tiling) + Vec2{ref::dot(d, dpdu) / ref::dot(dpdu, dpdu), ref::dot(d, dpdv) / ref::dot(dpdv, dpdv)};
+      };
+      const Vec2 uv0 = uv_of(x0, y0);
+      const Vec2 ddx = uv_of(x0 + 1, y0) - uv0, ddy = uv_of(x0, y0 + 1) - uv0;
+      const double scale = std::max(ref::length(ddx), ref::length(ddy));
+      EXPECT_LT(ref::length(f.duv_dx - ddx), 1e-9 * (1.0 + scale)) << x << "," << y;
+      EXPECT_LT(ref::length(f.duv_dy - ddy), 1e-9 * (1.0 + scale)) << x << "," << y;
+      ++checked;
+    }
+  std::printf("rim quads with a missing partner checked: %d\n", checked);
+  EXPECT_GT(checked, 40);
 
-    // The function itself, on a hit and an explicit ray past the sphere.
-    SurfaceHit hit;
-    ASSERT_TRUE(scene.intersect_surface(scene.camera().generate(32.5, 5.5, size, size), hit));
-    const Ray past = scene.camera().generate(32.5, 2.5, size, size);
-    const Vec3 p = hit.position;
-    const double t = ref::dot(p - past.origin, p) / ref::dot(past.direction, p);
-    const Vec3 d = past.origin + t * past.direction - p;
-    const Vec2 expected = hit.uv + Vec2{ref::dot(d, hit.dpdu) / ref::dot(hit.dpdu, hit.dpdu),
-                                        ref::dot(d, hit.dpdv) / ref::dot(hit.dpdv, hit.dpdv)};
-    const Vec2 got = tangent_plane_uv(hit, past);
-    EXPECT_NEAR(got.x, expected.x, 1e-12);
-    EXPECT_NEAR(got.y, expected.y, 1e-12);
-    EXPECT_GT(ref::length(got - hit.uv), 1e-3);
+  // The function itself, on a hit and an explicit ray past the sphere.
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect_surface(scene.camera().generate(32.5, 5.5, size, size), hit));
+  const Ray past = scene.camera().generate(32.5, 2.5, size, size);
+  const Vec3 p = hit.position;
+  const double t = ref::dot(p - past.origin, p) / ref::dot(past.direction, p);
+  const Vec3 d = past.origin + t * past.direction - p;
+  const Vec2 expected =
+      hit.uv + Vec2{ref::dot(d, hit.dpdu) / ref::dot(hit.dpdu, hit.dpdu), ref::dot(d, hit.dpdv) / ref::dot(hit.dpdv, hit.dpdv)};
+  const Vec2 got = tangent_plane_uv(hit, past);
+  EXPECT_NEAR(got.x, expected.x, 1e-12);
+  EXPECT_NEAR(got.y, expected.y, 1e-12);
+  EXPECT_GT(ref::length(got - hit.uv), 1e-3);
 }
 
 // The 1-spp shading normal is the renormalised trilinear sample at (uv, lod) through the TBN,
 // and the stored texel is that sample; the fields' geometric half vector is the half vector in
 // the geometric frame.
 TEST(NormalMapped, OneSppFieldsAreTheTrilinearSample) {
-    const int size = 64;
-    const Scene scene = make_scene(SceneId::nmap_sphere_fine);
-    const NormalMap& map = *scene.normal_map();
-    const PixelFields f = pixel_fields(scene, 30, 27, size, size);
-    ASSERT_TRUE(f.hit && f.has_normal_map);
-    EXPECT_EQ(f.lod, map.lod(f.duv_dx, f.duv_dy));
-    const NormalTexel texel = map.trilinear(f.uv, f.lod);
-    EXPECT_EQ(f.texel.normal, texel.normal);
-    EXPECT_EQ(f.texel.slope_second, texel.slope_second);
-    SurfaceHit expected;
-    ASSERT_TRUE(scene.intersect_surface(scene.camera().generate(30.5, 27.5, size, size), expected));
-    Scene::apply_normal_map(expected, ref::normalize(texel.normal));
-    EXPECT_EQ(f.normal, expected.normal);
-    const Vec3 h = ref::normalize(f.to_light + f.to_view);
-    EXPECT_NEAR(f.geometric_half_ts.z, ref::dot(h, f.geometric_normal), 1e-14);
-    EXPECT_NEAR(f.geometric_half_ts.x, ref::dot(h, f.geometric_tangent), 1e-14);
-    EXPECT_NEAR(f.half_ts.z, ref::dot(h, f.normal), 1e-14);
-    // Minified: the prefiltered texel's mean normal is shorter than 1 (Toksvig).
-    EXPECT_LT(ref::length(f.texel.mean_normal), 0.995);
+  const int size = 64;
+  const Scene scene = make_scene(SceneId::nmap_sphere_fine);
+  const NormalMap& map = *scene.normal_map();
+  const PixelFields f = pixel_fields(scene, 30, 27, size, size);
+  ASSERT_TRUE(f.hit && f.has_normal_map);
+  EXPECT_EQ(f.lod, map.lod(f.duv_dx, f.duv_dy));
+  const NormalTexel texel = map.trilinear(f.uv, f.lod);
+  EXPECT_EQ(f.texel.normal, texel.normal);
+  EXPECT_EQ(f.texel.slope_second, texel.slope_second);
+  SurfaceHit expected;
+  ASSERT_TRUE(scene.intersect_surface(scene.camera().generate(30.5, 27.5, size, size), expected));
+  Scene::apply_normal_map(expected, ref::normalize(texel.normal));
+  EXPECT_EQ(f.normal, expected.normal);
+  const Vec3 h = ref::normalize(f.to_light + f.to_view);
+  EXPECT_NEAR(f.geometric_half_ts.z, ref::dot(h, f.geometric_normal), 1e-14);
+  EXPECT_NEAR(f.geometric_half_ts.x, ref::dot(h, f.geometric_tangent), 1e-14);
+  EXPECT_NEAR(f.half_ts.z, ref::dot(h, f.normal), 1e-14);
+  // Minified: the prefiltered texel's mean normal is shorter than 1 (Toksvig).
+  EXPECT_LT(ref::length(f.texel.mean_normal), 0.995);
 
-    // A scene without a map keeps geometric == shading and no texture fields.
-    const PixelFields plain = pixel_fields(make_scene(SceneId::sphere), 30, 27, size, size);
-    ASSERT_TRUE(plain.hit);
-    EXPECT_FALSE(plain.has_normal_map);
-    EXPECT_EQ(plain.geometric_half_ts, plain.half_ts);
-    EXPECT_EQ(plain.lod, 0.0);
+  // A scene without a map keeps geometric == shading and no texture fields.
+  const PixelFields plain = pixel_fields(make_scene(SceneId::sphere), 30, 27, size, size);
+  ASSERT_TRUE(plain.hit);
+  EXPECT_FALSE(plain.has_normal_map);
+  EXPECT_EQ(plain.geometric_half_ts, plain.half_ts);
+  EXPECT_EQ(plain.lod, 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -425,45 +416,44 @@ TEST(NormalMapped, OneSppFieldsAreTheTrilinearSample) {
 // central 32 x 32 pixels) and sinusoid periods of 3.4 - 4.2 px; nmap-sphere-fine's LOD 3.22
 // (3.22 - 3.26) and periods of 0.43 - 0.52 px. The map's largest tilt lies in 15 - 30 degrees.
 TEST(Documented, FeatureSizesAndLods) {
-    const int size = 256;
-    struct Expect {
-        SceneId id;
-        double lod_lo, lod_hi, period_lo, period_hi;
-    };
-    for (const Expect& e : {Expect{SceneId::nmap_sphere, 0.22, 0.26, 3.4, 4.2},
-                            Expect{SceneId::nmap_sphere_fine, 3.22, 3.26, 0.43, 0.52}}) {
-        const Scene scene = make_scene(e.id);
-        const GBuffer g = render_gbuffer(scene, size, size, 2);
-        double lo = 1e9, hi = -1e9;
-        for (int y = 112; y < 144; ++y)
-            for (int x = 112; x < 144; ++x) {
-                lo = std::min(lo, g.at(x, y).lod);
-                hi = std::max(hi, g.at(x, y).lod);
-            }
-        const double centre = g.at(size / 2, size / 2).lod;
-        // Period of wave k in pixels: (texels per period) / (texels per pixel) = (512 / |(m, n)|)
-        // / 2^lod.
-        double period_lo = 1e9, period_hi = 0.0;
-        for (const PeriodicWave& w : content_height_field().waves) {
-            const double px = kContentNormalMapSize / w.cycles() / std::exp2(centre);
-            period_lo = std::min(period_lo, px);
-            period_hi = std::max(period_hi, px);
-        }
-        std::printf("%s: centre lod %.3f, central 32x32 [%.3f, %.3f], periods %.2f - %.2f px\n",
-                    std::string(scene_name(e.id)).c_str(), centre, lo, hi, period_lo, period_hi);
-        EXPECT_GE(lo, e.lod_lo);
-        EXPECT_LE(hi, e.lod_hi);
-        EXPECT_GE(period_lo, e.period_lo);
-        EXPECT_LE(period_hi, e.period_hi);
+  const int size = 256;
+  struct Expect {
+    SceneId id;
+    double lod_lo, lod_hi, period_lo, period_hi;
+  };
+  for (const Expect& e : {Expect{SceneId::nmap_sphere, 0.22, 0.26, 3.4, 4.2}, Expect{SceneId::nmap_sphere_fine, 3.22, 3.26, 0.43, 0.52}}) {
+    const Scene scene = make_scene(e.id);
+    const GBuffer g = render_gbuffer(scene, size, size, 2);
+    double lo = 1e9, hi = -1e9;
+    for (int y = 112; y < 144; ++y)
+      for (int x = 112; x < 144; ++x) {
+        lo = std::min(lo, g.at(x, y).lod);
+        hi = std::max(hi, g.at(x, y).lod);
+      }
+    const double centre = g.at(size / 2, size / 2).lod;
+    // Period of wave k in pixels: (texels per period) / (texels per pixel) = (512 / |(m, n)|)
+    // / 2^lod.
+    double period_lo = 1e9, period_hi = 0.0;
+    for (const PeriodicWave& w : content_height_field().waves) {
+      const double px = kContentNormalMapSize / w.cycles() / std::exp2(centre);
+      period_lo = std::min(period_lo, px);
+      period_hi = std::max(period_hi, px);
     }
-    const NormalMap& map = *content_normal_map();
-    double tilt = 0.0;
-    for (int y = 0; y < map.height(0); ++y)
-        for (int x = 0; x < map.width(0); ++x) tilt = std::max(tilt, std::acos(map.texel(0, x, y).normal.z));
-    std::printf("largest tilt of the map: %.2f degrees (slope bound %.2f)\n", tilt * 180.0 / kPi,
-                std::atan(content_height_field().slope_bound()) * 180.0 / kPi);
-    EXPECT_GT(tilt, 15.0 * kPi / 180.0);
-    EXPECT_LE(tilt, std::atan(content_height_field().slope_bound()));
+    std::printf("%s: centre lod %.3f, central 32x32 [%.3f, %.3f], periods %.2f - %.2f px\n", std::string(scene_name(e.id)).c_str(), centre,
+                lo, hi, period_lo, period_hi);
+    EXPECT_GE(lo, e.lod_lo);
+    EXPECT_LE(hi, e.lod_hi);
+    EXPECT_GE(period_lo, e.period_lo);
+    EXPECT_LE(period_hi, e.period_hi);
+  }
+  const NormalMap& map = *content_normal_map();
+  double tilt = 0.0;
+  for (int y = 0; y < map.height(0); ++y)
+    for (int x = 0; x < map.width(0); ++x) tilt = std::max(tilt, std::acos(map.texel(0, x, y).normal.z));
+  std::printf("largest tilt of the map: %.2f degrees (slope bound %.2f)\n", tilt * 180.0 / kPi,
+              std::atan(content_height_field().slope_bound()) * 180.0 / kPi);
+  EXPECT_GT(tilt, 15.0 * kPi / 180.0);
+  EXPECT_LE(tilt, std::atan(content_height_field().slope_bound()));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -472,52 +462,51 @@ TEST(Documented, FeatureSizesAndLods) {
 // Names round-trip, the content scenes stay out of all_scenes (the trade's default list), they
 // rotate about the vertical axis, and describe() holds the map's and the mesh's numbers.
 TEST(Scenes, NamesRotationAndDescribe) {
-    for (SceneId id : content_scenes()) {
-        EXPECT_EQ(scene_from_name(scene_name(id)), id);
-        EXPECT_EQ(std::find(all_scenes().begin(), all_scenes().end(), id), all_scenes().end());
-        const Scene a = make_scene(id), b = make_scene(id, 0.1);
-        EXPECT_NEAR(b.object_to_world().col_x.x, std::cos(0.1) * a.object_to_world().col_x.x +
-                                                      std::sin(0.1) * a.object_to_world().col_x.z,
-                    1e-15);
-        EXPECT_NE(a.describe(), b.describe());
-    }
-    const std::string nmap = make_scene(SceneId::nmap_sphere).describe();
-    EXPECT_NE(nmap.find(content_normal_map()->describe()), std::string::npos);
-    EXPECT_NE(nmap.find(content_height_field().describe()), std::string::npos);
-    EXPECT_NE(nmap.find("tiling=(2,1)"), std::string::npos);
-    EXPECT_NE(make_scene(SceneId::nmap_sphere_fine).describe().find("tiling=(16,8)"), std::string::npos);
-    const std::string knot = make_scene(SceneId::torus_knot).describe();
-    EXPECT_NE(knot.find(content_torus_knot_mesh()->describe()), std::string::npos);
-    EXPECT_NE(knot.find("segments=512,sides=24"), std::string::npos);
-    // The analytic scenes' descriptions (cache keys) carry no map.
-    EXPECT_EQ(make_scene(SceneId::sphere).describe().find("normal_map"), std::string::npos);
+  for (SceneId id : content_scenes()) {
+    EXPECT_EQ(scene_from_name(scene_name(id)), id);
+    EXPECT_EQ(std::find(all_scenes().begin(), all_scenes().end(), id), all_scenes().end());
+    const Scene a = make_scene(id), b = make_scene(id, 0.1);
+    EXPECT_NEAR(b.object_to_world().col_x.x, std::cos(0.1) * a.object_to_world().col_x.x + std::sin(0.1) * a.object_to_world().col_x.z,
+                1e-15);
+    EXPECT_NE(a.describe(), b.describe());
+  }
+  const std::string nmap = make_scene(SceneId::nmap_sphere).describe();
+  EXPECT_NE(nmap.find(content_normal_map()->describe()), std::string::npos);
+  EXPECT_NE(nmap.find(content_height_field().describe()), std::string::npos);
+  EXPECT_NE(nmap.find("tiling=(2,1)"), std::string::npos);
+  EXPECT_NE(make_scene(SceneId::nmap_sphere_fine).describe().find("tiling=(16,8)"), std::string::npos);
+  const std::string knot = make_scene(SceneId::torus_knot).describe();
+  EXPECT_NE(knot.find(content_torus_knot_mesh()->describe()), std::string::npos);
+  EXPECT_NE(knot.find("segments=512,sides=24"), std::string::npos);
+  // The analytic scenes' descriptions (cache keys) carry no map.
+  EXPECT_EQ(make_scene(SceneId::sphere).describe().find("normal_map"), std::string::npos);
 }
 
 // A small ground truth of each content scene: finite, non-zero where the shape is, the mapped
 // sphere's coverage equal to the plain sphere's (the map changes shading, not geometry), and
 // the knot filling a good part of the frame.
 TEST(Scenes, GroundTruthSmoke) {
-    GroundTruthSettings settings;
-    settings.width = settings.height = 16;
-    settings.strata = 4;
-    settings.threads = 2;
-    const Material materials[] = {{0.1, false}};
-    const GroundTruth sphere = render_ground_truth(make_scene(SceneId::sphere), settings, materials);
-    for (SceneId id : content_scenes()) {
-        const GroundTruth gt = render_ground_truth(make_scene(id), settings, materials);
-        double sum = 0.0, coverage = 0.0;
-        for (std::size_t i = 0; i < gt.images[0].size(); ++i) {
-            ASSERT_TRUE(std::isfinite(gt.images[0].pixels[i]));
-            sum += gt.images[0].pixels[i];
-            coverage += gt.coverage.pixels[i];
-        }
-        coverage /= gt.coverage.size();
-        EXPECT_GT(sum, 0.0) << scene_name(id);
-        if (id != SceneId::torus_knot)
-            EXPECT_EQ(gt.coverage.pixels, sphere.coverage.pixels) << scene_name(id);
-        else
-            EXPECT_GT(coverage, 0.25);
+  GroundTruthSettings settings;
+  settings.width = settings.height = 16;
+  settings.strata = 4;
+  settings.threads = 2;
+  const Material materials[] = {{0.1, false}};
+  const GroundTruth sphere = render_ground_truth(make_scene(SceneId::sphere), settings, materials);
+  for (SceneId id : content_scenes()) {
+    const GroundTruth gt = render_ground_truth(make_scene(id), settings, materials);
+    double sum = 0.0, coverage = 0.0;
+    for (std::size_t i = 0; i < gt.images[0].size(); ++i) {
+      ASSERT_TRUE(std::isfinite(gt.images[0].pixels[i]));
+      sum += gt.images[0].pixels[i];
+      coverage += gt.coverage.pixels[i];
     }
+    coverage /= gt.coverage.size();
+    EXPECT_GT(sum, 0.0) << scene_name(id);
+    if (id != SceneId::torus_knot)
+      EXPECT_EQ(gt.coverage.pixels, sphere.coverage.pixels) << scene_name(id);
+    else
+      EXPECT_GT(coverage, 0.25);
+  }
 }
 
 // The ground truth's cost per content scene: bench/bench_reference.cpp (BM_GroundTruthContent).

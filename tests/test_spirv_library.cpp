@@ -21,12 +21,12 @@
 #include "gpu_support.hpp"
 #include "reference_dispatch.hpp"
 
-#include "saagen/error.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/emit/listing.hpp"
+#include "saagen/error.hpp"
 #include "saagen/products/output_validation.hpp"
-#include "saagen/reference/reference.hpp"
 #include "saagen/products/spirv_library.hpp"
+#include "saagen/reference/reference.hpp"
 
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/linker.hpp>
@@ -48,10 +48,10 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace ref = saagen::ref;
-using saagen::Catalogue;
 using ref::Sym2;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
 
 constexpr std::uint32_t element_count = 10240;
 constexpr double rounding_bound = 4e-5;
@@ -129,7 +129,9 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
     std::cout << fmt::format("[ size     ] {:<34} {:>6} bytes {:>5} instructions, {} export(s)\n", library.file_name,
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
-  EXPECT_EQ(exported, 40u);  // as test_kernels: 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores
+  EXPECT_EQ(
+      exported,
+      40u);  // as test_kernels: 4 forward + 7 deferred cores, 2 deferred-aniso lighting, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -218,7 +220,8 @@ int main() {
   return 0;
 }
 )";
-  std::ofstream(directory / "main.c") << "#include \"saa_deferred_sum.spv.h\"\nint main(void) { return (int)(saa_deferred_sum_spv[0] != 0x07230203u); }\n";
+  std::ofstream(directory / "main.c")
+      << "#include \"saa_deferred_sum.spv.h\"\nint main(void) { return (int)(saa_deferred_sum_spv[0] != 0x07230203u); }\n";
   const std::string compiler = SAAGEN_TEST_CXX_COMPILER;
   ASSERT_EQ(run_command(fmt::format("{} -std=c++17 -Wall -Wextra -Werror -o {} {}", compiler, (directory / "cpp").string(),
                                     (directory / "main.cpp").string())),
@@ -308,29 +311,52 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
   const bool reads_alpha2 = saagen::test::takes_unfiltered_alpha2(function);
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
-    if (name == "alpha2") parameter.type == "real" ? push(out, d.alpha2.x) : push(out, d.alpha2);
-    else if (name == "dslope_dx") push(out, ref::slope_differential(d.h, d.dh_x));
-    else if (name == "dslope_dy") push(out, ref::slope_differential(d.h, d.dh_y));
-    else if (name == "dproj_dx") push(out, ref::projected_differential(d.h, d.dh_x));
-    else if (name == "dproj_dy") push(out, ref::projected_differential(d.h, d.dh_y));
-    else if (name == "dn_dx") push(out, d.dh_x);
-    else if (name == "dn_dy") push(out, d.dh_y);
-    else if (name == "h") push(out, function.name.find("g2") != std::string::npos ? ref::normalize(d.i + d.o) : d.h);
-    else if (name == "w") push(out, d.w);
-    else if (name == "i") push(out, d.i);
-    else if (name == "o") push(out, d.o);
-    else if (name == "a") push(out, reads_alpha2 ? Sym2{d.alpha2.x, 0.0, d.alpha2.y} + d.a : d.a);
-    else if (name == "tau") push(out, d.tau);
-    else if (name == "filtered") push(out, Vec2{d.a.xx, d.a.yy});
-    else if (name == "kernel") push(out, d.a.xx - d.alpha2.x);
-    else if (name == "normal_ws") push(out, d.h);
-    else if (name == "light_ws") push(out, d.i);
-    else if (name == "view_ws") push(out, d.o);
-    else if (name == "tensor") push(out, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h));
-    else if (name == "mean_length") push(out, d.texel.mean_length);
-    else if (name == "slope_mean") push(out, d.texel.slope_mean);
-    else if (name == "slope_second") push(out, d.texel.slope_second);
-    else throw std::runtime_error("no input for parameter " + name + " of " + function.name);
+    if (name == "alpha2")
+      parameter.type == "real" ? push(out, d.alpha2.x) : push(out, d.alpha2);
+    else if (name == "dslope_dx")
+      push(out, ref::slope_differential(d.h, d.dh_x));
+    else if (name == "dslope_dy")
+      push(out, ref::slope_differential(d.h, d.dh_y));
+    else if (name == "dproj_dx")
+      push(out, ref::projected_differential(d.h, d.dh_x));
+    else if (name == "dproj_dy")
+      push(out, ref::projected_differential(d.h, d.dh_y));
+    else if (name == "dn_dx")
+      push(out, d.dh_x);
+    else if (name == "dn_dy")
+      push(out, d.dh_y);
+    else if (name == "h")
+      push(out, function.name.find("g2") != std::string::npos ? ref::normalize(d.i + d.o) : d.h);
+    else if (name == "w")
+      push(out, d.w);
+    else if (name == "i")
+      push(out, d.i);
+    else if (name == "o")
+      push(out, d.o);
+    else if (name == "a")
+      push(out, reads_alpha2 ? Sym2{d.alpha2.x, 0.0, d.alpha2.y} + d.a : d.a);
+    else if (name == "tau")
+      push(out, d.tau);
+    else if (name == "filtered")
+      push(out, Vec2{d.a.xx, d.a.yy});
+    else if (name == "kernel")
+      push(out, d.a.xx - d.alpha2.x);
+    else if (name == "normal_ws")
+      push(out, d.h);
+    else if (name == "light_ws")
+      push(out, d.i);
+    else if (name == "view_ws")
+      push(out, d.o);
+    else if (name == "tensor")
+      push(out, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h));
+    else if (name == "mean_length")
+      push(out, d.texel.mean_length);
+    else if (name == "slope_mean")
+      push(out, d.texel.slope_mean);
+    else if (name == "slope_second")
+      push(out, d.texel.slope_second);
+    else
+      throw std::runtime_error("no input for parameter " + name + " of " + function.name);
   }
 }
 
@@ -463,7 +489,8 @@ std::vector<std::uint32_t> consumer_module(const std::string& variant, const std
   const saagen::EmissionMarker marker{"glsl", {variant}, "saa_", {}, "fp32", true, {function}};
   const std::string stubs = saagen::marker_line(marker) + "\n" + saagen::glsl_import_stubs(Catalogue::builtin(), {function}, "saa_");
   request.body = saagen::load_call_store_body(Catalogue::builtin(), function, request);
-  const auto compiled = saagen::compile_to_spirv(saagen::kernel_compile_request(Catalogue::builtin(), "consumer-stubs.glsl", stubs, request));
+  const auto compiled =
+      saagen::compile_to_spirv(saagen::kernel_compile_request(Catalogue::builtin(), "consumer-stubs.glsl", stubs, request));
   if (!compiled.ok) throw std::runtime_error("the consumer does not compile:\n" + compiled.log);
   return saagen::import_stub_functions(compiled.spirv, {"saa_" + function});
 }
@@ -472,9 +499,8 @@ std::string link_messages;
 spv_result_t link(const std::vector<std::vector<std::uint32_t>>& modules, std::vector<std::uint32_t>& linked) {
   spvtools::Context context(SPV_ENV_UNIVERSAL_1_3);
   link_messages.clear();
-  context.SetMessageConsumer([](spv_message_level_t, const char*, const spv_position_t&, const char* message) {
-    link_messages += std::string(message) + "\n";
-  });
+  context.SetMessageConsumer(
+      [](spv_message_level_t, const char*, const spv_position_t&, const char* message) { link_messages += std::string(message) + "\n"; });
   return spvtools::Link(context, modules, &linked, spvtools::LinkerOptions{});
 }
 
@@ -494,7 +520,8 @@ TEST_P(LinkedLibraryOnGpu, ImportLinkValidateAndRunAgainstTheReference) {
   const auto consumer = consumer_module(c.variant, c.function, request);
   const std::string consumer_text = disassembly(consumer);
   EXPECT_NE(consumer_text.find(fmt::format("LinkageAttributes \"saa_{}\" Import", c.function)), std::string::npos);
-  EXPECT_EQ(saagen::validate_spirv_library(consumer, {}).find("spirv-val"), std::string::npos) << saagen::validate_spirv_library(consumer, {});
+  EXPECT_EQ(saagen::validate_spirv_library(consumer, {}).find("spirv-val"), std::string::npos)
+      << saagen::validate_spirv_library(consumer, {});
 
   std::vector<std::uint32_t> linked;
   ASSERT_EQ(link({library.words, consumer}, linked), SPV_SUCCESS) << link_messages;
@@ -535,8 +562,8 @@ TEST_P(LinkedLibraryOnGpu, ImportLinkValidateAndRunAgainstTheReference) {
   const auto direct = run(saagen::test::compile_kernel(saagen::test::emit_variant("glsl", c.variant), request));
   std::size_t differing = 0;
   for (std::size_t index = 0; index < got.size(); ++index) differing += std::memcmp(&got[index], &direct[index], sizeof(float)) != 0;
-  std::cout << fmt::format("[ direct   ] saa_{}: {} of {} outputs differ bitwise from the source-compiled kernel\n", c.function,
-                           differing, got.size());
+  std::cout << fmt::format("[ direct   ] saa_{}: {} of {} outputs differ bitwise from the source-compiled kernel\n", c.function, differing,
+                           got.size());
   EXPECT_EQ(differing, 0u);
 }
 
@@ -607,7 +634,8 @@ TEST_P(DomainLibraryOnGpu, LinkedDomainWrapperMatchesTheEmittedDomainSourceBitwi
   const auto got = run(linked);
   options.target = "glsl";
   const saagen::EmittedFile source = saagen::emit_variants(Catalogue::builtin(), options).front();
-  const auto direct_compiled = saagen::compile_to_spirv(saagen::kernel_compile_request(catalogue, source.file_name, source.content, request));
+  const auto direct_compiled =
+      saagen::compile_to_spirv(saagen::kernel_compile_request(catalogue, source.file_name, source.content, request));
   ASSERT_TRUE(direct_compiled.ok) << direct_compiled.log;
   const auto direct = run(direct_compiled.spirv);
   ASSERT_EQ(got.size(), direct.size());
@@ -625,8 +653,8 @@ INSTANTIATE_TEST_SUITE_P(EveryOtherDomain, DomainLibraryOnGpu, ::testing::Values
 TEST(SpirvLink, TwoLibrariesLinkIntoOneConsumerAndDuplicateExportsAreRejected) {
   // One consumer importing from deferred-sum and brdf-ggx.
   const saagen::EmissionMarker marker{"glsl", {"deferred-sum", "brdf-ggx"}, "saa_", {}, "fp32", true, {}};
-  const std::string stubs = saagen::marker_line(marker) + "\n" +
-                            saagen::glsl_import_stubs(Catalogue::builtin(), {"deferred_sum", "ggx_brdf_axis"}, "saa_");
+  const std::string stubs =
+      saagen::marker_line(marker) + "\n" + saagen::glsl_import_stubs(Catalogue::builtin(), {"deferred_sum", "ggx_brdf_axis"}, "saa_");
   saagen::KernelRequest request;
   request.body =
       "    real a2 = deferred_sum(SAAGEN_LOAD(0), real3(SAAGEN_LOAD(1), 0.0, 0.0), real3(0.0, SAAGEN_LOAD(2), 0.0));\n"

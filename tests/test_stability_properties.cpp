@@ -46,18 +46,18 @@ namespace {
 
 namespace ref = saagen::ref;
 namespace stab = saagen::stability;
-using saagen::Catalogue;
-using saagen::Function;
 using ref::Quad;
 using ref::Sym2;
 using ref::Vec2;
 using ref::Vec3;
+using saagen::Catalogue;
+using saagen::Function;
 
 using Element = std::vector<double>;  // a core function's inputs, or a wrapper quad's fields (4 x stride)
 using Values = std::vector<double>;   // one function output (1 to 3 components)
 
-constexpr int kCpuCases = 2000; // rapidcheck cases per CPU property (one element each)
-constexpr int kGpuCases = 12;   // rapidcheck cases per GPU property (one batch each)
+constexpr int kCpuCases = 2000;  // rapidcheck cases per CPU property (one element each)
+constexpr int kGpuCases = 12;    // rapidcheck cases per GPU property (one batch each)
 constexpr int kMinBatch = 256, kMaxBatch = 2048;
 
 // Runs a rapidcheck property with `cases` successful cases (RC_PARAMS still sets seed etc.).
@@ -99,8 +99,9 @@ rc::Gen<double> gen_filter_alpha2() {
 }
 
 rc::Gen<double> gen_brdf_alpha2() {
-  return rc::gen::map(rc::gen::oneOf(rc::gen::element(1e-8, 1.0), rc::gen::map(rc::gen::inRange(-400, 1), [](int e) { return std::pow(10.0, e / 50.0); })),
-                      as_float);
+  return rc::gen::map(
+      rc::gen::oneOf(rc::gen::element(1e-8, 1.0), rc::gen::map(rc::gen::inRange(-400, 1), [](int e) { return std::pow(10.0, e / 50.0); })),
+      as_float);
 }
 
 Vec3 direction_from(double z, double phi) {
@@ -159,8 +160,10 @@ rc::Gen<Element> gen_core_element(const Function& f) {
     const Vec3 i = *gen_direction(), o = *gen_direction();
     for (const saagen::Parameter& p : f.parameters) {
       if (p.name == "alpha2") {
-        if (brdf) p.type == "real" ? push(e, material.alpha2.x) : push(e, material.alpha2);
-        else for (int k = 0; k < (p.type == "real" ? 1 : 2); ++k) push(e, *gen_filter_alpha2());
+        if (brdf)
+          p.type == "real" ? push(e, material.alpha2.x) : push(e, material.alpha2);
+        else
+          for (int k = 0; k < (p.type == "real" ? 1 : 2); ++k) push(e, *gen_filter_alpha2());
       } else if (is_derivative(p.name)) {
         for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k) push(e, *gen_component());
       } else if (p.name == "h") {
@@ -210,15 +213,23 @@ rc::Gen<Element> gen_wrapper_quad(const Function& f) {
       std::array<Vec3, 4> v;
       for (auto& x : v) {
         switch (mode) {
-          case 0: x = base; break;
+          case 0:
+            x = base;
+            break;
           case 1: {
             const Vec3 moved = base + std::pow(10.0, *rc::gen::inRange(-70, -9) / 10.0) * *gen_direction();
             x = ref::dot(moved, moved) > 0.0 ? ref::normalize(moved) : base;
             break;
           }
-          case 2: x = *gen_direction(); break;
-          case 3: x = stab::with_z(base, *rc::gen::element(0.0, 1e-30, -1e-30, 1e-7, -1e-7, 1e-4, -1e-4)); break;
-          default: x = *rc::gen::element(0, 1) == 0 ? Vec3{} : (*rc::gen::inRange(0, 101) / 100.0) * base; break;
+          case 2:
+            x = *gen_direction();
+            break;
+          case 3:
+            x = stab::with_z(base, *rc::gen::element(0.0, 1e-30, -1e-30, 1e-7, -1e-7, 1e-4, -1e-4));
+            break;
+          default:
+            x = *rc::gen::element(0, 1) == 0 ? Vec3{} : (*rc::gen::inRange(0, 101) / 100.0) * base;
+            break;
         }
       }
       return v;
@@ -287,9 +298,19 @@ class Reader {
  public:
   explicit Reader(const double* data) : data_(data) {}
   double real() { return data_[next_++]; }
-  Vec2 vec2() { const double x = real(); return {x, real()}; }
-  Vec3 vec3() { const double x = real(), y = real(); return {x, y, real()}; }
-  Sym2 sym2() { const double x = real(), y = real(); return {x, y, real()}; }
+  Vec2 vec2() {
+    const double x = real();
+    return {x, real()};
+  }
+  Vec3 vec3() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
+  Sym2 sym2() {
+    const double x = real(), y = real();
+    return {x, y, real()};
+  }
+
  private:
   const double* data_;
   std::size_t next_ = 0;
@@ -373,7 +394,10 @@ Values reference_wrapper(const ref::Params& p, const Function& f, const Element&
       alpha2[0] = quad[offset];
       if (count == 2) alpha2[1] = quad[offset + 1];
     } else {
-      const auto at = [&](int q) { const double* v = quad.data() + q * stride + offset; return Vec3{v[0], v[1], v[2]}; };
+      const auto at = [&](int q) {
+        const double* v = quad.data() + q * stride + offset;
+        return Vec3{v[0], v[1], v[2]};
+      };
       vectors[param.name] = {at(0), at(1), at(2), at(3)};
     }
     offset += count;
@@ -404,8 +428,10 @@ class ReferenceEvaluator : public Evaluator {
   std::vector<Values> run(const Function& f, const std::vector<Element>& batch) override {
     std::vector<Values> out;
     for (const Element& e : batch) {
-      if (!is_wrapper(f)) out.push_back(reference_core(params_, f.name, e.data()));
-      else for (int p = 0; p < 4; ++p) out.push_back(reference_wrapper(params_, f, e, p));
+      if (!is_wrapper(f))
+        out.push_back(reference_core(params_, f.name, e.data()));
+      else
+        for (int p = 0; p < 4; ++p) out.push_back(reference_wrapper(params_, f, e, p));
     }
     return out;
   }
@@ -472,7 +498,10 @@ class DeviceEvaluator : public Evaluator {
     if (found != programs_.end()) return found->second;
     const saagen::Variant* variant = nullptr;
     for (const saagen::Variant& v : Catalogue::builtin().variants())
-      if (std::find(v.functions.begin(), v.functions.end(), f.name) != v.functions.end()) { variant = &v; break; }
+      if (std::find(v.functions.begin(), v.functions.end(), f.name) != v.functions.end()) {
+        variant = &v;
+        break;
+      }
     const auto file = saagen::test::emit_variant(target_, variant->id);
     Program program;
     program.layout = stab::layout_of(f);
@@ -578,9 +607,7 @@ bool has_subnormal_derivative(const Function& f, const Element& e) {
   return false;
 }
 
-double sym2_min_eigenvalue(double xx, double xy, double yy) {
-  return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
-}
+double sym2_min_eigenvalue(double xx, double xy, double yy) { return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy); }
 
 // alpha'^2 (each component) never decreases when the derivatives grow by s in [1, 16]; the
 // roughness matrix grows in the PSD order while s |d| <= DERIVATIVE_MAX, its diagonal always.
@@ -602,7 +629,8 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
   for (std::size_t e = 0; e < batch.size(); ++e) {
     const Values& low = out[2 * e];
     const Values& high = out[2 * e + 1];
-    const std::string what = fmt::format("{} {}: inputs {} scaled by {}: {} -> {}", evaluator.name(), f.name, show(batch[e]), scales[e] / 16.0, show(low), show(high));
+    const std::string what = fmt::format("{} {}: inputs {} scaled by {}: {} -> {}", evaluator.name(), f.name, show(batch[e]),
+                                         scales[e] / 16.0, show(low), show(high));
     if (!matrix) {
       for (std::size_t k = 0; k < low.size(); ++k)
         if (high[k] < low[k] - slack * std::max(1.0, low[k])) RC_FAIL(what);
@@ -612,7 +640,8 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
     // and Operation of SPIR-V Instructions), so an entry below FLT_MIN may be off by FLT_MIN in
     // absolute terms: two entries of the difference, each from both matrices, 4 FLT_MIN.
     const double flushed = 4.0 * double(FLT_MIN);
-    const bool scaled_whole = max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e]);
+    const bool scaled_whole =
+        max_abs_derivative(f, pairs[2 * e + 1]) <= evaluator.derivative_max() && !has_subnormal_derivative(f, pairs[2 * e]);
     // deferred-aniso's tensor: the fp32 inputs s d are rounded (u = 2^-24, whatever the
     // evaluator's own rounding), which moves det(Delta) by up to 4u |du| |dv| and so the smaller
     // eigenvalue det(Delta)^2 / l1 by up to 8u |det(Delta)| <= 4u tr(Delta^T Delta): 8u times the
@@ -678,7 +707,8 @@ void invariant_under_rotation(Evaluator& evaluator, const Function& f, const std
   for (std::size_t e = 0; e < batch.size(); ++e) {
     const Values& a = out[2 * e];
     const Values& b = out[2 * e + 1];
-    const std::string what = fmt::format("{} {}: inputs {} turned by {} rad: {} vs {}", evaluator.name(), f.name, show(pairs[2 * e]), angles[e], show(a), show(b));
+    const std::string what = fmt::format("{} {}: inputs {} turned by {} rad: {} vs {}", evaluator.name(), f.name, show(pairs[2 * e]),
+                                         angles[e], show(a), show(b));
     // Products below FLT_MIN underflow (or flush) on the device: 1e-35 absolute covers the
     // matrix entries. The eigenvalue of deferred_max squares numbers of its own size (the half
     // difference and m01), which underflow for eigenvalues below sqrt(FLT_MIN) = 1.1e-19: its
@@ -753,7 +783,8 @@ void matches_guarded_reference(Evaluator& device, const Function& f, const std::
     if (f.name == "deferred_aniso_fragment") bound = std::max(bound, 2e-5 * wrapper_tensor_scale(batch[k / per]));
     for (std::size_t c = 0; c < g.size(); ++c) {
       if (!(std::fabs(g[c] - x[c]) <= bound))
-        RC_FAIL(fmt::format("{} {}: inputs {} (pixel {}): device {} vs reference {}", device.name(), f.name, show(batch[k / per]), k % per, show(g), show(x)));
+        RC_FAIL(fmt::format("{} {}: inputs {} (pixel {}): device {} vs reference {}", device.name(), f.name, show(batch[k / per]), k % per,
+                            show(g), show(x)));
     }
   }
 }
@@ -787,8 +818,8 @@ void check_function(Evaluator& evaluator, const Function& f, int cases, bool bat
       const bool matrix = stab::claim_of(f.name) == stab::Claim::roughness_matrix;
       for (Element& e : batch) e = capped(e, matrix ? 0.5 * evaluator.derivative_max() : 1e30);
       const auto axes = *rc::gen::container<std::vector<Vec3>>(batch.size(), rc::gen::map(gen_direction(), [](Vec3 v) {
-        return ref::dot(v, v) > 0.0 ? ref::normalize(v) : Vec3{0, 0, 1};
-      }));
+                                                                 return ref::dot(v, v) > 0.0 ? ref::normalize(v) : Vec3{0, 0, 1};
+                                                               }));
       const auto angles = *rc::gen::container<std::vector<double>>(batch.size(), gen_angle());
       invariant_under_rotation(evaluator, f, batch, axes, angles);
     });
@@ -896,8 +927,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryVariant, ReferenceProperties,
-                         ::testing::ValuesIn([] {
+INSTANTIATE_TEST_SUITE_P(EveryVariant, ReferenceProperties, ::testing::ValuesIn([] {
                            std::vector<std::string> ids;
                            for (const saagen::Variant& v : Catalogue::builtin().variants()) ids.push_back(v.id);
                            return ids;
@@ -926,8 +956,10 @@ TEST(ReferenceIsotropy, DeferredMaxWrapperIgnoresTheTangentFrameOrientation) {
     const Quad<Vec2> frag{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
     const double alpha2 = *gen_filter_alpha2();
     for (int pixel = 0; pixel < 4; ++pixel) {
-      const double a = ref::deferred_max_fragment_quad(p, alpha2, {n[0], n[1], n[2], n[3]}, {t[0], t[1], t[2], t[3]}, {b[0], b[1], b[2], b[3]}, frag, pixel);
-      const double c = ref::deferred_max_fragment_quad(p, alpha2, {n[0], n[1], n[2], n[3]}, {t2[0], t2[1], t2[2], t2[3]}, {b2[0], b2[1], b2[2], b2[3]}, frag, pixel);
+      const double a = ref::deferred_max_fragment_quad(p, alpha2, {n[0], n[1], n[2], n[3]}, {t[0], t[1], t[2], t[3]},
+                                                       {b[0], b[1], b[2], b[3]}, frag, pixel);
+      const double c = ref::deferred_max_fragment_quad(p, alpha2, {n[0], n[1], n[2], n[3]}, {t2[0], t2[1], t2[2], t2[3]},
+                                                       {b2[0], b2[1], b2[2], b2[3]}, frag, pixel);
       // Double rounding of the projected normals (~1e-16 absolute) enters the kernel as
       // 2 sigma^2 2 |d| 1e-16 with |d| >= 1e-4 here: 1e-18 absolute covers it.
       RC_ASSERT(std::fabs(a - c) <= 1e-12 * a + 1e-18);
@@ -967,7 +999,9 @@ TEST_P(DeviceProperties, EmittedCodeKeepsItsClaimsAndMatchesTheGuardedReference)
     // test_gpu_fragment bounds; the sweep and the claims above cover the wrappers' guards.
     if (filter(*f) && !is_wrapper(*f)) {
       const auto element = gen_core_element(*f);
-      check_property(f->name + " matches the guarded reference", kGpuCases, [&] { matches_guarded_reference(device, *f, *gen_batch(element)); }, false);
+      check_property(
+          f->name + " matches the guarded reference", kGpuCases, [&] { matches_guarded_reference(device, *f, *gen_batch(element)); },
+          false);
     }
   }
 }

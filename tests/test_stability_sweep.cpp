@@ -34,8 +34,8 @@ struct Counts {
 };
 
 struct Tally {
-  Counts finite;      // every input component finite (the claim's domain)
-  Counts non_finite;  // some input component +-Inf or NaN
+  Counts finite;                      // every input component finite (the claim's domain)
+  Counts non_finite;                  // some input component +-Inf or NaN
   std::vector<std::string> examples;  // the first guarded violations with finite inputs
 };
 
@@ -90,7 +90,8 @@ SweepInputs wrapper_inputs(const saagen::Function& wrapper, std::uint64_t seed) 
 
 std::string describe_element(const SweepInputs& in, std::uint32_t e, const float* out) {
   std::string text = "inputs (";
-  for (std::uint32_t k = 0; k < in.layout.stride; ++k) text += fmt::format("{}{:.9g}", k ? ", " : "", in.data[std::size_t{e} * in.layout.stride + k]);
+  for (std::uint32_t k = 0; k < in.layout.stride; ++k)
+    text += fmt::format("{}{:.9g}", k ? ", " : "", in.data[std::size_t{e} * in.layout.stride + k]);
   text += ") -> (";
   for (std::uint32_t k = 0; k < in.outputs; ++k) text += fmt::format("{}{:.9g}", k ? ", " : "", out[std::size_t{e} * in.outputs + k]);
   return text + ")";
@@ -103,7 +104,8 @@ std::string describe_pixel(const SweepInputs& in, std::uint32_t index, const flo
   for (int p = 0; p < 4; ++p) {
     const std::uint32_t q = (y & ~1u) * kWidth + (x & ~1u) + (p & 1) + (p >> 1) * kWidth;
     text += fmt::format(" [{}] (", p);
-    for (std::uint32_t k = 0; k < in.layout.stride; ++k) text += fmt::format("{}{:.9g}", k ? ", " : "", in.data[std::size_t{q} * in.layout.stride + k]);
+    for (std::uint32_t k = 0; k < in.layout.stride; ++k)
+      text += fmt::format("{}{:.9g}", k ? ", " : "", in.data[std::size_t{q} * in.layout.stride + k]);
     text += ")";
   }
   return text;
@@ -124,8 +126,7 @@ Tally sweep(const saagen::EmittedFile& file, const saagen::Function& function, c
   }
   saagen::harness::ComputeRun run;
   run.shader.spirv = saagen::test::compile_kernel(file, request);
-  run.buffers = {saagen::harness::input_buffer(0, in.data),
-                 saagen::harness::output_buffer<float>(1, std::size_t{kElements} * in.outputs)};
+  run.buffers = {saagen::harness::input_buffer(0, in.data), saagen::harness::output_buffer<float>(1, std::size_t{kElements} * in.outputs)};
   run.groups = {kElements / request.workgroup_size, 1, 1};
   const auto result = saagen::harness::run_compute(saagen::test::gpu(), run);
   const auto out = result.buffer_as<float>(1);
@@ -138,8 +139,7 @@ Tally sweep(const saagen::EmittedFile& file, const saagen::Function& function, c
     const float* element = in.data.data() + std::size_t{e} * in.layout.stride;
     for (std::uint32_t k = 0; k < in.layout.alpha2_count; ++k) alpha2[k] = element[in.layout.alpha2_offset + k];
     for (std::uint32_t k = 0; k < in.outputs; ++k) values[k] = out[std::size_t{e} * in.outputs + k];
-    const stab::Verdict verdict =
-        stab::judge(claim, kappa, {alpha2, in.layout.alpha2_count}, {values, in.outputs});
+    const stab::Verdict verdict = stab::judge(claim, kappa, {alpha2, in.layout.alpha2_count}, {values, in.outputs});
     Counts& counts = in.non_finite[e] ? tally.non_finite : tally.finite;
     ++counts.inputs;
     counts.non_finite += verdict.non_finite;
@@ -182,8 +182,9 @@ TEST_P(AdversarialSweep, GuardedFormKeepsEveryClaimOnFiniteInputs) {
   }
   const auto start = std::chrono::steady_clock::now();
 
-  std::string table = fmt::format("\n[ sweep    ] {} {}: {} inputs per function and form; columns per input class: inputs, non-finite outputs, out-of-bound outputs\n",
-                                  c.target, c.variant, kElements);
+  std::string table = fmt::format(
+      "\n[ sweep    ] {} {}: {} inputs per function and form; columns per input class: inputs, non-finite outputs, out-of-bound outputs\n",
+      c.target, c.variant, kElements);
   table += fmt::format("[ sweep    ] {:<36} {:<14} | {:^25} | {:^25}\n", "function", "form", "finite inputs", "non-finite inputs");
   Counts variant_totals[4][2];  // [form][class]
   std::vector<std::string> failures;
@@ -196,7 +197,8 @@ TEST_P(AdversarialSweep, GuardedFormKeepsEveryClaimOnFiniteInputs) {
     for (int f = 0; f < 4; ++f) {
       const Form& form = kForms[f];
       const Tally tally = sweep(files[f], function, in, form.guards);
-      table += fmt::format("[ sweep    ] {:<36} {:<14} | {} | {}\n", name, form.name(), counts_cell(tally.finite), counts_cell(tally.non_finite));
+      table += fmt::format("[ sweep    ] {:<36} {:<14} | {} | {}\n", name, form.name(), counts_cell(tally.finite),
+                           counts_cell(tally.non_finite));
       for (int cls = 0; cls < 2; ++cls) {
         const Counts& from = cls == 0 ? tally.finite : tally.non_finite;
         Counts& to = variant_totals[f][cls];
@@ -211,8 +213,8 @@ TEST_P(AdversarialSweep, GuardedFormKeepsEveryClaimOnFiniteInputs) {
     }
   }
   for (int f = 0; f < 4; ++f) {
-    table += fmt::format("[ sweep    ] {:<36} {:<14} | {} | {}\n", "TOTAL " + c.variant, kForms[f].name(), counts_cell(variant_totals[f][0]),
-                         counts_cell(variant_totals[f][1]));
+    table += fmt::format("[ sweep    ] {:<36} {:<14} | {} | {}\n", "TOTAL " + c.variant, kForms[f].name(),
+                         counts_cell(variant_totals[f][0]), counts_cell(variant_totals[f][1]));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << table << fmt::format("[ sweep    ] {:.1f} s\n", seconds);

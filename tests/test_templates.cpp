@@ -1,7 +1,7 @@
 // The template dialect: parsing rules, the error each mistake produces (file:line: what to do),
 // and the translation of types, intrinsics and names into each target.
-#include "saagen/front/catalogue.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
@@ -47,8 +47,7 @@ TEST(TemplateParser, ReadsAFunctionWithItsParametersAndBody) {
 
 TEST(TemplateParser, RejectsMatrixProductsWithALineAndAFix) {
   const std::string text = "\n\n@function bad\nrole: core\ncite: c\nreturns: real3 | r\nparam: real3 v | v\n{\n    return mul(v, v);\n}\n";
-  EXPECT_EQ(parse_error(text),
-            "templates/test.saa:3: bad uses 'mul': the dialect has no matrices; write the product with dot products");
+  EXPECT_EQ(parse_error(text), "templates/test.saa:3: bad uses 'mul': the dialect has no matrices; write the product with dot products");
 }
 
 TEST(TemplateParser, RejectsMatrixTypes) {
@@ -125,8 +124,7 @@ TEST(Translation, SpellsTypesIntrinsicsAndNamesPerTarget) {
 TEST(Translation, LeavesMemberAccessesCommentsAndUnknownNamesAlone) {
   const saagen::NameMap names = {{"x", "eng_x"}};
   // `.x` is a swizzle, not the template name x; comments keep their text.
-  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), "v.x + x; // real x\nfoo(x)", names),
-            "v.x + eng_x; // real x\nfoo(eng_x)");
+  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), "v.x + x; // real x\nfoo(x)", names), "v.x + eng_x; // real x\nfoo(eng_x)");
 }
 
 TEST(TargetTable, ReportsMissingKeysAndTypes) {
@@ -153,7 +151,8 @@ TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {
   EXPECT_EQ(glsl.fragment_skeleton.prologue, "#version 450\n");
   EXPECT_EQ(glsl.compute_skeleton.prologue, "#version 450\n#define {core_only_macro}\n");
   EXPECT_EQ(saagen::builtin_target("hlsl").fragment_skeleton.prologue, "");
-  EXPECT_NE(glsl.kernel_skeletons.at("quad_compute").prologue.find("#extension GL_KHR_shader_subgroup_quad : require\n"), std::string::npos);
+  EXPECT_NE(glsl.kernel_skeletons.at("quad_compute").prologue.find("#extension GL_KHR_shader_subgroup_quad : require\n"),
+            std::string::npos);
   EXPECT_EQ(glsl.with_precision("fp16").preamble.rfind("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n", 0), 0u);
   const auto pass = saagen::skeleton_sections("hlsl/deferred_pass.hlsl", "test");
   std::vector<std::string> names;
@@ -172,7 +171,8 @@ TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {
     saagen::TargetSyntax::parse(table, "targets/x.json");
     FAIL();
   } catch (const saagen::Error& error) {
-    EXPECT_STREQ(error.what(), "targets/x.json: skeleton file targets/glsl/missing.glsl is not in this build; add it under targets/ and rebuild");
+    EXPECT_STREQ(error.what(),
+                 "targets/x.json: skeleton file targets/glsl/missing.glsl is not in this build; add it under targets/ and rebuild");
   }
 }
 

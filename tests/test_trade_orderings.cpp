@@ -30,17 +30,17 @@
 //     error of evaluating the filtered BRDF with an inordinately elongated kernel (fp32 on the
 //     GPU); this reference evaluates in double, so what remains here is the "rim" of spurious
 //     highlights of Fig. 1a, not an overflow.
+#include "saagen/reference/render/render.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <stdexcept>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
-
-#include "saagen/reference/render/render.hpp"
 
 using namespace saagen::render;
 namespace ref = saagen::ref;
@@ -56,77 +56,76 @@ const std::vector<double> kAlphas{0.01, 0.05, 0.1, 0.3};
 // image error; flicker is not asserted here), computed on first use. ctest runs every TEST in
 // its own process, so each TEST renders only the scenes it reads (~1.5 - 3 s per scene).
 struct Data {
-    std::map<SceneId, TradeTable> tables;
-    std::map<SceneId, GBuffer> gbuffers;
+  std::map<SceneId, TradeTable> tables;
+  std::map<SceneId, GBuffer> gbuffers;
 
-    const TradeTable& table(SceneId scene) {
-        auto it = tables.find(scene);
-        if (it != tables.end()) return it->second;
-        TradeConfig config;
-        config.width = config.height = kSize;
-        config.strata = kStrata;
-        config.frames = 0;
-        config.scenes = {scene};
-        config.alphas = kAlphas;
-        config.fresnel_modes = {false};
-        config.keep_images = true;
-        TradeTable t = compute_trade_table(config);
-        std::printf("%s", format_trade_table(t).c_str());
-        gbuffers.emplace(scene, render_gbuffer(make_scene(scene), kSize, kSize));
-        return tables.emplace(scene, std::move(t)).first->second;
-    }
-    const GBuffer& gbuffer(SceneId scene) {
-        table(scene);
-        return gbuffers.at(scene);
-    }
-    const TradeRow& row(SceneId scene, double alpha, Variant v) {
-        const TradeRow* r = table(scene).find(v, scene, alpha, false);
-        if (!r) throw std::runtime_error("missing row");
-        return *r;
-    }
-    const ImageSet& images(SceneId scene, double alpha) {
-        for (const ImageSet& set : table(scene).images)
-            if (set.material.alpha == alpha) return set;
-        throw std::runtime_error("missing images");
-    }
-    const Image& image(SceneId scene, double alpha, Variant v) {
-        for (const auto& [variant, feed, prefilter, lobe, img] : images(scene, alpha).variants)
-            if (variant == v && feed == NormalFeed::shading && prefilter == Prefilter::none && lobe == Lobe::papers) return img;
-        throw std::runtime_error("missing image");
-    }
-    const Image& reference(SceneId scene, double alpha) { return images(scene, alpha).reference; }
+  const TradeTable& table(SceneId scene) {
+    auto it = tables.find(scene);
+    if (it != tables.end()) return it->second;
+    TradeConfig config;
+    config.width = config.height = kSize;
+    config.strata = kStrata;
+    config.frames = 0;
+    config.scenes = {scene};
+    config.alphas = kAlphas;
+    config.fresnel_modes = {false};
+    config.keep_images = true;
+    TradeTable t = compute_trade_table(config);
+    std::printf("%s", format_trade_table(t).c_str());
+    gbuffers.emplace(scene, render_gbuffer(make_scene(scene), kSize, kSize));
+    return tables.emplace(scene, std::move(t)).first->second;
+  }
+  const GBuffer& gbuffer(SceneId scene) {
+    table(scene);
+    return gbuffers.at(scene);
+  }
+  const TradeRow& row(SceneId scene, double alpha, Variant v) {
+    const TradeRow* r = table(scene).find(v, scene, alpha, false);
+    if (!r) throw std::runtime_error("missing row");
+    return *r;
+  }
+  const ImageSet& images(SceneId scene, double alpha) {
+    for (const ImageSet& set : table(scene).images)
+      if (set.material.alpha == alpha) return set;
+    throw std::runtime_error("missing images");
+  }
+  const Image& image(SceneId scene, double alpha, Variant v) {
+    for (const auto& [variant, feed, prefilter, lobe, img] : images(scene, alpha).variants)
+      if (variant == v && feed == NormalFeed::shading && prefilter == Prefilter::none && lobe == Lobe::papers) return img;
+    throw std::runtime_error("missing image");
+  }
+  const Image& reference(SceneId scene, double alpha) { return images(scene, alpha).reference; }
 };
 
 Data& data() {
-    static Data d;
-    return d;
+  static Data d;
+  return d;
 }
 
 // RMSE of a variant's image over the hit pixels whose half vector (at the pixel centre) has
 // h_z in [lo, hi).
-double rmse_where_hz(Data& d, SceneId scene, double alpha, Variant v, double lo, double hi,
-                     int* count = nullptr) {
-    const GBuffer& g = d.gbuffer(scene);
-    const Image& image = d.image(scene, alpha, v);
-    const Image& reference = d.reference(scene, alpha);
-    double s = 0.0;
-    int n = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-            const PixelFields& f = g.at(x, y);
-            if (!f.hit || f.half_ts.z < lo || f.half_ts.z >= hi) continue;
-            const double e = static_cast<double>(image.at(x, y)) - reference.at(x, y);
-            s += e * e;
-            ++n;
-        }
-    if (count) *count = n;
-    return n ? std::sqrt(s / n) : 0.0;
+double rmse_where_hz(Data& d, SceneId scene, double alpha, Variant v, double lo, double hi, int* count = nullptr) {
+  const GBuffer& g = d.gbuffer(scene);
+  const Image& image = d.image(scene, alpha, v);
+  const Image& reference = d.reference(scene, alpha);
+  double s = 0.0;
+  int n = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const PixelFields& f = g.at(x, y);
+      if (!f.hit || f.half_ts.z < lo || f.half_ts.z >= hi) continue;
+      const double e = static_cast<double>(image.at(x, y)) - reference.at(x, y);
+      s += e * e;
+      ++n;
+    }
+  if (count) *count = n;
+  return n ? std::sqrt(s / n) : 0.0;
 }
 
 std::string fmt_alpha(double alpha) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.2f", alpha);
-    return buffer;
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2f", alpha);
+  return buffer;
 }
 
 }  // namespace
@@ -142,47 +141,42 @@ std::string fmt_alpha(double alpha) {
 // the per-case values), because at alpha = 0.01 on the tubes, where every kernel hits the
 // kappa clamp, the tonemapped ranking of these near-identical images flips (0.115 vs 0.108).
 TEST(Deferred, AvgBeatsSumAndPreviousOnNormalMappedAndThinCurvedSurfaces) {
-    Data& d = data();
-    double agg_avg = 0.0, agg_sum = 0.0, agg_previous = 0.0;
-    int cases = 0;
-    for (SceneId scene : {SceneId::bump_plane, SceneId::tubes}) {
-        for (double alpha : kAlphas) {
-            const TradeRow& avg = d.row(scene, alpha, Variant::deferred_avg);
-            const TradeRow& sum = d.row(scene, alpha, Variant::deferred_sum);
-            const TradeRow& previous = d.row(scene, alpha, Variant::deferred_previous);
-            const std::string where = std::string(scene_name(scene)) + " alpha " + fmt_alpha(alpha);
-            EXPECT_LT(avg.rmse_linear, sum.rmse_linear)
-                << where << ": RMSE avg " << avg.rmse_linear << " vs sum " << sum.rmse_linear;
-            EXPECT_LT(avg.rmse_linear, previous.rmse_linear)
-                << where << ": RMSE avg " << avg.rmse_linear << " vs previous "
-                << previous.rmse_linear;
-            agg_avg += avg.rmse_tonemapped * avg.rmse_tonemapped;
-            agg_sum += sum.rmse_tonemapped * sum.rmse_tonemapped;
-            agg_previous += previous.rmse_tonemapped * previous.rmse_tonemapped;
-            ++cases;
-        }
-    }
-    agg_avg = std::sqrt(agg_avg / cases);
-    agg_sum = std::sqrt(agg_sum / cases);
-    agg_previous = std::sqrt(agg_previous / cases);
-    std::printf("tonemapped RMSE over bump_plane + tubes, 4 alphas: avg %.5f sum %.5f previous %.5f\n",
-                agg_avg, agg_sum, agg_previous);
-    EXPECT_LT(agg_avg, agg_sum) << "aggregated tonemapped RMSE avg vs sum";
-    EXPECT_LT(agg_avg, agg_previous) << "aggregated tonemapped RMSE avg vs previous";
-
-    // The slides' "previous worst": on the normal-mapped plane previous has the largest linear
-    // RMSE of the deferred forms at every alpha (the tangent-space max, its tangent-free form,
-    // sum, avg and projected-space all do better).
+  Data& d = data();
+  double agg_avg = 0.0, agg_sum = 0.0, agg_previous = 0.0;
+  int cases = 0;
+  for (SceneId scene : {SceneId::bump_plane, SceneId::tubes}) {
     for (double alpha : kAlphas) {
-        const double previous = d.row(SceneId::bump_plane, alpha, Variant::deferred_previous).rmse_linear;
-        for (Variant v : {Variant::deferred_max, Variant::deferred_max_tangent_free,
-                          Variant::deferred_sum, Variant::deferred_avg,
-                          Variant::deferred_projected_space}) {
-            const double other = d.row(SceneId::bump_plane, alpha, v).rmse_linear;
-            EXPECT_LT(other, previous) << "bump_plane alpha " << alpha << ": " << variant_id(v)
-                                       << " " << other << " vs previous " << previous;
-        }
+      const TradeRow& avg = d.row(scene, alpha, Variant::deferred_avg);
+      const TradeRow& sum = d.row(scene, alpha, Variant::deferred_sum);
+      const TradeRow& previous = d.row(scene, alpha, Variant::deferred_previous);
+      const std::string where = std::string(scene_name(scene)) + " alpha " + fmt_alpha(alpha);
+      EXPECT_LT(avg.rmse_linear, sum.rmse_linear) << where << ": RMSE avg " << avg.rmse_linear << " vs sum " << sum.rmse_linear;
+      EXPECT_LT(avg.rmse_linear, previous.rmse_linear)
+          << where << ": RMSE avg " << avg.rmse_linear << " vs previous " << previous.rmse_linear;
+      agg_avg += avg.rmse_tonemapped * avg.rmse_tonemapped;
+      agg_sum += sum.rmse_tonemapped * sum.rmse_tonemapped;
+      agg_previous += previous.rmse_tonemapped * previous.rmse_tonemapped;
+      ++cases;
     }
+  }
+  agg_avg = std::sqrt(agg_avg / cases);
+  agg_sum = std::sqrt(agg_sum / cases);
+  agg_previous = std::sqrt(agg_previous / cases);
+  std::printf("tonemapped RMSE over bump_plane + tubes, 4 alphas: avg %.5f sum %.5f previous %.5f\n", agg_avg, agg_sum, agg_previous);
+  EXPECT_LT(agg_avg, agg_sum) << "aggregated tonemapped RMSE avg vs sum";
+  EXPECT_LT(agg_avg, agg_previous) << "aggregated tonemapped RMSE avg vs previous";
+
+  // The slides' "previous worst": on the normal-mapped plane previous has the largest linear
+  // RMSE of the deferred forms at every alpha (the tangent-space max, its tangent-free form,
+  // sum, avg and projected-space all do better).
+  for (double alpha : kAlphas) {
+    const double previous = d.row(SceneId::bump_plane, alpha, Variant::deferred_previous).rmse_linear;
+    for (Variant v : {Variant::deferred_max, Variant::deferred_max_tangent_free, Variant::deferred_sum, Variant::deferred_avg,
+                      Variant::deferred_projected_space}) {
+      const double other = d.row(SceneId::bump_plane, alpha, v).rmse_linear;
+      EXPECT_LT(other, previous) << "bump_plane alpha " << alpha << ": " << variant_id(v) << " " << other << " vs previous " << previous;
+    }
+  }
 }
 
 // What is true on the smooth sphere (the ordering avg < sum does NOT hold there in linear
@@ -201,75 +195,65 @@ TEST(Deferred, AvgBeatsSumAndPreviousOnNormalMappedAndThinCurvedSurfaces) {
 //  * The tonemapped RMSE, which weighs the many near-highlight pixels rather than the peaks,
 //    still ranks avg before sum on the sphere (and on the torus) at every alpha.
 TEST(Deferred, SmoothSphereFavoursSumInLinearRmse) {
-    Data& d = data();
-    // The inversion, with a wide margin at alpha = 0.05 (0.0144 vs 0.0246).
-    const TradeRow& avg = d.row(SceneId::sphere, 0.05, Variant::deferred_avg);
-    const TradeRow& sum = d.row(SceneId::sphere, 0.05, Variant::deferred_sum);
-    EXPECT_LT(sum.rmse_linear, avg.rmse_linear)
-        << "sphere alpha 0.05 linear RMSE: sum " << sum.rmse_linear << " avg " << avg.rmse_linear;
-    // Tonemapped: avg first on the curved surfaces at every alpha.
-    for (SceneId scene : {SceneId::sphere, SceneId::torus})
-        for (double alpha : kAlphas) {
-            const double a = d.row(scene, alpha, Variant::deferred_avg).rmse_tonemapped;
-            const double s = d.row(scene, alpha, Variant::deferred_sum).rmse_tonemapped;
-            const double p = d.row(scene, alpha, Variant::deferred_previous).rmse_tonemapped;
-            EXPECT_LT(a, s) << scene_name(scene) << " alpha " << alpha << " tonemapped avg " << a
-                            << " sum " << s;
-            EXPECT_LT(a, p) << scene_name(scene) << " alpha " << alpha << " tonemapped avg " << a
-                            << " previous " << p;
-        }
-
-    // The mechanism: half-vector vs normal variation at the highlight (quads with h_z > 0.95).
-    auto derivative_ratio = [](const GBuffer& g) {
-        double sum_ratio = 0.0;
-        int n = 0;
-        for (int y = 0; y + 1 < g.height; y += 2)
-            for (int x = 0; x + 1 < g.width; x += 2) {
-                const PixelFields& a = g.at(x, y);
-                const PixelFields& b = g.at(x + 1, y);
-                const PixelFields& c = g.at(x, y + 1);
-                if (!a.hit || !b.hit || !c.hit || a.half_ts.z < 0.95) continue;
-                auto dh = [](Vec3 p, Vec3 q) {
-                    return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y);
-                };
-                auto dn = [](Vec3 p, Vec3 q) { return ref::dot(p - q, p - q); };
-                sum_ratio += (dh(b.half_ts, a.half_ts) + dh(c.half_ts, a.half_ts)) /
-                             (dn(b.normal, a.normal) + dn(c.normal, a.normal));
-                ++n;
-            }
-        return sum_ratio / n;
-    };
-    const Scene near = make_scene(SceneId::sphere);
-    // Same sphere and light, camera at 40 radii with the field of view narrowed to keep the
-    // framing (tan(fov/2) scaled by 4/40).
-    const double fov = 2.0 * std::atan(std::tan(17.0 * ref::kPi / 180.0) * 0.1) * 180.0 / ref::kPi;
-    const Scene far("sphere_far", std::make_shared<Sphere>(1.0), Rigid{},
-                    Camera{{0.0, 0.0, 40.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, fov},
-                    near.light(), {0.0, 0.0, -1.0}, 0.0);
-    const GBuffer far_gbuffer = render_gbuffer(far, kSize, kSize);
-    const double ratio_near = derivative_ratio(d.gbuffer(SceneId::sphere));
-    const double ratio_far = derivative_ratio(far_gbuffer);
-    std::printf("|dh_proj|^2 / |dn|^2 at the highlight: camera at 4 radii %.3f, at 40 radii %.3f\n",
-                ratio_near, ratio_far);
-    EXPECT_GT(ratio_near, 1.2);
-    EXPECT_NEAR(ratio_far, 1.0, 0.05);
-
-    // Far eye: avg beats sum at alpha = 0.01.
-    const std::vector<Material> materials{{0.01, false}, {0.05, false}};
-    GroundTruthSettings settings;
-    settings.width = settings.height = kSize;
-    settings.strata = kStrata;
-    const GroundTruth gt = render_ground_truth(far, settings, materials);
-    for (std::size_t m = 0; m < materials.size(); ++m) {
-        const double a = compare_images(render_variant(far_gbuffer, Variant::deferred_avg, materials[m]),
-                                        gt.images[m]).rmse_linear;
-        const double s = compare_images(render_variant(far_gbuffer, Variant::deferred_sum, materials[m]),
-                                        gt.images[m]).rmse_linear;
-        std::printf("far sphere alpha %.2f: linear RMSE avg %.4g sum %.4g\n", materials[m].alpha, a, s);
-        if (m == 0) {
-            EXPECT_LT(a, s) << "far sphere alpha 0.01: avg " << a << " sum " << s;
-        }
+  Data& d = data();
+  // The inversion, with a wide margin at alpha = 0.05 (0.0144 vs 0.0246).
+  const TradeRow& avg = d.row(SceneId::sphere, 0.05, Variant::deferred_avg);
+  const TradeRow& sum = d.row(SceneId::sphere, 0.05, Variant::deferred_sum);
+  EXPECT_LT(sum.rmse_linear, avg.rmse_linear) << "sphere alpha 0.05 linear RMSE: sum " << sum.rmse_linear << " avg " << avg.rmse_linear;
+  // Tonemapped: avg first on the curved surfaces at every alpha.
+  for (SceneId scene : {SceneId::sphere, SceneId::torus})
+    for (double alpha : kAlphas) {
+      const double a = d.row(scene, alpha, Variant::deferred_avg).rmse_tonemapped;
+      const double s = d.row(scene, alpha, Variant::deferred_sum).rmse_tonemapped;
+      const double p = d.row(scene, alpha, Variant::deferred_previous).rmse_tonemapped;
+      EXPECT_LT(a, s) << scene_name(scene) << " alpha " << alpha << " tonemapped avg " << a << " sum " << s;
+      EXPECT_LT(a, p) << scene_name(scene) << " alpha " << alpha << " tonemapped avg " << a << " previous " << p;
     }
+
+  // The mechanism: half-vector vs normal variation at the highlight (quads with h_z > 0.95).
+  auto derivative_ratio = [](const GBuffer& g) {
+    double sum_ratio = 0.0;
+    int n = 0;
+    for (int y = 0; y + 1 < g.height; y += 2)
+      for (int x = 0; x + 1 < g.width; x += 2) {
+        const PixelFields& a = g.at(x, y);
+        const PixelFields& b = g.at(x + 1, y);
+        const PixelFields& c = g.at(x, y + 1);
+        if (!a.hit || !b.hit || !c.hit || a.half_ts.z < 0.95) continue;
+        auto dh = [](Vec3 p, Vec3 q) { return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y); };
+        auto dn = [](Vec3 p, Vec3 q) { return ref::dot(p - q, p - q); };
+        sum_ratio += (dh(b.half_ts, a.half_ts) + dh(c.half_ts, a.half_ts)) / (dn(b.normal, a.normal) + dn(c.normal, a.normal));
+        ++n;
+      }
+    return sum_ratio / n;
+  };
+  const Scene near = make_scene(SceneId::sphere);
+  // Same sphere and light, camera at 40 radii with the field of view narrowed to keep the
+  // framing (tan(fov/2) scaled by 4/40).
+  const double fov = 2.0 * std::atan(std::tan(17.0 * ref::kPi / 180.0) * 0.1) * 180.0 / ref::kPi;
+  const Scene far("sphere_far", std::make_shared<Sphere>(1.0), Rigid{}, Camera{{0.0, 0.0, 40.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, fov},
+                  near.light(), {0.0, 0.0, -1.0}, 0.0);
+  const GBuffer far_gbuffer = render_gbuffer(far, kSize, kSize);
+  const double ratio_near = derivative_ratio(d.gbuffer(SceneId::sphere));
+  const double ratio_far = derivative_ratio(far_gbuffer);
+  std::printf("|dh_proj|^2 / |dn|^2 at the highlight: camera at 4 radii %.3f, at 40 radii %.3f\n", ratio_near, ratio_far);
+  EXPECT_GT(ratio_near, 1.2);
+  EXPECT_NEAR(ratio_far, 1.0, 0.05);
+
+  // Far eye: avg beats sum at alpha = 0.01.
+  const std::vector<Material> materials{{0.01, false}, {0.05, false}};
+  GroundTruthSettings settings;
+  settings.width = settings.height = kSize;
+  settings.strata = kStrata;
+  const GroundTruth gt = render_ground_truth(far, settings, materials);
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const double a = compare_images(render_variant(far_gbuffer, Variant::deferred_avg, materials[m]), gt.images[m]).rmse_linear;
+    const double s = compare_images(render_variant(far_gbuffer, Variant::deferred_sum, materials[m]), gt.images[m]).rmse_linear;
+    std::printf("far sphere alpha %.2f: linear RMSE avg %.4g sum %.4g\n", materials[m].alpha, a, s);
+    if (m == 0) {
+      EXPECT_LT(a, s) << "far sphere alpha 0.01: avg " << a << " sum " << s;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -283,28 +267,26 @@ TEST(Deferred, SmoothSphereFavoursSumInLinearRmse) {
 // dominates) and large at alpha >= 0.05 on the sphere.
 namespace {
 void slope_space_blow_up(Data& d) {
-    for (SceneId scene : {SceneId::sphere, SceneId::torus, SceneId::tubes}) {
-        int n = 0;
-        const double e_slope = rmse_where_hz(d, scene, 0.01, Variant::forward_aniso_slope, 0.0, 0.4, &n);
-        const double e_projected =
-            rmse_where_hz(d, scene, 0.01, Variant::forward_aniso_projected, 0.0, 0.4);
-        const double whole = d.row(scene, 0.01, Variant::forward_aniso_slope).rmse_linear /
-                             d.row(scene, 0.01, Variant::forward_aniso_projected).rmse_linear;
-        std::printf("%-7s alpha 0.01, h_z < 0.4 (%4d px): aniso slope %.4g, projected %.4g, "
-                    "ratio %.1f; whole image ratio %.2f\n",
-                    std::string(scene_name(scene)).c_str(), n, e_slope, e_projected,
-                    e_slope / e_projected, whole);
-        EXPECT_GT(n, 300) << scene_name(scene);
-        EXPECT_GT(e_slope, 10.0 * e_projected)
-            << scene_name(scene) << " h_z < 0.4: slope " << e_slope << " projected " << e_projected;
-        EXPECT_GT(whole, 1.3) << scene_name(scene) << " whole-image ratio at alpha 0.01";
-    }
-    for (double alpha : {0.05, 0.1, 0.3}) {
-        const double ratio = d.row(SceneId::sphere, alpha, Variant::forward_aniso_slope).rmse_linear /
-                             d.row(SceneId::sphere, alpha, Variant::forward_aniso_projected).rmse_linear;
-        std::printf("sphere alpha %.2f whole image: aniso slope / projected RMSE %.1f\n", alpha, ratio);
-        EXPECT_GT(ratio, 10.0) << "sphere alpha " << alpha;
-    }
+  for (SceneId scene : {SceneId::sphere, SceneId::torus, SceneId::tubes}) {
+    int n = 0;
+    const double e_slope = rmse_where_hz(d, scene, 0.01, Variant::forward_aniso_slope, 0.0, 0.4, &n);
+    const double e_projected = rmse_where_hz(d, scene, 0.01, Variant::forward_aniso_projected, 0.0, 0.4);
+    const double whole =
+        d.row(scene, 0.01, Variant::forward_aniso_slope).rmse_linear / d.row(scene, 0.01, Variant::forward_aniso_projected).rmse_linear;
+    std::printf(
+        "%-7s alpha 0.01, h_z < 0.4 (%4d px): aniso slope %.4g, projected %.4g, "
+        "ratio %.1f; whole image ratio %.2f\n",
+        std::string(scene_name(scene)).c_str(), n, e_slope, e_projected, e_slope / e_projected, whole);
+    EXPECT_GT(n, 300) << scene_name(scene);
+    EXPECT_GT(e_slope, 10.0 * e_projected) << scene_name(scene) << " h_z < 0.4: slope " << e_slope << " projected " << e_projected;
+    EXPECT_GT(whole, 1.3) << scene_name(scene) << " whole-image ratio at alpha 0.01";
+  }
+  for (double alpha : {0.05, 0.1, 0.3}) {
+    const double ratio = d.row(SceneId::sphere, alpha, Variant::forward_aniso_slope).rmse_linear /
+                         d.row(SceneId::sphere, alpha, Variant::forward_aniso_projected).rmse_linear;
+    std::printf("sphere alpha %.2f whole image: aniso slope / projected RMSE %.1f\n", alpha, ratio);
+    EXPECT_GT(ratio, 10.0) << "sphere alpha " << alpha;
+  }
 }
 }  // namespace
 
@@ -316,37 +298,32 @@ void slope_space_blow_up(Data& d) {
 // dominates; the whole-image tonemapped RMSE separates them clearly and is asserted too.
 // One TEST with slope_space_blow_up (above) so that the three scenes are rendered once.
 TEST(Forward, ProjectedBeatsSlopeAtGrazingAndSlopeSpaceBlowsUpAtSmallHz) {
-    Data& d = data();
-    const double alpha = 0.01;
-    for (SceneId scene : {SceneId::sphere, SceneId::torus, SceneId::tubes}) {
-        for (auto [slope, projected] :
-             {std::pair{Variant::forward_aniso_slope, Variant::forward_aniso_projected},
-              std::pair{Variant::forward_axis_slope, Variant::forward_axis_projected}}) {
-            int n = 0;
-            const double e_slope = rmse_where_hz(d, scene, alpha, slope, 0.0, 0.6, &n);
-            const double e_projected = rmse_where_hz(d, scene, alpha, projected, 0.0, 0.6);
-            std::printf("%-7s %-24s vs %-24s h_z < 0.6 (%5d px): %.4g vs %.4g; whole image "
-                        "linear %.4g vs %.4g, tonemapped %.4g vs %.4g\n",
-                        std::string(scene_name(scene)).c_str(), std::string(variant_id(slope)).c_str(),
-                        std::string(variant_id(projected)).c_str(), n, e_slope, e_projected,
-                        d.row(scene, alpha, slope).rmse_linear,
-                        d.row(scene, alpha, projected).rmse_linear,
-                        d.row(scene, alpha, slope).rmse_tonemapped,
-                        d.row(scene, alpha, projected).rmse_tonemapped);
-            EXPECT_GT(n, 200) << scene_name(scene);
-            EXPECT_LT(e_projected, e_slope)
-                << scene_name(scene) << " h_z < 0.6: " << variant_id(projected) << " "
-                << e_projected << " vs " << variant_id(slope) << " " << e_slope;
-            EXPECT_LT(d.row(scene, alpha, projected).rmse_tonemapped,
-                      d.row(scene, alpha, slope).rmse_tonemapped)
-                << scene_name(scene) << " whole image, tonemapped";
-        }
-        // Non-axis-aligned: also over the whole image in linear RMSE.
-        EXPECT_LT(d.row(scene, alpha, Variant::forward_aniso_projected).rmse_linear,
-                  d.row(scene, alpha, Variant::forward_aniso_slope).rmse_linear)
-            << scene_name(scene) << " whole image, linear";
+  Data& d = data();
+  const double alpha = 0.01;
+  for (SceneId scene : {SceneId::sphere, SceneId::torus, SceneId::tubes}) {
+    for (auto [slope, projected] : {std::pair{Variant::forward_aniso_slope, Variant::forward_aniso_projected},
+                                    std::pair{Variant::forward_axis_slope, Variant::forward_axis_projected}}) {
+      int n = 0;
+      const double e_slope = rmse_where_hz(d, scene, alpha, slope, 0.0, 0.6, &n);
+      const double e_projected = rmse_where_hz(d, scene, alpha, projected, 0.0, 0.6);
+      std::printf(
+          "%-7s %-24s vs %-24s h_z < 0.6 (%5d px): %.4g vs %.4g; whole image "
+          "linear %.4g vs %.4g, tonemapped %.4g vs %.4g\n",
+          std::string(scene_name(scene)).c_str(), std::string(variant_id(slope)).c_str(), std::string(variant_id(projected)).c_str(), n,
+          e_slope, e_projected, d.row(scene, alpha, slope).rmse_linear, d.row(scene, alpha, projected).rmse_linear,
+          d.row(scene, alpha, slope).rmse_tonemapped, d.row(scene, alpha, projected).rmse_tonemapped);
+      EXPECT_GT(n, 200) << scene_name(scene);
+      EXPECT_LT(e_projected, e_slope) << scene_name(scene) << " h_z < 0.6: " << variant_id(projected) << " " << e_projected << " vs "
+                                      << variant_id(slope) << " " << e_slope;
+      EXPECT_LT(d.row(scene, alpha, projected).rmse_tonemapped, d.row(scene, alpha, slope).rmse_tonemapped)
+          << scene_name(scene) << " whole image, tonemapped";
     }
+    // Non-axis-aligned: also over the whole image in linear RMSE.
+    EXPECT_LT(d.row(scene, alpha, Variant::forward_aniso_projected).rmse_linear,
+              d.row(scene, alpha, Variant::forward_aniso_slope).rmse_linear)
+        << scene_name(scene) << " whole image, linear";
+  }
 
-    // The same scenes: the slope-space blow-up where h_z is small (above).
-    slope_space_blow_up(d);
+  // The same scenes: the slope-space blow-up where h_z is small (above).
+  slope_space_blow_up(d);
 }

@@ -25,20 +25,20 @@
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 
 #include <unistd.h>
@@ -53,9 +53,9 @@ using saagen::test::Worst;
 constexpr std::uint32_t kCoreSide = 128;  // core results: a 128 x 128 target, one element per pixel
 constexpr std::uint32_t kCoreElements = kCoreSide * kCoreSide;
 constexpr std::uint32_t kCoreSubsample = 131072 / kCoreElements;  // one in 8 of test_gpu_core's inputs
-constexpr std::uint32_t kInputTextureWidth = 1024;                 // texels (4 floats) per row
-constexpr double kMediumpUlp = 0x1p-10;                             // ES 3.00 4.5.2: relative precision
-constexpr double kMediumpFlush = 0x1p-14;                           // ES 3.00 4.5.2: smallest magnitude
+constexpr std::uint32_t kInputTextureWidth = 1024;                // texels (4 floats) per row
+constexpr double kMediumpUlp = 0x1p-10;                           // ES 3.00 4.5.2: relative precision
+constexpr double kMediumpFlush = 0x1p-14;                         // ES 3.00 4.5.2: smallest magnitude
 constexpr double kMediumpOperations = 16.0;
 
 // The skeleton around an emitted file: default precisions for the skeleton's own declarations
@@ -99,7 +99,8 @@ saagen::EmittedFile emit(const std::string& variant, const std::string& precisio
 // The shader running `body` (template dialect) after the emitted file.
 std::string shader_source(const saagen::EmittedFile& file, const std::string& body, std::uint32_t width, std::uint32_t input_stride) {
   saagen::NameMap names;
-  for (const saagen::Function& function : Catalogue::builtin().functions()) names[function.name] = saagen::prefixed_name("saa_", function.name);
+  for (const saagen::Function& function : Catalogue::builtin().functions())
+    names[function.name] = saagen::prefixed_name("saa_", function.name);
   const std::string translated = saagen::translate(saagen::builtin_target("gles"), body, names);
   return std::string(kPrologue) + file.content + epilogue(translated, width, input_stride);
 }
@@ -112,8 +113,10 @@ struct Case {
   std::string variant, function, precision;
 };
 
-bool is_brdf(const std::string& function) { return function.find("brdf") != std::string::npos || function.find("ndf") != std::string::npos ||
-                                                   function.find("lambda") != std::string::npos || function.find("g2") != std::string::npos; }
+bool is_brdf(const std::string& function) {
+  return function.find("brdf") != std::string::npos || function.find("ndf") != std::string::npos ||
+         function.find("lambda") != std::string::npos || function.find("g2") != std::string::npos;
+}
 
 std::vector<Case> all_cases() {
   std::vector<Case> cases;
@@ -227,7 +230,8 @@ ref::Derivative browser_plain_derivative() {
   const auto& out = outputs_of("probe_derivative");
   // Pixel (0, 1), channel 0: fine gives its own row's x-difference of x*y, 1.5; coarse row 0's, 0.5.
   const float value = out[(1 * 4 + 0) * 4];
-  if (value != 1.5f && value != 0.5f) throw std::runtime_error(fmt::format("plain dFdx is neither fine nor coarse as the reference takes it: {}", value));
+  if (value != 1.5f && value != 0.5f)
+    throw std::runtime_error(fmt::format("plain dFdx is neither fine nor coarse as the reference takes it: {}", value));
   const ref::Derivative mode = value == 1.5f ? ref::Derivative::fine : ref::Derivative::coarse;
   static const bool printed = (std::cout << "[ webgl2   ] plain dFdx/dFdy: " << (value == 1.5f ? "fine" : "coarse") << "\n", true);
   (void)printed;
@@ -256,8 +260,7 @@ TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
       const auto scales = reference.scale(scale_inputs);
       for (std::size_t k = 0; k < values.size(); ++k) {
         const double scale = std::max(std::fabs(values[k]), scales[std::min(k, scales.size() - 1)]);
-        const double bound = mediump ? kMediumpOperations * (kMediumpUlp * scale + kMediumpFlush)
-                                     : core::rounding_bound * scale + 1e-30;
+        const double bound = mediump ? kMediumpOperations * (kMediumpUlp * scale + kMediumpFlush) : core::rounding_bound * scale + 1e-30;
         worst.add(out[std::size_t{element} * 4 + k], values[k], bound);
       }
     }
@@ -278,7 +281,8 @@ TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
         // The highp bound's terms with mediump's unit: 16 ulps (2^-24) of the condition become
         // 16 ulps of 2^-10, the filter's own rounding as for the core functions.
         const double condition_part = std::max(0.0, bound - 2e-5 * std::fabs(comparison.expected[k]) - 1e-30);
-        bound = condition_part * std::ldexp(1.0, 14) + kMediumpOperations * (kMediumpUlp * std::fabs(comparison.expected[k]) + kMediumpFlush);
+        bound =
+            condition_part * std::ldexp(1.0, 14) + kMediumpOperations * (kMediumpUlp * std::fabs(comparison.expected[k]) + kMediumpFlush);
       }
       worst.add(comparison.got[k], comparison.expected[k], bound);
     }

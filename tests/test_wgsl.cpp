@@ -22,13 +22,13 @@
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/products/glints.hpp"
-#include "saagen/validate/kernels.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/kernels.hpp"
 #include "saagen/validate/validation.hpp"
 
 #include <fmt/format.h>
@@ -139,7 +139,8 @@ std::vector<std::pair<std::string, std::string>> files_to_validate(bool with_f16
   const Catalogue& every_variant = saagen::glints::catalogue();
   const auto add = [&](saagen::EmitOptions options) {
     options.target = "wgsl";
-    for (saagen::EmittedFile& file : saagen::emit_variants(every_variant, options)) files.emplace_back(file.file_name, std::move(file.content));
+    for (saagen::EmittedFile& file : saagen::emit_variants(every_variant, options))
+      files.emplace_back(file.file_name, std::move(file.content));
   };
   add(wgsl_options());
   if (with_f16) add(wgsl_options("fp16"));
@@ -236,9 +237,10 @@ TEST_P(OnWebGpu, MatchesTheDoublePrecisionReferenceWithinTheWgslAccuracyBounds) 
                                                      ref::Derivative::fine, params);
     for (std::size_t k = 0; k < comparison.got.size(); ++k) worst.add(comparison.got[k], comparison.expected[k], comparison.bound[k]);
   }
-  const std::string what = fmt::format("{} ({}, {})", c.function, c.variant,
-                                       c.kind == Kind::wrapper ? (c.derivative == ref::Derivative::fine ? "fragment, dpdxFine" : "fragment, dpdxCoarse")
-                                                               : "compute, 16384 inputs");
+  const std::string what =
+      fmt::format("{} ({}, {})", c.function, c.variant,
+                  c.kind == Kind::wrapper ? (c.derivative == ref::Derivative::fine ? "fragment, dpdxFine" : "fragment, dpdxCoarse")
+                                          : "compute, 16384 inputs");
   std::cout << "[ webgpu   ] " << worst.summary(what) << "\n";
   EXPECT_GT(worst.count, 0u);
   EXPECT_EQ(worst.failing, 0u) << worst.summary(what);
@@ -289,7 +291,9 @@ TEST(Tint, RefusesADerivativeInNonUniformControlFlow) {
                              "    if p.x > 8.0 { r = saa_deferred_sum_fragment(0.1, normalize(p.xyz)); }\n"
                              "    return vec4<f32>(r);\n}\n";
   nlohmann::json jobs = nlohmann::json::array();
-  jobs.push_back({{"id", "nonuniform"}, {"kind", "compile"}, {"code", module},
+  jobs.push_back({{"id", "nonuniform"},
+                  {"kind", "compile"},
+                  {"code", module},
                   {"entry_points", nlohmann::json::array({{{"stage", "fragment"}, {"name", "saagen_nonuniform"}}})}});
   const fs::path directory = fs::temp_directory_path() / fmt::format("saagen-wgsl-uniformity-{}", ::getpid());
   fs::create_directories(directory);

@@ -4,11 +4,11 @@
 // and several variants make one module. Tint's verdict and the runs are in test_wgsl.
 #include "web_support.hpp"
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
-#include "saagen/products/glints.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/front/syntax_tree.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/target/target.hpp"
 
 #include <gtest/gtest.h>
@@ -37,7 +37,8 @@ std::string code_of(const std::string& content) {
 
 std::vector<std::string> all_matches(const std::string& text, const std::regex& pattern) {
   std::vector<std::string> found;
-  for (auto match = std::sregex_iterator(text.begin(), text.end(), pattern); match != std::sregex_iterator(); ++match) found.push_back((*match)[1]);
+  for (auto match = std::sregex_iterator(text.begin(), text.end(), pattern); match != std::sregex_iterator(); ++match)
+    found.push_back((*match)[1]);
   return found;
 }
 
@@ -66,7 +67,8 @@ TEST(WgslEmission, EveryVariantInEveryFormIsAModuleWithoutPreprocessorOrCLikeSyn
       const bool half = code.find("f16") != std::string::npos;
       EXPECT_EQ(half, options.precision == "fp16");
       if (half) {
-        EXPECT_LT(code.find("enable f16;"), code.find("const ") == std::string::npos ? code.find("fn ") : std::min(code.find("const "), code.find("fn ")));
+        EXPECT_LT(code.find("enable f16;"),
+                  code.find("const ") == std::string::npos ? code.find("fn ") : std::min(code.find("const "), code.find("fn ")));
         EXPECT_NE(file.content.find("shader-f16"), std::string::npos) << "the header names the device feature";
       }
     }
@@ -95,7 +97,8 @@ TEST(WgslEmission, SeveralVariantsMakeOneModuleWithTheirClosureOnce) {
   EXPECT_EQ(file.file_name, "saa_module.wgsl");
   const std::string code = code_of(file.content);
   std::set<std::string> seen;
-  for (const std::string& name : all_matches(code, std::regex(R"((?:^|\n)fn ([A-Za-z0-9_]+))"))) EXPECT_TRUE(seen.insert(name).second) << name;
+  for (const std::string& name : all_matches(code, std::regex(R"((?:^|\n)fn ([A-Za-z0-9_]+))")))
+    EXPECT_TRUE(seen.insert(name).second) << name;
   for (const std::string& name : request.functions) EXPECT_TRUE(seen.count("saa_" + name)) << name;
 }
 
@@ -104,7 +107,8 @@ TEST(WgslEmission, TheImportPathHeaderIsOptionalAndChecked) {
   const saagen::EmittedFile file = emit_all(options).front();
   EXPECT_NE(file.content.find("\n#define_import_path saagen::deferred_sum\n"), std::string::npos);
   EXPECT_EQ(saagen::find_marker(file.content)->import_path, "saagen::deferred_sum");
-  EXPECT_EQ(emit_all(wgsl_options("fp32", true, "alpha2", {"deferred-sum"})).front().content.find("#define_import_path"), std::string::npos);
+  EXPECT_EQ(emit_all(wgsl_options("fp32", true, "alpha2", {"deferred-sum"})).front().content.find("#define_import_path"),
+            std::string::npos);
   for (const char* bad : {"saagen:deferred", "saagen::", "9lives", "a b", "saagen::x\n@compute fn f() {}"}) {
     options.import_path = bad;
     EXPECT_THROW(emit_all(options), saagen::Error) << bad;
@@ -150,9 +154,11 @@ returns: int | never printed
   const Catalogue catalogue = Catalogue::parse(sources);
   const saagen::NameMap names;
   const saagen::dialect::PrintOptions print{&names};
-  EXPECT_EQ(saagen::dialect::print_wgsl(*catalogue.find_function("f")->tree, wgsl, print), "    let select_: f32 = target_ * 2.0;\n    return select_;\n");
+  EXPECT_EQ(saagen::dialect::print_wgsl(*catalogue.find_function("f")->tree, wgsl, print),
+            "    let select_: f32 = target_ * 2.0;\n    return select_;\n");
   EXPECT_EQ(saagen::dialect::parameter_name(wgsl, catalogue.find_function("f")->tree.get(), "target"), "target_");
-  EXPECT_EQ(saagen::dialect::print_wgsl(*catalogue.find_function("g")->tree, wgsl, print), "    var k: i32 = n;\n    k++;\n    k++;\n    return k;\n");
+  EXPECT_EQ(saagen::dialect::print_wgsl(*catalogue.find_function("g")->tree, wgsl, print),
+            "    var k: i32 = n;\n    k++;\n    k++;\n    return k;\n");
   EXPECT_THROW(saagen::dialect::print_wgsl(*catalogue.find_function("h")->tree, wgsl, print), saagen::Error);
 }
 

@@ -2,13 +2,12 @@
 // validation layer on (SAAGEN_VK_VALIDATION=1, set by ctest for every device), the run fails when
 // the layer reported any warning or error. Each message is also printed as one
 // "[validation] ..." line, which ctest's FAIL_REGULAR_EXPRESSION catches as well.
-#include <saagen/harness/compare.hpp>
-#include <saagen/harness/context.hpp>
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <iostream>
+#include <saagen/harness/compare.hpp>
+#include <saagen/harness/context.hpp>
 
 namespace {
 

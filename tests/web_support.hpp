@@ -29,8 +29,8 @@ struct Worst {
     if (!(r <= ratio)) ratio = r, error = e, bound = limit, expected = reference, got = value;
   }
   std::string summary(const std::string& what) const {
-    return fmt::format("{}: worst error / bound {:.3g} (error {:.3g}, bound {:.3g}, got {:.9g}, reference {:.9g}); {} of {} outside", what, ratio,
-                       error, bound, got, expected, failing, count);
+    return fmt::format("{}: worst error / bound {:.3g} (error {:.3g}, bound {:.3g}, got {:.9g}, reference {:.9g}); {} of {} outside", what,
+                       ratio, error, bound, got, expected, failing, count);
   }
 };
 

@@ -13,8 +13,8 @@
 #pragma once
 
 #include "saagen/front/catalogue.hpp"
-#include "saagen/validate/kernels.hpp"
 #include "saagen/reference/reference.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 
@@ -68,13 +68,15 @@ inline const char* const scene_body = R"(
 // The wrapper call, its arguments chosen by parameter name, and the stores of its result.
 inline std::string wrapper_call(const saagen::Function& wrapper) {
   static const std::map<std::string, std::string> argument_for_parameter = {
-      {"half_ts", "half_ts"}, {"normal_ws", "n"}, {"tangent_ws", "t"}, {"bitangent_ws", "b"},
-      {"frag_coord", "saagen_frag_coord"}, {"i", "i_ts"}, {"o", "o_ts"}};
+      {"half_ts", "half_ts"}, {"normal_ws", "n"}, {"tangent_ws", "t"}, {"bitangent_ws", "b"}, {"frag_coord", "saagen_frag_coord"},
+      {"i", "i_ts"},          {"o", "o_ts"}};
   std::string arguments;
   for (const saagen::Parameter& parameter : wrapper.parameters) {
     if (!arguments.empty()) arguments += ", ";
-    if (parameter.name == "alpha2") arguments += parameter.type == "real" ? "alpha2.x" : "alpha2";
-    else arguments += argument_for_parameter.at(parameter.name);
+    if (parameter.name == "alpha2")
+      arguments += parameter.type == "real" ? "alpha2.x" : "alpha2";
+    else
+      arguments += argument_for_parameter.at(parameter.name);
   }
   std::string body = fmt::format("    {} saagen_result = {}({});\n", wrapper.return_type, wrapper.name, arguments);
   const std::uint32_t count = saagen::component_count(wrapper.return_type);
@@ -98,7 +100,8 @@ inline PixelFields fields_at(const std::vector<float>& out, std::uint32_t x, std
 // The vector fields (n, t, b, half_ts, i_ts, o_ts) each wrapper reads.
 inline std::vector<Vec3 PixelFields::*> fields_read_by(const std::string& wrapper) {
   if (wrapper.rfind("forward_", 0) == 0) return {&PixelFields::half_ts};
-  if (wrapper == "deferred_previous_fragment" || wrapper == "deferred_max_fragment") return {&PixelFields::n, &PixelFields::t, &PixelFields::b};
+  if (wrapper == "deferred_previous_fragment" || wrapper == "deferred_max_fragment")
+    return {&PixelFields::n, &PixelFields::t, &PixelFields::b};
   if (wrapper.rfind("deferred_", 0) == 0) return {&PixelFields::n};
   return {&PixelFields::i_ts, &PixelFields::o_ts};
 }
@@ -132,12 +135,15 @@ inline std::vector<double> reference_wrapper(const std::string& name, const std:
   if (name == "forward_aniso_projected_fragment") return as_outputs(ref::forward_aniso_projected_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "forward_axis_slope_fragment") return as_outputs(ref::forward_axis_slope_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "forward_axis_projected_fragment") return as_outputs(ref::forward_axis_projected_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "deferred_previous_fragment") return as_outputs(ref::deferred_previous_fragment_quad(p, alpha2.x, n, t, b, frag, pixel, mode, average));
+  if (name == "deferred_previous_fragment")
+    return as_outputs(ref::deferred_previous_fragment_quad(p, alpha2.x, n, t, b, frag, pixel, mode, average));
   if (name == "deferred_max_fragment") return as_outputs(ref::deferred_max_fragment_quad(p, alpha2.x, n, t, b, frag, pixel, mode, average));
-  if (name == "deferred_max_tangent_free_fragment") return as_outputs(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_max_tangent_free_fragment")
+    return as_outputs(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_sum_fragment") return as_outputs(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_avg_fragment") return as_outputs(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_projected_space_fragment") return as_outputs(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
+  if (name == "deferred_projected_space_fragment")
+    return as_outputs(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
   if (name == "deferred_aniso_fragment") return as_outputs(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
   if (name == "ggx_brdf_filtered_fragment") return as_outputs(ref::ggx_brdf_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
   if (name == "ggx_brdf_tail_filtered_fragment") return as_outputs(ref::ggx_brdf_tail_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));

@@ -1,7 +1,6 @@
 /* An engine written in C: Filament's form in perceptual roughness, emitted to memory through the
  * C API. Prints the file's name; one line on stderr and a non-zero exit on failure. */
 #include <saagen/saagen.h>
-
 #include <stdio.h>
 #include <string.h>
 

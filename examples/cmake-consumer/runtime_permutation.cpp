@@ -1,13 +1,12 @@
 // Run-time generation with the installed library (saagen::saagen): an engine that builds shader
 // permutations on demand describes the material, plans it, emits the bundle in memory and
 // (optionally) validates it with the in-process compiler. Exits non-zero on any failure.
-#include <saagen/front/catalogue.hpp>
+#include <cstdio>
 #include <saagen/error.hpp>
+#include <saagen/front/catalogue.hpp>
 #include <saagen/scene/manifest.hpp>
 #include <saagen/scene/planner.hpp>
 #include <saagen/validate/validation.hpp>
-
-#include <cstdio>
 
 int main() {
   const char* description = R"(targets = ["glsl", "hlsl"]

@@ -1,9 +1,8 @@
 // An engine that compiles shaders with shaderc at run time: `#include <saagen/filament.glsl>`
 // resolved by saagen's include handler, the snippet generated in memory.
-#include <saagen/integrate/shaderc_includer.hpp>
-
 #include <iostream>
 #include <memory>
+#include <saagen/integrate/shaderc_includer.hpp>
 
 int main() {
   const char* source =

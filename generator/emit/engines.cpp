@@ -45,7 +45,8 @@ const EngineData& engine_data() {
     EngineData result;
     for (const auto& entry : json.at("domains")) {
       result.domains.push_back({text_field(entry, "id"), text_field(entry, "parameter"), text_field(entry, "meaning"),
-                                text_field(entry, "engines"), text_field(entry, "to_alpha2", false), text_field(entry, "from_alpha2", false)});
+                                text_field(entry, "engines"), text_field(entry, "to_alpha2", false),
+                                text_field(entry, "from_alpha2", false)});
     }
     for (const auto& entry : json.at("presets")) {
       result.presets.push_back({text_field(entry, "id"), text_field(entry, "engine"), text_field(entry, "variant"),
@@ -77,7 +78,8 @@ std::string wrapper_source(const Function& function, const RoughnessDomain& doma
   const std::string rest = arguments.empty() ? "" : ", " + fmt::format("{}", fmt::join(arguments, ", "));
   out << "{\n";
   if (per_axis) {
-    out << fmt::format("    real2 filtered = {}(real2({}({}.x), {}({}.y)){});\n", function.name, domain.to_alpha2, x, domain.to_alpha2, x, rest);
+    out << fmt::format("    real2 filtered = {}(real2({}({}.x), {}({}.y)){});\n", function.name, domain.to_alpha2, x, domain.to_alpha2, x,
+                       rest);
     out << fmt::format("    return real2({}(filtered.x), {}(filtered.y));\n", domain.from_alpha2, domain.from_alpha2);
   } else {
     out << fmt::format("    return {}({}({}({}){}));\n", domain.from_alpha2, function.name, domain.to_alpha2, x, rest);
@@ -95,7 +97,8 @@ Catalogue build_domain_catalogue(const Catalogue& base, const RoughnessDomain& d
   for (const Variant& variant : base.variants()) {
     for (const std::string& name : variant.functions) {
       const Function& function = *base.find_function(name);
-      if (takes_and_returns_roughness(function) && wrappers.find("@function " + domain_function_name(name, domain.id) + "\n") == std::string::npos) {
+      if (takes_and_returns_roughness(function) &&
+          wrappers.find("@function " + domain_function_name(name, domain.id) + "\n") == std::string::npos) {
         wrappers += wrapper_source(function, domain);
       }
     }

@@ -31,7 +31,8 @@ Json function_json(const Function& function, std::string_view prefix) {
           {"role", std::string(to_string(function.role))},
           {"fragment_only", function.fragment_only},
           {"cite", function.cite},
-          {"returns", {{"type", function.return_type}, {"target_types", type_spellings(function.return_type)}, {"meaning", function.return_meaning}}},
+          {"returns",
+           {{"type", function.return_type}, {"target_types", type_spellings(function.return_type)}, {"meaning", function.return_meaning}}},
           {"parameters", parameters}};
 }
 
@@ -111,8 +112,14 @@ nlohmann::json catalogue_json(const Catalogue& base_catalogue, std::string_view 
   }
   Json preset_list = Json::array();
   for (const Preset& preset : presets()) {
-    preset_list.push_back({{"id", preset.id}, {"engine", preset.engine}, {"variant", preset.variant}, {"sigma2", preset.sigma2},
-                           {"kappa", preset.kappa}, {"domain", preset.domain}, {"normal", preset.normal}, {"form", preset.form}});
+    preset_list.push_back({{"id", preset.id},
+                           {"engine", preset.engine},
+                           {"variant", preset.variant},
+                           {"sigma2", preset.sigma2},
+                           {"kappa", preset.kappa},
+                           {"domain", preset.domain},
+                           {"normal", preset.normal},
+                           {"form", preset.form}});
   }
   return {{"saagen_version", std::string(version())},
           {"prefix", std::string(prefix)},

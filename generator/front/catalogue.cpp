@@ -1,7 +1,7 @@
 #include "saagen/front/catalogue.hpp"
 
-#include "saagen/front/dialect.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/dialect.hpp"
 #include "saagen/front/syntax_tree.hpp"
 
 #include <fmt/format.h>
@@ -48,8 +48,7 @@ bool contains(const std::vector<std::string>& names, std::string_view name) {
 
 bool is_identifier(std::string_view text) {
   if (text.empty() || !(std::isalpha(static_cast<unsigned char>(text[0])) || text[0] == '_')) return false;
-  return std::all_of(text.begin(), text.end(),
-                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(text.begin(), text.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 std::optional<double> parse_number(std::string_view text) {
@@ -68,8 +67,8 @@ std::pair<std::vector<std::string>, std::string> split_declaration(std::string_v
 
 class TemplateParser {
  public:
-  TemplateParser(const TemplateSource& source, std::vector<Variant>& variants,
-                 std::vector<Function>& functions, std::vector<Constant>& constants)
+  TemplateParser(const TemplateSource& source, std::vector<Variant>& variants, std::vector<Function>& functions,
+                 std::vector<Constant>& constants)
       : file_(source.name), variants_(variants), functions_(functions), constants_(constants) {
     std::string_view text = source.text;
     int number = 1;
@@ -95,10 +94,14 @@ class TemplateParser {
         fail(file_, line.number, fmt::format("expected '@variant ID', '@function NAME' or '@constant NAME', found '{}'", text));
       }
       ++next_;
-      if (words[0] == "@variant") parse_variant(words[1], line.number);
-      else if (words[0] == "@function") parse_function(words[1], line.number);
-      else if (words[0] == "@constant") parse_constant(words[1], line.number);
-      else fail(file_, line.number, fmt::format("unknown block '{}'; use @variant, @function or @constant", words[0]));
+      if (words[0] == "@variant")
+        parse_variant(words[1], line.number);
+      else if (words[0] == "@function")
+        parse_function(words[1], line.number);
+      else if (words[0] == "@constant")
+        parse_constant(words[1], line.number);
+      else
+        fail(file_, line.number, fmt::format("unknown block '{}'; use @variant, @function or @constant", words[0]));
     }
   }
 
@@ -109,8 +112,10 @@ class TemplateParser {
         const auto byte = static_cast<unsigned char>(c);
         if (byte > 127) fail(file_, line.number, "non-ASCII character; templates (and the code they emit) must be ASCII");
         if (byte < 0x20 || byte == 0x7f) {
-          fail(file_, line.number, fmt::format("control character 0x{:02x}; templates (and the code they emit) are printable ASCII, "
-                                               "indented with spaces", byte));
+          fail(file_, line.number,
+               fmt::format("control character 0x{:02x}; templates (and the code they emit) are printable ASCII, "
+                           "indented with spaces",
+                           byte));
         }
       }
     }
@@ -135,8 +140,8 @@ class TemplateParser {
     return properties;
   }
 
-  static void require_keys(const std::string& file, int line, std::string_view block,
-                           const std::set<std::string>& present, const std::vector<std::string>& required) {
+  static void require_keys(const std::string& file, int line, std::string_view block, const std::set<std::string>& present,
+                           const std::vector<std::string>& required) {
     for (const std::string& key : required) {
       if (!present.count(key)) fail(file, line, fmt::format("{} is missing the '{}:' line", block, key));
     }
@@ -156,15 +161,26 @@ class TemplateParser {
     for (const auto& [key, value] : read_properties()) {
       if (!seen.insert(key).second) fail(file_, value.number, fmt::format("duplicate key '{}'", key));
       const std::string text(value.text);
-      if (key == "summary") variant.summary = text;
-      else if (key == "paper") variant.paper = text;
-      else if (key == "equation") variant.equation = text;
-      else if (key == "domain") variant.domain = text;
-      else if (key == "functions") variant.functions = split_words(text);
-      else if (key == "path") variant.path = parse_path(text, value.number);
-      else if (key == "tangents") variant.needs_tangents = parse_yes_no(text, value.number);
-      else if (key == "precisions") variant.precisions = split_words(text);
-      else fail(file_, value.number, fmt::format("unknown variant key '{}'; allowed: summary, paper, equation, path, tangents, domain, functions, precisions", key));
+      if (key == "summary")
+        variant.summary = text;
+      else if (key == "paper")
+        variant.paper = text;
+      else if (key == "equation")
+        variant.equation = text;
+      else if (key == "domain")
+        variant.domain = text;
+      else if (key == "functions")
+        variant.functions = split_words(text);
+      else if (key == "path")
+        variant.path = parse_path(text, value.number);
+      else if (key == "tangents")
+        variant.needs_tangents = parse_yes_no(text, value.number);
+      else if (key == "precisions")
+        variant.precisions = split_words(text);
+      else
+        fail(
+            file_, value.number,
+            fmt::format("unknown variant key '{}'; allowed: summary, paper, equation, path, tangents, domain, functions, precisions", key));
     }
     require_keys(file_, line, "@variant " + id, seen, {"summary", "paper", "equation", "path", "tangents", "domain", "functions"});
     variants_.push_back(std::move(variant));
@@ -193,11 +209,16 @@ class TemplateParser {
     for (const auto& [key, value] : read_properties()) {
       if (key != "param" && !seen.insert(key).second) fail(file_, value.number, fmt::format("duplicate key '{}'", key));
       seen.insert(key);
-      if (key == "role") function.role = parse_role(std::string(value.text), value.number);
-      else if (key == "cite") function.cite = std::string(value.text);
-      else if (key == "returns") parse_returns(function, value);
-      else if (key == "param") function.parameters.push_back(parse_parameter(value));
-      else fail(file_, value.number, fmt::format("unknown function key '{}'; allowed: role, cite, returns, param", key));
+      if (key == "role")
+        function.role = parse_role(std::string(value.text), value.number);
+      else if (key == "cite")
+        function.cite = std::string(value.text);
+      else if (key == "returns")
+        parse_returns(function, value);
+      else if (key == "param")
+        function.parameters.push_back(parse_parameter(value));
+      else
+        fail(file_, value.number, fmt::format("unknown function key '{}'; allowed: role, cite, returns, param", key));
     }
     require_keys(file_, line, "@function " + name, seen, {"role", "cite", "returns"});
     function.body_line = next_ < lines_.size() ? lines_[next_].number + 1 : line;
@@ -282,13 +303,16 @@ class TemplateParser {
       } else if (key == "range") {
         constant.range = parse_interval(text, value.number);
       } else {
-        fail(file_, value.number, fmt::format("unknown constant key '{}'; allowed: type, value, half_value, option, default, range, meaning", key));
+        fail(file_, value.number,
+             fmt::format("unknown constant key '{}'; allowed: type, value, half_value, option, default, range, meaning", key));
       }
     }
     require_keys(file_, line, "@constant " + name, seen, {"type", "meaning"});
     const bool is_option = seen.count("option") > 0;
-    if (is_option) require_keys(file_, line, "@constant " + name, seen, {"default", "range"});
-    else require_keys(file_, line, "@constant " + name, seen, {"value"});
+    if (is_option)
+      require_keys(file_, line, "@constant " + name, seen, {"default", "range"});
+    else
+      require_keys(file_, line, "@constant " + name, seen, {"value"});
     if (constant.range && !constant.range->contains(constant.value)) {
       fail(file_, line, fmt::format("default {} of {} is outside its range {}", constant.value, name, constant.range->describe()));
     }
@@ -319,19 +343,26 @@ class TemplateParser {
 
 std::string_view to_string(FunctionRole role) {
   switch (role) {
-    case FunctionRole::core: return "core";
-    case FunctionRole::fragment: return "fragment";
-    case FunctionRole::evaluate: return "evaluate";
-    case FunctionRole::helper: return "helper";
+    case FunctionRole::core:
+      return "core";
+    case FunctionRole::fragment:
+      return "fragment";
+    case FunctionRole::evaluate:
+      return "evaluate";
+    case FunctionRole::helper:
+      return "helper";
   }
   return "helper";
 }
 
 std::string_view to_string(RenderPath path) {
   switch (path) {
-    case RenderPath::forward: return "forward";
-    case RenderPath::deferred: return "deferred";
-    case RenderPath::any: return "any";
+    case RenderPath::forward:
+      return "forward";
+    case RenderPath::deferred:
+      return "deferred";
+    case RenderPath::any:
+      return "any";
   }
   return "any";
 }
@@ -395,7 +426,8 @@ void Catalogue::link() {
 
   for (const Function& function : functions_) {
     if (dialect::is_intrinsic(function.name)) {
-      fail(function.source_file, function.line, fmt::format("function name '{}' is a dialect intrinsic; choose another name", function.name));
+      fail(function.source_file, function.line,
+           fmt::format("function name '{}' is a dialect intrinsic; choose another name", function.name));
     }
   }
   std::map<std::string, dialect::FunctionSignature, std::less<>> signatures;
@@ -461,7 +493,8 @@ void Catalogue::link() {
 
   std::set<std::string> variant_ids;
   for (const Variant& variant : variants_) {
-    if (!variant_ids.insert(variant.id).second) fail(variant.source_file, variant.line, fmt::format("variant '{}' is defined twice", variant.id));
+    if (!variant_ids.insert(variant.id).second)
+      fail(variant.source_file, variant.line, fmt::format("variant '{}' is defined twice", variant.id));
     for (const std::string& name : variant.functions) {
       if (!function_index_.count(name)) {
         fail(variant.source_file, variant.line, fmt::format("variant {} lists unknown function '{}'", variant.id, name));
@@ -560,12 +593,14 @@ bool is_screen_space_filter(const Catalogue& catalogue, const Variant& variant) 
 dialect::FunctionSignature signature_of(const Function& function) {
   dialect::FunctionSignature signature;
   signature.result = *dialect::Type::from_name(function.return_type);
-  for (const Parameter& parameter : function.parameters) signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
+  for (const Parameter& parameter : function.parameters)
+    signature.parameters.emplace_back(*dialect::Type::from_name(parameter.type), parameter.name);
   return signature;
 }
 
 bool supports_precision(const Variant& variant, std::string_view precision) {
-  return variant.precisions.empty() || std::find(variant.precisions.begin(), variant.precisions.end(), precision) != variant.precisions.end();
+  return variant.precisions.empty() ||
+         std::find(variant.precisions.begin(), variant.precisions.end(), precision) != variant.precisions.end();
 }
 
 }  // namespace saagen

@@ -1,6 +1,5 @@
 #include "saagen/front/dialect.hpp"
 
-
 #include <cctype>
 #include <string>
 
@@ -16,8 +15,7 @@ std::size_t scan_number(std::string_view code, std::size_t begin) {
   std::size_t end = begin;
   while (end < code.size()) {
     const char c = code[end];
-    const bool exponent_sign = (c == '+' || c == '-') && end > begin &&
-                               (code[end - 1] == 'e' || code[end - 1] == 'E');
+    const bool exponent_sign = (c == '+' || c == '-') && end > begin && (code[end - 1] == 'e' || code[end - 1] == 'E');
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || exponent_sign)) break;
     ++end;
   }
@@ -46,8 +44,8 @@ std::vector<Token> tokenize(std::string_view code) {
     } else if (is_digit(c) || (c == '.' && index + 1 < code.size() && is_digit(code[index + 1]))) {
       kind = TokenKind::number;
       end = scan_number(code, index);
-    } else if ((c == '|' || c == '&' || c == '=' || c == '<' || c == '>' || c == '!') &&
-               index + 1 < code.size() && (code[index + 1] == c || code[index + 1] == '=')) {
+    } else if ((c == '|' || c == '&' || c == '=' || c == '<' || c == '>' || c == '!') && index + 1 < code.size() &&
+               (code[index + 1] == c || code[index + 1] == '=')) {
       end = index + 2;  // ||, &&, ==, <=, >=, !=
     }
     tokens.push_back({kind, code.substr(index, end - index)});
@@ -77,9 +75,9 @@ const std::vector<std::string>& type_names() {
 }
 
 const std::vector<std::string>& forbidden_names() {
-  static const std::vector<std::string> names = {
-      "mul", "transpose", "determinant", "mat2", "mat3", "mat4", "mat2x2", "mat3x3", "mat4x4",
-      "float2x2", "float3x3", "float4x4", "float3x4", "float4x3", "real2x2", "real3x3", "real4x4"};
+  static const std::vector<std::string> names = {"mul",      "transpose", "determinant", "mat2",     "mat3",     "mat4",
+                                                 "mat2x2",   "mat3x3",    "mat4x4",      "float2x2", "float3x3", "float4x4",
+                                                 "float3x4", "float4x3",  "real2x2",     "real3x3",  "real4x4"};
   return names;
 }
 

@@ -1,7 +1,7 @@
 // Parser of template function bodies into the typed syntax tree (saagen/front/syntax_tree.hpp):
 // recursive descent over the dialect's tokens, C precedence, layout kept with each node.
-#include "saagen/front/dialect.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/dialect.hpp"
 #include "saagen/front/syntax_tree.hpp"
 
 #include <fmt/format.h>
@@ -38,7 +38,16 @@ std::vector<Lexeme> lex(std::string_view code, int first_line, std::string_view&
 
 // Binary operators from the loosest to the tightest binding (C's table, without the comma).
 constexpr std::array<std::array<std::string_view, 4>, 10> binary_levels = {{
-    {"||"}, {"&&"}, {"|"}, {"^"}, {"&"}, {"==", "!="}, {"<", ">", "<=", ">="}, {"<<", ">>"}, {"+", "-"}, {"*", "/", "%"},
+    {"||"},
+    {"&&"},
+    {"|"},
+    {"^"},
+    {"&"},
+    {"==", "!="},
+    {"<", ">", "<=", ">="},
+    {"<<", ">>"},
+    {"+", "-"},
+    {"*", "/", "%"},
 }};
 
 bool is_assignment_operator(std::string_view text) {
@@ -98,7 +107,8 @@ class Parser {
   }
   const Lexeme& expect(std::string_view text, std::string_view where) {
     if (!next_is(text)) {
-      fail(line(), fmt::format("expected '{}' {}, found {}", text, where, at_end() ? "the end of the body" : "'" + std::string(peek().text) + "'"));
+      fail(line(),
+           fmt::format("expected '{}' {}, found {}", text, where, at_end() ? "the end of the body" : "'" + std::string(peek().text) + "'"));
     }
     return take();
   }
@@ -140,7 +150,9 @@ class Parser {
         stmt.value = expression();
       }
     } else if (word == "const" || word == "float" || word == "vec2" || word == "vec3" || word == "float2" || word == "float3") {
-      fail(line(), fmt::format("'{}' is not a dialect type; declare locals as TYPE NAME = VALUE with real, real2, real3, real4, int or bool", word));
+      fail(
+          line(),
+          fmt::format("'{}' is not a dialect type; declare locals as TYPE NAME = VALUE with real, real2, real3, real4, int or bool", word));
     } else {
       stmt.kind = StmtKind::expression;
       stmt.value = expression();

@@ -31,10 +31,14 @@ std::optional<Type> Type::from_name(std::string_view name) {
 
 std::string Type::name() const {
   switch (base) {
-    case Base::real: return size == 1 ? "real" : fmt::format("real{}", size);
-    case Base::integer: return "int";
-    case Base::boolean: return "bool";
-    case Base::none: break;
+    case Base::real:
+      return size == 1 ? "real" : fmt::format("real{}", size);
+    case Base::integer:
+      return "int";
+    case Base::boolean:
+      return "bool";
+    case Base::none:
+      break;
   }
   return "nothing";
 }
@@ -75,9 +79,12 @@ std::vector<IntrinsicSignature> parse_signature_line(std::string_view text, std:
   bool derivative = false;
   std::string resource;
   for (std::string flag; flags >> flag;) {
-    if (flag == "derivative") derivative = true;
-    else if (flag == "resource" && flags >> resource) continue;
-    else return fail(fmt::format("unknown flag '{}'", flag));
+    if (flag == "derivative")
+      derivative = true;
+    else if (flag == "resource" && flags >> resource)
+      continue;
+    else
+      return fail(fmt::format("unknown flag '{}'", flag));
   }
   const bool generic = head[0] == "F" || std::find(parameter_names.begin(), parameter_names.end(), "F") != parameter_names.end();
   std::vector<IntrinsicSignature> signatures;
@@ -164,7 +171,9 @@ bool is_logical(std::string_view op) { return op == "&&" || op == "||"; }
 class Checker {
  public:
   Checker(const FunctionSignature& signature, const CheckContext& context, const SourcePlace& place)
-      : signature_(signature), context_(context), place_(place),
+      : signature_(signature),
+        context_(context),
+        place_(place),
         own_index_(context.intrinsics ? index_by_name(*context.intrinsics) : IntrinsicIndex()),
         intrinsics_(context.intrinsics ? own_index_ : builtin_index()) {}
 
@@ -173,7 +182,8 @@ class Checker {
     for (const auto& [type, name] : signature_.parameters) scopes_.back()[name] = Local{type, nullptr};
     for (auto& stmt : body.statements) statement(*stmt);
     // A body without a result (harness glue) has no return to check.
-    if (!signature_.result.is_none() && !std::any_of(body.statements.begin(), body.statements.end(), [](const auto& stmt) { return always_returns(*stmt); })) {
+    if (!signature_.result.is_none() &&
+        !std::any_of(body.statements.begin(), body.statements.end(), [](const auto& stmt) { return always_returns(*stmt); })) {
       fail(body.statements.empty() ? place_.first_line : body.statements.back()->line,
            fmt::format("the body can end without returning {}; end every path with a return", signature_.result.name()));
     }
@@ -192,11 +202,14 @@ class Checker {
 
   static bool always_returns(const Stmt& stmt) {
     switch (stmt.kind) {
-      case StmtKind::return_value: return true;
+      case StmtKind::return_value:
+        return true;
       case StmtKind::block:
         return std::any_of(stmt.body.begin(), stmt.body.end(), [](const auto& inner) { return always_returns(*inner); });
-      case StmtKind::conditional: return stmt.body.size() == 2 && always_returns(*stmt.body[0]) && always_returns(*stmt.body[1]);
-      default: return false;
+      case StmtKind::conditional:
+        return stmt.body.size() == 2 && always_returns(*stmt.body[0]) && always_returns(*stmt.body[1]);
+      default:
+        return false;
     }
   }
 
@@ -210,9 +223,15 @@ class Checker {
 
   void statement(Stmt& stmt) {
     switch (stmt.kind) {
-      case StmtKind::declaration: declaration(stmt); break;
-      case StmtKind::expression: expression(*stmt.value); break;
-      case StmtKind::return_value: return_value(stmt); break;
+      case StmtKind::declaration:
+        declaration(stmt);
+        break;
+      case StmtKind::expression:
+        expression(*stmt.value);
+        break;
+      case StmtKind::return_value:
+        return_value(stmt);
+        break;
       case StmtKind::conditional:
         condition(*stmt.value, "if");
         for (auto& branch : stmt.body) scoped(*branch);
@@ -241,7 +260,8 @@ class Checker {
       case StmtKind::jump:
         if (loop_depth_ == 0) fail(stmt.line, fmt::format("'{}' outside a loop; remove it", stmt.jump_word));
         break;
-      case StmtKind::empty: break;
+      case StmtKind::empty:
+        break;
     }
   }
 
@@ -255,7 +275,8 @@ class Checker {
     const Type type = *Type::from_name(stmt.type_name);
     if (find_local(stmt.name) || (context_.constants && context_.constants->count(stmt.name)) ||
         (context_.functions && context_.functions->count(stmt.name)) || Type::from_name(stmt.name) || is_known_intrinsic(stmt.name)) {
-      fail(stmt.line, fmt::format("'{}' is already declared (a parameter, local, constant, function or intrinsic); choose another name", stmt.name));
+      fail(stmt.line,
+           fmt::format("'{}' is already declared (a parameter, local, constant, function or intrinsic); choose another name", stmt.name));
     }
     if (stmt.value) {
       const Type value = expression(*stmt.value);
@@ -271,8 +292,9 @@ class Checker {
     if (!stmt.value) fail(stmt.line, fmt::format("return needs a value of type {}", signature_.result.name()));
     const Type type = expression(*stmt.value);
     if (type != signature_.result) {
-      fail(stmt.value->line, fmt::format("returns {} but the function is declared 'returns: {}'; convert explicitly or fix the 'returns:' line",
-                                         type.name(), signature_.result.name()));
+      fail(stmt.value->line,
+           fmt::format("returns {} but the function is declared 'returns: {}'; convert explicitly or fix the 'returns:' line", type.name(),
+                       signature_.result.name()));
     }
   }
 
@@ -290,18 +312,30 @@ class Checker {
 
   Type type_of(Expr& expr) {
     switch (expr.kind) {
-      case ExprKind::literal: return literal(expr);
-      case ExprKind::name: return name(expr);
-      case ExprKind::group: return expression(*expr.operands[0]);
-      case ExprKind::unary: return expr.text == "++" || expr.text == "--" ? step(expr) : unary(expr);
-      case ExprKind::postfix: return step(expr);
-      case ExprKind::binary: return binary(expr);
-      case ExprKind::ternary: return ternary(expr);
-      case ExprKind::call: return call(expr);
-      case ExprKind::member: return member(expr);
-      case ExprKind::index: return index(expr);
-      case ExprKind::assign: return assign(expr);
-      case ExprKind::guarded: return guarded(expr);
+      case ExprKind::literal:
+        return literal(expr);
+      case ExprKind::name:
+        return name(expr);
+      case ExprKind::group:
+        return expression(*expr.operands[0]);
+      case ExprKind::unary:
+        return expr.text == "++" || expr.text == "--" ? step(expr) : unary(expr);
+      case ExprKind::postfix:
+        return step(expr);
+      case ExprKind::binary:
+        return binary(expr);
+      case ExprKind::ternary:
+        return ternary(expr);
+      case ExprKind::call:
+        return call(expr);
+      case ExprKind::member:
+        return member(expr);
+      case ExprKind::index:
+        return index(expr);
+      case ExprKind::assign:
+        return assign(expr);
+      case ExprKind::guarded:
+        return guarded(expr);
     }
     return {};
   }
@@ -313,7 +347,10 @@ class Checker {
       return std::isdigit(static_cast<unsigned char>(c)) || (is_real && (c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'));
     });
     if (!plain || expr.text.starts_with("0x")) {
-      fail(expr.line, fmt::format("'{}' is not a dialect number; write decimal numbers without suffixes (2.0, 1e-4, 3): the emitter adds precision suffixes", expr.text));
+      fail(expr.line,
+           fmt::format(
+               "'{}' is not a dialect number; write decimal numbers without suffixes (2.0, 1e-4, 3): the emitter adds precision suffixes",
+               expr.text));
     }
     return is_real ? Type::real() : Type::integer();
   }
@@ -327,14 +364,15 @@ class Checker {
     if ((context_.functions && context_.functions->count(expr.text)) || is_known_intrinsic(expr.text)) {
       fail(expr.line, fmt::format("'{}' is a function; call it with its arguments", expr.text));
     }
-    fail(expr.line, fmt::format("'{}' is not declared; declare it (TYPE {} = ...) before its use, or name a parameter or a constant", expr.text, expr.text));
+    fail(expr.line, fmt::format("'{}' is not declared; declare it (TYPE {} = ...) before its use, or name a parameter or a constant",
+                                expr.text, expr.text));
   }
 
   bool is_known_intrinsic(std::string_view name) const { return intrinsics_.count(name) > 0; }
 
   Type unary(Expr& expr) {
     const Type operand = expression(*expr.operands[0]);
-    const bool fits = expr.text == "!" ? operand == Type::boolean()
+    const bool fits = expr.text == "!"   ? operand == Type::boolean()
                       : expr.text == "~" ? operand == Type::integer()
                                          : operand.base == Type::Base::real || operand == Type::integer();
     if (!fits) fail(expr.line, fmt::format("unary '{}' does not apply to {}; convert the operand explicitly", expr.text, operand.name()));
@@ -358,7 +396,8 @@ class Checker {
     if (target->kind != ExprKind::name) fail(expr.line, fmt::format("'{}' assigns to something that is not a variable", expr.text));
     const Local* local = find_local(target->text);
     if (!local) fail(expr.line, fmt::format("'{}' is not a local or a parameter; only those can be assigned", target->text));
-    if (local->declaration) local->declaration->is_mutable = true;
+    if (local->declaration)
+      local->declaration->is_mutable = true;
     else if (std::find(assigned_parameters_.begin(), assigned_parameters_.end(), target->text) == assigned_parameters_.end()) {
       assigned_parameters_.push_back(target->text);
     }
@@ -402,8 +441,8 @@ class Checker {
     const Type when_true = expression(*expr.operands[1]);
     const Type when_false = expression(*expr.operands[2]);
     if (when_true != when_false) {
-      fail(expr.line, fmt::format("the branches of '?:' are {} and {}; convert one explicitly so that both have one type",
-                                  when_true.name(), when_false.name()));
+      fail(expr.line, fmt::format("the branches of '?:' are {} and {}; convert one explicitly so that both have one type", when_true.name(),
+                                  when_false.name()));
     }
     return when_true;
   }
@@ -427,8 +466,8 @@ class Checker {
         std::vector<Type> expected;
         for (const auto& parameter : function->second.parameters) expected.push_back(parameter.first);
         if (types != expected) {
-          fail(expr.line, fmt::format("{} takes ({}) but is called with ({}); convert the arguments explicitly",
-                                      expr.text, describe_types(expected), describe_types(types)));
+          fail(expr.line, fmt::format("{} takes ({}) but is called with ({}); convert the arguments explicitly", expr.text,
+                                      describe_types(expected), describe_types(types)));
         }
         return function->second.result;
       }
@@ -504,11 +543,12 @@ class Checker {
     const Type assigned = expression(*expr.operands[0]);
     const Type value = expression(*expr.operands[1]);
     const std::string_view op = std::string_view(expr.text).substr(0, expr.text.size() - 1);
-    const bool fits = op.empty() ? value == assigned
+    const bool fits = op.empty()          ? value == assigned
                       : is_arithmetic(op) ? (value == assigned || (assigned.base == Type::Base::real && value == Type::real()))
                                           : (assigned == Type::integer() && value == Type::integer());
     if (!fits) {
-      fail(expr.line, fmt::format("'{}' assigns a {} to a {}; convert explicitly ({}(...))", expr.text, value.name(), assigned.name(), assigned.name()));
+      fail(expr.line, fmt::format("'{}' assigns a {} to a {}; convert explicitly ({}(...))", expr.text, value.name(), assigned.name(),
+                                  assigned.name()));
     }
     return assigned;
   }
@@ -517,7 +557,8 @@ class Checker {
     const Type safe = expression(*expr.operands[0]);
     const Type paper = expression(*expr.operands[1]);
     if (safe != paper) {
-      fail(expr.line, fmt::format("guarded(safe, paper) has a {} safe form and a {} paper form; both must have one type", safe.name(), paper.name()));
+      fail(expr.line,
+           fmt::format("guarded(safe, paper) has a {} safe form and a {} paper form; both must have one type", safe.name(), paper.name()));
     }
     return safe;
   }
@@ -535,7 +576,8 @@ class Checker {
 };
 
 void collect_names(const Expr& expr, std::optional<bool> guarded, std::vector<std::string>& names) {
-  if (expr.kind == ExprKind::name || expr.kind == ExprKind::call || (expr.kind == ExprKind::guarded && !guarded)) names.push_back(expr.text);
+  if (expr.kind == ExprKind::name || expr.kind == ExprKind::call || (expr.kind == ExprKind::guarded && !guarded))
+    names.push_back(expr.text);
   if (expr.kind == ExprKind::guarded && guarded) {
     collect_names(*expr.operands[*guarded ? 0 : 1], guarded, names);
     return;

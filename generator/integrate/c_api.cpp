@@ -1,13 +1,12 @@
 // The C API (saagen/saagen.h): every call catches what the library throws and turns it into the
 // thread-local one-line error; no exception crosses the interface.
-#include "saagen/saagen.h"
-
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/emit/engines.hpp"
-#include "saagen/error.hpp"
-#include "saagen/integrate/include_handler.hpp"
 #include "saagen/emit/listing.hpp"
+#include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
+#include "saagen/integrate/include_handler.hpp"
+#include "saagen/saagen.h"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 

@@ -1,9 +1,9 @@
 // Include names to emitted snippets (saagen/integrate/include_handler.hpp).
 #include "saagen/integrate/include_handler.hpp"
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
 
 #include <fmt/format.h>
@@ -57,15 +57,24 @@ void apply_query_pair(std::string_view pair, IncludeOptions& options) {
   }
   const std::string key(pair.substr(0, equals));
   const std::string value(pair.substr(equals + 1));
-  if (key == "prefix") options.prefix = value;
-  else if (key == "sigma2") options.sigma2 = parse_number(key, value);
-  else if (key == "kappa") options.kappa = parse_number(key, value);
-  else if (key == "preset") options.preset = value;
-  else if (key == "domain") options.domain = value;
-  else if (key == "precision") options.precision = value;
-  else if (key == "guards" && (value == "on" || value == "off")) options.guards = value == "on";
-  else if (key == "guards") throw Error(fmt::format("guards '{}': use on or off", value));
-  else throw Error(fmt::format("unknown option '{}'; use {}", key, query_keys));
+  if (key == "prefix")
+    options.prefix = value;
+  else if (key == "sigma2")
+    options.sigma2 = parse_number(key, value);
+  else if (key == "kappa")
+    options.kappa = parse_number(key, value);
+  else if (key == "preset")
+    options.preset = value;
+  else if (key == "domain")
+    options.domain = value;
+  else if (key == "precision")
+    options.precision = value;
+  else if (key == "guards" && (value == "on" || value == "off"))
+    options.guards = value == "on";
+  else if (key == "guards")
+    throw Error(fmt::format("guards '{}': use on or off", value));
+  else
+    throw Error(fmt::format("unknown option '{}'; use {}", key, query_keys));
 }
 
 ParsedName parse_name(std::string_view name, const IncludeOptions& defaults) {

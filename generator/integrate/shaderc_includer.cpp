@@ -26,8 +26,8 @@ shaderc_include_result* make_result(std::string name, std::string content) {
 ShadercIncluder::ShadercIncluder(IncludeOptions defaults, std::unique_ptr<shaderc::CompileOptions::IncluderInterface> fallback)
     : defaults_(std::move(defaults)), fallback_(std::move(fallback)) {}
 
-shaderc_include_result* ShadercIncluder::GetInclude(const char* requested_source, shaderc_include_type type,
-                                                    const char* requesting_source, size_t include_depth) {
+shaderc_include_result* ShadercIncluder::GetInclude(const char* requested_source, shaderc_include_type type, const char* requesting_source,
+                                                    size_t include_depth) {
   if (!is_saagen_include(requested_source)) {
     if (fallback_) return fallback_->GetInclude(requested_source, type, requesting_source, include_depth);
     return own(make_result("", std::string(requested_source) + ": not a saagen include, and no fallback includer was given"));

@@ -5,9 +5,10 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <system_error>
+
 #include <fcntl.h>
 #include <sys/stat.h>
-#include <system_error>
 #include <unistd.h>
 
 namespace saagen {
@@ -27,10 +28,14 @@ int open_regular(const std::filesystem::path& path, std::size_t limit, std::stri
   }
   struct stat status {};
   std::string problem;
-  if (::fstat(fd, &status) != 0) problem = "cannot be inspected";
-  else if (S_ISDIR(status.st_mode)) problem = "is a directory";
-  else if (!S_ISREG(status.st_mode)) problem = "is not a regular file (a device, FIFO or socket)";
-  else if (static_cast<std::size_t>(status.st_size) > limit) problem = fmt::format("is larger than {}", size_text(limit));
+  if (::fstat(fd, &status) != 0)
+    problem = "cannot be inspected";
+  else if (S_ISDIR(status.st_mode))
+    problem = "is a directory";
+  else if (!S_ISREG(status.st_mode))
+    problem = "is not a regular file (a device, FIFO or socket)";
+  else if (static_cast<std::size_t>(status.st_size) > limit)
+    problem = fmt::format("is larger than {}", size_text(limit));
   if (!problem.empty()) {
     ::close(fd);
     throw Error(fmt::format("{}: {}; pass {}", path.string(), problem, what));

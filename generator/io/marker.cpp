@@ -28,8 +28,8 @@ std::optional<double> parse_double(std::string_view text) {
 }
 
 std::string marker_line(const EmissionMarker& marker) {
-  std::string line = fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target,
-                                 fmt::join(marker.variants, ","), marker.prefix);
+  std::string line =
+      fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target, fmt::join(marker.variants, ","), marker.prefix);
   for (const auto& [option, value] : marker.option_values) line += fmt::format(" {}={}", option, decimal_literal(value));
   if (marker.precision != "fp32") line += " precision=" + marker.precision;
   if (!marker.guards) line += " guards=off";
@@ -51,21 +51,28 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
     if (equals == std::string::npos) return std::nullopt;
     const std::string key = field.substr(0, equals);
     const std::string value = field.substr(equals + 1);
-    if (key == "target") marker.target = value;
-    else if (key == "prefix") marker.prefix = value;
-    else if (key == "precision") marker.precision = value;
-    else if (key == "guards") marker.guards = value != "off";
-    else if (key == "domain") marker.domain = value;
-    else if (key == "import_path") marker.import_path = value;
+    if (key == "target")
+      marker.target = value;
+    else if (key == "prefix")
+      marker.prefix = value;
+    else if (key == "precision")
+      marker.precision = value;
+    else if (key == "guards")
+      marker.guards = value != "off";
+    else if (key == "domain")
+      marker.domain = value;
+    else if (key == "import_path")
+      marker.import_path = value;
     else if (key == "functions") {
       std::istringstream names(value);
       for (std::string name; std::getline(names, name, ',');) marker.functions.push_back(name);
-    }
-    else if (key == "variants") {
+    } else if (key == "variants") {
       std::istringstream ids(value);
       for (std::string id; std::getline(ids, id, ',');) marker.variants.push_back(id);
-    } else if (const auto number = parse_double(value)) marker.option_values[key] = *number;
-    else return std::nullopt;
+    } else if (const auto number = parse_double(value))
+      marker.option_values[key] = *number;
+    else
+      return std::nullopt;
   }
   if (marker.target.empty() || marker.prefix.empty() || marker.variants.empty()) return std::nullopt;
   return marker;

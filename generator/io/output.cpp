@@ -1,9 +1,9 @@
 #include "saagen/io/output.hpp"
 
-#include "saagen/io/marker.hpp"
 #include "saagen/error.hpp"
-#include "saagen/io/ktx2.hpp"
 #include "saagen/io/input.hpp"
+#include "saagen/io/ktx2.hpp"
+#include "saagen/io/marker.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -13,15 +13,16 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <memory>
 #include <mutex>
-#include <cstring>
-#include <fcntl.h>
 #include <optional>
 #include <set>
 #include <span>
-#include <sys/stat.h>
 #include <system_error>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace saagen {
@@ -230,7 +231,8 @@ void check_directory(const fs::path& directory) {
     const int error = errno;
     const fs::path parent = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
     if (error != ENOENT || parent == existing) {
-      throw Error(fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(), error_text(error)));
+      throw Error(
+          fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(), error_text(error)));
     }
     existing = parent;
   }
@@ -263,8 +265,9 @@ void check_named_once(const std::vector<fs::path>& paths) {
     if (error) directory = absolute.parent_path();
     const auto file = identity(path, false);
     if (!seen.insert(directory / absolute.filename()).second || (file && !seen_files.insert(*file).second)) {
-      throw Error(fmt::format("{}: would be written twice in one run (a repeated variant or name, or two names of one file); name each output once",
-                              path.string()));
+      throw Error(
+          fmt::format("{}: would be written twice in one run (a repeated variant or name, or two names of one file); name each output once",
+                      path.string()));
     }
   }
 }
@@ -290,8 +293,8 @@ bool needs_writing(const fs::path& path, const std::optional<std::string_view>& 
   const Existing existing = inspect(path);
   if (!existing.exists) return true;
   if (existing.link && !force) {
-    throw Error(fmt::format("{}: is a symbolic link; saagen never writes through one (remove it, or pass --force to replace the link itself)",
-                            path.string()));
+    throw Error(fmt::format(
+        "{}: is a symbolic link; saagen never writes through one (remove it, or pass --force to replace the link itself)", path.string()));
   }
   if (existing.link) return true;
   if (content && !existing.too_large && existing.bytes == *content) return false;
@@ -467,7 +470,8 @@ bool written_by_saagen(const fs::path& path, std::string_view bytes) {
 }
 
 OutputFile ownership_sidecar(const fs::path& path, std::string_view bytes, std::string_view description) {
-  return {sidecar_path(path), fmt::format("{} sidecar of {}\n{}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes), description)};
+  return {sidecar_path(path),
+          fmt::format("{} sidecar of {}\n{}\n{}\n", output_tag, path.filename().string(), sidecar_fingerprint(bytes), description)};
 }
 
 void check_output_paths(const std::vector<fs::path>& paths, bool force, const std::vector<fs::path>& inputs) {
@@ -485,8 +489,10 @@ WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, cons
   WriteReport report;
   std::vector<const OutputFile*> to_write;
   for (const OutputFile& file : files) {
-    if (needs_writing(file.path, std::string_view(file.content), force)) to_write.push_back(&file);
-    else report.unchanged.push_back(file.path);
+    if (needs_writing(file.path, std::string_view(file.content), force))
+      to_write.push_back(&file);
+    else
+      report.unchanged.push_back(file.path);
   }
 
   Temporaries temporaries;

@@ -17,22 +17,27 @@ namespace printing {
 
 // C's binding strength: 1 assignment ... 12 multiplicative, 13 prefix, 14 postfix, 15 primary.
 int precedence(const Expr& expr) {
-  static const std::pair<std::string_view, int> binary[] = {
-      {"||", 3}, {"&&", 4}, {"|", 5}, {"^", 6}, {"&", 7}, {"==", 8}, {"!=", 8}, {"<", 9}, {">", 9}, {"<=", 9},
-      {">=", 9}, {"<<", 10}, {">>", 10}, {"+", 11}, {"-", 11}, {"*", 12}, {"/", 12}, {"%", 12}};
+  static const std::pair<std::string_view, int> binary[] = {{"||", 3},  {"&&", 4}, {"|", 5},  {"^", 6},  {"&", 7},  {"==", 8},
+                                                            {"!=", 8},  {"<", 9},  {">", 9},  {"<=", 9}, {">=", 9}, {"<<", 10},
+                                                            {">>", 10}, {"+", 11}, {"-", 11}, {"*", 12}, {"/", 12}, {"%", 12}};
   switch (expr.kind) {
-    case ExprKind::assign: return 1;
-    case ExprKind::ternary: return 2;
+    case ExprKind::assign:
+      return 1;
+    case ExprKind::ternary:
+      return 2;
     case ExprKind::binary:
       for (const auto& [op, level] : binary) {
         if (op == expr.text) return level;
       }
       return 0;
-    case ExprKind::unary: return 13;
+    case ExprKind::unary:
+      return 13;
     case ExprKind::member:
     case ExprKind::index:
-    case ExprKind::postfix: return 14;
-    default: return 15;
+    case ExprKind::postfix:
+      return 14;
+    default:
+      return 15;
   }
 }
 
@@ -51,13 +56,18 @@ bool needs_parentheses(const Expr& parent, std::size_t position, const Expr& chi
                          ((inner >= 5 && inner <= 10 && outer >= 5 && outer <= 10) || (bitwise_or_shift && inner >= 11));
       return mixed || (position == 0 ? inner < outer : inner <= outer);
     }
-    case ExprKind::assign: return position == 0 ? inner < 14 : inner < 1;
-    case ExprKind::ternary: return position == 0 ? inner <= 2 : inner < 2;
-    case ExprKind::unary: return inner < 13 || (child.kind == ExprKind::unary && child.text == parent.text);
+    case ExprKind::assign:
+      return position == 0 ? inner < 14 : inner < 1;
+    case ExprKind::ternary:
+      return position == 0 ? inner <= 2 : inner < 2;
+    case ExprKind::unary:
+      return inner < 13 || (child.kind == ExprKind::unary && child.text == parent.text);
     case ExprKind::member:
     case ExprKind::index:
-    case ExprKind::postfix: return position == 0 && inner < 14;
-    default: return false;
+    case ExprKind::postfix:
+      return position == 0 && inner < 14;
+    default:
+      return false;
   }
 }
 
@@ -85,21 +95,30 @@ class CLikePrinter {
 
   std::string expression(const Expr& expr) const {
     switch (expr.kind) {
-      case ExprKind::literal: return expr.text;
-      case ExprKind::name: return name(expr.text);
-      case ExprKind::group: return "(" + spaced(*expr.operands[0], "") + spacing(expr.separators[0], "") + ")";
-      case ExprKind::unary: return expr.text + operand(expr, 0, "");
+      case ExprKind::literal:
+        return expr.text;
+      case ExprKind::name:
+        return name(expr.text);
+      case ExprKind::group:
+        return "(" + spaced(*expr.operands[0], "") + spacing(expr.separators[0], "") + ")";
+      case ExprKind::unary:
+        return expr.text + operand(expr, 0, "");
       case ExprKind::binary:
       case ExprKind::assign:
         return operand(expr, 0, "") + spacing(expr.separators[0], " ") + expr.text + operand(expr, 1, " ");
       case ExprKind::ternary:
         return operand(expr, 0, "") + spacing(expr.separators[0], " ") + "?" + operand(expr, 1, " ") + spacing(expr.separators[1], " ") +
                ":" + operand(expr, 2, " ");
-      case ExprKind::call: return call(expr);
-      case ExprKind::member: return operand(expr, 0, "") + "." + expr.text;
-      case ExprKind::postfix: return operand(expr, 0, "") + expr.text;
-      case ExprKind::index: return operand(expr, 0, "") + "[" + spaced(*expr.operands[1], "") + spacing(expr.separators[0], "") + "]";
-      case ExprKind::guarded: return "(" + expression(*expr.operands[guarded_ ? 0 : 1]) + ")";
+      case ExprKind::call:
+        return call(expr);
+      case ExprKind::member:
+        return operand(expr, 0, "") + "." + expr.text;
+      case ExprKind::postfix:
+        return operand(expr, 0, "") + expr.text;
+      case ExprKind::index:
+        return operand(expr, 0, "") + "[" + spaced(*expr.operands[1], "") + spacing(expr.separators[0], "") + "]";
+      case ExprKind::guarded:
+        return "(" + expression(*expr.operands[guarded_ ? 0 : 1]) + ")";
     }
     return {};
   }
@@ -132,8 +151,10 @@ class CLikePrinter {
       }
     }
     std::string callee = expr.text;
-    if (expr.call_kind == CallKind::constructor) callee = target_.types.at(expr.text);
-    else if (expr.call_kind == CallKind::function) callee = name(expr.text);
+    if (expr.call_kind == CallKind::constructor)
+      callee = target_.types.at(expr.text);
+    else if (expr.call_kind == CallKind::function)
+      callee = name(expr.text);
     std::string out = callee + "(";
     for (std::size_t index = 0; index < expr.operands.size(); ++index) {
       out += (index == 0 ? "" : ",") + spaced(*expr.operands[index], index == 0 ? "" : " ");
@@ -146,8 +167,10 @@ class CLikePrinter {
     switch (stmt.kind) {
       case StmtKind::declaration:
         return target_.types.at(stmt.type_name) + " " + stmt.name + (stmt.value ? " =" + spaced(*stmt.value, " ") : "") + ";";
-      case StmtKind::expression: return expression(*stmt.value) + ";";
-      case StmtKind::return_value: return "return" + (stmt.value ? spaced(*stmt.value, " ") : "") + ";";
+      case StmtKind::expression:
+        return expression(*stmt.value) + ";";
+      case StmtKind::return_value:
+        return "return" + (stmt.value ? spaced(*stmt.value, " ") : "") + ";";
       case StmtKind::conditional: {
         std::string out = "if (" + spaced(*stmt.value, "") + ")" + nested(*stmt.body[0]);
         if (stmt.body.size() == 2) out += spacing(stmt.closing, " ") + "else" + nested(*stmt.body[1]);
@@ -161,9 +184,12 @@ class CLikePrinter {
       case StmtKind::loop_for:
         return "for (" + statement(*stmt.init) + (stmt.value ? spaced(*stmt.value, " ") : "") + ";" +
                (stmt.step ? spaced(*stmt.step, " ") : "") + ")" + nested(*stmt.body[0]);
-      case StmtKind::loop_while: return "while (" + spaced(*stmt.value, "") + ")" + nested(*stmt.body[0]);
-      case StmtKind::jump: return stmt.jump_word + ";";
-      case StmtKind::empty: return ";";
+      case StmtKind::loop_while:
+        return "while (" + spaced(*stmt.value, "") + ")" + nested(*stmt.body[0]);
+      case StmtKind::jump:
+        return stmt.jump_word + ";";
+      case StmtKind::empty:
+        return ";";
     }
     return {};
   }

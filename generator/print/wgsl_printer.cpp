@@ -69,7 +69,8 @@ class WgslPrinter {
     std::string out;
     for (const auto& [type, name] : options_.signature->parameters) {
       if (std::find(body.assigned_parameters.begin(), body.assigned_parameters.end(), name) == body.assigned_parameters.end()) continue;
-      out += fmt::format("    var {}: {} = {};\n", local_name(target_, name), target_.types.at(type.name()), parameter_name(target_, &body, name));
+      out += fmt::format("    var {}: {} = {};\n", local_name(target_, name), target_.types.at(type.name()),
+                         parameter_name(target_, &body, name));
     }
     return out;
   }
@@ -88,21 +89,32 @@ class WgslPrinter {
 
   std::string expression(const Expr& expr) const {
     switch (expr.kind) {
-      case ExprKind::literal: return expr.text;
-      case ExprKind::name: return name(expr.text);
-      case ExprKind::group: return "(" + spaced(*expr.operands[0], "") + spacing(expr.separators[0], "") + ")";
+      case ExprKind::literal:
+        return expr.text;
+      case ExprKind::name:
+        return name(expr.text);
+      case ExprKind::group:
+        return "(" + spaced(*expr.operands[0], "") + spacing(expr.separators[0], "") + ")";
       case ExprKind::unary:
         if (expr.text == "++" || expr.text == "--") refuse(expr, "'" + expr.text + "'");
         return expr.text + operand(expr, 0, "");
-      case ExprKind::postfix: refuse(expr, "'" + expr.text + "'");
-      case ExprKind::assign: refuse(expr, "an assignment");
-      case ExprKind::binary: return binary(expr);
+      case ExprKind::postfix:
+        refuse(expr, "'" + expr.text + "'");
+      case ExprKind::assign:
+        refuse(expr, "an assignment");
+      case ExprKind::binary:
+        return binary(expr);
       case ExprKind::ternary:
-        return "select(" + expression(*expr.operands[2]) + "," + spaced(*expr.operands[1], " ") + ", " + expression(*expr.operands[0]) + ")";
-      case ExprKind::call: return call(expr);
-      case ExprKind::member: return operand(expr, 0, "") + "." + expr.text;
-      case ExprKind::index: return operand(expr, 0, "") + "[" + spaced(*expr.operands[1], "") + spacing(expr.separators[0], "") + "]";
-      case ExprKind::guarded: return "(" + expression(*expr.operands[options_.guarded ? 0 : 1]) + ")";
+        return "select(" + expression(*expr.operands[2]) + "," + spaced(*expr.operands[1], " ") + ", " + expression(*expr.operands[0]) +
+               ")";
+      case ExprKind::call:
+        return call(expr);
+      case ExprKind::member:
+        return operand(expr, 0, "") + "." + expr.text;
+      case ExprKind::index:
+        return operand(expr, 0, "") + "[" + spaced(*expr.operands[1], "") + spacing(expr.separators[0], "") + "]";
+      case ExprKind::guarded:
+        return "(" + expression(*expr.operands[options_.guarded ? 0 : 1]) + ")";
     }
     return {};
   }
@@ -145,7 +157,8 @@ class WgslPrinter {
       }
       return expr.text + "(" + arguments(expr) + spacing(expr.separators[0], "") + ")";
     }
-    if (expr.call_kind == CallKind::constructor) return target_.types.at(expr.text) + "(" + arguments(expr) + spacing(expr.separators[0], "") + ")";
+    if (expr.call_kind == CallKind::constructor)
+      return target_.types.at(expr.text) + "(" + arguments(expr) + spacing(expr.separators[0], "") + ")";
     std::string extra;
     if (options_.call_arguments) {
       const auto found = options_.call_arguments->find(expr.text);
@@ -158,15 +171,18 @@ class WgslPrinter {
   // value is discarded through the phony assignment `_ = value` (9.2.1).
   std::string effect(const Expr& expr) const {
     switch (expr.kind) {
-      case ExprKind::assign: return expression(*expr.operands[0]) + spacing(expr.separators[0], " ") + expr.text + spaced(*expr.operands[1], " ");
+      case ExprKind::assign:
+        return expression(*expr.operands[0]) + spacing(expr.separators[0], " ") + expr.text + spaced(*expr.operands[1], " ");
       case ExprKind::unary:
         if (expr.text == "++" || expr.text == "--") return expression(*expr.operands[0]) + expr.text;
         break;
-      case ExprKind::postfix: return expression(*expr.operands[0]) + expr.text;
+      case ExprKind::postfix:
+        return expression(*expr.operands[0]) + expr.text;
       case ExprKind::call:
         if (expr.call_kind == CallKind::function) return expression(expr);
         break;
-      default: break;
+      default:
+        break;
     }
     return "_ = " + expression(expr);
   }
@@ -181,9 +197,12 @@ class WgslPrinter {
   // A statement without its leading layout; `indent` is its line's indentation.
   std::string statement(const Stmt& stmt, const std::string& indent) const {
     switch (stmt.kind) {
-      case StmtKind::declaration: return declaration(stmt) + ";";
-      case StmtKind::expression: return effect(*stmt.value) + ";";
-      case StmtKind::return_value: return "return" + (stmt.value ? spaced(*stmt.value, " ") : "") + ";";
+      case StmtKind::declaration:
+        return declaration(stmt) + ";";
+      case StmtKind::expression:
+        return effect(*stmt.value) + ";";
+      case StmtKind::return_value:
+        return "return" + (stmt.value ? spaced(*stmt.value, " ") : "") + ";";
       case StmtKind::conditional: {
         std::string out = "if " + spaced(*stmt.value, "") + compound(*stmt.body[0], indent);
         if (stmt.body.size() == 2) {
@@ -193,14 +212,18 @@ class WgslPrinter {
         }
         return out;
       }
-      case StmtKind::block: return block(stmt, indent);
+      case StmtKind::block:
+        return block(stmt, indent);
       case StmtKind::loop_for:
         return "for (" + (stmt.init->kind == StmtKind::declaration ? declaration(*stmt.init) : effect(*stmt.init->value)) + ";" +
-               (stmt.value ? spaced(*stmt.value, " ") : "") + ";" + (stmt.step ? spacing(stmt.step->leading, " ") + effect(*stmt.step) : "") +
-               ")" + compound(*stmt.body[0], indent);
-      case StmtKind::loop_while: return "while " + spaced(*stmt.value, "") + compound(*stmt.body[0], indent);
-      case StmtKind::jump: return stmt.jump_word + ";";
-      case StmtKind::empty: return ";";
+               (stmt.value ? spaced(*stmt.value, " ") : "") + ";" +
+               (stmt.step ? spacing(stmt.step->leading, " ") + effect(*stmt.step) : "") + ")" + compound(*stmt.body[0], indent);
+      case StmtKind::loop_while:
+        return "while " + spaced(*stmt.value, "") + compound(*stmt.body[0], indent);
+      case StmtKind::jump:
+        return stmt.jump_word + ";";
+      case StmtKind::empty:
+        return ";";
     }
     return {};
   }
@@ -229,8 +252,9 @@ class WgslPrinter {
 }  // namespace
 
 std::string parameter_name(const TargetSyntax& target, const Body* body, const std::string& name) {
-  const bool copied = target.module && body &&
-                      std::find(body->assigned_parameters.begin(), body->assigned_parameters.end(), name) != body->assigned_parameters.end();
+  const bool copied =
+      target.module && body &&
+      std::find(body->assigned_parameters.begin(), body->assigned_parameters.end(), name) != body->assigned_parameters.end();
   return local_name(target, name) + (copied ? "_in" : "");
 }
 

@@ -1,11 +1,11 @@
 #include "saagen/products/deferred_pass.hpp"
 
-#include "saagen/validate/compiler.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -65,7 +65,8 @@ std::string underscored(std::string text) {
 
 std::string upper_identifier(std::string_view text) {
   std::string result;
-  for (const char c : text) result += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
+  for (const char c : text)
+    result += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
   return result;
 }
 
@@ -122,12 +123,18 @@ std::string pass_body(const Function& wrapper, bool tangents) {
   body += domain_conversions("saagen_alpha2", "saagen_r", &RoughnessDomain::to_alpha2);
   std::vector<std::string> arguments;
   for (const Parameter& parameter : wrapper.parameters) {
-    if (parameter.name == "alpha2" && parameter.type == "real") arguments.push_back("saagen_alpha2");
-    else if (parameter.name == "normal_ws") arguments.push_back("saagen_n");
-    else if (parameter.name == "tangent_ws" && tangents) arguments.push_back("saagen_t");
-    else if (parameter.name == "bitangent_ws" && tangents) arguments.push_back("saagen_b");
-    else if (parameter.name == "frag_coord") arguments.push_back("saagen_frag_coord");
-    else throw Error(fmt::format("{}: the deferred pass has no input for parameter {} {}", wrapper.name, parameter.type, parameter.name));
+    if (parameter.name == "alpha2" && parameter.type == "real")
+      arguments.push_back("saagen_alpha2");
+    else if (parameter.name == "normal_ws")
+      arguments.push_back("saagen_n");
+    else if (parameter.name == "tangent_ws" && tangents)
+      arguments.push_back("saagen_t");
+    else if (parameter.name == "bitangent_ws" && tangents)
+      arguments.push_back("saagen_b");
+    else if (parameter.name == "frag_coord")
+      arguments.push_back("saagen_frag_coord");
+    else
+      throw Error(fmt::format("{}: the deferred pass has no input for parameter {} {}", wrapper.name, parameter.type, parameter.name));
   }
   if (wrapper.return_type != "real") throw Error(fmt::format("{}: a deferred pass writes one real", wrapper.name));
   body += fmt::format(
@@ -168,7 +175,8 @@ std::string pass_source(const Catalogue& catalogue, const std::string& target_na
 
 EmissionMarker pass_marker(OutputKind kind_of_file, const DeferredPassKind& kind, const DeferredPassOptions& options,
                            const std::map<std::string, double>& option_values) {
-  return EmissionMarker{std::string(marker_target(kind_of_file)), {kind.variant}, options.prefix, option_values, "fp32", options.guards, {kind.wrapper}};
+  return EmissionMarker{
+      std::string(marker_target(kind_of_file)), {kind.variant}, options.prefix, option_values, "fp32", options.guards, {kind.wrapper}};
 }
 
 // The description shared by every file of a pass (comment lines without the comment leader).
@@ -183,8 +191,8 @@ std::vector<std::string> pass_description(const Catalogue& catalogue, const Defe
       fmt::format("  {} -- {}", variant.paper, variant.equation),
       fmt::format("  {}", wrapper.cite),
       fmt::format("Files: {0}.comp (GLSL 4.50), {0}.hlsl (HLSL, SM 6.0 wave ops), {0}.spv (SPIR-V 1.3 from the GLSL), {0}.h.", stem),
-      fmt::format("Dispatch: ({} + {}) / {} x ({} + {}) / {} x 1 workgroups of {} invocations; one invocation per pixel,",
-                  "width", abi::tile_size - 1, abi::tile_size, "height", abi::tile_size - 1, abi::tile_size, abi::local_size),
+      fmt::format("Dispatch: ({} + {}) / {} x ({} + {}) / {} x 1 workgroups of {} invocations; one invocation per pixel,", "width",
+                  abi::tile_size - 1, abi::tile_size, "height", abi::tile_size - 1, abi::tile_size, abi::local_size),
       fmt::format("  a workgroup covers an {0} x {0} tile as {1} x {1} quads of 2 x 2 pixels.", abi::tile_size, abi::tile_size / 2),
       "Requires Vulkan 1.1 subgroup basic + quad operations in compute, subgroup size 4..64, and full",
       "  subgroups (consecutive lanes in fours are quads; VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT",
@@ -197,18 +205,21 @@ std::vector<std::string> pass_description(const Catalogue& catalogue, const Defe
                   options.output_format),
   };
   if (kind.tangents) {
-    lines.push_back(fmt::format("  {}  tangent    sampled image, .xyz tangent (signed, or unorm with flag 8), .w < 0 flips", abi::binding_tangent));
+    lines.push_back(
+        fmt::format("  {}  tangent    sampled image, .xyz tangent (signed, or unorm with flag 8), .w < 0 flips", abi::binding_tangent));
     lines.push_back("               the bitangent b = sign cross(n, t); t is made orthogonal to n and unit");
   }
-  lines.insert(lines.end(), {
-      "Push constants (16 bytes, compute stage): uint32 width, height, roughness_channel (0..3), flags:",
-      "  bits 0-1 the roughness domain: 0 alpha^2, 1 alpha, 2 perceptual r (alpha = r^2), 3 smoothness 1 - r;",
-      "  4 normal unorm-encoded; 8 tangent unorm-encoded.",
-      fmt::format("Derivatives: quads of 2 x 2 pixels from (x & ~1, y & ~1); plain ddx/ddy are {} (ddx_fine/ddy_fine are", 
-                  options.derivatives == PlainDerivative::fine ? "fine, per row / column" : "coarse, one per quad from the top-left pixel"),
-      "  always fine). Past the right/bottom edge lanes read the edge texel (clamped) and write nothing:",
-      "  with an odd width the last column's derivative across x is 0 (likewise y for an odd height).",
-  });
+  lines.insert(lines.end(),
+               {
+                   "Push constants (16 bytes, compute stage): uint32 width, height, roughness_channel (0..3), flags:",
+                   "  bits 0-1 the roughness domain: 0 alpha^2, 1 alpha, 2 perceptual r (alpha = r^2), 3 smoothness 1 - r;",
+                   "  4 normal unorm-encoded; 8 tangent unorm-encoded.",
+                   fmt::format("Derivatives: quads of 2 x 2 pixels from (x & ~1, y & ~1); plain ddx/ddy are {} (ddx_fine/ddy_fine are",
+                               options.derivatives == PlainDerivative::fine ? "fine, per row / column"
+                                                                            : "coarse, one per quad from the top-left pixel"),
+                   "  always fine). Past the right/bottom edge lanes read the edge texel (clamped) and write nothing:",
+                   "  with an odd width the last column's derivative across x is 0 (likewise y for an odd height).",
+               });
   std::string constants;
   for (const auto& [option, value] : resolve_options(catalogue, options.option_values)) constants += fmt::format(" {}={}", option, value);
   lines.push_back(fmt::format("Constants:{}; {}.", constants, options.guards ? "guarded" : "UNGUARDED paper form"));
@@ -232,7 +243,8 @@ std::string pass_header(const DeferredPass& pass, const DeferredPassOptions& opt
   out << fmt::format("// Generated by saagen {} -- do not edit; regenerate with `saagen pass`.\n", version());
   out << marker_line(marker) << "\n//\n" << comment_block(description);
   out << fmt::format("\n#ifndef {0}_H\n#define {0}_H\n\n#include <stddef.h>\n#include <stdint.h>\n\n", pass_macro);
-  out << fmt::format("#ifndef {0}\n#ifdef __cplusplus\n#define {0} inline constexpr\n#else\n#define {0} static const\n#endif\n#endif\n\n", qualifier);
+  out << fmt::format("#ifndef {0}\n#ifdef __cplusplus\n#define {0} inline constexpr\n#else\n#define {0} static const\n#endif\n#endif\n\n",
+                     qualifier);
   out << fmt::format("#ifndef {0}\n#define {0}\n", common_guard);
   out << "// The interface every pass shares (descriptor set 0).\n";
   out << fmt::format("#define {}PASS_BINDING_NORMAL {}u     /* VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE */\n", macro, abi::binding_normal);
@@ -246,16 +258,17 @@ std::string pass_header(const DeferredPass& pass, const DeferredPassOptions& opt
                      abi::domain_alpha2, macro, abi::domain_alpha, macro, abi::domain_perceptual);
   out << fmt::format("#define {}PASS_FLAG_NORMAL_UNORM {}u\n#define {}PASS_FLAG_TANGENT_UNORM {}u\n", macro, abi::flag_normal_unorm, macro,
                      abi::flag_tangent_unorm);
-  out << fmt::format("/* Push constants (VK_SHADER_STAGE_COMPUTE_BIT, offset 0, 16 bytes). */\n"
-                     "typedef struct {0}pass_constants {{\n"
-                     "  uint32_t width;              /* image size in pixels */\n"
-                     "  uint32_t height;\n"
-                     "  uint32_t roughness_channel;  /* 0..3: r, g, b, a of the roughness G-buffer */\n"
-                     "  uint32_t flags;              /* {1}PASS_DOMAIN_* | {1}PASS_FLAG_* */\n"
-                     "}} {0}pass_constants;\n",
-                     options.prefix, macro);
-  out << fmt::format("#define {0}PASS_GROUPS(size) (((size) + {0}PASS_TILE_SIZE - 1u) / {0}PASS_TILE_SIZE)  /* workgroups along x or y */\n",
-                     macro);
+  out << fmt::format(
+      "/* Push constants (VK_SHADER_STAGE_COMPUTE_BIT, offset 0, 16 bytes). */\n"
+      "typedef struct {0}pass_constants {{\n"
+      "  uint32_t width;              /* image size in pixels */\n"
+      "  uint32_t height;\n"
+      "  uint32_t roughness_channel;  /* 0..3: r, g, b, a of the roughness G-buffer */\n"
+      "  uint32_t flags;              /* {1}PASS_DOMAIN_* | {1}PASS_FLAG_* */\n"
+      "}} {0}pass_constants;\n",
+      options.prefix, macro);
+  out << fmt::format(
+      "#define {0}PASS_GROUPS(size) (((size) + {0}PASS_TILE_SIZE - 1u) / {0}PASS_TILE_SIZE)  /* workgroups along x or y */\n", macro);
   out << fmt::format("#endif  // {}\n\n", common_guard);
   out << fmt::format("#define {}_USES_TANGENT {}\n", pass_macro, pass.kind.tangents ? 1 : 0);
   out << fmt::format("#define {}_OUTPUT_FORMAT {}  /* VK_FORMAT_{} */\n", pass_macro, options.output_format == "r16f" ? 76 : 100,
@@ -342,14 +355,15 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
       for (const std::string& name : domain_conversion_functions()) functions.push_back(name);
       const EmittedFile file = emit_bundle(catalogue, emit, {"pass_" + underscored(kind.id), functions, {kind.variant}, {}});
       const bool glsl = builtin_target(target).language == SourceLanguage::glsl;
-      std::string source = pass_source(catalogue, target, file, kind, options,
-                                       header_for(glsl ? OutputKind::pass_glsl : OutputKind::pass_hlsl));
+      std::string source =
+          pass_source(catalogue, target, file, kind, options, header_for(glsl ? OutputKind::pass_glsl : OutputKind::pass_hlsl));
       const std::string name = pass.stem + (glsl ? ".comp" : ".hlsl");
       const CompileResult compiled = compile_pass(glsl ? SourceLanguage::glsl : SourceLanguage::hlsl, name, source);
       if (!compiled.ok) throw Error(fmt::format("{}: the pass does not compile: {}", name, compiled.log));
       if (glsl) {
         pass.glsl = std::move(source);
-        pass.spirv = add_module_processed(compiled.spirv, marker_line(pass_marker(OutputKind::pass_spirv, kind, options, option_values)) + "\n");
+        pass.spirv =
+            add_module_processed(compiled.spirv, marker_line(pass_marker(OutputKind::pass_spirv, kind, options, option_values)) + "\n");
         if (const std::string log = validate_spirv(pass.spirv, ClientApi::vulkan); !log.empty()) {
           throw Error(fmt::format("{}.spv: invalid after adding the marker: {}", pass.stem, log));
         }

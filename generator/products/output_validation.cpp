@@ -11,9 +11,7 @@
 
 namespace saagen {
 
-bool is_spirv_or_pass_marker(const EmissionMarker& marker) {
-  return output_kind(marker.target) != OutputKind::snippet;
-}
+bool is_spirv_or_pass_marker(const EmissionMarker& marker) { return output_kind(marker.target) != OutputKind::snippet; }
 
 FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content) {
   const auto marker = find_marker(content);
@@ -70,7 +68,7 @@ FileValidation validate_one(const Catalogue& catalogue, const std::string& name,
   try {
     const auto marker = find_marker(content);
     return marker && is_spirv_or_pass_marker(*marker) ? validate_spirv_or_pass_file(catalogue, name, content)
-                                                       : validate_file(catalogue, name, content);
+                                                      : validate_file(catalogue, name, content);
   } catch (const Error& error) {
     const std::string message = error.what();
     throw Error(message.rfind(name, 0) == 0 ? message : fmt::format("{}: bad saagen marker: {}", name, message));

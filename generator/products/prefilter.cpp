@@ -1,7 +1,6 @@
 #include "saagen/products/prefilter.hpp"
 
 #include "saagen/emit/engines.hpp"
-
 #include "saagen/error.hpp"
 
 #include <fmt/format.h>
@@ -30,302 +29,325 @@ constexpr double kTinyLength = 1e-30;  // TINY_POSITIVE of templates/00-common.s
 bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 void check_size(int width, int height, const std::string& what) {
-    if (!is_power_of_two(width) || !is_power_of_two(height)) {
-        throw Error(fmt::format("{}: {} x {} is not a power-of-two size; resize the normal map to 2^m x 2^n texels", what, width, height));
-    }
+  if (!is_power_of_two(width) || !is_power_of_two(height)) {
+    throw Error(fmt::format("{}: {} x {} is not a power-of-two size; resize the normal map to 2^m x 2^n texels", what, width, height));
+  }
 }
 
 // The declared size, before decoding: a small file may declare a huge image.
 void check_dimensions(long long width, long long height, const std::string& what) {
-    if (width > max_normal_map_side || height > max_normal_map_side || width * height > max_normal_map_texels) {
-        throw Error(fmt::format("{}: {} x {} texels is larger than saagen reads (at most {} a side and {} x {} in all); downscale the normal map",
-                                what, width, height, max_normal_map_side, 4096, 4096));
-    }
+  if (width > max_normal_map_side || height > max_normal_map_side || width * height > max_normal_map_texels) {
+    throw Error(
+        fmt::format("{}: {} x {} texels is larger than saagen reads (at most {} a side and {} x {} in all); downscale the normal map", what,
+                    width, height, max_normal_map_side, 4096, 4096));
+  }
 }
 
 bool starts_with(std::span<const std::uint8_t> bytes, std::initializer_list<std::uint8_t> prefix) {
-    return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
+  return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
 }
 
 NormalImage read_png(std::span<const std::uint8_t> bytes, const std::string& what) {
-    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-    const int size = static_cast<int>(bytes.size());
-    int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(data, size, &width, &height, &channels)) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
-    check_dimensions(width, height, what);
-    const bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
-    std::vector<double> values;
-    if (sixteen) {
-        std::unique_ptr<stbi_us, void (*)(void*)> pixels(stbi_load_16_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
-        if (!pixels) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
-        values.resize(static_cast<std::size_t>(width) * height * channels);
-        for (std::size_t k = 0; k < values.size(); ++k) values[k] = pixels.get()[k] / 65535.0;
-    } else {
-        std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
-        if (!pixels) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
-        values.resize(static_cast<std::size_t>(width) * height * channels);
-        for (std::size_t k = 0; k < values.size(); ++k) values[k] = pixels.get()[k] / 255.0;
-    }
-    return normals_from_channels(width, height, channels, values, true, what);
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(data, size, &width, &height, &channels))
+    throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
+  check_dimensions(width, height, what);
+  const bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
+  std::vector<double> values;
+  if (sixteen) {
+    std::unique_ptr<stbi_us, void (*)(void*)> pixels(stbi_load_16_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
+    if (!pixels) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
+    values.resize(static_cast<std::size_t>(width) * height * channels);
+    for (std::size_t k = 0; k < values.size(); ++k) values[k] = pixels.get()[k] / 65535.0;
+  } else {
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &width, &height, &channels, 0), stbi_image_free);
+    if (!pixels) throw Error(fmt::format("{}: not a readable PNG ({})", what, stbi_failure_reason()));
+    values.resize(static_cast<std::size_t>(width) * height * channels);
+    for (std::size_t k = 0; k < values.size(); ++k) values[k] = pixels.get()[k] / 255.0;
+  }
+  return normals_from_channels(width, height, channels, values, true, what);
 }
 
 std::vector<double> ktx2_level0_values(const Ktx2Image& image) {
-    const std::vector<std::uint8_t>& level = image.levels.front();
-    std::vector<double> values;
-    if (image.vk_format == kFormatRgba8Unorm) {
-        for (std::uint8_t byte : level) values.push_back(byte / 255.0);
-    } else if (image.vk_format == kFormatRgba16Sfloat) {
-        for (std::size_t at = 0; at + 2 <= level.size(); at += 2) values.push_back(glints::from_half(static_cast<std::uint16_t>(level[at] | level[at + 1] << 8)));
-    } else {
-        for (std::size_t at = 0; at + 4 <= level.size(); at += 4) {
-            float f = 0.0f;
-            std::memcpy(&f, level.data() + at, 4);
-            values.push_back(f);
-        }
+  const std::vector<std::uint8_t>& level = image.levels.front();
+  std::vector<double> values;
+  if (image.vk_format == kFormatRgba8Unorm) {
+    for (std::uint8_t byte : level) values.push_back(byte / 255.0);
+  } else if (image.vk_format == kFormatRgba16Sfloat) {
+    for (std::size_t at = 0; at + 2 <= level.size(); at += 2)
+      values.push_back(glints::from_half(static_cast<std::uint16_t>(level[at] | level[at + 1] << 8)));
+  } else {
+    for (std::size_t at = 0; at + 4 <= level.size(); at += 4) {
+      float f = 0.0f;
+      std::memcpy(&f, level.data() + at, 4);
+      values.push_back(f);
     }
-    return values;
+  }
+  return values;
 }
 
 NormalImage read_ktx2_normals(std::span<const std::uint8_t> bytes, const std::string& what) {
-    if (bytes.size() >= 28) {  // pixelWidth and pixelHeight, little-endian, checked before the levels are read
-        const auto u32 = [&](std::size_t at) {
-            return std::uint32_t(bytes[at]) | std::uint32_t(bytes[at + 1]) << 8 | std::uint32_t(bytes[at + 2]) << 16 | std::uint32_t(bytes[at + 3]) << 24;
-        };
-        check_dimensions(u32(20), u32(24), what);
-    }
-    Ktx2Image image;
-    try {
-        image = read_ktx2(bytes);
-    } catch (const Error& error) {
-        throw Error(fmt::format("{}: {}", what, error.what()));
-    }
-    const std::uint32_t format = image.vk_format;
-    if (format != kFormatRgba8Unorm && format != kFormatRgba16Sfloat && format != kFormatRgba32Sfloat) {
-        throw Error(fmt::format("{}: vkFormat {} is not a normal-map format; use R8G8B8A8_UNORM, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT", what, format));
-    }
-    if (image.height == 0 || image.depth != 0 || image.layers != 0) {
-        throw Error(fmt::format("{}: a normal map must be a single 2D image (no array layers, no depth)", what));
-    }
-    const int width = static_cast<int>(image.width), height = static_cast<int>(image.height);
-    check_size(width, height, what);
-    return normals_from_channels(width, height, 4, ktx2_level0_values(image), format == kFormatRgba8Unorm, what);
+  if (bytes.size() >= 28) {  // pixelWidth and pixelHeight, little-endian, checked before the levels are read
+    const auto u32 = [&](std::size_t at) {
+      return std::uint32_t(bytes[at]) | std::uint32_t(bytes[at + 1]) << 8 | std::uint32_t(bytes[at + 2]) << 16 |
+             std::uint32_t(bytes[at + 3]) << 24;
+    };
+    check_dimensions(u32(20), u32(24), what);
+  }
+  Ktx2Image image;
+  try {
+    image = read_ktx2(bytes);
+  } catch (const Error& error) {
+    throw Error(fmt::format("{}: {}", what, error.what()));
+  }
+  const std::uint32_t format = image.vk_format;
+  if (format != kFormatRgba8Unorm && format != kFormatRgba16Sfloat && format != kFormatRgba32Sfloat) {
+    throw Error(fmt::format("{}: vkFormat {} is not a normal-map format; use R8G8B8A8_UNORM, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT",
+                            what, format));
+  }
+  if (image.height == 0 || image.depth != 0 || image.layers != 0) {
+    throw Error(fmt::format("{}: a normal map must be a single 2D image (no array layers, no depth)", what));
+  }
+  const int width = static_cast<int>(image.width), height = static_cast<int>(image.height);
+  check_size(width, height, what);
+  return normals_from_channels(width, height, 4, ktx2_level0_values(image), format == kFormatRgba8Unorm, what);
 }
 
 void add_texel(const double* n, Level& level) {
-    const double sx = -n[0] / n[2], sy = -n[1] / n[2];
-    level.mean_normal.insert(level.mean_normal.end(), n, n + 3);
-    level.slope_mean.insert(level.slope_mean.end(), {sx, sy});
-    level.slope_second.insert(level.slope_second.end(), {sx * sx, sx * sy, sy * sy});
+  const double sx = -n[0] / n[2], sy = -n[1] / n[2];
+  level.mean_normal.insert(level.mean_normal.end(), n, n + 3);
+  level.slope_mean.insert(level.slope_mean.end(), {sx, sy});
+  level.slope_second.insert(level.slope_second.end(), {sx * sx, sx * sy, sy * sy});
 }
 
 // Mean of the sx x sy children of one coarse texel, for one field with `count` values per texel
 // (the order of the sums is render::NormalMap's: rows, then columns, then one multiplication).
 void reduce_field(const std::vector<double>& fine, int fine_width, int x, int y, int sx, int sy, int count, std::vector<double>& out) {
-    const double weight = 1.0 / (sx * sy);
-    for (int c = 0; c < count; ++c) {
-        double sum = 0.0;
-        for (int j = 0; j < sy; ++j)
-            for (int i = 0; i < sx; ++i) sum = sum + fine[(static_cast<std::size_t>(y * sy + j) * fine_width + x * sx + i) * count + c];
-        out.push_back(weight * sum);
-    }
+  const double weight = 1.0 / (sx * sy);
+  for (int c = 0; c < count; ++c) {
+    double sum = 0.0;
+    for (int j = 0; j < sy; ++j)
+      for (int i = 0; i < sx; ++i) sum = sum + fine[(static_cast<std::size_t>(y * sy + j) * fine_width + x * sx + i) * count + c];
+    out.push_back(weight * sum);
+  }
 }
 
 Level reduce(const Level& fine) {
-    Level coarse;
-    coarse.width = std::max(1, fine.width / 2);
-    coarse.height = std::max(1, fine.height / 2);
-    const int sx = fine.width / coarse.width, sy = fine.height / coarse.height;
-    for (int y = 0; y < coarse.height; ++y)
-        for (int x = 0; x < coarse.width; ++x) {
-            reduce_field(fine.mean_normal, fine.width, x, y, sx, sy, 3, coarse.mean_normal);
-            reduce_field(fine.slope_mean, fine.width, x, y, sx, sy, 2, coarse.slope_mean);
-            reduce_field(fine.slope_second, fine.width, x, y, sx, sy, 3, coarse.slope_second);
-        }
-    return coarse;
+  Level coarse;
+  coarse.width = std::max(1, fine.width / 2);
+  coarse.height = std::max(1, fine.height / 2);
+  const int sx = fine.width / coarse.width, sy = fine.height / coarse.height;
+  for (int y = 0; y < coarse.height; ++y)
+    for (int x = 0; x < coarse.width; ++x) {
+      reduce_field(fine.mean_normal, fine.width, x, y, sx, sy, 3, coarse.mean_normal);
+      reduce_field(fine.slope_mean, fine.width, x, y, sx, sy, 2, coarse.slope_mean);
+      reduce_field(fine.slope_second, fine.width, x, y, sx, sy, 3, coarse.slope_second);
+    }
+  return coarse;
 }
 
 template <class T>
 void put_value(std::vector<std::uint8_t>& out, T value) {
-    std::uint8_t bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));
-    out.insert(out.end(), bytes, bytes + sizeof(T));
+  std::uint8_t bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.insert(out.end(), bytes, bytes + sizeof(T));
 }
 
 std::vector<std::uint8_t> toksvig_level(const Level& level, const Options& options) {
-    const double base = to_alpha2(options.roughness, options.domain);
-    std::vector<std::uint8_t> out;
-    for (std::size_t t = 0; t < level.mean_normal.size() / 3; ++t) {
-        const double* m = &level.mean_normal[3 * t];
-        const double value = from_alpha2(toksvig_alpha2(base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])), options.domain);
-        if (options.float32) put_value(out, static_cast<float>(value));
-        else put_value(out, glints::to_half(value));
-    }
-    return out;
+  const double base = to_alpha2(options.roughness, options.domain);
+  std::vector<std::uint8_t> out;
+  for (std::size_t t = 0; t < level.mean_normal.size() / 3; ++t) {
+    const double* m = &level.mean_normal[3 * t];
+    const double value = from_alpha2(toksvig_alpha2(base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])), options.domain);
+    if (options.float32)
+      put_value(out, static_cast<float>(value));
+    else
+      put_value(out, glints::to_half(value));
+  }
+  return out;
 }
 
 std::vector<std::uint8_t> lean_level(const Level& level) {
-    std::vector<std::uint8_t> out;
-    const std::size_t texels = level.slope_mean.size() / 2;
-    for (std::size_t t = 0; t < texels; ++t) {  // layer 0
-        for (double v : {level.slope_mean[2 * t], level.slope_mean[2 * t + 1], level.slope_second[3 * t], level.slope_second[3 * t + 2]}) {
-            put_value(out, static_cast<float>(v));
-        }
+  std::vector<std::uint8_t> out;
+  const std::size_t texels = level.slope_mean.size() / 2;
+  for (std::size_t t = 0; t < texels; ++t) {  // layer 0
+    for (double v : {level.slope_mean[2 * t], level.slope_mean[2 * t + 1], level.slope_second[3 * t], level.slope_second[3 * t + 2]}) {
+      put_value(out, static_cast<float>(v));
     }
-    for (std::size_t t = 0; t < texels; ++t) {  // layer 1
-        for (double v : {level.slope_second[3 * t + 1], 0.0, 0.0, 0.0}) put_value(out, static_cast<float>(v));
-    }
-    return out;
+  }
+  for (std::size_t t = 0; t < texels; ++t) {  // layer 1
+    for (double v : {level.slope_second[3 * t + 1], 0.0, 0.0, 0.0}) put_value(out, static_cast<float>(v));
+  }
+  return out;
 }
 
 nlohmann::json layout_json(const std::vector<Level>& levels, const Options& options) {
-    nlohmann::json json;
-    json["method"] = std::string(to_string(options.method));
-    json["levels"] = levels.size();
-    json["width"] = levels.front().width;
-    json["height"] = levels.front().height;
-    json["box_filter"] = "level m + 1 texel = mean of its level-m children; moments of the level-0 unit normals";
-    json["base_roughness"] = options.roughness;
-    json["domain"] = std::string(to_string(options.domain));
-    if (options.method == Method::toksvig) {
-        json["format"] = options.float32 ? "R32_SFLOAT" : "R16_SFLOAT";
-        json["channels"] = {"roughness"};
-        json["formula"] = "a = saturate(base_alpha2 + 2 (1 - L) / L), L = |mean of the unit normals| (Toksvig 2005); stored in the domain";
-    } else {
-        json["format"] = "R32G32B32A32_SFLOAT";
-        json["layers"] = {{"E[x]", "E[y]", "E[x^2]", "E[y^2]"}, {"E[xy]", "0", "0", "0"}};
-        json["slope"] = "s = (x, y) = -n.xy / n.z of the level-0 unit normals (Olano & Baker 2010)";
-        json["formula"] = "Sigma_tex = E[s s^T] - E[s] E[s]^T; A = diag(alpha^2) + 2 Sigma_tex (saa_prefilter_lean); the base roughness is not baked in";
-    }
-    return json;
+  nlohmann::json json;
+  json["method"] = std::string(to_string(options.method));
+  json["levels"] = levels.size();
+  json["width"] = levels.front().width;
+  json["height"] = levels.front().height;
+  json["box_filter"] = "level m + 1 texel = mean of its level-m children; moments of the level-0 unit normals";
+  json["base_roughness"] = options.roughness;
+  json["domain"] = std::string(to_string(options.domain));
+  if (options.method == Method::toksvig) {
+    json["format"] = options.float32 ? "R32_SFLOAT" : "R16_SFLOAT";
+    json["channels"] = {"roughness"};
+    json["formula"] = "a = saturate(base_alpha2 + 2 (1 - L) / L), L = |mean of the unit normals| (Toksvig 2005); stored in the domain";
+  } else {
+    json["format"] = "R32G32B32A32_SFLOAT";
+    json["layers"] = {{"E[x]", "E[y]", "E[x^2]", "E[y^2]"}, {"E[xy]", "0", "0", "0"}};
+    json["slope"] = "s = (x, y) = -n.xy / n.z of the level-0 unit normals (Olano & Baker 2010)";
+    json["formula"] =
+        "Sigma_tex = E[s s^T] - E[s] E[s]^T; A = diag(alpha^2) + 2 Sigma_tex (saa_prefilter_lean); the base roughness is not baked in";
+  }
+  return json;
 }
 
 }  // namespace
 
 Method parse_method(std::string_view text) {
-    if (text == "toksvig") return Method::toksvig;
-    if (text == "lean") return Method::lean;
-    throw Error(fmt::format("--method '{}' is not one of toksvig, lean", text));
+  if (text == "toksvig") return Method::toksvig;
+  if (text == "lean") return Method::lean;
+  throw Error(fmt::format("--method '{}' is not one of toksvig, lean", text));
 }
 
 // The domains are those of saagen/emit/engines.hpp (one definition for emission and textures).
 Domain parse_domain(std::string_view text) {
-    const std::string_view id = find_domain(text).id;
-    if (id == "alpha") return Domain::alpha;
-    if (id == "perceptual") return Domain::perceptual;
-    if (id == "smoothness") return Domain::smoothness;
-    return Domain::alpha2;
+  const std::string_view id = find_domain(text).id;
+  if (id == "alpha") return Domain::alpha;
+  if (id == "perceptual") return Domain::perceptual;
+  if (id == "smoothness") return Domain::smoothness;
+  return Domain::alpha2;
 }
 
 std::string_view to_string(Method method) { return method == Method::toksvig ? "toksvig" : "lean"; }
 
 std::string_view to_string(Domain domain) {
-    switch (domain) {
-        case Domain::alpha2: return "alpha2";
-        case Domain::alpha: return "alpha";
-        case Domain::perceptual: return "perceptual";
-        case Domain::smoothness: return "smoothness";
-    }
-    return "alpha2";
+  switch (domain) {
+    case Domain::alpha2:
+      return "alpha2";
+    case Domain::alpha:
+      return "alpha";
+    case Domain::perceptual:
+      return "perceptual";
+    case Domain::smoothness:
+      return "smoothness";
+  }
+  return "alpha2";
 }
 
 double from_alpha2(double alpha2, Domain domain) {
-    switch (domain) {
-        case Domain::alpha2: return alpha2;
-        case Domain::alpha: return std::sqrt(alpha2);
-        case Domain::perceptual: return std::sqrt(std::sqrt(alpha2));
-        case Domain::smoothness: return 1.0 - std::sqrt(std::sqrt(alpha2));
-    }
-    return alpha2;
+  switch (domain) {
+    case Domain::alpha2:
+      return alpha2;
+    case Domain::alpha:
+      return std::sqrt(alpha2);
+    case Domain::perceptual:
+      return std::sqrt(std::sqrt(alpha2));
+    case Domain::smoothness:
+      return 1.0 - std::sqrt(std::sqrt(alpha2));
+  }
+  return alpha2;
 }
 
 double to_alpha2(double value, Domain domain) {
-    switch (domain) {
-        case Domain::alpha2: return value;
-        case Domain::alpha: return value * value;
-        case Domain::perceptual: return (value * value) * (value * value);
-        case Domain::smoothness: return ((1.0 - value) * (1.0 - value)) * ((1.0 - value) * (1.0 - value));
-    }
-    return value;
+  switch (domain) {
+    case Domain::alpha2:
+      return value;
+    case Domain::alpha:
+      return value * value;
+    case Domain::perceptual:
+      return (value * value) * (value * value);
+    case Domain::smoothness:
+      return ((1.0 - value) * (1.0 - value)) * ((1.0 - value) * (1.0 - value));
+  }
+  return value;
 }
 
 NormalImage normals_from_channels(int width, int height, int channels, std::span<const double> values, bool encoded,
                                   const std::string& what) {
-    check_size(width, height, what);
-    if (channels < 3) throw Error(fmt::format("{}: has {} channel(s); a normal map needs RGB (x, y, z)", what, channels));
-    NormalImage image{width, height, {}};
-    const std::size_t texels = static_cast<std::size_t>(width) * height;
-    image.normals.reserve(3 * texels);
-    for (std::size_t t = 0; t < texels; ++t) {
-        double n[3];
-        for (int c = 0; c < 3; ++c) n[c] = encoded ? 2.0 * values[t * channels + c] - 1.0 : values[t * channels + c];
-        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(n[2] > 0.0) || !(std::fabs(length - 1.0) <= 0.2)) {
-            throw Error(fmt::format("{}: texel ({}, {}) decodes to ({:.3f}, {:.3f}, {:.3f}), not a tangent-space unit normal with z > 0; "
-                                    "is this a normal map?", what, t % width, t / width, n[0], n[1], n[2]));
-        }
-        for (double v : n) image.normals.push_back(v / length);
+  check_size(width, height, what);
+  if (channels < 3) throw Error(fmt::format("{}: has {} channel(s); a normal map needs RGB (x, y, z)", what, channels));
+  NormalImage image{width, height, {}};
+  const std::size_t texels = static_cast<std::size_t>(width) * height;
+  image.normals.reserve(3 * texels);
+  for (std::size_t t = 0; t < texels; ++t) {
+    double n[3];
+    for (int c = 0; c < 3; ++c) n[c] = encoded ? 2.0 * values[t * channels + c] - 1.0 : values[t * channels + c];
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(n[2] > 0.0) || !(std::fabs(length - 1.0) <= 0.2)) {
+      throw Error(
+          fmt::format("{}: texel ({}, {}) decodes to ({:.3f}, {:.3f}, {:.3f}), not a tangent-space unit normal with z > 0; "
+                      "is this a normal map?",
+                      what, t % width, t / width, n[0], n[1], n[2]));
     }
-    return image;
+    for (double v : n) image.normals.push_back(v / length);
+  }
+  return image;
 }
 
 NormalImage read_normal_map(std::span<const std::uint8_t> bytes, const std::string& what) {
-    if (starts_with(bytes, {0x89, 'P', 'N', 'G'})) return read_png(bytes, what);
-    if (starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0'})) return read_ktx2_normals(bytes, what);
-    throw Error(fmt::format("{}: neither a PNG nor a KTX2 file", what));
+  if (starts_with(bytes, {0x89, 'P', 'N', 'G'})) return read_png(bytes, what);
+  if (starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0'})) return read_ktx2_normals(bytes, what);
+  throw Error(fmt::format("{}: neither a PNG nor a KTX2 file", what));
 }
 
 glints::SlopeMap read_lean_slopes(std::span<const std::uint8_t> bytes, const std::string& what) {
-    if (starts_with(bytes, {'P', '6'})) {
-        try {
-            return glints::slopes_from_ppm(bytes);
-        } catch (const Error& error) {
-            throw Error(fmt::format("{}: {}", what, error.what()));
-        }
+  if (starts_with(bytes, {'P', '6'})) {
+    try {
+      return glints::slopes_from_ppm(bytes);
+    } catch (const Error& error) {
+      throw Error(fmt::format("{}: {}", what, error.what()));
     }
-    if (!starts_with(bytes, {0x89, 'P', 'N', 'G'}) && !starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0'})) {
-        throw Error(fmt::format("{}: neither a PNG, a KTX2 nor a binary PPM (P6) file", what));
-    }
-    const NormalImage image = read_normal_map(bytes, what);
-    if (static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) > glints::lean_texel_limit) {
-        throw Error(fmt::format("{}: normal map: {} x {} is larger than {} texels (2048 x 2048); downsample it", what, image.width,
-                                image.height, glints::lean_texel_limit));
-    }
-    return glints::slopes_from_normals(image.width, image.height, image.normals);
+  }
+  if (!starts_with(bytes, {0x89, 'P', 'N', 'G'}) && !starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0'})) {
+    throw Error(fmt::format("{}: neither a PNG, a KTX2 nor a binary PPM (P6) file", what));
+  }
+  const NormalImage image = read_normal_map(bytes, what);
+  if (static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) > glints::lean_texel_limit) {
+    throw Error(fmt::format("{}: normal map: {} x {} is larger than {} texels (2048 x 2048); downsample it", what, image.width,
+                            image.height, glints::lean_texel_limit));
+  }
+  return glints::slopes_from_normals(image.width, image.height, image.normals);
 }
 
 std::vector<Level> build_levels(const NormalImage& image) {
-    check_size(image.width, image.height, "normal map");
-    Level base{image.width, image.height, {}, {}, {}};
-    for (std::size_t t = 0; t < image.normals.size() / 3; ++t) add_texel(&image.normals[3 * t], base);
-    std::vector<Level> levels{std::move(base)};
-    while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(reduce(levels.back()));
-    return levels;
+  check_size(image.width, image.height, "normal map");
+  Level base{image.width, image.height, {}, {}, {}};
+  for (std::size_t t = 0; t < image.normals.size() / 3; ++t) add_texel(&image.normals[3 * t], base);
+  std::vector<Level> levels{std::move(base)};
+  while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(reduce(levels.back()));
+  return levels;
 }
 
 double toksvig_alpha2(double base_alpha2, double mean_length) {
-    const double l = std::max(mean_length, kTinyLength);
-    const double variance = std::max((1.0 - l) / l, 0.0);
-    return std::clamp(base_alpha2 + 2.0 * variance, 0.0, 1.0);
+  const double l = std::max(mean_length, kTinyLength);
+  const double variance = std::max((1.0 - l) / l, 0.0);
+  return std::clamp(base_alpha2 + 2.0 * variance, 0.0, 1.0);
 }
 
 void Options::validate() const {
-    if (!(roughness >= 0.0 && roughness <= 1.0)) throw Error(fmt::format("--roughness {} is outside [0, 1]", roughness));
-    if (float32 && method == Method::lean) throw Error("--float32 applies to --method toksvig; LEAN moments are always R32G32B32A32_SFLOAT");
+  if (!(roughness >= 0.0 && roughness <= 1.0)) throw Error(fmt::format("--roughness {} is outside [0, 1]", roughness));
+  if (float32 && method == Method::lean) throw Error("--float32 applies to --method toksvig; LEAN moments are always R32G32B32A32_SFLOAT");
 }
 
 Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options) {
-    options.validate();
-    Ktx2Image image;
-    const bool toksvig = options.method == Method::toksvig;
-    image.vk_format = toksvig ? (options.float32 ? kFormatR32Sfloat : kFormatR16Sfloat) : kFormatRgba32Sfloat;
-    image.type_size = toksvig && !options.float32 ? 2 : 4;
-    image.width = static_cast<std::uint32_t>(levels.front().width);
-    image.height = static_cast<std::uint32_t>(levels.front().height);
-    image.layers = toksvig ? 0 : 2;
-    for (const Level& level : levels) image.levels.push_back(toksvig ? toksvig_level(level, options) : lean_level(level));
-    image.key_values.emplace_back("saagen.prefilter", layout_json(levels, options).dump());
-    image.key_values.emplace_back("saagen.marker", fmt::format("// saagen-marker: target=ktx2 variants=prefilter-{}\n", to_string(options.method)));
-    return image;
+  options.validate();
+  Ktx2Image image;
+  const bool toksvig = options.method == Method::toksvig;
+  image.vk_format = toksvig ? (options.float32 ? kFormatR32Sfloat : kFormatR16Sfloat) : kFormatRgba32Sfloat;
+  image.type_size = toksvig && !options.float32 ? 2 : 4;
+  image.width = static_cast<std::uint32_t>(levels.front().width);
+  image.height = static_cast<std::uint32_t>(levels.front().height);
+  image.layers = toksvig ? 0 : 2;
+  for (const Level& level : levels) image.levels.push_back(toksvig ? toksvig_level(level, options) : lean_level(level));
+  image.key_values.emplace_back("saagen.prefilter", layout_json(levels, options).dump());
+  image.key_values.emplace_back("saagen.marker",
+                                fmt::format("// saagen-marker: target=ktx2 variants=prefilter-{}\n", to_string(options.method)));
+  return image;
 }
 
 }  // namespace saagen::prefilter

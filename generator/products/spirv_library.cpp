@@ -1,8 +1,8 @@
 #include "saagen/products/spirv_library.hpp"
 
-#include "saagen/error.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/emit/listing.hpp"
+#include "saagen/error.hpp"
 #include "saagen/target/target.hpp"
 
 #include <fmt/format.h>
@@ -24,27 +24,43 @@ constexpr std::uint32_t spirv_magic = 0x07230203u;
 spv_target_env universal_env(const std::vector<std::uint32_t>& words) {
   const std::uint32_t version = words.size() > 1 ? words[1] : 0;
   switch (version) {
-    case 0x00010000u: return SPV_ENV_UNIVERSAL_1_0;
-    case 0x00010100u: return SPV_ENV_UNIVERSAL_1_1;
-    case 0x00010200u: return SPV_ENV_UNIVERSAL_1_2;
-    case 0x00010300u: return SPV_ENV_UNIVERSAL_1_3;
-    case 0x00010400u: return SPV_ENV_UNIVERSAL_1_4;
-    case 0x00010500u: return SPV_ENV_UNIVERSAL_1_5;
-    case 0x00010600u: return SPV_ENV_UNIVERSAL_1_6;
-    default: return SPV_ENV_UNIVERSAL_1_3;
+    case 0x00010000u:
+      return SPV_ENV_UNIVERSAL_1_0;
+    case 0x00010100u:
+      return SPV_ENV_UNIVERSAL_1_1;
+    case 0x00010200u:
+      return SPV_ENV_UNIVERSAL_1_2;
+    case 0x00010300u:
+      return SPV_ENV_UNIVERSAL_1_3;
+    case 0x00010400u:
+      return SPV_ENV_UNIVERSAL_1_4;
+    case 0x00010500u:
+      return SPV_ENV_UNIVERSAL_1_5;
+    case 0x00010600u:
+      return SPV_ENV_UNIVERSAL_1_6;
+    default:
+      return SPV_ENV_UNIVERSAL_1_3;
   }
 }
 
 std::string env_name(spv_target_env env) {
   switch (env) {
-    case SPV_ENV_UNIVERSAL_1_0: return "1.0";
-    case SPV_ENV_UNIVERSAL_1_1: return "1.1";
-    case SPV_ENV_UNIVERSAL_1_2: return "1.2";
-    case SPV_ENV_UNIVERSAL_1_3: return "1.3";
-    case SPV_ENV_UNIVERSAL_1_4: return "1.4";
-    case SPV_ENV_UNIVERSAL_1_5: return "1.5";
-    case SPV_ENV_UNIVERSAL_1_6: return "1.6";
-    default: return "?";
+    case SPV_ENV_UNIVERSAL_1_0:
+      return "1.0";
+    case SPV_ENV_UNIVERSAL_1_1:
+      return "1.1";
+    case SPV_ENV_UNIVERSAL_1_2:
+      return "1.2";
+    case SPV_ENV_UNIVERSAL_1_3:
+      return "1.3";
+    case SPV_ENV_UNIVERSAL_1_4:
+      return "1.4";
+    case SPV_ENV_UNIVERSAL_1_5:
+      return "1.5";
+    case SPV_ENV_UNIVERSAL_1_6:
+      return "1.6";
+    default:
+      return "?";
   }
 }
 
@@ -58,9 +74,8 @@ class Messages {
  private:
   spvtools::MessageConsumer consumer() {
     return [this](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
-      text_ += fmt::format("{}{}: {}", text_.empty() ? "" : "; ", position.index ? fmt::format("word {}", position.index)
-                                                                                 : fmt::format("line {}", position.line),
-                           message);
+      text_ += fmt::format("{}{}: {}", text_.empty() ? "" : "; ",
+                           position.index ? fmt::format("word {}", position.index) : fmt::format("line {}", position.line), message);
     };
   }
   std::string text_;
@@ -84,8 +99,10 @@ std::vector<std::string> tokens_of(std::string_view text) {
     const char c = text[index];
     if (quoted) {
       current += c;
-      if (c == '\\' && index + 1 < text.size()) current += text[++index];
-      else if (c == '"') quoted = false;
+      if (c == '\\' && index + 1 < text.size())
+        current += text[++index];
+      else if (c == '"')
+        quoted = false;
       continue;
     }
     if (c == '"') {
@@ -168,10 +185,9 @@ std::string string_value(const std::string& token) {
 }
 
 bool is_module_prefix(const std::string& opcode) {
-  static const std::set<std::string> prefix = {"OpCapability", "OpExtension", "OpExtInstImport", "OpMemoryModel",
-                                               "OpEntryPoint", "OpExecutionMode", "OpExecutionModeId", "OpString",
-                                               "OpSourceExtension", "OpSource", "OpSourceContinued", "OpName",
-                                               "OpMemberName", "OpModuleProcessed"};
+  static const std::set<std::string> prefix = {
+      "OpCapability", "OpExtension",       "OpExtInstImport", "OpMemoryModel",     "OpEntryPoint", "OpExecutionMode", "OpExecutionModeId",
+      "OpString",     "OpSourceExtension", "OpSource",        "OpSourceContinued", "OpName",       "OpMemberName",    "OpModuleProcessed"};
   return prefix.count(opcode) != 0;
 }
 
@@ -179,8 +195,10 @@ bool is_module_prefix(const std::string& opcode) {
 std::size_t annotations_start(const std::vector<Instruction>& instructions) {
   std::size_t position = 0;
   for (std::size_t index = 0; index < instructions.size(); ++index) {
-    if (is_module_prefix(instructions[index].opcode)) position = index + 1;
-    else break;
+    if (is_module_prefix(instructions[index].opcode))
+      position = index + 1;
+    else
+      break;
   }
   return position;
 }
@@ -201,8 +219,8 @@ bool has_capability(const std::vector<Instruction>& instructions, std::string_vi
 
 // Instructions that name or decorate an id (the first operand is the target).
 bool targets_id(const Instruction& instruction, const std::set<std::string>& ids) {
-  static const std::set<std::string> naming = {"OpName", "OpMemberName", "OpDecorate", "OpMemberDecorate", "OpDecorateId",
-                                               "OpDecorateString", "OpMemberDecorateString"};
+  static const std::set<std::string> naming = {
+      "OpName", "OpMemberName", "OpDecorate", "OpMemberDecorate", "OpDecorateId", "OpDecorateString", "OpMemberDecorateString"};
   return naming.count(instruction.opcode) && !instruction.operands.empty() && ids.count(instruction.operands[0]);
 }
 
@@ -230,12 +248,18 @@ std::map<std::string, std::string> type_descriptions(const std::vector<Instructi
   };
   for (const Instruction& instruction : instructions) {
     const auto& op = instruction.operands;
-    if (instruction.opcode == "OpTypeVoid") types[instruction.result] = "void";
-    else if (instruction.opcode == "OpTypeBool") types[instruction.result] = "bool";
-    else if (instruction.opcode == "OpTypeInt" && op.size() >= 2) types[instruction.result] = (op[1] == "1" ? "i" : "u") + op[0];
-    else if (instruction.opcode == "OpTypeFloat" && !op.empty()) types[instruction.result] = "f" + op[0];
-    else if (instruction.opcode == "OpTypeVector" && op.size() >= 2) types[instruction.result] = fmt::format("vec{}<{}>", op[1], describe(op[0]));
-    else if (instruction.opcode == "OpTypePointer" && op.size() >= 2) types[instruction.result] = fmt::format("ptr<{}, {}>", op[0], describe(op[1]));
+    if (instruction.opcode == "OpTypeVoid")
+      types[instruction.result] = "void";
+    else if (instruction.opcode == "OpTypeBool")
+      types[instruction.result] = "bool";
+    else if (instruction.opcode == "OpTypeInt" && op.size() >= 2)
+      types[instruction.result] = (op[1] == "1" ? "i" : "u") + op[0];
+    else if (instruction.opcode == "OpTypeFloat" && !op.empty())
+      types[instruction.result] = "f" + op[0];
+    else if (instruction.opcode == "OpTypeVector" && op.size() >= 2)
+      types[instruction.result] = fmt::format("vec{}<{}>", op[1], describe(op[0]));
+    else if (instruction.opcode == "OpTypePointer" && op.size() >= 2)
+      types[instruction.result] = fmt::format("ptr<{}, {}>", op[0], describe(op[1]));
     else if (instruction.opcode == "OpTypeFunction" && !op.empty()) {
       std::vector<std::string> parameters;
       for (std::size_t index = 1; index < op.size(); ++index) parameters.push_back(describe(op[index]));
@@ -262,7 +286,8 @@ std::vector<std::uint32_t> run_dead_code_passes(const std::vector<std::uint32_t>
 
 std::string upper_identifier(std::string_view text) {
   std::string result;
-  for (const char c : text) result += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
+  for (const char c : text)
+    result += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
   return result;
 }
 
@@ -329,14 +354,14 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
       if (instruction.opcode == "OpFunctionEnd") inside_entry = false;
       continue;
     }
-    if (instruction.opcode == "OpEntryPoint" || instruction.opcode == "OpExecutionMode" || instruction.opcode == "OpExecutionModeId") continue;
+    if (instruction.opcode == "OpEntryPoint" || instruction.opcode == "OpExecutionMode" || instruction.opcode == "OpExecutionModeId")
+      continue;
     kept.push_back(std::move(instruction));
   }
   // The workgroup size belongs to the removed compute entry point (a consumer declares its own).
   std::erase_if(kept, [&dead](const Instruction& instruction) {
-    return targets_id(instruction, dead) ||
-           (instruction.opcode == "OpDecorate" && instruction.operands.size() >= 3 && instruction.operands[1] == "BuiltIn" &&
-            instruction.operands[2] == "WorkgroupSize");
+    return targets_id(instruction, dead) || (instruction.opcode == "OpDecorate" && instruction.operands.size() >= 3 &&
+                                             instruction.operands[1] == "BuiltIn" && instruction.operands[2] == "WorkgroupSize");
   });
 
   std::vector<Instruction> decorations;
@@ -486,8 +511,8 @@ std::string spirv_library_header(const Catalogue& base_catalogue, const SpirvLib
   out << fmt::format("// SPIR-V {}, Logical addressing, GLSL450 memory model, capabilities {}; no entry point.\n",
                      library.reflection.at("spirv_version").get<std::string>(),
                      fmt::join(library.reflection.at("capabilities").get<std::vector<std::string>>(), ", "));
-  out << fmt::format("// {} words ({} bytes), {} instructions. Exported functions (LinkageAttributes ... Export):\n",
-                     library.words.size(), library.words.size() * 4, instructions);
+  out << fmt::format("// {} words ({} bytes), {} instructions. Exported functions (LinkageAttributes ... Export):\n", library.words.size(),
+                     library.words.size() * 4, instructions);
   for (const SpirvExport& entry : library.exports) {
     const Function& function = *catalogue.find_function(entry.template_name);
     std::vector<std::string> parameters;
@@ -505,8 +530,8 @@ std::string spirv_library_header(const Catalogue& base_catalogue, const SpirvLib
                      spirv_c_initializer(library.words));
   out << fmt::format("{} size_t {}_spv_word_count = {};\n", qualifier_macro, stem, library.words.size());
   out << fmt::format("{} size_t {}_spv_size_bytes = {};\n\n", qualifier_macro, stem, library.words.size() * 4);
-  out << fmt::format("// The reflection of the exported functions (JSON).\n{} char {}_spv_reflection_json[] =\n{};\n",
-                     qualifier_macro, stem, c_string_literal_lines(library.reflection.dump(2) + "\n"));
+  out << fmt::format("// The reflection of the exported functions (JSON).\n{} char {}_spv_reflection_json[] =\n{};\n", qualifier_macro,
+                     stem, c_string_literal_lines(library.reflection.dump(2) + "\n"));
   out << fmt::format("\n#endif  // {}\n", guard);
   return out.str();
 }
@@ -556,8 +581,10 @@ std::vector<std::uint32_t> import_stub_functions(const std::vector<std::uint32_t
       continue;
     }
     const bool end = instruction.opcode == "OpFunctionEnd";
-    if (!stub || end || instruction.opcode == "OpFunctionParameter") function->push_back(std::move(instruction));
-    else if (!instruction.result.empty()) dead.insert(instruction.result);
+    if (!stub || end || instruction.opcode == "OpFunctionParameter")
+      function->push_back(std::move(instruction));
+    else if (!instruction.result.empty())
+      dead.insert(instruction.result);
     if (end) function = nullptr;
   }
   std::erase_if(prefix, [&dead](const Instruction& instruction) { return targets_id(instruction, dead); });
@@ -654,13 +681,16 @@ std::string c_string_literal_lines(std::string_view text) {
   std::string out;
   std::string line = "  \"";
   for (const char c : text) {
-    if (c == '"' || c == '\\') line += fmt::format("\\{}", c);
+    if (c == '"' || c == '\\')
+      line += fmt::format("\\{}", c);
     else if (c == '\n') {
       out += line + "\\n\"\n";
       line = "  \"";
       continue;
-    } else if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) line += fmt::format("\\{:03o}", static_cast<unsigned char>(c));
-    else line += c;
+    } else if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+      line += fmt::format("\\{:03o}", static_cast<unsigned char>(c));
+    else
+      line += c;
   }
   if (line != "  \"") out += line + "\"\n";
   if (out.empty()) out = "  \"\"\n";
@@ -680,9 +710,10 @@ std::vector<std::string> spirv_library_variants(const Catalogue& catalogue, cons
     if (!reads_resource(variant)) {
       ids.push_back(variant.id);
     } else if (!named.empty()) {
-      throw Error(fmt::format("--variant {}: a SPIR-V library module cannot leave the {} binding to the including shader; "
-                                      "emit it with --target glsl or hlsl",
-                                      variant.id, fmt::join(resources_read(catalogue, variant.functions), ", ")));
+      throw Error(
+          fmt::format("--variant {}: a SPIR-V library module cannot leave the {} binding to the including shader; "
+                      "emit it with --target glsl or hlsl",
+                      variant.id, fmt::join(resources_read(catalogue, variant.functions), ", ")));
     }
   }
   for (const std::string& id : named) {

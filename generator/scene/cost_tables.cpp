@@ -18,7 +18,8 @@ const std::map<std::string, std::string_view>& files();
 
 namespace {
 
-std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::string_view variant, std::optional<double> MeasuredTradeRow::*field) {
+std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::string_view variant,
+                              std::optional<double> MeasuredTradeRow::*field) {
   double sum = 0.0;
   int count = 0;
   for (const MeasuredTradeRow& row : rows) {
@@ -48,7 +49,8 @@ std::optional<double> MeasuredTradeTable::isa_cost(std::string_view variant, std
   return mean_of(of_family, variant, &MeasuredTradeRow::isa_ratio);
 }
 
-std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const {
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant,
+                                              const std::vector<std::string>& targets) const {
   double sum = 0.0;
   int count = 0;
   for (const IsaRow& row : rows) {
@@ -65,7 +67,8 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
   IsaTable table;
   table.source_name = std::string(source_name);
   const auto fail = [&](std::string_view what) {
-    throw Error(fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
+    throw Error(
+        fmt::format("{}: {}; regenerate it with `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`", source_name, what));
   };
   nlohmann::json document;
   try {
@@ -90,7 +93,8 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
       return row[key].get<std::string>();
     };
     const auto number = [&](const char* key) {
-      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>())) fail(fmt::format("every row needs a finite \"{}\"", key));
+      if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
+        fail(fmt::format("every row needs a finite \"{}\"", key));
       return row[key].get<double>();
     };
     IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
@@ -134,9 +138,10 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
   }
   const auto fail = [&](std::size_t index, std::string_view what) {
-    throw Error(fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
-                            "\"delta_spirv_instructions\": number, \"error\": number}}",
-                            source_name, index, what));
+    throw Error(
+        fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
+                    "\"delta_spirv_instructions\": number, \"error\": number}}",
+                    source_name, index, what));
   };
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
     throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
@@ -164,7 +169,8 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     entry.error = number(row, "error", index);
     entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
     if (entry.isa_ratio) {
-      if (!row.contains("isa_family") || !row["isa_family"].is_string()) fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+      if (!row.contains("isa_family") || !row["isa_family"].is_string())
+        fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
       entry.isa_family = row["isa_family"].get<std::string>();
       if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
     }

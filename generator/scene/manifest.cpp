@@ -1,13 +1,11 @@
 #include "saagen/scene/manifest.hpp"
 
-#include "saagen/products/glints.hpp"
-#include "saagen/scene/cost_tables.hpp"
-
-#include "saagen/emit/engines.hpp"
-
 #include "saagen/emit/emitter.hpp"
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/scene/cost_tables.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
 
@@ -34,8 +32,10 @@ std::string show(std::string_view text, std::size_t limit = 40) {
   std::string shown;
   for (char c : text.substr(0, limit)) {
     const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte < 0x7f && c != '\\') shown += c;
-    else shown += fmt::format("\\x{:02x}", byte);
+    if (byte >= 0x20 && byte < 0x7f && c != '\\')
+      shown += c;
+    else
+      shown += fmt::format("\\x{:02x}", byte);
   }
   if (text.size() > limit) shown += "...";
   return shown;
@@ -49,16 +49,26 @@ std::string quoted_list(const std::vector<std::string>& values) {
 
 std::string_view type_phrase(toml::node_type type) {
   switch (type) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a floating-point number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -68,9 +78,8 @@ SourcePosition position_of(const toml::source_region& region) {
 
 bool is_identifier(std::string_view text, bool allow_dash) {
   if (text.empty() || text.size() > 64 || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
-  return std::all_of(text.begin(), text.end(), [&](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allow_dash && c == '-');
-  });
+  return std::all_of(text.begin(), text.end(),
+                     [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allow_dash && c == '-'); });
 }
 
 // Reads one table's keys, in file order, checking each against the allowed set and its type.
@@ -98,9 +107,7 @@ class TableReader {
     return node ? position_of(node->source()) : position_of(table_.source());
   }
 
-  [[noreturn]] void fail(SourcePosition position, const std::string& message) const {
-    throw Error(manifest_.where(position) + message);
-  }
+  [[noreturn]] void fail(SourcePosition position, const std::string& message) const { throw Error(manifest_.where(position) + message); }
   [[noreturn]] void fail_key(std::string_view key, const std::string& problem, const std::string& allowed) const {
     fail(position(key), fmt::format("key '{}'{}: {}; allowed: {}", key, context_, problem, allowed));
   }
@@ -108,8 +115,8 @@ class TableReader {
     fail(position_of(table_.source()), fmt::format("missing key '{}'{}; allowed: {}", key, context_, allowed));
   }
   [[noreturn]] void wrong_type(std::string_view key, const toml::node& node, const std::string& allowed) const {
-    fail(position_of(node.source()), fmt::format("key '{}'{}: must be {}, got {}; allowed: {}", key, context_,
-                                                 allowed_type_of(allowed), type_phrase(node.type()), allowed));
+    fail(position_of(node.source()), fmt::format("key '{}'{}: must be {}, got {}; allowed: {}", key, context_, allowed_type_of(allowed),
+                                                 type_phrase(node.type()), allowed));
   }
 
   std::optional<std::string> string(std::string_view key, const std::string& allowed) const {
@@ -164,7 +171,8 @@ class TableReader {
 // half-precision form (see target_precision).
 std::vector<std::string> precisions_of_all(const std::vector<std::string>& targets) {
   std::vector<std::string> common = {"fp32"};
-  const bool half = std::all_of(targets.begin(), targets.end(), [](const std::string& target) { return target_precision(target, "fp16").has_value(); });
+  const bool half =
+      std::all_of(targets.begin(), targets.end(), [](const std::string& target) { return target_precision(target, "fp16").has_value(); });
   if (half) common.push_back("fp16");
   return common;
 }
@@ -188,7 +196,8 @@ void read_targets(Manifest& manifest, const TableReader& top) {
       top.fail(position, fmt::format("key 'targets': unknown target \"{}\"; allowed: {}", show(target), quoted_list(names)));
     }
     if (std::find(manifest.targets.begin(), manifest.targets.end(), target) != manifest.targets.end()) {
-      top.fail(position, fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", target, quoted_list(names)));
+      top.fail(position,
+               fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", target, quoted_list(names)));
     }
     manifest.targets.push_back(target);
   }
@@ -203,7 +212,8 @@ void read_options(Manifest& manifest, const TableReader& top, const Catalogue& c
   }
   for (const Constant& constant : constants) {
     if (constant.option.empty()) continue;
-    const std::string allowed = fmt::format("a number in {} ({}; default {})", constant.range->describe(), constant.meaning, constant.value);
+    const std::string allowed =
+        fmt::format("a number in {} ({}; default {})", constant.range->describe(), constant.meaning, constant.value);
     const auto value = top.number(constant.option, allowed);
     if (!value) continue;
     if (!std::isfinite(*value) || !constant.range->contains(*value)) {
@@ -225,7 +235,8 @@ void check_glint_options(const Manifest& manifest, const TableReader& top, const
 // A value the file sets that a material's precision would emit as 0 (below the smallest normal
 // number) is named at its key, file:line:column, not as a command-line option it never was.
 void check_options_representable(const Manifest& manifest, const TableReader& top) {
-  const bool half = std::any_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& material) { return material.precision != "fp32"; });
+  const bool half = std::any_of(manifest.materials.begin(), manifest.materials.end(),
+                                [](const Material& material) { return material.precision != "fp32"; });
   const double smallest_normal = half ? 0x1.0p-14 : static_cast<double>(std::numeric_limits<float>::min());
   const char* precision = half ? "fp16" : "fp32";
   for (const auto& [option, value] : manifest.option_values) {
@@ -261,8 +272,8 @@ void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
   }
 }
 
-Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index,
-                       const std::vector<std::string>& precisions, const Catalogue& catalogue) {
+Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<std::string>& precisions,
+                       const Catalogue& catalogue) {
   Material material;
   material.position = position_of(table.source());
   // The context names the material by its name once it is known to be a safe identifier.
@@ -288,13 +299,14 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   material.normal_maps = reader.boolean("normal_maps").value_or(false);
   material.glints = reader.boolean("glints").value_or(false);
   if (material.glints && (material.path != RenderPath::forward || !material.tangents)) {
-    reader.fail_key("glints",
-                    "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
-                    "false, or true with path = \"forward\" and tangents = true");
+    reader.fail_key(
+        "glints", "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
+        "false, or true with path = \"forward\" and tangents = true");
   }
   if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
   if (material.glints && material.precision != "fp32") {
-    reader.fail_key("precision", "the glinty BRDF is numerically supported in fp32 only (no half-precision error bound is derived or proven)",
+    reader.fail_key("precision",
+                    "the glinty BRDF is numerically supported in fp32 only (no half-precision error bound is derived or proven)",
                     "\"fp32\" with glints = true");
   }
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
@@ -310,11 +322,13 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   if (const auto variant = reader.string("variant", quoted_list(filters))) {
     if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
       const bool is_brdf = catalogue.find_variant(*variant) != nullptr;
-      reader.fail_key("variant",
-                      fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
-                      quoted_list(filters));
+      reader.fail_key(
+          "variant",
+          fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
+          quoted_list(filters));
     }
-    if (material.glints) reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
+    if (material.glints)
+      reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
     material.variant = *variant;
   }
 
@@ -382,11 +396,17 @@ class ManifestScanner {
       if (c == ' ' || c == '\t' || c == '\r') continue;
       if (line_start && containers_.empty()) start_line(c);
       line_start = false;
-      if (c == '#') skip_comment();
-      else if (c == '"' || c == '\'') skip_string(c);
-      else if (static_cast<unsigned char>(c) >= 0x80) non_ascii();
-      else if (!step(c)) report(fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at most {} "
-                                           "(a scene manifest needs 2)", nesting_limit, nesting_limit));
+      if (c == '#')
+        skip_comment();
+      else if (c == '"' || c == '\'')
+        skip_string(c);
+      else if (static_cast<unsigned char>(c) >= 0x80)
+        non_ascii();
+      else if (!step(c))
+        report(
+            fmt::format("nested deeper than {} levels (dotted keys, arrays or inline tables); allowed: at most {} "
+                        "(a scene manifest needs 2)",
+                        nesting_limit, nesting_limit));
     }
     return problem_;
   }
@@ -401,14 +421,19 @@ class ManifestScanner {
   // One structural character; false when it nests too deeply.
   bool step(char c) {
     if (header_) {
-      if (c == ']') in_key_ = false;
-      else if (c == '.' && in_key_) ++key_dots_;
+      if (c == ']')
+        in_key_ = false;
+      else if (c == '.' && in_key_)
+        ++key_dots_;
       return depth() <= nesting_limit;
     }
     if (in_key_) {
-      if (c == '=') in_key_ = false;
-      else if (c == '.') ++key_dots_;
-      else if (c == '}' && !containers_.empty()) containers_.pop_back();  // `{}` or a trailing `}`
+      if (c == '=')
+        in_key_ = false;
+      else if (c == '.')
+        ++key_dots_;
+      else if (c == '}' && !containers_.empty())
+        containers_.pop_back();  // `{}` or a trailing `}`
       return depth() <= nesting_limit;
     }
     if (c == '[' || c == '{') {
@@ -432,8 +457,9 @@ class ManifestScanner {
   }
 
   void non_ascii() {
-    report(fmt::format("non-ASCII byte 0x{:02x} outside a comment; allowed: ASCII keys and values (every name and value saagen reads is ASCII)",
-                       static_cast<unsigned char>(text_[at_])));
+    report(fmt::format(
+        "non-ASCII byte 0x{:02x} outside a comment; allowed: ASCII keys and values (every name and value saagen reads is ASCII)",
+        static_cast<unsigned char>(text_[at_])));
   }
 
   void report(std::string message) {
@@ -459,8 +485,10 @@ class ManifestScanner {
       if (static_cast<unsigned char>(c) >= 0x80) return non_ascii();
       if (c == '\\' && quote == '"') {
         ++at_;
-        if (at_ < text_.size() && text_[at_] == '\n') newline();
-        else if (at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80) return non_ascii();
+        if (at_ < text_.size() && text_[at_] == '\n')
+          newline();
+        else if (at_ < text_.size() && static_cast<unsigned char>(text_[at_]) >= 0x80)
+          return non_ascii();
       } else if (c == '\n') {
         newline();
         if (!triple) return;
@@ -526,8 +554,8 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
-                                                "glints",      "precision", "prefer",   "variant"};
+  static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",
+                                                "normal_maps", "glints", "precision",   "prefer",   "variant"};
   return keys;
 }
 
@@ -577,7 +605,8 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
     } catch (const Error&) {
       top.fail_key("import_path", fmt::format("\"{}\" is not a module path", show(*path)), import_rule);
     }
-    const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(), [](const std::string& target) { return builtin_target(target).module; });
+    const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(),
+                                           [](const std::string& target) { return builtin_target(target).module; });
     if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
     manifest.import_path = *path;
   }

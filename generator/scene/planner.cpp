@@ -1,14 +1,12 @@
 #include "saagen/scene/planner.hpp"
 
-#include "saagen/products/glints.hpp"
-
 #include "saagen/emit/engines.hpp"
-
-#include "saagen/validate/compiler.hpp"
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
-#include "saagen/validate/kernels.hpp"
+#include "saagen/products/glints.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/compiler.hpp"
+#include "saagen/validate/kernels.hpp"
 #include "saagen/validate/validation.hpp"
 
 #include <fmt/format.h>
@@ -69,8 +67,7 @@ const std::vector<Rule>& rules() {
       {"F5", RenderPath::forward, Tri::no, Tri::no, std::nullopt, "deferred-avg",
        "without tangents only the tangent-free filters apply; deferred-avg has the lowest error of them (T&K 2019 Eq. 5) "
        "and is the cheapest"},
-      {"D0", RenderPath::deferred, Tri::no, Tri::any, Preference::accuracy, "deferred-aniso", kMeasuredDeferredAniso, Ndf::ggx,
-       Tri::no},
+      {"D0", RenderPath::deferred, Tri::no, Tri::any, Preference::accuracy, "deferred-aniso", kMeasuredDeferredAniso, Ndf::ggx, Tri::no},
       {"D1", RenderPath::deferred, Tri::any, Tri::any, Preference::accuracy, "deferred-avg",
        "tangent-free, from the G-buffer normal; the lowest error of the deferred filters (T&K 2019 Eq. 5)"},
       {"D2", RenderPath::deferred, Tri::any, Tri::any, Preference::speed, "deferred-avg",
@@ -142,7 +139,8 @@ std::vector<std::string> lighting_pass(const Catalogue& catalogue, const Variant
 std::string ineligibility(const Catalogue& catalogue, const Variant& variant, const Material& material) {
   if (!lighting_pass(catalogue, variant).empty()) {
     if (material.anisotropic) return fmt::format("{} filters isotropic roughness (its frame is built from the normal alone)", variant.id);
-    if (material.ndf != Ndf::ggx) return fmt::format("{}'s lighting pass evaluates the tail-preserving filtered GGX; ndf = \"ggx\" only", variant.id);
+    if (material.ndf != Ndf::ggx)
+      return fmt::format("{}'s lighting pass evaluates the tail-preserving filtered GGX; ndf = \"ggx\" only", variant.id);
   }
   if (variant.path == RenderPath::forward && material.path != RenderPath::forward) {
     return fmt::format("{} filters the half vector of each light in a forward pass; this material's path is deferred", variant.id);
@@ -165,7 +163,8 @@ std::vector<std::string> variant_resources(const Catalogue& catalogue, const Var
 std::vector<const Variant*> eligible_variants(const Catalogue& catalogue, const Material& material) {
   std::vector<const Variant*> eligible;
   for (const Variant& variant : catalogue.variants()) {
-    if (is_screen_space_filter(catalogue, variant) && ineligibility(catalogue, variant, material).empty() && variant_resources(catalogue, variant).empty()) {
+    if (is_screen_space_filter(catalogue, variant) && ineligibility(catalogue, variant, material).empty() &&
+        variant_resources(catalogue, variant).empty()) {
       eligible.push_back(&variant);
     }
   }
@@ -210,7 +209,8 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
   }
   if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
     const std::string brdf = wrapper.return_type == "real3" ? "ggx_brdf_filtered_matrix" : "ggx_brdf_filtered_axis";
-    if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx")) throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
+    if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx"))
+      throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
     plan.brdf = brdf;
     plan.functions.push_back(brdf);
     plan.variants.push_back("brdf-ggx");
@@ -288,10 +288,13 @@ constexpr const char* cost_body = R"(    real2 frag_coord = real2(saagen_frag_co
 std::string call_with(const Function& function, const std::string& alpha2) {
   std::vector<std::string> arguments;
   for (const Parameter& parameter : function.parameters) {
-    if (parameter.name == "alpha2") arguments.push_back(alpha2);
+    if (parameter.name == "alpha2")
+      arguments.push_back(alpha2);
     else if (parameter.name == "half_ts" || parameter.name == "normal_ws" || parameter.name == "tangent_ws" ||
-             parameter.name == "bitangent_ws" || parameter.name == "frag_coord") arguments.push_back(parameter.name);
-    else throw Error(fmt::format("internal error: the cost kernel has no value for parameter '{}' of {}", parameter.name, function.name));
+             parameter.name == "bitangent_ws" || parameter.name == "frag_coord")
+      arguments.push_back(parameter.name);
+    else
+      throw Error(fmt::format("internal error: the cost kernel has no value for parameter '{}' of {}", parameter.name, function.name));
   }
   return fmt::format("{}({})", function.name, fmt::join(arguments, ", "));
 }
@@ -314,8 +317,8 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
   if (shades_from_tensor(catalogue, *plan)) {  // the geometry pass's tensor, then the lighting pass per light
-    return fmt::format("    real3 tensor = {};\n    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n", call_with(wrapper, "alpha2.x"),
-                       *plan->brdf);
+    return fmt::format("    real3 tensor = {};\n    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n",
+                       call_with(wrapper, "alpha2.x"), *plan->brdf);
   }
   // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
   // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
@@ -327,10 +330,13 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
     }
     return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, filtered);
   };
-  if (wrapper.return_type == "real3") return fmt::format("    real3 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
-  if (wrapper.return_type == "real2") return fmt::format("    real2 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
+  if (wrapper.return_type == "real3")
+    return fmt::format("    real3 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
+  if (wrapper.return_type == "real2")
+    return fmt::format("    real2 filtered = {};\n", call_with(wrapper, material_alpha2)) + value("filtered");
   if (plan->per_axis) {
-    return fmt::format("    real2 filtered = real2({}, {});\n", call_with(wrapper, "alpha2.x"), call_with(wrapper, "alpha2.y")) + value("filtered");
+    return fmt::format("    real2 filtered = real2({}, {});\n", call_with(wrapper, "alpha2.x"), call_with(wrapper, "alpha2.y")) +
+           value("filtered");
   }
   return fmt::format("    real filtered = {};\n", call_with(wrapper, "alpha2.x")) + value("real2(filtered, filtered)");
 }
@@ -362,7 +368,6 @@ std::string describe_choice(const std::vector<std::pair<double, const Variant*>>
 
 // ---------------------------------------------------------------------------------------------
 
-
 namespace {
 
 // A configuration id's parts: "deferred-avg:geometric+toksvig/tail" -> deferred-avg, geometric,
@@ -385,7 +390,7 @@ Configuration parse_configuration(const std::string& id) {
 std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
   return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
                      plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
-                                                                          "tonemapped RMSE but adds haze)")
+                                                            "tonemapped RMSE but adds haze)")
                                               : fmt::format(", prefilter the map ({})", plan.prefilter),
                      ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
 }
@@ -399,8 +404,9 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
   for (const ContentRow& row : table.content_rows) {
     if (row.content != "normal-mapped") continue;
     const Configuration c = parse_configuration(row.configuration);
-    const bool allowed = choose_variant ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
-                                        : c.variant == plan.variant;
+    const bool allowed = choose_variant
+                             ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
+                             : c.variant == plan.variant;
     if (!allowed) continue;
     figures.push_back(fmt::format("{} {}", row.configuration, fixed(row.error)));
     if (!best || row.error < best->error) best = row;
@@ -410,8 +416,8 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
   plan.variant = c.variant;
   plan.feed = c.feed;
   plan.prefilter = c.prefilter;
-  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {})", best->configuration,
-                                   table.source_name, fmt::join(figures, ", "));
+  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {})", best->configuration, table.source_name,
+                                   fmt::join(figures, ", "));
 }
 
 void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {
@@ -427,8 +433,9 @@ void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable&
       if (variant && has_tangent_free_form(*variant)) base = variant->id;
     }
     if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
-      throw Error(fmt::format("{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes", table.source_name,
-                              index, id.substr(0, 40)));
+      throw Error(fmt::format(
+          "{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes",
+          table.source_name, index, id.substr(0, 40)));
     }
   }
 }
@@ -440,8 +447,8 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
   scene.option_values = manifest.option_values;
-  const bool all_ggx = std::all_of(manifest.materials.begin(), manifest.materials.end(),
-                                   [](const Material& m) { return m.ndf == Ndf::ggx; });
+  const bool all_ggx =
+      std::all_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& m) { return m.ndf == Ndf::ggx; });
   if (all_ggx && !manifest.option_values.count("sigma2")) {
     scene.option_values["sigma2"] = kGgxSigma2;
     scene.options_reason = fmt::format(
@@ -452,7 +459,8 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   // Manifests built in code (not parsed) get the checks that protect the emitted text.
   const auto identifier = [](std::string_view text, bool dash) {
     return !text.empty() && text.size() <= 64 && std::isalpha(static_cast<unsigned char>(text[0])) &&
-           std::all_of(text.begin(), text.end(), [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (dash && c == '-'); });
+           std::all_of(text.begin(), text.end(),
+                       [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (dash && c == '-'); });
   };
   if (!identifier(manifest.name, false)) throw Error(fmt::format("{}: the scene name must be an identifier", manifest.source_name));
   if (manifest.materials.empty()) throw Error(fmt::format("{}: the manifest has no material", manifest.source_name));
@@ -462,7 +470,8 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     }
     const std::string context = fmt::format(" of material '{}'", material.name);
     if (material.anisotropic && !material.tangents) {
-      const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
+      const auto position =
+          material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
       throw Error(manifest.where(position) +
                   fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
                               "tangent frame); allowed: tangents = true, or anisotropic = false",
@@ -483,8 +492,9 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     if (material.variant) {
       const Variant* found = catalogue.find_variant(*material.variant);
       if (!found || !is_screen_space_filter(catalogue, *found)) {
-        throw Error(manifest.where(key_position(material, "variant")) +
-                    fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
+        throw Error(
+            manifest.where(key_position(material, "variant")) +
+            fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
       }
       const Variant& variant = *found;
       if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
@@ -509,17 +519,18 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const MeasuredTradeRow& row) {
                                      return row.isa_ratio && row.isa_family == family;
                                    });
-        const std::string source = table_has_isa ? table->source_name
-                                                 : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
+        const std::string source =
+            table_has_isa ? table->source_name
+                          : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
         std::vector<std::pair<double, const Variant*>> ranked;
         for (const Variant* variant : eligible) {
           // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
           const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
                                          ? variant->id + "-tangent-free"
                                          : variant->id;
-          const auto value = !speed              ? table->error(variant->id)
-                             : table_has_isa     ? table->isa_cost(costed, family)
-                                                 : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
+          const auto value = !speed          ? table->error(variant->id)
+                             : table_has_isa ? table->isa_cost(costed, family)
+                                             : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
           if (value) ranked.emplace_back(*value, variant);
         }
         // Ties keep the rule's choice first, then catalogue order.
@@ -531,17 +542,19 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
         // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
         // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
-        const auto rule_entry = std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
-        const bool rule_ties = speed && !ranked.empty() && rule_entry != ranked.end() &&
-                               rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+        const auto rule_entry =
+            std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+        const bool rule_ties =
+            speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
         if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
           plan.variant = ranked.front().second->id;
           plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
           plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, speed ? source : table->source_name,
                                     describe_choice(ranked, metric), rule.id, rule.variant);
         } else if (!ranked.empty()) {
-          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
-                                     metric, source, describe_choice(ranked, metric));
+          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]",
+                                     rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also", metric, source,
+                                     describe_choice(ranked, metric));
         } else {
           plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", speed ? source : table->source_name,
                                      metric, ids_of(eligible), rule.id);
@@ -623,26 +636,27 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
 }
 
 std::string rules_text() {
-  std::string text = fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", "rule", "path", "anisotropic", "tangents", "prefer",
-                                 "variant", "why");
+  std::string text =
+      fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", "rule", "path", "anisotropic", "tangents", "prefer", "variant", "why");
   const auto tri = [](Tri value) { return value == Tri::any ? "any" : value == Tri::yes ? "yes" : "no"; };
   for (const Rule& rule : rules()) {
-    text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic), tri(rule.tangents),
-                        rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
+    text += fmt::format("{:<5} {:<9} {:<12} {:<9} {:<9} {:<24} {}\n", rule.id, to_string(rule.path), tri(rule.anisotropic),
+                        tri(rule.tangents), rule.prefer ? to_string(*rule.prefer) : "any", rule.variant, rule.why);
   }
-  text += "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
-          "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it.\n"
-          "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
-          "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
-          "beckmann_brdf_matrix and ndf_clamp_tau.\n"
-          "anisotropic = true with tangents = false is rejected.\n"
-          "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
-          "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
-          "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
-          "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
-          "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
-          "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
-          "lowest measured \"error\" when the table has errors.\n";
+  text +=
+      "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
+      "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it.\n"
+      "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
+      "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
+      "beckmann_brdf_matrix and ndf_clamp_tau.\n"
+      "anisotropic = true with tangents = false is rejected.\n"
+      "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
+      "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
+      "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
+      "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
+      "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
+      "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
+      "lowest measured \"error\" when the table has errors.\n";
   return text;
 }
 
@@ -670,32 +684,38 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     const Function& planned = *catalogue.find_function(material_plan.wrapper);
     const bool converted = manifest.domain != "alpha2" && takes_and_returns_roughness(planned);
     const Function& wrapper =
-        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
+        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain))
+                  : planned;
     std::vector<std::string> parameters;
     for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
     text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
                         wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
     if (material.glints) {
       text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
-      text += fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
-                          glint_dictionary_file_name(manifest));
+      text += fmt::format(
+          "  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+          glint_dictionary_file_name(manifest));
     } else if (shades_from_tensor(catalogue, material_plan)) {
-      text += fmt::format("  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
-                          "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
-                          "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
-                          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "deferred_aniso_roughness"));
+      text += fmt::format(
+          "  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
+          "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
+          "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
+          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "deferred_aniso_roughness"));
     } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
-      text += fmt::format("  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
-                          prefixed_name(manifest.prefix, *material_plan.brdf));
+      text += fmt::format(
+          "  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
+          prefixed_name(manifest.prefix, *material_plan.brdf));
     } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
-      text += fmt::format("  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
-                          "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
-                          prefixed_name(manifest.prefix, *material_plan.brdf));
+      text += fmt::format(
+          "  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
+          "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
+          prefixed_name(manifest.prefix, *material_plan.brdf));
     } else if (material_plan.brdf) {
-      text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(manifest.prefix, *material_plan.brdf),
-                          prefixed_name(manifest.prefix, "ndf_clamp_tau"));
+      text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n",
+                          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "ndf_clamp_tau"));
     } else {
-      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n", converted ? manifest.domain : "alpha^2");
+      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n",
+                          converted ? manifest.domain : "alpha^2");
     }
     if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
     if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
@@ -706,9 +726,9 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       }
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
                           fmt::join(costs, ", "), material.precision,
-                          !material_plan.brdf ? " + axis BRDF"
+                          !material_plan.brdf                              ? " + axis BRDF"
                           : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
-                                                                                     : " + matrix BRDF",
+                                                                           : " + matrix BRDF",
                           to_string(material.ndf));
     }
     for (const std::string& target : manifest.targets) {
@@ -729,7 +749,8 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
   std::vector<std::string> precisions;
   for (const MaterialPlan& material_plan : plan.materials) {
-    if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end()) precisions.push_back(material_plan.precision);
+    if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end())
+      precisions.push_back(material_plan.precision);
   }
   std::stable_partition(precisions.begin(), precisions.end(), [](const std::string& name) { return name == "fp32"; });
 
@@ -742,7 +763,8 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         const MaterialPlan& material_plan = plan.materials[index];
         if (material_plan.precision != precision) continue;
         for (const std::string& name : material_plan.functions) {
-          if (std::find(request.functions.begin(), request.functions.end(), name) == request.functions.end()) request.functions.push_back(name);
+          if (std::find(request.functions.begin(), request.functions.end(), name) == request.functions.end())
+            request.functions.push_back(name);
         }
         for (const std::string& id : material_plan.variants) {
           if (std::find(request.variants.begin(), request.variants.end(), id) == request.variants.end()) request.variants.push_back(id);
@@ -752,9 +774,9 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
                                        ? domain_function_name(material_plan.wrapper, manifest.domain)
                                        : material_plan.wrapper;
-        std::string note = fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path),
-                                       material_plan.variant, prefixed_name(manifest.prefix, called),
-                                       material_plan.per_axis ? " once per axis" : "");
+        std::string note =
+            fmt::format("{} ({}): {} -> {}{}", material_plan.material, to_string(manifest.materials[index].path), material_plan.variant,
+                        prefixed_name(manifest.prefix, called), material_plan.per_axis ? " once per axis" : "");
         if (material_plan.brdf) note += ", shade with " + prefixed_name(manifest.prefix, *material_plan.brdf);
         request.notes.push_back(note);
       }

@@ -1,7 +1,7 @@
 #include "saagen/target/target.hpp"
 
-#include "saagen/front/dialect.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/dialect.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -81,7 +81,6 @@ void read_type_spellings(const Json& object, const char* key, const std::map<std
   }
 }
 
-
 class Translator {
  public:
   Translator(const TargetSyntax& target, const NameMap& names, const std::vector<dialect::Token>& tokens)
@@ -104,9 +103,12 @@ class Translator {
         index = close;
         continue;
       }
-      if (const auto type = target_.types.find(token.text); type != target_.types.end()) out += type->second;
-      else if (const auto name = names_.find(token.text); name != names_.end()) out += name->second;
-      else out += token.text;
+      if (const auto type = target_.types.find(token.text); type != target_.types.end())
+        out += type->second;
+      else if (const auto name = names_.find(token.text); name != names_.end())
+        out += name->second;
+      else
+        out += token.text;
     }
     return out;
   }
@@ -119,7 +121,8 @@ class Translator {
     std::size_t argument_begin = open + 1;
     for (std::size_t index = open; index < end; ++index) {
       const std::string_view text = tokens_[index].text;
-      if (text == "(") ++depth;
+      if (text == "(")
+        ++depth;
       else if (text == ")" && --depth == 0) {
         arguments.push_back(trimmed(range(argument_begin, index)));
         close = index;
@@ -150,7 +153,8 @@ std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_vi
   const std::string path = "targets/" + std::string(file);
   const auto& files = embedded::files();
   const auto found = files.find(path);
-  if (found == files.end()) throw Error(fmt::format("{}: skeleton file {} is not in this build; add it under targets/ and rebuild", source, path));
+  if (found == files.end())
+    throw Error(fmt::format("{}: skeleton file {} is not in this build; add it under targets/ and rebuild", source, path));
   std::map<std::string, std::string, std::less<>> sections;
   std::string* current = nullptr;  // the text before the first marker is the file's own comment
   const std::string_view text = found->second;
@@ -322,7 +326,8 @@ std::string substitute(std::string text, std::string_view key, std::string_view 
 }
 
 std::string substitute_type_placeholders(std::string text, const TargetSyntax& target) {
-  for (const char* type : {"real", "real2", "real3", "real4"}) text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
+  for (const char* type : {"real", "real2", "real3", "real4"})
+    text = substitute(std::move(text), fmt::format("{{{}}}", type), target.types.at(type));
   return text;
 }
 
@@ -350,8 +355,7 @@ std::string suffix_float_literals(std::string_view code, std::string_view suffix
   std::string out;
   for (const dialect::Token& token : dialect::tokenize(code)) {
     out += token.text;
-    const bool is_float = token.kind == dialect::TokenKind::number &&
-                          token.text.find_first_of(".eE") != std::string_view::npos &&
+    const bool is_float = token.kind == dialect::TokenKind::number && token.text.find_first_of(".eE") != std::string_view::npos &&
                           std::isdigit(static_cast<unsigned char>(token.text.back()));
     if (is_float) out += suffix;
   }

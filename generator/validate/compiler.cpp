@@ -21,9 +21,12 @@ void ensure_glslang_initialised() {
 
 EShLanguage to_glslang_stage(ShaderStage stage) {
   switch (stage) {
-    case ShaderStage::vertex: return EShLangVertex;
-    case ShaderStage::fragment: return EShLangFragment;
-    case ShaderStage::compute: return EShLangCompute;
+    case ShaderStage::vertex:
+      return EShLangVertex;
+    case ShaderStage::fragment:
+      return EShLangFragment;
+    case ShaderStage::compute:
+      return EShLangCompute;
   }
   return EShLangFragment;
 }
@@ -80,8 +83,7 @@ CompileResult compile_to_spirv(const CompileRequest& request) {
 
   const EShLanguage stage = to_glslang_stage(request.stage);
   auto shader = std::make_unique<glslang::TShader>(stage);
-  shader->setStringsWithLengthsAndNames(texts.data(), lengths.data(), names.data(),
-                                        static_cast<int>(texts.size()));
+  shader->setStringsWithLengthsAndNames(texts.data(), lengths.data(), names.data(), static_cast<int>(texts.size()));
   configure_environment(*shader, request);
 
   const EShMessages messages = message_flags(request);
@@ -126,8 +128,7 @@ CompileResult compile_to_spirv(const CompileRequest& request) {
 std::string validate_spirv(const std::vector<std::uint32_t>& spirv, ClientApi client) {
   spvtools::SpirvTools tools(to_spirv_env(client));
   std::string messages;
-  tools.SetMessageConsumer([&messages](spv_message_level_t, const char*, const spv_position_t& position,
-                                       const char* message) {
+  tools.SetMessageConsumer([&messages](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
     messages += "word " + std::to_string(position.index) + ": " + message + "\n";
   });
   if (tools.Validate(spirv)) return {};

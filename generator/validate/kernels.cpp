@@ -15,9 +15,12 @@ namespace {
 
 std::string_view kind_name(KernelKind kind) {
   switch (kind) {
-    case KernelKind::compute: return "compute";
-    case KernelKind::quad_compute: return "quad_compute";
-    case KernelKind::fragment: return "fragment";
+    case KernelKind::compute:
+      return "compute";
+    case KernelKind::quad_compute:
+      return "quad_compute";
+    case KernelKind::fragment:
+      return "fragment";
   }
   return "compute";
 }
@@ -52,10 +55,9 @@ dialect::Type dialect_type(const std::string& name) {
 }  // namespace
 
 const GlueSymbols& kernel_glue_symbols() {
-  static const GlueSymbols symbols{
-      {{"saagen_index", "int"}, {"saagen_frag_coord", "real2"}},
-      {{"SAAGEN_LOAD", "real", {"int"}}, {"SAAGEN_STORE", "", {"int", "real"}}},
-      {{"SAAGEN_LOAD", "saagen_load"}, {"SAAGEN_STORE", "saagen_store"}}};
+  static const GlueSymbols symbols{{{"saagen_index", "int"}, {"saagen_frag_coord", "real2"}},
+                                   {{"SAAGEN_LOAD", "real", {"int"}}, {"SAAGEN_STORE", "", {"int", "real"}}},
+                                   {{"SAAGEN_LOAD", "saagen_load"}, {"SAAGEN_STORE", "saagen_store"}}};
   return symbols;
 }
 
@@ -120,8 +122,8 @@ std::string load_call_store_body(const Catalogue& catalogue, const std::string& 
   return body;
 }
 
-std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name,
-                                        const std::string& content, const KernelRequest& request) {
+std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name, const std::string& content,
+                                        const KernelRequest& request) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
   const TargetSyntax target =
@@ -162,7 +164,8 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   std::vector<std::string> roots = marker->functions;
   if (roots.empty()) {
     for (const std::string& id : marker->variants) {
-      if (const Variant* variant = catalogue.find_variant(id)) roots.insert(roots.end(), variant->functions.begin(), variant->functions.end());
+      if (const Variant* variant = catalogue.find_variant(id))
+        roots.insert(roots.end(), variant->functions.begin(), variant->functions.end());
     }
   }
   const std::string resources = resource_declarations(target, catalogue, roots);
@@ -175,8 +178,8 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   return pieces;
 }
 
-CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name,
-                                      const std::string& content, const KernelRequest& request) {
+CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name, const std::string& content,
+                                      const KernelRequest& request) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
   const TargetSyntax target = builtin_target(marker->target).with_precision(marker->precision);

@@ -1,11 +1,11 @@
 #include "saagen/validate/validation.hpp"
 
-#include "saagen/front/dialect.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
-#include "saagen/validate/kernels.hpp"
+#include "saagen/front/dialect.hpp"
 #include "saagen/target/resources.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -97,8 +97,8 @@ std::string FileValidation::summary() const {
   return fmt::format("OK   {} ({})", file_name, fmt::join(names, ", "));
 }
 
-std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
-                                            const std::string& file_name, const std::string& content, ShaderStage stage) {
+std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker, const std::string& file_name,
+                                            const std::string& content, ShaderStage stage) {
   const TargetSyntax target =
       builtin_target(marker.target).with_precision(marker.precision).with_prefix(marker.prefix, macro_prefix(marker.prefix));
   const ValidationSkeleton& skeleton = stage == ShaderStage::compute ? target.compute_skeleton : target.fragment_skeleton;
@@ -112,7 +112,8 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 
   NameMap names;
   for (const std::string& name : functions) names[name] = prefixed_name(marker.prefix, name);
-  const std::string calls = translate_glue(target, catalogue, calls_in_dialect(catalogue, functions, stage), names, validation_glue_symbols());
+  const std::string calls =
+      translate_glue(target, catalogue, calls_in_dialect(catalogue, functions, stage), names, validation_glue_symbols());
 
   const std::string core_only = macro_prefix(marker.prefix) + "CORE_ONLY";
   const auto fill = [&](std::string text) {
@@ -197,8 +198,9 @@ int lines_before(const std::vector<SourcePiece>& pieces, const std::string& file
 std::string describe_message(const nlohmann::json& message, const std::string& file_name, int offset, int file_lines) {
   const int line = message.value("line", 0);
   const int column = message.value("column", 0);
-  const std::string place = line > offset && line <= offset + file_lines ? fmt::format("{}:{}:{}", file_name, line - offset, column)
-                                                                           : fmt::format("{} (validation module line {}:{})", file_name, line, column);
+  const std::string place = line > offset && line <= offset + file_lines
+                                ? fmt::format("{}:{}:{}", file_name, line - offset, column)
+                                : fmt::format("{} (validation module line {}:{})", file_name, line, column);
   return fmt::format("{}: {}: {}\n", place, message.value("type", "error"), message.value("message", ""));
 }
 
@@ -208,9 +210,10 @@ std::string webgpu_runner_command() {
   const std::string node = environment_or("SAAGEN_NODE", "node");
   const std::string runner = environment_or("SAAGEN_WEBGPU_RUNNER", SAAGEN_WEBGPU_RUNNER);
   if (!std::filesystem::is_regular_file(runner)) {
-    throw Error(fmt::format("WGSL validation needs the WebGPU runner {} (Dawn for Node); set SAAGEN_WEBGPU_RUNNER to harness/webgpu/run.mjs "
-                            "of a saagen checkout whose `scripts/install-deps.sh` has run",
-                            runner));
+    throw Error(
+        fmt::format("WGSL validation needs the WebGPU runner {} (Dawn for Node); set SAAGEN_WEBGPU_RUNNER to harness/webgpu/run.mjs "
+                    "of a saagen checkout whose `scripts/install-deps.sh` has run",
+                    runner));
   }
   return shell_quoted(node) + " " + shell_quoted(runner);
 }
@@ -218,15 +221,17 @@ std::string webgpu_runner_command() {
 nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs, const std::filesystem::path& directory) {
   std::ofstream(directory / "jobs.json") << jobs.dump();
   const std::filesystem::path log = directory / "runner.log";
-  const std::string command = fmt::format("{} {} > {} 2>&1", webgpu_runner_command(), shell_quoted(directory.string()), shell_quoted(log.string()));
+  const std::string command =
+      fmt::format("{} {} > {} 2>&1", webgpu_runner_command(), shell_quoted(directory.string()), shell_quoted(log.string()));
   const int status = std::system(command.c_str());
   std::ifstream results(directory / "results.json");
   if (status != 0 || !results) {
     std::stringstream text;
     text << std::ifstream(log).rdbuf();
     std::string first_line = text.str().substr(0, text.str().find('\n'));
-    throw Error(fmt::format("the WebGPU runner (Dawn for Node) failed: {}; run scripts/install-deps.sh (Node.js, npm ci) and check the Vulkan ICD",
-                            first_line.empty() ? "no output" : first_line));
+    throw Error(
+        fmt::format("the WebGPU runner (Dawn for Node) failed: {}; run scripts/install-deps.sh (Node.js, npm ci) and check the Vulkan ICD",
+                    first_line.empty() ? "no output" : first_line));
   }
   try {
     return nlohmann::json::parse(results);
@@ -280,7 +285,8 @@ std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, cons
     for (const auto& message : result.value("messages", nlohmann::json::array())) {
       if (message.value("type", "") != "info") log += describe_message(message, file_name, module.offset, module.file_lines);
     }
-    for (const auto& error : result.value("pipeline_errors", nlohmann::json::array())) log += fmt::format("{}: {}\n", file_name, error.get<std::string>());
+    for (const auto& error : result.value("pipeline_errors", nlohmann::json::array()))
+      log += fmt::format("{}: {}\n", file_name, error.get<std::string>());
     if (result.contains("error") && log.empty()) log = fmt::format("{}: {}\n", file_name, result.at("error").get<std::string>());
     validations[module.file].checks.push_back({module.check, log.empty(), log, 0});
   }

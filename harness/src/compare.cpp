@@ -43,12 +43,11 @@ void record(const CompareReport& report) {
 }
 
 template <typename Got, typename Expected, typename ToleranceAt>
-CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, ToleranceAt tolerance_at,
-                           const std::string& what, const DescribeElement& describe) {
+CompareReport compare_impl(std::span<const Got> got, std::span<const Expected> expected, ToleranceAt tolerance_at, const std::string& what,
+                           const DescribeElement& describe) {
   if (got.size() != expected.size()) {
     throw std::invalid_argument(
-        fmt::format("compare{}: {} values but {} expected values", what.empty() ? "" : " (" + what + ")", got.size(),
-                    expected.size()));
+        fmt::format("compare{}: {} values but {} expected values", what.empty() ? "" : " (" + what + ")", got.size(), expected.size()));
   }
   CompareReport report;
   report.what = what;
@@ -87,47 +86,52 @@ std::string CompareTotals::summary() const {
 }
 
 std::string CompareReport::summary() const {
-  const std::string bounds = per_element_bounds ? std::string("per-element bounds")
-                                                : fmt::format("tol abs {:g} + rel {:g}", tolerance.abs_tol, tolerance.rel_tol);
+  const std::string bounds =
+      per_element_bounds ? std::string("per-element bounds") : fmt::format("tol abs {:g} + rel {:g}", tolerance.abs_tol, tolerance.rel_tol);
   std::string line = fmt::format("{}{} of {} failing ({})", what.empty() ? "" : what + ": ", failing, compared, bounds);
   if (compared == 0) return line;
-  return line + fmt::format("; worst #{}{}: got {:.9g}, expected {:.17g}, err {:.3g} x tol; max relative error {:.3g}",
-                            worst_index, worst_label.empty() ? "" : " " + worst_label, worst_got, worst_expected,
-                            worst_normalised_error, max_relative_error);
+  return line + fmt::format("; worst #{}{}: got {:.9g}, expected {:.17g}, err {:.3g} x tol; max relative error {:.3g}", worst_index,
+                            worst_label.empty() ? "" : " " + worst_label, worst_got, worst_expected, worst_normalised_error,
+                            max_relative_error);
 }
 
 namespace {
 template <typename Got, typename Expected>
 CompareReport compare_with_tolerance(std::span<const Got> got, std::span<const Expected> expected, Tolerance tolerance,
                                      const std::string& what, const DescribeElement& describe) {
-  CompareReport report = compare_impl(got, expected, [tolerance](std::size_t) { return tolerance; }, what, describe);
+  CompareReport report = compare_impl(
+      got, expected, [tolerance](std::size_t) { return tolerance; }, what, describe);
   report.tolerance = tolerance;
   return report;
 }
 }  // namespace
 
-CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance,
-                      const std::string& what, const DescribeElement& describe) {
+CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance, const std::string& what,
+                      const DescribeElement& describe) {
   return compare_with_tolerance(got, expected, tolerance, what, describe);
 }
 
-CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance,
-                      const std::string& what, const DescribeElement& describe) {
+CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance, const std::string& what,
+                      const DescribeElement& describe) {
   return compare_with_tolerance(got, expected, tolerance, what, describe);
 }
 
-CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance,
-                      const std::string& what, const DescribeElement& describe) {
+CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance, const std::string& what,
+                      const DescribeElement& describe) {
   return compare_with_tolerance(got, expected, tolerance, what, describe);
 }
 
-CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected,
-                                  std::span<const double> bounds, const std::string& what,
-                                  const DescribeElement& describe) {
+CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected, std::span<const double> bounds,
+                                  const std::string& what, const DescribeElement& describe) {
   if (bounds.size() != expected.size()) {
     throw std::invalid_argument(fmt::format("compare ({}): {} bounds for {} values", what, bounds.size(), expected.size()));
   }
-  CompareReport report = compare_impl(got, expected, [bounds](std::size_t i) { return Tolerance{bounds[i], 0.0}; }, what, describe);
+  CompareReport report = compare_impl(
+      got, expected,
+      [bounds](std::size_t i) {
+        return Tolerance{bounds[i], 0.0};
+      },
+      what, describe);
   report.per_element_bounds = true;
   return report;
 }

@@ -1,7 +1,8 @@
 #include "saagen/harness/context.hpp"
 
-#include "saagen/harness/error.hpp"
 #include "instance.hpp"
+
+#include "saagen/harness/error.hpp"
 #include "saagen/harness/isa.hpp"
 
 #include <fmt/format.h>
@@ -21,8 +22,7 @@ constexpr const char* install_hint =
     "install mesa-vulkan-drivers (lavapipe) or point VK_ICD_FILENAMES / SAAGEN_VK_DEVICE at a working driver";
 
 std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
 }
 
@@ -40,17 +40,21 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
 }
 
 std::string api_version_string(std::uint32_t version) {
-  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version),
-                     VK_API_VERSION_PATCH(version));
+  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version), VK_API_VERSION_PATCH(version));
 }
 
 const char* device_type_name(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
@@ -59,9 +63,8 @@ std::atomic<std::size_t> validation_messages{0};
 // Prints every warning and error of the validation layer as one line and counts those of the
 // layer itself (validation and performance types; the loader's general-type notes about ICDs
 // without hardware are printed but not counted).
-VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                      VkDebugUtilsMessageTypeFlagsEXT type,
-                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT type,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
   const bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
   const bool counted = (type & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT)) != 0;
   if (counted) ++validation_messages;
@@ -129,13 +132,11 @@ VkInstance create_headless_instance(std::uint32_t& api_version, VkDebugUtilsMess
   VkInstance instance = VK_NULL_HANDLE;
   const VkResult result = vkCreateInstance(&info, nullptr, &instance);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED) {
-    throw std::runtime_error(fmt::format("no Vulkan device found (vkCreateInstance: {}): {}",
-                                         vk_result_name(result), install_hint));
+    throw std::runtime_error(fmt::format("no Vulkan device found (vkCreateInstance: {}): {}", vk_result_name(result), install_hint));
   }
   check_vk(result, "vkCreateInstance");
   if (validation && messenger) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
     if (create == nullptr || create(instance, &debug, nullptr, messenger) != VK_SUCCESS) {
       vkDestroyInstance(instance, nullptr);
       throw std::runtime_error("validation layer on, but vkCreateDebugUtilsMessengerEXT failed");
@@ -146,8 +147,8 @@ VkInstance create_headless_instance(std::uint32_t& api_version, VkDebugUtilsMess
 
 void destroy_instance(VkInstance instance, VkDebugUtilsMessengerEXT messenger) {
   if (messenger != VK_NULL_HANDLE) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    auto destroy =
+        reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(instance, messenger, nullptr);
   }
   vkDestroyInstance(instance, nullptr);
@@ -187,8 +188,7 @@ std::vector<std::string> device_extension_names(VkPhysicalDevice device) {
 }
 
 bool is_lavapipe(const VkPhysicalDeviceProperties& properties) {
-  return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ||
-         contains_case_insensitive(properties.deviceName, "llvmpipe");
+  return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU || contains_case_insensitive(properties.deviceName, "llvmpipe");
 }
 
 std::string requested_device_name(const ContextOptions& options) {
@@ -231,8 +231,7 @@ struct FeatureChain {
   bool has_maintenance4 = false;
 
   FeatureChain(bool float16_int8_available, bool subgroup_types_available, bool maintenance4_available)
-      : has_float16_int8(float16_int8_available), has_subgroup_types(subgroup_types_available),
-        has_maintenance4(maintenance4_available) {
+      : has_float16_int8(float16_int8_available), has_subgroup_types(subgroup_types_available), has_maintenance4(maintenance4_available) {
     // Only structures of supported versions/extensions may appear in the chain.
     void** next = &core.pNext;
     *next = &storage16;
@@ -272,8 +271,7 @@ bool has_extension(const std::vector<std::string>& extensions, const char* name)
 }
 
 const char* subgroup_stage_names[] = {"vertex", "tess-control", "tess-eval", "geometry", "fragment", "compute"};
-const char* subgroup_operation_names[] = {"basic", "vote", "arithmetic", "ballot", "shuffle",
-                                          "shuffle-relative", "clustered", "quad"};
+const char* subgroup_operation_names[] = {"basic", "vote", "arithmetic", "ballot", "shuffle", "shuffle-relative", "clustered", "quad"};
 
 std::string flag_names(std::uint32_t flags, const char* const* names, std::size_t count) {
   std::vector<std::string> set;
@@ -300,12 +298,11 @@ std::string SubgroupInfo::describe() const {
 }
 
 std::string DeviceInfo::summary() const {
-  return fmt::format("{} ({}, Vulkan {}, driver {} {}); float16 {}, 16-bit storage {}, subgroup {}; timestamps {}",
-                     name, device_type_name(type), api_version_string(api_version), driver_name, driver_info,
-                     shader_float16 ? "yes" : "no", storage_buffer_16bit_access ? "yes" : "no", subgroup.describe(),
-                     timestamps_supported()
-                         ? fmt::format("{} valid bits, {} ns/tick", timestamp_valid_bits, timestamp_period_ns)
-                         : std::string("no"));
+  return fmt::format(
+      "{} ({}, Vulkan {}, driver {} {}); float16 {}, 16-bit storage {}, subgroup {}; timestamps {}", name, device_type_name(type),
+      api_version_string(api_version), driver_name, driver_info, shader_float16 ? "yes" : "no", storage_buffer_16bit_access ? "yes" : "no",
+      subgroup.describe(),
+      timestamps_supported() ? fmt::format("{} valid bits, {} ns/tick", timestamp_valid_bits, timestamp_period_ns) : std::string("no"));
 }
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
@@ -344,9 +341,8 @@ void VulkanContext::select_physical_device(const ContextOptions& options) {
         return;
       }
     }
-    throw std::runtime_error(fmt::format(
-        "Vulkan device '{}' not found (requested by --device or {}); available devices: {}", wanted,
-        device_env_var, join(device_names(devices), "; ")));
+    throw std::runtime_error(fmt::format("Vulkan device '{}' not found (requested by --device or {}); available devices: {}", wanted,
+                                         device_env_var, join(device_names(devices), "; ")));
   }
   // lavapipe by name first: SwiftShader is a CPU device too, and the loader's order of ICDs is
   // not lavapipe-first.
@@ -370,8 +366,8 @@ void VulkanContext::query_device_info() {
   device_extensions_ = device_extension_names(physical_device_);
   limits_ = basic.limits;
   if (basic.apiVersion < VK_API_VERSION_1_1) {
-    throw std::runtime_error(fmt::format("Vulkan device '{}' supports only Vulkan {}; the harness needs 1.1",
-                                         basic.deviceName, api_version_string(basic.apiVersion)));
+    throw std::runtime_error(fmt::format("Vulkan device '{}' supports only Vulkan {}; the harness needs 1.1", basic.deviceName,
+                                         api_version_string(basic.apiVersion)));
   }
   const bool vulkan12 = basic.apiVersion >= VK_API_VERSION_1_2 && instance_api_version_ >= VK_API_VERSION_1_2;
 
@@ -424,8 +420,7 @@ void VulkanContext::create_device() {
   const bool vulkan12 = info_.api_version >= VK_API_VERSION_1_2 && instance_api_version_ >= VK_API_VERSION_1_2;
   std::vector<const char*> extensions;
   const bool float16_ext = !vulkan12 && has_extension(device_extensions_, VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
-  const bool subgroup_types_ext =
-      !vulkan12 && has_extension(device_extensions_, VK_KHR_SHADER_SUBGROUP_EXTENDED_TYPES_EXTENSION_NAME);
+  const bool subgroup_types_ext = !vulkan12 && has_extension(device_extensions_, VK_KHR_SHADER_SUBGROUP_EXTENDED_TYPES_EXTENSION_NAME);
   if (float16_ext) extensions.push_back(VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
   if (subgroup_types_ext) extensions.push_back(VK_KHR_SHADER_SUBGROUP_EXTENDED_TYPES_EXTENSION_NAME);
 
@@ -535,24 +530,59 @@ void VulkanContext::require_capabilities(const std::vector<std::uint32_t>& spirv
     at += words;
     const char* missing = nullptr;
     switch (capability) {
-      case 9: if (!d.shader_float16) missing = "shaderFloat16 (SPIR-V capability Float16)"; break;
-      case 10: if (!d.shader_float64) missing = "shaderFloat64 (SPIR-V capability Float64)"; break;
-      case 11: if (!d.shader_int64) missing = "shaderInt64 (SPIR-V capability Int64)"; break;
-      case 22: if (!d.shader_int16) missing = "shaderInt16 (SPIR-V capability Int16)"; break;
-      case 39: if (!d.shader_int8) missing = "shaderInt8 (SPIR-V capability Int8)"; break;
-      case 4433: if (!d.storage_buffer_16bit_access) missing = "storageBuffer16BitAccess"; break;
-      case 4434: if (!d.uniform_and_storage_buffer_16bit_access) missing = "uniformAndStorageBuffer16BitAccess"; break;
-      case 4435: if (!d.storage_push_constant_16) missing = "storagePushConstant16"; break;
-      case 4436: if (!d.storage_input_output_16) missing = "storageInputOutput16"; break;
-      case 61: if (!subgroup(VK_SUBGROUP_FEATURE_BASIC_BIT)) missing = "subgroup basic operations in this stage"; break;
-      case 62: if (!subgroup(VK_SUBGROUP_FEATURE_VOTE_BIT)) missing = "subgroup vote operations in this stage"; break;
-      case 63: if (!subgroup(VK_SUBGROUP_FEATURE_ARITHMETIC_BIT)) missing = "subgroup arithmetic operations in this stage"; break;
-      case 64: if (!subgroup(VK_SUBGROUP_FEATURE_BALLOT_BIT)) missing = "subgroup ballot operations in this stage"; break;
-      case 65: if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_BIT)) missing = "subgroup shuffle operations in this stage"; break;
-      case 66: if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT)) missing = "subgroup relative shuffle operations in this stage"; break;
-      case 67: if (!subgroup(VK_SUBGROUP_FEATURE_CLUSTERED_BIT)) missing = "subgroup clustered operations in this stage"; break;
-      case 68: if (!subgroup(VK_SUBGROUP_FEATURE_QUAD_BIT)) missing = "subgroup quad operations in this stage"; break;
-      default: break;
+      case 9:
+        if (!d.shader_float16) missing = "shaderFloat16 (SPIR-V capability Float16)";
+        break;
+      case 10:
+        if (!d.shader_float64) missing = "shaderFloat64 (SPIR-V capability Float64)";
+        break;
+      case 11:
+        if (!d.shader_int64) missing = "shaderInt64 (SPIR-V capability Int64)";
+        break;
+      case 22:
+        if (!d.shader_int16) missing = "shaderInt16 (SPIR-V capability Int16)";
+        break;
+      case 39:
+        if (!d.shader_int8) missing = "shaderInt8 (SPIR-V capability Int8)";
+        break;
+      case 4433:
+        if (!d.storage_buffer_16bit_access) missing = "storageBuffer16BitAccess";
+        break;
+      case 4434:
+        if (!d.uniform_and_storage_buffer_16bit_access) missing = "uniformAndStorageBuffer16BitAccess";
+        break;
+      case 4435:
+        if (!d.storage_push_constant_16) missing = "storagePushConstant16";
+        break;
+      case 4436:
+        if (!d.storage_input_output_16) missing = "storageInputOutput16";
+        break;
+      case 61:
+        if (!subgroup(VK_SUBGROUP_FEATURE_BASIC_BIT)) missing = "subgroup basic operations in this stage";
+        break;
+      case 62:
+        if (!subgroup(VK_SUBGROUP_FEATURE_VOTE_BIT)) missing = "subgroup vote operations in this stage";
+        break;
+      case 63:
+        if (!subgroup(VK_SUBGROUP_FEATURE_ARITHMETIC_BIT)) missing = "subgroup arithmetic operations in this stage";
+        break;
+      case 64:
+        if (!subgroup(VK_SUBGROUP_FEATURE_BALLOT_BIT)) missing = "subgroup ballot operations in this stage";
+        break;
+      case 65:
+        if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_BIT)) missing = "subgroup shuffle operations in this stage";
+        break;
+      case 66:
+        if (!subgroup(VK_SUBGROUP_FEATURE_SHUFFLE_RELATIVE_BIT)) missing = "subgroup relative shuffle operations in this stage";
+        break;
+      case 67:
+        if (!subgroup(VK_SUBGROUP_FEATURE_CLUSTERED_BIT)) missing = "subgroup clustered operations in this stage";
+        break;
+      case 68:
+        if (!subgroup(VK_SUBGROUP_FEATURE_QUAD_BIT)) missing = "subgroup quad operations in this stage";
+        break;
+      default:
+        break;
     }
     if (missing) throw UnsupportedFeature(d.name, missing);
   }

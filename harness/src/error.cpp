@@ -8,7 +8,8 @@ namespace saagen::harness {
 std::string vk_result_name(VkResult result) {
   switch (result) {
 #define SAAGEN_RESULT_CASE(name) \
-  case name: return #name;
+  case name:                     \
+    return #name;
     SAAGEN_RESULT_CASE(VK_SUCCESS)
     SAAGEN_RESULT_CASE(VK_NOT_READY)
     SAAGEN_RESULT_CASE(VK_TIMEOUT)
@@ -40,7 +41,8 @@ std::string vk_result_name(VkResult result) {
     SAAGEN_RESULT_CASE(VK_ERROR_VALIDATION_FAILED_EXT)
     SAAGEN_RESULT_CASE(VK_ERROR_INVALID_SHADER_NV)
 #undef SAAGEN_RESULT_CASE
-    default: return "VkResult(" + std::to_string(static_cast<int>(result)) + ")";
+    default:
+      return "VkResult(" + std::to_string(static_cast<int>(result)) + ")";
   }
 }
 

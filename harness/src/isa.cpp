@@ -2,9 +2,10 @@
 
 #include "fixed_function.hpp"
 #include "instance.hpp"
+#include "vk_handle.hpp"
+
 #include "saagen/harness/error.hpp"
 #include "saagen/harness/shader.hpp"
-#include "vk_handle.hpp"
 
 #include <fmt/format.h>
 
@@ -61,9 +62,10 @@ std::string radv_icd_path() {
     if (name.rfind("radeon_icd", 0) == 0 && entry.path().extension() == ".json") found.push_back(entry.path().string());
   }
   if (found.empty()) {
-    throw std::runtime_error(fmt::format("no RADV ICD manifest (radeon_icd*.json) in {}: install mesa-vulkan-drivers "
-                                         "(scripts/install-deps.sh) or set {} to its path",
-                                         directory.string(), radv_icd_env_var));
+    throw std::runtime_error(
+        fmt::format("no RADV ICD manifest (radeon_icd*.json) in {}: install mesa-vulkan-drivers "
+                    "(scripts/install-deps.sh) or set {} to its path",
+                    directory.string(), radv_icd_env_var));
   }
   std::sort(found.begin(), found.end());
   return found.front();
@@ -88,11 +90,16 @@ bool has_device_extension(VkPhysicalDevice device, const char* name) {
 
 double statistic_value(const VkPipelineExecutableStatisticKHR& statistic) {
   switch (statistic.format) {
-    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: return statistic.value.b32 ? 1.0 : 0.0;
-    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: return static_cast<double>(statistic.value.i64);
-    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: return static_cast<double>(statistic.value.u64);
-    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: return statistic.value.f64;
-    default: return 0.0;
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+      return statistic.value.b32 ? 1.0 : 0.0;
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+      return static_cast<double>(statistic.value.i64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+      return static_cast<double>(statistic.value.u64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR:
+      return statistic.value.f64;
+    default:
+      return 0.0;
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include "fixed_function.hpp"
 #include "resources.hpp"
+
 #include "saagen/harness/error.hpp"
 #include "saagen/harness/shader.hpp"
 
@@ -20,9 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double elapsed_ms(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+double elapsed_ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 // ---------------------------------------------------------------------------------------------
 // Descriptor set 0: buffers and combined image samplers, with their Vulkan objects.
@@ -49,8 +48,7 @@ class DescriptorResources {
   std::map<std::uint32_t, Bytes> read_back() const;
 
  private:
-  void create_layout(const std::vector<BufferBinding>& buffers, const std::vector<ImageBinding>& images,
-                     VkShaderStageFlags stages);
+  void create_layout(const std::vector<BufferBinding>& buffers, const std::vector<ImageBinding>& images, VkShaderStageFlags stages);
   void allocate_set(const std::vector<BufferBinding>& buffers, std::size_t image_count);
   void write_descriptors(const std::vector<BufferBinding>& buffers);
 
@@ -68,8 +66,7 @@ VkDescriptorType descriptor_type(BufferKind kind) {
 
 std::size_t buffer_size(const BufferBinding& buffer) { return std::max(buffer.size, buffer.data.size()); }
 
-void validate_bindings(const VulkanContext& context, const std::vector<BufferBinding>& buffers,
-                       const std::vector<ImageBinding>& images) {
+void validate_bindings(const VulkanContext& context, const std::vector<BufferBinding>& buffers, const std::vector<ImageBinding>& images) {
   std::set<std::uint32_t> seen;
   auto claim = [&seen](std::uint32_t binding) {
     if (!seen.insert(binding).second) throw std::invalid_argument(fmt::format("binding {} is used twice", binding));
@@ -77,25 +74,23 @@ void validate_bindings(const VulkanContext& context, const std::vector<BufferBin
   for (const BufferBinding& buffer : buffers) {
     claim(buffer.binding);
     const std::size_t size = buffer_size(buffer);
-    const std::uint32_t range = buffer.kind == BufferKind::uniform ? context.limits().maxUniformBufferRange
-                                                                   : context.limits().maxStorageBufferRange;
+    const std::uint32_t range =
+        buffer.kind == BufferKind::uniform ? context.limits().maxUniformBufferRange : context.limits().maxStorageBufferRange;
     if (size == 0) throw std::invalid_argument(fmt::format("buffer at binding {} has size 0", buffer.binding));
     if (size > range) {
-      throw std::invalid_argument(
-          fmt::format("buffer at binding {} has {} bytes, the device allows {}", buffer.binding, size, range));
+      throw std::invalid_argument(fmt::format("buffer at binding {} has {} bytes, the device allows {}", buffer.binding, size, range));
     }
   }
   for (const ImageBinding& image : images) claim(image.binding);
 }
 
-DescriptorResources::DescriptorResources(const VulkanContext& context, VkCommandPool upload_pool,
-                                         const std::vector<BufferBinding>& buffers,
+DescriptorResources::DescriptorResources(const VulkanContext& context, VkCommandPool upload_pool, const std::vector<BufferBinding>& buffers,
                                          const std::vector<ImageBinding>& images, VkShaderStageFlags stages)
     : context_(context) {
   validate_bindings(context, buffers, images);
   for (const BufferBinding& desc : buffers) {
-    const VkBufferUsageFlags usage = desc.kind == BufferKind::uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
-                                                                      : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    const VkBufferUsageFlags usage =
+        desc.kind == BufferKind::uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BoundBuffer bound{desc.binding, desc.read_back, HostBuffer::create(context, buffer_size(desc), usage)};
     if (!desc.data.empty()) std::memcpy(bound.buffer.mapped, desc.data.data(), desc.data.size());
     buffers_.push_back(std::move(bound));
@@ -108,8 +103,8 @@ DescriptorResources::DescriptorResources(const VulkanContext& context, VkCommand
   write_descriptors(buffers);
 }
 
-void DescriptorResources::create_layout(const std::vector<BufferBinding>& buffers,
-                                        const std::vector<ImageBinding>& images, VkShaderStageFlags stages) {
+void DescriptorResources::create_layout(const std::vector<BufferBinding>& buffers, const std::vector<ImageBinding>& images,
+                                        VkShaderStageFlags stages) {
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (const BufferBinding& buffer : buffers) bindings.push_back({buffer.binding, descriptor_type(buffer.kind), 1, stages, nullptr});
   for (const ImageBinding& image : images) {
@@ -163,8 +158,7 @@ void DescriptorResources::write_descriptors(const std::vector<BufferBinding>& bu
     writes.push_back(write);
   }
   for (std::size_t i = 0; i < images_.size(); ++i) {
-    image_infos[i] = {images_[i].resource.sampler.get(), images_[i].resource.image.view.get(),
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    image_infos[i] = {images_[i].resource.sampler.get(), images_[i].resource.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set_;
     write.dstBinding = images_[i].binding;
@@ -180,8 +174,8 @@ void DescriptorResources::write_buffer(std::uint32_t binding, std::span<const st
   for (BoundBuffer& bound : buffers_) {
     if (bound.binding != binding) continue;
     if (bytes.size() > bound.buffer.size) {
-      throw std::invalid_argument(fmt::format("write_buffer: {} bytes do not fit the {}-byte buffer at binding {}",
-                                              bytes.size(), bound.buffer.size, binding));
+      throw std::invalid_argument(
+          fmt::format("write_buffer: {} bytes do not fit the {}-byte buffer at binding {}", bytes.size(), bound.buffer.size, binding));
     }
     if (!bytes.empty()) std::memcpy(bound.buffer.mapped, bytes.data(), bytes.size());
     return;
@@ -201,8 +195,7 @@ std::map<std::uint32_t, Bytes> DescriptorResources::read_back() const {
 // ---------------------------------------------------------------------------------------------
 // Shaders and pipeline layout.
 
-DeviceHandle<VkShaderModule> create_shader_module(const VulkanContext& context, const ShaderDesc& shader,
-                                                  const char* role) {
+DeviceHandle<VkShaderModule> create_shader_module(const VulkanContext& context, const ShaderDesc& shader, const char* role) {
   constexpr std::uint32_t spirv_magic = 0x07230203u;
   if (shader.spirv.size() < 5 || shader.spirv[0] != spirv_magic) {
     throw std::invalid_argument(fmt::format("{} shader: not a SPIR-V module ({} words)", role, shader.spirv.size()));
@@ -227,8 +220,7 @@ struct Specialization {
 
   explicit Specialization(const std::vector<SpecConstant>& constants) {
     for (const SpecConstant& constant : constants) {
-      entries.push_back({constant.id, static_cast<std::uint32_t>(data.size() * sizeof(std::uint32_t)),
-                         sizeof(std::uint32_t)});
+      entries.push_back({constant.id, static_cast<std::uint32_t>(data.size() * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
       data.push_back(constant.bits);
     }
     info.mapEntryCount = static_cast<std::uint32_t>(entries.size());
@@ -244,8 +236,8 @@ struct Specialization {
 void validate_push_constants(const VulkanContext& context, const Bytes& bytes) {
   if (bytes.size() % 4 != 0) throw std::invalid_argument("push constants: size must be a multiple of 4");
   if (bytes.size() > context.limits().maxPushConstantsSize) {
-    throw std::invalid_argument(fmt::format("push constants: {} bytes, the device allows {}", bytes.size(),
-                                            context.limits().maxPushConstantsSize));
+    throw std::invalid_argument(
+        fmt::format("push constants: {} bytes, the device allows {}", bytes.size(), context.limits().maxPushConstantsSize));
   }
 }
 
@@ -334,8 +326,8 @@ class Submitter {
  private:
   double read_gpu_ms() const {
     std::uint64_t ticks[2] = {0, 0};
-    SAAGEN_VK_CHECK(vkGetQueryPoolResults(context_.device(), queries_.get(), 0, 2, sizeof(ticks), ticks,
-                                          sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    SAAGEN_VK_CHECK(vkGetQueryPoolResults(context_.device(), queries_.get(), 0, 2, sizeof(ticks), ticks, sizeof(std::uint64_t),
+                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const std::uint32_t bits = context_.info().timestamp_valid_bits;
     const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
     const std::uint64_t elapsed = (ticks[1] - ticks[0]) & mask;  // modular: survives one wrap-around
@@ -368,8 +360,8 @@ void host_read_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stages, VkA
 
 void set_push_constant_bytes(Bytes& current, Bytes bytes) {
   if (bytes.size() != current.size()) {
-    throw std::invalid_argument(fmt::format("set_push_constants: {} bytes given, the program was built with {}",
-                                            bytes.size(), current.size()));
+    throw std::invalid_argument(
+        fmt::format("set_push_constants: {} bytes given, the program was built with {}", bytes.size(), current.size()));
   }
   current = std::move(bytes);
 }
@@ -397,9 +389,7 @@ std::vector<float> texels_to_floats(const std::byte* data, std::size_t texel_cou
 // ---------------------------------------------------------------------------------------------
 // Public helpers.
 
-SpecConstant SpecConstant::from_int(std::uint32_t id, std::int32_t value) {
-  return {id, static_cast<std::uint32_t>(value)};
-}
+SpecConstant SpecConstant::from_int(std::uint32_t id, std::int32_t value) { return {id, static_cast<std::uint32_t>(value)}; }
 
 SpecConstant SpecConstant::from_float(std::uint32_t id, float value) {
   std::uint32_t bits = 0;
@@ -430,13 +420,20 @@ const Bytes& RunResult::buffer(std::uint32_t binding) const {
 
 FormatInfo format_info(VkFormat format) {
   switch (format) {
-    case VK_FORMAT_R32_SFLOAT: return {1, 4, NumericKind::sfloat};
-    case VK_FORMAT_R32G32_SFLOAT: return {2, 4, NumericKind::sfloat};
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return {4, 4, NumericKind::sfloat};
-    case VK_FORMAT_R16_SFLOAT: return {1, 2, NumericKind::sfloat};
-    case VK_FORMAT_R16G16_SFLOAT: return {2, 2, NumericKind::sfloat};
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return {4, 2, NumericKind::sfloat};
-    case VK_FORMAT_R8G8B8A8_UNORM: return {4, 1, NumericKind::unorm};
+    case VK_FORMAT_R32_SFLOAT:
+      return {1, 4, NumericKind::sfloat};
+    case VK_FORMAT_R32G32_SFLOAT:
+      return {2, 4, NumericKind::sfloat};
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return {4, 4, NumericKind::sfloat};
+    case VK_FORMAT_R16_SFLOAT:
+      return {1, 2, NumericKind::sfloat};
+    case VK_FORMAT_R16G16_SFLOAT:
+      return {2, 2, NumericKind::sfloat};
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return {4, 2, NumericKind::sfloat};
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return {4, 1, NumericKind::unorm};
     default:
       throw std::invalid_argument(fmt::format("VkFormat {} is not supported by the harness", static_cast<int>(format)));
   }
@@ -486,8 +483,8 @@ struct ComputeProgram::Impl {
   void set_groups(DispatchSize size) {
     const std::uint32_t* max = context.info().max_compute_work_group_count;
     if (size.x == 0 || size.y == 0 || size.z == 0 || size.x > max[0] || size.y > max[1] || size.z > max[2]) {
-      throw std::invalid_argument(fmt::format("dispatch ({}, {}, {}) outside 1..({}, {}, {})", size.x, size.y, size.z,
-                                              max[0], max[1], max[2]));
+      throw std::invalid_argument(
+          fmt::format("dispatch ({}, {}, {}) outside 1..({}, {}, {})", size.x, size.y, size.z, max[0], max[1], max[2]));
     }
     groups = size;
   }
@@ -502,8 +499,8 @@ struct ComputeProgram::Impl {
           const VkDescriptorSet set = resources.set();
           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
           if (!push_constants.empty()) {
-            vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                               static_cast<std::uint32_t>(push_constants.size()), push_constants.data());
+            vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, static_cast<std::uint32_t>(push_constants.size()),
+                               push_constants.data());
           }
         },
         [&](VkCommandBuffer cmd) { vkCmdDispatch(cmd, groups.x, groups.y, groups.z); },
@@ -516,8 +513,7 @@ struct ComputeProgram::Impl {
   }
 };
 
-ComputeProgram::ComputeProgram(VulkanContext& context, const ComputeRun& run)
-    : impl_(std::make_unique<Impl>(context, run)) {}
+ComputeProgram::ComputeProgram(VulkanContext& context, const ComputeRun& run) : impl_(std::make_unique<Impl>(context, run)) {}
 ComputeProgram::~ComputeProgram() = default;
 void ComputeProgram::write_buffer(std::uint32_t binding, std::span<const std::byte> bytes) {
   impl_->resources.write_buffer(binding, bytes);
@@ -587,14 +583,13 @@ DeviceHandle<VkRenderPass> create_render_pass(const VulkanContext& context, cons
 
 void validate_framebuffer(const VulkanContext& context, const FragmentRun& run) {
   const VkPhysicalDeviceLimits& limits = context.limits();
-  if (run.width == 0 || run.height == 0 || run.width > limits.maxFramebufferWidth ||
-      run.height > limits.maxFramebufferHeight) {
-    throw std::invalid_argument(fmt::format("framebuffer {}x{} outside 1..{}x{}", run.width, run.height,
-                                            limits.maxFramebufferWidth, limits.maxFramebufferHeight));
+  if (run.width == 0 || run.height == 0 || run.width > limits.maxFramebufferWidth || run.height > limits.maxFramebufferHeight) {
+    throw std::invalid_argument(
+        fmt::format("framebuffer {}x{} outside 1..{}x{}", run.width, run.height, limits.maxFramebufferWidth, limits.maxFramebufferHeight));
   }
   if (run.color_formats.empty() || run.color_formats.size() > limits.maxColorAttachments) {
-    throw std::invalid_argument(fmt::format("{} color attachments requested, the device allows 1..{}",
-                                            run.color_formats.size(), limits.maxColorAttachments));
+    throw std::invalid_argument(
+        fmt::format("{} color attachments requested, the device allows 1..{}", run.color_formats.size(), limits.maxColorAttachments));
   }
 }
 
@@ -704,8 +699,7 @@ struct FragmentProgram::Impl {
     const VkDescriptorSet set = resources.set();
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout.get(), 0, 1, &set, 0, nullptr);
     if (!push_constants.empty()) {
-      vkCmdPushConstants(cmd, layout.get(), graphics_stages, 0, static_cast<std::uint32_t>(push_constants.size()),
-                         push_constants.data());
+      vkCmdPushConstants(cmd, layout.get(), graphics_stages, 0, static_cast<std::uint32_t>(push_constants.size()), push_constants.data());
     }
     vkCmdDraw(cmd, 3, 1, 0, 0);  // the full-screen triangle
     vkCmdEndRenderPass(cmd);
@@ -716,17 +710,15 @@ struct FragmentProgram::Impl {
       VkBufferImageCopy region{};
       region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       region.imageExtent = {width, height, 1};
-      vkCmdCopyImageToBuffer(cmd, output.target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             output.readback.buffer.get(), 1, &region);
+      vkCmdCopyImageToBuffer(cmd, output.target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.readback.buffer.get(), 1,
+                             &region);
     }
-    host_read_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
-                               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+    host_read_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                       VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   }
 
   RunResult run(const RunOptions& options) {
-    constexpr VkPipelineStageFlags shader_stages =
-        VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    constexpr VkPipelineStageFlags shader_stages = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     submitter.record(
         options.gpu_timestamps, [&](VkCommandBuffer cmd) { shader_write_barrier(cmd, shader_stages); },
         [&](VkCommandBuffer cmd) { draw(cmd); }, [&](VkCommandBuffer cmd) { copy_outputs(cmd); });
@@ -737,22 +729,18 @@ struct FragmentProgram::Impl {
     for (const ColorOutput& output : outputs) {
       const FormatInfo format = format_info(output.format);
       result.attachments.push_back(Attachment{output.format, width, height, format.components,
-                                              texels_to_floats(output.readback.mapped,
-                                                               std::size_t{width} * height, format)});
+                                              texels_to_floats(output.readback.mapped, std::size_t{width} * height, format)});
     }
     return result;
   }
 };
 
-FragmentProgram::FragmentProgram(VulkanContext& context, const FragmentRun& run)
-    : impl_(std::make_unique<Impl>(context, run)) {}
+FragmentProgram::FragmentProgram(VulkanContext& context, const FragmentRun& run) : impl_(std::make_unique<Impl>(context, run)) {}
 FragmentProgram::~FragmentProgram() = default;
 void FragmentProgram::write_buffer(std::uint32_t binding, std::span<const std::byte> bytes) {
   impl_->resources.write_buffer(binding, bytes);
 }
-void FragmentProgram::set_push_constants(Bytes bytes) {
-  set_push_constant_bytes(impl_->push_constants, std::move(bytes));
-}
+void FragmentProgram::set_push_constants(Bytes bytes) { set_push_constant_bytes(impl_->push_constants, std::move(bytes)); }
 RunResult FragmentProgram::run(const RunOptions& options) { return impl_->run(options); }
 
 RunResult run_fragment(VulkanContext& context, const FragmentRun& run, const RunOptions& options) {

@@ -29,8 +29,7 @@ DeviceHandle<VkDeviceMemory> allocate_memory(const VulkanContext& context, const
 }
 
 // Device memory bound to a new image (device-local when available).
-ImageWithView create_image(const VulkanContext& context, const VkImageCreateInfo& image_info,
-                           VkImageViewType view_type) {
+ImageWithView create_image(const VulkanContext& context, const VkImageCreateInfo& image_info, VkImageViewType view_type) {
   ImageWithView result;
   VkImage image = VK_NULL_HANDLE;
   SAAGEN_VK_CHECK(vkCreateImage(context.device(), &image_info, nullptr, &image));
@@ -56,10 +55,14 @@ bool is_array(ImageKind kind) { return kind == ImageKind::image_1d_array || kind
 
 VkImageViewType view_type_of(ImageKind kind) {
   switch (kind) {
-    case ImageKind::image_1d: return VK_IMAGE_VIEW_TYPE_1D;
-    case ImageKind::image_1d_array: return VK_IMAGE_VIEW_TYPE_1D_ARRAY;
-    case ImageKind::image_2d: return VK_IMAGE_VIEW_TYPE_2D;
-    case ImageKind::image_2d_array: return VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    case ImageKind::image_1d:
+      return VK_IMAGE_VIEW_TYPE_1D;
+    case ImageKind::image_1d_array:
+      return VK_IMAGE_VIEW_TYPE_1D_ARRAY;
+    case ImageKind::image_2d:
+      return VK_IMAGE_VIEW_TYPE_2D;
+    case ImageKind::image_2d_array:
+      return VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   }
   return VK_IMAGE_VIEW_TYPE_2D;
 }
@@ -84,23 +87,22 @@ void validate_image(const VulkanContext& context, const ImageBinding& binding) {
     throw std::invalid_argument(where + ": extent exceeds the device limits");
   }
   if (image.levels.empty() || image.levels.size() > full_chain_length(image.width, image.height)) {
-    throw std::invalid_argument(fmt::format("{}: {} levels given, expected 1..{}", where, image.levels.size(),
-                                            full_chain_length(image.width, image.height)));
+    throw std::invalid_argument(
+        fmt::format("{}: {} levels given, expected 1..{}", where, image.levels.size(), full_chain_length(image.width, image.height)));
   }
   const std::uint32_t texel = format_info(image.format).texel_bytes();
   for (std::uint32_t level = 0; level < image.levels.size(); ++level) {
-    const std::size_t expected = std::size_t{level_extent(image.width, level)} * level_extent(image.height, level) *
-                                 image.layers * texel;
+    const std::size_t expected = std::size_t{level_extent(image.width, level)} * level_extent(image.height, level) * image.layers * texel;
     if (image.levels[level].size() != expected) {
-      throw std::invalid_argument(fmt::format("{}: level {} has {} bytes, expected {}", where, level,
-                                              image.levels[level].size(), expected));
+      throw std::invalid_argument(
+          fmt::format("{}: level {} has {} bytes, expected {}", where, level, image.levels[level].size(), expected));
     }
   }
   const VkFormatFeatureFlags features = context.format_properties(image.format).optimalTilingFeatures;
   if (!(features & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) throw std::runtime_error(where + ": format cannot be sampled");
   const SamplerDesc& s = binding.sampler;
-  const bool linear = s.mag_filter == VK_FILTER_LINEAR || s.min_filter == VK_FILTER_LINEAR ||
-                      s.mipmap_mode == VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  const bool linear =
+      s.mag_filter == VK_FILTER_LINEAR || s.min_filter == VK_FILTER_LINEAR || s.mipmap_mode == VK_SAMPLER_MIPMAP_MODE_LINEAR;
   if (linear && !(features & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT)) {
     throw std::runtime_error(where + ": format does not support linear filtering");
   }
@@ -108,8 +110,8 @@ void validate_image(const VulkanContext& context, const ImageBinding& binding) {
     throw std::runtime_error(where + ": the device does not support sampler anisotropy");
   }
   if (s.anisotropy_enable && (s.max_anisotropy < 1.0f || s.max_anisotropy > context.info().max_sampler_anisotropy)) {
-    throw std::invalid_argument(fmt::format("{}: max_anisotropy {} outside [1, {}]", where, s.max_anisotropy,
-                                            context.info().max_sampler_anisotropy));
+    throw std::invalid_argument(
+        fmt::format("{}: max_anisotropy {} outside [1, {}]", where, s.max_anisotropy, context.info().max_sampler_anisotropy));
   }
 }
 
@@ -132,9 +134,8 @@ DeviceHandle<VkSampler> create_sampler(const VulkanContext& context, const Sampl
   return {context.device(), sampler, vkDestroySampler};
 }
 
-void transition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from,
-                VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                VkPipelineStageFlags dst_stage) {
+void transition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from, VkImageLayout to,
+                VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   barrier.srcAccessMask = src_access;
   barrier.dstAccessMask = dst_access;
@@ -172,8 +173,7 @@ HostBuffer HostBuffer::create(const VulkanContext& context, VkDeviceSize size, V
   return result;
 }
 
-void submit_and_wait(const VulkanContext& context, VkCommandPool pool,
-                     const std::function<void(VkCommandBuffer)>& record) {
+void submit_and_wait(const VulkanContext& context, VkCommandPool pool, const std::function<void(VkCommandBuffer)>& record) {
   VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   allocate.commandPool = pool;
   allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -204,8 +204,7 @@ void submit_and_wait(const VulkanContext& context, VkCommandPool pool,
   SAAGEN_VK_CHECK(vkWaitForFences(context.device(), 1, &fence_handle, VK_TRUE, UINT64_MAX));
 }
 
-SampledImageResource create_sampled_image(const VulkanContext& context, VkCommandPool pool,
-                                          const ImageBinding& binding) {
+SampledImageResource create_sampled_image(const VulkanContext& context, VkCommandPool pool, const ImageBinding& binding) {
   validate_image(context, binding);
   const SampledImage& desc = binding.image;
   const auto levels = static_cast<std::uint32_t>(desc.levels.size());
@@ -245,24 +244,21 @@ SampledImageResource create_sampled_image(const VulkanContext& context, VkComman
   const VkImage image = result.image.image.get();
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, desc.layers};
   submit_and_wait(context, pool, [&](VkCommandBuffer cmd) {
-    transition(cmd, image, range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-               VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    transition(cmd, image, range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
+               VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     vkCmdCopyBufferToImage(cmd, staging.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            static_cast<std::uint32_t>(regions.size()), regions.data());
     transition(cmd, image, range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-               VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+               VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   });
   return result;
 }
 
-ImageWithView create_color_target(const VulkanContext& context, VkFormat format, std::uint32_t width,
-                                  std::uint32_t height) {
+ImageWithView create_color_target(const VulkanContext& context, VkFormat format, std::uint32_t width, std::uint32_t height) {
   format_info(format);  // throws for formats the harness cannot read back
   if (!(context.format_properties(format).optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT)) {
-    throw std::runtime_error(fmt::format("format {} cannot be a color attachment on '{}'", static_cast<int>(format),
-                                         context.info().name));
+    throw std::runtime_error(fmt::format("format {} cannot be a color attachment on '{}'", static_cast<int>(format), context.info().name));
   }
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;

@@ -2,9 +2,10 @@
 // samplers, color targets, and one-shot command submission.
 #pragma once
 
+#include "vk_handle.hpp"
+
 #include "saagen/harness/context.hpp"
 #include "saagen/harness/description.hpp"
-#include "vk_handle.hpp"
 
 #include <functional>
 
@@ -33,15 +34,13 @@ struct SampledImageResource {
 };
 
 // Records `record` into a fresh command buffer from `pool`, submits it and waits.
-void submit_and_wait(const VulkanContext& context, VkCommandPool pool,
-                     const std::function<void(VkCommandBuffer)>& record);
+void submit_and_wait(const VulkanContext& context, VkCommandPool pool, const std::function<void(VkCommandBuffer)>& record);
 
 // Creates the image, uploads all levels (via a staging buffer) and leaves it in
 // SHADER_READ_ONLY_OPTIMAL; also creates the sampler. Validates the description first.
 SampledImageResource create_sampled_image(const VulkanContext& context, VkCommandPool pool, const ImageBinding& binding);
 
 // A width x height 2D image usable as color attachment and transfer source.
-ImageWithView create_color_target(const VulkanContext& context, VkFormat format, std::uint32_t width,
-                                  std::uint32_t height);
+ImageWithView create_color_target(const VulkanContext& context, VkFormat format, std::uint32_t width, std::uint32_t height);
 
 }  // namespace saagen::harness

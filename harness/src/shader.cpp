@@ -1,7 +1,6 @@
 #include "saagen/harness/shader.hpp"
 
 #include <saagen/validate/compiler.hpp>
-
 #include <stdexcept>
 
 namespace saagen::harness {
@@ -9,17 +8,20 @@ namespace {
 
 saagen::ShaderStage to_compiler_stage(Stage stage) {
   switch (stage) {
-    case Stage::vertex: return saagen::ShaderStage::vertex;
-    case Stage::fragment: return saagen::ShaderStage::fragment;
-    case Stage::compute: return saagen::ShaderStage::compute;
+    case Stage::vertex:
+      return saagen::ShaderStage::vertex;
+    case Stage::fragment:
+      return saagen::ShaderStage::fragment;
+    case Stage::compute:
+      return saagen::ShaderStage::compute;
   }
   return saagen::ShaderStage::compute;
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source,
-                                          const std::string& entry_point, const std::string& name) {
+std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source, const std::string& entry_point,
+                                          const std::string& name) {
   saagen::CompileRequest request;
   request.language = language == Language::hlsl ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
   request.stage = to_compiler_stage(stage);

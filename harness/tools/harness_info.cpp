@@ -1,12 +1,11 @@
 // Prints the Vulkan device the harness selects (or all devices with --list).
 // Usage: saagen_harness_info [--device NAME] [--list]
-#include <saagen/harness/context.hpp>
-#include <saagen/harness/error.hpp>
-
 #include <fmt/format.h>
 
 #include <cstring>
 #include <exception>
+#include <saagen/harness/context.hpp>
+#include <saagen/harness/error.hpp>
 
 int main(int argc, char** argv) {
   using namespace saagen::harness;
@@ -21,9 +20,10 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const NullHardwareDevice& null_device) {
     // RADV_FORCE_FAMILY: a compiler without a GPU. Described, never opened as a device.
-    fmt::print("{}\nnull hardware (RADV_FORCE_FAMILY): compiles only, never used for a dispatch; its ISA statistics: "
-               "`saagen bench --isa FAMILY --isa-only`\n",
-               null_device.summary());
+    fmt::print(
+        "{}\nnull hardware (RADV_FORCE_FAMILY): compiles only, never used for a dispatch; its ISA statistics: "
+        "`saagen bench --isa FAMILY --isa-only`\n",
+        null_device.summary());
     return 0;
   } catch (const std::exception& error) {
     fmt::print(stderr, "saagen_harness_info: {}\n", error.what());

@@ -24,59 +24,59 @@ double ndf_clamp_tau(Vec2 alpha2) { return alpha2.x * alpha2.y; }
 // A^-1 = adj(A) / max(det A, tau). Guarded: tau is floored at TINY_POSITIVE.
 // Guarded: the adjugate's quadratic form is floored by quadratic_form_floor.
 double Brdf::ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) const {
-    if (h.z <= 0.0) return 0.0;
-    const double det_a = sym2_determinant(a);
-    const double det = max(det_a, guarded(max(tau, tiny()), tau));
-    const double spread = sym2_quadratic_form(adjugate(a), h.xy()) / det;
-    const double q = guarded(max(spread, quadratic_form_floor(params, a, det_a, det, h.xy())), spread) + h.z * h.z;
-    return 1.0 / (kPi * std::sqrt(det) * q * q);
+  if (h.z <= 0.0) return 0.0;
+  const double det_a = sym2_determinant(a);
+  const double det = max(det_a, guarded(max(tau, tiny()), tau));
+  const double spread = sym2_quadratic_form(adjugate(a), h.xy()) / det;
+  const double q = guarded(max(spread, quadratic_form_floor(params, a, det_a, det, h.xy())), spread) + h.z * h.z;
+  return 1.0 / (kPi * std::sqrt(det) * q * q);
 }
 
 // Supplemental Sec. 1: Lambda(w) = -1/2 + sqrt(w.xy^T A w.xy + wz^2) / (2 |wz|).
 // Guarded: z = max(|wz|, LAMBDA_MIN_Z) in both places (so Lambda >= 0), the quadratic form >= 0.
 double Brdf::ggx_lambda_matrix(Vec3 w, Sym2 a) const {
-    const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
-    const double spread = sym2_quadratic_form(a, w.xy());
-    return -0.5 + std::sqrt(guarded(max(spread, 0.0), spread) + z * z) / (2.0 * z);
+  const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
+  const double spread = sym2_quadratic_form(a, w.xy());
+  return -0.5 + std::sqrt(guarded(max(spread, 0.0), spread) + z * z) / (2.0 * z);
 }
 
 // Supplemental Sec. 1 / Heitz 2014: G2 = chi+(i.h) chi+(o.h) / (1 + Lambda(i) + Lambda(o)).
 double Brdf::ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const {
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    return 1.0 / (1.0 + ggx_lambda_matrix(i, a) + ggx_lambda_matrix(o, a));
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  return 1.0 / (1.0 + ggx_lambda_matrix(i, a) + ggx_lambda_matrix(o, a));
 }
 
 // T&K 2019 Sec. 2.2: f = G2 D / (4 |i.n| |o.n|), Fresnel left to the caller.
 // Guarded: the cosines floored at LAMBDA_MIN_Z, as in Lambda.
 double Brdf::ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = half_vector(params, i, o);
-    return ggx_ndf_matrix(h, a, tau) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  return ggx_ndf_matrix(h, a, tau) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
 }
 
 // Supplemental Sec. 1: D(h) = chi+(hz) / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2).
 // Guarded: alpha^2 floored at TINY_POSITIVE per axis.
 double Brdf::ggx_ndf_axis(Vec3 h, Vec2 alpha2) const {
-    if (h.z <= 0.0) return 0.0;
-    const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
-    const double q = h.x * h.x / a2.x + h.y * h.y / a2.y + h.z * h.z;
-    return 1.0 / (kPi * std::sqrt(a2.x * a2.y) * q * q);
+  if (h.z <= 0.0) return 0.0;
+  const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
+  const double q = h.x * h.x / a2.x + h.y * h.y / a2.y + h.z * h.z;
+  return 1.0 / (kPi * std::sqrt(a2.x * a2.y) * q * q);
 }
 
 // Supplemental Sec. 1: Lambda(w) = -1/2 + sqrt(ax^2 wx^2 + ay^2 wy^2 + wz^2) / (2 |wz|).
 // Guarded: z = max(|wz|, LAMBDA_MIN_Z) in both places.
 double Brdf::ggx_lambda_axis(Vec3 w, Vec2 alpha2) const {
-    const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
-    return -0.5 + std::sqrt(alpha2.x * w.x * w.x + alpha2.y * w.y * w.y + z * z) / (2.0 * z);
+  const double z = guarded(max(std::fabs(w.z), params.guard_constants().lambda_min_z), std::fabs(w.z));
+  return -0.5 + std::sqrt(alpha2.x * w.x * w.x + alpha2.y * w.y * w.y + z * z) / (2.0 * z);
 }
 
 // T&K 2019 Sec. 2.2 with the axis-aligned GGX NDF and height-correlated G2.
 double Brdf::ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = half_vector(params, i, o);
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    const double g2 = 1.0 / (1.0 + ggx_lambda_axis(i, alpha2) + ggx_lambda_axis(o, alpha2));
-    return ggx_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const double g2 = 1.0 / (1.0 + ggx_lambda_axis(i, alpha2) + ggx_lambda_axis(o, alpha2));
+  return ggx_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -87,8 +87,8 @@ double Brdf::ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
 // SPIR-V Instructions": exp is bounded by 3 + 2|x| ULP, x / y only for |y| in [2^-126, 2^126],
 // and denormals may flush to 0.
 double Brdf::falloff(double x) const {
-    if (!params.guards) return std::exp(-x);
-    return x < params.guard_constants().exp_arg_max ? std::exp(-x) : 0.0;
+  if (!params.guards) return std::exp(-x);
+  return x < params.guard_constants().exp_arg_max ? std::exp(-x) : 0.0;
 }
 double Brdf::divisor(double d) const { return guarded(max(d, params.guard_constants().divisor_min), d); }
 
@@ -97,69 +97,68 @@ double Brdf::divisor(double d) const { return guarded(max(d, params.guard_consta
 // Guarded: tau and hz^4 floored at TINY_POSITIVE; the exponent computed as
 // max(h.xy^T adj h.xy / det, quadratic_form_floor) / max(hz^2, TINY_POSITIVE).
 double Brdf::beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const {
-    if (h.z <= 0.0) return 0.0;
-    const double det_a = sym2_determinant(a);
-    const double det = max(det_a, guarded(max(tau, tiny()), tau));
-    const double cos2 = h.z * h.z;
-    const double exponent =
-        params.guards ? max(sym2_quadratic_form(adjugate(a), h.xy()) / det,
-                            quadratic_form_floor(params, a, det_a, det, h.xy())) / max(cos2, tiny())
-                      : sym2_quadratic_form(adjugate(a), h.xy() / h.z) / det;
-    return falloff(exponent) / divisor(kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
+  if (h.z <= 0.0) return 0.0;
+  const double det_a = sym2_determinant(a);
+  const double det = max(det_a, guarded(max(tau, tiny()), tau));
+  const double cos2 = h.z * h.z;
+  const double exponent =
+      params.guards
+          ? max(sym2_quadratic_form(adjugate(a), h.xy()) / det, quadratic_form_floor(params, a, det_a, det, h.xy())) / max(cos2, tiny())
+          : sym2_quadratic_form(adjugate(a), h.xy() / h.z) / det;
+  return falloff(exponent) / divisor(kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
 }
 
 // Heitz 2014: a = |wz| / sqrt(w.xy^T A w.xy) (1 / (alpha_w tan theta_w)), Walter fit.
 // Guarded: |wz| >= LAMBDA_MIN_Z.
 double Brdf::beckmann_lambda_matrix(Vec3 w, Sym2 a) const {
-    const double projected_roughness2 = sym2_quadratic_form(a, w.xy());
-    if (projected_roughness2 <= 0.0) return 0.0;
-    const double z = std::fabs(w.z);
-    return beckmann_lambda_from_a(guarded(max(z, params.guard_constants().lambda_min_z), z) /
-                                  std::sqrt(projected_roughness2));
+  const double projected_roughness2 = sym2_quadratic_form(a, w.xy());
+  if (projected_roughness2 <= 0.0) return 0.0;
+  const double z = std::fabs(w.z);
+  return beckmann_lambda_from_a(guarded(max(z, params.guard_constants().lambda_min_z), z) / std::sqrt(projected_roughness2));
 }
 
 // T&K 2019 Sec. 2.2 with the matrix Beckmann NDF. Guarded: the cosines floored.
 double Brdf::beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const {
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = half_vector(params, i, o);
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
-    return beckmann_ndf_matrix(h, a, tau) * g2 / (4.0 * cosines(i, o));
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
+  return beckmann_ndf_matrix(h, a, tau) * g2 / (4.0 * cosines(i, o));
 }
 
 // Beckmann 1963, axis-aligned anisotropic. Guarded: alpha^2 and hz^4 floored.
 double Brdf::beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const {
-    if (h.z <= 0.0) return 0.0;
-    const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
-    const Vec2 slope = h.xy() / h.z;
-    const double cos2 = h.z * h.z;
-    const double exponent = slope.x * slope.x / a2.x + slope.y * slope.y / a2.y;
-    return falloff(exponent) / divisor(kPi * std::sqrt(a2.x * a2.y) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
+  if (h.z <= 0.0) return 0.0;
+  const Vec2 a2{guarded(max(alpha2.x, tiny()), alpha2.x), guarded(max(alpha2.y, tiny()), alpha2.y)};
+  const Vec2 slope = h.xy() / h.z;
+  const double cos2 = h.z * h.z;
+  const double exponent = slope.x * slope.x / a2.x + slope.y * slope.y / a2.y;
+  return falloff(exponent) / divisor(kPi * std::sqrt(a2.x * a2.y) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2));
 }
 
 // T&K 2019 Sec. 2.2 with the axis-aligned Beckmann NDF (Walter et al. 2007 Lambda).
 double Brdf::beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const {
-    const Sym2 a{alpha2.x, 0.0, alpha2.y};
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = half_vector(params, i, o);
-    if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
-    const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
-    return beckmann_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
+  const Sym2 a{alpha2.x, 0.0, alpha2.y};
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const double g2 = 1.0 / (1.0 + beckmann_lambda_matrix(i, a) + beckmann_lambda_matrix(o, a));
+  return beckmann_ndf_axis(h, alpha2) * g2 / (4.0 * cosines(i, o));
 }
 
 // 4 i.z o.z of the BRDFs; guarded: max(i.z, LAMBDA_MIN_Z) max(o.z, LAMBDA_MIN_Z), the cosines
 // Lambda uses (a floor of i.z o.z alone lets G2 / (i.z o.z) grow as 1 / i.z below LAMBDA_MIN_Z).
 double Brdf::cosines(Vec3 i, Vec3 o) const {
-    const double m = params.guard_constants().lambda_min_z;
-    return guarded(max(i.z, m) * max(o.z, m), i.z * o.z);
+  const double m = params.guard_constants().lambda_min_z;
+  return guarded(max(i.z, m) * max(o.z, m), i.z * o.z);
 }
 
 // lambda_min(A) >= det(A) / tr(A); a determinant below DET_RELIABLE a00 a11 is rounding noise in
 // fp32, and is then taken as det = max(det(A), tau) (filtered matrices have det(A) >= tau).
 double quadratic_form_floor(const Params& p, Sym2 a, double det_a, double det, Vec2 v) {
-    const GuardConstants& g = p.guard_constants();
-    const double det_floor = max(det_a, min(det, g.det_reliable * a.xx * a.yy));
-    return dot(v, v) * (det_floor / det) / max(a.xx + a.yy, g.tiny_positive);
+  const GuardConstants& g = p.guard_constants();
+  const double det_floor = max(det_a, min(det, g.det_reliable * a.xx * a.yy));
+  return dot(v, v) * (det_floor / det) / max(a.xx + a.yy, g.tiny_positive);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -174,23 +173,19 @@ double ggx_lambda_axis(Vec3 w, Vec2 alpha2) { return Brdf{}.ggx_lambda_axis(w, a
 double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) { return Brdf{}.ggx_brdf_axis(i, o, alpha2); }
 double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) { return Brdf{}.beckmann_ndf_matrix(h, a, tau); }
 double beckmann_lambda_matrix(Vec3 w, Sym2 a) { return Brdf{}.beckmann_lambda_matrix(w, a); }
-double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) {
-    return Brdf{}.beckmann_brdf_matrix(i, o, a, tau);
-}
+double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) { return Brdf{}.beckmann_brdf_matrix(i, o, a, tau); }
 double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) { return Brdf{}.beckmann_ndf_axis(h, alpha2); }
 double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) { return Brdf{}.beckmann_brdf_axis(i, o, alpha2); }
 
 // Walter et al. 2007 rational approximation of the Beckmann Smith Lambda.
 double beckmann_lambda_from_a(double a_param) {
-    if (a_param >= 1.6) return 0.0;
-    return (1.0 - 1.259 * a_param + 0.396 * a_param * a_param) /
-           (3.535 * a_param + 2.181 * a_param * a_param);
+  if (a_param >= 1.6) return 0.0;
+  return (1.0 - 1.259 * a_param + 0.396 * a_param * a_param) / (3.535 * a_param + 2.181 * a_param * a_param);
 }
 
 // Heitz 2014 (Beckmann Lambda): (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)).
 double beckmann_lambda_exact(double a_param) {
-    return 0.5 * (std::erf(a_param) - 1.0) +
-           std::exp(-a_param * a_param) / (2.0 * a_param * kSqrtPi);
+  return 0.5 * (std::erf(a_param) - 1.0) + std::exp(-a_param * a_param) / (2.0 * a_param * kSqrtPi);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -200,22 +195,22 @@ double beckmann_lambda_exact(double a_param) {
 // r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 15 % (tests/test_filtered_ggx.cpp
 // recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s far tail exactly.
 FilteredGgxLobes filtered_ggx_lobes(double ratio) {
-    const double r = max(ratio, 0.0);
-    FilteredGgxLobes lobes;
-    lobes.tail_scale = 1.0 + 2.0 * r * (1.5788 - 0.1028 / (1.0 + 0.1256 * r));
-    lobes.tail_weight = 1.0 / lobes.tail_scale;
-    lobes.shoulder_kernel = 3.4707 + 2.5583 / (0.0929 + r);
-    lobes.shoulder_fraction = 0.1712 / (1.0 + 0.6105 * r);
-    lobes.core_kernel = 1.0 + 0.1447 / (1.0 + 0.0881 * r);
-    return lobes;
+  const double r = max(ratio, 0.0);
+  FilteredGgxLobes lobes;
+  lobes.tail_scale = 1.0 + 2.0 * r * (1.5788 - 0.1028 / (1.0 + 0.1256 * r));
+  lobes.tail_weight = 1.0 / lobes.tail_scale;
+  lobes.shoulder_kernel = 3.4707 + 2.5583 / (0.0929 + r);
+  lobes.shoulder_fraction = 0.1712 / (1.0 + 0.6105 * r);
+  lobes.core_kernel = 1.0 + 0.1447 / (1.0 + 0.0881 * r);
+  return lobes;
 }
 
 // The template's floor of alpha^2 (TINY_POSITIVE) and cap of r (FILTERED_RATIO_MAX) hold in both
 // forms (not guarded() sites): past the cap the tail lobe weighs < 1e-6 (fp16: 1e-4) and r's
 // products would overflow.
 double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
-    const double r = 0.25 * ((a.xx - alpha2.x) / max(alpha2.x, tiny()) + (a.yy - alpha2.y) / max(alpha2.y, tiny()));
-    return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
+  const double r = 0.25 * ((a.xx - alpha2.x) / max(alpha2.x, tiny()) + (a.yy - alpha2.y) / max(alpha2.y, tiny()));
+  return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
 }
 
 // Template filtered_beckmann_lobe: Beckmann(A0 + c K) from the terms every lobe shares,
@@ -224,80 +219,73 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
 // rank-1 kernel cancels it to any sign) and TINY_POSITIVE, the exponent at |h.xy|^2 / (tr(M)
 // h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in beckmann_ndf_matrix.
 double Brdf::filtered_beckmann_lobe(double c, const FilteredGgxTerms& t) const {
-    const double det_floor = t.det_a0 + c * t.det_mixed;
-    const double det = max(det_floor + c * c * t.det_k, guarded(max(det_floor, tiny()), t.det_a0));
-    const double spread = (t.quad_a0 + c * t.quad_k) / det;
-    const double exponent =
-        guarded(max(spread, t.length2 / max(t.trace_a0 + c * t.trace_k, tiny())) / max(t.cos2, tiny()), spread / t.cos2);
-    const double divisor = kPi * std::sqrt(det) * guarded(max(t.cos2 * t.cos2, tiny()), t.cos2 * t.cos2);
-    return falloff(exponent) / this->divisor(divisor);
+  const double det_floor = t.det_a0 + c * t.det_mixed;
+  const double det = max(det_floor + c * c * t.det_k, guarded(max(det_floor, tiny()), t.det_a0));
+  const double spread = (t.quad_a0 + c * t.quad_k) / det;
+  const double exponent = guarded(max(spread, t.length2 / max(t.trace_a0 + c * t.trace_k, tiny())) / max(t.cos2, tiny()), spread / t.cos2);
+  const double divisor = kPi * std::sqrt(det) * guarded(max(t.cos2 * t.cos2, tiny()), t.cos2 * t.cos2);
+  return falloff(exponent) / this->divisor(divisor);
 }
 
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
-    if (h.z <= 0.0) return 0.0;
-    const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
-    const Sym2 kernel = a - Sym2{alpha2.x, 0.0, alpha2.y};
-    FilteredGgxTerms t;
-    t.quad_a0 = alpha2.y * h.x * h.x + alpha2.x * h.y * h.y;
-    t.quad_k = kernel.yy * h.x * h.x - 2.0 * kernel.xy * h.x * h.y + kernel.xx * h.y * h.y;
-    t.det_a0 = alpha2.x * alpha2.y;
-    t.det_mixed = alpha2.x * kernel.yy + alpha2.y * kernel.xx;
-    t.det_k = kernel.xx * kernel.yy - kernel.xy * kernel.xy;
-    t.length2 = h.x * h.x + h.y * h.y;
-    t.trace_a0 = alpha2.x + alpha2.y;
-    t.trace_k = kernel.xx + kernel.yy;
-    t.cos2 = h.z * h.z;
-    const double beckmann = lobes.shoulder_fraction * filtered_beckmann_lobe(lobes.shoulder_kernel, t) +
-                            (1.0 - lobes.shoulder_fraction) * filtered_beckmann_lobe(lobes.core_kernel, t);
-    return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
+  if (h.z <= 0.0) return 0.0;
+  const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
+  const Sym2 kernel = a - Sym2{alpha2.x, 0.0, alpha2.y};
+  FilteredGgxTerms t;
+  t.quad_a0 = alpha2.y * h.x * h.x + alpha2.x * h.y * h.y;
+  t.quad_k = kernel.yy * h.x * h.x - 2.0 * kernel.xy * h.x * h.y + kernel.xx * h.y * h.y;
+  t.det_a0 = alpha2.x * alpha2.y;
+  t.det_mixed = alpha2.x * kernel.yy + alpha2.y * kernel.xx;
+  t.det_k = kernel.xx * kernel.yy - kernel.xy * kernel.xy;
+  t.length2 = h.x * h.x + h.y * h.y;
+  t.trace_a0 = alpha2.x + alpha2.y;
+  t.trace_k = kernel.xx + kernel.yy;
+  t.cos2 = h.z * h.z;
+  const double beckmann = lobes.shoulder_fraction * filtered_beckmann_lobe(lobes.shoulder_kernel, t) +
+                          (1.0 - lobes.shoulder_fraction) * filtered_beckmann_lobe(lobes.core_kernel, t);
+  return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
 }
 
 double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {
-    if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
-    const Vec3 h = half_vector(params, i, o);
-    return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
 }
 
 double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const {
-    return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
+  return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
 }
 
 namespace {
 // The single-roughness mapping's kernel factor g (brdf.hpp), the divisor floored at `floor`.
-double kernel_scale(double alpha2, double k, double floor) {
-    return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, floor);
-}
+double kernel_scale(double alpha2, double k, double floor) { return (2.687 * alpha2 + 0.391 * k) / max(2.0 * alpha2 + 1.210 * k, floor); }
 }  // namespace
 
 double Brdf::ggx_filtered_alpha2(double alpha2, double kernel) const {
-    const double k = max(kernel, 0.0);
-    return alpha2 + k * kernel_scale(alpha2, k, tiny());
+  const double k = max(kernel, 0.0);
+  return alpha2 + k * kernel_scale(alpha2, k, tiny());
 }
 
 double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) { return Brdf{}.filtered_ggx_ratio(a, alpha2); }
 double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) { return Brdf{}.ggx_ndf_filtered_matrix(h, a, alpha2); }
-double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
-    return Brdf{}.ggx_brdf_filtered_matrix(i, o, a, alpha2);
-}
+double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) { return Brdf{}.ggx_brdf_filtered_matrix(i, o, a, alpha2); }
 double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
-    return Brdf{}.ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
+  return Brdf{}.ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
 }
-double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) {
-    return Brdf{}.ggx_brdf_filtered_axis(i, o, filtered, alpha2);
-}
+double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) { return Brdf{}.ggx_brdf_filtered_axis(i, o, filtered, alpha2); }
 
 namespace {
 // integral_0^inf e^-w f(w) dw by the trapezoid rule in u = ln w (the integrand is smooth and
 // decays doubly exponentially at both ends in u, so the rule converges geometrically).
 template <class F>
 double exponential_mixture(F f) {
-    constexpr double kStep = 0.02, kLow = -70.0, kHigh = 5.0;
-    double sum = 0.0;
-    for (double u = kLow; u < kHigh; u += kStep) {
-        const double w = std::exp(u);
-        sum += w * std::exp(-w) * f(w);
-    }
-    return sum * kStep;
+  constexpr double kStep = 0.02, kLow = -70.0, kHigh = 5.0;
+  double sum = 0.0;
+  for (double u = kLow; u < kHigh; u += kStep) {
+    const double w = std::exp(u);
+    sum += w * std::exp(-w) * f(w);
+  }
+  return sum * kStep;
 }
 }  // namespace
 
@@ -305,41 +293,35 @@ double exponential_mixture(F f) {
 // P(s) = integral_0^inf e^-w N(s; 0, alpha^2 / (2w) I) dw. Convolving with N(0, k I) adds k to
 // every component's variance.
 double filtered_ggx_slope_density(double rho, double alpha2, double k) {
-    return exponential_mixture([&](double w) {
-        const double variance = alpha2 / (2.0 * w) + k;
-        return std::exp(-rho * rho / (2.0 * variance)) / (2.0 * kPi * variance);
-    });
+  return exponential_mixture([&](double w) {
+    const double variance = alpha2 / (2.0 * w) + k;
+    return std::exp(-rho * rho / (2.0 * variance)) / (2.0 * kPi * variance);
+  });
 }
 
 double filtered_ggx_mass_beyond(double radius, double alpha2, double k) {
-    return exponential_mixture([&](double w) {
-        return std::exp(-radius * radius / (2.0 * (alpha2 / (2.0 * w) + k)));
-    });
+  return exponential_mixture([&](double w) { return std::exp(-radius * radius / (2.0 * (alpha2 / (2.0 * w) + k))); });
 }
 
 // ---------------------------------------------------------------------------------------------
 // The single GGX roughness for the filtered lobe (brdf.hpp): fitted to the core-mass criterion.
 
-double ggx_kernel_scale(double alpha2, double kernel) {
-    return kernel_scale(alpha2, max(kernel, 0.0), kGuardConstantsFp32.tiny_positive);
-}
+double ggx_kernel_scale(double alpha2, double kernel) { return kernel_scale(alpha2, max(kernel, 0.0), kGuardConstantsFp32.tiny_positive); }
 
 double ggx_filtered_alpha2(double alpha2, double kernel) { return Brdf{}.ggx_filtered_alpha2(alpha2, kernel); }
 
 // ---------------------------------------------------------------------------------------------
 // deferred-aniso's lighting pass (template deferred_aniso_roughness / deferred_aniso_brdf).
-Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
-                              double alpha2) {
-    const double cosine = dot(normal_ws, half_vector(p, light_ws, view_ws));
-    return Sym2{alpha2, 0.0, alpha2} + (cosine * cosine) * tensor;
+Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
+  const double cosine = dot(normal_ws, half_vector(p, light_ws, view_ws));
+  return Sym2{alpha2, 0.0, alpha2} + (cosine * cosine) * tensor;
 }
 
-double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
-                           double alpha2) {
-    const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-    const Sym2 a = deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2);
-    return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws),
-                                            to_tangent_space(view_ws, t, b, normal_ws), a, {alpha2, alpha2});
+double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
+  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+  const Sym2 a = deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2);
+  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
+                                          {alpha2, alpha2});
 }
 
 // Fragment wrappers on a quad
@@ -348,35 +330,33 @@ namespace {
 // The half vectors the filtered wrappers differentiate: normalize(i + o), guarded as in
 // half_vector, which keeps i = -o (a zero sum) from putting NaN into the quad.
 Quad<Vec3> filtered_half_vectors(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o) {
-    const auto half = [&](int q) { return half_vector(p, i[q], o[q]); };
-    return {half(0), half(1), half(2), half(3)};
+  const auto half = [&](int q) { return half_vector(p, i[q], o[q]); };
+  return {half(0), half(1), half(2), half(3)};
 }
 }  // namespace
 
 // Template ggx_brdf_filtered_fragment: A = forward_aniso_projected_fragment(alpha2,
 // normalize(i + o)) (T&K 2019 Sec. 3.2), then the matrix GGX BRDF with tau = ax^2 ay^2.
-double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
-                                       Vec2 alpha2, int pixel, Derivative mode) {
-    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
-    const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
-    return Brdf{p}.ggx_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
+double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel, Derivative mode) {
+  const Quad<Vec3> half = filtered_half_vectors(p, i, o);
+  const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
+  return Brdf{p}.ggx_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
 }
 
 // Template ggx_brdf_tail_filtered_fragment: the same kernel, the tail-preserving filtered GGX.
-double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
-                                            Vec2 alpha2, int pixel, Derivative mode) {
-    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
-    const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
-    return Brdf{p}.ggx_brdf_filtered_matrix(i[pixel], o[pixel], a, alpha2);
+double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel,
+                                            Derivative mode) {
+  const Quad<Vec3> half = filtered_half_vectors(p, i, o);
+  const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
+  return Brdf{p}.ggx_brdf_filtered_matrix(i[pixel], o[pixel], a, alpha2);
 }
 
 // Template beckmann_brdf_filtered_fragment: as above with the matrix Beckmann BRDF.
-double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i,
-                                            const Quad<Vec3>& o, Vec2 alpha2, int pixel,
+double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                             Derivative mode) {
-    const Quad<Vec3> half = filtered_half_vectors(p, i, o);
-    const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
-    return Brdf{p}.beckmann_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
+  const Quad<Vec3> half = filtered_half_vectors(p, i, o);
+  const Sym2 a = forward_aniso_projected_fragment_quad(p, alpha2, half, pixel, mode);
+  return Brdf{p}.beckmann_brdf_matrix(i[pixel], o[pixel], a, ndf_clamp_tau(alpha2));
 }
 
 }  // namespace saagen::ref

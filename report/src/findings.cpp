@@ -49,9 +49,12 @@ std::vector<std::string> configurations_of(const render::TradeTable& table, Cont
 
 std::string_view content_name(Content content) {
   switch (content) {
-    case Content::curved: return "curved";
-    case Content::normal_mapped: return "normal-mapped";
-    case Content::bump: return "bump";
+    case Content::curved:
+      return "curved";
+    case Content::normal_mapped:
+      return "normal-mapped";
+    case Content::bump:
+      return "bump";
   }
   return "?";
 }
@@ -80,9 +83,9 @@ Metrics row_metrics(const render::TradeRow& row) {
 namespace {
 
 // The averaged fields of Metrics (max_error is a maximum, cases a count).
-constexpr double Metrics::*kMeanFields[] = {&Metrics::rmse_linear, &Metrics::rmse_tonemapped, &Metrics::flip_ldr,
-                                            &Metrics::flip_hdr,    &Metrics::tde,             &Metrics::tde_excess_flicker,
-                                            &Metrics::tde_lost_motion, &Metrics::flicker,     &Metrics::flicker_display};
+constexpr double Metrics::*kMeanFields[] = {
+    &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,       &Metrics::tde,
+    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display};
 
 }  // namespace
 
@@ -229,9 +232,7 @@ std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const 
   return verdicts;
 }
 
-std::string describe(const Loss& loss) {
-  return fmt::format("{}: {} {:.4g} > {:.4g}", loss.baseline, loss.metric, loss.ours, loss.theirs);
-}
+std::string describe(const Loss& loss) { return fmt::format("{}: {} {:.4g} > {:.4g}", loss.baseline, loss.metric, loss.ours, loss.theirs); }
 
 namespace {
 
@@ -261,7 +262,8 @@ std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector
       const double ours = rec.metrics.*metric.value;
       if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});
       const auto [engine, engine_metrics] = best_engine(table, rec.content, metric.value);
-      if (!engine.empty() && ours > engine_metrics.*metric.value) v.losses.push_back({engine, metric.name, ours, engine_metrics.*metric.value});
+      if (!engine.empty() && ours > engine_metrics.*metric.value)
+        v.losses.push_back({engine, metric.name, ours, engine_metrics.*metric.value});
     }
     for (const SceneVerdict& scene : per_scene)
       if (scene.path == rec.path && content_of(scene.scene) == rec.content && !scene.losses.empty())

@@ -1,12 +1,12 @@
 #include "saagen/report/isa_cost.hpp"
 
-#include "saagen/front/catalogue.hpp"
-#include "saagen/validate/compiler.hpp"
-#include "saagen/products/deferred_pass.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/products/deferred_pass.hpp"
 #include "saagen/report/shading_scene.hpp"
+#include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
 
@@ -25,9 +25,7 @@ const char* const cost_model_name =
     "ISA statistics of Mesa's ACO compiler (RADV null-hardware device, RADV_FORCE_FAMILY): instructions, VGPRs, SGPRs, "
     "subgroups per SIMD, latency and inverse throughput estimates in cycles";
 
-hx::IsaLayout scene_layout() {
-  return {{hx::IsaBinding::storage_buffer(0), hx::IsaBinding::storage_buffer(1)}, 0, {VK_FORMAT_R32_SFLOAT}};
-}
+hx::IsaLayout scene_layout() { return {{hx::IsaBinding::storage_buffer(0), hx::IsaBinding::storage_buffer(1)}, 0, {VK_FORMAT_R32_SFLOAT}}; }
 
 hx::IsaLayout pass_layout(bool tangents) {
   namespace abi = deferred_pass_abi;
@@ -97,13 +95,13 @@ void measure_forward(const hx::IsaCompiler& compiler, const std::string& target,
 // The deferred-pass rows of one family and target: the copy baseline, then every pass.
 void measure_deferred(const hx::IsaCompiler& compiler, const std::string& target, const std::vector<DeferredPass>& passes,
                       std::vector<IsaCostRow>& rows) {
-  const auto baseline = compiler.compute(
-      compute_spirv(target, "deferred_copy", target == "hlsl" ? deferred_copy_hlsl : deferred_copy_glsl), pass_layout(false));
+  const auto baseline = compiler.compute(compute_spirv(target, "deferred_copy", target == "hlsl" ? deferred_copy_hlsl : deferred_copy_glsl),
+                                         pass_layout(false));
   rows.push_back({compiler.family(), isa_deferred_shader, target, isa_baseline, baseline, baseline});
   for (const DeferredPass& pass : passes) {
     const auto spirv = compute_spirv(target, pass.stem, target == "hlsl" ? pass.hlsl : pass.glsl);
-    rows.push_back({compiler.family(), isa_deferred_shader, target, pass.kind.id, compiler.compute(spirv, pass_layout(pass.kind.tangents)),
-                    baseline});
+    rows.push_back(
+        {compiler.family(), isa_deferred_shader, target, pass.kind.id, compiler.compute(spirv, pass_layout(pass.kind.tangents)), baseline});
   }
 }
 
@@ -113,7 +111,8 @@ std::string paper_ratio(const std::string& variant) {
     if (known.id == variant && known.paper_ms) {
       std::array<double, 3> ratios{};
       for (std::size_t scene = 0; scene < 3; ++scene) ratios[scene] = (*known.paper_ms)[scene] / paper_no_saa_ms[scene];
-      return fmt::format("x{:.2f}-{:.2f}", *std::min_element(ratios.begin(), ratios.end()), *std::max_element(ratios.begin(), ratios.end()));
+      return fmt::format("x{:.2f}-{:.2f}", *std::min_element(ratios.begin(), ratios.end()),
+                         *std::max_element(ratios.begin(), ratios.end()));
     }
   }
   return "-";
@@ -162,17 +161,19 @@ std::string format_isa_table(const IsaCostTable& table) {
       text += fmt::format("\n{} ({}), {} shader{}\n", family, stats.device_name,
                           shader == isa_forward_shader ? "forward-shading fragment" : "deferred-pass compute",
                           shader == isa_forward_shader ? " (bench_shading's scene; no SAA = unfiltered GGX)" : " (no SAA = the copy pass)");
-      text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n", "variant", "tgt", "instr", "VGPR", "SGPR",
-                          "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency", shader == isa_forward_shader ? "paper Table 2" : "");
+      text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n", "variant", "tgt", "instr", "VGPR",
+                          "SGPR", "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency",
+                          shader == isa_forward_shader ? "paper Table 2" : "");
     }
     const auto& s = row.statistics;
-    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant, row.target, s.instructions,
-                        s.vgprs, s.sgprs, s.subgroups_per_simd, s.latency, s.inverse_throughput, row.instructions_ratio(),
+    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant, row.target,
+                        s.instructions, s.vgprs, s.sgprs, s.subgroups_per_simd, s.latency, s.inverse_throughput, row.instructions_ratio(),
                         row.inverse_throughput_ratio(), row.latency_ratio(), shader == isa_forward_shader ? paper_ratio(row.variant) : "");
   }
-  text += "\ninstr: ISA instructions; waves: subgroups per SIMD (occupancy); latency, inv.thr: ACO's estimates in cycles per wave\n"
-          "(inverse throughput: the cost at full occupancy); x ...: ratio to no SAA; paper: Tokuyoshi & Kaplanyan 2019 Table 2,\n"
-          "measured time ratio on an RX Vega 56 (vega10) over Sponza, Bistro and San Miguel\n";
+  text +=
+      "\ninstr: ISA instructions; waves: subgroups per SIMD (occupancy); latency, inv.thr: ACO's estimates in cycles per wave\n"
+      "(inverse throughput: the cost at full occupancy); x ...: ratio to no SAA; paper: Tokuyoshi & Kaplanyan 2019 Table 2,\n"
+      "measured time ratio on an RX Vega 56 (vega10) over Sponza, Bistro and San Miguel\n";
   return text;
 }
 
@@ -195,8 +196,11 @@ nlohmann::json isa_json(const IsaCostTable& table) {
                     {"latency_ratio", row.latency_ratio()}});
   }
   // "generator": the ownership tag, so that `--isa-table F` may rewrite its own file without --force.
-  return {{"cost_model", cost_model_name}, {"driver", table.driver}, {"families", table.families},
-          {"generator", std::string(output_tag) + " saagen bench --isa"}, {"rows", rows}};
+  return {{"cost_model", cost_model_name},
+          {"driver", table.driver},
+          {"families", table.families},
+          {"generator", std::string(output_tag) + " saagen bench --isa"},
+          {"rows", rows}};
 }
 
 }  // namespace saagen::report

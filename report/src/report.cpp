@@ -1,9 +1,9 @@
 #include "saagen/report/report.hpp"
 
 #include "saagen/error.hpp"
-#include "saagen/report/findings.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/report/findings.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -20,8 +20,8 @@
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
 #include <stb/stb_easy_font.h>
+#include <stb/stb_image_write.h>
 
 namespace saagen::report {
 namespace {
@@ -44,9 +44,7 @@ double mean(const std::vector<double>& values) {
 
 constexpr double difference_full_scale = 0.25;
 
-std::uint8_t to_byte(double value) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0));
-}
+std::uint8_t to_byte(double value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0)); }
 
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
@@ -161,8 +159,7 @@ std::string grid_png(const render::Image& reference, const std::vector<Tile>& ti
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height * 3, 96);
   for (std::size_t i = 0; i < static_cast<std::size_t>(width) * band * 3; ++i) pixels[i] = 32;
   const auto put = [&](int column, int row, int x, int y, Rgb colour) {
-    const std::size_t index =
-        (static_cast<std::size_t>(band + row * (tile_h + gutter) + y) * width + column * (tile_w + gutter) + x) * 3;
+    const std::size_t index = (static_cast<std::size_t>(band + row * (tile_h + gutter) + y) * width + column * (tile_w + gutter) + x) * 3;
     pixels[index] = colour.r, pixels[index + 1] = colour.g, pixels[index + 2] = colour.b;
   };
   const auto label = [&](int column, const std::string& text) {
@@ -185,7 +182,9 @@ std::string grid_png(const render::Image& reference, const std::vector<Tile>& ti
     }
   }
   std::string png;
-  const auto append = [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size)); };
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
   if (!stbi_write_png_to_func(append, &png, width, height, 3, pixels.data(), width * 3)) throw Error("cannot encode a PNG sheet");
   return with_text_chunk(png, "Software", std::string(output_tag) + " report");
 }
@@ -216,7 +215,8 @@ std::optional<double> cost_of(const CostTable* costs, const std::string& configu
 
 std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable* costs) {
   const bool isa = costs && !costs->isa_family.empty();
-  const bool time = costs && std::any_of(costs->rows.begin(), costs->rows.end(), [](const VariantCost& c) { return c.time_ratio.has_value(); });
+  const bool time =
+      costs && std::any_of(costs->rows.begin(), costs->rows.end(), [](const VariantCost& c) { return c.time_ratio.has_value(); });
   std::vector<std::tuple<std::string, double, double>> points;
   for (const VariantSummary& row : summary) {
     const auto cost = isa ? configuration_isa_cost(costs, row.variant) : cost_of(costs, row.variant, time);
@@ -232,10 +232,14 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
   const auto sy = [&](double y) { return height - bottom - y / y_max * (height - top - bottom); };
   std::ostringstream svg;
   svg << "<!-- " << output_tag << " report -->\n";  // first: where saagen looks for its tag (output.cpp)
-  svg << fmt::format(R"s(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="12">)s", width, height) << "\n";
+  svg << fmt::format(R"s(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="12">)s", width,
+                     height)
+      << "\n";
   svg << fmt::format(R"s(<rect width="{}" height="{}" fill="white"/>)s", width, height) << "\n";
-  svg << fmt::format(R"s(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="black"/><line x1="{0}" y1="{1}" x2="{0}" y2="{3}" stroke="black"/>)s",
-                     left, height - bottom, width - right, top) << "\n";
+  svg << fmt::format(
+             R"s(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="black"/><line x1="{0}" y1="{1}" x2="{0}" y2="{3}" stroke="black"/>)s",
+             left, height - bottom, width - right, top)
+      << "\n";
   for (int tick = 0; tick <= 4; ++tick) {
     const double x = x_min + (x_max - x_min) * tick / 4.0, y = y_max * tick / 4.0;
     svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">{:.3g}</text>)s", sx(x), height - bottom + 18, x) << "\n";
@@ -243,16 +247,20 @@ std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable
   }
   svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">{}</text>)s", (left + width - right) / 2, height - 15,
                      isa    ? "cost: ACO inverse throughput with SAA / without (RADV " + costs->isa_family + ")"
-                     : time ? std::string("cost: GPU time with SAA / without (lavapipe)") : std::string("cost: optimized SPIR-V instructions added")) << "\n";
+                     : time ? std::string("cost: GPU time with SAA / without (lavapipe)")
+                            : std::string("cost: optimized SPIR-V instructions added"))
+      << "\n";
   svg << fmt::format(R"s(<text x="16" y="{}" transform="rotate(-90 16 {})" text-anchor="middle">error: mean tonemapped RMSE</text>)s",
-                     (top + height - bottom) / 2, (top + height - bottom) / 2) << "\n";
+                     (top + height - bottom) / 2, (top + height - bottom) / 2)
+      << "\n";
   for (const auto& [name, x, y] : points) {
-    const std::string colour = name.rfind("engine-", 0) == 0   ? "#e67e22"
-                               : name.rfind("forward", 0) == 0 ? "#c0392b"
+    const std::string colour = name.rfind("engine-", 0) == 0    ? "#e67e22"
+                               : name.rfind("forward", 0) == 0  ? "#c0392b"
                                : name.rfind("deferred", 0) == 0 ? "#2471a3"
-                                                                 : "#555555";
-    svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", sx(x), sy(y),
-                       colour, sx(x) + 8, sy(y) + 4, name) << "\n";
+                                                                : "#555555";
+    svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", sx(x), sy(y), colour,
+                       sx(x) + 8, sy(y) + 4, name)
+        << "\n";
   }
   // Legend: which colour is which family (engines' shipped forms in their own colour).
   const std::pair<const char*, const char*> legend[] = {
@@ -320,19 +328,19 @@ std::string as_html(const TextTable& table) {
   return text + "</table>\n";
 }
 
-const std::vector<std::string> kMetricHeaders{"RMSE linear", "RMSE tonemapped", "LDR-FLIP", "HDR-FLIP", "max error",
+const std::vector<std::string> kMetricHeaders{"RMSE linear", "RMSE tonemapped", "LDR-FLIP",    "HDR-FLIP",        "max error",
                                               "TDE",         "excess flicker",  "lost motion", "flicker tm ratio"};
 
 std::vector<std::string> metric_cells(const Metrics& m) {
-  return {fmt::format("{:.4g}", m.rmse_linear),     fmt::format("{:.4g}", m.rmse_tonemapped),    fmt::format("{:.4f}", m.flip_ldr),
-          fmt::format("{:.4f}", m.flip_hdr),        fmt::format("{:.4g}", m.max_error),          fmt::format("{:.5f}", m.tde),
+  return {fmt::format("{:.4g}", m.rmse_linear),        fmt::format("{:.4g}", m.rmse_tonemapped), fmt::format("{:.4f}", m.flip_ldr),
+          fmt::format("{:.4f}", m.flip_hdr),           fmt::format("{:.4g}", m.max_error),       fmt::format("{:.5f}", m.tde),
           fmt::format("{:.5f}", m.tde_excess_flicker), fmt::format("{:.5f}", m.tde_lost_motion), fmt::format("{:.3f}", m.flicker_display)};
 }
 
 // ISA inverse-throughput ratio (primary), lavapipe time ratio (secondary), SPIR-V delta.
 std::vector<std::string> cost_cells(const CostTable* costs, const std::string& configuration) {
-  return {optional_number(configuration_isa_cost(costs, configuration), "{:.3f}"), optional_number(cost_of(costs, configuration, true), "{:.3f}"),
-          optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
+  return {optional_number(configuration_isa_cost(costs, configuration), "{:.3f}"),
+          optional_number(cost_of(costs, configuration, true), "{:.3f}"), optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
 }
 
 Metrics metrics_of(const VariantSummary& s) {
@@ -380,11 +388,16 @@ std::string percent_change(double ours, double theirs) {
 }
 
 TextTable recommendation_table(const std::vector<Recommendation>& recs, const CostTable* costs) {
-  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "TDE", "HDR-FLIP", "RMSE tonemapped", "ISA inv.thr", "time ratio", "dSPIR-V"}, {}};
+  TextTable t{{"path", "content", "recommended", "LDR-FLIP", "TDE", "HDR-FLIP", "RMSE tonemapped", "ISA inv.thr", "time ratio", "dSPIR-V"},
+              {}};
   for (const Recommendation& r : recs) {
-    std::vector<std::string> cells{std::string(path_name(r.path)), std::string(content_name(r.content)), r.configuration,
-                                   fmt::format("{:.4f}", r.metrics.flip_ldr), fmt::format("{:.5f}", r.metrics.tde),
-                                   fmt::format("{:.4f}", r.metrics.flip_hdr), fmt::format("{:.4g}", r.metrics.rmse_tonemapped)};
+    std::vector<std::string> cells{std::string(path_name(r.path)),
+                                   std::string(content_name(r.content)),
+                                   r.configuration,
+                                   fmt::format("{:.4f}", r.metrics.flip_ldr),
+                                   fmt::format("{:.5f}", r.metrics.tde),
+                                   fmt::format("{:.4f}", r.metrics.flip_hdr),
+                                   fmt::format("{:.4g}", r.metrics.rmse_tonemapped)};
     for (auto& c : cost_cells(costs, r.configuration)) cells.push_back(c);
     t.rows.push_back(cells);
   }
@@ -397,15 +410,15 @@ TextTable switch_table(const std::vector<EngineSwitch>& switches) {
               {}};
   for (const EngineSwitch& s : switches) {
     if (s.configuration.empty()) {
-      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none)", "-", "-",
-                        "-", "-", "-"});
+      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none)", "-",
+                        "-", "-", "-", "-"});
       continue;
     }
-    t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), s.configuration,
-                      fmt::format("{:.4f}", s.saagen_metrics.flip_ldr), percent_change(s.saagen_metrics.flip_ldr, s.engine_metrics.flip_ldr),
-                      percent_change(s.saagen_metrics.tde, s.engine_metrics.tde),
-                      percent_change(s.saagen_metrics.flip_hdr, s.engine_metrics.flip_hdr),
-                      percent_change(s.saagen_metrics.rmse_tonemapped, s.engine_metrics.rmse_tonemapped)});
+    t.rows.push_back(
+        {s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), s.configuration,
+         fmt::format("{:.4f}", s.saagen_metrics.flip_ldr), percent_change(s.saagen_metrics.flip_ldr, s.engine_metrics.flip_ldr),
+         percent_change(s.saagen_metrics.tde, s.engine_metrics.tde), percent_change(s.saagen_metrics.flip_hdr, s.engine_metrics.flip_hdr),
+         percent_change(s.saagen_metrics.rmse_tonemapped, s.engine_metrics.rmse_tonemapped)});
   }
   return t;
 }
@@ -418,8 +431,9 @@ TextTable verdict_table(const std::vector<SceneVerdict>& verdicts) {
     t.rows.push_back({std::string(render::scene_name(v.scene)), std::string(path_name(v.path)), v.configuration,
                       fmt::format("{:.4f}", v.recommended.flip_ldr), fmt::format("{:.5f}", v.recommended.tde),
                       fmt::format("{:.4g}", v.recommended.rmse_tonemapped),
-                      v.losses.empty() ? "yes" : fmt::format("no: {} of {} comparisons lost", v.losses.size(),
-                                                             v.baselines.size() * std::size(kVerdictMetrics))});
+                      v.losses.empty() ? "yes"
+                                       : fmt::format("no: {} of {} comparisons lost", v.losses.size(),
+                                                     v.baselines.size() * std::size(kVerdictMetrics))});
   }
   return t;
 }
@@ -456,7 +470,7 @@ void for_each_finding(const render::TradeTable& table, const CostTable* costs, S
 // "engine-hdrp 0.0150, -20 %"
 std::string against(const std::string& name, double theirs, double ours, int digits) {
   const double percent = theirs > 0.0 ? 100.0 * (ours - theirs) / theirs : 0.0;
-  const std::string change = theirs <= 0.0                ? std::string()
+  const std::string change = theirs <= 0.0               ? std::string()
                              : std::fabs(percent) < 10.0 ? fmt::format(", {:+.1f} %", percent)
                                                          : fmt::format(", {:+.0f} %", percent);
   return fmt::format("{} {:.{}f}{}", name, theirs, digits, change);
@@ -478,7 +492,8 @@ std::string headline(const Verdict& v) {
 // "HDR-FLIP to engine-godot (0.0512 vs 0.0498)", per content-mean loss.
 std::string mean_losses(const Verdict& v) {
   std::vector<std::string> parts;
-  for (const Loss& loss : v.losses) parts.push_back(fmt::format("{} to {} ({:.4g} vs {:.4g})", loss.metric, loss.baseline, loss.ours, loss.theirs));
+  for (const Loss& loss : v.losses)
+    parts.push_back(fmt::format("{} to {} ({:.4g} vs {:.4g})", loss.metric, loss.baseline, loss.ours, loss.theirs));
   return fmt::format("{}", fmt::join(parts, ", "));
 }
 
@@ -493,14 +508,18 @@ std::string scene_losses(const Verdict& v) {
       std::vector<std::string> engines;
       for (const Loss& loss : losses) {
         if (loss.metric != metric.name) continue;
-        if (loss.baseline == "none") none = true;
-        else engines.push_back(loss.baseline);
+        if (loss.baseline == "none")
+          none = true;
+        else
+          engines.push_back(loss.baseline);
       }
       if (!none && engines.empty()) continue;
       std::vector<std::string> whom;
       if (none) whom.push_back("none");
-      if (engines.size() > 2) whom.push_back(fmt::format("{} engines", engines.size()));
-      else whom.insert(whom.end(), engines.begin(), engines.end());
+      if (engines.size() > 2)
+        whom.push_back(fmt::format("{} engines", engines.size()));
+      else
+        whom.insert(whom.end(), engines.begin(), engines.end());
       metrics.push_back(fmt::format("{} ({})", metric.name, fmt::join(whom, " + ")));
     }
     scenes.push_back(fmt::format("{}: {}", render::scene_name(scene), fmt::join(metrics, ", ")));
@@ -521,9 +540,8 @@ std::vector<std::string> verdict_lines(const Verdict& v) {
 // Verdicts grouped by render path, then content type.
 std::vector<Verdict> ordered_verdicts(const render::TradeTable& table) {
   std::vector<Verdict> all = verdicts(table, recommend(table));
-  std::stable_sort(all.begin(), all.end(), [](const Verdict& a, const Verdict& b) {
-    return a.recommendation.path < b.recommendation.path;
-  });
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Verdict& a, const Verdict& b) { return a.recommendation.path < b.recommendation.path; });
   return all;
 }
 
@@ -569,16 +587,19 @@ std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Ver
     std::vector<std::pair<std::string, std::string>> columns{{"none", "none"}};  // label, configuration
     for (const Verdict& v : all) {
       if (v.recommendation.content != content_of(scene)) continue;
-      if (!v.best_engine_image.empty() && columns.size() == 1) columns.emplace_back("best engine: " + v.best_engine_image, v.best_engine_image);
-      columns.emplace_back(fmt::format("{}: {}", path_name(v.recommendation.path), v.recommendation.configuration), v.recommendation.configuration);
+      if (!v.best_engine_image.empty() && columns.size() == 1)
+        columns.emplace_back("best engine: " + v.best_engine_image, v.best_engine_image);
+      columns.emplace_back(fmt::format("{}: {}", path_name(v.recommendation.path), v.recommendation.configuration),
+                           v.recommendation.configuration);
     }
     std::vector<Tile> tiles;
     std::vector<std::string> labels{"ground truth"};
     for (const auto& [label, configuration] : columns)
       if (const auto* rendered = find_rendered(*set, configuration)) tiles.push_back({label, &rendered->image}), labels.push_back(label);
-    out.push_back({strip_name(scene),
-                   fmt::format("{}, alpha {} (where no SAA errs most): {}", render::scene_name(scene), set->material.alpha, fmt::join(labels, ", ")),
-                   grid_png(set->reference, tiles)});
+    out.push_back(
+        {strip_name(scene),
+         fmt::format("{}, alpha {} (where no SAA errs most): {}", render::scene_name(scene), set->material.alpha, fmt::join(labels, ", ")),
+         grid_png(set->reference, tiles)});
   }
   return out;
 }
@@ -598,23 +619,27 @@ const char* kMetricNote =
 std::string html_escape(std::string_view text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
 
 std::string config_line(const render::TradeTable& table) {
   const render::TradeConfig& c = table.config;
-  return fmt::format("{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
-                     "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
-                     "ground truth {:.1f} s ({} cache hits, {} misses)",
-                     c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x,
-                     c.pan_pixels_per_frame.y, c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2,
-                     c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds,
-                     table.cache_hits, table.cache_misses);
+  return fmt::format(
+      "{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
+      "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
+      "ground truth {:.1f} s ({} cache hits, {} misses)",
+      c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x, c.pan_pixels_per_frame.y,
+      c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2, c.params.kappa,
+      c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds, table.cache_hits, table.cache_misses);
 }
 
 // Per scene and path with losses: "scene, path, configuration" and each loss.
@@ -634,8 +659,8 @@ constexpr const char* kLossListTitle = "Where the recommendation loses, per scen
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips) {
   std::ostringstream md;
-  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n("
-     << kVerdictNote << ")\n\n";
+  md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n(" << kVerdictNote
+     << ")\n\n";
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     md << "- **" << lines.front() << "**\n";
@@ -645,7 +670,9 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   for (const Strip& strip : image_strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
   md << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
   if (costs) md << "Cost: " << costs->describe() << ".\n\n";
-  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { md << "## " << title << "\n\n" << as_markdown(t) << "\n"; });
+  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) {
+    md << "## " << title << "\n\n" << as_markdown(t) << "\n";
+  });
   md << "## " << kLossListTitle << "\n\n";
   for (const auto& [heading, items] : loss_lists(table)) {
     md << "- " << heading << "\n";
@@ -663,7 +690,8 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
 }
 
 std::string html_verdict(const render::TradeTable& table) {
-  std::string html = fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(kVerdictNote));
+  std::string html =
+      fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(kVerdictNote));
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     html += "<li><b>" + html_escape(lines.front()) + "</b>";
@@ -687,7 +715,8 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
                         const std::vector<std::string>& sheets, const std::vector<std::string>& columns,
                         const std::vector<Strip>& image_strips) {
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<!-- " << output_tag << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
+  html << "<!DOCTYPE html>\n<!-- " << output_tag
+       << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
           "<style>body{font-family:sans-serif;margin:2em;max-width:1500px}table{border-collapse:collapse}"
           "td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}th{background:#eee}img{max-width:100%}"
           "ul.verdict li{margin-bottom:0.6em}figure{margin:1em 0}</style>\n"
@@ -696,11 +725,13 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   html << "<h2>Per scene: ground truth, no SAA, best engine form, recommendation</h2>\n<p>Top: images; bottom: tonemapped difference "
           "from the ground truth (red brighter, blue darker, full colour at 0.25).</p>\n";
   for (const Strip& strip : image_strips)
-    html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>" << html_escape(strip.caption)
-         << "</figcaption></figure>\n";
+    html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>"
+         << html_escape(strip.caption) << "</figcaption></figure>\n";
   html << "<p>" << html_escape(config_line(table)) << "</p>\n<p>" << html_escape(kMetricNote) << "</p>\n";
   if (costs) html << "<p>Cost: " << html_escape(costs->describe()) << ".</p>\n";
-  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) { html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t); });
+  for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) {
+    html << "<h2>" << html_escape(title) << "</h2>\n" << as_html(t);
+  });
   html << html_loss_lists(table);
   html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
   for (Content content : kContents)
@@ -730,7 +761,8 @@ const VariantCost* CostTable::find(std::string_view variant) const {
 
 std::string CostTable::describe() const {
   std::vector<std::string> models;
-  if (!isa_family.empty()) models.push_back(fmt::format("ISA inv.thr: ACO inverse-throughput ratio on RADV {} (null hardware, `saagen bench --isa`)", isa_family));
+  if (!isa_family.empty())
+    models.push_back(fmt::format("ISA inv.thr: ACO inverse-throughput ratio on RADV {} (null hardware, `saagen bench --isa`)", isa_family));
   if (!source.empty()) models.push_back(fmt::format("time ratio and dSPIR-V: {} ({})", source, device));
   return models.empty() ? std::string("no cost model") : fmt::format("{}", fmt::join(models, "; "));
 }
@@ -883,11 +915,16 @@ std::string format_verdict(const render::TradeTable& table) {
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
-    nlohmann::json entry = {{"variant", row.variant},         {"error", row.flip_ldr},
-                            {"rmse_tonemapped", row.rmse_tonemapped}, {"rmse_linear", row.rmse_linear},
-                            {"flip_hdr", row.flip_hdr},        {"tde", row.tde},
-                            {"tde_excess_flicker", row.tde_excess_flicker}, {"tde_lost_motion", row.tde_lost_motion},
-                            {"flicker", row.flicker},          {"flicker_display", row.flicker_display}};
+    nlohmann::json entry = {{"variant", row.variant},
+                            {"error", row.flip_ldr},
+                            {"rmse_tonemapped", row.rmse_tonemapped},
+                            {"rmse_linear", row.rmse_linear},
+                            {"flip_hdr", row.flip_hdr},
+                            {"tde", row.tde},
+                            {"tde_excess_flicker", row.tde_excess_flicker},
+                            {"tde_lost_motion", row.tde_lost_motion},
+                            {"flicker", row.flicker},
+                            {"flicker_display", row.flicker_display}};
     if (const auto ratio = configuration_isa_cost(costs, row.variant); ratio && costs && !costs->isa_family.empty()) {
       entry["isa_inverse_throughput_ratio"] = *ratio;
       entry["isa_family"] = costs->isa_family;
@@ -898,12 +935,22 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
   }
   nlohmann::json cases = nlohmann::json::array();
   for (const render::TradeRow& row : table.rows) {
-    cases.push_back({{"scene", std::string(render::scene_name(row.scene))}, {"alpha", row.alpha}, {"fresnel", row.fresnel},
-                     {"variant", id_of(row.variant)}, {"feed", std::string(render::feed_name(row.feed))},
-                     {"configuration", render::configuration_id(row)}, {"rmse_linear", row.rmse_linear},
-                     {"rmse_tonemapped", row.rmse_tonemapped}, {"max_error", row.max_error}, {"flip_ldr", row.flip_ldr},
-                     {"flip_hdr", row.flip_hdr}, {"tde", row.tde}, {"tde_excess_flicker", row.tde_excess_flicker},
-                     {"tde_lost_motion", row.tde_lost_motion}, {"flicker", row.flicker}, {"flicker_display", row.flicker_display}});
+    cases.push_back({{"scene", std::string(render::scene_name(row.scene))},
+                     {"alpha", row.alpha},
+                     {"fresnel", row.fresnel},
+                     {"variant", id_of(row.variant)},
+                     {"feed", std::string(render::feed_name(row.feed))},
+                     {"configuration", render::configuration_id(row)},
+                     {"rmse_linear", row.rmse_linear},
+                     {"rmse_tonemapped", row.rmse_tonemapped},
+                     {"max_error", row.max_error},
+                     {"flip_ldr", row.flip_ldr},
+                     {"flip_hdr", row.flip_hdr},
+                     {"tde", row.tde},
+                     {"tde_excess_flicker", row.tde_excess_flicker},
+                     {"tde_lost_motion", row.tde_lost_motion},
+                     {"flicker", row.flicker},
+                     {"flicker_display", row.flicker_display}});
   }
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
@@ -912,9 +959,14 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
     for (const std::string& id : configurations(table)) {
       const Metrics m = mean_metrics(table, id, keep);
       if (!m.cases) continue;
-      by_content.push_back({{"content", std::string(content_name(content))}, {"configuration", id}, {"error", m.flip_ldr},
-                            {"rmse_tonemapped", m.rmse_tonemapped}, {"flip_hdr", m.flip_hdr}, {"tde", m.tde},
-                            {"tde_excess_flicker", m.tde_excess_flicker}, {"tde_lost_motion", m.tde_lost_motion},
+      by_content.push_back({{"content", std::string(content_name(content))},
+                            {"configuration", id},
+                            {"error", m.flip_ldr},
+                            {"rmse_tonemapped", m.rmse_tonemapped},
+                            {"flip_hdr", m.flip_hdr},
+                            {"tde", m.tde},
+                            {"tde_excess_flicker", m.tde_excess_flicker},
+                            {"tde_lost_motion", m.tde_lost_motion},
                             {"flicker_display", m.flicker_display}});
     }
   }
@@ -922,7 +974,9 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
           {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
           {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
           {"config", config_line(table)},
-          {"rows", rows}, {"by_content", by_content}, {"cases", cases}};
+          {"rows", rows},
+          {"by_content", by_content},
+          {"cases", cases}};
 }
 
 std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {

@@ -3,8 +3,8 @@
 // wrapper, and the same shading without SAA.
 #include "saagen/report/shading_scene.hpp"
 
-#include "saagen/validate/compiler.hpp"
 #include "saagen/error.hpp"
+#include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
@@ -51,7 +51,7 @@ std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t 
   return {
       {"real", "alpha2_material", {0.0025f}},  // alpha = 0.05
       {"real2", "inverse_size", {1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height)}},
-      {"real", "tan_half_fov", {0.5f}},  // about 53 degrees vertically
+      {"real", "tan_half_fov", {0.5f}},                     // about 53 degrees vertically
       {"real3", "light_direction", {-0.45f, 0.55f, 0.7f}},  // towards the light: upper left, in front
       {"real", "centre_distance", {3.0f}},
       {"real", "radius", {1.25f}},           // the sphere covers about 65% of the frame
@@ -193,7 +193,9 @@ std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const s
   compile.stage = ShaderStage::fragment;
   compile.sources = kernel_sources(Catalogue::builtin(), file_name, content, request);
   const CompileResult compiled = compile_to_spirv(compile);
-  if (!compiled.ok) throw Error(fmt::format("{} {}: the scene shader does not compile: {}", target, file_name, compiled.log.substr(0, compiled.log.find('\n'))));
+  if (!compiled.ok)
+    throw Error(
+        fmt::format("{} {}: the scene shader does not compile: {}", target, file_name, compiled.log.substr(0, compiled.log.find('\n'))));
   std::vector<std::uint32_t> optimized = optimize_spirv(compiled.spirv, ClientApi::vulkan);
   if (optimized.empty()) throw Error(fmt::format("{} {}: spirv-opt failed on the scene shader", target, file_name));
   return optimized;

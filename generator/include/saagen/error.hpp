@@ -20,14 +20,18 @@ inline std::string one_line(std::string_view message) {
   line.reserve(message.size());
   for (const char c : message) {
     const auto byte = static_cast<unsigned char>(c);
-    if (c == '\n') line += "\\n";
-    else if (c == '\r') line += "\\r";
-    else if (c == '\t') line += "\\t";
+    if (c == '\n')
+      line += "\\n";
+    else if (c == '\r')
+      line += "\\r";
+    else if (c == '\t')
+      line += "\\t";
     else if (byte < 0x20 || byte == 0x7f) {
       char escaped[8];
       std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
       line += escaped;
-    } else line += c;
+    } else
+      line += c;
   }
   if (line.size() <= max_message_bytes) return line;
   constexpr std::size_t keep = (max_message_bytes - 64) / 2;

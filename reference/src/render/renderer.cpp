@@ -1,16 +1,16 @@
 // Ground truth and 1-spp variant images (see renderer.hpp).
 #include "saagen/reference/render/renderer.hpp"
 
+#include "saagen/reference/brdf.hpp"
+#include "saagen/reference/prefilter.hpp"
+#include "saagen/reference/render/engines.hpp"
+#include "saagen/reference/render/parallel.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
-
-#include "saagen/reference/brdf.hpp"
-#include "saagen/reference/prefilter.hpp"
-#include "saagen/reference/render/engines.hpp"
-#include "saagen/reference/render/parallel.hpp"
 
 namespace saagen::render {
 
@@ -43,346 +43,359 @@ constexpr std::array<Variant, 6> kAllEngines{
 
 // The shading vectors of a hit: i, o in world space and in the tangent frame, E.
 struct LocalShading {
-    Vec3 to_light, to_view, light_ts, view_ts;
-    double irradiance = 0.0;
+  Vec3 to_light, to_view, light_ts, view_ts;
+  double irradiance = 0.0;
 };
 
 LocalShading local_shading(const Scene& scene, const Ray& ray, const SurfaceHit& hit) {
-    LocalShading s;
-    scene.light().at(hit.position, s.to_light, s.irradiance);
-    s.to_view = -1.0 * ray.direction;
-    s.light_ts = to_tangent_space(s.to_light, hit.tangent, hit.bitangent, hit.normal);
-    s.view_ts = to_tangent_space(s.to_view, hit.tangent, hit.bitangent, hit.normal);
-    return s;
+  LocalShading s;
+  scene.light().at(hit.position, s.to_light, s.irradiance);
+  s.to_view = -1.0 * ray.direction;
+  s.light_ts = to_tangent_space(s.to_light, hit.tangent, hit.bitangent, hit.normal);
+  s.view_ts = to_tangent_space(s.to_view, hit.tangent, hit.bitangent, hit.normal);
+  return s;
 }
 
 }  // namespace
 
 double schlick_fresnel(double cos_theta, double f0) {
-    const double c = ref::saturate(cos_theta);
-    const double m = 1.0 - c;
-    const double m2 = m * m;
-    return f0 + (1.0 - f0) * m2 * m2 * m;
+  const double c = ref::saturate(cos_theta);
+  const double m = 1.0 - c;
+  const double m2 = m * m;
+  return f0 + (1.0 - f0) * m2 * m2 * m;
 }
 
 std::string_view variant_id(Variant v) {
-    switch (v) {
-        case Variant::none: return "none";
-        case Variant::forward_aniso_slope: return "forward-aniso-slope";
-        case Variant::forward_aniso_projected: return "forward-aniso-projected";
-        case Variant::forward_axis_slope: return "forward-axis-slope";
-        case Variant::forward_axis_projected: return "forward-axis-projected";
-        case Variant::deferred_previous: return "deferred-previous";
-        case Variant::deferred_max: return "deferred-max";
-        case Variant::deferred_max_tangent_free: return "deferred-max-tangent-free";
-        case Variant::deferred_sum: return "deferred-sum";
-        case Variant::deferred_avg: return "deferred-avg";
-        case Variant::deferred_projected_space: return "deferred-projected-space";
-        case Variant::deferred_aniso: return "deferred-aniso";
-        case Variant::engine_hdrp: return "engine-hdrp";
-        case Variant::engine_filament: return "engine-filament";
-        case Variant::engine_godot: return "engine-godot";
-        case Variant::engine_unreal: return "engine-unreal";
-        case Variant::engine_threejs: return "engine-threejs";
-        case Variant::engine_babylon: return "engine-babylon";
-    }
-    return "?";
+  switch (v) {
+    case Variant::none:
+      return "none";
+    case Variant::forward_aniso_slope:
+      return "forward-aniso-slope";
+    case Variant::forward_aniso_projected:
+      return "forward-aniso-projected";
+    case Variant::forward_axis_slope:
+      return "forward-axis-slope";
+    case Variant::forward_axis_projected:
+      return "forward-axis-projected";
+    case Variant::deferred_previous:
+      return "deferred-previous";
+    case Variant::deferred_max:
+      return "deferred-max";
+    case Variant::deferred_max_tangent_free:
+      return "deferred-max-tangent-free";
+    case Variant::deferred_sum:
+      return "deferred-sum";
+    case Variant::deferred_avg:
+      return "deferred-avg";
+    case Variant::deferred_projected_space:
+      return "deferred-projected-space";
+    case Variant::deferred_aniso:
+      return "deferred-aniso";
+    case Variant::engine_hdrp:
+      return "engine-hdrp";
+    case Variant::engine_filament:
+      return "engine-filament";
+    case Variant::engine_godot:
+      return "engine-godot";
+    case Variant::engine_unreal:
+      return "engine-unreal";
+    case Variant::engine_threejs:
+      return "engine-threejs";
+    case Variant::engine_babylon:
+      return "engine-babylon";
+  }
+  return "?";
 }
 
 std::optional<Variant> variant_from_id(std::string_view id) {
-    for (Variant v : kAllVariants)
-        if (variant_id(v) == id) return v;
-    for (Variant v : kAllEngines)
-        if (variant_id(v) == id) return v;
-    return std::nullopt;
+  for (Variant v : kAllVariants)
+    if (variant_id(v) == id) return v;
+  for (Variant v : kAllEngines)
+    if (variant_id(v) == id) return v;
+  return std::nullopt;
 }
 
 std::span<const Variant> all_variants() { return kAllVariants; }
 std::span<const Variant> all_engines() { return kAllEngines; }
 
-bool is_engine(Variant v) {
-    return std::find(kAllEngines.begin(), kAllEngines.end(), v) != kAllEngines.end();
-}
+bool is_engine(Variant v) { return std::find(kAllEngines.begin(), kAllEngines.end(), v) != kAllEngines.end(); }
 
-std::string_view feed_name(NormalFeed feed) {
-    return feed == NormalFeed::shading ? "shading" : "geometric";
-}
+std::string_view feed_name(NormalFeed feed) { return feed == NormalFeed::shading ? "shading" : "geometric"; }
 
 std::string_view prefilter_name(Prefilter prefilter) {
-    switch (prefilter) {
-        case Prefilter::none: return "none";
-        case Prefilter::toksvig: return "toksvig";
-        case Prefilter::lean: return "lean";
-    }
-    return "?";
+  switch (prefilter) {
+    case Prefilter::none:
+      return "none";
+    case Prefilter::toksvig:
+      return "toksvig";
+    case Prefilter::lean:
+      return "lean";
+  }
+  return "?";
 }
 
 std::string_view lobe_name(Lobe lobe) {
-    switch (lobe) {
-        case Lobe::papers: return "papers";
-        case Lobe::tail: return "tail";
-        case Lobe::mapped: return "mapped";
-    }
-    return "?";
+  switch (lobe) {
+    case Lobe::papers:
+      return "papers";
+    case Lobe::tail:
+      return "tail";
+    case Lobe::mapped:
+      return "mapped";
+  }
+  return "?";
 }
 
 NormalFeed engine_feed(Variant engine) {
-    switch (engine) {
-        case Variant::engine_godot:
-        case Variant::engine_babylon: return NormalFeed::shading;
-        default: return NormalFeed::geometric;
-    }
+  switch (engine) {
+    case Variant::engine_godot:
+    case Variant::engine_babylon:
+      return NormalFeed::shading;
+    default:
+      return NormalFeed::geometric;
+  }
 }
 
-double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
-                         bool fresnel) {
-    if (!(light_ts.z > 0.0)) return 0.0;
-    double value = brdf * light_ts.z * irradiance;
-    if (fresnel) {
-        const Vec3 h = normalize(light_ts + view_ts);
-        value *= schlick_fresnel(dot(light_ts, h));
-    }
-    return value;
+double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance, bool fresnel) {
+  if (!(light_ts.z > 0.0)) return 0.0;
+  double value = brdf * light_ts.z * irradiance;
+  if (fresnel) {
+    const Vec3 h = normalize(light_ts + view_ts);
+    value *= schlick_fresnel(dot(light_ts, h));
+  }
+  return value;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Ground truth
 
-GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
-                                std::span<const Material> materials,
+GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials,
                                 const SampleProgress& progress) {
-    if (settings.width <= 0 || settings.height <= 0 || settings.strata <= 0)
-        throw std::invalid_argument("render_ground_truth: bad image size or strata");
-    // The default filter is built once per process; other variances/truncations per call.
-    const bool default_filter =
-        settings.filter_variance == 0.25 && settings.filter_truncation == 3.0;
-    std::optional<GaussianPixelFilter> custom_filter;
-    if (!default_filter)
-        custom_filter.emplace(settings.filter_variance, settings.filter_truncation);
-    const GaussianPixelFilter& filter = default_filter ? default_pixel_filter() : *custom_filter;
+  if (settings.width <= 0 || settings.height <= 0 || settings.strata <= 0)
+    throw std::invalid_argument("render_ground_truth: bad image size or strata");
+  // The default filter is built once per process; other variances/truncations per call.
+  const bool default_filter = settings.filter_variance == 0.25 && settings.filter_truncation == 3.0;
+  std::optional<GaussianPixelFilter> custom_filter;
+  if (!default_filter) custom_filter.emplace(settings.filter_variance, settings.filter_truncation);
+  const GaussianPixelFilter& filter = default_filter ? default_pixel_filter() : *custom_filter;
 
-    const int w = settings.width, h = settings.height;
-    GroundTruth gt;
-    gt.images.assign(materials.size(), Image(w, h));
-    gt.coverage = Image(w, h);
-    const std::size_t n_materials = materials.size();
-    const std::size_t spp = static_cast<std::size_t>(settings.strata) * settings.strata;
+  const int w = settings.width, h = settings.height;
+  GroundTruth gt;
+  gt.images.assign(materials.size(), Image(w, h));
+  gt.coverage = Image(w, h);
+  const std::size_t n_materials = materials.size();
+  const std::size_t spp = static_cast<std::size_t>(settings.strata) * settings.strata;
 
-    auto render_row = [&](int y) {
-        std::vector<FilmOffset> offsets;
-        std::vector<double> sums(n_materials);
-        for (int x = 0; x < w; ++x) {
-            Rng rng(pixel_seed(settings.seed, x, y));
-            stratified_filter_offsets(filter, settings.strata, rng, offsets);
-            std::fill(sums.begin(), sums.end(), 0.0);
-            std::size_t hits = 0;
-            for (const FilmOffset& off : offsets) {
-                const Ray ray = scene.camera().generate(x + 0.5 + off.dx, y + 0.5 + off.dy, w, h);
-                SurfaceHit hit;
-                if (!scene.intersect(ray, hit)) continue;
-                ++hits;
-                const LocalShading s = local_shading(scene, ray, hit);
-                if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
-                const Vec3 half = normalize(s.light_ts + s.view_ts);
-                const double fresnel = schlick_fresnel(dot(s.light_ts, half));
-                const double common = s.light_ts.z * s.irradiance;
-                double last_alpha = -1.0, last_brdf = 0.0;
-                for (std::size_t m = 0; m < n_materials; ++m) {
-                    const double alpha = materials[m].alpha;
-                    if (alpha != last_alpha) {
-                        const double a2 = alpha * alpha;
-                        last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
-                        last_alpha = alpha;
-                    }
-                    sums[m] += last_brdf * common * (materials[m].fresnel ? fresnel : 1.0);
-                }
-            }
-            const double inv = 1.0 / static_cast<double>(spp);
-            for (std::size_t m = 0; m < n_materials; ++m)
-                gt.images[m].at(x, y) = static_cast<float>(sums[m] * inv);
-            gt.coverage.at(x, y) = static_cast<float>(static_cast<double>(hits) * inv);
+  auto render_row = [&](int y) {
+    std::vector<FilmOffset> offsets;
+    std::vector<double> sums(n_materials);
+    for (int x = 0; x < w; ++x) {
+      Rng rng(pixel_seed(settings.seed, x, y));
+      stratified_filter_offsets(filter, settings.strata, rng, offsets);
+      std::fill(sums.begin(), sums.end(), 0.0);
+      std::size_t hits = 0;
+      for (const FilmOffset& off : offsets) {
+        const Ray ray = scene.camera().generate(x + 0.5 + off.dx, y + 0.5 + off.dy, w, h);
+        SurfaceHit hit;
+        if (!scene.intersect(ray, hit)) continue;
+        ++hits;
+        const LocalShading s = local_shading(scene, ray, hit);
+        if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
+        const Vec3 half = normalize(s.light_ts + s.view_ts);
+        const double fresnel = schlick_fresnel(dot(s.light_ts, half));
+        const double common = s.light_ts.z * s.irradiance;
+        double last_alpha = -1.0, last_brdf = 0.0;
+        for (std::size_t m = 0; m < n_materials; ++m) {
+          const double alpha = materials[m].alpha;
+          if (alpha != last_alpha) {
+            const double a2 = alpha * alpha;
+            last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
+            last_alpha = alpha;
+          }
+          sums[m] += last_brdf * common * (materials[m].fresnel ? fresnel : 1.0);
         }
-    };
+      }
+      const double inv = 1.0 / static_cast<double>(spp);
+      for (std::size_t m = 0; m < n_materials; ++m) gt.images[m].at(x, y) = static_cast<float>(sums[m] * inv);
+      gt.coverage.at(x, y) = static_cast<float>(static_cast<double>(hits) * inv);
+    }
+  };
 
-    const std::uint64_t total = static_cast<std::uint64_t>(w) * h * spp;
-    std::function<void(int)> row_progress;
-    if (progress)
-        row_progress = [&](int rows_done) {
-            progress(static_cast<std::uint64_t>(rows_done) * w * spp, total);
-        };
-    parallel_rows(h, settings.threads, render_row, row_progress);
-    return gt;
+  const std::uint64_t total = static_cast<std::uint64_t>(w) * h * spp;
+  std::function<void(int)> row_progress;
+  if (progress) row_progress = [&](int rows_done) { progress(static_cast<std::uint64_t>(rows_done) * w * spp, total); };
+  parallel_rows(h, settings.threads, render_row, row_progress);
+  return gt;
 }
 
 // ---------------------------------------------------------------------------------------------
 // 1-spp fields
 
 Vec2 tangent_plane_uv(const SurfaceHit& shaded, const Ray& ray) {
-    const Vec3 plane_normal = ref::cross(shaded.dpdu, shaded.dpdv);
-    const double denominator = dot(ray.direction, plane_normal);
-    if (denominator == 0.0) return shaded.uv;
-    // o + t d on the plane: (o + t d - p) . m = 0.
-    const double t = dot(shaded.position - ray.origin, plane_normal) / denominator;
-    if (!(t > 0.0)) return shaded.uv;
-    const Vec3 offset = ray.origin + t * ray.direction - shaded.position;
-    // Normal equations of offset = a dpdu + b dpdv: G (a, b) = (offset . dpdu, offset . dpdv).
-    const double g_uu = dot(shaded.dpdu, shaded.dpdu), g_uv = dot(shaded.dpdu, shaded.dpdv),
-                 g_vv = dot(shaded.dpdv, shaded.dpdv);
-    const double det = g_uu * g_vv - g_uv * g_uv;
-    if (!(det > 0.0)) return shaded.uv;
-    const double r_u = dot(offset, shaded.dpdu), r_v = dot(offset, shaded.dpdv);
-    return shaded.uv + Vec2{(g_vv * r_u - g_uv * r_v) / det, (g_uu * r_v - g_uv * r_u) / det};
+  const Vec3 plane_normal = ref::cross(shaded.dpdu, shaded.dpdv);
+  const double denominator = dot(ray.direction, plane_normal);
+  if (denominator == 0.0) return shaded.uv;
+  // o + t d on the plane: (o + t d - p) . m = 0.
+  const double t = dot(shaded.position - ray.origin, plane_normal) / denominator;
+  if (!(t > 0.0)) return shaded.uv;
+  const Vec3 offset = ray.origin + t * ray.direction - shaded.position;
+  // Normal equations of offset = a dpdu + b dpdv: G (a, b) = (offset . dpdu, offset . dpdv).
+  const double g_uu = dot(shaded.dpdu, shaded.dpdu), g_uv = dot(shaded.dpdu, shaded.dpdv), g_vv = dot(shaded.dpdv, shaded.dpdv);
+  const double det = g_uu * g_vv - g_uv * g_uv;
+  if (!(det > 0.0)) return shaded.uv;
+  const double r_u = dot(offset, shaded.dpdu), r_v = dot(offset, shaded.dpdv);
+  return shaded.uv + Vec2{(g_vv * r_u - g_uv * r_v) / det, (g_uu * r_v - g_uv * r_u) / det};
 }
 
-Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py,
-                     int width, int height) {
-    const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
-    const bool inside = px >= 0 && py >= 0 && px < width && py < height;
-    SurfaceHit partner;
-    if (inside && scene.intersect_surface(ray, partner) && partner.object == object)
-        return partner.uv;
-    return tangent_plane_uv(shaded, ray);
+Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py, int width, int height) {
+  const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
+  const bool inside = px >= 0 && py >= 0 && px < width && py < height;
+  SurfaceHit partner;
+  if (inside && scene.intersect_surface(ray, partner) && partner.object == object) return partner.uv;
+  return tangent_plane_uv(shaded, ray);
 }
 
-UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y,
-                                    int width, int height) {
-    const int x0 = x & ~1, y0 = y & ~1;
-    // Quad pixels 0 = (x0, y0), 1 = (x0 + 1, y0), 2 = (x0, y0 + 1); the shaded pixel uses its
-    // own hit.
-    auto uv_at = [&](int px, int py) {
-        if (px == x && py == y) return shaded.uv;
-        return quad_partner_uv(scene, shaded, shaded.object, px, py, width, height);
-    };
-    const Vec2 uv0 = uv_at(x0, y0);
-    return {uv_at(x0 + 1, y0) - uv0, uv_at(x0, y0 + 1) - uv0};
+UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y, int width, int height) {
+  const int x0 = x & ~1, y0 = y & ~1;
+  // Quad pixels 0 = (x0, y0), 1 = (x0 + 1, y0), 2 = (x0, y0 + 1); the shaded pixel uses its
+  // own hit.
+  auto uv_at = [&](int px, int py) {
+    if (px == x && py == y) return shaded.uv;
+    return quad_partner_uv(scene, shaded, shaded.object, px, py, width, height);
+  };
+  const Vec2 uv0 = uv_at(x0, y0);
+  return {uv_at(x0 + 1, y0) - uv0, uv_at(x0, y0 + 1) - uv0};
 }
 
 PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height) {
-    PixelFields f;
-    f.frag_coord = {x + 0.5, y + 0.5};
-    const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
-    SurfaceHit hit;
-    if (!scene.intersect_surface(ray, hit)) return f;
-    if (const NormalMap* map = scene.normal_map()) {
-        // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
-        const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
-        f.has_normal_map = true;
-        f.duv_dx = d.ddx;
-        f.duv_dy = d.ddy;
-        f.lod = map->lod(d.ddx, d.ddy);
-        f.texel = map->trilinear(hit.uv, f.lod);
-        Scene::apply_normal_map(hit, normalize(f.texel.normal));
-    }
-    const LocalShading s = local_shading(scene, ray, hit);
-    f.hit = true;
-    f.object = hit.object;
-    f.position = hit.position;
-    f.normal = hit.normal;
-    f.tangent = hit.tangent;
-    f.bitangent = hit.bitangent;
-    f.to_light = s.to_light;
-    f.to_view = s.to_view;
-    f.irradiance = s.irradiance;
-    f.light_ts = s.light_ts;
-    f.view_ts = s.view_ts;
-    f.half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent,
-                                 hit.normal);
-    f.geometric_normal = hit.geometric_normal;
-    f.geometric_tangent = hit.geometric_tangent;
-    f.geometric_bitangent = hit.geometric_bitangent;
-    f.geometric_half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent,
-                                           hit.geometric_bitangent, hit.geometric_normal);
-    f.uv = hit.uv;
-    return f;
+  PixelFields f;
+  f.frag_coord = {x + 0.5, y + 0.5};
+  const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
+  SurfaceHit hit;
+  if (!scene.intersect_surface(ray, hit)) return f;
+  if (const NormalMap* map = scene.normal_map()) {
+    // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+    const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
+    f.has_normal_map = true;
+    f.duv_dx = d.ddx;
+    f.duv_dy = d.ddy;
+    f.lod = map->lod(d.ddx, d.ddy);
+    f.texel = map->trilinear(hit.uv, f.lod);
+    Scene::apply_normal_map(hit, normalize(f.texel.normal));
+  }
+  const LocalShading s = local_shading(scene, ray, hit);
+  f.hit = true;
+  f.object = hit.object;
+  f.position = hit.position;
+  f.normal = hit.normal;
+  f.tangent = hit.tangent;
+  f.bitangent = hit.bitangent;
+  f.to_light = s.to_light;
+  f.to_view = s.to_view;
+  f.irradiance = s.irradiance;
+  f.light_ts = s.light_ts;
+  f.view_ts = s.view_ts;
+  f.half_ts = to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent, hit.normal);
+  f.geometric_normal = hit.geometric_normal;
+  f.geometric_tangent = hit.geometric_tangent;
+  f.geometric_bitangent = hit.geometric_bitangent;
+  f.geometric_half_ts =
+      to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal);
+  f.uv = hit.uv;
+  return f;
 }
 
 GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
-    GBuffer g;
-    g.width = width;
-    g.height = height;
-    g.pixels.resize(static_cast<std::size_t>(width) * height);
-    parallel_rows(height, threads, [&](int y) {
-        for (int x = 0; x < width; ++x)
-            g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
-    });
-    return g;
+  GBuffer g;
+  g.width = width;
+  g.height = height;
+  g.pixels.resize(static_cast<std::size_t>(width) * height);
+  parallel_rows(height, threads, [&](int y) {
+    for (int x = 0; x < width; ++x) g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
+  });
+  return g;
 }
 
 QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
-    const PixelFields& self = gbuffer.at(x, y);
-    if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
-    const int x0 = x & ~1, y0 = y & ~1;
-    std::array<const PixelFields*, 4> source{};
-    std::array<Vec2, 4> frag{};
-    for (int q = 0; q < 4; ++q) {
-        const int qx = x0 + (q & 1), qy = y0 + (q >> 1);
-        frag[q] = {qx + 0.5, qy + 0.5};
-        const PixelFields* f = &self;
-        if (qx < gbuffer.width && qy < gbuffer.height) {
-            const PixelFields& partner = gbuffer.at(qx, qy);
-            if (partner.hit && partner.object == self.object) f = &partner;
-        }
-        source[q] = f;
+  const PixelFields& self = gbuffer.at(x, y);
+  if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
+  const int x0 = x & ~1, y0 = y & ~1;
+  std::array<const PixelFields*, 4> source{};
+  std::array<Vec2, 4> frag{};
+  for (int q = 0; q < 4; ++q) {
+    const int qx = x0 + (q & 1), qy = y0 + (q >> 1);
+    frag[q] = {qx + 0.5, qy + 0.5};
+    const PixelFields* f = &self;
+    if (qx < gbuffer.width && qy < gbuffer.height) {
+      const PixelFields& partner = gbuffer.at(qx, qy);
+      if (partner.hit && partner.object == self.object) f = &partner;
     }
-    auto quad = [&](auto member) {
-        using T = std::remove_cvref_t<decltype(source[0]->*member)>;
-        return ref::Quad<T>{source[0]->*member, source[1]->*member, source[2]->*member,
-                            source[3]->*member};
-    };
-    QuadFields q;
-    q.normal = quad(&PixelFields::normal);
-    q.tangent = quad(&PixelFields::tangent);
-    q.bitangent = quad(&PixelFields::bitangent);
-    q.half_ts = quad(&PixelFields::half_ts);
-    q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
-    q.geometric_normal = quad(&PixelFields::geometric_normal);
-    q.geometric_tangent = quad(&PixelFields::geometric_tangent);
-    q.geometric_bitangent = quad(&PixelFields::geometric_bitangent);
-    q.geometric_half_ts = quad(&PixelFields::geometric_half_ts);
-    q.pixel = (x & 1) + 2 * (y & 1);
-    return q;
+    source[q] = f;
+  }
+  auto quad = [&](auto member) {
+    using T = std::remove_cvref_t<decltype(source[0]->*member)>;
+    return ref::Quad<T>{source[0]->*member, source[1]->*member, source[2]->*member, source[3]->*member};
+  };
+  QuadFields q;
+  q.normal = quad(&PixelFields::normal);
+  q.tangent = quad(&PixelFields::tangent);
+  q.bitangent = quad(&PixelFields::bitangent);
+  q.half_ts = quad(&PixelFields::half_ts);
+  q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
+  q.geometric_normal = quad(&PixelFields::geometric_normal);
+  q.geometric_tangent = quad(&PixelFields::geometric_tangent);
+  q.geometric_bitangent = quad(&PixelFields::geometric_bitangent);
+  q.geometric_half_ts = quad(&PixelFields::geometric_half_ts);
+  q.pixel = (x & 1) + 2 * (y & 1);
+  return q;
 }
 
 namespace {
 
 // The quad inputs a filter reads, from the shading or the geometric frame.
 struct FeedQuads {
-    const ref::Quad<Vec3>& normal;
-    const ref::Quad<Vec3>& tangent;
-    const ref::Quad<Vec3>& bitangent;
-    const ref::Quad<Vec3>& half_ts;
+  const ref::Quad<Vec3>& normal;
+  const ref::Quad<Vec3>& tangent;
+  const ref::Quad<Vec3>& bitangent;
+  const ref::Quad<Vec3>& half_ts;
 };
 
 FeedQuads feed_quads(const QuadFields& q, NormalFeed feed) {
-    if (feed == NormalFeed::geometric)
-        return {q.geometric_normal, q.geometric_tangent, q.geometric_bitangent, q.geometric_half_ts};
-    return {q.normal, q.tangent, q.bitangent, q.half_ts};
+  if (feed == NormalFeed::geometric) return {q.geometric_normal, q.geometric_tangent, q.geometric_bitangent, q.geometric_half_ts};
+  return {q.normal, q.tangent, q.bitangent, q.half_ts};
 }
 
 // alpha^2 after an engine's shipped form (engines.hpp), on the normal the engine feeds.
 double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Derivative mode) {
-    const ref::Quad<Vec3>& n = feed_quads(q, engine_feed(engine)).normal;
-    const Vec3 dndx = ref::ddx(n, q.pixel, mode), dndy = ref::ddy(n, q.pixel, mode);
-    switch (engine) {
-        case Variant::engine_hdrp: return hdrp_alpha2(alpha, dndx, dndy);
-        case Variant::engine_filament: return filament_alpha2(alpha, dndx, dndy);
-        case Variant::engine_godot: return godot_alpha2(alpha, dndx, dndy);
-        case Variant::engine_unreal: return unreal_alpha2(alpha, dndx, dndy);
-        case Variant::engine_threejs: return threejs_alpha2(alpha, dndx, dndy);
-        case Variant::engine_babylon: return babylon_alpha2(alpha, dndx, dndy);
-        default: throw std::invalid_argument("engine_alpha2: not an engine");
-    }
+  const ref::Quad<Vec3>& n = feed_quads(q, engine_feed(engine)).normal;
+  const Vec3 dndx = ref::ddx(n, q.pixel, mode), dndy = ref::ddy(n, q.pixel, mode);
+  switch (engine) {
+    case Variant::engine_hdrp:
+      return hdrp_alpha2(alpha, dndx, dndy);
+    case Variant::engine_filament:
+      return filament_alpha2(alpha, dndx, dndy);
+    case Variant::engine_godot:
+      return godot_alpha2(alpha, dndx, dndy);
+    case Variant::engine_unreal:
+      return unreal_alpha2(alpha, dndx, dndy);
+    case Variant::engine_threejs:
+      return threejs_alpha2(alpha, dndx, dndy);
+    case Variant::engine_babylon:
+      return babylon_alpha2(alpha, dndx, dndy);
+    default:
+      throw std::invalid_argument("engine_alpha2: not an engine");
+  }
 }
 
 // The texture's roughness at a pixel in the alpha^2 domain (prefilter.hpp): 2 sigma^2 I
 // (Toksvig) or 2 Sigma_tex (LEAN), as a symmetric matrix in the tangent frame.
 Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params) {
-    if (prefilter == Prefilter::none || !f.has_normal_map) return {};
-    if (prefilter == Prefilter::toksvig) {
-        const double v = 2.0 * ref::toksvig_variance(params, ref::length(f.texel.mean_normal));
-        return {v, 0.0, v};
-    }
-    return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+  if (prefilter == Prefilter::none || !f.has_normal_map) return {};
+  if (prefilter == Prefilter::toksvig) {
+    const double v = 2.0 * ref::toksvig_variance(params, ref::length(f.texel.mean_normal));
+    return {v, 0.0, v};
+  }
+  return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
 }
 
 // deferred-aniso as the emitted passes compute it: the geometry pass's tensor in the frame built
@@ -390,134 +403,120 @@ Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Par
 // into the pixel's shading frame (t, b), A' = M A M^T with M = [t'.t b'.t; t'.b b'.b], so that
 // the texture term and every lobe apply as to the forward matrix. With the shading feed the two
 // frames share n and M is a rotation: the BRDF is deferred_aniso_brdf's (tail lobe).
-Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields& f, const ref::Quad<Vec3>& normal,
-                                   int pixel, ref::Derivative mode, double alpha2) {
-    const Vec3 n = normal[pixel];
-    const Sym2 tensor = ref::deferred_aniso_fragment_quad(params, normal, pixel, mode);
-    const Sym2 a = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n, tensor, alpha2);
-    const Vec3 t = ref::normal_frame_tangent(n), b = ref::normal_frame_bitangent(n);
-    const double m00 = dot(t, f.tangent), m01 = dot(b, f.tangent), m10 = dot(t, f.bitangent), m11 = dot(b, f.bitangent);
-    // Rows of M A: (m00 a.xx + m01 a.xy, m00 a.xy + m01 a.yy), (m10 a.xx + m11 a.xy, m10 a.xy + m11 a.yy).
-    const double r0x = m00 * a.xx + m01 * a.xy, r0y = m00 * a.xy + m01 * a.yy;
-    const double r1x = m10 * a.xx + m11 * a.xy, r1y = m10 * a.xy + m11 * a.yy;
-    return {r0x * m00 + r0y * m01, r0x * m10 + r0y * m11, r1x * m10 + r1y * m11};
+Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields& f, const ref::Quad<Vec3>& normal, int pixel,
+                                   ref::Derivative mode, double alpha2) {
+  const Vec3 n = normal[pixel];
+  const Sym2 tensor = ref::deferred_aniso_fragment_quad(params, normal, pixel, mode);
+  const Sym2 a = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n, tensor, alpha2);
+  const Vec3 t = ref::normal_frame_tangent(n), b = ref::normal_frame_bitangent(n);
+  const double m00 = dot(t, f.tangent), m01 = dot(b, f.tangent), m10 = dot(t, f.bitangent), m11 = dot(b, f.bitangent);
+  // Rows of M A: (m00 a.xx + m01 a.xy, m00 a.xy + m01 a.yy), (m10 a.xx + m11 a.xy, m10 a.xy + m11 a.yy).
+  const double r0x = m00 * a.xx + m01 * a.xy, r0y = m00 * a.xy + m01 * a.yy;
+  const double r1x = m10 * a.xx + m11 * a.xy, r1y = m10 * a.xy + m11 * a.yy;
+  return {r0x * m00 + r0y * m01, r0x * m10 + r0y * m11, r1x * m10 + r1y * m11};
 }
 
 }  // namespace
 
-PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
-                       const Material& material, const ref::Params& params,
-                       ref::Derivative mode, NormalFeed feed, Prefilter prefilter,
-                       double prefilter_scale, Lobe lobe) {
-    const PixelFields& f = gbuffer.at(x, y);
-    PixelShade out;
-    if (!f.hit) return out;
-    const double a2 = material.alpha * material.alpha;
-    const Vec2 alpha2{a2, a2};
-    // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
-    // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-    const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params);
-    // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
-    const double texture_isotropic = 0.5 * ref::trace(texture);
-    double brdf = 0.0;
-    // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
-    const Lobe evaluated = variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe;
-    // Per-axis filtered roughness (texture term included) through the lobe.
-    auto shade_axis = [&](Vec2 filtered) {
-        if (evaluated == Lobe::mapped)
-            filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
-        out.roughness = {filtered.x, 0.0, filtered.y};
-        brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
-                                       : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
-    };
-    auto isotropic = [&](double filtered) {
-        filtered = variant == Variant::deferred_projected_space
-                       ? ref::projected_space_add(filtered, texture_isotropic)
-                       : ref::saturate(filtered + texture_isotropic);
-        shade_axis({filtered, filtered});
-    };
-    auto axis = [&](Vec2 filtered) {
-        shade_axis({ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)});
-    };
-    auto matrix = [&](Sym2 a) {
-        a = a + texture;
-        if (evaluated == Lobe::mapped) {
-            const Sym2 unfiltered{a2, 0.0, a2};
-            const Sym2 kernel = a - unfiltered;
-            a = unfiltered + ref::ggx_kernel_scale(a2, 0.5 * ref::trace(kernel)) * kernel;
-        }
-        out.roughness = a;
-        brdf = evaluated == Lobe::tail
-                   ? ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, a, alpha2)
-                   : ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
-    };
-
-    if (variant == Variant::none) {
-        isotropic(a2);
-    } else if (is_engine(variant)) {
-        isotropic(engine_alpha2(variant, material.alpha, gather_quad(gbuffer, x, y), mode));
-    } else {
-        const QuadFields q = gather_quad(gbuffer, x, y);
-        const FeedQuads in = feed_quads(q, feed);
-        switch (variant) {
-            case Variant::forward_aniso_slope:
-                matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-                break;
-            case Variant::forward_aniso_projected:
-                matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel,
-                                                                  mode));
-                break;
-            case Variant::forward_axis_slope:
-                axis(ref::forward_axis_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-                break;
-            case Variant::forward_axis_projected:
-                axis(ref::forward_axis_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel,
-                                                               mode));
-                break;
-            case Variant::deferred_previous:
-                isotropic(ref::deferred_previous_fragment_quad(params, a2, in.normal, in.tangent,
-                                                               in.bitangent, q.frag_coord, q.pixel,
-                                                               mode));
-                break;
-            case Variant::deferred_max:
-                isotropic(ref::deferred_max_fragment_quad(params, a2, in.normal, in.tangent,
-                                                          in.bitangent, q.frag_coord, q.pixel, mode));
-                break;
-            case Variant::deferred_max_tangent_free:
-                isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, in.normal,
-                                                                       q.pixel, mode));
-                break;
-            case Variant::deferred_sum:
-                isotropic(ref::deferred_sum_fragment_quad(params, a2, in.normal, q.pixel, mode));
-                break;
-            case Variant::deferred_avg:
-                isotropic(ref::deferred_avg_fragment_quad(params, a2, in.normal, q.pixel, mode));
-                break;
-            case Variant::deferred_projected_space:
-                isotropic(ref::deferred_projected_space_fragment_quad(params, a2, in.normal, q.pixel,
-                                                                      mode));
-                break;
-            case Variant::deferred_aniso:
-                matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2));
-                break;
-            default: throw std::invalid_argument("shade_pixel: unknown variant");
-        }
+PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, const Material& material, const ref::Params& params,
+                       ref::Derivative mode, NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
+  const PixelFields& f = gbuffer.at(x, y);
+  PixelShade out;
+  if (!f.hit) return out;
+  const double a2 = material.alpha * material.alpha;
+  const Vec2 alpha2{a2, a2};
+  // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
+  // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
+  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params);
+  // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
+  const double texture_isotropic = 0.5 * ref::trace(texture);
+  double brdf = 0.0;
+  // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
+  const Lobe evaluated = variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe;
+  // Per-axis filtered roughness (texture term included) through the lobe.
+  auto shade_axis = [&](Vec2 filtered) {
+    if (evaluated == Lobe::mapped)
+      filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
+    out.roughness = {filtered.x, 0.0, filtered.y};
+    brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
+                                   : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
+  };
+  auto isotropic = [&](double filtered) {
+    filtered = variant == Variant::deferred_projected_space ? ref::projected_space_add(filtered, texture_isotropic)
+                                                            : ref::saturate(filtered + texture_isotropic);
+    shade_axis({filtered, filtered});
+  };
+  auto axis = [&](Vec2 filtered) { shade_axis({ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)}); };
+  auto matrix = [&](Sym2 a) {
+    a = a + texture;
+    if (evaluated == Lobe::mapped) {
+      const Sym2 unfiltered{a2, 0.0, a2};
+      const Sym2 kernel = a - unfiltered;
+      a = unfiltered + ref::ggx_kernel_scale(a2, 0.5 * ref::trace(kernel)) * kernel;
     }
-    out.radiance = specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
-    return out;
+    out.roughness = a;
+    brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, a, alpha2)
+                                   : ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
+  };
+
+  if (variant == Variant::none) {
+    isotropic(a2);
+  } else if (is_engine(variant)) {
+    isotropic(engine_alpha2(variant, material.alpha, gather_quad(gbuffer, x, y), mode));
+  } else {
+    const QuadFields q = gather_quad(gbuffer, x, y);
+    const FeedQuads in = feed_quads(q, feed);
+    switch (variant) {
+      case Variant::forward_aniso_slope:
+        matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
+        break;
+      case Variant::forward_aniso_projected:
+        matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
+        break;
+      case Variant::forward_axis_slope:
+        axis(ref::forward_axis_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
+        break;
+      case Variant::forward_axis_projected:
+        axis(ref::forward_axis_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
+        break;
+      case Variant::deferred_previous:
+        isotropic(ref::deferred_previous_fragment_quad(params, a2, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode));
+        break;
+      case Variant::deferred_max:
+        isotropic(ref::deferred_max_fragment_quad(params, a2, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode));
+        break;
+      case Variant::deferred_max_tangent_free:
+        isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        break;
+      case Variant::deferred_sum:
+        isotropic(ref::deferred_sum_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        break;
+      case Variant::deferred_avg:
+        isotropic(ref::deferred_avg_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        break;
+      case Variant::deferred_projected_space:
+        isotropic(ref::deferred_projected_space_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        break;
+      case Variant::deferred_aniso:
+        matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2));
+        break;
+      default:
+        throw std::invalid_argument("shade_pixel: unknown variant");
+    }
+  }
+  out.radiance = specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
+  return out;
 }
 
-Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
-                     const ref::Params& params, ref::Derivative mode, int threads,
-                     NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
-    Image image(gbuffer.width, gbuffer.height);
-    parallel_rows(gbuffer.height, threads, [&](int y) {
-        for (int x = 0; x < gbuffer.width; ++x)
-            image.at(x, y) = static_cast<float>(
-                shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter,
-                            prefilter_scale, lobe).radiance);
-    });
-    return image;
+Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material, const ref::Params& params, ref::Derivative mode,
+                     int threads, NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
+  Image image(gbuffer.width, gbuffer.height);
+  parallel_rows(gbuffer.height, threads, [&](int y) {
+    for (int x = 0; x < gbuffer.width; ++x)
+      image.at(x, y) =
+          static_cast<float>(shade_pixel(gbuffer, x, y, variant, material, params, mode, feed, prefilter, prefilter_scale, lobe).radiance);
+  });
+  return image;
 }
 
 }  // namespace saagen::render

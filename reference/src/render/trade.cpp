@@ -1,6 +1,9 @@
 // The SAA quality trade table (see trade.hpp).
 #include "saagen/reference/render/trade.hpp"
 
+#include "saagen/reference/render/flip.hpp"
+#include "saagen/reference/render/parallel.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,9 +14,6 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
-
-#include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/parallel.hpp"
 
 namespace saagen::render {
 
@@ -27,88 +27,83 @@ constexpr const char* kCacheFormat = "saagen-ground-truth-v2";
 constexpr double kPi = 3.14159265358979323846;
 
 std::uint64_t fnv1a64(std::string_view text) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
 }
 
 template <class T>
 void write_pod(std::ostream& out, const T& value) {
-    out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
 }
 
 template <class T>
 bool read_pod(std::istream& in, T& value) {
-    return static_cast<bool>(in.read(reinterpret_cast<char*>(&value), sizeof(T)));
+  return static_cast<bool>(in.read(reinterpret_cast<char*>(&value), sizeof(T)));
 }
 
-bool load_cache(const std::filesystem::path& path, const std::string& key, int width, int height,
-                std::size_t count, GroundTruth& gt) {
-    // Only a regular file is read: a FIFO (or device) planted at the name would block the open.
-    std::error_code kind_error;
-    if (!std::filesystem::is_regular_file(path, kind_error)) return false;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    char magic[8];
-    if (!in.read(magic, 8) || std::memcmp(magic, kCacheMagic, 8) != 0) return false;
-    std::uint64_t key_size = 0;
-    if (!read_pod(in, key_size) || key_size != key.size()) return false;
-    std::string stored(key_size, '\0');
-    if (!in.read(stored.data(), static_cast<std::streamsize>(key_size)) || stored != key)
-        return false;
-    std::int32_t w = 0, h = 0;
-    std::uint64_t n = 0;
-    if (!read_pod(in, w) || !read_pod(in, h) || !read_pod(in, n)) return false;
-    if (w != width || h != height || n != count) return false;
-    GroundTruth loaded;
-    auto read_image = [&](Image& image) {
-        image = Image(width, height);
-        return static_cast<bool>(
-            in.read(reinterpret_cast<char*>(image.pixels.data()),
-                    static_cast<std::streamsize>(image.pixels.size() * sizeof(float))));
-    };
-    loaded.images.resize(count);
-    for (Image& image : loaded.images)
-        if (!read_image(image)) return false;
-    if (!read_image(loaded.coverage)) return false;
-    gt = std::move(loaded);
-    return true;
+bool load_cache(const std::filesystem::path& path, const std::string& key, int width, int height, std::size_t count, GroundTruth& gt) {
+  // Only a regular file is read: a FIFO (or device) planted at the name would block the open.
+  std::error_code kind_error;
+  if (!std::filesystem::is_regular_file(path, kind_error)) return false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  char magic[8];
+  if (!in.read(magic, 8) || std::memcmp(magic, kCacheMagic, 8) != 0) return false;
+  std::uint64_t key_size = 0;
+  if (!read_pod(in, key_size) || key_size != key.size()) return false;
+  std::string stored(key_size, '\0');
+  if (!in.read(stored.data(), static_cast<std::streamsize>(key_size)) || stored != key) return false;
+  std::int32_t w = 0, h = 0;
+  std::uint64_t n = 0;
+  if (!read_pod(in, w) || !read_pod(in, h) || !read_pod(in, n)) return false;
+  if (w != width || h != height || n != count) return false;
+  GroundTruth loaded;
+  auto read_image = [&](Image& image) {
+    image = Image(width, height);
+    return static_cast<bool>(
+        in.read(reinterpret_cast<char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size() * sizeof(float))));
+  };
+  loaded.images.resize(count);
+  for (Image& image : loaded.images)
+    if (!read_image(image)) return false;
+  if (!read_image(loaded.coverage)) return false;
+  gt = std::move(loaded);
+  return true;
 }
 
 void store_cache(const std::filesystem::path& path, const std::string& key, const GroundTruth& gt) {
-    std::error_code ec;
-    std::filesystem::create_directories(path.parent_path(), ec);
-    // Write to a unique temporary name, then rename: readers never see a partial file.
-    std::random_device rd;
-    const std::filesystem::path temporary =
-        path.string() + ".tmp" + std::to_string(rd()) + std::to_string(rd());
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) return;  // the cache is an optimisation: failing to write it is not an error
-        out.write(kCacheMagic, 8);
-        write_pod(out, static_cast<std::uint64_t>(key.size()));
-        out.write(key.data(), static_cast<std::streamsize>(key.size()));
-        const Image& first = gt.coverage;
-        write_pod(out, static_cast<std::int32_t>(first.width));
-        write_pod(out, static_cast<std::int32_t>(first.height));
-        write_pod(out, static_cast<std::uint64_t>(gt.images.size()));
-        auto write_image = [&](const Image& image) {
-            out.write(reinterpret_cast<const char*>(image.pixels.data()),
-                      static_cast<std::streamsize>(image.pixels.size() * sizeof(float)));
-        };
-        for (const Image& image : gt.images) write_image(image);
-        write_image(gt.coverage);
-        if (!out) {
-            out.close();
-            std::filesystem::remove(temporary, ec);
-            return;
-        }
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  // Write to a unique temporary name, then rename: readers never see a partial file.
+  std::random_device rd;
+  const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(rd()) + std::to_string(rd());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return;  // the cache is an optimisation: failing to write it is not an error
+    out.write(kCacheMagic, 8);
+    write_pod(out, static_cast<std::uint64_t>(key.size()));
+    out.write(key.data(), static_cast<std::streamsize>(key.size()));
+    const Image& first = gt.coverage;
+    write_pod(out, static_cast<std::int32_t>(first.width));
+    write_pod(out, static_cast<std::int32_t>(first.height));
+    write_pod(out, static_cast<std::uint64_t>(gt.images.size()));
+    auto write_image = [&](const Image& image) {
+      out.write(reinterpret_cast<const char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size() * sizeof(float)));
+    };
+    for (const Image& image : gt.images) write_image(image);
+    write_image(gt.coverage);
+    if (!out) {
+      out.close();
+      std::filesystem::remove(temporary, ec);
+      return;
     }
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) std::filesystem::remove(temporary, ec);
+  }
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) std::filesystem::remove(temporary, ec);
 }
 
 }  // namespace
@@ -116,386 +111,347 @@ void store_cache(const std::filesystem::path& path, const std::string& key, cons
 // ---------------------------------------------------------------------------------------------
 // Cache
 
-std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings,
-                                   std::span<const Material> materials) {
-    std::ostringstream s;
-    s.precision(17);
-    s << kCacheFormat << ";" << scene.describe() << ";size=" << settings.width << "x"
-      << settings.height << ";strata=" << settings.strata << ";seed=" << settings.seed
-      << ";filter_variance=" << settings.filter_variance
-      << ";filter_truncation=" << settings.filter_truncation << ";F0=" << kFresnelF0
-      << ";materials=";
-    for (const Material& m : materials) s << "(" << m.alpha << "," << (m.fresnel ? 1 : 0) << ")";
-    return s.str();
+std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials) {
+  std::ostringstream s;
+  s.precision(17);
+  s << kCacheFormat << ";" << scene.describe() << ";size=" << settings.width << "x" << settings.height << ";strata=" << settings.strata
+    << ";seed=" << settings.seed << ";filter_variance=" << settings.filter_variance << ";filter_truncation=" << settings.filter_truncation
+    << ";F0=" << kFresnelF0 << ";materials=";
+  for (const Material& m : materials) s << "(" << m.alpha << "," << (m.fresnel ? 1 : 0) << ")";
+  return s.str();
 }
 
 std::string ground_truth_cache_file(const std::string& key) {
-    char name[32];
-    std::snprintf(name, sizeof name, "gt-%016llx.bin",
-                  static_cast<unsigned long long>(fnv1a64(key)));
-    return name;
+  char name[32];
+  std::snprintf(name, sizeof name, "gt-%016llx.bin", static_cast<unsigned long long>(fnv1a64(key)));
+  return name;
 }
 
-GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
-                                std::span<const Material> materials, const std::string& cache_dir,
-                                const SampleProgress& progress, bool* cache_hit) {
-    if (cache_hit) *cache_hit = false;
-    if (cache_dir.empty()) return render_ground_truth(scene, settings, materials, progress);
-    const std::string key = ground_truth_cache_key(scene, settings, materials);
-    const std::filesystem::path path =
-        std::filesystem::path(cache_dir) / ground_truth_cache_file(key);
-    GroundTruth gt;
-    if (load_cache(path, key, settings.width, settings.height, materials.size(), gt)) {
-        if (cache_hit) *cache_hit = true;
-        return gt;
-    }
-    gt = render_ground_truth(scene, settings, materials, progress);
-    store_cache(path, key, gt);
+GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials,
+                                const std::string& cache_dir, const SampleProgress& progress, bool* cache_hit) {
+  if (cache_hit) *cache_hit = false;
+  if (cache_dir.empty()) return render_ground_truth(scene, settings, materials, progress);
+  const std::string key = ground_truth_cache_key(scene, settings, materials);
+  const std::filesystem::path path = std::filesystem::path(cache_dir) / ground_truth_cache_file(key);
+  GroundTruth gt;
+  if (load_cache(path, key, settings.width, settings.height, materials.size(), gt)) {
+    if (cache_hit) *cache_hit = true;
     return gt;
+  }
+  gt = render_ground_truth(scene, settings, materials, progress);
+  store_cache(path, key, gt);
+  return gt;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Table
 
 std::vector<Material> trade_materials(const TradeConfig& config) {
-    std::vector<Material> materials;
-    for (double alpha : config.alphas)
-        for (bool fresnel : config.fresnel_modes) materials.push_back({alpha, fresnel});
-    return materials;
+  std::vector<Material> materials;
+  for (double alpha : config.alphas)
+    for (bool fresnel : config.fresnel_modes) materials.push_back({alpha, fresnel});
+  return materials;
 }
 
 Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame) {
-    const Scene rotated =
-        make_scene(id, frame * config.rotation_degrees_per_frame * kPi / 180.0);
-    const double steps = frame - 0.5 * (config.frames - 1);  // centred on the unpanned view
-    return rotated.with_camera(rotated.camera().panned(steps * config.pan_pixels_per_frame.x,
-                                                       steps * config.pan_pixels_per_frame.y,
-                                                       config.flicker_height));
+  const Scene rotated = make_scene(id, frame * config.rotation_degrees_per_frame * kPi / 180.0);
+  const double steps = frame - 0.5 * (config.frames - 1);  // centred on the unpanned view
+  return rotated.with_camera(
+      rotated.camera().panned(steps * config.pan_pixels_per_frame.x, steps * config.pan_pixels_per_frame.y, config.flicker_height));
 }
 
-const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel,
-                                 NormalFeed feed, Prefilter prefilter, Lobe lobe) const {
-    for (const TradeRow& row : rows)
-        if (row.variant == variant && row.scene == scene && row.alpha == alpha &&
-            row.fresnel == fresnel && row.feed == feed && row.prefilter == prefilter &&
-            row.lobe == lobe)
-            return &row;
-    return nullptr;
+const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed, Prefilter prefilter,
+                                 Lobe lobe) const {
+  for (const TradeRow& row : rows)
+    if (row.variant == variant && row.scene == scene && row.alpha == alpha && row.fresnel == fresnel && row.feed == feed &&
+        row.prefilter == prefilter && row.lobe == lobe)
+      return &row;
+  return nullptr;
 }
 
 std::vector<Variant> default_trade_variants() {
-    std::vector<Variant> variants(all_variants().begin(), all_variants().end());
-    variants.insert(variants.end(), all_engines().begin(), all_engines().end());
-    return variants;
+  std::vector<Variant> variants(all_variants().begin(), all_variants().end());
+  variants.insert(variants.end(), all_engines().begin(), all_engines().end());
+  return variants;
 }
 
 std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe) {
-    std::string id(variant_id(variant));
-    if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none)
-        id += ":geometric";
-    if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
-    if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
-    return id;
+  std::string id(variant_id(variant));
+  if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none) id += ":geometric";
+  if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
+  if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
+  return id;
 }
 
-std::string configuration_id(const TradeRow& row) {
-    return configuration_id(row.variant, row.feed, row.prefilter, row.lobe);
-}
+std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe); }
 
-bool scene_has_normal_map(SceneId id) {
-    return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
-}
+bool scene_has_normal_map(SceneId id) { return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine; }
 
 bool scene_has_normal_detail(SceneId id) {
-    return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
+  return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
 }
 
 namespace {
 
 // One row's configuration: a variant and the normal it reads.
 struct RowKey {
-    Variant variant;
-    NormalFeed feed;
-    Prefilter prefilter = Prefilter::none;
-    Lobe lobe = Lobe::papers;
+  Variant variant;
+  NormalFeed feed;
+  Prefilter prefilter = Prefilter::none;
+  Lobe lobe = Lobe::papers;
 };
 
 // Each key of a variant in config.lobe_variants once more per further lobe, after the papers'.
 std::vector<RowKey> with_lobes(const TradeConfig& config, const std::vector<RowKey>& keys) {
-    std::vector<RowKey> out;
-    for (const RowKey& key : keys) {
-        out.push_back(key);
-        const bool has_lobes = std::find(config.lobe_variants.begin(), config.lobe_variants.end(),
-                                         key.variant) != config.lobe_variants.end();
-        if (!has_lobes) continue;
-        for (Lobe lobe : config.lobes) {
-            if (lobe == Lobe::papers) continue;
-            RowKey with_lobe = key;
-            with_lobe.lobe = lobe;
-            out.push_back(with_lobe);
-        }
+  std::vector<RowKey> out;
+  for (const RowKey& key : keys) {
+    out.push_back(key);
+    const bool has_lobes = std::find(config.lobe_variants.begin(), config.lobe_variants.end(), key.variant) != config.lobe_variants.end();
+    if (!has_lobes) continue;
+    for (Lobe lobe : config.lobes) {
+      if (lobe == Lobe::papers) continue;
+      RowKey with_lobe = key;
+      with_lobe.lobe = lobe;
+      out.push_back(with_lobe);
     }
-    return out;
+  }
+  return out;
 }
 
 // The rows of a scene, in config.variants order; a variant's feeds in config.feeds order. The
 // baseline reads no normal; engines read their own; the geometric feed adds rows only where
 // the scene's normals have detail the geometry lacks.
 std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
-    std::vector<RowKey> keys;
-    for (Variant v : config.variants) {
-        if (v == Variant::none) {
-            keys.push_back({v, NormalFeed::shading});
-        } else if (is_engine(v)) {
-            keys.push_back({v, engine_feed(v)});
-        } else {
-            for (NormalFeed feed : config.feeds)
-                if (feed == NormalFeed::shading || scene_has_normal_detail(scene))
-                    keys.push_back({v, feed});
-        }
+  std::vector<RowKey> keys;
+  for (Variant v : config.variants) {
+    if (v == Variant::none) {
+      keys.push_back({v, NormalFeed::shading});
+    } else if (is_engine(v)) {
+      keys.push_back({v, engine_feed(v)});
+    } else {
+      for (NormalFeed feed : config.feeds)
+        if (feed == NormalFeed::shading || scene_has_normal_detail(scene)) keys.push_back({v, feed});
     }
-    if (scene_has_normal_map(scene))
-        for (Variant v : config.prefiltered_variants)
-            for (Prefilter prefilter : config.prefilters)
-                keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric,
-                                prefilter});
-    return with_lobes(config, keys);
+  }
+  if (scene_has_normal_map(scene))
+    for (Variant v : config.prefiltered_variants)
+      for (Prefilter prefilter : config.prefilters)
+        keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric, prefilter});
+  return with_lobes(config, keys);
 }
 
 Image tonemapped(const Image& image) {
-    Image out(image.width, image.height);
-    for (std::size_t i = 0; i < image.size(); ++i)
-        out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
-    return out;
+  Image out(image.width, image.height);
+  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
+  return out;
 }
 
 }  // namespace
 
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
-    if (config.width <= 0 || config.height <= 0 || config.strata <= 0)
-        throw std::invalid_argument("trade table: bad main resolution or strata");
-    if (config.frames > 0 &&
-        (config.flicker_width <= 0 || config.flicker_height <= 0 || config.flicker_strata <= 0))
-        throw std::invalid_argument("trade table: bad flicker resolution or strata");
+  if (config.width <= 0 || config.height <= 0 || config.strata <= 0)
+    throw std::invalid_argument("trade table: bad main resolution or strata");
+  if (config.frames > 0 && (config.flicker_width <= 0 || config.flicker_height <= 0 || config.flicker_strata <= 0))
+    throw std::invalid_argument("trade table: bad flicker resolution or strata");
 
-    TradeTable table;
-    table.config = config;
-    const std::vector<Material> materials = trade_materials(config);
-    const std::size_t n_materials = materials.size();
+  TradeTable table;
+  table.config = config;
+  const std::vector<Material> materials = trade_materials(config);
+  const std::size_t n_materials = materials.size();
 
-    // Work units: ground-truth samples and 1-spp pixel shadings.
-    const std::uint64_t main_pixels = static_cast<std::uint64_t>(config.width) * config.height;
-    const std::uint64_t flicker_pixels =
-        static_cast<std::uint64_t>(config.flicker_width) * config.flicker_height;
-    const std::uint64_t main_gt = main_pixels * config.strata * config.strata;
-    const std::uint64_t flicker_gt =
-        flicker_pixels * config.flicker_strata * config.flicker_strata;
-    auto scene_work = [&](SceneId id) {
-        const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
-        return main_gt + main_pixels * shading_per_frame +
-               (config.frames > 0
-                    ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame)
-                    : 0);
-    };
-    TradeProgress state;
-    for (SceneId id : config.scenes) state.total += scene_work(id);
-    auto report = [&](const std::string& stage, std::uint64_t done) {
-        state.stage = stage;
-        state.done = done;
-        if (progress) progress(state);
-    };
+  // Work units: ground-truth samples and 1-spp pixel shadings.
+  const std::uint64_t main_pixels = static_cast<std::uint64_t>(config.width) * config.height;
+  const std::uint64_t flicker_pixels = static_cast<std::uint64_t>(config.flicker_width) * config.flicker_height;
+  const std::uint64_t main_gt = main_pixels * config.strata * config.strata;
+  const std::uint64_t flicker_gt = flicker_pixels * config.flicker_strata * config.flicker_strata;
+  auto scene_work = [&](SceneId id) {
+    const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
+    return main_gt + main_pixels * shading_per_frame +
+           (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0);
+  };
+  TradeProgress state;
+  for (SceneId id : config.scenes) state.total += scene_work(id);
+  auto report = [&](const std::string& stage, std::uint64_t done) {
+    state.stage = stage;
+    state.done = done;
+    if (progress) progress(state);
+  };
 
-    GroundTruthSettings main_settings;
-    main_settings.width = config.width;
-    main_settings.height = config.height;
-    main_settings.strata = config.strata;
-    main_settings.seed = config.seed;
-    main_settings.threads = config.threads;
-    GroundTruthSettings flicker_settings = main_settings;
-    flicker_settings.width = config.flicker_width;
-    flicker_settings.height = config.flicker_height;
-    flicker_settings.strata = config.flicker_strata;
+  GroundTruthSettings main_settings;
+  main_settings.width = config.width;
+  main_settings.height = config.height;
+  main_settings.strata = config.strata;
+  main_settings.seed = config.seed;
+  main_settings.threads = config.threads;
+  GroundTruthSettings flicker_settings = main_settings;
+  flicker_settings.width = config.flicker_width;
+  flicker_settings.height = config.flicker_height;
+  flicker_settings.strata = config.flicker_strata;
 
-    auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings,
-                            const std::string& stage, std::uint64_t base) {
-        report(stage, base);
-        bool hit = false;
-        const auto start = std::chrono::steady_clock::now();
-        GroundTruth gt = cached_ground_truth(
-            scene, settings, materials, config.cache_dir,
-            [&](std::uint64_t done, std::uint64_t) { report(stage, base + done); }, &hit);
-        if (hit) {
-            ++table.cache_hits;
-        } else {
-            ++table.cache_misses;
-            table.ground_truth_seconds +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            table.ground_truth_samples += static_cast<std::uint64_t>(settings.width) *
-                                          settings.height * settings.strata * settings.strata;
-        }
-        return gt;
-    };
-    auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
-        return render_variant(gbuffer, key.variant, material, config.params, config.derivative,
-                              config.threads, key.feed, key.prefilter, config.prefilter_scale,
-                              key.lobe);
-    };
-
-    std::uint64_t base = 0;
-    for (const SceneId id : config.scenes) {
-        const std::string name(scene_name(id));
-        const std::vector<RowKey> keys = row_keys(config, id);
-        const std::size_t n_keys = keys.size();
-
-        // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
-        const Scene scene = make_scene(id, 0.0);
-        const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
-        base += main_gt;
-        report("1-spp variants " + name, base);
-        const GBuffer gbuffer = render_gbuffer(scene, config.width, config.height, config.threads);
-        const std::size_t first_row = table.rows.size();
-        for (std::size_t m = 0; m < n_materials; ++m) {
-            const Image reference_display = tonemapped(gt.images[m]);
-            ImageSet set;
-            if (config.keep_images) {
-                set.scene = id;
-                set.material = materials[m];
-                set.reference = gt.images[m];
-                set.coverage = gt.coverage;
-            }
-            for (const RowKey& key : keys) {
-                Image image = shade(gbuffer, key, materials[m]);
-                const ImageError e = compare_images(image, gt.images[m]);
-                TradeRow row;
-                row.variant = key.variant;
-                row.feed = key.feed;
-                row.prefilter = key.prefilter;
-                row.lobe = key.lobe;
-                row.scene = id;
-                row.alpha = materials[m].alpha;
-                row.fresnel = materials[m].fresnel;
-                row.rmse_linear = e.rmse_linear;
-                row.rmse_tonemapped = e.rmse_tonemapped;
-                row.max_error = e.max_error;
-                row.non_finite = e.non_finite;
-                if (config.flip) {
-                    row.flip_ldr = ldr_flip_mean_grey(reference_display, tonemapped(image));
-                    row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
-                }
-                table.rows.push_back(row);
-                if (config.keep_images)
-                    set.variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(image)});
-                base += main_pixels;
-                report("1-spp variants " + name, base);
-            }
-            if (config.keep_images) table.images.push_back(std::move(set));
-        }
-
-        // Temporal metrics: the animation at the flicker resolution; TDE in display values,
-        // the temporal standard deviations in linear and tonemapped values.
-        if (config.frames > 0) {
-            const int fw = config.flicker_width, fh = config.flicker_height;
-            const std::size_t n_rows = n_materials * n_keys;
-            std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
-            std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
-            std::vector<TemporalStats> variant_stats(n_rows, TemporalStats(fw, fh));
-            std::vector<TemporalStats> variant_display(n_rows, TemporalStats(fw, fh));
-            std::vector<TemporalDifference> differences(n_rows);
-            std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
-            std::vector<Image> previous_variant(n_rows);
-            for (int frame = 0; frame < config.frames; ++frame) {
-                const Scene moved = trade_animation_frame(config, id, frame);
-                const std::string stage = "flicker " + name + " frame " +
-                                          std::to_string(frame + 1) + "/" +
-                                          std::to_string(config.frames);
-                const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
-                base += flicker_gt;
-                const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
-                for (std::size_t m = 0; m < n_materials; ++m) {
-                    Image reference_frame = display_image(frame_gt.images[m]);
-                    reference_stats[m].add(frame_gt.images[m]);
-                    reference_display[m].add(tonemapped(frame_gt.images[m]));
-                    for (std::size_t k = 0; k < n_keys; ++k) {
-                        const std::size_t r = m * n_keys + k;
-                        const Image image = shade(frame_buffer, keys[k], materials[m]);
-                        variant_stats[r].add(image);
-                        variant_display[r].add(tonemapped(image));
-                        Image frame_display = display_image(image);
-                        if (frame > 0)
-                            differences[r].add_pair(previous_variant[r], frame_display,
-                                                    previous_reference[m], reference_frame);
-                        previous_variant[r] = std::move(frame_display);
-                        base += flicker_pixels;
-                    }
-                    previous_reference[m] = std::move(reference_frame);
-                }
-                report(stage, base);
-            }
-            for (std::size_t m = 0; m < n_materials; ++m) {
-                const double reference_std = mean_temporal_stddev(reference_stats[m]);
-                const double reference_std_display = mean_temporal_stddev(reference_display[m]);
-                for (std::size_t k = 0; k < n_keys; ++k) {
-                    const std::size_t r = m * n_keys + k;
-                    TradeRow& row = table.rows[first_row + r];
-                    const TemporalError temporal = differences[r].mean();
-                    row.tde = temporal.tde;
-                    row.tde_excess_flicker = temporal.excess_flicker;
-                    row.tde_lost_motion = temporal.lost_motion;
-                    row.flicker = flicker(variant_stats[r], reference_stats[m]);
-                    row.temporal_stddev = mean_temporal_stddev(variant_stats[r]);
-                    row.reference_temporal_stddev = reference_std;
-                    row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
-                    row.reference_temporal_stddev_display = reference_std_display;
-                    row.flicker_display = reference_std_display > 0.0
-                                              ? row.temporal_stddev_display / reference_std_display
-                                              : 0.0;
-                }
-            }
-        }
+  auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings, const std::string& stage, std::uint64_t base) {
+    report(stage, base);
+    bool hit = false;
+    const auto start = std::chrono::steady_clock::now();
+    GroundTruth gt = cached_ground_truth(
+        scene, settings, materials, config.cache_dir, [&](std::uint64_t done, std::uint64_t) { report(stage, base + done); }, &hit);
+    if (hit) {
+      ++table.cache_hits;
+    } else {
+      ++table.cache_misses;
+      table.ground_truth_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      table.ground_truth_samples += static_cast<std::uint64_t>(settings.width) * settings.height * settings.strata * settings.strata;
     }
-    report("done", state.total);
-    return table;
+    return gt;
+  };
+  auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
+    return render_variant(gbuffer, key.variant, material, config.params, config.derivative, config.threads, key.feed, key.prefilter,
+                          config.prefilter_scale, key.lobe);
+  };
+
+  std::uint64_t base = 0;
+  for (const SceneId id : config.scenes) {
+    const std::string name(scene_name(id));
+    const std::vector<RowKey> keys = row_keys(config, id);
+    const std::size_t n_keys = keys.size();
+
+    // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
+    const Scene scene = make_scene(id, 0.0);
+    const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
+    base += main_gt;
+    report("1-spp variants " + name, base);
+    const GBuffer gbuffer = render_gbuffer(scene, config.width, config.height, config.threads);
+    const std::size_t first_row = table.rows.size();
+    for (std::size_t m = 0; m < n_materials; ++m) {
+      const Image reference_display = tonemapped(gt.images[m]);
+      ImageSet set;
+      if (config.keep_images) {
+        set.scene = id;
+        set.material = materials[m];
+        set.reference = gt.images[m];
+        set.coverage = gt.coverage;
+      }
+      for (const RowKey& key : keys) {
+        Image image = shade(gbuffer, key, materials[m]);
+        const ImageError e = compare_images(image, gt.images[m]);
+        TradeRow row;
+        row.variant = key.variant;
+        row.feed = key.feed;
+        row.prefilter = key.prefilter;
+        row.lobe = key.lobe;
+        row.scene = id;
+        row.alpha = materials[m].alpha;
+        row.fresnel = materials[m].fresnel;
+        row.rmse_linear = e.rmse_linear;
+        row.rmse_tonemapped = e.rmse_tonemapped;
+        row.max_error = e.max_error;
+        row.non_finite = e.non_finite;
+        if (config.flip) {
+          row.flip_ldr = ldr_flip_mean_grey(reference_display, tonemapped(image));
+          row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
+        }
+        table.rows.push_back(row);
+        if (config.keep_images) set.variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(image)});
+        base += main_pixels;
+        report("1-spp variants " + name, base);
+      }
+      if (config.keep_images) table.images.push_back(std::move(set));
+    }
+
+    // Temporal metrics: the animation at the flicker resolution; TDE in display values,
+    // the temporal standard deviations in linear and tonemapped values.
+    if (config.frames > 0) {
+      const int fw = config.flicker_width, fh = config.flicker_height;
+      const std::size_t n_rows = n_materials * n_keys;
+      std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
+      std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
+      std::vector<TemporalStats> variant_stats(n_rows, TemporalStats(fw, fh));
+      std::vector<TemporalStats> variant_display(n_rows, TemporalStats(fw, fh));
+      std::vector<TemporalDifference> differences(n_rows);
+      std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
+      std::vector<Image> previous_variant(n_rows);
+      for (int frame = 0; frame < config.frames; ++frame) {
+        const Scene moved = trade_animation_frame(config, id, frame);
+        const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
+        const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
+        base += flicker_gt;
+        const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
+        for (std::size_t m = 0; m < n_materials; ++m) {
+          Image reference_frame = display_image(frame_gt.images[m]);
+          reference_stats[m].add(frame_gt.images[m]);
+          reference_display[m].add(tonemapped(frame_gt.images[m]));
+          for (std::size_t k = 0; k < n_keys; ++k) {
+            const std::size_t r = m * n_keys + k;
+            const Image image = shade(frame_buffer, keys[k], materials[m]);
+            variant_stats[r].add(image);
+            variant_display[r].add(tonemapped(image));
+            Image frame_display = display_image(image);
+            if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame);
+            previous_variant[r] = std::move(frame_display);
+            base += flicker_pixels;
+          }
+          previous_reference[m] = std::move(reference_frame);
+        }
+        report(stage, base);
+      }
+      for (std::size_t m = 0; m < n_materials; ++m) {
+        const double reference_std = mean_temporal_stddev(reference_stats[m]);
+        const double reference_std_display = mean_temporal_stddev(reference_display[m]);
+        for (std::size_t k = 0; k < n_keys; ++k) {
+          const std::size_t r = m * n_keys + k;
+          TradeRow& row = table.rows[first_row + r];
+          const TemporalError temporal = differences[r].mean();
+          row.tde = temporal.tde;
+          row.tde_excess_flicker = temporal.excess_flicker;
+          row.tde_lost_motion = temporal.lost_motion;
+          row.flicker = flicker(variant_stats[r], reference_stats[m]);
+          row.temporal_stddev = mean_temporal_stddev(variant_stats[r]);
+          row.reference_temporal_stddev = reference_std;
+          row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
+          row.reference_temporal_stddev_display = reference_std_display;
+          row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
+        }
+      }
+    }
+  }
+  report("done", state.total);
+  return table;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Output
 
 std::string format_trade_table(const TradeTable& table) {
-    std::ostringstream s;
-    char line[256];
+  std::ostringstream s;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-16s %6s %3s %-36s %12s %10s %12s %8s %8s %9s %9s %9s %10s %10s\n", "scene", "alpha", "F",
+                "configuration", "rmse_linear", "rmse_tm", "max_error", "ldr_flip", "hdr_flip", "tde", "tde_excess", "tde_lost", "flicker",
+                "flicker_tm");
+  s << line;
+  for (const TradeRow& r : table.rows) {
     std::snprintf(line, sizeof line,
-                  "%-16s %6s %3s %-36s %12s %10s %12s %8s %8s %9s %9s %9s %10s %10s\n", "scene",
-                  "alpha", "F", "configuration", "rmse_linear", "rmse_tm", "max_error", "ldr_flip",
-                  "hdr_flip", "tde", "tde_excess", "tde_lost", "flicker", "flicker_tm");
+                  "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %8.5f %8.5f %9.5f %9.5f %9.5f "
+                  "%10.5f %10.4f%s\n",
+                  std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no", configuration_id(r).c_str(), r.rmse_linear,
+                  r.rmse_tonemapped, r.max_error, r.flip_ldr, r.flip_hdr, r.tde, r.tde_excess_flicker, r.tde_lost_motion, r.flicker,
+                  r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
     s << line;
-    for (const TradeRow& r : table.rows) {
-        std::snprintf(line, sizeof line,
-                      "%-16s %6.4f %3s %-36s %12.5g %10.5f %12.5g %8.5f %8.5f %9.5f %9.5f %9.5f "
-                      "%10.5f %10.4f%s\n",
-                      std::string(scene_name(r.scene)).c_str(), r.alpha, r.fresnel ? "yes" : "no",
-                      configuration_id(r).c_str(), r.rmse_linear, r.rmse_tonemapped, r.max_error,
-                      r.flip_ldr, r.flip_hdr, r.tde, r.tde_excess_flicker, r.tde_lost_motion,
-                      r.flicker, r.flicker_display, r.non_finite ? "  (non-finite pixels)" : "");
-        s << line;
-    }
-    return s.str();
+  }
+  return s.str();
 }
 
 std::string trade_table_csv(const TradeTable& table) {
-    std::ostringstream s;
-    s.precision(9);
-    s << "scene,alpha,fresnel,variant,feed,prefilter,lobe,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,"
-         "tde,tde_excess_flicker,tde_lost_motion,flicker,temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
-         "reference_temporal_stddev_display,non_finite\n";
-    for (const TradeRow& r : table.rows)
-        s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << ","
-          << variant_id(r.variant) << "," << feed_name(r.feed) << "," << prefilter_name(r.prefilter) << "," << lobe_name(r.lobe) << "," << r.rmse_linear << ","
-          << r.rmse_tonemapped << "," << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << ","
-          << r.tde << "," << r.tde_excess_flicker << "," << r.tde_lost_motion << "," << r.flicker << ","
-          << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display
-          << "," << r.temporal_stddev_display << "," << r.reference_temporal_stddev_display << ","
-          << r.non_finite << "\n";
-    return s.str();
+  std::ostringstream s;
+  s.precision(9);
+  s << "scene,alpha,fresnel,variant,feed,prefilter,lobe,rmse_linear,rmse_tonemapped,max_error,flip_ldr,flip_hdr,"
+       "tde,tde_excess_flicker,tde_lost_motion,flicker,temporal_stddev,reference_temporal_stddev,flicker_display,temporal_stddev_display,"
+       "reference_temporal_stddev_display,non_finite\n";
+  for (const TradeRow& r : table.rows)
+    s << scene_name(r.scene) << "," << r.alpha << "," << (r.fresnel ? 1 : 0) << "," << variant_id(r.variant) << "," << feed_name(r.feed)
+      << "," << prefilter_name(r.prefilter) << "," << lobe_name(r.lobe) << "," << r.rmse_linear << "," << r.rmse_tonemapped << ","
+      << r.max_error << "," << r.flip_ldr << "," << r.flip_hdr << "," << r.tde << "," << r.tde_excess_flicker << "," << r.tde_lost_motion
+      << "," << r.flicker << "," << r.temporal_stddev << "," << r.reference_temporal_stddev << "," << r.flicker_display << ","
+      << r.temporal_stddev_display << "," << r.reference_temporal_stddev_display << "," << r.non_finite << "\n";
+  return s.str();
 }
 
 }  // namespace saagen::render

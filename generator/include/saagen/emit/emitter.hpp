@@ -20,8 +20,8 @@ struct EmitOptions {
   std::vector<std::string> variants;  // empty: every variant
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // e.g. {"sigma2", 0.25}; missing: the default
-  std::string precision = "fp32";  // a precision of the target table: fp32, fp16, min16 (HLSL)
-  bool guards = true;              // false: the unguarded paper form (for comparison)
+  std::string precision = "fp32";               // a precision of the target table: fp32, fp16, min16 (HLSL)
+  bool guards = true;                           // false: the unguarded paper form (for comparison)
   // Roughness domain of the emitted functions' roughness in and out (saagen/emit/engines.hpp):
   // alpha2 (the templates' own), alpha, perceptual or smoothness.
   std::string domain = "alpha2";
@@ -76,7 +76,6 @@ struct BundleRequest {
 };
 // Uses options.target, prefix, option_values, precision and guards (not options.variants).
 EmittedFile emit_bundle(const Catalogue& catalogue, const EmitOptions& options, const BundleRequest& request);
-
 
 // Public functions of the given variants, in order, without duplicates.
 std::vector<std::string> public_functions(const Catalogue& catalogue, const std::vector<std::string>& variant_ids);

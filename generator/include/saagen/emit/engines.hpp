@@ -39,9 +39,9 @@ struct Preset {
   std::string variant;  // a catalogue variant id
   double sigma2 = 0.0;
   double kappa = 0.0;
-  std::string domain;   // the roughness the engine stores
-  std::string normal;   // which normal the engine feeds
-  std::string form;     // the engine's formula, in words
+  std::string domain;  // the roughness the engine stores
+  std::string normal;  // which normal the engine feeds
+  std::string form;    // the engine's formula, in words
 };
 
 const std::vector<Preset>& presets();
@@ -61,6 +61,5 @@ std::string domain_function_name(std::string_view function, std::string_view dom
 // wrappers in place of the functions they wrap (variants without are left as they are). Cached;
 // throws saagen::Error for an unknown domain or a non-built-in catalogue.
 const Catalogue& domain_catalogue(const Catalogue& catalogue, std::string_view domain);
-
 
 }  // namespace saagen

@@ -44,8 +44,8 @@ struct Function {
   std::vector<std::string> constants;
   std::vector<std::string> paper_calls;
   std::vector<std::string> paper_constants;
-  bool has_guards = false;  // the body contains guarded(...)
-  bool fragment_only = false;          // takes derivatives itself or through a callee
+  bool has_guards = false;     // the body contains guarded(...)
+  bool fragment_only = false;  // takes derivatives itself or through a callee
 };
 
 // An interval of allowed values for an emission option, e.g. (0, 4].
@@ -62,8 +62,8 @@ struct Constant {
   std::string name;  // unprefixed
   std::string type;
   std::string meaning;
-  std::string option;  // non-empty for emission-time options (sigma2, kappa)
-  double value = 0.0;  // the fixed value, or the option's default
+  std::string option;                // non-empty for emission-time options (sigma2, kappa)
+  double value = 0.0;                // the fixed value, or the option's default
   std::optional<double> half_value;  // the value in half-precision emissions, when it differs
   std::optional<Interval> range;
   std::string source_file;

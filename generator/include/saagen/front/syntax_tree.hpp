@@ -29,25 +29,25 @@ struct Type {
   static Type integer() { return {Base::integer, 1}; }
   static Type boolean() { return {Base::boolean, 1}; }
   static std::optional<Type> from_name(std::string_view name);  // "real3" -> real x 3
-  std::string name() const;                                      // the dialect's spelling
+  std::string name() const;                                     // the dialect's spelling
   bool is_none() const { return base == Base::none; }
   bool is_scalar() const { return size == 1; }
   friend bool operator==(const Type&, const Type&) = default;
 };
 
 enum class ExprKind {
-  literal,   // text: the number as written
-  name,      // text: a local, a parameter or a template constant
-  group,     // (operand): parentheses written in the template
-  unary,     // text: - ! ~ ++ -- (prefix)
-  postfix,   // text: ++ or -- after operand 0
-  binary,    // text: the operator
-  ternary,   // condition ? operand 1 : operand 2
-  call,      // text: the callee; operands: the arguments
-  member,    // text: the swizzle (xy, z, ...)
-  index,     // operand 0 [operand 1]
-  assign,    // text: = += -= *= /= ...; operand 0 is the assigned name
-  guarded,   // guarded(safe, paper): the emission chooses one (operands 0 and 1)
+  literal,  // text: the number as written
+  name,     // text: a local, a parameter or a template constant
+  group,    // (operand): parentheses written in the template
+  unary,    // text: - ! ~ ++ -- (prefix)
+  postfix,  // text: ++ or -- after operand 0
+  binary,   // text: the operator
+  ternary,  // condition ? operand 1 : operand 2
+  call,     // text: the callee; operands: the arguments
+  member,   // text: the swizzle (xy, z, ...)
+  index,    // operand 0 [operand 1]
+  assign,   // text: = += -= *= /= ...; operand 0 is the assigned name
+  guarded,  // guarded(safe, paper): the emission chooses one (operands 0 and 1)
 };
 
 enum class CallKind { function, intrinsic, constructor };
@@ -85,8 +85,8 @@ struct Stmt {
   // initialiser in `init`; block: its statements.
   std::vector<std::unique_ptr<Stmt>> body;
   std::unique_ptr<Stmt> init;
-  std::string closing;     // block: the layout before '}'; conditional: before `else`
-  std::string jump_word;   // jump: break or continue
+  std::string closing;    // block: the layout before '}'; conditional: before `else`
+  std::string jump_word;  // jump: break or continue
 };
 
 struct Body {

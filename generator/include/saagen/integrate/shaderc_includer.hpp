@@ -9,17 +9,15 @@
 
 #include "saagen/integrate/include_handler.hpp"
 
-#include <shaderc/shaderc.hpp>
-
 #include <memory>
 #include <set>
+#include <shaderc/shaderc.hpp>
 
 namespace saagen {
 
 class ShadercIncluder : public shaderc::CompileOptions::IncluderInterface {
  public:
-  explicit ShadercIncluder(IncludeOptions defaults = {},
-                           std::unique_ptr<shaderc::CompileOptions::IncluderInterface> fallback = nullptr);
+  explicit ShadercIncluder(IncludeOptions defaults = {}, std::unique_ptr<shaderc::CompileOptions::IncluderInterface> fallback = nullptr);
 
   shaderc_include_result* GetInclude(const char* requested_source, shaderc_include_type type, const char* requesting_source,
                                      size_t include_depth) override;

@@ -19,11 +19,16 @@ enum class OutputKind { snippet, spirv_library, pass_glsl, pass_hlsl, pass_spirv
 // `--target` that asks for them), "pass-glsl", "pass-hlsl", "pass-spirv" (the deferred pass files).
 constexpr std::string_view marker_target(OutputKind kind) {
   switch (kind) {
-    case OutputKind::spirv_library: return "spirv";
-    case OutputKind::pass_glsl: return "pass-glsl";
-    case OutputKind::pass_hlsl: return "pass-hlsl";
-    case OutputKind::pass_spirv: return "pass-spirv";
-    case OutputKind::snippet: break;
+    case OutputKind::spirv_library:
+      return "spirv";
+    case OutputKind::pass_glsl:
+      return "pass-glsl";
+    case OutputKind::pass_hlsl:
+      return "pass-hlsl";
+    case OutputKind::pass_spirv:
+      return "pass-spirv";
+    case OutputKind::snippet:
+      break;
   }
   return "";
 }

@@ -39,8 +39,7 @@ OutputFile ownership_sidecar(const std::filesystem::path& path, std::string_view
 // one of the command's `inputs` (compared by device and inode, not by name; not even with
 // `force`), not a directory, a symbolic link or a special file, saagen's own unless `force`, and
 // inside a directory that exists and is writable or can be created. Throws saagen::Error (one line).
-void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force,
-                        const std::vector<std::filesystem::path>& inputs = {});
+void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force, const std::vector<std::filesystem::path>& inputs = {});
 
 // Writes every file through a temporary created exclusively (mkstemp) in its own directory and a
 // rename, after checking every path as check_output_paths does (`inputs` included). Nothing is renamed until every

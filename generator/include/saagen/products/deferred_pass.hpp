@@ -45,12 +45,12 @@ inline constexpr std::uint32_t binding_tangent = 3;    // sampled image: .xyz ta
 inline constexpr std::uint32_t tile_size = 8;          // a workgroup covers tile_size x tile_size pixels
 inline constexpr std::uint32_t local_size = 64;        // local_size_x; y = z = 1
 // Push-constant flags: bits 0-1 the roughness domain, then the encodings.
-inline constexpr std::uint32_t domain_alpha2 = 0;      // the G-buffer holds alpha^2
-inline constexpr std::uint32_t domain_alpha = 1;       // alpha (GGX/Beckmann width)
-inline constexpr std::uint32_t domain_perceptual = 2;  // perceptual roughness r, alpha = r^2
-inline constexpr std::uint32_t domain_smoothness = 3;  // perceptual smoothness s = 1 - r (the order of roughness_domains())
-inline constexpr std::uint32_t flag_normal_unorm = 4;  // normal stored as n * 0.5 + 0.5
-inline constexpr std::uint32_t flag_tangent_unorm = 8; // tangent .xyz stored as t * 0.5 + 0.5
+inline constexpr std::uint32_t domain_alpha2 = 0;       // the G-buffer holds alpha^2
+inline constexpr std::uint32_t domain_alpha = 1;        // alpha (GGX/Beckmann width)
+inline constexpr std::uint32_t domain_perceptual = 2;   // perceptual roughness r, alpha = r^2
+inline constexpr std::uint32_t domain_smoothness = 3;   // perceptual smoothness s = 1 - r (the order of roughness_domains())
+inline constexpr std::uint32_t flag_normal_unorm = 4;   // normal stored as n * 0.5 + 0.5
+inline constexpr std::uint32_t flag_tangent_unorm = 8;  // tangent .xyz stored as t * 0.5 + 0.5
 }  // namespace deferred_pass_abi
 
 // The push constants (16 bytes, compute stage), as laid out in every pass.
@@ -62,9 +62,9 @@ struct DeferredPassConstants {
 };
 
 struct DeferredPassKind {
-  std::string id;       // deferred-sum
-  std::string variant;  // the catalogue variant: deferred-sum (deferred-max for deferred-max-tangent-free)
-  std::string wrapper;  // the fragment wrapper it runs: deferred_sum_fragment
+  std::string id;         // deferred-sum
+  std::string variant;    // the catalogue variant: deferred-sum (deferred-max for deferred-max-tangent-free)
+  std::string wrapper;    // the fragment wrapper it runs: deferred_sum_fragment
   bool tangents = false;  // reads the tangent G-buffer (binding 3)
 };
 
@@ -82,9 +82,9 @@ struct DeferredPassOptions {
 
 struct DeferredPass {
   DeferredPassKind kind;
-  std::string stem;  // saa_pass_deferred_sum
-  std::string glsl;  // complete compute shader (GLSL 4.50, Vulkan)
-  std::string hlsl;  // complete compute shader (HLSL, entry main)
+  std::string stem;                  // saa_pass_deferred_sum
+  std::string glsl;                  // complete compute shader (GLSL 4.50, Vulkan)
+  std::string hlsl;                  // complete compute shader (HLSL, entry main)
   std::vector<std::uint32_t> spirv;  // compiled from `glsl`, with the marker as OpModuleProcessed
   std::string header;                // C/C++: bindings, push constants, dispatch, the SPIR-V words
 

@@ -4,9 +4,9 @@
 // and the file layouts are in docs/GLINTS.md.
 #pragma once
 
+#include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/io/ktx2.hpp"
-#include "saagen/emit/emitter.hpp"
 
 #include <cstdint>
 #include <map>
@@ -26,29 +26,29 @@ inline constexpr std::uint64_t dictionary_lobe_limit = std::uint64_t{1} << 24;
 inline constexpr std::uint64_t dictionary_value_limit = std::uint64_t{1} << 25;
 
 struct DictionaryParams {
-    int count = 192;          // N distributions; a multiple of 4 (four per RGBA16F texel)
-    int lods = 16;            // L LODs; LOD k < L - 1 mixes 2^k lobes, LOD L - 1 is the Beckmann marginal
-    int resolution = 64;      // R texels per single-scale distribution (a power of two), over x in [0, x_max)
-    double alpha = 0.5;       // alpha_dict: Beckmann roughness of the last LOD (sigma_o = alpha / sqrt(2))
-    double lobe_sigma = 0.02; // standard deviation of each lobe
-    std::uint64_t seed = 2021;
+  int count = 192;           // N distributions; a multiple of 4 (four per RGBA16F texel)
+  int lods = 16;             // L LODs; LOD k < L - 1 mixes 2^k lobes, LOD L - 1 is the Beckmann marginal
+  int resolution = 64;       // R texels per single-scale distribution (a power of two), over x in [0, x_max)
+  double alpha = 0.5;        // alpha_dict: Beckmann roughness of the last LOD (sigma_o = alpha / sqrt(2))
+  double lobe_sigma = 0.02;  // standard deviation of each lobe
+  std::uint64_t seed = 2021;
 
-    // Throws saagen::Error naming the parameter and its allowed values.
-    void validate() const;
-    double sigma() const;  // sigma_o = alpha / sqrt(2)
-    double range() const;  // x_max = 4 sigma_o = 2 sqrt(2) alpha
+  // Throws saagen::Error naming the parameter and its allowed values.
+  void validate() const;
+  double sigma() const;  // sigma_o = alpha / sqrt(2)
+  double range() const;  // x_max = 4 sigma_o = 2 sqrt(2) alpha
 };
 
 // The distributions in double precision: density(lod, d, texel) is the mean of P_o(x; d, lod)
 // over texel [texel, texel + 1) * x_max / R (x >= 0; the distributions are even), normalised so
 // that 2 sum_texel density * x_max / R = 1.
 struct Dictionary {
-    DictionaryParams params;
-    std::vector<double> values;  // [(lod * count + d) * resolution + texel]
+  DictionaryParams params;
+  std::vector<double> values;  // [(lod * count + d) * resolution + texel]
 
-    double density(int lod, int distribution, int texel) const {
-        return values[(static_cast<std::size_t>(lod) * params.count + distribution) * params.resolution + texel];
-    }
+  double density(int lod, int distribution, int texel) const {
+    return values[(static_cast<std::size_t>(lod) * params.count + distribution) * params.resolution + texel];
+  }
 };
 
 // Deterministic for a given seed (SplitMix64 streams, Box-Muller; see docs/GLINTS.md).
@@ -59,9 +59,9 @@ Dictionary generate_dictionary(const DictionaryParams& params);
 // (level m + 1 = mean of texel pairs of level m) or level 0 only. levels[m] holds the half bits,
 // layer after layer, 4 per texel (the KTX2 and Vulkan upload layout).
 struct DictionaryTexture {
-    std::uint32_t width = 0;
-    std::uint32_t layers = 0;
-    std::vector<std::vector<std::uint16_t>> levels;
+  std::uint32_t width = 0;
+  std::uint32_t layers = 0;
+  std::vector<std::vector<std::uint16_t>> levels;
 };
 
 DictionaryTexture dictionary_texture(const Dictionary& dictionary, bool mips = true);
@@ -77,7 +77,6 @@ std::size_t texture_bytes(const DictionaryTexture& texture);
 std::uint16_t to_half(double value);
 double from_half(std::uint16_t bits);
 
-
 // The dictionary texture as KTX2 (key "saagen.glints" holds its parameters as JSON).
 Ktx2Image dictionary_ktx2(const DictionaryTexture& texture, const DictionaryParams& params);
 
@@ -86,9 +85,9 @@ Ktx2Image dictionary_ktx2(const DictionaryTexture& texture, const DictionaryPara
 
 // A tangent-space normal map as slopes (-n.x / n.z, -n.y / n.z), 2 per texel, row-major.
 struct SlopeMap {
-    int width = 0;
-    int height = 0;
-    std::vector<double> slopes;
+  int width = 0;
+  int height = 0;
+  std::vector<double> slopes;
 };
 
 // Slopes of unit tangent-space normals (3 per texel, n.z > 0).
@@ -102,9 +101,9 @@ SlopeMap slopes_from_ppm(std::span<const std::uint8_t> bytes);
 // Level m holds, per texel, (E[x], E[y], E[x^2], E[xy], E[y^2]) over the texels of level 0 it
 // covers (2x2 box filter per level, down to 1x1; odd sizes repeat the last row/column).
 struct MomentLevel {
-    int width = 0;
-    int height = 0;
-    std::vector<double> moments;  // 5 per texel
+  int width = 0;
+  int height = 0;
+  std::vector<double> moments;  // 5 per texel
 };
 std::vector<MomentLevel> lean_moments(const SlopeMap& map);
 

@@ -41,9 +41,9 @@ double to_alpha2(double value, Domain domain);
 
 // Level 0 of a tangent-space normal map: unit normals with z > 0, 3 per texel, row-major.
 struct NormalImage {
-    int width = 0;
-    int height = 0;
-    std::vector<double> normals;
+  int width = 0;
+  int height = 0;
+  std::vector<double> normals;
 };
 
 // From encoded channels in [0, 1] (n = 2 c - 1), `channels` >= 3 per texel (extra ones ignored),
@@ -69,11 +69,11 @@ glints::SlopeMap read_lean_slopes(std::span<const std::uint8_t> bytes, const std
 // One level: per texel the mean of the level-0 unit normals (3 values), of their slopes
 // s = -n.xy / n.z (2) and of s s^T as (xx, xy, yy) (3). A non-square map halves its longer side alone.
 struct Level {
-    int width = 0;
-    int height = 0;
-    std::vector<double> mean_normal;
-    std::vector<double> slope_mean;
-    std::vector<double> slope_second;
+  int width = 0;
+  int height = 0;
+  std::vector<double> mean_normal;
+  std::vector<double> slope_mean;
+  std::vector<double> slope_second;
 };
 std::vector<Level> build_levels(const NormalImage& image);
 
@@ -81,11 +81,11 @@ std::vector<Level> build_levels(const NormalImage& image);
 double toksvig_alpha2(double base_alpha2, double mean_length);
 
 struct Options {
-    Method method = Method::toksvig;
-    Domain domain = Domain::perceptual;
-    double roughness = 0.0;   // base roughness, in `domain`, in [0, 1]
-    bool float32 = false;     // toksvig: R32_SFLOAT instead of R16_SFLOAT
-    void validate() const;    // throws saagen::Error
+  Method method = Method::toksvig;
+  Domain domain = Domain::perceptual;
+  double roughness = 0.0;  // base roughness, in `domain`, in [0, 1]
+  bool float32 = false;    // toksvig: R32_SFLOAT instead of R16_SFLOAT
+  void validate() const;   // throws saagen::Error
 };
 
 // The KTX2 image with the full MIP chain and the "saagen.prefilter" JSON (and a saagen marker,

@@ -20,9 +20,9 @@
 // import_stub_functions() turns stub definitions compiled by glslang into such declarations.
 #pragma once
 
+#include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/validate/compiler.hpp"
-#include "saagen/emit/emitter.hpp"
 #include "saagen/validate/validation.hpp"
 
 #include <nlohmann/json.hpp>

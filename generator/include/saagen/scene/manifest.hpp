@@ -34,8 +34,8 @@ struct Material {
   bool tangents = false;
   Ndf ndf = Ndf::ggx;
   bool normal_maps = false;
-  bool glints = false;                 // the glinty BRDF (forward, tangents): the planner picks a glint variant
-  std::string precision = "fp32";      // "fp32" or "fp16" (per target: see target_precision)
+  bool glints = false;             // the glinty BRDF (forward, tangents): the planner picks a glint variant
+  std::string precision = "fp32";  // "fp32" or "fp16" (per target: see target_precision)
   Preference prefer = Preference::accuracy;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header

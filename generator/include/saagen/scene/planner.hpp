@@ -34,8 +34,8 @@
 // errors); the rules decide otherwise. lavapipe time never decides.
 #pragma once
 
-#include "saagen/front/catalogue.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/scene/cost_tables.hpp"
 #include "saagen/scene/manifest.hpp"
 
@@ -47,7 +47,6 @@
 #include <vector>
 
 namespace saagen {
-
 
 struct MaterialPlan {
   std::string material;                // its name in the manifest
@@ -64,9 +63,9 @@ struct MaterialPlan {
   // Where saagen's trade measured no filter beating every filter for this material's content and
   // path: that advice with its figures (the filter is still planned and emitted); empty otherwise.
   std::string no_filter_advice;
-  bool per_axis = false;               // isotropic filter on anisotropic roughness: once per axis
+  bool per_axis = false;  // isotropic filter on anisotropic roughness: once per axis
   std::string precision = "fp32";
-  std::map<std::string, long> cost;    // target -> optimized SPIR-V instructions added
+  std::map<std::string, long> cost;  // target -> optimized SPIR-V instructions added
   // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
   // normal) and whether to prefilter the normal map ("none", "toksvig", "lean"), with the
   // measured figures that decide it.
@@ -106,7 +105,6 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 
 // The emission options of a manifest for one target and precision.
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision);
-
 
 // The catalogue a manifest is planned and emitted over: the glint catalogue when a material has
 // glints = true (it holds the SAA variants too), else `catalogue` (plans and bundles without

@@ -101,9 +101,9 @@ struct TargetSyntax {
   // The fp32 spellings of the dialect types, whatever the precision (intrinsic patterns of a
   // narrower precision widen with {wide_type}; set by parse).
   std::map<std::string, std::string, std::less<>> wide_types;
-  std::string literal_suffix;      // set by with_precision
-  std::string preamble;            // set by with_precision
-  bool native_16bit = false;       // set by with_precision
+  std::string literal_suffix;  // set by with_precision
+  std::string preamble;        // set by with_precision
+  bool native_16bit = false;   // set by with_precision
 
   // Parses one table; throws saagen::Error naming `source_name` on a missing or wrong key.
   static TargetSyntax parse(std::string_view json_text, std::string_view source_name);

@@ -10,7 +10,6 @@
 
 namespace saagen {
 
-
 // One named piece of source text. Pieces are concatenated in order; the names appear in
 // diagnostics so that an error points at the emitted file, not at the generated harness.
 struct SourcePiece {

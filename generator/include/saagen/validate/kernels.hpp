@@ -11,9 +11,9 @@
 // Bindings: input floats at (set 0, binding 0), output floats at (set 0, binding 1).
 #pragma once
 
+#include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/validate/compiler.hpp"
-#include "saagen/emit/emitter.hpp"
 
 #include <cstdint>
 #include <string>
@@ -33,7 +33,7 @@ enum class PlainDerivative { coarse, fine };
 
 struct KernelRequest {
   KernelKind kind = KernelKind::compute;
-  std::string body;  // dialect statements
+  std::string body;                 // dialect statements
   std::uint32_t input_stride = 0;   // floats per element (compute kinds)
   std::uint32_t output_stride = 0;  // floats per element / pixel
   std::uint32_t width = 0;          // framebuffer / emulated image width in pixels (even)
@@ -46,13 +46,13 @@ struct KernelRequest {
 
 // Source pieces for compile_to_spirv: skeleton prologue, the emitted file, skeleton epilogue
 // with the translated body. `content` must carry a saagen marker (it names target and prefix).
-std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name,
-                                        const std::string& content, const KernelRequest& request);
+std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name, const std::string& content,
+                                        const KernelRequest& request);
 
 // The complete compile request for a kernel: language, stage and 16-bit settings from the
 // file's marker, and kernel_sources().
-CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name,
-                                      const std::string& content, const KernelRequest& request);
+CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::string& file_name, const std::string& content,
+                                      const KernelRequest& request);
 
 // A body that loads every parameter of `function` from the input (in declaration order, each
 // vector component by component), calls it, and stores every component of the result. Sets

@@ -3,14 +3,15 @@
 // without derivatives, for every client API the target supports, and checked with spirv-val.
 #pragma once
 
-#include "saagen/front/catalogue.hpp"
-#include "saagen/validate/compiler.hpp"
 #include "saagen/emit/emitter.hpp"
+#include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/compiler.hpp"
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <filesystem>
 #include <map>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,8 @@ struct FileValidation {
 
 // The shader source that validation compiles for `content` (an emitted file described by
 // `marker`) in the given stage: prologue + the file + calls to its functions.
-std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker,
-                                            const std::string& file_name, const std::string& content, ShaderStage stage);
+std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker, const std::string& file_name,
+                                            const std::string& content, ShaderStage stage);
 
 // Validates emitted WGSL files with Tint: each file inside a fragment and a compute entry point
 // that call its public functions (the compute one leaves the [fragment] functions out), compiled

@@ -29,8 +29,7 @@ Bytes to_bytes(const std::vector<T>& values) {
 
 // One trivially copyable value, e.g. a push-constant struct.
 template <typename T>
-  requires std::is_trivially_copyable_v<T>
-Bytes value_bytes(const T& value) {
+requires std::is_trivially_copyable_v<T> Bytes value_bytes(const T& value) {
   Bytes bytes(sizeof(T));
   std::memcpy(bytes.data(), &value, sizeof(T));
   return bytes;

@@ -30,7 +30,7 @@ struct CompareReport {
   Tolerance tolerance;
   bool per_element_bounds = false;  // compared against a bound per element instead of `tolerance`
   double max_relative_error = 0.0;  // max |got - expected| / |expected| over finite |expected| > 1e-30
-  std::string what;         // caption given by the caller
+  std::string what;                 // caption given by the caller
 
   bool ok() const { return failing == 0; }
   // e.g. "sqrt: 0 of 100000 failing (tol abs 0 + rel 0); worst #17 x=2: got 1.41421354,
@@ -54,17 +54,16 @@ const CompareTotals& compare_totals();
 using DescribeElement = std::function<std::string(std::size_t index)>;
 
 // got and expected must have the same length (std::invalid_argument otherwise).
-CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance,
-                      const std::string& what = {}, const DescribeElement& describe = {});
-CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance,
-                      const std::string& what = {}, const DescribeElement& describe = {});
+CompareReport compare(std::span<const float> got, std::span<const double> expected, Tolerance tolerance, const std::string& what = {},
+                      const DescribeElement& describe = {});
+CompareReport compare(std::span<const double> got, std::span<const double> expected, Tolerance tolerance, const std::string& what = {},
+                      const DescribeElement& describe = {});
 // Element i passes when |got - expected| <= bounds[i] (an error bound derived per element, e.g.
 // from a condition number); non-finite values as above.
-CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected,
-                                  std::span<const double> bounds, const std::string& what = {},
-                                  const DescribeElement& describe = {});
+CompareReport compare_with_bounds(std::span<const float> got, std::span<const double> expected, std::span<const double> bounds,
+                                  const std::string& what = {}, const DescribeElement& describe = {});
 // Device against device (e.g. two shader variants), or against an fp32 CPU model.
-CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance,
-                      const std::string& what = {}, const DescribeElement& describe = {});
+CompareReport compare(std::span<const float> got, std::span<const float> expected, Tolerance tolerance, const std::string& what = {},
+                      const DescribeElement& describe = {});
 
 }  // namespace saagen::harness

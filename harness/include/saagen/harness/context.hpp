@@ -60,12 +60,12 @@ struct FloatControls {
 struct DeviceInfo {
   std::string name;
   VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
-  std::uint32_t api_version = 0;        // VK_MAKE_API_VERSION encoding, as reported by the device
-  std::uint32_t driver_version = 0;     // vendor-specific encoding
+  std::uint32_t api_version = 0;     // VK_MAKE_API_VERSION encoding, as reported by the device
+  std::uint32_t driver_version = 0;  // vendor-specific encoding
   std::uint32_t vendor_id = 0;
   std::uint32_t device_id = 0;
-  std::string driver_name;              // e.g. "llvmpipe" (empty before Vulkan 1.2)
-  std::string driver_info;              // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string driver_name;  // e.g. "llvmpipe" (empty before Vulkan 1.2)
+  std::string driver_info;  // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
 
   // Enabled features (each is on exactly when the device supports it).
   bool shader_float16 = false;

@@ -3,12 +3,11 @@
 // (compute) or a framebuffer (fragment). Programs in program.hpp turn these into Vulkan work.
 #pragma once
 
-#include <saagen/harness/bytes.hpp>
-
 #include <vulkan/vulkan.h>
 
 #include <array>
 #include <cstdint>
+#include <saagen/harness/bytes.hpp>
 #include <string>
 #include <vector>
 
@@ -63,8 +62,8 @@ struct SamplerDesc {
   VkSamplerAddressMode address_v = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VkSamplerAddressMode address_w = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   float mip_lod_bias = 0.0f;
-  bool anisotropy_enable = false;   // requires DeviceInfo::sampler_anisotropy
-  float max_anisotropy = 1.0f;      // must not exceed DeviceInfo::max_sampler_anisotropy
+  bool anisotropy_enable = false;  // requires DeviceInfo::sampler_anisotropy
+  float max_anisotropy = 1.0f;     // must not exceed DeviceInfo::max_sampler_anisotropy
   float min_lod = 0.0f;
   float max_lod = VK_LOD_CLAMP_NONE;
   VkBorderColor border_color = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;

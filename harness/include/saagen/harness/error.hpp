@@ -30,8 +30,9 @@ class UnsupportedFeature : public std::runtime_error {
 class NullHardwareDevice : public std::runtime_error {
  public:
   explicit NullHardwareDevice(std::string summary)
-      : std::runtime_error(summary + " is RADV's null-hardware device (RADV_FORCE_FAMILY is set): it compiles but cannot execute; "
-                                     "unset RADV_FORCE_FAMILY to run on a real device, or read its ISA statistics with `saagen bench --isa FAMILY`"),
+      : std::runtime_error(summary +
+                           " is RADV's null-hardware device (RADV_FORCE_FAMILY is set): it compiles but cannot execute; "
+                           "unset RADV_FORCE_FAMILY to run on a real device, or read its ISA statistics with `saagen bench --isa FAMILY`"),
         summary_(std::move(summary)) {}
   const std::string& summary() const { return summary_; }
 

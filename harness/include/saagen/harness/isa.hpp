@@ -53,8 +53,8 @@ struct IsaLayout {
 // reports them. The fields below are the ones the cost model uses; `all` holds every statistic.
 struct IsaStatistics {
   std::string family;
-  std::string device_name;  // e.g. "AMD RADV VEGA10"
-  std::string executable;   // RADV's executable name, e.g. "fragment shader"
+  std::string device_name;        // e.g. "AMD RADV VEGA10"
+  std::string executable;         // RADV's executable name, e.g. "fragment shader"
   double instructions = 0;        // "Instructions"
   double vgprs = 0;               // "VGPRs"
   double sgprs = 0;               // "SGPRs"

@@ -3,12 +3,11 @@
 // run_compute / run_fragment are the one-shot forms.
 #pragma once
 
-#include <saagen/harness/context.hpp>
-#include <saagen/harness/description.hpp>
-
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <saagen/harness/context.hpp>
+#include <saagen/harness/description.hpp>
 #include <span>
 #include <vector>
 
@@ -23,9 +22,9 @@ struct RunOptions {
 };
 
 struct Timing {
-  double pipeline_create_ms = 0.0;   // shader modules + pipeline creation (once per program)
-  std::vector<double> host_ms;       // wall clock around vkQueueSubmit + fence wait, per repetition
-  std::vector<double> gpu_ms;        // timestamp difference per repetition; empty when unavailable
+  double pipeline_create_ms = 0.0;  // shader modules + pipeline creation (once per program)
+  std::vector<double> host_ms;      // wall clock around vkQueueSubmit + fence wait, per repetition
+  std::vector<double> gpu_ms;       // timestamp difference per repetition; empty when unavailable
 
   static double min(const std::vector<double>& samples);     // NaN when empty
   static double median(const std::vector<double>& samples);  // NaN when empty

@@ -2,9 +2,8 @@
 // harness descriptions, throwing with the compiler log on failure.
 #pragma once
 
-#include <saagen/harness/description.hpp>
-
 #include <cstdint>
+#include <saagen/harness/description.hpp>
 #include <string>
 #include <vector>
 
@@ -16,12 +15,10 @@ enum class Stage { vertex, fragment, compute };
 // Compiles one source string for Vulkan (SPIR-V 1.3, validated). Throws std::runtime_error
 // with the compiler/validator log when it fails.
 std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source,
-                                          const std::string& entry_point = "main",
-                                          const std::string& name = "shader");
+                                          const std::string& entry_point = "main", const std::string& name = "shader");
 
 // compile_shader wrapped into a ShaderDesc with the same entry point.
-ShaderDesc shader_desc(Language language, Stage stage, const std::string& source,
-                       const std::string& entry_point = "main");
+ShaderDesc shader_desc(Language language, Stage stage, const std::string& source, const std::string& entry_point = "main");
 
 // GLSL of the built-in full-screen-triangle vertex shader, and its SPIR-V (compiled once).
 const std::string& fullscreen_vertex_glsl();

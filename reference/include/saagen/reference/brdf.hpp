@@ -107,11 +107,11 @@ double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 
 // The fitted functions of r.
 struct FilteredGgxLobes {
-    double tail_scale = 1.0;         // lambda
-    double tail_weight = 1.0;        // w = 1 / lambda
-    double shoulder_kernel = 1.0;    // c_s
-    double shoulder_fraction = 0.0;  // f
-    double core_kernel = 1.0;        // c_c
+  double tail_scale = 1.0;         // lambda
+  double tail_weight = 1.0;        // w = 1 / lambda
+  double shoulder_kernel = 1.0;    // c_s
+  double shoulder_fraction = 0.0;  // f
+  double core_kernel = 1.0;        // c_c
 };
 FilteredGgxLobes filtered_ggx_lobes(double ratio);
 
@@ -148,39 +148,39 @@ double ggx_filtered_alpha2(double alpha2, double kernel);
 // params.guards and params.half_precision matter. (A struct rather than overloads: the free
 // functions must stay single functions, which callers pass around as values.)
 struct Brdf {
-    Params params;
+  Params params;
 
-    double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
-    double ggx_lambda_matrix(Vec3 w, Sym2 a) const;
-    double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const;
-    double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
-    double ggx_ndf_axis(Vec3 h, Vec2 alpha2) const;
-    double ggx_lambda_axis(Vec3 w, Vec2 alpha2) const;
-    double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
-    double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
-    double beckmann_lambda_matrix(Vec3 w, Sym2 a) const;
-    double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
-    double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
-    double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
-    double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
-    // The terms the filtered GGX's Beckmann lobes share (template filtered_beckmann_lobe).
-    struct FilteredGgxTerms {
-        double quad_a0 = 0.0, quad_k = 0.0, det_a0 = 0.0, det_mixed = 0.0, det_k = 0.0;
-        double length2 = 0.0, trace_a0 = 0.0, trace_k = 0.0, cos2 = 0.0;
-    };
-    double filtered_beckmann_lobe(double c, const FilteredGgxTerms& terms) const;
-    double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
-    double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
-    double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
-    double ggx_filtered_alpha2(double alpha2, double kernel) const;
+  double ggx_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
+  double ggx_lambda_matrix(Vec3 w, Sym2 a) const;
+  double ggx_g2_matrix(Vec3 i, Vec3 o, Vec3 h, Sym2 a) const;
+  double ggx_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
+  double ggx_ndf_axis(Vec3 h, Vec2 alpha2) const;
+  double ggx_lambda_axis(Vec3 w, Vec2 alpha2) const;
+  double ggx_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
+  double beckmann_ndf_matrix(Vec3 h, Sym2 a, double tau) const;
+  double beckmann_lambda_matrix(Vec3 w, Sym2 a) const;
+  double beckmann_brdf_matrix(Vec3 i, Vec3 o, Sym2 a, double tau) const;
+  double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
+  double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
+  double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
+  // The terms the filtered GGX's Beckmann lobes share (template filtered_beckmann_lobe).
+  struct FilteredGgxTerms {
+    double quad_a0 = 0.0, quad_k = 0.0, det_a0 = 0.0, det_mixed = 0.0, det_k = 0.0;
+    double length2 = 0.0, trace_a0 = 0.0, trace_k = 0.0, cos2 = 0.0;
+  };
+  double filtered_beckmann_lobe(double c, const FilteredGgxTerms& terms) const;
+  double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
+  double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
+  double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
+  double ggx_filtered_alpha2(double alpha2, double kernel) const;
 
  private:
-    // guarded(safe, paper) of the templates.
-    double guarded(double safe, double paper) const { return params.guards ? safe : paper; }
-    double tiny() const { return params.guard_constants().tiny_positive; }
-    double falloff(double x) const;  // exp(-x), 0 past EXP_ARG_MAX when guarded
-    double divisor(double d) const;  // d, floored at DIVISOR_MIN when guarded
-    double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
+  // guarded(safe, paper) of the templates.
+  double guarded(double safe, double paper) const { return params.guards ? safe : paper; }
+  double tiny() const { return params.guard_constants().tiny_positive; }
+  double falloff(double x) const;        // exp(-x), 0 past EXP_ARG_MAX when guarded
+  double divisor(double d) const;        // d, floored at DIVISOR_MIN when guarded
+  double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -189,26 +189,21 @@ struct Brdf {
 
 // A = diag(alpha^2) + (n.h)^2 K, h = normalize(l + v) (guarded as half_vector), in the frame
 // (normal_frame_tangent(n), normal_frame_bitangent(n), n).
-Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
-                              double alpha2);
+Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2);
 // The tail-preserving filtered GGX of that A, the light and view expressed in the same frame.
-double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor,
-                           double alpha2);
+double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2);
 
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad (quad.hpp): the template differentiates the projected half
 // vector normalize(i + o) with plain ddx/ddy (forward_aniso_projected_fragment), then evaluates
 // the matrix BRDF of this pixel with tau = ndf_clamp_tau(alpha2), both under p's guards.
 
-double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
-                                       Vec2 alpha2, int pixel,
+double ggx_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                        Derivative mode = Derivative::coarse);
 // Template ggx_brdf_tail_filtered_fragment: the same kernel, saagen's tail-preserving filtered GGX.
-double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o,
-                                            Vec2 alpha2, int pixel,
+double ggx_brdf_tail_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                             Derivative mode = Derivative::coarse);
-double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i,
-                                            const Quad<Vec3>& o, Vec2 alpha2, int pixel,
+double beckmann_brdf_filtered_fragment_quad(const Params& p, const Quad<Vec3>& i, const Quad<Vec3>& o, Vec2 alpha2, int pixel,
                                             Derivative mode = Derivative::coarse);
 
 }  // namespace saagen::ref

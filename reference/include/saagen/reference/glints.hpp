@@ -22,15 +22,15 @@ namespace saagen::ref::glints {
 // A 1D array image with a mip chain, texels as doubles (RGBA). Level m has width
 // max(1, width >> m); levels[m] holds layers * level_width(m) * 4 values, layer after layer.
 struct Texture1DArray {
-    int width = 0;
-    int layers = 0;
-    std::vector<std::vector<double>> levels;
+  int width = 0;
+  int layers = 0;
+  std::vector<std::vector<double>> levels;
 
-    int level_count() const { return static_cast<int>(levels.size()); }
-    int level_width(int level) const { return width >> level > 0 ? width >> level : 1; }
-    const double* texel(int level, int layer, int x) const {
-        return &levels[static_cast<std::size_t>(level)][(static_cast<std::size_t>(layer) * level_width(level) + x) * 4];
-    }
+  int level_count() const { return static_cast<int>(levels.size()); }
+  int level_width(int level) const { return width >> level > 0 ? width >> level : 1; }
+  const double* texel(int level, int layer, int x) const {
+    return &levels[static_cast<std::size_t>(level)][(static_cast<std::size_t>(layer) * level_width(level) + x) * 4];
+  }
 };
 
 using Texel = std::array<double, 4>;
@@ -57,8 +57,7 @@ Texel sample_level(const Texture1DArray& texture, int level, double u, int layer
 Texel texture_lod(const Texture1DArray& texture, double u, double layer, double lod);
 
 // textureGrad / SampleGrad: lambda from the gradients (`model`), then as texture_lod.
-Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
-                   LodModel model = LodModel::exact);
+Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy, LodModel model = LodModel::exact);
 
 // What any conforming Vulkan implementation may return for a LINEAR/LINEAR/LINEAR lookup, as
 // a per-channel interval [low, high] (the texture-space rules of the Vulkan 1.3 specification,
@@ -74,15 +73,15 @@ Texel texture_grad(const Texture1DArray& texture, double u, double layer, double
 //   - VkPhysicalDeviceLimits::subTexelPrecisionBits: the linear filter's sub-texel position is
 //     snapped to 2^-subTexelPrecisionBits of a texel (at least 4 bits).
 struct SamplerTolerance {
-    double lod_below = 0.0;     // textureGrad: lambda may be this far below log2(rho_max)
-    double lod_above = 0.0;     // textureGrad: ... and this far above it
-    double level_weight = 0.0;  // 2^-mipmapPrecisionBits: lambda's fraction (both lookups)
-    double texel_weight = 0.0;  // 2^-subTexelPrecisionBits: the texel coordinate
+  double lod_below = 0.0;     // textureGrad: lambda may be this far below log2(rho_max)
+  double lod_above = 0.0;     // textureGrad: ... and this far above it
+  double level_weight = 0.0;  // 2^-mipmapPrecisionBits: lambda's fraction (both lookups)
+  double texel_weight = 0.0;  // 2^-subTexelPrecisionBits: the texel coordinate
 };
 SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_texel_precision_bits);
 
 struct TexelRange {
-    Texel low{}, high{};
+  Texel low{}, high{};
 };
 TexelRange texture_lod_range(const Texture1DArray& texture, double u, double layer, double lod, const SamplerTolerance& tolerance);
 TexelRange texture_grad_range(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
@@ -93,42 +92,42 @@ TexelRange texture_grad_range(const Texture1DArray& texture, double u, double la
 
 // The emission-time options the snippet is emitted with (templates/glints/50-glints.saa).
 struct Params {
-    int count = 192;            // N distributions (a multiple of 4)
-    int lods = 16;              // L LODs
-    double alpha_dict = 0.5;    // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
-    double kernel_scale = 0.5;  // s_K (2021 Eq. 19)
-    double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
-    double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Alg. 3)
-    // Level-coherent seeds (2020 Eq. 8), as the templates. false: the seed mixes the level in
-    // (each level draws independently), only to measure what coherence buys under a zoom.
-    bool coherent_seeds = true;
+  int count = 192;              // N distributions (a multiple of 4)
+  int lods = 16;                // L LODs
+  double alpha_dict = 0.5;      // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
+  double kernel_scale = 0.5;    // s_K (2021 Eq. 19)
+  double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
+  double relative_area = 1.0;   // probability that a cell holds microfacets (2020 Alg. 3)
+  // Level-coherent seeds (2020 Eq. 8), as the templates. false: the seed mixes the level in
+  // (each level draws independently), only to measure what coherence buys under a zoom.
+  bool coherent_seeds = true;
 };
 
 // The dictionary as the shader sees it: its texture (RGBA, 4 distributions per texel; layer =
 // lod * count / 4 + d / 4, channel d % 4), the options, and the sampler's LOD rule.
 struct Dictionary {
-    const Texture1DArray* texture = nullptr;
-    Params params;
-    LodModel lod_model = LodModel::exact;
-    // With a tolerance and side = -1 (+1), every dictionary lookup returns the low (high) end of
-    // what a conforming sampler may return (texture_*_range): the glint functions are sums of
-    // non-negative weights times products of non-negative lookups, so they bound the device.
-    const SamplerTolerance* tolerance = nullptr;
-    int side = 0;
-    // The precision the Vulkan specification grants the shader's transcendentals (section
-    // "Precision and Operation of SPIR-V Instructions"), applied at the end of the allowance given
-    // by the sign (-1, 0 = exact, +1); the tests take the change of the result as part of their
-    // bound. log2_side: the footprint LOD's log2(|minor axis|) off by 3 ulp of the result outside
-    // [0.5, 2] (at most 3 2^-23 |log2 size|), by 2^-21 absolute inside. exp2_side: the cell
-    // scale exp2(x), x = log_density / (2 ln 2) - level, and the EWA weights exp(x), x = -2 r^2,
-    // off by (3 + 2|x|) ulp, i.e. by a factor 1 +- (3 + 2|x|) 2^-23.
-    int log2_side = 0;
-    int exp2_side = 0;
-    // trig_side: each cell's rotation (cos theta, sin theta) off by the spec's 2^-11 absolute
-    // error of cos and sin in [-pi, pi] (where the shader's theta lies), plus the fp32
-    // rounding of the angle (< 2^-20): every cell's product of lookups is taken at the
-    // low (-1) or high (+1) end over the four corners of that box (kTrigAllowance).
-    int trig_side = 0;
+  const Texture1DArray* texture = nullptr;
+  Params params;
+  LodModel lod_model = LodModel::exact;
+  // With a tolerance and side = -1 (+1), every dictionary lookup returns the low (high) end of
+  // what a conforming sampler may return (texture_*_range): the glint functions are sums of
+  // non-negative weights times products of non-negative lookups, so they bound the device.
+  const SamplerTolerance* tolerance = nullptr;
+  int side = 0;
+  // The precision the Vulkan specification grants the shader's transcendentals (section
+  // "Precision and Operation of SPIR-V Instructions"), applied at the end of the allowance given
+  // by the sign (-1, 0 = exact, +1); the tests take the change of the result as part of their
+  // bound. log2_side: the footprint LOD's log2(|minor axis|) off by 3 ulp of the result outside
+  // [0.5, 2] (at most 3 2^-23 |log2 size|), by 2^-21 absolute inside. exp2_side: the cell
+  // scale exp2(x), x = log_density / (2 ln 2) - level, and the EWA weights exp(x), x = -2 r^2,
+  // off by (3 + 2|x|) ulp, i.e. by a factor 1 +- (3 + 2|x|) 2^-23.
+  int log2_side = 0;
+  int exp2_side = 0;
+  // trig_side: each cell's rotation (cos theta, sin theta) off by the spec's 2^-11 absolute
+  // error of cos and sin in [-pi, pi] (where the shader's theta lies), plus the fp32
+  // rounding of the angle (< 2^-20): every cell's product of lookups is taken at the
+  // low (-1) or high (+1) end over the four corners of that box (kTrigAllowance).
+  int trig_side = 0;
 };
 
 // The absolute error the Vulkan spec allows cos and sin in [-pi, pi] (2^-11), plus the rounding
@@ -140,9 +139,9 @@ double dictionary_range(const Params& params);
 
 // Roughness of Eq. 18: Beckmann (alpha_x, alpha_y) and the slope correlation rho.
 struct Roughness {
-    double alpha_x = 0.1;
-    double alpha_y = 0.1;
-    double rho = 0.0;
+  double alpha_x = 0.1;
+  double alpha_y = 0.1;
+  double rho = 0.0;
 };
 
 // The 32-bit integer mixer shared with the templates (wrapping arithmetic).
@@ -155,9 +154,9 @@ std::int32_t cell_seed(int i, int j, int level, bool coherent = true);
 // The random choices of cell (i, j) at level l: distributions d_x, d_y in [0, count) and the
 // rotation as a fraction of a turn, (turn - 2^14) / 2^15 in [-1/2, 1/2) (exact in fp32).
 struct CellRandom {
-    int dx = 0;
-    int dy = 0;
-    double turn = 0.0;
+  int dx = 0;
+  int dy = 0;
+  double turn = 0.0;
 };
 CellRandom cell_random(int i, int j, int level, int count, bool coherent = true);
 
@@ -178,8 +177,8 @@ double transform_determinant(const Params& params, const Roughness& roughness);
 // The footprint ellipse's axes in uv: the longer derivative is the major axis, the other is
 // lengthened to at least major / max_anisotropy (2020 Alg. 1 lines 3-5).
 struct FootprintAxes {
-    Vec2 major;
-    Vec2 minor;
+  Vec2 major;
+  Vec2 minor;
 };
 FootprintAxes footprint_axes(const Params& params, Vec2 duv_dx, Vec2 duv_dy);
 
@@ -196,28 +195,26 @@ double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_d
 // (relative area) are left out but count in the normalisation. Depends only on uv, the footprint
 // and the density.
 struct PatchCell {
-    double weight = 0.0;
-    int level = 0;           // the dictionary LOD the cell reads (after zeta)
-    int spatial_level = 0;   // the level of the cell grid
-    int i = 0, j = 0;        // the cell at that level
-    CellRandom random;
-    double cos_theta = 1.0;
-    double sin_theta = 0.0;
+  double weight = 0.0;
+  int level = 0;          // the dictionary LOD the cell reads (after zeta)
+  int spatial_level = 0;  // the level of the cell grid
+  int i = 0, j = 0;       // the cell at that level
+  CellRandom random;
+  double cos_theta = 1.0;
+  double sin_theta = 0.0;
 };
 struct Patch {
-    std::vector<PatchCell> cells;
-    double lod = 0.0;  // l_P
+  std::vector<PatchCell> cells;
+  double lod = 0.0;  // l_P
 };
 Patch make_patch(const Dictionary& dictionary, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, double log_density);
 
 // The patch SDF of Eq. 3 (textureLod) and its GGAA-filtered form (Eqs. 10, 19); the
 // derivatives dh_* are those of the projected half vector (Eq. 21) or of the slope (Eq. 20).
 double patch_sdf(const Dictionary& dictionary, const Patch& patch, Vec2 slope, const Roughness& roughness);
-double patch_sdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy,
-                          const Roughness& roughness);
+double patch_sdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy, const Roughness& roughness);
 
-double sdf(const Dictionary& dictionary, Vec2 slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness,
-           double log_density);
+double sdf(const Dictionary& dictionary, Vec2 slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness, double log_density);
 double sdf_filtered(const Dictionary& dictionary, Vec2 slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
                     const Roughness& roughness, double log_density);
 
@@ -225,15 +222,14 @@ double sdf_filtered(const Dictionary& dictionary, Vec2 slope, Vec2 dh_dx, Vec2 d
 double vcavity_g2(Vec3 i, Vec3 o, Vec3 h);
 
 // The BRDF f(i, o) = G2 D / (4 i.z o.z), D = P22(h~ - mean_slope) / h.z^4, without Fresnel.
-double brdf(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy,
-            const Roughness& roughness, double log_density);
-double brdf_filtered(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv,
-                     Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness, double log_density);
+double brdf(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 uv, Vec2 duv_dx, Vec2 duv_dy, const Roughness& roughness,
+            double log_density);
+double brdf_filtered(const Dictionary& dictionary, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx, Vec2 dh_dy, Vec2 uv, Vec2 duv_dx,
+                     Vec2 duv_dy, const Roughness& roughness, double log_density);
 // The same with a precomputed patch (ground-truth renderers evaluate many directions per patch).
-double patch_brdf(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope,
-                  const Roughness& roughness);
-double patch_brdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx,
-                           Vec2 dh_dy, const Roughness& roughness);
+double patch_brdf(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope, const Roughness& roughness);
+double patch_brdf_filtered(const Dictionary& dictionary, const Patch& patch, Vec3 i, Vec3 o, Vec2 mean_slope, Vec2 dh_dx, Vec2 dh_dy,
+                           const Roughness& roughness);
 
 // Half-vector slope h~ = -h.xy / h.z (h.z clamped to 1e-4, SLOPE_MIN_Z) of normalize(i + o).
 Vec2 half_slope(Vec3 i, Vec3 o);

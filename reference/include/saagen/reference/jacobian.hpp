@@ -22,8 +22,8 @@ namespace saagen::ref {
 // e_phi = (-hy, hx, 0) / s, s = sqrt(1 - hz^2). Derivatives of h with respect to the arc
 // lengths (psi_x, psi_y) of the supplemental Sec. 2.
 struct SphereBasis {
-    Vec3 e_theta;
-    Vec3 e_phi;
+  Vec3 e_theta;
+  Vec3 e_phi;
 };
 SphereBasis sphere_tangent_basis(Vec3 h);
 

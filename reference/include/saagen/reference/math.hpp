@@ -35,8 +35,8 @@ inline constexpr double kPi = 3.14159265358979323846;
 // Vec2
 
 struct Vec2 {
-    double x = 0.0;
-    double y = 0.0;
+  double x = 0.0;
+  double y = 0.0;
 };
 
 constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
@@ -61,12 +61,12 @@ inline Vec2 frac(Vec2 a) { return {frac(a.x), frac(a.y)}; }
 // Vec3
 
 struct Vec3 {
-    double x = 0.0;
-    double y = 0.0;
-    double z = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
 
-    // The dialect's swizzle .xy.
-    constexpr Vec2 xy() const { return {x, y}; }
+  // The dialect's swizzle .xy.
+  constexpr Vec2 xy() const { return {x, y}; }
 };
 
 constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
@@ -78,9 +78,7 @@ constexpr Vec3 operator/(Vec3 a, double s) { return {a.x / s, a.y / s, a.z / s};
 constexpr bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-constexpr Vec3 cross(Vec3 a, Vec3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+constexpr Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(Vec3 a) { return a / length(a); }
 
@@ -88,9 +86,9 @@ inline Vec3 normalize(Vec3 a) { return a / length(a); }
 // Sym2: symmetric 2x2 matrix, stored as the dialect's real3 (m00, m01, m11).
 
 struct Sym2 {
-    double xx = 0.0;  // m00
-    double xy = 0.0;  // m01 = m10
-    double yy = 0.0;  // m11
+  double xx = 0.0;  // m00
+  double xy = 0.0;  // m01 = m10
+  double yy = 0.0;  // m11
 };
 
 constexpr Sym2 operator+(Sym2 a, Sym2 b) { return {a.xx + b.xx, a.xy + b.xy, a.yy + b.yy}; }
@@ -104,29 +102,24 @@ constexpr double trace(Sym2 m) { return m.xx + m.yy; }
 // Mat2: general 2x2 matrix, row-major m[row][col]. Only for the analytic Jacobians.
 
 struct Mat2 {
-    double m00 = 0.0, m01 = 0.0;
-    double m10 = 0.0, m11 = 0.0;
+  double m00 = 0.0, m01 = 0.0;
+  double m10 = 0.0, m11 = 0.0;
 };
 
-constexpr Vec2 operator*(const Mat2& a, Vec2 v) {
-    return {a.m00 * v.x + a.m01 * v.y, a.m10 * v.x + a.m11 * v.y};
-}
+constexpr Vec2 operator*(const Mat2& a, Vec2 v) { return {a.m00 * v.x + a.m01 * v.y, a.m10 * v.x + a.m11 * v.y}; }
 constexpr Mat2 operator*(const Mat2& a, const Mat2& b) {
-    return {a.m00 * b.m00 + a.m01 * b.m10, a.m00 * b.m01 + a.m01 * b.m11,
-            a.m10 * b.m00 + a.m11 * b.m10, a.m10 * b.m01 + a.m11 * b.m11};
+  return {a.m00 * b.m00 + a.m01 * b.m10, a.m00 * b.m01 + a.m01 * b.m11, a.m10 * b.m00 + a.m11 * b.m10, a.m10 * b.m01 + a.m11 * b.m11};
 }
-constexpr Mat2 operator*(double s, const Mat2& a) {
-    return {s * a.m00, s * a.m01, s * a.m10, s * a.m11};
-}
+constexpr Mat2 operator*(double s, const Mat2& a) { return {s * a.m00, s * a.m01, s * a.m10, s * a.m11}; }
 constexpr double determinant(const Mat2& a) { return a.m00 * a.m11 - a.m01 * a.m10; }
 constexpr Mat2 transpose(const Mat2& a) { return {a.m00, a.m10, a.m01, a.m11}; }
 
 // J S J^T for a symmetric S: how a covariance (or Delta^T Delta) transforms when every row
 // vector of Delta is mapped by d -> J d.
 constexpr Sym2 congruence(const Mat2& j, Sym2 s) {
-    const Mat2 full{s.xx, s.xy, s.xy, s.yy};
-    const Mat2 r = j * full * transpose(j);
-    return {r.m00, 0.5 * (r.m01 + r.m10), r.m11};
+  const Mat2 full{s.xx, s.xy, s.xy, s.yy};
+  const Mat2 r = j * full * transpose(j);
+  return {r.m00, 0.5 * (r.m01 + r.m10), r.m11};
 }
 
 }  // namespace saagen::ref

@@ -45,13 +45,10 @@ double prefilter_toksvig_projected(const Params& p, double alpha2, double mean_l
 Sym2 prefilter_lean(const Params& p, Vec2 alpha2, Vec2 slope_mean, Sym2 slope_second);
 // A = diag(ax^2, ay^2) + 2 (Sigma_screen + Sigma_tex), Sigma_screen = sigma^2 Delta^T Delta of
 // the slope derivatives (filter_roughness_matrix; not clamped).
-Sym2 prefilter_lean_aniso_slope(const Params& p, Vec2 alpha2, Vec2 slope_mean, Sym2 slope_second,
-                                Vec2 dslope_dx, Vec2 dslope_dy);
+Sym2 prefilter_lean_aniso_slope(const Params& p, Vec2 alpha2, Vec2 slope_mean, Sym2 slope_second, Vec2 dslope_dx, Vec2 dslope_dy);
 // saturate(alpha^2 + tr(Sigma_tex) + min(2 sigma_px^2 (|dn_dx|^2 + |dn_dy|^2), kappa)).
-double prefilter_lean_sum(const Params& p, double alpha2, Vec2 slope_mean, Sym2 slope_second,
-                          Vec3 dn_dx, Vec3 dn_dy);
+double prefilter_lean_sum(const Params& p, double alpha2, Vec2 slope_mean, Sym2 slope_second, Vec3 dn_dx, Vec3 dn_dy);
 // projected_space_add(alpha^2, tr(Sigma_tex) + min(kernel, kappa)).
-double prefilter_lean_projected(const Params& p, double alpha2, Vec2 slope_mean, Sym2 slope_second,
-                                Vec3 dn_dx, Vec3 dn_dy);
+double prefilter_lean_projected(const Params& p, double alpha2, Vec2 slope_mean, Sym2 slope_second, Vec3 dn_dx, Vec3 dn_dy);
 
 }  // namespace saagen::ref

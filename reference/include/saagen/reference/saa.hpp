@@ -22,33 +22,31 @@ namespace saagen::ref {
 // The guard constants of templates/00-common.saa: `value` in fp32 emissions, `half_value` in
 // half-precision ones (GLSL fp16, HLSL min16).
 struct GuardConstants {
-    double slope_min_z = 0.0;     // SLOPE_MIN_Z: smallest |h_z| a slope divides by
-    double derivative_max = 0.0;  // DERIVATIVE_MAX: derivative components clamped to +-this
-    double tiny_positive = 0.0;   // TINY_POSITIVE: floor of determinants, squared lengths, cos products
-    double lambda_min_z = 0.0;    // LAMBDA_MIN_Z: smallest |w_z| Smith Lambda (and the BRDF's cosines) use
-    double det_reliable = 0.0;    // DET_RELIABLE: det(A) below this fraction of a00 a11 is rounding noise
-    double slope_max = 0.0;       // SLOPE_MAX: slope moments clamped to +-this, second moments to this^2
-    double exp_arg_max = 0.0;     // EXP_ARG_MAX (30-brdf.saa): exp(-x) = 0 for x >= this (rounds to 0 in fp32 anyway)
-    double divisor_min = 0.0;     // DIVISOR_MIN (30-brdf.saa): 2^-126, Vulkan's x / y is bounded for |y| >= this
-    double filtered_ratio_max = 0.0;  // FILTERED_RATIO_MAX (30-brdf.saa): r of the filtered GGX capped here
+  double slope_min_z = 0.0;         // SLOPE_MIN_Z: smallest |h_z| a slope divides by
+  double derivative_max = 0.0;      // DERIVATIVE_MAX: derivative components clamped to +-this
+  double tiny_positive = 0.0;       // TINY_POSITIVE: floor of determinants, squared lengths, cos products
+  double lambda_min_z = 0.0;        // LAMBDA_MIN_Z: smallest |w_z| Smith Lambda (and the BRDF's cosines) use
+  double det_reliable = 0.0;        // DET_RELIABLE: det(A) below this fraction of a00 a11 is rounding noise
+  double slope_max = 0.0;           // SLOPE_MAX: slope moments clamped to +-this, second moments to this^2
+  double exp_arg_max = 0.0;         // EXP_ARG_MAX (30-brdf.saa): exp(-x) = 0 for x >= this (rounds to 0 in fp32 anyway)
+  double divisor_min = 0.0;         // DIVISOR_MIN (30-brdf.saa): 2^-126, Vulkan's x / y is bounded for |y| >= this
+  double filtered_ratio_max = 0.0;  // FILTERED_RATIO_MAX (30-brdf.saa): r of the filtered GGX capped here
 };
 inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4, 104.0, 1.1754943508222875e-38, 1e6};
 inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0, 17.5, 6.103515625e-5, 1e4};
 
 // The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {
-    double sigma2 = 0.25;  // SIGMA2: variance of the Gaussian pixel filter, pixels^2 (sigma = 0.5)
-    double kappa = 0.18;   // KAPPA: clamp of the kernel roughness, alpha^2 domain
-    // The form of every guarded(safe, paper) site: true computes `safe` (saagen's default
-    // emission), false the unguarded paper form (EmitOptions::guards = false).
-    bool guards = true;
-    // The guard constants' half_value (EmitOptions::precision fp16 / min16). Only the constants
-    // change: the arithmetic stays double.
-    bool half_precision = false;
+  double sigma2 = 0.25;  // SIGMA2: variance of the Gaussian pixel filter, pixels^2 (sigma = 0.5)
+  double kappa = 0.18;   // KAPPA: clamp of the kernel roughness, alpha^2 domain
+  // The form of every guarded(safe, paper) site: true computes `safe` (saagen's default
+  // emission), false the unguarded paper form (EmitOptions::guards = false).
+  bool guards = true;
+  // The guard constants' half_value (EmitOptions::precision fp16 / min16). Only the constants
+  // change: the arithmetic stays double.
+  bool half_precision = false;
 
-    const GuardConstants& guard_constants() const {
-        return half_precision ? kGuardConstantsHalf : kGuardConstantsFp32;
-    }
+  const GuardConstants& guard_constants() const { return half_precision ? kGuardConstantsHalf : kGuardConstantsFp32; }
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -182,18 +180,15 @@ Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
 // each pixel gets the mean of its two edge neighbours.
 // `average` is the derivative the average takes: fine in GLSL and HLSL; GLSL ES 3.00 has only
 // the plain dFdx/dFdy, fine or coarse as the implementation chooses.
-Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord,
-                              int pixel, Derivative average = Derivative::fine);
+Vec3 quad_average_normal_quad(const Quad<Vec3>& normal_ws, const Quad<Vec2>& frag_coord, int pixel, Derivative average = Derivative::fine);
 
-Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
-                                       int pixel, Derivative mode = Derivative::coarse);
-Sym2 forward_aniso_projected_fragment_quad(const Params& p, Vec2 alpha2,
-                                           const Quad<Vec3>& half_ts, int pixel,
+Sym2 forward_aniso_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
+                                       Derivative mode = Derivative::coarse);
+Sym2 forward_aniso_projected_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
                                            Derivative mode = Derivative::coarse);
-Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
-                                      int pixel, Derivative mode = Derivative::coarse);
-Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2,
-                                          const Quad<Vec3>& half_ts, int pixel,
+Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
+                                      Derivative mode = Derivative::coarse);
+Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
                                           Derivative mode = Derivative::coarse);
 
 // Two levels of derivatives, as in the template: ddx_fine/ddy_fine form each pixel's
@@ -201,30 +196,22 @@ Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2,
 // plain ddx/ddy (mode) then differentiate the per-pixel slope (previous) or projected unit
 // vector (max). Guarded: the slope divides by max(|z|, SLOPE_MIN_Z) (previous), the average
 // normal is normalised by safe_normalize (max).
-double deferred_previous_fragment_quad(const Params& p, double alpha2,
-                                       const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
-                                       const Quad<Vec3>& bitangent_ws,
-                                       const Quad<Vec2>& frag_coord, int pixel,
-                                       Derivative mode = Derivative::coarse,
-                                       Derivative average = Derivative::fine);
-double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
-                                  const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
-                                  const Quad<Vec2>& frag_coord, int pixel,
-                                  Derivative mode = Derivative::coarse,
-                                  Derivative average = Derivative::fine);
+double deferred_previous_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
+                                       const Quad<Vec3>& bitangent_ws, const Quad<Vec2>& frag_coord, int pixel,
+                                       Derivative mode = Derivative::coarse, Derivative average = Derivative::fine);
+double deferred_max_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
+                                  const Quad<Vec3>& bitangent_ws, const Quad<Vec2>& frag_coord, int pixel,
+                                  Derivative mode = Derivative::coarse, Derivative average = Derivative::fine);
 
-double deferred_max_tangent_free_fragment_quad(const Params& p, double alpha2,
-                                               const Quad<Vec3>& normal_ws, int pixel,
+double deferred_max_tangent_free_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, int pixel,
                                                Derivative mode = Derivative::coarse);
-double deferred_sum_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
-                                  int pixel, Derivative mode = Derivative::coarse);
-double deferred_avg_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws,
-                                  int pixel, Derivative mode = Derivative::coarse);
-double deferred_projected_space_fragment_quad(const Params& p, double alpha2,
-                                              const Quad<Vec3>& normal_ws, int pixel,
+double deferred_sum_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, int pixel,
+                                  Derivative mode = Derivative::coarse);
+double deferred_avg_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, int pixel,
+                                  Derivative mode = Derivative::coarse);
+double deferred_projected_space_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, int pixel,
                                               Derivative mode = Derivative::coarse);
 // deferred_aniso on the plain ddx/ddy (mode) of the normal, with this pixel's normal.
-Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel,
-                                  Derivative mode = Derivative::coarse);
+Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel, Derivative mode = Derivative::coarse);
 
 }  // namespace saagen::ref

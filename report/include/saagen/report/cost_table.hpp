@@ -24,8 +24,8 @@ struct VariantCost {
 };
 
 struct CostTable {
-  std::string source;  // the file it was read from ("" when only ISA figures are known)
-  std::string device;  // as bench_shading reported it
+  std::string source;      // the file it was read from ("" when only ISA figures are known)
+  std::string device;      // as bench_shading reported it
   std::string isa_family;  // the family of VariantCost::isa_ratio ("" when not measured)
   std::vector<VariantCost> rows;
   const VariantCost* find(std::string_view variant) const;

@@ -118,10 +118,10 @@ std::string describe(const Loss& loss);  // "engine-filament: LDR-FLIP 0.0312 > 
 struct SceneVerdict {
   render::SceneId scene = render::SceneId::sphere;
   Path path = Path::deferred;
-  std::string configuration;                                  // the recommendation for its content
-  Metrics recommended;                                        // over the scene's alphas
-  std::vector<std::pair<std::string, Metrics>> baselines;     // none and every engine
-  std::vector<Loss> losses;                                   // one per baseline and lost metric
+  std::string configuration;                               // the recommendation for its content
+  Metrics recommended;                                     // over the scene's alphas
+  std::vector<std::pair<std::string, Metrics>> baselines;  // none and every engine
+  std::vector<Loss> losses;                                // one per baseline and lost metric
 };
 // Per scene and path: the recommendation against no SAA and every engine, on every
 // kVerdictMetrics metric.
@@ -137,7 +137,7 @@ struct Verdict {
   Metrics engine_image;
   std::string best_engine_motion;  // the engine with the lowest mean TDE
   Metrics engine_motion;
-  std::vector<Loss> losses;  // against none and, per metric, that metric's best engine
+  std::vector<Loss> losses;                                                 // against none and, per metric, that metric's best engine
   std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
 };
 std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);

@@ -9,20 +9,19 @@
 // navi21 (`saagen bench --isa vega10,navi21 --isa-table FILE` regenerates it).
 #pragma once
 
-#include <saagen/harness/isa.hpp>
-
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <saagen/harness/isa.hpp>
 #include <string>
 #include <vector>
 
 namespace saagen::report {
 
 // Which shader a row measures.
-inline constexpr const char* isa_forward_shader = "forward";          // the bench_shading fragment shader
-inline constexpr const char* isa_deferred_shader = "deferred-pass";   // the deferred compute pass
-inline constexpr const char* isa_baseline = "no-saa";                 // the variant id of the baselines
+inline constexpr const char* isa_forward_shader = "forward";         // the bench_shading fragment shader
+inline constexpr const char* isa_deferred_shader = "deferred-pass";  // the deferred compute pass
+inline constexpr const char* isa_baseline = "no-saa";                // the variant id of the baselines
 
 struct IsaCostRow {
   std::string family;

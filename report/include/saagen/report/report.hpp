@@ -26,7 +26,7 @@ struct VariantSummary {
   double rmse_linear = 0.0;
   double rmse_tonemapped = 0.0;
   double max_error = 0.0;  // the largest over the cases
-  double tde = 0.0;  // temporal difference error (trade.hpp) and its two parts
+  double tde = 0.0;        // temporal difference error (trade.hpp) and its two parts
   double tde_excess_flicker = 0.0;
   double tde_lost_motion = 0.0;
   double flicker = 0.0;

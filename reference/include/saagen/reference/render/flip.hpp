@@ -76,16 +76,16 @@
 // same value in exact arithmetic. Cost at 256 x 256 grey: about 10 ms of one core per exposure.
 #pragma once
 
+#include "saagen/reference/render/image.hpp"
+
 #include <optional>
 #include <vector>
-
-#include "saagen/reference/render/image.hpp"
 
 namespace saagen::render {
 
 struct RgbImage {
-    int width = 0, height = 0;
-    std::vector<float> rgb;  // row-major, 3 floats per pixel, row 0 top
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // row-major, 3 floats per pixel, row 0 top
 };
 
 // FLIP's viewing setup: 0.7 m from a 0.7 m wide, 3840 px wide monitor gives
@@ -94,33 +94,30 @@ struct RgbImage {
 // nv-flip Rust bindings do (their published outputs, used in tests/test_flip.cpp, are for 67.0);
 // pass kFlipToolPixelsPerDegree to reproduce the NVlabs tool's default run (the mean FLIP moves by
 // about 1e-5).
-inline constexpr double kFlipToolPixelsPerDegree =
-    0.7 * (3840.0 / 0.7) * (3.14159265358979323846 / 180.0);
+inline constexpr double kFlipToolPixelsPerDegree = 0.7 * (3840.0 / 0.7) * (3.14159265358979323846 / 180.0);
 
 struct FlipSettings {
-    double pixels_per_degree = 67.0;
+  double pixels_per_degree = 67.0;
 };
 
 // LDR-FLIP on two sRGB-encoded images with values in [0,1] (the paper's input; values outside
 // are clamped). Returns the per-pixel error map in [0,1], row-major, width * height floats.
 // Throws std::invalid_argument on a size mismatch or a malformed image.
-std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test,
-                                const FlipSettings& = {});
+std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test, const FlipSettings& = {});
 
 // HDR-FLIP on linear-radiance images (see the header comment for the exposure range).
 struct HdrFlipSettings {
-    FlipSettings base;
-    std::optional<double> start_exposure, stop_exposure;  // unset: computed from the reference
-    int num_exposures = 0;                                // 0: automatic
+  FlipSettings base;
+  std::optional<double> start_exposure, stop_exposure;  // unset: computed from the reference
+  int num_exposures = 0;                                // 0: automatic
 };
 
-std::vector<float> hdr_flip_map(const RgbImage& reference, const RgbImage& test,
-                                const HdrFlipSettings& = {});
+std::vector<float> hdr_flip_map(const RgbImage& reference, const RgbImage& test, const HdrFlipSettings& = {});
 
 // The exposure range HDR-FLIP uses for `reference` under `settings` (automatic values where unset).
 struct HdrExposures {
-    double start = 0.0, stop = 0.0;
-    int count = 0;
+  double start = 0.0, stop = 0.0;
+  int count = 0;
 };
 HdrExposures hdr_flip_exposures(const RgbImage& reference, const HdrFlipSettings& = {});
 

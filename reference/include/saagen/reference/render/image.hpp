@@ -12,17 +12,16 @@
 namespace saagen::render {
 
 struct Image {
-    int width = 0;
-    int height = 0;
-    std::vector<float> pixels;
+  int width = 0;
+  int height = 0;
+  std::vector<float> pixels;
 
-    Image() = default;
-    Image(int w, int h, float fill = 0.0f)
-        : width(w), height(h), pixels(static_cast<std::size_t>(w) * h, fill) {}
+  Image() = default;
+  Image(int w, int h, float fill = 0.0f) : width(w), height(h), pixels(static_cast<std::size_t>(w) * h, fill) {}
 
-    float& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
-    float at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
-    std::size_t size() const { return pixels.size(); }
+  float& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  float at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  std::size_t size() const { return pixels.size(); }
 };
 
 // Reinhard's global operator x / (1 + x) (Reinhard et al. 2002, Eq. 3 with L_white -> inf):
@@ -44,10 +43,10 @@ Image display_image(const Image& radiance);
 // Error metrics of an image against a reference of the same size, over all pixels (background
 // pixels included; both images are 0 there unless a silhouette pixel is partially covered).
 struct ImageError {
-    double rmse_linear = 0.0;      // sqrt(mean((a - r)^2)) on linear radiance
-    double rmse_tonemapped = 0.0;  // the same after tonemap() on both
-    double max_error = 0.0;        // max |a - r| on linear radiance
-    std::size_t non_finite = 0;    // pixels of `image` that are NaN or infinite (excluded above)
+  double rmse_linear = 0.0;      // sqrt(mean((a - r)^2)) on linear radiance
+  double rmse_tonemapped = 0.0;  // the same after tonemap() on both
+  double max_error = 0.0;        // max |a - r| on linear radiance
+  std::size_t non_finite = 0;    // pixels of `image` that are NaN or infinite (excluded above)
 };
 
 ImageError compare_images(const Image& image, const Image& reference);
@@ -58,22 +57,22 @@ double rms(const Image& image);
 // Per-pixel running mean and variance over the frames of an animation (Welford's update, in
 // double precision). Identical frames give a variance of exactly 0.
 class TemporalStats {
-public:
-    TemporalStats() = default;
-    TemporalStats(int width, int height);
+ public:
+  TemporalStats() = default;
+  TemporalStats(int width, int height);
 
-    void add(const Image& frame);
-    int frames() const { return frames_; }
-    // Population standard deviation (divide by the number of frames) of pixel i.
-    double stddev(std::size_t i) const;
-    std::size_t size() const { return mean_.size(); }
+  void add(const Image& frame);
+  int frames() const { return frames_; }
+  // Population standard deviation (divide by the number of frames) of pixel i.
+  double stddev(std::size_t i) const;
+  std::size_t size() const { return mean_.size(); }
 
-private:
-    int width_ = 0;
-    int height_ = 0;
-    int frames_ = 0;
-    std::vector<double> mean_;
-    std::vector<double> m2_;
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  int frames_ = 0;
+  std::vector<double> mean_;
+  std::vector<double> m2_;
 };
 
 // Temporal flicker of a 1-spp animation against the ground-truth animation: the per-pixel
@@ -99,32 +98,30 @@ double mean_temporal_stddev(const TemporalStats& stats);
 // is change of the wrong sign (|dI - dR| > ||dI| - |dR|| only where dI and dR have opposite
 // signs). Meant for display values (display_image()), single-channel images of one size.
 struct TemporalError {
-    double tde = 0.0;
-    double excess_flicker = 0.0;
-    double lost_motion = 0.0;
+  double tde = 0.0;
+  double excess_flicker = 0.0;
+  double lost_motion = 0.0;
 };
 
 // Accumulates TemporalError over frame pairs, one pair at a time (an animation need not be kept
 // in memory): add_pair(I_{t-1}, I_t, R_{t-1}, R_t) for t = 1 .. frames - 1.
 class TemporalDifference {
-public:
-    void add_pair(const Image& previous, const Image& current, const Image& reference_previous,
-                  const Image& reference_current);
-    int pairs() const { return pairs_; }
-    // Means over every pixel of every pair added; zeros before the first pair.
-    TemporalError mean() const;
+ public:
+  void add_pair(const Image& previous, const Image& current, const Image& reference_previous, const Image& reference_current);
+  int pairs() const { return pairs_; }
+  // Means over every pixel of every pair added; zeros before the first pair.
+  TemporalError mean() const;
 
-private:
-    int pairs_ = 0;
-    std::size_t samples_ = 0;
-    double sum_tde_ = 0.0;
-    double sum_excess_ = 0.0;
-    double sum_lost_ = 0.0;
+ private:
+  int pairs_ = 0;
+  std::size_t samples_ = 0;
+  double sum_tde_ = 0.0;
+  double sum_excess_ = 0.0;
+  double sum_lost_ = 0.0;
 };
 
 // TemporalError of a whole animation (frames and reference of the same length, >= 2 frames for
 // a non-zero result).
-TemporalError temporal_difference_error(std::span<const Image> frames,
-                                        std::span<const Image> reference);
+TemporalError temporal_difference_error(std::span<const Image> frames, std::span<const Image> reference);
 
 }  // namespace saagen::render

@@ -16,73 +16,70 @@
 // for i = 0, 1 (Pharr, Jakob & Humphreys, PBRT 3rd ed., Sec. 3.6.2).
 #pragma once
 
+#include "saagen/reference/render/scene.hpp"
+
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "saagen/reference/render/scene.hpp"
-
 namespace saagen::render {
 
 struct MeshVertex {
-    Vec3 position;
-    Vec3 normal;   // unit
-    Vec3 tangent;  // unit, orthogonal to normal
-    Vec2 uv;
+  Vec3 position;
+  Vec3 normal;   // unit
+  Vec3 tangent;  // unit, orthogonal to normal
+  Vec2 uv;
 };
 
 class TriangleMesh final : public Shape {
-public:
-    // label: the numbers the mesh was generated from (part of describe()).
-    TriangleMesh(std::string label, std::vector<MeshVertex> vertices,
-                 std::vector<std::array<int, 3>> triangles);
+ public:
+  // label: the numbers the mesh was generated from (part of describe()).
+  TriangleMesh(std::string label, std::vector<MeshVertex> vertices, std::vector<std::array<int, 3>> triangles);
 
-    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
-    // The same nearest hit by testing every triangle (tests).
-    bool intersect_brute_force(const Ray& ray, double t_min, SurfaceHit& hit) const;
-    // Label, counts and a 64-bit hash of every vertex and index.
-    std::string describe() const override;
+  bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+  // The same nearest hit by testing every triangle (tests).
+  bool intersect_brute_force(const Ray& ray, double t_min, SurfaceHit& hit) const;
+  // Label, counts and a 64-bit hash of every vertex and index.
+  std::string describe() const override;
 
-    const std::vector<MeshVertex>& vertices() const { return vertices_; }
-    const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
-    int bvh_nodes() const { return static_cast<int>(nodes_.size()); }
-    int bvh_depth() const { return depth_; }
+  const std::vector<MeshVertex>& vertices() const { return vertices_; }
+  const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
+  int bvh_nodes() const { return static_cast<int>(nodes_.size()); }
+  int bvh_depth() const { return depth_; }
 
-    // Möller-Trumbore: the distance and barycentrics (b1, b2) of a hit on triangle `index` with
-    // t_min < t < t_max; false otherwise (or for a ray in the triangle's plane).
-    bool hit_triangle(int index, const Ray& ray, double t_min, double t_max, double& t,
-                      double& b1, double& b2) const;
-    // The hit record of a triangle hit (see the top of this file).
-    void fill_hit(int index, const Ray& ray, double t, double b1, double b2, SurfaceHit& hit) const;
+  // Möller-Trumbore: the distance and barycentrics (b1, b2) of a hit on triangle `index` with
+  // t_min < t < t_max; false otherwise (or for a ray in the triangle's plane).
+  bool hit_triangle(int index, const Ray& ray, double t_min, double t_max, double& t, double& b1, double& b2) const;
+  // The hit record of a triangle hit (see the top of this file).
+  void fill_hit(int index, const Ray& ray, double t, double b1, double b2, SurfaceHit& hit) const;
 
-private:
-    struct Box {
-        Vec3 lo{1e300, 1e300, 1e300};
-        Vec3 hi{-1e300, -1e300, -1e300};
-    };
-    struct Edges {  // Moller-Trumbore's p0, e1 = p1 - p0, e2 = p2 - p0
-        Vec3 p0, e1, e2;
-    };
-    struct Node {
-        double box[6];  // lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
-        int first = 0;  // leaf: first entry of order_; interior: index of the right child
-        int count = 0;  // leaf: number of triangles; 0 for an interior node (left child = this + 1)
-    };
-    int build(int begin, int end, int depth, std::vector<Vec3>& centroids);
-    Box triangle_box(int index) const;
-    static bool hit_edges(const Edges& g, const Ray& ray, double t_min, double t_max, double& t,
-                          double& b1, double& b2);
+ private:
+  struct Box {
+    Vec3 lo{1e300, 1e300, 1e300};
+    Vec3 hi{-1e300, -1e300, -1e300};
+  };
+  struct Edges {  // Moller-Trumbore's p0, e1 = p1 - p0, e2 = p2 - p0
+    Vec3 p0, e1, e2;
+  };
+  struct Node {
+    double box[6];  // lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+    int first = 0;  // leaf: first entry of order_; interior: index of the right child
+    int count = 0;  // leaf: number of triangles; 0 for an interior node (left child = this + 1)
+  };
+  int build(int begin, int end, int depth, std::vector<Vec3>& centroids);
+  Box triangle_box(int index) const;
+  static bool hit_edges(const Edges& g, const Ray& ray, double t_min, double t_max, double& t, double& b1, double& b2);
 
-    std::string label_;
-    std::vector<MeshVertex> vertices_;
-    std::vector<std::array<int, 3>> triangles_;
-    std::vector<Edges> edges_;       // per triangle
-    std::vector<int> order_;         // triangle indices in BVH leaf order
-    std::vector<Edges> leaf_edges_;  // edges_ in leaf order
-    std::vector<Node> nodes_;
-    int depth_ = 0;
-    std::uint64_t hash_ = 0;
+  std::string label_;
+  std::vector<MeshVertex> vertices_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::vector<Edges> edges_;       // per triangle
+  std::vector<int> order_;         // triangle indices in BVH leaf order
+  std::vector<Edges> leaf_edges_;  // edges_ in leaf order
+  std::vector<Node> nodes_;
+  int depth_ = 0;
+  std::uint64_t hash_ = 0;
 };
 
 // The (p, q) torus knot c(phi) = ((R + a cos(q phi)) cos(p phi), (R + a cos(q phi)) sin(p phi),
@@ -94,24 +91,24 @@ private:
 // cos(2 pi v) N1 + sin(2 pi v) N2 (a canal surface's normal is the radial direction, valid
 // while rho < 1 / curvature) and T is a tangent along the curve.
 struct TorusKnot {
-    int p = 2;
-    int q = 3;
-    double major = 1.0;   // R
-    double offset = 0.45; // a
-    double tube = 0.2;    // rho
-    int segments = 512;   // along the curve
-    int sides = 24;       // around the tube
+  int p = 2;
+  int q = 3;
+  double major = 1.0;    // R
+  double offset = 0.45;  // a
+  double tube = 0.2;     // rho
+  int segments = 512;    // along the curve
+  int sides = 24;        // around the tube
 
-    Vec3 curve(double phi) const;
-    Vec3 curve_derivative(double phi) const;  // dc/dphi
-    Vec3 point(Vec2 uv) const;    // S(u, v)
-    Vec3 normal(Vec2 uv) const;   // exact unit normal
-    Vec3 tangent(Vec2 uv) const;  // T(2 pi u)
-    std::string describe() const;
+  Vec3 curve(double phi) const;
+  Vec3 curve_derivative(double phi) const;  // dc/dphi
+  Vec3 point(Vec2 uv) const;                // S(u, v)
+  Vec3 normal(Vec2 uv) const;               // exact unit normal
+  Vec3 tangent(Vec2 uv) const;              // T(2 pi u)
+  std::string describe() const;
 
-    // (segments + 1) x (sides + 1) vertices (the closing ring and column repeat the first ones'
-    // positions and frames exactly, with u = 1 or v = 1), two triangles per quad.
-    TriangleMesh mesh() const;
+  // (segments + 1) x (sides + 1) vertices (the closing ring and column repeat the first ones'
+  // positions and frames exactly, with u = 1 or v = 1), two triangles per quad.
+  TriangleMesh mesh() const;
 };
 
 }  // namespace saagen::render

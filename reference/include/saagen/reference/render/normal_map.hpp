@@ -22,11 +22,11 @@
 // lambda (LINEAR_MIPMAP_LINEAR, "trilinear"), lambda clamped to [0, levels - 1].
 #pragma once
 
+#include "saagen/reference/math.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include "saagen/reference/math.hpp"
 
 namespace saagen::render {
 
@@ -37,10 +37,10 @@ using ref::Vec3;
 // One texel of one level (see the top of this file). Linear in every field, so that bilinear
 // and trilinear filtering are plain weighted sums.
 struct NormalTexel {
-    Vec3 normal;         // stored (renormalised) normal: what a shader samples
-    Vec3 mean_normal;    // unnormalised mean of the level-0 unit normals (Toksvig)
-    Vec2 slope_mean;     // E[s], s = -n.xy / n.z (LEAN)
-    Sym2 slope_second;   // E[s s^T] (LEAN)
+  Vec3 normal;        // stored (renormalised) normal: what a shader samples
+  Vec3 mean_normal;   // unnormalised mean of the level-0 unit normals (Toksvig)
+  Vec2 slope_mean;    // E[s], s = -n.xy / n.z (LEAN)
+  Sym2 slope_second;  // E[s s^T] (LEAN)
 };
 
 NormalTexel operator*(double w, const NormalTexel& t);
@@ -52,40 +52,40 @@ Vec2 normal_slope(Vec3 n);
 Sym2 slope_covariance(const NormalTexel& t);
 
 class NormalMap {
-public:
-    NormalMap() = default;
-    // width and height: powers of two >= 1; normals: width * height unit vectors with z > 0,
-    // row-major, row 0 at v = 0. Throws std::invalid_argument otherwise.
-    NormalMap(int width, int height, std::vector<Vec3> normals);
+ public:
+  NormalMap() = default;
+  // width and height: powers of two >= 1; normals: width * height unit vectors with z > 0,
+  // row-major, row 0 at v = 0. Throws std::invalid_argument otherwise.
+  NormalMap(int width, int height, std::vector<Vec3> normals);
 
-    int levels() const { return static_cast<int>(levels_.size()); }
-    int width(int level) const { return levels_[level].width; }
-    int height(int level) const { return levels_[level].height; }
-    bool empty() const { return levels_.empty(); }
+  int levels() const { return static_cast<int>(levels_.size()); }
+  int width(int level) const { return levels_[level].width; }
+  int height(int level) const { return levels_[level].height; }
+  bool empty() const { return levels_.empty(); }
 
-    // Texel (x, y) of a level, repeat addressing (any integer coordinates).
-    const NormalTexel& texel(int level, int x, int y) const;
-    // Bilinear filtering of one level at uv (repeat addressing).
-    NormalTexel bilinear(int level, Vec2 uv) const;
-    // Linear interpolation between the bilinear samples of the levels around lod (clamped to
-    // [0, levels - 1]): Vulkan's LINEAR_MIPMAP_LINEAR.
-    NormalTexel trilinear(Vec2 uv, double lod) const;
-    // Implicit LOD from uv derivatives (isotropic: rho = the longer of the two texel-space
-    // derivative vectors, lambda = log2(rho)); -inf for zero derivatives.
-    double lod(Vec2 duv_dx, Vec2 duv_dy) const;
+  // Texel (x, y) of a level, repeat addressing (any integer coordinates).
+  const NormalTexel& texel(int level, int x, int y) const;
+  // Bilinear filtering of one level at uv (repeat addressing).
+  NormalTexel bilinear(int level, Vec2 uv) const;
+  // Linear interpolation between the bilinear samples of the levels around lod (clamped to
+  // [0, levels - 1]): Vulkan's LINEAR_MIPMAP_LINEAR.
+  NormalTexel trilinear(Vec2 uv, double lod) const;
+  // Implicit LOD from uv derivatives (isotropic: rho = the longer of the two texel-space
+  // derivative vectors, lambda = log2(rho)); -inf for zero derivatives.
+  double lod(Vec2 duv_dx, Vec2 duv_dy) const;
 
-    // Every number that defines the texture (for the ground-truth cache keys): size and a
-    // 64-bit hash of level 0.
-    std::string describe() const;
+  // Every number that defines the texture (for the ground-truth cache keys): size and a
+  // 64-bit hash of level 0.
+  std::string describe() const;
 
-private:
-    struct Level {
-        int width = 0;
-        int height = 0;
-        std::vector<NormalTexel> texels;
-    };
-    std::vector<Level> levels_;
-    std::uint64_t hash_ = 0;
+ private:
+  struct Level {
+    int width = 0;
+    int height = 0;
+    std::vector<NormalTexel> texels;
+  };
+  std::vector<Level> levels_;
+  std::uint64_t hash_ = 0;
 };
 
 // A tangent-space normal map of the height field h(x, y) given by `height` on the unit square
@@ -94,13 +94,13 @@ private:
 // unit). Pixel (x, y) samples uv ((x + 0.5) / size, (y + 0.5) / size).
 template <class GradientFn>
 std::vector<Vec3> normals_from_gradient(int size, GradientFn gradient) {
-    std::vector<Vec3> normals(static_cast<std::size_t>(size) * size);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const Vec2 g = gradient(Vec2{(x + 0.5) / size, (y + 0.5) / size});
-            normals[static_cast<std::size_t>(y) * size + x] = ref::normalize(Vec3{-g.x, -g.y, 1.0});
-        }
-    return normals;
+  std::vector<Vec3> normals(static_cast<std::size_t>(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const Vec2 g = gradient(Vec2{(x + 0.5) / size, (y + 0.5) / size});
+      normals[static_cast<std::size_t>(y) * size + x] = ref::normalize(Vec3{-g.x, -g.y, 1.0});
+    }
+  return normals;
 }
 
 }  // namespace saagen::render

@@ -48,13 +48,6 @@
 // uv seam: the seams of the scenes are out of view).
 #pragma once
 
-#include <cstdint>
-#include <functional>
-#include <optional>
-#include <span>
-#include <string_view>
-#include <vector>
-
 #include "saagen/reference/math.hpp"
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/render/image.hpp"
@@ -62,6 +55,13 @@
 #include "saagen/reference/render/sampling.hpp"
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/reference/saa.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
 
 namespace saagen::render {
 
@@ -72,35 +72,35 @@ double schlick_fresnel(double cos_theta, double f0 = kFresnelF0);
 
 // Isotropic GGX roughness alpha (the BRDF reads alpha^2) and the Fresnel switch.
 struct Material {
-    double alpha = 0.1;
-    bool fresnel = false;
+  double alpha = 0.1;
+  bool fresnel = false;
 };
 
 // The variants, named as in the catalogue (README "Variants"), plus the no-SAA baseline and
 // deferred-max's tangent-free form as a variant of its own.
 enum class Variant {
-    none,
-    forward_aniso_slope,
-    forward_aniso_projected,
-    forward_axis_slope,
-    forward_axis_projected,
-    deferred_previous,
-    deferred_max,
-    deferred_max_tangent_free,
-    deferred_sum,
-    deferred_avg,
-    deferred_projected_space,
-    // The normal-variation tensor in the G-buffer, (n.h)^2 per light into the matrix BRDF
-    // (templates/20-deferred.saa; docs/DEFERRED_KERNEL.md).
-    deferred_aniso,
-    // The forms engines ship (shared/REFERENCES.md; engines.hpp): reference-renderer rows of the
-    // trade only, never emitted. Each reads the normal its engine feeds it (engine_feed()).
-    engine_hdrp,
-    engine_filament,
-    engine_godot,
-    engine_unreal,
-    engine_threejs,
-    engine_babylon,
+  none,
+  forward_aniso_slope,
+  forward_aniso_projected,
+  forward_axis_slope,
+  forward_axis_projected,
+  deferred_previous,
+  deferred_max,
+  deferred_max_tangent_free,
+  deferred_sum,
+  deferred_avg,
+  deferred_projected_space,
+  // The normal-variation tensor in the G-buffer, (n.h)^2 per light into the matrix BRDF
+  // (templates/20-deferred.saa; docs/DEFERRED_KERNEL.md).
+  deferred_aniso,
+  // The forms engines ship (shared/REFERENCES.md; engines.hpp): reference-renderer rows of the
+  // trade only, never emitted. Each reads the normal its engine feeds it (engine_feed()).
+  engine_hdrp,
+  engine_filament,
+  engine_godot,
+  engine_unreal,
+  engine_threejs,
+  engine_babylon,
 };
 
 // "none", "forward-aniso-slope", ..., "deferred-max-tangent-free", ..., "engine-hdrp", ...
@@ -151,32 +151,30 @@ std::string_view lobe_name(Lobe lobe);  // "papers", "tail", "mapped"
 
 // The specular radiance of one light at a surface point, in the tangent frame.
 // brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
-double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance,
-                         bool fresnel);
+double specular_radiance(double brdf, Vec3 light_ts, Vec3 view_ts, double irradiance, bool fresnel);
 
 // ---------------------------------------------------------------------------------------------
 // Ground truth
 
 struct GroundTruthSettings {
-    int width = 256;
-    int height = 256;
-    int strata = 32;  // samples per pixel = strata^2 (32 -> 1024)
-    std::uint64_t seed = 0x5aa6e11ULL;
-    int threads = 0;  // 0: hardware concurrency
-    double filter_variance = 0.25;  // sigma^2 of the pixel filter (px^2)
-    double filter_truncation = 3.0; // support half-width in units of the underlying sigma
+  int width = 256;
+  int height = 256;
+  int strata = 32;  // samples per pixel = strata^2 (32 -> 1024)
+  std::uint64_t seed = 0x5aa6e11ULL;
+  int threads = 0;                 // 0: hardware concurrency
+  double filter_variance = 0.25;   // sigma^2 of the pixel filter (px^2)
+  double filter_truncation = 3.0;  // support half-width in units of the underlying sigma
 };
 
 struct GroundTruth {
-    std::vector<Image> images;  // one per material, in the order given
-    Image coverage;             // fraction of each pixel's samples that hit the shape
+  std::vector<Image> images;  // one per material, in the order given
+  Image coverage;             // fraction of each pixel's samples that hit the shape
 };
 
 // progress(samples_done, samples_total), on the calling thread (parallel_rows).
 using SampleProgress = std::function<void(std::uint64_t done, std::uint64_t total)>;
 
-GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
-                                std::span<const Material> materials,
+GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials,
                                 const SampleProgress& progress = {});
 
 // ---------------------------------------------------------------------------------------------
@@ -184,33 +182,33 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
 
 // What a fragment shader has at one pixel centre.
 struct PixelFields {
-    bool hit = false;
-    int object = 0;
-    Vec3 position;
-    Vec3 normal;      // world-space shading normal
-    Vec3 tangent;     // world-space tangent
-    Vec3 bitangent;   // world-space bitangent
-    Vec3 to_light;    // i, world
-    Vec3 to_view;     // o, world
-    double irradiance = 0.0;
-    Vec3 light_ts;    // i in (t, b, n)
-    Vec3 view_ts;     // o in (t, b, n)
-    Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
-    Vec2 frag_coord;  // (x + 0.5, y + 0.5)
+  bool hit = false;
+  int object = 0;
+  Vec3 position;
+  Vec3 normal;     // world-space shading normal
+  Vec3 tangent;    // world-space tangent
+  Vec3 bitangent;  // world-space bitangent
+  Vec3 to_light;   // i, world
+  Vec3 to_view;    // o, world
+  double irradiance = 0.0;
+  Vec3 light_ts;    // i in (t, b, n)
+  Vec3 view_ts;     // o in (t, b, n)
+  Vec3 half_ts;     // normalize(i + o) (world) expressed in (t, b, n), as Listing 1 forms it
+  Vec2 frag_coord;  // (x + 0.5, y + 0.5)
 
-    // The base surface before the normal map (SurfaceHit's geometric frame: the shading frame
-    // above except in normal-mapped scenes and on the bump plane) and the texture (uv
-    // derivatives, lod and texel stay zero in a scene without a map).
-    bool has_normal_map = false;
-    Vec3 geometric_normal;
-    Vec3 geometric_tangent;
-    Vec3 geometric_bitangent;
-    Vec3 geometric_half_ts;  // normalize(i + o) in the geometric frame
-    Vec2 uv;                 // texture coordinate at the pixel centre
-    Vec2 duv_dx;             // coarse quad derivatives of uv (see the top of this file)
-    Vec2 duv_dy;
-    double lod = 0.0;        // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
-    NormalTexel texel;       // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
+  // The base surface before the normal map (SurfaceHit's geometric frame: the shading frame
+  // above except in normal-mapped scenes and on the bump plane) and the texture (uv
+  // derivatives, lod and texel stay zero in a scene without a map).
+  bool has_normal_map = false;
+  Vec3 geometric_normal;
+  Vec3 geometric_tangent;
+  Vec3 geometric_bitangent;
+  Vec3 geometric_half_ts;  // normalize(i + o) in the geometric frame
+  Vec2 uv;                 // texture coordinate at the pixel centre
+  Vec2 duv_dx;             // coarse quad derivatives of uv (see the top of this file)
+  Vec2 duv_dy;
+  double lod = 0.0;   // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
+  NormalTexel texel;  // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
@@ -225,25 +223,21 @@ Vec2 tangent_plane_uv(const SurfaceHit& shaded, const Ray& ray);
 // The uv of quad pixel (px, py) seen from the shaded hit of surface `object`: the pixel's own
 // uv when its centre hits the same connected surface inside the image, tangent_plane_uv of its
 // ray otherwise.
-Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py,
-                     int width, int height);
+Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, int px, int py, int width, int height);
 
 struct UvDerivatives {
-    Vec2 ddx;  // uv(quad pixel 1) - uv(quad pixel 0)
-    Vec2 ddy;  // uv(quad pixel 2) - uv(quad pixel 0)
+  Vec2 ddx;  // uv(quad pixel 1) - uv(quad pixel 0)
+  Vec2 ddy;  // uv(quad pixel 2) - uv(quad pixel 0)
 };
 
 // Coarse uv derivatives of the quad of pixel (x, y), whose centre hit is `shaded`.
-UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y,
-                                    int width, int height);
+UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y, int width, int height);
 
 struct GBuffer {
-    int width = 0;
-    int height = 0;
-    std::vector<PixelFields> pixels;  // row-major
-    const PixelFields& at(int x, int y) const {
-        return pixels[static_cast<std::size_t>(y) * width + x];
-    }
+  int width = 0;
+  int height = 0;
+  std::vector<PixelFields> pixels;  // row-major
+  const PixelFields& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
 GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0);
@@ -251,43 +245,37 @@ GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 
 // The quad inputs of a pixel: the fields of the four pixels of its 2x2 quad, partners off the
 // surface replaced by the pixel's own fields (see the top of this file).
 struct QuadFields {
-    ref::Quad<Vec3> normal;
-    ref::Quad<Vec3> tangent;
-    ref::Quad<Vec3> bitangent;
-    ref::Quad<Vec3> half_ts;
-    ref::Quad<Vec2> frag_coord;
-    ref::Quad<Vec3> geometric_normal;
-    ref::Quad<Vec3> geometric_tangent;
-    ref::Quad<Vec3> geometric_bitangent;
-    ref::Quad<Vec3> geometric_half_ts;
-    int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
+  ref::Quad<Vec3> normal;
+  ref::Quad<Vec3> tangent;
+  ref::Quad<Vec3> bitangent;
+  ref::Quad<Vec3> half_ts;
+  ref::Quad<Vec2> frag_coord;
+  ref::Quad<Vec3> geometric_normal;
+  ref::Quad<Vec3> geometric_tangent;
+  ref::Quad<Vec3> geometric_bitangent;
+  ref::Quad<Vec3> geometric_half_ts;
+  int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
 };
 
 // Precondition: gbuffer.at(x, y).hit.
 QuadFields gather_quad(const GBuffer& gbuffer, int x, int y);
 
 struct PixelShade {
-    double radiance = 0.0;
-    // The roughness the BRDF was evaluated with, alpha^2 domain: the matrix A of the
-    // non-axis-aligned forms, (ax^2, 0, ay^2) of the axis-aligned ones, (a^2, 0, a^2) otherwise.
-    ref::Sym2 roughness;
+  double radiance = 0.0;
+  // The roughness the BRDF was evaluated with, alpha^2 domain: the matrix A of the
+  // non-axis-aligned forms, (ax^2, 0, ay^2) of the axis-aligned ones, (a^2, 0, a^2) otherwise.
+  ref::Sym2 roughness;
 };
 
 // The 1-spp shading of pixel (x, y) with a variant (radiance 0 and roughness 0 on a miss).
 // feed: the normal the filter reads (ignored by none; engines always read engine_feed()).
 // The BRDF is always evaluated in the shading frame.
-PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant,
-                       const Material& material, const ref::Params& params = {},
-                       ref::Derivative mode = ref::Derivative::coarse,
-                       NormalFeed feed = NormalFeed::shading,
-                       Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0,
-                       Lobe lobe = Lobe::papers);
+PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, const Material& material, const ref::Params& params = {},
+                       ref::Derivative mode = ref::Derivative::coarse, NormalFeed feed = NormalFeed::shading,
+                       Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0, Lobe lobe = Lobe::papers);
 
-Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material,
-                     const ref::Params& params = {},
-                     ref::Derivative mode = ref::Derivative::coarse, int threads = 0,
-                     NormalFeed feed = NormalFeed::shading,
-                     Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0,
-                     Lobe lobe = Lobe::papers);
+Image render_variant(const GBuffer& gbuffer, Variant variant, const Material& material, const ref::Params& params = {},
+                     ref::Derivative mode = ref::Derivative::coarse, int threads = 0, NormalFeed feed = NormalFeed::shading,
+                     Prefilter prefilter = Prefilter::none, double prefilter_scale = 1.0, Lobe lobe = Lobe::papers);
 
 }  // namespace saagen::render

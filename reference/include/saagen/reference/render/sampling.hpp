@@ -30,15 +30,15 @@ namespace saagen::render {
 // Small, fast and statistically adequate for jitter; seeded per pixel so that a pixel's samples
 // depend only on (seed, pixel), never on the thread that renders it.
 class Rng {
-public:
-    explicit Rng(std::uint64_t seed) : state_(seed) {}
+ public:
+  explicit Rng(std::uint64_t seed) : state_(seed) {}
 
-    std::uint64_t next_u64();
-    // Uniform double in [0, 1) with 53 random bits.
-    double next_double();
+  std::uint64_t next_u64();
+  // Uniform double in [0, 1) with 53 random bits.
+  double next_double();
 
-private:
-    std::uint64_t state_;
+ private:
+  std::uint64_t state_;
 };
 
 // Mixes several 64-bit words into one seed (each word through the SplitMix64 finaliser).
@@ -53,36 +53,36 @@ double standard_normal_cdf(double x);
 
 // The truncated Gaussian pixel filter described at the top of this file.
 class GaussianPixelFilter {
-public:
-    // variance: the variance the truncated filter must have (sigma^2, px^2).
-    // truncation: c, the half-width of the support in units of the underlying Gaussian's s0.
-    explicit GaussianPixelFilter(double variance = 0.25, double truncation = 3.0);
+ public:
+  // variance: the variance the truncated filter must have (sigma^2, px^2).
+  // truncation: c, the half-width of the support in units of the underlying Gaussian's s0.
+  explicit GaussianPixelFilter(double variance = 0.25, double truncation = 3.0);
 
-    double variance() const { return variance_; }
-    double truncation() const { return truncation_; }
-    // s0, the standard deviation of the underlying (untruncated) Gaussian.
-    double underlying_sigma() const { return sigma0_; }
-    // Half-width of the support, c * s0 (px).
-    double radius() const { return truncation_ * sigma0_; }
+  double variance() const { return variance_; }
+  double truncation() const { return truncation_; }
+  // s0, the standard deviation of the underlying (untruncated) Gaussian.
+  double underlying_sigma() const { return sigma0_; }
+  // Half-width of the support, c * s0 (px).
+  double radius() const { return truncation_ * sigma0_; }
 
-    // Density of the 1D truncated filter (integrates to 1 over [-radius, radius]).
-    double pdf(double x) const;
-    // Its distribution function.
-    double cdf(double x) const;
-    // Inverse CDF, exact to ~1e-14 px (Newton iterations on cdf).
-    double inverse_cdf_exact(double u) const;
-    // Inverse CDF from a table of 2^16 + 1 exact values with linear interpolation: the sampler
-    // used by the renderer. Interpolation error: h^2/8 max|x''(u)| with h = 2^-16 is below
-    // 3e-6 px over the whole support (x''(u) = x / (s0^2 pdf(x)^2) peaks at the support's end).
-    double sample(double u) const;
+  // Density of the 1D truncated filter (integrates to 1 over [-radius, radius]).
+  double pdf(double x) const;
+  // Its distribution function.
+  double cdf(double x) const;
+  // Inverse CDF, exact to ~1e-14 px (Newton iterations on cdf).
+  double inverse_cdf_exact(double u) const;
+  // Inverse CDF from a table of 2^16 + 1 exact values with linear interpolation: the sampler
+  // used by the renderer. Interpolation error: h^2/8 max|x''(u)| with h = 2^-16 is below
+  // 3e-6 px over the whole support (x''(u) = x / (s0^2 pdf(x)^2) peaks at the support's end).
+  double sample(double u) const;
 
-private:
-    double variance_;
-    double truncation_;
-    double sigma0_;
-    double cdf_low_;    // Phi(-c)
-    double cdf_range_;  // Phi(c) - Phi(-c)
-    std::vector<double> table_;
+ private:
+  double variance_;
+  double truncation_;
+  double sigma0_;
+  double cdf_low_;    // Phi(-c)
+  double cdf_range_;  // Phi(c) - Phi(-c)
+  std::vector<double> table_;
 };
 
 // The filter with sigma^2 = 0.25 and 3-sigma truncation, built once (thread-safe).
@@ -91,13 +91,12 @@ const GaussianPixelFilter& default_pixel_filter();
 // A jittered stratified pattern of strata x strata points in [0,1)^2, in row-major stratum
 // order, drawn from rng: point (i, j) = ((i + xi1) / strata, (j + xi2) / strata).
 struct FilmOffset {
-    double dx = 0.0;  // pixel-space offset from the pixel centre, +x right
-    double dy = 0.0;  // +y down
+  double dx = 0.0;  // pixel-space offset from the pixel centre, +x right
+  double dy = 0.0;  // +y down
 };
 
 // strata^2 filter-distributed offsets for one pixel: the stratified points above mapped
 // through filter.sample on each axis.
-void stratified_filter_offsets(const GaussianPixelFilter& filter, int strata, Rng& rng,
-                               std::vector<FilmOffset>& out);
+void stratified_filter_offsets(const GaussianPixelFilter& filter, int strata, Rng& rng, std::vector<FilmOffset>& out);
 
 }  // namespace saagen::render

@@ -58,6 +58,9 @@
 //                     camera draws a highlight band along every strand.
 #pragma once
 
+#include "saagen/reference/math.hpp"
+#include "saagen/reference/render/normal_map.hpp"
+
 #include <memory>
 #include <optional>
 #include <span>
@@ -65,34 +68,31 @@
 #include <string_view>
 #include <vector>
 
-#include "saagen/reference/math.hpp"
-#include "saagen/reference/render/normal_map.hpp"
-
 namespace saagen::render {
 
 using ref::Vec2;
 using ref::Vec3;
 
 struct Ray {
-    Vec3 origin;
-    Vec3 direction;  // unit length
+  Vec3 origin;
+  Vec3 direction;  // unit length
 };
 
 // x -> R x + translation, R a rotation given by its columns (the images of the unit axes).
 struct Rigid {
-    Vec3 col_x{1.0, 0.0, 0.0};
-    Vec3 col_y{0.0, 1.0, 0.0};
-    Vec3 col_z{0.0, 0.0, 1.0};
-    Vec3 translation{};
+  Vec3 col_x{1.0, 0.0, 0.0};
+  Vec3 col_y{0.0, 1.0, 0.0};
+  Vec3 col_z{0.0, 0.0, 1.0};
+  Vec3 translation{};
 
-    Vec3 apply_vector(Vec3 v) const { return v.x * col_x + v.y * col_y + v.z * col_z; }
-    Vec3 apply_point(Vec3 p) const { return apply_vector(p) + translation; }
-    Vec3 inverse_vector(Vec3 v) const { return {ref::dot(v, col_x), ref::dot(v, col_y), ref::dot(v, col_z)}; }
-    Vec3 inverse_point(Vec3 p) const { return inverse_vector(p - translation); }
+  Vec3 apply_vector(Vec3 v) const { return v.x * col_x + v.y * col_y + v.z * col_z; }
+  Vec3 apply_point(Vec3 p) const { return apply_vector(p) + translation; }
+  Vec3 inverse_vector(Vec3 v) const { return {ref::dot(v, col_x), ref::dot(v, col_y), ref::dot(v, col_z)}; }
+  Vec3 inverse_point(Vec3 p) const { return inverse_vector(p - translation); }
 
-    // Rotation by angle (radians, right-handed) about a unit axis through the origin.
-    static Rigid rotation(Vec3 axis, double angle);
-    static Rigid translate(Vec3 t);
+  // Rotation by angle (radians, right-handed) about a unit axis through the origin.
+  static Rigid rotation(Vec3 axis, double angle);
+  static Rigid translate(Vec3 t);
 };
 
 // a after b: x -> a(b(x)).
@@ -112,31 +112,31 @@ Rigid compose(const Rigid& a, const Rigid& b);
 // the scene's uv tiling), and dpdu, dpdv the partial derivatives of the position with respect
 // to u and v (for a mesh the triangle's constant partials, as a GPU's attribute interpolation).
 struct SurfaceHit {
-    double t = 0.0;
-    Vec3 position;
-    Vec3 normal;     // shading normal n (unit)
-    Vec3 tangent;    // t (unit, orthogonal to n)
-    Vec3 bitangent;  // b = n x t
-    int object = 0;  // index of the connected surface (tube index); 0 for single surfaces
-    Vec3 geometric_normal;     // base surface normal (unit)
-    Vec3 geometric_tangent;    // unit, orthogonal to geometric_normal
-    Vec3 geometric_bitangent;  // geometric_normal x geometric_tangent
-    Vec2 uv;
-    Vec3 dpdu;
-    Vec3 dpdv;
-    // +1 when dpdv lies on the side of geometric_bitangent (the texture's +v direction is +b),
-    // -1 for a mirrored parameterisation (MikkTSpace's bitangent sign).
-    double bitangent_sign = 1.0;
+  double t = 0.0;
+  Vec3 position;
+  Vec3 normal;               // shading normal n (unit)
+  Vec3 tangent;              // t (unit, orthogonal to n)
+  Vec3 bitangent;            // b = n x t
+  int object = 0;            // index of the connected surface (tube index); 0 for single surfaces
+  Vec3 geometric_normal;     // base surface normal (unit)
+  Vec3 geometric_tangent;    // unit, orthogonal to geometric_normal
+  Vec3 geometric_bitangent;  // geometric_normal x geometric_tangent
+  Vec2 uv;
+  Vec3 dpdu;
+  Vec3 dpdv;
+  // +1 when dpdv lies on the side of geometric_bitangent (the texture's +v direction is +b),
+  // -1 for a mirrored parameterisation (MikkTSpace's bitangent sign).
+  double bitangent_sign = 1.0;
 };
 
 // An analytic shape in its object space.
 class Shape {
-public:
-    virtual ~Shape() = default;
-    // The nearest hit with t > t_min along a ray whose direction has unit length.
-    virtual bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const = 0;
-    // Every number that defines the shape (part of the ground-truth cache key).
-    virtual std::string describe() const = 0;
+ public:
+  virtual ~Shape() = default;
+  // The nearest hit with t > t_min along a ray whose direction has unit length.
+  virtual bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const = 0;
+  // Every number that defines the shape (part of the ground-truth cache key).
+  virtual std::string describe() const = 0;
 };
 
 // Sphere of the given radius centred at the origin. Tangent frame: with n = (a, b, c), the
@@ -147,15 +147,15 @@ public:
 // dpdu points along +x and dpdv along +y: dpdu = 2 pi (z, 0, -x), dpdv = pi (-y x / rho, rho,
 // -y z / rho) with rho = sqrt(x^2 + z^2) (both zero at the poles).
 class Sphere final : public Shape {
-public:
-    explicit Sphere(double radius) : radius_(radius) {}
-    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
-    std::string describe() const override;
-    static Vec3 stereographic_tangent(Vec3 n);
+ public:
+  explicit Sphere(double radius) : radius_(radius) {}
+  bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+  std::string describe() const override;
+  static Vec3 stereographic_tangent(Vec3 n);
 
-private:
-    void set_uv(SurfaceHit& hit) const;
-    double radius_;
+ private:
+  void set_uv(SurfaceHit& hit) const;
+  double radius_;
 };
 
 // Torus around the y axis: (|p|^2 + R^2 - r^2)^2 = 4 R^2 (px^2 + pz^2). The ray equation is
@@ -165,15 +165,15 @@ private:
 // normalize(-pz, 0, px). uv: u = phi / (2 pi), phi = atan2(pz, px) the major angle; v = psi /
 // (2 pi), psi = atan2(py, rho - R) the tube angle (both wrapped to [0, 1)).
 class Torus final : public Shape {
-public:
-    Torus(double major_radius, double minor_radius) : major_(major_radius), minor_(minor_radius) {}
-    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
-    std::string describe() const override;
+ public:
+  Torus(double major_radius, double minor_radius) : major_(major_radius), minor_(minor_radius) {}
+  bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+  std::string describe() const override;
 
-private:
-    void set_uv(SurfaceHit& hit) const;
-    double major_;
-    double minor_;
+ private:
+  void set_uv(SurfaceHit& hit) const;
+  double major_;
+  double minor_;
 };
 
 // A row of `count` open cylinders of the given radius with axes parallel to x, centred on
@@ -182,25 +182,25 @@ private:
 // direction; tangent: +x. SurfaceHit::object is the tube index k. uv: u = (x + half_length) /
 // (2 half_length) along the axis, v = psi / (2 pi) around it (psi = atan2(z, y - y_k)).
 class TubeRow final : public Shape {
-public:
-    TubeRow(int count, double radius, double spacing, double half_length)
-        : count_(count), radius_(radius), spacing_(spacing), half_length_(half_length) {}
-    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
-    std::string describe() const override;
-    double axis_y(int k) const { return (k - 0.5 * (count_ - 1)) * spacing_; }
+ public:
+  TubeRow(int count, double radius, double spacing, double half_length)
+      : count_(count), radius_(radius), spacing_(spacing), half_length_(half_length) {}
+  bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+  std::string describe() const override;
+  double axis_y(int k) const { return (k - 0.5 * (count_ - 1)) * spacing_; }
 
-private:
-    int count_;
-    double radius_;
-    double spacing_;
-    double half_length_;
+ private:
+  int count_;
+  double radius_;
+  double spacing_;
+  double half_length_;
 };
 
 // One term a sin(k . (x, y) + phase) of a height field.
 struct SineWave {
-    Vec2 wave_vector;  // k, radians per unit length
-    double amplitude = 0.0;
-    double phase = 0.0;
+  Vec2 wave_vector;  // k, radians per unit length
+  double amplitude = 0.0;
+  double phase = 0.0;
 };
 
 // The square |x|, |y| <= half_size of the plane z = 0, seen from +z, bump-mapped with
@@ -209,50 +209,49 @@ struct SineWave {
 // normalize(e_x - n_x n). Geometric frame: the plane's (e_x, e_y, e_z); uv = (x, y) mapped from
 // [-half_size, half_size] to [0, 1].
 class BumpPlane final : public Shape {
-public:
-    BumpPlane(double half_size, std::vector<SineWave> waves)
-        : half_size_(half_size), waves_(std::move(waves)) {}
-    bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
-    std::string describe() const override;
-    double height(double x, double y) const;
-    Vec2 gradient(double x, double y) const;  // (dh/dx, dh/dy)
-    Vec3 normal(double x, double y) const;
+ public:
+  BumpPlane(double half_size, std::vector<SineWave> waves) : half_size_(half_size), waves_(std::move(waves)) {}
+  bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
+  std::string describe() const override;
+  double height(double x, double y) const;
+  Vec2 gradient(double x, double y) const;  // (dh/dx, dh/dy)
+  Vec3 normal(double x, double y) const;
 
-private:
-    double half_size_;
-    std::vector<SineWave> waves_;
+ private:
+  double half_size_;
+  std::vector<SineWave> waves_;
 };
 
 // Pinhole camera.
 struct Camera {
-    Vec3 position{0.0, 0.0, 4.0};
-    Vec3 look_at{};
-    Vec3 up{0.0, 1.0, 0.0};
-    double fov_y_degrees = 35.0;
+  Vec3 position{0.0, 0.0, 4.0};
+  Vec3 look_at{};
+  Vec3 up{0.0, 1.0, 0.0};
+  double fov_y_degrees = 35.0;
 
-    // The same camera with the field of view narrowed so that an image of `size` pixels has
-    // the pixel footprint of a `full_size` image: the centre crop of the full image (square
-    // images: the aspect ratio is width / height of the image rendered).
-    Camera cropped(int size, int full_size) const;
+  // The same camera with the field of view narrowed so that an image of `size` pixels has
+  // the pixel footprint of a `full_size` image: the centre crop of the full image (square
+  // images: the aspect ratio is width / height of the image rendered).
+  Camera cropped(int size, int full_size) const;
 
-    // The same camera translated parallel to its film, position and look-at point alike, by
-    // (right, up) pixels of an image `height` pixels high, measured at the look-at distance: a
-    // point at that distance is seen (right, up) pixels the other way, (fx - right, fy + up).
-    Camera panned(double right_pixels, double up_pixels, int height) const;
+  // The same camera translated parallel to its film, position and look-at point alike, by
+  // (right, up) pixels of an image `height` pixels high, measured at the look-at distance: a
+  // point at that distance is seen (right, up) pixels the other way, (fx - right, fy + up).
+  Camera panned(double right_pixels, double up_pixels, int height) const;
 
-    // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
-    // width x height image.
-    Ray generate(double fx, double fy, int width, int height) const;
+  // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
+  // width x height image.
+  Ray generate(double fx, double fy, int width, int height) const;
 };
 
 struct Light {
-    enum class Kind { directional, point };
-    Kind kind = Kind::directional;
-    Vec3 vector{0.0, 0.0, 1.0};  // directional: unit direction towards the light; point: position
-    double intensity = 1.0;      // directional: irradiance on a surface facing it; point: I (E = I / d^2)
+  enum class Kind { directional, point };
+  Kind kind = Kind::directional;
+  Vec3 vector{0.0, 0.0, 1.0};  // directional: unit direction towards the light; point: position
+  double intensity = 1.0;      // directional: irradiance on a surface facing it; point: I (E = I / d^2)
 
-    // Unit direction to the light and the irradiance E at p (normal incidence).
-    void at(Vec3 p, Vec3& to_light, double& irradiance) const;
+  // Unit direction to the light and the irradiance E at p (normal incidence).
+  void at(Vec3 p, Vec3& to_light, double& irradiance) const;
 };
 
 // The analytic scenes (all_scenes) and the "real content" scenes (content_scenes: normal maps
@@ -261,56 +260,55 @@ enum class SceneId { sphere, torus, tubes, bump_plane, nmap_sphere, nmap_sphere_
 
 std::string_view scene_name(SceneId id);
 std::optional<SceneId> scene_from_name(std::string_view name);  // any SceneId
-std::span<const SceneId> all_scenes();      // sphere, torus, tubes, bump_plane
-std::span<const SceneId> content_scenes();  // nmap-sphere, nmap-sphere-fine, torus-knot
+std::span<const SceneId> all_scenes();                          // sphere, torus, tubes, bump_plane
+std::span<const SceneId> content_scenes();                      // nmap-sphere, nmap-sphere-fine, torus-knot
 
 class Scene {
-public:
-    Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera,
-          Light light, Vec3 pivot, double rotation_radians);
+ public:
+  Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera, Light light, Vec3 pivot,
+        double rotation_radians);
 
-    // Nearest hit of a world-space ray (fields transformed to world space, uv in texture
-    // units). With a normal map, the shading frame comes from the map's level-0 bilinear sample
-    // at hit.uv (apply_normal_map): what the ground truth integrates over the pixel filter.
-    bool intersect(const Ray& ray, SurfaceHit& hit) const;
-    // The same hit before the normal map: the shading frame equals the geometric frame in a
-    // normal-mapped scene (identical to intersect otherwise).
-    bool intersect_surface(const Ray& ray, SurfaceHit& hit) const;
-    // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
-    // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
-    // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
-    static void apply_normal_map(SurfaceHit& hit, Vec3 normal_ts);
+  // Nearest hit of a world-space ray (fields transformed to world space, uv in texture
+  // units). With a normal map, the shading frame comes from the map's level-0 bilinear sample
+  // at hit.uv (apply_normal_map): what the ground truth integrates over the pixel filter.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // The same hit before the normal map: the shading frame equals the geometric frame in a
+  // normal-mapped scene (identical to intersect otherwise).
+  bool intersect_surface(const Ray& ray, SurfaceHit& hit) const;
+  // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
+  // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
+  // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
+  static void apply_normal_map(SurfaceHit& hit, Vec3 normal_ts);
 
-    // The same scene seen through another camera.
-    Scene with_camera(const Camera& camera) const;
-    // The same scene shaded with a normal map repeated `tiling` times over the shape's uv
-    // square (texture uv = tiling * shape uv).
-    // source: the numbers the map was generated from (kept in describe()).
-    Scene with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling,
-                          std::string source = {}) const;
-    const NormalMap* normal_map() const { return normal_map_.get(); }
-    Vec2 uv_tiling() const { return tiling_; }
+  // The same scene seen through another camera.
+  Scene with_camera(const Camera& camera) const;
+  // The same scene shaded with a normal map repeated `tiling` times over the shape's uv
+  // square (texture uv = tiling * shape uv).
+  // source: the numbers the map was generated from (kept in describe()).
+  Scene with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, std::string source = {}) const;
+  const NormalMap* normal_map() const { return normal_map_.get(); }
+  Vec2 uv_tiling() const { return tiling_; }
 
-    const std::string& name() const { return name_; }
-    const Camera& camera() const { return camera_; }
-    const Light& light() const { return light_; }
-    double rotation() const { return rotation_; }
-    const Rigid& object_to_world() const { return object_to_world_; }
-    // Every number that affects a rendered image of the scene (cache keys).
-    std::string describe() const;
+  const std::string& name() const { return name_; }
+  const Camera& camera() const { return camera_; }
+  const Light& light() const { return light_; }
+  double rotation() const { return rotation_; }
+  const Rigid& object_to_world() const { return object_to_world_; }
+  // Every number that affects a rendered image of the scene (cache keys).
+  std::string describe() const;
 
-private:
-    std::string name_;
-    std::shared_ptr<const Shape> shape_;
-    Rigid placement_;
-    Camera camera_;
-    Light light_;
-    Vec3 pivot_;
-    double rotation_;
-    Rigid object_to_world_;
-    std::shared_ptr<const NormalMap> normal_map_;
-    Vec2 tiling_{1.0, 1.0};
-    std::string normal_map_source_;  // how the map was made (part of describe())
+ private:
+  std::string name_;
+  std::shared_ptr<const Shape> shape_;
+  Rigid placement_;
+  Camera camera_;
+  Light light_;
+  Vec3 pivot_;
+  double rotation_;
+  Rigid object_to_world_;
+  std::shared_ptr<const NormalMap> normal_map_;
+  Vec2 tiling_{1.0, 1.0};
+  std::string normal_map_source_;  // how the map was made (part of describe())
 };
 
 // The standard scene, rotated by rotation_radians about the vertical axis through its pivot.

@@ -29,11 +29,10 @@
 // through the camera translated parallel to its film by (k - (frames - 1) / 2) times
 // pan_pixels_per_frame (right, up), in pixels of the flicker resolution measured at the look-at
 // distance (Camera::panned). The rotation alone moves little on screen (the torus turns under a
-// highlight that stays nearly fixed, the sphere slides slowly about its off-centre pivot); the pan slides every sub-pixel highlight across the
-// pixel grid by a fraction of a pixel per frame (0.11, 0.37 by default: the sub-pixel phase
-// does not repeat within 32 frames), the motion at which 1-spp specular aliasing shimmers. It
-// is mostly vertical, across the sideways slide of the sphere's off-centre rotation rather than
-// against it, and centred on the unpanned view so that the shapes stay in frame.
+// highlight that stays nearly fixed, the sphere slides slowly about its off-centre pivot); the pan slides every sub-pixel highlight across
+// the pixel grid by a fraction of a pixel per frame (0.11, 0.37 by default: the sub-pixel phase does not repeat within 32 frames), the
+// motion at which 1-spp specular aliasing shimmers. It is mostly vertical, across the sideways slide of the sphere's off-centre rotation
+// rather than against it, and centred on the unpanned view so that the shapes stay in frame.
 //
 // Flicker ground truth. 32 converged frames at the full resolution and 1024 spp would cost 32
 // times the main ground truth, so the animation is rendered at flicker_width x flicker_height
@@ -55,6 +54,12 @@
 // compared on load, so a hash collision or a stale file only costs a re-render.
 #pragma once
 
+#include "saagen/reference/quad.hpp"
+#include "saagen/reference/render/image.hpp"
+#include "saagen/reference/render/renderer.hpp"
+#include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/saa.hpp"
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -62,129 +67,124 @@
 #include <utility>
 #include <vector>
 
-#include "saagen/reference/quad.hpp"
-#include "saagen/reference/render/image.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
-#include "saagen/reference/saa.hpp"
-
 namespace saagen::render {
 
 // saagen's variants, the no-SAA baseline and the engines' shipped forms.
 std::vector<Variant> default_trade_variants();
 
 struct TradeConfig {
-    int width = 256;
-    int height = 256;
-    int strata = 32;  // main ground truth: strata^2 = 1024 spp
-    int flicker_width = 128;
-    int flicker_height = 128;
-    int flicker_strata = 16;  // flicker ground truth: 256 spp
-    int frames = 32;          // 0 disables the temporal metrics (tde, flicker = 0)
-    double rotation_degrees_per_frame = 0.25;
-    // Camera translation per frame parallel to the film, (right, up) in flicker-resolution
-    // pixels at the look-at distance (see the top of this file).
-    Vec2 pan_pixels_per_frame{0.11, 0.37};
-    std::vector<SceneId> scenes{SceneId::sphere, SceneId::torus, SceneId::tubes,
-                                SceneId::bump_plane};
-    std::vector<double> alphas{0.01, 0.05, 0.1, 0.3};
-    std::vector<bool> fresnel_modes{false, true};
-    std::vector<Variant> variants = default_trade_variants();
-    // The normals the normal-based variants are fed (engines always read their own). The
-    // geometric feed only adds rows on scenes with normal detail (normal maps, bump plane),
-    // where it differs from the shading feed.
-    std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
-    // On normal-mapped scenes: these variants fed the geometric normal (curvature) with the map's
-    // detail prefiltered into roughness, the engines' recommended split; `none` with a
-    // prefilter is texture prefiltering alone.
-    std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean};
-    std::vector<Variant> prefiltered_variants{
-        Variant::none, Variant::forward_aniso_projected, Variant::forward_axis_projected,
-        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space};
-    double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
-    // The lobes the filters' roughness is evaluated with (renderer.hpp, Lobe): every variant in
-    // `variants` and `prefiltered_variants` with the papers' GGX; those also in `lobe_variants`
-    // once more with each further lobe here (rows "VARIANT/tail", "VARIANT/mapped").
-    std::vector<Lobe> lobes{Lobe::tail, Lobe::mapped};
-    std::vector<Variant> lobe_variants{
-        Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_max,
-        Variant::deferred_sum, Variant::deferred_avg, Variant::deferred_projected_space,
-        Variant::deferred_aniso};
-    ref::Params params{};
-    ref::Derivative derivative = ref::Derivative::coarse;
-    std::uint64_t seed = 0x5aa6e11ULL;
-    int threads = 0;        // 0: hardware concurrency
-    std::string cache_dir;  // empty: no ground-truth cache
-    bool keep_images = false;  // fill TradeTable::images
-    bool flip = true;          // compute the FLIP metrics (flip.hpp; ~80 ms per row at 256^2)
+  int width = 256;
+  int height = 256;
+  int strata = 32;  // main ground truth: strata^2 = 1024 spp
+  int flicker_width = 128;
+  int flicker_height = 128;
+  int flicker_strata = 16;  // flicker ground truth: 256 spp
+  int frames = 32;          // 0 disables the temporal metrics (tde, flicker = 0)
+  double rotation_degrees_per_frame = 0.25;
+  // Camera translation per frame parallel to the film, (right, up) in flicker-resolution
+  // pixels at the look-at distance (see the top of this file).
+  Vec2 pan_pixels_per_frame{0.11, 0.37};
+  std::vector<SceneId> scenes{SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane};
+  std::vector<double> alphas{0.01, 0.05, 0.1, 0.3};
+  std::vector<bool> fresnel_modes{false, true};
+  std::vector<Variant> variants = default_trade_variants();
+  // The normals the normal-based variants are fed (engines always read their own). The
+  // geometric feed only adds rows on scenes with normal detail (normal maps, bump plane),
+  // where it differs from the shading feed.
+  std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
+  // On normal-mapped scenes: these variants fed the geometric normal (curvature) with the map's
+  // detail prefiltered into roughness, the engines' recommended split; `none` with a
+  // prefilter is texture prefiltering alone.
+  std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean};
+  std::vector<Variant> prefiltered_variants{
+      Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
+      Variant::deferred_avg, Variant::deferred_projected_space};
+  double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
+  // The lobes the filters' roughness is evaluated with (renderer.hpp, Lobe): every variant in
+  // `variants` and `prefiltered_variants` with the papers' GGX; those also in `lobe_variants`
+  // once more with each further lobe here (rows "VARIANT/tail", "VARIANT/mapped").
+  std::vector<Lobe> lobes{Lobe::tail, Lobe::mapped};
+  std::vector<Variant> lobe_variants{Variant::forward_aniso_projected,
+                                     Variant::forward_axis_projected,
+                                     Variant::deferred_max,
+                                     Variant::deferred_sum,
+                                     Variant::deferred_avg,
+                                     Variant::deferred_projected_space,
+                                     Variant::deferred_aniso};
+  ref::Params params{};
+  ref::Derivative derivative = ref::Derivative::coarse;
+  std::uint64_t seed = 0x5aa6e11ULL;
+  int threads = 0;           // 0: hardware concurrency
+  std::string cache_dir;     // empty: no ground-truth cache
+  bool keep_images = false;  // fill TradeTable::images
+  bool flip = true;          // compute the FLIP metrics (flip.hpp; ~80 ms per row at 256^2)
 };
 
 struct TradeRow {
-    Variant variant = Variant::none;
-    NormalFeed feed = NormalFeed::shading;
-    Prefilter prefilter = Prefilter::none;
-    Lobe lobe = Lobe::papers;
-    SceneId scene = SceneId::sphere;
-    double alpha = 0.0;
-    bool fresnel = false;
-    double rmse_linear = 0.0;
-    double rmse_tonemapped = 0.0;
-    double max_error = 0.0;
-    // FLIP (flip.hpp): LDR-FLIP of the tonemapped images (tonemap(), then the sRGB encoding FLIP
-    // expects) and HDR-FLIP of the linear images; means of the per-pixel error maps.
-    double flip_ldr = 0.0;
-    double flip_hdr = 0.0;
-    // Temporal difference error of the display-value animation and its two parts (image.hpp,
-    // TemporalError): the motion criterion.
-    double tde = 0.0;
-    double tde_excess_flicker = 0.0;
-    double tde_lost_motion = 0.0;
-    double flicker = 0.0;
-    double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
-    double reference_temporal_stddev = 0.0;  // the same for the ground truth
-    // Display-referred flicker: the mean per-pixel temporal std of the tonemapped frames
-    // (tonemap(), image.hpp), of the variant and of the ground truth, and their ratio
-    // (1: flickers as much as the converged animation; > 1: aliasing; < 1: overblurred motion).
-    double temporal_stddev_display = 0.0;
-    double reference_temporal_stddev_display = 0.0;
-    double flicker_display = 0.0;            // temporal_stddev_display / reference's
-    std::size_t non_finite = 0;              // NaN/inf pixels of the frame-0 image (excluded)
+  Variant variant = Variant::none;
+  NormalFeed feed = NormalFeed::shading;
+  Prefilter prefilter = Prefilter::none;
+  Lobe lobe = Lobe::papers;
+  SceneId scene = SceneId::sphere;
+  double alpha = 0.0;
+  bool fresnel = false;
+  double rmse_linear = 0.0;
+  double rmse_tonemapped = 0.0;
+  double max_error = 0.0;
+  // FLIP (flip.hpp): LDR-FLIP of the tonemapped images (tonemap(), then the sRGB encoding FLIP
+  // expects) and HDR-FLIP of the linear images; means of the per-pixel error maps.
+  double flip_ldr = 0.0;
+  double flip_hdr = 0.0;
+  // Temporal difference error of the display-value animation and its two parts (image.hpp,
+  // TemporalError): the motion criterion.
+  double tde = 0.0;
+  double tde_excess_flicker = 0.0;
+  double tde_lost_motion = 0.0;
+  double flicker = 0.0;
+  double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
+  double reference_temporal_stddev = 0.0;  // the same for the ground truth
+  // Display-referred flicker: the mean per-pixel temporal std of the tonemapped frames
+  // (tonemap(), image.hpp), of the variant and of the ground truth, and their ratio
+  // (1: flickers as much as the converged animation; > 1: aliasing; < 1: overblurred motion).
+  double temporal_stddev_display = 0.0;
+  double reference_temporal_stddev_display = 0.0;
+  double flicker_display = 0.0;  // temporal_stddev_display / reference's
+  std::size_t non_finite = 0;    // NaN/inf pixels of the frame-0 image (excluded)
 };
 
 // The images behind the rows of one (scene, material): frame 0 at the main resolution.
 struct ImageSet {
-    SceneId scene = SceneId::sphere;
-    Material material;
-    Image reference;  // ground truth
-    Image coverage;   // fraction of the ground-truth samples that hit the shape
-    struct Rendered {
-        Variant variant;
-        NormalFeed feed;
-        Prefilter prefilter;
-        Lobe lobe;
-        Image image;
-    };
-    std::vector<Rendered> variants;  // 1-spp images, in row order
+  SceneId scene = SceneId::sphere;
+  Material material;
+  Image reference;  // ground truth
+  Image coverage;   // fraction of the ground-truth samples that hit the shape
+  struct Rendered {
+    Variant variant;
+    NormalFeed feed;
+    Prefilter prefilter;
+    Lobe lobe;
+    Image image;
+  };
+  std::vector<Rendered> variants;  // 1-spp images, in row order
 };
 
 struct TradeTable {
-    TradeConfig config;
-    std::vector<TradeRow> rows;   // scene-major, then alpha, Fresnel, variant (config order)
-    std::vector<ImageSet> images; // when config.keep_images
-    double ground_truth_seconds = 0.0;    // wall time spent rendering ground truths
-    std::uint64_t ground_truth_samples = 0;  // samples rendered (cache hits excluded)
-    int cache_hits = 0;
-    int cache_misses = 0;
+  TradeConfig config;
+  std::vector<TradeRow> rows;              // scene-major, then alpha, Fresnel, variant (config order)
+  std::vector<ImageSet> images;            // when config.keep_images
+  double ground_truth_seconds = 0.0;       // wall time spent rendering ground truths
+  std::uint64_t ground_truth_samples = 0;  // samples rendered (cache hits excluded)
+  int cache_hits = 0;
+  int cache_misses = 0;
 
-    const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel,
-                         NormalFeed feed = NormalFeed::shading,
-                         Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers) const;
+  const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed = NormalFeed::shading,
+                       Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers) const;
 };
 
 struct TradeProgress {
-    std::string stage;        // e.g. "ground truth sphere", "flicker torus frame 3/32"
-    std::uint64_t done = 0;   // work units: ground-truth samples + 1-spp pixel shadings
-    std::uint64_t total = 0;
+  std::string stage;       // e.g. "ground truth sphere", "flicker torus frame 3/32"
+  std::uint64_t done = 0;  // work units: ground-truth samples + 1-spp pixel shadings
+  std::uint64_t total = 0;
 };
 
 // Called on the calling thread, at most about every 100 ms and at each stage change.
@@ -200,13 +200,11 @@ std::vector<Material> trade_materials(const TradeConfig& config);
 
 // Ground truth through the disk cache (render_ground_truth when cache_dir is empty or the
 // entry is missing or stale). *cache_hit (when given) tells which happened.
-GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings,
-                                std::span<const Material> materials, const std::string& cache_dir,
-                                const SampleProgress& progress = {}, bool* cache_hit = nullptr);
+GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials,
+                                const std::string& cache_dir, const SampleProgress& progress = {}, bool* cache_hit = nullptr);
 
 // The cache key text and its file name ("gt-<16 hex digits>.bin").
-std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings,
-                                   std::span<const Material> materials);
+std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials);
 std::string ground_truth_cache_file(const std::string& key);
 
 // The configuration a row measures: the variant id, with ":geometric" appended when a saagen
@@ -214,8 +212,7 @@ std::string ground_truth_cache_file(const std::string& key);
 // ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
 // "engine-hdrp"), and "/tail" or "/mapped" for a lobe other than the papers'
 // ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped").
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none,
-                             Lobe lobe = Lobe::papers);
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers);
 std::string configuration_id(const TradeRow& row);
 
 // Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.
