@@ -7,21 +7,10 @@ Markdown table (the per-row figures of docs/DEFERRED_KERNEL.md).
 
 e.g. `python3 scripts/configuration_means.py trade.json deferred-aniso/tail deferred-avg/tail
 forward-aniso-projected/tail`."""
-import collections
 import json
 import sys
 
-
-def scene_means(cases):
-    sums = collections.defaultdict(lambda: collections.defaultdict(lambda: [0.0, 0.0, 0]))
-    for case in cases:
-        if case['fresnel']:
-            continue
-        entry = sums[case['scene']][case['configuration']]
-        entry[0] += case['flip_ldr']
-        entry[1] += case['tde']
-        entry[2] += 1
-    return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
+from beats_baselines import scene_means
 
 
 def main():

@@ -504,6 +504,17 @@ spv_result_t link(const std::vector<std::vector<std::uint32_t>>& modules, std::v
   return spvtools::Link(context, modules, &linked, spvtools::LinkerOptions{});
 }
 
+// `spirv`, a load-call-store kernel of `request`, over element_count elements of `inputs`.
+std::vector<float> run_elements(const std::vector<std::uint32_t>& spirv, const std::vector<float>& inputs,
+                                const saagen::KernelRequest& request) {
+  saagen::harness::ComputeRun compute;
+  compute.shader.spirv = spirv;
+  compute.buffers = {saagen::harness::input_buffer(0, inputs),
+                     saagen::harness::output_buffer<float>(1, std::size_t{element_count} * request.output_stride)};
+  compute.groups = {element_count / request.workgroup_size, 1, 1};
+  return saagen::harness::run_compute(saagen::test::gpu(), compute).buffer_as<float>(1);
+}
+
 struct LinkCase {
   std::string variant;
   std::string function;
@@ -535,14 +546,7 @@ TEST_P(LinkedLibraryOnGpu, ImportLinkValidateAndRunAgainstTheReference) {
   for (std::uint32_t element = 0; element < element_count; ++element) pack(function, draw(random), inputs);
   ASSERT_EQ(inputs.size(), std::size_t{element_count} * request.input_stride);
 
-  const auto run = [&](const std::vector<std::uint32_t>& spirv) {
-    saagen::harness::ComputeRun compute;
-    compute.shader.spirv = spirv;
-    compute.buffers = {saagen::harness::input_buffer(0, inputs),
-                       saagen::harness::output_buffer<float>(1, std::size_t{element_count} * request.output_stride)};
-    compute.groups = {element_count / request.workgroup_size, 1, 1};
-    return saagen::harness::run_compute(saagen::test::gpu(), compute).buffer_as<float>(1);
-  };
+  const auto run = [&](const std::vector<std::uint32_t>& spirv) { return run_elements(spirv, inputs, request); };
   const auto got = run(linked);
 
   std::vector<double> expected, bound;
@@ -623,14 +627,7 @@ TEST_P(DomainLibraryOnGpu, LinkedDomainWrapperMatchesTheEmittedDomainSourceBitwi
     for (int k = 0; k < 6; ++k) inputs.push_back(static_cast<float>(derivative(random)));
   }
   ASSERT_EQ(inputs.size(), std::size_t{element_count} * request.input_stride);
-  const auto run = [&](const std::vector<std::uint32_t>& spirv) {
-    saagen::harness::ComputeRun compute;
-    compute.shader.spirv = spirv;
-    compute.buffers = {saagen::harness::input_buffer(0, inputs),
-                       saagen::harness::output_buffer<float>(1, std::size_t{element_count} * request.output_stride)};
-    compute.groups = {element_count / request.workgroup_size, 1, 1};
-    return saagen::harness::run_compute(saagen::test::gpu(), compute).buffer_as<float>(1);
-  };
+  const auto run = [&](const std::vector<std::uint32_t>& spirv) { return run_elements(spirv, inputs, request); };
   const auto got = run(linked);
   options.target = "glsl";
   const saagen::EmittedFile source = saagen::emit_variants(Catalogue::builtin(), options).front();
