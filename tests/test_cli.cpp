@@ -1,6 +1,7 @@
 // The saagen command line: what it writes, what it prints, and how it refuses bad input (one
 // line on stderr, a non-zero exit, nothing written).
 #include "cli_support.hpp"
+#include "material_combinations.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -286,35 +287,8 @@ TEST_F(Cli, StandardOutputWriteFailuresAreOneLineAndNonZero) {
 // compile per material): 960 materials repeating 96 configurations under new names get, material
 // by material, the cost lines of a plan of the 96 alone, in a fraction of the time.
 TEST_F(Cli, PlanCostsEachDistinctConfigurationOnce) {
-  std::vector<std::string> configurations;
-  for (const char* path : {"forward", "deferred"})
-    for (const bool anisotropic : {false, true})
-      for (const bool tangents : {false, true}) {
-        if (anisotropic && !tangents) continue;
-        for (const char* ndf : {"ggx", "beckmann"})
-          for (const bool normal_maps : {false, true})
-            for (const char* precision : {"fp32", "fp16"})
-              for (const char* prefer : {"accuracy", "speed"}) {
-                // append() rather than operator+: GCC 12 reports a spurious -Wrestrict on the latter.
-                std::string keys = "path = \"";
-                keys.append(path).append("\"\nanisotropic = ").append(anisotropic ? "true" : "false");
-                keys.append("\ntangents = ").append(tangents ? "true" : "false").append("\nndf = \"").append(ndf);
-                keys.append("\"\nnormal_maps = ").append(normal_maps ? "true" : "false").append("\nprecision = \"").append(precision);
-                keys.append("\"\nprefer = \"").append(prefer).append("\"\n");
-                configurations.push_back(keys);
-              }
-      }
-  ASSERT_EQ(configurations.size(), 96u);
-  const auto manifest = [&](std::size_t count) {
-    std::string text = "name = \"scene\"\ntargets = [\"glsl\", \"hlsl\"]\n";
-    for (std::size_t index = 0; index < count; ++index) {
-      text.append("[[material]]\nname = \"m")
-          .append(std::to_string(index))
-          .append("\"\n")
-          .append(configurations[index % configurations.size()]);
-    }
-    return text;
-  };
+  ASSERT_EQ(saagen::test::material_key_combinations().size(), 96u);
+  const auto manifest = [](std::size_t count) { return saagen::test::manifest_of_materials(count, "scene"); };
   // Per material, its "cost" line.
   const auto costs_of = [](const std::string& plan) {
     std::vector<std::string> costs;
