@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Emits every output of the generator that comes from the templates into one directory, so that
 # two builds can be compared byte for byte (`diff -r OLD NEW`): every variant x target x
-# precision (guarded and unguarded), SPIR-V library modules, the example manifest bundles, the
-# deferred pass skeletons, the glint snippets, `list --json` and the `validate` report.
+# precision (guarded and unguarded), every roughness domain and preset, a named WGSL module,
+# SPIR-V library modules, the three example manifests' bundles, the deferred pass skeletons, the
+# glint snippets, `list --json` and the `validate` report.
 #
 # Usage: scripts/emit_corpus.sh SAAGEN_BINARY OUTPUT_DIRECTORY
 set -euo pipefail
@@ -30,15 +31,29 @@ emit_forms() {  # target precision...
 emit_forms glsl fp32 fp16
 emit_forms gles fp32 fp16
 emit_forms hlsl fp32 min16
+emit_forms wgsl fp32 fp16
+for domain in alpha perceptual smoothness; do
+  for target in glsl gles hlsl wgsl; do
+    "$saagen" emit --target "$target" --domain "$domain" -o "$out/emit/$target/domain-$domain"
+  done
+done
+for preset in hdrp filament filament-taa o3de bevy vsgl; do
+  "$saagen" emit --target glsl --preset "$preset" -o "$out/emit/glsl/preset-$preset"
+done
+"$saagen" emit --target wgsl --variant forward-aniso-slope --variant brdf-ggx --import-path saa::gsaa --module gsaa \
+  -o "$out/emit/wgsl/module"
 "$saagen" emit --target spirv -o "$out/emit/spirv/fp32"
 "$saagen" emit --target glsl --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/glsl/options"
 "$saagen" emit --target gles --prefix my_ --sigma2 0.5 --kappa 0.3 -o "$out/emit/gles/options"
 
 (cd "$root/examples" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest")
+(cd "$root/examples/webgpu" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest-webgpu")
+(cd "$root/examples/cmake-consumer" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest-cmake-consumer")
 
 "$saagen" pass -o "$out/pass/fine"
 "$saagen" pass --derivatives coarse --output-format r16f -o "$out/pass/coarse"
 "$saagen" pass --unguarded -o "$out/pass/unguarded"
+"$saagen" pass --preset hdrp -o "$out/pass/hdrp"
 
 for target in glsl hlsl; do
   "$saagen" glints emit --target "$target" -o "$out/glints/$target/fp32"
