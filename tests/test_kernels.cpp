@@ -5,6 +5,8 @@
 #include "saagen/front/catalogue.hpp"
 #include "saagen/validate/kernels.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 namespace {
@@ -29,7 +31,9 @@ std::string wrapper_body(const saagen::Function& function) {
   for (const saagen::Parameter& parameter : function.parameters) {
     if (!arguments.empty()) arguments += ", ";
     const std::string seed = "(saagen_frag_coord.x * 0.01 + saagen_frag_coord.y * 0.02 + SAAGEN_LOAD(0))";
-    arguments += parameter.type == "real" ? seed : parameter.type + "(" + seed + ")";
+    // Every component listed: the dialect does not splat a scalar (HLSL cannot).
+    std::vector<std::string> components(saagen::component_count(parameter.type), seed);
+    arguments += parameter.type == "real" ? seed : parameter.type + "(" + fmt::format("{}", fmt::join(components, ", ")) + ")";
   }
   std::string body = "    " + function.return_type + " saagen_result = " + function.name + "(" + arguments + ");\n";
   body += "    SAAGEN_STORE(0, saagen_result" + std::string(function.return_type == "real" ? "" : ".x") + ");\n";

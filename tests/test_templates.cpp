@@ -2,7 +2,9 @@
 // and the translation of types, intrinsics and names into each target.
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/print/glue.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <gtest/gtest.h>
 
@@ -112,20 +114,40 @@ TEST(TemplateParser, RecordsCallsConstantsAndClosureOrder) {
   EXPECT_EQ(order, (std::vector<std::string>{"isotropic_kernel_sum", "deferred_sum", "deferred_sum_fragment"}));
 }
 
-TEST(Translation, SpellsTypesIntrinsicsAndNamesPerTarget) {
-  const saagen::NameMap names = {{"helper", "eng_helper"}, {"KAPPA", "eng_KAPPA"}};
-  const std::string code = "real3 v = saturate(lerp(a, frac(b.xy), rsqrt(c))) + helper(ddx_fine(v.x)) * KAPPA;";
-  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), code, names),
-            "vec3 v = clamp(mix(a, fract(b.xy), inversesqrt(c)), 0.0, 1.0) + eng_helper(dFdxFine(v.x)) * eng_KAPPA;");
-  EXPECT_EQ(saagen::translate(saagen::builtin_target("hlsl"), code, names),
-            "float3 v = saturate(lerp(a, frac(b.xy), rsqrt(c))) + eng_helper(ddx_fine(v.x)) * eng_KAPPA;");
+// Glue (kernel bodies, validation calls, the deferred pass's body) goes through the typed tree like
+// a template body: types, intrinsics and template names spelt per target, the skeleton's names as
+// the table spells them, member accesses and comments kept.
+std::string glue_for(const std::string& target, const std::string& code) {
+  const saagen::NameMap names = {{"KAPPA", "eng_KAPPA"}};
+  return saagen::print_glue(saagen::builtin_target(target), Catalogue::builtin(), code, names, saagen::kernel_glue_symbols());
 }
 
-TEST(Translation, LeavesMemberAccessesCommentsAndUnknownNamesAlone) {
-  const saagen::NameMap names = {{"x", "eng_x"}};
-  // `.x` is a swizzle, not the template name x; comments keep their text.
-  EXPECT_EQ(saagen::translate(saagen::builtin_target("glsl"), "v.x + x; // real x\nfoo(x)", names), "v.x + eng_x; // real x\nfoo(eng_x)");
+const char* const kGlue =
+    "    real x = SAAGEN_LOAD(0);  // the input\n"
+    "    real3 v = saturate(lerp(real3(x, x, x), frac(real3(x, 0.5, 1.0)), rsqrt(real3(x, x, x)))) * KAPPA;\n"
+    "    SAAGEN_STORE(saagen_index, v.x);\n";
+
+TEST(GluePrinter, SpellsTypesIntrinsicsAndNamesPerTarget) {
+  EXPECT_EQ(glue_for("glsl", kGlue),
+            "    float x = SAAGEN_LOAD(0);  // the input\n"
+            "    vec3 v = clamp(mix(vec3(x, x, x), fract(vec3(x, 0.5, 1.0)), inversesqrt(vec3(x, x, x))), 0.0, 1.0) * eng_KAPPA;\n"
+            "    SAAGEN_STORE(saagen_index, v.x);\n");
+  EXPECT_EQ(glue_for("hlsl", kGlue),
+            "    float x = SAAGEN_LOAD(0);  // the input\n"
+            "    float3 v = saturate(lerp(float3(x, x, x), frac(float3(x, 0.5, 1.0)), rsqrt(float3(x, x, x)))) * eng_KAPPA;\n"
+            "    SAAGEN_STORE(saagen_index, v.x);\n");
 }
+
+TEST(GluePrinter, SpellsTheSkeletonsNamesAsAModuleTableDoes) {
+  // WGSL has no macros: its skeletons define saagen_load and saagen_store (targets/wgsl.json "glue_names").
+  EXPECT_EQ(glue_for("wgsl", kGlue),
+            "    let x: f32 = saagen_load(0);  // the input\n"
+            "    let v: vec3<f32> = saturate(mix(vec3<f32>(x, x, x), fract(vec3<f32>(x, 0.5, 1.0)), inverseSqrt(vec3<f32>(x, x, x)))) * "
+            "eng_KAPPA;\n"
+            "    saagen_store(saagen_index, v.x);\n");
+}
+
+TEST(GluePrinter, RefusesGlueThatDoesNotCheck) { EXPECT_THROW(glue_for("glsl", "    real2 v = real2(SAAGEN_LOAD(0));\n"), saagen::Error); }
 
 TEST(TargetTable, ReportsMissingKeysAndTypes) {
   try {

@@ -29,6 +29,7 @@
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/target/target.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -101,8 +102,9 @@ std::string shader_source(const saagen::EmittedFile& file, const std::string& bo
   saagen::NameMap names;
   for (const saagen::Function& function : Catalogue::builtin().functions())
     names[function.name] = saagen::prefixed_name("saa_", function.name);
-  const std::string translated = saagen::translate(saagen::builtin_target("gles"), body, names);
-  return std::string(kPrologue) + file.content + epilogue(translated, width, input_stride);
+  const std::string printed =
+      saagen::print_glue(saagen::builtin_target("gles"), Catalogue::builtin(), body, names, saagen::kernel_glue_symbols());
+  return std::string(kPrologue) + file.content + epilogue(printed, width, input_stride);
 }
 
 enum class Kind { core, wrapper, probe };

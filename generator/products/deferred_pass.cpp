@@ -3,6 +3,7 @@
 #include "saagen/emit/emitter.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/print/glue.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
@@ -147,6 +148,20 @@ std::string pass_body(const Function& wrapper, bool tangents) {
   return body;
 }
 
+// The names the pass skeletons (targets/*/deferred_pass.*) give the body: the G-buffer texels,
+// flags and roughness as macros, the pixel centre, and the store.
+const GlueSymbols& pass_glue_symbols() {
+  static const GlueSymbols symbols{{{"SAAGEN_NORMAL_TEXEL", "real4"},
+                                    {"SAAGEN_TANGENT_TEXEL", "real4"},
+                                    {"SAAGEN_NORMAL_UNORM", "bool"},
+                                    {"SAAGEN_TANGENT_UNORM", "bool"},
+                                    {"SAAGEN_ROUGHNESS", "real"},
+                                    {"SAAGEN_DOMAIN", "int"},
+                                    {"saagen_frag_coord", "real2"}},
+                                   {{"SAAGEN_STORE", "", {"real"}}}};
+  return symbols;
+}
+
 std::string pass_source(const Catalogue& catalogue, const std::string& target_name, const EmittedFile& file, const DeferredPassKind& kind,
                         const DeferredPassOptions& options, const std::string& header_comment) {
   const TargetSyntax target = builtin_target(target_name).with_prefix(options.prefix, macro_prefix(options.prefix));
@@ -154,7 +169,8 @@ std::string pass_source(const Catalogue& catalogue, const std::string& target_na
   const bool fine = options.derivatives == PlainDerivative::fine;
   NameMap names;
   for (const Function& function : catalogue.functions()) names[function.name] = prefixed_name(options.prefix, function.name);
-  const std::string body = translate(target, pass_body(*catalogue.find_function(kind.wrapper), kind.tangents), names);
+  const std::string body =
+      print_glue(target, catalogue, pass_body(*catalogue.find_function(kind.wrapper), kind.tangents), names, pass_glue_symbols());
   const auto fill = [&](std::string text) {
     text = substitute(std::move(text), "{plain_ddx}", intrinsic_name(target, fine ? "ddx_fine" : "ddx_coarse"));
     text = substitute(std::move(text), "{plain_ddy}", intrinsic_name(target, fine ? "ddy_fine" : "ddy_coarse"));

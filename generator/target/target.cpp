@@ -81,71 +81,6 @@ void read_type_spellings(const Json& object, const char* key, const std::map<std
   }
 }
 
-class Translator {
- public:
-  Translator(const TargetSyntax& target, const NameMap& names, const std::vector<dialect::Token>& tokens)
-      : target_(target), names_(names), tokens_(tokens) {}
-
-  std::string range(std::size_t begin, std::size_t end) const {
-    std::string out;
-    for (std::size_t index = begin; index < end; ++index) {
-      const dialect::Token& token = tokens_[index];
-      if (token.kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens_, index)) {
-        out += token.text;
-        continue;
-      }
-      const std::size_t open = dialect::next_significant(tokens_, index);
-      const auto intrinsic = target_.intrinsics.find(token.text);
-      if (intrinsic != target_.intrinsics.end() && open < end && tokens_[open].text == "(") {
-        std::size_t close = open;
-        const auto arguments = call_arguments(open, end, close);
-        out += expand_pattern(intrinsic->second, arguments);
-        index = close;
-        continue;
-      }
-      if (const auto type = target_.types.find(token.text); type != target_.types.end())
-        out += type->second;
-      else if (const auto name = names_.find(token.text); name != names_.end())
-        out += name->second;
-      else
-        out += token.text;
-    }
-    return out;
-  }
-
- private:
-  // Splits the arguments of the call whose '(' is at `open`; sets `close` to its ')'.
-  std::vector<std::string> call_arguments(std::size_t open, std::size_t end, std::size_t& close) const {
-    std::vector<std::string> arguments;
-    int depth = 0;
-    std::size_t argument_begin = open + 1;
-    for (std::size_t index = open; index < end; ++index) {
-      const std::string_view text = tokens_[index].text;
-      if (text == "(")
-        ++depth;
-      else if (text == ")" && --depth == 0) {
-        arguments.push_back(trimmed(range(argument_begin, index)));
-        close = index;
-        return arguments;
-      } else if (text == "," && depth == 1) {
-        arguments.push_back(trimmed(range(argument_begin, index)));
-        argument_begin = index + 1;
-      }
-    }
-    throw Error("unbalanced parentheses in template code");
-  }
-
-  static std::string trimmed(const std::string& text) {
-    const auto first = text.find_first_not_of(" \t\n");
-    if (first == std::string::npos) return {};
-    return text.substr(first, text.find_last_not_of(" \t\n") - first + 1);
-  }
-
-  const TargetSyntax& target_;
-  const NameMap& names_;
-  const std::vector<dialect::Token>& tokens_;
-};
-
 }  // namespace
 
 std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_view file, std::string_view source) {
@@ -241,6 +176,12 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     target.precisions[name] = std::move(precision);
   }
   if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
+  if (json.contains("glue_names")) {
+    for (const auto& [name, spelling] : json.at("glue_names").items()) {
+      if (!spelling.is_string()) throw Error(fmt::format("{}: 'glue_names.{}' must be a string", source, name));
+      target.glue_names[name] = spelling.get<std::string>();
+    }
+  }
   if (json.contains("resources")) {
     for (const auto& [name, entry] : json.at("resources").items()) {
       Resource resource;
@@ -360,11 +301,6 @@ std::string suffix_float_literals(std::string_view code, std::string_view suffix
     if (is_float) out += suffix;
   }
   return out;
-}
-
-std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names) {
-  const auto tokens = dialect::tokenize(code);
-  return Translator(target, names, tokens).range(0, tokens.size());
 }
 
 std::string expand_pattern(const std::string& pattern, const std::vector<std::string>& arguments) {

@@ -1,7 +1,6 @@
 #include "saagen/validate/kernels.hpp"
 
 #include "saagen/error.hpp"
-#include "saagen/front/syntax_tree.hpp"
 #include "saagen/target/resources.hpp"
 #include "saagen/target/target.hpp"
 
@@ -46,43 +45,12 @@ std::string redirect_plain_derivatives(const TargetSyntax& target, const std::st
   return out;
 }
 
-dialect::Type dialect_type(const std::string& name) {
-  const auto type = dialect::Type::from_name(name);
-  if (!type) throw Error(fmt::format("glue: unknown dialect type '{}'", name));
-  return *type;
-}
-
 }  // namespace
 
 const GlueSymbols& kernel_glue_symbols() {
   static const GlueSymbols symbols{{{"saagen_index", "int"}, {"saagen_frag_coord", "real2"}},
-                                   {{"SAAGEN_LOAD", "real", {"int"}}, {"SAAGEN_STORE", "", {"int", "real"}}},
-                                   {{"SAAGEN_LOAD", "saagen_load"}, {"SAAGEN_STORE", "saagen_store"}}};
+                                   {{"SAAGEN_LOAD", "real", {"int"}}, {"SAAGEN_STORE", "", {"int", "real"}}}};
   return symbols;
-}
-
-std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogue, std::string_view code, const NameMap& names,
-                           const GlueSymbols& symbols) {
-  if (!target.module) return translate(target, code, names);
-  std::map<std::string, dialect::FunctionSignature, std::less<>> functions;
-  for (const Function& function : catalogue.functions()) functions[function.name] = signature_of(function);
-  const auto resource_arguments = resource_lists(target, catalogue, &TargetSyntax::Resource::caller_arguments);
-  for (const GlueSymbols::Callable& callable : symbols.functions) {
-    dialect::FunctionSignature& signature = functions[callable.name];
-    if (!callable.result.empty()) signature.result = dialect_type(callable.result);
-    for (const std::string& type : callable.parameters) signature.parameters.emplace_back(dialect_type(type), "");
-  }
-  std::map<std::string, dialect::Type, std::less<>> constants;
-  for (const Constant& constant : catalogue.constants()) constants[constant.name] = dialect_type(constant.type);
-  dialect::FunctionSignature glue;  // no result; the skeleton's variables are its parameters
-  for (const auto& [name, type] : symbols.variables) glue.parameters.emplace_back(dialect_type(type), name);
-
-  const dialect::SourcePlace place{"saagen-glue", 1, "glue"};
-  dialect::Body body = dialect::parse_body(code, place);
-  dialect::check_body(body, glue, {&functions, &constants, nullptr}, place);
-  NameMap spellings = names;
-  for (const auto& [name, spelling] : symbols.spellings) spellings[name] = spelling;
-  return dialect::print_body(body, target, {&spellings, true, &resource_arguments, nullptr});
 }
 
 std::uint32_t component_count(const std::string& dialect_type) {
@@ -138,7 +106,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
 
   NameMap names;
   for (const Function& function : catalogue.functions()) names[function.name] = prefixed_name(marker->prefix, function.name);
-  const std::string body = translate_glue(target, catalogue, request.body, names, kernel_glue_symbols());
+  const std::string body = print_glue(target, catalogue, request.body, names, kernel_glue_symbols());
 
   // The plain derivative macros expand to the target's coarse or fine spelling: the built-ins of
   // the base table, which the half-precision derivative helpers call on fp32 values (the

@@ -60,7 +60,7 @@ std::string calls_in_dialect(const Catalogue& catalogue, const std::vector<std::
 
 // The validation skeletons' variables: the input vector and the accumulator.
 const GlueSymbols& validation_glue_symbols() {
-  static const GlueSymbols symbols{{{"saagen_seed", "real4"}, {"acc", "real"}}, {}, {}};
+  static const GlueSymbols symbols{{{"saagen_seed", "real4"}, {"acc", "real"}}, {}};
   return symbols;
 }
 
@@ -112,8 +112,7 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 
   NameMap names;
   for (const std::string& name : functions) names[name] = prefixed_name(marker.prefix, name);
-  const std::string calls =
-      translate_glue(target, catalogue, calls_in_dialect(catalogue, functions, stage), names, validation_glue_symbols());
+  const std::string calls = print_glue(target, catalogue, calls_in_dialect(catalogue, functions, stage), names, validation_glue_symbols());
 
   const std::string core_only = macro_prefix(marker.prefix) + "CORE_ONLY";
   const auto fill = [&](std::string text) {

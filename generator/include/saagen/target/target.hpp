@@ -89,6 +89,9 @@ struct TargetSyntax {
     std::string caller_arguments;
   };
   std::map<std::string, Resource, std::less<>> resources;
+  // Optional (key "glue_names"): how the skeletons spell the names glue calls (saagen/print/glue.hpp)
+  // where they differ from the glue's: a language without macros defines functions instead.
+  std::map<std::string, std::string, std::less<>> glue_names;
 
   // This target with the types, literal suffix and preamble of `precision`; throws
   // saagen::Error naming the precisions the target has when it has no such precision.
@@ -122,12 +125,6 @@ std::vector<std::string> builtin_target_names();
 
 // Maps unprefixed template names (functions, constants) to the names they get in the output.
 using NameMap = std::map<std::string, std::string, std::less<>>;
-
-// Rewrites a dialect snippet token by token into the target language: types, intrinsic calls
-// (arguments rewritten recursively) and template names; whitespace and comments are kept. Used
-// for the harness's glue (kernel bodies, validation calls), which use the skeletons' macros;
-// template bodies are printed from their typed tree (dialect::print_c_like).
-std::string translate(const TargetSyntax& target, std::string_view code, const NameMap& names);
 
 // An intrinsic's pattern (the tables' "intrinsics": "mix({0}, {1}, {2})") with {N} replaced by
 // arguments[N]; throws saagen::Error when the pattern names an argument that is not there.

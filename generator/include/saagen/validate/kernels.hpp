@@ -13,6 +13,7 @@
 
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/print/glue.hpp"
 #include "saagen/validate/compiler.hpp"
 
 #include <cstdint>
@@ -45,7 +46,7 @@ struct KernelRequest {
 };
 
 // Source pieces for compile_to_spirv: skeleton prologue, the emitted file, skeleton epilogue
-// with the translated body. `content` must carry a saagen marker (it names target and prefix).
+// with the body printed from its typed tree (saagen/print/glue.hpp). `content` must carry a saagen marker (it names target and prefix).
 std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::string& file_name, const std::string& content,
                                         const KernelRequest& request);
 
@@ -59,30 +60,8 @@ CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::str
 // the request's strides.
 std::string load_call_store_body(const Catalogue& catalogue, const std::string& function_name, KernelRequest& request);
 
-// The names a glue body (dialect statements of a kernel or of validation) may use besides the
-// catalogue's functions: the skeleton's variables, its functions, and how the target spells them.
-struct GlueSymbols {
-  std::vector<std::pair<std::string, std::string>> variables;  // name, dialect type
-  // name, dialect result type ("" for none), dialect parameter types
-  struct Callable {
-    std::string name;
-    std::string result;
-    std::vector<std::string> parameters;
-  };
-  std::vector<Callable> functions;
-  NameMap spellings;  // glue name -> the skeleton's name, where they differ
-};
-
 // The symbols of the kernel skeletons: SAAGEN_LOAD, SAAGEN_STORE, saagen_index, saagen_frag_coord.
 const GlueSymbols& kernel_glue_symbols();
-
-// A glue body in the target's language. C-like targets: token by token (saagen::translate), the
-// skeleton's macros doing the rest. Module targets (WGSL): parsed, type-checked against the
-// catalogue and `symbols`, and printed from the typed tree; calls of functions that read a
-// resource pass the skeleton's resource declarations (TargetSyntax::Resource::caller_arguments).
-// `names`: the catalogue's names as emitted. `target` has its precision and prefix applied.
-std::string translate_glue(const TargetSyntax& target, const Catalogue& catalogue, std::string_view code, const NameMap& names,
-                           const GlueSymbols& symbols);
 
 // Number of floats in a dialect type (real3 -> 3).
 std::uint32_t component_count(const std::string& dialect_type);
