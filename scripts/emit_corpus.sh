@@ -2,8 +2,8 @@
 # Emits every output of the generator that comes from the templates into one directory, so that
 # two builds can be compared byte for byte (`diff -r OLD NEW`): every variant x target x
 # precision (guarded and unguarded), every roughness domain and preset, a named WGSL module,
-# SPIR-V library modules, the three example manifests' bundles, the deferred pass skeletons, the
-# glint snippets, `list --json` and the `validate` report.
+# SPIR-V library modules, the three example manifests' bundles and plans, the deferred pass
+# skeletons, the glint snippets, `list --json` and the `validate` report.
 #
 # Usage: scripts/emit_corpus.sh SAAGEN_BINARY OUTPUT_DIRECTORY
 set -euo pipefail
@@ -49,6 +49,9 @@ done
 (cd "$root/examples" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest")
 (cd "$root/examples/webgpu" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest-webgpu")
 (cd "$root/examples/cmake-consumer" && "$saagen" emit --manifest scene.saagen.toml -o "$out/manifest-cmake-consumer")
+for manifest in scene webgpu/scene cmake-consumer/scene; do
+  "$saagen" plan "$root/examples/$manifest.saagen.toml" > "$out/plan-${manifest//\//-}.txt"
+done
 
 "$saagen" pass -o "$out/pass/fine"
 "$saagen" pass --derivatives coarse --output-format r16f -o "$out/pass/coarse"
