@@ -7,6 +7,7 @@
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/products/prefilter.hpp"
+#include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
 
 #include <fmt/format.h>
@@ -121,9 +122,9 @@ int GlintCommands::run_emit() const {
 int GlintCommands::run_validate() const {
   std::vector<std::pair<std::string, std::string>> files;
   if (validate_directory_.empty()) {
-    for (const std::string target : {"glsl", "hlsl"}) {
+    for (const TargetSyntax* target : vulkan_targets()) {
       EmitOptions options;
-      options.target = target;
+      options.target = target->name;
       for (EmittedFile& file : glints::emit(options)) files.emplace_back(file.file_name, std::move(file.content));
     }
   } else {
@@ -131,7 +132,10 @@ int GlintCommands::run_validate() const {
     if (!fs::is_directory(validate_directory_, error)) throw Error(fmt::format("{}: not a directory", validate_directory_));
     for (const fs::path& path : regular_files_in(validate_directory_)) {
       const std::string extension = path.extension().string();
-      if (extension != ".glsl" && extension != ".hlsl") continue;
+      const auto targets = vulkan_targets();
+      if (std::none_of(targets.begin(), targets.end(),
+                       [&](const TargetSyntax* target) { return "." + target->file_extension == extension; }))
+        continue;
       std::string content = read_input_file(path, source_size_limit, "a file written by `saagen glints emit`");
       if (find_marker(content)) files.emplace_back(path.string(), std::move(content));
     }

@@ -135,7 +135,7 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
       outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
     }
-  } else if (saagen::builtin_target(options.target).module && options.variants.size() > 1) {
+  } else if (!saagen::builtin_target(options.target).has_includes() && options.variants.size() > 1) {
     // A language without includes (WGSL) cannot take two files that both define the shared
     // helpers: several variants make one module holding their dependency closure once.
     if (!std::regex_match(arguments.module_name, std::regex("[A-Za-z][A-Za-z0-9_]{0,63}"))) {

@@ -300,13 +300,14 @@ CompileRequest SceneCommands::compile_settings(const fs::path& input) const {
     else
       throw Error(fmt::format("{}: cannot tell the stage from the extension; pass --stage vert, frag or comp", input.string()));
   }
-  const std::string language = !compile_language_.empty() ? compile_language_ : extension == ".hlsl" ? "hlsl" : "glsl";
-  if (language == "glsl" && compile_entry_ != "main") {
+  const SourceLanguage language =
+      !compile_language_.empty() ? *source_language(compile_language_) : source_language_of_extension(extension);
+  if (language == SourceLanguage::glsl && compile_entry_ != "main") {
     throw Error(fmt::format("--entry {}: GLSL's entry point is always main; --entry applies to HLSL only", compile_entry_));
   }
   if (compile_entry_.empty()) throw Error("--entry: empty; pass the name of the HLSL entry function");
   CompileRequest request;
-  request.language = language == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  request.language = language;
   request.stage = stage == "vert" ? ShaderStage::vertex : stage == "comp" ? ShaderStage::compute : ShaderStage::fragment;
   request.client = compile_client_ == "opengl" ? ClientApi::opengl : ClientApi::vulkan;
   request.entry_point = compile_entry_;

@@ -166,6 +166,43 @@ TEST(TargetTable, ReportsMissingKeysAndTypes) {
   }
 }
 
+// The layout of an emitted file is the table's: the C preprocessor languages share an include
+// guard form (targets/preprocessor/include_file.txt); WGSL's modules have none and take an import path.
+TEST(TargetTable, ReadsTheFileFormAndTheProductsTargets) {
+  const saagen::FileForm& include = saagen::builtin_target("hlsl").file_form;
+  EXPECT_EQ(include.definitions_open, "\n#ifndef {guard}\n#define {guard}\n");
+  EXPECT_EQ(include.fragment_only_close, "#endif  // {core_only}\n");
+  EXPECT_EQ(include.body_open, "\n{\n");
+  EXPECT_TRUE(saagen::builtin_target("gles").has_includes());
+  EXPECT_FALSE(saagen::builtin_target("glsl").takes_import_path());
+  const saagen::TargetSyntax& wgsl = saagen::builtin_target("wgsl");
+  EXPECT_EQ(wgsl.file_form.definitions_open, "");
+  EXPECT_EQ(wgsl.file_form.import_path, "\n#define_import_path {path}\n");
+  EXPECT_TRUE(wgsl.takes_import_path() && wgsl.passes_resources() && !wgsl.has_includes() && !wgsl.compiled_in_process());
+  EXPECT_EQ(saagen::spirv_library_target().name, "glsl");
+  std::vector<std::string> passes, vulkan;
+  for (const saagen::TargetSyntax* target : saagen::deferred_pass_targets()) passes.push_back(target->name);
+  for (const saagen::TargetSyntax* target : saagen::vulkan_targets()) vulkan.push_back(target->name);
+  EXPECT_EQ(passes, (std::vector<std::string>{"glsl", "hlsl"}));
+  EXPECT_EQ(vulkan, (std::vector<std::string>{"glsl", "hlsl"}));
+}
+
+TEST(TargetTable, RefusesAFileFormWithoutASection) {
+  std::ifstream file(SAAGEN_SOURCE_DIR "/targets/wgsl.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string table = text.str();
+  const std::string key = "\"body_open\": \" {\\n\",";
+  ASSERT_NE(table.find(key), std::string::npos);
+  table.erase(table.find(key), key.size());
+  try {
+    saagen::TargetSyntax::parse(table, "targets/wgsl.json");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "targets/wgsl.json: 'file_form' needs a section 'body_open'");
+  }
+}
+
 // Skeletons live as source files under targets/<language>/, split by "// saagen-section: NAME"
 // lines; the tables name them, and a table naming a file this build lacks is refused.
 TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {

@@ -174,37 +174,33 @@ class FileWriter {
 
   // How a stage without derivatives uses the file, and how resources are passed.
   void write_stage_note(std::ostringstream& out, const std::vector<const Function*>& functions) const {
-    if (!target_.module) {
-      out << fmt::format(
-          "// Define {}CORE_ONLY before including this file in stages without screen-space\n"
-          "// derivatives (compute, ray tracing): it removes the [fragment] functions.\n",
-          macro_prefix(options_.prefix));
-      return;
-    }
-    out << "// The [fragment] functions take screen-space derivatives: call them from fragment entry points\n"
-           "// only (WGSL checks it per entry point); the others run in any stage.\n";
+    out << form(target_.file_form.stage_note, {});
     std::vector<std::string> roots;
     for (const Function* function : functions) roots.push_back(function->name);
     for (const std::string& resource : resources_used(target_, catalogue_, roots)) {
-      out << fmt::format("// Functions reading the {} take ({}) as their last parameters.\n", resource,
-                         target_.resources.at(resource).parameters);
+      const std::string& parameters = target_.resources.at(resource).parameters;
+      if (!parameters.empty())
+        out << fmt::format("// Functions reading the {} take ({}) as their last parameters.\n", resource, parameters);
     }
   }
 
-  // The file's definitions: in an include file, inside the include guard with the precision's
-  // preamble; in a module, after the import path and the preamble (enable directives come first).
+  // A text of the table's file form with {core_only} and the given placeholders filled in.
+  std::string form(std::string text, std::initializer_list<std::pair<std::string_view, std::string_view>> values) const {
+    for (const auto& [key, value] : values) text = substitute(std::move(text), key, value);
+    return substitute(std::move(text), "{core_only}", macro_prefix(options_.prefix) + "CORE_ONLY");
+  }
+
+  // The file's definitions in the table's file form (an include guard, or a module's import
+  // path), after the precision's preamble.
   void write_definitions(std::ostringstream& out, const std::string& guard, const std::vector<const Constant*>& constants,
                          const std::vector<const Function*>& functions) const {
-    if (target_.module) {
-      if (!options_.import_path.empty()) out << "\n#define_import_path " << options_.import_path << "\n";
-      if (!target_.preamble.empty()) out << "\n" << target_.preamble;
-    } else {
-      out << fmt::format("\n#ifndef {0}\n#define {0}\n", guard);
-      if (!target_.preamble.empty()) out << "\n" << target_.preamble;
-    }
+    const FileForm& file_form = target_.file_form;
+    out << form(file_form.definitions_open, {{"{guard}", guard}});
+    if (!options_.import_path.empty()) out << form(file_form.import_path, {{"{path}", options_.import_path}});
+    if (!target_.preamble.empty()) out << "\n" << target_.preamble;
     for (const Constant* constant : constants) write_constant(out, *constant);
     for (const Function* function : functions) write_function(out, *function);
-    if (!target_.module) out << fmt::format("\n#endif  // {}\n", guard);
+    out << form(file_form.definitions_close, {{"{guard}", guard}});
   }
 
   // The target's notes on the intrinsics the emitted functions use (what it substitutes for
@@ -237,18 +233,16 @@ class FileWriter {
     declaration = substitute(std::move(declaration), "{name}", prefixed_name(options_.prefix, constant.name));
     declaration =
         substitute(std::move(declaration), "{value}", suffix_float_literals(decimal_literal(value_of(constant)), target_.literal_suffix));
-    if (target_.module)
-      out << fmt::format("\n// {}\n{}\n", constant.meaning, declaration);
-    else
-      out << fmt::format("\n#ifndef {0}\n#define {0}\n// {1}\n{2}\n#endif\n", guard, constant.meaning, declaration);
+    // The meaning last: a template's text is never read as a placeholder.
+    out << form(target_.file_form.constant, {{"{guard}", guard}, {"{declaration}", declaration}, {"{meaning}", constant.meaning}});
   }
 
   void write_function(std::ostringstream& out, const Function& function) const {
     const std::string guard = macro_prefix(options_.prefix) + "FN_" + upper(function.name);
-    const bool guarded_definition = !target_.module;
+    const FileForm& file_form = target_.file_form;
     out << "\n";
-    if (guarded_definition && function.fragment_only) out << fmt::format("#ifndef {}CORE_ONLY\n", macro_prefix(options_.prefix));
-    if (guarded_definition) out << fmt::format("#ifndef {0}\n#define {0}\n", guard);
+    if (function.fragment_only) out << form(file_form.fragment_only_open, {});
+    out << form(file_form.function_open, {{"{guard}", guard}});
     out << fmt::format("// [{}] {}\n", to_string(function.role), function.cite);
     for (const Parameter& parameter : function.parameters) {
       out << fmt::format("//   {}: {}\n", parameter.name, parameter.meaning);
@@ -257,10 +251,10 @@ class FileWriter {
     const dialect::FunctionSignature types = signature_of(function);
     const dialect::PrintOptions print{&names_, options_.guards, &call_arguments_, &types};
     const std::string body = dialect::print_body(*function.tree, target_, print);
-    out << signature(target_, function, options_.prefix, resource_parameters_) << (target_.module ? " {\n" : "\n{\n")
-        << target_.function_prologue << suffix_float_literals(body, target_.literal_suffix) << "}\n";
-    if (guarded_definition) out << "#endif\n";
-    if (guarded_definition && function.fragment_only) out << fmt::format("#endif  // {}CORE_ONLY\n", macro_prefix(options_.prefix));
+    out << signature(target_, function, options_.prefix, resource_parameters_) << file_form.body_open << target_.function_prologue
+        << suffix_float_literals(body, target_.literal_suffix) << "}\n";
+    out << form(file_form.function_close, {{"{guard}", guard}});
+    if (function.fragment_only) out << form(file_form.fragment_only_close, {});
   }
 
   const Catalogue& catalogue_;
@@ -402,7 +396,7 @@ void check_representable(const std::map<std::string, double>& given, std::string
 
 void check_import_path(const TargetSyntax& target, std::string_view path) {
   if (path.empty()) return;
-  if (!target.module) {
+  if (!target.takes_import_path()) {
     throw Error(fmt::format("--import-path is for module targets (wgsl); target {} has includes and include guards instead", target.name));
   }
   validate_import_path(path);

@@ -50,7 +50,7 @@ Json resources_json(const Catalogue& catalogue, const Variant& variant, std::str
       const TargetSyntax::Resource& resource = target.resources.find(name)->second;
       declarations[name][target_name] = resource.declaration;
       // A module language passes the resource to the functions that read it.
-      if (target.module) passed[name][target_name] = resource.parameters;
+      if (target.passes_resources()) passed[name][target_name] = resource.parameters;
     }
   }
   for (const std::string& name : names) {

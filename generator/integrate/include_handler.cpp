@@ -36,7 +36,7 @@ double parse_number(std::string_view key, const std::string& text) {
 std::string target_of_extension(std::string_view extension) {
   std::vector<std::string> known;
   for (const std::string& name : builtin_target_names()) {
-    if (builtin_target(name).module) continue;
+    if (!builtin_target(name).has_includes()) continue;
     const std::string& target_extension = builtin_target(name).file_extension;
     if (target_extension == extension) return name;
     known.push_back("." + target_extension);

@@ -253,7 +253,7 @@ class WgslPrinter {
 
 std::string parameter_name(const TargetSyntax& target, const Body* body, const std::string& name) {
   const bool copied =
-      target.module && body &&
+      target.copies_assigned_parameters() && body &&
       std::find(body->assigned_parameters.begin(), body->assigned_parameters.end(), name) != body->assigned_parameters.end();
   return local_name(target, name) + (copied ? "_in" : "");
 }

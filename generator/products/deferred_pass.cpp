@@ -10,48 +10,13 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <sstream>
 
 namespace saagen {
-namespace embedded {
-const std::map<std::string, std::string_view>& files();
-}
 
 namespace {
-
-struct PassSkeleton {
-  std::string prologue;
-  std::string resources;
-  std::string tangent_resources;
-  std::string main;
-};
-
-// The "deferred_pass" entry of a built-in target table.
-PassSkeleton pass_skeleton(const std::string& target) {
-  const std::string name = "targets/" + target + ".json";
-  const auto& files = embedded::files();
-  const auto found = files.find(name);
-  if (found == files.end()) throw Error(fmt::format("no built-in target table {}", name));
-  const auto json = nlohmann::json::parse(found->second);
-  if (!json.contains("deferred_pass")) throw Error(fmt::format("{}: no 'deferred_pass' skeleton", name));
-  const auto& entry = json.at("deferred_pass");
-  if (entry.is_string()) {
-    const auto sections = skeleton_sections(entry.get<std::string>(), name);
-    const auto section = [&](const char* key) {
-      if (!sections.count(key)) throw Error(fmt::format("{}: the deferred_pass skeleton needs a section '{}'", name, key));
-      return sections.at(key);
-    };
-    return {section("prologue"), section("resources"), section("tangent_resources"), section("main")};
-  }
-  const auto field = [&](const char* key) {
-    if (!entry.contains(key) || !entry.at(key).is_string()) throw Error(fmt::format("{}: deferred_pass needs the string '{}'", name, key));
-    return entry.at(key).get<std::string>();
-  };
-  return {field("prologue"), field("resources"), field("tangent_resources"), field("main")};
-}
 
 std::string intrinsic_name(const TargetSyntax& target, const std::string& dialect_name) {
   const auto found = target.intrinsics.find(dialect_name);
@@ -162,10 +127,12 @@ const GlueSymbols& pass_glue_symbols() {
   return symbols;
 }
 
-std::string pass_source(const Catalogue& catalogue, const std::string& target_name, const EmittedFile& file, const DeferredPassKind& kind,
+// The pass in `table`'s language: its deferred pass skeleton (TargetSyntax::deferred_pass) around
+// the emitted file and the body.
+std::string pass_source(const Catalogue& catalogue, const TargetSyntax& table, const EmittedFile& file, const DeferredPassKind& kind,
                         const DeferredPassOptions& options, const std::string& header_comment) {
-  const TargetSyntax target = builtin_target(target_name).with_prefix(options.prefix, macro_prefix(options.prefix));
-  const PassSkeleton skeleton = pass_skeleton(target_name);
+  const TargetSyntax target = table.with_prefix(options.prefix, macro_prefix(options.prefix));
+  const auto& skeleton = target.deferred_pass;
   const bool fine = options.derivatives == PlainDerivative::fine;
   NameMap names;
   for (const Function& function : catalogue.functions()) names[function.name] = prefixed_name(options.prefix, function.name);
@@ -179,13 +146,13 @@ std::string pass_source(const Catalogue& catalogue, const std::string& target_na
     return text;
   };
   std::string source = header_comment;
-  source += fill(skeleton.prologue);
+  source += fill(skeleton.at("prologue"));
   source += "\n// ---- " + file.file_name + " (saagen emit) ----\n";
   source += file.content;
   source += "// ---- end of " + file.file_name + " ----\n\n";
-  source += fill(skeleton.resources);
-  if (kind.tangents) source += fill(skeleton.tangent_resources);
-  source += substitute(fill(skeleton.main), "{body}", body);
+  source += fill(skeleton.at("resources"));
+  if (kind.tangents) source += fill(skeleton.at("tangent_resources"));
+  source += substitute(fill(skeleton.at("main")), "{body}", body);
   return source;
 }
 
@@ -360,9 +327,9 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
     const auto header_for = [&](OutputKind target) {
       return generated + marker_line(pass_marker(target, kind, options, option_values)) + "\n//\n" + comment_block(description) + "\n";
     };
-    for (const std::string target : {"glsl", "hlsl"}) {
+    for (const TargetSyntax* target : deferred_pass_targets()) {
       EmitOptions emit;
-      emit.target = target;
+      emit.target = target->name;
       emit.prefix = options.prefix;
       emit.option_values = options.option_values;
       emit.guards = options.guards;
@@ -370,11 +337,11 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
       std::vector<std::string> functions = {kind.wrapper};
       for (const std::string& name : domain_conversion_functions()) functions.push_back(name);
       const EmittedFile file = emit_bundle(catalogue, emit, {"pass_" + underscored(kind.id), functions, {kind.variant}, {}});
-      const bool glsl = builtin_target(target).language == SourceLanguage::glsl;
+      const bool glsl = target->language == SourceLanguage::glsl;
       std::string source =
-          pass_source(catalogue, target, file, kind, options, header_for(glsl ? OutputKind::pass_glsl : OutputKind::pass_hlsl));
+          pass_source(catalogue, *target, file, kind, options, header_for(glsl ? OutputKind::pass_glsl : OutputKind::pass_hlsl));
       const std::string name = pass.stem + (glsl ? ".comp" : ".hlsl");
-      const CompileResult compiled = compile_pass(glsl ? SourceLanguage::glsl : SourceLanguage::hlsl, name, source);
+      const CompileResult compiled = compile_pass(target->language, name, source);
       if (!compiled.ok) throw Error(fmt::format("{}: the pass does not compile: {}", name, compiled.log));
       if (glsl) {
         pass.glsl = std::move(source);

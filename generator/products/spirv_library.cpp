@@ -308,15 +308,15 @@ std::uint32_t numeric_id(const std::string& id) { return static_cast<std::uint32
 // `base_catalogue`'s variant, compiled from its GLSL emission in options.domain: the exports are
 // the functions as emitted in that domain (the domain wrappers where roughness goes in and out).
 SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& options, const Variant& base_variant) {
-  EmitOptions glsl = options;
-  glsl.target = "glsl";
+  EmitOptions glsl = options;  // the emission of the library's source target (spirv_library_target)
+  glsl.target = spirv_library_target().name;
   glsl.variants = {base_variant.id};
   const EmittedFile file = emit_variants(base_catalogue, glsl).front();
   const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
   const Variant& variant = catalogue.variant(base_variant.id);
 
   CompileRequest request;
-  request.language = SourceLanguage::glsl;
+  request.language = spirv_library_target().language;
   request.stage = ShaderStage::compute;
   request.client = ClientApi::vulkan;
   // The validation skeleton: the file under <PREFIX>CORE_ONLY and a main that calls every
@@ -471,9 +471,9 @@ std::vector<std::uint32_t> assemble_spirv(const std::string& text) {
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
   const bool converted = find_domain(options.domain).id != "alpha2";
-  if (!builtin_target("glsl").precisions.count(options.precision)) {
+  if (!spirv_library_target().precisions.count(options.precision)) {
     std::vector<std::string> names;
-    for (const auto& [name, precision] : builtin_target("glsl").precisions) names.push_back(name);
+    for (const auto& [name, precision] : spirv_library_target().precisions) names.push_back(name);
     throw Error(fmt::format("the spirv target compiles the GLSL emission, which has no precision '{}'; choose one of: {}",
                             options.precision, fmt::join(names, ", ")));
   }
@@ -604,7 +604,7 @@ std::vector<std::uint32_t> import_stub_functions(const std::vector<std::uint32_t
 
 std::string glsl_import_stubs(const Catalogue& catalogue, const std::vector<std::string>& functions, std::string_view prefix,
                               std::string_view precision) {
-  const TargetSyntax target = builtin_target("glsl").with_precision(precision);
+  const TargetSyntax target = spirv_library_target().with_precision(precision);
   std::string stubs;
   for (const std::string& name : functions) {
     const Function* function = catalogue.find_function(name);

@@ -606,7 +606,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
       top.fail_key("import_path", fmt::format("\"{}\" is not a module path", show(*path)), import_rule);
     }
     const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(),
-                                           [](const std::string& target) { return builtin_target(target).module; });
+                                           [](const std::string& target) { return builtin_target(target).takes_import_path(); });
     if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
     manifest.import_path = *path;
   }

@@ -587,7 +587,7 @@ EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const 
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
   options.domain = manifest.domain;
-  if (builtin_target(target).module && !manifest.import_path.empty()) {
+  if (builtin_target(target).takes_import_path() && !manifest.import_path.empty()) {
     options.import_path = precision == "fp32" ? manifest.import_path : manifest.import_path + "_" + precision;
   }
   const auto form = target_precision(target, precision);
@@ -614,7 +614,7 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     request.variants.push_back("brdf-" + std::string(to_string(material.ndf)));
     for (const std::string& target : manifest.targets) {
       // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
-      if (builtin_target(target).module) continue;
+      if (!builtin_target(target).compiled_in_process()) continue;
       const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
       const std::string shade = shade_statements(catalogue, material, &material_plan);
       // Everything the cost depends on: the baseline's key, the bundle's closure, the kernel's body.
@@ -732,7 +732,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
                           to_string(material.ndf));
     }
     for (const std::string& target : manifest.targets) {
-      if (builtin_target(target).module && !material.glints) {
+      if (!builtin_target(target).compiled_in_process() && !material.glints) {
         text += fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target);
       }
     }

@@ -46,6 +46,44 @@ ValidationSkeleton parse_skeleton(const Json& value, std::string_view source) {
   return {require_string(value, "prologue", source), require_string(value, "epilogue", source)};
 }
 
+// The sections of a value that is either an object of strings or the name of a section file
+// under targets/ (skeleton_sections); every key of `required` must be there.
+std::map<std::string, std::string, std::less<>> parse_sections(const Json& value, const char* key, std::vector<const char*> required,
+                                                               std::vector<const char*> optional, std::string_view source) {
+  std::map<std::string, std::string, std::less<>> sections;
+  if (value.is_string()) {
+    sections = skeleton_sections(value.get<std::string>(), source);
+  } else if (value.is_object()) {
+    for (const auto& [name, text] : value.items()) {
+      if (!text.is_string()) throw Error(fmt::format("{}: '{}.{}' must be a string", source, key, name));
+      sections[name] = text.get<std::string>();
+    }
+  } else {
+    throw Error(fmt::format("{}: '{}' must be an object of strings or the name of a section file under targets/", source, key));
+  }
+  for (const char* name : required) {
+    if (!sections.count(name)) throw Error(fmt::format("{}: '{}' needs a section '{}'", source, key, name));
+  }
+  for (const auto& [name, text] : sections) {
+    const auto known = [&](const std::vector<const char*>& names) {
+      return std::any_of(names.begin(), names.end(), [&](const char* known_name) { return name == known_name; });
+    };
+    if (!known(required) && !known(optional)) throw Error(fmt::format("{}: '{}' has an unknown section '{}'", source, key, name));
+  }
+  return sections;
+}
+
+FileForm parse_file_form(const Json& value, std::string_view source) {
+  auto sections = parse_sections(value, "file_form",
+                                 {"definitions_open", "definitions_close", "constant", "function_open", "function_close",
+                                  "fragment_only_open", "fragment_only_close", "body_open", "stage_note"},
+                                 {"import_path"}, source);
+  return {sections["definitions_open"],    sections["definitions_close"], sections["constant"],
+          sections["function_open"],       sections["function_close"],    sections["fragment_only_open"],
+          sections["fragment_only_close"], sections["body_open"],         sections["stage_note"],
+          sections["import_path"]};
+}
+
 ClientApi parse_client(const std::string& name, std::string_view source) {
   if (name == "vulkan") return ClientApi::vulkan;
   if (name == "opengl") return ClientApi::opengl;
@@ -122,11 +160,11 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   target.description = require_string(json, "description", source);
   target.file_extension = require_string(json, "file_extension", source);
   const std::string language = require_string(json, "language", source);
-  if (language != "glsl" && language != "hlsl" && language != "wgsl") {
-    throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
-  }
-  target.language = language == "hlsl" ? SourceLanguage::hlsl : language == "wgsl" ? SourceLanguage::wgsl : SourceLanguage::glsl;
+  const auto parsed_language = source_language(language);
+  if (!parsed_language) throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
+  target.language = *parsed_language;
   target.module = json.value("module", false);
+
   if (json.contains("signature")) target.signature = require_string(json, "signature", source);
   if (json.contains("parameter")) target.parameter = require_string(json, "parameter", source);
   if (json.contains("reserved_words")) {
@@ -142,6 +180,16 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
   if (json.contains("function_prologue")) target.function_prologue = require_string(json, "function_prologue", source);
   read_notes(json, target.intrinsic_notes, source);
+  target.file_form = parse_file_form(require(json, "file_form", source), source);
+  if (!target.module && target.file_form.definitions_open.empty()) {
+    throw Error(fmt::format("{}: a target with includes needs an include guard ('file_form.definitions_open')", source));
+  }
+  target.resources_after_file = json.value("resources_after_file", false);
+  target.spirv_library_source = json.value("spirv_library_source", false);
+  if (json.contains("deferred_pass")) {
+    target.deferred_pass =
+        parse_sections(json.at("deferred_pass"), "deferred_pass", {"prologue", "resources", "tangent_resources", "main"}, {}, source);
+  }
   const Json& validation = require(json, "validation", source);
   target.core_validation_stage = parse_core_stage(validation, source);
   for (const Json& client : require(validation, "clients", source)) {
@@ -221,6 +269,48 @@ const TargetSyntax& builtin_target(std::string_view name) {
     throw Error(fmt::format("unknown target '{}'; choose one of: {}", name, fmt::join(builtin_target_names(), ", ")));
   }
   return found->second;
+}
+
+const TargetSyntax& spirv_library_target() {
+  std::vector<const TargetSyntax*> sources;
+  for (const auto& [name, target] : builtin_targets()) {
+    if (target.spirv_library_source) sources.push_back(&target);
+  }
+  if (sources.size() != 1)
+    throw Error(fmt::format("{} target tables are the SPIR-V library's source (spirv_library_source); one must be", sources.size()));
+  return *sources.front();
+}
+
+std::vector<const TargetSyntax*> deferred_pass_targets() {
+  std::vector<const TargetSyntax*> targets;
+  for (const auto& [name, target] : builtin_targets()) {
+    if (!target.deferred_pass.empty()) targets.push_back(&target);
+  }
+  return targets;
+}
+
+std::vector<const TargetSyntax*> vulkan_targets() {
+  std::vector<const TargetSyntax*> targets;
+  for (const auto& [name, target] : builtin_targets()) {
+    const auto& clients = target.validation_clients;
+    if (std::find(clients.begin(), clients.end(), ClientApi::vulkan) != clients.end()) targets.push_back(&target);
+  }
+  return targets;
+}
+
+std::optional<SourceLanguage> source_language(std::string_view name) {
+  if (name == "glsl") return SourceLanguage::glsl;
+  if (name == "hlsl") return SourceLanguage::hlsl;
+  if (name == "wgsl") return SourceLanguage::wgsl;
+  return std::nullopt;
+}
+
+SourceLanguage source_language_of_extension(std::string_view extension) {
+  if (extension.starts_with('.')) extension.remove_prefix(1);
+  for (const auto& [name, target] : builtin_targets()) {
+    if (target.file_extension == extension) return target.language;
+  }
+  return SourceLanguage::glsl;
 }
 
 const TargetSyntax* find_builtin_target(std::string_view name) {

@@ -139,9 +139,9 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   const std::string resources = resource_declarations(target, catalogue, roots);
   // An include needs its resources declared before it; a module starts with its enable
   // directives, and WGSL's module-scope declarations may come in any order.
-  if (!resources.empty() && !target.module) pieces.push_back({"saagen-kernel-resources", resources});
+  if (!resources.empty() && !target.resources_after_file) pieces.push_back({"saagen-kernel-resources", resources});
   pieces.push_back({file_name, request.redirect_plain_derivatives ? redirect_plain_derivatives(base, content, fine) : content});
-  if (!resources.empty() && target.module) pieces.push_back({"saagen-kernel-resources", resources});
+  if (!resources.empty() && target.resources_after_file) pieces.push_back({"saagen-kernel-resources", resources});
   pieces.push_back({"saagen-kernel-main", substitute(fill(skeleton->second.epilogue), "{body}", body)});
   return pieces;
 }

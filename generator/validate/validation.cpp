@@ -64,11 +64,18 @@ const GlueSymbols& validation_glue_symbols() {
   return symbols;
 }
 
-// naga_oil's `#define_import_path` line, which its composer strips before WGSL sees the module,
-// turned into a comment on the same line (the module's line numbers stay).
-std::string without_import_path(std::string content) {
-  const auto directive = content.find("\n#define_import_path ");
-  if (directive != std::string::npos) content.insert(directive + 1, "// ");
+// The import-path line of the target's file form (naga_oil's `#define_import_path`, which its
+// composer strips before WGSL sees the module) turned into a comment on the same line (the
+// module's line numbers stay).
+std::string without_import_path(const TargetSyntax& target, std::string content) {
+  if (!target.takes_import_path()) return content;
+  const std::string& line = target.file_form.import_path;
+  const std::string directive = line.substr(0, line.find("{path}"));
+  const auto found = content.find(directive);
+  if (found != std::string::npos) {
+    const auto start = directive.find_first_not_of('\n');
+    content.insert(found + (start == std::string::npos ? 0 : start), "// ");
+  }
   return content;
 }
 
@@ -123,9 +130,9 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
   if (!prologue.empty()) pieces.push_back({"saagen-validation-prologue", prologue});
   // An include needs its resources declared before it; a module opens with its enable directives.
   const std::string resources = resource_declarations(target, catalogue, functions);
-  if (!resources.empty() && !target.module) pieces.push_back({"saagen-validation-resources", resources});
-  pieces.push_back({file_name, target.module ? without_import_path(content) : content});
-  if (!resources.empty() && target.module) pieces.push_back({"saagen-validation-resources", resources});
+  if (!resources.empty() && !target.resources_after_file) pieces.push_back({"saagen-validation-resources", resources});
+  pieces.push_back({file_name, without_import_path(target, content)});
+  if (!resources.empty() && target.resources_after_file) pieces.push_back({"saagen-validation-resources", resources});
   pieces.push_back({"saagen-validation-main", substitute(fill(skeleton.epilogue), "{calls}", calls)});
   return pieces;
 }

@@ -6,6 +6,7 @@
 #include "saagen/io/output.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/report/shading_scene.hpp"
+#include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
@@ -40,7 +41,7 @@ hx::IsaLayout pass_layout(bool tangents) {
 
 std::vector<std::uint32_t> compute_spirv(const std::string& target, const std::string& name, const std::string& source) {
   CompileRequest request;
-  request.language = target == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  request.language = builtin_target(target).language;
   request.stage = ShaderStage::compute;
   request.sources = {{name, source}};
   const CompileResult compiled = compile_to_spirv(request);
@@ -95,11 +96,12 @@ void measure_forward(const hx::IsaCompiler& compiler, const std::string& target,
 // The deferred-pass rows of one family and target: the copy baseline, then every pass.
 void measure_deferred(const hx::IsaCompiler& compiler, const std::string& target, const std::vector<DeferredPass>& passes,
                       std::vector<IsaCostRow>& rows) {
-  const auto baseline = compiler.compute(compute_spirv(target, "deferred_copy", target == "hlsl" ? deferred_copy_hlsl : deferred_copy_glsl),
-                                         pass_layout(false));
+  const bool hlsl = builtin_target(target).language == SourceLanguage::hlsl;
+  const auto baseline =
+      compiler.compute(compute_spirv(target, "deferred_copy", hlsl ? deferred_copy_hlsl : deferred_copy_glsl), pass_layout(false));
   rows.push_back({compiler.family(), isa_deferred_shader, target, isa_baseline, baseline, baseline});
   for (const DeferredPass& pass : passes) {
-    const auto spirv = compute_spirv(target, pass.stem, target == "hlsl" ? pass.hlsl : pass.glsl);
+    const auto spirv = compute_spirv(target, pass.stem, hlsl ? pass.hlsl : pass.glsl);
     rows.push_back(
         {compiler.family(), isa_deferred_shader, target, pass.kind.id, compiler.compute(spirv, pass_layout(pass.kind.tangents)), baseline});
   }
@@ -144,8 +146,8 @@ IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const I
     if (progress) progress(fmt::format("ISA statistics on {}", family));
     const hx::IsaCompiler compiler(family);
     table.driver = compiler.driver_info();
-    for (const std::string target : {"glsl", "hlsl"}) measure_forward(compiler, target, table.rows);
-    for (const std::string target : {"glsl", "hlsl"}) measure_deferred(compiler, target, passes, table.rows);
+    for (const TargetSyntax* target : vulkan_targets()) measure_forward(compiler, target->name, table.rows);
+    for (const TargetSyntax* target : vulkan_targets()) measure_deferred(compiler, target->name, passes, table.rows);
   }
   return table;
 }

@@ -4,6 +4,7 @@
 #include "saagen/report/shading_scene.hpp"
 
 #include "saagen/error.hpp"
+#include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
 
@@ -189,7 +190,7 @@ std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const s
   request.output_stride = 1;
   request.width = width;
   CompileRequest compile;
-  compile.language = target == "hlsl" ? SourceLanguage::hlsl : SourceLanguage::glsl;
+  compile.language = builtin_target(target).language;
   compile.stage = ShaderStage::fragment;
   compile.sources = kernel_sources(Catalogue::builtin(), file_name, content, request);
   const CompileResult compiled = compile_to_spirv(compile);

@@ -33,6 +33,23 @@ struct Precision {
   std::map<std::string, std::string, std::less<>> intrinsic_notes;
 };
 
+// How an emitted file is laid out (key "file_form": an object, or a section file under targets/
+// holding one section per key; targets/preprocessor/include_file.txt for the C preprocessor
+// languages). Placeholders: {guard} (a macro name), {core_only} (the <PREFIX>CORE_ONLY macro),
+// {meaning} and {declaration} (a constant's comment and declaration), {path} (an import path).
+struct FileForm {
+  std::string definitions_open;     // before the file's definitions (an include guard)
+  std::string definitions_close;    // after them
+  std::string constant;             // one constant
+  std::string function_open;        // before one function's comment and definition
+  std::string function_close;       // after it
+  std::string fragment_only_open;   // around function_open..function_close of a [fragment] function
+  std::string fragment_only_close;  //
+  std::string body_open;            // between a function's signature and its body
+  std::string stage_note;           // header lines: how stages without derivatives use the file
+  std::string import_path;          // optional: the import-path line; empty: the language has none
+};
+
 struct TargetSyntax {
   std::string name;
   std::string description;
@@ -50,6 +67,30 @@ struct TargetSyntax {
   // (WGSL): no include guards, no CORE_ONLY macro; the language checks per entry point that
   // fragment-only functions are reached from fragment entry points only.
   bool module = false;
+  FileForm file_form;
+  // Optional (key "resources_after_file"): validation and kernel skeletons declare the resources
+  // after the emitted file (a module opens with its enable directives) instead of before it.
+  bool resources_after_file = false;
+  // Optional (key "spirv_library_source"): the SPIR-V library modules are compiled from this
+  // target's emission (spirv_library_target()).
+  bool spirv_library_source = false;
+  // Optional (key "deferred_pass"): the deferred pass skeleton's sections (prologue, resources,
+  // tangent_resources, main); empty when the target has no deferred pass.
+  std::map<std::string, std::string, std::less<>> deferred_pass;
+
+  // Files of this target are #included by other shaders (include guards, CORE_ONLY); false for a
+  // self-contained module language (key "module": WGSL).
+  bool has_includes() const { return !module; }
+  // Resources are passed as parameters to the functions that read them (Resource::parameters)
+  // instead of being named through the includer's declaration.
+  bool passes_resources() const { return module; }
+  // A body that assigns a parameter copies it into a local first (immutable parameters).
+  bool copies_assigned_parameters() const { return module; }
+  // An import path (FileForm::import_path) can be written into a file.
+  bool takes_import_path() const { return !file_form.import_path.empty(); }
+  // glslang compiles the target in process (it has validation clients); a language validated by
+  // the WebGPU implementation (Tint) has none.
+  bool compiled_in_process() const { return !validation_clients.empty(); }
   // Key "reserved_words": words a template local or parameter may not be called in this language
   // (keywords, reserved words, built-ins the printer emits); the printer appends '_' to such a name.
   std::vector<std::string> reserved_words;
@@ -122,6 +163,19 @@ std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_vi
 const TargetSyntax& builtin_target(std::string_view name);
 const TargetSyntax* find_builtin_target(std::string_view name);  // null when there is no such table
 std::vector<std::string> builtin_target_names();
+// The built-in table the SPIR-V library modules are compiled from (key "spirv_library_source");
+// throws saagen::Error unless exactly one table has it.
+const TargetSyntax& spirv_library_target();
+// The built-in tables with a deferred pass skeleton, in name order.
+std::vector<const TargetSyntax*> deferred_pass_targets();
+// The built-in tables that compile for Vulkan in process (a "vulkan" validation client), in name
+// order: what ISA statistics and the glint validation measure.
+std::vector<const TargetSyntax*> vulkan_targets();
+// The language a target table's "language" names ("glsl", "hlsl", "wgsl"), or nothing.
+std::optional<SourceLanguage> source_language(std::string_view name);
+// The language of a shader file with extension `extension` (".hlsl"): the language of the
+// built-in table whose files carry it, GLSL for any other extension (.vert, .frag, .comp).
+SourceLanguage source_language_of_extension(std::string_view extension);
 
 // Maps unprefixed template names (functions, constants) to the names they get in the output.
 using NameMap = std::map<std::string, std::string, std::less<>>;
