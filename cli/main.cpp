@@ -58,7 +58,7 @@ struct EmitArguments {
   saagen::cli::GlintOptions glint;     // the glint variants' options (--glint-count, ...)
 };
 
-int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, const std::string& domain) {
+int run_list(const Catalogue& base_catalogue, bool json, const std::string& prefix, saagen::Domain domain) {
   saagen::validate_prefix(prefix);
   if (json) {
     std::cout << saagen::catalogue_json(base_catalogue, prefix, domain).dump(2) << "\n";
@@ -66,7 +66,8 @@ int run_list(const Catalogue& base_catalogue, bool json, const std::string& pref
   }
   const Catalogue& catalogue = saagen::domain_catalogue(base_catalogue, domain);
   for (const saagen::Variant& variant : catalogue.variants()) {
-    if (domain != "alpha2" && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id))) continue;
+    if (domain != saagen::Domain::alpha2 && !saagen::variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id)))
+      continue;
     std::cout << fmt::format("{:<26} {:<8} tangents:{:<3} {}\n", variant.id, to_string(variant.path), variant.needs_tangents ? "yes" : "no",
                              variant.summary);
     std::cout << fmt::format("{:<26} {} -- {}\n", "", variant.paper, variant.equation);
@@ -325,7 +326,7 @@ int main(int argc, char** argv) {
     // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
     // the other commands keep the screen-space SAA catalogue.
     const Catalogue& every_variant = saagen::glints::catalogue();
-    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).id);
+    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).kind);
     if (*emit && scene.emit_from_manifest()) {
       saagen::cli::check_output_named("--output", emit_arguments.output_directory);
       return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);

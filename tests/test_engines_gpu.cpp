@@ -95,16 +95,17 @@ class DomainWrappersOnGpu : public ::testing::TestWithParam<DomainCase> {};
 
 TEST_P(DomainWrappersOnGpu, MatchTheReferenceAndAreExactAtTheEnds) {
   const DomainCase& c = GetParam();
-  const saagen::Catalogue& catalogue = saagen::domain_catalogue(saagen::Catalogue::builtin(), c.domain);
+  const saagen::Domain kind = saagen::find_domain(c.domain).kind;
+  const saagen::Catalogue& catalogue = saagen::domain_catalogue(saagen::Catalogue::builtin(), kind);
   saagen::EmitOptions options;
   options.target = c.target;
   options.variants = {c.variant};
-  options.domain = c.domain;
+  options.domain = kind;
   options.option_values = {{"sigma2", 0.25}, {"kappa", 1.0}};  // kappa 1: the saturation bound is reachable
   const saagen::EmittedFile file = saagen::emit_variants(saagen::Catalogue::builtin(), options).front();
   std::string core = c.variant;
   for (char& ch : core) ch = ch == '-' ? '_' : ch;
-  const std::string wrapper = saagen::domain_function_name(core, c.domain);
+  const std::string wrapper = saagen::domain_function_name(core, kind);
   saagen::KernelRequest request;
   request.body = saagen::load_call_store_body(catalogue, wrapper, request);
   ASSERT_EQ(request.input_stride, 7u);
@@ -157,12 +158,12 @@ TEST_P(PresetOnGpu, IncludedThroughShadercMatchesTheEngine) {
   const saagen::Preset& preset = saagen::find_preset(GetParam());
   std::string function = "saa_" + preset.variant;
   for (char& ch : function) ch = ch == '-' ? '_' : ch;
-  if (preset.domain != "alpha2") function = saagen::domain_function_name(function, preset.domain);
+  if (preset.domain != saagen::Domain::alpha2) function = saagen::domain_function_name(function, preset.domain);
   const auto compiled =
       saagen::test::compile_with_shaderc(saagen::test::glsl_user_shader("#include <saagen/" + preset.id + ".glsl>", function, false), false,
                                          std::make_unique<saagen::ShadercIncluder>());
   ASSERT_TRUE(compiled.ok) << compiled.log;
-  const bool smoothness = preset.domain == "smoothness";
+  const bool smoothness = preset.domain == saagen::Domain::smoothness;
   const Batch batch = make_batch(smoothness);
   const std::vector<float> got = run(compiled.spirv, batch.inputs, 64);
   const saagen::test::EngineForm engine = saagen::test::engine_forms().at(preset.id);
@@ -176,7 +177,8 @@ TEST_P(PresetOnGpu, IncludedThroughShadercMatchesTheEngine) {
     const double scale = smoothness ? 1.0 - expected : std::fabs(expected);
     if (error > 2e-5 * scale + 0x1p-24 && ++failures <= 5) ADD_FAILURE() << "element " << i << ": gpu " << got[i] << " engine " << expected;
   }
-  std::printf("preset %s through shaderc on the device: max |difference| %.3g (%s)\n", preset.id.c_str(), worst, preset.domain.c_str());
+  std::printf("preset %s through shaderc on the device: max |difference| %.3g (%s)\n", preset.id.c_str(), worst,
+              std::string(saagen::to_string(preset.domain)).c_str());
   EXPECT_EQ(failures, 0u);
 }
 

@@ -24,13 +24,13 @@ TEST(IncludeNames, ResolveVariantsPresetsAndOptions) {
   EXPECT_EQ(preset.variants, std::vector<std::string>{"deferred-sum"});
   EXPECT_EQ(preset.option_values.at("sigma2"), 0.1);
   EXPECT_EQ(preset.option_values.at("kappa"), 0.04);
-  EXPECT_EQ(preset.domain, "smoothness");
+  EXPECT_EQ(preset.domain, saagen::Domain::smoothness);
   // The name's options win over the preset's and the handler's.
   const saagen::EmitOptions mixed =
       saagen::include_emit_options("saagen/deferred-avg.glsl?domain=perceptual&kappa=0.1&prefix=eng_",
                                    IncludeOptions{.prefix = "saa_", .sigma2 = 0.2, .kappa = {}, .preset = {}, .domain = "alpha"});
   EXPECT_EQ(mixed.variants, std::vector<std::string>{"deferred-avg"});
-  EXPECT_EQ(mixed.domain, "perceptual");
+  EXPECT_EQ(mixed.domain, saagen::Domain::perceptual);
   EXPECT_EQ(mixed.option_values.at("kappa"), 0.1);
   EXPECT_EQ(mixed.option_values.at("sigma2"), 0.2);
   EXPECT_EQ(mixed.prefix, "eng_");

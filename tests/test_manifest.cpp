@@ -783,7 +783,7 @@ TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
   const auto marker = saagen::find_marker(files[0].content);
   ASSERT_TRUE(marker);
   EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-sum"}));
-  EXPECT_EQ(marker->domain, "smoothness");
+  EXPECT_EQ(marker->domain, saagen::Domain::smoothness);
   EXPECT_EQ(marker->option_values.at("sigma2"), 0.1);
   EXPECT_EQ(marker->option_values.at("kappa"), 0.04);
   EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_sum_smoothness", "deferred_sum_fragment_smoothness"}));
@@ -793,7 +793,7 @@ TEST(Bundle, PresetSetsConstantsVariantAndDomain) {
 
   const auto overridden = emit_text(header + "preset = \"hdrp\"\ndomain = \"perceptual\"\nkappa = 0.1\n" + deferred_material);
   const auto marker2 = saagen::find_marker(overridden.at(0).content);
-  EXPECT_EQ(marker2->domain, "perceptual");
+  EXPECT_EQ(marker2->domain, saagen::Domain::perceptual);
   EXPECT_EQ(marker2->option_values.at("kappa"), 0.1);
   EXPECT_EQ(marker2->option_values.at("sigma2"), 0.1);
 }

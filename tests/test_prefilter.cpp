@@ -76,7 +76,7 @@ TEST(PrefilterLevels, ToksvigMatchesTheReferenceNormalMapWithinHalfRounding) {
   const auto levels = pf::build_levels(image_of(width, height, normals));
   ASSERT_EQ(static_cast<int>(levels.size()), map.levels());
   for (const bool float32 : {false, true}) {
-    for (const pf::Domain domain : {pf::Domain::alpha2, pf::Domain::alpha, pf::Domain::perceptual}) {
+    for (const saagen::Domain domain : {saagen::Domain::alpha2, saagen::Domain::alpha, saagen::Domain::perceptual}) {
       const pf::Options options{pf::Method::toksvig, domain, 0.3, float32};
       const auto image = round_trip(levels, options);
       ASSERT_EQ(image.vk_format, float32 ? 100u : 76u);
@@ -92,7 +92,8 @@ TEST(PrefilterLevels, ToksvigMatchesTheReferenceNormalMapWithinHalfRounding) {
             worst = std::max(worst, std::fabs(got - expected) / bound);
             ASSERT_LE(std::fabs(got - expected), bound) << "level " << level << " texel " << x << "," << y;
           }
-      std::cout << "[ worst    ] toksvig " << pf::to_string(domain) << (float32 ? " r32f" : " r16f") << ": " << worst << " of the bound\n";
+      std::cout << "[ worst    ] toksvig " << saagen::to_string(domain) << (float32 ? " r32f" : " r16f") << ": " << worst
+                << " of the bound\n";
     }
   }
 }
@@ -130,7 +131,7 @@ TEST(Toksvig, TwoNormalsAtPlusMinusThetaGiveTheAnalyticVariance) {
   for (const double theta : {0.05, 0.3, 0.6}) {
     const Vec3 a{std::sin(theta), 0.0, std::cos(theta)}, b{-std::sin(theta), 0.0, std::cos(theta)};
     const auto levels = pf::build_levels(image_of(2, 2, {a, b, b, a}));
-    const auto image = round_trip(levels, pf::Options{pf::Method::toksvig, pf::Domain::alpha2, 0.0, true});
+    const auto image = round_trip(levels, pf::Options{pf::Method::toksvig, saagen::Domain::alpha2, 0.0, true});
     const double variance = 1.0 / std::cos(theta) - 1.0;
     EXPECT_NEAR(ref::toksvig_variance(ref::Params{}, std::cos(theta)), variance, 1e-15);
     EXPECT_NEAR(value_at(image, 1, 0), std::min(1.0, 2.0 * variance), kFloatUlp * 2.0 * variance + 1e-15) << theta;
@@ -226,15 +227,15 @@ TEST(Combination, KappaClampsOnlyTheScreenSpaceKernel) {
 }
 
 TEST(Domains, RoundTrip) {
-  for (const pf::Domain domain : {pf::Domain::alpha2, pf::Domain::alpha, pf::Domain::perceptual}) {
+  for (const saagen::Domain domain : {saagen::Domain::alpha2, saagen::Domain::alpha, saagen::Domain::perceptual}) {
     for (int k = 0; k <= 100; ++k) {
       const double value = k / 100.0;
       EXPECT_NEAR(pf::from_alpha2(pf::to_alpha2(value, domain), domain), value, 1e-15);
       EXPECT_NEAR(pf::to_alpha2(pf::from_alpha2(value, domain), domain), value, 1e-15);
     }
   }
-  EXPECT_DOUBLE_EQ(pf::to_alpha2(0.5, pf::Domain::perceptual), 0.0625);  // alpha = r^2, alpha^2 = r^4
-  EXPECT_EQ(pf::parse_domain("alpha"), pf::Domain::alpha);
+  EXPECT_DOUBLE_EQ(pf::to_alpha2(0.5, saagen::Domain::perceptual), 0.0625);  // alpha = r^2, alpha^2 = r^4
+  EXPECT_EQ(pf::parse_domain("alpha"), saagen::Domain::alpha);
   EXPECT_THROW(pf::parse_domain("roughness"), saagen::Error);
   EXPECT_THROW(pf::parse_method("vmf"), saagen::Error);
 }
@@ -322,7 +323,7 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   // The library on the decoded PNG gives the same file, byte for byte.
   const auto decoded = pf::read_normal_map(bytes_of(input), "normals.png");
   const auto expected =
-      saagen::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, pf::Domain::perceptual, 0.4}));
+      saagen::write_ktx2(pf::prefilter_ktx2(pf::build_levels(decoded), {pf::Method::toksvig, saagen::Domain::perceptual, 0.4}));
   EXPECT_EQ(bytes_of(output), expected);
   EXPECT_NEAR(value_at(image, 0, 0), 0.4, kHalfUlp);  // level 0: no spread, the base roughness
   for (std::size_t level = 1; level < image.levels.size(); ++level) EXPECT_GE(value_at(image, level, 0), 0.4 - kHalfUlp);

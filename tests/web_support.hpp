@@ -4,6 +4,7 @@
 #pragma once
 
 #include "saagen/emit/emitter.hpp"
+#include "saagen/emit/engines.hpp"
 
 #include <fmt/format.h>
 
@@ -51,7 +52,7 @@ inline saagen::EmitOptions wgsl_options(const std::string& precision = "fp32", b
   options.target = "wgsl";
   options.precision = precision;
   options.guards = guards;
-  options.domain = domain;
+  options.domain = saagen::find_domain(domain).kind;
   options.variants = std::move(variants);
   options.import_path = import_path;
   return options;

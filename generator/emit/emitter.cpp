@@ -127,7 +127,7 @@ class FileWriter {
   // "_fp16", "_unguarded", ...: keeps the forms apart in file names and header guards.
   std::string form_suffix() const {
     std::string suffix;
-    if (options_.domain != "alpha2") suffix += "_" + options_.domain;
+    if (options_.domain != Domain::alpha2) suffix += "_" + std::string(to_string(options_.domain));
     if (options_.precision != "fp32") suffix += "_" + options_.precision;
     if (!options_.guards) suffix += "_unguarded";
     return suffix;
@@ -296,10 +296,10 @@ void require_precision(const Variant& variant, std::string_view precision) {
 
 // Another roughness domain converts a variant's roughness in and out; one with neither cannot be
 // emitted in it.
-void require_roughness_io(const Catalogue& catalogue, const Variant& variant, std::string_view domain) {
+void require_roughness_io(const Catalogue& catalogue, const Variant& variant, Domain domain) {
   if (!variant_has_roughness_io(catalogue, variant)) {
     throw Error(fmt::format("--domain {}: variant '{}' takes or returns no scalar or per-axis roughness; emit it with --domain alpha2",
-                            domain, variant.id));
+                            to_string(domain), variant.id));
   }
 }
 
@@ -415,11 +415,11 @@ void apply_settings(const Catalogue& catalogue, const EmitSettings& settings, Em
   if (!settings.variants.empty()) options.variants = settings.variants;
   if (settings.sigma2) options.option_values["sigma2"] = *settings.sigma2;
   if (settings.kappa) options.option_values["kappa"] = *settings.kappa;
-  if (settings.domain) options.domain = *settings.domain;
-  const RoughnessDomain& domain = find_domain(options.domain);
+  if (settings.domain) options.domain = find_domain(*settings.domain).kind;
+  const RoughnessDomain& domain = roughness_domain(options.domain);
   if (domain.to_alpha2.empty()) return;
   for (const std::string& id : options.variants) {
-    require_roughness_io(catalogue, catalogue.variant(id), domain.id);
+    require_roughness_io(catalogue, catalogue.variant(id), domain.kind);
   }
 }
 

@@ -36,6 +36,12 @@ std::string text_field(const nlohmann::json& entry, const char* key, bool requir
   return entry.at(key).get<std::string>();
 }
 
+Domain preset_domain(const std::string& id) {
+  const auto domain = domain_named(id);
+  if (!domain) throw Error(fmt::format("{}: a preset's domain '{}' is not alpha2, alpha, perceptual or smoothness", data_file, id));
+  return *domain;
+}
+
 const EngineData& engine_data() {
   static const EngineData data = [] {
     const auto& files = embedded::files();
@@ -44,14 +50,19 @@ const EngineData& engine_data() {
     const auto json = nlohmann::json::parse(found->second);
     EngineData result;
     for (const auto& entry : json.at("domains")) {
-      result.domains.push_back({text_field(entry, "id"), text_field(entry, "parameter"), text_field(entry, "meaning"),
-                                text_field(entry, "engines"), text_field(entry, "to_alpha2", false),
-                                text_field(entry, "from_alpha2", false)});
+      const std::string id = text_field(entry, "id");
+      const auto kind = domain_named(id);
+      // The order is the deferred pass's flag values (saagen/domain.hpp).
+      if (!kind || static_cast<std::size_t>(*kind) != result.domains.size()) {
+        throw Error(fmt::format("{}: domain '{}' is not the next of alpha2, alpha, perceptual, smoothness", data_file, id));
+      }
+      result.domains.push_back({*kind, id, text_field(entry, "parameter"), text_field(entry, "meaning"), text_field(entry, "engines"),
+                                text_field(entry, "to_alpha2", false), text_field(entry, "from_alpha2", false)});
     }
     for (const auto& entry : json.at("presets")) {
       result.presets.push_back({text_field(entry, "id"), text_field(entry, "engine"), text_field(entry, "variant"),
-                                entry.at("sigma2").get<double>(), entry.at("kappa").get<double>(), text_field(entry, "domain"),
-                                text_field(entry, "normal"), text_field(entry, "form")});
+                                entry.at("sigma2").get<double>(), entry.at("kappa").get<double>(),
+                                preset_domain(text_field(entry, "domain")), text_field(entry, "normal"), text_field(entry, "form")});
     }
     return result;
   }();
@@ -64,7 +75,7 @@ std::string wrapper_source(const Function& function, const RoughnessDomain& doma
   const bool per_axis = function.return_type != "real";
   const std::string& x = domain.parameter;
   std::ostringstream out;
-  out << fmt::format("@function {}\n", domain_function_name(function.name, domain.id));
+  out << fmt::format("@function {}\n", domain_function_name(function.name, domain.kind));
   out << fmt::format("role: {}\n", to_string(function.role));
   out << fmt::format("cite: {} with roughness in and out as {} (saagen domain conversion)\n", function.name, domain.meaning);
   out << fmt::format("returns: {} | the filtered roughness as {}{}\n", function.return_type, domain.meaning, per_axis ? ", per axis" : "");
@@ -98,7 +109,7 @@ Catalogue build_domain_catalogue(const Catalogue& base, const RoughnessDomain& d
     for (const std::string& name : variant.functions) {
       const Function& function = *base.find_function(name);
       if (takes_and_returns_roughness(function) &&
-          wrappers.find("@function " + domain_function_name(name, domain.id) + "\n") == std::string::npos) {
+          wrappers.find("@function " + domain_function_name(name, domain.kind) + "\n") == std::string::npos) {
         wrappers += wrapper_source(function, domain);
       }
     }
@@ -111,7 +122,7 @@ Catalogue build_domain_catalogue(const Catalogue& base, const RoughnessDomain& d
     if (variant_has_roughness_io(base, variant)) {
       variant.domain = domain_text(domain, variant);
       for (std::string& name : variant.functions) {
-        if (takes_and_returns_roughness(*base.find_function(name))) name = domain_function_name(name, domain.id);
+        if (takes_and_returns_roughness(*base.find_function(name))) name = domain_function_name(name, domain.kind);
       }
     }
     variants.push_back(std::move(variant));
@@ -135,6 +146,8 @@ const RoughnessDomain& find_domain(std::string_view id, std::string_view option)
   }
   throw Error(fmt::format("{} '{}' is not a roughness domain; use one of {}", option, id, domain_ids()));
 }
+
+const RoughnessDomain& roughness_domain(Domain domain) { return roughness_domains().at(static_cast<std::size_t>(domain)); }
 
 const std::vector<Preset>& presets() { return engine_data().presets; }
 
@@ -163,17 +176,17 @@ bool variant_has_roughness_io(const Catalogue& catalogue, const Variant& variant
   });
 }
 
-std::string domain_function_name(std::string_view function, std::string_view domain) { return fmt::format("{}_{}", function, domain); }
+std::string domain_function_name(std::string_view function, Domain domain) { return fmt::format("{}_{}", function, to_string(domain)); }
 
-const Catalogue& domain_catalogue(const Catalogue& catalogue, std::string_view domain_id) {
-  const RoughnessDomain& domain = find_domain(domain_id);
+const Catalogue& domain_catalogue(const Catalogue& catalogue, Domain domain_kind) {
+  const RoughnessDomain& domain = roughness_domain(domain_kind);
   if (domain.to_alpha2.empty()) return catalogue;
   // One extended catalogue per (catalogue, domain): the built-in templates, or those plus the
   // glint templates (whose functions take no alpha^2 and stay as they are).
   static std::mutex mutex;
-  static std::map<std::pair<const Catalogue*, std::string>, std::unique_ptr<Catalogue>> cache;
+  static std::map<std::pair<const Catalogue*, Domain>, std::unique_ptr<Catalogue>> cache;
   const std::lock_guard lock(mutex);
-  const auto key = std::make_pair(&catalogue, domain.id);
+  const auto key = std::make_pair(&catalogue, domain.kind);
   auto found = cache.find(key);
   if (found == cache.end()) found = cache.emplace(key, std::make_unique<Catalogue>(build_domain_catalogue(catalogue, domain))).first;
   return *found->second;

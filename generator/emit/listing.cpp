@@ -73,12 +73,12 @@ std::vector<std::string> every_precision() {
 
 }  // namespace
 
-nlohmann::json catalogue_json(const Catalogue& base_catalogue, std::string_view prefix, std::string_view domain) {
+nlohmann::json catalogue_json(const Catalogue& base_catalogue, std::string_view prefix, Domain domain) {
   const Catalogue& catalogue = domain_catalogue(base_catalogue, domain);
   Json variants = Json::array();
   for (const Variant& variant : catalogue.variants()) {
     const bool converts = variant_has_roughness_io(base_catalogue, *base_catalogue.find_variant(variant.id));
-    if (domain != "alpha2" && !converts) continue;
+    if (domain != Domain::alpha2 && !converts) continue;
     Json variant_domains = Json::array();
     for (const RoughnessDomain& roughness : roughness_domains()) {
       if (converts || roughness.to_alpha2.empty()) variant_domains.push_back(roughness.id);
@@ -117,13 +117,13 @@ nlohmann::json catalogue_json(const Catalogue& base_catalogue, std::string_view 
                            {"variant", preset.variant},
                            {"sigma2", preset.sigma2},
                            {"kappa", preset.kappa},
-                           {"domain", preset.domain},
+                           {"domain", to_string(preset.domain)},
                            {"normal", preset.normal},
                            {"form", preset.form}});
   }
   return {{"saagen_version", std::string(version())},
           {"prefix", std::string(prefix)},
-          {"roughness_domain", std::string(find_domain(domain).id)},
+          {"roughness_domain", to_string(domain)},
           {"domains", domains},
           {"presets", preset_list},
           {"core_only_macro", macro_prefix(prefix) + "CORE_ONLY"},

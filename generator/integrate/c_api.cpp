@@ -74,7 +74,8 @@ int saagen_list_json(const char* prefix, const char* domain, char** out_json) {
   const bool ok = guarded_call([&] {
     const std::string chosen_prefix = prefix ? prefix : "saa_";
     saagen::validate_prefix(chosen_prefix);
-    json = saagen::catalogue_json(saagen::Catalogue::builtin(), chosen_prefix, saagen::find_domain(domain ? domain : "alpha2").id).dump(2);
+    json =
+        saagen::catalogue_json(saagen::Catalogue::builtin(), chosen_prefix, saagen::find_domain(domain ? domain : "alpha2").kind).dump(2);
     *out_json = copy_out(json);
   });
   return ok ? 0 : -1;

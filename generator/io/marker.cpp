@@ -34,7 +34,7 @@ std::string marker_line(const EmissionMarker& marker) {
   if (marker.precision != "fp32") line += " precision=" + marker.precision;
   if (!marker.guards) line += " guards=off";
   if (!marker.functions.empty()) line += fmt::format(" functions={}", fmt::join(marker.functions, ","));
-  if (marker.domain != "alpha2") line += " domain=" + marker.domain;
+  if (marker.domain != Domain::alpha2) line += fmt::format(" domain={}", to_string(marker.domain));
   if (!marker.import_path.empty()) line += " import_path=" + marker.import_path;
   return line;
 }
@@ -59,9 +59,11 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
       marker.precision = value;
     else if (key == "guards")
       marker.guards = value != "off";
-    else if (key == "domain")
-      marker.domain = value;
-    else if (key == "import_path")
+    else if (key == "domain") {
+      const auto domain = domain_named(value);
+      if (!domain) return std::nullopt;
+      marker.domain = *domain;
+    } else if (key == "import_path")
       marker.import_path = value;
     else if (key == "functions") {
       std::istringstream names(value);

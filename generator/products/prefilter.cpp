@@ -215,29 +215,9 @@ Method parse_method(std::string_view text) {
 }
 
 // The domains are those of saagen/emit/engines.hpp (one definition for emission and textures).
-Domain parse_domain(std::string_view text) {
-  const std::string_view id = find_domain(text).id;
-  if (id == "alpha") return Domain::alpha;
-  if (id == "perceptual") return Domain::perceptual;
-  if (id == "smoothness") return Domain::smoothness;
-  return Domain::alpha2;
-}
+Domain parse_domain(std::string_view text) { return find_domain(text).kind; }
 
 std::string_view to_string(Method method) { return method == Method::toksvig ? "toksvig" : "lean"; }
-
-std::string_view to_string(Domain domain) {
-  switch (domain) {
-    case Domain::alpha2:
-      return "alpha2";
-    case Domain::alpha:
-      return "alpha";
-    case Domain::perceptual:
-      return "perceptual";
-    case Domain::smoothness:
-      return "smoothness";
-  }
-  return "alpha2";
-}
 
 double from_alpha2(double alpha2, Domain domain) {
   switch (domain) {

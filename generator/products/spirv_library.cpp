@@ -470,7 +470,7 @@ std::vector<std::uint32_t> assemble_spirv(const std::string& text) {
 
 std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const EmitOptions& options) {
   validate_prefix(options.prefix);
-  const bool converted = find_domain(options.domain).id != "alpha2";
+  const bool converted = options.domain != Domain::alpha2;
   if (!spirv_library_target().precisions.count(options.precision)) {
     std::vector<std::string> names;
     for (const auto& [name, precision] : spirv_library_target().precisions) names.push_back(name);

@@ -259,7 +259,7 @@ void read_engine_settings(Manifest& manifest, const TableReader& top) {
     manifest.option_values.emplace("kappa", preset.kappa);
     manifest.domain = preset.domain;
   }
-  if (const auto domain = top.choice("domain", domain_names)) manifest.domain = *domain;
+  if (const auto domain = top.choice("domain", domain_names)) manifest.domain = find_domain(*domain).kind;
 }
 
 // A preset's variant serves the deferred materials that name none.

@@ -682,7 +682,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 
     // Under another roughness domain the material calls the wrapper's converting form.
     const Function& planned = *catalogue.find_function(material_plan.wrapper);
-    const bool converted = manifest.domain != "alpha2" && takes_and_returns_roughness(planned);
+    const bool converted = manifest.domain != Domain::alpha2 && takes_and_returns_roughness(planned);
     const Function& wrapper =
         converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain))
                   : planned;
@@ -715,7 +715,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
                           prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "ndf_clamp_tau"));
     } else {
       text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n",
-                          converted ? manifest.domain : "alpha^2");
+                          converted ? to_string(manifest.domain) : "alpha^2");
     }
     if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
     if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
@@ -771,7 +771,7 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
         }
         // Under another roughness domain the material calls the wrapper's converting form.
         const Function* wrapper = catalogue.find_function(material_plan.wrapper);
-        const std::string called = manifest.domain != "alpha2" && wrapper && takes_and_returns_roughness(*wrapper)
+        const std::string called = manifest.domain != Domain::alpha2 && wrapper && takes_and_returns_roughness(*wrapper)
                                        ? domain_function_name(material_plan.wrapper, manifest.domain)
                                        : material_plan.wrapper;
         std::string note =

@@ -24,7 +24,7 @@ struct EmitOptions {
   bool guards = true;                           // false: the unguarded paper form (for comparison)
   // Roughness domain of the emitted functions' roughness in and out (saagen/emit/engines.hpp):
   // alpha2 (the templates' own), alpha, perceptual or smoothness.
-  std::string domain = "alpha2";
+  Domain domain = Domain::alpha2;
   // A module language (WGSL) only: the module path that Bevy's shader imports (naga_oil) give the
   // file, written as `#define_import_path PATH`; empty: none (a plain WGSL module).
   std::string import_path{};

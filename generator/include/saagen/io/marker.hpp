@@ -3,6 +3,8 @@
 // own output.
 #pragma once
 
+#include "saagen/domain.hpp"
+
 #include <map>
 #include <optional>
 #include <string>
@@ -53,8 +55,8 @@ struct EmissionMarker {
   // A bundle's public functions (`functions=` in the marker); empty: every public function of
   // `variants` (a per-variant file).
   std::vector<std::string> functions;
-  std::string domain = "alpha2";  // `domain=` in the marker, written when not alpha2
-  std::string import_path{};      // `import_path=` in the marker, written when set
+  Domain domain = Domain::alpha2;  // `domain=` in the marker, written when not alpha2
+  std::string import_path{};       // `import_path=` in the marker, written when set
 };
 
 // The marker line written into every emitted file, and its parser (nullopt when the text holds

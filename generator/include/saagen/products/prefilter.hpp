@@ -13,6 +13,7 @@
 // The key "saagen.prefilter" holds the layout as JSON. docs: README.md "Normal-map prefiltering".
 #pragma once
 
+#include "saagen/domain.hpp"
 #include "saagen/products/glints.hpp"
 
 #include <cstdint>
@@ -24,16 +25,13 @@
 namespace saagen::prefilter {
 
 enum class Method { toksvig, lean };
-// alpha2: alpha^2; alpha: GGX/Beckmann alpha; perceptual: r with alpha = r^2 (Burley 2012, the
-// roughness glTF, Filament and Unreal store); smoothness: Unity's 1 - r. The ids and meanings are
-// saagen/emit/engines.hpp's roughness_domains().
-enum class Domain { alpha2, alpha, perceptual, smoothness };
+// The roughness domains are saagen::Domain (saagen/domain.hpp), one definition for emission and
+// textures.
 
 // Both throw saagen::Error naming the allowed values.
 Method parse_method(std::string_view text);
 Domain parse_domain(std::string_view text);
 std::string_view to_string(Method method);
-std::string_view to_string(Domain domain);
 
 // alpha^2 to the domain's value and back (inverse of each other on [0, 1]).
 double from_alpha2(double alpha2, Domain domain);

@@ -6,6 +6,7 @@
 // allowed: ...". toml++ gives every key and value its source position.
 #pragma once
 
+#include "saagen/domain.hpp"
 #include "saagen/front/catalogue.hpp"
 
 #include <filesystem>
@@ -55,7 +56,7 @@ struct Manifest {
   // `preset`: an engine's form (saagen/emit/engines.hpp): its sigma2 and kappa where the file sets
   // none, its variant for deferred materials that name none, and its roughness domain.
   std::optional<std::string> preset;
-  std::string domain = "alpha2";  // `domain`: roughness in and out of the emitted functions
+  Domain domain = Domain::alpha2;  // `domain`: roughness in and out of the emitted functions
   // `import_path`: the naga_oil module path of the module-language (WGSL) bundles; the fp16
   // bundle's is PATH_fp16. Empty: none.
   std::string import_path;
