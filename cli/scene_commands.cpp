@@ -3,6 +3,7 @@
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/integrate/include_handler.hpp"
+#include "saagen/io/include_expansion.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
@@ -16,8 +17,11 @@
 
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace saagen::cli {
 namespace {
@@ -26,40 +30,56 @@ namespace fs = std::filesystem;
 
 std::string read_source(const fs::path& path) { return read_input_file(path, source_size_limit, "a GLSL or HLSL source file"); }
 
-// `#include "name"` on a line of its own: the name, else nullopt. `#include <name>` is an error.
-std::optional<std::string> include_target(std::string_view line, const std::string& where) {
-  std::size_t index = line.find_first_not_of(" \t");
-  if (index == std::string_view::npos || line[index] != '#') return std::nullopt;
-  index = line.find_first_not_of(" \t", index + 1);
-  if (index == std::string_view::npos || line.substr(index, 7) != "include") return std::nullopt;
-  index = line.find_first_not_of(" \t", index + 7);
-  if (index == std::string_view::npos) throw Error(fmt::format("{}: #include names no file", where));
-  const char open = line[index];
-  // <saagen/...> names a snippet generated in memory (saagen/integrate/include_handler.hpp); "..." a file.
-  if (open == '<' && line.substr(index + 1, 7) == "saagen/") {
-    const auto close = line.find('>', index + 1);
-    if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
-    return std::string(line.substr(index + 1, close - index - 1));
-  }
-  if (open != '"') {
-    throw Error(fmt::format(
-        "{}: only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported", where));
-  }
-  const auto close = line.find('"', index + 1);
-  if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
-  return std::string(line.substr(index + 1, close - index - 1));
-}
-
-// Expands #include "..." into named source pieces, so that compiler messages name the file
-// and line they come from (a `#line` directive restarts the count after each include).
-class IncludeExpander {
+// The files `compile` reads for #include: "..." next to the including file, then in the -I
+// directories; <saagen/...> generated in memory (saagen/integrate/include_handler.hpp). Records
+// every file read and whether a saagen snippet among them needs native 16-bit types.
+class IncludeReader {
  public:
-  explicit IncludeExpander(std::vector<std::string> directories) : directories_(std::move(directories)) {}
+  explicit IncludeReader(std::vector<std::string> directories) : directories_(std::move(directories)) {}
 
-  void expand(const fs::path& file, int depth) {
-    if (depth > 32) throw Error(fmt::format("{}: #include nested deeper than 32 (a cycle?)", file.string()));
-    const std::string text = read_source(file);
-    files_.push_back(file);
+  IncludeFile read(const fs::path& path) {
+    const auto cached = cache_.find(path.string());
+    if (cached != cache_.end()) return cached->second;
+    IncludeFile file{path.string(), identity(path), read_source(path)};
+    files_.push_back(path);
+    note_marker(file.text);
+    return cache_.emplace(path.string(), file).first->second;
+  }
+
+  IncludeSources sources() {
+    return {[this](const std::string& name, const IncludeFile& from) { return find(name, from); },
+            [this](const std::string& name) {
+              const EmittedFile file = resolve_include(name, {});
+              native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
+              return file.content;
+            }};
+  }
+
+  // Every file read: the input and what it includes.
+  const std::vector<fs::path>& files() const { return files_; }
+  bool native_16bit() const { return native_16bit_; }
+
+ private:
+  // The first candidate that exists and is not a directory (a FIFO or device is then refused by
+  // the reader, not reported as missing).
+  std::optional<IncludeFile> find(const std::string& name, const IncludeFile& from) {
+    std::vector<fs::path> candidates = {fs::path(from.name).parent_path() / name};
+    for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
+    for (const fs::path& candidate : candidates) {
+      std::error_code error;
+      const fs::file_status status = fs::status(candidate, error);
+      if (!error && fs::exists(status) && !fs::is_directory(status)) return read(candidate);
+    }
+    return std::nullopt;
+  }
+
+  static std::string identity(const fs::path& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) return path.string();
+    return fmt::format("{}:{}", status.st_dev, status.st_ino);
+  }
+
+  void note_marker(const std::string& text) {
     if (const auto marker = find_marker(text)) {
       try {
         native_16bit_ = native_16bit_ || builtin_target(marker->target).with_precision(marker->precision).native_16bit;
@@ -67,56 +87,10 @@ class IncludeExpander {
         // Not a file this saagen can read the precision of; compile it as it is.
       }
     }
-    std::string chunk;
-    std::istringstream lines(text);
-    int number = 0;
-    for (std::string line; std::getline(lines, line);) {
-      ++number;
-      const auto included = include_target(line, fmt::format("{}:{}", file.string(), number));
-      if (!included) {
-        chunk += line + "\n";
-        continue;
-      }
-      if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-      if (is_saagen_include(*included))
-        add_generated(*included, fmt::format("{}:{}", file.string(), number));
-      else
-        expand(resolve(*included, file, number), depth + 1);
-      chunk = fmt::format("#line {}\n", number + 1);
-    }
-    if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-  }
-
-  std::vector<SourcePiece>& pieces() { return pieces_; }
-  // Every file read: the input and what it includes.
-  const std::vector<fs::path>& files() const { return files_; }
-  bool native_16bit() const { return native_16bit_; }
-
- private:
-  // A saagen/ name: the snippet generated in memory, as the include handlers resolve it.
-  void add_generated(const std::string& name, const std::string& where) {
-    EmittedFile file;
-    try {
-      file = resolve_include(name, {});
-    } catch (const Error& error) {
-      throw Error(fmt::format("{}: {}", where, error.what()));
-    }
-    native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
-    pieces_.push_back({name, file.content});
-  }
-
-  fs::path resolve(const std::string& name, const fs::path& from, int line) const {
-    std::vector<fs::path> candidates = {from.parent_path() / name};
-    for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
-    for (const fs::path& candidate : candidates) {
-      std::error_code error;
-      if (fs::is_regular_file(candidate, error)) return candidate;
-    }
-    throw Error(fmt::format("{}:{}: #include \"{}\" not found next to the file or in the -I directories", from.string(), line, name));
   }
 
   std::vector<std::string> directories_;
-  std::vector<SourcePiece> pieces_;
+  std::map<std::string, IncludeFile> cache_;
   std::vector<fs::path> files_;
   bool native_16bit_ = false;
 };
@@ -266,16 +240,20 @@ int SceneCommands::run_compile() const {
   const CompileRequest settings = compile_settings(input);
   check_include_directories(compile_include_dirs_);
 
-  IncludeExpander expander(compile_include_dirs_);
-  expander.expand(input, 0);
-  check_not_an_input(output, expander.files());
+  IncludeReader reader(compile_include_dirs_);
+  const IncludeFile root = reader.read(input);
+  const IncludeExpansion expansion = expand_includes(root, reader.sources());
+  check_not_an_input(output, reader.files());
   check_output_paths({output}, compile_force_);
 
   CompileRequest request = settings;
-  request.hlsl_native_16bit = expander.native_16bit();
-  request.sources = std::move(expander.pieces());
+  request.hlsl_native_16bit = reader.native_16bit();
+  for (const ExpandedPiece& piece : expansion.pieces) request.sources.push_back({piece.name, piece.text});
   const CompileResult result = compile_to_spirv(request);
-  if (!result.ok) throw Error(located(input, first_compiler_message(result.log)));
+  if (!result.ok) {
+    const std::string message = first_compiler_message(result.log);
+    throw Error(deferred_include_error(expansion, message).value_or(located(input, message)));
+  }
   if (!has_entry_point(result.spirv)) {
     throw Error(fmt::format("{}: no entry point '{}' for the {} stage; pass --entry with the name of the shader's entry function",
                             input.string(), request.entry_point, stage_name(request.stage)));

@@ -8,6 +8,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/io/include_expansion.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/saagen.h"
@@ -984,6 +985,141 @@ TEST_F(Safety, AFileSizeSignalRemovesTheDirectoriesTheRunCreated) {
   const CliRun run = run_shell(command);
   EXPECT_EQ(run.exit_code, 128 + SIGXFSZ) << run.err;
   EXPECT_FALSE(fs::exists(scratch_ / "new"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// #include as a preprocessor sees it.
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+// In-memory files for saagen::expand_includes; counts the lookups.
+struct MemoryIncludes {
+  std::map<std::string, std::string> files;
+  int lookups = 0;
+  saagen::IncludeSources sources() {
+    return {[this](const std::string& name, const saagen::IncludeFile&) -> std::optional<saagen::IncludeFile> {
+              ++lookups;
+              const auto found = files.find(name);
+              if (found == files.end()) return std::nullopt;
+              return saagen::IncludeFile{name, name, found->second};
+            },
+            [](const std::string& name) -> std::string { return "// generated " + name + "\n"; }};
+  }
+  std::string expanded(const std::string& root) {
+    std::string text;
+    for (const auto& piece : saagen::expand_includes({root, root, files.at(root)}, sources()).pieces) text += piece.text;
+    return text;
+  }
+};
+
+// h0 .. h{levels-1}, each including the next twice; guarded or not.
+MemoryIncludes include_bomb(int levels, bool guarded) {
+  MemoryIncludes bomb;
+  for (int level = 0; level < levels; ++level) {
+    const std::string next = "h" + std::to_string(level + 1) + ".glsl";
+    std::string body = level + 1 < levels ? "#include \"" + next + "\"\n#include \"" + next + "\"\n" : "float leaf() { return 1.0; }\n";
+    const std::string guard = "H" + std::to_string(level);
+    bomb.files["h" + std::to_string(level) + ".glsl"] =
+        guarded ? "#ifndef " + guard + "\n#define " + guard + "\n" + body + "#endif\n" : body;
+  }
+  return bomb;
+}
+
+TEST(Includes, AGuardedHeaderIsExpandedOncePerGuard) {
+  // 21 levels of double includes: 2^21 expansions unguarded; once each (plus one skipped
+  // re-include per level) with guards, so the text and the work are linear in the unique text.
+  MemoryIncludes bomb = include_bomb(21, true);
+  std::size_t unique = 0;
+  for (const auto& [name, text] : bomb.files) unique += text.size();
+  const std::string text = bomb.expanded("h0.glsl");
+  EXPECT_LT(text.size(), 2 * unique);
+  EXPECT_EQ(occurrences(text, "float leaf()"), 1);
+  EXPECT_EQ(bomb.lookups, 2 * 20);
+
+  // #pragma once, and a guarded header that includes itself.
+  MemoryIncludes once;
+  once.files = {{"main.glsl", "#include \"a.glsl\"\n#include \"a.glsl\"\n#include \"self.glsl\"\n"},
+                {"a.glsl", "#pragma once\n#include \"a.glsl\"\nfloat a;\n"},
+                {"self.glsl", "// a header\n#if !defined(SELF)\n#define SELF 1\n#include \"self.glsl\"\nfloat self;\n#endif // SELF\n"}};
+  const std::string expanded = once.expanded("main.glsl");
+  EXPECT_EQ(occurrences(expanded, "float a;"), 1) << expanded;
+  EXPECT_EQ(occurrences(expanded, "float self;"), 1) << expanded;
+}
+
+TEST(Includes, AnExpansionBeyondTheBudgetIsOneLine) {
+  MemoryIncludes bomb = include_bomb(26, false);
+  try {
+    bomb.expanded("h0.glsl");
+    ADD_FAILURE() << "the unguarded bomb expanded";
+  } catch (const saagen::Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("#include expansions in all (an include bomb?)"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  MemoryIncludes wide;  // few includes, much text
+  wide.files = {{"main.glsl", "#include \"big.glsl\"\n#include \"big.glsl\"\n#include \"big.glsl\"\n#include \"big.glsl\"\n"},
+                {"big.glsl", std::string(20 << 20, ' ')}};
+  EXPECT_THROW(wide.expanded("main.glsl"), saagen::Error);
+}
+
+TEST(Includes, IncludesInSkippedBranchesAndCommentsAreNotResolved) {
+  MemoryIncludes sources;
+  sources.files = {{"main.glsl",
+                    "#define LEVEL 2\n"
+                    "#if 0\n#include \"missing.glsl\"\n#endif\n"
+                    "// #include \"missing.glsl\"\n"
+                    "/* a comment\n#include \"missing.glsl\"\n*/\n"
+                    "#ifdef NOT_DEFINED\n#include \"missing.glsl\"\n#elif LEVEL > 1 && defined(LEVEL)\n#include \"found.glsl\"\n"
+                    "#else\n#include \"missing.glsl\"\n#endif\n"
+                    "#if (LEVEL << 2) == 8 ? 0 : 1\n#include \"missing.glsl\"\n#endif\n"
+                    "#undef LEVEL\n#ifdef LEVEL\n#include \"missing.glsl\"\n#endif\n"},
+                   {"found.glsl", "float found;\n"}};
+  const std::string text = sources.expanded("main.glsl");
+  EXPECT_NE(text.find("float found;"), std::string::npos) << text;
+  EXPECT_EQ(sources.lookups, 1);
+
+  // What glslang predefines is glslang's to decide: a missing include there becomes an #error
+  // line that fires only if the branch is compiled.
+  sources.files["main.glsl"] = "#ifdef VULKAN\n#include \"missing.glsl\"\n#endif\n";
+  const saagen::IncludeExpansion deferred =
+      saagen::expand_includes({"main.glsl", "main.glsl", sources.files["main.glsl"]}, sources.sources());
+  ASSERT_EQ(deferred.pieces.size(), 1u);
+  EXPECT_EQ(deferred.pieces[0].text, "#ifdef VULKAN\n#error saagen_unresolved_include_0\n#endif\n");
+  EXPECT_EQ(saagen::deferred_include_error(deferred, "main.glsl:2: '#error' : saagen_unresolved_include_0"),
+            "main.glsl:2: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  // A compiled include that is missing is one line with the file and line.
+  sources.files["main.glsl"] = "float x;\n#if 1\n#include \"missing.glsl\"\n#endif\n";
+  try {
+    sources.expanded("main.glsl");
+    ADD_FAILURE() << "a missing include was accepted";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()), "main.glsl:3: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  }
+}
+
+TEST_F(Safety, CompileResolvesIncludesAsThePreprocessorDoes) {
+  write(scratch_ / "s.frag",
+        "#version 450\n#if 0\n#include \"missing.glsl\"\n#endif\n// #include \"missing.glsl\"\n#include \"self.glsl\"\n"
+        "#ifndef VULKAN\n#include \"missing.glsl\"\n#endif\n"
+        "layout(location = 0) out vec4 color;\nvoid main() { color = vec4(self_value()); }\n");
+  write(scratch_ / "self.glsl",
+        "#ifndef SELF_GLSL\n#define SELF_GLSL\n#include \"self.glsl\"\nfloat self_value() { return 0.5; }\n#endif\n");
+  const CliRun run = saagen({"compile", (scratch_ / "s.frag").string(), "-o", (scratch_ / "s.spv").string()});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  // For OpenGL, VULKAN is not defined: the missing include is compiled, and reported.
+  const CliRun opengl = saagen({"compile", (scratch_ / "s.frag").string(), "--client", "opengl", "-o", (scratch_ / "g.spv").string()});
+  expect_one_line_error(opengl, "s.frag:8: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  // The 21-level guarded double-include bomb compiles (it took 31 s and 1 GB).
+  MemoryIncludes bomb = include_bomb(21, true);
+  for (const auto& [name, text] : bomb.files) write(scratch_ / "bomb" / name, text);
+  write(scratch_ / "bomb" / "b.frag",
+        "#version 450\n#include \"h0.glsl\"\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(leaf()); }\n");
+  const CliRun guarded = saagen({"compile", (scratch_ / "bomb" / "b.frag").string(), "-o", (scratch_ / "b.spv").string()});
+  EXPECT_EQ(guarded.exit_code, 0) << guarded.err;
 }
 
 }  // namespace
