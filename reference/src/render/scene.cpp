@@ -397,9 +397,23 @@ Ray Camera::generate(double fx, double fy, int width, int height) const {
   const Vec3 true_up = cross(right, forward);
   const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);
   const double aspect = static_cast<double>(width) / height;
-  const double sx = (2.0 * fx / width - 1.0) * tan_half * aspect;
-  const double sy = (1.0 - 2.0 * fy / height) * tan_half;
+  const double sx = (2.0 * (fx + jitter.x) / width - 1.0) * tan_half * aspect;
+  const double sy = (1.0 - 2.0 * (fy + jitter.y) / height) * tan_half;
   return {position, normalize(forward + sx * right + sy * true_up)};
+}
+
+std::optional<Vec2> Camera::project(Vec3 p, int width, int height) const {
+  const Vec3 forward = normalize(look_at - position);
+  const Vec3 right = normalize(cross(forward, up));
+  const Vec3 true_up = cross(right, forward);
+  const Vec3 d = p - position;
+  const double depth = dot(d, forward);
+  if (!(depth > 0.0)) return std::nullopt;
+  const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);
+  const double aspect = static_cast<double>(width) / height;
+  // generate's sx, sy are the film offsets of the direction at unit depth along forward.
+  const double sx = dot(d, right) / depth, sy = dot(d, true_up) / depth;
+  return Vec2{0.5 * width * (sx / (tan_half * aspect) + 1.0) - jitter.x, 0.5 * height * (1.0 - sy / tan_half) - jitter.y};
 }
 
 Camera Camera::panned(double right_pixels, double up_pixels, int height) const {
@@ -571,6 +585,8 @@ std::string Scene::describe() const {
     << format_vec(camera_.look_at) << format_vec(camera_.up) << camera_.fov_y_degrees << "deg"
     << ";light=" << (light_.kind == Light::Kind::directional ? "dir" : "point") << format_vec(light_.vector) << light_.intensity
     << ";pivot=" << format_vec(pivot_) << ";rotation=" << rotation_;
+  // A jittered camera (taa.hpp) renders other pixels; the key of an unjittered one is unchanged.
+  if (camera_.jitter.x != 0.0 || camera_.jitter.y != 0.0) s << ";jitter=(" << camera_.jitter.x << "," << camera_.jitter.y << ")";
   if (normal_map_)
     s << ";normal_map=" << normal_map_->describe() << ",tiling=(" << tiling_.x << "," << tiling_.y << "),source=" << normal_map_source_;
   return s.str();

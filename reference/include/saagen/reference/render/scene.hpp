@@ -228,6 +228,11 @@ struct Camera {
   Vec3 look_at{};
   Vec3 up{0.0, 1.0, 0.0};
   double fov_y_degrees = 35.0;
+  // Sub-pixel offset (pixels, x right, y down) added to every film position generate() takes:
+  // a temporal anti-aliasing jitter (taa.hpp), which a GPU puts into the projection matrix, so
+  // that every primary ray of a frame, the quad partners' included, moves with it while
+  // gl_FragCoord stays the pixel centre.
+  Vec2 jitter{};
 
   // The same camera with the field of view narrowed so that an image of `size` pixels has
   // the pixel footprint of a `full_size` image: the centre crop of the full image (square
@@ -242,6 +247,10 @@ struct Camera {
   // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
   // width x height image.
   Ray generate(double fx, double fy, int width, int height) const;
+
+  // The film position (fx, fy) whose primary ray passes through the world point p (generate's
+  // inverse, jitter included); nullopt when p is not in front of the camera.
+  std::optional<Vec2> project(Vec3 p, int width, int height) const;
 };
 
 struct Light {
