@@ -296,6 +296,8 @@ ref::Derivative browser_plain_derivative() {
   return mode;
 }
 
+const char* plain_derivative_name() { return browser_plain_derivative() == ref::Derivative::fine ? "fine" : "coarse"; }
+
 class InWebGl2 : public ::testing::TestWithParam<Case> {};
 
 TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
@@ -345,8 +347,9 @@ TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
       worst.add(comparison.got[k], comparison.expected[k], bound);
     }
   }
-  const std::string what = fmt::format("{} {} ({}, {})", mediump ? "mediump" : "highp", c.function, c.variant,
-                                       c.kind == Kind::wrapper ? "fragment quads" : "16384 inputs");
+  const std::string what =
+      fmt::format("{} {} ({}, {})", mediump ? "mediump" : "highp", c.function, c.variant,
+                  c.kind == Kind::wrapper ? fmt::format("fragment quads, {} dFdx", plain_derivative_name()) : std::string("16384 inputs"));
   std::cout << "[ webgl2   ] " << worst.summary(what) << "\n";
   EXPECT_GT(worst.count, 0u);
   EXPECT_EQ(worst.failing, 0u) << worst.summary(what);
@@ -369,8 +372,7 @@ TEST_P(GlintsInWebGl2, MatchTheDoublePrecisionReferenceWithinTheSamplerAndFp32Bo
   for (const wg::FunctionResult& function : wg::compare(c, out, 4, reference)) {
     const std::string what =
         fmt::format("highp {} ({}, {})", function.function, c.variant,
-                    c.wrapper ? fmt::format("fragment quads, {} dFdx", mode == ref::Derivative::fine ? "fine" : "coarse")
-                              : fmt::format("{} inputs", wg::elements));
+                    c.wrapper ? fmt::format("fragment quads, {} dFdx", plain_derivative_name()) : fmt::format("{} inputs", wg::elements));
     std::cout << "[ webgl2   ] " << function.worst.summary(what) << "\n";
     EXPECT_EQ(function.worst.failing, 0u) << function.worst.summary(what);
     EXPECT_GT(function.nonzero, function.worst.count / 2) << what << ": the inputs do not hit the lobes";
