@@ -11,6 +11,7 @@
 #include "saagen/io/include_expansion.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
+#include "saagen/products/prefilter.hpp"
 #include "saagen/saagen.h"
 #include "saagen/scene/manifest.hpp"
 
@@ -391,6 +392,7 @@ TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
   const CliRun run = saagen_with_file_limit(8, {"emit", "-o", out.string()});
   EXPECT_EQ(run.exit_code, 1) << run.err;
   EXPECT_NE(run.err.find("write failed (File too large)"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("; nothing was changed"), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   std::map<std::string, std::string> after;
   for (const std::string& name : entries(out)) after[name] = read_text(out / name);
@@ -464,6 +466,27 @@ TEST(StrictReaders, PpmHeadersAreStrictDecimals) {
   EXPECT_NE(error_of("P6 -1 1 255\n").find("'-1'"), std::string::npos);
   EXPECT_NE(error_of("P6 4097 4096 255\n").find("larger than 4194304 texels"), std::string::npos);
   EXPECT_EQ(error_of("P6 # comment\n1 1 255\n" + std::string(3, '\x80')), "");
+}
+
+// stb_image handed memcpy a null pointer for an empty IDAT chunk before the first non-empty one
+// (UBSan, fuzz/png_fuzzer.cpp): such chunks are dropped, and the image is the same.
+TEST(StrictReaders, AnEmptyIdatChunkIsTheSameImage) {
+  // A 2 x 2 RGB PNG of flat normals (128, 128, 255), written by hand: signature, IHDR, IDAT, IEND.
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  const std::string ihdr("\x00\x00\x00\x0dIHDR\x00\x00\x00\x02\x00\x00\x00\x02\x08\x02\x00\x00\x00\xfd\xd4\x9a\x73", 25);
+  const std::string idat("\x00\x00\x00\x10\x49\x44\x41\x54\x78\xda\x63\x68\x68\xf8\x0f\x44\x0c\x10\x0a\x00\x35\xf6\x07\xfd\xa1\x29\xec\x43",
+                         28);
+  const std::string iend("\x00\x00\x00\x00IEND\xae\x42\x60\x82", 12);
+  const std::string empty_idat("\x00\x00\x00\x00IDAT\x35\xaf\x06\x1e", 12);
+  const auto read = [](const std::string& file) {
+    return saagen::prefilter::read_normal_map(std::span(reinterpret_cast<const std::uint8_t*>(file.data()), file.size()), "n.png");
+  };
+  const auto plain = read(signature + ihdr + idat + iend);
+  const auto with_empty = read(signature + ihdr + empty_idat + idat + empty_idat + iend);
+  ASSERT_EQ(plain.width, 2);
+  EXPECT_EQ(with_empty.width, plain.width);
+  EXPECT_EQ(with_empty.height, plain.height);
+  EXPECT_EQ(with_empty.normals, plain.normals);
 }
 
 TEST(StrictReaders, Ktx2LevelCountIsBoundedByTheImageSize) {

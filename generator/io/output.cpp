@@ -721,13 +721,18 @@ WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, cons
   CreatedDirectories directories;
   Temporaries temporaries;
   std::vector<Replacement> replacements;
-  for (const OutputFile* file : to_write) {
-    directories.ensure(directory_of(file->path));
-    Replacement replacement;
-    replacement.target = file->path.string();
-    replacement.staged = temporaries.create(file->path, file->content).string();
-    replacements.push_back(std::move(replacement));
-    run_commit_hook(CommitStep::staged, replacements.size() - 1);
+  try {
+    for (const OutputFile* file : to_write) {
+      directories.ensure(directory_of(file->path));
+      Replacement replacement;
+      replacement.target = file->path.string();
+      replacement.staged = temporaries.create(file->path, file->content).string();
+      replacements.push_back(std::move(replacement));
+      run_commit_hook(CommitStep::staged, replacements.size() - 1);
+    }
+  } catch (const Error& error) {
+    // The temporaries and the new directories go as this unwinds.
+    throw Error(fmt::format("{}; nothing was changed", error.what()));
   }
   commit(replacements);
   temporaries.release();

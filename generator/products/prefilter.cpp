@@ -47,7 +47,31 @@ bool starts_with(std::span<const std::uint8_t> bytes, std::initializer_list<std:
   return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
 }
 
-NormalImage read_png(std::span<const std::uint8_t> bytes, const std::string& what) {
+// stb_image copies each IDAT chunk into a buffer it allocates at the first non-empty one, so an
+// empty IDAT before it hands memcpy a null pointer (undefined behaviour; found by
+// fuzz/png_fuzzer.cpp). Empty IDAT chunks carry no data: the file without them is the same image.
+// Empty when the file has none (the common case: no copy).
+std::vector<std::uint8_t> without_empty_idat(std::span<const std::uint8_t> bytes) {
+  const auto length_at = [&](std::size_t at) {
+    return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+  };
+  const auto empty_idat = [&](std::size_t at) {
+    return length_at(at) == 0 && std::equal(bytes.begin() + at + 4, bytes.begin() + at + 8, "IDAT");
+  };
+  std::vector<std::uint8_t> kept;
+  std::size_t copied = 0;
+  for (std::size_t at = 8; at + 12 <= bytes.size() && length_at(at) <= bytes.size() - at - 12; at += 12 + std::size_t{length_at(at)}) {
+    if (!empty_idat(at)) continue;
+    kept.insert(kept.end(), bytes.begin() + copied, bytes.begin() + at);
+    copied = at + 12;
+  }
+  if (copied != 0) kept.insert(kept.end(), bytes.begin() + copied, bytes.end());
+  return kept;
+}
+
+NormalImage read_png(std::span<const std::uint8_t> file, const std::string& what) {
+  const std::vector<std::uint8_t> cleaned = without_empty_idat(file);
+  const std::span<const std::uint8_t> bytes = cleaned.empty() ? file : std::span<const std::uint8_t>(cleaned);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
