@@ -20,6 +20,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -103,10 +104,11 @@ std::map<std::string, std::string> guarded_headers(int includes) {
 
 // The expanded text's size (so that the work is not optimised away).
 std::size_t expand(const std::map<std::string, std::string>& files) {
-  const saagen::IncludeSources sources{[&](const std::string& name, const saagen::IncludeFile&) -> std::optional<saagen::IncludeFile> {
-                                         return saagen::IncludeFile{name, name, files.at(name)};
-                                       },
-                                       [](const std::string&) -> std::string { return {}; }};
+  const saagen::IncludeSources sources{
+      [&](const std::string& name, const saagen::IncludeFile&) -> std::shared_ptr<const saagen::IncludeFile> {
+        return std::make_shared<const saagen::IncludeFile>(saagen::IncludeFile{name, name, files.at(name)});
+      },
+      [](const std::string&) -> std::string { return {}; }};
   std::size_t size = 0;
   for (const auto& piece : saagen::expand_includes({"h0.glsl", "h0.glsl", files.at("h0.glsl")}, sources).pieces) size += piece.text.size();
   return size;

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -37,13 +38,13 @@ class IncludeReader {
  public:
   explicit IncludeReader(std::vector<std::string> directories) : directories_(std::move(directories)) {}
 
-  IncludeFile read(const fs::path& path) {
-    const auto cached = cache_.find(path.string());
-    if (cached != cache_.end()) return cached->second;
-    IncludeFile file{path.string(), identity(path), read_source(path)};
+  std::shared_ptr<const IncludeFile> read(const fs::path& path) {
+    auto& file = cache_[path.string()];
+    if (file) return file;
+    file = std::make_shared<const IncludeFile>(IncludeFile{path.string(), identity(path), read_source(path)});
     files_.push_back(path);
-    note_marker(file.text);
-    return cache_.emplace(path.string(), file).first->second;
+    note_marker(file->text);
+    return file;
   }
 
   IncludeSources sources() {
@@ -62,7 +63,7 @@ class IncludeReader {
  private:
   // The first candidate that exists and is not a directory (a FIFO or device is then refused by
   // the reader, not reported as missing).
-  std::optional<IncludeFile> find(const std::string& name, const IncludeFile& from) {
+  std::shared_ptr<const IncludeFile> find(const std::string& name, const IncludeFile& from) {
     std::vector<fs::path> candidates = {fs::path(from.name).parent_path() / name};
     for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
     for (const fs::path& candidate : candidates) {
@@ -70,7 +71,7 @@ class IncludeReader {
       const fs::file_status status = fs::status(candidate, error);
       if (!error && fs::exists(status) && !fs::is_directory(status)) return read(candidate);
     }
-    return std::nullopt;
+    return nullptr;
   }
 
   static std::string identity(const fs::path& path) {
@@ -90,7 +91,7 @@ class IncludeReader {
   }
 
   std::vector<std::string> directories_;
-  std::map<std::string, IncludeFile> cache_;
+  std::map<std::string, std::shared_ptr<const IncludeFile>> cache_;
   std::vector<fs::path> files_;
   bool native_16bit_ = false;
 };
@@ -241,8 +242,7 @@ int SceneCommands::run_compile() const {
   check_include_directories(compile_include_dirs_);
 
   IncludeReader reader(compile_include_dirs_);
-  const IncludeFile root = reader.read(input);
-  const IncludeExpansion expansion = expand_includes(root, reader.sources());
+  const IncludeExpansion expansion = expand_includes(*reader.read(input), reader.sources());
   check_not_an_input(output, reader.files());
   check_output_paths({output}, compile_force_);
 

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -27,15 +28,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (end == input.size()) break;
     at = end + 1;
   }
-  const saagen::IncludeSources sources{[&](const std::string& name, const saagen::IncludeFile&) -> std::optional<saagen::IncludeFile> {
-                                         const auto found = files.find(name);
-                                         if (found == files.end()) return std::nullopt;
-                                         return saagen::IncludeFile{name, name, found->second};
-                                       },
-                                       [](const std::string& name) -> std::string {
-                                         if (name != "saagen/x") throw saagen::Error("unknown saagen include '" + name + "'");
-                                         return "float generated;\n";
-                                       }};
+  const saagen::IncludeSources sources{
+      [&](const std::string& name, const saagen::IncludeFile&) -> std::shared_ptr<const saagen::IncludeFile> {
+        const auto found = files.find(name);
+        if (found == files.end()) return nullptr;
+        return std::make_shared<const saagen::IncludeFile>(saagen::IncludeFile{name, name, found->second});
+      },
+      [](const std::string& name) -> std::string {
+        if (name != "saagen/x") throw saagen::Error("unknown saagen include '" + name + "'");
+        return "float generated;\n";
+      }};
   saagen::IncludeLimits limits;
   limits.total_bytes = std::size_t{1} << 20;
   limits.includes = 4096;

@@ -1023,14 +1023,18 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 struct MemoryIncludes {
   std::map<std::string, std::string> files;
   int lookups = 0;
+  int generated = 0;
   saagen::IncludeSources sources() {
-    return {[this](const std::string& name, const saagen::IncludeFile&) -> std::optional<saagen::IncludeFile> {
+    return {[this](const std::string& name, const saagen::IncludeFile&) -> std::shared_ptr<const saagen::IncludeFile> {
               ++lookups;
               const auto found = files.find(name);
-              if (found == files.end()) return std::nullopt;
-              return saagen::IncludeFile{name, name, found->second};
+              if (found == files.end()) return nullptr;
+              return std::make_shared<const saagen::IncludeFile>(saagen::IncludeFile{name, name, found->second});
             },
-            [](const std::string& name) -> std::string { return "// generated " + name + "\n"; }};
+            [this](const std::string& name) -> std::string {
+              ++generated;
+              return "// generated " + name + "\n";
+            }};
   }
   std::string expanded(const std::string& root) {
     std::string text;
@@ -1068,7 +1072,10 @@ TEST(Includes, AGuardedHeaderIsExpandedOncePerGuard) {
   once.files = {{"main.glsl", "#include \"a.glsl\"\n#include \"a.glsl\"\n#include \"self.glsl\"\n"},
                 {"a.glsl", "#pragma once\n#include \"a.glsl\"\nfloat a;\n"},
                 {"self.glsl", "// a header\n#if !defined(SELF)\n#define SELF 1\n#include \"self.glsl\"\nfloat self;\n#endif // SELF\n"}};
+  once.files["main.glsl"] += "#include <saagen/x>\n#include <saagen/x>\n";  // generated once per name
   const std::string expanded = once.expanded("main.glsl");
+  EXPECT_EQ(once.generated, 1);
+  EXPECT_EQ(occurrences(expanded, "// generated saagen/x"), 2) << expanded;
   EXPECT_EQ(occurrences(expanded, "float a;"), 1) << expanded;
   EXPECT_EQ(occurrences(expanded, "float self;"), 1) << expanded;
 }
@@ -1104,6 +1111,15 @@ TEST(Includes, IncludesInSkippedBranchesAndCommentsAreNotResolved) {
   const std::string text = sources.expanded("main.glsl");
   EXPECT_NE(text.find("float found;"), std::string::npos) << text;
   EXPECT_EQ(sources.lookups, 1);
+
+  // A macro that doubles per level (2^40 tokens) leaves the condition to glslang at once.
+  std::string doubling = "#define B0 1\n";
+  for (int level = 1; level <= 40; ++level) {
+    const std::string previous = "B" + std::to_string(level - 1);
+    doubling += "#define B" + std::to_string(level) + " " + previous + " " + previous + "\n";
+  }
+  sources.files["main.glsl"] = doubling + "#if B40\n#include \"found.glsl\"\n#endif\n";
+  EXPECT_NE(sources.expanded("main.glsl").find("float found;"), std::string::npos);
 
   // What glslang predefines is glslang's to decide: a missing include there becomes an #error
   // line that fires only if the branch is compiled.

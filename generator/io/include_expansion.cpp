@@ -119,7 +119,7 @@ Line parse_line(std::string_view raw, bool& in_block) {
 // A file read once and split into lines; `guard` is X when every line that is not blank or a
 // comment lies inside one `#ifndef X` (or `#if !defined(X)`) and its `#endif`, with no #else.
 struct ParsedFile {
-  IncludeFile file;
+  std::shared_ptr<const IncludeFile> file;
   std::vector<Line> lines;
   std::string guard;
 };
@@ -168,10 +168,10 @@ std::string find_guard(const std::vector<Line>& lines) {
   return {};
 }
 
-std::unique_ptr<ParsedFile> parse_file(IncludeFile file) {
+std::unique_ptr<ParsedFile> parse_file(std::shared_ptr<const IncludeFile> file) {
   auto parsed = std::make_unique<ParsedFile>();
   parsed->file = std::move(file);
-  const std::string_view text = parsed->file.text;
+  const std::string_view text = parsed->file->text;
   bool in_block = false;
   for (std::size_t at = 0; at < text.size();) {
     auto end = text.find('\n', at);
@@ -264,7 +264,9 @@ std::optional<std::vector<Token>> tokenize(std::string_view text) {
 // Evaluates one #if expression against the macros known so far.
 class Condition {
  public:
-  explicit Condition(const std::map<std::string, Macro, std::less<>>& macros) : macros_(macros) {}
+  // `budget`: the work left to all #if evaluations of one expansion (tokens visited, macro body
+  // bytes read); once spent, every condition is glslang's to decide.
+  Condition(const std::map<std::string, Macro, std::less<>>& macros, std::size_t& budget) : macros_(macros), budget_(budget) {}
 
   Truth evaluate(std::string_view text) {
     const auto tokens = tokenize(text);
@@ -292,7 +294,8 @@ class Condition {
   bool substitute(const std::vector<Token>& tokens, int depth) {
     if (depth > 32) return false;
     for (std::size_t index = 0; index < tokens.size(); ++index) {
-      if (tokens_.size() > token_budget || ++steps_ > token_budget * 16) return false;
+      if (tokens_.size() > token_budget || budget_ == 0) return false;
+      --budget_;
       const Token& token = tokens[index];
       if (token.kind != Token::Kind::identifier) {
         tokens_.push_back(token);
@@ -319,6 +322,8 @@ class Condition {
         tokens_.push_back({Token::Kind::unknown, {}});
         continue;
       }
+      if (found->second.body.size() >= budget_) return false;
+      budget_ -= found->second.body.size();
       const auto body = tokenize(found->second.body);
       if (!body) return false;
       expanding_.insert(token.text);
@@ -448,8 +453,8 @@ class Condition {
   const std::map<std::string, Macro, std::less<>>& macros_;
   std::vector<Token> tokens_;
   std::set<std::string, std::less<>> expanding_;
+  std::size_t& budget_;
   std::size_t at_ = 0;
-  std::size_t steps_ = 0;
   int depth_ = 0;
 };
 
@@ -495,7 +500,7 @@ class Expander {
       append(chunk, line.raw, file, number);
       append(chunk, "\n", file, number);
     }
-    flush(file.file.name, chunk);
+    flush(file.file->name, chunk);
   }
 
   std::vector<ExpandedPiece>& pieces() { return pieces_; }
@@ -510,7 +515,7 @@ class Expander {
 
   Truth live() const { return stack_.empty() ? Truth::yes : stack_.back().branch; }
 
-  std::string where(const ParsedFile& file, int number) const { return fmt::format("{}:{}", file.file.name, number); }
+  std::string where(const ParsedFile& file, int number) const { return fmt::format("{}:{}", file.file->name, number); }
 
   void append(std::string& chunk, std::string_view text, const ParsedFile& file, int number) {
     bytes_ += text.size();
@@ -568,15 +573,16 @@ class Expander {
         define(line);
         break;
       case Directive::pragma_once:
-        if (live() == Truth::yes) once_.insert(file.file.identity);
+        if (live() == Truth::yes) once_.insert(file.file->identity);
         break;
       default:
         break;
     }
   }
 
-  Truth condition(const Line& line) const {
-    if (line.directive == Directive::if_ || line.directive == Directive::elif) return Condition(macros_).evaluate(line.rest);
+  Truth condition(const Line& line) {
+    if (line.directive == Directive::if_ || line.directive == Directive::elif)
+      return Condition(macros_, evaluation_budget_).evaluate(line.rest);
     std::string_view rest;
     const std::string_view name = leading_identifier(line.rest, &rest);
     const Truth defined = name.empty() ? Truth::unknown : Condition::defined(macros_, name);
@@ -616,17 +622,19 @@ class Expander {
     if (target.kind == IncludeName::Kind::unsupported) {
       problem = "only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported";
     }
-    std::optional<IncludeFile> found;
-    std::string text;
+    const ParsedFile* included = nullptr;
     if (problem.empty() && target.kind == IncludeName::Kind::generated) {
       try {
-        text = sources_.generated(target.name);
+        included = &generated(target.name);
       } catch (const Error& error) {
         problem = error.what();
       }
     } else if (problem.empty()) {
-      found = sources_.find(target.name, file.file);
-      if (!found) problem = fmt::format("#include \"{}\" not found next to the file or in the -I directories", target.name);
+      auto found = sources_.find(target.name, *file.file);
+      if (found)
+        included = &parsed(std::move(found));
+      else
+        problem = fmt::format("#include \"{}\" not found next to the file or in the -I directories", target.name);
     }
     if (!problem.empty()) {
       if (state == Truth::yes) throw Error(fmt::format("{}: {}", where(file, number), problem));
@@ -641,15 +649,7 @@ class Expander {
           "once so that it is expanded once",
           where(file, number), limits_.includes));
     }
-    if (!found) {
-      flush(file.file.name, chunk);
-      std::string piece;
-      append(piece, text, file, number);
-      pieces_.push_back({target.name, std::move(piece)});
-      return true;
-    }
-    const ParsedFile& included = parsed(std::move(*found));
-    if (once_.count(included.file.identity) || (!included.guard.empty() && Condition::defined(macros_, included.guard) == Truth::yes)) {
+    if (once_.count(included->file->identity) || (!included->guard.empty() && Condition::defined(macros_, included->guard) == Truth::yes)) {
       append(chunk, "\n", file, number);  // wholly skipped by its guard: nothing to compile
       return false;
     }
@@ -657,18 +657,26 @@ class Expander {
       throw Error(fmt::format("{}: #include nested deeper than {} (a cycle? guard the header with #ifndef/#define/#endif or #pragma once)",
                               where(file, number), limits_.depth));
     }
-    flush(file.file.name, chunk);
-    expand(included, depth + 1);
+    flush(file.file->name, chunk);
+    expand(*included, depth + 1);
     return true;
   }
 
-  const ParsedFile& parsed(IncludeFile file) {
-    auto found = cache_.find(file.identity);
-    if (found != cache_.end() && found->second->file.text == file.text) return *found->second;
-    std::string identity = file.identity;
+  // A file split into lines once (by identity; the same object, or the same text, as before).
+  const ParsedFile& parsed(std::shared_ptr<const IncludeFile> file) {
+    auto found = cache_.find(file->identity);
+    if (found != cache_.end() && (found->second->file == file || found->second->file->text == file->text)) return *found->second;
+    const std::string identity = file->identity;
     auto& slot = cache_[identity];
     if (slot) retired_.push_back(std::move(slot));  // still referenced by an expansion in progress
     slot = parse_file(std::move(file));
+    return *slot;
+  }
+
+  // A generated snippet, asked for once per name and then read like a file (its guard applies).
+  const ParsedFile& generated(const std::string& name) {
+    auto& slot = generated_[name];
+    if (!slot) slot = parse_file(std::make_shared<const IncludeFile>(IncludeFile{name, "<" + name + ">", sources_.generated(name)}));
     return *slot;
   }
 
@@ -680,16 +688,18 @@ class Expander {
   std::map<std::string, Macro, std::less<>> macros_;
   std::set<std::string> once_;
   std::map<std::string, std::unique_ptr<ParsedFile>> cache_;
+  std::map<std::string, std::unique_ptr<ParsedFile>> generated_;
   std::vector<std::unique_ptr<ParsedFile>> retired_;
   std::size_t bytes_ = 0;
   std::size_t includes_ = 0;
+  std::size_t evaluation_budget_ = std::size_t{1} << 24;
 };
 
 }  // namespace
 
 IncludeExpansion expand_includes(const IncludeFile& root, const IncludeSources& sources, const IncludeLimits& limits) {
   Expander expander(sources, limits);
-  const auto parsed = parse_file(root);
+  const auto parsed = parse_file(std::make_shared<const IncludeFile>(root));
   expander.expand(*parsed, 0);
   return {std::move(expander.pieces()), std::move(expander.deferred_errors())};
 }

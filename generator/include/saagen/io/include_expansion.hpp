@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,10 +26,12 @@ struct IncludeFile {
 };
 
 struct IncludeSources {
-  // The file `#include "requested"` in `from` names, nullopt when there is none; throws
-  // saagen::Error for one that exists and cannot be read.
-  std::function<std::optional<IncludeFile>(const std::string& requested, const IncludeFile& from)> find;
-  // The text of `#include <saagen/...>` (`name` without the brackets); throws saagen::Error.
+  // The file `#include "requested"` in `from` names, null when there is none; throws
+  // saagen::Error for one that exists and cannot be read. Returning the same object for the same
+  // file spares comparing its text.
+  std::function<std::shared_ptr<const IncludeFile>(const std::string& requested, const IncludeFile& from)> find;
+  // The text of `#include <saagen/...>` (`name` without the brackets), asked for once per name;
+  // throws saagen::Error.
   std::function<std::string(const std::string& name)> generated;
 };
 
