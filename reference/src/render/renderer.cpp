@@ -206,7 +206,7 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
         const double common = s.light_ts.z * s.irradiance;
         double last_alpha = -1.0, last_brdf = 0.0;
         for (std::size_t m = 0; m < n_materials; ++m) {
-          const double alpha = materials[m].alpha;
+          const double alpha = materials[m].alpha * hit.alpha_scale;
           if (alpha != last_alpha) {
             const double a2 = alpha * alpha;
             last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
@@ -273,16 +273,22 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
   SurfaceHit hit;
   if (!scene.intersect_surface(ray, hit)) return f;
-  if (const NormalMap* map = scene.normal_map()) {
-    // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+  const NormalMap* map = scene.normal_map_at(hit);
+  const ScalarMap* roughness = scene.roughness_map_at(hit);
+  if (map || roughness) {
     const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
-    f.has_normal_map = true;
     f.duv_dx = d.ddx;
     f.duv_dy = d.ddy;
-    f.lod = map->lod(d.ddx, d.ddy);
+  }
+  if (map) {
+    // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+    f.has_normal_map = true;
+    f.lod = map->lod(f.duv_dx, f.duv_dy);
     f.texel = map->trilinear(hit.uv, f.lod);
     Scene::apply_normal_map(hit, normalize(f.texel.normal));
   }
+  // The roughness texture's own implicit LOD (its size may differ from the normal map's).
+  if (roughness) f.alpha_scale = roughness_alpha_scale(roughness->trilinear(hit.uv, roughness->lod(f.duv_dx, f.duv_dy)));
   const LocalShading s = local_shading(scene, ray, hit);
   f.hit = true;
   f.object = hit.object;
@@ -423,7 +429,8 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   const PixelFields& f = gbuffer.at(x, y);
   PixelShade out;
   if (!f.hit) return out;
-  const double a2 = material.alpha * material.alpha;
+  const double alpha = material.alpha * f.alpha_scale;
+  const double a2 = alpha * alpha;
   const Vec2 alpha2{a2, a2};
   // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
   // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
@@ -462,7 +469,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   if (variant == Variant::none) {
     isotropic(a2);
   } else if (is_engine(variant)) {
-    isotropic(engine_alpha2(variant, material.alpha, gather_quad(gbuffer, x, y), mode));
+    isotropic(engine_alpha2(variant, alpha, gather_quad(gbuffer, x, y), mode));
   } else {
     const QuadFields q = gather_quad(gbuffer, x, y);
     const FeedQuads in = feed_quads(q, feed);

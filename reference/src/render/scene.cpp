@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <deque>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -477,7 +480,58 @@ Vec3 bilinear_level0_normal(const NormalMap& map, Vec2 uv) {
 }
 }  // namespace
 
+namespace {
+// Registered scenes: a deque keeps every entry (and the name a string_view refers to) in place.
+struct SceneRegistry {
+  std::mutex mutex;
+  std::deque<std::pair<std::string, RegisteredScene>> entries;  // (key, scene)
+};
+SceneRegistry& scene_registry() {
+  static SceneRegistry registry;
+  return registry;
+}
+constexpr int kFirstRegisteredScene = 64;
+bool valid_scene_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+}  // namespace
+
+SceneId register_scene(RegisteredScene scene, const std::string& key) {
+  if (!valid_scene_name(scene.name)) throw std::invalid_argument("scene name '" + scene.name + "': use letters, digits, '_', '-', '.'");
+  for (SceneId id : kAllScenes)
+    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
+  for (SceneId id : kContentScenes)
+    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  for (std::size_t i = 0; i < registry.entries.size(); ++i) {
+    if (registry.entries[i].second.name != scene.name) continue;
+    if (registry.entries[i].first == key) return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(i));
+    throw std::invalid_argument("scene name '" + scene.name + "' is already registered for " + registry.entries[i].first);
+  }
+  registry.entries.emplace_back(key, std::move(scene));
+  return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(registry.entries.size()) - 1);
+}
+
+const RegisteredScene* registered_scene(SceneId id) {
+  const int index = static_cast<int>(id) - kFirstRegisteredScene;
+  if (index < 0) return nullptr;
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  if (index >= static_cast<int>(registry.entries.size())) return nullptr;
+  return &registry.entries[static_cast<std::size_t>(index)].second;
+}
+
+double roughness_alpha_scale(double g) {
+  const double clamped = ref::min(ref::max(g, 1.0 / 255.0), 1.0);
+  return clamped * clamped;
+}
+
 std::string_view scene_name(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->name;
   switch (id) {
     case SceneId::sphere:
       return "sphere";
@@ -502,6 +556,11 @@ std::optional<SceneId> scene_from_name(std::string_view name) {
     if (scene_name(id) == name) return id;
   for (SceneId id : kContentScenes)
     if (scene_name(id) == name) return id;
+  for (int i = kFirstRegisteredScene;; ++i) {
+    const RegisteredScene* registered = registered_scene(static_cast<SceneId>(i));
+    if (!registered) break;
+    if (registered->name == name) return static_cast<SceneId>(i);
+  }
   return std::nullopt;
 }
 
@@ -529,6 +588,32 @@ Scene Scene::with_camera(const Camera& camera) const {
   return copy;
 }
 
+Scene Scene::with_surface_materials(std::shared_ptr<const SurfaceMaterials> surfaces) const {
+  Scene copy = *this;
+  copy.surfaces_ = std::move(surfaces);
+  return copy;
+}
+
+const NormalMap* Scene::normal_map_at(const SurfaceHit& hit) const {
+  if (!surfaces_) return normal_map_.get();
+  const SurfaceTextures* textures = surfaces_->at(hit.object);
+  return textures ? textures->normal_map.get() : nullptr;
+}
+
+const ScalarMap* Scene::roughness_map_at(const SurfaceHit& hit) const {
+  if (!surfaces_) return nullptr;
+  const SurfaceTextures* textures = surfaces_->at(hit.object);
+  return textures ? textures->roughness_map.get() : nullptr;
+}
+
+bool Scene::has_normal_map() const {
+  if (normal_map_) return true;
+  if (surfaces_)
+    for (const SurfaceTextures& textures : surfaces_->by_object)
+      if (textures.normal_map) return true;
+  return false;
+}
+
 Scene Scene::with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, std::string source) const {
   Scene copy = *this;
   copy.normal_map_ = std::move(map);
@@ -551,6 +636,7 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   hit.uv = tiling_ * hit.uv;
   hit.dpdu = object_to_world_.apply_vector(hit.dpdu) / tiling_.x;
   hit.dpdv = object_to_world_.apply_vector(hit.dpdv) / tiling_.y;
+  if (surfaces_) return true;  // the mesh's own texture frame and bitangent sign (SurfaceMaterials)
   if (normal_map_) {
     set_texture_frame(hit);
     hit.normal = hit.geometric_normal;
@@ -563,7 +649,8 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   if (!intersect_surface(ray, hit)) return false;
-  if (normal_map_) apply_normal_map(hit, bilinear_level0_normal(*normal_map_, hit.uv));
+  if (const NormalMap* map = normal_map_at(hit)) apply_normal_map(hit, bilinear_level0_normal(*map, hit.uv));
+  if (const ScalarMap* roughness = roughness_map_at(hit)) hit.alpha_scale = roughness_alpha_scale(roughness->bilinear(0, hit.uv));
   return true;
 }
 
@@ -589,10 +676,12 @@ std::string Scene::describe() const {
   if (camera_.jitter.x != 0.0 || camera_.jitter.y != 0.0) s << ";jitter=(" << camera_.jitter.x << "," << camera_.jitter.y << ")";
   if (normal_map_)
     s << ";normal_map=" << normal_map_->describe() << ",tiling=(" << tiling_.x << "," << tiling_.y << "),source=" << normal_map_source_;
+  if (surfaces_) s << ";surfaces=" << surfaces_->description;
   return s.str();
 }
 
 Scene make_scene(SceneId id, double rotation_radians) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->make(rotation_radians);
   switch (id) {
     case SceneId::sphere: {
       Camera camera{{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 34.0};

@@ -185,11 +185,12 @@ std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilt
 
 std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe); }
 
-bool scene_has_normal_map(SceneId id) { return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine; }
-
-bool scene_has_normal_detail(SceneId id) {
-  return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
+bool scene_has_normal_map(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->has_normal_map;
+  return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
 }
+
+bool scene_has_normal_detail(SceneId id) { return id == SceneId::bump_plane || scene_has_normal_map(id); }
 
 namespace {
 

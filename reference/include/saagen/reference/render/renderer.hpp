@@ -209,6 +209,9 @@ struct PixelFields {
   Vec2 duv_dy;
   double lod = 0.0;   // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
   NormalTexel texel;  // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
+  // The roughness texture's factor on alpha (SurfaceHit::alpha_scale) from its trilinear sample
+  // at its own implicit LOD; 1 without one. Every form filters material.alpha * alpha_scale.
+  double alpha_scale = 1.0;
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
