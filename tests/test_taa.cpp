@@ -217,3 +217,44 @@ TEST(TaaResolveTest, ClampRejectsHistoryOnADisocclusion) {
     }
   }
 }
+
+// The trade's +taa rows (trade.hpp, TradeConfig::taa) on a tiny configuration: every
+// configuration once more under TAA, after its rows without; their LDR-FLIP is the animation's
+// (flip_ldr == flip_ldr_animation), every row without TAA carries the animation's LDR-FLIP too,
+// and the temporal figures are those of the resolved frames (|dI - dR| >= ||dI| - |dR||, so TDE
+// bounds excess flicker + lost motion from above, image.hpp).
+TEST(TaaTrade, EveryConfigurationOnceMoreUnderTaa) {
+  TradeConfig config;
+  config.width = config.height = 16;
+  config.strata = 2;
+  config.flicker_width = config.flicker_height = 12;
+  config.flicker_strata = 2;
+  config.frames = 3;
+  config.scenes = {SceneId::sphere};
+  config.alphas = {0.1};
+  config.fresnel_modes = {false};
+  config.variants = {Variant::none, Variant::deferred_avg, Variant::engine_filament};
+  config.lobes = {};
+  config.threads = 1;
+  config.flip = true;
+  config.taa = true;
+  const TradeTable table = compute_trade_table(config);
+  ASSERT_EQ(table.rows.size(), 6u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const TradeRow& plain = table.rows[i];
+    const TradeRow& taa = table.rows[i + 3];
+    EXPECT_FALSE(plain.taa);
+    EXPECT_TRUE(taa.taa);
+    EXPECT_EQ(configuration_id(taa), configuration_id(plain) + "+taa");
+    EXPECT_EQ(table.find(plain.variant, SceneId::sphere, 0.1, false, plain.feed, plain.prefilter, Lobe::papers, true), &taa);
+    EXPECT_GT(plain.flip_ldr_animation, 0.0);
+    EXPECT_EQ(taa.flip_ldr, taa.flip_ldr_animation);
+    EXPECT_GT(taa.flip_ldr, 0.0);
+    EXPECT_GT(taa.tde, 0.0);
+    EXPECT_GE(taa.tde + 1e-12, taa.tde_excess_flicker + taa.tde_lost_motion);
+  }
+  EXPECT_EQ(configuration_id(Variant::deferred_avg, NormalFeed::geometric, Prefilter::lean, Lobe::tail, true),
+            "deferred-avg:geometric+lean+taa/tail");
+  config.frames = 1;
+  EXPECT_THROW(compute_trade_table(config), std::invalid_argument);
+}
