@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/reference/render/gltf.hpp"
 #include "saagen/report/report.hpp"
 #ifdef SAAGEN_HAVE_ISA_COST
 #include "saagen/report/isa_cost.hpp"
@@ -9,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -47,6 +49,41 @@ void check_cache_writable(const std::string& cache_dir) {
   ::unlink(probe.c_str());
 }
 
+// The scenes of --scene: a standard scene's name, or a glTF 2.0 asset (loaded and registered;
+// a bad asset is one line naming the file and what is wrong, before anything renders).
+std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
+  std::vector<render::SceneId> ids;
+  for (const std::string& name : names) {
+    render::SceneId id{};
+    if (const auto standard = render::scene_from_name(name); standard && !render::registered_scene(*standard)) {
+      id = *standard;
+    } else {
+      const std::string extension = std::filesystem::path(name).extension().string();
+      if (extension != ".gltf" && extension != ".glb" && extension != ".GLTF" && extension != ".GLB") {
+        std::string known;
+        for (render::SceneId s : render::all_scenes()) known += std::string(known.empty() ? "" : ", ") + std::string(render::scene_name(s));
+        for (render::SceneId s : render::content_scenes()) known += ", " + std::string(render::scene_name(s));
+        throw Error(fmt::format("--scene {}: neither a scene ({}) nor a glTF 2.0 asset (.gltf or .glb)", name, known));
+      }
+      try {
+        id = render::register_gltf_scene(name);
+      } catch (const render::GltfError& error) {
+        throw Error(fmt::format("--scene {}", error.what()));
+      }
+    }
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  }
+  return ids;
+}
+
+// What each glTF scene of a run is made of (counts, materials, camera and light), for stdout.
+std::string asset_summaries(const render::TradeConfig& config) {
+  std::string text;
+  for (render::SceneId id : config.scenes)
+    if (const auto asset = render::gltf_asset_of(id)) text += asset->summary();
+  return text;
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -58,6 +95,11 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     check_cache_writable(common.cache_dir);
   }
   render::TradeConfig config = report::preset_config(common.preset);
+  if (!common.scenes.empty()) config.scenes = scene_ids(common.scenes);
+  if (common.resolution > 0) {
+    config.width = config.height = common.resolution;
+    config.flicker_width = config.flicker_height = std::max(2, common.resolution / 2);
+  }
   config.cache_dir = common.cache_dir;
   config.threads = common.threads;
   config.keep_images = keep_images;
@@ -143,6 +185,12 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
                       "GPU families (comma-separated: vega10, navi21, navi10, polaris10) whose ISA statistics from Mesa's ACO "
                       "compiler (RADV null hardware, no GPU needed) give the cost column; the first family ranks the variants");
   command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
+  command->add_option("--scene", common.scenes,
+                      "Measure these scenes instead of the preset's: a scene's name (sphere, torus-knot, ...) or a glTF 2.0 asset "
+                      "(.gltf or .glb: its meshes, normal and roughness textures, first camera or a view framed from its bounds, "
+                      "KHR_lights_punctual light or a directional one); repeatable");
+  command->add_option("--resolution", common.resolution, "Main image size in pixels instead of the preset's (the animation at half of it)")
+      ->check(CLI::Range(4, 4096));
 }
 
 ReportCommands::ReportCommands(CLI::App& app) {
@@ -181,6 +229,7 @@ int ReportCommands::run_bench() const {
   if (isa && !bench_isa_table_.empty())
     write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
   if (bench_isa_only_) return 0;
+  std::cout << asset_summaries(config);
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
@@ -203,6 +252,7 @@ int ReportCommands::run_report() const {
   const render::TradeConfig config = configure(report_common_, true);
   check_output_paths(report::report_paths(config, report_directory_), report_common_.force, {report_common_.cost_json});
   measure_isa(report_common_.isa_families, costs, std::cerr);
+  std::cout << asset_summaries(config);
   const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
   std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace saagen::cli {
 
@@ -33,6 +34,11 @@ class ReportCommands {
     // GPU families whose ISA statistics (Mesa's ACO on RADV null hardware) give the cost column:
     // "vega10,navi21"; the first family's figures rank the variants.
     std::string isa_families;
+    // The scenes to measure instead of the preset's: standard scene names or glTF 2.0 assets
+    // (.gltf / .glb paths), and the main resolution instead of the preset's (the animation's
+    // at half of it).
+    std::vector<std::string> scenes;
+    int resolution = 0;
   };
 
  private:

@@ -3,6 +3,7 @@
 // 2CylinderEngine.glb), tiny assets written here (tangent generation, node transforms, texture
 // decoding, the bad-asset lines), the trade on both samples at a tiny resolution, and
 // `saagen bench --scene` / `saagen report --scene`.
+#include "cli_support.hpp"
 
 #include "saagen/reference/render/gltf.hpp"
 #include "saagen/reference/render/render.hpp"
@@ -363,4 +364,25 @@ TEST(GltfAsset, TradeOnBothSamplesAtATinySizeIsCached) {
   ASSERT_EQ(second.rows.size(), first.rows.size());
   for (std::size_t i = 0; i < first.rows.size(); ++i) EXPECT_EQ(second.rows[i].flip_ldr, first.rows[i].flip_ldr);
   fs::remove_all(cache);
+}
+
+class GltfCli : public saagen::test::CliTest {};
+
+TEST_F(GltfCli, BenchAndReportOnAnAsset) {
+  const auto run = saagen({"bench", "--scene", kClearCoat, "--preset", "quick", "--resolution", "8"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("ClearCoatTest (" + kClearCoat + "): 37116 triangles"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("engine-unreal"), std::string::npos) << run.out;
+  const auto report = saagen({"report", "--scene", kEngine, "--preset", "quick", "--resolution", "8", "-o", (scratch_ / "r").string()});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "r" / "sheet_2CylinderEngine_alpha0.0100.png"));
+
+  write_file(scratch_ / "bad.glb", "glTF");
+  const auto bad = saagen({"bench", "--scene", (scratch_ / "bad.glb").string(), "--preset", "quick"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--scene " + (scratch_ / "bad.glb").string() + ": "), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.out, "");
+  const auto unknown = saagen({"bench", "--scene", "teapot", "--preset", "quick"});
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.err.find("neither a scene"), std::string::npos) << unknown.err;
 }
