@@ -468,9 +468,10 @@ TEST(StrictReaders, PpmHeadersAreStrictDecimals) {
   EXPECT_EQ(error_of("P6 # comment\n1 1 255\n" + std::string(3, '\x80')), "");
 }
 
-// stb_image handed memcpy a null pointer for an empty IDAT chunk before the first non-empty one
-// (UBSan, fuzz/png_fuzzer.cpp): such chunks are dropped, and the image is the same.
-TEST(StrictReaders, AnEmptyIdatChunkIsTheSameImage) {
+// Findings of fuzz/png_fuzzer.cpp: stb_image handed memcpy a null pointer for an empty IDAT chunk
+// before the first non-empty one (UBSan): such chunks are dropped, and the image is the same; and
+// it allocated what a chunk declares before reading it.
+TEST(StrictReaders, PngChunksAreCheckedBeforeStbImage) {
   // A 2 x 2 RGB PNG of flat normals (128, 128, 255), written by hand: signature, IHDR, IDAT, IEND.
   const std::string signature("\x89PNG\r\n\x1a\n", 8);
   const std::string ihdr("\x00\x00\x00\x0dIHDR\x00\x00\x00\x02\x00\x00\x00\x02\x08\x02\x00\x00\x00\xfd\xd4\x9a\x73", 25);
@@ -487,6 +488,17 @@ TEST(StrictReaders, AnEmptyIdatChunkIsTheSameImage) {
   EXPECT_EQ(with_empty.width, plain.width);
   EXPECT_EQ(with_empty.height, plain.height);
   EXPECT_EQ(with_empty.normals, plain.normals);
+
+  // A chunk that declares more than the file holds is refused before stb_image grows a buffer
+  // to its size (an 80-byte file declaring 1.4 GB made it allocate 2 GB).
+  std::string past_the_end = signature + ihdr + idat.substr(0, 8) + "x";
+  past_the_end[signature.size() + ihdr.size()] = '\x58';
+  try {
+    read(past_the_end);
+    ADD_FAILURE() << "a chunk past the end was read";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()), "n.png: not a readable PNG (chunk 'IDAT' declares 1476395024 bytes, past the end of the file)");
+  }
 }
 
 TEST(StrictReaders, Ktx2LevelCountIsBoundedByTheImageSize) {

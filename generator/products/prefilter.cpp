@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -47,30 +48,37 @@ bool starts_with(std::span<const std::uint8_t> bytes, std::initializer_list<std:
   return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
 }
 
-// stb_image copies each IDAT chunk into a buffer it allocates at the first non-empty one, so an
-// empty IDAT before it hands memcpy a null pointer (undefined behaviour; found by
-// fuzz/png_fuzzer.cpp). Empty IDAT chunks carry no data: the file without them is the same image.
-// Empty when the file has none (the common case: no copy).
-std::vector<std::uint8_t> without_empty_idat(std::span<const std::uint8_t> bytes) {
+// The file as stb_image may decode it. Every chunk must fit in the file: stb_image grows its
+// IDAT buffer to what a chunk declares before reading it (an 80-byte file declaring 1.4 GB made
+// it allocate 2 GB; found by fuzz/png_fuzzer.cpp). Empty IDAT chunks are dropped: stb_image hands
+// memcpy a null pointer for one before the first non-empty IDAT (undefined behaviour, found by
+// the same target), and they carry no data. Empty when the file needs no change (no copy).
+std::vector<std::uint8_t> png_for_stb(std::span<const std::uint8_t> bytes, const std::string& what) {
   const auto length_at = [&](std::size_t at) {
     return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
   };
-  const auto empty_idat = [&](std::size_t at) {
-    return length_at(at) == 0 && std::equal(bytes.begin() + at + 4, bytes.begin() + at + 8, "IDAT");
-  };
+  const auto type_at = [&](std::size_t at) { return std::string(bytes.begin() + at + 4, bytes.begin() + at + 8); };
   std::vector<std::uint8_t> kept;
   std::size_t copied = 0;
-  for (std::size_t at = 8; at + 12 <= bytes.size() && length_at(at) <= bytes.size() - at - 12; at += 12 + std::size_t{length_at(at)}) {
-    if (!empty_idat(at)) continue;
+  for (std::size_t at = 8; at + 8 <= bytes.size(); at += 12 + std::size_t{length_at(at)}) {
+    const std::string type = type_at(at);
+    if (length_at(at) > bytes.size() - at - 8) {
+      std::string shown;
+      for (const char c : type) shown += std::isalnum(static_cast<unsigned char>(c)) ? c : '?';
+      throw Error(
+          fmt::format("{}: not a readable PNG (chunk '{}' declares {} bytes, past the end of the file)", what, shown, length_at(at)));
+    }
+    if (type == "IEND") break;
+    if (type != "IDAT" || length_at(at) != 0) continue;
     kept.insert(kept.end(), bytes.begin() + copied, bytes.begin() + at);
-    copied = at + 12;
+    copied = std::min(at + 12, bytes.size());
   }
   if (copied != 0) kept.insert(kept.end(), bytes.begin() + copied, bytes.end());
   return kept;
 }
 
 NormalImage read_png(std::span<const std::uint8_t> file, const std::string& what) {
-  const std::vector<std::uint8_t> cleaned = without_empty_idat(file);
+  const std::vector<std::uint8_t> cleaned = png_for_stb(file, what);
   const std::span<const std::uint8_t> bytes = cleaned.empty() ? file : std::span<const std::uint8_t>(cleaned);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
