@@ -31,6 +31,14 @@ class ReportCommands {
     std::optional<double> sigma2, kappa;
     double prefilter_scale = 1.0;
     bool force = false;
+    // The +taa rows (TradeConfig::taa) and the resolve's options when not the defaults.
+    bool taa = false;
+    std::optional<double> taa_blend, taa_clip_gamma;
+    std::optional<int> taa_sequence;
+    bool taa_unweighted = false;  // resolve in linear radiance (no inverse-luminance weighting)
+    // The animation's camera pan per frame, (right, up) pixels at its resolution, when not the
+    // preset's (TradeConfig::pan_pixels_per_frame).
+    std::vector<double> pan;
     // GPU families whose ISA statistics (Mesa's ACO on RADV null hardware) give the cost column:
     // "vega10,navi21"; the first family's figures rank the variants.
     std::string isa_families;

@@ -2,11 +2,14 @@
 // jitter and projection, the exact reprojection of the scene's rigid motion, convergence to the
 // ground truth on a static scene as the jitter covers the pixel, and variance clipping rejecting
 // the history of a disoccluded highlight.
+#include "cli_support.hpp"
+
 #include "saagen/reference/render/render.hpp"
 #include "saagen/reference/render/taa.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -257,4 +260,29 @@ TEST(TaaTrade, EveryConfigurationOnceMoreUnderTaa) {
             "deferred-avg:geometric+lean+taa/tail");
   config.frames = 1;
   EXPECT_THROW(compute_trade_table(config), std::invalid_argument);
+}
+
+// saagen bench --taa on a tiny run: the per-scene TAA table after the summaries, the +taa rows in
+// the JSON's taa_cases (and not in its summary rows); the resolve's options without --taa, and a
+// --pan without two numbers, are one line and a non-zero exit.
+class TaaCli : public saagen::test::CliTest {};
+
+TEST_F(TaaCli, BenchTaaPrintsTheTaaTable) {
+  const std::string json = (scratch_ / "trade.json").string();
+  const auto run =
+      saagen({"bench", "--scene", "sphere", "--preset", "quick", "--resolution", "8", "--taa", "--pan", "0.2,0.5", "--json", json});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("With TAA"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("none+taa"), std::string::npos) << run.out;
+  const std::string text = saagen::test::read_text(json);
+  EXPECT_NE(text.find("\"taa_cases\""), std::string::npos);
+  EXPECT_NE(text.find("\"configuration\": \"engine-hdrp+taa\""), std::string::npos);
+  EXPECT_EQ(text.find("\"variant\": \"none+taa\""), std::string::npos);
+
+  const auto blend = saagen({"bench", "--preset", "quick", "--taa-blend", "0.2"});
+  EXPECT_NE(blend.exit_code, 0);
+  EXPECT_NE(blend.err.find("add --taa"), std::string::npos) << blend.err;
+  EXPECT_EQ(std::count(blend.err.begin(), blend.err.end(), '\n'), 1) << blend.err;
+  const auto pan = saagen({"bench", "--preset", "quick", "--pan", "1"});
+  EXPECT_NE(pan.exit_code, 0);
 }
