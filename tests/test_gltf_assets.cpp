@@ -84,10 +84,12 @@ struct QuadAsset {
   std::string primitive_extra;
   std::string top_extra;
   int mode = 4;
+  std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  bool normals = true;  // false: no NORMAL attribute (flat normals)
 };
 
 std::string quad_gltf(const QuadAsset& q) {
-  const std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<float>& positions = q.positions;
   const std::vector<float> normals{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
   if (q.uv_mirrored)
@@ -101,7 +103,8 @@ std::string quad_gltf(const QuadAsset& q) {
   return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{)" +
          q.node + R"(}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0, "mode": )" +
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, )" +
+         std::string(q.normals ? R"("NORMAL": 1, )" : "") + R"("TEXCOORD_0": 2}, "indices": 3, "material": 0, "mode": )" +
          std::to_string(q.mode) + q.primitive_extra + R"(}]}],
   "materials": [)" +
          q.material + R"(],
@@ -110,7 +113,7 @@ std::string quad_gltf(const QuadAsset& q) {
          R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
                   {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
                 {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
                 {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
                 {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}])" +
@@ -267,6 +270,39 @@ TEST(GltfAsset, NormalAndRoughnessTexturesDecodeAndShade) {
   EXPECT_NEAR(hit.alpha_scale, std::pow(255.0 / 255.0, 2), 1e-12);  // texel (1, 1) of G: 255
   ASSERT_TRUE(scene.intersect({{0.25, 0.75, 5.0}, {0.0, 0.0, -1.0}}, hit));
   EXPECT_NEAR(hit.alpha_scale, std::pow(1.0 / 255.0, 2), 1e-15);  // G = 0, clamped to 1 / 255
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, QuadPartnersOffTheTriangleAreHelperInvocations) {
+  const fs::path dir = scratch("helpers");
+  // A roof: the quad folded along its diagonal (vertex 2 raised), without NORMAL, so each
+  // triangle is flat with a normal of its own (split at the crease). A GPU's helper invocations
+  // extrapolate the shaded triangle's constant normal, so every quad derivative of the normal is
+  // zero (to rounding), the pixels along the crease included.
+  QuadAsset roof;
+  roof.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0.6f, 0, 1, 0};
+  roof.normals = false;
+  write_quad(dir, "roof.gltf", roof);
+  const SceneId id = register_gltf_scene((dir / "roof.gltf").string());
+  const Scene scene = make_scene(id);
+  ASSERT_TRUE(scene.per_triangle_quads());
+  const GBuffer g = render_gbuffer(scene, 48, 48, 1);
+  int hits = 0, crease_quads = 0;
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      if (!g.at(x, y).hit) continue;
+      ++hits;
+      const QuadFields q = gather_quad(g, x, y);
+      // The same normal to rounding: normalize(b0 n + b1 n + b2 n) with b0 + b1 + b2 = 1.
+      for (int k = 0; k < 4; ++k) expect_near(q.normal[k], g.at(x, y).normal, 1e-15);
+      const int x0 = x & ~1, y0 = y & ~1;
+      for (int k = 0; k < 4; ++k) {
+        const int qx = x0 + (k & 1), qy = y0 + (k >> 1);
+        if (qx < g.width && qy < g.height && g.at(qx, qy).hit && g.at(qx, qy).triangle != g.at(x, y).triangle) ++crease_quads;
+      }
+    }
+  EXPECT_GT(hits, 200);
+  EXPECT_GT(crease_quads, 20);  // the crease runs through the quads the test is about
   fs::remove_all(dir);
 }
 

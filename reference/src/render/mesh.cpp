@@ -193,6 +193,7 @@ void TriangleMesh::fill_hit(int index, const Ray& ray, double t, double b1, doub
   hit.object = objects_.empty() ? 0 : objects_[static_cast<std::size_t>(index)];
   hit.bitangent_sign = b0 * v0.tangent_sign + b1 * v1.tangent_sign + b2 * v2.tangent_sign < 0.0 ? -1.0 : 1.0;
   hit.alpha_scale = 1.0;
+  hit.triangle = index;
   hit.geometric_normal = hit.normal;
   hit.geometric_tangent = hit.tangent;
   hit.geometric_bitangent = hit.bitangent;
@@ -208,6 +209,26 @@ void TriangleMesh::fill_hit(int index, const Ray& ray, double t, double b1, doub
   } else {
     hit.dpdu = hit.dpdv = Vec3{};
   }
+}
+
+bool TriangleMesh::extrapolate(int index, const Ray& ray, SurfaceHit& hit) const {
+  if (index < 0 || index >= static_cast<int>(triangles_.size())) return false;
+  // Moller-Trumbore's Cramer solution without the barycentric bounds.
+  const Edges& g = edges_[static_cast<std::size_t>(index)];
+  const Vec3 pvec = cross(ray.direction, g.e2);
+  const double det = dot(g.e1, pvec);
+  if (det == 0.0) return false;
+  const double inv = 1.0 / det;
+  const Vec3 s = ray.origin - g.p0;
+  const Vec3 qvec = cross(s, g.e1);
+  const double b1 = dot(s, pvec) * inv, b2 = dot(ray.direction, qvec) * inv, t = dot(g.e2, qvec) * inv;
+  if (!(t > 0.0)) return false;
+  const auto& tri = triangles_[static_cast<std::size_t>(index)];
+  const double b0 = 1.0 - b1 - b2;
+  const Vec3 normal = b0 * vertices_[tri[0]].normal + b1 * vertices_[tri[1]].normal + b2 * vertices_[tri[2]].normal;
+  if (!(ref::length(normal) > 1e-12)) return false;
+  fill_hit(index, ray, t, b1, b2, hit);
+  return std::isfinite(hit.tangent.x) && std::isfinite(hit.tangent.y) && std::isfinite(hit.tangent.z);
 }
 
 bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {

@@ -251,7 +251,9 @@ Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, i
   const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
   const bool inside = px >= 0 && py >= 0 && px < width && py < height;
   SurfaceHit partner;
-  if (inside && scene.intersect_surface(ray, partner) && partner.object == object) return partner.uv;
+  if (inside && scene.intersect_surface(ray, partner) && partner.object == object &&
+      (!scene.per_triangle_quads() || partner.triangle == shaded.triangle))
+    return partner.uv;
   return tangent_plane_uv(shaded, ray);
 }
 
@@ -308,8 +310,67 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   f.geometric_half_ts =
       to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal);
   f.uv = hit.uv;
+  f.triangle = hit.triangle;
   return f;
 }
+
+namespace {
+
+QuadPixel quad_pixel(const PixelFields& f) {
+  return {true,
+          f.normal,
+          f.tangent,
+          f.bitangent,
+          f.half_ts,
+          f.geometric_normal,
+          f.geometric_tangent,
+          f.geometric_bitangent,
+          f.geometric_half_ts};
+}
+
+// The fields a helper invocation of the triangle hit at (x, y) computes at quad pixel (px, py).
+QuadPixel helper_pixel(const Scene& scene, const SurfaceHit& shaded, const PixelFields& f, int px, int py, int width, int height) {
+  const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
+  SurfaceHit hit;
+  if (!scene.extrapolate_surface(shaded, ray, hit)) return {};
+  if (const NormalMap* map = scene.normal_map_at(hit)) Scene::apply_normal_map(hit, normalize(map->trilinear(hit.uv, f.lod).normal));
+  const LocalShading s = local_shading(scene, ray, hit);
+  const Vec3 half = normalize(s.to_view + s.to_light);
+  return {true,
+          hit.normal,
+          hit.tangent,
+          hit.bitangent,
+          to_tangent_space(half, hit.tangent, hit.bitangent, hit.normal),
+          hit.geometric_normal,
+          hit.geometric_tangent,
+          hit.geometric_bitangent,
+          to_tangent_space(half, hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal)};
+}
+
+// GBuffer::helpers of a scene with per-triangle quads.
+void fill_helpers(const Scene& scene, GBuffer& g, int threads) {
+  g.helpers.assign(g.pixels.size(), {});
+  parallel_rows(g.height, threads, [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      const PixelFields& f = g.at(x, y);
+      if (!f.hit) continue;
+      SurfaceHit shaded;
+      if (!scene.intersect_surface(scene.camera().generate(x + 0.5, y + 0.5, g.width, g.height), shaded)) continue;
+      for (int q = 0; q < 4; ++q) {
+        const int qx = (x & ~1) + (q & 1), qy = (y & ~1) + (q >> 1);
+        if (qx == x && qy == y) continue;
+        if (qx < g.width && qy < g.height) {
+          const PixelFields& partner = g.at(qx, qy);
+          if (partner.hit && partner.object == f.object && partner.triangle == f.triangle) continue;
+        }
+        g.helpers[static_cast<std::size_t>(y) * g.width + x][static_cast<std::size_t>(q)] =
+            helper_pixel(scene, shaded, f, qx, qy, g.width, g.height);
+      }
+    }
+  });
+}
+
+}  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
   GBuffer g;
@@ -319,6 +380,7 @@ GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
   parallel_rows(height, threads, [&](int y) {
     for (int x = 0; x < width; ++x) g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
   });
+  if (scene.per_triangle_quads()) fill_helpers(scene, g, threads);
   return g;
 }
 
@@ -326,32 +388,39 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
   const PixelFields& self = gbuffer.at(x, y);
   if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
   const int x0 = x & ~1, y0 = y & ~1;
-  std::array<const PixelFields*, 4> source{};
+  const bool per_triangle = !gbuffer.helpers.empty();
+  std::array<QuadPixel, 4> source{};
   std::array<Vec2, 4> frag{};
   for (int q = 0; q < 4; ++q) {
     const int qx = x0 + (q & 1), qy = y0 + (q >> 1);
     frag[q] = {qx + 0.5, qy + 0.5};
-    const PixelFields* f = &self;
+    source[q] = quad_pixel(self);
+    if (qx == x && qy == y) continue;
     if (qx < gbuffer.width && qy < gbuffer.height) {
       const PixelFields& partner = gbuffer.at(qx, qy);
-      if (partner.hit && partner.object == self.object) f = &partner;
+      if (partner.hit && partner.object == self.object && (!per_triangle || partner.triangle == self.triangle)) {
+        source[q] = quad_pixel(partner);
+        continue;
+      }
     }
-    source[q] = f;
+    if (per_triangle) {
+      const QuadPixel& helper = gbuffer.helpers[static_cast<std::size_t>(y) * gbuffer.width + x][static_cast<std::size_t>(q)];
+      if (helper.valid) source[q] = helper;
+    }
   }
-  auto quad = [&](auto member) {
-    using T = std::remove_cvref_t<decltype(source[0]->*member)>;
-    return ref::Quad<T>{source[0]->*member, source[1]->*member, source[2]->*member, source[3]->*member};
+  auto quad = [&](Vec3 QuadPixel::*member) {
+    return ref::Quad<Vec3>{source[0].*member, source[1].*member, source[2].*member, source[3].*member};
   };
   QuadFields q;
-  q.normal = quad(&PixelFields::normal);
-  q.tangent = quad(&PixelFields::tangent);
-  q.bitangent = quad(&PixelFields::bitangent);
-  q.half_ts = quad(&PixelFields::half_ts);
+  q.normal = quad(&QuadPixel::normal);
+  q.tangent = quad(&QuadPixel::tangent);
+  q.bitangent = quad(&QuadPixel::bitangent);
+  q.half_ts = quad(&QuadPixel::half_ts);
   q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
-  q.geometric_normal = quad(&PixelFields::geometric_normal);
-  q.geometric_tangent = quad(&PixelFields::geometric_tangent);
-  q.geometric_bitangent = quad(&PixelFields::geometric_bitangent);
-  q.geometric_half_ts = quad(&PixelFields::geometric_half_ts);
+  q.geometric_normal = quad(&QuadPixel::geometric_normal);
+  q.geometric_tangent = quad(&QuadPixel::geometric_tangent);
+  q.geometric_bitangent = quad(&QuadPixel::geometric_bitangent);
+  q.geometric_half_ts = quad(&QuadPixel::geometric_half_ts);
   q.pixel = (x & 1) + 2 * (y & 1);
   return q;
 }

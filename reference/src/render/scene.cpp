@@ -625,6 +625,20 @@ Scene Scene::with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, 
 bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   const Ray local{object_to_world_.inverse_point(ray.origin), object_to_world_.inverse_vector(ray.direction)};
   if (!shape_->intersect(local, 0.0, hit)) return false;
+  finish_surface_hit(hit);
+  return true;
+}
+
+bool Scene::extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const {
+  const auto* mesh = dynamic_cast<const TriangleMesh*>(shape_.get());
+  if (!mesh || shaded.triangle < 0) return false;
+  const Ray local{object_to_world_.inverse_point(ray.origin), object_to_world_.inverse_vector(ray.direction)};
+  if (!mesh->extrapolate(shaded.triangle, local, hit)) return false;
+  finish_surface_hit(hit);
+  return true;
+}
+
+void Scene::finish_surface_hit(SurfaceHit& hit) const {
   hit.position = object_to_world_.apply_point(hit.position);
   hit.normal = object_to_world_.apply_vector(hit.normal);
   hit.tangent = object_to_world_.apply_vector(hit.tangent);
@@ -636,7 +650,7 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   hit.uv = tiling_ * hit.uv;
   hit.dpdu = object_to_world_.apply_vector(hit.dpdu) / tiling_.x;
   hit.dpdv = object_to_world_.apply_vector(hit.dpdv) / tiling_.y;
-  if (surfaces_) return true;  // the mesh's own texture frame and bitangent sign (SurfaceMaterials)
+  if (surfaces_) return;  // the mesh's own texture frame and bitangent sign (SurfaceMaterials)
   if (normal_map_) {
     set_texture_frame(hit);
     hit.normal = hit.geometric_normal;
@@ -644,7 +658,6 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
     hit.bitangent = hit.geometric_bitangent;
   }
   hit.bitangent_sign = dot(hit.geometric_bitangent, hit.dpdv) < 0.0 ? -1.0 : 1.0;
-  return true;
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {

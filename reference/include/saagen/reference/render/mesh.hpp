@@ -57,6 +57,10 @@ class TriangleMesh final : public Shape {
   // Möller-Trumbore: the distance and barycentrics (b1, b2) of a hit on triangle `index` with
   // t_min < t < t_max; false otherwise (or for a ray in the triangle's plane).
   bool hit_triangle(int index, const Ray& ray, double t_min, double t_max, double& t, double& b1, double& b2) const;
+  // The hit record of triangle `index` where the ray meets its plane, inside the triangle or
+  // not (barycentrics extrapolated: a GPU's helper invocation); false for a ray parallel to the
+  // plane, meeting it at t <= 0, or an extrapolated normal of zero length.
+  bool extrapolate(int index, const Ray& ray, SurfaceHit& hit) const;
   // The hit record of a triangle hit (see the top of this file).
   void fill_hit(int index, const Ray& ray, double t, double b1, double b2, SurfaceHit& hit) const;
 

@@ -134,6 +134,9 @@ struct SurfaceHit {
   // surfaces without one. Scene::intersect fills it from level 0 (bilinear), pixel_fields from
   // the trilinear sample at the quad's LOD.
   double alpha_scale = 1.0;
+  // The triangle hit (TriangleMesh; -1 for the analytic shapes): which attribute planes a GPU's
+  // helper invocations extrapolate (Scene::extrapolate_surface).
+  int triangle = -1;
 };
 
 // An analytic shape in its object space.
@@ -313,6 +316,16 @@ class Scene {
   // The same hit before the normal map: the shading frame equals the geometric frame in a
   // normal-mapped scene (identical to intersect otherwise).
   bool intersect_surface(const Ray& ray, SurfaceHit& hit) const;
+  // The hit a GPU's helper invocation of `shaded`'s triangle evaluates for this ray: the ray
+  // meets the plane of that triangle (t > 0) and every attribute is that triangle's barycentric
+  // interpolation, extrapolated (fields as intersect_surface gives them, before the normal map).
+  // False when the shape is no triangle mesh, shaded.triangle is -1 or the ray misses the plane.
+  bool extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const;
+  // Whether the 1-spp images take quad partners from the shaded triangle's extrapolated
+  // attributes whenever a partner pixel is not on that triangle, as a GPU's helper invocations do
+  // (asset scenes, whose meshes have uv seams and split normals: renderer.hpp); the built-in
+  // scenes take a partner's own fields on the same connected surface.
+  bool per_triangle_quads() const { return surfaces_ != nullptr; }
   // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
   // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
   // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
@@ -357,6 +370,8 @@ class Scene {
   Vec2 tiling_{1.0, 1.0};
   std::string normal_map_source_;  // how the map was made (part of describe())
   std::shared_ptr<const SurfaceMaterials> surfaces_;
+  // intersect_surface's second half: object-space fields to world space and texture units.
+  void finish_surface_hit(SurfaceHit& hit) const;
 };
 
 // The standard scene, rotated by rotation_radians about the vertical axis through its pivot;
