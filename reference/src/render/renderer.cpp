@@ -130,6 +130,12 @@ std::string_view prefilter_name(Prefilter prefilter) {
       return "toksvig";
     case Prefilter::lean:
       return "lean";
+    case Prefilter::unreal:
+      return "unreal";
+    case Prefilter::filament_vmf:
+      return "filament-vmf";
+    case Prefilter::hdrp:
+      return "hdrp";
   }
   return "?";
 }
@@ -463,14 +469,29 @@ double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Der
 }
 
 // The texture's roughness at a pixel in the alpha^2 domain (prefilter.hpp): 2 sigma^2 I
-// (Toksvig) or 2 Sigma_tex (LEAN), as a symmetric matrix in the tangent frame.
-Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params) {
+// (Toksvig), 2 Sigma_tex (LEAN) or an engine's baked alpha'^2 less the base alpha2, as a
+// symmetric matrix in the tangent frame.
+Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params, double alpha2) {
   if (prefilter == Prefilter::none || !f.has_normal_map) return {};
-  if (prefilter == Prefilter::toksvig) {
-    const double v = 2.0 * ref::toksvig_variance(params, ref::length(f.texel.mean_normal));
-    return {v, 0.0, v};
+  const double length = ref::length(f.texel.mean_normal);
+  double v = 0.0;
+  switch (prefilter) {
+    case Prefilter::lean:
+      return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+    case Prefilter::toksvig:
+      v = 2.0 * ref::toksvig_variance(params, length);
+      break;
+    case Prefilter::unreal:
+      v = ref::unreal_composite_alpha2(alpha2, length) - alpha2;
+      break;
+    case Prefilter::filament_vmf:
+      v = ref::filament_vmf_alpha2(alpha2, length) - alpha2;
+      break;
+    default:
+      v = ref::hdrp_texture_alpha2(alpha2, length) - alpha2;
+      break;
   }
-  return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+  return {v, 0.0, v};
 }
 
 // deferred-aniso as the emitted passes compute it: the geometry pass's tensor in the frame built
@@ -503,7 +524,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   const Vec2 alpha2{a2, a2};
   // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
   // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params);
+  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
   // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
   const double texture_isotropic = 0.5 * ref::trace(texture);
   double brdf = 0.0;

@@ -141,10 +141,16 @@ NormalFeed engine_feed(Variant engine);
 //   lean     2 Sigma_tex from the filtered slope moments (Olano & Baker 2010): the full
 //            covariance for the matrix forms, its diagonal for the axis-aligned forms, its
 //            trace for the isotropic ones.
+//   unreal, filament_vmf, hdrp
+//            the engines' offline bakes of the same L (reference/prefilter.hpp: Unreal's
+//            composite texture, Filament's roughness-prefilter, HDRP's normal-map filtering), as
+//            the baked roughness minus the pixel's base alpha^2 (isotropic), so that the SAA
+//            filter then widens the baked roughness as an engine's shader would.
 // Only pixels of a normal-mapped surface have a texture term (0 elsewhere). prefilter_scale
 // multiplies the texture term (1: the formulas as published; the trade measures others).
-enum class Prefilter { none, toksvig, lean };
-std::string_view prefilter_name(Prefilter prefilter);  // "none", "toksvig", "lean"
+enum class Prefilter { none, toksvig, lean, unreal, filament_vmf, hdrp };
+// "none", "toksvig", "lean", "unreal", "filament-vmf", "hdrp"
+std::string_view prefilter_name(Prefilter prefilter);
 
 // The lobe a filtered roughness is evaluated with (brdf.hpp, docs/FILTERED_GGX.md):
 //   papers   GGX of the filtered roughness (alpha^2 + kernel), as the papers do;
