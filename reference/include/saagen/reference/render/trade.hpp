@@ -109,8 +109,9 @@ struct TradeConfig {
   std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
   // On normal-mapped scenes: these variants fed the geometric normal (curvature) with the map's
   // detail prefiltered into roughness, the engines' recommended split; `none` with a
-  // prefilter is texture prefiltering alone.
-  std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean};
+  // prefilter is texture prefiltering alone. Toksvig and LEAN, then the engines' bakes of the
+  // mean-normal length (Unreal, Filament, HDRP; docs/PREFILTER.md compares them).
+  std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean, Prefilter::unreal, Prefilter::filament_vmf, Prefilter::hdrp};
   std::vector<Variant> prefiltered_variants{
       Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
       Variant::deferred_avg, Variant::deferred_projected_space};
