@@ -422,3 +422,34 @@ TEST_F(GltfCli, BenchAndReportOnAnAsset) {
   EXPECT_NE(unknown.exit_code, 0);
   EXPECT_NE(unknown.err.find("neither a scene"), std::string::npos) << unknown.err;
 }
+
+TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
+  const std::string manifest = (scratch_ / "clearcoat.saagen.toml").string();
+  const auto run = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string text = saagen::test::read_text(manifest);
+  // The 19 materials its primitives use and the 6 clearcoat layers as second lobes.
+  std::size_t materials = 0;
+  for (std::size_t at = text.find("[[material]]"); at != std::string::npos; at = text.find("[[material]]", at + 1)) ++materials;
+  EXPECT_EQ(materials, 25u) << text;
+  EXPECT_NE(text.find("domain = \"perceptual\""), std::string::npos);
+  EXPECT_NE(text.find("name = \"CoatNorm_Coated_coat\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\n\n"), std::string::npos) << text;
+  EXPECT_NE(run.out.find("material CoatNorm_Coated_coat (deferred"), std::string::npos) << run.out;
+  // Written once: the same bytes again are left alone; emit takes the manifest as any other.
+  const auto again = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
+  EXPECT_NE(again.out.find("unchanged " + manifest), std::string::npos) << again.out;
+  const auto emit = saagen({"emit", "--manifest", manifest, "-o", (scratch_ / "bundle").string()});
+  ASSERT_EQ(emit.exit_code, 0) << emit.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "bundle" / "saa_ClearCoatTest_perceptual.glsl"));
+
+  write_file(scratch_ / "bad.glb", "glTF");
+  const auto bad = saagen({"plan", "--gltf", (scratch_ / "bad.glb").string(), "-o", (scratch_ / "bad.toml").string(), "--no-cost"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--gltf " + (scratch_ / "bad.glb").string() + ": "), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.toml"));
+  const auto no_output = saagen({"plan", "--gltf", kClearCoat, "--no-cost"});
+  EXPECT_NE(no_output.exit_code, 0);
+  EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
+}
