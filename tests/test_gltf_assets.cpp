@@ -343,6 +343,11 @@ TEST(GltfAsset, BadAssetsAreOneLineAndRenderNothing) {
     limits.max_texture_size = 512;
     EXPECT_NE(bad_asset_message(kClearCoat, limits).find("1024x1024, beyond the limit of 512"), std::string::npos);
   }
+  {  // more decoded texels than the limit (PlasticWrap_normals.jpg alone is 1024 x 1024)
+    GltfLimits limits;
+    limits.max_texels = 1024 * 1024;
+    EXPECT_NE(bad_asset_message(kClearCoat, limits).find("texels, beyond the limit of 1048576"), std::string::npos);
+  }
   {  // a required extension the loader does not implement
     QuadAsset q;
     q.top_extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"])";

@@ -295,6 +295,9 @@ class Loader {
     }
     const View v = view(primitive.indices, where + " indices");
     if (v.components != 1) fail(where + " indices: not scalars");
+    if (v.count > 3 * limits_.max_triangles + 2)
+      fail(where + " indices: " + std::to_string(v.count) + " indices, beyond the limit of " + std::to_string(limits_.max_triangles) +
+           " triangles");
     out.resize(v.count);
     for (std::size_t i = 0; i < v.count; ++i) {
       const unsigned char* p = v.data + i * v.stride;
@@ -341,10 +344,23 @@ class Loader {
     if (!pot(image.width) || !pot(image.height))
       fail(what + ": " + name + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
            "; the MIP chains are exact 2x2 box means and need power-of-two sizes (resize it)");
+    const std::size_t texels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    if (texels_ + texels > limits_.max_texels)
+      fail(what + ": " + name + " brings the decoded textures to " + std::to_string(texels_ + texels) + " texels, beyond the limit of " +
+           std::to_string(limits_.max_texels));
+    texels_ += texels;
     if ((image.bits != 8 && image.bits != 16) || image.component < 1 ||
         image.image.size() < static_cast<std::size_t>(image.width) * image.height * image.component * (image.bits / 8))
       fail(what + ": " + name + " has an unexpected pixel layout");
     return image;
+  }
+
+  // The image a texture samples (textures sharing an image share its decoded maps); the texture's
+  // own index, negated and offset, when it has none (texture_image then reports it).
+  int image_of(int texture) const {
+    if (texture < 0 || texture >= static_cast<int>(model_.textures.size())) return -1 - texture;
+    const int source = model_.textures[static_cast<std::size_t>(texture)].source;
+    return source >= 0 ? source : -1 - texture;
   }
 
   // Channel c of texel i in [0, 1] (8 or 16 bits; a missing channel reads as the last one).
@@ -361,7 +377,7 @@ class Loader {
 
   std::shared_ptr<const ScalarMap> green_map(const tinygltf::TextureInfo& info, const std::string& what) {
     if (info.index < 0) return nullptr;
-    const std::string key = "g" + std::to_string(info.index);
+    const std::string key = "g" + std::to_string(image_of(info.index));
     if (auto found = scalar_cache_.find(key); found != scalar_cache_.end()) return found->second;
     const tinygltf::Image& image = texture_image(info.index, info.texCoord, info.extensions, what);
     std::vector<double> values(static_cast<std::size_t>(image.width) * image.height);
@@ -379,7 +395,7 @@ class Loader {
     if (texture < 0) return nullptr;
     std::ostringstream key;
     key.precision(17);
-    key << "n" << texture << "," << scale;
+    key << "n" << image_of(texture) << "," << scale;
     if (auto found = normal_cache_.find(key.str()); found != normal_cache_.end()) return found->second;
     const tinygltf::Image& image = texture_image(texture, texcoord, extensions, what);
     if (image.component < 3) fail(what + ": a normal texture needs RGB, image has " + std::to_string(image.component) + " channel(s)");
@@ -548,6 +564,9 @@ class Loader {
     if (material > default_material_) fail(where + ": material " + std::to_string(primitive.material) + " does not exist");
     const View positions = attribute(primitive, "POSITION", where, 3, false);
     const std::size_t n = positions.count;
+    if (vertices_.size() + n > limits_.max_vertices)
+      fail(where + ": " + std::to_string(vertices_.size() + n) + " vertices so far, beyond the limit of " +
+           std::to_string(limits_.max_vertices));
     const bool has_normals = primitive.attributes.count("NORMAL") > 0;
     const bool has_uv = primitive.attributes.count("TEXCOORD_0") > 0;
     const bool has_tangents = primitive.attributes.count("TANGENT") > 0;
@@ -665,6 +684,7 @@ class Loader {
   std::vector<int> triangle_objects_;
   std::vector<int> object_material_;
   int generated_tangents_ = 0;
+  mutable std::size_t texels_ = 0;  // level-0 texels of the textures decoded so far
   std::optional<Camera> camera_;
   std::optional<Light> light_;
 };

@@ -66,10 +66,13 @@ class GltfError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What one asset may hold, checked before the memory is taken (a vertex costs ~100 bytes, a
+// triangle with its BVH share ~200, a decoded normal-map texel with its MIP chain ~120).
 struct GltfLimits {
   std::size_t max_triangles = 4'000'000;
-  std::size_t max_vertices = 12'000'000;
-  int max_texture_size = 8192;  // texels per side
+  std::size_t max_vertices = 12'000'000;  // flat-shaded primitives take 3 per triangle
+  int max_texture_size = 4096;            // texels per side, checked before decoding
+  std::size_t max_texels = 4096 * 4096;   // level-0 texels of all decoded textures together
 };
 
 struct GltfMaterial {
