@@ -49,14 +49,15 @@ void check_cache_writable(const std::string& cache_dir) {
   ::unlink(probe.c_str());
 }
 
-// The scenes of --scene: a standard scene's name, or a glTF 2.0 asset (loaded and registered;
-// a bad asset is one line naming the file and what is wrong, before anything renders).
+// The scenes of --scene: a standard scene's name, or a glTF 2.0 asset (loaded and registered,
+// with its coat lobe's scene NAME-coat after it when it has clearcoat; a bad asset is one line
+// naming the file and what is wrong, before anything renders).
 std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
   std::vector<render::SceneId> ids;
   for (const std::string& name : names) {
-    render::SceneId id{};
+    std::vector<render::SceneId> found;
     if (const auto standard = render::scene_from_name(name); standard && !render::registered_scene(*standard)) {
-      id = *standard;
+      found.push_back(*standard);
     } else {
       const std::string extension = std::filesystem::path(name).extension().string();
       if (extension != ".gltf" && extension != ".glb" && extension != ".GLTF" && extension != ".GLB") {
@@ -66,12 +67,13 @@ std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
         throw Error(fmt::format("--scene {}: neither a scene ({}) nor a glTF 2.0 asset (.gltf or .glb)", name, known));
       }
       try {
-        id = render::register_gltf_scene(name);
+        found = render::register_gltf_scenes(name);
       } catch (const render::GltfError& error) {
         throw Error(fmt::format("--scene {}", error.what()));
       }
     }
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+    for (render::SceneId id : found)
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   }
   return ids;
 }
@@ -79,8 +81,13 @@ std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
 // What each glTF scene of a run is made of (counts, materials, camera and light), for stdout.
 std::string asset_summaries(const render::TradeConfig& config) {
   std::string text;
-  for (render::SceneId id : config.scenes)
-    if (const auto asset = render::gltf_asset_of(id)) text += asset->summary();
+  std::vector<const render::GltfAsset*> printed;
+  for (render::SceneId id : config.scenes) {
+    const auto asset = render::gltf_asset_of(id);
+    if (!asset || std::find(printed.begin(), printed.end(), asset.get()) != printed.end()) continue;
+    printed.push_back(asset.get());
+    text += asset->summary();
+  }
   return text;
 }
 

@@ -306,6 +306,44 @@ TEST(GltfAsset, QuadPartnersOffTheTriangleAreHelperInvocations) {
   fs::remove_all(dir);
 }
 
+TEST(GltfAsset, TheClearcoatLobeIsASecondScene) {
+  const std::vector<SceneId> ids = register_gltf_scenes(kClearCoat);
+  ASSERT_EQ(ids.size(), 2u);
+  EXPECT_EQ(scene_name(ids[1]), "ClearCoatTest-coat");
+  EXPECT_TRUE(scene_has_normal_map(ids[1]));  // CoatNorm_Coated's and SharedNorm_Coated's coat normal textures
+  EXPECT_EQ(register_gltf_scenes(kEngine).size(), 1u);
+  const GltfAsset& asset = *gltf_asset_of(ids[0]);
+  const GBuffer base = render_gbuffer(make_scene(ids[0]), 96, 96, 1);
+  const GBuffer coat = render_gbuffer(make_scene(ids[1]), 96, 96, 1);
+  const Image coat_none = render_variant(coat, Variant::none, {0.1, false}, {}, ref::Derivative::coarse, 1);
+  int coated_lit = 0, base_mapped = 0, base_norm_coated = 0, partial_low = 0, partial_high = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const PixelFields& f = coat.at(x, y);
+      if (!f.hit) continue;
+      const GltfMaterial& m = asset.materials[static_cast<std::size_t>(asset.object_material[static_cast<std::size_t>(f.object)])];
+      if (!m.clearcoat) {
+        EXPECT_EQ(coat_none.at(x, y), 0.0f) << m.name;  // no coat, no coat lobe: black, yet occluding
+        continue;
+      }
+      if (coat_none.at(x, y) > 0.0f) ++coated_lit;
+      if (m.name == "BaseNorm_Coated") {
+        // The coat does not inherit the base's normal texture: its normal is the geometric one.
+        ++base_norm_coated;
+        EXPECT_EQ(f.normal.x, f.geometric_normal.x);
+        EXPECT_EQ(f.normal.z, f.geometric_normal.z);
+        if (ref::length(base.at(x, y).normal - base.at(x, y).geometric_normal) > 1e-3) ++base_mapped;
+      }
+      if (m.name == "Partial_Coated") (f.weight < 0.5 ? partial_low : partial_high) += 1;
+    }
+  EXPECT_GT(coated_lit, 0);
+  EXPECT_GT(base_norm_coated, 10);
+  EXPECT_GT(base_mapped, base_norm_coated / 2);  // where the base lobe is normal-mapped
+  // clearcoatTexture (R) leaves part of Partial_Coated uncoated.
+  EXPECT_GT(partial_low, 0);
+  EXPECT_GT(partial_high, 0);
+}
+
 TEST(GltfAsset, BadAssetsAreOneLineAndRenderNothing) {
   const fs::path dir = scratch("bad");
   {  // a truncated GLB

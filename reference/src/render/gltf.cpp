@@ -158,12 +158,39 @@ class Loader {
     }
     surfaces->description = description.str();
     asset.surfaces = std::move(surfaces);
+    asset.coat_surfaces = coat_surfaces(asset);
     asset.mesh = std::make_shared<const TriangleMesh>("gltf:" + asset.name, std::move(vertices_), std::move(triangles_),
                                                       std::move(triangle_objects_));
     return asset;
   }
 
  private:
+  // The coat lobe's textures and weights per object (null when no material has a coat).
+  std::shared_ptr<const SurfaceMaterials> coat_surfaces(const GltfAsset& asset) const {
+    bool any = false;
+    auto coats = std::make_shared<SurfaceMaterials>();
+    std::ostringstream description;
+    description.precision(17);
+    description << "coat;";
+    for (std::size_t object = 0; object < object_material_.size(); ++object) {
+      const GltfMaterial& m = asset.materials[static_cast<std::size_t>(object_material_[object])];
+      SurfaceTextures t;
+      t.weight = m.clearcoat ? m.clearcoat_factor : 0.0;
+      if (m.clearcoat && m.clearcoat_factor > 0.0) {
+        any = true;
+        t.normal_map = m.clearcoat_normal_map;
+        t.roughness_map = m.clearcoat_roughness_map;
+        t.weight_map = m.clearcoat_map;
+      }
+      description << "o" << object << ":" << t.weight << "," << (t.normal_map ? t.normal_map->describe() : "-") << ","
+                  << (t.roughness_map ? t.roughness_map->describe() : "-") << "," << (t.weight_map ? t.weight_map->describe() : "-") << ";";
+      coats->by_object.push_back(std::move(t));
+    }
+    if (!any) return nullptr;
+    coats->description = description.str();
+    return coats;
+  }
+
   // --- file -------------------------------------------------------------------------------
 
   static bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int req_width, int req_height,
@@ -376,12 +403,17 @@ class Loader {
   }
 
   std::shared_ptr<const ScalarMap> green_map(const tinygltf::TextureInfo& info, const std::string& what) {
+    return channel_map(info, 1, what);
+  }
+
+  // One channel (0 = R, 1 = G) of a texture as a ScalarMap, linear values in [0, 1].
+  std::shared_ptr<const ScalarMap> channel_map(const tinygltf::TextureInfo& info, int c, const std::string& what) {
     if (info.index < 0) return nullptr;
-    const std::string key = "g" + std::to_string(image_of(info.index));
+    const std::string key = "c" + std::to_string(c) + "," + std::to_string(image_of(info.index));
     if (auto found = scalar_cache_.find(key); found != scalar_cache_.end()) return found->second;
     const tinygltf::Image& image = texture_image(info.index, info.texCoord, info.extensions, what);
     std::vector<double> values(static_cast<std::size_t>(image.width) * image.height);
-    for (std::size_t i = 0; i < values.size(); ++i) values[i] = channel(image, i, 1);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = channel(image, i, c);
     auto map = std::make_shared<const ScalarMap>(image.width, image.height, std::move(values));
     scalar_cache_[key] = map;
     return map;
@@ -459,6 +491,14 @@ class Loader {
         info.texCoord = roughness.texcoord;
         info.extensions = roughness.extensions;
         out.clearcoat_roughness_map = green_map(info, what + " clearcoatRoughnessTexture");
+      }
+      const ExtensionTexture coat = extension_texture(c, "clearcoatTexture");
+      if (coat.index >= 0) {
+        tinygltf::TextureInfo info;
+        info.index = coat.index;
+        info.texCoord = coat.texcoord;
+        info.extensions = coat.extensions;
+        out.clearcoat_map = channel_map(info, 0, what + " clearcoatTexture");
       }
       const ExtensionTexture normal = extension_texture(c, "clearcoatNormalTexture");
       out.clearcoat_normal_scale = normal.scale;
@@ -760,6 +800,13 @@ std::string GltfMaterial::describe() const {
   return s.str();
 }
 
+bool GltfAsset::has_coat_normal_map() const {
+  if (!coat_surfaces) return false;
+  for (const SurfaceTextures& t : coat_surfaces->by_object)
+    if (t.normal_map) return true;
+  return false;
+}
+
 bool GltfAsset::has_normal_map() const {
   for (std::size_t object = 0; object < object_material.size(); ++object)
     if (materials[static_cast<std::size_t>(object_material[object])].normal_map) return true;
@@ -772,7 +819,7 @@ std::string GltfAsset::summary() const {
     << " primitives (" << generated_tangent_primitives << " with generated tangents), " << materials.size() - 1 << " materials; camera "
     << (camera ? "the asset's" : "framed from the bounds") << ", light "
     << (light ? (light->kind == Light::Kind::directional ? "the asset's directional" : "the asset's point") : "directional (default)")
-    << "\n";
+    << (coat_surfaces ? "; its clearcoat lobe is the scene " + name + "-coat" : std::string()) << "\n";
   // The materials the primitives use, those alike once (with their count), in order.
   std::vector<std::pair<std::string, int>> lines;
   for (int m : object_material) {
@@ -823,6 +870,13 @@ Camera frame_bounds(Vec3 lo, Vec3 hi) {
   return camera;
 }
 
+Scene make_gltf_coat_scene(const std::shared_ptr<const GltfAsset>& asset, double rotation_radians) {
+  const Scene base = make_gltf_scene(asset, rotation_radians);
+  Scene coat(asset->name + "-coat", asset->mesh, Rigid{}, base.camera(), base.light(), 0.5 * (asset->bounds_lo + asset->bounds_hi),
+             rotation_radians);
+  return coat.with_surface_materials(asset->coat_surfaces);
+}
+
 Scene make_gltf_scene(const std::shared_ptr<const GltfAsset>& asset, double rotation_radians) {
   const Vec3 centre = 0.5 * (asset->bounds_lo + asset->bounds_hi);
   Camera camera = asset->camera ? *asset->camera : frame_bounds(asset->bounds_lo, asset->bounds_hi);
@@ -840,22 +894,20 @@ Scene make_gltf_scene(const std::shared_ptr<const GltfAsset>& asset, double rota
   return scene.with_surface_materials(asset->surfaces);
 }
 
-SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits) {
-  std::error_code error;
-  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
-  const std::string key = error ? path : canonical.string();
-  const std::string name = sanitized_stem(path);
-  if (const auto existing = scene_from_name(name)) {
-    if (const auto asset = gltf_asset_of(*existing); asset && asset->path == key) return *existing;
-  }
-  auto asset = std::make_shared<const GltfAsset>(load_gltf(key, limits));
+namespace {
+
+SceneId register_asset_lobe(const std::shared_ptr<const GltfAsset>& asset, const std::string& path, bool coat) {
   RegisteredScene registered;
-  registered.name = asset->name;
-  registered.has_normal_map = asset->has_normal_map();
-  registered.make = [asset](double rotation) { return make_gltf_scene(asset, rotation); };
+  registered.name = coat ? asset->name + "-coat" : asset->name;
+  registered.has_normal_map = coat ? asset->has_coat_normal_map() : asset->has_normal_map();
+  if (coat) {
+    registered.make = [asset](double rotation) { return make_gltf_coat_scene(asset, rotation); };
+  } else {
+    registered.make = [asset](double rotation) { return make_gltf_scene(asset, rotation); };
+  }
   SceneId id;
   try {
-    id = register_scene(std::move(registered), key);
+    id = register_scene(std::move(registered), asset->path + (coat ? "#coat" : ""));
   } catch (const std::invalid_argument& e) {
     throw GltfError(path + ": " + e.what());
   }
@@ -864,6 +916,24 @@ SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits) {
   registry.by_scene[static_cast<int>(id)] = asset;
   return id;
 }
+
+}  // namespace
+
+std::vector<SceneId> register_gltf_scenes(const std::string& path, const GltfLimits& limits) {
+  std::error_code error;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
+  const std::string key = error ? path : canonical.string();
+  std::shared_ptr<const GltfAsset> asset;
+  if (const auto existing = scene_from_name(sanitized_stem(path))) {
+    if (const auto registered = gltf_asset_of(*existing); registered && registered->path == key) asset = registered;
+  }
+  if (!asset) asset = std::make_shared<const GltfAsset>(load_gltf(key, limits));
+  std::vector<SceneId> ids{register_asset_lobe(asset, path, false)};
+  if (asset->coat_surfaces) ids.push_back(register_asset_lobe(asset, path, true));
+  return ids;
+}
+
+SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits) { return register_gltf_scenes(path, limits).front(); }
 
 std::shared_ptr<const GltfAsset> gltf_asset_of(SceneId id) {
   AssetRegistry& registry = asset_registry();

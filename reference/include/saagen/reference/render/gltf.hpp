@@ -29,6 +29,14 @@
 //               The trade shades the base specular lobe: its GGX alpha is the trade's alpha
 //               times the square of the roughness texture's G (SurfaceHit::alpha_scale), so
 //               the alpha sweep stays the trade's axis and the texture's variation is kept.
+//               An asset with clearcoat gets a second scene, NAME-coat (make_gltf_coat_scene):
+//               the coat lobe alone, a second filtered lobe on the same geometry, with the
+//               coat's normal texture (the geometric normal where it has none, as the
+//               extension specifies), its roughness texture's G scaling the trade's alpha, and
+//               the weight clearcoatFactor x R of clearcoatTexture (0 on uncoated surfaces,
+//               which still occlude); the trade's Fresnel rows are then the extension's coat
+//               Fresnel (F0 = 0.04, ior 1.5). The base lobe's attenuation by the coat
+//               (1 - clearcoat F) is not applied to NAME.
 //   textures    PNG or JPEG, 8 or 16 bits, power-of-two sizes, REPEAT wrapping, TEXCOORD_0:
 //               MIP chains of exact 2x2 box means (NormalMap, ScalarMap), trilinear at the
 //               quad's implicit LOD in the 1-spp images, level 0 bilinear in the ground truth.
@@ -86,6 +94,7 @@ struct GltfMaterial {
   double clearcoat_factor = 0.0;
   double clearcoat_roughness_factor = 0.0;  // perceptual
   std::shared_ptr<const ScalarMap> clearcoat_roughness_map;
+  std::shared_ptr<const ScalarMap> clearcoat_map;  // R of clearcoatTexture
   std::shared_ptr<const NormalMap> clearcoat_normal_map;
   double clearcoat_normal_scale = 1.0;
   // KHR_materials_anisotropy
@@ -109,8 +118,11 @@ struct GltfAsset {
   int primitives = 0;                                // instanced primitives (objects)
   int generated_tangent_primitives = 0;              // of those, with tangents generated here
   std::shared_ptr<const SurfaceMaterials> surfaces;  // per object textures, for Scene
+  // The coat lobe's per object textures and weights; null when no material has a coat.
+  std::shared_ptr<const SurfaceMaterials> coat_surfaces;
 
   bool has_normal_map() const;
+  bool has_coat_normal_map() const;
   // Counts, materials and where camera and light come from (for the bench header).
   std::string summary() const;
 };
@@ -136,10 +148,16 @@ Camera frame_bounds(Vec3 lo, Vec3 hi);
 // The trade scene of an asset, rotated about the vertical axis through the bounds' centre.
 Scene make_gltf_scene(const std::shared_ptr<const GltfAsset>& asset, double rotation_radians = 0.0);
 
+// The coat lobe's scene of an asset with clearcoat (see the top of this file), named NAME-coat.
+// Precondition: asset->coat_surfaces.
+Scene make_gltf_coat_scene(const std::shared_ptr<const GltfAsset>& asset, double rotation_radians = 0.0);
+
 // Loads the asset (GltfError on a bad one) and registers it as a scene (register_scene) named
 // by its file's stem, keyed by its canonical path: the id the trade takes in
 // TradeConfig::scenes. The same path twice gives the same id and loads once.
 SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits = {});
+// The same, and the asset's coat scene after it when it has clearcoat.
+std::vector<SceneId> register_gltf_scenes(const std::string& path, const GltfLimits& limits = {});
 // The asset behind a registered glTF scene; null for any other id.
 std::shared_ptr<const GltfAsset> gltf_asset_of(SceneId id);
 

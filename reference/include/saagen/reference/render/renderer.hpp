@@ -227,6 +227,8 @@ struct PixelFields {
   // at its own implicit LOD; 1 without one. Every form filters material.alpha * alpha_scale.
   double alpha_scale = 1.0;
   int triangle = -1;  // SurfaceHit::triangle
+  // SurfaceHit::weight, its texture sampled trilinearly at its own LOD: multiplies the radiance.
+  double weight = 1.0;
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.

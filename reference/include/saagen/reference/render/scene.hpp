@@ -137,6 +137,9 @@ struct SurfaceHit {
   // The triangle hit (TriangleMesh; -1 for the analytic shapes): which attribute planes a GPU's
   // helper invocations extrapolate (Scene::extrapolate_surface).
   int triangle = -1;
+  // The weight of the lobe at the hit (SurfaceTextures::weight, times its texture): the radiance
+  // is multiplied by it; 1 on every built-in scene.
+  double weight = 1.0;
 };
 
 // An analytic shape in its object space.
@@ -290,6 +293,10 @@ std::span<const SceneId> content_scenes();                      // nmap-sphere, 
 struct SurfaceTextures {
   std::shared_ptr<const NormalMap> normal_map;     // null: no normal texture
   std::shared_ptr<const ScalarMap> roughness_map;  // null: no roughness texture
+  // The lobe's weight (a clearcoat layer's factor, 0 where the surface has no coat) and its
+  // texture (clearcoatTexture's R), multiplying the radiance; 1 and none for a base lobe.
+  double weight = 1.0;
+  std::shared_ptr<const ScalarMap> weight_map;
 };
 // The alpha factor of a roughness texture's sample g (G channel): g^2, g clamped to
 // [1 / 255, 1] (the smallest non-zero 8-bit value: a zero alpha is a delta lobe no GGX
@@ -345,6 +352,8 @@ class Scene {
   // else the scene's single normal map (and no roughness map).
   const NormalMap* normal_map_at(const SurfaceHit& hit) const;
   const ScalarMap* roughness_map_at(const SurfaceHit& hit) const;
+  // The per-surface textures of a hit in an asset scene; null otherwise.
+  const SurfaceTextures* surface_textures_at(const SurfaceHit& hit) const { return surfaces_ ? surfaces_->at(hit.object) : nullptr; }
   // Whether any surface of the scene has a normal map.
   bool has_normal_map() const;
   Vec2 uv_tiling() const { return tiling_; }
