@@ -50,6 +50,11 @@ TextureCommands::TextureCommands(CLI::App& app) {
                        "Roughness methods: glTF metallicRoughnessTexture layout, R8G8B8A8_UNORM with G = perceptual roughness, B = "
                        "--metallic, R = A = 1");
   prefilter_->add_option("--metallic", metallic_, "--gltf: metallic value of the B channel, in [0, 1]")->capture_default_str();
+  prefilter_
+      ->add_option("--scale", scale_,
+                   "Roughness methods: the bake's addition to alpha^2 times this, in [0, 4] (1: as published; 0.5 with toksvig: the "
+                   "best measured with the tail-preserving filtered GGX, docs/PREFILTER.md)")
+      ->capture_default_str();
   prefilter_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 }
 
@@ -61,6 +66,7 @@ int TextureCommands::run() const {
   options.float32 = float32_;
   options.gltf = gltf_;
   options.metallic = metallic_;
+  options.scale = scale_;
   options.validate();
   const std::vector<std::uint8_t> input = read_input(input_);
   check_output_paths({output_}, force_, {input_});  // before decoding; never over the input, not even with --force

@@ -26,6 +26,7 @@ class TextureCommands {
   bool float32_ = false;
   bool gltf_ = false;
   double metallic_ = 0.0;
+  double scale_ = 1.0;
   bool force_ = false;
 };
 

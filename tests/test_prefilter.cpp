@@ -178,6 +178,11 @@ TEST(EnginePrefilters, HandComputedRoughnessOfAKnownLevel) {
     EXPECT_NEAR(pf::method_alpha2(c.method, c.base, 0.8), c.expected, 1e-14) << pf::to_string(c.method);
     EXPECT_EQ(nlohmann::json::parse(key_value(image, "saagen.prefilter"))["method"], std::string(pf::to_string(c.method)));
   }
+  // --scale multiplies the addition: Toksvig at half strength adds 0.25 at L = 0.8.
+  pf::Options half{pf::Method::toksvig, pf::Domain::alpha2, 0.25, true};
+  half.scale = 0.5;
+  EXPECT_NEAR(value_at(round_trip(levels, half), 1, 0), 0.5, kFloatUlp * 0.5);
+  EXPECT_EQ(nlohmann::json::parse(key_value(round_trip(levels, half), "saagen.prefilter"))["scale"], 0.5);
   // Below the HDRP cap (L = 0.95): kappa = 1.992625 / 0.0975, 1 / (2 kappa) = 0.0975 / 3.98525.
   EXPECT_NEAR(pf::method_alpha2(pf::Method::hdrp, 0.1, 0.95), 0.1 + 0.0975 / 3.98525, 1e-14);
   EXPECT_NEAR(pf::method_alpha2(pf::Method::filament_vmf, 0.1, 0.95), 0.1 + 0.195 / 1.992625, 1e-14);
@@ -455,6 +460,8 @@ TEST_F(TexturePrefilterCli, EngineMethodsAndTheGltfLayout) {
   expect_one_line_failure(unknown, refused);
   EXPECT_NE(unknown.err.find("toksvig, lean, unreal, filament-vmf, hdrp"), std::string::npos) << unknown.err;
   expect_one_line_failure(saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--gltf", "--metallic", "2"}), refused);
+  expect_one_line_failure(saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--method", "lean", "--scale", "0.5"}),
+                          refused);
 }
 
 TEST_F(TexturePrefilterCli, Ktx2InputToLeanMoments) {

@@ -196,7 +196,8 @@ std::vector<std::uint8_t> roughness_level(const Level& level, const Options& opt
   std::vector<std::uint8_t> out;
   for (std::size_t t = 0; t < level.mean_normal.size() / 3; ++t) {
     const double* m = &level.mean_normal[3 * t];
-    const double alpha2 = method_alpha2(options.method, base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
+    const double baked = method_alpha2(options.method, base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
+    const double alpha2 = options.scale == 1.0 ? baked : std::clamp(base + options.scale * (baked - base), 0.0, 1.0);
     if (options.gltf) {
       out.insert(out.end(), {255, unorm8(from_alpha2(alpha2, Domain::perceptual)), unorm8(options.metallic), 255});
       continue;
@@ -262,6 +263,7 @@ nlohmann::json layout_json(const std::vector<Level>& levels, const Options& opti
       json["output_domain"] = std::string(to_string(options.domain));
     }
     json["formula"] = std::string(roughness_formula(options.method));
+    json["scale"] = options.scale;  // a = base_alpha2 + scale (formula - base_alpha2), saturated
   } else {
     json["format"] = "R32G32B32A32_SFLOAT";
     json["layers"] = {{"E[x]", "E[y]", "E[x^2]", "E[y^2]"}, {"E[xy]", "0", "0", "0"}};
@@ -447,6 +449,8 @@ void Options::validate() const {
                     float32 ? "float32" : "gltf"));
   if (float32 && gltf) throw Error("--float32 and --gltf exclude each other: the glTF layout is R8G8B8A8_UNORM");
   if (!(metallic >= 0.0 && metallic <= 1.0)) throw Error(fmt::format("--metallic {} is outside [0, 1]", metallic));
+  if (!(scale >= 0.0 && scale <= 4.0)) throw Error(fmt::format("--scale {} is outside [0, 4]", scale));
+  if (scale != 1.0 && !writes_roughness(method)) throw Error("--scale applies to the roughness methods; LEAN moments are not scaled");
 }
 
 Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options) {

@@ -112,9 +112,12 @@ struct Options {
   Domain domain = Domain::perceptual;
   double roughness = 0.0;  // base roughness, in `domain`, in [0, 1]
   bool float32 = false;    // roughness methods: R32_SFLOAT instead of R16_SFLOAT
-  bool gltf = false;       // roughness methods: glTF metallicRoughness layout (top of this file), output perceptual
-  double metallic = 0.0;   // --gltf: the B channel, in [0, 1]
-  void validate() const;   // throws saagen::Error
+  // Roughness methods: the bake's addition to alpha^2 times this, a' = a + scale (bake(a) - a),
+  // saturated (1: as published; `saagen bench --prefilter-scale` measures the same scale).
+  double scale = 1.0;
+  bool gltf = false;      // roughness methods: glTF metallicRoughness layout (top of this file), output perceptual
+  double metallic = 0.0;  // --gltf: the B channel, in [0, 1]
+  void validate() const;  // throws saagen::Error
 };
 
 // The KTX2 image with the full MIP chain and the "saagen.prefilter" JSON (and a saagen marker,
