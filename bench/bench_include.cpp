@@ -1,11 +1,15 @@
 // Include-handler overhead: the time to compile a user shader that includes a saagen snippet
 // through saagen's include handler (generated in memory) against the same shader compiled with
 // the emitted file on disk, through shaderc and through glslang. Interleaved rounds, medians,
-// ratios measured in one run.
+// ratios measured in one run. Then the #include expansion of `saagen compile` on the guarded
+// double-include tree (21 headers, each including the next twice: 2^21 expansions without the
+// guards) against the same headers included once each (a chain): linear in the unique text
+// means a ratio near 1 (the tree has twice the include lines).
 //   build/bench/bench_include [--rounds N]
 #include "include_shaders.hpp"
 
 #include "saagen/integrate/include_handler.hpp"
+#include "saagen/io/include_expansion.hpp"
 #include "saagen/io/output.hpp"
 
 #include <algorithm>
@@ -15,6 +19,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -82,6 +88,32 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+// h0 .. h20 in memory, guarded, each including the next `includes` times.
+std::map<std::string, std::string> guarded_headers(int includes) {
+  constexpr int levels = 21;
+  std::map<std::string, std::string> files;
+  for (int level = 0; level < levels; ++level) {
+    const std::string guard = "H" + std::to_string(level);
+    std::string body;
+    for (int copy = 0; copy < includes && level + 1 < levels; ++copy) body += "#include \"h" + std::to_string(level + 1) + ".glsl\"\n";
+    if (level + 1 == levels) body = "float leaf() { return 1.0; }\n";
+    files["h" + std::to_string(level) + ".glsl"] = "#ifndef " + guard + "\n#define " + guard + "\n" + body + "#endif\n";
+  }
+  return files;
+}
+
+// The expanded text's size (so that the work is not optimised away).
+std::size_t expand(const std::map<std::string, std::string>& files) {
+  const saagen::IncludeSources sources{
+      [&](const std::string& name, const saagen::IncludeFile&) -> std::shared_ptr<const saagen::IncludeFile> {
+        return std::make_shared<const saagen::IncludeFile>(saagen::IncludeFile{name, name, files.at(name)});
+      },
+      [](const std::string&) -> std::string { return {}; }};
+  std::size_t size = 0;
+  for (const auto& piece : saagen::expand_includes({"h0.glsl", "h0.glsl", files.at("h0.glsl")}, sources).pieces) size += piece.text.size();
+  return size;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -127,5 +159,16 @@ int main(int argc, char** argv) {
               median(shaderc_handler) / median(shaderc_disk));
   std::printf("  glslang  handler %.2f ms  on disk %.2f ms  ratio %.3f\n", median(glslang_handler), median(glslang_disk),
               median(glslang_handler) / median(glslang_disk));
+
+  const auto tree = guarded_headers(2), chain = guarded_headers(1);
+  std::vector<double> tree_ms, chain_ms;
+  std::size_t tree_bytes = 0, chain_bytes = 0;
+  for (int round = 0; round < rounds; ++round) {
+    tree_ms.push_back(milliseconds([&] { tree_bytes = expand(tree); }));
+    chain_ms.push_back(milliseconds([&] { chain_bytes = expand(chain); }));
+  }
+  std::printf("#include expansion, 21 guarded headers, %d interleaved rounds, medians:\n", rounds);
+  std::printf("  each included twice %.3f ms (%zu bytes)  once %.3f ms (%zu bytes)  ratio %.3f\n", median(tree_ms), tree_bytes,
+              median(chain_ms), chain_bytes, median(tree_ms) / median(chain_ms));
   return 0;
 }

@@ -55,7 +55,7 @@ GlintCommands::GlintCommands(CLI::App& app) {
   glints_->require_subcommand(1);
 
   emit_ = glints_->add_subcommand("emit", "Write the glint snippets (glints: textureLod baseline; glints-ggaa: GGAA)");
-  emit_->add_option("--target,-t", target_, "glsl or hlsl")->capture_default_str();
+  emit_->add_option("--target,-t", target_, "Target language: glsl, gles (GLSL ES 3.00: WebGL2), hlsl or wgsl")->capture_default_str();
   emit_->add_option("--variant,-v", variants_, "glints or glints-ggaa (repeatable); both when none is named");
   emit_->add_option("--prefix", prefix_, "Prefix of every global name")->capture_default_str();
   emit_->add_option("--precision", precision_, "fp32 only: the glint BRDF has no derived or proven half-precision bound")

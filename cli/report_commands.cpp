@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/reference/render/gltf.hpp"
 #include "saagen/report/report.hpp"
 #ifdef SAAGEN_HAVE_ISA_COST
 #include "saagen/report/isa_cost.hpp"
@@ -9,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -47,6 +49,48 @@ void check_cache_writable(const std::string& cache_dir) {
   ::unlink(probe.c_str());
 }
 
+// The scenes of --scene: a standard scene's name, or a glTF 2.0 asset (loaded and registered,
+// with its coat lobe's scene NAME-coat after it when it has clearcoat; a bad asset is one line
+// naming the file and what is wrong, before anything renders).
+std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
+  std::vector<render::SceneId> ids;
+  for (const std::string& name : names) {
+    std::vector<render::SceneId> found;
+    if (const auto standard = render::scene_from_name(name); standard && !render::registered_scene(*standard)) {
+      found.push_back(*standard);
+    } else {
+      const std::string extension = std::filesystem::path(name).extension().string();
+      if (extension != ".gltf" && extension != ".glb" && extension != ".GLTF" && extension != ".GLB") {
+        std::string known;
+        for (render::SceneId s : render::all_scenes()) known += std::string(known.empty() ? "" : ", ") + std::string(render::scene_name(s));
+        for (render::SceneId s : render::content_scenes()) known += ", " + std::string(render::scene_name(s));
+        throw Error(fmt::format("--scene {}: neither a scene ({}) nor a glTF 2.0 asset (.gltf or .glb)", name, known));
+      }
+      try {
+        found = render::register_gltf_scenes(name);
+      } catch (const render::GltfError& error) {
+        throw Error(fmt::format("--scene {}", error.what()));
+      }
+    }
+    for (render::SceneId id : found)
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  }
+  return ids;
+}
+
+// What each glTF scene of a run is made of (counts, materials, camera and light), for stdout.
+std::string asset_summaries(const render::TradeConfig& config) {
+  std::string text;
+  std::vector<const render::GltfAsset*> printed;
+  for (render::SceneId id : config.scenes) {
+    const auto asset = render::gltf_asset_of(id);
+    if (!asset || std::find(printed.begin(), printed.end(), asset.get()) != printed.end()) continue;
+    printed.push_back(asset.get());
+    text += asset->summary();
+  }
+  return text;
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -58,12 +102,25 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     check_cache_writable(common.cache_dir);
   }
   render::TradeConfig config = report::preset_config(common.preset);
+  if (!common.scenes.empty()) config.scenes = scene_ids(common.scenes);
+  if (common.resolution > 0) {
+    config.width = config.height = common.resolution;
+    config.flicker_width = config.flicker_height = std::max(2, common.resolution / 2);
+  }
   config.cache_dir = common.cache_dir;
   config.threads = common.threads;
   config.keep_images = keep_images;
   if (common.sigma2) config.params.sigma2 = *common.sigma2;
   if (common.kappa) config.params.kappa = *common.kappa;
   config.prefilter_scale = common.prefilter_scale;
+  config.taa = common.taa;
+  if (common.taa_blend) config.taa_options.blend = *common.taa_blend;
+  if (common.taa_clip_gamma) config.taa_options.clip_gamma = *common.taa_clip_gamma;
+  if (common.taa_sequence) config.taa_options.sequence_length = *common.taa_sequence;
+  config.taa_options.luma_weighting = !common.taa_unweighted;
+  if ((common.taa_blend || common.taa_clip_gamma || common.taa_sequence || common.taa_unweighted) && !common.taa)
+    throw Error("--taa-blend, --taa-clip-gamma, --taa-sequence and --taa-unweighted set the TAA resolve: add --taa");
+  if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
   return config;
 }
 
@@ -143,6 +200,33 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
                       "GPU families (comma-separated: vega10, navi21, navi10, polaris10) whose ISA statistics from Mesa's ACO "
                       "compiler (RADV null hardware, no GPU needed) give the cost column; the first family ranks the variants");
   command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
+  command->add_flag("--taa", common.taa,
+                    "Also measure every configuration under TAA (rows CONFIGURATION+taa: Halton jitter, exact reprojection, "
+                    "variance clipping; the animation's frames after a warm-up of one jitter cycle)");
+  command->add_option("--taa-blend", common.taa_blend, "With --taa: the current frame's weight in the history (default 0.1)")
+      ->check(finite_range(1e-3, 1.0));
+  command
+      ->add_option("--taa-clip-gamma", common.taa_clip_gamma,
+                   "With --taa: the variance clipping box half-width in standard deviations (default 1)")
+      ->check(finite_range(1e-3, 1e6));
+  command->add_option("--taa-sequence", common.taa_sequence, "With --taa: Halton (2, 3) jitter positions per cycle (default 8)")
+      ->check(CLI::Range(1, 256));
+  command->add_flag("--taa-unweighted", common.taa_unweighted,
+                    "With --taa: resolve in linear radiance instead of Karis's inverse-luminance weighting (x / (1 + x)), which "
+                    "converges below a sub-pixel highlight's mean");
+  command
+      ->add_option("--pan", common.pan,
+                   "RIGHT,UP: the animation's camera pan per frame in pixels at its resolution instead of the preset's (0.11,0.37: "
+                   "0.39 px per frame); e.g. 0.03,0.1 moves highlights slowly, 0.22,0.74 at 0.77 px per frame")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(finite_range(-8.0, 8.0));
+  command->add_option("--scene", common.scenes,
+                      "Measure these scenes instead of the preset's: a scene's name (sphere, torus-knot, ...) or a glTF 2.0 asset "
+                      "(.gltf or .glb: its meshes, normal and roughness textures, first camera or a view framed from its bounds, "
+                      "KHR_lights_punctual light or a directional one); repeatable");
+  command->add_option("--resolution", common.resolution, "Main image size in pixels instead of the preset's (the animation at half of it)")
+      ->check(CLI::Range(4, 4096));
 }
 
 ReportCommands::ReportCommands(CLI::App& app) {
@@ -181,18 +265,24 @@ int ReportCommands::run_bench() const {
   if (isa && !bench_isa_table_.empty())
     write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
   if (bench_isa_only_) return 0;
-  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
+  std::cout << asset_summaries(config);
+  const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
+  const render::TradeTable table = report::without_taa_rows(measured);
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
-  if (bench_every_case_) std::cout << render::format_trade_table(table) << "\n";
+  if (bench_every_case_) std::cout << render::format_trade_table(measured) << "\n";
   std::cout << report::format_summary(summary, cost_table);
   std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}-spp ground truth; cost: {})\n",
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
-  if (!bench_json_.empty())
-    write_outputs({{bench_json_, report::trade_json(table, summary, cost_table).dump(2) + "\n"}}, bench_common_.force,
-                  {bench_common_.cost_json});
+  if (config.taa) std::cout << "\n" << report::format_taa_summary(measured);
+  if (!bench_json_.empty()) {
+    nlohmann::json json = report::trade_json(table, summary, cost_table);
+    if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
+    write_outputs({{bench_json_, json.dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
+  }
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;
@@ -203,9 +293,12 @@ int ReportCommands::run_report() const {
   const render::TradeConfig config = configure(report_common_, true);
   check_output_paths(report::report_paths(config, report_directory_), report_common_.force, {report_common_.cost_json});
   measure_isa(report_common_.isa_families, costs, std::cerr);
-  const render::TradeTable table = render::compute_trade_table(config, report::progress_bar());
+  std::cout << asset_summaries(config);
+  const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  const render::TradeTable table = report::without_taa_rows(measured);
   const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
   std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());
+  if (config.taa) std::cout << report::format_taa_summary(measured) << "\n";
   std::cout << report::format_verdict(table);
   return 0;
 }

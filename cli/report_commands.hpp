@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace saagen::cli {
 
@@ -30,9 +31,22 @@ class ReportCommands {
     std::optional<double> sigma2, kappa;
     double prefilter_scale = 1.0;
     bool force = false;
+    // The +taa rows (TradeConfig::taa) and the resolve's options when not the defaults.
+    bool taa = false;
+    std::optional<double> taa_blend, taa_clip_gamma;
+    std::optional<int> taa_sequence;
+    bool taa_unweighted = false;  // resolve in linear radiance (no inverse-luminance weighting)
+    // The animation's camera pan per frame, (right, up) pixels at its resolution, when not the
+    // preset's (TradeConfig::pan_pixels_per_frame).
+    std::vector<double> pan;
     // GPU families whose ISA statistics (Mesa's ACO on RADV null hardware) give the cost column:
     // "vega10,navi21"; the first family's figures rank the variants.
     std::string isa_families;
+    // The scenes to measure instead of the preset's: standard scene names or glTF 2.0 assets
+    // (.gltf / .glb paths), and the main resolution instead of the preset's (the animation's
+    // at half of it).
+    std::vector<std::string> scenes;
+    int resolution = 0;
   };
 
  private:

@@ -3,10 +3,12 @@
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/integrate/include_handler.hpp"
+#include "saagen/io/include_expansion.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/products/spirv_library.hpp"
+#include "saagen/reference/render/gltf.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 #include "saagen/target/target.hpp"
@@ -14,10 +16,16 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace saagen::cli {
 namespace {
@@ -26,40 +34,56 @@ namespace fs = std::filesystem;
 
 std::string read_source(const fs::path& path) { return read_input_file(path, source_size_limit, "a GLSL or HLSL source file"); }
 
-// `#include "name"` on a line of its own: the name, else nullopt. `#include <name>` is an error.
-std::optional<std::string> include_target(std::string_view line, const std::string& where) {
-  std::size_t index = line.find_first_not_of(" \t");
-  if (index == std::string_view::npos || line[index] != '#') return std::nullopt;
-  index = line.find_first_not_of(" \t", index + 1);
-  if (index == std::string_view::npos || line.substr(index, 7) != "include") return std::nullopt;
-  index = line.find_first_not_of(" \t", index + 7);
-  if (index == std::string_view::npos) throw Error(fmt::format("{}: #include names no file", where));
-  const char open = line[index];
-  // <saagen/...> names a snippet generated in memory (saagen/integrate/include_handler.hpp); "..." a file.
-  if (open == '<' && line.substr(index + 1, 7) == "saagen/") {
-    const auto close = line.find('>', index + 1);
-    if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
-    return std::string(line.substr(index + 1, close - index - 1));
-  }
-  if (open != '"') {
-    throw Error(fmt::format(
-        "{}: only #include \"FILE\" (searched next to the file, then in -I directories) and #include <saagen/...> are supported", where));
-  }
-  const auto close = line.find('"', index + 1);
-  if (close == std::string_view::npos) throw Error(fmt::format("{}: unterminated #include", where));
-  return std::string(line.substr(index + 1, close - index - 1));
-}
-
-// Expands #include "..." into named source pieces, so that compiler messages name the file
-// and line they come from (a `#line` directive restarts the count after each include).
-class IncludeExpander {
+// The files `compile` reads for #include: "..." next to the including file, then in the -I
+// directories; <saagen/...> generated in memory (saagen/integrate/include_handler.hpp). Records
+// every file read and whether a saagen snippet among them needs native 16-bit types.
+class IncludeReader {
  public:
-  explicit IncludeExpander(std::vector<std::string> directories) : directories_(std::move(directories)) {}
+  explicit IncludeReader(std::vector<std::string> directories) : directories_(std::move(directories)) {}
 
-  void expand(const fs::path& file, int depth) {
-    if (depth > 32) throw Error(fmt::format("{}: #include nested deeper than 32 (a cycle?)", file.string()));
-    const std::string text = read_source(file);
-    files_.push_back(file);
+  std::shared_ptr<const IncludeFile> read(const fs::path& path) {
+    auto& file = cache_[path.string()];
+    if (file) return file;
+    file = std::make_shared<const IncludeFile>(IncludeFile{path.string(), identity(path), read_source(path)});
+    files_.push_back(path);
+    note_marker(file->text);
+    return file;
+  }
+
+  IncludeSources sources() {
+    return {[this](const std::string& name, const IncludeFile& from) { return find(name, from); },
+            [this](const std::string& name) {
+              const EmittedFile file = resolve_include(name, {});
+              native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
+              return file.content;
+            }};
+  }
+
+  // Every file read: the input and what it includes.
+  const std::vector<fs::path>& files() const { return files_; }
+  bool native_16bit() const { return native_16bit_; }
+
+ private:
+  // The first candidate that exists and is not a directory (a FIFO or device is then refused by
+  // the reader, not reported as missing).
+  std::shared_ptr<const IncludeFile> find(const std::string& name, const IncludeFile& from) {
+    std::vector<fs::path> candidates = {fs::path(from.name).parent_path() / name};
+    for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
+    for (const fs::path& candidate : candidates) {
+      std::error_code error;
+      const fs::file_status status = fs::status(candidate, error);
+      if (!error && fs::exists(status) && !fs::is_directory(status)) return read(candidate);
+    }
+    return nullptr;
+  }
+
+  static std::string identity(const fs::path& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) return path.string();
+    return fmt::format("{}:{}", status.st_dev, status.st_ino);
+  }
+
+  void note_marker(const std::string& text) {
     if (const auto marker = find_marker(text)) {
       try {
         native_16bit_ = native_16bit_ || builtin_target(marker->target).with_precision(marker->precision).native_16bit;
@@ -67,56 +91,10 @@ class IncludeExpander {
         // Not a file this saagen can read the precision of; compile it as it is.
       }
     }
-    std::string chunk;
-    std::istringstream lines(text);
-    int number = 0;
-    for (std::string line; std::getline(lines, line);) {
-      ++number;
-      const auto included = include_target(line, fmt::format("{}:{}", file.string(), number));
-      if (!included) {
-        chunk += line + "\n";
-        continue;
-      }
-      if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-      if (is_saagen_include(*included))
-        add_generated(*included, fmt::format("{}:{}", file.string(), number));
-      else
-        expand(resolve(*included, file, number), depth + 1);
-      chunk = fmt::format("#line {}\n", number + 1);
-    }
-    if (!chunk.empty()) pieces_.push_back({file.string(), chunk});
-  }
-
-  std::vector<SourcePiece>& pieces() { return pieces_; }
-  // Every file read: the input and what it includes.
-  const std::vector<fs::path>& files() const { return files_; }
-  bool native_16bit() const { return native_16bit_; }
-
- private:
-  // A saagen/ name: the snippet generated in memory, as the include handlers resolve it.
-  void add_generated(const std::string& name, const std::string& where) {
-    EmittedFile file;
-    try {
-      file = resolve_include(name, {});
-    } catch (const Error& error) {
-      throw Error(fmt::format("{}: {}", where, error.what()));
-    }
-    native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
-    pieces_.push_back({name, file.content});
-  }
-
-  fs::path resolve(const std::string& name, const fs::path& from, int line) const {
-    std::vector<fs::path> candidates = {from.parent_path() / name};
-    for (const std::string& directory : directories_) candidates.push_back(fs::path(directory) / name);
-    for (const fs::path& candidate : candidates) {
-      std::error_code error;
-      if (fs::is_regular_file(candidate, error)) return candidate;
-    }
-    throw Error(fmt::format("{}:{}: #include \"{}\" not found next to the file or in the -I directories", from.string(), line, name));
   }
 
   std::vector<std::string> directories_;
-  std::vector<SourcePiece> pieces_;
+  std::map<std::string, std::shared_ptr<const IncludeFile>> cache_;
   std::vector<fs::path> files_;
   bool native_16bit_ = false;
 };
@@ -186,7 +164,84 @@ std::string_view stage_name(ShaderStage stage) {
   return stage == ShaderStage::vertex ? "vertex" : stage == ShaderStage::compute ? "compute" : "fragment";
 }
 
+// An identifier from a glTF name (manifest.hpp's rule: a letter, then letters, digits, '_' or,
+// where allowed, '-'; at most 64 characters).
+std::string identifier_from(std::string_view text, bool allow_dash, std::string_view fallback) {
+  std::string out;
+  for (char c : text) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allow_dash && c == '-');
+    if (out.size() < 56) out += keep ? c : '_';
+  }
+  if (out.empty() || !std::isalpha(static_cast<unsigned char>(out.front()))) out = std::string(fallback) + "_" + out;
+  return out.substr(0, 56);
+}
+
+// The scene manifest of a glTF asset (docs/GLTF_SCENES.md, "The manifest of an asset"): one
+// material per glTF material its primitives use, in the asset's order, and after each
+// KHR_materials_clearcoat material its coat as a second filtered lobe. Every glTF mesh has
+// tangents (its own, or generated by the loader), so tangents = true; normal_maps where the
+// lobe's normal texture exists (the coat's own: a coat without one is shaded with the geometric
+// normal, KHR_materials_clearcoat); anisotropic where KHR_materials_anisotropy has a non-zero
+// strength or a texture; domain = "perceptual", glTF's roughness (roughnessFactor x G).
+std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view path, const std::vector<std::string>& targets) {
+  std::ostringstream s;
+  s << "# Scene manifest of " << asset.path << ", written by `saagen plan --gltf` from its materials.\n"
+    << "# Edit it freely; `saagen plan` and `saagen emit --manifest` read it as any manifest.\n\n";
+  s << "name = \"" << identifier_from(asset.name, false, "asset") << "\"\n";
+  s << "targets = [";
+  for (std::size_t i = 0; i < targets.size(); ++i) s << (i ? ", " : "") << "\"" << targets[i] << "\"";
+  s << "]\n";
+  s << "domain = \"perceptual\"  # glTF's roughness: roughnessFactor x G of metallicRoughnessTexture\n";
+  std::vector<bool> used(asset.materials.size(), false);
+  for (int m : asset.object_material) used[static_cast<std::size_t>(m)] = true;
+  std::set<std::string> names;
+  auto unique = [&](std::string name, std::size_t index) {
+    if (names.count(name)) name += "_" + std::to_string(index);
+    names.insert(name);
+    return name;
+  };
+  auto lobe = [&](const std::string& name, bool normal_maps, bool anisotropic, const std::string& comment) {
+    s << "\n# " << comment << "\n[[material]]\nname = \"" << name << "\"\npath = \"" << path << "\"\ntangents = true\n";
+    if (normal_maps) s << "normal_maps = true\n";
+    if (anisotropic) s << "anisotropic = true\n";
+  };
+  for (std::size_t m = 0; m < asset.materials.size(); ++m) {
+    if (!used[m]) continue;
+    const render::GltfMaterial& material = asset.materials[m];
+    const std::string name = unique(identifier_from(material.name, true, "material"), m);
+    const bool anisotropic = material.anisotropy && (material.anisotropy_strength != 0.0 || material.anisotropy_texture);
+    lobe(name, material.normal_map != nullptr, anisotropic, "glTF material " + std::to_string(m) + ": " + material.describe());
+    if (material.clearcoat && material.clearcoat_factor > 0.0)
+      lobe(unique(name.substr(0, 50) + "_coat", m), material.clearcoat_normal_map != nullptr, false,
+           "its KHR_materials_clearcoat layer, a second filtered lobe: roughness " +
+               fmt::format("{}", material.clearcoat_roughness_factor) +
+               (material.clearcoat_normal_map ? ", the coat's own normal texture" : ", the geometric normal (no coat normal texture)"));
+  }
+  return s.str();
+}
+
 }  // namespace
+
+std::string SceneCommands::write_gltf_manifest(const Catalogue& catalogue) const {
+  if (plan_output_.empty()) throw Error("--gltf " + plan_gltf_ + ": name the manifest to write with --output FILE");
+  check_output_paths({plan_output_}, plan_force_, {plan_gltf_});
+  render::GltfAsset asset;
+  try {
+    asset = render::load_gltf(plan_gltf_);
+  } catch (const render::GltfError& error) {
+    throw Error(fmt::format("--gltf {}", error.what()));
+  }
+  const std::string text = gltf_manifest_text(asset, plan_path_, plan_targets_);
+  parse_manifest(text, plan_output_, catalogue);  // what is written must plan: checked before writing
+  const WriteReport report = write_outputs({{plan_output_, text}, ownership_sidecar(plan_output_, text, "scene manifest of " + plan_gltf_)},
+                                           plan_force_, {plan_gltf_});
+  for (const fs::path& path : report.written)
+    if (path == fs::path(plan_output_)) std::cout << "wrote     " << path.string() << "\n";
+  for (const fs::path& path : report.unchanged)
+    if (path == fs::path(plan_output_)) std::cout << "unchanged " << path.string() << "\n";
+  std::cout << "\n";
+  return plan_output_;
+}
 
 SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CLI::Option*>& emit_exclusive) {
   plan_ = app.add_subcommand("plan", "Print, per material of a scene manifest, the variant chosen, why, what to call, and its cost");
@@ -194,6 +249,17 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON, as bench_shading --json writes); rules otherwise");
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
+  CLI::Option* gltf = plan_->add_option("--gltf", plan_gltf_,
+                                        "Write the scene manifest of a glTF 2.0 asset (.gltf or .glb) to --output, one material per glTF "
+                                        "material its meshes use and one per clearcoat layer, then plan it");
+  gltf->excludes(plan_->get_option("MANIFEST"));
+  plan_->add_option("--output,-o", plan_output_, "With --gltf: the manifest to write (TOML)")->needs(gltf);
+  plan_->add_option("--path", plan_path_, "With --gltf: the render path of every material")
+      ->check(CLI::IsMember({"forward", "deferred"}))
+      ->capture_default_str()
+      ->needs(gltf);
+  plan_->add_option("--target", plan_targets_, "With --gltf: the manifest's targets (repeatable)")->capture_default_str()->needs(gltf);
+  plan_->add_flag("--force", plan_force_, "With --gltf: overwrite a manifest that saagen did not write")->needs(gltf);
 
   CLI::Option* manifest =
       emit->add_option("--manifest,-m", emit_manifest_, "Scene manifest: one bundle per target with only the functions its materials need");
@@ -220,12 +286,13 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
 
 int SceneCommands::run_plan(const Catalogue& catalogue) const {
   if (plan_rules_) std::cout << rules_text();
-  if (plan_manifest_.empty()) {
+  if (plan_manifest_.empty() && plan_gltf_.empty()) {
     if (plan_rules_) return 0;
-    throw Error("plan needs a MANIFEST (see examples/scene.saagen.toml), or --rules");
+    throw Error("plan needs a MANIFEST (see examples/scene.saagen.toml), --gltf ASSET -o MANIFEST, or --rules");
   }
   if (plan_rules_) std::cout << "\n";
-  const Manifest manifest = load_manifest(plan_manifest_, catalogue);
+  const std::string manifest_path = plan_gltf_.empty() ? plan_manifest_ : write_gltf_manifest(catalogue);
+  const Manifest manifest = load_manifest(manifest_path, catalogue);
   const Catalogue& planned = scene_catalogue(manifest, catalogue);
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
@@ -266,16 +333,19 @@ int SceneCommands::run_compile() const {
   const CompileRequest settings = compile_settings(input);
   check_include_directories(compile_include_dirs_);
 
-  IncludeExpander expander(compile_include_dirs_);
-  expander.expand(input, 0);
-  check_not_an_input(output, expander.files());
+  IncludeReader reader(compile_include_dirs_);
+  const IncludeExpansion expansion = expand_includes(*reader.read(input), reader.sources());
+  check_not_an_input(output, reader.files());
   check_output_paths({output}, compile_force_);
 
   CompileRequest request = settings;
-  request.hlsl_native_16bit = expander.native_16bit();
-  request.sources = std::move(expander.pieces());
+  request.hlsl_native_16bit = reader.native_16bit();
+  for (const ExpandedPiece& piece : expansion.pieces) request.sources.push_back({piece.name, piece.text});
   const CompileResult result = compile_to_spirv(request);
-  if (!result.ok) throw Error(located(input, first_compiler_message(result.log)));
+  if (!result.ok) {
+    const std::string message = first_compiler_message(result.log);
+    throw Error(deferred_include_error(expansion, message).value_or(located(input, message)));
+  }
   if (!has_entry_point(result.spirv)) {
     throw Error(fmt::format("{}: no entry point '{}' for the {} stage; pass --entry with the name of the shader's entry function",
                             input.string(), request.entry_point, stage_name(request.stage)));

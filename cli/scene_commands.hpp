@@ -28,6 +28,9 @@ class SceneCommands {
   int run_compile() const;
 
  private:
+  // plan --gltf: writes the asset's manifest to --output (checked by parsing it first) and
+  // returns its path.
+  std::string write_gltf_manifest(const Catalogue& catalogue) const;
   // Stage, language, client and entry point from the options and the input's extension.
   CompileRequest compile_settings(const std::filesystem::path& input) const;
 
@@ -36,6 +39,12 @@ class SceneCommands {
   std::string plan_trade_table_;
   bool plan_no_cost_ = false;
   bool plan_rules_ = false;
+  // plan --gltf ASSET -o MANIFEST: the manifest written from a glTF asset's materials.
+  std::string plan_gltf_;
+  std::string plan_output_;
+  std::string plan_path_ = "forward";
+  std::vector<std::string> plan_targets_{"glsl"};
+  bool plan_force_ = false;
 
   std::string emit_manifest_;
   std::string emit_trade_table_;

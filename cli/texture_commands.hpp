@@ -24,6 +24,9 @@ class TextureCommands {
   std::string domain_ = "perceptual";
   double roughness_ = 0.0;
   bool float32_ = false;
+  bool gltf_ = false;
+  double metallic_ = 0.0;
+  double scale_ = 1.0;
   bool force_ = false;
 };
 

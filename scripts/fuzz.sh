@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ is needed (Debian: apt-get install clang)"; exit 1; }
-targets=(${FUZZ_TARGETS:-manifest ktx2 ppm_lean template})
+targets=(${FUZZ_TARGETS:-manifest ktx2 ppm_lean template png include})
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 # vptr is off: Debian's glslang is built without RTTI.
@@ -28,7 +28,9 @@ for target in "${targets[@]}"; do
     ktx2) seeds=fuzz/corpus_ktx2; extra=(-max_len=65536) ;;
     ppm_lean) seeds=fuzz/corpus_ppm_lean; extra=(-max_len=65536) ;;
     template) seeds=fuzz/corpus_template; extra=(-dict=fuzz/template.dict -max_len=65536) ;;
-    *) echo "fuzz.sh: unknown target '$target' (manifest, ktx2, ppm_lean, template)"; exit 2 ;;
+    png) seeds=fuzz/corpus_png; extra=(-max_len=4096) ;;  # deflate expands ~1000x: 4 MB of pixels at most
+    include) seeds=fuzz/corpus_include; extra=(-dict=fuzz/include.dict -max_len=65536) ;;
+    *) echo "fuzz.sh: unknown target '$target' (manifest, ktx2, ppm_lean, template, png, include)"; exit 2 ;;
   esac
   mkdir -p "build-fuzz/corpus_$target"
   start=$(date +%s)

@@ -16,6 +16,10 @@ packages=(
   vulkan-validationlayers
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
+  # glTF 2.0 assets as trade scenes (reference/render/gltf.hpp: `saagen bench --scene ASSET`),
+  # and content nobody here authored: Khronos's CC-BY 4.0 sample models ClearCoatTest and
+  # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/test_gltf_assets.cpp)
+  libtinygltf-dev assimp-testmodels
   # the report test opens the generated HTML report in headless Chromium; chromium also ships
   # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -32,6 +33,61 @@ TEST(GlintDictionary, IsDeterministicForASeed) {
   // The last LOD does not depend on the seed: it is the Beckmann marginal.
   for (int d = 0; d < params.count; ++d) {
     for (int x = 0; x < params.resolution; ++x) EXPECT_EQ(first.density(params.lods - 1, d, x), other.density(params.lods - 1, d, x));
+  }
+}
+
+// Lobes are stored narrower by the variance that the texel mean (dx^2 / 12) and the sampler's
+// linear interpolation (dx^2 / 6) add, so that the texture reads back lobes of lobe_sigma
+// (docs/GLINTS.md section 1): measured on LOD 0 (one lobe pair) as the standard deviation of the
+// linear interpolation between texel centres around each lobe that lies 6 sigma inside (0, x_max).
+TEST(GlintDictionary, LobesReadBackWithTheModelsWidth) {
+  glints::DictionaryParams params;
+  params.count = 32;
+  params.lods = 2;
+  const double dx = params.range() / params.resolution;
+  EXPECT_DOUBLE_EQ(params.stored_lobe_sigma(), std::sqrt(params.lobe_sigma * params.lobe_sigma - dx * dx / 4.0));
+  const auto dictionary = glints::generate_dictionary(params);
+  const auto read = [&](int d, double x) {  // linear between texel centres, flat beyond the first and last
+    const double p = std::clamp(x / dx - 0.5, 0.0, params.resolution - 1.0);
+    const int t = std::min(static_cast<int>(p), params.resolution - 2);
+    return (1.0 - (p - t)) * dictionary.density(0, d, t) + (p - t) * dictionary.density(0, d, t + 1);
+  };
+  int lobes = 0;
+  double worst = 0.0;
+  for (int d = 0; d < params.count; ++d) {
+    double mass = 0.0, first = 0.0;
+    const double step = dx / 64.0;
+    for (double x = 0.5 * step; x < params.range(); x += step) {
+      mass += read(d, x) * step;
+      first += x * read(d, x) * step;
+    }
+    const double centre = first / mass, reach = 6.0 * params.lobe_sigma;
+    if (centre < reach || centre > params.range() - reach) continue;
+    double m0 = 0.0, m1 = 0.0, m2 = 0.0;
+    for (double x = centre - reach + 0.5 * step; x < centre + reach; x += step) {
+      const double v = read(d, x) * step;
+      m0 += v;
+      m1 += x * v;
+      m2 += x * x * v;
+    }
+    const double sigma = std::sqrt(m2 / m0 - (m1 / m0) * (m1 / m0));
+    worst = std::max(worst, std::fabs(sigma / params.lobe_sigma - 1.0));
+    ++lobes;
+  }
+  std::cout << "[ lobes    ] " << lobes << " LOD-0 lobes read back with sigma within " << worst << " (relative) of " << params.lobe_sigma
+            << "; stored with " << params.stored_lobe_sigma() << "\n";
+  ASSERT_GE(lobes, 8);
+  EXPECT_LT(worst, 0.01);  // without the correction: sqrt(1 + dx^2 / (4 sigma^2)) - 1 = 14 %
+  // A texel wider than 2 lobe sigmas holds each lobe as its box; every distribution still
+  // integrates to 1.
+  params.resolution = 8;
+  EXPECT_EQ(params.stored_lobe_sigma(), 0.0);
+  const auto coarse = glints::generate_dictionary(params);
+  const double coarse_dx = params.range() / params.resolution;
+  for (int d = 0; d < params.count; ++d) {
+    double sum = 0.0;
+    for (int x = 0; x < params.resolution; ++x) sum += coarse.density(0, d, x);
+    EXPECT_NEAR(2.0 * coarse_dx * sum, 1.0, 1e-12) << d;
   }
 }
 

@@ -493,6 +493,31 @@ TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
   EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, plan).find("  normal    deferred-sum:geometric"), std::string::npos);
 }
 
+// An engine's bake is recommended only where it measured lowest, with the command that writes
+// it and the best figure without a prefilter; where a configuration without one wins, the advice
+// names the best prefiltered one it beat.
+TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereItWins) {
+  const auto plan_with = [](const std::string& rows) {
+    const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [)" + rows + "]}", "t.json");
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"),
+                              &table)
+        .materials.at(0);
+  };
+  const auto wins = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.05},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp", "error": 0.04},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.06})");
+  EXPECT_EQ(wins.prefilter, "hdrp");
+  EXPECT_NE(wins.normal_advice.find("saagen texture prefilter --method hdrp --gltf"), std::string::npos) << wins.normal_advice;
+  EXPECT_NE(wins.normal_advice.find("0.04 against 0.05 without a prefilter (deferred-avg)"), std::string::npos) << wins.normal_advice;
+  const auto loses = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.03},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+filament-vmf", "error": 0.04})");
+  EXPECT_EQ(loses.prefilter, "none");
+  EXPECT_NE(loses.normal_advice.find("no texture prefilter: the best prefiltered configuration, deferred-avg:geometric+filament-vmf, "
+                                     "measured 0.04 against 0.03"),
+            std::string::npos)
+      << loses.normal_advice;
+}
+
 TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
   const saagen::ScenePlan plan =
       saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"));

@@ -146,6 +146,79 @@ TEST(Toksvig, TwoNormalsAtPlusMinusThetaGiveTheAnalyticVariance) {
   EXPECT_EQ(pf::toksvig_alpha2(0.1, 0.0), 1.0);
 }
 
+// --- The engines' bakes (docs/PREFILTER.md) ------------------------------------------------------
+
+// A 2x2 level of normals (+-0.6, 0, 0.8): level 1 holds the mean (0, 0, 0.8), L = 0.8. By hand:
+//   Toksvig (1 - L) / L = 0.25: a' = a + 0.5;
+//   vMF kappa = (2.4 - 0.512) / (1 - 0.64) = 1.888 / 0.36 = 5.2444...;
+//   filament-vmf a' = a + 2 / kappa = a + 0.72 / 1.888 = a + 0.38135593220339;
+//   hdrp 1 / (2 kappa) = 0.0953389... is above the cap: a' = a + 0.0625;
+//   unreal V = 0.25 - 4e-5 = 0.24996, B = 2 V (a - 1): a = 0 gives 0.49992 / 1.49992 =
+//   0.33330310950; a = 0.25 gives B = -0.37494, a' = 0.62494 / 1.37494 = 0.45452165912.
+TEST(EnginePrefilters, HandComputedRoughnessOfAKnownLevel) {
+  const Vec3 a{0.6, 0.0, 0.8}, b{-0.6, 0.0, 0.8};
+  const auto levels = pf::build_levels(image_of(2, 2, {a, b, b, a}));
+  struct Case {
+    pf::Method method;
+    double base, expected;
+  };
+  const Case cases[] = {{pf::Method::toksvig, 0.0, 0.5},
+                        {pf::Method::toksvig, 0.25, 0.75},
+                        {pf::Method::filament_vmf, 0.0, 0.72 / 1.888},
+                        {pf::Method::filament_vmf, 0.25, 0.25 + 0.72 / 1.888},
+                        {pf::Method::hdrp, 0.0, 0.0625},
+                        {pf::Method::hdrp, 0.25, 0.3125},
+                        {pf::Method::unreal, 0.0, 0.49992 / 1.49992},
+                        {pf::Method::unreal, 0.25, 0.62494 / 1.37494}};
+  EXPECT_NEAR(pf::vmf_kappa(0.8), 1.888 / 0.36, 1e-14);
+  for (const Case& c : cases) {
+    const auto image = round_trip(levels, pf::Options{c.method, saagen::Domain::alpha2, c.base, true});
+    ASSERT_EQ(image.levels.size(), 2u);
+    EXPECT_NEAR(value_at(image, 0, 0), c.base, kFloatUlp * c.base) << pf::to_string(c.method);  // L = 1: the base
+    EXPECT_NEAR(value_at(image, 1, 0), c.expected, kFloatUlp * c.expected + 1e-7) << pf::to_string(c.method) << " " << c.base;
+    EXPECT_NEAR(pf::method_alpha2(c.method, c.base, 0.8), c.expected, 1e-14) << pf::to_string(c.method);
+    EXPECT_EQ(nlohmann::json::parse(key_value(image, "saagen.prefilter"))["method"], std::string(pf::to_string(c.method)));
+  }
+  // --scale multiplies the addition: Toksvig at half strength adds 0.25 at L = 0.8.
+  pf::Options half{pf::Method::toksvig, saagen::Domain::alpha2, 0.25, true};
+  half.scale = 0.5;
+  EXPECT_NEAR(value_at(round_trip(levels, half), 1, 0), 0.5, kFloatUlp * 0.5);
+  EXPECT_EQ(nlohmann::json::parse(key_value(round_trip(levels, half), "saagen.prefilter"))["scale"], 0.5);
+  // Below the HDRP cap (L = 0.95): kappa = 1.992625 / 0.0975, 1 / (2 kappa) = 0.0975 / 3.98525.
+  EXPECT_NEAR(pf::method_alpha2(pf::Method::hdrp, 0.1, 0.95), 0.1 + 0.0975 / 3.98525, 1e-14);
+  EXPECT_NEAR(pf::method_alpha2(pf::Method::filament_vmf, 0.1, 0.95), 0.1 + 0.195 / 1.992625, 1e-14);
+}
+
+// The library's bakes are the reference's (reference/prefilter.hpp), and Unreal's composite is
+// T&K 2021's projected-space addition of twice its variance.
+TEST(EnginePrefilters, LibraryMatchesTheReferenceOverLengthsAndRoughness) {
+  for (double length = 0.0; length <= 1.0; length += 1.0 / 64.0)
+    for (const double base : {0.0, 1e-4, 0.01, 0.09, 0.5, 1.0}) {
+      const double l = std::min(length, 1.0);
+      EXPECT_NEAR(pf::method_alpha2(pf::Method::unreal, base, l), ref::unreal_composite_alpha2(base, l), 1e-15) << l << " " << base;
+      EXPECT_NEAR(pf::method_alpha2(pf::Method::filament_vmf, base, l), ref::filament_vmf_alpha2(base, l), 1e-15) << l << " " << base;
+      EXPECT_NEAR(pf::method_alpha2(pf::Method::hdrp, base, l), ref::hdrp_texture_alpha2(base, l), 1e-15) << l << " " << base;
+      if (l > 0.0) {
+        const double variance = std::max((1.0 - l) / l - 4e-5, 0.0);
+        EXPECT_NEAR(ref::unreal_composite_alpha2(base, l), ref::projected_space_add(base, 2.0 * variance), 1e-14) << l << " " << base;
+      }
+      for (const pf::Method method : {pf::Method::toksvig, pf::Method::unreal, pf::Method::filament_vmf, pf::Method::hdrp}) {
+        const double value = pf::method_alpha2(method, base, l);
+        EXPECT_TRUE(value >= base - 1e-15 && value <= 1.0) << pf::to_string(method) << " " << l << " " << base;
+      }
+    }
+}
+
+// For a small spread (L = 1 - e) the added alpha^2 is 2e for Toksvig, Filament and Unreal (at
+// a = 0) and e / 2 for HDRP: the factor of 4 between the engines.
+TEST(EnginePrefilters, SmallSpreadRatiosToToksvig) {
+  const double e = 1e-3, l = 1.0 - e;
+  const double toksvig = pf::method_alpha2(pf::Method::toksvig, 0.0, l);
+  EXPECT_NEAR(pf::method_alpha2(pf::Method::filament_vmf, 0.0, l) / toksvig, 1.0, 3e-3);
+  EXPECT_NEAR(pf::method_alpha2(pf::Method::hdrp, 0.0, l) / toksvig, 0.25, 1e-3);
+  EXPECT_NEAR(pf::method_alpha2(pf::Method::unreal, 0.0, l) / toksvig, 1.0, 0.05);  // 4e-5 bias and the projection
+}
+
 // Four slopes chosen by hand: E[s] and E[s s^T] by hand, Sigma = E[s s^T] - E[s] E[s]^T.
 TEST(Lean, CovarianceOfAKnownMapIsExact) {
   const Vec2 slopes[4] = {{0.5, 0.0}, {-0.25, 0.25}, {0.0, -0.5}, {0.25, 0.75}};
@@ -338,6 +411,59 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_EQ(saagen::test::read_text(foreign), "not saagen's");
   EXPECT_EQ(saagen({"texture", "prefilter", input.string(), "-o", foreign.string(), "--force"}).exit_code, 0);
+}
+
+// Every method name the CLI takes, and the glTF layout: R8G8B8A8_UNORM, G = perceptual roughness
+// of the bake at every level (rounded to 8 bits: within half a step, 0.5 / 255), B = --metallic,
+// R = A = 255, linear transfer in the DFD (KTX2's basic descriptor, as glTF requires of
+// metallicRoughnessTexture).
+TEST_F(TexturePrefilterCli, EngineMethodsAndTheGltfLayout) {
+  const int size = 8;
+  const auto normals = bumpy_normals(size);
+  const fs::path input = write_png("normals.png", size, size, normals);
+  const auto levels = pf::build_levels(pf::read_normal_map(bytes_of(input), "normals.png"));
+  for (const char* method : {"toksvig", "unreal", "filament-vmf", "hdrp", "lean"}) {
+    const fs::path out = scratch_ / (std::string(method) + ".ktx2");
+    const auto run = saagen({"texture", "prefilter", input.string(), "-o", out.string(), "--method", method, "--roughness", "0.3"});
+    ASSERT_EQ(run.exit_code, 0) << method << ": " << run.err;
+    EXPECT_EQ(nlohmann::json::parse(key_value(saagen::read_ktx2(bytes_of(out)), "saagen.prefilter"))["method"], method);
+  }
+  const fs::path gltf = scratch_ / "mr.ktx2";
+  const auto run = saagen({"texture", "prefilter", input.string(), "-o", gltf.string(), "--method", "filament-vmf", "--roughness", "0.3",
+                           "--gltf", "--metallic", "1"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto image = saagen::read_ktx2(bytes_of(gltf));
+  EXPECT_EQ(image.vk_format, 37u);
+  EXPECT_EQ((image.dfd[3] >> 16) & 0xFFu, 1u);  // transferFunction LINEAR
+  ASSERT_EQ(image.levels.size(), levels.size());
+  const double base = pf::to_alpha2(0.3, saagen::Domain::perceptual);
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    ASSERT_EQ(image.levels[level].size(), 4 * levels[level].mean_normal.size() / 3);
+    for (std::size_t t = 0; t < levels[level].mean_normal.size() / 3; ++t) {
+      const double* m = &levels[level].mean_normal[3 * t];
+      const double r =
+          pf::from_alpha2(pf::method_alpha2(pf::Method::filament_vmf, base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])),
+                          saagen::Domain::perceptual);
+      const std::uint8_t* texel = &image.levels[level][4 * t];
+      EXPECT_EQ(texel[0], 255);
+      EXPECT_NEAR(texel[1] / 255.0, r, 0.5 / 255.0 + 1e-12) << level << " " << t;
+      EXPECT_EQ(texel[2], 255);
+      EXPECT_EQ(texel[3], 255);
+    }
+  }
+  const auto json = nlohmann::json::parse(key_value(image, "saagen.prefilter"));
+  EXPECT_EQ(json["format"], "R8G8B8A8_UNORM");
+  EXPECT_EQ(json["output_domain"], "perceptual");
+  EXPECT_EQ(json["channels"][1], "perceptual roughness");
+  // LEAN has no roughness channel to lay out; an unknown method lists the five.
+  const fs::path refused = scratch_ / "refused.ktx2";
+  expect_one_line_failure(saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--method", "lean", "--gltf"}), refused);
+  const auto unknown = saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--method", "vmf"});
+  expect_one_line_failure(unknown, refused);
+  EXPECT_NE(unknown.err.find("toksvig, lean, unreal, filament-vmf, hdrp"), std::string::npos) << unknown.err;
+  expect_one_line_failure(saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--gltf", "--metallic", "2"}), refused);
+  expect_one_line_failure(saagen({"texture", "prefilter", input.string(), "-o", refused.string(), "--method", "lean", "--scale", "0.5"}),
+                          refused);
 }
 
 TEST_F(TexturePrefilterCli, Ktx2InputToLeanMoments) {

@@ -8,8 +8,10 @@
 
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/io/include_expansion.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
+#include "saagen/products/prefilter.hpp"
 #include "saagen/saagen.h"
 #include "saagen/scene/manifest.hpp"
 
@@ -21,9 +23,15 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
+#include <sstream>
 
+#include <fcntl.h>
+#include <linux/fs.h>
+#include <sys/ioctl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -385,6 +393,7 @@ TEST_F(Safety, AFullDiskLeavesNoTemporaryAndNoChangedFile) {
   const CliRun run = saagen_with_file_limit(8, {"emit", "-o", out.string()});
   EXPECT_EQ(run.exit_code, 1) << run.err;
   EXPECT_NE(run.err.find("write failed (File too large)"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("; nothing was changed"), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   std::map<std::string, std::string> after;
   for (const std::string& name : entries(out)) after[name] = read_text(out / name);
@@ -458,6 +467,39 @@ TEST(StrictReaders, PpmHeadersAreStrictDecimals) {
   EXPECT_NE(error_of("P6 -1 1 255\n").find("'-1'"), std::string::npos);
   EXPECT_NE(error_of("P6 4097 4096 255\n").find("larger than 4194304 texels"), std::string::npos);
   EXPECT_EQ(error_of("P6 # comment\n1 1 255\n" + std::string(3, '\x80')), "");
+}
+
+// Findings of fuzz/png_fuzzer.cpp: stb_image handed memcpy a null pointer for an empty IDAT chunk
+// before the first non-empty one (UBSan): such chunks are dropped, and the image is the same; and
+// it allocated what a chunk declares before reading it.
+TEST(StrictReaders, PngChunksAreCheckedBeforeStbImage) {
+  // A 2 x 2 RGB PNG of flat normals (128, 128, 255), written by hand: signature, IHDR, IDAT, IEND.
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  const std::string ihdr("\x00\x00\x00\x0dIHDR\x00\x00\x00\x02\x00\x00\x00\x02\x08\x02\x00\x00\x00\xfd\xd4\x9a\x73", 25);
+  const std::string idat("\x00\x00\x00\x10\x49\x44\x41\x54\x78\xda\x63\x68\x68\xf8\x0f\x44\x0c\x10\x0a\x00\x35\xf6\x07\xfd\xa1\x29\xec\x43",
+                         28);
+  const std::string iend("\x00\x00\x00\x00IEND\xae\x42\x60\x82", 12);
+  const std::string empty_idat("\x00\x00\x00\x00IDAT\x35\xaf\x06\x1e", 12);
+  const auto read = [](const std::string& file) {
+    return saagen::prefilter::read_normal_map(std::span(reinterpret_cast<const std::uint8_t*>(file.data()), file.size()), "n.png");
+  };
+  const auto plain = read(signature + ihdr + idat + iend);
+  const auto with_empty = read(signature + ihdr + empty_idat + idat + empty_idat + iend);
+  ASSERT_EQ(plain.width, 2);
+  EXPECT_EQ(with_empty.width, plain.width);
+  EXPECT_EQ(with_empty.height, plain.height);
+  EXPECT_EQ(with_empty.normals, plain.normals);
+
+  // A chunk that declares more than the file holds is refused before stb_image grows a buffer
+  // to its size (an 80-byte file declaring 1.4 GB made it allocate 2 GB).
+  std::string past_the_end = signature + ihdr + idat.substr(0, 8) + "x";
+  past_the_end[signature.size() + ihdr.size()] = '\x58';
+  try {
+    read(past_the_end);
+    ADD_FAILURE() << "a chunk past the end was read";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()), "n.png: not a readable PNG (chunk 'IDAT' declares 1476395024 bytes, past the end of the file)");
+  }
 }
 
 TEST(StrictReaders, Ktx2LevelCountIsBoundedByTheImageSize) {
@@ -758,6 +800,380 @@ TEST_F(Safety, UnreadableDirectoriesAreOneLine) {
   fs::permissions(scratch_ / "locked", fs::perms::none);
   expect_one_line_error(saagen({"validate", (scratch_ / "locked").string()}), "cannot be listed");
   expect_one_line_error(saagen({"emit", "-o", (scratch_ / "locked" / "out").string()}), "locked");
+}
+
+// ---------------------------------------------------------------------------------------------
+// All-or-nothing commits: a set of outputs is either wholly replaced or left exactly as it was.
+
+// Every file of a directory, hidden ones (temporaries, backups) included, with its bytes.
+std::map<std::string, std::string> snapshot(const fs::path& directory) {
+  std::map<std::string, std::string> files;
+  if (!fs::exists(directory)) return files;
+  for (const auto& entry : fs::directory_iterator(directory)) files[entry.path().filename().string()] = read_text(entry.path());
+  return files;
+}
+
+// The files a run reports as written, in the order it commits them.
+std::vector<std::string> written_paths(const std::string& out) {
+  std::vector<std::string> paths;
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("wrote     ", 0) == 0) paths.push_back(line.substr(10));
+  }
+  return paths;
+}
+
+// Sets or clears the immutable flag (chattr +i / -i); false where the process lacks
+// CAP_LINUX_IMMUTABLE or the file system has no such flag.
+bool set_immutable(const fs::path& path, bool on) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return false;
+  int flags = 0;
+  bool done = ::ioctl(fd, FS_IOC_GETFLAGS, &flags) == 0;
+  flags = on ? flags | FS_IMMUTABLE_FL : flags & ~FS_IMMUTABLE_FL;
+  done = done && ::ioctl(fd, FS_IOC_SETFLAGS, &flags) == 0;
+  ::close(fd);
+  return done;
+}
+
+// Clears the immutable flag of the files it was given when the test ends, failed or not (the
+// scratch directory could not be removed otherwise).
+class ImmutableFiles {
+ public:
+  bool add(const fs::path& path) {
+    if (!set_immutable(path, true)) return false;
+    paths_.push_back(path);
+    return true;
+  }
+  ~ImmutableFiles() {
+    for (const fs::path& path : paths_) set_immutable(path, false);
+  }
+
+ private:
+  std::vector<fs::path> paths_;
+};
+
+TEST_F(Safety, AnImmutableFileLeavesTheWholeSetUnchanged) {
+  const fs::path out = scratch_ / "out", passes = scratch_ / "pass", glints = scratch_ / "g";
+  const CliRun first = saagen({"emit", "-o", out.string(), "--sigma2", "0.5"});
+  const CliRun first_pass = saagen({"pass", "-v", "deferred-avg", "-o", passes.string(), "--sigma2", "0.5"});
+  auto dictionary = small_dictionary(glints / "d.ktx2");
+  dictionary.insert(dictionary.end(), {"--raw", (glints / "d.f32").string()});
+  ASSERT_EQ(saagen(dictionary).exit_code, 0);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  ASSERT_EQ(first_pass.exit_code, 0) << first_pass.err;
+  // The last file each run commits: under a rename-as-you-go commit, every other file would be new.
+  const fs::path emit_victim = written_paths(first.out).back(), pass_victim = passes / "saa_pass_deferred_avg.h";
+  ASSERT_TRUE(fs::exists(pass_victim));
+  ImmutableFiles immutable;
+  if (!immutable.add(emit_victim)) GTEST_SKIP() << "chattr +i is refused here (no CAP_LINUX_IMMUTABLE, or the file system has no flag)";
+  ASSERT_TRUE(immutable.add(pass_victim));
+  ASSERT_TRUE(immutable.add(glints / "d.f32"));
+  const auto emit_before = snapshot(out), pass_before = snapshot(passes), glints_before = snapshot(glints);
+
+  const CliRun emit = saagen({"emit", "-o", out.string()});
+  expect_one_line_error(emit, emit_victim.string() + ": cannot be replaced (Operation not permitted: the file is immutable");
+  EXPECT_NE(emit.err.find("nothing was changed"), std::string::npos) << emit.err;
+  EXPECT_EQ(snapshot(out), emit_before);
+  // The pass's header embeds the SPIR-V: neither may be new without the other.
+  const CliRun pass = saagen({"pass", "-v", "deferred-avg", "-o", passes.string()});
+  expect_one_line_error(pass, pass_victim.string() + ": cannot be replaced");
+  EXPECT_EQ(snapshot(passes), pass_before);
+  dictionary[3] = "8";  // --count 8: every file of the dictionary changes
+  expect_one_line_error(saagen(dictionary), (glints / "d.f32").string() + ": cannot be replaced");
+  EXPECT_EQ(snapshot(glints), glints_before);
+}
+
+// Another user's file in a sticky directory (as in /tmp) cannot be renamed over: the run (as
+// user nobody) is refused before any file of the set is replaced.
+TEST_F(Safety, AnotherUsersFileInAStickyDirectoryLeavesTheWholeSetUnchanged) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to run saagen as another user (setpriv) and to own a file there";
+  if (std::system("command -v setpriv >/dev/null 2>&1") != 0) GTEST_SKIP() << "setpriv (util-linux) is not installed";
+  const fs::path sticky = scratch_ / "sticky";
+  fs::create_directories(sticky);
+  fs::permissions(scratch_, fs::perms::all, fs::perm_options::add);
+  fs::permissions(sticky, fs::perms::all | fs::perms::sticky_bit);
+  const std::string as_nobody = "setpriv --reuid=65534 --regid=65534 --clear-groups " + shell_quote(SAAGEN_CLI_PATH);
+  const CliRun first = run_shell(as_nobody + " emit -o " + shell_quote(sticky.string()) + " --sigma2 0.5");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  // The last file committed becomes root's (same bytes, writable by all: only the sticky rule stops a rename over it).
+  const fs::path victim = written_paths(first.out).back();
+  const std::string bytes = read_text(victim);
+  fs::remove(victim);
+  write(victim, bytes);
+  fs::permissions(victim, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::group_write |
+                              fs::perms::others_read | fs::perms::others_write);
+  const auto before = snapshot(sticky);
+
+  const CliRun run = run_shell(as_nobody + " emit -o " + shell_quote(sticky.string()));
+  expect_one_line_error(run, victim.string() + ": cannot be replaced (Operation not permitted: another user's file in a sticky directory)");
+  EXPECT_NE(run.err.find("nothing was changed"), std::string::npos) << run.err;
+  EXPECT_EQ(snapshot(sticky), before);
+}
+
+// The commit hook of these tests: what to do after which step.
+struct HookAction {
+  saagen::CommitStep step = saagen::CommitStep::renamed;
+  std::size_t index = 0;
+  std::function<void()> action;
+};
+HookAction hook_action;
+
+void run_hook_action(saagen::CommitStep step, std::size_t index) {
+  if (hook_action.action && step == hook_action.step && index == hook_action.index) hook_action.action();
+}
+
+class Commit : public saagen::test::CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    saagen::set_commit_hook(&run_hook_action);
+    old_ = {{dir() / "a.txt", "saagen-output: a, old\n"}, {dir() / "b.txt", "saagen-output: b, old\n"}};
+    saagen::write_outputs(old_, false);
+  }
+  void TearDown() override {
+    saagen::set_commit_hook(nullptr);
+    hook_action = {};
+    CliTest::TearDown();
+  }
+  fs::path dir() const { return scratch_ / "d"; }
+  // A new file in directories that do not exist yet, then new bytes for a.txt and b.txt.
+  std::vector<saagen::OutputFile> new_set() const {
+    return {{dir() / "new" / "deeper" / "c.txt", "saagen-output: c, new\n"},
+            {dir() / "a.txt", "saagen-output: a, new\n"},
+            {dir() / "b.txt", "saagen-output: b, new\n"}};
+  }
+  // Runs write_outputs(new_set()) in a child process; its wait status.
+  int status_of_child_commit() const {
+    const pid_t child = ::fork();
+    if (child == 0) {
+      const struct rlimit no_core {};
+      ::setrlimit(RLIMIT_CORE, &no_core);  // SIGXFSZ's default action dumps core
+      try {
+        saagen::write_outputs(new_set(), false);
+      } catch (...) {
+        ::_exit(2);
+      }
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return status;
+  }
+  std::vector<saagen::OutputFile> old_;
+};
+
+// A rename that fails after others succeeded (here b.txt became a directory meanwhile) puts back
+// the files already replaced (the same inodes), removes the new file and the directories the run
+// created, and leaves no temporary or backup.
+TEST_F(Commit, AFailedRenamePutsBackEveryFileAndRemovesNewDirectories) {
+  struct stat a_before {};
+  ASSERT_EQ(::stat((dir() / "a.txt").c_str(), &a_before), 0);
+  hook_action = {saagen::CommitStep::renamed, 1, [&] {
+                   fs::rename(dir() / "b.txt", dir() / "b.moved");
+                   fs::create_directories(dir() / "b.txt" / "inside");
+                 }};
+  try {
+    saagen::write_outputs(new_set(), false);
+    ADD_FAILURE() << "the commit succeeded";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()), (dir() / "b.txt").string() + ": cannot be replaced (Is a directory); nothing was changed");
+  }
+  EXPECT_EQ(read_text(dir() / "a.txt"), "saagen-output: a, old\n");
+  struct stat a_after {};
+  ASSERT_EQ(::stat((dir() / "a.txt").c_str(), &a_after), 0);
+  EXPECT_EQ(a_after.st_ino, a_before.st_ino);
+  EXPECT_EQ(snapshot(dir()), (std::map<std::string, std::string>{
+                                 {"a.txt", "saagen-output: a, old\n"}, {"b.moved", "saagen-output: b, old\n"}, {"b.txt", ""}}));
+  EXPECT_FALSE(fs::exists(dir() / "new"));
+}
+
+// SIGTERM (or Ctrl-C) arriving between two renames waits until the set is whole: the process
+// then ends by the signal, with every file new and no temporary or backup left.
+TEST_F(Commit, ASignalBetweenRenamesActsOnceTheSetIsWhole) {
+  for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
+    hook_action = {};
+    saagen::write_outputs(old_, true);
+    fs::remove_all(dir() / "new");
+    hook_action = {saagen::CommitStep::renamed, 0, [signal] { ::raise(signal); }};
+    const int status = status_of_child_commit();
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "signal " << signal << ", status " << status;
+    EXPECT_EQ(snapshot(dir()), (std::map<std::string, std::string>{
+                                   {"a.txt", "saagen-output: a, new\n"}, {"b.txt", "saagen-output: b, new\n"}, {"new", ""}}));
+    EXPECT_EQ(snapshot(dir() / "new" / "deeper"), (std::map<std::string, std::string>{{"c.txt", "saagen-output: c, new\n"}}));
+  }
+}
+
+// SIGINT, SIGTERM or SIGXFSZ while the set is staged: no file is replaced, the temporaries and
+// the directories the run created are removed.
+TEST_F(Commit, ASignalWhileStagingRemovesTemporariesAndNewDirectories) {
+  for (const int signal : {SIGINT, SIGTERM, SIGXFSZ}) {
+    hook_action = {saagen::CommitStep::staged, 1, [signal] { ::raise(signal); }};
+    const int status = status_of_child_commit();
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << "signal " << signal << ", status " << status;
+    EXPECT_EQ(snapshot(dir()),
+              (std::map<std::string, std::string>{{"a.txt", "saagen-output: a, old\n"}, {"b.txt", "saagen-output: b, old\n"}}));
+  }
+}
+
+// The file-size limit's SIGXFSZ through the command line, into a directory that did not exist.
+TEST_F(Safety, AFileSizeSignalRemovesTheDirectoriesTheRunCreated) {
+  const std::string command =
+      "ulimit -f 8; exec " + shell_quote(SAAGEN_CLI_PATH) + " emit -o " + shell_quote((scratch_ / "new" / "deeper").string());
+  const CliRun run = run_shell(command);
+  EXPECT_EQ(run.exit_code, 128 + SIGXFSZ) << run.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "new"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// #include as a preprocessor sees it.
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+// In-memory files for saagen::expand_includes; counts the lookups.
+struct MemoryIncludes {
+  std::map<std::string, std::string> files;
+  int lookups = 0;
+  int generated = 0;
+  saagen::IncludeSources sources() {
+    return {[this](const std::string& name, const saagen::IncludeFile&) -> std::shared_ptr<const saagen::IncludeFile> {
+              ++lookups;
+              const auto found = files.find(name);
+              if (found == files.end()) return nullptr;
+              return std::make_shared<const saagen::IncludeFile>(saagen::IncludeFile{name, name, found->second});
+            },
+            [this](const std::string& name) -> std::string {
+              ++generated;
+              return "// generated " + name + "\n";
+            }};
+  }
+  std::string expanded(const std::string& root) {
+    std::string text;
+    for (const auto& piece : saagen::expand_includes({root, root, files.at(root)}, sources()).pieces) text += piece.text;
+    return text;
+  }
+};
+
+// h0 .. h{levels-1}, each including the next twice; guarded or not.
+MemoryIncludes include_bomb(int levels, bool guarded) {
+  MemoryIncludes bomb;
+  for (int level = 0; level < levels; ++level) {
+    const std::string next = "h" + std::to_string(level + 1) + ".glsl";
+    std::string body = level + 1 < levels ? "#include \"" + next + "\"\n#include \"" + next + "\"\n" : "float leaf() { return 1.0; }\n";
+    const std::string guard = "H" + std::to_string(level);
+    bomb.files["h" + std::to_string(level) + ".glsl"] =
+        guarded ? "#ifndef " + guard + "\n#define " + guard + "\n" + body + "#endif\n" : body;
+  }
+  return bomb;
+}
+
+TEST(Includes, AGuardedHeaderIsExpandedOncePerGuard) {
+  // 21 levels of double includes: 2^21 expansions unguarded; once each (plus one skipped
+  // re-include per level) with guards, so the text and the work are linear in the unique text.
+  MemoryIncludes bomb = include_bomb(21, true);
+  std::size_t unique = 0;
+  for (const auto& [name, text] : bomb.files) unique += text.size();
+  const std::string text = bomb.expanded("h0.glsl");
+  EXPECT_LT(text.size(), 2 * unique);
+  EXPECT_EQ(occurrences(text, "float leaf()"), 1);
+  EXPECT_EQ(bomb.lookups, 2 * 20);
+
+  // #pragma once, and a guarded header that includes itself.
+  MemoryIncludes once;
+  once.files = {{"main.glsl", "#include \"a.glsl\"\n#include \"a.glsl\"\n#include \"self.glsl\"\n"},
+                {"a.glsl", "#pragma once\n#include \"a.glsl\"\nfloat a;\n"},
+                {"self.glsl", "// a header\n#if !defined(SELF)\n#define SELF 1\n#include \"self.glsl\"\nfloat self;\n#endif // SELF\n"}};
+  once.files["main.glsl"] += "#include <saagen/x>\n#include <saagen/x>\n";  // generated once per name
+  const std::string expanded = once.expanded("main.glsl");
+  EXPECT_EQ(once.generated, 1);
+  EXPECT_EQ(occurrences(expanded, "// generated saagen/x"), 2) << expanded;
+  EXPECT_EQ(occurrences(expanded, "float a;"), 1) << expanded;
+  EXPECT_EQ(occurrences(expanded, "float self;"), 1) << expanded;
+}
+
+TEST(Includes, AnExpansionBeyondTheBudgetIsOneLine) {
+  MemoryIncludes bomb = include_bomb(26, false);
+  try {
+    bomb.expanded("h0.glsl");
+    ADD_FAILURE() << "the unguarded bomb expanded";
+  } catch (const saagen::Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("#include expansions in all (an include bomb?)"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  MemoryIncludes wide;  // few includes, much text
+  wide.files = {{"main.glsl", "#include \"big.glsl\"\n#include \"big.glsl\"\n#include \"big.glsl\"\n#include \"big.glsl\"\n"},
+                {"big.glsl", std::string(20 << 20, ' ')}};
+  EXPECT_THROW(wide.expanded("main.glsl"), saagen::Error);
+}
+
+TEST(Includes, IncludesInSkippedBranchesAndCommentsAreNotResolved) {
+  MemoryIncludes sources;
+  sources.files = {{"main.glsl",
+                    "#define LEVEL 2\n"
+                    "#if 0\n#include \"missing.glsl\"\n#endif\n"
+                    "// #include \"missing.glsl\"\n"
+                    "/* a comment\n#include \"missing.glsl\"\n*/\n"
+                    "#ifdef NOT_DEFINED\n#include \"missing.glsl\"\n#elif LEVEL > 1 && defined(LEVEL)\n#include \"found.glsl\"\n"
+                    "#else\n#include \"missing.glsl\"\n#endif\n"
+                    "#if (LEVEL << 2) == 8 ? 0 : 1\n#include \"missing.glsl\"\n#endif\n"
+                    "#undef LEVEL\n#ifdef LEVEL\n#include \"missing.glsl\"\n#endif\n"},
+                   {"found.glsl", "float found;\n"}};
+  const std::string text = sources.expanded("main.glsl");
+  EXPECT_NE(text.find("float found;"), std::string::npos) << text;
+  EXPECT_EQ(sources.lookups, 1);
+
+  // A macro that doubles per level (2^40 tokens) leaves the condition to glslang at once.
+  std::string doubling = "#define B0 1\n";
+  for (int level = 1; level <= 40; ++level) {
+    const std::string previous = "B" + std::to_string(level - 1);
+    doubling += "#define B" + std::to_string(level) + " " + previous + " " + previous + "\n";
+  }
+  sources.files["main.glsl"] = doubling + "#if B40\n#include \"found.glsl\"\n#endif\n";
+  EXPECT_NE(sources.expanded("main.glsl").find("float found;"), std::string::npos);
+
+  // What glslang predefines is glslang's to decide: a missing include there becomes an #error
+  // line that fires only if the branch is compiled.
+  sources.files["main.glsl"] = "#ifdef VULKAN\n#include \"missing.glsl\"\n#endif\n";
+  const saagen::IncludeExpansion deferred =
+      saagen::expand_includes({"main.glsl", "main.glsl", sources.files["main.glsl"]}, sources.sources());
+  ASSERT_EQ(deferred.pieces.size(), 1u);
+  EXPECT_EQ(deferred.pieces[0].text, "#ifdef VULKAN\n#error saagen_unresolved_include_0\n#endif\n");
+  EXPECT_EQ(saagen::deferred_include_error(deferred, "main.glsl:2: '#error' : saagen_unresolved_include_0"),
+            "main.glsl:2: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  // A compiled include that is missing is one line with the file and line.
+  sources.files["main.glsl"] = "float x;\n#if 1\n#include \"missing.glsl\"\n#endif\n";
+  try {
+    sources.expanded("main.glsl");
+    ADD_FAILURE() << "a missing include was accepted";
+  } catch (const saagen::Error& error) {
+    EXPECT_EQ(std::string(error.what()), "main.glsl:3: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  }
+}
+
+TEST_F(Safety, CompileResolvesIncludesAsThePreprocessorDoes) {
+  write(scratch_ / "s.frag",
+        "#version 450\n#if 0\n#include \"missing.glsl\"\n#endif\n// #include \"missing.glsl\"\n#include \"self.glsl\"\n"
+        "#ifndef VULKAN\n#include \"missing.glsl\"\n#endif\n"
+        "layout(location = 0) out vec4 color;\nvoid main() { color = vec4(self_value()); }\n");
+  write(scratch_ / "self.glsl",
+        "#ifndef SELF_GLSL\n#define SELF_GLSL\n#include \"self.glsl\"\nfloat self_value() { return 0.5; }\n#endif\n");
+  const CliRun run = saagen({"compile", (scratch_ / "s.frag").string(), "-o", (scratch_ / "s.spv").string()});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  // For OpenGL, VULKAN is not defined: the missing include is compiled, and reported.
+  const CliRun opengl = saagen({"compile", (scratch_ / "s.frag").string(), "--client", "opengl", "-o", (scratch_ / "g.spv").string()});
+  expect_one_line_error(opengl, "s.frag:8: #include \"missing.glsl\" not found next to the file or in the -I directories");
+  // The 21-level guarded double-include bomb compiles (it took 31 s and 1 GB).
+  MemoryIncludes bomb = include_bomb(21, true);
+  for (const auto& [name, text] : bomb.files) write(scratch_ / "bomb" / name, text);
+  write(scratch_ / "bomb" / "b.frag",
+        "#version 450\n#include \"h0.glsl\"\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(leaf()); }\n");
+  const CliRun guarded = saagen({"compile", (scratch_ / "bomb" / "b.frag").string(), "-o", (scratch_ / "b.spv").string()});
+  EXPECT_EQ(guarded.exit_code, 0) << guarded.err;
 }
 
 }  // namespace

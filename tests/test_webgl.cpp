@@ -21,13 +21,23 @@
 //    (2^14) cannot hold D = 1 / (pi alpha^2 ...) below alpha ~ 0.01, which the inputs reach.
 // ES lets plain dFdx/dFdy be fine or coarse (section 8.9); the device's choice is probed, and
 // the reference takes the same (for the quad average too: ES has no dFdxFine).
+//
+// Glints: every glint function in highp with the dictionary as a sampler2DArray (RGBA16F, its
+// MIP chain, linear filters, mirrored repeat) on texture unit 1: the core ones on 4096 of
+// test_glints_gpu's inputs (64 x 64 pixels, one element each), the wrappers on its 64 x 64
+// surface with the probed plain derivatives, against the double reference within the bounds of
+// web_glints.hpp (the Vulkan proofs' bounds, derived in glint_support.hpp). Not in mediump: the
+// glint functions have no derived half-precision bound.
 #include "core_cases.hpp"
+#include "web_glints.hpp"
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/products/glints.hpp"
+#include "saagen/target/resources.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/kernels.hpp"
 
@@ -97,14 +107,14 @@ saagen::EmittedFile emit(const std::string& variant, const std::string& precisio
   return saagen::emit_variants(Catalogue::builtin(), options).front();
 }
 
-// The shader running `body` (template dialect) after the emitted file.
-std::string shader_source(const saagen::EmittedFile& file, const std::string& body, std::uint32_t width, std::uint32_t input_stride) {
+// The shader running `body` (template dialect) after the emitted file of `catalogue`'s functions,
+// with the declarations of the resources they sample (`resources`) before it.
+std::string shader_source(const saagen::EmittedFile& file, const std::string& body, std::uint32_t width, std::uint32_t input_stride,
+                          const Catalogue& catalogue = Catalogue::builtin(), const std::string& resources = "") {
   saagen::NameMap names;
-  for (const saagen::Function& function : Catalogue::builtin().functions())
-    names[function.name] = saagen::prefixed_name("saa_", function.name);
-  const std::string printed =
-      saagen::print_glue(saagen::builtin_target("gles"), Catalogue::builtin(), body, names, saagen::kernel_glue_symbols());
-  return std::string(kPrologue) + file.content + epilogue(printed, width, input_stride);
+  for (const saagen::Function& function : catalogue.functions()) names[function.name] = saagen::prefixed_name("saa_", function.name);
+  const std::string printed = saagen::print_glue(saagen::builtin_target("gles"), catalogue, body, names, saagen::kernel_glue_symbols());
+  return std::string(kPrologue) + resources + file.content + epilogue(printed, width, input_stride);
 }
 
 enum class Kind { core, wrapper, probe };
@@ -181,6 +191,44 @@ nlohmann::json write_case(const fs::path& directory, const Case& c, std::vector<
   return entry;
 }
 
+// Every glint function in highp: the core ones, and each variant's wrappers with the probed derivatives.
+std::vector<saagen::test::web_glints::Case> glint_cases() {
+  return saagen::test::web_glints::cases("highp_", {{"highp_", ref::Derivative::fine}});
+}
+
+// The cases.json entry of a glint case, with the dictionary `texture` (web_glints::write_dictionary)
+// as the uniform the emitted declaration names.
+nlohmann::json write_glint_case(const fs::path& directory, const saagen::test::web_glints::Case& c, const nlohmann::json& texture,
+                                std::vector<float>& inputs) {
+  namespace wg = saagen::test::web_glints;
+  const Catalogue& catalogue = saagen::glints::catalogue();
+  saagen::EmitOptions options;
+  options.target = "gles";
+  options.variants = {c.variant};
+  const saagen::EmittedFile file = saagen::glints::emit(options).front();
+  const saagen::TargetSyntax target = saagen::builtin_target("gles").with_prefix("saa_", saagen::macro_prefix("saa_"));
+  const std::string resources = saagen::resource_declarations(target, catalogue, catalogue.find_variant(c.variant)->functions);
+  nlohmann::json entry{{"id", c.id}, {"width", wg::side}, {"height", wg::side}, {"passes", 1}};
+  entry["texture"] = texture;
+  entry["texture"]["uniform"] = "saagen_glint_dictionary";  // targets/gles.json's declaration
+  if (c.wrapper) {
+    entry["shader"] = shader_source(file, wg::wrapper_body(c.variant), wg::side, 0, catalogue, resources);
+    return entry;
+  }
+  saagen::KernelRequest request;
+  const std::string body = saagen::load_call_store_body(catalogue, c.function, request);
+  inputs = saagen::test::glint::packed_inputs(*catalogue.find_function(c.function), wg::elements);
+  std::vector<float> padded = inputs;
+  padded.resize(((padded.size() + 4 * kInputTextureWidth - 1) / (4 * kInputTextureWidth)) * 4 * kInputTextureWidth, 0.0f);
+  std::ofstream(directory / (c.id + ".in.f32"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(padded.data()), static_cast<std::streamsize>(padded.size() * sizeof(float)));
+  entry["shader"] = shader_source(file, body, wg::side, request.input_stride, catalogue, resources);
+  entry["input"] = c.id + ".in.f32";
+  entry["input_width"] = kInputTextureWidth;
+  entry["input_height"] = padded.size() / (4 * kInputTextureWidth);
+  return entry;
+}
+
 // Runs every case in the browser once per process; the results by case id (RGBA floats per
 // pixel and pass: pass-major).
 struct BrowserRun {
@@ -202,16 +250,25 @@ const BrowserRun& browser_run() {
       cases.push_back(write_case(directory, c, inputs));
       if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
     }
+    const nlohmann::json texture = saagen::test::web_glints::write_dictionary(directory);
+    std::vector<std::string> ids;
+    for (const Case& c : all) ids.push_back(c.id);
+    for (const auto& c : glint_cases()) {
+      std::vector<float> inputs;
+      cases.push_back(write_glint_case(directory, c, texture, inputs));
+      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
+      ids.push_back(c.id);
+    }
     std::ofstream(directory / "cases.json") << cases.dump();
     const std::string command = fmt::format("node '{}/tests/webgl/run_functions.mjs' '{}'", SAAGEN_SOURCE_DIR, directory.string());
     if (std::system(command.c_str()) != 0) {
       result.error = "the browser run failed: " + command;
       return result;
     }
-    for (const Case& c : all) {
-      std::vector<float> values = saagen::test::read_floats(directory / (c.id + ".out.f32"));
+    for (const std::string& id : ids) {
+      std::vector<float> values = saagen::test::read_floats(directory / (id + ".out.f32"));
       if (values.empty()) continue;
-      result.outputs[c.id] = std::move(values);
+      result.outputs[id] = std::move(values);
     }
     fs::remove_all(directory);
     return result;
@@ -239,6 +296,8 @@ ref::Derivative browser_plain_derivative() {
   (void)printed;
   return mode;
 }
+
+const char* plain_derivative_name() { return browser_plain_derivative() == ref::Derivative::fine ? "fine" : "coarse"; }
 
 class InWebGl2 : public ::testing::TestWithParam<Case> {};
 
@@ -289,12 +348,40 @@ TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
       worst.add(comparison.got[k], comparison.expected[k], bound);
     }
   }
-  const std::string what = fmt::format("{} {} ({}, {})", mediump ? "mediump" : "highp", c.function, c.variant,
-                                       c.kind == Kind::wrapper ? "fragment quads" : "16384 inputs");
+  const std::string what =
+      fmt::format("{} {} ({}, {})", mediump ? "mediump" : "highp", c.function, c.variant,
+                  c.kind == Kind::wrapper ? fmt::format("fragment quads, {} dFdx", plain_derivative_name()) : std::string("16384 inputs"));
   std::cout << "[ webgl2   ] " << worst.summary(what) << "\n";
   EXPECT_GT(worst.count, 0u);
   EXPECT_EQ(worst.failing, 0u) << worst.summary(what);
 }
+
+class GlintsInWebGl2 : public ::testing::TestWithParam<saagen::test::web_glints::Case> {};
+
+TEST_P(GlintsInWebGl2, MatchTheDoublePrecisionReferenceWithinTheSamplerAndFp32Bounds) {
+  namespace wg = saagen::test::web_glints;
+  const wg::Case& c = GetParam();
+  const auto& out = outputs_of(c.id);
+  ASSERT_EQ(out.size(), std::size_t{wg::side} * wg::side * 4);
+  saagen::KernelRequest request;
+  if (!c.wrapper) (void)saagen::load_call_store_body(saagen::glints::catalogue(), c.function, request);
+  const std::vector<float> no_inputs;
+  const auto found = browser_run().inputs.find(c.id);
+  const ref::Derivative mode = c.wrapper ? browser_plain_derivative() : ref::Derivative::fine;
+  const auto reference = wg::comparison(c, found == browser_run().inputs.end() ? no_inputs : found->second, request.input_stride, mode);
+  EXPECT_EQ(reference.outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
+  for (const wg::FunctionResult& function : wg::compare(c, out, 4, reference)) {
+    const std::string what =
+        fmt::format("highp {} ({}, {})", function.function, c.variant,
+                    c.wrapper ? fmt::format("fragment quads, {} dFdx", plain_derivative_name()) : fmt::format("{} inputs", wg::elements));
+    std::cout << "[ webgl2   ] " << function.worst.summary(what) << "\n";
+    EXPECT_EQ(function.worst.failing, 0u) << function.worst.summary(what);
+    EXPECT_GT(function.nonzero, function.worst.count / 2) << what << ": the inputs do not hit the lobes";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryGlintFunction, GlintsInWebGl2, ::testing::ValuesIn(glint_cases()),
+                         [](const auto& info) { return info.param.id; });
 
 INSTANTIATE_TEST_SUITE_P(EveryFunction, InWebGl2, ::testing::ValuesIn(all_cases()), [](const auto& info) {
   std::string name = info.param.id;

@@ -9,6 +9,10 @@
 //  - Fragment: every fragment wrapper on the analytic sphere of test_gpu_fragment, with the
 //    module's plain dpdx/dpdy spelt dpdxFine and then dpdxCoarse (real quad derivatives), against
 //    the reference fed the shader's fp32 fields as 2x2 quads with the same derivative.
+//  - Glints: every glint function with the dictionary bound as a texture_2d_array (the runner's
+//    "texture"): the core ones in compute on 4096 of test_glints_gpu's inputs, the wrappers in
+//    fragment (dpdxFine, then dpdxCoarse) on its 64 x 64 surface, against the double reference
+//    within the bounds of web_glints.hpp (the Vulkan proofs' bounds, derived in glint_support.hpp).
 //
 // Bounds. WGSL's floating-point accuracy (W3C WGSL, section 15.7.4 "Floating Point Accuracy"):
 // f32 +, -, * correctly rounded; x / y within 2.5 ULP (|y| in [2^-126, 2^126]); inverseSqrt 2 ULP,
@@ -19,6 +23,7 @@
 // core functions 2e-5 * S (core_cases.hpp), wrappers 16 ulps of the condition + 2e-5 |f|
 // (wrapper_cases.hpp).
 #include "core_cases.hpp"
+#include "web_glints.hpp"
 #include "web_support.hpp"
 #include "wrapper_cases.hpp"
 
@@ -133,6 +138,47 @@ nlohmann::json job_for(const fs::path& directory, const Case& c, std::vector<flo
   return job;
 }
 
+// Every glint function: the core ones in compute, the wrappers in fragment with dpdxFine and dpdxCoarse.
+std::vector<saagen::test::web_glints::Case> glint_cases() {
+  return saagen::test::web_glints::cases("core_", {{"fine_", ref::Derivative::fine}, {"coarse_", ref::Derivative::coarse}});
+}
+
+// The runner job of one glint case, with the dictionary `texture` (web_glints::write_dictionary).
+nlohmann::json glint_job_for(const fs::path& directory, const saagen::test::web_glints::Case& c, const nlohmann::json& texture,
+                             std::vector<float>& inputs) {
+  namespace wg = saagen::test::web_glints;
+  const saagen::Catalogue& catalogue = saagen::glints::catalogue();
+  saagen::EmitOptions options;
+  options.target = "wgsl";
+  options.variants = {c.variant};
+  const saagen::EmittedFile file = saagen::glints::emit(options).front();
+  saagen::KernelRequest request;
+  nlohmann::json job{{"id", c.id}, {"texture", texture}};
+  if (c.wrapper) {
+    request.kind = saagen::KernelKind::fragment;
+    request.width = wg::side;
+    request.output_stride = static_cast<std::uint32_t>(c.wrappers.size());
+    request.body = wg::wrapper_body(c.variant);
+    request.redirect_plain_derivatives = true;
+    request.plain_derivative = c.derivative == ref::Derivative::fine ? saagen::PlainDerivative::fine : saagen::PlainDerivative::coarse;
+    job["kind"] = "fragment";
+    job["width"] = job["height"] = wg::side;
+    job["output_floats"] = std::size_t{wg::side} * wg::side * request.output_stride;
+  } else {
+    request.kind = saagen::KernelKind::compute;
+    request.body = saagen::load_call_store_body(catalogue, c.function, request);
+    inputs = saagen::test::glint::packed_inputs(*catalogue.find_function(c.function), wg::elements);
+    std::ofstream(directory / (c.id + ".in.f32"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(inputs.data()), static_cast<std::streamsize>(inputs.size() * sizeof(float)));
+    job["kind"] = "compute";
+    job["input"] = c.id + ".in.f32";
+    job["invocations"] = wg::elements;
+    job["output_floats"] = wg::elements * request.output_stride;
+  }
+  job["code"] = saagen::joined_source(saagen::kernel_sources(catalogue, file.file_name, file.content, request));
+  return job;
+}
+
 // Every WGSL file the Tint suite validates: each variant in each form, and the manifest bundles.
 std::vector<std::pair<std::string, std::string>> files_to_validate(bool with_f16) {
   std::vector<std::pair<std::string, std::string>> files;
@@ -176,12 +222,20 @@ const RunnerRun& runner_run() {
       jobs.push_back(job_for(directory, c, inputs));
       if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
     }
+    const nlohmann::json texture = saagen::test::web_glints::write_dictionary(directory);
+    const auto glints = glint_cases();
+    for (const auto& c : glints) {
+      std::vector<float> inputs;
+      jobs.push_back(glint_job_for(directory, c, texture, inputs));
+      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
+    }
     try {
       result.results = saagen::run_webgpu_jobs(jobs, directory);
     } catch (const saagen::Error& error) {
       result.error = error.what();
     }
     for (const Case& c : cases) result.outputs[c.id] = read_floats(directory / (c.id + ".out.f32"));
+    for (const auto& c : glints) result.outputs[c.id] = read_floats(directory / (c.id + ".out.f32"));
     fs::remove_all(directory);
     return result;
   }();
@@ -247,6 +301,40 @@ TEST_P(OnWebGpu, MatchesTheDoublePrecisionReferenceWithinTheWgslAccuracyBounds) 
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFunction, OnWebGpu, ::testing::ValuesIn(all_cases()), [](const auto& info) { return info.param.id; });
+
+class GlintsOnWebGpu : public ::testing::TestWithParam<saagen::test::web_glints::Case> {};
+
+TEST_P(GlintsOnWebGpu, MatchTheDoublePrecisionReferenceWithinTheSamplerAndFp32Bounds) {
+  namespace wg = saagen::test::web_glints;
+  const wg::Case& c = GetParam();
+  const nlohmann::json& result = result_of(c.id);
+  ASSERT_FALSE(result.contains("error")) << c.id << ": " << result.dump();
+  const std::vector<float>& out = runner_run().outputs.at(c.id);
+  saagen::KernelRequest request;
+  if (c.wrapper) {
+    request.output_stride = static_cast<std::uint32_t>(c.wrappers.size());
+  } else {
+    (void)saagen::load_call_store_body(saagen::glints::catalogue(), c.function, request);
+  }
+  const std::size_t items = c.wrapper ? std::size_t{wg::side} * wg::side : wg::elements;
+  ASSERT_EQ(out.size(), items * request.output_stride);
+  const std::vector<float> no_inputs;
+  const auto found = runner_run().inputs.find(c.id);
+  const auto reference =
+      wg::comparison(c, found == runner_run().inputs.end() ? no_inputs : found->second, request.input_stride, c.derivative);
+  EXPECT_EQ(reference.outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
+  for (const wg::FunctionResult& function : wg::compare(c, out, request.output_stride, reference)) {
+    const std::string what = fmt::format("{} ({}, {})", function.function, c.variant,
+                                         c.wrapper ? (c.derivative == ref::Derivative::fine ? "fragment, dpdxFine" : "fragment, dpdxCoarse")
+                                                   : fmt::format("compute, {} inputs", wg::elements));
+    std::cout << "[ webgpu   ] " << function.worst.summary(what) << "\n";
+    EXPECT_EQ(function.worst.failing, 0u) << function.worst.summary(what);
+    EXPECT_GT(function.nonzero, function.worst.count / 2) << what << ": the inputs do not hit the lobes";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryGlintFunction, GlintsOnWebGpu, ::testing::ValuesIn(glint_cases()),
+                         [](const auto& info) { return info.param.id; });
 
 TEST(WebGpuAdapter, IsDawnOnSwiftShader) {
   const RunnerRun& run = runner_run();

@@ -22,6 +22,9 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <linux/fs.h>
+#include <pthread.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -304,15 +307,6 @@ bool needs_writing(const fs::path& path, const std::optional<std::string_view>& 
   return true;
 }
 
-void ensure_directory(const fs::path& directory) {
-  std::error_code error;
-  fs::create_directories(directory, error);
-  if (error || !fs::is_directory(directory)) {
-    throw Error(fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(),
-                            error ? error.message() : "not a directory"));
-  }
-}
-
 mode_t creation_mode() {
   const mode_t mask = ::umask(0);
   ::umask(mask);
@@ -381,11 +375,55 @@ class SignalCleanup {
       if (slot.compare_exchange_strong(expected, nullptr)) return;
     }
   }
+  // A directory this run created, removed (while empty) by a signal after the temporaries.
+  static bool add_directory(const char* name) {
+    for (auto& slot : directory_slots_) {
+      const char* empty = nullptr;
+      if (slot.compare_exchange_strong(empty, name)) return true;
+    }
+    return false;
+  }
+  static void remove_directory(const char* name) {
+    for (auto& slot : directory_slots_) {
+      const char* expected = name;
+      if (slot.compare_exchange_strong(expected, nullptr)) return;
+    }
+  }
+
+  // The signals the handler takes, blocked in the calling thread while alive: a commit (backups,
+  // renames, rollback) runs to its end, and a signal that arrived meanwhile acts afterwards. A
+  // handler running in another thread waits for it.
+  class Deferred {
+   public:
+    Deferred() {
+      sigset_t set;
+      sigemptyset(&set);
+      for (const int signal : signals) sigaddset(&set, signal);
+      ::pthread_sigmask(SIG_BLOCK, &set, &previous_);
+      ++committing_;
+    }
+    ~Deferred() {
+      --committing_;
+      ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+    }
+    Deferred(const Deferred&) = delete;
+    Deferred& operator=(const Deferred&) = delete;
+
+   private:
+    sigset_t previous_{};
+  };
 
  private:
   static void handle(int signal) {
+    // A commit in another thread (this one blocks these signals while it commits) finishes first:
+    // the set is then whole, and its temporaries are already gone.
+    while (committing_.load() != 0) {
+    }
     for (auto& slot : slots_) {
       if (const char* name = slot.load()) ::unlink(name);
+    }
+    for (auto slot = directory_slots_.rbegin(); slot != directory_slots_.rend(); ++slot) {
+      if (const char* name = slot->load()) ::rmdir(name);  // deepest first; only while empty
     }
     for (std::size_t index = 0; index < std::size(signals); ++index) {
       if (signals[index] == signal) ::sigaction(signal, &previous_[index], nullptr);
@@ -398,6 +436,8 @@ class SignalCleanup {
   static inline struct sigaction previous_[std::size(signals)] = {};
   static inline bool installed_[std::size(signals)] = {};
   static inline std::array<std::atomic<const char*>, 4096> slots_ = {};
+  static inline std::array<std::atomic<const char*>, 256> directory_slots_ = {};
+  static inline std::atomic<int> committing_ = 0;
 };
 
 // A new file `.NAME.saagen-XXXXXX` beside `path`, created exclusively (never through a link),
@@ -458,6 +498,189 @@ class Temporaries {
   mode_t mode_ = creation_mode();
 };
 
+// The directories a run creates for its outputs (missing ancestors included), removed again,
+// deepest first and only while empty, unless the run succeeds; a signal removes them too.
+class CreatedDirectories {
+ public:
+  CreatedDirectories() = default;
+  CreatedDirectories(const CreatedDirectories&) = delete;
+  CreatedDirectories& operator=(const CreatedDirectories&) = delete;
+  ~CreatedDirectories() {
+    for (auto name = created_.rbegin(); name != created_.rend(); ++name) {
+      ::rmdir((*name)->c_str());
+      SignalCleanup::remove_directory((*name)->c_str());
+    }
+  }
+
+  void ensure(const fs::path& directory) {
+    std::vector<fs::path> missing;
+    struct stat status {};
+    for (fs::path existing = directory; !existing.empty() && ::stat(existing.c_str(), &status) != 0;) {
+      if (errno != ENOENT) throw cannot_create(directory, error_text(errno));
+      missing.push_back(existing);
+      if (existing.parent_path() == existing) break;
+      existing = existing.parent_path();
+    }
+    for (auto path = missing.rbegin(); path != missing.rend(); ++path) {
+      auto owned = std::make_unique<std::string>(path->string());
+      SignalCleanup::add_directory(owned->c_str());  // before mkdir: a signal in between finds it
+      if (::mkdir(owned->c_str(), 0777) != 0) {
+        const int error = errno;
+        SignalCleanup::remove_directory(owned->c_str());
+        std::error_code ignored;
+        if (error == EEXIST && fs::is_directory(*path, ignored)) continue;  // a concurrent run made it
+        throw cannot_create(directory, error_text(error));
+      }
+      created_.push_back(std::move(owned));
+    }
+    std::error_code ignored;
+    if (!fs::is_directory(directory, ignored)) throw cannot_create(directory, "not a directory");
+  }
+
+  // The run succeeded: the directories stay.
+  void release() {
+    for (const auto& name : created_) SignalCleanup::remove_directory(name->c_str());
+    created_.clear();
+  }
+
+ private:
+  static Error cannot_create(const fs::path& directory, const std::string& reason) {
+    return Error(fmt::format("{}: cannot create the output directory ({}); choose a writable path", directory.string(), reason));
+  }
+  std::vector<std::unique_ptr<std::string>> created_;
+};
+
+void (*commit_hook)(CommitStep, std::size_t) = nullptr;
+
+void run_commit_hook(CommitStep step, std::size_t index) {
+  if (commit_hook) commit_hook(step, index);
+}
+
+// One file of a commit: its staged temporary, and where its previous bytes wait (a second hard
+// link, or the file itself moved aside) until every file of the set is in place.
+struct Replacement {
+  std::string target;
+  std::string staged;
+  std::string backup;  // empty: there was no file at the target
+  bool moved_aside = false;
+  bool renamed = false;
+};
+
+// A fresh name `.NAME.saagen-XXXXXX` beside `path` that nothing holds (the placeholder mkstemp
+// reserves is removed again: link() and rename() then take the name).
+std::optional<std::string> free_name_beside(const std::string& path) {
+  const fs::path target(path);
+  std::string leaf = ".";
+  leaf.append(target.filename().string()).append(".saagen-XXXXXX");
+  std::string name = (directory_of(target) / leaf).string();
+  const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  ::close(fd);
+  ::unlink(name.c_str());
+  return name;
+}
+
+// Why a file cannot be replaced, as the user can act on it.
+std::string replace_failure(const std::string& target, int error) {
+  if (error != EPERM && error != EACCES) return error_text(error);
+  const int fd = ::open(target.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+  int flags = 0;
+  const bool flagged = fd >= 0 && ::ioctl(fd, FS_IOC_GETFLAGS, &flags) == 0 && (flags & (FS_IMMUTABLE_FL | FS_APPEND_FL)) != 0;
+  if (fd >= 0) ::close(fd);
+  if (flagged) return fmt::format("{}: the file is immutable or append-only (chattr -i/-a)", error_text(error));
+  struct stat file {
+  }, directory{};
+  if (::lstat(target.c_str(), &file) == 0 && ::stat(directory_of(target).c_str(), &directory) == 0 && (directory.st_mode & S_ISVTX) &&
+      file.st_uid != ::geteuid()) {
+    return fmt::format("{}: another user's file in a sticky directory", error_text(error));
+  }
+  return error_text(error);
+}
+
+// Keeps the file at the target (if any) under a backup name, checking that it can be replaced:
+// a second hard link keeps it in place; another user's file in a sticky directory, or one that
+// cannot be linked (immutable, append-only, protected hard links), is moved aside instead, which
+// the kernel refuses exactly when a rename over it would be refused. Returns 0 or an errno.
+int keep_previous(Replacement& file) {
+  struct stat target {
+  }, directory{};
+  if (::lstat(file.target.c_str(), &target) != 0) return errno == ENOENT ? 0 : errno;
+  if (::stat(directory_of(file.target).c_str(), &directory) != 0) return errno;
+  const bool foreign_in_sticky = (directory.st_mode & S_ISVTX) && target.st_uid != ::geteuid() && directory.st_uid != ::geteuid();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const auto backup = free_name_beside(file.target);
+    if (!backup) return errno;
+    if (!foreign_in_sticky && ::link(file.target.c_str(), backup->c_str()) == 0) {
+      file.backup = *backup;
+      return 0;
+    }
+    if (!foreign_in_sticky && errno == EEXIST) continue;
+    if (!foreign_in_sticky && errno == ENOENT) return 0;  // removed meanwhile
+    if (::rename(file.target.c_str(), backup->c_str()) == 0) {
+      file.backup = *backup;
+      file.moved_aside = true;
+      return 0;
+    }
+    return errno == ENOENT ? 0 : errno;
+  }
+  return EEXIST;
+}
+
+// Puts every file back as it was before the commit (renamed ones from their backups, new ones
+// removed); returns the first file that could not be put back, with its errno.
+std::optional<std::pair<std::size_t, int>> roll_back(std::vector<Replacement>& files) {
+  std::optional<std::pair<std::size_t, int>> failure;
+  for (std::size_t index = files.size(); index-- > 0;) {
+    Replacement& file = files[index];
+    int result = 0;
+    if ((file.renamed || file.moved_aside) && !file.backup.empty())
+      result = ::rename(file.backup.c_str(), file.target.c_str());
+    else if (file.renamed)
+      result = ::unlink(file.target.c_str());
+    else if (!file.backup.empty())
+      result = ::unlink(file.backup.c_str());
+    if (result != 0 && !failure) failure = std::make_pair(index, errno);
+  }
+  return failure;
+}
+
+// Renames every staged file over its target, all or nothing: every previous file is kept first
+// (which proves it replaceable), and a failure puts back the files already replaced. Signals
+// that would end the process are deferred until the set is whole or restored.
+void commit(std::vector<Replacement>& files) {
+  std::optional<std::pair<std::size_t, int>> failure, restore_failure;
+  {
+    const SignalCleanup::Deferred deferred;
+    for (std::size_t index = 0; index < files.size() && !failure; ++index) {
+      if (const int error = keep_previous(files[index])) failure = std::make_pair(index, error);
+    }
+    for (std::size_t index = 0; index < files.size() && !failure; ++index) {
+      if (::rename(files[index].staged.c_str(), files[index].target.c_str()) != 0) {
+        failure = std::make_pair(index, errno);
+        break;
+      }
+      files[index].renamed = true;
+      run_commit_hook(CommitStep::renamed, index);
+    }
+    if (failure) {
+      restore_failure = roll_back(files);
+    } else {
+      for (const Replacement& file : files) {
+        if (!file.backup.empty()) ::unlink(file.backup.c_str());
+      }
+    }
+  }
+  if (!failure) return;
+  const Replacement& failed = files[failure->first];
+  const std::string reason = replace_failure(failed.target, failure->second);
+  if (restore_failure) {
+    const Replacement& lost = files[restore_failure->first];
+    throw Error(fmt::format("{}: cannot be replaced ({}); {} could not be put back ({}), its previous bytes are in {}", failed.target,
+                            reason, lost.target, error_text(restore_failure->second), lost.backup));
+  }
+  throw Error(fmt::format("{}: cannot be replaced ({}); nothing was changed", failed.target, reason));
+}
+
 }  // namespace
 
 bool written_by_saagen(const fs::path& path, std::string_view bytes) {
@@ -495,20 +718,29 @@ WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, cons
       report.unchanged.push_back(file.path);
   }
 
+  CreatedDirectories directories;
   Temporaries temporaries;
-  std::vector<fs::path> staged;
-  for (const OutputFile* file : to_write) {
-    ensure_directory(directory_of(file->path));
-    staged.push_back(temporaries.create(file->path, file->content));
-  }
-  for (std::size_t index = 0; index < to_write.size(); ++index) {
-    if (::rename(staged[index].c_str(), to_write[index]->path.c_str()) != 0) {
-      throw Error(fmt::format("{}: cannot replace the file ({})", to_write[index]->path.string(), error_text(errno)));
+  std::vector<Replacement> replacements;
+  try {
+    for (const OutputFile* file : to_write) {
+      directories.ensure(directory_of(file->path));
+      Replacement replacement;
+      replacement.target = file->path.string();
+      replacement.staged = temporaries.create(file->path, file->content).string();
+      replacements.push_back(std::move(replacement));
+      run_commit_hook(CommitStep::staged, replacements.size() - 1);
     }
-    report.written.push_back(to_write[index]->path);
+  } catch (const Error& error) {
+    // The temporaries and the new directories go as this unwinds.
+    throw Error(fmt::format("{}; nothing was changed", error.what()));
   }
+  commit(replacements);
   temporaries.release();
+  directories.release();
+  for (const OutputFile* file : to_write) report.written.push_back(file->path);
   return report;
 }
+
+void set_commit_hook(void (*hook)(CommitStep step, std::size_t index)) { commit_hook = hook; }
 
 }  // namespace saagen

@@ -63,9 +63,14 @@ double normal_mass(double a, double b) {
   return 1.0 - 0.5 * (std::erfc(-a / kSqrt2) + std::erfc(b / kSqrt2));
 }
 
-// Adds weight * (mean density of N(centre, s^2) over each texel [t dx, (t + 1) dx)) to acc.
+// Adds weight * (mean density of N(centre, s^2) over each texel [t dx, (t + 1) dx)) to acc; s = 0
+// puts the whole weight in the texel that holds a centre x >= 0 (the last one beyond x_max).
 void add_lobe(std::vector<double>& acc, double dx, double centre, double s, double weight) {
   const int size = static_cast<int>(acc.size());
+  if (s == 0.0) {
+    if (centre >= 0.0) acc[static_cast<std::size_t>(std::min(static_cast<int>(centre / dx), size - 1))] += weight / dx;
+    return;
+  }
   const double reach = 7.0 * s;
   const int first = std::max(0, static_cast<int>(std::floor((centre - reach) / dx)));
   const int last = std::min(size - 1, static_cast<int>(std::floor((centre + reach) / dx)));
@@ -124,6 +129,15 @@ void DictionaryParams::validate() const {
 double DictionaryParams::sigma() const { return alpha / kSqrt2; }
 double DictionaryParams::range() const { return 4.0 * sigma(); }
 
+// Box-averaging a lobe over a texel adds dx^2 / 12 to its variance and the sampler's linear
+// interpolation between texel centres adds dx^2 / 6 (the variance of the unit tent), so a lobe
+// stored with sqrt(lobe^2 - dx^2 / 4) reads back with the model's lobe variance (docs/GLINTS.md,
+// section 1). A texel wider than 2 lobe sigmas holds a lobe as its box (0).
+double DictionaryParams::stored_lobe_sigma() const {
+  const double dx = range() / resolution;
+  return std::sqrt(std::max(lobe_sigma * lobe_sigma - 0.25 * dx * dx, 0.0));
+}
+
 Dictionary generate_dictionary(const DictionaryParams& params) {
   params.validate();
   Dictionary dictionary;
@@ -134,6 +148,7 @@ Dictionary generate_dictionary(const DictionaryParams& params) {
   const double dx = params.range() / r;
   // Lobe centres ~ N(0, sigma^2 - lobe^2): the mixture's variance tends to sigma^2.
   const double centre_sigma = std::sqrt(sigma * sigma - params.lobe_sigma * params.lobe_sigma);
+  const double stored_sigma = params.stored_lobe_sigma();
   const std::uint64_t lobes = std::uint64_t{1} << (lods - 2);  // LOD lods - 2 has the most
 
   // Distributions are independent (one random stream each): threads take them in turn, and
@@ -145,8 +160,8 @@ Dictionary generate_dictionary(const DictionaryParams& params) {
     for (std::uint64_t j = 0; j < lobes; ++j) {
       const double mu = centre_sigma * stream.normal();
       // The symmetrised lobe (G(x - mu) + G(x + mu)) / 2, stored for x >= 0.
-      add_lobe(acc, dx, mu, params.lobe_sigma, 0.5);
-      add_lobe(acc, dx, -mu, params.lobe_sigma, 0.5);
+      add_lobe(acc, dx, mu, stored_sigma, 0.5);
+      add_lobe(acc, dx, -mu, stored_sigma, 0.5);
       if (j + 1 == (std::uint64_t{1} << next_lod)) {
         store_normalised(acc, dx, &dictionary.values[(static_cast<std::size_t>(next_lod) * n + d) * r]);
         ++next_lod;

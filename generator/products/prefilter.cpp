@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -47,7 +49,38 @@ bool starts_with(std::span<const std::uint8_t> bytes, std::initializer_list<std:
   return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
 }
 
-NormalImage read_png(std::span<const std::uint8_t> bytes, const std::string& what) {
+// The file as stb_image may decode it. Every chunk must fit in the file: stb_image grows its
+// IDAT buffer to what a chunk declares before reading it (an 80-byte file declaring 1.4 GB made
+// it allocate 2 GB; found by fuzz/png_fuzzer.cpp). Empty IDAT chunks are dropped: stb_image hands
+// memcpy a null pointer for one before the first non-empty IDAT (undefined behaviour, found by
+// the same target), and they carry no data. Empty when the file needs no change (no copy).
+std::vector<std::uint8_t> png_for_stb(std::span<const std::uint8_t> bytes, const std::string& what) {
+  const auto length_at = [&](std::size_t at) {
+    return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+  };
+  const auto type_at = [&](std::size_t at) { return std::string(bytes.begin() + at + 4, bytes.begin() + at + 8); };
+  std::vector<std::uint8_t> kept;
+  std::size_t copied = 0;
+  for (std::size_t at = 8; at + 8 <= bytes.size(); at += 12 + std::size_t{length_at(at)}) {
+    const std::string type = type_at(at);
+    if (length_at(at) > bytes.size() - at - 8) {
+      std::string shown;
+      for (const char c : type) shown += std::isalnum(static_cast<unsigned char>(c)) ? c : '?';
+      throw Error(
+          fmt::format("{}: not a readable PNG (chunk '{}' declares {} bytes, past the end of the file)", what, shown, length_at(at)));
+    }
+    if (type == "IEND") break;
+    if (type != "IDAT" || length_at(at) != 0) continue;
+    kept.insert(kept.end(), bytes.begin() + copied, bytes.begin() + at);
+    copied = std::min(at + 12, bytes.size());
+  }
+  if (copied != 0) kept.insert(kept.end(), bytes.begin() + copied, bytes.end());
+  return kept;
+}
+
+NormalImage read_png(std::span<const std::uint8_t> file, const std::string& what) {
+  const std::vector<std::uint8_t> cleaned = png_for_stb(file, what);
+  const std::span<const std::uint8_t> bytes = cleaned.empty() ? file : std::span<const std::uint8_t>(cleaned);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
@@ -155,18 +188,43 @@ void put_value(std::vector<std::uint8_t>& out, T value) {
   out.insert(out.end(), bytes, bytes + sizeof(T));
 }
 
-std::vector<std::uint8_t> toksvig_level(const Level& level, const Options& options) {
+// glTF 2.0 metallicRoughnessTexture: G = perceptual roughness, B = metallic, linear 8-bit UNORM.
+std::uint8_t unorm8(double value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0)); }
+
+std::vector<std::uint8_t> roughness_level(const Level& level, const Options& options) {
   const double base = to_alpha2(options.roughness, options.domain);
   std::vector<std::uint8_t> out;
   for (std::size_t t = 0; t < level.mean_normal.size() / 3; ++t) {
     const double* m = &level.mean_normal[3 * t];
-    const double value = from_alpha2(toksvig_alpha2(base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])), options.domain);
+    const double baked = method_alpha2(options.method, base, std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
+    const double alpha2 = options.scale == 1.0 ? baked : std::clamp(base + options.scale * (baked - base), 0.0, 1.0);
+    if (options.gltf) {
+      out.insert(out.end(), {255, unorm8(from_alpha2(alpha2, Domain::perceptual)), unorm8(options.metallic), 255});
+      continue;
+    }
+    const double value = from_alpha2(alpha2, options.domain);
     if (options.float32)
       put_value(out, static_cast<float>(value));
     else
       put_value(out, glints::to_half(value));
   }
   return out;
+}
+
+std::string_view roughness_formula(Method method) {
+  switch (method) {
+    case Method::unreal:
+      return "Unreal composite texture: V = max((1 - L) / L - 4e-5, 0), B = 2 V (a - 1), a' = (B - a) / (B - 1), a = base_alpha2 "
+             "(TextureCompressorModule ApplyCompositeTexture, CompositePower 1)";
+    case Method::filament_vmf:
+      return "Filament roughness-prefilter: a' = saturate(base_alpha2 + 2 / kappa), kappa = (3L - L^3) / (1 - L^2) (vMF fit; Karis "
+             "2018)";
+    case Method::hdrp:
+      return "Unity HDRP: a' = saturate(base_alpha2 + min(2 min(1 / (4 kappa), 0.03125), 0.25^2)), kappa = (3L - L^3) / (1 - L^2) "
+             "(TextureNormalVariance, NormalFiltering, NormalMapFilteringTexturePostprocessor)";
+    default:
+      return "a = saturate(base_alpha2 + 2 (1 - L) / L), L = |mean of the unit normals| (Toksvig 2005); stored in the domain";
+  }
 }
 
 std::vector<std::uint8_t> lean_level(const Level& level) {
@@ -192,10 +250,20 @@ nlohmann::json layout_json(const std::vector<Level>& levels, const Options& opti
   json["box_filter"] = "level m + 1 texel = mean of its level-m children; moments of the level-0 unit normals";
   json["base_roughness"] = options.roughness;
   json["domain"] = std::string(to_string(options.domain));
-  if (options.method == Method::toksvig) {
-    json["format"] = options.float32 ? "R32_SFLOAT" : "R16_SFLOAT";
-    json["channels"] = {"roughness"};
-    json["formula"] = "a = saturate(base_alpha2 + 2 (1 - L) / L), L = |mean of the unit normals| (Toksvig 2005); stored in the domain";
+  if (writes_roughness(options.method)) {
+    if (options.gltf) {
+      json["format"] = "R8G8B8A8_UNORM";
+      json["channels"] = {"1 (occlusion: none)", "perceptual roughness", "metallic", "1"};
+      json["output_domain"] = "perceptual";
+      json["gltf"] = "metallicRoughnessTexture: G = roughness (perceptual, alpha = r^2), B = metallic; linear";
+      json["metallic"] = options.metallic;
+    } else {
+      json["format"] = options.float32 ? "R32_SFLOAT" : "R16_SFLOAT";
+      json["channels"] = {"roughness"};
+      json["output_domain"] = std::string(to_string(options.domain));
+    }
+    json["formula"] = std::string(roughness_formula(options.method));
+    json["scale"] = options.scale;  // a = base_alpha2 + scale (formula - base_alpha2), saturated
   } else {
     json["format"] = "R32G32B32A32_SFLOAT";
     json["layers"] = {{"E[x]", "E[y]", "E[x^2]", "E[y^2]"}, {"E[xy]", "0", "0", "0"}};
@@ -209,15 +277,31 @@ nlohmann::json layout_json(const std::vector<Level>& levels, const Options& opti
 }  // namespace
 
 Method parse_method(std::string_view text) {
-  if (text == "toksvig") return Method::toksvig;
-  if (text == "lean") return Method::lean;
-  throw Error(fmt::format("--method '{}' is not one of toksvig, lean", text));
+  for (Method method : {Method::toksvig, Method::lean, Method::unreal, Method::filament_vmf, Method::hdrp})
+    if (text == to_string(method)) return method;
+  throw Error(fmt::format("--method '{}' is not one of toksvig, lean, unreal, filament-vmf, hdrp", text));
 }
+
+bool writes_roughness(Method method) { return method != Method::lean; }
 
 // The domains are those of saagen/emit/engines.hpp (one definition for emission and textures).
 Domain parse_domain(std::string_view text) { return find_domain(text).kind; }
 
-std::string_view to_string(Method method) { return method == Method::toksvig ? "toksvig" : "lean"; }
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::toksvig:
+      return "toksvig";
+    case Method::lean:
+      return "lean";
+    case Method::unreal:
+      return "unreal";
+    case Method::filament_vmf:
+      return "filament-vmf";
+    case Method::hdrp:
+      return "hdrp";
+  }
+  return "toksvig";
+}
 
 double from_alpha2(double alpha2, Domain domain) {
   switch (domain) {
@@ -309,21 +393,60 @@ double toksvig_alpha2(double base_alpha2, double mean_length) {
   return std::clamp(base_alpha2 + 2.0 * variance, 0.0, 1.0);
 }
 
+double vmf_kappa(double mean_length) {
+  if (!(mean_length < 1.0)) return std::numeric_limits<double>::infinity();
+  const double l = std::max(mean_length, 0.0), l2 = l * l;
+  return (3.0 * l - l * l2) / (1.0 - l2);
+}
+
+double method_alpha2(Method method, double base_alpha2, double mean_length) {
+  switch (method) {
+    case Method::toksvig:
+      return toksvig_alpha2(base_alpha2, mean_length);
+    case Method::unreal: {
+      const double l = std::min(mean_length, 1.0);
+      if (!(l > 0.0)) return 1.0;
+      const double variance = std::max((1.0 - l) / l - 4e-5, 0.0);
+      const double a = std::clamp(base_alpha2, 0.0, 1.0), b = 2.0 * variance * (a - 1.0);
+      return (b - a) / (b - 1.0);
+    }
+    case Method::filament_vmf:
+      return std::clamp(base_alpha2 + 2.0 / vmf_kappa(mean_length), 0.0, 1.0);
+    case Method::hdrp:
+      return std::clamp(base_alpha2 + std::min(2.0 * std::min(0.25 / vmf_kappa(mean_length), 0.03125), 0.25 * 0.25), 0.0, 1.0);
+    case Method::lean:
+      break;
+  }
+  throw Error("internal error: LEAN moments are not one roughness");
+}
+
 void Options::validate() const {
   if (!(roughness >= 0.0 && roughness <= 1.0)) throw Error(fmt::format("--roughness {} is outside [0, 1]", roughness));
-  if (float32 && method == Method::lean) throw Error("--float32 applies to --method toksvig; LEAN moments are always R32G32B32A32_SFLOAT");
+  if (!writes_roughness(method) && (float32 || gltf))
+    throw Error(
+        fmt::format("--{} applies to the roughness methods (toksvig, unreal, filament-vmf, hdrp); LEAN moments are always "
+                    "R32G32B32A32_SFLOAT",
+                    float32 ? "float32" : "gltf"));
+  if (float32 && gltf) throw Error("--float32 and --gltf exclude each other: the glTF layout is R8G8B8A8_UNORM");
+  if (!(metallic >= 0.0 && metallic <= 1.0)) throw Error(fmt::format("--metallic {} is outside [0, 1]", metallic));
+  if (!(scale >= 0.0 && scale <= 4.0)) throw Error(fmt::format("--scale {} is outside [0, 4]", scale));
+  if (scale != 1.0 && !writes_roughness(method)) throw Error("--scale applies to the roughness methods; LEAN moments are not scaled");
 }
 
 Ktx2Image prefilter_ktx2(const std::vector<Level>& levels, const Options& options) {
   options.validate();
   Ktx2Image image;
-  const bool toksvig = options.method == Method::toksvig;
-  image.vk_format = toksvig ? (options.float32 ? kFormatR32Sfloat : kFormatR16Sfloat) : kFormatRgba32Sfloat;
-  image.type_size = toksvig && !options.float32 ? 2 : 4;
+  const bool roughness = writes_roughness(options.method);
+  if (!roughness)
+    image.vk_format = kFormatRgba32Sfloat, image.type_size = 4;
+  else if (options.gltf)
+    image.vk_format = kFormatRgba8Unorm, image.type_size = 1;
+  else
+    image.vk_format = options.float32 ? kFormatR32Sfloat : kFormatR16Sfloat, image.type_size = options.float32 ? 4 : 2;
   image.width = static_cast<std::uint32_t>(levels.front().width);
   image.height = static_cast<std::uint32_t>(levels.front().height);
-  image.layers = toksvig ? 0 : 2;
-  for (const Level& level : levels) image.levels.push_back(toksvig ? toksvig_level(level, options) : lean_level(level));
+  image.layers = roughness ? 0 : 2;
+  for (const Level& level : levels) image.levels.push_back(roughness ? roughness_level(level, options) : lean_level(level));
   image.key_values.emplace_back("saagen.prefilter", layout_json(levels, options).dump());
   image.key_values.emplace_back("saagen.marker",
                                 fmt::format("// saagen-marker: target=ktx2 variants=prefilter-{}\n", to_string(options.method)));

@@ -395,6 +395,33 @@ std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
                      ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
 }
 
+// The texture prefilter a chosen configuration names, as the bake to run, against the best
+// allowed configuration without one; or, when no prefilter won, the best one that lost. The
+// prefilter is recommended only where the table's figures say it wins.
+std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
+                             const MaterialPlan& plan) {
+  std::optional<ContentRow> with, without;
+  for (const ContentRow& row : table.content_rows) {
+    if (row.content != "normal-mapped") continue;
+    const Configuration c = parse_configuration(row.configuration);
+    const bool allowed = choose_variant
+                             ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
+                             : c.variant == plan.variant;
+    if (!allowed) continue;
+    std::optional<ContentRow>& slot = c.prefilter == "none" ? without : with;
+    if (!slot || row.error < slot->error) slot = row;
+  }
+  if (!with || !without) return "";
+  if (plan.prefilter == "none") {
+    return fmt::format("; no texture prefilter: the best prefiltered configuration, {}, measured {} against {}", with->configuration,
+                       fixed(with->error), fixed(without->error));
+  }
+  const std::string bake = plan.prefilter == "lean" ? "saagen texture prefilter --method lean (slope moments)"
+                                                    : fmt::format("saagen texture prefilter --method {} --gltf", plan.prefilter);
+  return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({})", bake, fixed(with->error),
+                     fixed(without->error), without->configuration);
+}
+
 // With a trade table's content rows: the lowest-error configuration of the material's variant on
 // normal-mapped content, and, when the planner chooses the variant by accuracy, of any eligible one.
 void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
@@ -416,8 +443,8 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
   plan.variant = c.variant;
   plan.feed = c.feed;
   plan.prefilter = c.prefilter;
-  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {})", best->configuration, table.source_name,
-                                   fmt::join(figures, ", "));
+  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {}){}", best->configuration, table.source_name,
+                                   fmt::join(figures, ", "), prefilter_advice(table, eligible, choose_variant, plan));
 }
 
 void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {

@@ -37,6 +37,7 @@ const REPORTED_LIMITS = [
   'maxStorageBufferBindingSize',
   'maxBufferSize',
   'maxTextureDimension2D',
+  'maxTextureArrayLayers',
 ];
 
 // Points the Vulkan loader at one ICD manifest; returns its path.
@@ -57,11 +58,13 @@ export function selectVulkanDriver(env = process.env) {
 }
 
 // Raise the buffer-size limits to what the adapter allows: the defaults (128 MiB bindings,
-// 256 MiB buffers) are enough for today's inputs, but asking costs nothing.
+// 256 MiB buffers) are enough for today's inputs, but asking costs nothing. The array-layer
+// limit too: WebGPU's default is 256, and the glint dictionary has L * N / 4 layers (768 by default).
 function requiredLimits(adapter) {
   return {
     maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
     maxBufferSize: adapter.limits.maxBufferSize,
+    maxTextureArrayLayers: adapter.limits.maxTextureArrayLayers,
   };
 }
 

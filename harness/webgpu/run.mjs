@@ -33,6 +33,20 @@
 //   output_floats  positive integer: the size of saagen_output, zeroed before the dispatch
 //   input          optional file name, relative to DIR, of raw little-endian f32 bound as
 //                  saagen_input; absent or empty binds 16 zero bytes (arrayLength = 4)
+//   texture        optional: a 2D array texture with its MIP levels, which the module declares as
+//                    @group(0) @binding(2) var <name>: texture_2d_array<f32>;
+//                    @group(0) @binding(3) var <name>: sampler;
+//                  (the glint dictionary's declaration in targets/wgsl.json), an object of
+//     file           file name, relative to DIR: raw little-endian texels of `format`, level
+//                    after level, each level layer after layer, each layer row after row; level
+//                    m is max(1, width >> m) x max(1, height >> m) texels
+//     format         "rgba16float" (filterable) | "rgba32float" | "r32float" (nearest filters only)
+//     width, height, layers, levels   positive integers (levels at most a full MIP chain;
+//                    layers at most the device's maxTextureArrayLayers, raised to the adapter's)
+//     filter         "nearest" | "linear": the sampler's mag and min filters (default nearest)
+//     mipmap_filter  "nearest" | "linear" (default nearest)
+//     address_mode   "clamp-to-edge" | "repeat" | "mirror-repeat", on u, v and w (default
+//                    clamp-to-edge)
 // kind "fragment": the module declares
 //     @fragment fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32>
 //   (further inputs only if the runner's vertex stage, which outputs just the position, feeds
@@ -40,7 +54,7 @@
 //   must allow 2 storage buffers there, maxStorageBuffersInFragmentStage). Fields:
 //   width, height  positive integers: the rgba8unorm target of the one full-screen triangle
 //                  (position.xy at pixel centres: x + 0.5, y + 0.5, y down)
-//   output_floats, input  as for "compute"
+//   output_floats, input, texture  as for "compute"
 //   Every pixel runs fs once; the color written is discarded. Helper invocations (derivatives)
 //   write no storage.
 // Both "compute" and "fragment" write DIR/<id>.out.f32 (output_floats raw little-endian f32)
@@ -51,7 +65,7 @@
 //     features: [string],          // the device's features; "shader-f16" when the adapter offers it
 //     limits_used: { maxStorageBuffersInFragmentStage, maxComputeWorkgroupsPerDimension,
 //                    maxComputeInvocationsPerWorkgroup, maxStorageBufferBindingSize,
-//                    maxBufferSize, maxTextureDimension2D },
+//                    maxBufferSize, maxTextureDimension2D, maxTextureArrayLayers },
 //     elapsed_ms: number,           // the whole run, device creation included
 //     results: [ one per job, in order:
 //       { id,                       // the job's id (null when it had no string id)

@@ -21,6 +21,15 @@ const MODULE_CACHE_SIZE = 8;
 const ERROR_SCOPES = ['validation', 'out-of-memory', 'internal'];
 const JOB_KINDS = new Set(['compile', 'compute', 'fragment']);
 const ENTRY_STAGES = new Set(['compute', 'fragment']);
+// Texture formats a job's `texture` may have: bytes per texel, and how the shader samples it
+// (a 32-bit float format filters only with the float32-filterable feature, which is not asked for).
+const TEXTURE_FORMATS = {
+  rgba16float: { bytesPerTexel: 8, sampleType: 'float' },
+  rgba32float: { bytesPerTexel: 16, sampleType: 'unfilterable-float' },
+  r32float: { bytesPerTexel: 4, sampleType: 'unfilterable-float' },
+};
+const FILTER_MODES = new Set(['nearest', 'linear']);
+const ADDRESS_MODES = new Set(['clamp-to-edge', 'repeat', 'mirror-repeat']);
 // File-name safe: no separators, no leading dot (no hidden files, no "..").
 const ID_PATTERN = /^[A-Za-z0-9_][A-Za-z0-9_.-]{0,199}$/;
 
@@ -98,6 +107,46 @@ function checkJob(job) {
   if (typeof job.code !== 'string' || job.code === '') throw new JobError('job field code must be a non-empty WGSL string');
 }
 
+function oneOf(field, value, allowed) {
+  if (!allowed.has(value)) throw new JobError(`job field texture.${field} must be one of ${[...allowed].join(', ')}`);
+  return value;
+}
+
+// The job's texture description (run.mjs: "texture"), checked; null when the job has none.
+function textureSpec(job) {
+  const texture = job.texture;
+  if (texture === undefined || texture === null) return null;
+  if (typeof texture !== 'object' || Array.isArray(texture)) throw new JobError('job field texture must be an object');
+  if (typeof texture.file !== 'string' || texture.file === '') throw new JobError('job field texture.file must be a file name');
+  const format = oneOf('format', texture.format, new Set(Object.keys(TEXTURE_FORMATS)));
+  const size = {};
+  for (const field of ['width', 'height', 'layers', 'levels']) {
+    const value = texture[field];
+    if (!Number.isSafeInteger(value) || value < 1) throw new JobError(`job field texture.${field} must be a positive integer`);
+    size[field] = value;
+  }
+  const fullChain = Math.floor(Math.log2(Math.max(size.width, size.height))) + 1;
+  if (size.levels > fullChain) throw new JobError(`texture.levels ${size.levels} exceeds the ${fullChain} of a full MIP chain`);
+  const filter = oneOf('filter', texture.filter ?? 'nearest', FILTER_MODES);
+  const mipmapFilter = oneOf('mipmap_filter', texture.mipmap_filter ?? 'nearest', FILTER_MODES);
+  const addressMode = oneOf('address_mode', texture.address_mode ?? 'clamp-to-edge', ADDRESS_MODES);
+  const { sampleType } = TEXTURE_FORMATS[format];
+  const filtering = filter === 'linear' || mipmapFilter === 'linear';
+  if (filtering && sampleType !== 'float') throw new JobError(`texture format ${format} cannot be sampled with linear filters`);
+  return { file: texture.file, format, ...size, filter, mipmapFilter, addressMode, sampleType, filtering };
+}
+
+// Bytes of each MIP level of `spec`: max(1, width >> m) x max(1, height >> m) texels per layer.
+function levelExtents(spec) {
+  const extents = [];
+  for (let level = 0; level < spec.levels; ++level) {
+    const width = Math.max(1, spec.width >> level);
+    const height = Math.max(1, spec.height >> level);
+    extents.push({ width, height, bytes: width * height * spec.layers * TEXTURE_FORMATS[spec.format].bytesPerTexel });
+  }
+  return extents;
+}
+
 export class JobRunner {
   constructor(session, dir) {
     this.session = session;
@@ -163,10 +212,12 @@ export class JobRunner {
                          `the runner dispatches one row of ${WORKGROUP_SIZE}-wide workgroups along x`);
     }
     const input = this.readInput(job);
+    const texture = this.readTexture(job);
+    const layout = this.layout('compute', texture?.spec);
     const compiled = await this.compiledModule(job.code, result);
-    const pipeline = await this.cachedPipeline(compiled, 'compute', () => this.device.createComputePipeline({
-      layout: this.layout('compute').pipelineLayout, compute: { module: compiled.module, entryPoint: 'main' } }));
-    const bytes = await this.execute(input, outputBytes, 'compute', (encoder, bindGroup) => {
+    const pipeline = await this.cachedPipeline(compiled, layout.key, () => this.device.createComputePipeline({
+      layout: layout.pipelineLayout, compute: { module: compiled.module, entryPoint: 'main' } }));
+    const bytes = await this.execute({ input, texture, outputBytes, layout }, (encoder, bindGroup) => {
       const pass = encoder.beginComputePass();
       pass.setPipeline(pipeline);
       pass.setBindGroup(0, bindGroup);
@@ -181,11 +232,12 @@ export class JobRunner {
     const height = this.textureSide(job, 'height');
     const outputBytes = this.outputBytes(job);
     const input = this.readInput(job);
-    const layout = this.layout('fragment'); // first, so a device without fragment storage fails early
+    const texture = this.readTexture(job);
+    const layout = this.layout('fragment', texture?.spec); // first, so a device without fragment storage fails early
     const compiled = await this.compiledModule(job.code, result);
-    const pipeline = await this.cachedPipeline(compiled, 'fragment', () => this.device.createRenderPipeline(
+    const pipeline = await this.cachedPipeline(compiled, layout.key, () => this.device.createRenderPipeline(
       this.renderPipelineDescriptor(layout.pipelineLayout, compiled.module, 'fs')));
-    const bytes = await this.execute(input, outputBytes, 'fragment', (encoder, bindGroup) => {
+    const bytes = await this.execute({ input, texture, outputBytes, layout }, (encoder, bindGroup) => {
       const view = this.renderTarget(width, height); // here, inside execute's error scopes
       const pass = encoder.beginRenderPass({
         colorAttachments: [{ view, loadOp: 'clear', clearValue: [0, 0, 0, 0], storeOp: 'store' }] });
@@ -252,22 +304,29 @@ export class JobRunner {
   }
 
   // Binding 0: saagen_input (read-only storage), binding 1: saagen_output (read-write storage),
-  // visible to the one stage that runs the job's code. Explicit rather than "auto" so that a
-  // module that never reads its input still gets the same bind group.
-  layout(stage) {
-    if (this.layouts[stage]) return this.layouts[stage];
+  // visible to the one stage that runs the job's code; with a texture, binding 2: the
+  // texture_2d_array<f32> and binding 3: its sampler (`texture`: the job's textureSpec). Explicit
+  // rather than "auto" so that a module that never reads its input still gets the same bind group.
+  layout(stage, texture = null) {
+    const key = texture ? `${stage} ${texture.sampleType}` : stage;
+    if (this.layouts[key]) return this.layouts[key];
     if (stage === 'fragment' && !(this.limits.maxStorageBuffersInFragmentStage >= 2)) {
       throw new JobError(`fragment jobs need 2 storage buffers in the fragment stage; this device allows ` +
                          `maxStorageBuffersInFragmentStage = ${this.limits.maxStorageBuffersInFragmentStage}`);
     }
     const visibility = stage === 'compute' ? this.flags.ShaderStage.COMPUTE : this.flags.ShaderStage.FRAGMENT;
-    const bindGroupLayout = this.device.createBindGroupLayout({ entries: [
+    const entries = [
       { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
       { binding: 1, visibility, buffer: { type: 'storage' } },
-    ] });
+    ];
+    if (texture) {
+      entries.push({ binding: 2, visibility, texture: { sampleType: texture.sampleType, viewDimension: '2d-array' } });
+      entries.push({ binding: 3, visibility, sampler: { type: texture.sampleType === 'float' ? 'filtering' : 'non-filtering' } });
+    }
+    const bindGroupLayout = this.device.createBindGroupLayout({ entries });
     const pipelineLayout = this.device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] });
-    this.layouts[stage] = { bindGroupLayout, pipelineLayout };
-    return this.layouts[stage];
+    this.layouts[key] = { key, bindGroupLayout, pipelineLayout };
+    return this.layouts[key];
   }
 
   // --- buffers, target, files --------------------------------------------------------------------
@@ -306,6 +365,52 @@ export class JobRunner {
     return bytes.length === 0 ? null : bytes;
   }
 
+  // The job's texture: its checked description and its file's bytes (raw little-endian texels of
+  // the format, level after level, each level layer after layer, rows top to bottom), or null.
+  readTexture(job) {
+    const spec = textureSpec(job);
+    if (!spec) return null;
+    if (spec.width > this.limits.maxTextureDimension2D || spec.height > this.limits.maxTextureDimension2D) {
+      throw new JobError(`texture ${spec.width} x ${spec.height} exceeds maxTextureDimension2D ${this.limits.maxTextureDimension2D}`);
+    }
+    if (spec.layers > this.limits.maxTextureArrayLayers) {
+      throw new JobError(`texture.layers ${spec.layers} exceeds this device's maxTextureArrayLayers ${this.limits.maxTextureArrayLayers}`);
+    }
+    let bytes;
+    try {
+      bytes = fs.readFileSync(path.resolve(this.dir, spec.file));
+    } catch (error) {
+      throw new JobError(`cannot read texture ${spec.file}: ${error.code ?? messageOf(error)}`);
+    }
+    const extents = levelExtents(spec);
+    const expected = extents.reduce((sum, extent) => sum + extent.bytes, 0);
+    if (bytes.length !== expected) {
+      throw new JobError(`texture ${spec.file} is ${bytes.length} bytes; ${spec.levels} levels of ${spec.width} x ${spec.height} x ` +
+                         `${spec.layers} ${spec.format} take ${expected}`);
+    }
+    return { spec, extents, bytes };
+  }
+
+  // The texture's view and sampler for bindings 2 and 3, uploaded level by level; the texture
+  // is destroyed by the caller once the job's commands have run.
+  textureBinding(texture) {
+    const { spec, extents, bytes } = texture;
+    const handle = this.device.createTexture({
+      size: [spec.width, spec.height, spec.layers], format: spec.format, mipLevelCount: spec.levels,
+      usage: this.flags.TextureUsage.TEXTURE_BINDING | this.flags.TextureUsage.COPY_DST });
+    let offset = 0;
+    extents.forEach((extent, level) => {
+      const rowBytes = extent.width * TEXTURE_FORMATS[spec.format].bytesPerTexel;
+      this.device.queue.writeTexture({ texture: handle, mipLevel: level }, bytes.subarray(offset, offset + extent.bytes),
+                                     { bytesPerRow: rowBytes, rowsPerImage: extent.height }, [extent.width, extent.height, spec.layers]);
+      offset += extent.bytes;
+    });
+    const sampler = this.device.createSampler({
+      magFilter: spec.filter, minFilter: spec.filter, mipmapFilter: spec.mipmapFilter,
+      addressModeU: spec.addressMode, addressModeV: spec.addressMode, addressModeW: spec.addressMode });
+    return { handle, view: handle.createView({ dimension: '2d-array' }), sampler };
+  }
+
   // A buffer for `role` of at least `bytes`, reused while large enough; grown by doubling so a
   // run whose sizes creep up reallocates only a few times.
   buffer(role, bytes, usage) {
@@ -337,31 +442,42 @@ export class JobRunner {
     return this.target.view;
   }
 
-  // Binds input and a cleared output, lets `encode` record the pass, copies the output to a
-  // mappable buffer and returns its bytes. Every binding is sized exactly, so arrayLength() in
-  // the shader sees the job's sizes rather than the pooled buffers'.
-  async execute(input, outputBytes, stage, encode) {
-    const { value: bytes, errors } = await withErrorScopes(this.device, async () => {
-      const usage = this.flags.BufferUsage;
-      const source = this.inputBinding(input);
-      const output = this.buffer('output', outputBytes, usage.STORAGE | usage.COPY_SRC | usage.COPY_DST);
-      const readback = this.buffer('readback', outputBytes, usage.MAP_READ | usage.COPY_DST);
-      const bindGroup = this.device.createBindGroup({ layout: this.layout(stage).bindGroupLayout, entries: [
-        { binding: 0, resource: { buffer: source.buffer, size: source.size } },
-        { binding: 1, resource: { buffer: output, size: outputBytes } },
-      ] });
-      const encoder = this.device.createCommandEncoder();
-      encoder.clearBuffer(output, 0, outputBytes);
-      encode(encoder, bindGroup);
-      encoder.copyBufferToBuffer(output, 0, readback, 0, outputBytes);
-      this.device.queue.submit([encoder.finish()]);
-      await readback.mapAsync(this.flags.MapMode.READ, 0, outputBytes);
-      const copy = new Uint8Array(readback.getMappedRange(0, outputBytes)).slice();
-      readback.unmap();
-      return copy;
-    });
-    if (errors.length > 0) throw new JobError(errors.join('\n'));
-    return bytes;
+  // Binds input, a cleared output and the job's texture, lets `encode` record the pass, copies
+  // the output to a mappable buffer and returns its bytes. Every binding is sized exactly, so
+  // arrayLength() in the shader sees the job's sizes rather than the pooled buffers'.
+  async execute({ input, texture, outputBytes, layout }, encode) {
+    let uploaded = null;
+    let scoped;
+    try {
+      scoped = await withErrorScopes(this.device, async () => {
+        const usage = this.flags.BufferUsage;
+        const source = this.inputBinding(input);
+        const output = this.buffer('output', outputBytes, usage.STORAGE | usage.COPY_SRC | usage.COPY_DST);
+        const readback = this.buffer('readback', outputBytes, usage.MAP_READ | usage.COPY_DST);
+        const entries = [
+          { binding: 0, resource: { buffer: source.buffer, size: source.size } },
+          { binding: 1, resource: { buffer: output, size: outputBytes } },
+        ];
+        if (texture) {
+          uploaded = this.textureBinding(texture);
+          entries.push({ binding: 2, resource: uploaded.view }, { binding: 3, resource: uploaded.sampler });
+        }
+        const bindGroup = this.device.createBindGroup({ layout: layout.bindGroupLayout, entries });
+        const encoder = this.device.createCommandEncoder();
+        encoder.clearBuffer(output, 0, outputBytes);
+        encode(encoder, bindGroup);
+        encoder.copyBufferToBuffer(output, 0, readback, 0, outputBytes);
+        this.device.queue.submit([encoder.finish()]);
+        await readback.mapAsync(this.flags.MapMode.READ, 0, outputBytes);
+        const copy = new Uint8Array(readback.getMappedRange(0, outputBytes)).slice();
+        readback.unmap();
+        return copy;
+      });
+    } finally {
+      uploaded?.handle.destroy();
+    }
+    if (scoped.errors.length > 0) throw new JobError(scoped.errors.join('\n'));
+    return scoped.value;
   }
 
   outputPath(id) {

@@ -12,6 +12,9 @@
 //   - compile jobs: a type error reported with its line, a derivative in non-uniform control
 //     flow reported as an error, a module whose pipelines compile cleanly, and a workgroup size
 //     that only pipeline creation refuses,
+//   - a compute job that samples a 2-layer rgba16float texture with 3 MIP levels (linear filters,
+//     mirror-repeat) at texel centres, between texels, between levels and across the mirrored
+//     edge, where the filtered values are exact; and a texture whose file has the wrong size,
 //   - a job that the runner must refuse (too many invocations), followed by one that must run,
 //   - a DIR that does not exist: exit status 1 and one line on stderr.
 // It prints one line per check, the adapter and whether it offers shader-f16, and closes with
@@ -80,6 +83,61 @@ const TOO_WIDE_WORKGROUP_MODULE = `@compute @workgroup_size(1024)
 fn main() {}
 `;
 
+// The texture check: texel (layer l, level m, x) holds TEXEL_VALUE(l, m, x) + channel / 4, values
+// that half precision holds exactly, so that filtered results can be compared for equality.
+const TEXTURE = { width: 4, height: 1, layers: 2, levels: 3 };
+const texelValue = (layer, level, x, channel) => 100 * layer + 10 * level + x + channel / 4;
+
+// IEEE half bits of a value that half precision represents exactly (normal, positive, or 0).
+function halfBits(value) {
+  if (value === 0) return 0;
+  const exponent = Math.floor(Math.log2(value));
+  const mantissa = (value / 2 ** exponent - 1) * 1024;
+  if (!Number.isInteger(mantissa)) throw new Error(`${value} is not a half`);
+  return ((exponent + 15) << 10) | mantissa;
+}
+
+function textureBytes() {
+  const halves = [];
+  for (let level = 0; level < TEXTURE.levels; ++level) {
+    for (let layer = 0; layer < TEXTURE.layers; ++layer) {
+      for (let x = 0; x < Math.max(1, TEXTURE.width >> level); ++x) {
+        for (let channel = 0; channel < 4; ++channel) halves.push(halfBits(texelValue(layer, level, x, channel)));
+      }
+    }
+  }
+  return Buffer.from(new Uint16Array(halves).buffer);
+}
+
+// Queries (u, layer, lod) and the exact result of channel 0 (channel c adds c / 4).
+const TEXTURE_QUERIES = [
+  ...[0, 1].flatMap((layer) => [0, 1, 2].flatMap((level) => Array.from({ length: TEXTURE.width >> level }, (_, x) => (
+    { u: (x + 0.5) / (TEXTURE.width >> level), layer, lod: level, expected: texelValue(layer, level, x, 0) })))),
+  { u: 0.5, layer: 1, lod: 0, expected: (texelValue(1, 0, 1, 0) + texelValue(1, 0, 2, 0)) / 2 },  // between texels 1 and 2
+  { u: 0.125, layer: 0, lod: 0.5, expected: (texelValue(0, 0, 0, 0) + texelValue(0, 1, 0, 0)) / 2 },  // level 1 mirrors texel 0
+  { u: -0.125, layer: 1, lod: 0, expected: texelValue(1, 0, 0, 0) },  // mirror-repeat: -u
+  { u: 1.375, layer: 0, lod: 0, expected: texelValue(0, 0, 2, 0) },   // mirror-repeat: 2 - u
+];
+
+const TEXTURE_MODULE = `${BINDINGS}@group(0) @binding(2) var saagen_texture: texture_2d_array<f32>;
+@group(0) @binding(3) var saagen_sampler: sampler;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+  let i = id.x;
+  if (4u * i >= arrayLength(&saagen_output)) { return; }
+  let q = vec3<f32>(saagen_input[3u * i], saagen_input[3u * i + 1u], saagen_input[3u * i + 2u]);
+  let t = textureSampleLevel(saagen_texture, saagen_sampler, vec2<f32>(q.x, 0.5), i32(q.y), q.z);
+  for (var c = 0u; c < 4u; c++) { saagen_output[4u * i + c] = t[c]; }
+}
+`;
+
+function textureJob(id, file) {
+  return { id, kind: 'compute', code: TEXTURE_MODULE, input: 'texture_queries.f32', invocations: TEXTURE_QUERIES.length,
+           output_floats: 4 * TEXTURE_QUERIES.length,
+           texture: { file, format: 'rgba16float', ...TEXTURE, filter: 'linear', mipmap_filter: 'linear',
+                      address_mode: 'mirror-repeat' } };
+}
+
 function writeFloats(file, values) {
   fs.writeFileSync(file, Buffer.from(new Float32Array(values).buffer));
 }
@@ -115,6 +173,9 @@ function inputValue(i) {
 
 function checkJobs(dir) {
   writeFloats(path.join(dir, 'ramp.f32'), Array.from({ length: COMPUTE_COUNT }, (_, i) => inputValue(i)));
+  writeFloats(path.join(dir, 'texture_queries.f32'), TEXTURE_QUERIES.flatMap((q) => [q.u, q.layer, q.lod]));
+  fs.writeFileSync(path.join(dir, 'texture.rgba16float'), textureBytes());
+  fs.writeFileSync(path.join(dir, 'texture_short.rgba16float'), textureBytes().subarray(8));
   return [
     { id: 'type_error', kind: 'compile', code: TYPE_ERROR_MODULE },
     { id: 'non_uniform_dpdx', kind: 'compile', code: NON_UNIFORM_DERIVATIVE_MODULE,
@@ -129,6 +190,8 @@ function checkJobs(dir) {
     { id: 'doubling_no_input', kind: 'compute', code: doublingModule(), output_floats: 100, invocations: 100 },
     { id: 'positions', kind: 'fragment', code: positionModule(FRAGMENT_WIDTH), width: FRAGMENT_WIDTH,
       height: FRAGMENT_HEIGHT, output_floats: FRAGMENT_WIDTH * FRAGMENT_HEIGHT },
+    textureJob('texture', 'texture.rgba16float'),
+    textureJob('texture_short', 'texture_short.rgba16float'),
   ];
 }
 
@@ -161,6 +224,12 @@ function resultChecks(dir, byId) {
     },
     'compute: output = input * 2 + 1': () => outputCheck(dir, byId.doubling, COMPUTE_COUNT, (i) => inputValue(i) * 2 + 1),
     'compute without input: output = 1': () => outputCheck(dir, byId.doubling_no_input, 100, () => 1),
+    'texture: 2D array, MIP levels, linear filters, mirror-repeat': () => outputCheck(dir, byId.texture,
+      4 * TEXTURE_QUERIES.length, (i) => TEXTURE_QUERIES[Math.floor(i / 4)].expected + (i % 4) / 4),
+    'texture of the wrong size refused': () => {
+      const result = byId.texture_short;
+      return result.error?.includes('bytes') ? null : JSON.stringify(result);
+    },
     'fragment: output = position.x + 1000 * position.y': () => outputCheck(dir, byId.positions, FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
       (i) => ((i % FRAGMENT_WIDTH) + 0.5) + 1000 * (Math.floor(i / FRAGMENT_WIDTH) + 0.5)),
   };

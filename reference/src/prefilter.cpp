@@ -1,6 +1,8 @@
 #include "saagen/reference/prefilter.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace saagen::ref {
 
@@ -59,6 +61,28 @@ double prefilter_toksvig_sum(const Params& p, double alpha2, double mean_length,
 double prefilter_toksvig_projected(const Params& p, double alpha2, double mean_length, Vec3 dn_dx, Vec3 dn_dy) {
   const double texture_term = 2.0 * toksvig_variance(p, mean_length);
   return projected_space_add(alpha2, texture_term + clamped_kernel(p, dn_dx, dn_dy));
+}
+
+double vmf_kappa(double mean_length) {
+  if (!(mean_length < 1.0)) return std::numeric_limits<double>::infinity();
+  const double l = max(mean_length, 0.0), l2 = l * l;
+  return (3.0 * l - l * l2) / (1.0 - l2);
+}
+
+double unreal_composite_alpha2(double alpha2, double mean_length, double power) {
+  const double l = std::min(mean_length, 1.0);
+  if (!(l > 0.0)) return 1.0;  // no mean direction: (1 - L) / L is infinite, a' -> 1
+  const double variance = power * max((1.0 - l) / l - 4e-5, 0.0);
+  const double a = saturate(alpha2);
+  const double b = 2.0 * variance * (a - 1.0);
+  return (b - a) / (b - 1.0);
+}
+
+double filament_vmf_alpha2(double alpha2, double mean_length) { return saturate(alpha2 + 2.0 / vmf_kappa(mean_length)); }
+
+double hdrp_texture_alpha2(double alpha2, double mean_length, double threshold) {
+  const double variance = min(0.25 / vmf_kappa(mean_length), 0.03125);
+  return saturate(alpha2 + min(2.0 * variance, threshold * threshold));
 }
 
 // T&K 2019 Sec. 2.2 with the texture's covariance.

@@ -3,6 +3,10 @@
 // (EXT_color_buffer_float), with its inputs as an RGBA32F texture; the target is read back as
 // floats after each pass (uniform saagen_pass) and written to DIR/<id>.out.f32.
 //   node tests/webgl/run_functions.mjs DIR
+// A case may also name a 2D array texture (the glint dictionary), bound to texture unit 1 as
+// the sampler2DArray uniform `uniform`: the fields of the WebGPU runner's "texture"
+// (harness/webgpu/run.mjs: file of raw texels level after level, layer after layer; format
+// rgba16float or rgba32float; width, height, layers, levels; filter, mipmap_filter; address_mode).
 import fs from 'node:fs';
 import path from 'node:path';
 import { launchChromium } from './browser.mjs';
@@ -15,7 +19,7 @@ if (!directory) {
 const cases = JSON.parse(fs.readFileSync(path.join(directory, 'cases.json'), 'utf8'));
 
 // In the page: one WebGL2 context, one case at a time.
-function runCase(entry, inputBase64) {
+function runCase(entry, inputBase64, textureBase64) {
   const canvas = window.saagenCanvas ?? (window.saagenCanvas = document.createElement('canvas'));
   const gl = window.saagenGl ?? (window.saagenGl = canvas.getContext('webgl2'));
   if (!gl) return { error: 'no WebGL2 context' };
@@ -51,6 +55,41 @@ function runCase(entry, inputBase64) {
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, 1, 1, 0, gl.RGBA, gl.FLOAT, new Float32Array(4));
   }
   gl.uniform1i(gl.getUniformLocation(program, 'saagen_input'), 0);
+  let arrayTexture = null;
+  if (entry.texture) {
+    const t = entry.texture;
+    const formats = { rgba16float: [gl.RGBA16F, gl.HALF_FLOAT, Uint16Array], rgba32float: [gl.RGBA32F, gl.FLOAT, Float32Array] };
+    const wraps = { 'clamp-to-edge': gl.CLAMP_TO_EDGE, repeat: gl.REPEAT, 'mirror-repeat': gl.MIRRORED_REPEAT };
+    const format = formats[t.format];
+    if (!format) return { error: `texture format ${t.format} is not rgba16float or rgba32float` };
+    const maxLayers = gl.getParameter(gl.MAX_ARRAY_TEXTURE_LAYERS);
+    if (t.layers > maxLayers) return { error: `texture layers ${t.layers} exceed MAX_ARRAY_TEXTURE_LAYERS ${maxLayers}` };
+    const [internalFormat, type, View] = format;
+    const bytes = Uint8Array.from(atob(textureBase64), (c) => c.charCodeAt(0));
+    arrayTexture = gl.createTexture();
+    gl.activeTexture(gl.TEXTURE1);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, arrayTexture);
+    gl.texStorage3D(gl.TEXTURE_2D_ARRAY, t.levels, internalFormat, t.width, t.height, t.layers);
+    let offset = 0;
+    for (let level = 0; level < t.levels; ++level) {
+      const width = Math.max(1, t.width >> level);
+      const height = Math.max(1, t.height >> level);
+      const count = width * height * t.layers * 4;
+      gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, level, 0, 0, 0, width, height, t.layers, gl.RGBA, type, new View(bytes.buffer, offset, count));
+      offset += count * View.BYTES_PER_ELEMENT;
+    }
+    if (offset !== bytes.length) return { error: `texture ${t.file} is ${bytes.length} bytes, its levels take ${offset}` };
+    const linear = t.filter === 'linear';
+    const minFilter = t.mipmap_filter === 'linear' ? (linear ? gl.LINEAR_MIPMAP_LINEAR : gl.NEAREST_MIPMAP_LINEAR)
+                                                   : (linear ? gl.LINEAR_MIPMAP_NEAREST : gl.NEAREST_MIPMAP_NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, minFilter);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, linear ? gl.LINEAR : gl.NEAREST);
+    for (const wrap of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) {
+      gl.texParameteri(gl.TEXTURE_2D_ARRAY, wrap, wraps[t.address_mode ?? 'clamp-to-edge']);
+    }
+    gl.uniform1i(gl.getUniformLocation(program, t.uniform), 1);
+    gl.activeTexture(gl.TEXTURE0);
+  }
   const target = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, target);
   gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, entry.width, entry.height, 0, gl.RGBA, gl.FLOAT, null);
@@ -72,6 +111,7 @@ function runCase(entry, inputBase64) {
   gl.deleteFramebuffer(framebuffer);
   gl.deleteTexture(target);
   gl.deleteTexture(input);
+  if (arrayTexture) gl.deleteTexture(arrayTexture);
   gl.deleteProgram(program);
   if (glError !== gl.NO_ERROR) return { error: `GL error ${glError}` };
   const bytes = new Uint8Array(result.buffer);
@@ -93,7 +133,8 @@ try {
   console.log(`[ webgl2   ] ${info}`);
   for (const entry of cases) {
     const input = entry.input ? fs.readFileSync(path.join(directory, entry.input)).toString('base64') : null;
-    const result = await page.evaluate(runCase, entry, input);
+    const texture = entry.texture ? fs.readFileSync(path.join(directory, entry.texture.file)).toString('base64') : null;
+    const result = await page.evaluate(runCase, entry, input, texture);
     if (result.error) {
       ++failures;
       console.error(`[ webgl2   ] ${entry.id}: ${result.error}`);

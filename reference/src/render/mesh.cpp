@@ -70,8 +70,10 @@ double box_entry(const double* box, const SlabRay& r, double t_min, double t_max
 
 }  // namespace
 
-TriangleMesh::TriangleMesh(std::string label, std::vector<MeshVertex> vertices, std::vector<std::array<int, 3>> triangles)
-    : label_(std::move(label)), vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
+TriangleMesh::TriangleMesh(std::string label, std::vector<MeshVertex> vertices, std::vector<std::array<int, 3>> triangles,
+                           std::vector<int> objects)
+    : label_(std::move(label)), vertices_(std::move(vertices)), triangles_(std::move(triangles)), objects_(std::move(objects)) {
+  if (!objects_.empty() && objects_.size() != triangles_.size()) throw std::invalid_argument("TriangleMesh: one object per triangle");
   const int n_vertices = static_cast<int>(vertices_.size());
   for (const auto& tri : triangles_)
     for (int i : tri)
@@ -82,8 +84,11 @@ TriangleMesh::TriangleMesh(std::string label, std::vector<MeshVertex> vertices, 
     hash_vec(hash_, v.normal);
     hash_vec(hash_, v.tangent);
     hash_vec(hash_, {v.uv.x, v.uv.y, 0.0});
+    // Only a mirrored tangent frame is hashed, so that meshes without any keep their hash.
+    if (v.tangent_sign != 1.0) hash_bytes(hash_, &v.tangent_sign, sizeof v.tangent_sign);
   }
   for (const auto& tri : triangles_) hash_bytes(hash_, tri.data(), sizeof(int) * 3);
+  if (!objects_.empty()) hash_bytes(hash_, objects_.data(), sizeof(int) * objects_.size());
 
   std::vector<Vec3> centroids(triangles_.size());
   for (std::size_t i = 0; i < triangles_.size(); ++i) {
@@ -185,7 +190,10 @@ void TriangleMesh::fill_hit(int index, const Ray& ray, double t, double b1, doub
   const Vec3 tangent = b0 * v0.tangent + b1 * v1.tangent + b2 * v2.tangent;
   hit.tangent = normalize(tangent - dot(tangent, hit.normal) * hit.normal);
   hit.bitangent = cross(hit.normal, hit.tangent);
-  hit.object = 0;
+  hit.object = objects_.empty() ? 0 : objects_[static_cast<std::size_t>(index)];
+  hit.bitangent_sign = b0 * v0.tangent_sign + b1 * v1.tangent_sign + b2 * v2.tangent_sign < 0.0 ? -1.0 : 1.0;
+  hit.alpha_scale = 1.0;
+  hit.triangle = index;
   hit.geometric_normal = hit.normal;
   hit.geometric_tangent = hit.tangent;
   hit.geometric_bitangent = hit.bitangent;
@@ -201,6 +209,26 @@ void TriangleMesh::fill_hit(int index, const Ray& ray, double t, double b1, doub
   } else {
     hit.dpdu = hit.dpdv = Vec3{};
   }
+}
+
+bool TriangleMesh::extrapolate(int index, const Ray& ray, SurfaceHit& hit) const {
+  if (index < 0 || index >= static_cast<int>(triangles_.size())) return false;
+  // Moller-Trumbore's Cramer solution without the barycentric bounds.
+  const Edges& g = edges_[static_cast<std::size_t>(index)];
+  const Vec3 pvec = cross(ray.direction, g.e2);
+  const double det = dot(g.e1, pvec);
+  if (det == 0.0) return false;
+  const double inv = 1.0 / det;
+  const Vec3 s = ray.origin - g.p0;
+  const Vec3 qvec = cross(s, g.e1);
+  const double b1 = dot(s, pvec) * inv, b2 = dot(ray.direction, qvec) * inv, t = dot(g.e2, qvec) * inv;
+  if (!(t > 0.0)) return false;
+  const auto& tri = triangles_[static_cast<std::size_t>(index)];
+  const double b0 = 1.0 - b1 - b2;
+  const Vec3 normal = b0 * vertices_[tri[0]].normal + b1 * vertices_[tri[1]].normal + b2 * vertices_[tri[2]].normal;
+  if (!(ref::length(normal) > 1e-12)) return false;
+  fill_hit(index, ray, t, b1, b2, hit);
+  return std::isfinite(hit.tangent.x) && std::isfinite(hit.tangent.y) && std::isfinite(hit.tangent.z);
 }
 
 bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {

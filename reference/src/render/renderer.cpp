@@ -130,6 +130,12 @@ std::string_view prefilter_name(Prefilter prefilter) {
       return "toksvig";
     case Prefilter::lean:
       return "lean";
+    case Prefilter::unreal:
+      return "unreal";
+    case Prefilter::filament_vmf:
+      return "filament-vmf";
+    case Prefilter::hdrp:
+      return "hdrp";
   }
   return "?";
 }
@@ -203,10 +209,10 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
         if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
         const Vec3 half = normalize(s.light_ts + s.view_ts);
         const double fresnel = schlick_fresnel(dot(s.light_ts, half));
-        const double common = s.light_ts.z * s.irradiance;
+        const double common = s.light_ts.z * s.irradiance * hit.weight;
         double last_alpha = -1.0, last_brdf = 0.0;
         for (std::size_t m = 0; m < n_materials; ++m) {
-          const double alpha = materials[m].alpha;
+          const double alpha = materials[m].alpha * hit.alpha_scale;
           if (alpha != last_alpha) {
             const double a2 = alpha * alpha;
             last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
@@ -251,7 +257,9 @@ Vec2 quad_partner_uv(const Scene& scene, const SurfaceHit& shaded, int object, i
   const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
   const bool inside = px >= 0 && py >= 0 && px < width && py < height;
   SurfaceHit partner;
-  if (inside && scene.intersect_surface(ray, partner) && partner.object == object) return partner.uv;
+  if (inside && scene.intersect_surface(ray, partner) && partner.object == object &&
+      (!scene.per_triangle_quads() || partner.triangle == shaded.triangle))
+    return partner.uv;
   return tangent_plane_uv(shaded, ray);
 }
 
@@ -273,16 +281,25 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
   SurfaceHit hit;
   if (!scene.intersect_surface(ray, hit)) return f;
-  if (const NormalMap* map = scene.normal_map()) {
-    // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+  const NormalMap* map = scene.normal_map_at(hit);
+  const ScalarMap* roughness = scene.roughness_map_at(hit);
+  const SurfaceTextures* textures = scene.surface_textures_at(hit);
+  const ScalarMap* weight = textures ? textures->weight_map.get() : nullptr;
+  if (map || roughness || weight) {
     const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
-    f.has_normal_map = true;
     f.duv_dx = d.ddx;
     f.duv_dy = d.ddy;
-    f.lod = map->lod(d.ddx, d.ddy);
+  }
+  if (map) {
+    // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
+    f.has_normal_map = true;
+    f.lod = map->lod(f.duv_dx, f.duv_dy);
     f.texel = map->trilinear(hit.uv, f.lod);
     Scene::apply_normal_map(hit, normalize(f.texel.normal));
   }
+  // The roughness texture's own implicit LOD (its size may differ from the normal map's).
+  if (roughness) f.alpha_scale = roughness_alpha_scale(roughness->trilinear(hit.uv, roughness->lod(f.duv_dx, f.duv_dy)));
+  if (textures) f.weight = textures->weight * (weight ? ref::saturate(weight->trilinear(hit.uv, weight->lod(f.duv_dx, f.duv_dy))) : 1.0);
   const LocalShading s = local_shading(scene, ray, hit);
   f.hit = true;
   f.object = hit.object;
@@ -302,8 +319,67 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   f.geometric_half_ts =
       to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal);
   f.uv = hit.uv;
+  f.triangle = hit.triangle;
   return f;
 }
+
+namespace {
+
+QuadPixel quad_pixel(const PixelFields& f) {
+  return {true,
+          f.normal,
+          f.tangent,
+          f.bitangent,
+          f.half_ts,
+          f.geometric_normal,
+          f.geometric_tangent,
+          f.geometric_bitangent,
+          f.geometric_half_ts};
+}
+
+// The fields a helper invocation of the triangle hit at (x, y) computes at quad pixel (px, py).
+QuadPixel helper_pixel(const Scene& scene, const SurfaceHit& shaded, const PixelFields& f, int px, int py, int width, int height) {
+  const Ray ray = scene.camera().generate(px + 0.5, py + 0.5, width, height);
+  SurfaceHit hit;
+  if (!scene.extrapolate_surface(shaded, ray, hit)) return {};
+  if (const NormalMap* map = scene.normal_map_at(hit)) Scene::apply_normal_map(hit, normalize(map->trilinear(hit.uv, f.lod).normal));
+  const LocalShading s = local_shading(scene, ray, hit);
+  const Vec3 half = normalize(s.to_view + s.to_light);
+  return {true,
+          hit.normal,
+          hit.tangent,
+          hit.bitangent,
+          to_tangent_space(half, hit.tangent, hit.bitangent, hit.normal),
+          hit.geometric_normal,
+          hit.geometric_tangent,
+          hit.geometric_bitangent,
+          to_tangent_space(half, hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal)};
+}
+
+// GBuffer::helpers of a scene with per-triangle quads.
+void fill_helpers(const Scene& scene, GBuffer& g, int threads) {
+  g.helpers.assign(g.pixels.size(), {});
+  parallel_rows(g.height, threads, [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      const PixelFields& f = g.at(x, y);
+      if (!f.hit) continue;
+      SurfaceHit shaded;
+      if (!scene.intersect_surface(scene.camera().generate(x + 0.5, y + 0.5, g.width, g.height), shaded)) continue;
+      for (int q = 0; q < 4; ++q) {
+        const int qx = (x & ~1) + (q & 1), qy = (y & ~1) + (q >> 1);
+        if (qx == x && qy == y) continue;
+        if (qx < g.width && qy < g.height) {
+          const PixelFields& partner = g.at(qx, qy);
+          if (partner.hit && partner.object == f.object && partner.triangle == f.triangle) continue;
+        }
+        g.helpers[static_cast<std::size_t>(y) * g.width + x][static_cast<std::size_t>(q)] =
+            helper_pixel(scene, shaded, f, qx, qy, g.width, g.height);
+      }
+    }
+  });
+}
+
+}  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
   GBuffer g;
@@ -313,6 +389,7 @@ GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
   parallel_rows(height, threads, [&](int y) {
     for (int x = 0; x < width; ++x) g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
   });
+  if (scene.per_triangle_quads()) fill_helpers(scene, g, threads);
   return g;
 }
 
@@ -320,32 +397,39 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
   const PixelFields& self = gbuffer.at(x, y);
   if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
   const int x0 = x & ~1, y0 = y & ~1;
-  std::array<const PixelFields*, 4> source{};
+  const bool per_triangle = !gbuffer.helpers.empty();
+  std::array<QuadPixel, 4> source{};
   std::array<Vec2, 4> frag{};
   for (int q = 0; q < 4; ++q) {
     const int qx = x0 + (q & 1), qy = y0 + (q >> 1);
     frag[q] = {qx + 0.5, qy + 0.5};
-    const PixelFields* f = &self;
+    source[q] = quad_pixel(self);
+    if (qx == x && qy == y) continue;
     if (qx < gbuffer.width && qy < gbuffer.height) {
       const PixelFields& partner = gbuffer.at(qx, qy);
-      if (partner.hit && partner.object == self.object) f = &partner;
+      if (partner.hit && partner.object == self.object && (!per_triangle || partner.triangle == self.triangle)) {
+        source[q] = quad_pixel(partner);
+        continue;
+      }
     }
-    source[q] = f;
+    if (per_triangle) {
+      const QuadPixel& helper = gbuffer.helpers[static_cast<std::size_t>(y) * gbuffer.width + x][static_cast<std::size_t>(q)];
+      if (helper.valid) source[q] = helper;
+    }
   }
-  auto quad = [&](auto member) {
-    using T = std::remove_cvref_t<decltype(source[0]->*member)>;
-    return ref::Quad<T>{source[0]->*member, source[1]->*member, source[2]->*member, source[3]->*member};
+  auto quad = [&](Vec3 QuadPixel::*member) {
+    return ref::Quad<Vec3>{source[0].*member, source[1].*member, source[2].*member, source[3].*member};
   };
   QuadFields q;
-  q.normal = quad(&PixelFields::normal);
-  q.tangent = quad(&PixelFields::tangent);
-  q.bitangent = quad(&PixelFields::bitangent);
-  q.half_ts = quad(&PixelFields::half_ts);
+  q.normal = quad(&QuadPixel::normal);
+  q.tangent = quad(&QuadPixel::tangent);
+  q.bitangent = quad(&QuadPixel::bitangent);
+  q.half_ts = quad(&QuadPixel::half_ts);
   q.frag_coord = {frag[0], frag[1], frag[2], frag[3]};
-  q.geometric_normal = quad(&PixelFields::geometric_normal);
-  q.geometric_tangent = quad(&PixelFields::geometric_tangent);
-  q.geometric_bitangent = quad(&PixelFields::geometric_bitangent);
-  q.geometric_half_ts = quad(&PixelFields::geometric_half_ts);
+  q.geometric_normal = quad(&QuadPixel::geometric_normal);
+  q.geometric_tangent = quad(&QuadPixel::geometric_tangent);
+  q.geometric_bitangent = quad(&QuadPixel::geometric_bitangent);
+  q.geometric_half_ts = quad(&QuadPixel::geometric_half_ts);
   q.pixel = (x & 1) + 2 * (y & 1);
   return q;
 }
@@ -388,14 +472,29 @@ double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Der
 }
 
 // The texture's roughness at a pixel in the alpha^2 domain (prefilter.hpp): 2 sigma^2 I
-// (Toksvig) or 2 Sigma_tex (LEAN), as a symmetric matrix in the tangent frame.
-Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params) {
+// (Toksvig), 2 Sigma_tex (LEAN) or an engine's baked alpha'^2 less the base alpha2, as a
+// symmetric matrix in the tangent frame.
+Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params, double alpha2) {
   if (prefilter == Prefilter::none || !f.has_normal_map) return {};
-  if (prefilter == Prefilter::toksvig) {
-    const double v = 2.0 * ref::toksvig_variance(params, ref::length(f.texel.mean_normal));
-    return {v, 0.0, v};
+  const double length = ref::length(f.texel.mean_normal);
+  double v = 0.0;
+  switch (prefilter) {
+    case Prefilter::lean:
+      return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+    case Prefilter::toksvig:
+      v = 2.0 * ref::toksvig_variance(params, length);
+      break;
+    case Prefilter::unreal:
+      v = ref::unreal_composite_alpha2(alpha2, length) - alpha2;
+      break;
+    case Prefilter::filament_vmf:
+      v = ref::filament_vmf_alpha2(alpha2, length) - alpha2;
+      break;
+    default:
+      v = ref::hdrp_texture_alpha2(alpha2, length) - alpha2;
+      break;
   }
-  return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+  return {v, 0.0, v};
 }
 
 // deferred-aniso as the emitted passes compute it: the geometry pass's tensor in the frame built
@@ -423,11 +522,12 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   const PixelFields& f = gbuffer.at(x, y);
   PixelShade out;
   if (!f.hit) return out;
-  const double a2 = material.alpha * material.alpha;
+  const double alpha = material.alpha * f.alpha_scale;
+  const double a2 = alpha * alpha;
   const Vec2 alpha2{a2, a2};
   // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
   // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params);
+  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
   // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
   const double texture_isotropic = 0.5 * ref::trace(texture);
   double brdf = 0.0;
@@ -462,7 +562,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   if (variant == Variant::none) {
     isotropic(a2);
   } else if (is_engine(variant)) {
-    isotropic(engine_alpha2(variant, material.alpha, gather_quad(gbuffer, x, y), mode));
+    isotropic(engine_alpha2(variant, alpha, gather_quad(gbuffer, x, y), mode));
   } else {
     const QuadFields q = gather_quad(gbuffer, x, y);
     const FeedQuads in = feed_quads(q, feed);
@@ -504,7 +604,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
         throw std::invalid_argument("shade_pixel: unknown variant");
     }
   }
-  out.radiance = specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
+  out.radiance = f.weight * specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
   return out;
 }
 

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <deque>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -397,9 +400,23 @@ Ray Camera::generate(double fx, double fy, int width, int height) const {
   const Vec3 true_up = cross(right, forward);
   const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);
   const double aspect = static_cast<double>(width) / height;
-  const double sx = (2.0 * fx / width - 1.0) * tan_half * aspect;
-  const double sy = (1.0 - 2.0 * fy / height) * tan_half;
+  const double sx = (2.0 * (fx + jitter.x) / width - 1.0) * tan_half * aspect;
+  const double sy = (1.0 - 2.0 * (fy + jitter.y) / height) * tan_half;
   return {position, normalize(forward + sx * right + sy * true_up)};
+}
+
+std::optional<Vec2> Camera::project(Vec3 p, int width, int height) const {
+  const Vec3 forward = normalize(look_at - position);
+  const Vec3 right = normalize(cross(forward, up));
+  const Vec3 true_up = cross(right, forward);
+  const Vec3 d = p - position;
+  const double depth = dot(d, forward);
+  if (!(depth > 0.0)) return std::nullopt;
+  const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);
+  const double aspect = static_cast<double>(width) / height;
+  // generate's sx, sy are the film offsets of the direction at unit depth along forward.
+  const double sx = dot(d, right) / depth, sy = dot(d, true_up) / depth;
+  return Vec2{0.5 * width * (sx / (tan_half * aspect) + 1.0) - jitter.x, 0.5 * height * (1.0 - sy / tan_half) - jitter.y};
 }
 
 Camera Camera::panned(double right_pixels, double up_pixels, int height) const {
@@ -463,7 +480,58 @@ Vec3 bilinear_level0_normal(const NormalMap& map, Vec2 uv) {
 }
 }  // namespace
 
+namespace {
+// Registered scenes: a deque keeps every entry (and the name a string_view refers to) in place.
+struct SceneRegistry {
+  std::mutex mutex;
+  std::deque<std::pair<std::string, RegisteredScene>> entries;  // (key, scene)
+};
+SceneRegistry& scene_registry() {
+  static SceneRegistry registry;
+  return registry;
+}
+constexpr int kFirstRegisteredScene = 64;
+bool valid_scene_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+}  // namespace
+
+SceneId register_scene(RegisteredScene scene, const std::string& key) {
+  if (!valid_scene_name(scene.name)) throw std::invalid_argument("scene name '" + scene.name + "': use letters, digits, '_', '-', '.'");
+  for (SceneId id : kAllScenes)
+    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
+  for (SceneId id : kContentScenes)
+    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  for (std::size_t i = 0; i < registry.entries.size(); ++i) {
+    if (registry.entries[i].second.name != scene.name) continue;
+    if (registry.entries[i].first == key) return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(i));
+    throw std::invalid_argument("scene name '" + scene.name + "' is already registered for " + registry.entries[i].first);
+  }
+  registry.entries.emplace_back(key, std::move(scene));
+  return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(registry.entries.size()) - 1);
+}
+
+const RegisteredScene* registered_scene(SceneId id) {
+  const int index = static_cast<int>(id) - kFirstRegisteredScene;
+  if (index < 0) return nullptr;
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  if (index >= static_cast<int>(registry.entries.size())) return nullptr;
+  return &registry.entries[static_cast<std::size_t>(index)].second;
+}
+
+double roughness_alpha_scale(double g) {
+  const double clamped = ref::min(ref::max(g, 1.0 / 255.0), 1.0);
+  return clamped * clamped;
+}
+
 std::string_view scene_name(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->name;
   switch (id) {
     case SceneId::sphere:
       return "sphere";
@@ -488,6 +556,11 @@ std::optional<SceneId> scene_from_name(std::string_view name) {
     if (scene_name(id) == name) return id;
   for (SceneId id : kContentScenes)
     if (scene_name(id) == name) return id;
+  for (int i = kFirstRegisteredScene;; ++i) {
+    const RegisteredScene* registered = registered_scene(static_cast<SceneId>(i));
+    if (!registered) break;
+    if (registered->name == name) return static_cast<SceneId>(i);
+  }
   return std::nullopt;
 }
 
@@ -515,6 +588,32 @@ Scene Scene::with_camera(const Camera& camera) const {
   return copy;
 }
 
+Scene Scene::with_surface_materials(std::shared_ptr<const SurfaceMaterials> surfaces) const {
+  Scene copy = *this;
+  copy.surfaces_ = std::move(surfaces);
+  return copy;
+}
+
+const NormalMap* Scene::normal_map_at(const SurfaceHit& hit) const {
+  if (!surfaces_) return normal_map_.get();
+  const SurfaceTextures* textures = surfaces_->at(hit.object);
+  return textures ? textures->normal_map.get() : nullptr;
+}
+
+const ScalarMap* Scene::roughness_map_at(const SurfaceHit& hit) const {
+  if (!surfaces_) return nullptr;
+  const SurfaceTextures* textures = surfaces_->at(hit.object);
+  return textures ? textures->roughness_map.get() : nullptr;
+}
+
+bool Scene::has_normal_map() const {
+  if (normal_map_) return true;
+  if (surfaces_)
+    for (const SurfaceTextures& textures : surfaces_->by_object)
+      if (textures.normal_map) return true;
+  return false;
+}
+
 Scene Scene::with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, std::string source) const {
   Scene copy = *this;
   copy.normal_map_ = std::move(map);
@@ -526,6 +625,20 @@ Scene Scene::with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, 
 bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   const Ray local{object_to_world_.inverse_point(ray.origin), object_to_world_.inverse_vector(ray.direction)};
   if (!shape_->intersect(local, 0.0, hit)) return false;
+  finish_surface_hit(hit);
+  return true;
+}
+
+bool Scene::extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const {
+  const auto* mesh = dynamic_cast<const TriangleMesh*>(shape_.get());
+  if (!mesh || shaded.triangle < 0) return false;
+  const Ray local{object_to_world_.inverse_point(ray.origin), object_to_world_.inverse_vector(ray.direction)};
+  if (!mesh->extrapolate(shaded.triangle, local, hit)) return false;
+  finish_surface_hit(hit);
+  return true;
+}
+
+void Scene::finish_surface_hit(SurfaceHit& hit) const {
   hit.position = object_to_world_.apply_point(hit.position);
   hit.normal = object_to_world_.apply_vector(hit.normal);
   hit.tangent = object_to_world_.apply_vector(hit.tangent);
@@ -537,6 +650,7 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   hit.uv = tiling_ * hit.uv;
   hit.dpdu = object_to_world_.apply_vector(hit.dpdu) / tiling_.x;
   hit.dpdv = object_to_world_.apply_vector(hit.dpdv) / tiling_.y;
+  if (surfaces_) return;  // the mesh's own texture frame and bitangent sign (SurfaceMaterials)
   if (normal_map_) {
     set_texture_frame(hit);
     hit.normal = hit.geometric_normal;
@@ -544,12 +658,14 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
     hit.bitangent = hit.geometric_bitangent;
   }
   hit.bitangent_sign = dot(hit.geometric_bitangent, hit.dpdv) < 0.0 ? -1.0 : 1.0;
-  return true;
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   if (!intersect_surface(ray, hit)) return false;
-  if (normal_map_) apply_normal_map(hit, bilinear_level0_normal(*normal_map_, hit.uv));
+  if (const NormalMap* map = normal_map_at(hit)) apply_normal_map(hit, bilinear_level0_normal(*map, hit.uv));
+  if (const ScalarMap* roughness = roughness_map_at(hit)) hit.alpha_scale = roughness_alpha_scale(roughness->bilinear(0, hit.uv));
+  if (const SurfaceTextures* textures = surface_textures_at(hit))
+    hit.weight = textures->weight * (textures->weight_map ? ref::saturate(textures->weight_map->bilinear(0, hit.uv)) : 1.0);
   return true;
 }
 
@@ -571,12 +687,16 @@ std::string Scene::describe() const {
     << format_vec(camera_.look_at) << format_vec(camera_.up) << camera_.fov_y_degrees << "deg"
     << ";light=" << (light_.kind == Light::Kind::directional ? "dir" : "point") << format_vec(light_.vector) << light_.intensity
     << ";pivot=" << format_vec(pivot_) << ";rotation=" << rotation_;
+  // A jittered camera (taa.hpp) renders other pixels; the key of an unjittered one is unchanged.
+  if (camera_.jitter.x != 0.0 || camera_.jitter.y != 0.0) s << ";jitter=(" << camera_.jitter.x << "," << camera_.jitter.y << ")";
   if (normal_map_)
     s << ";normal_map=" << normal_map_->describe() << ",tiling=(" << tiling_.x << "," << tiling_.y << "),source=" << normal_map_source_;
+  if (surfaces_) s << ";surfaces=" << surfaces_->description;
   return s.str();
 }
 
 Scene make_scene(SceneId id, double rotation_radians) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->make(rotation_radians);
   switch (id) {
     case SceneId::sphere: {
       Camera camera{{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 34.0};

@@ -1,6 +1,8 @@
 // The SAA quality trade table (see trade.hpp).
 #include "saagen/reference/render/trade.hpp"
 
+#include "trade_taa.hpp"
+
 #include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/parallel.hpp"
 
@@ -161,10 +163,10 @@ Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame) {
 }
 
 const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed, Prefilter prefilter,
-                                 Lobe lobe) const {
+                                 Lobe lobe, bool taa) const {
   for (const TradeRow& row : rows)
     if (row.variant == variant && row.scene == scene && row.alpha == alpha && row.fresnel == fresnel && row.feed == feed &&
-        row.prefilter == prefilter && row.lobe == lobe)
+        row.prefilter == prefilter && row.lobe == lobe && row.taa == taa)
       return &row;
   return nullptr;
 }
@@ -175,21 +177,23 @@ std::vector<Variant> default_trade_variants() {
   return variants;
 }
 
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe) {
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe, bool taa) {
   std::string id(variant_id(variant));
   if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none) id += ":geometric";
   if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
+  if (taa) id += "+taa";
   if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
   return id;
 }
 
-std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe); }
+std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }
 
-bool scene_has_normal_map(SceneId id) { return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine; }
-
-bool scene_has_normal_detail(SceneId id) {
-  return id == SceneId::bump_plane || id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
+bool scene_has_normal_map(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->has_normal_map;
+  return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
 }
+
+bool scene_has_normal_detail(SceneId id) { return id == SceneId::bump_plane || scene_has_normal_map(id); }
 
 namespace {
 
@@ -240,6 +244,14 @@ std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
   return with_lobes(config, keys);
 }
 
+// The configurations run under TAA: every row key of the papers' lobe.
+std::vector<TaaRowKey> taa_keys(const TradeConfig& config, SceneId scene) {
+  std::vector<TaaRowKey> out;
+  for (const RowKey& key : row_keys(config, scene))
+    if (key.lobe == Lobe::papers) out.push_back({key.variant, key.feed, key.prefilter});
+  return out;
+}
+
 Image tonemapped(const Image& image) {
   Image out(image.width, image.height);
   for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
@@ -253,6 +265,8 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     throw std::invalid_argument("trade table: bad main resolution or strata");
   if (config.frames > 0 && (config.flicker_width <= 0 || config.flicker_height <= 0 || config.flicker_strata <= 0))
     throw std::invalid_argument("trade table: bad flicker resolution or strata");
+  if (config.taa && config.frames < 2) throw std::invalid_argument("trade table: TAA rows need an animation of at least 2 frames");
+  if (config.taa) check_taa_options(config.taa_options);
 
   TradeTable table;
   table.config = config;
@@ -266,8 +280,11 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
   const std::uint64_t flicker_gt = flicker_pixels * config.flicker_strata * config.flicker_strata;
   auto scene_work = [&](SceneId id) {
     const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
+    const std::uint64_t taa_shading = config.taa ? static_cast<std::uint64_t>(config.frames + taa_warmup(config)) * flicker_pixels *
+                                                       n_materials * taa_keys(config, id).size()
+                                                 : 0;
     return main_gt + main_pixels * shading_per_frame +
-           (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0);
+           (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0) + taa_shading;
   };
   TradeProgress state;
   for (SceneId id : config.scenes) state.total += scene_work(id);
@@ -369,10 +386,13 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       std::vector<TemporalDifference> differences(n_rows);
       std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
       std::vector<Image> previous_variant(n_rows);
+      std::vector<std::vector<Image>> reference_frames;  // [frame][material], for the +taa rows
+      std::vector<double> flip_animation(n_rows, 0.0);
       for (int frame = 0; frame < config.frames; ++frame) {
         const Scene moved = trade_animation_frame(config, id, frame);
         const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
         const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
+        if (config.taa) reference_frames.push_back(frame_gt.images);
         base += flicker_gt;
         const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
         for (std::size_t m = 0; m < n_materials; ++m) {
@@ -384,6 +404,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
             const Image image = shade(frame_buffer, keys[k], materials[m]);
             variant_stats[r].add(image);
             variant_display[r].add(tonemapped(image));
+            if (config.taa) flip_animation[r] += ldr_flip_mean_grey(tonemapped(frame_gt.images[m]), tonemapped(image));
             Image frame_display = display_image(image);
             if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame);
             previous_variant[r] = std::move(frame_display);
@@ -409,7 +430,15 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
           row.reference_temporal_stddev_display = reference_std_display;
           row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
+          row.flip_ldr_animation = flip_animation[r] / config.frames;
         }
+      }
+      if (config.taa) {
+        const std::string stage = "taa " + name;
+        append_taa_rows(config, id, materials, taa_keys(config, id), reference_frames, table.rows, [&](std::uint64_t pixels) {
+          base += pixels;
+          report(stage, base);
+        });
       }
     }
   }

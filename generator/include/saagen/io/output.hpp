@@ -42,10 +42,20 @@ OutputFile ownership_sidecar(const std::filesystem::path& path, std::string_view
 void check_output_paths(const std::vector<std::filesystem::path>& paths, bool force, const std::vector<std::filesystem::path>& inputs = {});
 
 // Writes every file through a temporary created exclusively (mkstemp) in its own directory and a
-// rename, after checking every path as check_output_paths does (`inputs` included). Nothing is renamed until every
-// temporary is complete; on any failure (full disk included) every temporary is removed and
-// saagen::Error is thrown. A symbolic link at a path is refused; with `force` the link itself is
-// replaced (what it points to is never written).
+// rename, after checking every path as check_output_paths does (`inputs` included). All or
+// nothing: nothing is renamed until every temporary is complete; then every file about to be
+// replaced is kept under a second name (which proves it replaceable: not immutable, not another
+// user's in a sticky directory) before the first rename, and a failed rename puts back the files
+// already replaced. On any failure (full disk included) every temporary and every directory the
+// run created is removed and saagen::Error names the file and says nothing was changed.
+// SIGINT, SIGTERM, SIGHUP and SIGXFSZ while staging remove the temporaries and new directories;
+// during the renames they wait until the set is whole. A symbolic link at a path is refused;
+// with `force` the link itself is replaced (what it points to is never written).
 WriteReport write_outputs(const std::vector<OutputFile>& files, bool force, const std::vector<std::filesystem::path>& inputs = {});
+
+// For tests: called after each file of write_outputs is staged and after each is renamed into
+// place (index in the order of the files written), to interrupt or disturb a commit there.
+enum class CommitStep { staged, renamed };
+void set_commit_hook(void (*hook)(CommitStep step, std::size_t index));
 
 }  // namespace saagen

@@ -37,11 +37,16 @@ struct DictionaryParams {
   void validate() const;
   double sigma() const;  // sigma_o = alpha / sqrt(2)
   double range() const;  // x_max = 4 sigma_o = 2 sqrt(2) alpha
+  // The standard deviation the lobes are stored with, sqrt(max(lobe_sigma^2 - dx^2 / 4, 0)),
+  // dx = x_max / R: the texel mean and the sampler's linear interpolation add dx^2 / 4 to a
+  // lobe's variance, so the texture reads back lobes of lobe_sigma.
+  double stored_lobe_sigma() const;
 };
 
 // The distributions in double precision: density(lod, d, texel) is the mean of P_o(x; d, lod)
-// over texel [texel, texel + 1) * x_max / R (x >= 0; the distributions are even), normalised so
-// that 2 sum_texel density * x_max / R = 1.
+// over texel [texel, texel + 1) * x_max / R (x >= 0; the distributions are even), its lobes of
+// standard deviation stored_lobe_sigma() below the last LOD, normalised so that
+// 2 sum_texel density * x_max / R = 1.
 struct Dictionary {
   DictionaryParams params;
   std::vector<double> values;  // [(lod * count + d) * resolution + texel]

@@ -5,6 +5,14 @@
 //            combined with Toksvig's variance sigma^2 = (1 - L) / L of the texel's mean-normal
 //            length L (Toksvig 2005): alpha'^2 = saturate(alpha^2 + 2 sigma^2), written in the
 //            requested domain. Engines sample it in place of their roughness map.
+//   unreal, filament-vmf, hdrp
+//            the three engines' offline bakes of the same length L, one roughness channel each
+//            like toksvig (formulas at engine_alpha2 below): Unreal's composite texture,
+//            Filament's roughness-prefilter tool (vMF fit), HDRP's normal-map filtering (vMF fit).
+//   --gltf   (any roughness method) R8G8B8A8_UNORM in glTF 2.0's metallicRoughnessTexture layout:
+//            G = perceptual roughness (alpha = r^2), B = metallic (--metallic), R = A = 1 (R is
+//            occlusion where a pipeline packs occlusion-roughness-metallic together; 1 = none).
+//            Linear transfer, as glTF requires of metallicRoughnessTexture.
 //   lean     the LEAN slope moments (Olano & Baker 2010) in the layout of glints::lean_ktx2:
 //            R32G32B32A32_SFLOAT, a 2-layer array, layer 0 = (E[x], E[y], E[x^2], E[y^2]),
 //            layer 1 = (E[xy], 0, 0, 0), s = -n.xy / n.z. The shader forms the covariance
@@ -24,7 +32,9 @@
 
 namespace saagen::prefilter {
 
-enum class Method { toksvig, lean };
+enum class Method { toksvig, lean, unreal, filament_vmf, hdrp };
+// Every method but lean writes one roughness per texel.
+bool writes_roughness(Method method);
 // The roughness domains are saagen::Domain (saagen/domain.hpp), one definition for emission and
 // textures.
 
@@ -78,12 +88,34 @@ std::vector<Level> build_levels(const NormalImage& image);
 // Toksvig 2005 with alpha^2 = 2 sigma^2: saturate(alpha^2 + 2 max((1 - L) / max(L, 1e-30), 0)).
 double toksvig_alpha2(double base_alpha2, double mean_length);
 
+// vMF concentration fitted to the mean length (Banerjee et al. 2005; Han et al. 2007 Sec. 4):
+// kappa = (3L - L^3) / (1 - L^2), +infinity for L >= 1.
+double vmf_kappa(double mean_length);
+
+// The engines' bakes (read from their sources, 2026-11; docs/PREFILTER.md), alpha^2 in and out:
+//   unreal        Unreal's composite texture (TextureCompressorModule.cpp ApplyCompositeTexture):
+//                 V = max((1 - L) / L - 4e-5, 0) (Toksvig, CompositePower 1), B = 2 V (a - 1),
+//                 a' = (B - a) / (B - 1) = (a + 2V(1 - a)) / (1 + 2V(1 - a)): T&K 2021's
+//                 projected-space addition of 2V.
+//   filament-vmf  Filament tools/roughness-prefilter solveVMF (Karis 2018, "Normal map filtering
+//                 using vMF (part 3)"): a' = a + 2 / kappa.
+//   hdrp          Unity HDRP CommonMaterial.hlsl TextureNormalVariance + NormalFiltering, variance
+//                 stored by NormalMapFilteringTexturePostprocessor.cs capped at 0.03125:
+//                 a' = a + min(2 min(1 / (4 kappa), 0.03125), 0.25^2) = a + min(1 / (2 kappa), 0.0625).
+// toksvig is toksvig_alpha2. All saturate to [0, 1]. Throws for lean.
+double method_alpha2(Method method, double base_alpha2, double mean_length);
+
 struct Options {
   Method method = Method::toksvig;
   Domain domain = Domain::perceptual;
   double roughness = 0.0;  // base roughness, in `domain`, in [0, 1]
-  bool float32 = false;    // toksvig: R32_SFLOAT instead of R16_SFLOAT
-  void validate() const;   // throws saagen::Error
+  bool float32 = false;    // roughness methods: R32_SFLOAT instead of R16_SFLOAT
+  // Roughness methods: the bake's addition to alpha^2 times this, a' = a + scale (bake(a) - a),
+  // saturated (1: as published; `saagen bench --prefilter-scale` measures the same scale).
+  double scale = 1.0;
+  bool gltf = false;      // roughness methods: glTF metallicRoughness layout (top of this file), output perceptual
+  double metallic = 0.0;  // --gltf: the B channel, in [0, 1]
+  void validate() const;  // throws saagen::Error
 };
 
 // The KTX2 image with the full MIP chain and the "saagen.prefilter" JSON (and a saagen marker,

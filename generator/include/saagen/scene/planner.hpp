@@ -67,8 +67,9 @@ struct MaterialPlan {
   std::string precision = "fp32";
   std::map<std::string, long> cost;  // target -> optimized SPIR-V instructions added
   // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
-  // normal) and whether to prefilter the normal map ("none", "toksvig", "lean"), with the
-  // measured figures that decide it.
+  // normal) and whether to prefilter the normal map ("none", "toksvig", "lean", or an engine's
+  // bake: "unreal", "filament-vmf", "hdrp"; `saagen texture prefilter --method`), with the
+  // measured figures that decide it: a prefilter only where the trade table says it wins.
   std::string feed = "shading";
   std::string prefilter = "none";
   std::string normal_advice;

@@ -41,6 +41,30 @@ double prefilter_toksvig_sum(const Params& p, double alpha2, double mean_length,
 // projected_space_add(alpha^2, 2 sigma^2_Toksvig + min(kernel, kappa)).
 double prefilter_toksvig_projected(const Params& p, double alpha2, double mean_length, Vec3 dn_dx, Vec3 dn_dy);
 
+// The engines' offline normal-map-to-roughness bakes, from the same mean-normal length L (the
+// box mean of the level-0 unit normals under a MIP texel). Each returns the baked alpha'^2 from
+// the base alpha^2; a flat texel (L >= 1) returns alpha^2 unchanged (saturated).
+//
+// vMF concentration fitted to L (Banerjee et al. 2005, as in Han et al. 2007 and Neubelt &
+// Pettineo 2013): kappa = (3L - L^3) / (1 - L^2); +infinity for L >= 1.
+double vmf_kappa(double mean_length);
+// Unreal's composite texture (TextureCompressorModule ApplyCompositeTexture, CTM_NormalRoughnessTo*):
+// Toksvig's variance V = max((1 - L) / L - 4e-5, 0) times CompositePower (`power`, default 1), then
+// B = 2 V (a - 1), a' = (B - a) / (B - 1) with a = alpha^2; that is a' = (a + 2V(1 - a)) /
+// (1 + 2V(1 - a)), T&K 2021's projected-space addition of 2V (projected_space_add).
+double unreal_composite_alpha2(double alpha2, double mean_length, double power = 1.0);
+// Filament's tools/roughness-prefilter (solveVMF, citing Karis 2018 "Normal map filtering using
+// vMF (part 3)"): alpha' = sqrt(alpha^2 + 2 / kappa), i.e. alpha'^2 = alpha^2 + 2 / kappa,
+// saturated here (the tool writes the value unclamped).
+double filament_vmf_alpha2(double alpha2, double mean_length);
+// Unity HDRP (core CommonMaterial.hlsl TextureNormalVariance + NormalFiltering; the editor's
+// NormalMapFilteringTexturePostprocessor): variance = min(1 / (4 kappa), 0.03125) (the
+// postprocessor stores it in the normal map capped at NORMALMAP_HIGHEST_VARIANCE 0.03125), then
+// alpha'^2 = saturate(alpha^2 + min(2 variance, threshold^2)): alpha^2 + min(1 / (2 kappa), 0.0625)
+// at the postprocessor's largest threshold 0.25 (threshold 0.25: 2 x 0.03125 = 0.25^2; a
+// material's smaller specular-AA threshold caps it lower at run time).
+double hdrp_texture_alpha2(double alpha2, double mean_length, double threshold = 0.25);
+
 // A = diag(ax^2, ay^2) + 2 Sigma_tex (not clamped).
 Sym2 prefilter_lean(const Params& p, Vec2 alpha2, Vec2 slope_mean, Sym2 slope_second);
 // A = diag(ax^2, ay^2) + 2 (Sigma_screen + Sigma_tex), Sigma_screen = sigma^2 Delta^T Delta of

@@ -58,6 +58,16 @@ std::string format_verdict(const render::TradeTable& table);
 // so that `saagen plan --trade-table` can choose by accuracy; plus the full trade rows.
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
 
+// Under TAA (TradeConfig::taa): the table without its +taa rows, which the summaries, findings,
+// verdicts and trade_json read (their flip_ldr is the animation's, not frame 0's at the main
+// resolution); per scene, the means over its alphas (no Fresnel) of none, none+taa, the best
+// saagen configuration under TAA by LDR-FLIP and each engine form under TAA, in LDR-FLIP of the
+// animation (flip_ldr_animation) and TDE with its parts (empty without +taa rows); and every
+// row's figures of that comparison, for trade_json's "taa_cases".
+render::TradeTable without_taa_rows(const render::TradeTable& table);
+std::string format_taa_summary(const render::TradeTable& table);
+nlohmann::json taa_cases_json(const render::TradeTable& table);
+
 // Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg, DIR/sheet_<scene>_<alpha>.png
 // (the ground truth beside every variant's 1-spp image, over false-colour difference maps) and
 // DIR/strip_<scene>.png (the ground truth, no SAA, the best engine form and the recommendations

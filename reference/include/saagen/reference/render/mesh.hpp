@@ -30,12 +30,18 @@ struct MeshVertex {
   Vec3 normal;   // unit
   Vec3 tangent;  // unit, orthogonal to normal
   Vec2 uv;
+  // glTF's TANGENT.w (MikkTSpace's sign): bitangent = sign (n x t). The hit's bitangent_sign is
+  // the sign of the barycentric mean of its vertices' signs.
+  double tangent_sign = 1.0;
 };
 
 class TriangleMesh final : public Shape {
  public:
-  // label: the numbers the mesh was generated from (part of describe()).
-  TriangleMesh(std::string label, std::vector<MeshVertex> vertices, std::vector<std::array<int, 3>> triangles);
+  // label: the numbers the mesh was generated from (part of describe()). objects: per
+  // triangle, the connected surface it belongs to (SurfaceHit::object; a glTF primitive, a draw
+  // call, whose quads never share pixels with another's); empty: all 0.
+  TriangleMesh(std::string label, std::vector<MeshVertex> vertices, std::vector<std::array<int, 3>> triangles,
+               std::vector<int> objects = {});
 
   bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
   // The same nearest hit by testing every triangle (tests).
@@ -51,6 +57,10 @@ class TriangleMesh final : public Shape {
   // Möller-Trumbore: the distance and barycentrics (b1, b2) of a hit on triangle `index` with
   // t_min < t < t_max; false otherwise (or for a ray in the triangle's plane).
   bool hit_triangle(int index, const Ray& ray, double t_min, double t_max, double& t, double& b1, double& b2) const;
+  // The hit record of triangle `index` where the ray meets its plane, inside the triangle or
+  // not (barycentrics extrapolated: a GPU's helper invocation); false for a ray parallel to the
+  // plane, meeting it at t <= 0, or an extrapolated normal of zero length.
+  bool extrapolate(int index, const Ray& ray, SurfaceHit& hit) const;
   // The hit record of a triangle hit (see the top of this file).
   void fill_hit(int index, const Ray& ray, double t, double b1, double b2, SurfaceHit& hit) const;
 
@@ -74,6 +84,7 @@ class TriangleMesh final : public Shape {
   std::string label_;
   std::vector<MeshVertex> vertices_;
   std::vector<std::array<int, 3>> triangles_;
+  std::vector<int> objects_;       // per triangle, or empty
   std::vector<Edges> edges_;       // per triangle
   std::vector<int> order_;         // triangle indices in BVH leaf order
   std::vector<Edges> leaf_edges_;  // edges_ in leaf order

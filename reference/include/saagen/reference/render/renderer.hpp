@@ -34,6 +34,13 @@
 // (normal, frame, vectors), i.e. a zero difference across that edge; only its gl_FragCoord
 // stays its own (the rasteriser's value, which Listing 3's neighbour direction reads).
 //
+// Asset scenes (gltf.hpp; Scene::per_triangle_quads) follow the GPU's rule exactly instead: a
+// quad partner that is not on the shaded pixel's own triangle (another triangle of the mesh,
+// across a uv seam or a split normal, another primitive, or nothing) takes what a helper
+// invocation of that triangle computes, the triangle's attributes extrapolated to the partner's
+// ray (Scene::extrapolate_surface; GBuffer::helpers), its uv included (tangent_plane_uv, the
+// same plane); only partners on the same triangle take their own fields.
+//
 // Normal-mapped scenes (Scene::normal_map). Ground truth: every sample's shading normal is the
 // map's level-0 bilinear sample at its hit (Scene::intersect), so the 1024 samples integrate the
 // full-resolution map over the pixel filter. 1-spp fields, as a GPU samples a texture: uv at the
@@ -56,6 +63,7 @@
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/reference/saa.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -133,10 +141,16 @@ NormalFeed engine_feed(Variant engine);
 //   lean     2 Sigma_tex from the filtered slope moments (Olano & Baker 2010): the full
 //            covariance for the matrix forms, its diagonal for the axis-aligned forms, its
 //            trace for the isotropic ones.
+//   unreal, filament_vmf, hdrp
+//            the engines' offline bakes of the same L (reference/prefilter.hpp: Unreal's
+//            composite texture, Filament's roughness-prefilter, HDRP's normal-map filtering), as
+//            the baked roughness minus the pixel's base alpha^2 (isotropic), so that the SAA
+//            filter then widens the baked roughness as an engine's shader would.
 // Only pixels of a normal-mapped surface have a texture term (0 elsewhere). prefilter_scale
 // multiplies the texture term (1: the formulas as published; the trade measures others).
-enum class Prefilter { none, toksvig, lean };
-std::string_view prefilter_name(Prefilter prefilter);  // "none", "toksvig", "lean"
+enum class Prefilter { none, toksvig, lean, unreal, filament_vmf, hdrp };
+// "none", "toksvig", "lean", "unreal", "filament-vmf", "hdrp"
+std::string_view prefilter_name(Prefilter prefilter);
 
 // The lobe a filtered roughness is evaluated with (brdf.hpp, docs/FILTERED_GGX.md):
 //   papers   GGX of the filtered roughness (alpha^2 + kernel), as the papers do;
@@ -209,6 +223,12 @@ struct PixelFields {
   Vec2 duv_dy;
   double lod = 0.0;   // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
   NormalTexel texel;  // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
+  // The roughness texture's factor on alpha (SurfaceHit::alpha_scale) from its trilinear sample
+  // at its own implicit LOD; 1 without one. Every form filters material.alpha * alpha_scale.
+  double alpha_scale = 1.0;
+  int triangle = -1;  // SurfaceHit::triangle
+  // SurfaceHit::weight, its texture sampled trilinearly at its own LOD: multiplies the radiance.
+  double weight = 1.0;
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
@@ -233,10 +253,23 @@ struct UvDerivatives {
 // Coarse uv derivatives of the quad of pixel (x, y), whose centre hit is `shaded`.
 UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y, int width, int height);
 
+// The fields of one quad pixel that a filter reads (gather_quad).
+struct QuadPixel {
+  bool valid = false;
+  Vec3 normal, tangent, bitangent, half_ts;
+  Vec3 geometric_normal, geometric_tangent, geometric_bitangent, geometric_half_ts;
+};
+
 struct GBuffer {
   int width = 0;
   int height = 0;
   std::vector<PixelFields> pixels;  // row-major
+  // Scenes with per-triangle quads (Scene::per_triangle_quads): per pixel and quad position
+  // ((x & 1) + 2 (y & 1)), the fields a helper invocation of the pixel's triangle computes there
+  // (Scene::extrapolate_surface; the normal map's trilinear sample at the extrapolated uv and the
+  // pixel's own LOD); valid only where that quad pixel is not on the same triangle. Empty for
+  // the other scenes.
+  std::vector<std::array<QuadPixel, 4>> helpers;
   const PixelFields& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 

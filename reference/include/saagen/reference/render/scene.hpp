@@ -60,7 +60,9 @@
 
 #include "saagen/reference/math.hpp"
 #include "saagen/reference/render/normal_map.hpp"
+#include "saagen/reference/render/scalar_map.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -127,6 +129,17 @@ struct SurfaceHit {
   // +1 when dpdv lies on the side of geometric_bitangent (the texture's +v direction is +b),
   // -1 for a mirrored parameterisation (MikkTSpace's bitangent sign).
   double bitangent_sign = 1.0;
+  // The factor the surface's roughness texture applies to the material's GGX alpha at the hit
+  // (glTF: perceptual roughness = factor x G, so alpha = factor^2 G^2 and this is G^2); 1 on
+  // surfaces without one. Scene::intersect fills it from level 0 (bilinear), pixel_fields from
+  // the trilinear sample at the quad's LOD.
+  double alpha_scale = 1.0;
+  // The triangle hit (TriangleMesh; -1 for the analytic shapes): which attribute planes a GPU's
+  // helper invocations extrapolate (Scene::extrapolate_surface).
+  int triangle = -1;
+  // The weight of the lobe at the hit (SurfaceTextures::weight, times its texture): the radiance
+  // is multiplied by it; 1 on every built-in scene.
+  double weight = 1.0;
 };
 
 // An analytic shape in its object space.
@@ -228,6 +241,11 @@ struct Camera {
   Vec3 look_at{};
   Vec3 up{0.0, 1.0, 0.0};
   double fov_y_degrees = 35.0;
+  // Sub-pixel offset (pixels, x right, y down) added to every film position generate() takes:
+  // a temporal anti-aliasing jitter (taa.hpp), which a GPU puts into the projection matrix, so
+  // that every primary ray of a frame, the quad partners' included, moves with it while
+  // gl_FragCoord stays the pixel centre.
+  Vec2 jitter{};
 
   // The same camera with the field of view narrowed so that an image of `size` pixels has
   // the pixel footprint of a `full_size` image: the centre crop of the full image (square
@@ -242,6 +260,10 @@ struct Camera {
   // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
   // width x height image.
   Ray generate(double fx, double fy, int width, int height) const;
+
+  // The film position (fx, fy) whose primary ray passes through the world point p (generate's
+  // inverse, jitter included); nullopt when p is not in front of the camera.
+  std::optional<Vec2> project(Vec3 p, int width, int height) const;
 };
 
 struct Light {
@@ -263,6 +285,32 @@ std::optional<SceneId> scene_from_name(std::string_view name);  // any SceneId
 std::span<const SceneId> all_scenes();                          // sphere, torus, tubes, bump_plane
 std::span<const SceneId> content_scenes();                      // nmap-sphere, nmap-sphere-fine, torus-knot
 
+// The textures of each connected surface (SurfaceHit::object) of a scene built from an asset
+// (gltf.hpp): the tangent-space normal map (its texels already decoded and scaled by the
+// material's normalTexture.scale) and the roughness texture whose square scales alpha
+// (SurfaceHit::alpha_scale). In such a scene the texture frame is the mesh's own (interpolated
+// vertex tangents and their bitangent sign, MeshVertex), not dpdu made orthogonal to n.
+struct SurfaceTextures {
+  std::shared_ptr<const NormalMap> normal_map;     // null: no normal texture
+  std::shared_ptr<const ScalarMap> roughness_map;  // null: no roughness texture
+  // The lobe's weight (a clearcoat layer's factor, 0 where the surface has no coat) and its
+  // texture (clearcoatTexture's R), multiplying the radiance; 1 and none for a base lobe.
+  double weight = 1.0;
+  std::shared_ptr<const ScalarMap> weight_map;
+};
+// The alpha factor of a roughness texture's sample g (G channel): g^2, g clamped to
+// [1 / 255, 1] (the smallest non-zero 8-bit value: a zero alpha is a delta lobe no GGX
+// evaluation takes).
+double roughness_alpha_scale(double g);
+
+struct SurfaceMaterials {
+  std::vector<SurfaceTextures> by_object;  // indexed by SurfaceHit::object
+  std::string description;                 // every number that defines them (cache keys)
+  const SurfaceTextures* at(int object) const {
+    return object >= 0 && object < static_cast<int>(by_object.size()) ? &by_object[static_cast<std::size_t>(object)] : nullptr;
+  }
+};
+
 class Scene {
  public:
   Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera, Light light, Vec3 pivot,
@@ -275,6 +323,16 @@ class Scene {
   // The same hit before the normal map: the shading frame equals the geometric frame in a
   // normal-mapped scene (identical to intersect otherwise).
   bool intersect_surface(const Ray& ray, SurfaceHit& hit) const;
+  // The hit a GPU's helper invocation of `shaded`'s triangle evaluates for this ray: the ray
+  // meets the plane of that triangle (t > 0) and every attribute is that triangle's barycentric
+  // interpolation, extrapolated (fields as intersect_surface gives them, before the normal map).
+  // False when the shape is no triangle mesh, shaded.triangle is -1 or the ray misses the plane.
+  bool extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const;
+  // Whether the 1-spp images take quad partners from the shaded triangle's extrapolated
+  // attributes whenever a partner pixel is not on that triangle, as a GPU's helper invocations do
+  // (asset scenes, whose meshes have uv seams and split normals: renderer.hpp); the built-in
+  // scenes take a partner's own fields on the same connected surface.
+  bool per_triangle_quads() const { return surfaces_ != nullptr; }
   // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
   // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
   // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
@@ -287,6 +345,17 @@ class Scene {
   // source: the numbers the map was generated from (kept in describe()).
   Scene with_normal_map(std::shared_ptr<const NormalMap> map, Vec2 tiling, std::string source = {}) const;
   const NormalMap* normal_map() const { return normal_map_.get(); }
+  // The same scene with per-surface textures (asset scenes; see SurfaceMaterials).
+  Scene with_surface_materials(std::shared_ptr<const SurfaceMaterials> surfaces) const;
+  const SurfaceMaterials* surface_materials() const { return surfaces_.get(); }
+  // The normal map and roughness map that shade a hit: the per-surface ones of an asset scene,
+  // else the scene's single normal map (and no roughness map).
+  const NormalMap* normal_map_at(const SurfaceHit& hit) const;
+  const ScalarMap* roughness_map_at(const SurfaceHit& hit) const;
+  // The per-surface textures of a hit in an asset scene; null otherwise.
+  const SurfaceTextures* surface_textures_at(const SurfaceHit& hit) const { return surfaces_ ? surfaces_->at(hit.object) : nullptr; }
+  // Whether any surface of the scene has a normal map.
+  bool has_normal_map() const;
   Vec2 uv_tiling() const { return tiling_; }
 
   const std::string& name() const { return name_; }
@@ -309,10 +378,29 @@ class Scene {
   std::shared_ptr<const NormalMap> normal_map_;
   Vec2 tiling_{1.0, 1.0};
   std::string normal_map_source_;  // how the map was made (part of describe())
+  std::shared_ptr<const SurfaceMaterials> surfaces_;
+  // intersect_surface's second half: object-space fields to world space and texture units.
+  void finish_surface_hit(SurfaceHit& hit) const;
 };
 
-// The standard scene, rotated by rotation_radians about the vertical axis through its pivot.
+// The standard scene, rotated by rotation_radians about the vertical axis through its pivot;
+// for a registered scene, its factory's scene.
 Scene make_scene(SceneId id, double rotation_radians = 0.0);
+
+// Scenes built at run time (a glTF asset: gltf.hpp), registered once per process and then named
+// by a SceneId beyond the standard ones, so that the trade, its cache and the report treat them
+// as the standard scenes. make(rotation) must return the scene rotated about its pivot.
+struct RegisteredScene {
+  std::string name;  // [A-Za-z0-9_.-]+, not a standard scene's name
+  std::function<Scene(double rotation_radians)> make;
+  bool has_normal_map = false;  // some surface has a normal map
+};
+// The id of a registered scene; registering a name again returns the first registration's id
+// when `key` (what identifies the content, e.g. the asset's path) is the same, and throws
+// std::invalid_argument otherwise.
+SceneId register_scene(RegisteredScene scene, const std::string& key);
+// The registration behind an id; null for a standard scene or an unknown id.
+const RegisteredScene* registered_scene(SceneId id);
 
 // The content of the real-content scenes, built once per process and shared by every frame:
 // the height field and kContentNormalMapSize^2 normal map of nmap-sphere(-fine), and the torus

@@ -52,12 +52,27 @@
 // (hence the pan), size, samples, seed, filter, material list), named by a 64-bit FNV-1a hash of a text key holding
 // every one of those numbers (and a format version); the key is stored in the file and
 // compared on load, so a hash collision or a stale file only costs a re-render.
+//
+// Under TAA (TradeConfig::taa; taa.hpp). Each configuration of the papers' lobe (no SAA, every
+// variant with its feeds and prefilters, every engine form) is also run through the TAA resolve
+// as a row "CONFIGURATION+taa": the animation at the flicker resolution, each 1-spp frame
+// rendered with the Halton jitter (so the filters' derivatives come from the jittered quads),
+// resolved with the history reprojected by the exact motion. A warm-up of taa_warmup_frames
+// (default: one jitter cycle) before the animation's frame 0 fills the history; then, over the
+// `frames` measured frames, the row's image metrics are means over the frames against each
+// frame's ground truth (rmse_*, flip_ldr = flip_ldr_animation; max_error the largest; flip_hdr of
+// the last frame) and its temporal ones are those of the resolved frames (tde and its parts,
+// flicker), directly comparable with the rows without TAA. Every row without TAA gets the same
+// flip_ldr_animation (mean LDR-FLIP of its 1-spp frames against the frames' ground truths), the
+// figure to compare with a +taa row's flip_ldr (its own flip_ldr is frame 0's at the main
+// resolution).
 #pragma once
 
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/render/image.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/render/taa.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <cstdint>
@@ -94,8 +109,9 @@ struct TradeConfig {
   std::vector<NormalFeed> feeds{NormalFeed::shading, NormalFeed::geometric};
   // On normal-mapped scenes: these variants fed the geometric normal (curvature) with the map's
   // detail prefiltered into roughness, the engines' recommended split; `none` with a
-  // prefilter is texture prefiltering alone.
-  std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean};
+  // prefilter is texture prefiltering alone. Toksvig and LEAN, then the engines' bakes of the
+  // mean-normal length (Unreal, Filament, HDRP; docs/PREFILTER.md compares them).
+  std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean, Prefilter::unreal, Prefilter::filament_vmf, Prefilter::hdrp};
   std::vector<Variant> prefiltered_variants{
       Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
       Variant::deferred_avg, Variant::deferred_projected_space};
@@ -118,6 +134,10 @@ struct TradeConfig {
   std::string cache_dir;     // empty: no ground-truth cache
   bool keep_images = false;  // fill TradeTable::images
   bool flip = true;          // compute the FLIP metrics (flip.hpp; ~80 ms per row at 256^2)
+  // The +taa rows (see the top of this file); needs frames >= 2.
+  bool taa = false;
+  TaaOptions taa_options{};
+  int taa_warmup_frames = 0;  // frames resolved before frame 0; 0: one jitter cycle
 };
 
 struct TradeRow {
@@ -150,6 +170,11 @@ struct TradeRow {
   double reference_temporal_stddev_display = 0.0;
   double flicker_display = 0.0;  // temporal_stddev_display / reference's
   std::size_t non_finite = 0;    // NaN/inf pixels of the frame-0 image (excluded)
+  // The configuration resolved by TAA (configuration id "...+taa"; see the top of this file).
+  bool taa = false;
+  // Mean LDR-FLIP of the measured animation frames against their ground truths (flicker
+  // resolution); computed when TradeConfig::taa, for every row.
+  double flip_ldr_animation = 0.0;
 };
 
 // The images behind the rows of one (scene, material): frame 0 at the main resolution.
@@ -178,7 +203,7 @@ struct TradeTable {
   int cache_misses = 0;
 
   const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed = NormalFeed::shading,
-                       Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers) const;
+                       Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers, bool taa = false) const;
 };
 
 struct TradeProgress {
@@ -211,8 +236,10 @@ std::string ground_truth_cache_file(const std::string& key);
 // variant is fed the geometric normal, and "+toksvig" / "+lean" with a prefiltered normal map
 // ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
 // "engine-hdrp"), and "/tail" or "/mapped" for a lobe other than the papers'
-// ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped").
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers);
+// ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped"), and "+taa" before the
+// lobe under TAA ("none+taa", "deferred-avg:geometric+lean+taa").
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers,
+                             bool taa = false);
 std::string configuration_id(const TradeRow& row);
 
 // Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.

@@ -1,0 +1,138 @@
+// The trade's +taa rows (see trade.hpp, TradeConfig::taa, and trade_taa.hpp).
+#include "trade_taa.hpp"
+
+#include "saagen/reference/render/flip.hpp"
+#include "saagen/reference/render/taa.hpp"
+
+#include <cmath>
+
+namespace saagen::render {
+
+namespace {
+
+Image tonemapped(const Image& image) {
+  Image out(image.width, image.height);
+  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
+  return out;
+}
+
+// What one +taa configuration accumulates over the measured frames.
+struct TaaAccumulator {
+  TaaResolve resolve;
+  TemporalStats stats, stats_display;
+  TemporalDifference difference;
+  Image previous_display;
+  double rmse_linear = 0.0, rmse_tonemapped = 0.0, max_error = 0.0, flip_ldr = 0.0, flip_hdr = 0.0;
+  std::size_t non_finite = 0;
+  TaaAccumulator(int w, int h, const TaaOptions& options) : resolve(w, h, options), stats(w, h), stats_display(w, h) {}
+};
+
+Scene jittered_frame(const TradeConfig& config, SceneId id, int frame, Vec2 jitter) {
+  const Scene scene = trade_animation_frame(config, id, frame);
+  Camera camera = scene.camera();
+  camera.jitter = jitter;
+  return scene.with_camera(camera);
+}
+
+// Frame `frame` (>= 0) of a configuration after its resolve: the image metrics against the
+// frame's ground truth and the temporal ones against the previous frame's.
+void measure_frame(TaaAccumulator& a, const Image& out, const Image& reference, const Image& reference_display,
+                   const Image* previous_reference_display, bool last) {
+  const ImageError e = compare_images(out, reference);
+  a.rmse_linear += e.rmse_linear;
+  a.rmse_tonemapped += e.rmse_tonemapped;
+  a.max_error = std::max(a.max_error, e.max_error);
+  a.non_finite += e.non_finite;
+  a.flip_ldr += ldr_flip_mean_grey(tonemapped(reference), tonemapped(out));
+  if (last) a.flip_hdr = hdr_flip_mean_grey(reference, out);
+  a.stats.add(out);
+  a.stats_display.add(tonemapped(out));
+  Image display = display_image(out);
+  if (previous_reference_display) a.difference.add_pair(a.previous_display, display, *previous_reference_display, reference_display);
+  a.previous_display = std::move(display);
+}
+
+TradeRow finished_row(const TaaAccumulator& a, const TaaRowKey& key, SceneId id, const Material& material, int frames,
+                      const TemporalStats& reference_stats, const TemporalStats& reference_display) {
+  TradeRow row;
+  row.variant = key.variant;
+  row.feed = key.feed;
+  row.prefilter = key.prefilter;
+  row.taa = true;
+  row.scene = id;
+  row.alpha = material.alpha;
+  row.fresnel = material.fresnel;
+  row.rmse_linear = a.rmse_linear / frames;
+  row.rmse_tonemapped = a.rmse_tonemapped / frames;
+  row.max_error = a.max_error;
+  row.non_finite = a.non_finite;
+  row.flip_ldr = row.flip_ldr_animation = a.flip_ldr / frames;
+  row.flip_hdr = a.flip_hdr;
+  const TemporalError temporal = a.difference.mean();
+  row.tde = temporal.tde;
+  row.tde_excess_flicker = temporal.excess_flicker;
+  row.tde_lost_motion = temporal.lost_motion;
+  row.flicker = flicker(a.stats, reference_stats);
+  row.temporal_stddev = mean_temporal_stddev(a.stats);
+  row.reference_temporal_stddev = mean_temporal_stddev(reference_stats);
+  row.temporal_stddev_display = mean_temporal_stddev(a.stats_display);
+  row.reference_temporal_stddev_display = mean_temporal_stddev(reference_display);
+  row.flicker_display =
+      row.reference_temporal_stddev_display > 0.0 ? row.temporal_stddev_display / row.reference_temporal_stddev_display : 0.0;
+  return row;
+}
+
+}  // namespace
+
+int taa_warmup(const TradeConfig& config) {
+  return config.taa_warmup_frames > 0 ? config.taa_warmup_frames : config.taa_options.sequence_length;
+}
+
+void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
+                     const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
+                     const std::function<void(std::uint64_t pixels)>& shaded) {
+  const int fw = config.flicker_width, fh = config.flicker_height, warmup = taa_warmup(config);
+  const std::size_t n_keys = keys.size();
+  std::vector<TaaAccumulator> accumulators;
+  accumulators.reserve(materials.size() * n_keys);
+  for (std::size_t r = 0; r < materials.size() * n_keys; ++r) accumulators.emplace_back(fw, fh, config.taa_options);
+  std::vector<TemporalStats> reference_stats(materials.size(), TemporalStats(fw, fh));
+  std::vector<TemporalStats> reference_display(materials.size(), TemporalStats(fw, fh));
+
+  std::optional<Scene> previous;
+  std::vector<Image> previous_reference_display(materials.size());
+  for (int frame = -warmup; frame < config.frames; ++frame) {
+    // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
+    const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
+    const Scene scene = jittered_frame(config, id, frame, jitter);
+    const GBuffer gbuffer = render_gbuffer(scene, fw, fh, config.threads);
+    const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+      Image reference_display_frame;
+      if (frame >= 0) {
+        const Image& reference = reference_frames[static_cast<std::size_t>(frame)][m];
+        reference_stats[m].add(reference);
+        reference_display[m].add(tonemapped(reference));
+        reference_display_frame = display_image(reference);
+      }
+      for (std::size_t k = 0; k < n_keys; ++k) {
+        TaaAccumulator& a = accumulators[m * n_keys + k];
+        const Image samples = render_variant(gbuffer, keys[k].variant, materials[m], config.params, config.derivative, config.threads,
+                                             keys[k].feed, keys[k].prefilter, config.prefilter_scale, Lobe::papers);
+        const Image& out = a.resolve.resolve(samples, jitter, positions);
+        if (frame >= 0)
+          measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], reference_display_frame,
+                        frame > 0 ? &previous_reference_display[m] : nullptr, frame + 1 == config.frames);
+        if (shaded) shaded(static_cast<std::uint64_t>(fw) * fh);
+      }
+      if (frame >= 0) previous_reference_display[m] = std::move(reference_display_frame);
+    }
+    previous = scene;
+  }
+  for (std::size_t m = 0; m < materials.size(); ++m)
+    for (std::size_t k = 0; k < n_keys; ++k)
+      rows.push_back(
+          finished_row(accumulators[m * n_keys + k], keys[k], id, materials[m], config.frames, reference_stats[m], reference_display[m]));
+}
+
+}  // namespace saagen::render

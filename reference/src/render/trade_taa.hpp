@@ -1,0 +1,30 @@
+// The trade's +taa rows (trade.hpp, TradeConfig::taa): the configurations of a scene resolved
+// by the TAA of taa.hpp over the animation, measured after a warm-up.
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace saagen::render {
+
+// One configuration to run under TAA (a trade row's key).
+struct TaaRowKey {
+  Variant variant;
+  NormalFeed feed;
+  Prefilter prefilter;
+};
+
+// The warm-up of a configuration: taa_warmup_frames, or one jitter cycle when 0.
+int taa_warmup(const TradeConfig& config);
+
+// The +taa rows of scene `id`, material-major then key order, appended to `rows`.
+// reference_frames[f][m]: the ground truth of animation frame f (0 .. config.frames - 1) for
+// material m at the flicker resolution. shaded(pixels) reports 1-spp shading work.
+void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
+                     const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
+                     const std::function<void(std::uint64_t pixels)>& shaded);
+
+}  // namespace saagen::render

@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""The normal-map-to-roughness forms against the ground truth, per normal-mapped scene of a
+`saagen bench --json` table: for a base configuration, each prefilter form's mean (over the
+scene's alphas, no Fresnel) LDR-FLIP, HDR-FLIP, tonemapped RMSE and TDE, lower is better; the
+best form per metric in bold, and per metric the best form's margin over the runner-up and
+over the worst (docs/PREFILTER.md).
+
+    python3 scripts/prefilter_table.py trade.json [BASE ...]
+
+BASE is a configuration without its prefilter (default `none`: texture prefiltering alone);
+e.g. `deferred-avg:geometric/tail` reads the rows `deferred-avg:geometric+FORM/tail`. The
+baseline row without a prefilter is BASE itself (for `none`, no SAA)."""
+import collections
+import json
+import sys
+
+FORMS = ['toksvig', 'lean', 'unreal', 'filament-vmf', 'hdrp']
+METRICS = [('flip_ldr', 'LDR-FLIP'), ('flip_hdr', 'HDR-FLIP'), ('rmse_tonemapped', 'RMSE tonemapped'), ('tde', 'TDE')]
+
+
+def configuration(base, form):
+    """`deferred-avg:geometric/tail` + `hdrp` -> `deferred-avg:geometric+hdrp/tail`."""
+    head, slash, lobe = base.partition('/')
+    if form:
+        head += '+' + form
+    return head + (slash + lobe if slash else '')
+
+
+def means(cases):
+    sums = collections.defaultdict(lambda: collections.defaultdict(lambda: collections.defaultdict(float)))
+    counts = collections.defaultdict(lambda: collections.defaultdict(int))
+    for case in cases:
+        if case['fresnel'] or case['configuration'].endswith('+taa'):
+            continue
+        for key, _ in METRICS:
+            sums[case['scene']][case['configuration']][key] += case[key]
+        counts[case['scene']][case['configuration']] += 1
+    return {s: {c: {k: v / counts[s][c] for k, v in m.items()} for c, m in configs.items()} for s, configs in sums.items()}
+
+
+def table_for(scene, rows, base):
+    names = [('(no prefilter)', configuration(base, ''))] + [(form, configuration(base, form)) for form in FORMS]
+    present = [(n, c) for n, c in names if c in rows]
+    forms = [(n, c) for n, c in present if n != '(no prefilter)']
+    if not forms:
+        return None
+    lines = [f'{scene}, base `{base}`', '', '| form | ' + ' | '.join(label for _, label in METRICS) + ' |',
+             '|---|' + '---:|' * len(METRICS)]
+    best = {key: min(forms, key=lambda nc: rows[nc[1]][key])[0] for key, _ in METRICS}
+    for name, config in present:
+        cells = []
+        for key, _ in METRICS:
+            text = f'{rows[config][key]:.4f}' if key != 'tde' else f'{rows[config][key]:.5f}'
+            cells.append(f'**{text}**' if best[key] == name else text)
+        lines.append(f'| {name} | ' + ' | '.join(cells) + ' |')
+    lines.append('')
+    for key, label in METRICS:
+        ranked = sorted(forms, key=lambda nc: rows[nc[1]][key])
+        first, second, last = ranked[0], ranked[1] if len(ranked) > 1 else ranked[0], ranked[-1]
+        value = rows[first[1]][key]
+        lines.append(f'- {label}: {first[0]} best, {rows[second[1]][key] / value:.2f}x lower than {second[0]}, '
+                     f'{rows[last[1]][key] / value:.2f}x lower than {last[0]}')
+    return '\n'.join(lines)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    bases = sys.argv[2:] or ['none']
+    all_means = means(json.load(open(sys.argv[1]))['cases'])
+    for scene, rows in all_means.items():
+        for base in bases:
+            text = table_for(scene, rows, base)
+            if text:
+                print(text + '\n')
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,498 @@
+// glTF 2.0 assets as trade scenes (saagen/reference/render/gltf.hpp): the two Khronos sample
+// models Debian's assimp-testmodels ships (ClearCoatTest.gltf with external PNG/JPEG textures,
+// 2CylinderEngine.glb), tiny assets written here (tangent generation, node transforms, texture
+// decoding, the bad-asset lines), the trade on both samples at a tiny resolution, and
+// `saagen bench --scene` / `saagen report --scene`.
+#include "cli_support.hpp"
+
+#include "saagen/reference/render/gltf.hpp"
+#include "saagen/reference/render/render.hpp"
+#include "saagen/reference/saa.hpp"
+
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+using namespace saagen::render;
+namespace ref = saagen::ref;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kClearCoat = "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf";
+const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("saagen-gltf-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_file(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                       static_cast<unsigned char>(bytes[i + 2]);
+    out += {table[(v >> 18) & 63], table[(v >> 12) & 63], table[(v >> 6) & 63], table[v & 63]};
+  }
+  if (i + 1 == bytes.size()) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+    out += {table[(v >> 18) & 63], table[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == bytes.size()) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8);
+    out += {table[(v >> 18) & 63], table[(v >> 12) & 63], table[(v >> 6) & 63], '='};
+  }
+  return out;
+}
+
+template <class T>
+void append(std::string& bytes, const std::vector<T>& values) {
+  bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+std::string png(int width, int height, int components, const std::vector<unsigned char>& pixels) {
+  std::string out;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<char*>(data), size); }, &out, width,
+      height, components, pixels.data(), width * components);
+  return out;
+}
+
+// A unit quad in the xy plane facing +z, (0, 0) - (1, 1), with glTF's image-up uv (v grows
+// downwards, so +y is the image's up): one buffer (positions, normals, uv, indices) embedded as a
+// data URI. `uv_mirrored` flips u. Extra JSON goes into the material, primitive and top level.
+struct QuadAsset {
+  bool uv_mirrored = false;
+  std::string node = R"("mesh": 0)";
+  std::string material = R"({"name": "plain"})";
+  std::string primitive_extra;
+  std::string top_extra;
+  int mode = 4;
+  std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  bool normals = true;  // false: no NORMAL attribute (flat normals)
+};
+
+std::string quad_gltf(const QuadAsset& q) {
+  const std::vector<float>& positions = q.positions;
+  const std::vector<float> normals{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
+  if (q.uv_mirrored)
+    for (std::size_t i = 0; i < uv.size(); i += 2) uv[i] = 1.0f - uv[i];
+  const std::vector<std::uint16_t> indices{0, 1, 2, 0, 2, 3};
+  std::string bytes;
+  append(bytes, positions);
+  append(bytes, normals);
+  append(bytes, uv);
+  append(bytes, indices);
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{)" +
+         q.node + R"(}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, )" +
+         std::string(q.normals ? R"("NORMAL": 1, )" : "") + R"("TEXCOORD_0": 2}, "indices": 3, "material": 0, "mode": )" +
+         std::to_string(q.mode) + q.primitive_extra + R"(}]}],
+  "materials": [)" +
+         q.material + R"(],
+  "buffers": [{"byteLength": )" +
+         std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) +
+         R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}])" +
+         q.top_extra + "}";
+}
+
+fs::path write_quad(const fs::path& dir, const std::string& name, const QuadAsset& q) {
+  const fs::path path = dir / name;
+  write_file(path, quad_gltf(q));
+  return path;
+}
+
+void expect_near(Vec3 a, Vec3 b, double tolerance) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+// The message of a bad asset: one line, starting with the file's path.
+std::string bad_asset_message(const fs::path& path, const GltfLimits& limits = {}) {
+  try {
+    load_gltf(path.string(), limits);
+  } catch (const GltfError& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+  }
+  ADD_FAILURE() << path << " loaded";
+  return {};
+}
+
+}  // namespace
+
+TEST(GltfAsset, ClearCoatTestAsShipped) {
+  const GltfAsset asset = load_gltf(kClearCoat);
+  EXPECT_EQ(asset.mesh->triangles().size(), 37116u);
+  ASSERT_EQ(asset.materials.size(), 20u);                           // 19 and the default
+  EXPECT_EQ(asset.generated_tangent_primitives, asset.primitives);  // no TANGENT in the asset
+  EXPECT_FALSE(asset.camera);
+  EXPECT_FALSE(asset.light);
+  EXPECT_TRUE(asset.has_normal_map());
+  int coated = 0;
+  for (const GltfMaterial& m : asset.materials) {
+    if (!m.clearcoat) continue;
+    ++coated;
+    EXPECT_EQ(m.clearcoat_factor, 1.0) << m.name;
+  }
+  EXPECT_EQ(coated, 6);
+  auto material = [&](const std::string& name) -> const GltfMaterial& {
+    for (const GltfMaterial& m : asset.materials)
+      if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+  };
+  EXPECT_EQ(material("Simple_Coated").clearcoat_roughness_factor, 0.03);
+  EXPECT_EQ(material("Simple_Base").roughness_factor, 0.4399999976158142);
+  ASSERT_TRUE(material("CoatNorm_Coated").clearcoat_normal_map);  // PlasticWrap_normals.jpg
+  EXPECT_EQ(material("CoatNorm_Coated").clearcoat_normal_map->width(0), 1024);
+  ASSERT_TRUE(material("BaseNorm_Base").normal_map);  // RibsNormal.png
+  EXPECT_EQ(material("BaseNorm_Base").normal_map->width(0), 512);
+  ASSERT_TRUE(material("RoughVariations_Coated").clearcoat_roughness_map);  // RoughnessStripes.png
+  ASSERT_TRUE(material("RoughVariations_Coating").roughness_map);
+  EXPECT_EQ(material("RoughVariations_Coating").roughness_map->levels(), 10);  // 512 .. 1
+  // Generated tangents: unit, orthogonal to the normal, a sign of +-1.
+  for (const MeshVertex& v : asset.mesh->vertices()) {
+    ASSERT_NEAR(ref::length(v.tangent), 1.0, 1e-12);
+    ASSERT_NEAR(ref::dot(v.tangent, v.normal), 0.0, 1e-12);
+    ASSERT_TRUE(v.tangent_sign == 1.0 || v.tangent_sign == -1.0);
+  }
+}
+
+TEST(GltfAsset, TwoCylinderEngineAsShipped) {
+  const GltfAsset asset = load_gltf(kEngine);
+  // 75,730 triangles in its meshes, 121,496 once the nodes instance them.
+  EXPECT_EQ(asset.mesh->triangles().size(), 121496u);
+  ASSERT_TRUE(asset.camera);
+  EXPECT_NEAR(asset.camera->fov_y_degrees, 0.3143463730812073 * 180.0 / ref::kPi, 1e-12);
+  EXPECT_FALSE(asset.has_normal_map());
+  for (const GltfMaterial& m : asset.materials) EXPECT_FALSE(m.roughness_map || m.normal_map || m.clearcoat) << m.name;
+}
+
+TEST(GltfAsset, GeneratedTangentsFollowImageUp) {
+  const fs::path dir = scratch("tangents");
+  // v grows downwards in the image, so an unmirrored mapping has t = +x and the bitangent
+  // n x t = +y along -dp/dv: w = +1. Mirroring u turns t to -x, n x t = -y along +dp/dv: w = -1.
+  const GltfAsset plain = load_gltf(write_quad(dir, "plain.gltf", {}).string());
+  for (const MeshVertex& v : plain.mesh->vertices()) {
+    expect_near(v.tangent, {1.0, 0.0, 0.0}, 1e-15);
+    EXPECT_EQ(v.tangent_sign, 1.0);
+  }
+  QuadAsset mirrored;
+  mirrored.uv_mirrored = true;
+  const GltfAsset flipped = load_gltf(write_quad(dir, "mirrored.gltf", mirrored).string());
+  for (const MeshVertex& v : flipped.mesh->vertices()) {
+    expect_near(v.tangent, {-1.0, 0.0, 0.0}, 1e-15);
+    EXPECT_EQ(v.tangent_sign, -1.0);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, NodeTransformsBakeIntoWorldSpace) {
+  const fs::path dir = scratch("nodes");
+  // T (1, 2, 3), R 90 degrees about z, S 2: (1, 0, 0) -> (0, 2, 0) + T = (1, 4, 3); normals keep
+  // +z, the tangent +x turns to +y.
+  QuadAsset q;
+  const double h = std::sqrt(0.5);
+  q.node = R"("mesh": 0, "translation": [1, 2, 3], "scale": [2, 2, 2], "rotation": [0, 0, )" + std::to_string(h) + ", " +
+           std::to_string(h) + "]";
+  const GltfAsset asset = load_gltf(write_quad(dir, "nodes.gltf", q).string());
+  const auto& v = asset.mesh->vertices();
+  expect_near(v[1].position, {1.0, 4.0, 3.0}, 1e-6);  // the quaternion printed to 6 digits
+  expect_near(v[2].position, {-1.0, 4.0, 3.0}, 1e-6);
+  expect_near(v[1].normal, {0.0, 0.0, 1.0}, 1e-12);
+  expect_near(v[1].tangent, {0.0, 1.0, 0.0}, 1e-6);
+  // A matrix node with a mirror (x -> -x): normals through the inverse transpose stay +z.
+  q.node = R"("mesh": 0, "matrix": [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])";
+  const GltfAsset mirrored = load_gltf(write_quad(dir, "mirror.gltf", q).string());
+  expect_near(mirrored.mesh->vertices()[1].position, {-1.0, 0.0, 0.0}, 0.0);
+  expect_near(mirrored.mesh->vertices()[1].normal, {0.0, 0.0, 1.0}, 0.0);
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, NormalAndRoughnessTexturesDecodeAndShade) {
+  const fs::path dir = scratch("textures");
+  // Normal texture 4 x 4 of one colour (200, 100, 230), scale 0.5, as an external PNG; a 2 x 2
+  // metallic-roughness texture (G = 0, 64, 128, 255) embedded as a data URI.
+  std::vector<unsigned char> normal_pixels;
+  for (int i = 0; i < 16; ++i) normal_pixels.insert(normal_pixels.end(), {200, 100, 230});
+  write_file(dir / "normal.png", png(4, 4, 3, normal_pixels));
+  const std::vector<unsigned char> roughness_pixels{0, 0, 0, 0, 64, 0, 0, 128, 0, 0, 255, 0};
+  QuadAsset q;
+  q.material = R"({"name": "textured", "normalTexture": {"index": 0, "scale": 0.5},
+    "pbrMetallicRoughness": {"roughnessFactor": 0.5, "metallicRoughnessTexture": {"index": 1}}})";
+  q.top_extra = R"(, "textures": [{"source": 0}, {"source": 1}],
+    "images": [{"uri": "normal.png"}, {"uri": "data:image/png;base64,)" +
+                base64(png(2, 2, 3, roughness_pixels)) + R"("}])";
+  const fs::path path = write_quad(dir, "textured.gltf", q);
+  const GltfAsset asset = load_gltf(path.string());
+  const GltfMaterial& m = asset.materials[0];
+  ASSERT_TRUE(m.normal_map && m.roughness_map);
+  // glTF 2.0 Sec. 3.9.3: normalize((2 c / 255 - 1) * (scale, scale, 1)).
+  const Vec3 expected = ref::normalize(Vec3{(400.0 / 255.0 - 1.0) * 0.5, (200.0 / 255.0 - 1.0) * 0.5, 460.0 / 255.0 - 1.0});
+  expect_near(m.normal_map->texel(0, 3, 1).normal, expected, 1e-15);
+  // The MIP chain of G: level 1 is the mean of the four texels.
+  EXPECT_NEAR(m.roughness_map->texel(1, 0, 0), (64.0 + 128.0 + 255.0) / (4.0 * 255.0), 1e-15);
+  EXPECT_NEAR(m.roughness_map->trilinear({0.25, 0.25}, 0.5), 0.5 * (0.0 + (64.0 + 128.0 + 255.0) / (4.0 * 255.0)), 1e-15);
+
+  // A ray down the -z axis at (0.75, 0.25): the TBN (t = +x, b = +y, n = +z) of the decoded
+  // normal, and alpha scaled by the square of G at the texel (1, 1) centre's uv (0.75, 0.75).
+  const Scene scene = make_gltf_scene(std::make_shared<const GltfAsset>(asset));
+  SurfaceHit hit;
+  ASSERT_TRUE(scene.intersect({{0.75, 0.25, 5.0}, {0.0, 0.0, -1.0}}, hit));
+  expect_near(hit.normal, expected, 1e-12);
+  EXPECT_NEAR(hit.alpha_scale, std::pow(255.0 / 255.0, 2), 1e-12);  // texel (1, 1) of G: 255
+  ASSERT_TRUE(scene.intersect({{0.25, 0.75, 5.0}, {0.0, 0.0, -1.0}}, hit));
+  EXPECT_NEAR(hit.alpha_scale, std::pow(1.0 / 255.0, 2), 1e-15);  // G = 0, clamped to 1 / 255
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, QuadPartnersOffTheTriangleAreHelperInvocations) {
+  const fs::path dir = scratch("helpers");
+  // A roof: the quad folded along its diagonal (vertex 2 raised), without NORMAL, so each
+  // triangle is flat with a normal of its own (split at the crease). A GPU's helper invocations
+  // extrapolate the shaded triangle's constant normal, so every quad derivative of the normal is
+  // zero (to rounding), the pixels along the crease included.
+  QuadAsset roof;
+  roof.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0.6f, 0, 1, 0};
+  roof.normals = false;
+  write_quad(dir, "roof.gltf", roof);
+  const SceneId id = register_gltf_scene((dir / "roof.gltf").string());
+  const Scene scene = make_scene(id);
+  ASSERT_TRUE(scene.per_triangle_quads());
+  const GBuffer g = render_gbuffer(scene, 48, 48, 1);
+  int hits = 0, crease_quads = 0;
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      if (!g.at(x, y).hit) continue;
+      ++hits;
+      const QuadFields q = gather_quad(g, x, y);
+      // The same normal to rounding: normalize(b0 n + b1 n + b2 n) with b0 + b1 + b2 = 1.
+      for (int k = 0; k < 4; ++k) expect_near(q.normal[k], g.at(x, y).normal, 1e-15);
+      const int x0 = x & ~1, y0 = y & ~1;
+      for (int k = 0; k < 4; ++k) {
+        const int qx = x0 + (k & 1), qy = y0 + (k >> 1);
+        if (qx < g.width && qy < g.height && g.at(qx, qy).hit && g.at(qx, qy).triangle != g.at(x, y).triangle) ++crease_quads;
+      }
+    }
+  EXPECT_GT(hits, 200);
+  EXPECT_GT(crease_quads, 20);  // the crease runs through the quads the test is about
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, TheClearcoatLobeIsASecondScene) {
+  const std::vector<SceneId> ids = register_gltf_scenes(kClearCoat);
+  ASSERT_EQ(ids.size(), 2u);
+  EXPECT_EQ(scene_name(ids[1]), "ClearCoatTest-coat");
+  EXPECT_TRUE(scene_has_normal_map(ids[1]));  // CoatNorm_Coated's and SharedNorm_Coated's coat normal textures
+  EXPECT_EQ(register_gltf_scenes(kEngine).size(), 1u);
+  const GltfAsset& asset = *gltf_asset_of(ids[0]);
+  const GBuffer base = render_gbuffer(make_scene(ids[0]), 96, 96, 1);
+  const GBuffer coat = render_gbuffer(make_scene(ids[1]), 96, 96, 1);
+  const Image coat_none = render_variant(coat, Variant::none, {0.1, false}, {}, ref::Derivative::coarse, 1);
+  int coated_lit = 0, base_mapped = 0, base_norm_coated = 0, partial_low = 0, partial_high = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const PixelFields& f = coat.at(x, y);
+      if (!f.hit) continue;
+      const GltfMaterial& m = asset.materials[static_cast<std::size_t>(asset.object_material[static_cast<std::size_t>(f.object)])];
+      if (!m.clearcoat) {
+        EXPECT_EQ(coat_none.at(x, y), 0.0f) << m.name;  // no coat, no coat lobe: black, yet occluding
+        continue;
+      }
+      if (coat_none.at(x, y) > 0.0f) ++coated_lit;
+      if (m.name == "BaseNorm_Coated") {
+        // The coat does not inherit the base's normal texture: its normal is the geometric one.
+        ++base_norm_coated;
+        EXPECT_EQ(f.normal.x, f.geometric_normal.x);
+        EXPECT_EQ(f.normal.z, f.geometric_normal.z);
+        if (ref::length(base.at(x, y).normal - base.at(x, y).geometric_normal) > 1e-3) ++base_mapped;
+      }
+      if (m.name == "Partial_Coated") (f.weight < 0.5 ? partial_low : partial_high) += 1;
+    }
+  EXPECT_GT(coated_lit, 0);
+  EXPECT_GT(base_norm_coated, 10);
+  EXPECT_GT(base_mapped, base_norm_coated / 2);  // where the base lobe is normal-mapped
+  // clearcoatTexture (R) leaves part of Partial_Coated uncoated.
+  EXPECT_GT(partial_low, 0);
+  EXPECT_GT(partial_high, 0);
+}
+
+TEST(GltfAsset, BadAssetsAreOneLineAndRenderNothing) {
+  const fs::path dir = scratch("bad");
+  {  // a truncated GLB
+    std::ifstream in(kEngine, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    write_file(dir / "truncated.glb", head);
+    bad_asset_message(dir / "truncated.glb");
+  }
+  {  // a missing image
+    QuadAsset q;
+    q.material = R"({"normalTexture": {"index": 0}})";
+    q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "missing.png"}])";
+    EXPECT_NE(bad_asset_message(write_quad(dir, "missing.gltf", q)).find("missing.png"), std::string::npos);
+  }
+  {  // lines
+    QuadAsset q;
+    q.mode = 1;
+    EXPECT_NE(bad_asset_message(write_quad(dir, "lines.gltf", q)).find("mode 1 (lines)"), std::string::npos);
+  }
+  {  // an accessor longer than its buffer view
+    std::string text = quad_gltf({});
+    const std::string count = R"("count": 6, "type": "SCALAR")";
+    text.replace(text.find(count), count.size(), R"("count": 600000, "type": "SCALAR")");
+    write_file(dir / "overrun.gltf", text);
+    EXPECT_NE(bad_asset_message(dir / "overrun.gltf").find("run past buffer view"), std::string::npos);
+  }
+  {  // more triangles than the limit
+    GltfLimits limits;
+    limits.max_triangles = 1000;
+    EXPECT_NE(bad_asset_message(kClearCoat, limits).find("beyond the limit of 1000"), std::string::npos);
+  }
+  {  // a texture beyond the size limit is refused before it is decoded
+    GltfLimits limits;
+    limits.max_texture_size = 512;
+    EXPECT_NE(bad_asset_message(kClearCoat, limits).find("1024x1024, beyond the limit of 512"), std::string::npos);
+  }
+  {  // more decoded texels than the limit (PlasticWrap_normals.jpg alone is 1024 x 1024)
+    GltfLimits limits;
+    limits.max_texels = 1024 * 1024;
+    EXPECT_NE(bad_asset_message(kClearCoat, limits).find("texels, beyond the limit of 1048576"), std::string::npos);
+  }
+  {  // a required extension the loader does not implement
+    QuadAsset q;
+    q.top_extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"])";
+    EXPECT_NE(bad_asset_message(write_quad(dir, "draco.gltf", q)).find("KHR_draco_mesh_compression"), std::string::npos);
+  }
+  {  // a texture whose size is not a power of two
+    std::vector<unsigned char> pixels(3 * 3 * 3, 128);
+    write_file(dir / "npot.png", png(3, 3, 3, pixels));
+    QuadAsset q;
+    q.material = R"({"normalTexture": {"index": 0}})";
+    q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "npot.png"}])";
+    EXPECT_NE(bad_asset_message(write_quad(dir, "npot.gltf", q)).find("power-of-two"), std::string::npos);
+  }
+  bad_asset_message(dir / "absent.glb");
+  fs::remove_all(dir);
+}
+
+TEST(GltfAsset, TradeOnBothSamplesAtATinySizeIsCached) {
+  TradeConfig config;
+  config.width = config.height = 12;
+  config.strata = 2;
+  config.flicker_width = config.flicker_height = 6;
+  config.flicker_strata = 2;
+  config.frames = 3;
+  config.alphas = {0.05};
+  config.fresnel_modes = {false};
+  const SceneId clearcoat = register_gltf_scene(kClearCoat);
+  const SceneId engine = register_gltf_scene(kEngine);
+  EXPECT_EQ(register_gltf_scene(kClearCoat), clearcoat);  // once per path
+  EXPECT_EQ(scene_name(clearcoat), "ClearCoatTest");
+  EXPECT_EQ(scene_name(engine), "2CylinderEngine");
+  EXPECT_TRUE(scene_has_normal_map(clearcoat));
+  EXPECT_FALSE(scene_has_normal_map(engine));
+  config.scenes = {clearcoat, engine};
+  const fs::path cache = scratch("cache");
+  config.cache_dir = cache.string();
+  const TradeTable first = compute_trade_table(config);
+  EXPECT_EQ(first.cache_misses, 2 * (1 + config.frames));
+  // Every variant and engine on both; the prefiltered rows only where the asset has normal maps.
+  for (SceneId scene : config.scenes) {
+    std::set<std::string> ids;
+    for (const TradeRow& row : first.rows)
+      if (row.scene == scene) ids.insert(configuration_id(row));
+    for (Variant v : default_trade_variants())
+      EXPECT_TRUE(ids.count(configuration_id(v, is_engine(v) ? engine_feed(v) : NormalFeed::shading)));
+    EXPECT_EQ(ids.count("deferred-avg:geometric+lean"), scene == clearcoat ? 1u : 0u);
+  }
+  for (const TradeRow& row : first.rows) {
+    EXPECT_EQ(row.non_finite, 0u) << configuration_id(row);
+    EXPECT_TRUE(std::isfinite(row.flip_ldr) && std::isfinite(row.tde)) << configuration_id(row);
+  }
+  const TradeTable second = compute_trade_table(config);
+  EXPECT_EQ(second.cache_hits, 2 * (1 + config.frames));
+  EXPECT_EQ(second.ground_truth_samples, 0u);
+  ASSERT_EQ(second.rows.size(), first.rows.size());
+  for (std::size_t i = 0; i < first.rows.size(); ++i) EXPECT_EQ(second.rows[i].flip_ldr, first.rows[i].flip_ldr);
+  fs::remove_all(cache);
+}
+
+class GltfCli : public saagen::test::CliTest {};
+
+TEST_F(GltfCli, BenchAndReportOnAnAsset) {
+  const auto run = saagen({"bench", "--scene", kClearCoat, "--preset", "quick", "--resolution", "8"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("ClearCoatTest (" + kClearCoat + "): 37116 triangles"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("engine-unreal"), std::string::npos) << run.out;
+  const auto report = saagen({"report", "--scene", kEngine, "--preset", "quick", "--resolution", "8", "-o", (scratch_ / "r").string()});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "r" / "sheet_2CylinderEngine_alpha0.0100.png"));
+
+  write_file(scratch_ / "bad.glb", "glTF");
+  const auto bad = saagen({"bench", "--scene", (scratch_ / "bad.glb").string(), "--preset", "quick"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--scene " + (scratch_ / "bad.glb").string() + ": "), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.out, "");
+  const auto unknown = saagen({"bench", "--scene", "teapot", "--preset", "quick"});
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.err.find("neither a scene"), std::string::npos) << unknown.err;
+}
+
+TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
+  const std::string manifest = (scratch_ / "clearcoat.saagen.toml").string();
+  const auto run = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string text = saagen::test::read_text(manifest);
+  // The 19 materials its primitives use and the 6 clearcoat layers as second lobes.
+  std::size_t materials = 0;
+  for (std::size_t at = text.find("[[material]]"); at != std::string::npos; at = text.find("[[material]]", at + 1)) ++materials;
+  EXPECT_EQ(materials, 25u) << text;
+  EXPECT_NE(text.find("domain = \"perceptual\""), std::string::npos);
+  EXPECT_NE(text.find("name = \"CoatNorm_Coated_coat\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\n\n"), std::string::npos) << text;
+  EXPECT_NE(run.out.find("material CoatNorm_Coated_coat (deferred"), std::string::npos) << run.out;
+  // Written once: the same bytes again are left alone; emit takes the manifest as any other.
+  const auto again = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
+  EXPECT_NE(again.out.find("unchanged " + manifest), std::string::npos) << again.out;
+  const auto emit = saagen({"emit", "--manifest", manifest, "-o", (scratch_ / "bundle").string()});
+  ASSERT_EQ(emit.exit_code, 0) << emit.err;
+  EXPECT_TRUE(fs::exists(scratch_ / "bundle" / "saa_ClearCoatTest_perceptual.glsl"));
+
+  write_file(scratch_ / "bad.glb", "glTF");
+  const auto bad = saagen({"plan", "--gltf", (scratch_ / "bad.glb").string(), "-o", (scratch_ / "bad.toml").string(), "--no-cost"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--gltf " + (scratch_ / "bad.glb").string() + ": "), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "bad.toml"));
+  const auto no_output = saagen({"plan", "--gltf", kClearCoat, "--no-cost"});
+  EXPECT_NE(no_output.exit_code, 0);
+  EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
+}
