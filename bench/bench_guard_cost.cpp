@@ -41,8 +41,7 @@ std::string calls_body(const std::vector<std::string>& functions, std::uint32_t&
         continue;
       }
       std::string loads;
-      for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k)
-        loads += fmt::format("{}SAAGEN_LOAD({}u)", k ? ", " : "", input++);
+      for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k) loads += fmt::format("{}SAAGEN_LOAD({})", k ? ", " : "", input++);
       const std::string variable = fmt::format("saagen_a{}_{}", index, p.name);
       body += fmt::format("    {} {} = {}({});\n", p.type, variable, p.type, loads);
       arguments += variable;
@@ -51,7 +50,7 @@ std::string calls_body(const std::vector<std::string>& functions, std::uint32_t&
     const std::uint32_t count = saagen::component_count(f.return_type);
     for (std::uint32_t k = 0; k < count; ++k) {
       body +=
-          fmt::format("    SAAGEN_STORE({}u, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyz"[k]);
+          fmt::format("    SAAGEN_STORE({}, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyz"[k]);
     }
     ++index;
   }

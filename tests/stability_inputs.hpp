@@ -438,7 +438,7 @@ inline std::string wrapper_body(const Function& wrapper, std::uint32_t stride) {
     std::string loads;
     for (std::uint32_t k = 0; k < count; ++k) {
       if (k) loads += ", ";
-      loads += "SAAGEN_LOAD(saagen_index * " + std::to_string(stride) + "u + " + std::to_string(offset++) + "u)";
+      loads += "SAAGEN_LOAD(saagen_index * " + std::to_string(stride) + " + " + std::to_string(offset++) + ")";
     }
     body += "    " + parameter.type + " saagen_arg_" + parameter.name + " = " + parameter.type + "(" + loads + ");\n";
     arguments += "saagen_arg_" + parameter.name;
@@ -446,8 +446,8 @@ inline std::string wrapper_body(const Function& wrapper, std::uint32_t stride) {
   body += "    " + wrapper.return_type + " saagen_result = " + wrapper.name + "(" + arguments + ");\n";
   const std::uint32_t results = wrapper.return_type == "real" ? 1 : wrapper.return_type == "real2" ? 2 : 3;
   for (std::uint32_t k = 0; k < results; ++k) {
-    body += "    SAAGEN_STORE(" + std::to_string(k) + "u, saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyz"[k]) +
-            ");\n";
+    body +=
+        "    SAAGEN_STORE(" + std::to_string(k) + ", saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyz"[k]) + ");\n";
   }
   return body;
 }
