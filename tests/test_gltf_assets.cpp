@@ -338,6 +338,27 @@ TEST(GltfAsset, TheClearcoatLobeIsASecondScene) {
     }
   EXPECT_GT(coated_lit, 0);
   EXPECT_GT(base_norm_coated, 10);
+  // The base lobe under a coat passes 1 - clearcoat F(i.h) of the light, F >= F0 = 0.04.
+  GBuffer uncoated = base;
+  int attenuated = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const PixelFields& f = base.at(x, y);
+      if (!f.hit) continue;
+      const GltfMaterial& m = asset.materials[static_cast<std::size_t>(asset.object_material[static_cast<std::size_t>(f.object)])];
+      if (m.name == "Simple_Coated") EXPECT_EQ(f.coat, 1.0);  // clearcoatFactor 1, no texture
+      if (!m.clearcoat) EXPECT_EQ(f.coat, 0.0) << m.name;
+      uncoated.pixels[static_cast<std::size_t>(y) * 96 + x].coat = 0.0;
+      const double with = shade_pixel(base, x, y, Variant::none, {0.1, false}).radiance;
+      const double without = shade_pixel(uncoated, x, y, Variant::none, {0.1, false}).radiance;
+      if (f.coat == 1.0 && without > 0.0) {
+        ++attenuated;
+        const Vec3 h = ref::normalize(f.light_ts + f.view_ts);
+        EXPECT_NEAR(with / without, 1.0 - schlick_fresnel(ref::dot(f.light_ts, h)), 1e-12);
+        EXPECT_LE(with / without, 0.96 + 1e-12);
+      }
+    }
+  EXPECT_GT(attenuated, 0);
   EXPECT_GT(base_mapped, base_norm_coated / 2);  // where the base lobe is normal-mapped
   // clearcoatTexture (R) leaves part of Partial_Coated uncoated.
   EXPECT_GT(partial_low, 0);

@@ -149,12 +149,21 @@ class Loader {
     }
     auto surfaces = std::make_shared<SurfaceMaterials>();
     std::ostringstream description;
+    description.precision(17);
     for (std::size_t object = 0; object < object_material_.size(); ++object) {
       const GltfMaterial& m = asset.materials[static_cast<std::size_t>(object_material_[object])];
-      surfaces->by_object.push_back({m.normal_map, m.roughness_map});
-      if (m.normal_map || m.roughness_map)
-        description << "o" << object << ":" << (m.normal_map ? m.normal_map->describe() : "-") << ","
-                    << (m.roughness_map ? m.roughness_map->describe() : "-") << ";";
+      SurfaceTextures t{m.normal_map, m.roughness_map};
+      if (m.clearcoat && m.clearcoat_factor > 0.0) {
+        t.coat = m.clearcoat_factor;
+        t.coat_map = m.clearcoat_map;
+      }
+      if (t.normal_map || t.roughness_map || t.coat > 0.0) {
+        description << "o" << object << ":" << (t.normal_map ? t.normal_map->describe() : "-") << ","
+                    << (t.roughness_map ? t.roughness_map->describe() : "-");
+        if (t.coat > 0.0) description << ",coat=" << t.coat << "," << (t.coat_map ? t.coat_map->describe() : "-");
+        description << ";";
+      }
+      surfaces->by_object.push_back(std::move(t));
     }
     surfaces->description = description.str();
     asset.surfaces = std::move(surfaces);

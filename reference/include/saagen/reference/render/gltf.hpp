@@ -35,8 +35,9 @@
 //               extension specifies), its roughness texture's G scaling the trade's alpha, and
 //               the weight clearcoatFactor x R of clearcoatTexture (0 on uncoated surfaces,
 //               which still occlude); the trade's Fresnel rows are then the extension's coat
-//               Fresnel (F0 = 0.04, ior 1.5). The base lobe's attenuation by the coat
-//               (1 - clearcoat F) is not applied to NAME.
+//               Fresnel (F0 = 0.04, ior 1.5). In NAME, the base lobe under a coat passes
+//               1 - clearcoat F(i.h) of the light (SurfaceTextures::coat), as the extension's
+//               layering does.
 //   textures    PNG or JPEG, 8 or 16 bits, power-of-two sizes, REPEAT wrapping, TEXCOORD_0:
 //               MIP chains of exact 2x2 box means (NormalMap, ScalarMap), trilinear at the
 //               quad's implicit LOD in the 1-spp images, level 0 bilinear in the ground truth.
