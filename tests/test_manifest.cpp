@@ -507,7 +507,9 @@ TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereItWins) {
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp", "error": 0.04},
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.06})");
   EXPECT_EQ(wins.prefilter, "hdrp");
-  EXPECT_NE(wins.normal_advice.find("saagen texture prefilter --method hdrp --gltf"), std::string::npos) << wins.normal_advice;
+  EXPECT_NE(wins.normal_advice.find("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method hdrp --roughness R --gltf"),
+            std::string::npos)
+      << wins.normal_advice;
   EXPECT_NE(wins.normal_advice.find("0.04 against 0.05 without a prefilter (deferred-avg)"), std::string::npos) << wins.normal_advice;
   const auto loses = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.03},
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+filament-vmf", "error": 0.04})");

@@ -416,8 +416,10 @@ std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<
     return fmt::format("; no texture prefilter: the best prefiltered configuration, {}, measured {} against {}", with->configuration,
                        fixed(with->error), fixed(without->error));
   }
-  const std::string bake = plan.prefilter == "lean" ? "saagen texture prefilter --method lean (slope moments)"
-                                                    : fmt::format("saagen texture prefilter --method {} --gltf", plan.prefilter);
+  const std::string bake =
+      plan.prefilter == "lean"
+          ? "saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method lean (slope moments)"
+          : fmt::format("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} --roughness R --gltf", plan.prefilter);
   return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({})", bake, fixed(with->error),
                      fixed(without->error), without->configuration);
 }
