@@ -125,7 +125,9 @@ class Loader {
     asset.name = sanitized_stem(path_);
     for (std::size_t i = 0; i < model_.materials.size(); ++i) asset.materials.push_back(material(static_cast<int>(i)));
     default_material_ = static_cast<int>(asset.materials.size());
-    asset.materials.push_back(GltfMaterial{"(default)"});
+    GltfMaterial fallback;
+    fallback.name = "(default)";
+    asset.materials.push_back(std::move(fallback));
     traverse_scene(asset);
     if (triangles_.empty()) fail("no triangles in the scene's meshes; nothing to render");
     asset.primitives = static_cast<int>(object_material_.size());
@@ -152,7 +154,9 @@ class Loader {
     description.precision(17);
     for (std::size_t object = 0; object < object_material_.size(); ++object) {
       const GltfMaterial& m = asset.materials[static_cast<std::size_t>(object_material_[object])];
-      SurfaceTextures t{m.normal_map, m.roughness_map};
+      SurfaceTextures t;
+      t.normal_map = m.normal_map;
+      t.roughness_map = m.roughness_map;
       if (m.clearcoat && m.clearcoat_factor > 0.0) {
         t.coat = m.clearcoat_factor;
         t.coat_map = m.clearcoat_map;
