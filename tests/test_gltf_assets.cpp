@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace saagen::render;
@@ -420,7 +421,16 @@ TEST(GltfAsset, BadAssetsAreOneLineAndRenderNothing) {
     q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "npot.png"}])";
     EXPECT_NE(bad_asset_message(write_quad(dir, "npot.gltf", q)).find("power-of-two"), std::string::npos);
   }
-  bad_asset_message(dir / "absent.glb");
+  EXPECT_NE(bad_asset_message(dir / "absent.glb").find("does not exist"), std::string::npos);
+  EXPECT_NE(bad_asset_message(dir).find("is not a regular file"), std::string::npos);
+  {  // an external buffer that is a FIFO would block the read forever: refused before it is opened
+    ASSERT_EQ(::mkfifo((dir / "buffer.fifo").c_str(), 0600), 0);
+    std::string text = quad_gltf({});
+    const std::size_t start = text.find("data:application/octet-stream;base64,"), end = text.find('"', start);
+    text.replace(start, end - start, "buffer.fifo");
+    write_file(dir / "fifo.gltf", text);
+    EXPECT_NE(bad_asset_message(dir / "fifo.gltf").find("buffer.fifo' is not a regular file"), std::string::npos);
+  }
   fs::remove_all(dir);
 }
 
