@@ -249,6 +249,7 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON, as bench_shading --json writes); rules otherwise");
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
+  plan_->add_flag("--taa", plan_taa_, "Plan for a scene under TAA, as `taa = true` in the manifest (sigma2 0.0625 unless set)");
   CLI::Option* gltf = plan_->add_option("--gltf", plan_gltf_,
                                         "Write the scene manifest of a glTF 2.0 asset (.gltf or .glb) to --output, one material per glTF "
                                         "material its meshes use and one per clearcoat layer, then plan it");
@@ -292,7 +293,8 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   }
   if (plan_rules_) std::cout << "\n";
   const std::string manifest_path = plan_gltf_.empty() ? plan_manifest_ : write_gltf_manifest(catalogue);
-  const Manifest manifest = load_manifest(manifest_path, catalogue);
+  Manifest manifest = load_manifest(manifest_path, catalogue);
+  if (plan_taa_) manifest.taa = true;
   const Catalogue& planned = scene_catalogue(manifest, catalogue);
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);

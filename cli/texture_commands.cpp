@@ -52,8 +52,8 @@ TextureCommands::TextureCommands(CLI::App& app) {
   prefilter_->add_option("--metallic", metallic_, "--gltf: metallic value of the B channel, in [0, 1]")->capture_default_str();
   prefilter_
       ->add_option("--scale", scale_,
-                   "Roughness methods: the bake's addition to alpha^2 times this, in [0, 4] (1: as published; 0.5 with toksvig: the "
-                   "best measured with the tail-preserving filtered GGX, docs/PREFILTER.md)")
+                   "Roughness methods: the bake's addition to alpha^2 times this, in [0, 4] (1: as published; the best strength "
+                   "depends on the map: measure it with saagen bench --prefilter-scale, docs/PREFILTER.md)")
       ->capture_default_str();
   prefilter_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 }

@@ -9,7 +9,14 @@ over the worst (docs/PREFILTER.md).
 
 BASE is a configuration without its prefilter (default `none`: texture prefiltering alone);
 e.g. `deferred-avg:geometric/tail` reads the rows `deferred-avg:geometric+FORM/tail`. The
-baseline row without a prefilter is BASE itself (for `none`, no SAA)."""
+baseline row without a prefilter is BASE itself (for `none`, no SAA).
+
+    python3 scripts/prefilter_table.py --strength BASE S=trade.json ...
+
+The strength sweep: tables measured with `saagen bench --prefilter-scale S`, as one table per
+scene of the Toksvig and HDRP rows of BASE by strength c, the multiple of Toksvig's addition
+2 (1 - L) / L (Toksvig at scale S is c = S; HDRP at scale S is about c = S / 4, exactly so
+below its cap)."""
 import collections
 import json
 import sys
@@ -63,9 +70,36 @@ def table_for(scene, rows, base):
     return '\n'.join(lines)
 
 
+def strength_tables(base, runs):
+    points = collections.defaultdict(dict)  # scene -> (c, label) -> means
+    for scale, path in runs:
+        for scene, rows in means(json.load(open(path))['cases']).items():
+            if configuration(base, '') in rows:
+                points[scene][(0.0, 'no prefilter')] = rows[configuration(base, '')]
+            for form, factor in (('toksvig', 1.0), ('hdrp', 0.25)):
+                if configuration(base, form) in rows:
+                    points[scene][(scale * factor, f'{form} x {scale:g}')] = rows[configuration(base, form)]
+    for scene, by_c in points.items():
+        print(f'{scene}, base `{base}`, strength c = multiple of Toksvig\'s 2 (1 - L) / L\n')
+        print('| c | row | ' + ' | '.join(label for _, label in METRICS) + ' |')
+        print('|---:|---|' + '---:|' * len(METRICS))
+        best = {key: min(by_c, key=lambda k: by_c[k][key]) for key, _ in METRICS}
+        for c, label in sorted(by_c):
+            cells = []
+            for key, _ in METRICS:
+                text = f'{by_c[(c, label)][key]:.4f}' if key != 'tde' else f'{by_c[(c, label)][key]:.5f}'
+                cells.append(f'**{text}**' if best[key] == (c, label) else text)
+            print(f'| {c:.4g} | {label} | ' + ' | '.join(cells) + ' |')
+        print()
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
+    if sys.argv[1] == '--strength':
+        runs = [(float(arg.split('=', 1)[0]), arg.split('=', 1)[1]) for arg in sys.argv[3:]]
+        strength_tables(sys.argv[2], runs)
+        return
     bases = sys.argv[2:] or ['none']
     all_means = means(json.load(open(sys.argv[1]))['cases'])
     for scene, rows in all_means.items():

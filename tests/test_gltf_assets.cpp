@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace saagen::render;
@@ -338,6 +339,27 @@ TEST(GltfAsset, TheClearcoatLobeIsASecondScene) {
     }
   EXPECT_GT(coated_lit, 0);
   EXPECT_GT(base_norm_coated, 10);
+  // The base lobe under a coat passes 1 - clearcoat F(i.h) of the light, F >= F0 = 0.04.
+  GBuffer uncoated = base;
+  int attenuated = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const PixelFields& f = base.at(x, y);
+      if (!f.hit) continue;
+      const GltfMaterial& m = asset.materials[static_cast<std::size_t>(asset.object_material[static_cast<std::size_t>(f.object)])];
+      if (m.name == "Simple_Coated") EXPECT_EQ(f.coat, 1.0);  // clearcoatFactor 1, no texture
+      if (!m.clearcoat) EXPECT_EQ(f.coat, 0.0) << m.name;
+      uncoated.pixels[static_cast<std::size_t>(y) * 96 + x].coat = 0.0;
+      const double with = shade_pixel(base, x, y, Variant::none, {0.1, false}).radiance;
+      const double without = shade_pixel(uncoated, x, y, Variant::none, {0.1, false}).radiance;
+      if (f.coat == 1.0 && without > 0.0) {
+        ++attenuated;
+        const Vec3 h = ref::normalize(f.light_ts + f.view_ts);
+        EXPECT_NEAR(with / without, 1.0 - schlick_fresnel(ref::dot(f.light_ts, h)), 1e-12);
+        EXPECT_LE(with / without, 0.96 + 1e-12);
+      }
+    }
+  EXPECT_GT(attenuated, 0);
   EXPECT_GT(base_mapped, base_norm_coated / 2);  // where the base lobe is normal-mapped
   // clearcoatTexture (R) leaves part of Partial_Coated uncoated.
   EXPECT_GT(partial_low, 0);
@@ -399,7 +421,16 @@ TEST(GltfAsset, BadAssetsAreOneLineAndRenderNothing) {
     q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "npot.png"}])";
     EXPECT_NE(bad_asset_message(write_quad(dir, "npot.gltf", q)).find("power-of-two"), std::string::npos);
   }
-  bad_asset_message(dir / "absent.glb");
+  EXPECT_NE(bad_asset_message(dir / "absent.glb").find("does not exist"), std::string::npos);
+  EXPECT_NE(bad_asset_message(dir).find("is not a regular file"), std::string::npos);
+  {  // an external buffer that is a FIFO would block the read forever: refused before it is opened
+    ASSERT_EQ(::mkfifo((dir / "buffer.fifo").c_str(), 0600), 0);
+    std::string text = quad_gltf({});
+    const std::size_t start = text.find("data:application/octet-stream;base64,"), end = text.find('"', start);
+    text.replace(start, end - start, "buffer.fifo");
+    write_file(dir / "fifo.gltf", text);
+    EXPECT_NE(bad_asset_message(dir / "fifo.gltf").find("buffer.fifo' is not a regular file"), std::string::npos);
+  }
   fs::remove_all(dir);
 }
 

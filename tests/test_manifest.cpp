@@ -142,7 +142,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{
             "unknown_top_key", header + "colour = 1\n" + forward_material,
             "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
-            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, material"},
+            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
@@ -507,7 +507,9 @@ TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereItWins) {
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp", "error": 0.04},
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.06})");
   EXPECT_EQ(wins.prefilter, "hdrp");
-  EXPECT_NE(wins.normal_advice.find("saagen texture prefilter --method hdrp --gltf"), std::string::npos) << wins.normal_advice;
+  EXPECT_NE(wins.normal_advice.find("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method hdrp --roughness R --gltf"),
+            std::string::npos)
+      << wins.normal_advice;
   EXPECT_NE(wins.normal_advice.find("0.04 against 0.05 without a prefilter (deferred-avg)"), std::string::npos) << wins.normal_advice;
   const auto loses = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.03},
       {"content": "normal-mapped", "configuration": "deferred-avg:geometric+filament-vmf", "error": 0.04})");

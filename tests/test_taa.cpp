@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <vector>
 
@@ -285,4 +286,30 @@ TEST_F(TaaCli, BenchTaaPrintsTheTaaTable) {
   EXPECT_EQ(std::count(blend.err.begin(), blend.err.end(), '\n'), 1) << blend.err;
   const auto pan = saagen({"bench", "--preset", "quick", "--pan", "1"});
   EXPECT_NE(pan.exit_code, 0);
+}
+
+// The planner under TAA: `taa = true` (or `plan --taa`) plans sigma2 = 0.0625 with the measured
+// reason unless the manifest sets sigma2 (or a preset does); a non-boolean `taa` is one line at
+// its key.
+TEST_F(TaaCli, PlanUnderTaaPlansTheSmallerKernel) {
+  const std::string base = "name = \"s\"\ntargets = [\"glsl\"]\n";
+  const std::string material = "[[material]]\nname = \"m\"\npath = \"forward\"\n";
+  auto write = [&](const std::string& file, const std::string& text) {
+    std::ofstream((scratch_ / file).string()) << text;
+    return (scratch_ / file).string();
+  };
+  const auto keyed = saagen({"plan", write("taa.toml", base + "taa = true\n" + material), "--no-cost"});
+  ASSERT_EQ(keyed.exit_code, 0) << keyed.err;
+  EXPECT_NE(keyed.out.find("sigma2 = 0.0625 (taa = true;"), std::string::npos) << keyed.out;
+  const auto flag = saagen({"plan", write("plain.toml", base + material), "--no-cost", "--taa"});
+  ASSERT_EQ(flag.exit_code, 0) << flag.err;
+  EXPECT_NE(flag.out.find("sigma2 = 0.0625 (taa = true;"), std::string::npos) << flag.out;
+  const auto set = saagen({"plan", write("set.toml", base + "taa = true\nsigma2 = 0.25\n" + material), "--no-cost"});
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  EXPECT_NE(set.out.find("sigma2 = 0.25"), std::string::npos) << set.out;
+  EXPECT_EQ(set.out.find("taa = true;"), std::string::npos) << set.out;
+  const auto bad = saagen({"plan", write("bad.toml", base + "taa = \"yes\"\n" + material), "--no-cost"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("bad.toml:3:7: key 'taa': must be a boolean"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }

@@ -547,7 +547,7 @@ const std::vector<std::string>& manifest_keys() {
     for (const Constant& constant : glints::catalogue().constants()) {  // the SAA options, then the glint options
       if (!constant.option.empty()) names.push_back(constant.option);
     }
-    names.insert(names.end(), {"preset", "domain", "import_path", "material"});
+    names.insert(names.end(), {"preset", "domain", "import_path", "taa", "material"});
     return names;
   }();
   return keys;
@@ -610,6 +610,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
     if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
     manifest.import_path = *path;
   }
+  manifest.taa = top.boolean("taa").value_or(false);
   read_options(manifest, top, catalogue);
   read_engine_settings(manifest, top);
   read_materials(manifest, top, catalogue);

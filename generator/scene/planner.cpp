@@ -105,6 +105,14 @@ constexpr const char* kMeasuredDeferredCurved =
     "tube to cover it across; deferred-aniso (rule D0, prefer = \"accuracy\") reaches 0.0294 and TDE 0.0139 for 3 G-buffer "
     "values and a matrix BRDF per light (docs/DEFERRED_KERNEL.md)";
 
+// `saagen bench --preset medium --taa --sigma2 X --json F; python3 scripts/taa_kernel.py ...`
+// (docs/TAA.md).
+constexpr const char* kMeasuredTaaKernel =
+    "under TAA the best saagen configuration's LDR-FLIP falls as sigma2 goes from 0.25 to 0.0625 on every scene of saagen's "
+    "trade (tubes 0.132 -> 0.131, bump plane 0.305 -> 0.278, sphere 0.049 -> 0.032); on smooth shapes no SAA measured better "
+    "than any SAA under TAA, on thin or bumpy content the forward anisotropic form beats it in LDR-FLIP but not in TDE "
+    "(docs/TAA.md)";
+
 bool matches(Tri tri, bool value) { return tri == Tri::any || (tri == Tri::yes) == value; }
 
 const Rule& rule_for(const Material& material) {
@@ -416,8 +424,10 @@ std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<
     return fmt::format("; no texture prefilter: the best prefiltered configuration, {}, measured {} against {}", with->configuration,
                        fixed(with->error), fixed(without->error));
   }
-  const std::string bake = plan.prefilter == "lean" ? "saagen texture prefilter --method lean (slope moments)"
-                                                    : fmt::format("saagen texture prefilter --method {} --gltf", plan.prefilter);
+  const std::string bake =
+      plan.prefilter == "lean"
+          ? "saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method lean (slope moments)"
+          : fmt::format("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} --roughness R --gltf", plan.prefilter);
   return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({})", bake, fixed(with->error),
                      fixed(without->error), without->configuration);
 }
@@ -476,7 +486,11 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   scene.option_values = manifest.option_values;
   const bool all_ggx =
       std::all_of(manifest.materials.begin(), manifest.materials.end(), [](const Material& m) { return m.ndf == Ndf::ggx; });
-  if (all_ggx && !manifest.option_values.count("sigma2")) {
+  if (manifest.taa && !manifest.option_values.count("sigma2")) {
+    scene.option_values["sigma2"] = kTaaSigma2;
+    scene.options_reason =
+        fmt::format("sigma2 = {} (taa = true; {}; set sigma2 in the manifest to override)", kTaaSigma2, kMeasuredTaaKernel);
+  } else if (all_ggx && !manifest.option_values.count("sigma2")) {
     scene.option_values["sigma2"] = kGgxSigma2;
     scene.options_reason = fmt::format(
         "sigma2 = {} (every material is GGX, shaded with the tail-preserving filtered GGX: the pixel filter's own variance; {}; "

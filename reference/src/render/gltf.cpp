@@ -125,7 +125,9 @@ class Loader {
     asset.name = sanitized_stem(path_);
     for (std::size_t i = 0; i < model_.materials.size(); ++i) asset.materials.push_back(material(static_cast<int>(i)));
     default_material_ = static_cast<int>(asset.materials.size());
-    asset.materials.push_back(GltfMaterial{"(default)"});
+    GltfMaterial fallback;
+    fallback.name = "(default)";
+    asset.materials.push_back(std::move(fallback));
     traverse_scene(asset);
     if (triangles_.empty()) fail("no triangles in the scene's meshes; nothing to render");
     asset.primitives = static_cast<int>(object_material_.size());
@@ -149,12 +151,23 @@ class Loader {
     }
     auto surfaces = std::make_shared<SurfaceMaterials>();
     std::ostringstream description;
+    description.precision(17);
     for (std::size_t object = 0; object < object_material_.size(); ++object) {
       const GltfMaterial& m = asset.materials[static_cast<std::size_t>(object_material_[object])];
-      surfaces->by_object.push_back({m.normal_map, m.roughness_map});
-      if (m.normal_map || m.roughness_map)
-        description << "o" << object << ":" << (m.normal_map ? m.normal_map->describe() : "-") << ","
-                    << (m.roughness_map ? m.roughness_map->describe() : "-") << ";";
+      SurfaceTextures t;
+      t.normal_map = m.normal_map;
+      t.roughness_map = m.roughness_map;
+      if (m.clearcoat && m.clearcoat_factor > 0.0) {
+        t.coat = m.clearcoat_factor;
+        t.coat_map = m.clearcoat_map;
+      }
+      if (t.normal_map || t.roughness_map || t.coat > 0.0) {
+        description << "o" << object << ":" << (t.normal_map ? t.normal_map->describe() : "-") << ","
+                    << (t.roughness_map ? t.roughness_map->describe() : "-");
+        if (t.coat > 0.0) description << ",coat=" << t.coat << "," << (t.coat_map ? t.coat_map->describe() : "-");
+        description << ";";
+      }
+      surfaces->by_object.push_back(std::move(t));
     }
     surfaces->description = description.str();
     asset.surfaces = std::move(surfaces);
@@ -210,12 +223,45 @@ class Loader {
     return tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr);
   }
 
-  void read_model() {
+  // tinygltf's file reader for the asset's external buffers and images, behind the checks a
+  // hostile URI needs: only a regular file (a FIFO would block the read, /dev/zero never ends),
+  // at most max_file_bytes.
+  static bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    const auto* self = static_cast<const Loader*>(user);
+    if (const std::string problem = self->file_problem(path); !problem.empty()) {
+      if (err) *err += "'" + path + "' " + problem;
+      return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr);
+  }
+
+  // Whether a file exists, without opening it (tinygltf's own FileExists opens it for reading,
+  // which blocks on a FIFO).
+  static bool file_exists(const std::string& path, void*) {
     std::error_code error;
-    if (!std::filesystem::is_regular_file(path_, error)) fail("no such file (a .gltf or .glb asset is expected)");
+    return std::filesystem::exists(path, error);
+  }
+
+  // Why a file cannot be read as part of the asset; empty when it can.
+  std::string file_problem(const std::string& path) const {
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (error || !std::filesystem::exists(status)) return "does not exist";
+    if (!std::filesystem::is_regular_file(status)) return "is not a regular file";
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (error) return "cannot be sized";
+    if (size > limits_.max_file_bytes)
+      return "is " + std::to_string(size) + " bytes, beyond the limit of " + std::to_string(limits_.max_file_bytes);
+    return {};
+  }
+
+  void read_model() {
+    if (const std::string problem = file_problem(path_); !problem.empty())
+      fail(problem + (problem == "does not exist" ? " (a .gltf or .glb asset is expected)" : ""));
     const std::string extension = std::filesystem::path(path_).extension().string();
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&Loader::load_image, this);
+    loader.SetFsCallbacks({&Loader::file_exists, &tinygltf::ExpandFilePath, &Loader::read_whole_file, &tinygltf::WriteWholeFile, this});
     std::string err, warn;
     bool ok = false;
     if (extension == ".glb" || extension == ".GLB") {

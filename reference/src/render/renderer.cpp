@@ -209,7 +209,8 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
         if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
         const Vec3 half = normalize(s.light_ts + s.view_ts);
         const double fresnel = schlick_fresnel(dot(s.light_ts, half));
-        const double common = s.light_ts.z * s.irradiance * hit.weight;
+        // A clearcoat layer above passes 1 - coat F of the light (KHR_materials_clearcoat).
+        const double common = s.light_ts.z * s.irradiance * hit.weight * (1.0 - hit.coat * fresnel);
         double last_alpha = -1.0, last_brdf = 0.0;
         for (std::size_t m = 0; m < n_materials; ++m) {
           const double alpha = materials[m].alpha * hit.alpha_scale;
@@ -285,7 +286,8 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   const ScalarMap* roughness = scene.roughness_map_at(hit);
   const SurfaceTextures* textures = scene.surface_textures_at(hit);
   const ScalarMap* weight = textures ? textures->weight_map.get() : nullptr;
-  if (map || roughness || weight) {
+  const ScalarMap* coat = textures ? textures->coat_map.get() : nullptr;
+  if (map || roughness || weight || coat) {
     const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
     f.duv_dx = d.ddx;
     f.duv_dy = d.ddy;
@@ -299,7 +301,10 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   }
   // The roughness texture's own implicit LOD (its size may differ from the normal map's).
   if (roughness) f.alpha_scale = roughness_alpha_scale(roughness->trilinear(hit.uv, roughness->lod(f.duv_dx, f.duv_dy)));
-  if (textures) f.weight = textures->weight * (weight ? ref::saturate(weight->trilinear(hit.uv, weight->lod(f.duv_dx, f.duv_dy))) : 1.0);
+  if (textures) {
+    f.weight = textures->weight * (weight ? ref::saturate(weight->trilinear(hit.uv, weight->lod(f.duv_dx, f.duv_dy))) : 1.0);
+    f.coat = textures->coat * (coat ? ref::saturate(coat->trilinear(hit.uv, coat->lod(f.duv_dx, f.duv_dy))) : 1.0);
+  }
   const LocalShading s = local_shading(scene, ray, hit);
   f.hit = true;
   f.object = hit.object;
@@ -605,6 +610,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
     }
   }
   out.radiance = f.weight * specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
+  if (f.coat > 0.0) out.radiance *= 1.0 - f.coat * schlick_fresnel(dot(f.light_ts, normalize(f.light_ts + f.view_ts)));
   return out;
 }
 

@@ -664,8 +664,10 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   if (!intersect_surface(ray, hit)) return false;
   if (const NormalMap* map = normal_map_at(hit)) apply_normal_map(hit, bilinear_level0_normal(*map, hit.uv));
   if (const ScalarMap* roughness = roughness_map_at(hit)) hit.alpha_scale = roughness_alpha_scale(roughness->bilinear(0, hit.uv));
-  if (const SurfaceTextures* textures = surface_textures_at(hit))
+  if (const SurfaceTextures* textures = surface_textures_at(hit)) {
     hit.weight = textures->weight * (textures->weight_map ? ref::saturate(textures->weight_map->bilinear(0, hit.uv)) : 1.0);
+    hit.coat = textures->coat * (textures->coat_map ? ref::saturate(textures->coat_map->bilinear(0, hit.uv)) : 1.0);
+  }
   return true;
 }
 

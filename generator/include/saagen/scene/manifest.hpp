@@ -60,6 +60,9 @@ struct Manifest {
   // `import_path`: the naga_oil module path of the module-language (WGSL) bundles; the fp16
   // bundle's is PATH_fp16. Empty: none.
   std::string import_path;
+  // `taa`: the scene runs under temporal anti-aliasing (docs/TAA.md); the planner then defaults
+  // sigma2 to the kernel measured under TAA (planner.hpp, kTaaSigma2).
+  bool taa = false;
   std::vector<Material> materials;
 
   // "FILE:LINE:COLUMN: " for a position in this manifest.

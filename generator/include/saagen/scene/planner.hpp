@@ -89,6 +89,10 @@ struct ScenePlan {
 // filter) measured best (`saagen bench --preset medium --sigma2 X`; docs/FILTERED_GGX.md). With
 // the papers' GGX(alpha^2 + K) a quarter of it was better only because it shrank the halo.
 inline constexpr double kGgxSigma2 = 0.25;
+// The variance planned under TAA (Manifest::taa, `plan --taa`): the jitter already integrates
+// the pixel footprint, and under `saagen bench --preset medium --taa` the best saagen
+// configuration improves as sigma^2 falls from 0.25 to 0.0625 on every scene (docs/TAA.md).
+inline constexpr double kTaaSigma2 = 0.0625;
 
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).

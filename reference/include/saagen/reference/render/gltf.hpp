@@ -35,8 +35,9 @@
 //               extension specifies), its roughness texture's G scaling the trade's alpha, and
 //               the weight clearcoatFactor x R of clearcoatTexture (0 on uncoated surfaces,
 //               which still occlude); the trade's Fresnel rows are then the extension's coat
-//               Fresnel (F0 = 0.04, ior 1.5). The base lobe's attenuation by the coat
-//               (1 - clearcoat F) is not applied to NAME.
+//               Fresnel (F0 = 0.04, ior 1.5). In NAME, the base lobe under a coat passes
+//               1 - clearcoat F(i.h) of the light (SurfaceTextures::coat), as the extension's
+//               layering does.
 //   textures    PNG or JPEG, 8 or 16 bits, power-of-two sizes, REPEAT wrapping, TEXCOORD_0:
 //               MIP chains of exact 2x2 box means (NormalMap, ScalarMap), trilinear at the
 //               quad's implicit LOD in the 1-spp images, level 0 bilinear in the ground truth.
@@ -48,7 +49,8 @@
 //               photometric units); else a directional light from the camera's upper left.
 //
 // Refused, with one line "PATH: what is wrong" (GltfError) and nothing rendered: a file that
-// cannot be read or parsed (a truncated GLB), a required extension not listed above, points
+// cannot be read or parsed (a truncated GLB), an asset or external buffer or image that is no
+// regular file (a FIFO would block the read, a device never end) or is beyond the size limit, a required extension not listed above, points
 // and lines, sparse or out-of-range accessors, indices beyond the vertices, a material's image
 // that is missing or undecodable, textures of another size, wrap mode or texture coordinate
 // set, and counts beyond GltfLimits.
@@ -60,6 +62,7 @@
 #include "saagen/reference/render/scene.hpp"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -78,9 +81,10 @@ class GltfError : public std::runtime_error {
 // triangle with its BVH share ~200, a decoded normal-map texel with its MIP chain ~120).
 struct GltfLimits {
   std::size_t max_triangles = 4'000'000;
-  std::size_t max_vertices = 12'000'000;  // flat-shaded primitives take 3 per triangle
-  int max_texture_size = 4096;            // texels per side, checked before decoding
-  std::size_t max_texels = 4096 * 4096;   // level-0 texels of all decoded textures together
+  std::size_t max_vertices = 12'000'000;       // flat-shaded primitives take 3 per triangle
+  int max_texture_size = 4096;                 // texels per side, checked before decoding
+  std::size_t max_texels = 4096 * 4096;        // level-0 texels of all decoded textures together
+  std::uintmax_t max_file_bytes = 1ull << 30;  // the asset and each external buffer or image
 };
 
 struct GltfMaterial {

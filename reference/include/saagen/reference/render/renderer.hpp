@@ -229,6 +229,7 @@ struct PixelFields {
   int triangle = -1;  // SurfaceHit::triangle
   // SurfaceHit::weight, its texture sampled trilinearly at its own LOD: multiplies the radiance.
   double weight = 1.0;
+  double coat = 0.0;  // SurfaceHit::coat, its texture sampled as the weight's
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.

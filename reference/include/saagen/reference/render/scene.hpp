@@ -140,6 +140,8 @@ struct SurfaceHit {
   // The weight of the lobe at the hit (SurfaceTextures::weight, times its texture): the radiance
   // is multiplied by it; 1 on every built-in scene.
   double weight = 1.0;
+  // SurfaceTextures::coat at the hit (times its texture); 0 without a layer above.
+  double coat = 0.0;
 };
 
 // An analytic shape in its object space.
@@ -297,6 +299,11 @@ struct SurfaceTextures {
   // texture (clearcoatTexture's R), multiplying the radiance; 1 and none for a base lobe.
   double weight = 1.0;
   std::shared_ptr<const ScalarMap> weight_map;
+  // A clearcoat layer above this lobe (KHR_materials_clearcoat's factor, and its texture's R):
+  // the radiance is multiplied by 1 - coat F(i.h), F Schlick's with F0 = 0.04 (the layer's
+  // Fresnel, ior 1.5); 0 and none: no layer.
+  double coat = 0.0;
+  std::shared_ptr<const ScalarMap> coat_map;
 };
 // The alpha factor of a roughness texture's sample g (G channel): g^2, g clamped to
 // [1 / 255, 1] (the smallest non-zero 8-bit value: a zero alpha is a delta lobe no GGX
