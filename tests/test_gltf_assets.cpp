@@ -347,8 +347,12 @@ TEST(GltfAsset, TheClearcoatLobeIsASecondScene) {
       const PixelFields& f = base.at(x, y);
       if (!f.hit) continue;
       const GltfMaterial& m = asset.materials[static_cast<std::size_t>(asset.object_material[static_cast<std::size_t>(f.object)])];
-      if (m.name == "Simple_Coated") EXPECT_EQ(f.coat, 1.0);  // clearcoatFactor 1, no texture
-      if (!m.clearcoat) EXPECT_EQ(f.coat, 0.0) << m.name;
+      if (m.name == "Simple_Coated") {
+        EXPECT_EQ(f.coat, 1.0);  // clearcoatFactor 1, no texture
+      }
+      if (!m.clearcoat) {
+        EXPECT_EQ(f.coat, 0.0) << m.name;
+      }
       uncoated.pixels[static_cast<std::size_t>(y) * 96 + x].coat = 0.0;
       const double with = shade_pixel(base, x, y, Variant::none, {0.1, false}).radiance;
       const double without = shade_pixel(uncoated, x, y, Variant::none, {0.1, false}).radiance;
