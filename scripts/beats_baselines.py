@@ -16,13 +16,14 @@ def lobe_of(configuration):
     return configuration.split('/')[1] if '/' in configuration else 'papers'
 
 
-def scene_means(cases):
+def scene_means(cases, image_metric='flip_ldr'):
+    """Per scene and configuration: the means of image_metric and TDE over the alphas, no Fresnel."""
     sums = collections.defaultdict(lambda: collections.defaultdict(lambda: [0.0, 0.0, 0]))
     for case in cases:
         if case['fresnel']:
             continue
         entry = sums[case['scene']][case['configuration']]
-        entry[0] += case['flip_ldr']
+        entry[0] += case[image_metric]
         entry[1] += case['tde']
         entry[2] += 1
     return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}

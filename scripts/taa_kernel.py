@@ -9,21 +9,12 @@ scene's alphas, no Fresnel).
 
 e.g. 0.25=out/taa.json 0.125=out/taa-0.125.json 0.0625=out/taa-0.0625.json. The engine rows do
 not depend on --sigma2 (each engine keeps its own constants): they are read from the first table."""
-import collections
 import json
+import os
 import sys
 
-
-def scene_means(cases):
-    sums = collections.defaultdict(lambda: collections.defaultdict(lambda: [0.0, 0.0, 0]))
-    for case in cases:
-        if case['fresnel']:
-            continue
-        entry = sums[case['scene']][case['configuration']]
-        entry[0] += case['flip_ldr_animation']
-        entry[1] += case['tde']
-        entry[2] += 1
-    return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from beats_baselines import scene_means  # noqa: E402
 
 
 def is_saagen_taa(configuration):
@@ -37,7 +28,7 @@ def main():
         document = json.load(open(path))
         if 'taa_cases' not in document:
             sys.exit(f"{path}: no taa_cases (run saagen bench with --taa)")
-        tables.append((label, scene_means(document['taa_cases'])))
+        tables.append((label, scene_means(document['taa_cases'], 'flip_ldr_animation')))
     if not tables:
         sys.exit(__doc__)
     first = tables[0][1]

@@ -403,20 +403,29 @@ std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
                      ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
 }
 
+// The table's normal-mapped content rows the material may use: any eligible variant's when the
+// planner chooses the variant by accuracy, else the plan's variant's.
+std::vector<ContentRow> allowed_normal_mapped_rows(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible,
+                                                   bool choose_variant, const MaterialPlan& plan) {
+  std::vector<ContentRow> rows;
+  for (const ContentRow& row : table.content_rows) {
+    if (row.content != "normal-mapped") continue;
+    const std::string variant = parse_configuration(row.configuration).variant;
+    const bool allowed = choose_variant ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == variant; })
+                                        : variant == plan.variant;
+    if (allowed) rows.push_back(row);
+  }
+  return rows;
+}
+
 // The texture prefilter a chosen configuration names, as the bake to run, against the best
 // allowed configuration without one; or, when no prefilter won, the best one that lost. The
 // prefilter is recommended only where the table's figures say it wins.
 std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
                              const MaterialPlan& plan) {
   std::optional<ContentRow> with, without;
-  for (const ContentRow& row : table.content_rows) {
-    if (row.content != "normal-mapped") continue;
-    const Configuration c = parse_configuration(row.configuration);
-    const bool allowed = choose_variant
-                             ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
-                             : c.variant == plan.variant;
-    if (!allowed) continue;
-    std::optional<ContentRow>& slot = c.prefilter == "none" ? without : with;
+  for (const ContentRow& row : allowed_normal_mapped_rows(table, eligible, choose_variant, plan)) {
+    std::optional<ContentRow>& slot = parse_configuration(row.configuration).prefilter == "none" ? without : with;
     if (!slot || row.error < slot->error) slot = row;
   }
   if (!with || !without) return "";
@@ -438,13 +447,7 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
                             MaterialPlan& plan) {
   std::optional<ContentRow> best;
   std::vector<std::string> figures;
-  for (const ContentRow& row : table.content_rows) {
-    if (row.content != "normal-mapped") continue;
-    const Configuration c = parse_configuration(row.configuration);
-    const bool allowed = choose_variant
-                             ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
-                             : c.variant == plan.variant;
-    if (!allowed) continue;
+  for (const ContentRow& row : allowed_normal_mapped_rows(table, eligible, choose_variant, plan)) {
     figures.push_back(fmt::format("{} {}", row.configuration, fixed(row.error)));
     if (!best || row.error < best->error) best = row;
   }
