@@ -64,7 +64,8 @@ std::map<std::string, std::string, std::less<>> parse_sections(const Json& value
   for (const char* name : required) {
     if (!sections.count(name)) throw Error(fmt::format("{}: '{}' needs a section '{}'", source, key, name));
   }
-  for (const auto& [name, text] : sections) {
+  for (const auto& section : sections) {
+    const std::string& name = section.first;  // not a structured binding: clang 14 cannot capture one
     const auto known = [&](const std::vector<const char*>& names) {
       return std::any_of(names.begin(), names.end(), [&](const char* known_name) { return name == known_name; });
     };
