@@ -761,12 +761,15 @@ TEST_F(Safety, LongCommandsCheckTheirOptionsAndOutputsFirst) {
 // anything is compiled or rendered.
 TEST_F(Safety, IsaOptionsAreCheckedFirst) {
   double seconds = 0.0;
-  expect_one_line_error(timed({"bench", "--isa", "gfx3000", "--isa-only"}, &seconds), "unknown GPU family 'gfx3000'; allowed: ");
-  EXPECT_LT(seconds, 10.0);
-  expect_one_line_error(timed({"bench", "--isa", "vega10,", "--isa-only"}, &seconds), "unknown GPU family ''");
   expect_one_line_error(timed({"bench", "--isa-only"}, &seconds), "--isa-only and --isa-table need --isa");
   expect_one_line_error(timed({"bench", "--isa-table", (scratch_ / "t.json").string()}, &seconds), "need --isa");
   EXPECT_FALSE(fs::exists(scratch_ / "t.json"));
+  const CliRun unknown_family = timed({"bench", "--isa", "gfx3000", "--isa-only"}, &seconds);
+  // The GPU families are the Vulkan harness's (scripts/sanitize.sh builds without it).
+  if (unknown_family.err.find("built without the Vulkan harness") != std::string::npos) GTEST_SKIP() << unknown_family.err;
+  expect_one_line_error(unknown_family, "unknown GPU family 'gfx3000'; allowed: ");
+  EXPECT_LT(seconds, 10.0);
+  expect_one_line_error(timed({"bench", "--isa", "vega10,", "--isa-only"}, &seconds), "unknown GPU family ''");
 }
 
 // The ISA table carries saagen's tag, so that the documented regeneration command can be run again
