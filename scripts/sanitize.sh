@@ -10,10 +10,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 compiler=$(command -v clang++ || command -v g++)
+# The C API's test is C: the same compiler family, or the binary loads two ASan runtimes.
+c_compiler=$(command -v clang || command -v gcc)
+[[ $compiler == *g++ ]] && c_compiler=$(command -v gcc)
+# The WebGPU and WebGL2 suites (and WGSL validation) run node with the project's npm packages.
+[[ -d node_modules ]] || PUPPETEER_SKIP_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund > /dev/null
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 flags="-fsanitize=address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER="$compiler" \
+  -DCMAKE_C_COMPILER="$c_compiler" -DCMAKE_C_FLAGS="$flags" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DSAAGEN_BUILD_BENCH=OFF -DSAAGEN_BUILD_HARNESS=OFF > "$log" 2>&1 || { cat "$log"; exit 1; }
 targets=()
