@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 compiler=$(command -v clang++ || command -v g++)
 # The C API's test is C: the same compiler family, or the binary loads two ASan runtimes.
 c_compiler=$(command -v clang || command -v gcc)
-[[ $compiler == *g++ ]] && c_compiler=$(command -v gcc)
+[[ $(basename "$compiler") == g++ ]] && c_compiler=$(command -v gcc)
 # The WebGPU and WebGL2 suites (and WGSL validation) run node with the project's npm packages.
 [[ -d node_modules ]] || PUPPETEER_SKIP_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund > /dev/null
 log=$(mktemp)
