@@ -296,7 +296,8 @@ int ReportCommands::run_report() const {
   std::cout << asset_summaries(config);
   const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
   const render::TradeTable table = report::without_taa_rows(measured);
-  const auto images = report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force);
+  const auto images =
+      report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force, config.taa ? &measured : nullptr);
   std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());
   if (config.taa) std::cout << report::format_taa_summary(measured) << "\n";
   std::cout << report::format_verdict(table);

@@ -11,8 +11,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <vector>
 
 using namespace saagen::render;
@@ -263,6 +265,70 @@ TEST(TaaTrade, EveryConfigurationOnceMoreUnderTaa) {
   EXPECT_THROW(compute_trade_table(config), std::invalid_argument);
 }
 
+// The +taa rows of the lobes and the bakes: on a normal-mapped sphere, the tail-preserving and
+// mapped lobes of a variant and of its engine bake (HDRP's, on the geometric normal) each run
+// under TAA ("deferred-avg:geometric+hdrp+taa/tail"), and the image kept for the report is the
+// resolve of that lobe's 1-spp frames: a resolve run here over the same jittered frames gives the
+// same last frame to the bit, and it differs from the papers' lobe's.
+TEST(TaaTrade, LobesAndBakesRunThroughTheResolve) {
+  TradeConfig config;
+  config.width = config.height = 8;
+  config.strata = 2;
+  config.flicker_width = config.flicker_height = 12;
+  config.flicker_strata = 2;
+  config.frames = 3;
+  config.scenes = {SceneId::nmap_sphere};
+  config.alphas = {0.05};
+  config.fresnel_modes = {false};
+  config.variants = {Variant::none, Variant::deferred_avg};
+  config.feeds = {NormalFeed::shading};
+  config.prefilters = {Prefilter::hdrp};
+  config.prefiltered_variants = {Variant::deferred_avg};
+  config.lobes = {Lobe::tail, Lobe::mapped};
+  config.lobe_variants = {Variant::deferred_avg};
+  config.threads = 1;
+  config.flip = false;
+  config.taa = true;
+  config.keep_images = true;
+  const TradeTable table = compute_trade_table(config);
+  // none, deferred-avg (papers, tail, mapped), its HDRP bake (papers, tail, mapped); then each +taa.
+  ASSERT_EQ(table.rows.size(), 14u);
+  const TradeRow* bake_tail =
+      table.find(Variant::deferred_avg, SceneId::nmap_sphere, 0.05, false, NormalFeed::geometric, Prefilter::hdrp, Lobe::tail, true);
+  ASSERT_NE(bake_tail, nullptr);
+  EXPECT_EQ(configuration_id(*bake_tail), "deferred-avg:geometric+hdrp+taa/tail");
+  ASSERT_NE(table.find(Variant::deferred_avg, SceneId::nmap_sphere, 0.05, false, NormalFeed::shading, Prefilter::none, Lobe::mapped, true),
+            nullptr);
+  EXPECT_GT(bake_tail->tde, 0.0);
+  EXPECT_GT(bake_tail->flip_ldr_animation, 0.0);
+
+  ASSERT_EQ(table.taa_images.size(), 1u);
+  const ImageSet& last = table.taa_images.front();
+  ASSERT_EQ(last.variants.size(), 7u);
+  const auto kept = [&](Prefilter prefilter, Lobe lobe) -> const Image& {
+    for (const auto& rendered : last.variants)
+      if (rendered.variant == Variant::deferred_avg && rendered.prefilter == prefilter && rendered.lobe == lobe) return rendered.image;
+    ADD_FAILURE() << "no kept image";
+    return last.reference;
+  };
+  const Material material = trade_materials(config).front();
+  const int warmup = config.taa_options.sequence_length;
+  TaaResolve resolve(config.flicker_width, config.flicker_height, config.taa_options);
+  std::optional<Scene> previous;
+  for (int frame = -warmup; frame < config.frames; ++frame) {
+    const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
+    const Scene scene = with_jitter(trade_animation_frame(config, SceneId::nmap_sphere, frame), jitter);
+    const GBuffer gbuffer = render_gbuffer(scene, config.flicker_width, config.flicker_height, 1);
+    const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
+    resolve.resolve(render_variant(gbuffer, Variant::deferred_avg, material, config.params, config.derivative, 1, NormalFeed::geometric,
+                                   Prefilter::hdrp, config.prefilter_scale, Lobe::tail),
+                    jitter, positions);
+    previous = scene;
+  }
+  EXPECT_EQ(kept(Prefilter::hdrp, Lobe::tail).pixels, resolve.output().pixels);
+  EXPECT_NE(kept(Prefilter::hdrp, Lobe::tail).pixels, kept(Prefilter::hdrp, Lobe::papers).pixels);
+}
+
 // saagen bench --taa on a tiny run: the per-scene TAA table after the summaries, the +taa rows in
 // the JSON's taa_cases (and not in its summary rows); the resolve's options without --taa, and a
 // --pan without two numbers, are one line and a non-zero exit.
@@ -286,6 +352,28 @@ TEST_F(TaaCli, BenchTaaPrintsTheTaaTable) {
   EXPECT_EQ(std::count(blend.err.begin(), blend.err.end(), '\n'), 1) << blend.err;
   const auto pan = saagen({"bench", "--preset", "quick", "--pan", "1"});
   EXPECT_NE(pan.exit_code, 0);
+}
+
+// saagen report --taa: a "With TAA" section in index.html and report.md (after the strips), with
+// the per-scene comparison and one image per scene (taa_<scene>.png: a crop of the last frame of
+// the ground truth, none+taa, the best saagen configuration and the best engine form under TAA).
+TEST_F(TaaCli, ReportTaaHasTheWithTaaSection) {
+  const std::filesystem::path dir = scratch_ / "report";
+  const auto run = saagen({"report", "--scene", "sphere", "--preset", "quick", "--resolution", "8", "--taa", "-o", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "taa_sphere.png"));
+  const std::string markdown = saagen::test::read_text(dir / "report.md");
+  const auto section = markdown.find("## With TAA"), image = markdown.find("](taa_sphere.png)");
+  ASSERT_NE(section, std::string::npos);
+  ASSERT_NE(image, std::string::npos);
+  EXPECT_LT(markdown.find("](strip_sphere.png)"), section);
+  EXPECT_LT(section, image);
+  for (const char* text : {"| sphere | TAA | none+taa |", "| sphere | best saagen |", "| sphere | engine | engine-hdrp+taa |",
+                           "ground truth, none+taa ", ", best saagen: ", ", best engine: engine-"})
+    EXPECT_NE(markdown.find(text), std::string::npos) << text;
+  const std::string html = saagen::test::read_text(dir / "index.html");
+  EXPECT_NE(html.find("<h2>With TAA"), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"taa_sphere.png\""), std::string::npos);
 }
 
 // The planner under TAA: `taa = true` (or `plan --taa`) plans sigma2 = 0.0625 with the measured

@@ -605,6 +605,120 @@ std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Ver
 }
 
 // ---------------------------------------------------------------------------------------------
+// With TAA: per scene, at the alpha where none+taa errs most (largest LDR-FLIP of the animation),
+// a crop of the animation's last frame (flicker resolution) enlarged: the ground truth, none+taa,
+// the best saagen configuration and the best engine form under TAA (taa_comparisons, by their
+// scene means), captioned with that case's figures.
+
+std::string taa_strip_name(render::SceneId scene) { return fmt::format("taa_{}.png", render::scene_name(scene)); }
+
+struct Crop {
+  int x = 0, y = 0, size = 0, scale = 1;
+};
+
+// The square window of half the frame's smaller side (8 px at least) holding the most
+// tonemapped ground-truth radiance (where the highlights are, whichever configuration is
+// shown), and the integer enlargement that shows it at 128 px or more. A summed-area table.
+Crop brightest_crop(const render::Image& reference) {
+  const int w = reference.width, h = reference.height;
+  Crop crop;
+  crop.size = std::min(std::min(w, h), std::max(8, std::min(w, h) / 2));
+  crop.scale = std::max(1, 128 / crop.size);
+  std::vector<double> sat(static_cast<std::size_t>(w + 1) * (h + 1), 0.0);
+  const auto at = [&](int x, int y) -> double& { return sat[static_cast<std::size_t>(y) * (w + 1) + x]; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) at(x + 1, y + 1) = render::tonemap(reference.at(x, y)) + at(x, y + 1) + at(x + 1, y) - at(x, y);
+  double best = -1.0;
+  for (int y = 0; y + crop.size <= h; ++y)
+    for (int x = 0; x + crop.size <= w; ++x) {
+      const double sum = at(x + crop.size, y + crop.size) - at(x, y + crop.size) - at(x + crop.size, y) + at(x, y);
+      if (sum > best) best = sum, crop.x = x, crop.y = y;
+    }
+  return crop;
+}
+
+render::Image cropped(const render::Image& image, const Crop& crop) {
+  render::Image out(crop.size * crop.scale, crop.size * crop.scale);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) out.at(x, y) = image.at(crop.x + x / crop.scale, crop.y + y / crop.scale);
+  return out;
+}
+
+std::string taa_configuration_of(const render::ImageSet::Rendered& rendered) {
+  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe, true);
+}
+
+// The +taa row of a case (scene, alpha, no Fresnel) by its configuration id.
+const render::TradeRow* taa_row(const render::TradeTable& taa, render::SceneId scene, double alpha, const std::string& configuration) {
+  for (const render::TradeRow& row : taa.rows)
+    if (row.taa && !row.fresnel && row.scene == scene && row.alpha == alpha && render::configuration_id(row) == configuration) return &row;
+  return nullptr;
+}
+
+const render::ImageSet* worst_case_for_none_taa(const render::TradeTable& taa, render::SceneId scene) {
+  const render::ImageSet* worst = nullptr;
+  double worst_error = -1.0;
+  for (const render::ImageSet& set : taa.taa_images) {
+    if (set.scene != scene || set.material.fresnel) continue;
+    const render::TradeRow* none = taa_row(taa, scene, set.material.alpha, "none+taa");
+    if (none && none->flip_ldr_animation > worst_error) worst = &set, worst_error = none->flip_ldr_animation;
+  }
+  return worst;
+}
+
+Strip taa_strip(const render::TradeTable& taa, const TaaComparison& comparison, const render::ImageSet& set) {
+  const Crop crop = brightest_crop(set.reference);
+  std::vector<std::pair<std::string, std::string>> columns{{"none+taa", "none+taa"}};  // label, configuration
+  if (!comparison.best_saagen.empty()) columns.emplace_back("best saagen: " + comparison.best_saagen, comparison.best_saagen);
+  if (!comparison.best_engine.empty()) columns.emplace_back("best engine: " + comparison.best_engine, comparison.best_engine);
+  std::vector<render::Image> images;
+  std::vector<std::string> figures;
+  images.reserve(columns.size());
+  for (const auto& [label, configuration] : columns) {
+    const auto rendered = std::find_if(set.variants.begin(), set.variants.end(),
+                                       [&](const render::ImageSet::Rendered& r) { return taa_configuration_of(r) == configuration; });
+    const render::TradeRow* row = taa_row(taa, set.scene, set.material.alpha, configuration);
+    if (rendered == set.variants.end() || !row) continue;
+    images.push_back(cropped(rendered->image, crop));
+    figures.push_back(fmt::format("{} {:.4f} / {:.5f}", label, row->flip_ldr_animation, row->tde));
+  }
+  std::vector<Tile> tiles;
+  for (std::size_t i = 0; i < images.size(); ++i) tiles.push_back({columns[i].first, &images[i]});
+  const std::string scene(render::scene_name(set.scene));
+  return {taa_strip_name(set.scene),
+          fmt::format("{} under TAA, alpha {} (where none+taa errs most), last animation frame, the {} x {} px crop at ({}, {}) "
+                      "shown {}x: ground truth, {} (LDR-FLIP of the animation / TDE at this alpha)",
+                      scene, set.material.alpha, crop.size, crop.size, crop.x, crop.y, crop.scale, fmt::join(figures, ", ")),
+          grid_png(cropped(set.reference, crop), tiles)};
+}
+
+struct TaaSection {
+  std::string note;
+  TextTable table;
+  std::vector<Strip> strips;
+};
+
+TaaSection taa_section(const render::TradeTable& taa) {
+  TaaSection section;
+  section.note = taa_note(taa);
+  section.table.headers = {"scene", "row", "configuration", "LDR-FLIP", "TDE", "excess flicker", "lost motion"};
+  for (const TaaComparison& comparison : taa_comparisons(taa)) {
+    for (const TaaComparisonRow& row : comparison.rows)
+      section.table.rows.push_back({std::string(render::scene_name(comparison.scene)), row.label, row.configuration,
+                                    fmt::format("{:.4f}", row.flip_ldr), fmt::format("{:.5f}", row.tde),
+                                    fmt::format("{:.5f}", row.tde_excess_flicker), fmt::format("{:.5f}", row.tde_lost_motion)});
+    if (const render::ImageSet* set = worst_case_for_none_taa(taa, comparison.scene))
+      section.strips.push_back(taa_strip(taa, comparison, *set));
+  }
+  return section;
+}
+
+constexpr const char* kTaaTitle = "With TAA: none+taa, the best saagen configuration and each engine form under TAA";
+constexpr const char* kTaaImageNote =
+    "Images: top, the crop of the animation's last frame; bottom, the tonemapped difference from the ground truth (red brighter, blue "
+    "darker, full colour at 0.25).";
+
+// ---------------------------------------------------------------------------------------------
 // Pages.
 
 const char* kMetricNote =
@@ -657,7 +771,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> loss_lists(const r
 constexpr const char* kLossListTitle = "Where the recommendation loses, per scene (against none and every engine)";
 
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                            const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips) {
+                            const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream md;
   md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n(" << kVerdictNote
      << ")\n\n";
@@ -668,6 +782,10 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   }
   md << "\n";
   for (const Strip& strip : image_strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
+  if (taa) {
+    md << "## " << kTaaTitle << "\n\n(" << taa->note << ")\n\n" << as_markdown(taa->table) << "\n" << kTaaImageNote << "\n\n";
+    for (const Strip& strip : taa->strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
+  }
   md << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
   if (costs) md << "Cost: " << costs->describe() << ".\n\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) {
@@ -713,7 +831,7 @@ std::string html_loss_lists(const render::TradeTable& table) {
 
 std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                         const std::vector<std::string>& sheets, const std::vector<std::string>& columns,
-                        const std::vector<Strip>& image_strips) {
+                        const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<!-- " << output_tag
        << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
@@ -727,6 +845,13 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   for (const Strip& strip : image_strips)
     html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>"
          << html_escape(strip.caption) << "</figcaption></figure>\n";
+  if (taa) {
+    html << "<h2>" << html_escape(kTaaTitle) << "</h2>\n<p>(" << html_escape(taa->note) << ")</p>\n"
+         << as_html(taa->table) << "<p>" << html_escape(kTaaImageNote) << "</p>\n";
+    for (const Strip& strip : taa->strips)
+      html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>"
+           << html_escape(strip.caption) << "</figcaption></figure>\n";
+  }
   html << "<p>" << html_escape(config_line(table)) << "</p>\n<p>" << html_escape(kMetricNote) << "</p>\n";
   if (costs) html << "<p>Cost: " << html_escape(costs->describe()) << ".</p>\n";
   for_each_finding(table, costs, [&](const std::string& title, const TextTable& t) {
@@ -983,6 +1108,7 @@ std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::
   std::vector<fs::path> paths = {dir / "index.html", dir / "report.md", dir / "cost_vs_error.svg"};
   for (const render::SceneId scene : config.scenes) {
     paths.push_back(dir / strip_name(scene));
+    if (config.taa) paths.push_back(dir / taa_strip_name(scene));
     for (const double alpha : config.alphas) {
       render::ImageSet set;
       set.scene = scene;
@@ -993,7 +1119,8 @@ std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::
   return paths;
 }
 
-std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force) {
+std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force,
+                                      const render::TradeTable* taa) {
   if (table.images.empty()) throw Error("the trade table holds no images; compute it with keep_images");
   std::vector<OutputFile> outputs;
   std::vector<std::string> sheets;
@@ -1007,14 +1134,21 @@ std::vector<std::string> write_report(const render::TradeTable& table, const Cos
 
   const std::vector<Strip> image_strips = strips(table, ordered_verdicts(table));
   for (const Strip& strip : image_strips) outputs.push_back({dir / strip.file, strip.png});
+  std::optional<TaaSection> taa_part;
+  if (taa) taa_part = taa_section(*taa);
+  if (taa_part)
+    for (const Strip& strip : taa_part->strips) outputs.push_back({dir / strip.file, strip.png});
 
   const auto summary = summarize(table);
   outputs.push_back({dir / "cost_vs_error.svg", plot_svg(summary, costs)});
-  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, image_strips)});
-  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns, image_strips)});
+  const TaaSection* taa_section_written = taa_part ? &*taa_part : nullptr;
+  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, image_strips, taa_section_written)});
+  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns, image_strips, taa_section_written)});
   write_outputs(outputs, force);
   std::vector<std::string> images;
   for (const Strip& strip : image_strips) images.push_back(strip.file);
+  if (taa_part)
+    for (const Strip& strip : taa_part->strips) images.push_back(strip.file);
   images.insert(images.end(), sheets.begin(), sheets.end());
   images.push_back("cost_vs_error.svg");
   return images;

@@ -1,5 +1,5 @@
-// The trade under TAA: the +taa rows apart from the summaries, and their per-scene table (see
-// report.hpp).
+// The trade under TAA: the +taa rows apart from the summaries, their per-scene comparison and
+// its table (see report.hpp).
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
@@ -13,17 +13,36 @@ namespace saagen::report {
 
 namespace {
 
-// Mean LDR-FLIP of the animation and TDE with its parts, over a scene's alphas (no Fresnel).
-struct TaaMeans {
+// Sums over a scene's alphas (no Fresnel) of one configuration's comparison figures.
+struct TaaSums {
   double flip = 0.0, tde = 0.0, excess = 0.0, lost = 0.0;
   int cases = 0;
 };
 
-bool is_saagen_taa(const std::string& id) { return id.ends_with("+taa") && !id.starts_with("none") && !id.starts_with("engine-"); }
+bool is_engine(const std::string& id) { return id.starts_with("engine-"); }
 
-std::string means_line(const std::string& scene, const std::string& label, const std::string& id, const TaaMeans& m) {
-  return fmt::format("{:<17} {:<14} {:<40} {:>8.4f} {:>9.5f} {:>10.5f} {:>9.5f}\n", scene, label, id, m.flip / m.cases, m.tde / m.cases,
-                     m.excess / m.cases, m.lost / m.cases);
+// A saagen SAA configuration under TAA, any feed, prefilter or lobe ("deferred-aniso+taa/tail");
+// not no SAA, texture prefiltering alone ("none+hdrp+taa") or an engine's form.
+bool is_saagen_taa(const std::string& id) { return id.find("+taa") != std::string::npos && !id.starts_with("none") && !is_engine(id); }
+
+bool is_engine_taa(const std::string& id) { return is_engine(id) && id.find("+taa") != std::string::npos; }
+
+TaaComparisonRow row_of(const std::string& label, const std::string& id, const TaaSums& s) {
+  return {label, id, s.flip / s.cases, s.tde / s.cases, s.excess / s.cases, s.lost / s.cases};
+}
+
+// The configuration with the lowest mean LDR-FLIP among those `keep` accepts ("" if none).
+template <typename Keep>
+std::string best_by_flip(const std::map<std::string, TaaSums>& configs, Keep keep) {
+  std::string best;
+  for (const auto& [id, s] : configs)
+    if (keep(id) && (best.empty() || s.flip / s.cases < configs.at(best).flip / configs.at(best).cases)) best = id;
+  return best;
+}
+
+std::string means_line(const std::string& scene, const TaaComparisonRow& row) {
+  return fmt::format("{:<17} {:<14} {:<40} {:>8.4f} {:>9.5f} {:>10.5f} {:>9.5f}\n", scene, row.label, row.configuration, row.flip_ldr,
+                     row.tde, row.tde_excess_flicker, row.tde_lost_motion);
 }
 
 }  // namespace
@@ -34,42 +53,55 @@ render::TradeTable without_taa_rows(const render::TradeTable& table) {
   return plain;
 }
 
-std::string format_taa_summary(const render::TradeTable& table) {
-  std::vector<std::string> scenes;
-  std::map<std::string, std::map<std::string, TaaMeans>> means;  // scene -> configuration -> sums
+std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
+  std::vector<render::SceneId> scenes;
+  std::map<render::SceneId, std::map<std::string, TaaSums>> sums;  // scene -> configuration -> sums
   for (const render::TradeRow& row : table.rows) {
     if (row.fresnel) continue;
-    const std::string scene(render::scene_name(row.scene));
-    if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
-    TaaMeans& m = means[scene][render::configuration_id(row)];
-    m.flip += row.flip_ldr_animation;
-    m.tde += row.tde;
-    m.excess += row.tde_excess_flicker;
-    m.lost += row.tde_lost_motion;
-    ++m.cases;
+    if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
+    TaaSums& s = sums[row.scene][render::configuration_id(row)];
+    s.flip += row.flip_ldr_animation;
+    s.tde += row.tde;
+    s.excess += row.tde_excess_flicker;
+    s.lost += row.tde_lost_motion;
+    ++s.cases;
   }
-  std::string text = fmt::format(
-      "With TAA (means over the alphas without Fresnel; LDR-FLIP of the {} animation frames after a warm-up of {} at {} x {} px against "
-      "their {}-spp ground truths; TDE over those frames):\n",
-      table.config.frames, table.config.taa_warmup_frames > 0 ? table.config.taa_warmup_frames : table.config.taa_options.sequence_length,
-      table.config.flicker_width, table.config.flicker_height, table.config.flicker_strata * table.config.flicker_strata);
+  std::vector<TaaComparison> out;
+  for (render::SceneId scene : scenes) {
+    const auto& configs = sums[scene];
+    if (!configs.count("none+taa")) continue;
+    TaaComparison c;
+    c.scene = scene;
+    if (configs.count("none")) c.rows.push_back(row_of("no TAA", "none", configs.at("none")));
+    c.rows.push_back(row_of("TAA", "none+taa", configs.at("none+taa")));
+    c.best_saagen = best_by_flip(configs, is_saagen_taa);
+    if (!c.best_saagen.empty()) c.rows.push_back(row_of("best saagen", c.best_saagen, configs.at(c.best_saagen)));
+    c.best_engine = best_by_flip(configs, is_engine_taa);
+    for (const auto& [id, s] : configs)
+      if (is_engine_taa(id)) c.rows.push_back(row_of("engine", id, s));
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::string taa_note(const render::TradeTable& table) {
+  const render::TradeConfig& c = table.config;
+  return fmt::format(
+      "means over the alphas without Fresnel; LDR-FLIP of the {} animation frames after a warm-up of {} at {} x {} px against their "
+      "{}-spp ground truths; TDE over those frames",
+      c.frames, c.taa_warmup_frames > 0 ? c.taa_warmup_frames : c.taa_options.sequence_length, c.flicker_width, c.flicker_height,
+      c.flicker_strata * c.flicker_strata);
+}
+
+std::string format_taa_summary(const render::TradeTable& table) {
+  const std::vector<TaaComparison> comparisons = taa_comparisons(table);
+  if (comparisons.empty()) return {};
+  std::string text = "With TAA (" + taa_note(table) + "):\n";
   text += fmt::format("{:<17} {:<14} {:<40} {:>8} {:>9} {:>10} {:>9}\n", "scene", "row", "configuration", "ldr_flip", "tde", "tde_excess",
                       "tde_lost");
-  bool any = false;
-  for (const std::string& scene : scenes) {
-    const auto& configs = means[scene];
-    if (!configs.count("none+taa")) continue;
-    any = true;
-    if (configs.count("none")) text += means_line(scene, "no TAA", "none", configs.at("none"));
-    text += means_line(scene, "TAA", "none+taa", configs.at("none+taa"));
-    std::string best;
-    for (const auto& [id, m] : configs)
-      if (is_saagen_taa(id) && (best.empty() || m.flip / m.cases < configs.at(best).flip / configs.at(best).cases)) best = id;
-    if (!best.empty()) text += means_line(scene, "best saagen", best, configs.at(best));
-    for (const auto& [id, m] : configs)
-      if (id.starts_with("engine-") && id.ends_with("+taa")) text += means_line(scene, "engine", id, m);
-  }
-  return any ? text : std::string();
+  for (const TaaComparison& c : comparisons)
+    for (const TaaComparisonRow& row : c.rows) text += means_line(std::string(render::scene_name(c.scene)), row);
+  return text;
 }
 
 nlohmann::json taa_cases_json(const render::TradeTable& table) {

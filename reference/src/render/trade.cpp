@@ -244,11 +244,10 @@ std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
   return with_lobes(config, keys);
 }
 
-// The configurations run under TAA: every row key of the papers' lobe.
+// The configurations run under TAA: every row key, each lobe's included.
 std::vector<TaaRowKey> taa_keys(const TradeConfig& config, SceneId scene) {
   std::vector<TaaRowKey> out;
-  for (const RowKey& key : row_keys(config, scene))
-    if (key.lobe == Lobe::papers) out.push_back({key.variant, key.feed, key.prefilter});
+  for (const RowKey& key : row_keys(config, scene)) out.push_back({key.variant, key.feed, key.prefilter, key.lobe});
   return out;
 }
 
@@ -435,10 +434,12 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       }
       if (config.taa) {
         const std::string stage = "taa " + name;
-        append_taa_rows(config, id, materials, taa_keys(config, id), reference_frames, table.rows, [&](std::uint64_t pixels) {
+        const auto shaded = [&](std::uint64_t pixels) {
           base += pixels;
           report(stage, base);
-        });
+        };
+        append_taa_rows(config, id, materials, taa_keys(config, id), reference_frames, table.rows, shaded,
+                        config.keep_images ? &table.taa_images : nullptr);
       }
     }
   }

@@ -58,6 +58,7 @@ TradeRow finished_row(const TaaAccumulator& a, const TaaRowKey& key, SceneId id,
   row.variant = key.variant;
   row.feed = key.feed;
   row.prefilter = key.prefilter;
+  row.lobe = key.lobe;
   row.taa = true;
   row.scene = id;
   row.alpha = material.alpha;
@@ -90,7 +91,7 @@ int taa_warmup(const TradeConfig& config) {
 
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
                      const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded) {
+                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images) {
   const int fw = config.flicker_width, fh = config.flicker_height, warmup = taa_warmup(config);
   const std::size_t n_keys = keys.size();
   std::vector<TaaAccumulator> accumulators;
@@ -101,6 +102,7 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
 
   std::optional<Scene> previous;
   std::vector<Image> previous_reference_display(materials.size());
+  std::vector<ImageSet> last_frames(images ? materials.size() : 0);
   for (int frame = -warmup; frame < config.frames; ++frame) {
     // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
     const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
@@ -118,16 +120,24 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
       for (std::size_t k = 0; k < n_keys; ++k) {
         TaaAccumulator& a = accumulators[m * n_keys + k];
         const Image samples = render_variant(gbuffer, keys[k].variant, materials[m], config.params, config.derivative, config.threads,
-                                             keys[k].feed, keys[k].prefilter, config.prefilter_scale, Lobe::papers);
+                                             keys[k].feed, keys[k].prefilter, config.prefilter_scale, keys[k].lobe);
         const Image& out = a.resolve.resolve(samples, jitter, positions);
+        const bool last = frame + 1 == config.frames;
         if (frame >= 0)
           measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], reference_display_frame,
-                        frame > 0 ? &previous_reference_display[m] : nullptr, frame + 1 == config.frames);
+                        frame > 0 ? &previous_reference_display[m] : nullptr, last);
+        if (images && last) last_frames[m].variants.push_back({keys[k].variant, keys[k].feed, keys[k].prefilter, keys[k].lobe, out});
         if (shaded) shaded(static_cast<std::uint64_t>(fw) * fh);
       }
       if (frame >= 0) previous_reference_display[m] = std::move(reference_display_frame);
     }
     previous = scene;
+  }
+  for (std::size_t m = 0; m < last_frames.size(); ++m) {
+    last_frames[m].scene = id;
+    last_frames[m].material = materials[m];
+    last_frames[m].reference = reference_frames.back()[m];
+    images->push_back(std::move(last_frames[m]));
   }
   for (std::size_t m = 0; m < materials.size(); ++m)
     for (std::size_t k = 0; k < n_keys; ++k)

@@ -15,6 +15,7 @@ struct TaaRowKey {
   Variant variant;
   NormalFeed feed;
   Prefilter prefilter;
+  Lobe lobe = Lobe::papers;
 };
 
 // The warm-up of a configuration: taa_warmup_frames, or one jitter cycle when 0.
@@ -22,9 +23,11 @@ int taa_warmup(const TradeConfig& config);
 
 // The +taa rows of scene `id`, material-major then key order, appended to `rows`.
 // reference_frames[f][m]: the ground truth of animation frame f (0 .. config.frames - 1) for
-// material m at the flicker resolution. shaded(pixels) reports 1-spp shading work.
+// material m at the flicker resolution. shaded(pixels) reports 1-spp shading work. When
+// `images` is given, each material's last frame (its ground truth and every key's resolved
+// image) is appended to it (TradeTable::taa_images).
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
                      const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded);
+                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images = nullptr);
 
 }  // namespace saagen::render

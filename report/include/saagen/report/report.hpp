@@ -68,6 +68,25 @@ render::TradeTable without_taa_rows(const render::TradeTable& table);
 std::string format_taa_summary(const render::TradeTable& table);
 nlohmann::json taa_cases_json(const render::TradeTable& table);
 
+// The per-scene comparison under TAA behind format_taa_summary and the report's "with TAA"
+// section: rows "no TAA" (none), "TAA" (none+taa), "best saagen" (the saagen configuration under
+// TAA with the lowest LDR-FLIP, any feed, prefilter or lobe) and "engine" (each engine form under
+// TAA), with their means over the scene's alphas without Fresnel.
+struct TaaComparisonRow {
+  std::string label;
+  std::string configuration;  // render::configuration_id
+  double flip_ldr = 0.0;      // of the animation (flip_ldr_animation)
+  double tde = 0.0, tde_excess_flicker = 0.0, tde_lost_motion = 0.0;
+};
+struct TaaComparison {
+  render::SceneId scene = render::SceneId::sphere;
+  std::vector<TaaComparisonRow> rows;
+  std::string best_saagen, best_engine;  // configuration ids ("" when the table has none)
+};
+std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table);
+// What the comparison's figures are (frames, warm-up, resolution, ground truth), for captions.
+std::string taa_note(const render::TradeTable& table);
+
 // Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg, DIR/sheet_<scene>_<alpha>.png
 // (the ground truth beside every variant's 1-spp image, over false-colour difference maps) and
 // DIR/strip_<scene>.png (the ground truth, no SAA, the best engine form and the recommendations
@@ -75,8 +94,12 @@ nlohmann::json taa_cases_json(const render::TradeTable& table);
 // The table must have been computed with keep_images. Returns the image files written.
 // Written all or nothing through saagen's output layer (saagen/io/output.hpp): files saagen did not
 // write are kept unless `force`.
+// With `taa` (the table with its +taa rows and taa_images, TradeConfig::taa and keep_images), a
+// "With TAA" section: the per-scene comparison (taa_comparisons) and DIR/taa_<scene>.png, a crop
+// of the animation's last frame: the ground truth, none+taa, the best saagen configuration under
+// TAA and the best engine form under TAA, at the alpha where none+taa errs most.
 std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
-                                      bool force = false);
+                                      bool force = false, const render::TradeTable* taa = nullptr);
 // The paths write_report will write for a configuration, to check them before rendering.
 std::vector<std::filesystem::path> report_paths(const render::TradeConfig& config, const std::filesystem::path& dir);
 

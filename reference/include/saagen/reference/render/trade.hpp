@@ -53,19 +53,19 @@
 // every one of those numbers (and a format version); the key is stored in the file and
 // compared on load, so a hash collision or a stale file only costs a re-render.
 //
-// Under TAA (TradeConfig::taa; taa.hpp). Each configuration of the papers' lobe (no SAA, every
-// variant with its feeds and prefilters, every engine form) is also run through the TAA resolve
-// as a row "CONFIGURATION+taa": the animation at the flicker resolution, each 1-spp frame
-// rendered with the Halton jitter (so the filters' derivatives come from the jittered quads),
-// resolved with the history reprojected by the exact motion. A warm-up of taa_warmup_frames
-// (default: one jitter cycle) before the animation's frame 0 fills the history; then, over the
-// `frames` measured frames, the row's image metrics are means over the frames against each
-// frame's ground truth (rmse_*, flip_ldr = flip_ldr_animation; max_error the largest; flip_hdr of
-// the last frame) and its temporal ones are those of the resolved frames (tde and its parts,
-// flicker), directly comparable with the rows without TAA. Every row without TAA gets the same
-// flip_ldr_animation (mean LDR-FLIP of its 1-spp frames against the frames' ground truths), the
-// figure to compare with a +taa row's flip_ldr (its own flip_ldr is frame 0's at the main
-// resolution).
+// Under TAA (TradeConfig::taa; taa.hpp). Each configuration (no SAA, every variant with its
+// feeds, prefilters and lobes, every engine form) is also run through the TAA resolve as a row
+// "CONFIGURATION+taa" ("forward-aniso-projected+taa/tail"): the animation at the flicker
+// resolution, each 1-spp frame rendered with the Halton jitter (so the filters' derivatives come
+// from the jittered quads), resolved with the history reprojected by the exact motion. A
+// warm-up of taa_warmup_frames (default: one jitter cycle) before the animation's frame 0 fills
+// the history; then, over the `frames` measured frames, the row's image metrics are means over
+// the frames against each frame's ground truth (rmse_*, flip_ldr = flip_ldr_animation;
+// max_error the largest; flip_hdr of the last frame) and its temporal ones are those of the
+// resolved frames (tde and its parts, flicker), directly comparable with the rows without TAA.
+// Every row without TAA gets the same flip_ldr_animation (mean LDR-FLIP of its 1-spp frames
+// against the frames' ground truths), the figure to compare with a +taa row's flip_ldr (its own
+// flip_ldr is frame 0's at the main resolution). The ground truths do not depend on the lobe.
 #pragma once
 
 #include "saagen/reference/quad.hpp"
@@ -201,6 +201,9 @@ struct TradeTable {
   std::uint64_t ground_truth_samples = 0;  // samples rendered (cache hits excluded)
   int cache_hits = 0;
   int cache_misses = 0;
+  // When config.keep_images and config.taa: per (scene, material), the animation's last frame at
+  // the flicker resolution: its ground truth and every +taa row's resolved image, in row order.
+  std::vector<ImageSet> taa_images;
 
   const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed = NormalFeed::shading,
                        Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers, bool taa = false) const;
