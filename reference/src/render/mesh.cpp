@@ -16,8 +16,12 @@ using ref::normalize;
 
 namespace {
 
-constexpr int kLeafSize = 4;
-constexpr int kMaxDepth = 60;  // the traversal stack holds at most depth + 1 entries
+constexpr int kLeafSize = 4;               // the median split's leaves
+constexpr int kMaxLeafSize = 8;            // the SAH's leaves
+constexpr int kSahBins = 32;               // per axis (Wald 2007 finds 16-32 as good as a full sweep)
+constexpr double kSahTraversalCost = 1.0;  // relative to one triangle test
+constexpr int kSahMaxDepth = 32;           // below, median splits: 4 million triangles end by depth 32 + 22
+constexpr int kMaxDepth = 60;              // the traversal stack holds at most depth + 1 entries
 
 Vec3 component_min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 Vec3 component_max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
@@ -102,8 +106,10 @@ TriangleMesh::TriangleMesh(std::string label, std::vector<MeshVertex> vertices, 
     const Vec3 p0 = vertices_[triangles_[i][0]].position;
     edges_[i] = {p0, vertices_[triangles_[i][1]].position - p0, vertices_[triangles_[i][2]].position - p0};
   }
-  nodes_.reserve(2 * triangles_.size() / kLeafSize + 1);
-  if (!triangles_.empty()) build(0, static_cast<int>(triangles_.size()), 1, centroids);
+  std::vector<Box> boxes(triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i) boxes[i] = triangle_box(static_cast<int>(i));
+  nodes_.reserve(2 * triangles_.size() + 1);
+  if (!triangles_.empty()) build(0, static_cast<int>(triangles_.size()), 1, centroids, boxes);
   if (depth_ >= kMaxDepth) throw std::invalid_argument("TriangleMesh: BVH too deep");
   leaf_edges_.resize(order_.size());
   for (std::size_t i = 0; i < order_.size(); ++i) leaf_edges_[i] = edges_[order_[i]];
@@ -118,37 +124,126 @@ TriangleMesh::Box TriangleMesh::triangle_box(int index) const {
   return b;
 }
 
+int TriangleMesh::SahPlane::bin_of(Vec3 centroid) const {
+  return std::min(kSahBins - 1, static_cast<int>((axis_value(centroid, axis) - lo) * scale));
+}
+
+namespace {
+
+// Half the surface area of a box: the surface area heuristic's measure of how likely a ray
+// that meets the parent meets it (MacDonald & Booth 1990).
+double half_area(Vec3 lo, Vec3 hi) {
+  const Vec3 d = hi - lo;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+}  // namespace
+
+// The binned SAH split of order_[begin, end) (Wald 2007, "On fast construction of SAH-based
+// bounding volume hierarchies", Sec. 3): kSahBins equal bins of the centroids' bounds per axis;
+// of the kSahBins - 1 planes between bins on each axis the one of least
+// area(left) n(left) + area(right) n(right). Returns false where no plane leaves triangles on
+// both sides (all centroids in one bin) or where a leaf of at most kMaxLeafSize triangles costs
+// no more than the split (cost of a traversal step kSahTraversalCost, of a triangle test 1).
+bool TriangleMesh::sah_split(int begin, int end, const Box& box, const Box& centroid_box, const std::vector<Vec3>& centroids,
+                             const std::vector<Box>& boxes, SahPlane& plane) const {
+  struct Bin {
+    Box box;
+    int count = 0;
+  };
+  const int count = end - begin;
+  double best_cost = HUGE_VAL;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = axis_value(centroid_box.lo, a), extent = axis_value(centroid_box.hi, a) - lo;
+    if (!(extent > 0.0)) continue;
+    const SahPlane binning{a, lo, kSahBins / extent, 0};
+    Bin bins[kSahBins];
+    for (int i = begin; i < end; ++i) {
+      const auto t = static_cast<std::size_t>(order_[static_cast<std::size_t>(i)]);
+      const int k = binning.bin_of(centroids[t]);
+      bins[k].count++;
+      bins[k].box.lo = component_min(bins[k].box.lo, boxes[t].lo);
+      bins[k].box.hi = component_max(bins[k].box.hi, boxes[t].hi);
+    }
+    // right_cost[k]: area x count of bins k..kSahBins-1.
+    double right_cost[kSahBins];
+    Box right;
+    int right_count = 0;
+    for (int k = kSahBins - 1; k > 0; --k) {
+      right.lo = component_min(right.lo, bins[k].box.lo);
+      right.hi = component_max(right.hi, bins[k].box.hi);
+      right_count += bins[k].count;
+      right_cost[k] = right_count > 0 ? half_area(right.lo, right.hi) * right_count : 0.0;
+    }
+    Box left;
+    int left_count = 0;
+    for (int k = 0; k + 1 < kSahBins; ++k) {  // the plane between bins k and k + 1
+      left.lo = component_min(left.lo, bins[k].box.lo);
+      left.hi = component_max(left.hi, bins[k].box.hi);
+      left_count += bins[k].count;
+      if (left_count == 0 || left_count == count) continue;
+      const double cost = half_area(left.lo, left.hi) * left_count + right_cost[k + 1];
+      if (cost < best_cost) {
+        best_cost = cost;
+        plane = binning;
+        plane.first_right_bin = k + 1;
+      }
+    }
+  }
+  if (best_cost == HUGE_VAL) return false;
+  const double parent_area = half_area(box.lo, box.hi);
+  const double split_cost = kSahTraversalCost + (parent_area > 0.0 ? best_cost / parent_area : count);
+  return !(count <= kMaxLeafSize && count <= split_cost);
+}
+
 // Builds the subtree of order_[begin, end) and returns its node index (depth-first layout: the
-// left child directly follows its parent).
-int TriangleMesh::build(int begin, int end, int depth, std::vector<Vec3>& centroids) {
+// left child directly follows its parent). Binned SAH splits (sah_split) down to kSahMaxDepth;
+// below it, and where no SAH split pays, median splits along the longest axis of the
+// centroids' bounds, to leaves of at most kLeafSize triangles.
+int TriangleMesh::build(int begin, int end, int depth, const std::vector<Vec3>& centroids, const std::vector<Box>& boxes) {
   depth_ = std::max(depth_, depth);
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Box box, centroid_box;
   for (int i = begin; i < end; ++i) {
-    const Box t = triangle_box(order_[i]);
-    box.lo = component_min(box.lo, t.lo);
-    box.hi = component_max(box.hi, t.hi);
-    centroid_box.lo = component_min(centroid_box.lo, centroids[order_[i]]);
-    centroid_box.hi = component_max(centroid_box.hi, centroids[order_[i]]);
+    const auto t = static_cast<std::size_t>(order_[static_cast<std::size_t>(i)]);
+    box.lo = component_min(box.lo, boxes[t].lo);
+    box.hi = component_max(box.hi, boxes[t].hi);
+    centroid_box.lo = component_min(centroid_box.lo, centroids[t]);
+    centroid_box.hi = component_max(centroid_box.hi, centroids[t]);
   }
   const double bounds[6] = {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z};
   std::copy(bounds, bounds + 6, nodes_[index].box);
-  if (end - begin <= kLeafSize) {
+  const auto make_leaf = [&] {
     nodes_[index].first = begin;
     nodes_[index].count = end - begin;
     return index;
+  };
+  if (end - begin <= 1) return make_leaf();
+  SahPlane plane;
+  int middle = -1;
+  if (depth < kSahMaxDepth && sah_split(begin, end, box, centroid_box, centroids, boxes, plane)) {
+    const auto first = order_.begin() + begin;
+    const auto split = std::stable_partition(
+        first, order_.begin() + end, [&](int t) { return plane.bin_of(centroids[static_cast<std::size_t>(t)]) < plane.first_right_bin; });
+    middle = begin + static_cast<int>(split - first);  // both sides hold triangles (sah_split)
+  } else if (depth < kSahMaxDepth && end - begin <= kMaxLeafSize) {
+    return make_leaf();  // the SAH prefers this leaf
   }
-  // Median split along the longest axis of the centroids' bounds.
-  const Vec3 extent = centroid_box.hi - centroid_box.lo;
-  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  const int middle = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end, [&](int a, int b) {
-    const double ca = axis_value(centroids[a], axis), cb = axis_value(centroids[b], axis);
-    return ca < cb || (ca == cb && a < b);
-  });
-  build(begin, middle, depth + 1, centroids);
-  const int right = build(middle, end, depth + 1, centroids);
+  if (middle < 0) {
+    if (end - begin <= kLeafSize) return make_leaf();
+    // Median split along the longest axis of the centroids' bounds.
+    const Vec3 extent = centroid_box.hi - centroid_box.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    middle = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end, [&](int a, int b) {
+      const double ca = axis_value(centroids[static_cast<std::size_t>(a)], axis),
+                   cb = axis_value(centroids[static_cast<std::size_t>(b)], axis);
+      return ca < cb || (ca == cb && a < b);
+    });
+  }
+  build(begin, middle, depth + 1, centroids, boxes);
+  const int right = build(middle, end, depth + 1, centroids, boxes);
   nodes_[index].first = right;
   nodes_[index].count = 0;
   return index;
@@ -235,6 +330,7 @@ bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) cons
   if (nodes_.empty()) return false;
   const SlabRay slab(ray);
   double best = HUGE_VAL, best_b1 = 0.0, best_b2 = 0.0;
+  double best_limit = HUGE_VAL;  // nextafter(best): an equal-distance hit still counts
   int best_index = -1;
   // Nodes whose box starts at or before the best hit may still hold an equal-distance hit
   // with a lower index (the tie rule), hence <= below.
@@ -255,9 +351,10 @@ bool TriangleMesh::intersect(const Ray& ray, double t_min, SurfaceHit& hit) cons
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int index = order_[i];
         double t, b1, b2;
-        if (!hit_edges(leaf_edges_[i], ray, t_min, std::nextafter(best, HUGE_VAL), t, b1, b2)) continue;
+        if (!hit_edges(leaf_edges_[i], ray, t_min, best_limit, t, b1, b2)) continue;
         if (t < best || index < best_index) {
           best = t;
+          best_limit = std::nextafter(t, HUGE_VAL);
           best_b1 = b1;
           best_b2 = b2;
           best_index = index;

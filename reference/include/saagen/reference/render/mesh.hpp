@@ -4,10 +4,11 @@
 // A TriangleMesh is what engines draw: per-vertex position, unit normal, unit tangent and uv,
 // interpolated with the barycentric coordinates of the hit. Intersection: Moller-Trumbore
 // (Moller & Trumbore 1997) in double precision, double-sided, through a bounding volume
-// hierarchy (axis-aligned boxes; each node split at the median centroid along the longest axis
-// of its centroids' bounds, leaves of at most 4 triangles), built once in the constructor. Of
-// two hits at the same distance the lower triangle index wins, so the BVH and the brute-force
-// loop (intersect_brute_force) return the same hit.
+// hierarchy (axis-aligned boxes, built once in the constructor: binned surface-area-heuristic
+// splits (Wald 2007) to leaves of at most 8 triangles, median splits where no SAH plane
+// separates the centroids; traversal nearest child first). Of two hits at the same distance
+// the lower triangle index wins, so the BVH and the brute-force loop (intersect_brute_force)
+// return the same hit, whatever the tree's shape: a different build changes no image.
 //
 // Hit frame (SurfaceHit): geometric normal = shading normal = normalize(sum w_i n_i) (the
 // interpolated vertex normal, not the face normal); tangent = the interpolated vertex tangent
@@ -77,7 +78,16 @@ class TriangleMesh final : public Shape {
     int first = 0;  // leaf: first entry of order_; interior: index of the right child
     int count = 0;  // leaf: number of triangles; 0 for an interior node (left child = this + 1)
   };
-  int build(int begin, int end, int depth, std::vector<Vec3>& centroids);
+  int build(int begin, int end, int depth, const std::vector<Vec3>& centroids, const std::vector<Box>& boxes);
+  struct SahPlane {  // between bins first_right_bin - 1 and first_right_bin along axis
+    int axis = 0;
+    double lo = 0.0;     // the centroids' lower bound along axis
+    double scale = 0.0;  // bins per unit length
+    int first_right_bin = 0;
+    int bin_of(Vec3 centroid) const;
+  };
+  bool sah_split(int begin, int end, const Box& box, const Box& centroid_box, const std::vector<Vec3>& centroids,
+                 const std::vector<Box>& boxes, SahPlane& plane) const;
   Box triangle_box(int index) const;
   static bool hit_edges(const Edges& g, const Ray& ray, double t_min, double t_max, double& t, double& b1, double& b2);
 
