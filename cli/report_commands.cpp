@@ -121,6 +121,8 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
   if ((common.taa_blend || common.taa_clip_gamma || common.taa_sequence || common.taa_unweighted) && !common.taa)
     throw Error("--taa-blend, --taa-clip-gamma, --taa-sequence and --taa-unweighted set the TAA resolve: add --taa");
   if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
+  if (!common.derivatives.empty()) config.derivative = common.derivatives == "fine" ? ref::Derivative::fine : ref::Derivative::coarse;
+  if (common.exact_lobe) config.lobes.push_back(render::Lobe::exact);
   return config;
 }
 
@@ -227,6 +229,14 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
                       "KHR_lights_punctual light or a directional one); repeatable");
   command->add_option("--resolution", common.resolution, "Main image size in pixels instead of the preset's (the animation at half of it)")
       ->check(CLI::Range(4, 4096));
+  command
+      ->add_option("--derivatives", common.derivatives,
+                   "What the filters' screen-space derivatives are: coarse (one difference per 2x2 quad, the default) or fine "
+                   "(the difference within the pixel's own row and column: dFdxFine, ddx_fine, dpdxFine)")
+      ->check(CLI::IsMember({"coarse", "fine"}));
+  command->add_flag("--exact-lobe", common.exact_lobe,
+                    "Also evaluate every filter's kernel with the exact filtered GGX (GGX convolved with the kernel by quadrature; rows "
+                    "VARIANT/exact): what a closed-form lobe could reach. A measurement, not a BRDF saagen emits");
 }
 
 ReportCommands::ReportCommands(CLI::App& app) {

@@ -47,6 +47,10 @@ class ReportCommands {
     // at half of it).
     std::vector<std::string> scenes;
     int resolution = 0;
+    // What plain ddx/ddy mean in the emulated 2x2 quads the filters read ("" : the preset's).
+    std::string derivatives;
+    // Also measure the exact filtered GGX (Lobe::exact, rows VARIANT/exact): a measuring instrument.
+    bool exact_lobe = false;
   };
 
  private:

@@ -3,10 +3,11 @@
 mean LDR-FLIP among those that beat no SAA and every engine form in both LDR-FLIP and TDE (means
 over the scene's alphas, no Fresnel), and how many of the scene x path rows have one.
 
-    python3 scripts/beats_baselines.py trade.json [papers|tail|mapped|any]
+    python3 scripts/beats_baselines.py trade.json [papers|tail|mapped|exact|any]
 
 The optional lobe restricts saagen's configurations to one lobe (`VARIANT/tail`, ...; papers:
-no suffix)."""
+no suffix). `any` leaves out the exact lobe (`saagen bench --exact-lobe`), a measurement that no
+target emits."""
 import collections
 import json
 import sys
@@ -36,7 +37,8 @@ def main():
     for scene, means in scene_means(table['cases']).items():
         baselines = [v for c, v in means.items() if c == 'none' or c.startswith('engine-')]
         for path in ('forward', 'deferred'):
-            candidates = {c: v for c, v in means.items() if c.startswith(path) and lobe in ('any', lobe_of(c))}
+            candidates = {c: v for c, v in means.items()
+                          if c.startswith(path) and (lobe == lobe_of(c) or (lobe == 'any' and lobe_of(c) != 'exact'))}
             winners = {c: v for c, v in candidates.items() if all(v[0] < b[0] and v[1] < b[1] for b in baselines)}
             pool = winners or candidates
             best = min(pool, key=lambda c: pool[c][0])

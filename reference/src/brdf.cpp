@@ -303,6 +303,34 @@ double filtered_ggx_mass_beyond(double radius, double alpha2, double k) {
   return exponential_mixture([&](double w) { return std::exp(-radius * radius / (2.0 * (alpha2 / (2.0 * w) + k))); });
 }
 
+double filtered_ggx_slope_density_matrix(Vec2 slope, Vec2 alpha2, Sym2 sigma) {
+  constexpr double kStep = 0.25, kLow = -45.0, kHigh = 4.0;
+  double sum = 0.0;
+  for (double u = kLow; u < kHigh; u += kStep) {
+    const double w = std::exp(u);
+    const Sym2 c{alpha2.x / (2.0 * w) + sigma.xx, sigma.xy, alpha2.y / (2.0 * w) + sigma.yy};
+    const double det = c.xx * c.yy - c.xy * c.xy;
+    const double q = (c.yy * slope.x * slope.x - 2.0 * c.xy * slope.x * slope.y + c.xx * slope.y * slope.y) / det;
+    sum += w * std::exp(-w - 0.5 * q) / (2.0 * kPi * std::sqrt(det));
+  }
+  return sum * kStep;
+}
+
+double ggx_ndf_filtered_exact(Vec3 h, Sym2 a, Vec2 alpha2) {
+  if (h.z <= 0.0) return 0.0;
+  const Sym2 sigma{0.5 * (a.xx - alpha2.x), 0.5 * a.xy, 0.5 * (a.yy - alpha2.y)};
+  const double cos2 = h.z * h.z;
+  return filtered_ggx_slope_density_matrix({h.x / h.z, h.y / h.z}, alpha2, sigma) / (cos2 * cos2);
+}
+
+double ggx_brdf_filtered_exact(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Brdf brdf{};
+  const Vec3 h = half_vector(brdf.params, i, o);
+  const double floor = brdf.params.guard_constants().lambda_min_z;  // the cosines as Brdf::cosines guards them
+  return ggx_ndf_filtered_exact(h, a, alpha2) * brdf.ggx_g2_matrix(i, o, h, a) / (4.0 * max(i.z, floor) * max(o.z, floor));
+}
+
 // ---------------------------------------------------------------------------------------------
 // The single GGX roughness for the filtered lobe (brdf.hpp): fitted to the core-mass criterion.
 

@@ -148,6 +148,8 @@ std::string_view lobe_name(Lobe lobe) {
       return "tail";
     case Lobe::mapped:
       return "mapped";
+    case Lobe::exact:
+      return "exact";
   }
   return "?";
 }
@@ -543,6 +545,10 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
     if (evaluated == Lobe::mapped)
       filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
     out.roughness = {filtered.x, 0.0, filtered.y};
+    if (evaluated == Lobe::exact) {
+      brdf = ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, out.roughness, alpha2);
+      return;
+    }
     brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
                                    : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
   };
@@ -560,6 +566,10 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
       a = unfiltered + ref::ggx_kernel_scale(a2, 0.5 * ref::trace(kernel)) * kernel;
     }
     out.roughness = a;
+    if (evaluated == Lobe::exact) {
+      brdf = ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, a, alpha2);
+      return;
+    }
     brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, a, alpha2)
                                    : ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
   };

@@ -132,6 +132,18 @@ double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2);
 double filtered_ggx_slope_density(double rho, double alpha2, double k);
 double filtered_ggx_mass_beyond(double radius, double alpha2, double k);
 
+// The exact filtered GGX for any kernel: the slope density integral_0^inf e^-w N(s; A0 / (2w) +
+// Sigma) dw at slope s (A0 = diag(alpha2), Sigma = K / 2, the covariance the forward variants'
+// kernel K = 2 Sigma stands for), and as an NDF of the filtered matrix A = A0 + K, D(h) =
+// P(-h.xy / h.z) / h.z^4, with the BRDF f = G2 D / (4 i.z o.z) (the papers' G2 of A, as
+// ggx_brdf_filtered_matrix). Quadrature (trapezoid rule in ln w, step 0.25: the integrand is
+// analytic in a strip of half-width pi / 2 about the real u axis, so the error is of order
+// e^(-pi^2 / 0.25) relative). The renderer's Lobe::exact: the lobe a closed form should reach, a
+// measuring instrument (about 180 exponentials per evaluation), not an emitted BRDF.
+double filtered_ggx_slope_density_matrix(Vec2 slope, Vec2 alpha2, Sym2 sigma);
+double ggx_ndf_filtered_exact(Vec3 h, Sym2 a, Vec2 alpha2);
+double ggx_brdf_filtered_exact(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2);
+
 // ---------------------------------------------------------------------------------------------
 // The single GGX roughness that stands for the filtered lobe (saagen; docs/FILTERED_GGX.md):
 // for engines that keep their own BRDF and only change alpha^2. Criterion: the GGX lobe whose

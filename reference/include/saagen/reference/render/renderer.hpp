@@ -159,9 +159,12 @@ std::string_view prefilter_name(Prefilter prefilter);
 //   mapped   one GGX lobe of alpha'^2 = ggx_filtered_alpha2(alpha^2, kernel), the roughness an
 //            engine that keeps its own BRDF would feed (for a matrix: the kernel scaled by
 //            ggx_kernel_scale of the mean alpha^2 and the mean kernel).
+//   exact    the exact filtered GGX of the same kernel (ggx_brdf_filtered_exact: GGX convolved
+//            with the kernel's Gaussian by quadrature): what a closed form could reach, a
+//            measuring instrument that no target emits (TradeConfig::lobes leaves it out).
 // Ignored by `none` and the engines' forms, which evaluate their own roughness with GGX.
-enum class Lobe { papers, tail, mapped };
-std::string_view lobe_name(Lobe lobe);  // "papers", "tail", "mapped"
+enum class Lobe { papers, tail, mapped, exact };
+std::string_view lobe_name(Lobe lobe);  // "papers", "tail", "mapped", "exact"
 
 // The specular radiance of one light at a surface point, in the tangent frame.
 // brdf: f(i, o) without Fresnel. Returns F f (n.i) E (0 when i.z <= 0).
