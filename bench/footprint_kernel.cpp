@@ -1,0 +1,272 @@
+// footprint_kernel: what the SAA kernel would be worth if it were the pixel footprint's own, on
+// the medium preset's images and animation (docs/FILTERED_GGX.md, "The bump plane").
+//
+//   footprint_kernel [--cache DIR] [SCENE...]      (default: bump_plane)
+//
+// Per scene, alpha (the medium preset's six, no Fresnel) and configuration, the LDR-FLIP of
+// frame 0 (128 px) against the 256-spp ground truth and the TDE of the 16-frame animation (64 px)
+// against its 64-spp ground truths, as `saagen bench --preset medium` measures them (the ground
+// truths come from the same cache; the trade's own renders otherwise):
+//   none        the 1-spp image without SAA;
+//   quad        forward-aniso-projected's kernel (coarse 2x2 quad derivatives of the projected
+//               half vector) shaded with the exact filtered GGX (Lobe::exact);
+//   stable      the kernel an oracle would give: 2 x the covariance of the half vector's slope
+//               (h.xy / h.z in each sample's own tangent frame) over 8 x 8 sub-pixel rays placed
+//               at the quantiles of the ground truth's Gaussian pixel filter (sigma 0.5 px, the
+//               same pattern every frame), eigenvalues clamped to kappa, around the pixel
+//               centre's half vector (exact filtered GGX);
+//   bake        the same covariance around the footprint's mean slope instead of the centre's: the
+//               filtered NDF a prefiltered normal field (LEAN's two moments at the footprint) gives.
+// `stable` and `bake` cast 64 rays per pixel: they are measurements of what a temporally stable
+// kernel and a bake could reach, not forms a shader evaluates from one sample.
+#include "saagen/reference/brdf.hpp"
+#include "saagen/reference/render/flip.hpp"
+#include "saagen/reference/render/render.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace render = saagen::render;
+namespace ref = saagen::ref;
+using ref::Sym2;
+using ref::Vec2;
+using ref::Vec3;
+
+constexpr int kMainSize = 128, kMainStrata = 16, kFlickerSize = 64, kFlickerStrata = 8, kFrames = 16;
+constexpr int kFootprintRays = 8;  // per axis
+
+// The medium preset's trade configuration (report::preset_config("medium"); the ground-truth cache
+// keys depend on every one of these numbers).
+render::TradeConfig medium_config() {
+  render::TradeConfig config;
+  config.width = config.height = kMainSize;
+  config.strata = kMainStrata;
+  config.flicker_width = config.flicker_height = kFlickerSize;
+  config.flicker_strata = kFlickerStrata;
+  config.frames = kFrames;
+  config.rotation_degrees_per_frame = 0.5;
+  config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
+  config.fresnel_modes = {false};
+  return config;
+}
+
+// The standard normal quantile by bisection of erfc (exact to double rounding; 64 calls per run).
+double normal_quantile(double p) {
+  double low = -9.0, high = 9.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (low + high);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
+struct Footprint {
+  Vec2 mean;  // E[t], t = h.xy / h.z
+  Sym2 covariance;
+  int samples = 0;
+};
+
+// Per pixel, the moments of the half vector's slope over the filter-distributed sub-pixel rays.
+std::vector<Footprint> footprints(const render::Scene& scene, int size) {
+  std::vector<Footprint> out(static_cast<std::size_t>(size) * size);
+  std::vector<Sym2> second(out.size());
+  for (int a = 0; a < kFootprintRays; ++a)
+    for (int b = 0; b < kFootprintRays; ++b) {
+      render::Camera camera = scene.camera();
+      camera.jitter = {0.5 * normal_quantile((a + 0.5) / kFootprintRays), 0.5 * normal_quantile((b + 0.5) / kFootprintRays)};
+      const render::Scene shifted = scene.with_camera(camera);
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const render::PixelFields f = render::pixel_fields(shifted, x, y, size, size);
+          if (!f.hit || f.half_ts.z <= 0.0) continue;
+          const std::size_t i = static_cast<std::size_t>(y) * size + x;
+          const Vec2 t{f.half_ts.x / f.half_ts.z, f.half_ts.y / f.half_ts.z};
+          out[i].mean = out[i].mean + t;
+          second[i] = {second[i].xx + t.x * t.x, second[i].xy + t.x * t.y, second[i].yy + t.y * t.y};
+          ++out[i].samples;
+        }
+    }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    Footprint& f = out[i];
+    if (f.samples < 2) continue;
+    const double n = f.samples;
+    f.mean = f.mean / n;
+    f.covariance = {second[i].xx / n - f.mean.x * f.mean.x, second[i].xy / n - f.mean.x * f.mean.y, second[i].yy / n - f.mean.y * f.mean.y};
+  }
+  return out;
+}
+
+// min(lambda, bound) on the eigenvalues of a symmetric 2x2 matrix (the forward forms' clamp).
+Sym2 clamp_eigenvalues(Sym2 m, double bound) {
+  const double half_trace = 0.5 * (m.xx + m.yy), half_difference = 0.5 * (m.xx - m.yy);
+  const double spread = std::sqrt(half_difference * half_difference + m.xy * m.xy);
+  const double large = half_trace + spread, small = half_trace - spread;
+  if (large <= bound) return m;
+  const double clamped_large = std::min(large, bound), clamped_small = std::min(std::max(small, 0.0), bound);
+  if (spread <= 0.0) return {clamped_large, 0.0, clamped_large};
+  // Projector onto the larger eigenvector: (M - small I) / (large - small).
+  const Sym2 p{(m.xx - small) / (2.0 * spread), m.xy / (2.0 * spread), (m.yy - small) / (2.0 * spread)};
+  return Sym2{clamped_small, 0.0, clamped_small} + (clamped_large - clamped_small) * p;
+}
+
+enum class Form { none, quad, stable, bake };
+constexpr Form kForms[] = {Form::none, Form::quad, Form::stable, Form::bake};
+
+const char* form_name(Form form) {
+  switch (form) {
+    case Form::none:
+      return "none";
+    case Form::quad:
+      return "quad kernel";
+    case Form::stable:
+      return "stable kernel";
+    case Form::bake:
+      return "bake";
+  }
+  return "?";
+}
+
+// The exact filtered GGX BRDF of the footprint kernel, centred on the pixel's half vector (stable)
+// or on the footprint's mean slope (bake), with the centre's masking and cosines.
+double footprint_brdf(const render::PixelFields& f, const Footprint& footprint, double alpha2, double kappa, Form form) {
+  const Sym2 kernel = clamp_eigenvalues(2.0 * footprint.covariance, kappa);
+  const Sym2 a{alpha2 + kernel.xx, kernel.xy, alpha2 + kernel.yy};
+  if (form == Form::stable) return ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, a, {alpha2, alpha2});
+  if (f.light_ts.z <= 0.0 || f.view_ts.z <= 0.0) return 0.0;
+  const Vec2 t = footprint.mean;
+  const double c = 1.0 / std::sqrt(1.0 + t.x * t.x + t.y * t.y);
+  const double ndf = ref::ggx_ndf_filtered_exact({t.x * c, t.y * c, c}, a, {alpha2, alpha2});
+  const Vec3 h = ref::normalize(f.light_ts + f.view_ts);
+  return ndf * ref::ggx_g2_matrix(f.light_ts, f.view_ts, h, a) / (4.0 * f.light_ts.z * f.view_ts.z);
+}
+
+render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const render::Material& material, Form form) {
+  render::Image image(gbuffer.width, gbuffer.height);
+  const ref::Params params{};
+  const double alpha2 = material.alpha * material.alpha;
+  for (int y = 0; y < gbuffer.height; ++y)
+    for (int x = 0; x < gbuffer.width; ++x) {
+      const render::PixelFields& f = gbuffer.at(x, y);
+      if (!f.hit) continue;
+      if (form == Form::none || form == Form::quad) {
+        const render::Variant variant = form == Form::none ? render::Variant::none : render::Variant::forward_aniso_projected;
+        image.at(x, y) =
+            static_cast<float>(render::shade_pixel(gbuffer, x, y, variant, material, params, ref::Derivative::coarse,
+                                                   render::NormalFeed::shading, render::Prefilter::none, 1.0, render::Lobe::exact)
+                                   .radiance);
+        continue;
+      }
+      const Footprint& fp = footprint[static_cast<std::size_t>(y) * gbuffer.width + x];
+      if (fp.samples < 2) continue;
+      const double brdf = footprint_brdf(f, fp, alpha2, params.kappa, form);
+      image.at(x, y) =
+          static_cast<float>(f.weight * render::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel));
+    }
+  return image;
+}
+
+render::Image tonemapped(const render::Image& image) {
+  render::Image out(image.width, image.height);
+  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(render::tonemap(image.pixels[i]));
+  return out;
+}
+
+render::SceneId scene_id(const std::string& name) {
+  for (render::SceneId id : render::all_scenes())
+    if (render::scene_name(id) == name) return id;
+  for (render::SceneId id : render::content_scenes())
+    if (render::scene_name(id) == name) return id;
+  throw std::invalid_argument("unknown scene '" + name + "'");
+}
+
+// One scene's frame-0 inputs and animation inputs.
+struct SceneInputs {
+  render::GroundTruth ground_truth;
+  render::GBuffer gbuffer;
+  std::vector<Footprint> footprint;
+  std::vector<render::GroundTruth> frame_truths;
+  std::vector<render::GBuffer> frame_gbuffers;
+  std::vector<std::vector<Footprint>> frame_footprints;
+};
+
+SceneInputs scene_inputs(const render::TradeConfig& config, render::SceneId id, const std::vector<render::Material>& materials,
+                         const std::string& cache) {
+  render::GroundTruthSettings main_settings;
+  main_settings.width = main_settings.height = kMainSize;
+  main_settings.strata = kMainStrata;
+  main_settings.seed = config.seed;
+  render::GroundTruthSettings flicker_settings = main_settings;
+  flicker_settings.width = flicker_settings.height = kFlickerSize;
+  flicker_settings.strata = kFlickerStrata;
+  SceneInputs in;
+  const render::Scene scene = render::make_scene(id, 0.0);
+  in.ground_truth = render::cached_ground_truth(scene, main_settings, materials, cache);
+  in.gbuffer = render::render_gbuffer(scene, kMainSize, kMainSize, 0);
+  in.footprint = footprints(scene, kMainSize);
+  for (int frame = 0; frame < kFrames; ++frame) {
+    const render::Scene moved = render::trade_animation_frame(config, id, frame);
+    in.frame_truths.push_back(render::cached_ground_truth(moved, flicker_settings, materials, cache));
+    in.frame_gbuffers.push_back(render::render_gbuffer(moved, kFlickerSize, kFlickerSize, 0));
+    in.frame_footprints.push_back(footprints(moved, kFlickerSize));
+  }
+  return in;
+}
+
+void measure_scene(const render::TradeConfig& config, const std::string& name, const std::string& cache) {
+  const std::vector<render::Material> materials = render::trade_materials(config);
+  const SceneInputs in = scene_inputs(config, scene_id(name), materials, cache);
+  fmt::print("\n### {}\n\n| form | alpha | LDR-FLIP | TDE | excess flicker | lost motion |\n|---|---:|---:|---:|---:|---:|\n", name);
+  for (Form form : kForms) {
+    double flip_sum = 0.0, tde_sum = 0.0;
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+      const double flip = render::ldr_flip_mean_grey(tonemapped(in.ground_truth.images[m]),
+                                                     tonemapped(shade(in.gbuffer, in.footprint, materials[m], form)));
+      std::vector<render::Image> frames, truths;
+      for (int frame = 0; frame < kFrames; ++frame) {
+        frames.push_back(render::display_image(shade(in.frame_gbuffers[frame], in.frame_footprints[frame], materials[m], form)));
+        truths.push_back(render::display_image(in.frame_truths[frame].images[m]));
+      }
+      const render::TemporalError temporal = render::temporal_difference_error(frames, truths);
+      fmt::print("| {} | {} | {:.4f} | {:.5f} | {:.5f} | {:.5f} |\n", form_name(form), materials[m].alpha, flip, temporal.tde,
+                 temporal.excess_flicker, temporal.lost_motion);
+      flip_sum += flip;
+      tde_sum += temporal.tde;
+    }
+    const double n = static_cast<double>(materials.size());
+    fmt::print("| **{}** | mean | **{:.4f}** | **{:.5f}** | | |\n", form_name(form), flip_sum / n, tde_sum / n);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    std::string cache;
+    std::vector<std::string> scenes;
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (arg == "--cache" && i + 1 < argc) {
+        cache = argv[++i];
+      } else if (arg.rfind("--", 0) == 0) {
+        throw std::invalid_argument("unknown option '" + arg + "'; usage: footprint_kernel [--cache DIR] [SCENE...]");
+      } else {
+        scenes.push_back(arg);
+      }
+    }
+    if (scenes.empty()) scenes.push_back("bump_plane");
+    const render::TradeConfig config = medium_config();
+    for (const std::string& name : scenes) measure_scene(config, name, cache);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "footprint_kernel: {}\n", e.what());
+    return 1;
+  }
+}
