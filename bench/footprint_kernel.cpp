@@ -17,6 +17,9 @@
 //               centre's half vector (exact filtered GGX);
 //   bake        the same covariance around the footprint's mean slope instead of the centre's: the
 //               filtered NDF a prefiltered normal field (LEAN's two moments at the footprint) gives.
+// With each kernel, "kernel change": the mean over the animation's frame pairs and the pixels the
+// ground truth lights in either frame (display value > 0.05) of |k_t - k_t-1| / max(k_t, k_t-1),
+// k = tr(K) / 2: how much the kernel estimate itself moves from one frame to the next.
 // `stable` and `bake` cast 64 rays per pixel: they are measurements of what a temporally stable
 // kernel and a bake could reach, not forms a shader evaluates from one sample.
 #include "saagen/reference/brdf.hpp"
@@ -30,6 +33,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -173,6 +177,24 @@ render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>
   return image;
 }
 
+// tr(K) / 2 of a form's kernel at a pixel (-1: no kernel there).
+double half_trace_kernel(const render::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const render::Material& material, int x,
+                         int y, Form form) {
+  if (!gbuffer.at(x, y).hit) return -1.0;
+  const ref::Params params{};
+  const double alpha2 = material.alpha * material.alpha;
+  if (form == Form::quad) {
+    const Sym2 a = render::shade_pixel(gbuffer, x, y, render::Variant::forward_aniso_projected, material, params, ref::Derivative::coarse,
+                                       render::NormalFeed::shading, render::Prefilter::none, 1.0, render::Lobe::exact)
+                       .roughness;
+    return 0.5 * (a.xx + a.yy) - alpha2;
+  }
+  const Footprint& fp = footprint[static_cast<std::size_t>(y) * gbuffer.width + x];
+  if (fp.samples < 2) return -1.0;
+  const Sym2 k = clamp_eigenvalues(2.0 * fp.covariance, params.kappa);
+  return 0.5 * (k.xx + k.yy);
+}
+
 render::Image tonemapped(const render::Image& image) {
   render::Image out(image.width, image.height);
   for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(render::tonemap(image.pixels[i]));
@@ -220,10 +242,36 @@ SceneInputs scene_inputs(const render::TradeConfig& config, render::SceneId id, 
   return in;
 }
 
+// The kernel's mean relative change between consecutive frames at the pixels the ground truth lights.
+double kernel_change(const SceneInputs& in, const render::Material& material, const std::vector<render::Image>& truths, Form form) {
+  constexpr double kLit = 0.05;
+  double sum = 0.0;
+  std::size_t count = 0;
+  std::vector<double> previous;
+  for (int frame = 0; frame < kFrames; ++frame) {
+    std::vector<double> current(static_cast<std::size_t>(kFlickerSize) * kFlickerSize);
+    for (int y = 0; y < kFlickerSize; ++y)
+      for (int x = 0; x < kFlickerSize; ++x)
+        current[static_cast<std::size_t>(y) * kFlickerSize + x] =
+            half_trace_kernel(in.frame_gbuffers[frame], in.frame_footprints[frame], material, x, y, form);
+    for (std::size_t i = 0; frame > 0 && i < current.size(); ++i) {
+      const double larger = std::max(current[i], previous[i]);
+      const bool lit = std::max(truths[frame].pixels[i], truths[frame - 1].pixels[i]) > kLit;
+      if (current[i] < 0.0 || previous[i] < 0.0 || larger <= 0.0 || !lit) continue;
+      sum += std::fabs(current[i] - previous[i]) / larger;
+      ++count;
+    }
+    previous = std::move(current);
+  }
+  return count ? sum / static_cast<double>(count) : 0.0;
+}
+
 void measure_scene(const render::TradeConfig& config, const std::string& name, const std::string& cache) {
   const std::vector<render::Material> materials = render::trade_materials(config);
   const SceneInputs in = scene_inputs(config, scene_id(name), materials, cache);
-  fmt::print("\n### {}\n\n| form | alpha | LDR-FLIP | TDE | excess flicker | lost motion |\n|---|---:|---:|---:|---:|---:|\n", name);
+  fmt::print(
+      "\n### {}\n\n| form | alpha | LDR-FLIP | TDE | excess flicker | lost motion | kernel change |\n|---|---:|---:|---:|---:|---:|---:|\n",
+      name);
   for (Form form : kForms) {
     double flip_sum = 0.0, tde_sum = 0.0;
     for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -235,8 +283,9 @@ void measure_scene(const render::TradeConfig& config, const std::string& name, c
         truths.push_back(render::display_image(in.frame_truths[frame].images[m]));
       }
       const render::TemporalError temporal = render::temporal_difference_error(frames, truths);
-      fmt::print("| {} | {} | {:.4f} | {:.5f} | {:.5f} | {:.5f} |\n", form_name(form), materials[m].alpha, flip, temporal.tde,
-                 temporal.excess_flicker, temporal.lost_motion);
+      const std::string change = form == Form::none ? "" : fmt::format("{:.3f}", kernel_change(in, materials[m], truths, form));
+      fmt::print("| {} | {} | {:.4f} | {:.5f} | {:.5f} | {:.5f} | {} |\n", form_name(form), materials[m].alpha, flip, temporal.tde,
+                 temporal.excess_flicker, temporal.lost_motion, change);
       flip_sum += flip;
       tde_sum += temporal.tde;
     }
