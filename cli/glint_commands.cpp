@@ -104,7 +104,7 @@ int GlintCommands::run_emit() const {
   options.target = target_;
   options.variants = variants_;
   options.prefix = prefix_;
-  options.precision = precision_;
+  options.precision = parse_precision(precision_);
   options.guards = !unguarded_;
   glint_options_.apply(options);
   std::vector<OutputFile> outputs;

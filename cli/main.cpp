@@ -118,7 +118,7 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   // A preset names the engine's variant, sigma^2, kappa and roughness domain; explicit options win.
   const saagen::EmitSettings settings{arguments.preset, arguments.variants, arguments.sigma2, arguments.kappa, arguments.domain};
   saagen::apply_settings(every_variant, settings, options);
-  options.precision = arguments.precision;
+  options.precision = saagen::parse_precision(arguments.precision);
   options.guards = !arguments.unguarded;
   options.import_path = arguments.import_path;
   arguments.glint.apply(options);

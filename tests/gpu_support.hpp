@@ -28,7 +28,7 @@ inline EmittedFile emit_variant(const std::string& target, const std::string& va
   EmitOptions options;
   options.target = target;
   options.variants = {variant};
-  options.precision = precision;
+  options.precision = saagen::parse_precision(precision);
   options.guards = guards;
   return emit_variants(Catalogue::builtin(), options).front();
 }

@@ -328,16 +328,16 @@ TEST_P(EveryForm, EveryVariantValidates) {
   const Form& form = GetParam();
   saagen::EmitOptions options;
   options.target = form.target;
-  options.precision = form.precision;
+  options.precision = saagen::parse_precision(form.precision);
   options.guards = form.guards;
   for (const auto& file : saagen::emit_variants(Catalogue::builtin(), options)) {
     const auto validation = saagen::validate_file(Catalogue::builtin(), file.file_name, file.content);
     EXPECT_TRUE(validation.ok()) << validation.summary() << "\n" << validation.checks.front().log;
-    EXPECT_EQ(file.marker.precision, form.precision);
+    EXPECT_EQ(saagen::to_string(file.marker.precision), form.precision);
     EXPECT_EQ(file.marker.guards, form.guards);
     const auto parsed = saagen::find_marker(file.content);
     ASSERT_TRUE(parsed.has_value());
-    EXPECT_EQ(parsed->precision, form.precision);
+    EXPECT_EQ(saagen::to_string(parsed->precision), form.precision);
     EXPECT_EQ(parsed->guards, form.guards);
   }
 }
@@ -351,7 +351,7 @@ INSTANTIATE_TEST_SUITE_P(Forms, EveryForm,
 
 TEST(Forms, HalfPrecisionGlslUsesFloat16TypesLiteralsAndFp32Derivatives) {
   saagen::EmitOptions options;
-  options.precision = "fp16";
+  options.precision = saagen::Precision::fp16;
   options.variants = {"deferred-sum"};
   const auto file = saagen::emit_variants(Catalogue::builtin(), options).front();
   EXPECT_EQ(file.file_name, "saa_deferred_sum_fp16.glsl");
@@ -393,13 +393,32 @@ TEST(Forms, GuardsAppearOnlyWhereTemplatesPlaceThemAndUnguardedIsThePaperForm) {
 TEST(Forms, UnknownPrecisionNamesTheOnesTheTargetHas) {
   saagen::EmitOptions options;
   options.target = "hlsl";
-  options.precision = "fp16";
+  options.precision = saagen::Precision::fp16;
   try {
     saagen::emit_variants(Catalogue::builtin(), options);
     FAIL();
   } catch (const saagen::Error& error) {
     EXPECT_STREQ(error.what(), "target hlsl has no precision 'fp16'; choose one of: fp32, min16");
   }
+}
+
+// Precision is read once where it enters, as Domain is: every id names one value and back, and an
+// unknown id is refused there in one line; a marker naming none is not saagen's.
+TEST(Forms, PrecisionIdsRoundTripAndUnknownOnesAreRefusedWhereRead) {
+  for (const saagen::Precision precision : saagen::every_precision_kind) {
+    EXPECT_EQ(saagen::precision_named(saagen::to_string(precision)), precision);
+  }
+  EXPECT_FALSE(saagen::precision_named("fp64").has_value());
+  try {
+    saagen::parse_precision("fp64");
+    FAIL();
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "--precision fp64: unknown precision; use fp32, fp16 or min16");
+  }
+  const std::string marker = "// saagen-marker: target=glsl variants=deferred-sum prefix=saa_";
+  EXPECT_EQ(saagen::find_marker(marker + " precision=fp16")->precision, saagen::Precision::fp16);
+  EXPECT_EQ(saagen::find_marker(marker)->precision, saagen::Precision::fp32);
+  EXPECT_FALSE(saagen::find_marker(marker + " precision=fp64").has_value());
 }
 
 }  // namespace

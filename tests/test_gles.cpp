@@ -21,7 +21,7 @@ using saagen::Catalogue;
 saagen::EmitOptions gles_options(const std::string& precision = "fp32", bool guards = true) {
   saagen::EmitOptions options;
   options.target = "gles";
-  options.precision = precision;
+  options.precision = saagen::parse_precision(precision);
   options.guards = guards;
   return options;
 }

@@ -18,7 +18,7 @@ namespace glints = saagen::glints;
 saagen::EmitOptions options_for(const std::string& target, const std::string& precision = "fp32", bool guards = true) {
   saagen::EmitOptions options;
   options.target = target;
-  options.precision = precision;
+  options.precision = saagen::parse_precision(precision);
   options.guards = guards;
   return options;
 }

@@ -96,7 +96,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_EQ(manifest.materials[1].prefer, saagen::Preference::speed);
   EXPECT_EQ(manifest.materials[2].path, saagen::RenderPath::deferred);
   EXPECT_FALSE(manifest.materials[2].tangents);
-  EXPECT_EQ(manifest.materials[3].precision, "fp16");
+  EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
   EXPECT_EQ(car.position.line, 23);
 }
@@ -111,7 +111,7 @@ TEST(Manifest, DefaultsAndIntegerNumbers) {
   EXPECT_FALSE(material.anisotropic);
   EXPECT_FALSE(material.tangents);
   EXPECT_EQ(material.ndf, saagen::Ndf::ggx);
-  EXPECT_EQ(material.precision, "fp32");
+  EXPECT_EQ(material.precision, saagen::Precision::fp32);
   EXPECT_EQ(material.prefer, saagen::Preference::accuracy);
   EXPECT_FALSE(material.variant);
 }
@@ -128,7 +128,7 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
-const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, glints, precision, prefer, variant";
+const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, variant";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
@@ -267,78 +267,174 @@ TEST_P(Rules, PickTheDocumentedVariantAndFunctions) {
 
 INSTANTIATE_TEST_SUITE_P(
     Planner, Rules,
-    ::testing::Values(
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n",
-                 "F1",
-                 "forward-aniso-projected",
-                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n",
-                 "F1",
-                 "forward-aniso-projected",
-                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "beckmann_brdf_matrix", "ndf_clamp_tau"}},
-        RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n",
-                 "F2",
-                 "forward-axis-projected",
-                 {"forward_axis_projected", "forward_axis_projected_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"forward\"\ntangents = true\n",
-                 "F3",
-                 "forward-aniso-projected",
-                 {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
-        RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n",
-                 "F4",
-                 "deferred-avg",
-                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"forward\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"forward\"\nprefer = \"speed\"\n",
-                 "F5",
-                 "deferred-avg",
-                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\n",
-                 "D0",
-                 "deferred-aniso",
-                 {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
-        RuleCase{"path = \"deferred\"\nnormal_maps = true\n",
-                 "D1",
-                 "deferred-avg",
-                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
-        RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n",
-                 "D1",
-                 "deferred-avg",
-                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n",
-                 "D2",
-                 "deferred-avg",
-                 {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n",
-                 "manifest",
-                 "deferred-sum",
-                 {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n",
-                 "manifest",
-                 "deferred-max",
-                 {"deferred_max", "deferred_max_fragment", "ggx_brdf_filtered_axis"}},
-        RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n",
-                 "manifest",
-                 "deferred-max",
-                 {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment", "ggx_brdf_filtered_axis"}}),
+    ::testing::Values(RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\n",
+                               "F1",
+                               "forward-aniso-projected",
+                               {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
+                      RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nndf = \"beckmann\"\n",
+                               "F1",
+                               "forward-aniso-projected",
+                               {"forward_aniso_projected", "forward_aniso_projected_fragment", "beckmann_brdf_matrix", "ndf_clamp_tau"}},
+                      RuleCase{"path = \"forward\"\nanisotropic = true\ntangents = true\nprefer = \"speed\"\n",
+                               "F2",
+                               "forward-axis-projected",
+                               {"forward_axis_projected", "forward_axis_projected_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"forward\"\ntangents = true\n",
+                               "F3",
+                               "forward-aniso-projected",
+                               {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
+                      // GGX on curved content: rule F4's and F5's deferred-avg loses to no SAA there (saagen/advice.hpp).
+                      RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n",
+                               "advice",
+                               "forward-aniso-projected",
+                               {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
+                      RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\nndf = \"beckmann\"\n",
+                               "F4",
+                               "deferred-avg",
+                               {"deferred_avg", "deferred_avg_fragment"}},
+                      RuleCase{"path = \"forward\"\n",
+                               "advice",
+                               "deferred-aniso",
+                               {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
+                      RuleCase{"path = \"forward\"\nndf = \"beckmann\"\n", "F5", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+                      RuleCase{"path = \"forward\"\nprefer = \"speed\"\nndf = \"beckmann\"\n",
+                               "F5",
+                               "deferred-avg",
+                               {"deferred_avg", "deferred_avg_fragment"}},
+                      RuleCase{"path = \"deferred\"\n",
+                               "D0",
+                               "deferred-aniso",
+                               {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
+                      RuleCase{"path = \"deferred\"\nnormal_maps = true\n",
+                               "advice",
+                               "deferred-sum",
+                               {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"deferred\"\nnormal_maps = true\nndf = \"beckmann\"\n",
+                               "D1",
+                               "deferred-avg",
+                               {"deferred_avg", "deferred_avg_fragment"}},
+                      RuleCase{
+                          "path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
+                      // Curved content: no filter an anisotropic deferred material can use beats no SAA.
+                      RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "advice", "none", {}},
+                      RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n",
+                               "advice",
+                               "deferred-sum",
+                               {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n",
+                               "advice",
+                               "deferred-aniso",
+                               {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
+                      RuleCase{"path = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n",
+                               "D2",
+                               "deferred-avg",
+                               {"deferred_avg", "deferred_avg_fragment"}},
+                      RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\n",
+                               "manifest",
+                               "deferred-sum",
+                               {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"deferred\"\ntangents = true\nvariant = \"deferred-max\"\n",
+                               "manifest",
+                               "deferred-max",
+                               {"deferred_max", "deferred_max_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"deferred\"\nvariant = \"deferred-max\"\n",
+                               "manifest",
+                               "deferred-max",
+                               {"deferred_max_tangent_free", "deferred_max_tangent_free_fragment", "ggx_brdf_filtered_axis"}}),
     [](const ::testing::TestParamInfo<RuleCase>& info) { return "case" + std::to_string(info.index) + "_" + info.param.rule; });
 
-// Where the trade measured the isotropic deferred kernels losing to no SAA (deferred, curved
-// content without normal maps) and the plan keeps one (prefer speed), it says so with the
-// figures and names deferred-aniso; a plan that takes deferred-aniso (rule D0) needs no advice.
-TEST(Planner, SaysWhereNoFilterWins) {
-  const auto advice = [](const std::string& keys) {
-    const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\n" + keys);
-    return saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).no_filter_advice;
+// Without a trade table, GGX materials follow saagen's advice (saagen/advice.hpp) per content
+// type, path and TAA: a filter only where it beat no SAA in both LDR-FLIP and TDE, no filter
+// where nothing the material can use did, with the figures in the plan's text.
+TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
+  const auto plan_of = [](const std::string& top, const std::string& keys) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + top + "[[material]]\nname = \"m\"\n" + keys)).materials.at(0);
   };
-  EXPECT_EQ(advice("path = \"deferred\"\n"), "");
-  const std::string speed = advice("path = \"deferred\"\nprefer = \"speed\"\n");
-  EXPECT_NE(speed.find("the isotropic deferred kernels lose to no SAA"), std::string::npos) << speed;
-  EXPECT_NE(speed.find("deferred-aniso"), std::string::npos) << speed;
-  EXPECT_EQ(advice("path = \"deferred\"\nnormal_maps = true\n"), "");
-  EXPECT_EQ(advice("path = \"forward\"\ntangents = true\n"), "");
-  EXPECT_EQ(advice("path = \"deferred\"\nndf = \"beckmann\"\n"), "");
+  EXPECT_EQ(plan_of("", "path = \"forward\"\ntangents = true\n").variant, "forward-aniso-projected");
+  EXPECT_EQ(plan_of("", "path = \"deferred\"\n").variant, "deferred-aniso");
+  const auto mapped = plan_of("", "path = \"deferred\"\nnormal_maps = true\n");
+  EXPECT_EQ(mapped.variant, "deferred-sum");
+  EXPECT_EQ(mapped.feed, "geometric");
+  EXPECT_EQ(mapped.prefilter, "hdrp");
+  EXPECT_NE(mapped.reason.find("deferred-sum:geometric+hdrp/tail 0.0306 / 0.00732 against no SAA's 0.0411 / 0.00739"), std::string::npos)
+      << mapped.reason;
+  EXPECT_NE(mapped.normal_advice.find("--method hdrp"), std::string::npos) << mapped.normal_advice;
+  const auto forward_mapped = plan_of("", "path = \"forward\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n");
+  EXPECT_EQ(forward_mapped.variant, "forward-axis-projected");  // deferred-sum filters isotropic roughness
+  EXPECT_EQ(forward_mapped.feed, "geometric");
+  EXPECT_EQ(plan_of("", "path = \"forward\"\ntangents = true\ncontent = \"bumps\"\n").variant, "deferred-max");
+  // The speed choice stays where it is one of the winners, else the first winner replaces it.
+  EXPECT_EQ(plan_of("", "path = \"deferred\"\nnormal_maps = true\nprefer = \"speed\"\n").variant, "deferred-avg");  // D2's, a winner
+  const auto speed = plan_of("", "path = \"deferred\"\nprefer = \"speed\"\n");
+  EXPECT_EQ(speed.variant, "deferred-aniso");
+  EXPECT_NE(speed.reason.find("deferred-avg (D2) is not among them"), std::string::npos) << speed.reason;
+
+  const auto coat = plan_of("", "path = \"deferred\"\ncontent = \"clearcoat\"\n");
+  EXPECT_EQ(coat.variant, "none");
+  EXPECT_EQ(coat.rule, "advice");
+  EXPECT_TRUE(coat.functions.empty());
+  EXPECT_NE(coat.reason.find("no filter: on clearcoat content"), std::string::npos) << coat.reason;
+  EXPECT_NE(coat.reason.find("deferred-aniso/tail 0.0271 / 0.01300"), std::string::npos) << coat.reason;
+  for (const char* keys : {"path = \"forward\"\ntangents = true\n", "path = \"deferred\"\nnormal_maps = true\n",
+                           "path = \"forward\"\ntangents = true\ncontent = \"bumps\"\n"}) {
+    const auto taa = plan_of("taa = true\n", keys);
+    EXPECT_EQ(taa.variant, "none") << keys;
+    EXPECT_NE(taa.reason.find("content under TAA no configuration beats no SAA"), std::string::npos) << taa.reason;
+  }
+  EXPECT_NE(plan_of("taa = true\n", "path = \"forward\"\n").reason.find("sphere 0.0258 / 0.00153 against deferred-aniso 0.0322 / 0.00172"),
+            std::string::npos);
+  // A named variant, a Beckmann material and an engine's preset keep what they say.
+  EXPECT_EQ(plan_of("taa = true\n", "path = \"deferred\"\nvariant = \"deferred-sum\"\n").variant, "deferred-sum");
+  EXPECT_EQ(plan_of("taa = true\n", "path = \"deferred\"\nndf = \"beckmann\"\n").variant, "deferred-avg");
+}
+
+// A material advised no filter has nothing in the bundle; the plan says so; a scene whose every
+// material is advised none emits no file.
+TEST(Planner, NoFilterMaterialsEmitNothing) {
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"coat\"\npath = \"deferred\"\ncontent = \"clearcoat\"\n" +
+                                          "[[material]]\nname = \"ball\"\npath = \"deferred\"\n");
+  saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
+  saagen::measure_costs(Catalogue::builtin(), manifest, plan);
+  EXPECT_TRUE(plan.materials.at(0).cost.empty());
+  const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].content.find("coat ("), std::string::npos);
+  EXPECT_NE(files[0].content.find("ball ("), std::string::npos);
+  const std::string text = saagen::format_plan(Catalogue::builtin(), manifest, plan);
+  EXPECT_NE(text.find("  variant   none  [advice]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("no SAA filter, nothing in the bundle"), std::string::npos) << text;
+  const saagen::Manifest taa = parse(header + "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n");
+  EXPECT_TRUE(saagen::emit_scene(Catalogue::builtin(), taa, saagen::plan_scene(Catalogue::builtin(), taa)).empty());
+  EXPECT_EQ(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\ncontent = \"normal-mapped\"\n"),
+            "scene.toml:5:11: key 'content' of material 'm': \"normal-mapped\" needs normal_maps = true; allowed: normal_maps = true, or "
+            "another content type");
+}
+
+// With a trade table's rows for the material's content, the planner never keeps a configuration
+// that loses to the table's no-SAA row (in the error, and in TDE where both have it): it takes the
+// best allowed configuration that beats it, or no filter.
+TEST(Planner, WithATableNoFilterWinsWhereNothingBeatsIt) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.04, "tde": 0.012},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.05, "tde": 0.009},
+      {"content": "normal-mapped", "configuration": "none", "error": 0.04, "tde": 0.010},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp/tail", "error": 0.02, "tde": 0.011},
+      {"content": "normal-mapped", "configuration": "deferred-sum:geometric/tail", "error": 0.03, "tde": 0.009}]})",
+                                                                     "none-wins.json");
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\n" +
+                                          "[[material]]\nname = \"b\"\npath = \"deferred\"\nnormal_maps = true\n");
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
+  EXPECT_EQ(plan.materials.at(0).variant, "none");
+  EXPECT_EQ(plan.materials.at(0).rule, "trade table");
+  EXPECT_NE(plan.materials.at(0).reason.find("no SAA none 0.03 / 0.01 in none-wins.json (curved content)"), std::string::npos)
+      << plan.materials.at(0).reason;
+  // The lowest error (deferred-avg with the bake) loses in TDE; deferred-sum on the geometric normal beats none in both.
+  EXPECT_EQ(plan.materials.at(1).variant, "deferred-sum");
+  EXPECT_EQ(plan.materials.at(1).feed, "geometric");
+  EXPECT_EQ(plan.materials.at(1).prefilter, "none");
+  EXPECT_NE(plan.materials.at(1).reason.find("the planned deferred-avg does not"), std::string::npos) << plan.materials.at(1).reason;
+  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, plan).find("material a"), std::string::npos);
 }
 
 // deferred-aniso (D0): the G-buffer tensor from the wrapper, then its lighting pass's BRDF per
@@ -364,7 +460,7 @@ TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {
 
 TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
   const saagen::Manifest manifest =
-      parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\n");
+      parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n");
   EXPECT_TRUE(saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).per_axis);
 }
 
@@ -395,8 +491,10 @@ TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
       {"target": "glsl", "variant": "deferred-projected-space", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.10, "error": 0.01},
       {"target": "glsl", "variant": "forward-axis-projected", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.00, "error": 0.00}]})",
                                                                      "trade.json");
-  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"fast\"\npath = \"deferred\"\nprefer = \"speed\"\n" +
-                                          "[[material]]\nname = \"exact\"\npath = \"deferred\"\n");
+  // Beckmann: saagen's advice for GGX (advice.hpp) would replace a filter that loses to no SAA.
+  const saagen::Manifest manifest =
+      parse(header + "[[material]]\nname = \"fast\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n" +
+            "[[material]]\nname = \"exact\"\npath = \"deferred\"\nndf = \"beckmann\"\n");
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
   EXPECT_EQ(plan.trade_table, "trade.json");
   // forward-axis-projected is cheaper still, but a deferred material cannot use it.
@@ -415,8 +513,9 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
   const saagen::MeasuredTradeTable table =
       saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "ratio_median": 0.5}]})", "time.json");
   for (const std::string family : {"vega10", "navi21"}) {
-    const saagen::Manifest manifest = parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family +
-                                            "\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n");
+    const saagen::Manifest manifest =
+        parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family +
+              "\"\n[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n");
     EXPECT_EQ(manifest.gpu_family, family);
     const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
     // The cheapest eligible variant on this family's ISA figures; the rule's deferred-avg when it
@@ -445,7 +544,8 @@ TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
       {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.1}]})",
                                                                      "bench.json");
   const saagen::ScenePlan plan = saagen::plan_scene(
-      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"), &table);
+      Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n"),
+      &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-max") << plan.materials.at(0).reason;
   const saagen::MeasuredTradeTable unknown = saagen::parse_trade_table(
       R"({"rows": [{"variant": "deferred-sum-tangent-free", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0}]})", "u.json");
@@ -556,11 +656,11 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
       EXPECT_GT(material.cost.at(target), 0) << material.material << " " << target;
     }
   }
-  // The matrix filter plus the matrix BRDF costs more than the isotropic deferred filter.
-  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), plan.materials.at(2).cost.at("glsl"));
+  // The same filter plus the tail-preserving filtered GGX costs more than with the engine's own BRDF.
+  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), plan.materials.at(1).cost.at("glsl"));
   const std::string text = saagen::format_plan(Catalogue::builtin(), manifest, plan);
   EXPECT_NE(text.find("material car_paint"), std::string::npos);
-  EXPECT_NE(text.find("variant   forward-aniso-projected  [F1]"), std::string::npos) << text;
+  EXPECT_NE(text.find("variant   forward-axis-projected  [advice]"), std::string::npos) << text;
   EXPECT_NE(text.find("optimized SPIR-V instructions"), std::string::npos);
 }
 
@@ -578,10 +678,10 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
   EXPECT_EQ(files[3].file_name, "saa_scene_min16.hlsl");
 
   for (const saagen::EmittedFile& file : files) {
-    const bool half = file.marker.precision != "fp32";
+    const bool half = saagen::is_half(file.marker.precision);
     std::vector<std::string> roots;
     for (const saagen::MaterialPlan& material : plan.materials) {
-      if ((material.precision != "fp32") != half) continue;
+      if (saagen::is_half(material.precision) != half) continue;
       for (const std::string& name : material.functions) {
         if (std::find(roots.begin(), roots.end(), name) == roots.end()) roots.push_back(name);
       }
@@ -601,20 +701,22 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
           << file.file_name << ": " << function.name;
     }
   }
-  // The fp32 GLSL bundle: car_paint, brushed_metal and terrain; not the deferred-sum family.
+  // The fp32 GLSL bundle: car_paint, brushed_metal and terrain; not foliage's deferred-aniso.
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
-  EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));
-  EXPECT_TRUE(defined.count("forward_aniso_projected"));   // the wrapper pulls its core
-  EXPECT_TRUE(defined.count("ggx_brdf_filtered_matrix"));  // forward anisotropic GGX pulls the tail-preserving filtered GGX
-  EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));     // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
-  EXPECT_FALSE(defined.count("deferred_sum"));
+  EXPECT_TRUE(defined.count("forward_axis_projected_fragment"));
+  EXPECT_TRUE(defined.count("forward_axis_projected"));  // the wrapper pulls its core
+  EXPECT_TRUE(defined.count("deferred_sum_fragment"));
+  EXPECT_TRUE(defined.count("ggx_brdf_filtered_axis"));  // GGX pulls the tail-preserving filtered GGX
+  EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));   // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
+  EXPECT_FALSE(defined.count("forward_aniso_projected"));
+  EXPECT_FALSE(defined.count("deferred_aniso"));
   EXPECT_FALSE(defined.count("ggx_brdf_axis"));
 }
 
 TEST(Bundle, RemovingAMaterialRemovesItsCode) {
   const std::string full = read_text(example_manifest);
-  // Without brushed_metal (the only forward-axis-projected material).
-  const auto start = full.find("[[material]]\nname = \"brushed_metal\"");
+  // Without terrain (the only deferred-sum material).
+  const auto start = full.find("[[material]]\nname = \"terrain\"");
   ASSERT_NE(start, std::string::npos);
   const auto end = full.find("[[material]]", start + 1);
   const std::string reduced = full.substr(0, start) + full.substr(end);
@@ -628,13 +730,12 @@ TEST(Bundle, RemovingAMaterialRemovesItsCode) {
   for (const std::string& name : had) {
     if (!has.count(name)) removed.insert(name);
   }
-  EXPECT_TRUE(removed.count("forward_axis_projected_fragment"));
-  EXPECT_TRUE(removed.count("forward_axis_projected"));
-  EXPECT_TRUE(removed.count("filter_roughness_rectangle"));  // a helper only it used
+  EXPECT_TRUE(removed.count("deferred_sum_fragment"));
+  EXPECT_TRUE(removed.count("deferred_sum"));
   for (const std::string& name : has) EXPECT_TRUE(had.count(name)) << name;
   EXPECT_EQ(has, closure_names(after[0].marker.functions));
-  EXPECT_EQ(after[0].content.find("saa_forward_axis_projected"), std::string::npos);
-  EXPECT_EQ(after[0].content.find("brushed_metal"), std::string::npos);
+  EXPECT_EQ(after[0].content.find("saa_deferred_sum"), std::string::npos);
+  EXPECT_EQ(after[0].content.find("terrain"), std::string::npos);
   // The other precision's bundle is unchanged.
   EXPECT_EQ(before[1].content, after[1].content);
 }
@@ -676,8 +777,10 @@ TEST(Bundle, MarkerRecordsThePublicFunctions) {
   ASSERT_TRUE(marker);
   EXPECT_EQ(marker->target, "glsl");
   EXPECT_EQ(marker->prefix, "eng_");
-  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-avg", "brdf-ggx"}));
-  EXPECT_EQ(marker->functions, (std::vector<std::string>{"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}));
+  // A forward GGX material without tangents on curved content: deferred-aniso (saagen/advice.hpp).
+  EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-aniso"}));
+  EXPECT_EQ(marker->functions,
+            (std::vector<std::string>{"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}));
   EXPECT_EQ(marker->option_values.at("sigma2"), 0.5);
   EXPECT_NE(files[0].content.find("#ifndef ENG_BUNDLE_SCENE_GLSL"), std::string::npos);
   EXPECT_NE(files[0].content.find("#ifndef ENG_CORE_ONLY"), std::string::npos);
@@ -723,7 +826,7 @@ TEST_F(SceneCli, PlanPrintsVariantWhyCallAndCost) {
   const CliRun run = saagen("plan '" + example_manifest.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("material terrain"), std::string::npos);
-  EXPECT_NE(run.out.find("variant   deferred-avg  [D1]"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("variant   deferred-sum  [advice]"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("why       "), std::string::npos);
   EXPECT_NE(run.out.find("cost      glsl +"), std::string::npos) << run.out;
 }
@@ -779,7 +882,7 @@ TEST_F(SceneCli, CompileResolvesIncludesOfTheBundle) {
         "#include \"saa_scene.glsl\"\n"
         "layout(location = 0) in vec3 normal_ws;\n"
         "layout(location = 0) out vec4 color;\n"
-        "void main() { color = vec4(saa_deferred_avg_fragment(0.04, normalize(normal_ws))); }\n");
+        "void main() { color = vec4(saa_deferred_sum_fragment(0.04, normalize(normal_ws))); }\n");
   CliRun run = saagen("compile '" + (scratch_ / "shaders" / "lit.frag").string() + "' -I '" + out.string() + "' -o '" +
                       (scratch_ / "lit.spv").string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;

@@ -152,7 +152,7 @@ TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
   EXPECT_NE(text.find("kappa=0.5"), std::string::npos);
   EXPECT_NE(prefixed.words, first.words);
 
-  options.precision = "fp16";
+  options.precision = saagen::Precision::fp16;
   options.prefix = "saa_";
   const auto half = saagen::emit_spirv_libraries(Catalogue::builtin(), options).front();
   EXPECT_EQ(half.file_name, "saa_deferred_sum_fp16.spv");

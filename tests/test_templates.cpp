@@ -101,6 +101,9 @@ TEST(TemplateParser, ChecksVariantsAndOptions) {
   // And a comma in a variant id broke the marker's comma-separated variant list.
   EXPECT_EQ(parse_error("@variant v,w\nsummary: s\n"),
             "templates/test.saa:1: variant id 'v,w' must be letters, digits and '-', starting with a letter");
+  // A `precisions:` list is read into typed precisions where it is parsed.
+  EXPECT_EQ(parse_error("@variant v\nsummary: s\nprecisions: fp32 fp64\n"),
+            "templates/test.saa:3: precision 'fp64' is not one of fp32, fp16, min16");
 }
 
 TEST(TemplateParser, RecordsCallsConstantsAndClosureOrder) {
@@ -212,7 +215,9 @@ TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {
   EXPECT_EQ(saagen::builtin_target("hlsl").fragment_skeleton.prologue, "");
   EXPECT_NE(glsl.kernel_skeletons.at("quad_compute").prologue.find("#extension GL_KHR_shader_subgroup_quad : require\n"),
             std::string::npos);
-  EXPECT_EQ(glsl.with_precision("fp16").preamble.rfind("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n", 0), 0u);
+  EXPECT_EQ(glsl.with_precision(saagen::Precision::fp16)
+                .preamble.rfind("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require\n", 0),
+            0u);
   const auto pass = saagen::skeleton_sections("hlsl/deferred_pass.hlsl", "test");
   std::vector<std::string> names;
   for (const auto& [name, text] : pass) names.push_back(name);

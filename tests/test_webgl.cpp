@@ -103,7 +103,7 @@ saagen::EmittedFile emit(const std::string& variant, const std::string& precisio
   saagen::EmitOptions options;
   options.target = "gles";
   options.variants = {variant};
-  options.precision = precision;
+  options.precision = saagen::parse_precision(precision);
   return saagen::emit_variants(Catalogue::builtin(), options).front();
 }
 

@@ -65,7 +65,7 @@ TEST(WgslEmission, EveryVariantInEveryFormIsAModuleWithoutPreprocessorOrCLikeSyn
       EXPECT_FALSE(seen.empty());
       // f16 only behind `enable f16;`, which precedes every declaration.
       const bool half = code.find("f16") != std::string::npos;
-      EXPECT_EQ(half, options.precision == "fp16");
+      EXPECT_EQ(half, options.precision == saagen::Precision::fp16);
       if (half) {
         EXPECT_LT(code.find("enable f16;"),
                   code.find("const ") == std::string::npos ? code.find("fn ") : std::min(code.find("const "), code.find("fn ")));

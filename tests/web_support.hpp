@@ -50,7 +50,7 @@ inline saagen::EmitOptions wgsl_options(const std::string& precision = "fp32", b
                                         std::vector<std::string> variants = {}, const std::string& import_path = "") {
   saagen::EmitOptions options;
   options.target = "wgsl";
-  options.precision = precision;
+  options.precision = saagen::parse_precision(precision);
   options.guards = guards;
   options.domain = saagen::find_domain(domain).kind;
   options.variants = std::move(variants);

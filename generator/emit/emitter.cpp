@@ -108,7 +108,7 @@ class FileWriter {
       out << fmt::format("//   {}: {}\n//     {} -- {}; {} path; domain: {}\n", variant.id, variant.summary, variant.paper,
                          variant.equation, to_string(variant.path), variant.domain);
     }
-    out << fmt::format("// Target: {}; precision {}; {}\n", target_.description, options_.precision,
+    out << fmt::format("// Target: {}; precision {}; {}\n", target_.description, to_string(options_.precision),
                        options_.guards ? "guarded where the paper form breaks" : "UNGUARDED paper form (for comparison only)");
     write_constants_header(out, constants);
     out << "// Functions:\n";
@@ -128,7 +128,7 @@ class FileWriter {
   std::string form_suffix() const {
     std::string suffix;
     if (options_.domain != Domain::alpha2) suffix += "_" + std::string(to_string(options_.domain));
-    if (options_.precision != "fp32") suffix += "_" + options_.precision;
+    if (is_half(options_.precision)) suffix += "_" + std::string(to_string(options_.precision));
     if (!options_.guards) suffix += "_unguarded";
     return suffix;
   }
@@ -148,9 +148,9 @@ class FileWriter {
     out << fmt::format("//   Domain:      {}\n", variant.domain);
     if (!variant.precisions.empty()) {
       out << fmt::format("//   Precisions:  {} only (no error bound is derived or proven for the others)\n",
-                         fmt::join(variant.precisions, ", "));
+                         fmt::join(precision_names(variant.precisions), ", "));
     }
-    out << fmt::format("//   Target:      {}; precision {}; {}\n", target_.description, options_.precision,
+    out << fmt::format("//   Target:      {}; precision {}; {}\n", target_.description, to_string(options_.precision),
                        options_.guards ? "guarded where the paper form breaks" : "UNGUARDED paper form (for comparison only)");
   }
 
@@ -223,7 +223,7 @@ class FileWriter {
   }
 
   double value_of(const Constant& constant) const {
-    if (constant.option.empty()) return options_.precision != "fp32" && constant.half_value ? *constant.half_value : constant.value;
+    if (constant.option.empty()) return is_half(options_.precision) && constant.half_value ? *constant.half_value : constant.value;
     return option_values_.at(constant.option);
   }
 
@@ -285,12 +285,13 @@ class FileWriter {
 };
 
 // A variant with a `precisions:` list is emitted only in those: outside them no error bound holds.
-void require_precision(const Variant& variant, std::string_view precision) {
+void require_precision(const Variant& variant, Precision precision) {
   if (!supports_precision(variant, precision)) {
     throw Error(
         fmt::format("--precision {}: variant '{}' is numerically supported in {} only (no error bound is derived or proven for {}); "
                     "emit it with --precision {}",
-                    precision, variant.id, fmt::join(variant.precisions, ", "), precision, variant.precisions.front()));
+                    to_string(precision), variant.id, fmt::join(precision_names(variant.precisions), ", "), to_string(precision),
+                    to_string(variant.precisions.front())));
   }
 }
 
@@ -383,13 +384,13 @@ namespace {
 
 // A given option value must survive the target precision: a nonzero value below the smallest
 // normal number would be emitted as 0 (or a denormal flushed to 0 by most GPUs).
-void check_representable(const std::map<std::string, double>& given, std::string_view precision) {
-  const bool half = precision != "fp32";
+void check_representable(const std::map<std::string, double>& given, Precision precision) {
+  const bool half = is_half(precision);
   const double smallest_normal = half ? 0x1.0p-14 : static_cast<double>(std::numeric_limits<float>::min());
   for (const auto& [option, value] : given) {
     if (value != 0.0 && std::fabs(value) < smallest_normal) {
       throw Error(fmt::format("--{} {} is below the smallest normal {} number ({:g}) and would be emitted as 0; pass a larger value",
-                              option, value, precision, smallest_normal));
+                              option, value, to_string(precision), smallest_normal));
     }
   }
 }

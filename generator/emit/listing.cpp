@@ -62,13 +62,13 @@ Json resources_json(const Catalogue& catalogue, const Variant& variant, std::str
 // The precisions of the built-in targets (fp32 first): what a variant without a `precisions:`
 // list may be emitted in, each target offering its own (`targets` in list --json).
 std::vector<std::string> every_precision() {
-  std::vector<std::string> names = {"fp32"};
+  std::vector<Precision> kinds = {Precision::fp32};
   for (const std::string& target : builtin_target_names()) {
-    for (const auto& [name, precision] : builtin_target(target).precisions) {
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    for (const Precision kind : builtin_target(target).precision_kinds()) {
+      if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
     }
   }
-  return names;
+  return precision_names(kinds);
 }
 
 }  // namespace
@@ -93,7 +93,7 @@ nlohmann::json catalogue_json(const Catalogue& base_catalogue, std::string_view 
                         {"needs_tangents", variant.needs_tangents},
                         {"domain", variant.domain},
                         {"resources", resources_json(catalogue, variant, prefix)},
-                        {"precisions", variant.precisions.empty() ? every_precision() : variant.precisions},
+                        {"precisions", variant.precisions.empty() ? every_precision() : precision_names(variant.precisions)},
                         {"roughness_domains", variant_domains},
                         {"functions", functions}});
   }

@@ -176,7 +176,7 @@ class TemplateParser {
       else if (key == "tangents")
         variant.needs_tangents = parse_yes_no(text, value.number);
       else if (key == "precisions")
-        variant.precisions = split_words(text);
+        variant.precisions = parse_precisions(text, value.number);
       else
         fail(
             file_, value.number,
@@ -191,6 +191,16 @@ class TemplateParser {
     if (text == "deferred") return RenderPath::deferred;
     if (text == "any") return RenderPath::any;
     fail(file_, line, fmt::format("path '{}' is not one of forward, deferred, any", text));
+  }
+
+  std::vector<Precision> parse_precisions(const std::string& text, int line) const {
+    std::vector<Precision> precisions;
+    for (const std::string& word : split_words(text)) {
+      const auto precision = precision_named(word);
+      if (!precision) fail(file_, line, fmt::format("precision '{}' is not one of fp32, fp16, min16", word));
+      precisions.push_back(*precision);
+    }
+    return precisions;
   }
 
   bool parse_yes_no(const std::string& text, int line) const {
@@ -598,7 +608,7 @@ dialect::FunctionSignature signature_of(const Function& function) {
   return signature;
 }
 
-bool supports_precision(const Variant& variant, std::string_view precision) {
+bool supports_precision(const Variant& variant, Precision precision) {
   return variant.precisions.empty() ||
          std::find(variant.precisions.begin(), variant.precisions.end(), precision) != variant.precisions.end();
 }

@@ -68,7 +68,7 @@ void apply_query_pair(std::string_view pair, IncludeOptions& options) {
   else if (key == "domain")
     options.domain = value;
   else if (key == "precision")
-    options.precision = value;
+    options.precision = parse_precision(value, "precision");
   else if (key == "guards" && (value == "on" || value == "off"))
     options.guards = value == "on";
   else if (key == "guards")

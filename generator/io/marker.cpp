@@ -31,7 +31,7 @@ std::string marker_line(const EmissionMarker& marker) {
   std::string line =
       fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target, fmt::join(marker.variants, ","), marker.prefix);
   for (const auto& [option, value] : marker.option_values) line += fmt::format(" {}={}", option, decimal_literal(value));
-  if (marker.precision != "fp32") line += " precision=" + marker.precision;
+  if (marker.precision != Precision::fp32) line += fmt::format(" precision={}", to_string(marker.precision));
   if (!marker.guards) line += " guards=off";
   if (!marker.functions.empty()) line += fmt::format(" functions={}", fmt::join(marker.functions, ","));
   if (marker.domain != Domain::alpha2) line += fmt::format(" domain={}", to_string(marker.domain));
@@ -55,9 +55,11 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
       marker.target = value;
     else if (key == "prefix")
       marker.prefix = value;
-    else if (key == "precision")
-      marker.precision = value;
-    else if (key == "guards")
+    else if (key == "precision") {
+      const auto precision = precision_named(value);
+      if (!precision) return std::nullopt;
+      marker.precision = *precision;
+    } else if (key == "guards")
       marker.guards = value != "off";
     else if (key == "domain") {
       const auto domain = domain_named(value);

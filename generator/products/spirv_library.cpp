@@ -430,7 +430,7 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
                         {"module", library.file_name},
                         {"variant", variant.id},
                         {"prefix", library.marker.prefix},
-                        {"precision", library.marker.precision},
+                        {"precision", to_string(library.marker.precision)},
                         {"guards", library.marker.guards},
                         {"options", option_values},
                         {"spirv_version", env_name(universal_env(library.words))},
@@ -472,10 +472,8 @@ std::vector<SpirvLibrary> emit_spirv_libraries(const Catalogue& catalogue, const
   validate_prefix(options.prefix);
   const bool converted = options.domain != Domain::alpha2;
   if (!spirv_library_target().precisions.count(options.precision)) {
-    std::vector<std::string> names;
-    for (const auto& [name, precision] : spirv_library_target().precisions) names.push_back(name);
     throw Error(fmt::format("the spirv target compiles the GLSL emission, which has no precision '{}'; choose one of: {}",
-                            options.precision, fmt::join(names, ", ")));
+                            to_string(options.precision), fmt::join(precision_names(spirv_library_target().precision_kinds()), ", ")));
   }
   // The variants a module can hold (spirv_library_variants); unnamed, in another domain, those with
   // a roughness in and out (as `emit` does).
@@ -603,7 +601,7 @@ std::vector<std::uint32_t> import_stub_functions(const std::vector<std::uint32_t
 }
 
 std::string glsl_import_stubs(const Catalogue& catalogue, const std::vector<std::string>& functions, std::string_view prefix,
-                              std::string_view precision) {
+                              Precision precision) {
   const TargetSyntax target = spirv_library_target().with_precision(precision);
   std::string stubs;
   for (const std::string& name : functions) {

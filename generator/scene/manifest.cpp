@@ -169,11 +169,11 @@ class TableReader {
 
 // The manifest precisions every target can emit: fp32 always, fp16 when each target has a
 // half-precision form (see target_precision).
-std::vector<std::string> precisions_of_all(const std::vector<std::string>& targets) {
-  std::vector<std::string> common = {"fp32"};
-  const bool half =
-      std::all_of(targets.begin(), targets.end(), [](const std::string& target) { return target_precision(target, "fp16").has_value(); });
-  if (half) common.push_back("fp16");
+std::vector<Precision> precisions_of_all(const std::vector<std::string>& targets) {
+  std::vector<Precision> common = {Precision::fp32};
+  const bool half = std::all_of(targets.begin(), targets.end(),
+                                [](const std::string& target) { return target_precision(target, Precision::fp16).has_value(); });
+  if (half) common.push_back(Precision::fp16);
   return common;
 }
 
@@ -236,9 +236,9 @@ void check_glint_options(const Manifest& manifest, const TableReader& top, const
 // number) is named at its key, file:line:column, not as a command-line option it never was.
 void check_options_representable(const Manifest& manifest, const TableReader& top) {
   const bool half = std::any_of(manifest.materials.begin(), manifest.materials.end(),
-                                [](const Material& material) { return material.precision != "fp32"; });
+                                [](const Material& material) { return is_half(material.precision); });
   const double smallest_normal = half ? 0x1.0p-14 : static_cast<double>(std::numeric_limits<float>::min());
-  const char* precision = half ? "fp16" : "fp32";
+  const std::string_view precision = to_string(half ? Precision::fp16 : Precision::fp32);
   for (const auto& [option, value] : manifest.option_values) {
     if (!top.has(option) || value == 0.0 || std::fabs(value) >= smallest_normal) continue;
     top.fail_key(option, fmt::format("{} is below the smallest normal {} number and would be emitted as 0", value, precision),
@@ -272,7 +272,7 @@ void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
   }
 }
 
-Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<std::string>& precisions,
+Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<Precision>& precisions,
                        const Catalogue& catalogue) {
   Material material;
   material.position = position_of(table.source());
@@ -303,8 +303,8 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
         "glints", "the glinty BRDF is evaluated per light in the tangent frame: glints = true needs path = \"forward\" and tangents = true",
         "false, or true with path = \"forward\" and tangents = true");
   }
-  if (const auto precision = reader.choice("precision", precisions)) material.precision = *precision;
-  if (material.glints && material.precision != "fp32") {
+  if (const auto precision = reader.choice("precision", precision_names(precisions))) material.precision = parse_precision(*precision);
+  if (material.glints && is_half(material.precision)) {
     reader.fail_key("precision",
                     "the glinty BRDF is numerically supported in fp32 only (no half-precision error bound is derived or proven)",
                     "\"fp32\" with glints = true");
@@ -527,10 +527,10 @@ void check_manifest_limits(const Manifest& manifest, std::string_view text) {
 
 }  // namespace
 
-std::optional<std::string> target_precision(std::string_view target, std::string_view precision) {
+std::optional<Precision> target_precision(std::string_view target, Precision precision) {
   const auto& precisions = builtin_target(target).precisions;
-  if (precisions.count(std::string(precision))) return std::string(precision);
-  if (precision == "fp16" && precisions.count("min16")) return std::string("min16");
+  if (precisions.count(precision)) return precision;
+  if (precision == Precision::fp16 && precisions.count(Precision::min16)) return Precision::min16;
   return std::nullopt;
 }
 

@@ -625,17 +625,17 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   return scene;
 }
 
-EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision) {
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, Precision precision) {
   EmitOptions options;
   options.target = target;
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
   options.domain = manifest.domain;
   if (builtin_target(target).takes_import_path() && !manifest.import_path.empty()) {
-    options.import_path = precision == "fp32" ? manifest.import_path : manifest.import_path + "_" + precision;
+    options.import_path = is_half(precision) ? manifest.import_path + "_" + std::string(to_string(precision)) : manifest.import_path;
   }
   const auto form = target_precision(target, precision);
-  if (!form) throw Error(fmt::format("target {} has no {} form", target, precision));
+  if (!form) throw Error(fmt::format("target {} has no {} form", target, to_string(precision)));
   options.precision = *form;
   return options;
 }
@@ -659,7 +659,8 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     for (const std::string& target : manifest.targets) {
       // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
       if (!builtin_target(target).compiled_in_process()) continue;
-      const std::string key = fmt::format("{}|{}|{}|{}", target, material.precision, to_string(material.ndf), material.anisotropic);
+      const std::string key =
+          fmt::format("{}|{}|{}|{}", target, to_string(material.precision), to_string(material.ndf), material.anisotropic);
       const std::string shade = shade_statements(catalogue, material, &material_plan);
       // Everything the cost depends on: the baseline's key, the bundle's closure, the kernel's body.
       const std::string configuration =
@@ -717,7 +718,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
                                        material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
     if (material.normal_maps) traits.push_back("normal maps");
-    traits.push_back(material.precision);
+    traits.emplace_back(to_string(material.precision));
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
     if (material.glints) traits.push_back("glints");
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
@@ -769,7 +770,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
         if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target, material_plan.cost.at(target)));
       }
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
-                          fmt::join(costs, ", "), material.precision,
+                          fmt::join(costs, ", "), to_string(material.precision),
                           !material_plan.brdf                              ? " + axis BRDF"
                           : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
                                                                            : " + matrix BRDF",
@@ -791,16 +792,16 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 }
 
 std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
-  std::vector<std::string> precisions;
+  std::vector<Precision> precisions;
   for (const MaterialPlan& material_plan : plan.materials) {
     if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end())
       precisions.push_back(material_plan.precision);
   }
-  std::stable_partition(precisions.begin(), precisions.end(), [](const std::string& name) { return name == "fp32"; });
+  std::stable_partition(precisions.begin(), precisions.end(), [](Precision precision) { return !is_half(precision); });
 
   std::vector<EmittedFile> files;
   for (const std::string& target : manifest.targets) {
-    for (const std::string& precision : precisions) {
+    for (const Precision precision : precisions) {
       BundleRequest request;
       request.name = manifest.name;
       for (std::size_t index = 0; index < plan.materials.size(); ++index) {

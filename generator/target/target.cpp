@@ -202,7 +202,9 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     target.kernel_skeletons[kind] = parse_skeleton(skeleton, source);
   }
   for (const auto& [name, entry] : require(json, "precisions", source).items()) {
-    Precision precision;
+    const auto kind = precision_named(name);
+    if (!kind) throw Error(fmt::format("{}: unknown precision '{}' in 'precisions'; use fp32, fp16 or min16", source, name));
+    PrecisionForm precision;
     for (const auto& [type, spelling] : require(entry, "types", source).items()) {
       if (!target.types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
       precision.types[type] = spelling.get<std::string>();
@@ -222,9 +224,9 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
     if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
     read_notes(entry, precision.intrinsic_notes, source);
-    target.precisions[name] = std::move(precision);
+    target.precisions[*kind] = std::move(precision);
   }
-  if (!target.precisions.count("fp32")) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
+  if (!target.precisions.count(Precision::fp32)) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
   if (json.contains("glue_names")) {
     for (const auto& [name, spelling] : json.at("glue_names").items()) {
       if (!spelling.is_string()) throw Error(fmt::format("{}: 'glue_names.{}' must be a string", source, name));
@@ -326,12 +328,17 @@ std::vector<std::string> builtin_target_names() {
   return names;
 }
 
-TargetSyntax TargetSyntax::with_precision(std::string_view precision) const {
+std::vector<Precision> TargetSyntax::precision_kinds() const {
+  std::vector<Precision> kinds;
+  for (const auto& [kind, form] : precisions) kinds.push_back(kind);
+  return kinds;
+}
+
+TargetSyntax TargetSyntax::with_precision(Precision precision) const {
   const auto found = precisions.find(precision);
   if (found == precisions.end()) {
-    std::vector<std::string> names;
-    for (const auto& [name, entry] : precisions) names.push_back(name);
-    throw Error(fmt::format("target {} has no precision '{}'; choose one of: {}", name, precision, fmt::join(names, ", ")));
+    throw Error(fmt::format("target {} has no precision '{}'; choose one of: {}", name, to_string(precision),
+                            fmt::join(precision_names(precision_kinds()), ", ")));
   }
   TargetSyntax result = *this;
   for (const auto& [type, spelling] : found->second.types) result.types[type] = spelling;

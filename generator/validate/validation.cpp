@@ -281,7 +281,7 @@ std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, cons
   for (std::size_t index = 0; index < modules.size(); ++index) {
     const Module& module = modules[index];
     // An f16 module compiles only on a device with shader-f16: without it, it is not judged.
-    if (!has_f16 && find_marker(files[module.file].second)->precision != "fp32") {
+    if (!has_f16 && is_half(find_marker(files[module.file].second)->precision)) {
       validations[module.file].checks.push_back({module.check + " skipped: the WebGPU adapter offers no shader-f16", true, "", 0});
       continue;
     }

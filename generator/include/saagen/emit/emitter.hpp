@@ -20,7 +20,7 @@ struct EmitOptions {
   std::vector<std::string> variants;  // empty: every variant
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // e.g. {"sigma2", 0.25}; missing: the default
-  std::string precision = "fp32";               // a precision of the target table: fp32, fp16, min16 (HLSL)
+  Precision precision = Precision::fp32;        // a precision of the target table: fp32, fp16, min16 (HLSL)
   bool guards = true;                           // false: the unguarded paper form (for comparison)
   // Roughness domain of the emitted functions' roughness in and out (saagen/emit/engines.hpp):
   // alpha2 (the templates' own), alpha, perceptual or smoothness.

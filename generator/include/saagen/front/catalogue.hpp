@@ -3,6 +3,7 @@
 #pragma once
 
 #include "saagen/front/syntax_tree.hpp"
+#include "saagen/precision.hpp"
 
 #include <map>
 #include <memory>
@@ -84,7 +85,7 @@ struct Variant {
   std::vector<std::string> functions;  // public functions, in documentation order
   // `precisions:` the precisions the variant is numerically supported in (each with a derived
   // and proven error bound); empty: every precision of the target.
-  std::vector<std::string> precisions;
+  std::vector<Precision> precisions;
   std::string source_file;
   int line = 0;
 };
@@ -138,7 +139,7 @@ class Catalogue {
 // `resource NAME` in templates/intrinsics.sig, e.g. glint_dictionary), sorted: what an includer
 // must declare, in every target (each target table spells the declaration).
 // Whether `variant` may be emitted in `precision` (its `precisions:` list, or any when it has none).
-bool supports_precision(const Variant& variant, std::string_view precision);
+bool supports_precision(const Variant& variant, Precision precision);
 
 // The templates compiled into this build (templates/*.saa), in file-name order: the files carry
 // a numeric prefix, so that order is catalogue order.

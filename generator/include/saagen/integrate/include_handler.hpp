@@ -29,7 +29,7 @@ struct IncludeOptions {
   std::optional<double> kappa;
   std::optional<std::string> preset;
   std::optional<std::string> domain;
-  std::string precision = "fp32";
+  Precision precision = Precision::fp32;
   bool guards = true;
 };
 

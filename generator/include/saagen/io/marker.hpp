@@ -4,6 +4,7 @@
 #pragma once
 
 #include "saagen/domain.hpp"
+#include "saagen/precision.hpp"
 
 #include <map>
 #include <optional>
@@ -50,7 +51,7 @@ struct EmissionMarker {
   std::vector<std::string> variants;
   std::string prefix;
   std::map<std::string, double> option_values;
-  std::string precision = "fp32";
+  Precision precision = Precision::fp32;
   bool guards = true;
   // A bundle's public functions (`functions=` in the marker); empty: every public function of
   // `variants` (a per-variant file).

@@ -78,7 +78,7 @@ std::vector<std::uint32_t> import_stub_functions(const std::vector<std::uint32_t
 // GLSL stub definitions (bodies returning zero) of the given template functions under `prefix`,
 // for a consumer shader compiled before import_stub_functions(). Types follow `precision`.
 std::string glsl_import_stubs(const Catalogue& catalogue, const std::vector<std::string>& functions, std::string_view prefix,
-                              std::string_view precision = "fp32");
+                              Precision precision = Precision::fp32);
 
 // Adds `OpModuleProcessed "<text>"` to a module (disassemble, insert, assemble with the ids
 // preserved). Used to carry the saagen marker line (text ends with '\n') in binary outputs.

@@ -8,6 +8,7 @@
 
 #include "saagen/domain.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/precision.hpp"
 
 #include <filesystem>
 #include <map>
@@ -35,8 +36,8 @@ struct Material {
   bool tangents = false;
   Ndf ndf = Ndf::ggx;
   bool normal_maps = false;
-  bool glints = false;             // the glinty BRDF (forward, tangents): the planner picks a glint variant
-  std::string precision = "fp32";  // "fp32" or "fp16" (per target: see target_precision)
+  bool glints = false;                    // the glinty BRDF (forward, tangents): the planner picks a glint variant
+  Precision precision = Precision::fp32;  // fp32 or fp16 (per target: see target_precision)
   Preference prefer = Preference::accuracy;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header
@@ -72,7 +73,7 @@ struct Manifest {
 // The target's precision for a manifest precision: the same name when the target has it, and
 // for "fp16" a target without an fp16 form falls back to "min16" (HLSL min16float); nullopt
 // when the target has neither.
-std::optional<std::string> target_precision(std::string_view target, std::string_view precision);
+std::optional<Precision> target_precision(std::string_view target, Precision precision);
 
 // Keys a manifest may have, for documentation and for the unknown-key message.
 const std::vector<std::string>& manifest_keys();

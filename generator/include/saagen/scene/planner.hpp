@@ -64,7 +64,7 @@ struct MaterialPlan {
   // path: that advice with its figures (the filter is still planned and emitted); empty otherwise.
   std::string no_filter_advice;
   bool per_axis = false;  // isotropic filter on anisotropic roughness: once per axis
-  std::string precision = "fp32";
+  Precision precision = Precision::fp32;
   std::map<std::string, long> cost;  // target -> optimized SPIR-V instructions added
   // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
   // normal) and whether to prefilter the normal map ("none", "toksvig", "lean", or an engine's
@@ -109,7 +109,7 @@ std::string rules_text();
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan);
 
 // The emission options of a manifest for one target and precision.
-EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, const std::string& precision);
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, Precision precision);
 
 // The catalogue a manifest is planned and emitted over: the glint catalogue when a material has
 // glints = true (it holds the SAA variants too), else `catalogue` (plans and bundles without

@@ -3,6 +3,7 @@
 // emitted file. One table per target; no per-target copy of any formula.
 #pragma once
 
+#include "saagen/precision.hpp"
 #include "saagen/target/language.hpp"
 
 #include <map>
@@ -18,10 +19,10 @@ struct ValidationSkeleton {
   std::string epilogue;  // after it; {calls} receives one statement per function
 };
 
-// A precision the target can emit: type spellings that replace the defaults, a suffix for
+// How the target spells a precision it can emit: type spellings that replace the defaults, a suffix for
 // floating-point literals ("hf" for GLSL float16_t), a preamble (an #extension line), and
 // whether the HLSL front end must enable native 16-bit types.
-struct Precision {
+struct PrecisionForm {
   std::map<std::string, std::string, std::less<>> types;
   std::map<std::string, std::string, std::less<>> intrinsics;  // overrides; may use {prefix}
   std::string literal_suffix;
@@ -113,7 +114,7 @@ struct TargetSyntax {
   // Skeletons that run emitted functions over buffers ("compute", "quad_compute",
   // "fragment"); see saagen/validate/kernels.hpp.
   std::map<std::string, ValidationSkeleton, std::less<>> kernel_skeletons;
-  std::map<std::string, Precision, std::less<>> precisions;  // "fp32" (the default), "fp16", ...
+  std::map<Precision, PrecisionForm> precisions;  // fp32 (the default), fp16, ...
   // Resources that some templates sample (optional key "resources"; the glint dictionary of
   // templates/glints/): the intrinsics that read one, and the declaration that validation and
   // kernel skeletons put before an emitted file whose functions use them ({macro_prefix} is
@@ -136,7 +137,9 @@ struct TargetSyntax {
 
   // This target with the types, literal suffix and preamble of `precision`; throws
   // saagen::Error naming the precisions the target has when it has no such precision.
-  TargetSyntax with_precision(std::string_view precision) const;
+  TargetSyntax with_precision(Precision precision) const;
+  // The precisions the table defines, fp32 first.
+  std::vector<Precision> precision_kinds() const;
   // Replaces {prefix} and {macro_prefix} in the intrinsic patterns and the preamble (precision
   // helpers are emitted under the emission's prefix).
   TargetSyntax with_prefix(std::string_view prefix, std::string_view macro_prefix) const;
