@@ -1,5 +1,6 @@
 #include "saagen/front/catalogue.hpp"
 
+#include "saagen/advice.hpp"
 #include "saagen/error.hpp"
 #include "saagen/front/dialect.hpp"
 #include "saagen/front/syntax_tree.hpp"
@@ -405,11 +406,28 @@ Catalogue Catalogue::with_variants(std::vector<Variant> variants) const {
   return copy;
 }
 
+// The built-in templates' {advice:...} fields: saagen's advice (saagen/advice.hpp), so that the
+// emitted headers name the normal and the default constants the planner plans with.
+namespace {
+std::string with_advice(std::string text) {
+  const std::pair<std::string_view, std::string> fields[] = {
+      {"{advice:normal}", std::string(advice::kNormalText)},
+      {"{advice:sigma2}", fmt::format("{}", advice::kSigma2)},
+      {"{advice:kappa}", fmt::format("{}", advice::kKappa)},
+  };
+  for (const auto& [field, value] : fields) {
+    for (std::size_t at = text.find(field); at != std::string::npos; at = text.find(field, at + value.size()))
+      text.replace(at, field.size(), value);
+  }
+  return text;
+}
+}  // namespace
+
 std::vector<TemplateSource> builtin_template_sources() {
   std::vector<TemplateSource> sources;
   for (const auto& [name, text] : embedded::files()) {
     if (name.rfind("templates/", 0) == 0 && name.size() > 4 && name.substr(name.size() - 4) == ".saa") {
-      sources.push_back({name, std::string(text)});
+      sources.push_back({name, with_advice(std::string(text))});
     }
   }
   return sources;

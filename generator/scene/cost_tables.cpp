@@ -192,6 +192,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
       const auto error = number(row, "error", index);
       if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
       entry.error = *error;
+      entry.tde = number(row, "tde", index);
       table.content_rows.push_back(std::move(entry));
     }
   }

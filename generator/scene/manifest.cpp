@@ -297,6 +297,12 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   material.tangents = reader.boolean("tangents").value_or(false);
   if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
   material.normal_maps = reader.boolean("normal_maps").value_or(false);
+  const std::vector<std::string> contents(advice::kContentNames.begin(), advice::kContentNames.end());
+  if (const auto content = reader.choice("content", contents)) {
+    material.content = advice::content_named(*content);
+    if (material.content == advice::Content::normal_mapped && !material.normal_maps)
+      reader.fail_key("content", "\"normal-mapped\" needs normal_maps = true", "normal_maps = true, or another content type");
+  }
   material.glints = reader.boolean("glints").value_or(false);
   if (material.glints && (material.path != RenderPath::forward || !material.tangents)) {
     reader.fail_key(
@@ -527,6 +533,11 @@ void check_manifest_limits(const Manifest& manifest, std::string_view text) {
 
 }  // namespace
 
+advice::Content content_of(const Material& material) {
+  if (material.content) return *material.content;
+  return material.normal_maps ? advice::Content::normal_mapped : advice::Content::curved;
+}
+
 std::optional<Precision> target_precision(std::string_view target, Precision precision) {
   const auto& precisions = builtin_target(target).precisions;
   if (precisions.count(precision)) return precision;
@@ -555,7 +566,7 @@ const std::vector<std::string>& manifest_keys() {
 
 const std::vector<std::string>& material_keys() {
   static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",
-                                                "normal_maps", "glints", "precision",   "prefer",   "variant"};
+                                                "normal_maps", "content", "glints", "precision", "prefer", "variant"};
   return keys;
 }
 

@@ -84,11 +84,6 @@ const std::vector<Rule>& rules() {
 constexpr const char* kMeasuredNormalAdvice =
     "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
     "normal-mapped normal, 0.1465 with Toksvig prefiltering; forward-aniso-projected 0.0331, 0.0390, 0.1457 with LEAN";
-// With the tail-preserving filtered GGX the planner shades GGX materials with (`saagen bench --preset
-// medium`, the "normal-mapped" rows of its JSON; docs/FILTERED_GGX.md):
-constexpr const char* kMeasuredNormalAdviceTail =
-    "mean LDR-FLIP on normal-mapped scenes with the tail-preserving filtered GGX, sigma2 0.25: deferred-avg 0.0381 on the "
-    "normal-mapped normal, 0.0411 on the vertex normal, 0.0415 with Toksvig prefiltering; deferred-sum 0.0367; no SAA 0.0411";
 
 // `saagen bench --preset medium --sigma2 X --json trade.json; python3 scripts/beats_baselines.py
 // trade.json tail` (docs/FILTERED_GGX.md).
@@ -394,13 +389,14 @@ Configuration parse_configuration(const std::string& id) {
   return c;
 }
 
-// Without a trade table: what saagen's own trade measured (README "Does it make images better?").
-std::string measured_normal_advice(const MaterialPlan& plan, Ndf ndf) {
+// Without a trade table, for Beckmann materials: what saagen's own trade measured with the papers'
+// lobe (README "Does it make images better?"); GGX materials get saagen's advice (advice.hpp).
+std::string measured_normal_advice(const MaterialPlan& plan) {
   return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
                      plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
                                                             "tonemapped RMSE but adds haze)")
                                               : fmt::format(", prefilter the map ({})", plan.prefilter),
-                     ndf == Ndf::ggx ? kMeasuredNormalAdviceTail : kMeasuredNormalAdvice);
+                     kMeasuredNormalAdvice);
 }
 
 // The table's normal-mapped content rows the material may use: any eligible variant's when the
@@ -458,6 +454,141 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
   plan.prefilter = c.prefilter;
   plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {}){}", best->configuration, table.source_name,
                                    fmt::join(figures, ", "), prefilter_advice(table, eligible, choose_variant, plan));
+}
+
+bool can_use(const std::vector<const Variant*>& eligible, std::string_view id) {
+  return std::any_of(eligible.begin(), eligible.end(), [&](const Variant* variant) { return variant->id == id; });
+}
+
+std::string content_words(advice::Content content, bool taa) {
+  return fmt::format("{} content{}", advice::name(content), taa ? " under TAA" : "");
+}
+
+std::string figure_text(std::string_view configuration, double flip, std::optional<double> tde) {
+  return tde ? fmt::format("{} {} / {}", configuration, fixed(flip), fixed(*tde)) : fmt::format("{} {}", configuration, fixed(flip));
+}
+
+// Recommends no filter: the material shades with the engine's own BRDF at its own roughness, and
+// the bundle holds nothing for it.
+void plan_no_filter(const Material& material, std::string rule, std::string reason, MaterialPlan& plan) {
+  plan.variant = "none";
+  plan.rule = std::move(rule);
+  plan.reason = std::move(reason);
+  plan.brdf.reset();
+  plan.no_filter_advice.clear();
+  if (material.normal_maps) {
+    plan.feed = "shading";
+    plan.prefilter = "none";
+    plan.normal_advice = "no filter: shade the normal-mapped normal at the material's own roughness";
+  }
+}
+
+// The measured configuration's feed and prefilter, for a normal-mapped material.
+void take_normal_handling(const Material& material, const Configuration& c, std::string figures, MaterialPlan& plan) {
+  if (!material.normal_maps) return;
+  plan.feed = c.feed;
+  plan.prefilter = c.prefilter;
+  const std::string bake = c.prefilter == "none"
+                               ? std::string("no texture prefilter")
+                               : fmt::format(
+                                     "bake the map into the roughness with `saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} "
+                                     "--roughness R --gltf` (docs/PREFILTER.md)",
+                                     c.prefilter);
+  plan.normal_advice = fmt::format("feed the {} normal; {}; measured: {}", c.feed, bake, std::move(figures));
+}
+
+// Without a trade table's rows for the material's content: saagen's advice (saagen/advice.hpp).
+// The plan keeps a filter only where it is one of the configurations that beat no SAA in both
+// LDR-FLIP and TDE on that content; accuracy takes the first of them the material can use, speed
+// keeps its cheaper choice when it is one of them, else takes that first one; where the material
+// can use none of them, no filter.
+void apply_advice(const Material& material, bool taa, const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
+  const advice::Content content = content_of(material);
+  const advice::ContentAdvice& entry = advice::lookup(content, taa);
+  std::size_t winners = 0;
+  const advice::Figure* chosen = nullptr;
+  const advice::Figure* kept = nullptr;
+  for (const advice::Figure& figure : entry.winners) {
+    if (figure.configuration.empty()) continue;
+    ++winners;
+    const std::string variant = parse_configuration(std::string(figure.configuration)).variant;
+    if (!chosen && can_use(eligible, variant)) chosen = &figure;
+    if (!kept && variant == plan.variant) kept = &figure;
+  }
+  if (!chosen) {
+    std::vector<std::string> listed;
+    for (const advice::Figure& figure : entry.winners)
+      if (!figure.configuration.empty()) listed.push_back(figure_text(figure.configuration, figure.flip, figure.tde));
+    plan_no_filter(material, "advice",
+                   fmt::format("no filter: on {} no configuration {}beats no SAA in both LDR-FLIP and TDE in saagen's trade ({}{}); "
+                               "name a variant (variant = \"...\") to filter anyway",
+                               content_words(content, taa), winners ? "this material can use " : "",
+                               winners ? fmt::format("those that do: {}; ", fmt::join(listed, ", ")) : "", entry.evidence),
+                   plan);
+    return;
+  }
+  const advice::Figure& taken = material.prefer == Preference::speed && kept ? *kept : *chosen;
+  const Configuration c = parse_configuration(std::string(taken.configuration));
+  const std::string measured =
+      fmt::format("LDR-FLIP / TDE {} against no SAA's {} / {} on {} ({})", figure_text(taken.configuration, taken.flip, taken.tde),
+                  fixed(entry.none.flip), fixed(entry.none.tde), content_words(content, taa), entry.evidence);
+  if (c.variant == plan.variant) {
+    plan.reason += fmt::format(" [saagen's trade: {}]", measured);
+  } else {
+    plan.reason = fmt::format(
+        "the first this material can use of the {} configuration(s) that beat no SAA in both metrics in saagen's trade: {}; "
+        "{} ({}) is not among them",
+        winners, measured, plan.variant, plan.rule);
+    plan.variant = c.variant;
+    plan.rule = "advice";
+    plan.no_filter_advice.clear();
+  }
+  take_normal_handling(material, c,
+                       figure_text(taken.configuration, taken.flip, taken.tde) +
+                           fmt::format(" against no SAA's {} / {}", fixed(entry.none.flip), fixed(entry.none.tde)),
+                       plan);
+}
+
+// With a trade table's rows for the material's content: the planned configuration must beat the
+// table's no-SAA row in its error (and TDE where both have one); else the best allowed one that
+// does, else no filter.
+void check_against_no_filter(const MeasuredTradeTable& table, const Material& material, const std::vector<const Variant*>& eligible,
+                             bool choose_variant, MaterialPlan& plan) {
+  const std::string content(advice::table_content(content_of(material)));
+  std::optional<ContentRow> none, planned, best;
+  std::vector<const ContentRow*> rows;
+  for (const ContentRow& row : table.content_rows)
+    if (row.content == content && !content.empty()) rows.push_back(&row);
+  for (const ContentRow* row : rows)
+    if (row->configuration == "none") none = *row;
+  if (!none) return;
+  const auto beats_none = [&](const ContentRow& row) {
+    return row.error < none->error && (!row.tde || !none->tde || *row.tde < *none->tde);
+  };
+  const auto allowed = [&](const Configuration& c) { return choose_variant ? can_use(eligible, c.variant) : c.variant == plan.variant; };
+  for (const ContentRow* row : rows) {
+    const Configuration c = parse_configuration(row->configuration);
+    if (c.variant == "none" || row->configuration.rfind("engine-", 0) == 0 || !allowed(c)) continue;
+    const bool is_planned = c.variant == plan.variant && (!material.normal_maps || (c.feed == plan.feed && c.prefilter == plan.prefilter));
+    if (is_planned && (!planned || row->error < planned->error)) planned = *row;
+    if (beats_none(*row) && (!best || row->error < best->error)) best = *row;
+  }
+  if (!planned || beats_none(*planned)) return;
+  const std::string against =
+      fmt::format("no SAA {} in {} ({} content)", figure_text("none", none->error, none->tde), table.source_name, content);
+  if (!best) {
+    plan_no_filter(material, "trade table",
+                   fmt::format("no filter: no configuration this material can use beats {}; the planned {} measured {}", against,
+                               plan.variant, figure_text(planned->configuration, planned->error, planned->tde)),
+                   plan);
+    return;
+  }
+  const Configuration c = parse_configuration(best->configuration);
+  plan.reason = fmt::format("{} beats {}; the planned {} does not ({})", figure_text(best->configuration, best->error, best->tde), against,
+                            plan.variant, figure_text(planned->configuration, planned->error, planned->tde));
+  plan.variant = c.variant;
+  plan.rule = "trade table";
+  take_normal_handling(material, c, figure_text(best->configuration, best->error, best->tde), plan);
 }
 
 void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {
@@ -609,16 +740,45 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       if (table && !table->content_rows.empty()) {
         choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
       }
-      if (plan.normal_advice.empty()) {
-        // What the measurements favour: the normal-mapped normal with the tail-preserving GGX the
-        // planner shades GGX with, the vertex normal with the papers' lobe.
-        plan.feed = material.ndf == Ndf::ggx ? "shading" : "geometric";
-        plan.normal_advice = measured_normal_advice(plan, material.ndf);
+      if (plan.normal_advice.empty() && material.ndf == Ndf::ggx) {
+        // saagen's advice for normal-mapped content (saagen/advice.hpp): the geometric normal and
+        // the map baked into the roughness.
+        const advice::ContentAdvice& entry = advice::lookup(advice::Content::normal_mapped, false);
+        const advice::Figure& best = entry.winners.front();
+        Configuration c;
+        c.feed = advice::kFeed;
+        c.prefilter = advice::kPrefilter;
+        take_normal_handling(
+            material, c,
+            fmt::format("{} against no SAA's {} / {} (saagen's trade on normal-mapped content)",
+                        figure_text(best.configuration, best.flip, best.tde), fixed(entry.none.flip), fixed(entry.none.tde)),
+            plan);
+      } else if (plan.normal_advice.empty()) {
+        // What the measurements favour with the papers' lobe: the vertex normal.
+        plan.feed = "geometric";
+        plan.normal_advice = measured_normal_advice(plan);
       }
     }
-    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && !material.normal_maps && !material.variant &&
-        plan.variant != "deferred-aniso")
+    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
+        !material.variant && plan.variant != "deferred-aniso")
       plan.no_filter_advice = kMeasuredDeferredCurved;
+    // What the measured content says: GGX materials the planner chooses for (no variant named, no
+    // engine preset) never keep a configuration that loses to no SAA on their content.
+    if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
+      const bool choose_variant = material.prefer == Preference::accuracy;
+      const std::string_view content = advice::table_content(content_of(material));
+      const bool table_has_content =
+          table && std::any_of(table->content_rows.begin(), table->content_rows.end(),
+                               [&](const ContentRow& row) { return !content.empty() && row.content == content; });
+      if (table_has_content)
+        check_against_no_filter(*table, material, eligible, choose_variant, plan);
+      else if (!table || !table->has_errors() || material.prefer == Preference::speed)
+        apply_advice(material, manifest.taa, eligible, plan);
+    }
+    if (plan.variant == "none") {
+      scene.materials.push_back(std::move(plan));
+      continue;
+    }
     choose_functions(catalogue, material, manifest.preset.has_value(), plan);
     scene.materials.push_back(std::move(plan));
   }
@@ -648,7 +808,8 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
   for (std::size_t index = 0; index < plan.materials.size(); ++index) {
     MaterialPlan& material_plan = plan.materials[index];
     const Material& material = manifest.materials.at(index);
-    if (material.glints) continue;  // no SAA filter to cost: the glinty BRDF replaces the BRDF (docs/GLINTS.md, cost)
+    if (material.glints || material_plan.variant == "none")
+      continue;  // no SAA filter to cost: the glinty BRDF replaces the BRDF (docs/GLINTS.md, cost)
     const std::string axis_brdf = std::string(to_string(material.ndf)) + "_brdf_axis";
     BundleRequest request;
     request.name = "cost_" + material.name;
@@ -724,6 +885,11 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
+    if (material_plan.variant == "none") {
+      text += "  shade     the engine's own BRDF at the material's own roughness: no SAA filter, nothing in the bundle\n";
+      if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
+      continue;
+    }
 
     // Under another roughness domain the material calls the wrapper's converting form.
     const Function& planned = *catalogue.find_function(material_plan.wrapper);
@@ -794,6 +960,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
 std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
   std::vector<Precision> precisions;
   for (const MaterialPlan& material_plan : plan.materials) {
+    if (material_plan.variant == "none") continue;  // advised no filter: nothing to emit
     if (std::find(precisions.begin(), precisions.end(), material_plan.precision) == precisions.end())
       precisions.push_back(material_plan.precision);
   }
@@ -806,7 +973,7 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
       request.name = manifest.name;
       for (std::size_t index = 0; index < plan.materials.size(); ++index) {
         const MaterialPlan& material_plan = plan.materials[index];
-        if (material_plan.precision != precision) continue;
+        if (material_plan.precision != precision || material_plan.variant == "none") continue;
         for (const std::string& name : material_plan.functions) {
           if (std::find(request.functions.begin(), request.functions.end(), name) == request.functions.end())
             request.functions.push_back(name);

@@ -1,6 +1,7 @@
 #version 450
-// Forward pass of an anisotropic, normal-mapped material (car_paint in scene.saagen.toml):
-// rule F1 gives forward-aniso-projected (a filtered roughness matrix) and the matrix GGX BRDF.
+// Forward pass of an anisotropic, normal-mapped material (car_paint in scene.saagen.toml): saagen's
+// advice for normal-mapped content (`saagen plan`) gives forward-axis-projected fed the geometric
+// normal, the normal map baked into the roughness, and the tail-preserving filtered GGX.
 #include "saa_scene.glsl"
 
 layout(location = 0) in vec3 in_position_ws;
@@ -14,31 +15,32 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 light_radiance;
 } frame;
 layout(set = 1, binding = 0) uniform MaterialParameters {
-  vec2 alpha;  // GGX alpha along the tangent and the bitangent
+  // GGX alpha along the tangent and the bitangent, with the normal map's variance baked in
+  // (`saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method hdrp --roughness R --gltf`).
+  vec2 alpha;
 } material;
 layout(set = 1, binding = 1) uniform sampler2D normal_map;  // tangent space
 
 layout(location = 0) out vec4 out_radiance;
 
 void main() {
-  // Per-pixel frame around the normal-mapped normal: with the tail-preserving filtered GGX the
-  // plan shades with, the filter measured best seeing the map's detail (`saagen plan`).
+  // The filter measures the geometric frame (the map's detail is in the baked roughness); the
+  // BRDF shades in the frame of the normal-mapped normal.
+  vec3 l = normalize(frame.light_direction_ws.xyz);
+  vec3 v = normalize(frame.camera_position_ws.xyz - in_position_ws);
   vec3 n = normalize(in_normal_ws);
   vec3 t = normalize(in_tangent_ws.xyz - n * dot(n, in_tangent_ws.xyz));
   vec3 b = cross(n, t) * in_tangent_ws.w;
+  vec3 half_geometric = normalize(vec3(dot(l, t), dot(l, b), dot(l, n)) + vec3(dot(v, t), dot(v, b), dot(v, n)));
   vec3 mapped = texture(normal_map, in_uv).xyz * 2.0 - 1.0;
   n = normalize(t * mapped.x + b * mapped.y + n * mapped.z);
   t = normalize(t - n * dot(n, t));
   b = cross(n, t) * in_tangent_ws.w;
-
-  vec3 l = normalize(frame.light_direction_ws.xyz);
-  vec3 v = normalize(frame.camera_position_ws.xyz - in_position_ws);
   vec3 i_ts = vec3(dot(l, t), dot(l, b), dot(l, n));
   vec3 o_ts = vec3(dot(v, t), dot(v, b), dot(v, n));
-  vec3 half_ts = normalize(i_ts + o_ts);
 
   vec2 alpha2 = material.alpha * material.alpha;
-  vec3 roughness_matrix = saa_forward_aniso_projected_fragment(alpha2, half_ts);
-  float specular = saa_ggx_brdf_filtered_matrix(i_ts, o_ts, roughness_matrix, alpha2);
+  vec2 filtered = saa_forward_axis_projected_fragment(alpha2, half_geometric);
+  float specular = saa_ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);
   out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
 }

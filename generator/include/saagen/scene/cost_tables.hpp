@@ -31,6 +31,7 @@ struct ContentRow {
   std::string content;
   std::string configuration;
   double error = 0.0;
+  std::optional<double> tde;  // the temporal difference error, when the table has it
 };
 
 struct MeasuredTradeTable {

@@ -6,6 +6,7 @@
 // allowed: ...". toml++ gives every key and value its source position.
 #pragma once
 
+#include "saagen/advice.hpp"
 #include "saagen/domain.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/precision.hpp"
@@ -36,6 +37,9 @@ struct Material {
   bool tangents = false;
   Ndf ndf = Ndf::ggx;
   bool normal_maps = false;
+  // `content`: what the surface looks like at pixel scale, which decides saagen's advice
+  // (saagen/advice.hpp); nullopt: normal-mapped with normal_maps = true, else curved.
+  std::optional<advice::Content> content;
   bool glints = false;                    // the glinty BRDF (forward, tangents): the planner picks a glint variant
   Precision precision = Precision::fp32;  // fp32 or fp16 (per target: see target_precision)
   Preference prefer = Preference::accuracy;
@@ -69,6 +73,9 @@ struct Manifest {
   // "FILE:LINE:COLUMN: " for a position in this manifest.
   std::string where(SourcePosition position) const;
 };
+
+// The material's content type: `content`, else normal-mapped with normal maps, else curved.
+advice::Content content_of(const Material& material);
 
 // The target's precision for a manifest precision: the same name when the target has it, and
 // for "fp16" a target without an fp16 form falls back to "min16" (HLSL min16float); nullopt

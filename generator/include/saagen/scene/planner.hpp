@@ -34,6 +34,7 @@
 // errors); the rules decide otherwise. lavapipe time never decides.
 #pragma once
 
+#include "saagen/advice.hpp"
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/scene/cost_tables.hpp"
@@ -84,15 +85,10 @@ struct ScenePlan {
   std::string options_reason;
 };
 
-// The pixel-filter variance saagen plans for GGX: with the tail-preserving filtered GGX the
-// planner shades with, the pixel filter's own variance (T&K 2019's 0.25, the ground truth's
-// filter) measured best (`saagen bench --preset medium --sigma2 X`; docs/FILTERED_GGX.md). With
-// the papers' GGX(alpha^2 + K) a quarter of it was better only because it shrank the halo.
-inline constexpr double kGgxSigma2 = 0.25;
-// The variance planned under TAA (Manifest::taa, `plan --taa`): the jitter already integrates
-// the pixel footprint, and under `saagen bench --preset medium --taa` the best saagen
-// configuration improves as sigma^2 falls from 0.25 to 0.0625 on every scene (docs/TAA.md).
-inline constexpr double kTaaSigma2 = 0.0625;
+// The pixel-filter variance saagen plans for GGX, and under TAA (Manifest::taa, `plan --taa`):
+// saagen's advice (saagen/advice.hpp, where the measurements behind them are).
+inline constexpr double kGgxSigma2 = advice::kSigma2;
+inline constexpr double kTaaSigma2 = advice::kTaaSigma2;
 
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).

@@ -1,0 +1,140 @@
+// saagen's advice, in one place: per content type, render path and TAA, the configuration its own
+// trade measured best among those that beat no SAA in both LDR-FLIP and the temporal difference
+// error, or no filter where none does, with the figures behind it. The planner's table-free rules
+// (saagen/scene/planner.hpp), emit's default constants and the emitted headers' text about the
+// normal (the templates' {advice:...} fields, filled in by the built-in catalogue) read it;
+// examples/INTEGRATION.md quotes it and tests check the examples agree with it.
+//
+// Figures without TAA: `saagen bench --preset medium --json T.json` (128 x 128 px, 256-spp ground
+// truth, 16-frame animation, six alphas, no Fresnel), the mean over each content type's scenes of
+// its "by_content" rows (LDR-FLIP / TDE); clearcoat: ClearCoatTest (docs/GLTF_SCENES.md). Under
+// TAA: `saagen bench --preset medium --taa --sigma2 0.0625` (docs/TAA.md).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace saagen::advice {
+
+// The pixel-filter variance and kernel clamp saagen emits and plans by default: with the
+// tail-preserving filtered GGX, the pixel filter's own variance (T&K 2019's 0.25, the ground
+// truth's filter) measured best (docs/FILTERED_GGX.md); kappa is T&K 2019's 0.18.
+inline constexpr double kSigma2 = 0.25;
+inline constexpr double kKappa = 0.18;
+// Under TAA the jitter already integrates the pixel footprint: the best saagen configuration
+// improves as sigma^2 falls from 0.25 to 0.0625 on every scene (docs/TAA.md).
+inline constexpr double kTaaSigma2 = 0.0625;
+
+// The normal the kernels measure, and what to do with a normal map's detail instead.
+inline constexpr std::string_view kFeed = "geometric";
+inline constexpr std::string_view kPrefilter = "hdrp";
+// The lobe GGX is shaded with: the tail-preserving filtered GGX (ggx_brdf_filtered_*).
+inline constexpr std::string_view kLobe = "tail";
+// As the emitted headers state it (templates: {advice:normal}).
+inline constexpr std::string_view kNormalText =
+    "the geometric (interpolated vertex) normal, also on normal-mapped content, whose map's detail goes into the roughness "
+    "instead (`saagen texture prefilter --method hdrp`; `saagen plan` says why)";
+
+enum class Content { curved, normal_mapped, bumps, clearcoat };
+
+// The manifest's `content` values, in Content's order.
+inline constexpr std::array<std::string_view, 4> kContentNames = {"curved", "normal-mapped", "bumps", "clearcoat"};
+inline constexpr std::string_view name(Content content) { return kContentNames[static_cast<int>(content)]; }
+inline constexpr std::optional<Content> content_named(std::string_view text) {
+  for (std::size_t index = 0; index < kContentNames.size(); ++index)
+    if (kContentNames[index] == text) return static_cast<Content>(index);
+  return std::nullopt;
+}
+// The content type's name in a trade table's "by_content" rows (`saagen bench --json`).
+inline constexpr std::string_view table_content(Content content) {
+  return content == Content::bumps ? "bump" : content == Content::clearcoat ? "" : name(content);
+}
+
+// A measured configuration, as `saagen bench` names it: VARIANT[:FEED][+PREFILTER][/LOBE].
+struct Figure {
+  std::string_view configuration;
+  double flip = 0.0;  // LDR-FLIP
+  double tde = 0.0;   // temporal difference error
+};
+
+struct ContentAdvice {
+  Content content;
+  bool taa;
+  // The configurations that beat no SAA in both metrics with the lobe the planner shades GGX
+  // with, lowest LDR-FLIP first; the planner takes the first the material can use, and no filter
+  // when there is none.
+  std::array<Figure, 5> winners;
+  Figure none;                // no SAA (zero figures under TAA and for clearcoat: see evidence)
+  std::string_view evidence;  // what was measured, and what no filter gives up where it wins
+};
+
+inline constexpr std::array<ContentAdvice, 8> kTable = {{
+    {Content::curved,
+     false,
+     {{{"forward-aniso-projected/tail", 0.0291, 0.01377},
+       {"deferred-aniso/tail", 0.0294, 0.01385},
+       {"forward-axis-projected/tail", 0.0311, 0.01387}}},
+     {"none", 0.0346, 0.01687},
+     "sphere, torus, tubes, torus knot; saagen bench --preset medium; the isotropic deferred kernels lose to no SAA there "
+     "(deferred-avg/tail 0.0550 / 0.01786)"},
+    {Content::normal_mapped,
+     false,
+     {{{"deferred-sum:geometric+hdrp/tail", 0.0306, 0.00732},
+       {"forward-axis-projected:geometric+hdrp/tail", 0.0307, 0.00733},
+       {"forward-aniso-projected:geometric+hdrp/tail", 0.0307, 0.00734},
+       {"deferred-avg:geometric+hdrp/tail", 0.0308, 0.00733},
+       {"deferred-projected-space:geometric+hdrp/tail", 0.0308, 0.00732}}},
+     {"none", 0.0411, 0.00739},
+     "nmap-sphere, nmap-sphere-fine; saagen bench --preset medium; the geometric normal with HDRP's bake of the map into the "
+     "roughness; the normal-mapped normal without a bake lowers LDR-FLIP less and raises TDE "
+     "(deferred-sum/tail 0.0367 / 0.00749)"},
+    {Content::bumps,
+     false,
+     {{{"deferred-max/tail", 0.3342, 0.13755}}},
+     {"none", 0.3372, 0.14127},
+     "bump_plane; saagen bench --preset medium; the lowest LDR-FLIP, forward-aniso-projected/tail "
+     "0.2321 / 0.20102, raises TDE"},
+    {Content::clearcoat,
+     false,
+     {},
+     {"none", 0.0320, 0.01254},
+     "ClearCoatTest, docs/GLTF_SCENES.md; the best filters lower LDR-FLIP and raise TDE (deferred-aniso/tail "
+     "0.0271 / 0.01300, forward-aniso-projected:geometric+lean/tail 0.0268 / 0.01328; the coat layer alone: none 0.0101 / "
+     "0.00346, deferred-aniso/tail 0.0091 / 0.00368)"},
+    {Content::curved,
+     true,
+     {},
+     {},
+     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
+     "sphere 0.0258 / 0.00153 against deferred-aniso 0.0322 / 0.00172, torus 0.0520 / 0.00363 against forward-aniso-projected "
+     "0.0617 / 0.00481, torus knot 0.0424 / 0.00385 against deferred-aniso 0.0429 / 0.00520; tubes 0.1888 / 0.03828 against "
+     "forward-aniso-slope 0.1312 / 0.04301 (lower LDR-FLIP, higher TDE)"},
+    {Content::normal_mapped,
+     true,
+     {},
+     {},
+     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
+     "nmap-sphere 0.0474 / 0.00666 against forward-aniso-projected 0.0450 / 0.00677, nmap-sphere-fine 0.0485 / 0.00757 "
+     "against 0.0462 / 0.00760 (LDR-FLIP 5 % lower, TDE higher)"},
+    {Content::bumps,
+     true,
+     {},
+     {},
+     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
+     "bump_plane 0.4166 / 0.09168 against forward-aniso-projected 0.2778 / 0.09632 (LDR-FLIP a third lower, TDE 5 % higher)"},
+    {Content::clearcoat,
+     true,
+     {},
+     {},
+     "not measured under TAA; without TAA no filter already wins in TDE on clearcoat (ClearCoatTest none 0.0320 / 0.01254 "
+     "against deferred-aniso/tail 0.0271 / 0.01300), and under TAA no filter wins on every other content type (docs/TAA.md)"},
+}};
+
+inline constexpr const ContentAdvice& lookup(Content content, bool taa) {
+  for (const ContentAdvice& entry : kTable)
+    if (entry.content == content && entry.taa == taa) return entry;
+  return kTable[0];  // unreachable: the table has every content type with and without TAA
+}
+
+}  // namespace saagen::advice
