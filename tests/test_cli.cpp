@@ -79,6 +79,8 @@ TEST_F(Cli, BenchRefusesNonFiniteNumbers) {
                           "--prefilter-scale: not a finite number in [0, 4]");
     expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "inf"}), "--sigma2: not a finite number");
     expect_one_line_error(saagen({command, "--preset", "quick", "--sigma2", "1e999"}), "--sigma2: not a finite number");
+    expect_one_line_error(saagen({command, "--preset", "quick", "--derivatives", "sideways"}),
+                          "--derivatives: sideways not in {coarse,fine}");
   }
 }
 
