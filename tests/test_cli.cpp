@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -287,7 +286,8 @@ TEST_F(Cli, StandardOutputWriteFailuresAreOneLineAndNonZero) {
 
 // `saagen plan` costs each distinct configuration once (a 1,000-material manifest took 62 s, one
 // compile per material): 960 materials repeating 96 configurations under new names get, material
-// by material, the cost lines of a plan of the 96 alone, in a fraction of the time.
+// by material, the cost lines of a plan of the 96 alone. How long that takes is bench_plan's
+// (BM_PlanLargeManifest), not a unit test's: a wall-clock bound fails on a loaded or sanitized build.
 TEST_F(Cli, PlanCostsEachDistinctConfigurationOnce) {
   ASSERT_EQ(saagen::test::material_key_combinations().size(), 96u);
   const auto manifest = [](std::size_t count) { return saagen::test::manifest_of_materials(count, "scene"); };
@@ -304,16 +304,13 @@ TEST_F(Cli, PlanCostsEachDistinctConfigurationOnce) {
   std::ofstream(scratch_ / "large.toml") << manifest(960);
   const CliRun small = saagen({"plan", (scratch_ / "small.toml").string()});
   ASSERT_EQ(small.exit_code, 0) << small.err;
-  const auto start = std::chrono::steady_clock::now();
   const CliRun large = saagen({"plan", (scratch_ / "large.toml").string()});
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(large.exit_code, 0) << large.err;
   const auto small_costs = costs_of(small.out), large_costs = costs_of(large.out);
   ASSERT_EQ(small_costs.size(), 96u);
   ASSERT_EQ(large_costs.size(), 960u);
   for (std::size_t index = 0; index < large_costs.size(); ++index) EXPECT_EQ(large_costs[index], small_costs[index % 96]) << "m" << index;
   EXPECT_GT(std::set<std::string>(small_costs.begin(), small_costs.end()).size(), 10u);  // the configurations do differ
-  EXPECT_LT(seconds, 20.0);  // 42 s with one compile per material on the 2-core machine; 2 s once per configuration
 }
 
 }  // namespace
