@@ -307,9 +307,11 @@ TEST_F(Cli, PlanCostsEachDistinctConfigurationOnce) {
   const CliRun large = saagen({"plan", (scratch_ / "large.toml").string()});
   ASSERT_EQ(large.exit_code, 0) << large.err;
   const auto small_costs = costs_of(small.out), large_costs = costs_of(large.out);
-  ASSERT_EQ(small_costs.size(), 96u);
-  ASSERT_EQ(large_costs.size(), 960u);
-  for (std::size_t index = 0; index < large_costs.size(); ++index) EXPECT_EQ(large_costs[index], small_costs[index % 96]) << "m" << index;
+  // Materials advised no filter (saagen/advice.hpp) have nothing to cost; the others one line each.
+  ASSERT_GT(small_costs.size(), 48u);
+  ASSERT_EQ(large_costs.size(), 10 * small_costs.size());
+  for (std::size_t index = 0; index < large_costs.size(); ++index)
+    EXPECT_EQ(large_costs[index], small_costs[index % small_costs.size()]) << "m" << index;
   EXPECT_GT(std::set<std::string>(small_costs.begin(), small_costs.end()).size(), 10u);  // the configurations do differ
 }
 
