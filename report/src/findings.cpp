@@ -16,7 +16,7 @@ namespace {
 bool starts_with(const std::string& text, std::string_view prefix) { return text.rfind(prefix, 0) == 0; }
 
 bool is_saagen_configuration(const std::string& configuration) {
-  return configuration != "none" && !is_engine_configuration(configuration);
+  return configuration != "none" && !is_engine_configuration(configuration) && !is_measurement_configuration(configuration);
 }
 
 // Image criterion: LDR-FLIP, then tonemapped RMSE.
@@ -115,6 +115,11 @@ std::vector<std::string> configurations(const render::TradeTable& table) {
 std::string_view path_name(Path path) { return path == Path::forward ? "forward" : "deferred"; }
 
 bool is_engine_configuration(const std::string& configuration) { return starts_with(configuration, "engine-"); }
+
+bool is_measurement_configuration(const std::string& configuration) {
+  const std::string_view suffix = "/exact";
+  return configuration.size() >= suffix.size() && configuration.compare(configuration.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
 
 bool serves(const std::string& configuration, Path path) {
   if (configuration == "none" || is_engine_configuration(configuration)) return true;

@@ -1083,7 +1083,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
     const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
     for (const std::string& id : configurations(table)) {
       const Metrics m = mean_metrics(table, id, keep);
-      if (!m.cases) continue;
+      if (!m.cases || is_measurement_configuration(id)) continue;
       by_content.push_back({{"content", std::string(content_name(content))},
                             {"configuration", id},
                             {"error", m.flip_ldr},

@@ -62,6 +62,9 @@ std::string_view path_name(Path path);
 // engines to both.
 bool serves(const std::string& configuration, Path path);
 bool is_engine_configuration(const std::string& configuration);
+// Rows of the exact filtered GGX ("VARIANT/exact", saagen bench --exact-lobe): a yardstick that no
+// target emits, never recommended nor written to the planner's per-content table.
+bool is_measurement_configuration(const std::string& configuration);
 
 // The cost of a configuration, lavapipe time ratio (time) or optimized SPIR-V delta; nullopt when
 // the cost table does not have it. The feed changes inputs, not code; engines cost what
