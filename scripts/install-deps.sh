@@ -20,6 +20,10 @@ packages=(
   # and content nobody here authored: Khronos's CC-BY 4.0 sample models ClearCoatTest and
   # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/test_gltf_assets.cpp)
   libtinygltf-dev assimp-testmodels
+  # the CC0 tangent-space normal maps of the npm package @pmndrs/assets (package.json) are WebP
+  # images: libwebp decodes them for the presets' pmndrs-NNNN scenes (reference/render/assets.hpp),
+  # webp's dwebp for scripts/normal_map_sphere.py
+  libwebp-dev webp
   # the report test opens the generated HTML report in headless Chromium; chromium also ships
   # SwiftShader (/usr/lib/chromium/vk_swiftshader_icd.json), the second Vulkan device of the GPU tests
   chromium

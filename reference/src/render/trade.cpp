@@ -259,11 +259,29 @@ Image tonemapped(const Image& image) {
 
 }  // namespace
 
+TradeConfig sized_for_scene(const TradeConfig& config, SceneId id) {
+  TradeConfig sized = config;
+  for (const TradeSceneSize& size : config.scene_sizes) {
+    if (size.scene != id) continue;
+    sized.width = size.width;
+    sized.height = size.height;
+    sized.strata = size.strata;
+    sized.flicker_width = size.flicker_width;
+    sized.flicker_height = size.flicker_height;
+    sized.flicker_strata = size.flicker_strata;
+    break;
+  }
+  return sized;
+}
+
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
-  if (config.width <= 0 || config.height <= 0 || config.strata <= 0)
-    throw std::invalid_argument("trade table: bad main resolution or strata");
-  if (config.frames > 0 && (config.flicker_width <= 0 || config.flicker_height <= 0 || config.flicker_strata <= 0))
-    throw std::invalid_argument("trade table: bad flicker resolution or strata");
+  for (const SceneId id : config.scenes) {
+    const TradeConfig sized = sized_for_scene(config, id);
+    if (sized.width <= 0 || sized.height <= 0 || sized.strata <= 0)
+      throw std::invalid_argument("trade table: bad main resolution or strata");
+    if (sized.frames > 0 && (sized.flicker_width <= 0 || sized.flicker_height <= 0 || sized.flicker_strata <= 0))
+      throw std::invalid_argument("trade table: bad flicker resolution or strata");
+  }
   if (config.taa && config.frames < 2) throw std::invalid_argument("trade table: TAA rows need an animation of at least 2 frames");
   if (config.taa) check_taa_options(config.taa_options);
 
@@ -272,18 +290,26 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
   const std::vector<Material> materials = trade_materials(config);
   const std::size_t n_materials = materials.size();
 
-  // Work units: ground-truth samples and 1-spp pixel shadings.
-  const std::uint64_t main_pixels = static_cast<std::uint64_t>(config.width) * config.height;
-  const std::uint64_t flicker_pixels = static_cast<std::uint64_t>(config.flicker_width) * config.flicker_height;
-  const std::uint64_t main_gt = main_pixels * config.strata * config.strata;
-  const std::uint64_t flicker_gt = flicker_pixels * config.flicker_strata * config.flicker_strata;
+  // Work units: ground-truth samples and 1-spp pixel shadings, at each scene's sizes.
+  struct Sizes {
+    std::uint64_t main_pixels, flicker_pixels, main_gt, flicker_gt;
+  };
+  const auto sizes_of = [&](SceneId id) {
+    const TradeConfig sized = sized_for_scene(config, id);
+    const std::uint64_t main_pixels = static_cast<std::uint64_t>(sized.width) * sized.height;
+    const std::uint64_t flicker_pixels = static_cast<std::uint64_t>(sized.flicker_width) * sized.flicker_height;
+    return Sizes{main_pixels, flicker_pixels, main_pixels * sized.strata * sized.strata,
+                 flicker_pixels * sized.flicker_strata * sized.flicker_strata};
+  };
   auto scene_work = [&](SceneId id) {
+    const Sizes sizes = sizes_of(id);
+    const std::uint64_t main_pixels = sizes.main_pixels, flicker_pixels = sizes.flicker_pixels;
     const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
     const std::uint64_t taa_shading = config.taa ? static_cast<std::uint64_t>(config.frames + taa_warmup(config)) * flicker_pixels *
                                                        n_materials * taa_keys(config, id).size()
                                                  : 0;
-    return main_gt + main_pixels * shading_per_frame +
-           (config.frames > 0 ? config.frames * (flicker_gt + flicker_pixels * shading_per_frame) : 0) + taa_shading;
+    return sizes.main_gt + main_pixels * shading_per_frame +
+           (config.frames > 0 ? config.frames * (sizes.flicker_gt + flicker_pixels * shading_per_frame) : 0) + taa_shading;
   };
   TradeProgress state;
   for (SceneId id : config.scenes) state.total += scene_work(id);
@@ -292,17 +318,6 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     state.done = done;
     if (progress) progress(state);
   };
-
-  GroundTruthSettings main_settings;
-  main_settings.width = config.width;
-  main_settings.height = config.height;
-  main_settings.strata = config.strata;
-  main_settings.seed = config.seed;
-  main_settings.threads = config.threads;
-  GroundTruthSettings flicker_settings = main_settings;
-  flicker_settings.width = config.flicker_width;
-  flicker_settings.height = config.flicker_height;
-  flicker_settings.strata = config.flicker_strata;
 
   auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings, const std::string& stage, std::uint64_t base) {
     report(stage, base);
@@ -327,15 +342,28 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
   std::uint64_t base = 0;
   for (const SceneId id : config.scenes) {
     const std::string name(scene_name(id));
+    const TradeConfig sized = sized_for_scene(config, id);
+    const Sizes sizes = sizes_of(id);
+    const std::uint64_t main_pixels = sizes.main_pixels, flicker_pixels = sizes.flicker_pixels;
+    GroundTruthSettings main_settings;
+    main_settings.width = sized.width;
+    main_settings.height = sized.height;
+    main_settings.strata = sized.strata;
+    main_settings.seed = config.seed;
+    main_settings.threads = config.threads;
+    GroundTruthSettings flicker_settings = main_settings;
+    flicker_settings.width = sized.flicker_width;
+    flicker_settings.height = sized.flicker_height;
+    flicker_settings.strata = sized.flicker_strata;
     const std::vector<RowKey> keys = row_keys(config, id);
     const std::size_t n_keys = keys.size();
 
     // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
     const Scene scene = make_scene(id, 0.0);
     const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
-    base += main_gt;
+    base += sizes.main_gt;
     report("1-spp variants " + name, base);
-    const GBuffer gbuffer = render_gbuffer(scene, config.width, config.height, config.threads);
+    const GBuffer gbuffer = render_gbuffer(scene, sized.width, sized.height, config.threads);
     const std::size_t first_row = table.rows.size();
     for (std::size_t m = 0; m < n_materials; ++m) {
       const Image reference_display = tonemapped(gt.images[m]);
@@ -376,7 +404,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     // Temporal metrics: the animation at the flicker resolution; TDE in display values,
     // the temporal standard deviations in linear and tonemapped values.
     if (config.frames > 0) {
-      const int fw = config.flicker_width, fh = config.flicker_height;
+      const int fw = sized.flicker_width, fh = sized.flicker_height;
       const std::size_t n_rows = n_materials * n_keys;
       std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
       std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
@@ -388,11 +416,11 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       std::vector<std::vector<Image>> reference_frames;  // [frame][material], for the +taa rows
       std::vector<double> flip_animation(n_rows, 0.0);
       for (int frame = 0; frame < config.frames; ++frame) {
-        const Scene moved = trade_animation_frame(config, id, frame);
+        const Scene moved = trade_animation_frame(sized, id, frame);
         const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
         const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
         if (config.taa) reference_frames.push_back(frame_gt.images);
-        base += flicker_gt;
+        base += sizes.flicker_gt;
         const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
         for (std::size_t m = 0; m < n_materials; ++m) {
           Image reference_frame = display_image(frame_gt.images[m]);
@@ -438,7 +466,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           base += pixels;
           report(stage, base);
         };
-        append_taa_rows(config, id, materials, taa_keys(config, id), reference_frames, table.rows, shaded,
+        append_taa_rows(sized, id, materials, taa_keys(config, id), reference_frames, table.rows, shaded,
                         config.keep_images ? &table.taa_images : nullptr);
       }
     }

@@ -87,6 +87,14 @@ namespace saagen::render {
 // saagen's variants, the no-SAA baseline and the engines' shipped forms.
 std::vector<Variant> default_trade_variants();
 
+// A scene measured at other sizes than the config's (TradeConfig::scene_sizes): the presets'
+// glTF assets and CC0 normal-map scenes at fewer pixels, so that they fit the preset's time.
+struct TradeSceneSize {
+  SceneId scene = SceneId::sphere;
+  int width = 0, height = 0, strata = 0;                          // main image and ground truth
+  int flicker_width = 0, flicker_height = 0, flicker_strata = 0;  // animation
+};
+
 struct TradeConfig {
   int width = 256;
   int height = 256;
@@ -100,6 +108,8 @@ struct TradeConfig {
   // pixels at the look-at distance (see the top of this file).
   Vec2 pan_pixels_per_frame{0.11, 0.37};
   std::vector<SceneId> scenes{SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane};
+  // Scenes with sizes of their own (the first entry of a scene counts); the others use the above.
+  std::vector<TradeSceneSize> scene_sizes;
   std::vector<double> alphas{0.01, 0.05, 0.1, 0.3};
   std::vector<bool> fresnel_modes{false, true};
   std::vector<Variant> variants = default_trade_variants();
@@ -219,6 +229,8 @@ struct TradeProgress {
 using TradeProgressFn = std::function<void(const TradeProgress&)>;
 
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {});
+// The config with a scene's own sizes (TradeConfig::scene_sizes) in width ... flicker_strata.
+TradeConfig sized_for_scene(const TradeConfig& config, SceneId id);
 
 // Frame `frame` of the animation the temporal metrics measure (see the top of this file).
 Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame);
