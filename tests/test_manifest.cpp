@@ -788,6 +788,95 @@ TEST(Bundle, MarkerRecordsThePublicFunctions) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// One advice (saagen/advice.hpp): the planner, emit's defaults, the emitted headers, the examples
+// and examples/INTEGRATION.md say the same thing, so that they cannot drift apart again.
+
+const saagen::MaterialPlan& planned(const saagen::ScenePlan& plan, const std::string& material) {
+  for (const saagen::MaterialPlan& entry : plan.materials)
+    if (entry.material == material) return entry;
+  throw std::runtime_error("no material " + material);
+}
+
+std::string figure_text(const saagen::advice::Figure& figure) {
+  std::ostringstream text;
+  text << '`' << figure.configuration << "` " << figure.flip << " / " << figure.tde;
+  return text.str();
+}
+
+TEST(Advice, EmitDefaultsAndHeadersAreTheAdvice) {
+  const auto defaults = saagen::resolve_options(Catalogue::builtin(), {});
+  EXPECT_EQ(defaults.at("sigma2"), saagen::advice::kSigma2);
+  EXPECT_EQ(defaults.at("kappa"), saagen::advice::kKappa);
+  EXPECT_EQ(saagen::kGgxSigma2, saagen::advice::kSigma2);
+  EXPECT_EQ(saagen::kTaaSigma2, saagen::advice::kTaaSigma2);
+  for (const std::string target : {"glsl", "gles", "hlsl", "wgsl"}) {
+    saagen::EmitOptions options;
+    options.target = target;
+    options.variants = {"deferred-sum", "forward-axis-projected"};
+    for (const saagen::EmittedFile& file : saagen::emit_variants(Catalogue::builtin(), options)) {
+      EXPECT_NE(file.content.find(std::string(saagen::advice::kNormalText)), std::string::npos) << file.file_name;
+      EXPECT_EQ(file.content.find("{advice:"), std::string::npos) << file.file_name;
+    }
+  }
+}
+
+TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
+  const fs::path root(SAAGEN_SOURCE_DIR);
+  // The reference manifest's normal-mapped deferred material: the three.js module's default.
+  const saagen::Manifest example = saagen::load_manifest(example_manifest, Catalogue::builtin());
+  const saagen::ScenePlan example_plan = saagen::plan_scene(Catalogue::builtin(), example);
+  const saagen::MaterialPlan& terrain = planned(example_plan, "terrain");
+  EXPECT_EQ(terrain.variant, "deferred-sum");
+  EXPECT_EQ(terrain.feed, saagen::advice::kFeed);
+  EXPECT_EQ(terrain.prefilter, saagen::advice::kPrefilter);
+  const std::string module = read_text(root / "examples" / "threejs" / "saagen-three.js");
+  std::smatch defaults;
+  ASSERT_TRUE(std::regex_search(module, defaults, std::regex("wrapper = '(\\w+)', normal = '(\\w+)'"))) << "installSaagen's defaults";
+  EXPECT_EQ(defaults[1].str(), terrain.wrapper);
+  EXPECT_EQ(defaults[2].str(), terrain.feed);
+  const std::string page = read_text(root / "examples" / "threejs" / "index.html");
+  EXPECT_NE(page.find("parameters.get('wrapper') ?? '" + terrain.wrapper + "'"), std::string::npos);
+  EXPECT_NE(page.find("parameters.get('normal') ?? '" + terrain.feed + "'"), std::string::npos);
+  EXPECT_NE(page.find("saagen emit --target gles --variant " + terrain.variant + " "), std::string::npos);
+  EXPECT_EQ(page.find("--sigma2"), std::string::npos);  // emit's default: the advice's sigma^2
+  EXPECT_EQ(page.find("--kappa"), std::string::npos);
+
+  // The WebGPU example calls what its manifest plans.
+  const fs::path webgpu = root / "examples" / "webgpu";
+  const saagen::Manifest beads = saagen::load_manifest(webgpu / "scene.saagen.toml", Catalogue::builtin());
+  const saagen::ScenePlan beads_plan = saagen::plan_scene(Catalogue::builtin(), beads);
+  const saagen::MaterialPlan& glossy = planned(beads_plan, "glossy_beads");
+  EXPECT_EQ(glossy.variant, std::string(saagen::advice::lookup(saagen::advice::Content::curved, false).winners[0].configuration)
+                                .substr(0, glossy.variant.size()));
+  const std::string render = read_text(webgpu / "render.mjs");
+  EXPECT_NE(render.find("saa_" + glossy.wrapper + "("), std::string::npos) << glossy.wrapper;
+  ASSERT_TRUE(glossy.brdf);
+  EXPECT_NE(render.find("saa_" + *glossy.brdf + "("), std::string::npos) << *glossy.brdf;
+
+  // The CMake consumer's shaders call what its manifest plans.
+  const fs::path consumer = root / "examples" / "cmake-consumer";
+  const saagen::Manifest consumer_manifest = saagen::load_manifest(consumer / "scene.saagen.toml", Catalogue::builtin());
+  std::string shaders;
+  for (const char* name : {"forward_lit.frag", "gbuffer.frag"}) shaders += read_text(consumer / "shaders" / name);
+  for (const saagen::MaterialPlan& material : saagen::plan_scene(Catalogue::builtin(), consumer_manifest).materials) {
+    EXPECT_NE(shaders.find("saa_" + material.wrapper + "("), std::string::npos) << material.material;
+    if (material.brdf) EXPECT_NE(shaders.find("saa_" + *material.brdf + "("), std::string::npos) << material.material;
+  }
+
+  // INTEGRATION.md quotes the advice table and lists every target.
+  const std::string integration = read_text(root / "examples" / "INTEGRATION.md");
+  for (const saagen::advice::ContentAdvice& entry : saagen::advice::kTable) {
+    for (const saagen::advice::Figure& figure : entry.winners) {
+      if (!figure.configuration.empty()) EXPECT_NE(integration.find(figure_text(figure)), std::string::npos) << figure_text(figure);
+    }
+  }
+  const auto targets_row = integration.find("| `targets` |");
+  ASSERT_NE(targets_row, std::string::npos);
+  const std::string row = integration.substr(targets_row, integration.find('\n', targets_row) - targets_row);
+  for (const char* target : {"glsl", "gles", "hlsl", "wgsl", "spirv"}) EXPECT_NE(row.find(target), std::string::npos) << target;
+}
+
+// ---------------------------------------------------------------------------------------------
 // CLI
 
 struct CliRun {

@@ -17,9 +17,14 @@
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
 //   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
 //   filter (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf.
-//   Deferred GGX materials without normal maps that do not get deferred-aniso (prefer speed) get
-//   the measured advice that the isotropic deferred kernels lose to no SAA on such content
-//   (MaterialPlan::no_filter_advice).
+//   GGX materials without a `variant` or `preset` then follow saagen's advice for their content
+//   type (`content`, saagen/advice.hpp; examples/INTEGRATION.md "saagen's advice, per content"):
+//   the plan keeps a filter only if it is one of the configurations that beat no SAA in both
+//   LDR-FLIP and TDE on that content (accuracy takes the first the material can use, speed keeps
+//   its cheaper choice when it is one of them; rule "advice" where that changes the variant), and
+//   plans no filter (variant "none") where the material can use none of them: under TAA, on
+//   clearcoat, on curved content for anisotropic deferred materials. With a trade table's
+//   by_content rows for the content, the table's "none" row decides instead.
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
 //   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
