@@ -148,16 +148,16 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
     const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
     const Sym2 tail = lobes.tail_scale * unfiltered;
     const double tau = alpha2.x * alpha2.y;
-    const auto beckmann_part = [&](double weight, double kernel_factor) {
-      const Sym2 m = unfiltered + kernel_factor * (a - unfiltered);
+    const auto beckmann_part = [&](double weight, double matrix_scale) {
+      const Sym2 m = matrix_scale * (unfiltered + lobes.core_kernel * (a - unfiltered));
       double exponent = 0.0;
       if (h.z > 0.0)
         exponent = ref::sym2_quadratic_form({m.yy, -m.xy, m.xx}, {h.x / h.z, h.y / h.z}) / std::max(ref::sym2_determinant(m), tau);
       return std::fabs(weight * brdf.beckmann_ndf_matrix(h, m, tau)) * (1.0 + conditioning(m) + exponent);
     };
     return std::fabs(lobes.tail_weight * brdf.ggx_ndf_axis(h, {tail.xx, tail.yy})) * (1.0 + conditioning(tail)) +
-           beckmann_part((1.0 - lobes.tail_weight) * lobes.shoulder_fraction, lobes.shoulder_kernel) +
-           beckmann_part((1.0 - lobes.tail_weight) * (1.0 - lobes.shoulder_fraction), lobes.core_kernel);
+           beckmann_part((1.0 - lobes.tail_weight) * lobes.shoulder_fraction, ref::kFilteredShoulderScale) +
+           beckmann_part((1.0 - lobes.tail_weight) * (1.0 - lobes.shoulder_fraction), 1.0);
   };
   const auto brdf_value = [&](Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) {
     if (!magnitudes) return brdf.ggx_brdf_filtered_matrix(i, o, a, alpha2);

@@ -192,16 +192,17 @@ double beckmann_lambda_exact(double a_param) {
 // Filtered GGX that keeps GGX's tails (saagen's fit; brdf.hpp, docs/FILTERED_GGX.md)
 
 // Coefficients fitted by minimax of the L1 distance to the exact isotropic convolution over
-// r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 15 % (tests/test_filtered_ggx.cpp
-// recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s far tail exactly.
+// r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 8 % (scripts/fit_filtered_ggx.py;
+// tests/test_filtered_ggx.cpp recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s
+// far tail exactly, and every parameter is a polynomial in that one reciprocal.
 FilteredGgxLobes filtered_ggx_lobes(double ratio) {
   const double r = max(ratio, 0.0);
   FilteredGgxLobes lobes;
-  lobes.tail_scale = 1.0 + 2.0 * r * (1.5788 - 0.1028 / (1.0 + 0.1256 * r));
+  lobes.tail_scale = 1.0 + 2.5072 * r;
   lobes.tail_weight = 1.0 / lobes.tail_scale;
-  lobes.shoulder_kernel = 3.4707 + 2.5583 / (0.0929 + r);
-  lobes.shoulder_fraction = 0.1712 / (1.0 + 0.6105 * r);
-  lobes.core_kernel = 1.0 + 0.1447 / (1.0 + 0.0881 * r);
+  const double w = lobes.tail_weight;
+  lobes.core_kernel = 1.0 + w * (1.3212 - 1.9936 * w);
+  lobes.shoulder_fraction = w * (0.52867 - 0.40604 * w);
   return lobes;
 }
 
@@ -213,36 +214,30 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
   return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
 }
 
-// Template filtered_beckmann_lobe: Beckmann(A0 + c K) from the terms every lobe shares,
-// adj(A0 + c K) = adj(A0) + c adj(K), det(A0 + c K) = det(A0) + c det_mixed + c^2 det(K).
-// Guarded: det floored at det(A0) + c det_mixed (det(K) >= 0 for a PSD kernel; a numerically
-// rank-1 kernel cancels it to any sign) and TINY_POSITIVE, the exponent at |h.xy|^2 / (tr(M)
-// h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in beckmann_ndf_matrix.
-double Brdf::filtered_beckmann_lobe(double c, const FilteredGgxTerms& t) const {
-  const double det_floor = t.det_a0 + c * t.det_mixed;
-  const double det = max(det_floor + c * c * t.det_k, guarded(max(det_floor, tiny()), t.det_a0));
-  const double spread = (t.quad_a0 + c * t.quad_k) / det;
-  const double exponent = guarded(max(spread, t.length2 / max(t.trace_a0 + c * t.trace_k, tiny())) / max(t.cos2, tiny()), spread / t.cos2);
-  const double divisor = kPi * std::sqrt(det) * guarded(max(t.cos2 * t.cos2, tiny()), t.cos2 * t.cos2);
-  return falloff(exponent) / this->divisor(divisor);
+// Template filtered_beckmann_lobe: (1 - f) Beckmann(M) + f Beckmann(4 M) for the core matrix
+// M = A0 + c K. Guarded: det(M) floored at det(A0) + c (ax^2 K11 + ay^2 K00) (det(K) >= 0 for a PSD
+// kernel; a numerically rank-1 kernel cancels det(M) to any sign) and TINY_POSITIVE, the exponent
+// at |h.xy|^2 / (tr(M) h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in
+// beckmann_ndf_matrix; one exponential serves both lobes, exp(-x) = exp(-x / 4)^4, as in the template.
+double Brdf::filtered_beckmann_lobe(Sym2 m, double det_floor, double f, Vec3 h) const {
+  const double det = max(sym2_determinant(m), guarded(max(det_floor, tiny()), det_floor));
+  const double cos2 = h.z * h.z, length2 = h.x * h.x + h.y * h.y;
+  const double spread = sym2_quadratic_form(adjugate(m), h.xy()) / det;
+  const double exponent = guarded(max(spread, length2 / max(m.xx + m.yy, tiny())) / max(cos2, tiny()), spread / cos2);
+  const double divisor = kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2);
+  const double shoulder = falloff(exponent / kFilteredShoulderScale);
+  const double core = std::pow(shoulder, kFilteredShoulderScale);
+  return ((1.0 - f) * core + f * shoulder / kFilteredShoulderScale) / this->divisor(divisor);
 }
 
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
   if (h.z <= 0.0) return 0.0;
   const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
-  const Sym2 kernel = a - Sym2{alpha2.x, 0.0, alpha2.y};
-  FilteredGgxTerms t;
-  t.quad_a0 = alpha2.y * h.x * h.x + alpha2.x * h.y * h.y;
-  t.quad_k = kernel.yy * h.x * h.x - 2.0 * kernel.xy * h.x * h.y + kernel.xx * h.y * h.y;
-  t.det_a0 = alpha2.x * alpha2.y;
-  t.det_mixed = alpha2.x * kernel.yy + alpha2.y * kernel.xx;
-  t.det_k = kernel.xx * kernel.yy - kernel.xy * kernel.xy;
-  t.length2 = h.x * h.x + h.y * h.y;
-  t.trace_a0 = alpha2.x + alpha2.y;
-  t.trace_k = kernel.xx + kernel.yy;
-  t.cos2 = h.z * h.z;
-  const double beckmann = lobes.shoulder_fraction * filtered_beckmann_lobe(lobes.shoulder_kernel, t) +
-                          (1.0 - lobes.shoulder_fraction) * filtered_beckmann_lobe(lobes.core_kernel, t);
+  const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
+  const Sym2 kernel = a - unfiltered;
+  const double c = lobes.core_kernel;
+  const double det_floor = alpha2.x * alpha2.y + c * (alpha2.x * kernel.yy + alpha2.y * kernel.xx);
+  const double beckmann = filtered_beckmann_lobe(unfiltered + c * kernel, det_floor, lobes.shoulder_fraction, h);
   return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
 }
 

@@ -95,23 +95,26 @@ double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 // scales them by det(A0 + K)^(3/2) / det(A0)^(3/2). The exact filtered distribution is the
 // scale mixture integral_0^inf e^-w N(0, A0 / (2w) + Sigma) dw (GGX as a Gaussian scale mixture;
 // filtered_ggx_slope_density below). saagen's closed form keeps the far tail exactly and puts
-// the kernel into two Beckmann lobes (Gaussian slopes: there the variances add):
-//   D = w GGX(lambda A0) + (1 - w) [f Beckmann(A0 + c_s K) + (1 - f) Beckmann(A0 + c_c K)],
-//   w = 1 / lambda,  lambda = 1 + 2 r c_t(r),  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2
-//   when isotropic),
-// with c_t, c_s (the shoulder's kernel factor), f (its share) and c_c (the core's) rational
-// functions of r fitted (minimax over r in [1e-3, 2e5]) to the exact isotropic convolution:
-// L1 <= 0.0114, mass beyond 4 sqrt(k) within 16 % (test_filtered_ggx); GGX(A0)'s far tail is
-// kept exactly in every direction (w lambda = 1). Every lobe is normalised, so the energy
-// (integral of D cos) is 1.
+// the kernel into two Beckmann lobes (Gaussian slopes: there the variances add), a core and a
+// shoulder four times wider (so that one exponential serves both: exp(-x) = exp(-x / 4)^4):
+//   D = w GGX(lambda A0) + (1 - w) [(1 - f) Beckmann(A0 + c K) + f Beckmann(4 (A0 + c K))],
+//   w = 1 / lambda,  lambda = 1 + 2 a r,  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2 when
+//   isotropic),
+// with c (the core's kernel factor) and f (the shoulder's share) quadratics in w, fitted
+// (minimax over r in [1e-3, 2e5], scripts/fit_filtered_ggx.py) to the exact isotropic
+// convolution: L1 <= 0.02, mass beyond 4 sqrt(k) within 8 % (test_filtered_ggx); GGX(A0)'s far
+// tail is kept exactly in every direction (w lambda = 1), and c -> 1 as r -> inf (the kernel's
+// own Gaussian). Every lobe is normalised, so the energy (integral of D cos) is 1.
+
+// The shoulder lobe's matrix is this multiple of the core's.
+inline constexpr double kFilteredShoulderScale = 4.0;
 
 // The fitted functions of r.
 struct FilteredGgxLobes {
   double tail_scale = 1.0;         // lambda
   double tail_weight = 1.0;        // w = 1 / lambda
-  double shoulder_kernel = 1.0;    // c_s
   double shoulder_fraction = 0.0;  // f
-  double core_kernel = 1.0;        // c_c
+  double core_kernel = 1.0;        // c
 };
 FilteredGgxLobes filtered_ggx_lobes(double ratio);
 
@@ -175,12 +178,8 @@ struct Brdf {
   double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
   double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
   double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
-  // The terms the filtered GGX's Beckmann lobes share (template filtered_beckmann_lobe).
-  struct FilteredGgxTerms {
-    double quad_a0 = 0.0, quad_k = 0.0, det_a0 = 0.0, det_mixed = 0.0, det_k = 0.0;
-    double length2 = 0.0, trace_a0 = 0.0, trace_k = 0.0, cos2 = 0.0;
-  };
-  double filtered_beckmann_lobe(double c, const FilteredGgxTerms& terms) const;
+  // Template filtered_beckmann_lobe: (1 - f) Beckmann(m) + f Beckmann(4 m), det(m) floored at det_floor.
+  double filtered_beckmann_lobe(Sym2 m, double det_floor, double f, Vec3 h) const;
   double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
