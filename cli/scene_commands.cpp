@@ -323,6 +323,10 @@ int SceneCommands::run_emit(const Catalogue& catalogue, const std::string& outpu
     for (const OutputFile& output : outputs) std::cout << output.path.string() << "\n";
     return 0;
   }
+  if (outputs.empty()) {  // every material is advised no filter (saagen/advice.hpp)
+    std::cout << "nothing to write: every material of " << emit_manifest_ << " is planned with no filter (`saagen plan` says why)\n";
+    return 0;
+  }
   // The manifest and the trade table are never written over, not even with --force.
   const WriteReport report = write_outputs(outputs, force, {emit_manifest_, emit_trade_table_});
   for (const fs::path& path : report.written) std::cout << "wrote     " << path.string() << "\n";

@@ -956,6 +956,16 @@ TEST_F(SceneCli, EmitWritesOnlyWhenBytesChangeAndRefusesForeignFiles) {
   EXPECT_TRUE(saagen::find_marker(read_text(out / "saa_scene.hlsl")));
 }
 
+// A manifest whose every material is advised no filter writes nothing and says so.
+TEST_F(SceneCli, EmitOfOnlyNoFilterMaterialsWritesNothing) {
+  const fs::path manifest = scratch_ / "taa.toml";
+  write(manifest, header + "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n");
+  const CliRun run = saagen("emit --manifest '" + manifest.string() + "' -o '" + (scratch_ / "out").string() + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("nothing to write: every material of"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(scratch_ / "out"));
+}
+
 TEST_F(SceneCli, ManifestExcludesPerVariantOptions) {
   const CliRun run = saagen("emit --manifest '" + example_manifest.string() + "' --target hlsl -o '" + (scratch_ / "out").string() + "'");
   EXPECT_EQ(run.exit_code, 2);
