@@ -547,10 +547,18 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
   for (std::size_t at = text.find("[[material]]"); at != std::string::npos; at = text.find("[[material]]", at + 1)) ++materials;
   EXPECT_EQ(materials, 25u) << text;
   EXPECT_NE(text.find("domain = \"perceptual\""), std::string::npos);
-  EXPECT_NE(text.find("name = \"CoatNorm_Coated_coat\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n"), std::string::npos)
+  EXPECT_NE(
+      text.find("name = \"CoatNorm_Coated_coat\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\ncontent = \"clearcoat\"\n"),
+      std::string::npos)
       << text;
-  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\n\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\ncontent = \"clearcoat\"\n\n"),
+            std::string::npos)
+      << text;
   EXPECT_NE(run.out.find("material CoatNorm_Coated_coat (deferred"), std::string::npos) << run.out;
+  // Coated materials follow saagen's advice for clearcoat (no filter: the filters lower LDR-FLIP
+  // and raise TDE on ClearCoatTest); the others are planned a filter.
+  const auto coat = run.out.find("material CoatNorm_Coated_coat (deferred");
+  EXPECT_EQ(run.out.find("  variant   none  [advice]", coat), run.out.find("  variant ", coat)) << run.out;
   // Written once: the same bytes again are left alone; emit takes the manifest as any other.
   const auto again = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
   EXPECT_NE(again.out.find("unchanged " + manifest), std::string::npos) << again.out;
