@@ -1,5 +1,6 @@
 #include "texture_commands.hpp"
 
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
@@ -61,7 +62,7 @@ TextureCommands::TextureCommands(CLI::App& app) {
 int TextureCommands::run() const {
   prefilter::Options options;
   options.method = prefilter::parse_method(method_);
-  options.domain = prefilter::parse_domain(domain_);
+  options.domain = find_domain(domain_).kind;
   options.roughness = roughness_;
   options.float32 = float32_;
   options.gltf = gltf_;

@@ -8,6 +8,7 @@
 // float32) + 1e-12 for the double-level difference and values in the subnormal range.
 #include "cli_support.hpp"
 
+#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/products/prefilter.hpp"
 #include "saagen/reference/reference.hpp"
@@ -308,8 +309,8 @@ TEST(Domains, RoundTrip) {
     }
   }
   EXPECT_DOUBLE_EQ(pf::to_alpha2(0.5, saagen::Domain::perceptual), 0.0625);  // alpha = r^2, alpha^2 = r^4
-  EXPECT_EQ(pf::parse_domain("alpha"), saagen::Domain::alpha);
-  EXPECT_THROW(pf::parse_domain("roughness"), saagen::Error);
+  EXPECT_EQ(saagen::find_domain("alpha").kind, saagen::Domain::alpha);
+  EXPECT_THROW(saagen::find_domain("roughness"), saagen::Error);
   EXPECT_THROW(pf::parse_method("vmf"), saagen::Error);
 }
 

@@ -1,6 +1,5 @@
 #include "saagen/products/prefilter.hpp"
 
-#include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 
 #include <fmt/format.h>
@@ -283,9 +282,6 @@ Method parse_method(std::string_view text) {
 }
 
 bool writes_roughness(Method method) { return method != Method::lean; }
-
-// The domains are those of saagen/emit/engines.hpp (one definition for emission and textures).
-Domain parse_domain(std::string_view text) { return find_domain(text).kind; }
 
 std::string_view to_string(Method method) {
   switch (method) {

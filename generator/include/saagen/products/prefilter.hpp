@@ -36,11 +36,10 @@ enum class Method { toksvig, lean, unreal, filament_vmf, hdrp };
 // Every method but lean writes one roughness per texel.
 bool writes_roughness(Method method);
 // The roughness domains are saagen::Domain (saagen/domain.hpp), one definition for emission and
-// textures.
+// textures: text names one through find_domain (saagen/emit/engines.hpp).
 
-// Both throw saagen::Error naming the allowed values.
+// Throws saagen::Error naming the allowed values.
 Method parse_method(std::string_view text);
-Domain parse_domain(std::string_view text);
 std::string_view to_string(Method method);
 
 // alpha^2 to the domain's value and back (inverse of each other on [0, 1]).
