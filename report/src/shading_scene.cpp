@@ -101,62 +101,50 @@ const char* const baseline_shade = "    real value = ggx_brdf_axis(i_ts, o_ts, a
 // and San Miguel, without SAA and with each variant. The bench shows the range of the ratios.
 const std::array<double, 3> paper_no_saa_ms = {1.80, 2.06, 3.65};
 
+// How a case turns the filtered roughness into `real value`: the papers' GGX(alpha^2 + K)
+// (ggx_brdf_matrix with the tau clamp, ggx_brdf_axis) or saagen's tail-preserving filtered GGX
+// (ggx_brdf_filtered_matrix, ggx_brdf_filtered_axis; docs/FILTERED_GGX.md).
+enum class Lobe { papers, tail };
+
+// A forward wrapper's statements: `filtered` is a roughness matrix (real3) or per-axis (real2).
+std::string forward_shade(std::string_view wrapper, bool matrix, Lobe lobe) {
+  const std::string filter = fmt::format("    {} filtered = {}_fragment(alpha2, half_ts);\n", matrix ? "real3" : "real2", wrapper);
+  if (matrix) {
+    return filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n"
+                                          : "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n");
+  }
+  return filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n"
+                                        : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n");
+}
+
+// A deferred wrapper's statements: one filtered alpha^2 for both axes, from the G-buffer normal
+// (with the tangent frame and the pixel position where the variant reads them).
+std::string deferred_shade(std::string_view wrapper, bool tangent_frame, Lobe lobe) {
+  const std::string_view arguments =
+      tangent_frame ? "alpha2_material, normal, tangent, bitangent, saagen_frag_coord" : "alpha2_material, normal";
+  return fmt::format("    real filtered = {}_fragment({});\n", wrapper, arguments) +
+         (lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"
+                               : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n");
+}
+
 const std::vector<VariantCase>& variant_cases() {
   static const std::vector<VariantCase> cases = {
-      {"forward-aniso-slope",
-       "    real3 filtered = forward_aniso_slope_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
-       std::array<double, 3>{2.34, 2.60, 4.16}},
-      {"forward-aniso-projected",
-       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n",
-       std::array<double, 3>{2.31, 2.57, 4.12}},
-      {"forward-axis-slope",
-       "    real2 filtered = forward_axis_slope_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
-       std::array<double, 3>{2.35, 2.61, 4.15}},
-      {"forward-axis-projected",
-       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n",
-       std::array<double, 3>{2.30, 2.56, 4.12}},
-      {"deferred-previous",
-       "    real filtered = deferred_previous_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
-       std::array<double, 3>{2.35, 2.58, 4.16}},
-      {"deferred-max",
-       "    real filtered = deferred_max_fragment(alpha2_material, normal, tangent, bitangent, saagen_frag_coord);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
-       std::array<double, 3>{2.40, 2.62, 4.19}},
-      {"deferred-sum",
-       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
-       std::array<double, 3>{1.90, 2.16, 3.74}},
-      {"deferred-avg",
-       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
-       std::array<double, 3>{1.88, 2.17, 3.74}},
-      {"deferred-projected-space",
-       "    real filtered = deferred_projected_space_fragment(alpha2_material, normal);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
-       std::nullopt},  // Tokuyoshi & Kaplanyan 2021: not in the 2019 table
+      {"forward-aniso-slope", forward_shade("forward_aniso_slope", true, Lobe::papers), std::array<double, 3>{2.34, 2.60, 4.16}},
+      {"forward-aniso-projected", forward_shade("forward_aniso_projected", true, Lobe::papers), std::array<double, 3>{2.31, 2.57, 4.12}},
+      {"forward-axis-slope", forward_shade("forward_axis_slope", false, Lobe::papers), std::array<double, 3>{2.35, 2.61, 4.15}},
+      {"forward-axis-projected", forward_shade("forward_axis_projected", false, Lobe::papers), std::array<double, 3>{2.30, 2.56, 4.12}},
+      {"deferred-previous", deferred_shade("deferred_previous", true, Lobe::papers), std::array<double, 3>{2.35, 2.58, 4.16}},
+      {"deferred-max", deferred_shade("deferred_max", true, Lobe::papers), std::array<double, 3>{2.40, 2.62, 4.19}},
+      {"deferred-sum", deferred_shade("deferred_sum", false, Lobe::papers), std::array<double, 3>{1.90, 2.16, 3.74}},
+      {"deferred-avg", deferred_shade("deferred_avg", false, Lobe::papers), std::array<double, 3>{1.88, 2.17, 3.74}},
+      // Tokuyoshi & Kaplanyan 2021: not in the 2019 table
+      {"deferred-projected-space", deferred_shade("deferred_projected_space", false, Lobe::papers), std::nullopt},
       // saagen's lobes (docs/FILTERED_GGX.md): the tail-preserving filtered GGX BRDF, and the
       // single GGX roughness an engine keeping its own BRDF feeds.
-      {"forward-aniso-projected/tail",
-       "    real3 filtered = forward_aniso_projected_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n",
-       std::nullopt},
-      {"forward-axis-projected/tail",
-       "    real2 filtered = forward_axis_projected_fragment(alpha2, half_ts);\n"
-       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n",
-       std::nullopt},
-      {"deferred-sum/tail",
-       "    real filtered = deferred_sum_fragment(alpha2_material, normal);\n"
-       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
-       std::nullopt},
-      {"deferred-avg/tail",
-       "    real filtered = deferred_avg_fragment(alpha2_material, normal);\n"
-       "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n",
-       std::nullopt},
+      {"forward-aniso-projected/tail", forward_shade("forward_aniso_projected", true, Lobe::tail), std::nullopt},
+      {"forward-axis-projected/tail", forward_shade("forward_axis_projected", false, Lobe::tail), std::nullopt},
+      {"deferred-sum/tail", deferred_shade("deferred_sum", false, Lobe::tail), std::nullopt},
+      {"deferred-avg/tail", deferred_shade("deferred_avg", false, Lobe::tail), std::nullopt},
       // deferred-aniso (docs/DEFERRED_KERNEL.md): the geometry pass's tensor and the lighting
       // pass's BRDF in one shader, as a forward renderer would run both.
       {"deferred-aniso/tail",

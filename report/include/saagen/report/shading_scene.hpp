@@ -30,8 +30,8 @@ extern const char* const baseline_shade;
 extern const std::array<double, 3> paper_no_saa_ms;
 
 struct VariantCase {
-  const char* id;
-  const char* shade;  // dialect statements defining `real value`
+  std::string id;
+  std::string shade;  // dialect statements defining `real value`
   std::optional<std::array<double, 3>> paper_ms;
 };
 const std::vector<VariantCase>& variant_cases();
