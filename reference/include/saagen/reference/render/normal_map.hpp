@@ -14,15 +14,12 @@
 //                 NDF (Kaplanyan et al. 2016 Sec. 4, the texture-space half of SAA).
 //
 // Box reduction of means is exact for all three moments (the mean over 4 children, each the
-// mean over its own 4^l level-0 texels). Sampling follows the Vulkan specification's rules
-// (Vulkan 1.3, "Texel Filtering" and "Scale Factor Operation, LOD Operation and Image Level(s)
-// Selection"): repeat addressing, texel centres at (i + 0.5) / size, bilinear weights from
-// u * size - 0.5; implicit LOD lambda = log2(rho) with rho = max(|d(uv size)/dx|, |d(uv size)/dy|)
-// (the isotropic choice the spec allows), linear interpolation between the two levels around
-// lambda (LINEAR_MIPMAP_LINEAR, "trilinear"), lambda clamped to [0, levels - 1].
+// mean over its own 4^l level-0 texels). Sampling (texel, bilinear, trilinear, lod) is
+// MipChain's (mip_chain.hpp): the Vulkan specification's rules.
 #pragma once
 
 #include "saagen/reference/math.hpp"
+#include "saagen/reference/render/mip_chain.hpp"
 
 #include <cstdint>
 #include <string>
@@ -51,40 +48,19 @@ Vec2 normal_slope(Vec3 n);
 // The covariance E[s s^T] - E[s] E[s]^T of a filtered texel (clamped to PSD up to rounding).
 Sym2 slope_covariance(const NormalTexel& t);
 
-class NormalMap {
+class NormalMap : public MipChain<NormalTexel> {
  public:
   NormalMap() = default;
   // width and height: powers of two >= 1; normals: width * height unit vectors with z > 0,
   // row-major, row 0 at v = 0. Throws std::invalid_argument otherwise.
-  NormalMap(int width, int height, std::vector<Vec3> normals);
-
-  int levels() const { return static_cast<int>(levels_.size()); }
-  int width(int level) const { return levels_[level].width; }
-  int height(int level) const { return levels_[level].height; }
-  bool empty() const { return levels_.empty(); }
-
-  // Texel (x, y) of a level, repeat addressing (any integer coordinates).
-  const NormalTexel& texel(int level, int x, int y) const;
-  // Bilinear filtering of one level at uv (repeat addressing).
-  NormalTexel bilinear(int level, Vec2 uv) const;
-  // Linear interpolation between the bilinear samples of the levels around lod (clamped to
-  // [0, levels - 1]): Vulkan's LINEAR_MIPMAP_LINEAR.
-  NormalTexel trilinear(Vec2 uv, double lod) const;
-  // Implicit LOD from uv derivatives (isotropic: rho = the longer of the two texel-space
-  // derivative vectors, lambda = log2(rho)); -inf for zero derivatives.
-  double lod(Vec2 duv_dx, Vec2 duv_dy) const;
+  NormalMap(int width, int height, const std::vector<Vec3>& normals);
 
   // Every number that defines the texture (for the ground-truth cache keys): size and a
   // 64-bit hash of level 0.
   std::string describe() const;
 
  private:
-  struct Level {
-    int width = 0;
-    int height = 0;
-    std::vector<NormalTexel> texels;
-  };
-  std::vector<Level> levels_;
+  NormalMap(std::uint64_t hash, int width, int height, const std::vector<Vec3>& normals);  // after the checks
   std::uint64_t hash_ = 0;
 };
 

@@ -2,14 +2,11 @@
 //
 // What a glTF material's packed roughness becomes (the G channel of metallicRoughnessTexture,
 // linear, in [0, 1]). Level 0 holds the texels; every coarser level is the 2x2 box mean of the
-// level above (exact for a mean, as for NormalMap's moments). Sampling follows the same
-// Vulkan rules as NormalMap (normal_map.hpp): repeat addressing, texel centres at
-// (i + 0.5) / size, bilinear weights from u * size - 0.5, implicit LOD lambda = log2(rho) with
-// rho the longer texel-space derivative vector, LINEAR_MIPMAP_LINEAR between the two levels
-// around lambda clamped to [0, levels - 1].
+// level above (exact for a mean, as for NormalMap's moments). Sampling (texel, bilinear,
+// trilinear, lod) is MipChain's (mip_chain.hpp): the Vulkan rules NormalMap follows too.
 #pragma once
 
-#include "saagen/reference/math.hpp"
+#include "saagen/reference/render/mip_chain.hpp"
 
 #include <cstdint>
 #include <string>
@@ -17,35 +14,18 @@
 
 namespace saagen::render {
 
-using ref::Vec2;
-
-class ScalarMap {
+class ScalarMap : public MipChain<double> {
  public:
   ScalarMap() = default;
   // width and height: powers of two >= 1; values: width * height finite numbers, row-major,
   // row 0 at v = 0. Throws std::invalid_argument otherwise.
   ScalarMap(int width, int height, std::vector<double> values);
 
-  int levels() const { return static_cast<int>(levels_.size()); }
-  int width(int level) const { return levels_[level].width; }
-  int height(int level) const { return levels_[level].height; }
-
-  // Texel (x, y) of a level, repeat addressing (any integer coordinates).
-  double texel(int level, int x, int y) const;
-  double bilinear(int level, Vec2 uv) const;
-  double trilinear(Vec2 uv, double lod) const;
-  // Implicit LOD from uv derivatives (isotropic), -inf for zero derivatives.
-  double lod(Vec2 duv_dx, Vec2 duv_dy) const;
   // Size and a 64-bit hash of level 0 (cache keys).
   std::string describe() const;
 
  private:
-  struct Level {
-    int width = 0;
-    int height = 0;
-    std::vector<double> texels;
-  };
-  std::vector<Level> levels_;
+  ScalarMap(std::uint64_t hash, int width, int height, std::vector<double>&& values);  // after the checks
   std::uint64_t hash_ = 0;
 };
 
