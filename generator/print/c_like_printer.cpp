@@ -129,17 +129,13 @@ class CLikePrinter {
     return found == names_.end() ? text : found->second;
   }
 
-  // Operand `position` of `parent`, after the layout `canonical` (or the template's line break),
-  // in parentheses where precedence needs them.
-  std::string operand(const Expr& parent, std::size_t position, std::string_view canonical) const {
-    const Expr& child = *parent.operands[position];
-    const std::string text = expression(child);
-    const std::string layout = position == 0 && parent.kind != ExprKind::unary ? std::string() : spacing(child.leading, canonical);
-    return layout + (needs_parentheses(parent, position, child) ? "(" + text + ")" : text);
+  auto printer() const {
+    return [this](const Expr& expr) { return expression(expr); };
   }
-
-  // An operand after a token: its own line break if it starts a line, else `canonical`.
-  std::string spaced(const Expr& expr, std::string_view canonical) const { return spacing(expr.leading, canonical) + expression(expr); }
+  std::string operand(const Expr& parent, std::size_t position, std::string_view canonical) const {
+    return operand_text(parent, position, canonical, printer(), needs_parentheses);
+  }
+  std::string spaced(const Expr& expr, std::string_view canonical) const { return spaced_text(expr, canonical, printer()); }
 
   std::string call(const Expr& expr) const {
     if (expr.call_kind == CallKind::intrinsic) {
@@ -155,11 +151,7 @@ class CLikePrinter {
       callee = target_.types.at(expr.text);
     else if (expr.call_kind == CallKind::function)
       callee = name(expr.text);
-    std::string out = callee + "(";
-    for (std::size_t index = 0; index < expr.operands.size(); ++index) {
-      out += (index == 0 ? "" : ",") + spaced(*expr.operands[index], index == 0 ? "" : " ");
-    }
-    return out + spacing(expr.separators[0], "") + ")";
+    return callee + "(" + arguments_text(expr, printer()) + spacing(expr.separators[0], "") + ")";
   }
 
   // A statement without its leading layout.

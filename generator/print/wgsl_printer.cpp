@@ -128,22 +128,14 @@ class WgslPrinter {
     return operand(expr, 0, "") + spacing(expr.separators[0], " ") + expr.text + right;
   }
 
+  auto printer() const {
+    return [this](const Expr& expr) { return expression(expr); };
+  }
   std::string operand(const Expr& parent, std::size_t position, std::string_view canonical) const {
-    const Expr& child = *parent.operands[position];
-    const std::string text = expression(child);
-    const std::string layout = position == 0 && parent.kind != ExprKind::unary ? std::string() : spacing(child.leading, canonical);
-    return layout + (wgsl_needs_parentheses(parent, position, child) ? "(" + text + ")" : text);
+    return operand_text(parent, position, canonical, printer(), wgsl_needs_parentheses);
   }
-
-  std::string spaced(const Expr& expr, std::string_view canonical) const { return spacing(expr.leading, canonical) + expression(expr); }
-
-  std::string arguments(const Expr& expr) const {
-    std::string out;
-    for (std::size_t index = 0; index < expr.operands.size(); ++index) {
-      out += (index == 0 ? "" : ",") + spaced(*expr.operands[index], index == 0 ? "" : " ");
-    }
-    return out;
-  }
+  std::string spaced(const Expr& expr, std::string_view canonical) const { return spaced_text(expr, canonical, printer()); }
+  std::string arguments(const Expr& expr) const { return arguments_text(expr, printer()); }
 
   std::string call(const Expr& expr) const {
     if (expr.call_kind == CallKind::intrinsic) {
