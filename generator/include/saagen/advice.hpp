@@ -106,23 +106,23 @@ inline constexpr std::array<ContentAdvice, 8> kTable = {{
      true,
      {},
      {},
-     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
-     "sphere 0.0258 / 0.00153 against deferred-aniso 0.0322 / 0.00172, torus 0.0520 / 0.00363 against forward-aniso-projected "
-     "0.0617 / 0.00481, torus knot 0.0424 / 0.00385 against deferred-aniso 0.0429 / 0.00520; tubes 0.1888 / 0.03828 against "
-     "forward-aniso-slope 0.1312 / 0.04301 (lower LDR-FLIP, higher TDE)"},
+     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa, tail-preserving "
+     "lobe: sphere 0.0258 / 0.00153 against forward-aniso-projected/tail 0.0255 / 0.00154, torus 0.0520 / 0.00363 against "
+     "0.0505 / 0.00371, torus knot 0.0424 / 0.00385 against 0.0381 / 0.00420, tubes 0.1888 / 0.03828 against "
+     "deferred-aniso/tail 0.1716 / 0.0387 (lower LDR-FLIP, higher TDE; every lobe and sigma2 measured loses in TDE)"},
     {Content::normal_mapped,
      true,
      {},
      {},
-     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
-     "nmap-sphere 0.0474 / 0.00666 against forward-aniso-projected 0.0450 / 0.00677, nmap-sphere-fine 0.0485 / 0.00757 "
-     "against 0.0462 / 0.00760 (LDR-FLIP 5 % lower, TDE higher)"},
+     "saagen bench --preset medium --taa (docs/TAA.md), none+taa against the best saagen+taa: nmap-sphere 0.0474 / 0.00666 "
+     "against deferred-sum:geometric+hdrp/tail 0.0360 / 0.00672, nmap-sphere-fine 0.0485 / 0.00757 against 0.0364 / 0.00757 "
+     "(LDR-FLIP 24 % lower, TDE 1 % higher and tied)"},
     {Content::bumps,
      true,
      {},
      {},
-     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: "
-     "bump_plane 0.4166 / 0.09168 against forward-aniso-projected 0.2778 / 0.09632 (LDR-FLIP a third lower, TDE 5 % higher)"},
+     "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: bump_plane "
+     "0.4166 / 0.09168 against deferred-avg/tail 0.2643 / 0.0955 (LDR-FLIP 37 % lower, TDE 4 % higher)"},
     {Content::clearcoat,
      true,
      {},
