@@ -98,7 +98,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
-  EXPECT_EQ(car.position.line, 23);
+  EXPECT_EQ(car.position.line, 25);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
