@@ -54,7 +54,7 @@ class IncludeReader {
     return {[this](const std::string& name, const IncludeFile& from) { return find(name, from); },
             [this](const std::string& name) {
               const EmittedFile file = resolve_include(name, {});
-              native_16bit_ = native_16bit_ || builtin_target(file.marker.target).with_precision(file.marker.precision).native_16bit;
+              native_16bit_ = native_16bit_ || builtin_target(file.marker.target.table).with_precision(file.marker.precision).native_16bit;
               return file.content;
             }};
   }
@@ -86,7 +86,7 @@ class IncludeReader {
   void note_marker(const std::string& text) {
     if (const auto marker = find_marker(text)) {
       try {
-        native_16bit_ = native_16bit_ || builtin_target(marker->target).with_precision(marker->precision).native_16bit;
+        native_16bit_ = native_16bit_ || builtin_target(marker->target.table).with_precision(marker->precision).native_16bit;
       } catch (const Error&) {
         // Not a file this saagen can read the precision of; compile it as it is.
       }

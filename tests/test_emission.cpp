@@ -282,17 +282,36 @@ TEST(Prefix, RejectsAnythingThatCouldInjectCodeOrCollide) {
 
 TEST(Marker, RoundTripsAndIsAbsentFromForeignFiles) {
   saagen::EmissionMarker marker;
-  marker.target = "hlsl";
+  marker.target = saagen::OutputTarget::snippet("hlsl");
   marker.variants = {"deferred-sum", "deferred-avg"};
   marker.prefix = "eng_";
   marker.option_values = {{"kappa", 0.1}, {"sigma2", 0.3}};
   const auto parsed = saagen::find_marker("// header\n" + saagen::marker_line(marker) + "\nfloat x;\n");
   ASSERT_TRUE(parsed.has_value());
-  EXPECT_EQ(parsed->target, "hlsl");
+  EXPECT_EQ(parsed->target, saagen::OutputTarget::snippet("hlsl"));
   EXPECT_EQ(parsed->variants, marker.variants);
   EXPECT_EQ(parsed->prefix, "eng_");
   EXPECT_EQ(parsed->option_values, marker.option_values);
   EXPECT_FALSE(saagen::find_marker("float4 main() : SV_Target { return 0; }").has_value());
+}
+
+// A marker's target is read once into a typed value: a table's snippet, or a product whose
+// pseudo-target (spirv, pass-glsl, ...) is spelled in marker.hpp only.
+TEST(Marker, TargetsAreTypedSnippetsOrProducts) {
+  EXPECT_EQ(saagen::OutputTarget::named("wgsl"), saagen::OutputTarget::snippet("wgsl"));
+  EXPECT_TRUE(saagen::OutputTarget::named("wgsl").is_snippet());
+  for (const saagen::OutputKind kind :
+       {saagen::OutputKind::spirv_library, saagen::OutputKind::pass_glsl, saagen::OutputKind::pass_hlsl, saagen::OutputKind::pass_spirv}) {
+    saagen::EmissionMarker marker;
+    marker.target = saagen::OutputTarget::product(kind);
+    marker.variants = {"deferred-sum"};
+    marker.prefix = "saa_";
+    const auto parsed = saagen::find_marker(saagen::marker_line(marker));
+    ASSERT_TRUE(parsed.has_value());
+    EXPECT_EQ(parsed->target.kind, kind);
+    EXPECT_TRUE(parsed->target.table.empty());
+    EXPECT_EQ(parsed->target.name(), saagen::marker_target(kind));
+  }
 }
 
 TEST(Validation, ReportsTheEmittedFileNameAndLineOfAnError) {

@@ -131,7 +131,7 @@ TEST(Gles, BundlesValidate) {
   request.functions = {"deferred_max_fragment", "ggx_brdf_axis"};
   for (const std::string precision : {"fp32", "fp16"}) {
     const auto file = saagen::emit_bundle(Catalogue::builtin(), gles_options(precision), request);
-    EXPECT_EQ(file.marker.target, "gles");
+    EXPECT_EQ(file.marker.target, saagen::OutputTarget::snippet("gles"));
     const auto validation = saagen::validate_file(Catalogue::builtin(), file.file_name, file.content);
     EXPECT_TRUE(validation.ok()) << validation.summary() << "\n" << validation.checks.front().log;
   }

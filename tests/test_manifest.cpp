@@ -776,7 +776,7 @@ TEST(Bundle, MarkerRecordsThePublicFunctions) {
   EXPECT_EQ(files[0].file_name, "eng_scene.glsl");
   const auto marker = saagen::find_marker(files[0].content);
   ASSERT_TRUE(marker);
-  EXPECT_EQ(marker->target, "glsl");
+  EXPECT_EQ(marker->target, saagen::OutputTarget::snippet("glsl"));
   EXPECT_EQ(marker->prefix, "eng_");
   // A forward GGX material without tangents on curved content: deferred-aniso (saagen/advice.hpp).
   EXPECT_EQ(marker->variants, (std::vector<std::string>{"deferred-aniso"}));
@@ -861,14 +861,18 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   for (const char* name : {"forward_lit.frag", "gbuffer.frag"}) shaders += read_text(consumer / "shaders" / name);
   for (const saagen::MaterialPlan& material : saagen::plan_scene(Catalogue::builtin(), consumer_manifest).materials) {
     EXPECT_NE(shaders.find("saa_" + material.wrapper + "("), std::string::npos) << material.material;
-    if (material.brdf) EXPECT_NE(shaders.find("saa_" + *material.brdf + "("), std::string::npos) << material.material;
+    if (material.brdf) {
+      EXPECT_NE(shaders.find("saa_" + *material.brdf + "("), std::string::npos) << material.material;
+    }
   }
 
   // INTEGRATION.md quotes the advice table and lists every target.
   const std::string integration = read_text(root / "examples" / "INTEGRATION.md");
   for (const saagen::advice::ContentAdvice& entry : saagen::advice::kTable) {
     for (const saagen::advice::Figure& figure : entry.winners) {
-      if (!figure.configuration.empty()) EXPECT_NE(integration.find(figure_text(figure)), std::string::npos) << figure_text(figure);
+      if (!figure.configuration.empty()) {
+        EXPECT_NE(integration.find(figure_text(figure)), std::string::npos) << figure_text(figure);
+      }
     }
   }
   const auto targets_row = integration.find("| `targets` |");

@@ -486,7 +486,8 @@ Expected reference(const std::string& name, Reader in) {
 // A consumer: the kernel that loads, calls and stores, compiled with a stub of `function` whose
 // definition then becomes an Import declaration.
 std::vector<std::uint32_t> consumer_module(const std::string& variant, const std::string& function, saagen::KernelRequest& request) {
-  const saagen::EmissionMarker marker{"glsl", {variant}, "saa_", {}, saagen::Precision::fp32, true, {function}};
+  const saagen::EmissionMarker marker{
+      saagen::OutputTarget::snippet("glsl"), {variant}, "saa_", {}, saagen::Precision::fp32, true, {function}};
   const std::string stubs = saagen::marker_line(marker) + "\n" + saagen::glsl_import_stubs(Catalogue::builtin(), {function}, "saa_");
   request.body = saagen::load_call_store_body(Catalogue::builtin(), function, request);
   const auto compiled =
@@ -609,7 +610,8 @@ TEST_P(DomainLibraryOnGpu, LinkedDomainWrapperMatchesTheEmittedDomainSourceBitwi
   EXPECT_TRUE(saagen::validate_spirv_or_pass_file(Catalogue::builtin(), library.file_name, bytes).ok());
 
   saagen::KernelRequest request;
-  const saagen::EmissionMarker marker{"glsl", {variant}, "saa_", {}, saagen::Precision::fp32, true, {function}, kind};
+  const saagen::EmissionMarker marker{
+      saagen::OutputTarget::snippet("glsl"), {variant}, "saa_", {}, saagen::Precision::fp32, true, {function}, kind};
   const std::string stubs = saagen::marker_line(marker) + "\n" + saagen::glsl_import_stubs(catalogue, {function}, "saa_");
   request.body = saagen::load_call_store_body(catalogue, function, request);
   const auto compiled = saagen::compile_to_spirv(saagen::kernel_compile_request(catalogue, "consumer-stubs.glsl", stubs, request));
@@ -650,7 +652,8 @@ INSTANTIATE_TEST_SUITE_P(EveryOtherDomain, DomainLibraryOnGpu, ::testing::Values
 
 TEST(SpirvLink, TwoLibrariesLinkIntoOneConsumerAndDuplicateExportsAreRejected) {
   // One consumer importing from deferred-sum and brdf-ggx.
-  const saagen::EmissionMarker marker{"glsl", {"deferred-sum", "brdf-ggx"}, "saa_", {}, saagen::Precision::fp32, true, {}};
+  const saagen::EmissionMarker marker{
+      saagen::OutputTarget::snippet("glsl"), {"deferred-sum", "brdf-ggx"}, "saa_", {}, saagen::Precision::fp32, true, {}};
   const std::string stubs =
       saagen::marker_line(marker) + "\n" + saagen::glsl_import_stubs(Catalogue::builtin(), {"deferred_sum", "ggx_brdf_axis"}, "saa_");
   saagen::KernelRequest request;

@@ -68,8 +68,15 @@ class FileWriter {
   EmittedFile write(const Variant& variant) {
     const auto functions = catalogue_.closure(variant.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
-    EmissionMarker marker{target_.name,    {variant.id}, options_.prefix, options_of(constants), options_.precision,
-                          options_.guards, {},           options_.domain, options_.import_path};
+    EmissionMarker marker{OutputTarget::snippet(target_.name),
+                          {variant.id},
+                          options_.prefix,
+                          options_of(constants),
+                          options_.precision,
+                          options_.guards,
+                          {},
+                          options_.domain,
+                          options_.import_path};
     const std::string form = form_suffix();
     const std::string guard = macro_prefix(options_.prefix) + upper(variant.id) + upper(form) + "_" + upper(target_.file_extension);
 
@@ -90,8 +97,15 @@ class FileWriter {
   EmittedFile write_bundle(const BundleRequest& request) {
     const auto functions = catalogue_.closure(request.functions, options_.guards);
     const auto constants = catalogue_.constants_used(functions, options_.guards);
-    EmissionMarker marker{target_.name,    request.variants,  options_.prefix, options_of(constants), options_.precision,
-                          options_.guards, request.functions, options_.domain, options_.import_path};
+    EmissionMarker marker{OutputTarget::snippet(target_.name),
+                          request.variants,
+                          options_.prefix,
+                          options_of(constants),
+                          options_.precision,
+                          options_.guards,
+                          request.functions,
+                          options_.domain,
+                          options_.import_path};
     const std::string form = form_suffix();
     const std::string guard =
         macro_prefix(options_.prefix) + "BUNDLE_" + upper(request.name) + upper(form) + "_" + upper(target_.file_extension);

@@ -29,7 +29,7 @@ std::optional<double> parse_double(std::string_view text) {
 
 std::string marker_line(const EmissionMarker& marker) {
   std::string line =
-      fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target, fmt::join(marker.variants, ","), marker.prefix);
+      fmt::format("{} target={} variants={} prefix={}", marker_tag, marker.target.name(), fmt::join(marker.variants, ","), marker.prefix);
   for (const auto& [option, value] : marker.option_values) line += fmt::format(" {}={}", option, decimal_literal(value));
   if (marker.precision != Precision::fp32) line += fmt::format(" precision={}", to_string(marker.precision));
   if (!marker.guards) line += " guards=off";
@@ -52,7 +52,7 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
     const std::string key = field.substr(0, equals);
     const std::string value = field.substr(equals + 1);
     if (key == "target")
-      marker.target = value;
+      marker.target = OutputTarget::named(value);
     else if (key == "prefix")
       marker.prefix = value;
     else if (key == "precision") {
@@ -78,7 +78,7 @@ std::optional<EmissionMarker> find_marker(std::string_view content) {
     else
       return std::nullopt;
   }
-  if (marker.target.empty() || marker.prefix.empty() || marker.variants.empty()) return std::nullopt;
+  if (marker.target.name().empty() || marker.prefix.empty() || marker.variants.empty()) return std::nullopt;
   return marker;
 }
 

@@ -158,13 +158,8 @@ std::string pass_source(const Catalogue& catalogue, const TargetSyntax& table, c
 
 EmissionMarker pass_marker(OutputKind kind_of_file, const DeferredPassKind& kind, const DeferredPassOptions& options,
                            const std::map<std::string, double>& option_values) {
-  return EmissionMarker{std::string(marker_target(kind_of_file)),
-                        {kind.variant},
-                        options.prefix,
-                        option_values,
-                        Precision::fp32,
-                        options.guards,
-                        {kind.wrapper}};
+  return EmissionMarker{
+      OutputTarget::product(kind_of_file), {kind.variant}, options.prefix, option_values, Precision::fp32, options.guards, {kind.wrapper}};
 }
 
 // The description shared by every file of a pass (comment lines without the comment leader).

@@ -11,7 +11,7 @@
 
 namespace saagen {
 
-bool is_spirv_or_pass_marker(const EmissionMarker& marker) { return output_kind(marker.target) != OutputKind::snippet; }
+bool is_spirv_or_pass_marker(const EmissionMarker& marker) { return !marker.target.is_snippet(); }
 
 FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content) {
   const auto marker = find_marker(content);
@@ -25,7 +25,7 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
       return {};
     }
   };
-  const OutputKind kind = output_kind(marker->target);
+  const OutputKind kind = marker->target.kind;
   if (kind == OutputKind::spirv_library) {
     ValidationCheck check{"spirv library (universal 1.3, Linkage)", false, {}, 0};
     const auto words = words_of(check);
@@ -79,7 +79,7 @@ FileValidation validate_one(const Catalogue& catalogue, const std::string& name,
 bool validated_by_tint(const std::string& content) {
   const auto marker = find_marker(content);
   if (!marker || is_spirv_or_pass_marker(*marker)) return false;
-  const TargetSyntax* target = find_builtin_target(marker->target);
+  const TargetSyntax* target = find_builtin_target(marker->target.table);
   return target && target->language == SourceLanguage::wgsl;
 }
 

@@ -334,7 +334,7 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
 
   SpirvLibrary library;
   library.marker = file.marker;
-  library.marker.target = std::string(marker_target(OutputKind::spirv_library));
+  library.marker.target = OutputTarget::product(OutputKind::spirv_library);
   const std::string stem = file.file_name.substr(0, file.file_name.rfind('.'));
   library.file_name = stem + ".spv";
   library.header_name = stem + ".spv.h";

@@ -95,7 +95,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
   const TargetSyntax target =
-      builtin_target(marker->target).with_precision(marker->precision).with_prefix(marker->prefix, macro_prefix(marker->prefix));
+      builtin_target(marker->target.table).with_precision(marker->precision).with_prefix(marker->prefix, macro_prefix(marker->prefix));
   const auto skeleton = target.kernel_skeletons.find(kind_name(request.kind));
   if (skeleton == target.kernel_skeletons.end()) {
     throw Error(fmt::format("target {} has no '{}' kernel skeleton", target.name, kind_name(request.kind)));
@@ -112,7 +112,7 @@ std::vector<SourcePiece> kernel_sources(const Catalogue& catalogue, const std::s
   // the base table, which the half-precision derivative helpers call on fp32 values (the
   // precision's table maps ddx to those helpers).
   const bool fine = request.plain_derivative == PlainDerivative::fine;
-  const TargetSyntax base = builtin_target(marker->target);
+  const TargetSyntax base = builtin_target(marker->target.table);
   const std::string plain_ddx = intrinsic_name(base, fine ? "ddx_fine" : "ddx_coarse");
   const std::string plain_ddy = intrinsic_name(base, fine ? "ddy_fine" : "ddy_coarse");
   const auto fill = [&](std::string text) {
@@ -150,7 +150,7 @@ CompileRequest kernel_compile_request(const Catalogue& catalogue, const std::str
                                       const KernelRequest& request) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line", file_name));
-  const TargetSyntax target = builtin_target(marker->target).with_precision(marker->precision);
+  const TargetSyntax target = builtin_target(marker->target.table).with_precision(marker->precision);
   CompileRequest compile;
   compile.language = target.language;
   compile.stage = request.kind == KernelKind::fragment ? ShaderStage::fragment : ShaderStage::compute;

@@ -107,7 +107,7 @@ std::string FileValidation::summary() const {
 std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const EmissionMarker& marker, const std::string& file_name,
                                             const std::string& content, ShaderStage stage) {
   const TargetSyntax target =
-      builtin_target(marker.target).with_precision(marker.precision).with_prefix(marker.prefix, macro_prefix(marker.prefix));
+      builtin_target(marker.target.table).with_precision(marker.precision).with_prefix(marker.prefix, macro_prefix(marker.prefix));
   const ValidationSkeleton& skeleton = stage == ShaderStage::compute ? target.compute_skeleton : target.fragment_skeleton;
   auto functions = public_functions(catalogue, marker.variants);
   if (!marker.functions.empty()) {  // a bundle: exactly its public functions
@@ -140,7 +140,7 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 FileValidation validate_file(const Catalogue& catalogue, const std::string& file_name, const std::string& content) {
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line; this file was not written by `saagen emit`", file_name));
-  const TargetSyntax target = builtin_target(marker->target).with_precision(marker->precision);
+  const TargetSyntax target = builtin_target(marker->target.table).with_precision(marker->precision);
   if (target.language == SourceLanguage::wgsl) return validate_wgsl_files(catalogue, {{file_name, content}}).front();
 
   FileValidation validation{file_name, {}};

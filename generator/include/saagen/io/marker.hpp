@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace saagen {
@@ -44,10 +45,29 @@ constexpr OutputKind output_kind(std::string_view target) {
   return OutputKind::snippet;
 }
 
+// A marker's `target=` as a typed value, read once where the marker is parsed: a snippet of the
+// target table `table`, or a product (its pseudo-target, `table` empty).
+struct OutputTarget {
+  OutputKind kind = OutputKind::snippet;
+  std::string table;
+
+  static OutputTarget snippet(std::string table) { return {OutputKind::snippet, std::move(table)}; }
+  static OutputTarget product(OutputKind kind) { return {kind, {}}; }
+  // The `target=` text a marker names: a product's pseudo-target, else a table's name.
+  static OutputTarget named(std::string_view text) {
+    const OutputKind kind = output_kind(text);
+    return kind == OutputKind::snippet ? snippet(std::string(text)) : product(kind);
+  }
+  bool is_snippet() const { return kind == OutputKind::snippet; }
+  // The text form: the pseudo-target of a product, the table's name of a snippet.
+  std::string name() const { return is_snippet() ? table : std::string(marker_target(kind)); }
+  bool operator==(const OutputTarget&) const = default;
+};
+
 // What one emitted file holds, as written in its marker line, so that a file on disk can be
 // validated (and recognised as saagen's) without the options that produced it.
 struct EmissionMarker {
-  std::string target;
+  OutputTarget target;
   std::vector<std::string> variants;
   std::string prefix;
   std::map<std::string, double> option_values;
