@@ -438,6 +438,26 @@ TEST(Planner, WithATableNoFilterWinsWhereNothingBeatsIt) {
   EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, plan).find("material a"), std::string::npos);
 }
 
+// With a table, a speed choice that loses to no SAA gives way to the best configuration that
+// beats it, judged on the rows of the lobe the plan shades with (the papers' rows measure an
+// engine's own BRDF).
+TEST(Planner, WithATableASpeedChoiceThatLosesGivesWay) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-sum", "error": 0.01, "tde": 0.005},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.009},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.05, "tde": 0.012}]})",
+                                                                     "speed.json");
+  const saagen::MaterialPlan plan =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n"),
+                         &table)
+          .materials.at(0);
+  EXPECT_EQ(plan.variant, "deferred-aniso");
+  EXPECT_EQ(plan.rule, "trade table");
+  EXPECT_NE(plan.reason.find("deferred-aniso/tail 0.02 / 0.009 beats no SAA none 0.03 / 0.01 in speed.json"), std::string::npos)
+      << plan.reason;
+}
+
 // deferred-aniso (D0): the G-buffer tensor from the wrapper, then its lighting pass's BRDF per
 // light; isotropic GGX materials only.
 TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {

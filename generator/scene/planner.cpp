@@ -550,10 +550,11 @@ void apply_advice(const Material& material, bool taa, const std::vector<const Va
 }
 
 // With a trade table's rows for the material's content: the planned configuration must beat the
-// table's no-SAA row in its error (and TDE where both have one); else the best allowed one that
-// does, else no filter.
+// table's no-SAA row in its error (and TDE where both have one); else the best one the material can
+// use that does, else no filter. Rows of the lobe the planner shades GGX with (advice::kLobe) when
+// the table has them: the others measure an engine's own BRDF.
 void check_against_no_filter(const MeasuredTradeTable& table, const Material& material, const std::vector<const Variant*>& eligible,
-                             bool choose_variant, MaterialPlan& plan) {
+                             MaterialPlan& plan) {
   const std::string content(advice::table_content(content_of(material)));
   std::optional<ContentRow> none, planned, best;
   std::vector<const ContentRow*> rows;
@@ -565,10 +566,12 @@ void check_against_no_filter(const MeasuredTradeTable& table, const Material& ma
   const auto beats_none = [&](const ContentRow& row) {
     return row.error < none->error && (!row.tde || !none->tde || *row.tde < *none->tde);
   };
-  const auto allowed = [&](const Configuration& c) { return choose_variant ? can_use(eligible, c.variant) : c.variant == plan.variant; };
+  const bool has_lobe = std::any_of(rows.begin(), rows.end(),
+                                    [](const ContentRow* row) { return parse_configuration(row->configuration).lobe == advice::kLobe; });
   for (const ContentRow* row : rows) {
     const Configuration c = parse_configuration(row->configuration);
-    if (c.variant == "none" || row->configuration.rfind("engine-", 0) == 0 || !allowed(c)) continue;
+    if (c.variant == "none" || row->configuration.rfind("engine-", 0) == 0 || !can_use(eligible, c.variant)) continue;
+    if (has_lobe && c.lobe != advice::kLobe) continue;
     const bool is_planned = c.variant == plan.variant && (!material.normal_maps || (c.feed == plan.feed && c.prefilter == plan.prefilter));
     if (is_planned && (!planned || row->error < planned->error)) planned = *row;
     if (beats_none(*row) && (!best || row->error < best->error)) best = *row;
@@ -765,13 +768,12 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     // What the measured content says: GGX materials the planner chooses for (no variant named, no
     // engine preset) never keep a configuration that loses to no SAA on their content.
     if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
-      const bool choose_variant = material.prefer == Preference::accuracy;
       const std::string_view content = advice::table_content(content_of(material));
       const bool table_has_content =
           table && std::any_of(table->content_rows.begin(), table->content_rows.end(),
                                [&](const ContentRow& row) { return !content.empty() && row.content == content; });
       if (table_has_content)
-        check_against_no_filter(*table, material, eligible, choose_variant, plan);
+        check_against_no_filter(*table, material, eligible, plan);
       else if (!table || !table->has_errors() || material.prefer == Preference::speed)
         apply_advice(material, manifest.taa, eligible, plan);
     }
