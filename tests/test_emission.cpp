@@ -432,7 +432,7 @@ TEST(Forms, PrecisionIdsRoundTripAndUnknownOnesAreRefusedWhereRead) {
     saagen::parse_precision("fp64");
     FAIL();
   } catch (const saagen::Error& error) {
-    EXPECT_STREQ(error.what(), "--precision fp64: unknown precision; use fp32, fp16 or min16");
+    EXPECT_STREQ(error.what(), "--precision fp64: unknown precision; use one of fp32, fp16, min16");
   }
   const std::string marker = "// saagen-marker: target=glsl variants=deferred-sum prefix=saa_";
   EXPECT_EQ(saagen::find_marker(marker + " precision=fp16")->precision, saagen::Precision::fp16);

@@ -198,7 +198,7 @@ class TemplateParser {
     std::vector<Precision> precisions;
     for (const std::string& word : split_words(text)) {
       const auto precision = precision_named(word);
-      if (!precision) fail(file_, line, fmt::format("precision '{}' is not one of fp32, fp16, min16", word));
+      if (!precision) fail(file_, line, fmt::format("precision '{}' is not one of {}", word, precision_id_list()));
       precisions.push_back(*precision);
     }
     return precisions;

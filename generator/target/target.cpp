@@ -203,7 +203,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   }
   for (const auto& [name, entry] : require(json, "precisions", source).items()) {
     const auto kind = precision_named(name);
-    if (!kind) throw Error(fmt::format("{}: unknown precision '{}' in 'precisions'; use fp32, fp16 or min16", source, name));
+    if (!kind) throw Error(fmt::format("{}: unknown precision '{}' in 'precisions'; use one of {}", source, name, precision_id_list()));
     PrecisionForm precision;
     for (const auto& [type, spelling] : require(entry, "types", source).items()) {
       if (!target.types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));

@@ -6,6 +6,7 @@
 
 #include "saagen/error.hpp"
 
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,19 +19,11 @@ namespace saagen {
 enum class Precision { fp32, fp16, min16 };
 
 inline constexpr Precision every_precision_kind[] = {Precision::fp32, Precision::fp16, Precision::min16};
+// The ids the text forms use, in the enum's order: the one table of the names.
+inline constexpr std::string_view precision_ids[] = {"fp32", "fp16", "min16"};
+static_assert(std::size(precision_ids) == std::size(every_precision_kind));
 
-// The id the text forms use: "fp32", "fp16", "min16".
-constexpr std::string_view to_string(Precision precision) {
-  switch (precision) {
-    case Precision::fp32:
-      return "fp32";
-    case Precision::fp16:
-      return "fp16";
-    case Precision::min16:
-      return "min16";
-  }
-  return "fp32";
-}
+constexpr std::string_view to_string(Precision precision) { return precision_ids[static_cast<std::size_t>(precision)]; }
 
 // The precision an id names, or nothing.
 constexpr std::optional<Precision> precision_named(std::string_view id) {
@@ -38,6 +31,13 @@ constexpr std::optional<Precision> precision_named(std::string_view id) {
     if (to_string(precision) == id) return precision;
   }
   return std::nullopt;
+}
+
+// "fp32, fp16, min16": what a message offers.
+inline std::string precision_id_list() {
+  std::string list;
+  for (const std::string_view id : precision_ids) list += (list.empty() ? "" : ", ") + std::string(id);
+  return list;
 }
 
 // The ids of `precisions`, in their order (messages and listings).
@@ -53,7 +53,7 @@ constexpr bool is_half(Precision precision) { return precision != Precision::fp3
 // The precision `text` names; throws saagen::Error "<option> <text>: ..." naming the ids otherwise.
 inline Precision parse_precision(std::string_view text, std::string_view option = "--precision") {
   if (const auto precision = precision_named(text)) return *precision;
-  throw Error(std::string(option) + " " + std::string(text) + ": unknown precision; use fp32, fp16 or min16");
+  throw Error(std::string(option) + " " + std::string(text) + ": unknown precision; use one of " + precision_id_list());
 }
 
 }  // namespace saagen
