@@ -2,6 +2,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/reference/render/assets.hpp"
 #include "saagen/reference/render/gltf.hpp"
 #include "saagen/report/report.hpp"
 #ifdef SAAGEN_HAVE_ISA_COST
@@ -49,7 +50,17 @@ void check_cache_writable(const std::string& cache_dir) {
   ::unlink(probe.c_str());
 }
 
-// The scenes of --scene: a standard scene's name, or a glTF 2.0 asset (loaded and registered,
+// A preset asset's scenes by the scene's name (render/assets.hpp); empty for another name.
+std::vector<render::SceneId> preset_asset_scenes(const std::string& name) {
+  try {
+    return render::register_preset_asset(name);
+  } catch (const std::exception& error) {  // AssetMissing, GltfError, AssetError
+    throw Error(fmt::format("--scene {}: {}", name, error.what()));
+  }
+}
+
+// The scenes of --scene: a standard scene's name, a preset asset's scene name (ClearCoatTest,
+// 2CylinderEngine, pmndrs-0014, ...), or a glTF 2.0 asset (loaded and registered,
 // with its coat lobe's scene NAME-coat after it when it has clearcoat; a bad asset is one line
 // naming the file and what is wrong, before anything renders).
 std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
@@ -58,12 +69,15 @@ std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
     std::vector<render::SceneId> found;
     if (const auto standard = render::scene_from_name(name); standard && !render::registered_scene(*standard)) {
       found.push_back(*standard);
+    } else if (std::vector<render::SceneId> asset = preset_asset_scenes(name); !asset.empty()) {
+      found = std::move(asset);
     } else {
       const std::string extension = std::filesystem::path(name).extension().string();
       if (extension != ".gltf" && extension != ".glb" && extension != ".GLTF" && extension != ".GLB") {
         std::string known;
         for (render::SceneId s : render::all_scenes()) known += std::string(known.empty() ? "" : ", ") + std::string(render::scene_name(s));
         for (render::SceneId s : render::content_scenes()) known += ", " + std::string(render::scene_name(s));
+        for (const render::PresetAsset& asset : render::preset_assets()) known += ", " + asset.scene;
         throw Error(fmt::format("--scene {}: neither a scene ({}) nor a glTF 2.0 asset (.gltf or .glb)", name, known));
       }
       try {
@@ -102,10 +116,16 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     check_cache_writable(common.cache_dir);
   }
   render::TradeConfig config = report::preset_config(common.preset);
-  if (!common.scenes.empty()) config.scenes = scene_ids(common.scenes);
+  if (!common.scenes.empty()) {
+    config.scenes = scene_ids(common.scenes);
+    report::size_preset_assets(common.preset, config);
+  } else {
+    report::add_preset_assets(common.preset, config);
+  }
   if (common.resolution > 0) {
     config.width = config.height = common.resolution;
     config.flicker_width = config.flicker_height = std::max(2, common.resolution / 2);
+    config.scene_sizes.clear();  // every scene at --resolution
   }
   config.cache_dir = common.cache_dir;
   config.threads = common.threads;

@@ -3,6 +3,7 @@
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/reference/render/assets.hpp"
 #include "saagen/report/findings.hpp"
 
 #include <fmt/format.h>
@@ -745,15 +746,29 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
+// "; NAME at WxH px (animation wxh px), ..." for the scenes with sizes of their own.
+std::string scene_sizes_line(const render::TradeConfig& c) {
+  std::string line;
+  for (const render::TradeSceneSize& size : c.scene_sizes) {
+    if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) == c.scenes.end()) continue;
+    line += fmt::format("{}{} at {}x{} px, {} spp (animation {}x{} px, {} spp)", line.empty() ? "; " : ", ", render::scene_name(size.scene),
+                        size.width, size.height, size.strata * size.strata, size.flicker_width, size.flicker_height,
+                        size.flicker_strata * size.flicker_strata);
+  }
+  return line;
+}
+
 std::string config_line(const render::TradeTable& table) {
   const render::TradeConfig& c = table.config;
   return fmt::format(
-      "{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
-      "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
-      "ground truth {:.1f} s ({} cache hits, {} misses)",
-      c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x, c.pan_pixels_per_frame.y,
-      c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2, c.params.kappa,
-      c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds, table.cache_hits, table.cache_misses);
+             "{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
+             "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
+             "ground truth {:.1f} s ({} cache hits, {} misses)",
+             c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x,
+             c.pan_pixels_per_frame.y, c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2,
+             c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", table.ground_truth_seconds, table.cache_hits,
+             table.cache_misses) +
+         scene_sizes_line(c);
 }
 
 // Per scene and path with losses: "scene, path, configuration" and each loss.
@@ -1015,6 +1030,30 @@ render::TradeConfig preset_config(std::string_view preset) {
     return config;
   }
   throw Error(fmt::format("unknown preset '{}'; choose full, medium or quick", preset));
+}
+
+void size_preset_assets(std::string_view preset, render::TradeConfig& config) {
+  if (preset != "medium" && preset != "full") return;
+  const int width = config.width / 2, flicker_width = config.flicker_width / 2;
+  for (const render::SceneId id : config.scenes) {
+    if (!render::is_preset_asset_scene(id)) continue;
+    config.scene_sizes.push_back({id, width, width, config.strata, flicker_width, flicker_width, config.flicker_strata});
+  }
+}
+
+void add_preset_assets(std::string_view preset, render::TradeConfig& config) {
+  if (preset != "medium" && preset != "full") return;
+  std::vector<render::SceneId> assets;
+  try {
+    assets = render::register_preset_assets();
+  } catch (const render::AssetMissing& missing) {
+    throw Error(fmt::format("preset {}: {}", preset, missing.what()));
+  } catch (const std::exception& bad) {  // GltfError, AssetError: "PATH: what is wrong"
+    throw Error(fmt::format("preset {}: {}", preset, bad.what()));
+  }
+  for (const render::SceneId id : assets)
+    if (std::find(config.scenes.begin(), config.scenes.end(), id) == config.scenes.end()) config.scenes.push_back(id);
+  size_preset_assets(preset, config);
 }
 
 std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs) {

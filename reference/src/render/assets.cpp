@@ -3,7 +3,8 @@
 
 #include "saagen/reference/render/gltf.hpp"
 
-#include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

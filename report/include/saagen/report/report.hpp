@@ -42,6 +42,18 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table);
 // and Fresnel mode) and "quick" (64 x 64, 64 spp, 4 frames; for smoke tests).
 render::TradeConfig preset_config(std::string_view preset);
 
+// The medium and full presets' scenes of content nobody here authored (render/assets.hpp:
+// ClearCoatTest and its coat, 2CylinderEngine, three @pmndrs/assets normal maps on the sphere):
+// registers them and appends them to config.scenes, then size_preset_assets; nothing for the
+// quick preset. Error (one line: the scene, the missing file, what to install) when a package
+// is missing, before anything is loaded.
+void add_preset_assets(std::string_view preset, render::TradeConfig& config);
+// The sizes the preset measures its asset scenes at (TradeConfig::scene_sizes), for those in
+// config.scenes: the medium preset 64 x 64 (animation 32 x 32), the full preset 128 x 128
+// (animation 64 x 64), both at the preset's samples per pixel: a quarter of the preset's
+// pixels, so that six more scenes keep the presets' run times (docs/GLTF_SCENES.md).
+void size_preset_assets(std::string_view preset, render::TradeConfig& config);
+
 // Terminal table: one row per variant (means), with the cost columns when known.
 std::string format_summary(const std::vector<VariantSummary>& summary, const CostTable* costs);
 
