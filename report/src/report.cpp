@@ -673,18 +673,20 @@ Strip taa_strip(const render::TradeTable& taa, const TaaComparison& comparison, 
   if (!comparison.best_saagen.empty()) columns.emplace_back("best saagen: " + comparison.best_saagen, comparison.best_saagen);
   if (!comparison.best_engine.empty()) columns.emplace_back("best engine: " + comparison.best_engine, comparison.best_engine);
   std::vector<render::Image> images;
-  std::vector<std::string> figures;
+  std::vector<std::string> labels, figures;
   images.reserve(columns.size());
-  for (const auto& [label, configuration] : columns) {
+  for (const auto& column : columns) {
+    const std::string& configuration = column.second;  // a named copy: clang 14 cannot capture a structured binding
     const auto rendered = std::find_if(set.variants.begin(), set.variants.end(),
                                        [&](const render::ImageSet::Rendered& r) { return taa_configuration_of(r) == configuration; });
     const render::TradeRow* row = taa_row(taa, set.scene, set.material.alpha, configuration);
     if (rendered == set.variants.end() || !row) continue;
     images.push_back(cropped(rendered->image, crop));
-    figures.push_back(fmt::format("{} {:.4f} / {:.5f}", label, row->flip_ldr_animation, row->tde));
+    labels.push_back(column.first);  // the label of the image kept, also when an earlier column had none
+    figures.push_back(fmt::format("{} {:.4f} / {:.5f}", column.first, row->flip_ldr_animation, row->tde));
   }
   std::vector<Tile> tiles;
-  for (std::size_t i = 0; i < images.size(); ++i) tiles.push_back({columns[i].first, &images[i]});
+  for (std::size_t i = 0; i < images.size(); ++i) tiles.push_back({labels[i], &images[i]});
   const std::string scene(render::scene_name(set.scene));
   return {taa_strip_name(set.scene),
           fmt::format("{} under TAA, alpha {} (where none+taa errs most), last animation frame, the {} x {} px crop at ({}, {}) "
