@@ -91,7 +91,7 @@ int run_list(const Catalogue& base_catalogue, bool json, const std::string& pref
 // variant is emitted to a target other than SPIR-V libraries (built from the SAA templates alone).
 const Catalogue& emission_catalogue(const Catalogue& every_variant, const saagen::EmitOptions& options) {
   const Catalogue& builtin = Catalogue::builtin();
-  if (options.variants.empty()) return saagen::output_kind(options.target) != saagen::OutputKind::spirv_library ? every_variant : builtin;
+  if (options.variants.empty()) return options.target.kind != saagen::OutputKind::spirv_library ? every_variant : builtin;
   const bool names_a_glint = std::any_of(options.variants.begin(), options.variants.end(),
                                          [&](const std::string& id) { return builtin.find_variant(id) == nullptr; });
   return names_a_glint ? every_variant : builtin;
@@ -130,13 +130,13 @@ int emit_files(const Catalogue& every_variant, const EmitArguments& arguments) {
   }
 
   std::vector<saagen::OutputFile> outputs;
-  if (saagen::output_kind(options.target) == saagen::OutputKind::spirv_library) {
+  if (options.target.kind == saagen::OutputKind::spirv_library) {
     // Per variant a linkable SPIR-V library module and a C/C++ header embedding it.
     for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(catalogue, options)) {
       outputs.push_back({fs::path(arguments.output_directory) / library.file_name, saagen::spirv_file_bytes(library.words)});
       outputs.push_back({fs::path(arguments.output_directory) / library.header_name, saagen::spirv_library_header(catalogue, library)});
     }
-  } else if (!saagen::builtin_target(options.target).has_includes() && options.variants.size() > 1) {
+  } else if (!saagen::builtin_target(options.target.name()).has_includes() && options.variants.size() > 1) {
     // A language without includes (WGSL) cannot take two files that both define the shared
     // helpers: several variants make one module holding their dependency closure once.
     if (!std::regex_match(arguments.module_name, std::regex("[A-Za-z][A-Za-z0-9_]{0,63}"))) {

@@ -312,6 +312,11 @@ TEST(Marker, TargetsAreTypedSnippetsOrProducts) {
     EXPECT_TRUE(parsed->target.table.empty());
     EXPECT_EQ(parsed->target.name(), saagen::marker_target(kind));
   }
+  // EmitOptions::target is the same typed value, read from `--target`'s text where it is set.
+  saagen::EmitOptions options;
+  EXPECT_EQ(options.target, saagen::OutputTarget::snippet("glsl"));
+  options.target = std::string("spirv");
+  EXPECT_EQ(options.target, saagen::OutputTarget::product(saagen::OutputKind::spirv_library));
 }
 
 TEST(Validation, ReportsTheEmittedFileNameAndLineOfAnError) {

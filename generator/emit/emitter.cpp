@@ -444,7 +444,7 @@ std::vector<EmittedFile> emit_variants(const Catalogue& base_catalogue, const Em
   // (saagen/emit/engines.hpp); variants without a roughness in and out are not emitted in it.
   const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
   const bool converted = &catalogue != &base_catalogue;
-  const TargetSyntax& target = builtin_target(options.target);
+  const TargetSyntax& target = builtin_target(options.target.name());
   (void)target.with_precision(options.precision);  // throws for a precision the target lacks
   check_import_path(target, options.import_path);
   const auto option_values = resolve_options(catalogue, options.option_values);
@@ -484,7 +484,7 @@ EmittedFile emit_bundle(const Catalogue& base_catalogue, const EmitOptions& opti
       if (function && takes_and_returns_roughness(*function)) name = domain_function_name(name, options.domain);
     }
   }
-  const TargetSyntax& target = builtin_target(options.target);
+  const TargetSyntax& target = builtin_target(options.target.name());
   (void)target.with_precision(options.precision);
   check_import_path(target, options.import_path);
   const auto option_values = resolve_options(catalogue, options.option_values);

@@ -16,8 +16,8 @@ namespace saagen {
 std::string_view version();
 
 struct EmitOptions {
-  std::string target = "glsl";
-  std::vector<std::string> variants;  // empty: every variant
+  OutputTarget target = OutputTarget::snippet("glsl");  // a table's snippets (emit_variants, emit_bundle) or spirv
+  std::vector<std::string> variants;                    // empty: every variant
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // e.g. {"sigma2", 0.25}; missing: the default
   Precision precision = Precision::fp32;        // a precision of the target table: fp32, fp16, min16 (HLSL)

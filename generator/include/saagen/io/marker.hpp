@@ -45,11 +45,18 @@ constexpr OutputKind output_kind(std::string_view target) {
   return OutputKind::snippet;
 }
 
-// A marker's `target=` as a typed value, read once where the marker is parsed: a snippet of the
-// target table `table`, or a product (its pseudo-target, `table` empty).
+// What an emission is for, as a typed value: a snippet of the target table `table`, or a product
+// (its pseudo-target, `table` empty). A marker's `target=` and an emission's `--target` (and
+// EmitOptions::target) are read into one once, where the text enters: from text it converts
+// through named().
 struct OutputTarget {
   OutputKind kind = OutputKind::snippet;
   std::string table;
+
+  OutputTarget() = default;
+  OutputTarget(OutputKind kind, std::string table) : kind(kind), table(std::move(table)) {}
+  OutputTarget(const char* text) : OutputTarget(named(text)) {}
+  OutputTarget(const std::string& text) : OutputTarget(named(text)) {}
 
   static OutputTarget snippet(std::string table) { return {OutputKind::snippet, std::move(table)}; }
   static OutputTarget product(OutputKind kind) { return {kind, {}}; }
