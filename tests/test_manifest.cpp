@@ -79,7 +79,8 @@ std::vector<saagen::EmittedFile> emit_text(const std::string& text) {
 TEST(Manifest, ParsesTheExample) {
   const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
   EXPECT_EQ(manifest.name, "scene");
-  EXPECT_EQ(manifest.targets, (std::vector<std::string>{"glsl", "hlsl"}));
+  EXPECT_EQ(manifest.targets,
+            (std::vector<saagen::OutputTarget>{saagen::OutputTarget::snippet("glsl"), saagen::OutputTarget::snippet("hlsl")}));
   EXPECT_EQ(manifest.prefix, "saa_");
   EXPECT_EQ(manifest.option_values.at("sigma2"), 0.25);
   EXPECT_EQ(manifest.option_values.at("kappa"), 0.18);
@@ -672,9 +673,9 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
   saagen::measure_costs(Catalogue::builtin(), manifest, plan);
   for (const saagen::MaterialPlan& material : plan.materials) {
-    for (const std::string& target : manifest.targets) {
+    for (const saagen::OutputTarget& target : manifest.targets) {
       ASSERT_TRUE(material.cost.count(target)) << material.material;
-      EXPECT_GT(material.cost.at(target), 0) << material.material << " " << target;
+      EXPECT_GT(material.cost.at(target), 0) << material.material << " " << target.name();
     }
   }
   // The same filter plus the tail-preserving filtered GGX costs more than with the engine's own BRDF.

@@ -4,6 +4,7 @@
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/io/marker.hpp"
 #include "saagen/target/target.hpp"
 
 #include <fmt/format.h>
@@ -33,20 +34,20 @@ double parse_number(std::string_view key, const std::string& text) {
 
 // The built-in target whose files carry `extension` (glsl, essl for gles, hlsl). Module languages
 // (WGSL) have no #include for a handler to serve.
-std::string target_of_extension(std::string_view extension) {
+OutputTarget target_of_extension(std::string_view extension) {
   std::vector<std::string> known;
   for (const std::string& name : builtin_target_names()) {
     if (!builtin_target(name).has_includes()) continue;
     const std::string& target_extension = builtin_target(name).file_extension;
-    if (target_extension == extension) return name;
+    if (target_extension == extension) return OutputTarget::snippet(name);
     known.push_back("." + target_extension);
   }
   throw Error(fmt::format("unknown extension '.{}'; use {}", extension, fmt::join(known, ", ")));
 }
 
 struct ParsedName {
-  std::string id;      // variant or preset
-  std::string target;  // glsl, hlsl
+  std::string id;       // variant or preset
+  OutputTarget target;  // a snippet of glsl, gles or hlsl
   IncludeOptions options;
 };
 

@@ -50,7 +50,7 @@ std::optional<double> MeasuredTradeTable::isa_cost(std::string_view variant, std
 }
 
 std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant,
-                                              const std::vector<std::string>& targets) const {
+                                              const std::vector<OutputTarget>& targets) const {
   double sum = 0.0;
   int count = 0;
   for (const IsaRow& row : rows) {
@@ -97,7 +97,7 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
         fail(fmt::format("every row needs a finite \"{}\"", key));
       return row[key].get<double>();
     };
-    IsaRow entry{text("family"), text("shader"), text("target"), text("variant")};
+    IsaRow entry{text("family"), text("shader"), OutputTarget::named(text("target")), text("variant")};
     entry.instructions = number("instructions");
     entry.vgprs = number("vgprs");
     entry.sgprs = number("sgprs");
@@ -162,7 +162,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     entry.variant = row["variant"].get<std::string>();
     if (row.contains("target")) {
       if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
-      entry.target = row["target"].get<std::string>();
+      entry.target = OutputTarget::named(row["target"].get<std::string>());
     }
     entry.cost_ratio = number(row, "ratio_median", index);
     entry.delta_instructions = number(row, "delta_spirv_instructions", index);

@@ -169,10 +169,10 @@ class TableReader {
 
 // The manifest precisions every target can emit: fp32 always, fp16 when each target has a
 // half-precision form (see target_precision).
-std::vector<Precision> precisions_of_all(const std::vector<std::string>& targets) {
+std::vector<Precision> precisions_of_all(const std::vector<OutputTarget>& targets) {
   std::vector<Precision> common = {Precision::fp32};
   const bool half = std::all_of(targets.begin(), targets.end(),
-                                [](const std::string& target) { return target_precision(target, Precision::fp16).has_value(); });
+                                [](const OutputTarget& target) { return target_precision(target, Precision::fp16).has_value(); });
   if (half) common.push_back(Precision::fp16);
   return common;
 }
@@ -191,13 +191,13 @@ void read_targets(Manifest& manifest, const TableReader& top) {
       top.fail(position, fmt::format("key 'targets': every element must be a string, got {}; allowed: {}", type_phrase(element.type()),
                                      quoted_list(names)));
     }
-    const std::string target(element.as_string()->get());
-    if (std::find(names.begin(), names.end(), target) == names.end()) {
-      top.fail(position, fmt::format("key 'targets': unknown target \"{}\"; allowed: {}", show(target), quoted_list(names)));
+    const std::string name(element.as_string()->get());
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      top.fail(position, fmt::format("key 'targets': unknown target \"{}\"; allowed: {}", show(name), quoted_list(names)));
     }
+    const OutputTarget target = OutputTarget::snippet(name);
     if (std::find(manifest.targets.begin(), manifest.targets.end(), target) != manifest.targets.end()) {
-      top.fail(position,
-               fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", target, quoted_list(names)));
+      top.fail(position, fmt::format("key 'targets': \"{}\" is listed twice; allowed: each of {} at most once", name, quoted_list(names)));
     }
     manifest.targets.push_back(target);
   }
@@ -538,8 +538,8 @@ advice::Content content_of(const Material& material) {
   return material.normal_maps ? advice::Content::normal_mapped : advice::Content::curved;
 }
 
-std::optional<Precision> target_precision(std::string_view target, Precision precision) {
-  const auto& precisions = builtin_target(target).precisions;
+std::optional<Precision> target_precision(const OutputTarget& target, Precision precision) {
+  const auto& precisions = builtin_target(target.table).precisions;
   if (precisions.count(precision)) return precision;
   if (precision == Precision::fp16 && precisions.count(Precision::min16)) return Precision::min16;
   return std::nullopt;
@@ -565,8 +565,8 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",        "path",   "anisotropic", "tangents", "ndf",
-                                                "normal_maps", "content", "glints", "precision", "prefer", "variant"};
+  static const std::vector<std::string> keys = {"name",    "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
+                                                "content", "glints", "precision",   "prefer",   "variant"};
   return keys;
 }
 
@@ -617,7 +617,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
       top.fail_key("import_path", fmt::format("\"{}\" is not a module path", show(*path)), import_rule);
     }
     const bool module_target = std::any_of(manifest.targets.begin(), manifest.targets.end(),
-                                           [](const std::string& target) { return builtin_target(target).takes_import_path(); });
+                                           [](const OutputTarget& target) { return builtin_target(target.table).takes_import_path(); });
     if (!module_target) top.fail_key("import_path", "no target in targets is a module language", import_rule);
     manifest.import_path = *path;
   }

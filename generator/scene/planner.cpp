@@ -267,6 +267,13 @@ void plan_glints(const Catalogue& catalogue, const Manifest& manifest, const Mat
   }
 }
 
+// The targets' text forms, where the plan text prints them.
+std::vector<std::string> target_names(const std::vector<OutputTarget>& targets) {
+  std::vector<std::string> names;
+  for (const OutputTarget& target : targets) names.push_back(target.name());
+  return names;
+}
+
 std::string fixed(double value) { return fmt::format("{:.4g}", value); }
 
 // ---------------------------------------------------------------------------------------------
@@ -787,17 +794,17 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   return scene;
 }
 
-EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, Precision precision) {
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const OutputTarget& target, Precision precision) {
   EmitOptions options;
   options.target = target;
   options.prefix = manifest.prefix;
   options.option_values = plan.option_values;
   options.domain = manifest.domain;
-  if (builtin_target(target).takes_import_path() && !manifest.import_path.empty()) {
+  if (builtin_target(target.table).takes_import_path() && !manifest.import_path.empty()) {
     options.import_path = is_half(precision) ? manifest.import_path + "_" + std::string(to_string(precision)) : manifest.import_path;
   }
   const auto form = target_precision(target, precision);
-  if (!form) throw Error(fmt::format("target {} has no {} form", target, to_string(precision)));
+  if (!form) throw Error(fmt::format("target {} has no {} form", target.name(), to_string(precision)));
   options.precision = *form;
   return options;
 }
@@ -819,11 +826,11 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
     request.functions.push_back(axis_brdf);
     request.variants = material_plan.variants;
     request.variants.push_back("brdf-" + std::string(to_string(material.ndf)));
-    for (const std::string& target : manifest.targets) {
+    for (const OutputTarget& target : manifest.targets) {
       // A module language (WGSL) is compiled by the WebGPU implementation (Tint), not here.
-      if (!builtin_target(target).compiled_in_process()) continue;
+      if (!builtin_target(target.table).compiled_in_process()) continue;
       const std::string key =
-          fmt::format("{}|{}|{}|{}", target, to_string(material.precision), to_string(material.ndf), material.anisotropic);
+          fmt::format("{}|{}|{}|{}", target.name(), to_string(material.precision), to_string(material.ndf), material.anisotropic);
       const std::string shade = shade_statements(catalogue, material, &material_plan);
       // Everything the cost depends on: the baseline's key, the bundle's closure, the kernel's body.
       const std::string configuration =
@@ -874,7 +881,7 @@ std::string rules_text() {
 
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
   std::string text = fmt::format("scene '{}' from {}: targets {}, prefix {}", manifest.name, manifest.source_name,
-                                 fmt::join(manifest.targets, ", "), manifest.prefix);
+                                 fmt::join(target_names(manifest.targets), ", "), manifest.prefix);
   for (const auto& [option, value] : resolve_options(catalogue, plan.option_values)) text += fmt::format(", {} = {}", option, value);
   text += plan.trade_table.empty() ? "; rules (no trade table)\n" : fmt::format("; trade table {}\n", plan.trade_table);
   if (!plan.options_reason.empty()) text += fmt::format("options: {}\n", plan.options_reason);
@@ -938,8 +945,8 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
     if (!material_plan.cost.empty()) {
       std::vector<std::string> costs;
-      for (const std::string& target : manifest.targets) {
-        if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target, material_plan.cost.at(target)));
+      for (const OutputTarget& target : manifest.targets) {
+        if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target.name(), material_plan.cost.at(target)));
       }
       text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
                           fmt::join(costs, ", "), to_string(material.precision),
@@ -948,9 +955,10 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
                                                                            : " + matrix BRDF",
                           to_string(material.ndf));
     }
-    for (const std::string& target : manifest.targets) {
-      if (!builtin_target(target).compiled_in_process() && !material.glints) {
-        text += fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target);
+    for (const OutputTarget& target : manifest.targets) {
+      if (!builtin_target(target.table).compiled_in_process() && !material.glints) {
+        text +=
+            fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target.name());
       }
     }
   }
@@ -973,7 +981,7 @@ std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& 
   std::stable_partition(precisions.begin(), precisions.end(), [](Precision precision) { return !is_half(precision); });
 
   std::vector<EmittedFile> files;
-  for (const std::string& target : manifest.targets) {
+  for (const OutputTarget& target : manifest.targets) {
     for (const Precision precision : precisions) {
       BundleRequest request;
       request.name = manifest.name;

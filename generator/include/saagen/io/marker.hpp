@@ -6,6 +6,7 @@
 #include "saagen/domain.hpp"
 #include "saagen/precision.hpp"
 
+#include <compare>
 #include <map>
 #include <optional>
 #include <string>
@@ -69,6 +70,7 @@ struct OutputTarget {
   // The text form: the pseudo-target of a product, the table's name of a snippet.
   std::string name() const { return is_snippet() ? table : std::string(marker_target(kind)); }
   bool operator==(const OutputTarget&) const = default;
+  auto operator<=>(const OutputTarget&) const = default;  // an order for maps keyed by target
 };
 
 // What one emitted file holds, as written in its marker line, so that a file on disk can be

@@ -3,6 +3,8 @@
 // generator/data/isa_cost.json. Manifests name the table's GPU families (gpu_family).
 #pragma once
 
+#include "saagen/io/marker.hpp"
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,7 +17,7 @@ namespace saagen {
 // "ratio_median", "delta_spirv_instructions", ...}]}; a row may also carry "error" (lower is
 // better), which `saagen bench` is to write. Rows of several targets are averaged per variant.
 struct MeasuredTradeRow {
-  std::string target;
+  OutputTarget target;  // read once from the row's "target" text
   std::string variant;
   std::optional<double> cost_ratio;          // ratio_median: time with the variant / without SAA
   std::optional<double> delta_instructions;  // delta_spirv_instructions
@@ -60,7 +62,7 @@ inline constexpr double kIsaTieTolerance = 0.01;
 struct IsaRow {
   std::string family;   // vega10
   std::string shader;   // "forward" (the fragment shader bench_shading times) or "deferred-pass"
-  std::string target;   // glsl, hlsl
+  OutputTarget target;  // a snippet of glsl or hlsl
   std::string variant;  // a variant id, a deferred pass id, or "no-saa"
   double instructions = 0, vgprs = 0, sgprs = 0, subgroups_per_simd = 0, latency = 0, inverse_throughput = 0;
   double inverse_throughput_ratio = 1;  // over the same shader without SAA
@@ -72,7 +74,7 @@ struct IsaTable {
   std::vector<std::string> families;
   std::vector<IsaRow> rows;
   // Mean over `targets` (those the table has) of the forward shader's inverse-throughput ratio.
-  std::optional<double> forward_ratio(std::string_view family, std::string_view variant, const std::vector<std::string>& targets) const;
+  std::optional<double> forward_ratio(std::string_view family, std::string_view variant, const std::vector<OutputTarget>& targets) const;
 };
 
 IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name);

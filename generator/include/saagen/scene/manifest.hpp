@@ -9,6 +9,7 @@
 #include "saagen/advice.hpp"
 #include "saagen/domain.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/io/marker.hpp"
 #include "saagen/precision.hpp"
 
 #include <filesystem>
@@ -50,9 +51,9 @@ struct Material {
 };
 
 struct Manifest {
-  std::string source_name;     // the file name used in diagnostics
-  std::string name = "scene";  // the bundle's name: files are <prefix><name>[_<precision>].<ext>
-  std::vector<std::string> targets;
+  std::string source_name;            // the file name used in diagnostics
+  std::string name = "scene";         // the bundle's name: files are <prefix><name>[_<precision>].<ext>
+  std::vector<OutputTarget> targets;  // snippets of built-in target tables, parsed from `targets`
   std::string prefix = "saa_";
   std::map<std::string, double> option_values;  // only the options the file sets (sigma2, kappa)
   // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
@@ -80,7 +81,7 @@ advice::Content content_of(const Material& material);
 // The target's precision for a manifest precision: the same name when the target has it, and
 // for "fp16" a target without an fp16 form falls back to "min16" (HLSL min16float); nullopt
 // when the target has neither.
-std::optional<Precision> target_precision(std::string_view target, Precision precision);
+std::optional<Precision> target_precision(const OutputTarget& target, Precision precision);
 
 // Keys a manifest may have, for documentation and for the unknown-key message.
 const std::vector<std::string>& manifest_keys();

@@ -71,7 +71,7 @@ struct MaterialPlan {
   std::string no_filter_advice;
   bool per_axis = false;  // isotropic filter on anisotropic roughness: once per axis
   Precision precision = Precision::fp32;
-  std::map<std::string, long> cost;  // target -> optimized SPIR-V instructions added
+  std::map<OutputTarget, long> cost;  // target -> optimized SPIR-V instructions added
   // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
   // normal) and whether to prefilter the normal map ("none", "toksvig", "lean", or an engine's
   // bake: "unreal", "filament-vmf", "hdrp"; `saagen texture prefilter --method`), with the
@@ -110,7 +110,7 @@ std::string rules_text();
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan);
 
 // The emission options of a manifest for one target and precision.
-EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const std::string& target, Precision precision);
+EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const OutputTarget& target, Precision precision);
 
 // The catalogue a manifest is planned and emitted over: the glint catalogue when a material has
 // glints = true (it holds the SAA variants too), else `catalogue` (plans and bundles without
