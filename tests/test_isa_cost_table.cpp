@@ -84,12 +84,12 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
   for (std::size_t index = 0; index < expected.rows.size(); ++index) {
     const saagen::IsaRow& a = committed.rows[index];
     const saagen::IsaRow& b = expected.rows[index];
-    EXPECT_EQ(a.family + a.shader + a.target + a.variant, b.family + b.shader + b.target + b.variant);
+    EXPECT_EQ(a.family + a.shader + a.target.name() + a.variant, b.family + b.shader + b.target.name() + b.variant);
     EXPECT_EQ(a.instructions, b.instructions)
-        << b.family << " " << b.target << " " << b.variant
+        << b.family << " " << b.target.name() << " " << b.variant
         << ": regenerate generator/data/isa_cost.json (saagen bench --isa vega10,navi21 --isa-only --isa-table FILE)";
-    EXPECT_EQ(a.inverse_throughput, b.inverse_throughput) << b.family << " " << b.target << " " << b.variant;
-    EXPECT_EQ(a.vgprs, b.vgprs) << b.family << " " << b.target << " " << b.variant;
+    EXPECT_EQ(a.inverse_throughput, b.inverse_throughput) << b.family << " " << b.target.name() << " " << b.variant;
+    EXPECT_EQ(a.vgprs, b.vgprs) << b.family << " " << b.target.name() << " " << b.variant;
   }
 }
 
