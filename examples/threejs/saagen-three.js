@@ -17,7 +17,9 @@
 // texture's to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp
 // --gltf`), not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks;
 // deferred-sum, the default wrapper, on the geometric normal with that bake measured LDR-FLIP
-// 0.0306 / TDE 0.00732 against 0.0411 / 0.00739 for no SAA on saagen's normal-mapped scenes.
+// 0.0300 / TDE 0.00731 against 0.0411 / 0.00739 for no SAA on saagen's normal-mapped scenes; on
+// authored maps (CC0 @pmndrs maps, ClearCoatTest) it lowers LDR-FLIP but raises TDE over no SAA
+// (examples/INTEGRATION.md, "Real normal maps").
 // 'shading' feeds the normal-mapped `normal` (and `clearcoatNormal`), which lowers LDR-FLIP less
 // and raises TDE where the map is not baked. Advice.ExamplesAndDocsAgreeWithThePlanner checks
 // these defaults against `saagen plan`.
