@@ -18,7 +18,7 @@
 // --gltf`), not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks;
 // deferred-sum, the default wrapper, on the geometric normal with that bake measured LDR-FLIP
 // 0.0300 / TDE 0.00731 against 0.0411 / 0.00739 for no SAA on saagen's normal-mapped scenes; on
-// authored maps (CC0 @pmndrs maps, ClearCoatTest) it lowers LDR-FLIP but raises TDE over no SAA
+// authored maps it raises TDE over no SAA (CC0 @pmndrs maps; on ClearCoatTest LDR-FLIP too)
 // (examples/INTEGRATION.md, "Real normal maps").
 // 'shading' feeds the normal-mapped `normal` (and `clearcoatNormal`), which lowers LDR-FLIP less
 // and raises TDE where the map is not baked. Advice.ExamplesAndDocsAgreeWithThePlanner checks
