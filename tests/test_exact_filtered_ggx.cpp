@@ -5,7 +5,7 @@
 // quadrature of GGX's Gaussian scale mixture, for any (anisotropic, correlated) kernel. Checked
 // against GGX's closed form (no kernel), against the isotropic quadrature filtered_ggx_slope_density
 // (trapezoid step 0.02, itself checked in test_filtered_ggx) and against an independent
-// anisotropic quadrature (step 0.04).
+// anisotropic quadrature (step 0.04, tests/scale_mixture_quadrature.hpp, shared with test_filtered_ggx).
 //
 // The mechanism: the forward kernel of the torus's highlight is rank 1 (the half vector turns
 // across the tube, hardly along the ring). Convolving along one slope axis leaves the marginal
@@ -13,6 +13,8 @@
 // alpha) draw the highlight's long streak. The closed-form lobe spends the kernel's r, averaged
 // over both axes, on a GGX lobe of A0's shape with weight 1 / lambda and puts the rest into
 // Gaussian (Beckmann) lobes, which have no such wings along the unfiltered axis.
+#include "scale_mixture_quadrature.hpp"
+
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/render.hpp"
 
@@ -33,20 +35,6 @@ double slope_density(const std::function<double(Vec3)>& ndf, double sx, double s
   const double cos2 = 1.0 / (1.0 + sx * sx + sy * sy);
   const double c = std::sqrt(cos2);
   return ndf({-sx * c, -sy * c, c}) * cos2 * cos2;
-}
-
-// An independent quadrature of integral_0^inf e^-w N(s; A0 / (2w) + Sigma) dw (step 0.04).
-double anisotropic_mixture(Vec2 alpha2, Sym2 sigma, double x, double y) {
-  double sum = 0.0;
-  constexpr double kStep = 0.04;
-  for (double u = -60.0; u < 5.0; u += kStep) {
-    const double w = std::exp(u);
-    const Sym2 c{alpha2.x / (2.0 * w) + sigma.xx, sigma.xy, alpha2.y / (2.0 * w) + sigma.yy};
-    const double det = c.xx * c.yy - c.xy * c.xy;
-    const double q = (c.yy * x * x - 2.0 * c.xy * x * y + c.xx * y * y) / det;
-    sum += w * std::exp(-w - 0.5 * q) / (2.0 * kPi * std::sqrt(det));
-  }
-  return sum * kStep;
 }
 
 // The marginal integral P(x, y) dx of a slope density along y, on a log-spaced symmetric grid in x
@@ -98,7 +86,7 @@ TEST(ExactFilteredGgx, IsTheConvolution) {
        {Case{{4.096e-5, 4.096e-5}, {7.5e-4, 0.0, 0.0}}, Case{{1e-2, 1e-4}, {1e-3, 4e-4, 5e-4}}, Case{{0.01, 0.01}, {0.003, 0.002, 0.006}}})
     for (double x : {0.003, 0.03, 0.3})
       for (double y : {-0.02, 0.01, 0.2}) {
-        const double reference = anisotropic_mixture(c.alpha2, c.sigma, x, y);
+        const double reference = saagen::test::anisotropic_slope_density(c.alpha2, c.sigma, x, y);
         EXPECT_NEAR(filtered_ggx_slope_density_matrix({x, y}, c.alpha2, c.sigma) / reference, 1.0, 1e-8) << x << ", " << y;
       }
 }
