@@ -2,7 +2,7 @@
 // variant and target shades a bumpy sphere with the GGX specular term, filtered through the
 // variant's fragment wrapper, and is timed against the same shading without SAA in the same run.
 //
-//   build-bench/bench/bench_shading [--device NAME] [--quick] [--size N] [--repetitions N]
+//   build-bench/bench/bench_shading [--device NAME] [--quick] [--size N|WxH] [--repetitions N]
 //                                   [--csv FILE] [--json FILE]
 //
 // Per target (glsl, hlsl) it prints: variant | median ms | median no-SAA ms of the rounds
@@ -37,6 +37,8 @@
 #include <saagen/harness/harness.hpp>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -60,7 +62,8 @@ using saagen::report::VariantCase;
 // Options
 
 struct Options {
-  std::uint32_t size = 1000;
+  std::uint32_t width = 1000;
+  std::uint32_t height = 1000;
   std::uint32_t repetitions = 15;
   std::uint32_t warmup = 2;
   bool quick = false;
@@ -83,10 +86,21 @@ std::uint32_t parse_count(const std::string& flag, const std::string& text, std:
   return static_cast<std::uint32_t>(value);
 }
 
+// "--size N" is N x N; "--size WxH" (e.g. 3840x2160, the 4K frame) is W x H.
+std::pair<std::uint32_t, std::uint32_t> parse_size(const std::string& text) {
+  const std::size_t cross = text.find('x');
+  if (cross == std::string::npos) {
+    const std::uint32_t side = parse_count("--size", text, 16, 8192);
+    return {side, side};
+  }
+  return {parse_count("--size", text.substr(0, cross), 16, 8192), parse_count("--size", text.substr(cross + 1), 16, 8192)};
+}
+
 Options parse_options(int argc, char** argv) {
   Options options;
   options.device = hx::take_device_flag(argc, argv);
-  std::optional<std::uint32_t> size, repetitions;
+  std::optional<std::pair<std::uint32_t, std::uint32_t>> size;
+  std::optional<std::uint32_t> repetitions;
   for (int index = 1; index < argc; ++index) {
     const std::string argument = argv[index];
     const auto value = [&]() -> std::string {
@@ -100,14 +114,14 @@ Options parse_options(int argc, char** argv) {
     } else if (argument == "--json") {
       options.json_path = value();
     } else if (argument == "--size") {
-      size = parse_count(argument, value(), 16, 8192);
+      size = parse_size(value());
     } else if (argument == "--repetitions") {
       repetitions = parse_count(argument, value(), 1, 1000);
     } else if (argument == "--help" || argument == "-h") {
       std::printf(
-          "usage: bench_shading [--device NAME] [--quick] [--size N] [--repetitions N] [--csv FILE] [--json FILE]\n"
+          "usage: bench_shading [--device NAME] [--quick] [--size N|WxH] [--repetitions N] [--csv FILE] [--json FILE]\n"
           "  --quick          smoke run: 128x128 pixels, 3 repetitions\n"
-          "  --size N         framebuffer N x N (even; default 1000)\n"
+          "  --size N|WxH     framebuffer N x N or W x H, e.g. 3840x2160 (even; default 1000)\n"
           "  --repetitions N  timed rounds per variant (default 15), after two warm-up rounds\n"
           "  --csv FILE       the table as CSV; --json FILE the same as JSON\n");
       std::exit(0);
@@ -116,13 +130,15 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (options.quick) {
-    options.size = 128;
+    options.width = options.height = 128;
     options.repetitions = 3;
     options.warmup = 1;
   }
-  if (size) options.size = *size;
+  if (size) std::tie(options.width, options.height) = *size;
   if (repetitions) options.repetitions = *repetitions;
-  if (options.size % 2 != 0) throw Failure(fmt::format("--size must be even, got {}", options.size));
+  if (options.width % 2 != 0 || options.height % 2 != 0) {
+    throw Failure(fmt::format("--size must be even in both directions, got {}x{}", options.width, options.height));
+  }
   return options;
 }
 
@@ -196,13 +212,13 @@ ImageStats check_image(const std::string& target, const std::string& what, const
 
 class Kernel {
  public:
-  Kernel(hx::VulkanContext& context, const Shader& shader, std::uint32_t size, const std::vector<float>& input) {
+  Kernel(hx::VulkanContext& context, const Shader& shader, std::uint32_t width, std::uint32_t height, const std::vector<float>& input) {
     hx::FragmentRun run;
     run.fragment.spirv = shader.spirv;
-    run.width = size;
-    run.height = size;
+    run.width = width;
+    run.height = height;
     run.color_formats = {VK_FORMAT_R32_SFLOAT};
-    run.buffers = {hx::input_buffer(0, input), hx::output_buffer<float>(1, static_cast<std::size_t>(size) * size)};
+    run.buffers = {hx::input_buffer(0, input), hx::output_buffer<float>(1, static_cast<std::size_t>(width) * height)};
     program_ = std::make_unique<hx::FragmentProgram>(context, run);
   }
 
@@ -290,7 +306,7 @@ void write_csv(const std::string& path, const std::vector<Row>& rows, const Opti
                        row.baseline_ms_min, row.ratio_of_minima, row.instructions, row.delta_instructions, row.pixel_change,
                        row.mean_change, optional_number(row.paper_range, [](const auto& r) { return r[0]; }),
                        optional_number(row.paper_range, [](const auto& r) { return r[1]; }),
-                       optional_number(row.paper_sponza, [](double v) { return v; }), options.size, options.size, options.repetitions,
+                       optional_number(row.paper_sponza, [](double v) { return v; }), options.width, options.height, options.repetitions,
                        time_source, quoted_device);
   }
   if (!out) throw Failure(fmt::format("cannot write {}", path));
@@ -300,8 +316,8 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Opt
                 const char* time_source) {
   nlohmann::json document;
   document["device"] = device;
-  document["width"] = options.size;
-  document["height"] = options.size;
+  document["width"] = options.width;
+  document["height"] = options.height;
   document["repetitions"] = options.repetitions;
   document["time_source"] = time_source;
   document["alpha"] = std::sqrt(scene_parameters(2, 2).front().values.front());
@@ -337,12 +353,13 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Opt
 
 // Counts the pixels whose screen derivatives of a buffer-loaded value are wrong: non-zero on
 // lavapipe (Mesa 22.3), whose helper invocations read 0 from storage buffers.
-std::size_t probe_helper_loads(hx::VulkanContext& context, const saagen::EmittedFile& host_file, std::uint32_t size) {
+std::size_t probe_helper_loads(hx::VulkanContext& context, const saagen::EmittedFile& host_file, std::uint32_t width,
+                               std::uint32_t height) {
   const std::string body =
       "    real v = SAAGEN_LOAD(0);\n"
       "    SAAGEN_STORE(0, abs(ddx_fine(v * saagen_frag_coord.x) - v) + abs(ddy_fine(v * saagen_frag_coord.y) - v));\n";
-  const Shader shader = build_shader("glsl", "helper-load probe", host_file, host_file.content, body, size);
-  Kernel probe(context, shader, size, {1.0f});
+  const Shader shader = build_shader("glsl", "helper-load probe", host_file, host_file.content, body, width);
+  Kernel probe(context, shader, width, height, {1.0f});
   probe.run_once(false);
   std::size_t wrong = 0;
   for (const float value : probe.output()) wrong += value > 1e-3f || !std::isfinite(value) ? 1 : 0;
@@ -350,8 +367,12 @@ std::size_t probe_helper_loads(hx::VulkanContext& context, const saagen::Emitted
 }
 
 // Below this mean per-pixel change (relative to the mean no-SAA value) a variant counts as "did
-// nothing". NDF filtering roughly preserves the mean, so the mean itself is no test.
-constexpr double minimum_pixel_change = 0.02;
+// nothing". NDF filtering roughly preserves the mean, so the mean itself is no test. The kernel
+// shrinks with the pixel (the sphere's bumps span more pixels at a larger size): at 1000 x 1000
+// the tail variants change 8 - 16 % per pixel, at 3840 x 2160 forward-aniso-projected/tail 1.9 %
+// (NVIDIA H200), so the bar sits an order of magnitude below that; a filter that is not wired in
+// changes nothing.
+constexpr double minimum_pixel_change = 0.002;
 
 int run_bench(const Options& options) {
   const auto started = std::chrono::steady_clock::now();
@@ -362,22 +383,22 @@ int run_bench(const Options& options) {
   const bool timestamps = info.timestamps_supported();
   const char* time_source = timestamps ? "GPU timestamp" : "host wall-clock";
   fmt::print(
-      "scene: bumpy GGX sphere, alpha 0.05, {0}x{0} px, {1} warm-up + {2} timed rounds per variant, "
+      "scene: bumpy GGX sphere, alpha 0.05, {}x{} px, {} warm-up + {} timed rounds per variant, "
       "baseline and variant interleaved (ABBA)\n",
-      options.size, options.warmup, options.repetitions);
+      options.width, options.height, options.warmup, options.repetitions);
 
   const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
   {
     saagen::EmitOptions emit;
     emit.variants = {"brdf-ggx"};
-    const std::size_t wrong = probe_helper_loads(context, saagen::emit_variants(catalogue, emit).front(), options.size);
+    const std::size_t wrong = probe_helper_loads(context, saagen::emit_variants(catalogue, emit).front(), options.width, options.height);
     if (wrong == 0) {
       fmt::print("helper invocations: buffer loads ok (derivatives of loaded values are exact on every pixel)\n");
     } else {
       fmt::print(
           "helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
           "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
-          wrong, static_cast<std::size_t>(options.size) * options.size);
+          wrong, static_cast<std::size_t>(options.width) * options.height);
     }
   }
   std::vector<Row> all_rows;
@@ -394,8 +415,8 @@ int run_bench(const Options& options) {
     const saagen::EmittedFile& brdf = file_of("brdf-ggx");
 
     const Shader baseline_shader =
-        build_shader(target, "no-saa", brdf, brdf.content, body_with(baseline_shade, options.size, options.size), options.size);
-    Kernel baseline(context, baseline_shader, options.size, parameter_buffer(options.size, options.size));
+        build_shader(target, "no-saa", brdf, brdf.content, body_with(baseline_shade, options.width, options.height), options.width);
+    Kernel baseline(context, baseline_shader, options.width, options.height, parameter_buffer(options.width, options.height));
     baseline.run_once(timestamps);
     const std::vector<float> baseline_image = baseline.output();
     const ImageStats baseline_stats = check_image(target, "no-saa", baseline_image);
@@ -405,8 +426,8 @@ int run_bench(const Options& options) {
     for (const VariantCase& variant : variant_cases()) {
       const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
       const Shader shader = build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
-                                         body_with(variant.shade, options.size, options.size), options.size);
-      Kernel kernel(context, shader, options.size, parameter_buffer(options.size, options.size));
+                                         body_with(variant.shade, options.width, options.height), options.width);
+      Kernel kernel(context, shader, options.width, options.height, parameter_buffer(options.width, options.height));
 
       std::vector<double> variant_samples, baseline_samples, ratios;
       for (std::uint32_t round = 0; round < options.warmup + options.repetitions; ++round) {
