@@ -161,10 +161,12 @@ class Loader {
         t.coat = m.clearcoat_factor;
         t.coat_map = m.clearcoat_map;
       }
-      if (t.normal_map || t.roughness_map || t.coat > 0.0) {
+      t.anisotropy = m.anisotropic_lobe;
+      if (t.normal_map || t.roughness_map || t.coat > 0.0 || t.anisotropy) {
         description << "o" << object << ":" << (t.normal_map ? t.normal_map->describe() : "-") << ","
                     << (t.roughness_map ? t.roughness_map->describe() : "-");
         if (t.coat > 0.0) description << ",coat=" << t.coat << "," << (t.coat_map ? t.coat_map->describe() : "-");
+        if (t.anisotropy) description << "," << t.anisotropy->describe();
         description << ";";
       }
       surfaces->by_object.push_back(std::move(t));
@@ -557,10 +559,21 @@ class Loader {
       out.anisotropy_strength = number(a, "anisotropyStrength", 0.0);
       out.anisotropy_rotation = number(a, "anisotropyRotation", 0.0);
       const ExtensionTexture texture = extension_texture(a, "anisotropyTexture");
+      auto lobe = std::make_shared<Anisotropy>();
+      lobe->strength = out.anisotropy_strength;
+      lobe->rotation = {std::cos(out.anisotropy_rotation), std::sin(out.anisotropy_rotation)};
       if (texture.index >= 0) {
-        texture_image(texture.index, texture.texcoord, texture.extensions, what + " anisotropyTexture");
+        tinygltf::TextureInfo info;
+        info.index = texture.index;
+        info.texCoord = texture.texcoord;
+        info.extensions = texture.extensions;
+        const std::string where = what + " anisotropyTexture";
+        lobe->red = channel_map(info, 0, where);
+        lobe->green = channel_map(info, 1, where);
+        lobe->blue = channel_map(info, 2, where);
         out.anisotropy_texture = true;
       }
+      if (out.anisotropy_strength != 0.0 || out.anisotropy_texture) out.anisotropic_lobe = std::move(lobe);
     }
     has_textures_.push_back(out.roughness_map || out.normal_map || out.clearcoat_roughness_map || out.clearcoat_normal_map ||
                             out.anisotropy_texture);

@@ -3,6 +3,7 @@
 
 #include "saagen/reference/brdf.hpp"
 #include "saagen/reference/prefilter.hpp"
+#include "saagen/reference/render/anisotropy.hpp"
 #include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/render/parallel.hpp"
 
@@ -54,6 +55,16 @@ LocalShading local_shading(const Scene& scene, const Ray& ray, const SurfaceHit&
   s.light_ts = to_tangent_space(s.to_light, hit.tangent, hit.bitangent, hit.normal);
   s.view_ts = to_tangent_space(s.to_view, hit.tangent, hit.bitangent, hit.normal);
   return s;
+}
+
+// KHR_materials_anisotropy at a ground-truth hit (anisotropy.hpp): the frames turned to the
+// direction of the texture's level 0; returns the strength (0 on isotropic surfaces).
+double apply_level0_anisotropy(const Scene& scene, SurfaceHit& hit) {
+  const SurfaceTextures* textures = scene.surface_textures_at(hit);
+  if (!textures || !textures->anisotropy) return 0.0;
+  const AnisotropySample a = anisotropy_level0(*textures->anisotropy, hit.uv);
+  apply_anisotropy_frame(hit, a.direction);
+  return a.strength;
 }
 
 }  // namespace
@@ -207,6 +218,7 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
         SurfaceHit hit;
         if (!scene.intersect(ray, hit)) continue;
         ++hits;
+        const double anisotropy = apply_level0_anisotropy(scene, hit);
         const LocalShading s = local_shading(scene, ray, hit);
         if (!(s.light_ts.z > 0.0) || !(s.view_ts.z > 0.0)) continue;
         const Vec3 half = normalize(s.light_ts + s.view_ts);
@@ -217,8 +229,7 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
         for (std::size_t m = 0; m < n_materials; ++m) {
           const double alpha = materials[m].alpha * hit.alpha_scale;
           if (alpha != last_alpha) {
-            const double a2 = alpha * alpha;
-            last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, {a2, a2});
+            last_brdf = ref::ggx_brdf_axis(s.light_ts, s.view_ts, anisotropic_alpha2(alpha, anisotropy));
             last_alpha = alpha;
           }
           sums[m] += last_brdf * common * (materials[m].fresnel ? fresnel : 1.0);
@@ -289,7 +300,8 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   const SurfaceTextures* textures = scene.surface_textures_at(hit);
   const ScalarMap* weight = textures ? textures->weight_map.get() : nullptr;
   const ScalarMap* coat = textures ? textures->coat_map.get() : nullptr;
-  if (map || roughness || weight || coat) {
+  const Anisotropy* anisotropy = textures ? textures->anisotropy.get() : nullptr;
+  if (map || roughness || weight || coat || (anisotropy && anisotropy->textured())) {
     const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
     f.duv_dx = d.ddx;
     f.duv_dy = d.ddy;
@@ -300,6 +312,14 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
     f.lod = map->lod(f.duv_dx, f.duv_dy);
     f.texel = map->trilinear(hit.uv, f.lod);
     Scene::apply_normal_map(hit, normalize(f.texel.normal));
+  }
+  if (anisotropy) {
+    const AnisotropySample a = anisotropy_trilinear(*anisotropy, hit.uv, f.duv_dx, f.duv_dy);
+    f.anisotropic = true;
+    f.anisotropy = a.strength;
+    f.anisotropy_direction = a.direction;
+    f.bitangent_sign = hit.bitangent_sign;
+    apply_anisotropy_frame(hit, a.direction);
   }
   // The roughness texture's own implicit LOD (its size may differ from the normal map's).
   if (roughness) f.alpha_scale = roughness_alpha_scale(roughness->trilinear(hit.uv, roughness->lod(f.duv_dx, f.duv_dy)));
@@ -350,6 +370,8 @@ QuadPixel helper_pixel(const Scene& scene, const SurfaceHit& shaded, const Pixel
   SurfaceHit hit;
   if (!scene.extrapolate_surface(shaded, ray, hit)) return {};
   if (const NormalMap* map = scene.normal_map_at(hit)) Scene::apply_normal_map(hit, normalize(map->trilinear(hit.uv, f.lod).normal));
+  if (const SurfaceTextures* textures = scene.surface_textures_at(hit); textures && textures->anisotropy)
+    apply_anisotropy_frame(hit, anisotropy_trilinear(*textures->anisotropy, hit.uv, f.duv_dx, f.duv_dy).direction);
   const LocalShading s = local_shading(scene, ray, hit);
   const Vec3 half = normalize(s.to_view + s.to_light);
   return {true,
@@ -531,10 +553,14 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   if (!f.hit) return out;
   const double alpha = material.alpha * f.alpha_scale;
   const double a2 = alpha * alpha;
-  const Vec2 alpha2{a2, a2};
+  // The unfiltered roughness per axis: (alpha_t^2, alpha_b^2) on an anisotropic lobe (in its
+  // turned frame), (alpha^2, alpha^2) otherwise.
+  const Vec2 alpha2 = f.anisotropic ? anisotropic_alpha2(alpha, f.anisotropy) : Vec2{a2, a2};
+  const bool per_axis = alpha2.x != alpha2.y;
   // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
   // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-  const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
+  Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
+  if (f.anisotropic) texture = to_anisotropy_frame(texture, f.anisotropy_direction, f.bitangent_sign);
   // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
   const double texture_isotropic = 0.5 * ref::trace(texture);
   double brdf = 0.0;
@@ -543,7 +569,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   // Per-axis filtered roughness (texture term included) through the lobe.
   auto shade_axis = [&](Vec2 filtered) {
     if (evaluated == Lobe::mapped)
-      filtered = {ref::ggx_filtered_alpha2(a2, filtered.x - a2), ref::ggx_filtered_alpha2(a2, filtered.y - a2)};
+      filtered = {ref::ggx_filtered_alpha2(alpha2.x, filtered.x - alpha2.x), ref::ggx_filtered_alpha2(alpha2.y, filtered.y - alpha2.y)};
     out.roughness = {filtered.x, 0.0, filtered.y};
     if (evaluated == Lobe::exact) {
       brdf = ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, out.roughness, alpha2);
@@ -552,18 +578,27 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
     brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
                                    : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
   };
+  auto with_isotropic_texture = [&](double filtered) {
+    return variant == Variant::deferred_projected_space ? ref::projected_space_add(filtered, texture_isotropic)
+                                                        : ref::saturate(filtered + texture_isotropic);
+  };
   auto isotropic = [&](double filtered) {
-    filtered = variant == Variant::deferred_projected_space ? ref::projected_space_add(filtered, texture_isotropic)
-                                                            : ref::saturate(filtered + texture_isotropic);
+    filtered = with_isotropic_texture(filtered);
     shade_axis({filtered, filtered});
+  };
+  // An isotropic form (alpha^2 -> alpha'^2) on the lobe: once, or once per axis of an
+  // anisotropic lobe (as the planner emits a deferred-* filter on anisotropic roughness).
+  auto isotropic_form = [&](auto&& form) {
+    if (!per_axis) return isotropic(form(a2));
+    shade_axis({with_isotropic_texture(form(alpha2.x)), with_isotropic_texture(form(alpha2.y))});
   };
   auto axis = [&](Vec2 filtered) { shade_axis({ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)}); };
   auto matrix = [&](Sym2 a) {
     a = a + texture;
     if (evaluated == Lobe::mapped) {
-      const Sym2 unfiltered{a2, 0.0, a2};
+      const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
       const Sym2 kernel = a - unfiltered;
-      a = unfiltered + ref::ggx_kernel_scale(a2, 0.5 * ref::trace(kernel)) * kernel;
+      a = unfiltered + ref::ggx_kernel_scale(0.5 * (alpha2.x + alpha2.y), 0.5 * ref::trace(kernel)) * kernel;
     }
     out.roughness = a;
     if (evaluated == Lobe::exact) {
@@ -575,9 +610,15 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   };
 
   if (variant == Variant::none) {
-    isotropic(a2);
+    isotropic_form([](double unfiltered) { return unfiltered; });
   } else if (is_engine(variant)) {
-    isotropic(engine_alpha2(variant, alpha, gather_quad(gbuffer, x, y), mode));
+    const double engine = engine_alpha2(variant, alpha, gather_quad(gbuffer, x, y), mode);
+    if (!per_axis) {
+      isotropic(engine);
+    } else {  // the extension's mapping on the engine's filtered alpha' (three.js's order)
+      const Vec2 e = anisotropic_alpha2(std::sqrt(engine), f.anisotropy);
+      shade_axis({with_isotropic_texture(e.x), with_isotropic_texture(e.y)});
+    }
   } else {
     const QuadFields q = gather_quad(gbuffer, x, y);
     const FeedQuads in = feed_quads(q, feed);
@@ -595,25 +636,32 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
         axis(ref::forward_axis_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
         break;
       case Variant::deferred_previous:
-        isotropic(ref::deferred_previous_fragment_quad(params, a2, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode));
+        isotropic_form([&](double unfiltered) {
+          return ref::deferred_previous_fragment_quad(params, unfiltered, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode);
+        });
         break;
       case Variant::deferred_max:
-        isotropic(ref::deferred_max_fragment_quad(params, a2, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode));
+        isotropic_form([&](double unfiltered) {
+          return ref::deferred_max_fragment_quad(params, unfiltered, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode);
+        });
         break;
       case Variant::deferred_max_tangent_free:
-        isotropic(ref::deferred_max_tangent_free_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        isotropic_form(
+            [&](double unfiltered) { return ref::deferred_max_tangent_free_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
         break;
       case Variant::deferred_sum:
-        isotropic(ref::deferred_sum_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        isotropic_form([&](double unfiltered) { return ref::deferred_sum_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
         break;
       case Variant::deferred_avg:
-        isotropic(ref::deferred_avg_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        isotropic_form([&](double unfiltered) { return ref::deferred_avg_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
         break;
       case Variant::deferred_projected_space:
-        isotropic(ref::deferred_projected_space_fragment_quad(params, a2, in.normal, q.pixel, mode));
+        isotropic_form(
+            [&](double unfiltered) { return ref::deferred_projected_space_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
         break;
       case Variant::deferred_aniso:
-        matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2));
+        // The kernel on the base alpha^2, then the lobe's anisotropy along t (0 when isotropic).
+        matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2) + Sym2{alpha2.x - a2, 0.0, alpha2.y - a2});
         break;
       default:
         throw std::invalid_argument("shade_pixel: unknown variant");

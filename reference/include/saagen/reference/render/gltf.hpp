@@ -25,7 +25,9 @@
 //               -> GGX alpha = roughness^2; normalTexture decoded as
 //               normalize((2 c - 1) * (scale, scale, 1)); KHR_materials_clearcoat (factor,
 //               roughness factor and texture (G), normal texture and scale) and
-//               KHR_materials_anisotropy (strength, rotation, texture) are read and described.
+//               KHR_materials_anisotropy (strength, rotation, texture: R and G a direction,
+//               B a strength factor) shades the base lobe (anisotropy.hpp): alpha_t =
+//               mix(alpha, 1, s^2) along the rotated direction, alpha_b = alpha across it.
 //               The trade shades the base specular lobe: its GGX alpha is the trade's alpha
 //               times the square of the roughness texture's G (SurfaceHit::alpha_scale), so
 //               the alpha sweep stays the trade's axis and the texture's variation is kept.
@@ -56,6 +58,7 @@
 // set, and counts beyond GltfLimits.
 #pragma once
 
+#include "saagen/reference/render/anisotropy.hpp"
 #include "saagen/reference/render/mesh.hpp"
 #include "saagen/reference/render/normal_map.hpp"
 #include "saagen/reference/render/scalar_map.hpp"
@@ -106,6 +109,9 @@ struct GltfMaterial {
   double anisotropy_strength = 0.0;
   double anisotropy_rotation = 0.0;  // radians
   bool anisotropy_texture = false;
+  // The lobe it shades (anisotropy.hpp); null where the material has none, or a zero strength
+  // and no texture (isotropic).
+  std::shared_ptr<const Anisotropy> anisotropic_lobe;
 
   std::string describe() const;
 };

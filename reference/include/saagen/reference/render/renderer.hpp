@@ -16,6 +16,15 @@
 // unfiltered BRDF of roughness alpha; the pixel value is their mean. One set of rays serves
 // every material of a call (the geometry does not depend on alpha or Fresnel).
 //
+// KHR_materials_anisotropy (anisotropy.hpp): on an anisotropic surface both images shade in the
+// frame turned to the anisotropy direction with (alpha_t^2, alpha_b^2) = anisotropic_alpha2; the
+// forward forms take that pair as their unfiltered roughness (the matrix forms add their kernel
+// to diag(alpha_t^2, alpha_b^2)), the isotropic deferred forms are applied once per axis (as the
+// planner emits them on anisotropic roughness), deferred-aniso adds its kernel to the matrix,
+// none shades the pair, and an engine's filtered alpha' becomes (mix(alpha', 1, s^2), alpha') as
+// three.js's MeshPhysicalMaterial does. A normal map's LEAN covariance is carried into the turned
+// frame (to_anisotropy_frame); the engines' isotropic bakes are taken on the base alpha.
+//
 // 1-spp variant images (render_gbuffer, then shade_pixel / render_variant): the shape is
 // sampled once at every pixel centre; the per-pixel fields (world normal, tangent, bitangent,
 // tangent-space light/view/half vectors, gl_FragCoord) of the 2x2 quad containing a pixel are
@@ -233,6 +242,14 @@ struct PixelFields {
   // SurfaceHit::weight, its texture sampled trilinearly at its own LOD: multiplies the radiance.
   double weight = 1.0;
   double coat = 0.0;  // SurfaceHit::coat, its texture sampled as the weight's
+  // KHR_materials_anisotropy (anisotropy.hpp), its texture sampled as the weight's: the strength,
+  // the direction in the texture's tangent frame and that frame's bitangent sign. The frames above
+  // (shading and geometric) are already turned to the direction; the base lobe is
+  // anisotropic_alpha2(alpha, anisotropy) in them.
+  bool anisotropic = false;
+  double anisotropy = 0.0;
+  Vec2 anisotropy_direction{1.0, 0.0};
+  double bitangent_sign = 1.0;
 };
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.

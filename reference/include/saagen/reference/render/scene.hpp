@@ -287,6 +287,8 @@ std::optional<SceneId> scene_from_name(std::string_view name);  // any SceneId
 std::span<const SceneId> all_scenes();                          // sphere, torus, tubes, bump_plane
 std::span<const SceneId> content_scenes();                      // nmap-sphere, nmap-sphere-fine, torus-knot
 
+struct Anisotropy;
+
 // The textures of each connected surface (SurfaceHit::object) of a scene built from an asset
 // (gltf.hpp): the tangent-space normal map (its texels already decoded and scaled by the
 // material's normalTexture.scale) and the roughness texture whose square scales alpha
@@ -304,6 +306,8 @@ struct SurfaceTextures {
   // Fresnel, ior 1.5); 0 and none: no layer.
   double coat = 0.0;
   std::shared_ptr<const ScalarMap> coat_map;
+  // KHR_materials_anisotropy of the lobe (anisotropy.hpp); null: isotropic.
+  std::shared_ptr<const Anisotropy> anisotropy;
 };
 // The alpha factor of a roughness texture's sample g (G channel): g^2, g clamped to
 // [1 / 255, 1] (the smallest non-zero 8-bit value: a zero alpha is a delta lobe no GGX
