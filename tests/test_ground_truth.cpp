@@ -274,6 +274,82 @@ TEST(Scene, BumpPlaneNormal) {
   EXPECT_GT(n_hits, 32 * 32 / 2);
 }
 
+namespace {
+
+// E[s] and E[s s^T] of the bump plane's slope s = grad h over x ~ N(centre, S) by the trapezoidal
+// rule on z in [-10, 10]^2, x = centre + L z (L L^T = S, Cholesky). For an entire integrand times
+// a Gaussian the rule converges geometrically: its aliasing error is of order exp(-(2 pi / step -
+// w)^2 / 2) for an oscillation of frequency w = |L^T k| in z (below 30 here, against 2 pi / step =
+// 126), and the cut at |z| = 10 drops exp(-50) of the weight; what remains is rounding, at most
+// n eps max|s s^T| ~ 1.6e5 x 1.1e-16 x 0.1 ~ 2e-12 for the n weighted terms.
+SlopeMoments quadrature_moments(const BumpPlane& plane, Vec2 centre, ref::Sym2 s) {
+  const double l00 = std::sqrt(s.xx), l10 = l00 > 0.0 ? s.xy / l00 : 0.0, l11 = std::sqrt(std::max(s.yy - l10 * l10, 0.0));
+  constexpr double kStep = 0.05, kCut = 10.0;
+  SlopeMoments m;
+  double total = 0.0;
+  for (double z0 = -kCut; z0 <= kCut + 1e-9; z0 += kStep)
+    for (double z1 = -kCut; z1 <= kCut + 1e-9; z1 += kStep) {
+      const double w = std::exp(-0.5 * (z0 * z0 + z1 * z1));
+      const Vec2 g = plane.gradient(centre.x + l00 * z0, centre.y + l10 * z0 + l11 * z1);
+      m.mean = m.mean + w * g;
+      m.second = m.second + w * ref::Sym2{g.x * g.x, g.x * g.y, g.y * g.y};
+      total += w;
+    }
+  return {m.mean / total, (1.0 / total) * m.second};
+}
+
+void expect_moments_near(const SlopeMoments& a, const SlopeMoments& b, double tolerance, const std::string& what) {
+  EXPECT_NEAR(a.mean.x, b.mean.x, tolerance) << what;
+  EXPECT_NEAR(a.mean.y, b.mean.y, tolerance) << what;
+  EXPECT_NEAR(a.second.xx, b.second.xx, tolerance) << what;
+  EXPECT_NEAR(a.second.xy, b.second.xy, tolerance) << what;
+  EXPECT_NEAR(a.second.yy, b.second.yy, tolerance) << what;
+}
+
+// The bump plane scene's waves' scale: 4 waves, wavelengths 0.083 - 0.23, slope amplitudes 0.12 - 0.2.
+const BumpPlane& test_plane() {
+  static const BumpPlane plane(2.5, {SineWave{{40.0, 12.0}, 0.2 / 41.8, 0.3}, SineWave{{-22.0, 55.0}, 0.15 / 59.2, 1.7},
+                                     SineWave{{57.0, -50.0}, 0.12 / 75.8, 4.1}, SineWave{{5.5, 27.0}, 0.18 / 27.6, 2.6}});
+  return plane;
+}
+
+}  // namespace
+
+// The closed-form footprint moments of a sum of sines (scene.hpp, BumpPlane) against the
+// quadrature of the same Gaussian expectation: an empty footprint gives the slope and its square,
+// isotropic and sheared footprints (standard deviations about 1/25 to 1/2 of the shortest wavelength)
+// the quadrature's values (tolerance: its rounding bound, quadrature_moments).
+TEST(Scene, BumpPlaneFootprintMomentsMatchQuadrature) {
+  const BumpPlane& plane = test_plane();
+  for (const Vec2 centre : {Vec2{0.13, -0.41}, Vec2{-1.2, 0.77}}) {
+    const Vec2 g = plane.gradient(centre.x, centre.y);
+    expect_moments_near(plane.slope_moments(centre, {}), SlopeMoments{g, {g.x * g.x, g.x * g.y, g.y * g.y}}, 1e-15, "empty footprint");
+    for (const ref::Sym2 s :
+         {ref::Sym2{1e-5, 0.0, 1e-5}, ref::Sym2{4e-4, 0.0, 4e-4}, ref::Sym2{1e-3, 6e-4, 5e-4}, ref::Sym2{2e-4, -1e-4, 1e-3}})
+      expect_moments_near(plane.slope_moments(centre, s), quadrature_moments(plane, centre, s), 2e-12,
+                          "footprint " + std::to_string(s.xx) + " " + std::to_string(s.xy) + " " + std::to_string(s.yy));
+  }
+}
+
+// A footprint much wider than every wave (and every difference of two waves' vectors): the mean
+// slope vanishes and the second moment is each wave's own, sum a^2 k k^T / 2 (the mean of cos^2),
+// exactly (exp underflows to 0). The scene's uv-footprint form is the plane's with x = size uv - half.
+TEST(Scene, BumpPlaneWideFootprintKeepsEachWavesVariance) {
+  const BumpPlane& plane = test_plane();
+  const SlopeMoments m = plane.slope_moments({0.3, 0.2}, {100.0, 0.0, 100.0});
+  ref::Sym2 expected{};
+  for (const SineWave& w : plane.waves())
+    expected =
+        expected + (0.5 * w.amplitude * w.amplitude) *
+                       ref::Sym2{w.wave_vector.x * w.wave_vector.x, w.wave_vector.x * w.wave_vector.y, w.wave_vector.y * w.wave_vector.y};
+  expect_moments_near(m, SlopeMoments{{}, expected}, 1e-16, "wide footprint");
+  // uv (0.56, 0.54) on the 5 x 5 plane is x = (0.3, 0.2); S_uv = S / 25.
+  const auto via_uv = plane.footprint_slope_moments({0.56, 0.54}, {4e-5, 1e-5, 2e-5});
+  ASSERT_TRUE(via_uv.has_value());
+  expect_moments_near(*via_uv, plane.slope_moments({0.3, 0.2}, {1e-3, 2.5e-4, 5e-4}), 1e-14, "uv footprint");
+  EXPECT_FALSE(Sphere(1.0).footprint_slope_moments({0.5, 0.5}, {1e-3, 0.0, 1e-3}).has_value());
+}
+
 // The rotation used for the flicker animation is rigid and about the vertical axis.
 TEST(Scene, RotationAboutVerticalAxis) {
   for (SceneId id : all_scenes()) {
@@ -561,10 +637,24 @@ TEST(Metrics, StaticSceneHasZeroFlicker) {
   config.fresnel_modes = {false};
   const TradeTable table = compute_trade_table(config);
   // Per scene: every variant and engine, and each further lobe of the lobe variants; the bump
-  // plane's normal detail adds the geometric feed of every variant but the baseline (lobes too).
+  // plane's normal detail adds the geometric feed of every variant but the baseline (lobes too),
+  // and its procedural detail the LEAN row of every prefiltered variant (lobes too; no other
+  // prefilter: scene_has_procedural_normals).
   const std::size_t lobe_rows = config.lobe_variants.size() * config.lobes.size();
   const std::size_t per_scene = all_variants().size() + all_engines().size() + lobe_rows;
-  ASSERT_EQ(table.rows.size(), 2 * per_scene + (all_variants().size() - 1) + lobe_rows);
+  std::size_t lean_rows = 0;
+  for (Variant v : config.prefiltered_variants) {
+    const bool has_lobes = std::find(config.lobe_variants.begin(), config.lobe_variants.end(), v) != config.lobe_variants.end();
+    lean_rows += 1 + (has_lobes ? config.lobes.size() : 0);
+  }
+  ASSERT_EQ(table.rows.size(), 2 * per_scene + (all_variants().size() - 1) + lobe_rows + lean_rows);
+  std::size_t bump_lean = 0;
+  for (const TradeRow& row : table.rows) {
+    EXPECT_TRUE(row.prefilter == Prefilter::none || (row.prefilter == Prefilter::lean && row.scene == SceneId::bump_plane))
+        << configuration_id(row) << " " << scene_name(row.scene);
+    bump_lean += row.prefilter == Prefilter::lean;
+  }
+  EXPECT_EQ(bump_lean, lean_rows);
   for (const TradeRow& row : table.rows) {
     EXPECT_EQ(row.flicker, 0.0) << configuration_id(row) << " " << scene_name(row.scene);
     EXPECT_EQ(row.temporal_stddev, 0.0);

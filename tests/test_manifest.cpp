@@ -459,6 +459,25 @@ TEST(Planner, WithATableASpeedChoiceThatLosesGivesWay) {
       << plan.reason;
 }
 
+// On bump content the trade's prefiltered rows are a procedural shader band-limited to its
+// footprint (bump_plane "+lean"), code the plan does not write: a bumps material without normal
+// maps is never planned from them, even where they are the only rows that beat no SAA.
+TEST(Planner, BumpMaterialsAreNotPlannedFromBandLimitedRows) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "bump", "configuration": "none", "error": 0.34, "tde": 0.141},
+      {"content": "bump", "configuration": "deferred-aniso:geometric+lean/tail", "error": 0.20, "tde": 0.098},
+      {"content": "bump", "configuration": "deferred-aniso/tail", "error": 0.23, "tde": 0.198}]})",
+                                                                     "bump.json");
+  const saagen::MaterialPlan plan =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\ncontent = \"bumps\"\n"),
+                         &table)
+          .materials.at(0);
+  EXPECT_EQ(plan.variant, "none") << plan.reason;
+  EXPECT_EQ(plan.rule, "trade table");
+  EXPECT_NE(plan.reason.find("deferred-aniso/tail 0.23 / 0.198"), std::string::npos) << plan.reason;
+  EXPECT_EQ(plan.reason.find("+lean"), std::string::npos) << plan.reason;
+}
+
 // deferred-aniso (D0): the G-buffer tensor from the wrapper, then its lighting pass's BRDF per
 // light; isotropic GGX materials only.
 TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {

@@ -7,6 +7,8 @@
 //
 // Runtime: G-buffers at the base 256 x 256 view of the unit sphere cost ~4 ray casts per pixel,
 // the ground-truth smoke renders are 16 x 16 x 16 spp; the binary runs in a few seconds.
+#include "saagen/reference/brdf.hpp"
+#include "saagen/reference/prefilter.hpp"
 #include "saagen/reference/render/render.hpp"
 
 #include <gtest/gtest.h>
@@ -407,6 +409,71 @@ TEST(NormalMapped, OneSppFieldsAreTheTrilinearSample) {
   EXPECT_FALSE(plain.has_normal_map);
   EXPECT_EQ(plain.geometric_half_ts, plain.half_ts);
   EXPECT_EQ(plain.lod, 0.0);
+}
+
+// Procedural bumps (the bump plane, renderer.hpp PixelFields::has_footprint_moments): the 1-spp
+// fields hold the closed-form slope moments of the pixel filter's footprint through the quad's
+// coarse uv derivatives; a prefiltered row shades the band-limited normal normalize(-E[s], 1) with
+// LEAN's covariance added to alpha^2, every other row the unfiltered normal at the centre. Equal
+// up to rounding (1e-12 relative: the same operations in another order), exactly where nothing is
+// recomputed.
+TEST(ProceduralBumps, PrefilteredRowsShadeTheBandLimitedNormal) {
+  const int size = 64;
+  const Scene scene = make_scene(SceneId::bump_plane);
+  const ref::Params params{};
+  const Material material{0.05, false};
+  const double a2 = material.alpha * material.alpha;
+  const GBuffer gbuffer = render_gbuffer(scene, size, size, 1);
+  int checked = 0;
+  for (const auto& [x, y] : {std::pair{30, 27}, std::pair{41, 18}, std::pair{12, 50}}) {
+    const PixelFields& f = gbuffer.at(x, y);
+    ASSERT_TRUE(f.hit && f.has_footprint_moments && !f.has_normal_map);
+    SurfaceHit centre;
+    ASSERT_TRUE(scene.intersect_surface(scene.camera().generate(x + 0.5, y + 0.5, size, size), centre));
+    const UvDerivatives d = coarse_uv_derivatives(scene, centre, x, y, size, size);
+    EXPECT_EQ(f.duv_dx, d.ddx);
+    EXPECT_EQ(f.duv_dy, d.ddy);
+    const SlopeMoments m = *scene.footprint_slope_moments(centre, uv_footprint(default_pixel_filter().variance(), d.ddx, d.ddy));
+    EXPECT_EQ(f.texel.slope_mean, m.mean);
+    EXPECT_EQ(f.texel.slope_second, m.second);
+    // The unfiltered normal is the analytic one at the centre; the band-limited one is E[s]'s.
+    EXPECT_EQ(f.normal, centre.normal);
+    SurfaceHit band = centre;
+    Scene::apply_normal_map(band, ref::normalize(Vec3{-m.mean.x, -m.mean.y, 1.0}));
+    EXPECT_EQ(f.band_limited.normal, band.normal);
+
+    // none: GGX at alpha^2 on the centre's vectors; none+lean: alpha^2 + tr(2 Sigma) / 2 on the band-limited ones.
+    const PixelShade plain = shade_pixel(gbuffer, x, y, Variant::none, material, params);
+    EXPECT_EQ(plain.roughness.xx, a2);
+    EXPECT_DOUBLE_EQ(plain.radiance,
+                     specular_radiance(ref::ggx_brdf_axis(f.light_ts, f.view_ts, {a2, a2}), f.light_ts, f.view_ts, f.irradiance, false));
+    const ref::Sym2 texture = 2.0 * ref::lean_covariance(params, m.mean, m.second);
+    EXPECT_GT(ref::trace(texture), 0.0);
+    const PixelShade lean =
+        shade_pixel(gbuffer, x, y, Variant::none, material, params, ref::Derivative::coarse, NormalFeed::shading, Prefilter::lean);
+    const double filtered = ref::saturate(a2 + 0.5 * ref::trace(texture));
+    EXPECT_NEAR(lean.roughness.xx, filtered, 1e-12 * filtered);
+    const ShadingFrame& b = f.band_limited;
+    const double expected =
+        specular_radiance(ref::ggx_brdf_axis(b.light_ts, b.view_ts, {filtered, filtered}), b.light_ts, b.view_ts, f.irradiance, false);
+    EXPECT_NEAR(lean.radiance, expected, 1e-12 * std::max(expected, 1e-300));
+    // The matrix form takes the full covariance: A - (its geometric-feed kernel alone) = 2 Sigma.
+    const PixelShade matrix = shade_pixel(gbuffer, x, y, Variant::forward_aniso_projected, material, params, ref::Derivative::coarse,
+                                          NormalFeed::geometric, Prefilter::lean, 1.0, Lobe::tail);
+    const PixelShade kernel_only = shade_pixel(gbuffer, x, y, Variant::forward_aniso_projected, material, params, ref::Derivative::coarse,
+                                               NormalFeed::geometric, Prefilter::none, 1.0, Lobe::tail);
+    EXPECT_NEAR(matrix.roughness.xy - kernel_only.roughness.xy, texture.xy, 1e-12);
+    EXPECT_NEAR(matrix.roughness.xx - kernel_only.roughness.xx, texture.xx, 1e-12);
+    // Only LEAN's moments exist in closed form: a Toksvig-family row is refused.
+    EXPECT_THROW(
+        shade_pixel(gbuffer, x, y, Variant::none, material, params, ref::Derivative::coarse, NormalFeed::shading, Prefilter::toksvig),
+        std::invalid_argument);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
+  // Scenes without procedural detail have no footprint moments.
+  EXPECT_FALSE(pixel_fields(make_scene(SceneId::sphere), 30, 27, size, size).has_footprint_moments);
+  EXPECT_FALSE(pixel_fields(make_scene(SceneId::nmap_sphere), 30, 27, size, size).has_footprint_moments);
 }
 
 // ---------------------------------------------------------------------------------------------

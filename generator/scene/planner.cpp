@@ -463,6 +463,12 @@ void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<c
                                    fmt::join(figures, ", "), prefilter_advice(table, eligible, choose_variant, plan));
 }
 
+// Whether the plan can give a configuration's prefilter: a normal map's bake. On bump content
+// the trade's prefiltered rows (bump_plane "+lean") are the procedural shader band-limited to its
+// footprint with its slope moments in closed form, code of the material's own shader that the
+// plan does not write (docs/FILTERED_GGX.md, "Band-limited bumps"): they are not planned.
+bool can_prefilter(const Material& material, const Configuration& c) { return c.prefilter == "none" || material.normal_maps; }
+
 bool can_use(const std::vector<const Variant*>& eligible, std::string_view id) {
   return std::any_of(eligible.begin(), eligible.end(), [&](const Variant* variant) { return variant->id == id; });
 }
@@ -508,7 +514,10 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 // The plan keeps a filter only where it is one of the configurations that beat no SAA in both
 // LDR-FLIP and TDE on that content; accuracy takes the first of them the material can use, speed
 // keeps its cheaper choice when it is one of them, else takes that first one; where the material
-// can use none of them, no filter.
+// can use none of them, no filter. An anisotropic material whose rule gave a matrix form
+// (forward-aniso-*) keeps it when it is one of them: it adds its kernel to the anisotropic
+// roughness matrix and keeps the kernel's own orientation, where an axis-aligned form filters only
+// along the anisotropy's axes and a deferred-* kernel is applied once per axis.
 void apply_advice(const Material& material, bool taa, const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
   const advice::Content content = content_of(material);
   const advice::ContentAdvice& entry = advice::lookup(content, taa);
@@ -517,6 +526,7 @@ void apply_advice(const Material& material, bool taa, const std::vector<const Va
   const advice::Figure* kept = nullptr;
   for (const advice::Figure& figure : entry.winners) {
     if (figure.configuration.empty()) continue;
+    if (!can_prefilter(material, parse_configuration(std::string(figure.configuration)))) continue;
     ++winners;
     const std::string variant = parse_configuration(std::string(figure.configuration)).variant;
     if (!chosen && can_use(eligible, variant)) chosen = &figure;
@@ -525,7 +535,8 @@ void apply_advice(const Material& material, bool taa, const std::vector<const Va
   if (!chosen) {
     std::vector<std::string> listed;
     for (const advice::Figure& figure : entry.winners)
-      if (!figure.configuration.empty()) listed.push_back(figure_text(figure.configuration, figure.flip, figure.tde));
+      if (!figure.configuration.empty() && can_prefilter(material, parse_configuration(std::string(figure.configuration))))
+        listed.push_back(figure_text(figure.configuration, figure.flip, figure.tde));
     plan_no_filter(material, "advice",
                    fmt::format("no filter: on {} no configuration {}beats no SAA in both LDR-FLIP and TDE in saagen's trade ({}{}); "
                                "name a variant (variant = \"...\") to filter anyway",
@@ -534,7 +545,8 @@ void apply_advice(const Material& material, bool taa, const std::vector<const Va
                    plan);
     return;
   }
-  const advice::Figure& taken = material.prefer == Preference::speed && kept ? *kept : *chosen;
+  const bool keep_matrix_form = material.anisotropic && plan.variant.rfind("forward-aniso-", 0) == 0;
+  const advice::Figure& taken = (material.prefer == Preference::speed || keep_matrix_form) && kept ? *kept : *chosen;
   const Configuration c = parse_configuration(std::string(taken.configuration));
   const std::string measured =
       fmt::format("LDR-FLIP / TDE {} against no SAA's {} / {} on {} ({})", figure_text(taken.configuration, taken.flip, taken.tde),
@@ -579,6 +591,7 @@ void check_against_no_filter(const MeasuredTradeTable& table, const Material& ma
     const Configuration c = parse_configuration(row->configuration);
     if (c.variant == "none" || row->configuration.rfind("engine-", 0) == 0 || !can_use(eligible, c.variant)) continue;
     if (has_lobe && c.lobe != advice::kLobe) continue;
+    if (!can_prefilter(material, c)) continue;
     const bool is_planned = c.variant == plan.variant && (!material.normal_maps || (c.feed == plan.feed && c.prefilter == plan.prefilter));
     if (is_planned && (!planned || row->error < planned->error)) planned = *row;
     if (beats_none(*row) && (!best || row->error < best->error)) best = *row;

@@ -289,6 +289,32 @@ UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded
   return {uv_at(x0 + 1, y0) - uv0, uv_at(x0, y0 + 1) - uv0};
 }
 
+Sym2 uv_footprint(double sigma2, Vec2 duv_dx, Vec2 duv_dy) {
+  return {sigma2 * (duv_dx.x * duv_dx.x + duv_dy.x * duv_dy.x), sigma2 * (duv_dx.x * duv_dx.y + duv_dy.x * duv_dy.y),
+          sigma2 * (duv_dx.y * duv_dx.y + duv_dy.y * duv_dy.y)};
+}
+
+namespace {
+
+ShadingFrame shading_frame(const SurfaceHit& hit, const LocalShading& s) {
+  return {hit.normal, hit.tangent, hit.bitangent,
+          s.light_ts, s.view_ts,   to_tangent_space(normalize(s.to_view + s.to_light), hit.tangent, hit.bitangent, hit.normal)};
+}
+
+// PixelFields::texel's moments and band_limited frame of a hit with procedural normal detail.
+void set_footprint_moments(const Scene& scene, const Ray& ray, const SurfaceHit& hit, const SlopeMoments& moments, PixelFields& f) {
+  f.has_footprint_moments = true;
+  f.texel.slope_mean = moments.mean;
+  f.texel.slope_second = moments.second;
+  // The slope s = -n.xy / n.z: the band-limited tangent-space normal is (-E[s], 1).
+  f.texel.normal = normalize(Vec3{-moments.mean.x, -moments.mean.y, 1.0});
+  SurfaceHit band_limited = hit;
+  Scene::apply_normal_map(band_limited, f.texel.normal);
+  f.band_limited = shading_frame(band_limited, local_shading(scene, ray, band_limited));
+}
+
+}  // namespace
+
 PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height) {
   PixelFields f;
   f.frag_coord = {x + 0.5, y + 0.5};
@@ -301,7 +327,10 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   const ScalarMap* weight = textures ? textures->weight_map.get() : nullptr;
   const ScalarMap* coat = textures ? textures->coat_map.get() : nullptr;
   const Anisotropy* anisotropy = textures ? textures->anisotropy.get() : nullptr;
-  if (map || roughness || weight || coat || (anisotropy && anisotropy->textured())) {
+  // Procedural normal detail: whether the shape has footprint moments (asked with an empty
+  // footprint; the pixel's own comes from the uv derivatives below).
+  const bool procedural = scene.footprint_slope_moments(hit, Sym2{}).has_value();
+  if (map || roughness || weight || coat || (anisotropy && anisotropy->textured()) || procedural) {
     const UvDerivatives d = coarse_uv_derivatives(scene, hit, x, y, width, height);
     f.duv_dx = d.ddx;
     f.duv_dy = d.ddy;
@@ -347,6 +376,9 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
       to_tangent_space(normalize(s.to_view + s.to_light), hit.geometric_tangent, hit.geometric_bitangent, hit.geometric_normal);
   f.uv = hit.uv;
   f.triangle = hit.triangle;
+  if (procedural)
+    set_footprint_moments(scene, ray, hit,
+                          *scene.footprint_slope_moments(hit, uv_footprint(default_pixel_filter().variance(), f.duv_dx, f.duv_dy)), f);
   return f;
 }
 
@@ -504,7 +536,14 @@ double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Der
 // (Toksvig), 2 Sigma_tex (LEAN) or an engine's baked alpha'^2 less the base alpha2, as a
 // symmetric matrix in the tangent frame.
 Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Params& params, double alpha2) {
-  if (prefilter == Prefilter::none || !f.has_normal_map) return {};
+  if (prefilter == Prefilter::none) return {};
+  if (f.has_footprint_moments) {
+    if (prefilter != Prefilter::lean)
+      throw std::invalid_argument("shade_pixel: procedural normal detail has LEAN's moments only; prefilter " +
+                                  std::string(prefilter_name(prefilter)) + " needs a normal map");
+    return 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+  }
+  if (!f.has_normal_map) return {};
   const double length = ref::length(f.texel.mean_normal);
   double v = 0.0;
   switch (prefilter) {
@@ -544,11 +583,27 @@ Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields&
   return {r0x * m00 + r0y * m01, r0x * m10 + r0y * m11, r1x * m10 + r1y * m11};
 }
 
+// The pixel's fields in the band-limited normal's frame (PixelFields::band_limited): what a
+// prefiltered row shades on procedural normal detail.
+PixelFields band_limited_fields(const PixelFields& f) {
+  PixelFields band = f;
+  band.normal = f.band_limited.normal;
+  band.tangent = f.band_limited.tangent;
+  band.bitangent = f.band_limited.bitangent;
+  band.light_ts = f.band_limited.light_ts;
+  band.view_ts = f.band_limited.view_ts;
+  band.half_ts = f.band_limited.half_ts;
+  return band;
+}
+
 }  // namespace
 
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, const Material& material, const ref::Params& params,
                        ref::Derivative mode, NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
-  const PixelFields& f = gbuffer.at(x, y);
+  const PixelFields& own = gbuffer.at(x, y);
+  std::optional<PixelFields> band;
+  if (prefilter != Prefilter::none && own.has_footprint_moments) band = band_limited_fields(own);
+  const PixelFields& f = band ? *band : own;
   PixelShade out;
   if (!f.hit) return out;
   const double alpha = material.alpha * f.alpha_scale;

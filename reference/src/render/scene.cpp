@@ -381,6 +381,39 @@ bool BumpPlane::intersect(const Ray& ray, double t_min, SurfaceHit& hit) const {
   return true;
 }
 
+SlopeMoments BumpPlane::slope_moments(Vec2 centre, Sym2 covariance) const {
+  // g(k) = exp(-k^T S k / 2): the Gaussian's characteristic function (see scene.hpp).
+  auto attenuation = [&](Vec2 k) {
+    return std::exp(-0.5 * (covariance.xx * k.x * k.x + 2.0 * covariance.xy * k.x * k.y + covariance.yy * k.y * k.y));
+  };
+  auto phase = [&](const SineWave& w) { return w.wave_vector.x * centre.x + w.wave_vector.y * centre.y + w.phase; };
+  SlopeMoments m;
+  for (std::size_t j = 0; j < waves_.size(); ++j) {
+    const SineWave& wj = waves_[j];
+    const double theta_j = phase(wj);
+    m.mean = m.mean + (wj.amplitude * std::cos(theta_j) * attenuation(wj.wave_vector)) * wj.wave_vector;
+    for (std::size_t l = j; l < waves_.size(); ++l) {
+      const SineWave& wl = waves_[l];
+      const double theta_l = phase(wl);
+      const double c = 0.5 * wj.amplitude * wl.amplitude *
+                       (std::cos(theta_j - theta_l) * attenuation(wj.wave_vector - wl.wave_vector) +
+                        std::cos(theta_j + theta_l) * attenuation(wj.wave_vector + wl.wave_vector));
+      // The pair (j, l) and (l, j) together: c (k_j k_l^T + k_l k_j^T); the diagonal once.
+      const Vec2 kj = wj.wave_vector, kl = wl.wave_vector;
+      const double weight = l == j ? 1.0 : 2.0;
+      const Sym2 outer{kj.x * kl.x, 0.5 * (kj.x * kl.y + kj.y * kl.x), kj.y * kl.y};
+      m.second = m.second + (weight * c) * outer;
+    }
+  }
+  return m;
+}
+
+std::optional<SlopeMoments> BumpPlane::footprint_slope_moments(Vec2 uv, Sym2 footprint) const {
+  // uv = (x + half) / size on both axes (intersect): x = size uv - half, S_x = size^2 S_uv.
+  const double size = 2.0 * half_size_;
+  return slope_moments({size * uv.x - half_size_, size * uv.y - half_size_}, (size * size) * footprint);
+}
+
 std::string BumpPlane::describe() const {
   std::ostringstream s;
   s.precision(17);
@@ -669,6 +702,14 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.coat = textures->coat * (textures->coat_map ? ref::saturate(textures->coat_map->bilinear(0, hit.uv)) : 1.0);
   }
   return true;
+}
+
+std::optional<SlopeMoments> Scene::footprint_slope_moments(const SurfaceHit& hit, Sym2 uv_footprint) const {
+  // Texture units are tiling x the shape's uv (finish_surface_hit): back to the shape's.
+  const Vec2 uv{hit.uv.x / tiling_.x, hit.uv.y / tiling_.y};
+  const Sym2 footprint{uv_footprint.xx / (tiling_.x * tiling_.x), uv_footprint.xy / (tiling_.x * tiling_.y),
+                       uv_footprint.yy / (tiling_.y * tiling_.y)};
+  return shape_->footprint_slope_moments(uv, footprint);
 }
 
 void Scene::apply_normal_map(SurfaceHit& hit, Vec3 normal_ts) {

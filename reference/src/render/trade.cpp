@@ -193,7 +193,9 @@ bool scene_has_normal_map(SceneId id) {
   return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
 }
 
-bool scene_has_normal_detail(SceneId id) { return id == SceneId::bump_plane || scene_has_normal_map(id); }
+bool scene_has_procedural_normals(SceneId id) { return id == SceneId::bump_plane; }
+
+bool scene_has_normal_detail(SceneId id) { return scene_has_procedural_normals(id) || scene_has_normal_map(id); }
 
 namespace {
 
@@ -237,10 +239,12 @@ std::vector<RowKey> row_keys(const TradeConfig& config, SceneId scene) {
         if (feed == NormalFeed::shading || scene_has_normal_detail(scene)) keys.push_back({v, feed});
     }
   }
-  if (scene_has_normal_map(scene))
+  const bool procedural = scene_has_procedural_normals(scene);
+  if (scene_has_normal_map(scene) || procedural)
     for (Variant v : config.prefiltered_variants)
       for (Prefilter prefilter : config.prefilters)
-        keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric, prefilter});
+        if (!procedural || prefilter == Prefilter::lean)
+          keys.push_back({v, v == Variant::none ? NormalFeed::shading : NormalFeed::geometric, prefilter});
   return with_lobes(config, keys);
 }
 

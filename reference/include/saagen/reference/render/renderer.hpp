@@ -144,7 +144,10 @@ NormalFeed engine_feed(Variant engine);
 // Normal-map prefiltering, the texture-space half of SAA (Kaplanyan et al. 2016 Sec. 4;
 // reference/prefilter.hpp): the spread of the map's normals under the pixel's trilinear MIP
 // footprint (PixelFields::texel) becomes roughness added to the filtered roughness, in the
-// variant's domain, never clamped by kappa.
+// variant's domain, never clamped by kappa. On procedural normal detail (the bump plane;
+// PixelFields::has_footprint_moments) only `lean` applies: the footprint's slope moments are
+// closed-form, and the row shades the band-limited normal; the other forms read the length of a
+// mean unit normal, which a sum of sines has no closed form for (shade_pixel throws).
 //   toksvig  2 sigma^2, sigma^2 = (1 - L) / L from the length L of the filtered mean normal
 //            (Toksvig 2005; the map stores unnormalised mean normals, as Toksvig proposes);
 //   lean     2 Sigma_tex from the filtered slope moments (Olano & Baker 2010): the full
@@ -206,6 +209,12 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
 // ---------------------------------------------------------------------------------------------
 // 1-spp fields and variant images
 
+// A shading frame and the shading vectors in it (PixelFields::band_limited).
+struct ShadingFrame {
+  Vec3 normal, tangent, bitangent;  // world space
+  Vec3 light_ts, view_ts, half_ts;  // i, o, normalize(i + o) in (t, b, n)
+};
+
 // What a fragment shader has at one pixel centre.
 struct PixelFields {
   bool hit = false;
@@ -250,7 +259,21 @@ struct PixelFields {
   double anisotropy = 0.0;
   Vec2 anisotropy_direction{1.0, 0.0};
   double bitangent_sign = 1.0;
+  // Procedural normal detail (Scene::footprint_slope_moments: the bump plane's sum of sines), what
+  // a procedural shader band-limited to its footprint computes: the slope moments over the pixel's
+  // Gaussian footprint in closed form, in texel.slope_mean and texel.slope_second (LEAN's two
+  // moments, as a normal map's texel holds them), and the frame of the band-limited normal
+  // normalize(-E[s], 1) through the geometric TBN. The footprint is the ground truth's pixel
+  // filter (variance sigma^2 = default_pixel_filter().variance() px^2 per screen axis) pushed
+  // through the quad's coarse uv derivatives: S_uv = sigma^2 (duv_dx duv_dx^T + duv_dy duv_dy^T).
+  // Only the prefiltered rows shade in that frame (shade_pixel); every other form keeps the
+  // unfiltered normal at the pixel centre above.
+  bool has_footprint_moments = false;
+  ShadingFrame band_limited;
 };
+
+// The uv covariance of the pixel filter's footprint, sigma2 (ddx ddx^T + ddy ddy^T).
+Sym2 uv_footprint(double sigma2, Vec2 duv_dx, Vec2 duv_dy);
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
 PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height);

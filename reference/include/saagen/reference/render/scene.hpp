@@ -72,6 +72,7 @@
 
 namespace saagen::render {
 
+using ref::Sym2;
 using ref::Vec2;
 using ref::Vec3;
 
@@ -144,6 +145,14 @@ struct SurfaceHit {
   double coat = 0.0;
 };
 
+// The first and second moments of the shading normal's slope s = -n.xy / n.z (in the geometric
+// frame's axes) over a distribution of surface points: LEAN's two moments (Olano & Baker 2010,
+// Sec. 3), E[s] and E[s s^T].
+struct SlopeMoments {
+  Vec2 mean;
+  Sym2 second;
+};
+
 // An analytic shape in its object space.
 class Shape {
  public:
@@ -152,6 +161,14 @@ class Shape {
   virtual bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const = 0;
   // Every number that defines the shape (part of the ground-truth cache key).
   virtual std::string describe() const = 0;
+  // Procedural normal detail: the slope moments over surface points Gaussian-distributed with
+  // mean uv and covariance `footprint` (uv units^2), in closed form; nullopt for shapes whose
+  // shading normal has no procedural detail (all but the bump plane).
+  virtual std::optional<SlopeMoments> footprint_slope_moments(Vec2 uv, Sym2 footprint) const {
+    (void)uv;
+    (void)footprint;
+    return std::nullopt;
+  }
 };
 
 // Sphere of the given radius centred at the origin. Tangent frame: with n = (a, b, c), the
@@ -223,14 +240,29 @@ struct SineWave {
 // Normal: normalize(-dh/dx, -dh/dy, 1). Tangent: x axis made orthogonal to n,
 // normalize(e_x - n_x n). Geometric frame: the plane's (e_x, e_y, e_z); uv = (x, y) mapped from
 // [-half_size, half_size] to [0, 1].
+//
+// Footprint moments (the procedural counterpart of a normal map's LEAN texel): the slope is
+// s = grad h = sum_j a_j k_j cos(theta_j), theta_j = k_j . x + phase_j, and over points
+// x ~ N(x0, S) the characteristic function of the Gaussian gives E[cos(k . x + p)] =
+// cos(k . x0 + p) g(k), g(k) = exp(-k^T S k / 2). So, exactly,
+//   E[s]     = sum_j a_j k_j cos(theta_j(x0)) g(k_j),
+//   E[s s^T] = sum_j sum_l a_j a_l k_j k_l^T (cos(theta_j - theta_l) g(k_j - k_l) + cos(theta_j + theta_l) g(k_j + k_l)) / 2
+// (cos A cos B = (cos(A - B) + cos(A + B)) / 2), the band-limiting of each sinusoid by the
+// footprint (Norton, Rockwood & Skolmoski 1982's clamping, with the Gaussian's exact attenuation
+// instead of a cut-off) carried to the second moment. N waves cost N (N + 1) / 2 pair terms.
 class BumpPlane final : public Shape {
  public:
   BumpPlane(double half_size, std::vector<SineWave> waves) : half_size_(half_size), waves_(std::move(waves)) {}
   bool intersect(const Ray& ray, double t_min, SurfaceHit& hit) const override;
   std::string describe() const override;
+  std::optional<SlopeMoments> footprint_slope_moments(Vec2 uv, Sym2 footprint) const override;
   double height(double x, double y) const;
   Vec2 gradient(double x, double y) const;  // (dh/dx, dh/dy)
   Vec3 normal(double x, double y) const;
+  // The moments above at plane point (x, y) for a covariance S of plane points (units^2).
+  SlopeMoments slope_moments(Vec2 centre, Sym2 covariance) const;
+  const std::vector<SineWave>& waves() const { return waves_; }
+  double half_size() const { return half_size_; }
 
  private:
   double half_size_;
@@ -348,6 +380,10 @@ class Scene {
   // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
   // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
   static void apply_normal_map(SurfaceHit& hit, Vec3 normal_ts);
+  // The shape's footprint slope moments (Shape::footprint_slope_moments) at a hit, for a
+  // covariance of texture uv (texture units^2, as the quad's uv derivatives give it); nullopt
+  // on scenes without procedural normal detail.
+  std::optional<SlopeMoments> footprint_slope_moments(const SurfaceHit& hit, Sym2 uv_footprint) const;
 
   // The same scene seen through another camera.
   Scene with_camera(const Camera& camera) const;

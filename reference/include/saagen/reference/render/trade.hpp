@@ -124,7 +124,7 @@ struct TradeConfig {
   std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean, Prefilter::unreal, Prefilter::filament_vmf, Prefilter::hdrp};
   std::vector<Variant> prefiltered_variants{
       Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
-      Variant::deferred_avg, Variant::deferred_projected_space};
+      Variant::deferred_avg, Variant::deferred_projected_space, Variant::deferred_aniso};
   double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
   // The lobes the filters' roughness is evaluated with (renderer.hpp, Lobe): every variant in
   // `variants` and `prefiltered_variants` with the papers' GGX; those also in `lobe_variants`
@@ -262,6 +262,11 @@ std::string configuration_id(const TradeRow& row);
 bool scene_has_normal_detail(SceneId id);
 // Whether that detail comes from a normal map texture (which prefiltering needs).
 bool scene_has_normal_map(SceneId id);
+// Whether that detail is procedural with closed-form footprint moments (Shape::
+// footprint_slope_moments: the bump plane's sum of sines). Such a scene gets the prefiltered rows
+// of config.prefiltered_variants with LEAN only (renderer.hpp, Prefilter), if config.prefilters
+// lists it: the procedural shader band-limited to its footprint, LEAN's moments in closed form.
+bool scene_has_procedural_normals(SceneId id);
 
 // Fixed-width text table and CSV of the rows.
 std::string format_trade_table(const TradeTable& table);
