@@ -16,7 +16,13 @@
 //               same pattern every frame), eigenvalues clamped to kappa, around the pixel
 //               centre's half vector (exact filtered GGX);
 //   bake        the same covariance around the footprint's mean slope instead of the centre's: the
-//               filtered NDF a prefiltered normal field (LEAN's two moments at the footprint) gives.
+//               filtered NDF a prefiltered normal field (LEAN's two moments at the footprint) gives;
+//   band-limited  what a shader computes from one sample on procedural bumps (the trade's
+//               forward-aniso-projected:geometric+lean rows, renderer.hpp PixelFields::
+//               has_footprint_moments): the bump field's slope moments over the pixel filter's
+//               footprint in closed form, the band-limited normal and 2 x their covariance plus the
+//               geometric normal's kernel (exact filtered GGX). Scenes without procedural bumps
+//               have no such moments: there it is the geometric-feed kernel alone.
 // With each kernel, "kernel change": the mean over the animation's frame pairs and the pixels the
 // ground truth lights in either frame (display value > 0.05) of |k_t - k_t-1| / max(k_t, k_t-1),
 // k = tr(K) / 2: how much the kernel estimate itself moves from one frame to the next.
@@ -121,8 +127,8 @@ Sym2 clamp_eigenvalues(Sym2 m, double bound) {
   return Sym2{clamped_small, 0.0, clamped_small} + (clamped_large - clamped_small) * p;
 }
 
-enum class Form { none, quad, stable, bake };
-constexpr Form kForms[] = {Form::none, Form::quad, Form::stable, Form::bake};
+enum class Form { none, quad, stable, bake, band_limited };
+constexpr Form kForms[] = {Form::none, Form::quad, Form::stable, Form::bake, Form::band_limited};
 
 const char* form_name(Form form) {
   switch (form) {
@@ -134,6 +140,8 @@ const char* form_name(Form form) {
       return "stable kernel";
     case Form::bake:
       return "bake";
+    case Form::band_limited:
+      return "band-limited";
   }
   return "?";
 }
@@ -152,6 +160,17 @@ double footprint_brdf(const render::PixelFields& f, const Footprint& footprint, 
   return ndf * ref::ggx_g2_matrix(f.light_ts, f.view_ts, h, a) / (4.0 * f.light_ts.z * f.view_ts.z);
 }
 
+// The one-sample forms through the trade's own shading (exact filtered GGX): no SAA, the quad
+// kernel on the shading normal, or the band-limited procedural bumps (geometric feed + LEAN).
+render::PixelShade one_sample_shade(const render::GBuffer& gbuffer, int x, int y, const render::Material& material, Form form) {
+  const render::Variant variant = form == Form::none ? render::Variant::none : render::Variant::forward_aniso_projected;
+  const bool band_limited = form == Form::band_limited;
+  return render::shade_pixel(gbuffer, x, y, variant, material, ref::Params{}, ref::Derivative::coarse,
+                             band_limited ? render::NormalFeed::geometric : render::NormalFeed::shading,
+                             band_limited && gbuffer.at(x, y).has_footprint_moments ? render::Prefilter::lean : render::Prefilter::none,
+                             1.0, render::Lobe::exact);
+}
+
 render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const render::Material& material, Form form) {
   render::Image image(gbuffer.width, gbuffer.height);
   const ref::Params params{};
@@ -160,12 +179,8 @@ render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>
     for (int x = 0; x < gbuffer.width; ++x) {
       const render::PixelFields& f = gbuffer.at(x, y);
       if (!f.hit) continue;
-      if (form == Form::none || form == Form::quad) {
-        const render::Variant variant = form == Form::none ? render::Variant::none : render::Variant::forward_aniso_projected;
-        image.at(x, y) =
-            static_cast<float>(render::shade_pixel(gbuffer, x, y, variant, material, params, ref::Derivative::coarse,
-                                                   render::NormalFeed::shading, render::Prefilter::none, 1.0, render::Lobe::exact)
-                                   .radiance);
+      if (form == Form::none || form == Form::quad || form == Form::band_limited) {
+        image.at(x, y) = static_cast<float>(one_sample_shade(gbuffer, x, y, material, form).radiance);
         continue;
       }
       const Footprint& fp = footprint[static_cast<std::size_t>(y) * gbuffer.width + x];
@@ -183,10 +198,8 @@ double half_trace_kernel(const render::GBuffer& gbuffer, const std::vector<Footp
   if (!gbuffer.at(x, y).hit) return -1.0;
   const ref::Params params{};
   const double alpha2 = material.alpha * material.alpha;
-  if (form == Form::quad) {
-    const Sym2 a = render::shade_pixel(gbuffer, x, y, render::Variant::forward_aniso_projected, material, params, ref::Derivative::coarse,
-                                       render::NormalFeed::shading, render::Prefilter::none, 1.0, render::Lobe::exact)
-                       .roughness;
+  if (form == Form::quad || form == Form::band_limited) {
+    const Sym2 a = one_sample_shade(gbuffer, x, y, material, form).roughness;
     return 0.5 * (a.xx + a.yy) - alpha2;
   }
   const Footprint& fp = footprint[static_cast<std::size_t>(y) * gbuffer.width + x];
