@@ -133,6 +133,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
   if (common.sigma2) config.params.sigma2 = *common.sigma2;
   if (common.kappa) config.params.kappa = *common.kappa;
   config.prefilter_scale = common.prefilter_scale;
+  config.prefilter_lod_bias = common.prefilter_lod_bias;
   config.taa = common.taa;
   if (common.taa_blend) config.taa_options.blend = *common.taa_blend;
   if (common.taa_clip_gamma) config.taa_options.clip_gamma = *common.taa_clip_gamma;
@@ -216,6 +217,11 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
       ->check(finite_range(1e-6, 16.0));
   command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(finite_range(1e-6, 1.0));
   command->add_option("--prefilter-scale", common.prefilter_scale, "Scale of the prefiltered normal-map roughness to measure")
+      ->check(finite_range(0.0, 4.0))
+      ->capture_default_str();
+  command
+      ->add_option("--prefilter-lod-bias", common.prefilter_lod_bias,
+                   "Levels by which the prefiltered rows (+hdrp, ...) sample the normal map and its bake coarser (0: the implicit LOD)")
       ->check(finite_range(0.0, 4.0))
       ->capture_default_str();
   command->add_option("--isa", common.isa_families,

@@ -1,6 +1,9 @@
 // Normal maps with a MIP chain (reference/render/normal_map.hpp): the box reduction's moments,
 // Vulkan's bilinear / trilinear filtering and implicit LOD, checked on hand-made maps.
 #include "saagen/reference/render/normal_map.hpp"
+#include "saagen/reference/render/renderer.hpp"
+#include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/render/trade.hpp"
 
 #include <gtest/gtest.h>
 
@@ -83,4 +86,71 @@ TEST(NormalMap, LodIsLog2OfTheLongerTexelSpaceDerivative) {
   EXPECT_NEAR(map.lod({1.0, 0.0}, {0.0, 0.25}), 2.0, 1e-15);      // 4 texels per pixel
   EXPECT_NEAR(map.lod({0.125, 0.0}, {0.0, 0.125}), -1.0, 1e-15);  // half a texel per pixel
   EXPECT_NEAR(map.lod({0.3, 0.4}, {0.0, 0.0}), std::log2(2.0), 1e-15);
+}
+
+// Why the prefiltered rows sample the map one level coarser (TradeConfig::prefilter_lod_bias,
+// docs/PREFILTER.md "The LOD bias"). An 8 x 8 map whose columns repeat (+theta, +theta, -theta,
+// -theta): a period of 4 texels, i.e. 2 pixels where a pixel spans 2 texels (implicit LOD 1), the
+// pixel grid's Nyquist frequency. At LOD 1 every level-1 texel holds one tilt (L = 1: the bake sees
+// no spread) and the sampled normal swings from +theta to -theta as the pattern slides by half a
+// pixel: the grid cannot show the pattern, and a 1-spp shader aliases it. One level coarser each
+// texel spans a whole period: the sampled normal stays flat at every offset and the spread is in
+// the bake, 1 - L^2 = sin^2 theta = E[n_x^2] - E[n_x]^2 (the variance the normal no longer shows).
+// Tolerance 1e-15: at most four double additions and multiplications of values <= 1 per field,
+// each within half an ulp (1.1e-16).
+TEST(NormalMap, OneLevelCoarserMovesTheNyquistBandFromTheNormalIntoTheBake) {
+  const double theta = 0.35;  // 20 degrees, the content map's largest tilt (scene.hpp)
+  std::vector<Vec3> normals;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) normals.push_back({(x % 4 < 2 ? 1.0 : -1.0) * std::sin(theta), 0.0, std::cos(theta)});
+  const NormalMap map(8, 8, normals);
+  for (int step = 0; step < 8; ++step) {
+    const double offset = step / 8.0;  // the pattern's motion, in pixels of 2 texels
+    for (int pixel = 0; pixel < 4; ++pixel) {
+      const Vec2 uv{(2.0 * pixel + 1.0 + 2.0 * offset) / 8.0, 0.5 / 8.0};
+      // Implicit LOD 1: bilinear between texels of opposite tilt, x = +-sin(theta) (1 - 2 |offset'|).
+      const NormalTexel fine = map.trilinear(uv, 1.0);
+      const double to_centre = offset <= 0.5 ? offset : 1.0 - offset;  // distance to the nearest texel centre, pixels
+      const double sign = ((pixel + (offset > 0.5 ? 1 : 0)) % 2 == 0) ? 1.0 : -1.0;
+      EXPECT_NEAR(fine.mean_normal.x, sign * std::sin(theta) * (1.0 - 2.0 * to_centre), 1e-15) << step << " " << pixel;
+      // One level coarser: flat, with the whole spread in the mean normal's length.
+      const NormalTexel coarse = map.trilinear(uv, 2.0);
+      EXPECT_NEAR(coarse.mean_normal.x, 0.0, 1e-15) << step << " " << pixel;
+      EXPECT_NEAR(coarse.normal.x, 0.0, 1e-15) << step << " " << pixel;
+      EXPECT_NEAR(1.0 - ref::dot(coarse.mean_normal, coarse.mean_normal), std::sin(theta) * std::sin(theta), 1e-15);
+    }
+    // At the texel centres the unbiased sample is a single tilt: no spread for a bake to see.
+    if (step == 0) {
+      EXPECT_NEAR(ref::length(map.trilinear({1.0 / 8.0, 0.5 / 8.0}, 1.0).mean_normal), 1.0, 1e-15);
+    }
+  }
+}
+
+// The trade's prefiltered rows shade a G-buffer whose normal map is sampled prefilter_lod_bias
+// levels coarser (1 by default): on nmap-sphere at 64 x 64 px every mapped pixel's LOD is the
+// implicit one plus 1 and its texel is the map's trilinear sample there, so the shading normal and
+// the bake's moments both move (the derivatives, the geometric frame and the hit do not).
+TEST(NormalMap, TheGBufferSamplesTheMapAtTheBiasedLod) {
+  EXPECT_EQ(TradeConfig{}.prefilter_lod_bias, 1.0);
+  const Scene scene = make_scene(SceneId::nmap_sphere);
+  const GBuffer plain = render_gbuffer(scene, 64, 64, 1);
+  const GBuffer biased = render_gbuffer(scene, 64, 64, 1, 1.0);
+  const auto map = content_normal_map();
+  int mapped = 0, turned = 0;
+  for (std::size_t i = 0; i < plain.pixels.size(); ++i) {
+    const PixelFields& a = plain.pixels[i];
+    const PixelFields& b = biased.pixels[i];
+    ASSERT_EQ(a.hit, b.hit);
+    if (!a.has_normal_map) continue;
+    ++mapped;
+    EXPECT_EQ(b.lod, a.lod + 1.0);
+    EXPECT_EQ(b.duv_dx.x, a.duv_dx.x);
+    EXPECT_EQ(b.geometric_normal.z, a.geometric_normal.z);
+    const NormalTexel expected = map->trilinear(b.uv, a.lod + 1.0);
+    EXPECT_EQ(b.texel.mean_normal.x, expected.mean_normal.x);
+    EXPECT_EQ(b.texel.mean_normal.z, expected.mean_normal.z);
+    turned += b.normal.x != a.normal.x;
+  }
+  EXPECT_GT(mapped, 64 * 64 / 4);  // the sphere covers about half the frame
+  EXPECT_GT(turned, mapped / 2);
 }

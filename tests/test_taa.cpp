@@ -320,7 +320,9 @@ TEST(TaaTrade, LobesAndBakesRunThroughTheResolve) {
     const Scene scene = with_jitter(trade_animation_frame(config, SceneId::nmap_sphere, frame), jitter);
     const GBuffer gbuffer = render_gbuffer(scene, config.flicker_width, config.flicker_height, 1);
     const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
-    resolve.resolve(render_variant(gbuffer, Variant::deferred_avg, material, config.params, config.derivative, 1, NormalFeed::geometric,
+    // The bake's rows sample the map TradeConfig::prefilter_lod_bias levels coarser.
+    const GBuffer prefiltered = render_gbuffer(scene, config.flicker_width, config.flicker_height, 1, config.prefilter_lod_bias);
+    resolve.resolve(render_variant(prefiltered, Variant::deferred_avg, material, config.params, config.derivative, 1, NormalFeed::geometric,
                                    Prefilter::hdrp, config.prefilter_scale, Lobe::tail),
                     jitter, positions);
     previous = scene;

@@ -315,7 +315,7 @@ void set_footprint_moments(const Scene& scene, const Ray& ray, const SurfaceHit&
 
 }  // namespace
 
-PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height) {
+PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height, double normal_lod_bias) {
   PixelFields f;
   f.frag_coord = {x + 0.5, y + 0.5};
   const Ray ray = scene.camera().generate(x + 0.5, y + 0.5, width, height);
@@ -338,7 +338,7 @@ PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height
   if (map) {
     // Implicit LOD from the quad's coarse derivatives, trilinear sample, renormalise, TBN.
     f.has_normal_map = true;
-    f.lod = map->lod(f.duv_dx, f.duv_dy);
+    f.lod = map->lod(f.duv_dx, f.duv_dy) + normal_lod_bias;
     f.texel = map->trilinear(hit.uv, f.lod);
     Scene::apply_normal_map(hit, normalize(f.texel.normal));
   }
@@ -442,13 +442,14 @@ void fill_helpers(const Scene& scene, GBuffer& g, int threads) {
 
 }  // namespace
 
-GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads) {
+GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads, double normal_lod_bias) {
   GBuffer g;
   g.width = width;
   g.height = height;
   g.pixels.resize(static_cast<std::size_t>(width) * height);
   parallel_rows(height, threads, [&](int y) {
-    for (int x = 0; x < width; ++x) g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height);
+    for (int x = 0; x < width; ++x)
+      g.pixels[static_cast<std::size_t>(y) * width + x] = pixel_fields(scene, x, y, width, height, normal_lod_bias);
   });
   if (scene.per_triangle_quads()) fill_helpers(scene, g, threads);
   return g;

@@ -199,6 +199,21 @@ bool scene_has_normal_detail(SceneId id) { return scene_has_procedural_normals(i
 
 namespace {
 
+// The G-buffers of one frame: the implicit LOD's, and on a normal-mapped scene with a bias the
+// prefiltered rows' (TradeConfig::prefilter_lod_bias).
+struct FrameBuffers {
+  GBuffer plain;
+  std::optional<GBuffer> prefiltered;
+  const GBuffer& for_prefilter(Prefilter prefilter) const { return prefilter != Prefilter::none && prefiltered ? *prefiltered : plain; }
+};
+
+FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
+  FrameBuffers buffers{render_gbuffer(scene, width, height, config.threads), std::nullopt};
+  if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id))
+    buffers.prefiltered = render_gbuffer(scene, width, height, config.threads, config.prefilter_lod_bias);
+  return buffers;
+}
+
 // One row's configuration: a variant and the normal it reads.
 struct RowKey {
   Variant variant;
@@ -338,9 +353,9 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     }
     return gt;
   };
-  auto shade = [&](const GBuffer& gbuffer, const RowKey& key, const Material& material) {
-    return render_variant(gbuffer, key.variant, material, config.params, config.derivative, config.threads, key.feed, key.prefilter,
-                          config.prefilter_scale, key.lobe);
+  auto shade = [&](const FrameBuffers& buffers, const RowKey& key, const Material& material) {
+    return render_variant(buffers.for_prefilter(key.prefilter), key.variant, material, config.params, config.derivative, config.threads,
+                          key.feed, key.prefilter, config.prefilter_scale, key.lobe);
   };
 
   std::uint64_t base = 0;
@@ -367,7 +382,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
     base += sizes.main_gt;
     report("1-spp variants " + name, base);
-    const GBuffer gbuffer = render_gbuffer(scene, sized.width, sized.height, config.threads);
+    const FrameBuffers gbuffer = frame_buffers(config, id, scene, sized.width, sized.height);
     const std::size_t first_row = table.rows.size();
     for (std::size_t m = 0; m < n_materials; ++m) {
       const Image reference_display = tonemapped(gt.images[m]);
@@ -425,7 +440,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
         if (config.taa) reference_frames.push_back(frame_gt.images);
         base += sizes.flicker_gt;
-        const GBuffer frame_buffer = render_gbuffer(moved, fw, fh, config.threads);
+        const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
         for (std::size_t m = 0; m < n_materials; ++m) {
           Image reference_frame = display_image(frame_gt.images[m]);
           reference_stats[m].add(frame_gt.images[m]);

@@ -108,6 +108,10 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
     const Scene scene = jittered_frame(config, id, frame, jitter);
     const GBuffer gbuffer = render_gbuffer(scene, fw, fh, config.threads);
+    // The prefiltered rows sample the normal map TradeConfig::prefilter_lod_bias levels coarser.
+    std::optional<GBuffer> prefiltered;
+    if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id))
+      prefiltered = render_gbuffer(scene, fw, fh, config.threads, config.prefilter_lod_bias);
     const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
     for (std::size_t m = 0; m < materials.size(); ++m) {
       Image reference_display_frame;
@@ -119,7 +123,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
       }
       for (std::size_t k = 0; k < n_keys; ++k) {
         TaaAccumulator& a = accumulators[m * n_keys + k];
-        const Image samples = render_variant(gbuffer, keys[k].variant, materials[m], config.params, config.derivative, config.threads,
+        const GBuffer& buffer = keys[k].prefilter != Prefilter::none && prefiltered ? *prefiltered : gbuffer;
+        const Image samples = render_variant(buffer, keys[k].variant, materials[m], config.params, config.derivative, config.threads,
                                              keys[k].feed, keys[k].prefilter, config.prefilter_scale, keys[k].lobe);
         const Image& out = a.resolve.resolve(samples, jitter, positions);
         const bool last = frame + 1 == config.frames;

@@ -242,7 +242,7 @@ struct PixelFields {
   Vec2 uv;                 // texture coordinate at the pixel centre
   Vec2 duv_dx;             // coarse quad derivatives of uv (see the top of this file)
   Vec2 duv_dy;
-  double lod = 0.0;   // NormalMap::lod(duv_dx, duv_dy), unclamped (-inf for no change)
+  double lod = 0.0;   // NormalMap::lod(duv_dx, duv_dy) + normal_lod_bias, unclamped (-inf for no change)
   NormalTexel texel;  // NormalMap::trilinear(uv, lod): stored normal, mean normal, LEAN
   // The roughness texture's factor on alpha (SurfaceHit::alpha_scale) from its trilinear sample
   // at its own implicit LOD; 1 without one. Every form filters material.alpha * alpha_scale.
@@ -276,7 +276,9 @@ struct PixelFields {
 Sym2 uv_footprint(double sigma2, Vec2 duv_dx, Vec2 duv_dy);
 
 // Fields at the pixel centre (x + 0.5, y + 0.5); hit == false when the ray misses.
-PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height);
+// normal_lod_bias is added to the normal map's implicit LOD: the map's normal and the moments a
+// prefilter reads (texel) come from that many levels coarser (TradeConfig::prefilter_lod_bias).
+PixelFields pixel_fields(const Scene& scene, int x, int y, int width, int height, double normal_lod_bias = 0.0);
 
 // The uv a helper invocation extrapolates for a ray from the shaded hit: the ray meets the
 // plane through hit.position spanned by hit.dpdu, hit.dpdv at X, and X - p = a dpdu + b dpdv
@@ -317,7 +319,7 @@ struct GBuffer {
   const PixelFields& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
-GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0);
+GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0, double normal_lod_bias = 0.0);
 
 // The quad inputs of a pixel: the fields of the four pixels of its 2x2 quad, partners off the
 // surface replaced by the pixel's own fields (see the top of this file).

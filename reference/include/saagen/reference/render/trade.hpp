@@ -126,6 +126,13 @@ struct TradeConfig {
       Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
       Variant::deferred_avg, Variant::deferred_projected_space, Variant::deferred_aniso};
   double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
+  // The normal map's LOD bias of the prefiltered rows ("+FORM"): their normal and its bake (the
+  // mean normal's length, LEAN's moments) are sampled this many levels coarser than the implicit
+  // LOD; the other rows (no SAA, the engines, the filters without a bake) keep the implicit LOD.
+  // 1: the level whose texels span two pixels, whose box has a zero at the pixel grid's Nyquist
+  // frequency (0.5 cycles per pixel), so that the normal variation the grid cannot show goes into
+  // the bake instead of aliasing under the widened lobe (docs/PREFILTER.md, "The LOD bias").
+  double prefilter_lod_bias = 1.0;
   // The lobes the filters' roughness is evaluated with (renderer.hpp, Lobe): every variant in
   // `variants` and `prefiltered_variants` with the papers' GGX; those also in `lobe_variants`
   // once more with each further lobe here (rows "VARIANT/tail", "VARIANT/mapped").
