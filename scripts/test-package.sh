@@ -37,7 +37,7 @@ grep -q "saagen: generating" "$work/build1.log" || fail "the first build did not
 generated="$consumer/saagen/saa_scene.glsl"
 [ -f "$generated" ] || fail "$generated was not generated"
 grep -q "saagen-marker: target=glsl" "$generated" || fail "$generated has no marker"
-for spv in forward_lit.frag.spv gbuffer.frag.spv; do
+for spv in forward_lit.frag.spv gbuffer.frag.spv deferred_light.frag.spv; do
   [ -s "$consumer/spirv/$spv" ] || fail "$spv was not compiled"
   [ "$(head -c 4 "$consumer/spirv/$spv" | od -An -tx4 | tr -d ' ')" = "07230203" ] || fail "$spv is not SPIR-V"
 done

@@ -11,6 +11,7 @@
 #include "saagen/reference/saa.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -745,6 +746,32 @@ TEST_F(GltfCli, BenchAndReportOnAnAsset) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("ClearCoatTest (" + kClearCoat + "): 37116 triangles"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("engine-unreal"), std::string::npos) << run.out;
+  // The trade table's by_content rows classify the coat lobe's scene as clearcoat and the base
+  // lobe's (normal textures) as normal-mapped: each the means over its own scene's rows.
+  const auto json =
+      saagen({"bench", "--scene", kClearCoat, "--preset", "quick", "--resolution", "8", "--json", (scratch_ / "t.json").string()});
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json table = nlohmann::json::parse(saagen::test::read_text(scratch_ / "t.json"));
+  auto mean_flip = [&](const std::string& scene) {
+    double sum = 0.0;
+    int count = 0;
+    for (const auto& row : table["cases"])
+      if (row["scene"] == scene && row["configuration"] == "none" && !row["fresnel"].get<bool>())
+        sum += row["flip_ldr"].get<double>(), ++count;
+    return sum / count;
+  };
+  std::set<std::string> contents;
+  for (const auto& row : table["by_content"]) {
+    contents.insert(row["content"].get<std::string>());
+    if (row["configuration"] != "none") continue;
+    if (row["content"] == "clearcoat") {
+      EXPECT_NEAR(row["error"].get<double>(), mean_flip("ClearCoatTest-coat"), 1e-12);
+    }
+    if (row["content"] == "normal-mapped") {
+      EXPECT_NEAR(row["error"].get<double>(), mean_flip("ClearCoatTest"), 1e-12);
+    }
+  }
+  EXPECT_EQ(contents, (std::set<std::string>{"clearcoat", "normal-mapped"}));
   const auto report = saagen({"report", "--scene", kEngine, "--preset", "quick", "--resolution", "8", "-o", (scratch_ / "r").string()});
   ASSERT_EQ(report.exit_code, 0) << report.err;
   EXPECT_TRUE(fs::exists(scratch_ / "r" / "sheet_2CylinderEngine_alpha0.0100.png"));
@@ -777,6 +804,10 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
             std::string::npos)
       << text;
   EXPECT_NE(run.out.find("material CoatNorm_Coated_coat (deferred"), std::string::npos) << run.out;
+  // The base lobe under a coat is classified by what it is: normal-mapped (BaseNorm_Coated's
+  // normal texture), not clearcoat.
+  EXPECT_NE(text.find("name = \"BaseNorm_Coated\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n\n"), std::string::npos)
+      << text;
   // Coated materials follow saagen's advice for clearcoat (no filter: the filters lower LDR-FLIP
   // and raise TDE on ClearCoatTest); the others are planned a filter.
   const auto coat = run.out.find("material CoatNorm_Coated_coat (deferred");
@@ -796,4 +827,32 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
   const auto no_output = saagen({"plan", "--gltf", kClearCoat, "--no-cost"});
   EXPECT_NE(no_output.exit_code, 0);
   EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
+}
+
+TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
+  // KHR_materials_anisotropy with a normal texture: the advice for normal-mapped content lists
+  // forward-axis-projected before forward-aniso-projected, yet an anisotropic forward material is
+  // planned the matrix form its rule names, which adds its kernel to diag(alpha_t^2, alpha_b^2).
+  std::vector<unsigned char> normal_pixels;
+  for (int i = 0; i < 16; ++i) normal_pixels.insert(normal_pixels.end(), {140, 120, 240});
+  write_file(scratch_ / "normal.png", png(4, 4, 3, normal_pixels));
+  QuadAsset q;
+  q.material = R"({"name": "brushed", "normalTexture": {"index": 0},
+    "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 0.5}}})";
+  q.top_extra = R"(, "extensionsUsed": ["KHR_materials_anisotropy"], "textures": [{"source": 0}], "images": [{"uri": "normal.png"}])";
+  const fs::path asset = write_quad(scratch_, "brushed.gltf", q);
+  const std::string manifest = (scratch_ / "brushed.saagen.toml").string();
+  const auto run = saagen({"plan", "--gltf", asset.string(), "-o", manifest, "--no-cost"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string text = saagen::test::read_text(manifest);
+  EXPECT_NE(text.find("# KHR_materials_anisotropy: alpha2 = (alpha_t^2, alpha_b^2), alpha_t = mix(alpha, 1, strength^2)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("name = \"brushed\"\npath = \"forward\"\ntangents = true\nnormal_maps = true\nanisotropic = true\n"),
+            std::string::npos)
+      << text;
+  const auto material = run.out.find("material brushed (forward, anisotropic");
+  ASSERT_NE(material, std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("  variant   forward-aniso-projected", material), run.out.find("  variant ", material)) << run.out;
+  EXPECT_NE(run.out.find("saa_ggx_brdf_filtered_matrix", material), std::string::npos) << run.out;
 }

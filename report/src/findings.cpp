@@ -1,5 +1,6 @@
 #include "saagen/report/findings.hpp"
 
+#include "saagen/reference/render/gltf.hpp"
 #include "saagen/scene/planner.hpp"
 
 #include <fmt/format.h>
@@ -55,11 +56,14 @@ std::string_view content_name(Content content) {
       return "normal-mapped";
     case Content::bump:
       return "bump";
+    case Content::clearcoat:
+      return "clearcoat";
   }
   return "?";
 }
 
 Content content_of(render::SceneId scene) {
+  if (render::is_gltf_coat_scene(scene)) return Content::clearcoat;
   if (render::scene_has_normal_map(scene)) return Content::normal_mapped;
   return render::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
 }

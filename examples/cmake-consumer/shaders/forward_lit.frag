@@ -1,7 +1,8 @@
 #version 450
 // Forward pass of an anisotropic, normal-mapped material (car_paint in scene.saagen.toml): saagen's
-// advice for normal-mapped content (`saagen plan`) gives forward-axis-projected fed the geometric
-// normal, the normal map baked into the roughness, and the tail-preserving filtered GGX.
+// advice for normal-mapped content (`saagen plan`) gives an anisotropic material the matrix form,
+// forward-aniso-projected, fed the geometric normal (its kernel added to the anisotropic roughness
+// matrix), the normal map baked into the roughness, and the tail-preserving filtered GGX.
 #include "saa_scene.glsl"
 
 layout(location = 0) in vec3 in_position_ws;
@@ -40,7 +41,7 @@ void main() {
   vec3 o_ts = vec3(dot(v, t), dot(v, b), dot(v, n));
 
   vec2 alpha2 = material.alpha * material.alpha;
-  vec2 filtered = saa_forward_axis_projected_fragment(alpha2, half_geometric);
-  float specular = saa_ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);
+  vec3 filtered = saa_forward_aniso_projected_fragment(alpha2, half_geometric);
+  float specular = saa_ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);
   out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
 }

@@ -9,7 +9,9 @@
 // 16-frame animation, six alphas, no Fresnel; `saagen bench --preset medium --scene sphere --scene
 // torus --scene tubes --scene bump_plane --scene nmap-sphere --scene nmap-sphere-fine --scene
 // torus-knot --json T.json`), the means of its "by_content" rows (LDR-FLIP / TDE), printed by
-// `python3 scripts/advice_figures.py T.json`; clearcoat: ClearCoatTest (docs/GLTF_SCENES.md). Under
+// `python3 scripts/advice_figures.py T.json`; clearcoat: the coat lobe of Khronos's ClearCoatTest
+// (its scene ClearCoatTest-coat, the trade's "clearcoat" rows: `saagen bench --preset medium --scene
+// ClearCoatTest --json T.json`, asset scenes at 64 x 64; docs/GLTF_SCENES.md). Under
 // TAA: `saagen bench --preset medium --taa --sigma2 0.0625` (docs/TAA.md).
 #pragma once
 
@@ -48,10 +50,9 @@ inline constexpr std::optional<Content> content_named(std::string_view text) {
     if (kContentNames[index] == text) return static_cast<Content>(index);
   return std::nullopt;
 }
-// The content type's name in a trade table's "by_content" rows (`saagen bench --json`).
-inline constexpr std::string_view table_content(Content content) {
-  return content == Content::bumps ? "bump" : content == Content::clearcoat ? "" : name(content);
-}
+// The content type's name in a trade table's "by_content" rows (`saagen bench --json`; clearcoat:
+// the coat lobe's scene of a KHR_materials_clearcoat asset, NAME-coat).
+inline constexpr std::string_view table_content(Content content) { return content == Content::bumps ? "bump" : name(content); }
 
 // A measured configuration, as `saagen bench` names it: VARIANT[:FEED][+PREFILTER][/LOBE].
 struct Figure {
@@ -103,10 +104,10 @@ inline constexpr std::array<ContentAdvice, 8> kTable = {{
     {Content::clearcoat,
      false,
      {},
-     {"none", 0.0320, 0.01254},
-     "ClearCoatTest, docs/GLTF_SCENES.md; the best filters lower LDR-FLIP and raise TDE (deferred-aniso/tail "
-     "0.0271 / 0.01300, forward-aniso-projected:geometric+lean/tail 0.0268 / 0.01328; the coat layer alone: none 0.0101 / "
-     "0.00346, deferred-aniso/tail 0.0091 / 0.00368)"},
+     {"none", 0.0148, 0.00541},
+     "ClearCoatTest-coat, the coat lobe of ClearCoatTest (docs/GLTF_SCENES.md); every configuration raises both LDR-FLIP "
+     "and TDE over no SAA, the best deferred-aniso/tail 0.0153 / 0.00667 and forward-aniso-projected/tail 0.0160 / 0.00703; "
+     "the base lobe under the coat is normal-mapped content"},
     {Content::curved,
      true,
      {},
@@ -132,8 +133,8 @@ inline constexpr std::array<ContentAdvice, 8> kTable = {{
      true,
      {},
      {},
-     "not measured under TAA; without TAA no filter already wins in TDE on clearcoat (ClearCoatTest none 0.0320 / 0.01254 "
-     "against deferred-aniso/tail 0.0271 / 0.01300), and under TAA no filter wins on every other content type (docs/TAA.md)"},
+     "not measured under TAA; without TAA no filter already wins on clearcoat (ClearCoatTest-coat none 0.0148 / 0.00541 "
+     "against deferred-aniso/tail 0.0153 / 0.00667), and under TAA no filter wins on every other content type (docs/TAA.md)"},
 }};
 
 inline constexpr const ContentAdvice& lookup(Content content, bool taa) {

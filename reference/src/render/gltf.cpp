@@ -994,6 +994,11 @@ std::vector<SceneId> register_gltf_scenes(const std::string& path, const GltfLim
 
 SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits) { return register_gltf_scenes(path, limits).front(); }
 
+bool is_gltf_coat_scene(SceneId id) {
+  const std::shared_ptr<const GltfAsset> asset = gltf_asset_of(id);
+  return asset && asset->coat_surfaces && scene_name(id) == asset->name + "-coat";
+}
+
 std::shared_ptr<const GltfAsset> gltf_asset_of(SceneId id) {
   AssetRegistry& registry = asset_registry();
   std::lock_guard lock(registry.mutex);

@@ -26,9 +26,10 @@ struct MeasuredTradeRow {
   std::string isa_family;                    // isa_family: the GPU family of isa_ratio
 };
 
-// `saagen bench --json` also writes, per content type ("curved", "normal-mapped", "bump"), the
-// mean display error of every measured configuration: a variant, "VARIANT:geometric" (fed the
-// geometric normal) and "VARIANT[:geometric]+toksvig|+lean" (with a prefiltered normal map).
+// `saagen bench --json` also writes, per content type ("curved", "normal-mapped", "bump",
+// "clearcoat": an asset's coat lobe), the mean display error of every measured configuration: a
+// variant, "VARIANT:geometric" (fed the geometric normal) and "VARIANT[:geometric]+toksvig|+lean"
+// (with a prefiltered normal map).
 struct ContentRow {
   std::string content;
   std::string configuration;

@@ -21,7 +21,8 @@
 //   type (`content`, saagen/advice.hpp; examples/INTEGRATION.md "saagen's advice, per content"):
 //   the plan keeps a filter only if it is one of the configurations that beat no SAA in both
 //   LDR-FLIP and TDE on that content (accuracy takes the first the material can use, speed keeps
-//   its cheaper choice when it is one of them; rule "advice" where that changes the variant), and
+//   its cheaper choice when it is one of them, so does an anisotropic material its rule's matrix
+//   form forward-aniso-*; rule "advice" where that changes the variant), and
 //   plans no filter (variant "none") where the material can use none of them: under TAA, on
 //   clearcoat, on curved content for anisotropic deferred materials. With a trade table's
 //   by_content rows for the content, the table's "none" row decides instead.

@@ -27,10 +27,13 @@ namespace saagen::report {
 //   curved         smooth geometry, the normal is the geometry's (sphere, torus, tubes, mesh);
 //   normal-mapped  a tangent-space normal map texture with MIPs on curved geometry;
 //   bump           analytic bump shading (the bump plane: normals with detail but no texture,
-//                  hence no prefiltering).
-enum class Content { curved, normal_mapped, bump };
-inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump};
-std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump"
+//                  hence no prefiltering);
+//   clearcoat      the coat layer of a KHR_materials_clearcoat asset (its scene NAME-coat: the
+//                  coat lobe alone, a second filtered lobe); the asset's base lobe is classified
+//                  as any scene (normal-mapped where it has normal textures).
+enum class Content { curved, normal_mapped, bump, clearcoat };
+inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump, Content::clearcoat};
+std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump", "clearcoat"
 Content content_of(render::SceneId scene);
 
 // Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).

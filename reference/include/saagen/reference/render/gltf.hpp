@@ -170,5 +170,7 @@ SceneId register_gltf_scene(const std::string& path, const GltfLimits& limits = 
 std::vector<SceneId> register_gltf_scenes(const std::string& path, const GltfLimits& limits = {});
 // The asset behind a registered glTF scene; null for any other id.
 std::shared_ptr<const GltfAsset> gltf_asset_of(SceneId id);
+// Whether a registered scene is an asset's coat lobe (make_gltf_coat_scene, NAME-coat).
+bool is_gltf_coat_scene(SceneId id);
 
 }  // namespace saagen::render
