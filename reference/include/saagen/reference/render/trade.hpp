@@ -123,7 +123,7 @@ struct TradeConfig {
   // mean-normal length (Unreal, Filament, HDRP; docs/PREFILTER.md compares them).
   std::vector<Prefilter> prefilters{Prefilter::toksvig, Prefilter::lean, Prefilter::unreal, Prefilter::filament_vmf, Prefilter::hdrp};
   std::vector<Variant> prefiltered_variants{
-      Variant::none,         Variant::forward_aniso_projected, Variant::forward_axis_projected, Variant::deferred_sum,
+      Variant::none,         Variant::forward_aniso_projected,  Variant::forward_axis_projected, Variant::deferred_sum,
       Variant::deferred_avg, Variant::deferred_projected_space, Variant::deferred_aniso};
   double prefilter_scale = 1.0;  // multiplies the texture term (renderer.hpp)
   // The normal map's LOD bias of the prefiltered rows ("+FORM"): their normal and its bake (the
