@@ -3,56 +3,83 @@
 to the exact convolution of GGX with a Gaussian kernel, reproducible with the Python standard
 library alone:
 
-    python3 scripts/fit_filtered_ggx.py            # fit, then print the rounded fit per r
-    python3 scripts/fit_filtered_ggx.py --check    # print the committed coefficients per r only
+    python3 scripts/fit_filtered_ggx.py            # fit, then print the rounded fit per kernel
+    python3 scripts/fit_filtered_ggx.py --check    # print the committed coefficients per kernel only
+    python3 scripts/fit_filtered_ggx.py --check --previous   # the same for the previous (one-r) lobe
 
-The lobe, in slope space with alpha^2 = 1 (scale invariance: the isotropic problem depends on the
-kernel only through r = k / alpha^2, k the per-axis slope variance of the footprint):
+The problem in the unfiltered lobe's frame: whitening the slopes by A0^(-1/2) turns GGX(A0) into
+GGX(I) and the kernel K = 2 Sigma into S = A0^(-1/2) K A0^(-1/2); GGX(I) is rotation invariant, so
+in S's eigenframe the exact filtered density depends only on S's eigenvalues 2 r1 >= 2 r2 (r1, r2
+the kernel's slope variances in units of alpha^2):
 
-    D = w GGX(lambda) + (1 - w) [(1 - f) Beckmann(m) + f Beckmann(4 m)]
-    lambda = 1 + 2 a r,  w = 1 / lambda          (w lambda = 1: GGX's far tail exactly)
-    m = 1 + 2 c r,  c = 1 + w (c1 + c2 w)        (c -> 1 as r -> inf: the Gaussian N(0, k) limit)
+    P(s) = integral_0^inf e^-w N(s; 0, diag(1 / (2w) + r1, 1 / (2w) + r2)) dw,
+
+and every lobe below transforms the same way. The lobe:
+
+    D = w GGX(lambda I) + (1 - w) [(1 - f) Beckmann(M) + f Beckmann(4 M)],   M = u I + c S
+    r = (r1 + r2) / 2 = tr(K A0^-1) / 4     (k / alpha^2 for an isotropic kernel)
+    lambda = 1 + 2 a r,  w = 1 / lambda      (w lambda = 1: GGX's far tail exactly)
+    c = 1 + w (c1 + c2 w)                    (c -> 1 as r -> inf: the Gaussian N(0, Sigma) limit)
+    u = 1 + s (1 - w)                        (the core's unfiltered part)
     f = w (f1 + f2 w)
 
-One reciprocal (w) gives every parameter; the shoulder Beckmann(4 m) and the core Beckmann(m)
-share one exponential, exp(-x) = exp(-x / 4)^4, and one inverse square root.
+For an isotropic kernel M = (u + 2 c r) I: u and c trade one for the other, and only their sum
+matters. For an anisotropic one they differ: u widens the core along every axis, c only along the
+kernel's. A rank-1 kernel leaves the marginal density along the axis it does not widen exactly
+GGX's (a Student-t whose wings at 2 - 6 alpha the supersampled image shows as a streak); a core
+M = I + c S has there the unfiltered Gaussian width, u > 1 widens it towards those wings. One
+reciprocal (w) gives every parameter; the shoulder Beckmann(4 M) and the core Beckmann(M) share
+one exponential, exp(-x) = exp(-x / 4)^4, and one inverse square root.
 
-The fitting data: the exact filtered slope density P(rho) = integral_0^inf e^-w N(rho; 0,
-1 / (2w) + r) dw (reference/src/brdf.cpp filtered_ggx_slope_density: trapezoid rule in ln w,
-step 0.02, ln w in [-70, 5]) on the radial grid tests/test_filtered_ggx.cpp uses (400 log-spaced
-radii from 1e-4 to 1e5 times sqrt(1 + 2 r)), at r = 10^(-3 + i / 4), i = 0..33 (1e-3 to 1.8e5:
-alpha^2 in [1e-6, 0.5] with k in [0, 0.18]). The objective is the largest L1 distance over those
-r, with the mass beyond 4 sqrt(k) held within TAIL_TOLERANCE (8 %; the test's target is 25 %, and its
-binned mass beyond 4 sqrt(k) reads up to 7 % below the exact integral the fit uses) of the exact one
-by a penalty; minimised by Nelder-Mead from INITIAL, restarted until it stops improving, then
-rounded to 5 significant digits (the committed coefficients are this output).
+The fitting data: the exact filtered slope density (reference/src/brdf.cpp
+filtered_ggx_slope_density: trapezoid rule in ln w, step 0.02, ln w in [-70, 5]) on the radial grid
+tests/test_filtered_ggx.cpp uses (400 log-spaced radii from 1e-4 to 1e5 times sqrt(1 + 2 r)), at
+r = 10^(-3 + i / 4), i = 0..33 (1e-3 to 1.8e5: alpha^2 in [1e-6, 0.5] with k in [0, 0.18]); and
+the anisotropic grid: r2 / r1 in ANISOTROPY (0.1, 0.01, 0: rank 1) at every third of those r,
+the density (the same quadrature at step 0.1, ln w in [-45, 4]) on an elliptic polar grid (60
+log-spaced radii from 1e-3 to 2e4 times (sqrt(1 + 2 r1), sqrt(1 + 2 r2)), 12 angles over a
+quadrant). The objective is the mean L1 distance over the anisotropic grid, with two penalties on
+the isotropic one: its largest L1 held below ISOTROPIC_L1 (0.025; the target is 0.03) and its mass
+beyond 4 sqrt(k) within TAIL_TOLERANCE (8 %; the test's target is 25 %, and its binned mass beyond
+4 sqrt(k) reads up to 7 % below the exact integral the fit uses) of the exact one; minimised by
+Nelder-Mead from INITIAL, restarted until it stops improving, then rounded to 5 significant digits
+(the committed coefficients are this output). The mean, not the largest, anisotropic L1: the
+rank-1 limit r1 -> inf (a Gaussian along one axis, GGX's Student-t along the other) is out of
+reach of Gaussian cores (L1 0.21 there) and would otherwise be all the fit sees.
 """
 import math
 import sys
 
 SHOULDER_SCALE = 4.0
 TAIL_TOLERANCE = 0.08
+ISOTROPIC_L1 = 0.025
 QUADRATURE_STEP = 0.02
 RADII = 400
+ANISOTROPY = (0.1, 0.01, 0.0)
+ELLIPTIC_RADII = 60
+ELLIPTIC_ANGLES = 12
 
 # The committed coefficients (templates/30-brdf.saa ggx_ndf_filtered_matrix, reference/src/brdf.cpp).
-COMMITTED = {'a': 1.2536, 'c1': 1.3212, 'c2': -1.9936, 'f1': 0.52867, 'f2': -0.40604}
-NAMES = ['a', 'c1', 'c2', 'f1', 'f2']
-INITIAL = [1.5, 1.0, -1.0, 0.3, -0.1]
+COMMITTED = {'a': 1.0528, 'c1': 0.56368, 'c2': 0.014624, 'f1': 0.43228, 'f2': -0.43284, 's': 0.36081}
+# The previous lobe (one r, u = 1: the core M = I + c S): docs/FILTERED_GGX.md's "before" figures.
+PREVIOUS = {'a': 1.2536, 'c1': 1.3212, 'c2': -1.9936, 'f1': 0.52867, 'f2': -0.40604, 's': 0.0}
+NAMES = ['a', 'c1', 'c2', 'f1', 'f2', 's']
+INITIAL = [1.0987, 0.50009, 0.32107, 0.42505, -0.38255, 0.3606]
 
 
-def mixture_weights():
+def mixture_weights(low, high, step):
     """(w, e^-w w step) of the trapezoid rule in u = ln w."""
     out = []
-    u = -70.0
-    while u < 5.0:
+    u = low
+    while u < high:
         w = math.exp(u)
-        out.append((w, w * math.exp(-w) * QUADRATURE_STEP))
-        u += QUADRATURE_STEP
+        out.append((w, w * math.exp(-w) * step))
+        u += step
     return out
 
 
-MIXTURE = mixture_weights()
+MIXTURE = mixture_weights(-70.0, 5.0, QUADRATURE_STEP)
+MIXTURE_2D = mixture_weights(-45.0, 4.0, 0.1)
 
 
 def exact_density(rho2s, r):
@@ -72,8 +99,21 @@ def exact_mass_beyond(radius2, r):
     return sum(weight * math.exp(-radius2 / (2.0 * (1.0 / (2.0 * w) + r))) for w, weight in MIXTURE)
 
 
+def exact_density_2d(points, r1, r2):
+    out = [0.0] * len(points)
+    for w, weight in MIXTURE_2D:
+        v1, v2 = 0.5 / w + r1, 0.5 / w + r2
+        g = weight / (2.0 * math.pi * math.sqrt(v1 * v2))
+        i1, i2 = 0.5 / v1, 0.5 / v2
+        for i, (x2, y2) in enumerate(points):
+            e = x2 * i1 + y2 * i2
+            if e < 700.0:
+                out[i] += g * math.exp(-e)
+    return out
+
+
 class Case:
-    """One r: the radial grid, the exact density on it and the exact mass beyond 4 sqrt(k)."""
+    """One isotropic r: the radial grid, the exact density on it and the exact mass beyond 4 sqrt(k)."""
 
     def __init__(self, r):
         self.r = r
@@ -87,20 +127,50 @@ class Case:
         self.exact_tail = exact_mass_beyond(self.radius2, r)
 
 
+class AnisotropicCase:
+    """One kernel (r1, r2) in the whitened eigenframe: the squared slopes (s1^2, s2^2) of an elliptic
+    polar grid over a quadrant, their areas (times 4: the densities are even in both axes), the exact
+    density, and the binned mass of both beyond 4 sqrt(k) (k = (r1 + r2) / 2) read from the grid."""
+
+    def __init__(self, r, anisotropy):
+        self.r, self.anisotropy = r, anisotropy
+        self.r1 = 2.0 * r / (1.0 + anisotropy)
+        self.r2 = anisotropy * self.r1
+        scale1, scale2 = math.sqrt(1.0 + 2.0 * self.r1), math.sqrt(1.0 + 2.0 * self.r2)
+        low, high = math.log(1e-3), math.log(2e4)
+        step = (high - low) / ELLIPTIC_RADII
+        angle_step = 0.5 * math.pi / ELLIPTIC_ANGLES
+        self.points, self.area = [], []
+        for i in range(ELLIPTIC_RADII):
+            rho = math.exp(low + (i + 0.5) * step)
+            for j in range(ELLIPTIC_ANGLES):
+                phi = (j + 0.5) * angle_step
+                x, y = scale1 * rho * math.cos(phi), scale2 * rho * math.sin(phi)
+                self.points.append((x * x, y * y))
+                self.area.append(4.0 * scale1 * scale2 * rho * rho * step * angle_step)
+        self.exact = exact_density_2d(self.points, self.r1, self.r2)
+        self.beyond = [x2 + y2 > 16.0 * r for x2, y2 in self.points]
+        self.exact_tail = sum(p * a for p, a, b in zip(self.exact, self.area, self.beyond) if b)
+
+
 def lobe_parameters(p, r):
-    """(lambda, w, c, f) of the coefficients p = (a, c1, c2, f1, f2) at r."""
-    a, c1, c2, f1, f2 = p
+    """(lambda, w, c, f, u) of the coefficients p = (a, c1, c2, f1, f2, s) at r."""
+    a, c1, c2, f1, f2, s = p
     tail_scale = 1.0 + 2.0 * a * r
     w = 1.0 / tail_scale
-    return tail_scale, w, 1.0 + w * (c1 + w * c2), w * (f1 + w * f2)
+    return tail_scale, w, 1.0 + w * (c1 + w * c2), w * (f1 + w * f2), 1.0 + s * (1.0 - w)
+
+
+def valid(c, f, u):
+    return c > 0.0 and u > 0.0 and 0.0 <= f <= 1.0
 
 
 def distance(p, case):
-    """(L1 to the exact density, model tail mass / exact tail mass)."""
-    tail_scale, w, c, f = lobe_parameters(p, case.r)
-    if c <= 0.0 or f < 0.0 or f > 1.0:
+    """Isotropic: (L1 to the exact density, model tail mass / exact tail mass)."""
+    tail_scale, w, c, f, u = lobe_parameters(p, case.r)
+    if not valid(c, f, u):
         return 10.0, 10.0
-    core = 1.0 + 2.0 * c * case.r
+    core = u + 2.0 * c * case.r
     shoulder = SHOULDER_SCALE * core
     l1 = 0.0
     for rho2, weight, exact in zip(case.rho2, case.weight, case.exact):
@@ -118,12 +188,45 @@ def distance(p, case):
     return l1, tail / case.exact_tail
 
 
-def objective(p, cases):
+def model_2d(p, case):
+    """The lobe's slope density on an anisotropic case's grid (None where its parameters are invalid)."""
+    tail_scale, w, c, f, u = lobe_parameters(p, case.r)
+    if not valid(c, f, u):
+        return None
+    m1, m2 = u + 2.0 * c * case.r1, u + 2.0 * c * case.r2
+    i1, i2 = 1.0 / (SHOULDER_SCALE * m1), 1.0 / (SHOULDER_SCALE * m2)
+    norm = (1.0 - w) / (math.pi * math.sqrt(m1 * m2))
+    core_weight, shoulder_weight = norm * (1.0 - f), norm * f / SHOULDER_SCALE
+    tail_weight = w / (math.pi * tail_scale)
+    out = []
+    for x2, y2 in case.points:
+        q = 1.0 + (x2 + y2) / tail_scale
+        model = tail_weight / (q * q)
+        x = x2 * i1 + y2 * i2
+        if x < 700.0:
+            e = math.exp(-x)
+            model += shoulder_weight * e + core_weight * e**SHOULDER_SCALE
+        out.append(model)
+    return out
+
+
+def distance_2d(p, case):
+    """Anisotropic: (L1 to the exact density, binned model tail mass / binned exact tail mass)."""
+    model = model_2d(p, case)
+    if model is None:
+        return 10.0, 10.0
+    l1 = sum(a * abs(m - e) for m, e, a in zip(model, case.exact, case.area))
+    tail = sum(m * a for m, a, b in zip(model, case.area, case.beyond) if b)
+    return l1, tail / case.exact_tail if case.exact_tail > 0.0 else 1.0
+
+
+def objective(p, cases, anisotropic):
     worst = 0.0
     for case in cases:
         l1, tail = distance(p, case)
         worst = max(worst, l1 + 10.0 * max(0.0, abs(math.log(tail)) - math.log(1.0 + TAIL_TOLERANCE)))
-    return worst
+    mean = sum(distance_2d(p, case)[0] for case in anisotropic) / len(anisotropic)
+    return mean + 10.0 * max(0.0, worst - ISOTROPIC_L1)
 
 
 def nelder_mead(f, x0, step, iterations=800, tolerance=1e-10):
@@ -161,31 +264,40 @@ def nelder_mead(f, x0, step, iterations=800, tolerance=1e-10):
     return points[best], values[best]
 
 
-def print_table(p, cases):
+def print_table(p, cases, anisotropic):
     print(' '.join(f'{name} {value:.5g}' for name, value in zip(NAMES, p)))
-    print(f"{'r':>10} {'L1':>7} {'tail':>6} {'w':>8} {'c':>7} {'f':>7}")
+    print(f"{'r':>10} {'L1':>7} {'tail':>6} {'w':>8} {'c':>7} {'f':>7} {'u':>7}")
     worst_l1, worst_tail = 0.0, 0.0
     for case in cases:
         l1, tail = distance(p, case)
-        _, w, c, f = lobe_parameters(p, case.r)
-        print(f'{case.r:10.4g} {l1:7.4f} {tail:6.3f} {w:8.4g} {c:7.4f} {f:7.4f}')
+        _, w, c, f, u = lobe_parameters(p, case.r)
+        print(f'{case.r:10.4g} {l1:7.4f} {tail:6.3f} {w:8.4g} {c:7.4f} {f:7.4f} {u:7.4f}')
         worst_l1, worst_tail = max(worst_l1, l1), max(worst_tail, abs(math.log(tail)))
     print(f'worst: L1 {worst_l1:.4f}, tail mass within {100.0 * (math.exp(worst_tail) - 1.0):.1f} %')
+    print(f"{'r':>10} {'r2/r1':>6} {'L1':>7} {'tail':>6}")
+    total, worst_2d = 0.0, 0.0
+    for case in anisotropic:
+        l1, tail = distance_2d(p, case)
+        print(f'{case.r:10.4g} {case.anisotropy:6.2f} {l1:7.4f} {tail:6.3f}')
+        total, worst_2d = total + l1, max(worst_2d, l1)
+    print(f'anisotropic: mean L1 {total / len(anisotropic):.4f}, worst {worst_2d:.4f}')
 
 
 def main():
     cases = [Case(10.0 ** (-3.0 + 0.25 * i)) for i in range(34)]
-    p = [COMMITTED[name] for name in NAMES]
+    anisotropic = [AnisotropicCase(case.r, anisotropy) for case in cases[::3] for anisotropy in ANISOTROPY]
+    committed = PREVIOUS if '--previous' in sys.argv[1:] else COMMITTED
+    p = [committed[name] for name in NAMES]
     if '--check' not in sys.argv[1:]:
         p = list(INITIAL)
-        value = objective(p, cases)
+        value = objective(p, cases, anisotropic)
         while True:
-            q, v = nelder_mead(lambda x: objective(x, cases), p, [0.2, 0.3, 0.3, 0.1, 0.1])
+            q, v = nelder_mead(lambda x: objective(x, cases, anisotropic), p, [0.2, 0.3, 0.3, 0.1, 0.1, 0.1])
             if v >= value - 1e-6:
                 break
             p, value = q, v
         p = [float(f'{x:.5g}') for x in p]
-    print_table(p, cases)
+    print_table(p, cases, anisotropic)
 
 
 if __name__ == '__main__':
