@@ -1,7 +1,7 @@
 // prefilter_flicker: where a normal-map bake's temporal difference error (TDE) comes from, on the
 // trade's animation of a normal-mapped scene (docs/PREFILTER.md, "The LOD bias").
 //
-//   prefilter_flicker [--preset full|medium] [--cache DIR] [SCENE]     (default: full, nmap-sphere)
+//   prefilter_flicker [--preset full|medium] [--cache DIR] [--dump DIR] [SCENE]   (default: full, nmap-sphere)
 //
 // Per configuration: the main image's LDR-FLIP (frame 0) and the animation's TDE with its excess
 // flicker and lost motion, means over the preset's six alphas without Fresnel, against the
@@ -20,6 +20,8 @@
 //   normal and bake +B           both sampled B levels coarser (TradeConfig::prefilter_lod_bias);
 // and two references for the TDE: a frozen image (E|dR|, the TDE of an image that never changes)
 // and the ground truth's own noise (E|R_a - R_b| of one frame rendered with two seeds).
+// --dump DIR writes the first alpha's frames 10 and 11 of the ground truth and of every
+// configuration (numbered as printed, from 00) as 8-bit PGM display images.
 #include "saagen/reference/prefilter.hpp"
 #include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/render.hpp"
@@ -28,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -178,6 +181,15 @@ Image tonemapped(const Image& image) {
   return out;
 }
 
+// An 8-bit PGM of display values in [0, 1] (--dump: the first alpha's frames 10 and 11).
+void write_pgm(const std::string& path, const Image& display) {
+  std::ofstream out(path, std::ios::binary);
+  out << "P5\n" << display.width << " " << display.height << "\n255\n";
+  for (std::size_t i = 0; i < display.size(); ++i)
+    out.put(static_cast<char>(std::lround(255.0 * std::clamp(static_cast<double>(display.pixels[i]), 0.0, 1.0))));
+  if (!out) throw std::runtime_error("prefilter_flicker: cannot write " + path);
+}
+
 double mean_abs_difference(const Image& a, const Image& b) {
   double sum = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) sum += std::fabs(static_cast<double>(a.pixels[i]) - b.pixels[i]);
@@ -187,11 +199,13 @@ double mean_abs_difference(const Image& a, const Image& b) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  std::string preset_name = "full", cache, scene_arg = "nmap-sphere";
+  std::string preset_name = "full", cache, scene_arg = "nmap-sphere", dump;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--preset" && i + 1 < argc) {
       preset_name = argv[++i];
+    } else if (arg == "--dump" && i + 1 < argc) {
+      dump = argv[++i];
     } else if (arg == "--cache" && i + 1 < argc) {
       cache = argv[++i];
     } else {
@@ -250,9 +264,12 @@ int main(int argc, char** argv) try {
         Image image = display_image(render_variant(g, all[c].variant, materials[measured[k]], config.params, config.derivative, 0,
                                                    all[c].feed, all[c].prefilter, all[c].scale, all[c].lobe));
         if (frame > 0) differences[r].add_pair(previous[r], image, previous_reference[k], reference[k]);
+        if (!dump.empty() && k == 0 && (frame == 10 || frame == 11))
+          write_pgm(fmt::format("{}/frame{}_case{:02}.pgm", dump, frame, c), image);
         previous[r] = std::move(image);
       }
     }
+    if (!dump.empty() && (frame == 10 || frame == 11)) write_pgm(fmt::format("{}/frame{}_ground_truth.pgm", dump, frame), reference[0]);
     previous_reference = std::move(reference);
   }
 
