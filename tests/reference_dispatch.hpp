@@ -149,7 +149,7 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
     const Sym2 tail = lobes.tail_scale * unfiltered;
     const double tau = alpha2.x * alpha2.y;
     const auto beckmann_part = [&](double weight, double matrix_scale) {
-      const Sym2 m = matrix_scale * (lobes.core_unfiltered * unfiltered + lobes.core_kernel * (a - unfiltered));
+      const Sym2 m = matrix_scale * (unfiltered + lobes.core_kernel * (a - unfiltered));
       double exponent = 0.0;
       if (h.z > 0.0)
         exponent = ref::sym2_quadratic_form({m.yy, -m.xy, m.xx}, {h.x / h.z, h.y / h.z}) / std::max(ref::sym2_determinant(m), tau);

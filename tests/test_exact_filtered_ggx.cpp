@@ -121,12 +121,10 @@ TEST(ExactFilteredGgx, TorusHighlightKernelIsRankOne) {
 }
 
 // With a rank-1 kernel (the torus's: Sigma = diag(7.5e-4, 0), alpha^2 = 4.096e-5) the exact lobe's
-// marginal along the unfiltered axis is GGX's own, to the marginal quadrature's 1e-3. The closed
-// form's core M = u A0 + c K is widened along that axis by u (1.33 here): its marginal there is
-// 0.66 of GGX's at 2 alpha (the one-r core M = A0 + c K gave 0.34), but a Gaussian core still
-// carries less than half of it at 4 alpha (0.35; before 0.29), where the torus's image draws the
-// highlight's streak. This asserts both (docs/FILTERED_GGX.md); a closed form that keeps the 4-alpha
-// wings fails the last expectation, and should then replace it.
+// marginal along the unfiltered axis is GGX's own, to the marginal quadrature's 1e-3; the
+// closed-form lobe carries less than half of it at 4 alpha, where the torus's image loses the
+// highlight's streak. This asserts the mechanism the trade measures (docs/FILTERED_GGX.md); a
+// closed form that keeps these wings fails the second expectation, and should then replace it.
 TEST(ExactFilteredGgx, RankOneKernelKeepsTheUnfilteredAxisWings) {
   const double alpha2 = 4.096e-5, a = std::sqrt(alpha2);
   const Sym2 sigma{7.5e-4, 0.0, 0.0};
@@ -143,9 +141,6 @@ TEST(ExactFilteredGgx, RankOneKernelKeepsTheUnfilteredAxisWings) {
     std::printf("marginal at y = %4.1f alpha: GGX %.4e, exact lobe %.4e, closed form %.4e (%.2f of GGX's)\n", y / a, truth, exact_marginal,
                 closed_marginal, closed_marginal / truth);
     EXPECT_NEAR(exact_marginal / truth, 1.0, 1e-3) << "y " << y;
-    if (y == 2.0 * a) {
-      EXPECT_GT(closed_marginal / truth, 0.6);
-    }
     if (y == 4.0 * a) {
       EXPECT_LT(closed_marginal / truth, 0.5);
     }

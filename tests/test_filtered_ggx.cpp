@@ -206,18 +206,17 @@ TEST(FilteredGgx, MatrixFormBeatsThePapersLobe) {
   }
 }
 
-// The anisotropic grid the fit minimises the mean L1 over (scripts/fit_filtered_ggx.py): kernels
-// of slope variances r1, r2 = r1 (r2 / r1) in units of alpha^2 (mean r = (r1 + r2) / 2), here
-// turned 30 degrees from the material's axes (the lobe and the exact density depend on the kernel
-// only through its eigenvalues in A0's frame). Where the kernel is anisotropic and dominates
-// alpha^2 (r >= 5, r2 / r1 <= 0.01: the torus's highlight, r 9.2) the one-r core M = A0 + c K
-// lost GGX's wings along the axis the kernel leaves alone; M = u A0 + c K widens the core there.
-// `before`: the previous lobe's L1 on the same kernels (`fit_filtered_ggx.py --check --previous`);
-// the new L1 must be below it by more than the two grids' difference (the script's 60 x 12 cells
-// against this test's 160 x 48: a few 1e-3).
-TEST(FilteredGgx, AnisotropicKernelsKeepTheUnwidenedAxisWings) {
+// The anisotropic grid (scripts/fit_filtered_ggx.py --check): kernels of slope variances r1,
+// r2 = r1 (r2 / r1) in units of alpha^2 (mean r = (r1 + r2) / 2), here turned 30 degrees from the
+// material's axes (the lobe and the exact density depend on the kernel only through its
+// eigenvalues in A0's frame). The lobe is fitted to isotropic kernels and one r; where an
+// anisotropic kernel dominates alpha^2 (the torus's highlight: r 9.2, r2 / r1 0.01) its core
+// M = A0 + c K keeps A0's width along the axis the kernel leaves alone, and misses GGX's wings
+// there (docs/FILTERED_GGX.md). `script`: the script's L1 on its coarser grid (60 x 12 cells against
+// 160 x 48 here); the two agree within 5e-3, so the documented table is the committed lobe's.
+TEST(FilteredGgx, AnisotropicKernelsMatchTheFitScriptsTable) {
   struct Cell {
-    double r, anisotropy, before;
+    double r, anisotropy, script;
   };
   const Cell cells[] = {{1.0, 0.1, 0.0593},   {1.0, 0.01, 0.0880},  {1.0, 0.0, 0.0937},    {5.623, 0.1, 0.0796}, {5.623, 0.01, 0.1602},
                         {5.623, 0.0, 0.1841}, {31.62, 0.1, 0.0584}, {31.62, 0.01, 0.1774}, {31.62, 0.0, 0.2603}};
@@ -230,10 +229,8 @@ TEST(FilteredGgx, AnisotropicKernelsKeepTheUnwidenedAxisWings) {
                                        return ggx_ndf_filtered_matrix(h, a, {alpha2, alpha2});
                                      }),
                                      {alpha2, alpha2}, sigma);
-    std::printf("r %6.3g r2/r1 %4.2f: L1 %.4f (before %.4f)\n", cell.r, cell.anisotropy, l1, cell.before);
-    if (cell.r > 5.0 && cell.anisotropy <= 0.01) {
-      EXPECT_LT(l1, cell.before - 0.02) << "r " << cell.r << " r2/r1 " << cell.anisotropy;
-    }
+    std::printf("r %6.3g r2/r1 %4.2f: L1 %.4f (script %.4f)\n", cell.r, cell.anisotropy, l1, cell.script);
+    EXPECT_NEAR(l1, cell.script, 5e-3) << "r " << cell.r << " r2/r1 " << cell.anisotropy;
   }
 }
 

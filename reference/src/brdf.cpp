@@ -191,20 +191,18 @@ double beckmann_lambda_exact(double a_param) {
 // ---------------------------------------------------------------------------------------------
 // Filtered GGX that keeps GGX's tails (saagen's fit; brdf.hpp, docs/FILTERED_GGX.md)
 
-// Coefficients fitted to the exact convolution (scripts/fit_filtered_ggx.py; tests/test_filtered_ggx.cpp
-// recomputes the distances): the mean L1 over anisotropic kernels (r2 / r1 in {0.1, 0.01, 0}) is
-// minimised with the isotropic L1 held <= 0.025 over r in [1e-3, 2e5] and the tail mass beyond
-// 4 sqrt(k) within 8 %; the tail lobe's weight 1 / lambda keeps GGX(A0)'s far tail exactly, and
-// every parameter is a polynomial in that one reciprocal.
+// Coefficients fitted by minimax of the L1 distance to the exact isotropic convolution over
+// r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 8 % (scripts/fit_filtered_ggx.py;
+// tests/test_filtered_ggx.cpp recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s
+// far tail exactly, and every parameter is a polynomial in that one reciprocal.
 FilteredGgxLobes filtered_ggx_lobes(double ratio) {
   const double r = max(ratio, 0.0);
   FilteredGgxLobes lobes;
-  lobes.tail_scale = 1.0 + 2.1056 * r;
+  lobes.tail_scale = 1.0 + 2.5072 * r;
   lobes.tail_weight = 1.0 / lobes.tail_scale;
   const double w = lobes.tail_weight;
-  lobes.core_kernel = 1.0 + w * (0.56368 + 0.014624 * w);
-  lobes.core_unfiltered = 1.36081 - 0.36081 * w;
-  lobes.shoulder_fraction = w * (0.43228 - 0.43284 * w);
+  lobes.core_kernel = 1.0 + w * (1.3212 - 1.9936 * w);
+  lobes.shoulder_fraction = w * (0.52867 - 0.40604 * w);
   return lobes;
 }
 
@@ -217,7 +215,7 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
 }
 
 // Template filtered_beckmann_lobe: (1 - f) Beckmann(M) + f Beckmann(4 M) for the core matrix
-// M = u A0 + c K. Guarded: det(M) floored at u (u det(A0) + c (ax^2 K11 + ay^2 K00)) (det(K) >= 0 for a PSD
+// M = A0 + c K. Guarded: det(M) floored at det(A0) + c (ax^2 K11 + ay^2 K00) (det(K) >= 0 for a PSD
 // kernel; a numerically rank-1 kernel cancels det(M) to any sign) and TINY_POSITIVE, the exponent
 // at |h.xy|^2 / (tr(M) h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in
 // beckmann_ndf_matrix; one exponential serves both lobes, exp(-x) = exp(-x / 4)^4, as in the template.
@@ -237,9 +235,9 @@ double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
   const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
   const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
   const Sym2 kernel = a - unfiltered;
-  const double c = lobes.core_kernel, u = lobes.core_unfiltered;
-  const double det_floor = u * (u * alpha2.x * alpha2.y + c * (alpha2.x * kernel.yy + alpha2.y * kernel.xx));
-  const double beckmann = filtered_beckmann_lobe(u * unfiltered + c * kernel, det_floor, lobes.shoulder_fraction, h);
+  const double c = lobes.core_kernel;
+  const double det_floor = alpha2.x * alpha2.y + c * (alpha2.x * kernel.yy + alpha2.y * kernel.xx);
+  const double beckmann = filtered_beckmann_lobe(unfiltered + c * kernel, det_floor, lobes.shoulder_fraction, h);
   return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
 }
 

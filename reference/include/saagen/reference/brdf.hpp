@@ -97,17 +97,14 @@ double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2);
 // filtered_ggx_slope_density below). saagen's closed form keeps the far tail exactly and puts
 // the kernel into two Beckmann lobes (Gaussian slopes: there the variances add), a core and a
 // shoulder four times wider (so that one exponential serves both: exp(-x) = exp(-x / 4)^4):
-//   D = w GGX(lambda A0) + (1 - w) [(1 - f) Beckmann(M) + f Beckmann(4 M)],  M = u A0 + c K,
+//   D = w GGX(lambda A0) + (1 - w) [(1 - f) Beckmann(A0 + c K) + f Beckmann(4 (A0 + c K))],
 //   w = 1 / lambda,  lambda = 1 + 2 a r,  r = (K00 / ax^2 + K11 / ay^2) / 4  (k / alpha^2 when
 //   isotropic),
-// with c (the core's kernel factor), u (its unfiltered factor, 1 + s (1 - w)) and f (the
-// shoulder's share) polynomials in w, fitted (scripts/fit_filtered_ggx.py) to the exact
-// convolution: isotropic L1 <= 0.025 and mass beyond 4 sqrt(k) within 8 % (test_filtered_ggx),
-// and the mean L1 over anisotropic and rank-1 kernels minimised. For an isotropic kernel only
-// u + 2 c r matters; for a rank-1 one u widens the core along the axis the kernel leaves alone,
-// towards GGX's wings there (the exact marginal along that axis is GGX's own). GGX(A0)'s far
-// tail is kept exactly in every direction (w lambda = 1), and c -> 1, u -> 1 + s as r -> inf.
-// Every lobe is normalised, so the energy (integral of D cos) is 1.
+// with c (the core's kernel factor) and f (the shoulder's share) quadratics in w, fitted
+// (minimax over r in [1e-3, 2e5], scripts/fit_filtered_ggx.py) to the exact isotropic
+// convolution: L1 <= 0.02, mass beyond 4 sqrt(k) within 8 % (test_filtered_ggx); GGX(A0)'s far
+// tail is kept exactly in every direction (w lambda = 1), and c -> 1 as r -> inf (the kernel's
+// own Gaussian). Every lobe is normalised, so the energy (integral of D cos) is 1.
 
 // The shoulder lobe's matrix is this multiple of the core's.
 inline constexpr double kFilteredShoulderScale = 4.0;
@@ -118,7 +115,6 @@ struct FilteredGgxLobes {
   double tail_weight = 1.0;        // w = 1 / lambda
   double shoulder_fraction = 0.0;  // f
   double core_kernel = 1.0;        // c
-  double core_unfiltered = 1.0;    // u
 };
 FilteredGgxLobes filtered_ggx_lobes(double ratio);
 
