@@ -128,6 +128,8 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
   const saagen::test::PrefilterInputs texel = saagen::test::prefilter_inputs(index);
   const Sym2 matrix = roughness_matrix(s);
+  // The texture frame of deferred_aniso_covariance around normal_ws = h, mirrored every other index.
+  const saagen::test::TextureFrame frame = saagen::test::texture_frame(s.h, s.matrix_angle, index % 2 == 0 ? 1.0 : -1.0);
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2")
@@ -172,6 +174,12 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
       push(out, texel.slope_mean);
     else if (name == "slope_second")
       push(out, texel.slope_second);
+    else if (name == "tangent_ws")
+      push(out, frame.tangent);
+    else if (name == "bitangent_ws")
+      push(out, frame.bitangent);
+    else if (name == "covariance")
+      push(out, ref::deferred_aniso_covariance(params, texel.slope_mean, texel.slope_second, frame.tangent, frame.bitangent, s.h));
     else
       throw std::runtime_error("no input generator for parameter " + name + " of " + function.name);
   }
@@ -228,7 +236,8 @@ inline double beckmann_exponent(Vec3 h, Sym2 a, double tau) {
 // deferred-aniso's core and evaluate functions: the shared reference and its scale
 // (reference_dispatch.hpp, deferred_aniso_reference).
 inline void deferred_aniso_references(const ref::Params& p, std::map<std::string, ReferenceFunction>& table) {
-  for (const char* name : {"deferred_aniso", "deferred_aniso_roughness", "deferred_aniso_brdf"}) {
+  for (const char* name : {"deferred_aniso", "deferred_aniso_roughness", "deferred_aniso_brdf", "deferred_aniso_covariance",
+                           "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"}) {
     const std::string function = name;
     table[function] = {[=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in); },
                        [=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in, true); }};

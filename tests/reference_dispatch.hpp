@@ -276,13 +276,31 @@ struct ValueList {
   }
 };
 
+// A texture frame for deferred_aniso_covariance's inputs: unit tangent and bitangent orthogonal
+// to the unit normal n, the tangent turned by `angle` about n from an axis picked from n, the
+// bitangent sign * (n x t) (sign -1: a mirrored uv layout).
+struct TextureFrame {
+  ref::Vec3 tangent, bitangent;
+};
+
+inline TextureFrame texture_frame(ref::Vec3 n, double angle, double sign) {
+  const ref::Vec3 axis = std::fabs(n.x) < 0.9 ? ref::Vec3{1.0, 0.0, 0.0} : ref::Vec3{0.0, 1.0, 0.0};
+  const ref::Vec3 t0 = ref::normalize(ref::cross(axis, n)), b0 = ref::cross(n, t0);
+  const ref::Vec3 t = std::cos(angle) * t0 + std::sin(angle) * b0;
+  return {t, sign * ref::cross(n, t)};
+}
+
 // deferred-aniso's core and evaluate functions (templates/20-deferred.saa) on inputs read in
-// parameter order (In: real, vec3, sym2); nullopt for other functions. With `magnitudes`, the
-// magnitude scale S of each output for the 2e-5 S fp32 rounding bound (core_cases.hpp):
+// parameter order (In: real, vec2, vec3, sym2); nullopt for other functions. With `magnitudes`,
+// the magnitude scale S of each output for the 2e-5 S fp32 rounding bound (core_cases.hpp):
 //  - deferred_aniso: the unclamped trace 2 sigma^2 (|dn_dx|^2 + |dn_dy|^2), which bounds every
 //    entry: the products round relative to it, and where the kappa clamp acts the smaller
 //    eigenvalue of a nearly rank-1 matrix is known only to eps times the trace;
-//  - deferred_aniso_roughness: alpha^2 + |Kxx| + |Kyy|;
+//  - deferred_aniso_covariance: 2 (|S|xx + 2 |S|xy + |S|yy) max(1, |t|, |b|)^2 with |S| the
+//    covariance's magnitude (|E[s s^T]| + |E[s]|^2 per entry, its subtraction cancels): each
+//    entry of R (2 Sigma) R^T is a sum of four products of two entries of R, each at most
+//    |t| or |b| (the frame built from n is unit), with one entry of 2 Sigma;
+//  - deferred_aniso_roughness: alpha^2 + |Kxx| + |Kyy|, and _with_covariance + |Cxx| + |Cyy|;
 //  - deferred_aniso_brdf: the filtered GGX's scale, plus the frame: the directions enter through
 //    dot products with a frame built in fp32 (a few ulps of absolute error delta in i_ts, o_ts,
 //    h_ts), which moves the NDF's quadratic form h.xy^T M^-1 h.xy / h_z^2 by at most
@@ -297,19 +315,38 @@ std::optional<std::vector<double>> deferred_aniso_reference(const std::string& n
     if (magnitudes) return std::vector<double>(3, 2.0 * ref::isotropic_kernel_sum(p, dx, dy));
     return output_values(ref::deferred_aniso(p, dx, dy, normal));
   }
-  if (name != "deferred_aniso_roughness" && name != "deferred_aniso_brdf") return std::nullopt;
+  if (name == "deferred_aniso_covariance") {
+    const ref::Vec2 m = in.vec2();
+    const ref::Sym2 e = in.sym2();
+    const ref::Vec3 tangent = in.vec3(), bitangent = in.vec3(), normal = in.vec3();
+    if (!magnitudes) return output_values(ref::deferred_aniso_covariance(p, m, e, tangent, bitangent, normal));
+    const double xx = std::fabs(e.xx) + m.x * m.x, yy = std::fabs(e.yy) + m.y * m.y;
+    const double xy = std::fabs(e.xy) + std::fabs(m.x * m.y) + std::sqrt(xx * yy);
+    const double frame = std::max({1.0, ref::length(tangent), ref::length(bitangent)});
+    return std::vector<double>(3, 2.0 * (xx + 2.0 * xy + yy) * frame * frame);
+  }
+  const bool with_covariance = name == "deferred_aniso_roughness_with_covariance" || name == "deferred_aniso_brdf_with_covariance";
+  if (name != "deferred_aniso_roughness" && name != "deferred_aniso_brdf" && !with_covariance) return std::nullopt;
   const ref::Vec3 light = in.vec3(), view = in.vec3(), normal = in.vec3();
   const ref::Sym2 tensor = in.sym2();
+  const ref::Sym2 covariance = with_covariance ? in.sym2() : ref::Sym2{};
   const double alpha2 = in.real();
-  if (name == "deferred_aniso_roughness") {
-    if (magnitudes) return std::vector<double>(3, std::fabs(alpha2) + std::fabs(tensor.xx) + std::fabs(tensor.yy));
-    return output_values(ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2));
+  const auto roughness = [&] {
+    return with_covariance ? ref::deferred_aniso_roughness_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
+                           : ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2);
+  };
+  if (name == "deferred_aniso_roughness" || name == "deferred_aniso_roughness_with_covariance") {
+    if (magnitudes)
+      return std::vector<double>(
+          3, std::fabs(alpha2) + std::fabs(tensor.xx) + std::fabs(tensor.yy) + std::fabs(covariance.xx) + std::fabs(covariance.yy));
+    return output_values(roughness());
   }
-  const double value = ref::deferred_aniso_brdf(p, light, view, normal, tensor, alpha2);
+  const double value = with_covariance ? ref::deferred_aniso_brdf_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
+                                       : ref::deferred_aniso_brdf(p, light, view, normal, tensor, alpha2);
   if (!magnitudes) return output_values(value);
   const ref::Vec3 t = ref::normal_frame_tangent(normal), b = ref::normal_frame_bitangent(normal);
   const ref::Vec3 i = ref::to_tangent_space(light, t, b, normal), o = ref::to_tangent_space(view, t, b, normal);
-  const ref::Sym2 a = ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2);
+  const ref::Sym2 a = roughness();
   ValueList lobe_inputs{{i.x, i.y, i.z, o.x, o.y, o.z, a.xx, a.xy, a.yy, alpha2, alpha2}};
   const double lobes = filtered_ggx_reference("ggx_brdf_filtered_matrix", p, lobe_inputs, true)->at(0);
   if (i.z <= 0.0 || o.z <= 0.0) return std::vector<double>{lobes};

@@ -48,11 +48,12 @@ enum class Claim {
   smith_lambda,           // Lambdas: finite, >= kLambdaFloor (Walter's Beckmann fit dips below 0)
   clamp_tau,              // ndf_clamp_tau: finite, >= 0
   variance,               // toksvig_variance: finite, >= 0
-  covariance,             // lean_covariance: finite, diagonal >= 0, det >= -(rounding)
+  covariance,             // lean_covariance, deferred_aniso_covariance: finite, diagonal >= 0, det >= -(rounding)
   prefiltered,            // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
   prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
   kernel_tensor,          // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
-  tensor_roughness,       // deferred_aniso_roughness: finite, A00, A11 >= alpha^2, det A >= -(rounding) (for a PSD tensor)
+  tensor_roughness,  // deferred_aniso_roughness(_with_covariance): finite, A00, A11 >= alpha^2, det A >= -(rounding) (for PSD tensor and
+                     // covariance)
 };
 
 inline constexpr double kKappaSlack = 0x1p-22;
@@ -69,12 +70,12 @@ inline Claim claim_of(std::string_view function) {
   const auto starts = [&](std::string_view prefix) { return function.substr(0, prefix.size()) == prefix; };
   if (starts("forward_aniso_") || function == "prefilter_lean" || starts("prefilter_lean_aniso")) return Claim::roughness_matrix;
   if (function == "toksvig_variance") return Claim::variance;
-  if (function == "lean_covariance") return Claim::covariance;
+  if (function == "lean_covariance" || function == "deferred_aniso_covariance") return Claim::covariance;
   if (starts("prefilter_") && function.ends_with("_projected")) return Claim::prefiltered_projected;
   if (starts("prefilter_")) return Claim::prefiltered;
   if (function == "deferred_aniso" || function == "deferred_aniso_fragment") return Claim::kernel_tensor;
-  if (function == "deferred_aniso_roughness") return Claim::tensor_roughness;
-  if (function == "deferred_aniso_brdf") return Claim::brdf_value;
+  if (function == "deferred_aniso_roughness" || function == "deferred_aniso_roughness_with_covariance") return Claim::tensor_roughness;
+  if (function == "deferred_aniso_brdf" || function == "deferred_aniso_brdf_with_covariance") return Claim::brdf_value;
   if (starts("deferred_projected_space")) return Claim::projected_space;
   if (starts("forward_axis_") || starts("deferred_")) return Claim::saturated;
   if (function == "ndf_clamp_tau") return Claim::clamp_tau;

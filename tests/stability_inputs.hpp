@@ -287,6 +287,12 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       // The PSD kernel S of A = diag(alpha^2) + S: the lighting pass's claims hold for any PSD
       // tensor, not only the kappa-clamped one deferred_aniso writes.
       pack.sym2(material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y});
+    } else if (name == "covariance") {
+      // deferred_aniso_covariance's output: PSD and unbounded by kappa (another material's kernel).
+      const Material texture = adversarial_material(rng);
+      pack.sym2(texture.a - ref::Sym2{texture.alpha2.x, 0.0, texture.alpha2.y});
+    } else if (name == "tangent_ws" || name == "bitangent_ws") {
+      pack.vec3(adversarial_direction(rng));
     } else if (name == "mean_length") {
       pack.real(adversarial_mean_length(rng));
     } else if (name == "slope_mean" || name == "slope_second") {

@@ -461,6 +461,53 @@ TEST(Planner, WithATableASpeedChoiceThatLosesGivesWay) {
       << plan.reason;
 }
 
+// A normal-mapped deferred material planned deferred-aniso with a prefiltered map gets the lighting
+// pass with the texture covariance (A = diag(alpha^2) + (n.h)^2 K + C, as the trade's
+// deferred-aniso:FEED+PREFILTER rows shade): with LEAN the geometry pass's
+// deferred_aniso_covariance too, with a scalar bake the covariance (v, 0, v).
+TEST(Planner, NormalMappedDeferredAnisoTakesTheTextureCovariance) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "normal-mapped", "configuration": "none", "error": 0.06, "tde": 0.0146},
+      {"content": "normal-mapped", "configuration": "deferred-aniso:geometric+lean/tail", "error": 0.05, "tde": 0.0140}]})",
+                                                                     "lean.json");
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n");
+  saagen::ScenePlan scene = saagen::plan_scene(Catalogue::builtin(), manifest, &table);
+  const saagen::MaterialPlan& lean = scene.materials.at(0);
+  ASSERT_EQ(lean.variant, "deferred-aniso") << lean.reason;
+  EXPECT_EQ(lean.prefilter, "lean");
+  EXPECT_EQ(lean.functions, (std::vector<std::string>{"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_covariance",
+                                                      "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"}));
+  EXPECT_EQ(lean.brdf, std::optional<std::string>("deferred_aniso_brdf_with_covariance"));
+  const std::string text = saagen::format_plan(Catalogue::builtin(), manifest, scene);
+  EXPECT_NE(text.find("deferred_aniso_brdf_with_covariance(light_ws, view_ws, normal_ws, tensor, covariance, alpha2) per light"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("C = saa_deferred_aniso_covariance(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws)"),
+            std::string::npos)
+      << text;
+  // The cost kernel compiles with the covariance, and the bundle defines the three functions.
+  saagen::measure_costs(Catalogue::builtin(), manifest, scene);
+  EXPECT_GT(scene.materials.at(0).cost.at(saagen::OutputTarget::snippet("glsl")), 0);
+  const std::set<std::string> defined =
+      defined_functions(saagen::emit_scene(Catalogue::builtin(), manifest, scene).at(0).content, manifest.prefix);
+  for (const char* name : {"deferred_aniso_covariance", "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"})
+    EXPECT_TRUE(defined.count(name)) << name;
+
+  // Named, with saagen's advice for the map (the hdrp bake): the lighting pass takes (v, 0, v).
+  const saagen::Manifest named =
+      parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-aniso\"\n");
+  const saagen::ScenePlan advised = saagen::plan_scene(Catalogue::builtin(), named);
+  const saagen::MaterialPlan& hdrp = advised.materials.at(0);
+  EXPECT_EQ(hdrp.prefilter, "hdrp");
+  EXPECT_EQ(hdrp.functions, (std::vector<std::string>{"deferred_aniso", "deferred_aniso_fragment",
+                                                      "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"}));
+  EXPECT_NE(saagen::format_plan(Catalogue::builtin(), named, advised).find("C = (v, 0, v) of the hdrp bake"), std::string::npos);
+  // Without normal maps the plan keeps the plain lighting pass (D0).
+  const saagen::MaterialPlan plain =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n")).materials.at(0);
+  EXPECT_EQ(plain.brdf, std::optional<std::string>("deferred_aniso_brdf"));
+}
+
 // On bump content the trade's prefiltered rows are a procedural shader band-limited to its
 // footprint (bump_plane "+lean"), code the plan does not write: a bumps material without normal
 // maps is never planned from them, even where they are the only rows that beat no SAA.

@@ -86,6 +86,10 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
       return v.x * ref::normal_frame_tangent(normal) + v.y * ref::normal_frame_bitangent(normal) + v.z * normal;
     };
     double smallest = std::sqrt(std::min(material.alpha2.x, material.alpha2.y));
+    // deferred_aniso_covariance's texture frame around that normal, turned by 0.7 e radians and
+    // mirrored every other element (no draw from rng: the other functions' inputs stay as they were).
+    const saagen::test::PrefilterInputs texel = saagen::test::prefilter_inputs(seed * kElements + e);
+    const saagen::test::TextureFrame frame = saagen::test::texture_frame(normal, 0.7 * e, e % 2 ? -1.0 : 1.0);
     for (const saagen::Parameter& p : f.parameters) {
       const std::string& name = p.name;
       if (name == "alpha2") {
@@ -127,6 +131,13 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
         pack.vec2(saagen::test::prefilter_inputs(seed * kElements + e).slope_mean);
       } else if (name == "slope_second") {
         pack.sym2(saagen::test::prefilter_inputs(seed * kElements + e).slope_second);
+      } else if (name == "tangent_ws") {
+        pack.vec3(frame.tangent);
+      } else if (name == "bitangent_ws") {
+        pack.vec3(frame.bitangent);
+      } else if (name == "covariance") {
+        pack.sym2(
+            ref::deferred_aniso_covariance(ref::Params{}, texel.slope_mean, texel.slope_second, frame.tangent, frame.bitangent, normal));
       }
     }
     in.min_alpha.push_back(smallest);
@@ -409,7 +420,13 @@ Bound bound_for(const Function& f) {
   // 8u, the product and the sum u more: 9u = 4.4e-3 of K <= tr A, measured <= 1.8e-3: 5e-3.
   // deferred_aniso_brdf takes the GGX BRDFs' 0.05 (relative_metric): the frame built from n in
   // fp16 turns the directions by a few u, measured <= 1.9e-2 for alpha >= 0.1 (cosines >= 0.1).
-  if (f.name == "deferred_aniso_roughness") return {5e-3, 1e-5};
+  // deferred_aniso_roughness_with_covariance adds the covariance C, an fp16 input (u/2 of C <= tr A)
+  // with one more rounded sum (u/2): 10u = 4.9e-3, measured <= 1.7e-3: the same 5e-3.
+  // deferred_aniso_covariance keeps the default 2e-3 (absolute; C <= 0.5 here): the moments carry
+  // u/2 each (entries <= 0.5), E[s s^T] - E[s]^2 keeps their absolute error, and the frame rebuilt
+  // from fp16 vectors turns R by a few u, which moves C by twice that times |2 Sigma| <= 0.5:
+  // ~2.5u = 1.2e-3, measured <= 9.3e-4.
+  if (f.name == "deferred_aniso_roughness" || f.name == "deferred_aniso_roughness_with_covariance") return {5e-3, 1e-5};
   if (f.name == "forward_aniso_slope_fragment") return {2e-2, 1e-5};
   if (f.name == "forward_axis_slope_fragment") return {1.5e-2, 1e-5};
   return {2e-3, 1e-5};

@@ -476,6 +476,121 @@ TEST(ProceduralBumps, PrefilteredRowsShadeTheBandLimitedNormal) {
   EXPECT_FALSE(pixel_fields(make_scene(SceneId::nmap_sphere), 30, 27, size, size).has_footprint_moments);
 }
 
+// The emitted deferred-aniso pass with a texture covariance (templates/20-deferred.saa:
+// deferred_aniso_covariance in the geometry pass, deferred_aniso_roughness_with_covariance /
+// _brdf_with_covariance in the lighting pass) against the trade's deferred-aniso rows with LEAN.
+// The pass works in the frame (t', b') built from the normal the G-buffer stores; the renderer in
+// the pixel's shading frame (t, b): A_pixel = Q A Q^T, Q = [t.t' t.b'; b.t' b.b'].
+namespace {
+
+ref::Sym2 to_pixel_frame(const ref::Sym2& a, Vec3 frame_normal, Vec3 tangent, Vec3 bitangent) {
+  const Vec3 tf = ref::normal_frame_tangent(frame_normal), bf = ref::normal_frame_bitangent(frame_normal);
+  const double q00 = ref::dot(tangent, tf), q01 = ref::dot(tangent, bf), q10 = ref::dot(bitangent, tf), q11 = ref::dot(bitangent, bf);
+  const double r0x = q00 * a.xx + q01 * a.xy, r0y = q00 * a.xy + q01 * a.yy;
+  const double r1x = q10 * a.xx + q11 * a.xy, r1y = q10 * a.xy + q11 * a.yy;
+  return {r0x * q00 + r0y * q01, r0x * q10 + r0y * q11, r1x * q10 + r1y * q11};
+}
+
+void expect_sym2_near(const ref::Sym2& got, const ref::Sym2& want, double tolerance) {
+  EXPECT_NEAR(got.xx, want.xx, tolerance);
+  EXPECT_NEAR(got.xy, want.xy, tolerance);
+  EXPECT_NEAR(got.yy, want.yy, tolerance);
+}
+
+}  // namespace
+
+// The covariance in the frame built from n: R (2 Sigma) R^T, for texture frames turned about n by
+// any angle and mirrored. Carried back, it is 2 Sigma; a quarter turn swaps the variances.
+TEST(DeferredAnisoCovariance, CovarianceIsCarriedIntoTheFrameBuiltFromTheNormal) {
+  const ref::Params params{};
+  const Vec2 mean{0.2, -0.1};
+  const ref::Sym2 sigma{0.04, 0.015, 0.01};
+  const ref::Sym2 second = sigma + ref::Sym2{mean.x * mean.x, mean.x * mean.y, mean.y * mean.y};
+  const ref::Sym2 texture = 2.0 * ref::lean_covariance(params, mean, second);
+  for (const Vec3 n : {Vec3{0.0, 0.0, 1.0}, ref::normalize(Vec3{0.3, -0.5, 0.8}), ref::normalize(Vec3{-0.7, 0.1, -0.6})}) {
+    const Vec3 t0 = ref::normal_frame_tangent(n), b0 = ref::normal_frame_bitangent(n);
+    for (const double angle : {0.0, 0.4, 1.3, 2.9})
+      for (const double sign : {1.0, -1.0}) {
+        const Vec3 t = std::cos(angle) * t0 + std::sin(angle) * b0, b = sign * ref::cross(n, t);
+        const ref::Sym2 c = ref::deferred_aniso_covariance(params, mean, second, t, b, n);
+        expect_sym2_near(to_pixel_frame(c, n, t, b), texture, 1e-15);
+      }
+    // t = b0, b = n x b0 = -t0: R = [0 -1; 1 0], C = (S11, -S01, S00).
+    const ref::Sym2 quarter = ref::deferred_aniso_covariance(params, mean, second, b0, -1.0 * t0, n);
+    expect_sym2_near(quarter, {texture.yy, -texture.xy, texture.xx}, 1e-15);
+  }
+}
+
+// Normal-mapped sphere, shading feed (the G-buffer's normal is the mapped one, and so is the
+// normal the kernel measures): the whole roughness matrix and the BRDF of the emitted pass are
+// the row's, to double rounding.
+TEST(DeferredAnisoCovariance, EmittedPassIsTheLeanRowOnANormalMap) {
+  const int size = 64;
+  const GBuffer gbuffer = render_gbuffer(make_scene(SceneId::nmap_sphere), size, size, 1);
+  const ref::Params params{};
+  const Material material{0.05, false};
+  const double a2 = material.alpha * material.alpha;
+  int checked = 0;
+  // Every 7th pixel of every 7th row on the sphere (its tangent frame and the frame built from n
+  // are a few degrees apart here: CovarianceIsCarriedIntoTheFrameBuiltFromTheNormal turns them).
+  for (int y = 3; y < size; y += 7)
+    for (int x = 3; x < size; x += 7) {
+      const PixelFields& f = gbuffer.at(x, y);
+      if (!f.hit) continue;
+      ASSERT_TRUE(f.has_normal_map);
+      const PixelShade row = shade_pixel(gbuffer, x, y, Variant::deferred_aniso, material, params, ref::Derivative::coarse,
+                                         NormalFeed::shading, Prefilter::lean, 1.0, Lobe::tail);
+      const QuadFields q = gather_quad(gbuffer, x, y);
+      const ref::Sym2 tensor = ref::deferred_aniso_fragment_quad(params, q.normal, q.pixel);
+      const ref::Sym2 covariance =
+          ref::deferred_aniso_covariance(params, f.texel.slope_mean, f.texel.slope_second, f.tangent, f.bitangent, f.normal);
+      EXPECT_GT(ref::trace(covariance), 0.0);
+      const ref::Sym2 a = ref::deferred_aniso_roughness_with_covariance(params, f.to_light, f.to_view, f.normal, tensor, covariance, a2);
+      const double scale = ref::trace(row.roughness);
+      expect_sym2_near(to_pixel_frame(a, f.normal, f.tangent, f.bitangent), row.roughness, 1e-12 * scale);
+      const double brdf = ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, row.roughness, {a2, a2});
+      const double emitted = ref::deferred_aniso_brdf_with_covariance(params, f.to_light, f.to_view, f.normal, tensor, covariance, a2);
+      EXPECT_NEAR(emitted, brdf, 1e-9 * std::max(brdf, 1e-300));
+      ++checked;
+    }
+  EXPECT_GT(checked, 20);
+}
+
+// The bump plane's deferred-aniso:geometric+lean row (the trade's best deferred configuration
+// there): its texture term 2 Sigma (LEAN's covariance of the footprint moments, in the
+// band-limited normal's shading frame) is the emitted covariance carried back into that frame,
+// and the rest of its A is the geometric normal's kernel, as deferred_aniso_roughness gives it.
+TEST(DeferredAnisoCovariance, EmittedCovarianceIsTheBandLimitedRowsTextureTerm) {
+  const int size = 64;
+  const GBuffer gbuffer = render_gbuffer(make_scene(SceneId::bump_plane), size, size, 1);
+  const ref::Params params{};
+  const Material material{0.05, false};
+  const double a2 = material.alpha * material.alpha;
+  int checked = 0;
+  for (const auto& [x, y] : {std::pair{30, 27}, std::pair{41, 18}, std::pair{12, 50}}) {
+    const PixelFields& f = gbuffer.at(x, y);
+    ASSERT_TRUE(f.hit && f.has_footprint_moments);
+    const ShadingFrame& band = f.band_limited;
+    const ref::Sym2 texture = 2.0 * ref::lean_covariance(params, f.texel.slope_mean, f.texel.slope_second);
+    const ref::Sym2 covariance =
+        ref::deferred_aniso_covariance(params, f.texel.slope_mean, f.texel.slope_second, band.tangent, band.bitangent, band.normal);
+    expect_sym2_near(to_pixel_frame(covariance, band.normal, band.tangent, band.bitangent), texture, 1e-12 * ref::trace(texture));
+    const PixelShade row = shade_pixel(gbuffer, x, y, Variant::deferred_aniso, material, params, ref::Derivative::coarse,
+                                       NormalFeed::geometric, Prefilter::lean, 1.0, Lobe::tail);
+    // The row's kernel part: the geometric normal's tensor and A in its frame, carried into the
+    // band-limited frame by M = [t.t_g' t.b_g'; b.t_g' b.b_g'] (renderer.cpp, deferred_aniso_in_pixel_frame).
+    const QuadFields q = gather_quad(gbuffer, x, y);
+    const Vec3 n_g = q.geometric_normal[q.pixel];
+    const ref::Sym2 kernel = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n_g,
+                                                           ref::deferred_aniso_fragment_quad(params, q.geometric_normal, q.pixel), a2);
+    const double scale = ref::trace(row.roughness);
+    expect_sym2_near(row.roughness - to_pixel_frame(covariance, band.normal, band.tangent, band.bitangent),
+                     to_pixel_frame(kernel, n_g, band.tangent, band.bitangent), 1e-12 * scale);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Documented numbers (scene.hpp)
 

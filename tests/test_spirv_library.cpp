@@ -278,6 +278,7 @@ struct Draw {
   Sym2 a;
   double tau = 0.0;
   saagen::test::PrefilterInputs texel;  // normal-map prefiltering inputs
+  saagen::test::TextureFrame frame;     // deferred_aniso_covariance's texture frame around h
 };
 
 Draw draw(std::mt19937_64& random) {
@@ -298,6 +299,8 @@ Draw draw(std::mt19937_64& random) {
   const double c = std::cos(psi), s = std::sin(psi);
   d.a = {l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c};
   d.tau = ref::sym2_determinant(d.a) * (0.5 + unit(random));
+  // From the draws above (no further draw, so the other functions' inputs stay as they were).
+  d.frame = saagen::test::texture_frame(d.h, psi, ratio < 0.5 ? -1.0 : 1.0);
   return d;
 }
 
@@ -355,6 +358,13 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
       push(out, d.texel.slope_mean);
     else if (name == "slope_second")
       push(out, d.texel.slope_second);
+    else if (name == "tangent_ws")
+      push(out, d.frame.tangent);
+    else if (name == "bitangent_ws")
+      push(out, d.frame.bitangent);
+    else if (name == "covariance")
+      push(out, ref::deferred_aniso_covariance(ref::Params{}, d.texel.slope_mean, d.texel.slope_second, d.frame.tangent, d.frame.bitangent,
+                                               d.h));
     else
       throw std::runtime_error("no input for parameter " + name + " of " + function.name);
   }

@@ -189,6 +189,13 @@ rc::Gen<Element> gen_core_element(const Function& f) {
         push(e, o);
       } else if (p.name == "tensor") {
         push(e, material.a - Sym2{material.alpha2.x, 0.0, material.alpha2.y});
+      } else if (p.name == "covariance") {  // PSD, not bounded by kappa: trace 1e-8 .. 1e8
+        const double trace = std::pow(10.0, *rc::gen::inRange(-80, 81) / 10.0);
+        const double angle = *gen_angle(), ratio = *rc::gen::inRange(0, 101) / 100.0;
+        const double l1 = trace / (1.0 + ratio), l2 = l1 * ratio, c = std::cos(angle), s = std::sin(angle);
+        push(e, Sym2{l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c});
+      } else if (p.name == "tangent_ws" || p.name == "bitangent_ws") {
+        push(e, *gen_direction());
       } else if (p.name == "mean_length") {
         push(e, *gen_mean_length());
       } else if (p.name == "slope_mean" || p.name == "slope_second") {
@@ -863,7 +870,8 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
           const std::uint32_t count = saagen::component_count(param.type);
           if (is_derivative(param.name))
             for (std::uint32_t k = 0; k < count; ++k) e[offset + k] = std::copysign(std::min(std::fabs(e[offset + k]), 1e9), e[offset + k]);
-          if (count == 3 && param.name != "a" && param.name != "tensor") {
+          const bool matrix_input = param.name == "a" || param.name == "tensor" || param.name == "covariance";
+          if (count == 3 && !matrix_input) {
             Vec3 v{e[offset], e[offset + 1], e[offset + 2]};
             if (!is_derivative(param.name)) {
               // unit vectors with z >= 0.01 (slopes, cosines and Lambda away from their guards)
@@ -872,7 +880,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
               e[offset] = as_float(v.x), e[offset + 1] = as_float(v.y), e[offset + 2] = as_float(v.z);
             }
           }
-          if (param.name == "a" || param.name == "tensor") {  // well conditioned: a00 = a11 = 2 + |a01|
+          if (matrix_input) {  // well conditioned: a00 = a11 = 2 + |a01|
             e[offset + 1] = std::clamp(e[offset + 1], -1.0, 1.0);
             e[offset] = e[offset + 2] = as_float(2.0 + std::fabs(e[offset + 1]));
           }
@@ -917,7 +925,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
       // deferred-aniso's lighting pass).
       const bool beckmann = f->name.find("beckmann") != std::string::npos || f->name.find("filtered_matrix") != std::string::npos ||
                             f->name.find("filtered_axis") != std::string::npos || f->name.find("tail_filtered") != std::string::npos ||
-                            f->name == "deferred_aniso_brdf";
+                            f->name.rfind("deferred_aniso_brdf", 0) == 0;
       const double relative = beckmann ? 1e-5 : 1e-12;
       for (std::size_t k = 0; k < a.size(); ++k)
         for (std::size_t c = 0; c < a[k].size(); ++c)

@@ -183,10 +183,21 @@ std::string ids_of(const std::vector<const Variant*>& variants) {
 // The material's functions from the chosen variant: its fragment wrappers and their cores;
 // for a variant with a tangent-free form, the form that matches the material's tangents.
 // own_brdf: the manifest names an engine's preset, whose own BRDF the filtered roughness feeds.
+// deferred-aniso's texture covariance (deferred_aniso_covariance, and the lighting pass's
+// _with_covariance forms): planned where the material adds its normal map's texture term, the
+// geometry pass's covariance function where that term is LEAN's (it reads the slope moments);
+// an engine's scalar bake v = alpha'^2 - alpha^2 enters the lighting pass as the covariance
+// (v, 0, v) (docs/DEFERRED_KERNEL.md, "A texture covariance").
+bool is_covariance_function(const std::string& name) { return name.find("covariance") != std::string::npos; }
+
+bool adds_texture_term(const Material& material, const MaterialPlan& plan) { return material.normal_maps && plan.prefilter != "none"; }
+
 void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
   const Variant& variant = *catalogue.find_variant(plan.variant);
   const bool split = has_tangent_free_form(variant);
+  const bool texture_term = adds_texture_term(material, plan);
   const auto wanted = [&](const std::string& name) {
+    if (is_covariance_function(name) && !(texture_term && plan.prefilter == "lean")) return false;
     if (!split) return true;
     return (name.find("tangent_free") != std::string::npos) == !material.tangents;
   };
@@ -205,6 +216,7 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
     // roughness matrix per light (deferred_aniso_roughness, for the engine's own matrix BRDF) and
     // shades with the tail-preserving filtered GGX (deferred_aniso_brdf).
     for (const std::string& name : lighting) {
+      if (is_covariance_function(name) != texture_term) continue;
       plan.functions.push_back(name);
       if (catalogue.find_function(name)->return_type == "real" && material.ndf == Ndf::ggx && !own_brdf) plan.brdf = name;
     }
@@ -311,7 +323,7 @@ std::string call_with(const Function& function, const std::string& alpha2) {
 
 // Whether the plan shades with the tail-preserving filtered GGX (ggx_brdf_filtered_matrix / _axis).
 bool shades_with_tail_preserving_ggx(const MaterialPlan& plan) {
-  return plan.brdf && (plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0 || *plan.brdf == "deferred_aniso_brdf");
+  return plan.brdf && (plan.brdf->rfind("ggx_brdf_filtered_", 0) == 0 || plan.brdf->rfind("deferred_aniso_brdf", 0) == 0);
 }
 
 // Whether the plan's BRDF is a lighting pass that reads the G-buffer tensor (deferred_aniso_brdf).
@@ -327,8 +339,17 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   if (!plan) return fmt::format("    real value = {}(i_ts, o_ts, {});\n", axis_brdf, material_alpha2);
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
   if (shades_from_tensor(catalogue, *plan)) {  // the geometry pass's tensor, then the lighting pass per light
-    return fmt::format("    real3 tensor = {};\n    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n",
-                       call_with(wrapper, "alpha2.x"), *plan->brdf);
+    const std::string tensor = fmt::format("    real3 tensor = {};\n", call_with(wrapper, "alpha2.x"));
+    if (!is_covariance_function(*plan->brdf))
+      return tensor + fmt::format("    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n", *plan->brdf);
+    // The texture covariance: LEAN's from the texel's moments, or a scalar bake's (v, 0, v).
+    const std::string covariance =
+        plan->prefilter == "lean"
+            ? "    real3 covariance = deferred_aniso_covariance(real2(real(SAAGEN_LOAD(10)), real(SAAGEN_LOAD(11))), "
+              "real3(real(SAAGEN_LOAD(12)), real(SAAGEN_LOAD(13)), real(SAAGEN_LOAD(14))), tangent_ws, bitangent_ws, normal_ws);\n"
+            : "    real3 covariance = real3(real(SAAGEN_LOAD(10)), 0.0, real(SAAGEN_LOAD(10)));\n";
+    return tensor + covariance +
+           fmt::format("    real value = {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2.x);\n", *plan->brdf);
   }
   // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
   // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
@@ -873,7 +894,9 @@ std::string rules_text() {
   }
   text +=
       "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
-      "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it.\n"
+      "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it. A normal-mapped material that names deferred-aniso\n"
+      "and prefilters its map gets the lighting pass with the texture covariance instead (deferred_aniso_roughness_with_covariance,\n"
+      "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments).\n"
       "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
       "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
       "beckmann_brdf_matrix and ndf_clamp_tau.\n"
@@ -932,6 +955,18 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       text += fmt::format(
           "  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
           glint_dictionary_file_name(manifest));
+    } else if (shades_from_tensor(catalogue, material_plan) && is_covariance_function(*material_plan.brdf)) {
+      text += fmt::format(
+          "  shade     {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2) per light in the lighting pass, with the tensor "
+          "the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]), the texture covariance "
+          "{} (3 more G-buffer values, 16-bit float: not bounded by kappa) and the normal it read (the tail-preserving filtered "
+          "GGX of A = diag(alpha^2) + (n.h)^2 K + C; {} returns A)\n",
+          prefixed_name(manifest.prefix, *material_plan.brdf),
+          material_plan.prefilter == "lean"
+              ? fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
+                            prefixed_name(manifest.prefix, "deferred_aniso_covariance"))
+              : fmt::format("C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
+          prefixed_name(manifest.prefix, "deferred_aniso_roughness_with_covariance"));
     } else if (shades_from_tensor(catalogue, material_plan)) {
       text += fmt::format(
           "  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "

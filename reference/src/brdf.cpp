@@ -2,6 +2,8 @@
 // statement by statement (same guards and clamps).
 #include "saagen/reference/brdf.hpp"
 
+#include "saagen/reference/prefilter.hpp"
+
 #include <cmath>
 
 namespace saagen::ref {
@@ -343,6 +345,30 @@ Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3
 double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
   const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
   const Sym2 a = deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2);
+  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
+                                          {alpha2, alpha2});
+}
+
+Sym2 deferred_aniso_covariance(const Params& p, Vec2 slope_mean, Sym2 slope_second, Vec3 tangent_ws, Vec3 bitangent_ws, Vec3 normal_ws) {
+  const Sym2 sigma = 2.0 * lean_covariance(p, slope_mean, slope_second);
+  const Vec3 tf = normal_frame_tangent(normal_ws), bf = normal_frame_bitangent(normal_ws);
+  const double r00 = dot(tf, tangent_ws), r01 = dot(tf, bitangent_ws), r10 = dot(bf, tangent_ws), r11 = dot(bf, bitangent_ws);
+  // Rows of R Sigma, then (R Sigma) R^T.
+  const double a0 = r00 * sigma.xx + r01 * sigma.xy, b0 = r00 * sigma.xy + r01 * sigma.yy;
+  const double a1 = r10 * sigma.xx + r11 * sigma.xy, b1 = r10 * sigma.xy + r11 * sigma.yy;
+  const Sym2 rotated{a0 * r00 + b0 * r01, a0 * r10 + b0 * r11, a1 * r10 + b1 * r11};
+  return p.guards ? sym2_clamp_psd(rotated) : rotated;
+}
+
+Sym2 deferred_aniso_roughness_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
+                                              double alpha2) {
+  return deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2) + covariance;
+}
+
+double deferred_aniso_brdf_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
+                                           double alpha2) {
+  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+  const Sym2 a = deferred_aniso_roughness_with_covariance(p, light_ws, view_ws, normal_ws, tensor, covariance, alpha2);
   return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
                                           {alpha2, alpha2});
 }

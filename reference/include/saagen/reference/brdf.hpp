@@ -204,6 +204,18 @@ Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3
 // The tail-preserving filtered GGX of that A, the light and view expressed in the same frame.
 double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2);
 
+// A texture covariance with deferred-aniso (docs/DEFERRED_KERNEL.md, "A texture covariance"). The
+// geometry pass: C = R (2 Sigma_tex) R^T, Sigma_tex = lean_covariance(slope_mean, slope_second)
+// in the texture's frame (tangent_ws, bitangent_ws), R = [t'.t t'.b; b'.t b'.b] the change of
+// basis into (t', b') = (normal_frame_tangent(n), normal_frame_bitangent(n)); guarded: clamped to
+// PSD (sym2_clamp_psd). Not clamped by kappa.
+Sym2 deferred_aniso_covariance(const Params& p, Vec2 slope_mean, Sym2 slope_second, Vec3 tangent_ws, Vec3 bitangent_ws, Vec3 normal_ws);
+// The lighting pass: A = diag(alpha^2) + (n.h)^2 K + C, and the tail-preserving filtered GGX of it.
+Sym2 deferred_aniso_roughness_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
+                                              double alpha2);
+double deferred_aniso_brdf_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
+                                           double alpha2);
+
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad (quad.hpp): the template differentiates the projected half
 // vector normalize(i + o) with plain ddx/ddy (forward_aniso_projected_fragment), then evaluates
