@@ -142,8 +142,10 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
   EXPECT_NE(table.find("best engine engine-", verdict), std::string::npos);
   const auto document = nlohmann::json::parse(read_text(json));
   // none + 11 variants + 6 engines, the 11 variants fed the geometric normal (the bump plane has
-  // normal detail), and the 7 lobe variants with the tail and mapped lobes on both feeds.
-  ASSERT_EQ(document["rows"].size(), 29u + 28u);
+  // normal detail), the 7 lobe variants with the tail and mapped lobes on both feeds, and the bump
+  // plane's band-limited rows: none+lean and the 6 prefiltered variants with LEAN's moments in
+  // the papers', tail and mapped lobes.
+  ASSERT_EQ(document["rows"].size(), 29u + 28u + 1u + 6u * 3u);
   for (const auto& row : document["rows"]) {
     EXPECT_TRUE(row["error"].is_number());
     // TDE and its parts: excess + lost <= TDE (image.hpp).
@@ -152,8 +154,8 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
     EXPECT_LE(row["tde_excess_flicker"].get<double>() + row["tde_lost_motion"].get<double>(), row["tde"].get<double>() * (1.0 + 1e-12));
   }
   for (const auto& row : document["by_content"]) EXPECT_TRUE(row["tde"].is_number());
-  // 3 scenes without normal detail x 2 alphas x (18 + 14 lobe) configurations + the bump plane's 2 x 57.
-  EXPECT_EQ(document["cases"].size(), 3u * 2u * 32u + 2u * 57u);
+  // 3 scenes without normal detail x 2 alphas x (18 + 14 lobe) configurations + the bump plane's 2 x 76.
+  EXPECT_EQ(document["cases"].size(), 3u * 2u * 32u + 2u * 76u);
 }
 
 TEST_F(Report, BadCostFileIsOneLineAndRendersNothing) {
