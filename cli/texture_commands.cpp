@@ -1,5 +1,6 @@
 #include "texture_commands.hpp"
 
+#include "saagen/advice.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
@@ -26,10 +27,10 @@ std::vector<std::uint8_t> read_input(const std::string& path) {
 TextureCommands::TextureCommands(CLI::App& app) {
   texture_ = app.add_subcommand("texture", "Texture tools: normal-map prefiltering (README.md, \"Normal-map prefiltering\")");
   texture_->require_subcommand(1);
-  prefilter_ =
-      texture_->add_subcommand("prefilter",
-                               "Normal map (PNG or KTX2) to a KTX2 MIP chain of roughness (Toksvig or an engine's bake) or LEAN slope "
-                               "moments (docs/PREFILTER.md)");
+  prefilter_ = texture_->add_subcommand(
+      "prefilter", fmt::format("Normal map (PNG or KTX2) to a KTX2 MIP chain of roughness (Toksvig or an engine's bake) or LEAN "
+                               "slope moments (docs/PREFILTER.md); {}",
+                               advice::kPrefilterSamplingText));
   prefilter_
       ->add_option("IN", input_,
                    "Tangent-space normal map: PNG (8/16-bit RGB/RGBA) or KTX2 (RGBA8 UNORM, RGBA16F, RGBA32F), power-of-two size, "
@@ -77,6 +78,7 @@ int TextureCommands::run() const {
   const char* verb = report.written.empty() ? "unchanged" : "wrote    ";
   std::cout << fmt::format("{} {} ({} x {}, {} levels, {}{})\n", verb, output_, levels.front().width, levels.front().height, levels.size(),
                            prefilter::to_string(options.method), options.gltf ? ", glTF metallicRoughness: G = perceptual roughness" : "");
+  std::cout << fmt::format("sample    {}\n", advice::kPrefilterSamplingText);
   return 0;
 }
 

@@ -907,6 +907,19 @@ TEST(Advice, EmitDefaultsAndHeadersAreTheAdvice) {
       EXPECT_NE(file.content.find(std::string(saagen::advice::kNormalText)), std::string::npos) << file.file_name;
       EXPECT_EQ(file.content.find("{advice:"), std::string::npos) << file.file_name;
     }
+    // The prefilter snippets' headers say how to sample the map and its bake: the LOD bias.
+    options.variants = {"prefilter-toksvig", "prefilter-lean"};
+    const auto prefilter_files = saagen::emit_variants(Catalogue::builtin(), options);
+    ASSERT_FALSE(prefilter_files.empty()) << target;
+    for (const saagen::EmittedFile& file : prefilter_files) {
+      EXPECT_NE(file.content.find(std::string(saagen::advice::kPrefilterSamplingText)), std::string::npos) << file.file_name;
+      EXPECT_EQ(file.content.find("{advice:"), std::string::npos) << file.file_name;
+    }
+  }
+  // The text quotes the constant: the bias argument of each language's sample.
+  const std::string bias = std::to_string(saagen::advice::kPrefilterLodBias) + ".0";
+  for (const std::string call : {"texture(map, uv, ", "SampleBias(s, uv, ", "textureSampleBias(map, s, uv, "}) {
+    EXPECT_NE(std::string(saagen::advice::kPrefilterSamplingText).find(call + bias + ")"), std::string::npos) << call;
   }
 }
 
@@ -919,11 +932,16 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   EXPECT_EQ(terrain.variant, "deferred-sum");
   EXPECT_EQ(terrain.feed, saagen::advice::kFeed);
   EXPECT_EQ(terrain.prefilter, saagen::advice::kPrefilter);
+  // A planned bake comes with the LOD bias its trade rows were measured with.
+  EXPECT_NE(terrain.normal_advice.find(std::string(saagen::advice::kPrefilterSamplingText)), std::string::npos) << terrain.normal_advice;
   const std::string module = read_text(root / "examples" / "threejs" / "saagen-three.js");
   std::smatch defaults;
   ASSERT_TRUE(std::regex_search(module, defaults, std::regex("wrapper = '(\\w+)', normal = '(\\w+)'"))) << "installSaagen's defaults";
   EXPECT_EQ(defaults[1].str(), terrain.wrapper);
   EXPECT_EQ(defaults[2].str(), terrain.feed);
+  std::smatch bias;
+  ASSERT_TRUE(std::regex_search(module, bias, std::regex("PREFILTER_LOD_BIAS = (\\d+);"))) << "the module's LOD bias";
+  EXPECT_EQ(std::stoi(bias[1].str()), saagen::advice::kPrefilterLodBias);
   const std::string page = read_text(root / "examples" / "threejs" / "index.html");
   EXPECT_NE(page.find("parameters.get('wrapper') ?? '" + terrain.wrapper + "'"), std::string::npos);
   EXPECT_NE(page.find("parameters.get('normal') ?? '" + terrain.feed + "'"), std::string::npos);
@@ -948,6 +966,10 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   const saagen::Manifest consumer_manifest = saagen::load_manifest(consumer / "scene.saagen.toml", Catalogue::builtin());
   std::string shaders;
   for (const char* name : {"forward_lit.frag", "gbuffer.frag", "deferred_light.frag"}) shaders += read_text(consumer / "shaders" / name);
+  // Its normal-mapped materials' shaders sample the map with the advised LOD bias.
+  const std::string biased_read = "texture(normal_map, in_uv, " + std::to_string(saagen::advice::kPrefilterLodBias) + ".0)";
+  EXPECT_EQ(std::regex_search(shaders, std::regex("texture\\(normal_map, in_uv\\)")), false) << "a normal map read without the bias";
+  EXPECT_NE(shaders.find(biased_read), std::string::npos) << biased_read;
   for (const saagen::MaterialPlan& material : saagen::plan_scene(Catalogue::builtin(), consumer_manifest).materials) {
     EXPECT_NE(shaders.find("saa_" + material.wrapper + "("), std::string::npos) << material.material;
     if (material.brdf) {
@@ -963,6 +985,11 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
         EXPECT_NE(integration.find(figure_text(figure)), std::string::npos) << figure_text(figure);
       }
     }
+  }
+  // INTEGRATION.md, README.md and docs/PREFILTER.md give the same bias argument.
+  const std::string bias_argument = "texture(map, uv, " + std::to_string(saagen::advice::kPrefilterLodBias) + ".0)";
+  for (const char* doc : {"examples/INTEGRATION.md", "README.md", "docs/PREFILTER.md"}) {
+    EXPECT_NE(read_text(root / doc).find(bias_argument), std::string::npos) << doc << ": " << bias_argument;
   }
   const auto targets_row = integration.find("| `targets` |");
   ASSERT_NE(targets_row, std::string::npos);

@@ -8,11 +8,13 @@
 // float32) + 1e-12 for the double-level difference and values in the subnormal range.
 #include "cli_support.hpp"
 
+#include "saagen/advice.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/products/prefilter.hpp"
 #include "saagen/reference/reference.hpp"
 #include "saagen/reference/render/normal_map.hpp"
+#include "saagen/reference/render/trade.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -406,6 +408,8 @@ TEST_F(TexturePrefilterCli, PngToKtx2RoundTrip) {
       saagen({"texture", "prefilter", input.string(), "-o", output.string(), "--domain", "perceptual", "--roughness", "0.4"});
   EXPECT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.out.find("unchanged"), std::string::npos) << again.out;
+  // Both runs say how to sample the map and the bake: saagen's advice, the LOD bias.
+  EXPECT_NE(again.out.find("\nsample    " + std::string(saagen::advice::kPrefilterSamplingText) + "\n"), std::string::npos) << again.out;
   const fs::path foreign = scratch_ / "foreign.ktx2";
   std::ofstream(foreign) << "not saagen's";
   const auto refused = saagen({"texture", "prefilter", input.string(), "-o", foreign.string()});
@@ -516,3 +520,8 @@ TEST_F(TexturePrefilterCli, BadInputsFailWithOneLineAndNoOutput) {
 }
 
 }  // namespace
+
+// The advice's LOD bias is the one the trade's prefiltered rows are measured with.
+TEST(Advice, TheTradeMeasuresTheAdvisedLodBias) {
+  EXPECT_EQ(saagen::render::TradeConfig{}.prefilter_lod_bias, static_cast<double>(saagen::advice::kPrefilterLodBias));
+}

@@ -25,6 +25,16 @@
 // these defaults against `saagen plan`.
 // Without normal maps the two are the same vector and give the same picture.
 //
+// LOD bias: with 'geometric', the normal map's detail is the bake's, and the normal map and the
+// baked roughness map (and the clearcoat's) are sampled one MIP level coarser than the implicit
+// LOD (PREFILTER_LOD_BIAS, saagen's advice: generator/include/saagen/advice.hpp,
+// kPrefilterLodBias; docs/PREFILTER.md, "The LOD bias"): at the implicit LOD, map detail near the
+// pixel grid's Nyquist frequency stays in the shading normal, aliased, and the bake's wider lobe
+// turns it into flicker; one level coarser it moves into the bake. three.js's texture2D calls in
+// normal_fragment_maps, roughnessmap_fragment, clearcoat_normal_fragment_maps and the clearcoat
+// roughness map's line get the bias argument. 'shading' (no bake) and filter: false keep the
+// implicit LOD, as the trade's rows without a bake do.
+//
 // Domains: three.js's roughness is perceptual (r, the glTF convention): its GGX takes
 // alpha = r^2, so alpha^2 = r^4. The tangent-free wrappers take and return alpha^2; the result
 // goes back as r = (alpha^2)^(1/4). Their normal argument may be in any frame that does not
@@ -40,6 +50,10 @@ export const TANGENT_FREE_WRAPPERS = [
   'deferred_max_tangent_free_fragment',
   'deferred_projected_space_fragment',
 ];
+
+// saagen's advice: the MIP level bias of a prefiltered material's normal map and its bake
+// (advice.hpp, kPrefilterLodBias; Advice.ExamplesAndDocsAgreeWithThePlanner checks it).
+export const PREFILTER_LOD_BIAS = 1;
 
 const ROUGHNESS_LINE = 'material.roughness += geometryRoughness;';
 const CLEARCOAT_LINE = 'material.clearcoatRoughness += geometryRoughness;';
@@ -80,11 +94,33 @@ highp float saagenFilterRoughness(highp float perceptual, highp vec3 viewNormal)
 `;
 }
 
+// The texture reads that take the LOD bias, per chunk: three.js's r187 text of each read.
+const BIASED_READS = {
+  normal_fragment_maps: ['texture2D( normalMap, vNormalMapUv )'],
+  roughnessmap_fragment: ['texture2D( roughnessMap, vRoughnessMapUv )'],
+  clearcoat_normal_fragment_maps: ['texture2D( clearcoatNormalMap, vClearcoatNormalMapUv )'],
+  lights_physical_fragment: ['texture2D( clearcoatRoughnessMap, vClearcoatRoughnessMapUv )'],
+};
+
+// A chunk's text with its BIASED_READS sampled PREFILTER_LOD_BIAS levels coarser (GLSL ES 3.00's
+// texture(sampler, uv, bias), which three.js's texture2D names).
+function biasedChunk(name, chunk) {
+  let text = chunk;
+  for (const read of BIASED_READS[name]) {
+    if (!text.includes(read)) {
+      throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${read}' in ${name}; this module needs updating`);
+    }
+    text = text.replaceAll(read, `${read.slice(0, -2)}, ${PREFILTER_LOD_BIAS.toFixed(1)} )`);
+  }
+  return text;
+}
+
 // Patches three.js's lights_physical_fragment chunk: the filter replaces the geometric-roughness
 // term (filter = true), reading the normals of NORMALS[normal], or the term is dropped
 // (filter = false: the unfiltered reference render).
 function lightsChunk(filter, clearcoat, normal) {
-  const chunk = THREE.ShaderChunk.lights_physical_fragment;
+  const shipped = THREE.ShaderChunk.lights_physical_fragment;
+  const chunk = biases(filter, normal) ? biasedChunk('lights_physical_fragment', shipped) : shipped;
   for (const line of [ROUGHNESS_LINE, CLEARCOAT_LINE]) {
     if (!chunk.includes(line)) {
       throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${line}' in lights_physical_fragment; this module needs updating`);
@@ -99,13 +135,29 @@ function lightsChunk(filter, clearcoat, normal) {
   return chunk.replace(ROUGHNESS_LINE, base).replace(CLEARCOAT_LINE, coat);
 }
 
+// Whether the normal map and its bake are sampled with the LOD bias: the filter on the geometric
+// normal, whose map's detail is the bake's.
+function biases(filter, normal) {
+  return filter && normal === 'geometric';
+}
+
+// The fragment shader's includes of the chunks with biased reads, expanded with the bias.
+function withBiasedReads(fragmentShader) {
+  let text = fragmentShader;
+  for (const name of Object.keys(BIASED_READS)) {
+    if (name !== 'lights_physical_fragment') text = text.replace(`#include <${name}>`, biasedChunk(name, THREE.ShaderChunk[name]));
+  }
+  return text;
+}
+
 // Installs the snippet into `material`. Options:
 //   snippet   the text of a `saagen emit --target gles` file (fp32 or fp16) with the wrapper
 //   wrapper   the unprefixed wrapper name (one of TANGENT_FREE_WRAPPERS; default deferred_sum_fragment)
 //   normal    which normal the filter reads: 'geometric' (default) the interpolated vertex normal
 //             before the normal map (three.js's nonPerturbedNormal), with the map's detail
-//             prefiltered into the roughness map; 'shading' the normal-mapped normal (and
-//             clearcoatNormal), only for content without texture prefiltering
+//             prefiltered into the roughness map, both sampled PREFILTER_LOD_BIAS levels
+//             coarser; 'shading' the normal-mapped normal (and clearcoatNormal), only for
+//             content without texture prefiltering, at the implicit LOD
 //   filter    false: no filter and no three.js geometric roughness (the unfiltered render)
 //   clearcoat filter the clearcoat roughness too (default true; needs MeshPhysicalMaterial.clearcoat > 0)
 // Returns the material.
@@ -126,7 +178,8 @@ export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_
   const key = filter ? `saagen|${functionName}|${normal}|${clearcoat}|${fingerprint(snippet)}` : 'saagen|unfiltered';
   material.onBeforeCompile = (shader) => {
     const head = filter ? snippet + roughnessFilter(functionName) : '';
-    shader.fragmentShader = head + shader.fragmentShader.replace('#include <lights_physical_fragment>', lightsChunk(filter, clearcoat, normal));
+    const fragment = biases(filter, normal) ? withBiasedReads(shader.fragmentShader) : shader.fragmentShader;
+    shader.fragmentShader = head + fragment.replace('#include <lights_physical_fragment>', lightsChunk(filter, clearcoat, normal));
   };
   // Two configurations (snippet, wrapper, normal, clearcoat, on/off) never share a compiled program.
   material.customProgramCacheKey = () => key;

@@ -407,11 +407,13 @@ Catalogue Catalogue::with_variants(std::vector<Variant> variants) const {
 }
 
 // The built-in templates' {advice:...} fields: saagen's advice (saagen/advice.hpp), so that the
-// emitted headers name the normal and the default constants the planner plans with.
+// emitted headers name the normal, how a prefiltered map is sampled and the default constants the
+// planner plans with.
 namespace {
 std::string with_advice(std::string text) {
   const std::pair<std::string_view, std::string> fields[] = {
       {"{advice:normal}", std::string(advice::kNormalText)},
+      {"{advice:prefilter_sampling}", std::string(advice::kPrefilterSamplingText)},
       {"{advice:sigma2}", fmt::format("{}", advice::kSigma2)},
       {"{advice:kappa}", fmt::format("{}", advice::kKappa)},
   };

@@ -417,14 +417,20 @@ Configuration parse_configuration(const std::string& id) {
   return c;
 }
 
+// How a prefiltered material samples its normal map and the bake (saagen/advice.hpp): the trade's
+// prefiltered rows are measured one MIP level coarser than the implicit LOD.
+std::string sampling_advice(std::string_view prefilter) {
+  return prefilter == "none" ? std::string() : fmt::format("; {}", advice::kPrefilterSamplingText);
+}
+
 // Without a trade table, for Beckmann materials: what saagen's own trade measured with the papers'
 // lobe (README "Does it make images better?"); GGX materials get saagen's advice (advice.hpp).
 std::string measured_normal_advice(const MaterialPlan& plan) {
-  return fmt::format("feed the {} normal{}; measured: {}", plan.feed,
+  return fmt::format("feed the {} normal{}{}; measured: {}", plan.feed,
                      plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
                                                             "tonemapped RMSE but adds haze)")
                                               : fmt::format(", prefilter the map ({})", plan.prefilter),
-                     kMeasuredNormalAdvice);
+                     sampling_advice(plan.prefilter), kMeasuredNormalAdvice);
 }
 
 // The table's normal-mapped content rows the material may use: any eligible variant's when the
@@ -461,8 +467,8 @@ std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<
       plan.prefilter == "lean"
           ? "saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method lean (slope moments)"
           : fmt::format("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} --roughness R --gltf", plan.prefilter);
-  return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({})", bake, fixed(with->error),
-                     fixed(without->error), without->configuration);
+  return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({}){}", bake,
+                     fixed(with->error), fixed(without->error), without->configuration, sampling_advice(plan.prefilter));
 }
 
 // With a trade table's content rows: the lowest-error configuration of the material's variant on
@@ -528,7 +534,8 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
                                      "bake the map into the roughness with `saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} "
                                      "--roughness R --gltf` (docs/PREFILTER.md)",
                                      c.prefilter);
-  plan.normal_advice = fmt::format("feed the {} normal; {}; measured: {}", c.feed, bake, std::move(figures));
+  plan.normal_advice =
+      fmt::format("feed the {} normal; {}{}; measured: {}", c.feed, bake, sampling_advice(c.prefilter), std::move(figures));
 }
 
 // Without a trade table's rows for the material's content: saagen's advice (saagen/advice.hpp).

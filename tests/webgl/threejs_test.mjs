@@ -3,7 +3,9 @@
 // where the filter acts (small glossy spheres: high curvature per pixel at roughness 0.05), and
 // nowhere else; clearcoat is filtered too; two configurations never share a program; the filter
 // reads the geometric normal by default and the normal-mapped one with normal: 'shading' (the same
-// picture without a normal map, another with one).
+// picture without a normal map, another with one); with the geometric normal the compiled shader
+// samples the normal map and its bake (the roughness maps) one MIP level coarser (saagen's advice,
+// PREFILTER_LOD_BIAS), with 'shading' and unfiltered at the implicit LOD.
 //   node tests/webgl/threejs_test.mjs SAAGEN_CLI
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -47,13 +49,17 @@ try {
       const renderer = createRenderer(canvas);
       const pixels = renderScene(renderer, mode, { snippet, ...options });
       const log = [];
+      const fragments = [];
       for (const program of renderer.info.programs ?? []) {
         const gl = renderer.getContext();
         const info = gl.getProgramInfoLog(program.program);
         if (info) log.push(info);
+        for (const shader of gl.getAttachedShaders(program.program)) {
+          if (gl.getShaderParameter(shader, gl.SHADER_TYPE) === gl.FRAGMENT_SHADER) fragments.push(gl.getShaderSource(shader));
+        }
       }
       renderer.dispose();
-      return { pixels, log };
+      return { pixels, log, fragments };
     };
     // Luminance of the sRGB bytes, 0..1.
     const luminance = (p, i) => (0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2]) / 255;
@@ -97,6 +103,14 @@ try {
     const sharedMapped = createRenderer(document.createElement('canvas'));
     const mappedSequence = ['geometric', 'shading'].map((normal) => renderScene(sharedMapped, 'saagen', { snippet, normalMap: true, normal }));
     const equal = (a, b) => compare(a, b).differing === 0;
+    // The texture reads of the compiled fragment shaders (the fresh renderer's one program).
+    const reads = ['normalMap, vNormalMapUv', 'roughnessMap, vRoughnessMapUv', 'clearcoatNormalMap, vClearcoatNormalMapUv',
+                   'clearcoatRoughnessMap, vClearcoatRoughnessMapUv'];
+    const biasOf = (run) => reads.map((read) => {
+      const text = run.fragments.join('\n');
+      if (text.includes(`texture2D( ${read}, ${window.saagenLodBias.toFixed(1)} )`)) return window.saagenLodBias;
+      return text.includes(`texture2D( ${read} )`) ? 0 : null;
+    });
     return {
       size: SIZE,
       stats: { three: stats(three.pixels), unfiltered: stats(unfiltered.pixels), saagen: stats(saagen.pixels), avg: stats(avg.pixels) },
@@ -112,8 +126,11 @@ try {
         geometricVsUnfiltered: compare(mappedGeometric.pixels, mappedUnfiltered.pixels),
         shadingVsGeometric: compare(mappedShading.pixels, mappedGeometric.pixels),
         geometricVsNoMap: compare(mappedGeometric.pixels, saagen.pixels),
+        shadingVsNoMap: compare(mappedShading.pixels, shading.pixels),
         sequenceMatchesFresh: [equal(mappedSequence[0], mappedGeometric.pixels), equal(mappedSequence[1], mappedShading.pixels)],
       },
+      lodBias: { value: window.saagenLodBias, geometric: biasOf(mappedGeometric), shading: biasOf(mappedShading),
+                 unfiltered: biasOf(mappedUnfiltered), programs: mappedGeometric.fragments.length },
     };
   }, snippet, avgSnippet);
   console.log(JSON.stringify(result.stats));
@@ -137,13 +154,21 @@ try {
   check(result.shadingVsGeometric.differing === 0,
         `without a normal map, normal: 'shading' gives the default (geometric) picture (${result.shadingVsGeometric.differing} pixels differ)`);
   const { mapped } = result;
-  check(mapped.geometricVsNoMap.differing > 200, `the normal map changes the picture (${mapped.geometricVsNoMap.differing} pixels)`);
+  // The geometric-normal filter samples the map one level coarser (LOD bias), where its bumps are
+  // flatter: the picture changes less than with the shading normal's map at the implicit LOD.
+  check(mapped.shadingVsNoMap.differing > 200 && mapped.geometricVsNoMap.differing > 0,
+        `the normal map changes the picture (normal: 'shading', the map at the implicit LOD: ${mapped.shadingVsNoMap.differing} pixels; the geometric normal, the map one level coarser: ${mapped.geometricVsNoMap.differing})`);
   check(mapped.geometricVsUnfiltered.differing > 200 && mapped.geometricVsUnfiltered.outside === 0,
         `with a normal map, the geometric-normal filter acts on the spheres (${mapped.geometricVsUnfiltered.differing} pixels) and nowhere else (${mapped.geometricVsUnfiltered.outside})`);
   check(mapped.shadingVsGeometric.differing > 200 && mapped.shadingVsGeometric.outside === 0,
         `with a normal map, normal: 'shading' reads the mapped normal: ${mapped.shadingVsGeometric.differing} pixels differ from the geometric-normal picture`);
   check(mapped.sequenceMatchesFresh.every(Boolean),
         `one renderer keeps the geometric and shading configurations apart (${mapped.sequenceMatchesFresh})`);
+  const { lodBias } = result;
+  check(lodBias.value === 1 && lodBias.programs >= 1 && lodBias.geometric.every((bias) => bias === lodBias.value),
+        `the geometric-normal filter's compiled shader samples the normal maps and the roughness maps with the LOD bias +${lodBias.value} (${lodBias.geometric})`);
+  check(lodBias.shading.every((bias) => bias === 0) && lodBias.unfiltered.every((bias) => bias === 0),
+        `normal: 'shading' and the unfiltered render sample them at the implicit LOD (${lodBias.shading}; ${lodBias.unfiltered})`);
   console.log(`three.js: saagen vs three.js as shipped: ${result.saagenVsThree.differing} pixels differ`);
 } finally {
   await close();

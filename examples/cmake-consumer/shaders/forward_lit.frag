@@ -33,7 +33,9 @@ void main() {
   vec3 t = normalize(in_tangent_ws.xyz - n * dot(n, in_tangent_ws.xyz));
   vec3 b = cross(n, t) * in_tangent_ws.w;
   vec3 half_geometric = normalize(vec3(dot(l, t), dot(l, b), dot(l, n)) + vec3(dot(v, t), dot(v, b), dot(v, n)));
-  vec3 mapped = texture(normal_map, in_uv).xyz * 2.0 - 1.0;
+  // One MIP level coarser than the implicit LOD, as the bake (saagen's advice: docs/PREFILTER.md,
+  // "The LOD bias"; a baked roughness texture is sampled with the same bias).
+  vec3 mapped = texture(normal_map, in_uv, 1.0).xyz * 2.0 - 1.0;
   n = normalize(t * mapped.x + b * mapped.y + n * mapped.z);
   t = normalize(t - n * dot(n, t));
   b = cross(n, t) * in_tangent_ws.w;

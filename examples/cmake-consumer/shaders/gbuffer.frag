@@ -22,7 +22,9 @@ void main() {
   vec3 geometric = normalize(in_normal_ws);
   vec3 t = normalize(in_tangent_ws.xyz - geometric * dot(geometric, in_tangent_ws.xyz));
   vec3 b = cross(geometric, t) * in_tangent_ws.w;
-  vec3 mapped = texture(normal_map, in_uv).xyz * 2.0 - 1.0;
+  // One MIP level coarser than the implicit LOD, as the bake (saagen's advice: docs/PREFILTER.md,
+  // "The LOD bias"; a baked roughness texture is sampled with the same bias).
+  vec3 mapped = texture(normal_map, in_uv, 1.0).xyz * 2.0 - 1.0;
   vec3 n = normalize(t * mapped.x + b * mapped.y + geometric * mapped.z);
 
   out_normal_ws = vec4(n, 0.0);

@@ -33,6 +33,20 @@ inline constexpr double kTaaSigma2 = 0.0625;
 // The normal the kernels measure, and what to do with a normal map's detail instead.
 inline constexpr std::string_view kFeed = "geometric";
 inline constexpr std::string_view kPrefilter = "hdrp";
+// The LOD bias, in MIP levels, at which a prefiltered material samples its normal map and the
+// map's bake (the roughness map, the mean normal's length, LEAN's moments): one level coarser than
+// the implicit LOD, the level whose texels span two pixels, whose box has a zero at the pixel
+// grid's Nyquist frequency, so that the normal variation the grid cannot show moves from the
+// shading normal into the bake instead of aliasing under the bake's wider lobe (docs/PREFILTER.md,
+// "The LOD bias"; the trade's prefiltered rows are measured so: TradeConfig::prefilter_lod_bias).
+// The other rows (no SAA, the engines, the filters without a bake) keep the implicit LOD.
+inline constexpr int kPrefilterLodBias = 1;
+// As the emitted headers and `saagen plan` state it (templates: {advice:prefilter_sampling}).
+inline constexpr std::string_view kPrefilterSamplingText =
+    "sample the normal map and its bake one MIP level coarser than the implicit LOD, with the sample's bias argument "
+    "(GLSL and GLSL ES texture(map, uv, 1.0), HLSL SampleBias(s, uv, 1.0), WGSL textureSampleBias(map, s, uv, 1.0); "
+    "docs/PREFILTER.md: The LOD bias)";
+static_assert(kPrefilterLodBias == 1, "kPrefilterSamplingText states the bias as 1.0");
 // The lobe GGX is shaded with: the tail-preserving filtered GGX (ggx_brdf_filtered_*).
 inline constexpr std::string_view kLobe = "tail";
 // As the emitted headers state it (templates: {advice:normal}).
