@@ -70,6 +70,36 @@ TEST(GlintSampler, LinearFilteringMipmapsAndLayers) {
   EXPECT_DOUBLE_EQ(g::texture_grad(texture, 0.5, 0.0, 0.0, 0.0)[1], 0.0);
 }
 
+// An RGBA16F result may be rounded either way to a half (Vulkan "Floating-Point Format
+// Conversions": "rounded to one or the other. The rounding mode is not defined.";
+// SamplerTolerance::half_float_result).
+TEST(GlintSampler, HalfResultWidensTheRangeToTheNeighbouringHalves) {
+  EXPECT_EQ(g::half_at_or_below(1.0454094), 1.0 + 46.0 / 1024.0);  // the NVIDIA example: 1 + 47/1024 above it
+  EXPECT_EQ(g::half_at_or_above(1.0454094), 1.0 + 47.0 / 1024.0);
+  EXPECT_EQ(g::half_at_or_below(0.75), 0.75);  // halves stay
+  EXPECT_EQ(g::half_at_or_above(0.75), 0.75);
+  EXPECT_EQ(g::half_at_or_below(0.3), 1228.0 / 4096.0);  // [0.25, 0.5): spacing 2^-12
+  EXPECT_EQ(g::half_at_or_above(-0.3), -1228.0 / 4096.0);
+  EXPECT_EQ(g::half_at_or_below(-0.3), -1229.0 / 4096.0);
+  EXPECT_EQ(g::half_at_or_below(3e-8), 0.0);  // below the smallest subnormal: 0 or 2^-24
+  EXPECT_EQ(g::half_at_or_above(3e-8), 0x1.0p-24);
+  EXPECT_EQ(g::half_at_or_above(1e-5), 168.0 * 0x1.0p-24);                  // subnormal spacing 2^-24
+  EXPECT_EQ(g::half_at_or_above(0x1.0p-14 + 1e-9), 0x1.0p-14 + 0x1.0p-24);  // smallest normal binade: 2^-24
+  EXPECT_EQ(g::half_at_or_below(65504.0), 65504.0);
+
+  const auto texture = ramp_texture();
+  g::SamplerTolerance tolerance = g::vulkan_sampler_tolerance(8, 8);
+  const g::TexelRange plain = g::texture_lod_range(texture, 3.1 / 8.0, 1.0, 0.0, tolerance);
+  tolerance.half_float_result = true;
+  const g::TexelRange half = g::texture_lod_range(texture, 3.1 / 8.0, 1.0, 0.0, tolerance);
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_EQ(half.low[c], g::half_at_or_below(plain.low[c]));
+    EXPECT_EQ(half.high[c], g::half_at_or_above(plain.high[c]));
+    EXPECT_LE(plain.high[c] - plain.low[c], half.high[c] - half.low[c]);
+    EXPECT_LE(half.high[c] - plain.high[c], std::max(0x1.0p-10 * std::fabs(plain.high[c]), 0x1.0p-24));  // under one ulp
+  }
+}
+
 // lavapipe's LOD (measured, docs/GLINTS.md): exact at powers of two, at most 0.0430 below the
 // specification's log2 in between (0.5 (log2(1 + f) - f) peaks at f = 1 / ln 2 - 1).
 TEST(GlintSampler, LavapipeLodModelStaysWithinItsBound) {

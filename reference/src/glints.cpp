@@ -91,6 +91,25 @@ SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_tex
 
 namespace {
 
+// The spacing of binary16 values at x: 2^(e - 10) for 2^e <= |x| < 2^(e+1), e >= -14; 2^-24 below
+// (the subnormals).
+double half_spacing(double x) {
+  int exponent = 0;
+  std::frexp(x, &exponent);  // |x| = m 2^exponent, m in [0.5, 1)
+  return std::ldexp(1.0, std::max(exponent - 1, -14) - 10);
+}
+
+}  // namespace
+
+double half_at_or_below(double x) {
+  const double step = half_spacing(x);
+  return std::floor(x / step) * step;  // exact: step is a power of two
+}
+
+double half_at_or_above(double x) { return -half_at_or_below(-x); }
+
+namespace {
+
 // One level's LINEAR filter at texel coordinate c = u size - 0.5 (piecewise linear in c).
 Texel level_at(const Texture1DArray& texture, int level, double c, int layer) {
   const int size = texture.level_width(level);
@@ -172,6 +191,12 @@ TexelRange texture_grad_range(const Texture1DArray& texture, double u, double la
     }
     widen(range, low);
     widen(range, high);
+  }
+  if (t.half_float_result) {
+    for (int k = 0; k < 4; ++k) {
+      range.low[k] = half_at_or_below(range.low[k]);
+      range.high[k] = half_at_or_above(range.high[k]);
+    }
   }
   return range;
 }

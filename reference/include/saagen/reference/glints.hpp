@@ -72,12 +72,29 @@ Texel texture_grad(const Texture1DArray& texture, double u, double layer, double
 //     precision of its own (lavapipe's fastlog2 is up to 0.043 below, docs/GLINTS.md).
 //   - VkPhysicalDeviceLimits::subTexelPrecisionBits: the linear filter's sub-texel position is
 //     snapped to 2^-subTexelPrecisionBits of a texel (at least 4 bits).
+//   - half_float_result: the image is a 16-bit float format (RGBA16F) and the filtered value may
+//     be returned in that format's precision. "Numeric Representation and Computation": the
+//     precision requirements "apply to computations performed in Vulkan operations outside of
+//     shader execution, such as texture image specification and sampling", and "the
+//     representation and/or precision of operations is implicitly limited by the specified
+//     format of [...] texel data consumed by Vulkan"; "Floating-Point Format Conversions": a
+//     value between two representable ones "is rounded to one or the other. The rounding mode is
+//     not defined." So [low, high] becomes [the largest half <= low, the smallest half >= high]:
+//     less than one ulp of the result either way (2^-10 relative for |x| >= 2^-14), and below
+//     2^-24 (the smallest subnormal half) a value may come back as 0.
 struct SamplerTolerance {
-  double lod_below = 0.0;     // textureGrad: lambda may be this far below log2(rho_max)
-  double lod_above = 0.0;     // textureGrad: ... and this far above it
-  double level_weight = 0.0;  // 2^-mipmapPrecisionBits: lambda's fraction (both lookups)
-  double texel_weight = 0.0;  // 2^-subTexelPrecisionBits: the texel coordinate
+  double lod_below = 0.0;          // textureGrad: lambda may be this far below log2(rho_max)
+  double lod_above = 0.0;          // textureGrad: ... and this far above it
+  double level_weight = 0.0;       // 2^-mipmapPrecisionBits: lambda's fraction (both lookups)
+  double texel_weight = 0.0;       // 2^-subTexelPrecisionBits: the texel coordinate
+  bool half_float_result = false;  // the result may be rounded either way to a 16-bit float
 };
+
+// The half-precision (IEEE 754 binary16) neighbours of x: the largest half <= x and the smallest
+// half >= x (subnormals included; |x| below 65504).
+double half_at_or_below(double x);
+double half_at_or_above(double x);
+
 SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_texel_precision_bits);
 
 struct TexelRange {
