@@ -306,10 +306,8 @@ INSTANTIATE_TEST_SUITE_P(
                                "D0",
                                "deferred-aniso",
                                {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
-                      RuleCase{"path = \"deferred\"\nnormal_maps = true\n",
-                               "advice",
-                               "deferred-sum",
-                               {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+                      // Normal-mapped content: no configuration beats no SAA in TDE.
+                      RuleCase{"path = \"deferred\"\nnormal_maps = true\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nnormal_maps = true\nndf = \"beckmann\"\n",
                                "D1",
                                "deferred-avg",
@@ -318,10 +316,7 @@ INSTANTIATE_TEST_SUITE_P(
                           "path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
                       // Curved content: no filter an anisotropic deferred material can use beats no SAA.
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "advice", "none", {}},
-                      RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n",
-                               "advice",
-                               "deferred-sum",
-                               {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
+                      RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n",
                                "advice",
                                "deferred-aniso",
@@ -353,21 +348,33 @@ TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
   };
   EXPECT_EQ(plan_of("", "path = \"forward\"\ntangents = true\n").variant, "forward-aniso-projected");
   EXPECT_EQ(plan_of("", "path = \"deferred\"\n").variant, "deferred-aniso");
-  const auto mapped = plan_of("", "path = \"deferred\"\nnormal_maps = true\n");
-  EXPECT_EQ(mapped.variant, "deferred-sum");
-  EXPECT_EQ(mapped.feed, "geometric");
-  EXPECT_EQ(mapped.prefilter, "hdrp");
-  EXPECT_NE(mapped.reason.find("deferred-sum:geometric+hdrp/tail 0.03 / 0.00731 against no SAA's 0.0411 / 0.00739"), std::string::npos)
-      << mapped.reason;
-  EXPECT_NE(mapped.normal_advice.find("--method hdrp"), std::string::npos) << mapped.normal_advice;
-  const auto forward_mapped = plan_of("", "path = \"forward\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n");
-  // deferred-sum filters isotropic roughness; forward-axis-projected comes first, but an anisotropic
-  // material keeps its rule's matrix form, also a winner.
-  EXPECT_EQ(forward_mapped.variant, "forward-aniso-projected");
-  EXPECT_EQ(forward_mapped.feed, "geometric");
+  // Normal-mapped content: every configuration raises TDE over no SAA on the mean, so no filter,
+  // with the reason; the plan reads the normal-mapped normal at the material's own roughness.
+  for (const char* keys : {"path = \"deferred\"\nnormal_maps = true\n", "path = \"deferred\"\nnormal_maps = true\nprefer = \"speed\"\n",
+                           "path = \"forward\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n"}) {
+    const auto mapped = plan_of("", keys);
+    EXPECT_EQ(mapped.variant, "none") << keys;
+    EXPECT_EQ(mapped.rule, "advice") << keys;
+    EXPECT_TRUE(mapped.functions.empty()) << keys;
+    EXPECT_EQ(mapped.feed, "shading") << keys;
+    EXPECT_EQ(mapped.prefilter, "none") << keys;
+    EXPECT_NE(mapped.reason.find("no filter: on normal-mapped content no configuration beats no SAA"), std::string::npos) << mapped.reason;
+    EXPECT_NE(mapped.reason.find("deferred-aniso:geometric+hdrp/tail 0.0577 / 0.01585"), std::string::npos) << mapped.reason;
+    EXPECT_NE(mapped.reason.find("name a variant"), std::string::npos) << mapped.reason;
+    EXPECT_NE(mapped.normal_advice.find("no filter"), std::string::npos) << mapped.normal_advice;
+  }
+  // Named, a normal-mapped filter is fed the advised normal and bake, with what it trades.
+  const auto named = plan_of("", "path = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-sum\"\n");
+  EXPECT_EQ(named.variant, "deferred-sum");
+  EXPECT_EQ(named.feed, saagen::advice::kFeed);
+  EXPECT_EQ(named.prefilter, saagen::advice::kPrefilter);
+  EXPECT_NE(named.normal_advice.find("--method hdrp"), std::string::npos) << named.normal_advice;
+  EXPECT_NE(named.normal_advice.find("deferred-aniso:geometric+hdrp/tail 0.0577 / 0.01585 against no SAA's 0.0605 / 0.01458"),
+            std::string::npos)
+      << named.normal_advice;
+  EXPECT_NE(named.normal_advice.find("without a named variant the advice is no filter"), std::string::npos) << named.normal_advice;
   EXPECT_EQ(plan_of("", "path = \"forward\"\ntangents = true\ncontent = \"bumps\"\n").variant, "deferred-max");
   // The speed choice stays where it is one of the winners, else the first winner replaces it.
-  EXPECT_EQ(plan_of("", "path = \"deferred\"\nnormal_maps = true\nprefer = \"speed\"\n").variant, "deferred-avg");  // D2's, a winner
   const auto speed = plan_of("", "path = \"deferred\"\nprefer = \"speed\"\n");
   EXPECT_EQ(speed.variant, "deferred-aniso");
   EXPECT_NE(speed.reason.find("deferred-avg (D2) is not among them"), std::string::npos) << speed.reason;
@@ -550,7 +557,9 @@ TEST(Planner, DeferredAnisoShadesWithItsLightingPass) {
 
 TEST(Planner, AnisotropicDeferredMaterialsFilterPerAxis) {
   const saagen::Manifest manifest =
-      parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n");
+      parse(header +
+            "[[material]]\nname = \"m\"\npath = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n"
+            "variant = \"deferred-sum\"\n");
   EXPECT_TRUE(saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0).per_axis);
 }
 
@@ -710,10 +719,14 @@ TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereItWins) {
       << loses.normal_advice;
 }
 
+// Without a trade table a normal-mapped GGX material gets saagen's advice: no filter, and, where it
+// names its variant, the advised feed with its measured figures.
 TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
-  const saagen::ScenePlan plan =
-      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"));
-  EXPECT_NE(plan.materials.at(0).normal_advice.find("measured: "), std::string::npos) << plan.materials.at(0).normal_advice;
+  const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n";
+  const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + material));
+  EXPECT_EQ(plan.materials.at(0).normal_advice, "no filter: shade the normal-mapped normal at the material's own roughness");
+  const saagen::ScenePlan named = saagen::plan_scene(Catalogue::builtin(), parse(header + material + "variant = \"deferred-avg\"\n"));
+  EXPECT_NE(named.materials.at(0).normal_advice.find("measured: "), std::string::npos) << named.materials.at(0).normal_advice;
 }
 
 TEST(Planner, BadTradeTablesAreRejected) {
@@ -741,17 +754,28 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);
   saagen::measure_costs(Catalogue::builtin(), manifest, plan);
   for (const saagen::MaterialPlan& material : plan.materials) {
+    if (material.variant == "none") {
+      EXPECT_TRUE(material.cost.empty()) << material.material;  // no filter: nothing to cost
+      continue;
+    }
     for (const saagen::OutputTarget& target : manifest.targets) {
       ASSERT_TRUE(material.cost.count(target)) << material.material;
       EXPECT_GT(material.cost.at(target), 0) << material.material << " " << target.name();
     }
   }
-  // The same filter plus the tail-preserving filtered GGX costs more than with the engine's own BRDF.
-  EXPECT_GT(plan.materials.at(0).cost.at("glsl"), plan.materials.at(1).cost.at("glsl"));
+  EXPECT_EQ(plan.materials.at(0).variant, "none");  // car_paint: normal-mapped, advised no filter
   const std::string text = saagen::format_plan(Catalogue::builtin(), manifest, plan);
   EXPECT_NE(text.find("material car_paint"), std::string::npos);
-  EXPECT_NE(text.find("variant   forward-aniso-projected  [F1]"), std::string::npos) << text;
+  EXPECT_NE(text.find("variant   none  [advice]"), std::string::npos) << text;
+  EXPECT_NE(text.find("variant   forward-axis-projected  [F2]"), std::string::npos) << text;
   EXPECT_NE(text.find("optimized SPIR-V instructions"), std::string::npos);
+  // The same filter plus the tail-preserving filtered GGX costs more than with the engine's own BRDF.
+  const std::string same_filter =
+      "[[material]]\npath = \"forward\"\nanisotropic = true\ntangents = true\nvariant = \"forward-axis-projected\"\n";
+  const saagen::Manifest pair = parse(header + same_filter + "name = \"g\"\n" + same_filter + "name = \"b\"\nndf = \"beckmann\"\n");
+  saagen::ScenePlan pair_plan = saagen::plan_scene(Catalogue::builtin(), pair);
+  saagen::measure_costs(Catalogue::builtin(), pair, pair_plan);
+  EXPECT_GT(pair_plan.materials.at(0).cost.at("glsl"), pair_plan.materials.at(1).cost.at("glsl"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -791,11 +815,12 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
           << file.file_name << ": " << function.name;
     }
   }
-  // The fp32 GLSL bundle: car_paint, brushed_metal and terrain; not foliage's deferred-aniso.
+  // The fp32 GLSL bundle: brushed_metal and terrain; not car_paint (advised no filter: nothing in
+  // the bundle), not foliage's deferred-aniso.
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
-  EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));  // car_paint: the anisotropic matrix form
-  EXPECT_TRUE(defined.count("forward_aniso_projected"));           // the wrapper pulls its core
-  EXPECT_TRUE(defined.count("ggx_brdf_filtered_matrix"));
+  EXPECT_TRUE(defined.count("forward_axis_projected_fragment"));  // brushed_metal
+  EXPECT_TRUE(defined.count("forward_axis_projected"));           // the wrapper pulls its core
+  EXPECT_FALSE(defined.count("forward_aniso_projected_fragment"));
   EXPECT_TRUE(defined.count("deferred_sum_fragment"));
   EXPECT_TRUE(defined.count("ggx_brdf_filtered_axis"));  // GGX pulls the tail-preserving filtered GGX
   EXPECT_FALSE(defined.count("beckmann_brdf_matrix"));   // brushed_metal (Beckmann) prefers speed: axis filter, own BRDF
@@ -925,10 +950,15 @@ TEST(Advice, EmitDefaultsAndHeadersAreTheAdvice) {
 
 TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   const fs::path root(SAAGEN_SOURCE_DIR);
-  // The reference manifest's normal-mapped deferred material: the three.js module's default.
+  // The reference manifest's normal-mapped materials: car_paint follows the advice for
+  // normal-mapped content, no filter; terrain names its filter and gets the advised feed and bake,
+  // the three.js module's default.
   const saagen::Manifest example = saagen::load_manifest(example_manifest, Catalogue::builtin());
   const saagen::ScenePlan example_plan = saagen::plan_scene(Catalogue::builtin(), example);
+  const bool normal_mapped_wins = !saagen::advice::lookup(saagen::advice::Content::normal_mapped, false).winners[0].configuration.empty();
+  EXPECT_EQ(planned(example_plan, "car_paint").variant == "none", !normal_mapped_wins);
   const saagen::MaterialPlan& terrain = planned(example_plan, "terrain");
+  EXPECT_EQ(terrain.rule, "manifest");
   EXPECT_EQ(terrain.variant, "deferred-sum");
   EXPECT_EQ(terrain.feed, saagen::advice::kFeed);
   EXPECT_EQ(terrain.prefilter, saagen::advice::kPrefilter);
@@ -943,6 +973,10 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   ASSERT_TRUE(std::regex_search(module, bias, std::regex("PREFILTER_LOD_BIAS = (\\d+);"))) << "the module's LOD bias";
   EXPECT_EQ(std::stoi(bias[1].str()), saagen::advice::kPrefilterLodBias);
   const std::string page = read_text(root / "examples" / "threejs" / "index.html");
+  // The page says what the advice is: its middle picture (no filter) where nothing wins.
+  const std::string no_filter_claim = "saagen's advice for normal-mapped content is no filter";
+  EXPECT_EQ(page.find(no_filter_claim) != std::string::npos, !normal_mapped_wins) << no_filter_claim;
+  EXPECT_EQ(module.find("saagen's advice for normal-mapped content is none") != std::string::npos, !normal_mapped_wins);
   EXPECT_NE(page.find("parameters.get('wrapper') ?? '" + terrain.wrapper + "'"), std::string::npos);
   EXPECT_NE(page.find("parameters.get('normal') ?? '" + terrain.feed + "'"), std::string::npos);
   EXPECT_NE(page.find("saagen emit --target gles --variant " + terrain.variant + " "), std::string::npos);
@@ -1036,7 +1070,9 @@ TEST_F(SceneCli, PlanPrintsVariantWhyCallAndCost) {
   const CliRun run = saagen("plan '" + example_manifest.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("material terrain"), std::string::npos);
-  EXPECT_NE(run.out.find("variant   deferred-sum  [advice]"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("variant   deferred-sum  [manifest]"), std::string::npos) << run.out;  // terrain names it
+  EXPECT_NE(run.out.find("variant   none  [advice]"), std::string::npos) << run.out;            // car_paint
+  EXPECT_NE(run.out.find("no filter: on normal-mapped content no configuration beats no SAA"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("why       "), std::string::npos);
   EXPECT_NE(run.out.find("cost      glsl +"), std::string::npos) << run.out;
 }

@@ -12,14 +12,18 @@
 // `material.roughness += geometryRoughness;` becomes a call of the snippet.
 //
 // Which normal (option `normal`): 'geometric' (the default) feeds `nonPerturbedNormal`, the normal
-// three.js's own term reads: saagen's advice (generator/include/saagen/advice.hpp, quoted in
-// examples/INTEGRATION.md), as HDRP, Filament and Unreal also do. The normal map's detail is the
-// texture's to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp
-// --gltf`), not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks;
-// deferred-sum, the default wrapper, on the geometric normal with that bake measured LDR-FLIP
-// 0.0300 / TDE 0.00731 against 0.0411 / 0.00739 for no SAA on saagen's normal-mapped scenes; on
-// authored maps it raises TDE over no SAA (CC0 @pmndrs maps; on ClearCoatTest LDR-FLIP too)
-// (examples/INTEGRATION.md, "Real normal maps").
+// three.js's own term reads: saagen's advice for a normal-mapped material that is filtered
+// (generator/include/saagen/advice.hpp, quoted in examples/INTEGRATION.md), as HDRP, Filament and
+// Unreal also do. Without a named filter saagen's advice for normal-mapped content is none (render
+// with filter: false): every configuration it measured raises the mean TDE over no SAA there;
+// install the snippet where the lower LDR-FLIP is wanted. The normal map's detail is the texture's
+// to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp --gltf`),
+// not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks; deferred-sum,
+// the default wrapper, on the geometric normal with that bake measured LDR-FLIP 0.0604 / TDE
+// 0.01607 against 0.0605 / 0.01458 for no SAA on the mean of saagen's normal-mapped scenes: it
+// beats no SAA in both on its built-in spheres (nmap-sphere-fine 0.0327 / 0.00767 against 0.0432 /
+// 0.00777) and raises TDE on authored maps (the CC0 @pmndrs maps; on pmndrs-0014 and ClearCoatTest
+// LDR-FLIP too) (examples/INTEGRATION.md, "Real normal maps").
 // 'shading' feeds the normal-mapped `normal` (and `clearcoatNormal`), which lowers LDR-FLIP less
 // and raises TDE where the map is not baked. Advice.ExamplesAndDocsAgreeWithThePlanner checks
 // these defaults against `saagen plan`.

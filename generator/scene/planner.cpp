@@ -792,17 +792,21 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
       }
       if (plan.normal_advice.empty() && material.ndf == Ndf::ggx) {
-        // saagen's advice for normal-mapped content (saagen/advice.hpp): the geometric normal and
-        // the map baked into the roughness.
+        // saagen's advice for a filtered normal-mapped material (saagen/advice.hpp): the geometric
+        // normal and the map baked into the roughness. Where no configuration beats no SAA on
+        // normal-mapped content, a material the planner chooses for gets no filter below
+        // (apply_advice); one that names its variant keeps this feed, with what it trades.
         const advice::ContentAdvice& entry = advice::lookup(advice::Content::normal_mapped, false);
-        const advice::Figure& best = entry.winners.front();
+        const bool has_winner = !entry.winners.front().configuration.empty();
+        const advice::Figure& best = has_winner ? entry.winners.front() : entry.named;
         Configuration c;
         c.feed = advice::kFeed;
         c.prefilter = advice::kPrefilter;
         take_normal_handling(
             material, c,
-            fmt::format("{} against no SAA's {} / {} (saagen's trade on normal-mapped content)",
-                        figure_text(best.configuration, best.flip, best.tde), fixed(entry.none.flip), fixed(entry.none.tde)),
+            fmt::format("{} against no SAA's {} / {} (saagen's trade on normal-mapped content{})",
+                        figure_text(best.configuration, best.flip, best.tde), fixed(entry.none.flip), fixed(entry.none.tde),
+                        has_winner ? "" : "; lower LDR-FLIP, higher TDE: without a named variant the advice is no filter"),
             plan);
       } else if (plan.normal_advice.empty()) {
         // What the measurements favour with the papers' lobe: the vertex normal.
@@ -914,7 +918,9 @@ std::string rules_text() {
       "GGX materials without variant or preset then follow saagen's advice for their content (content = \"curved\",\n"
       "\"normal-mapped\", \"bumps\", \"clearcoat\"; generator/include/saagen/advice.hpp): a filter only where it is one of the\n"
       "configurations that beat no SAA in LDR-FLIP and TDE on that content (rule \"advice\" where that changes the variant), no\n"
-      "filter (variant none) where the material can use none of them, which includes every content type under taa = true.\n"
+      "filter (variant none) where the material can use none of them, which includes normal-mapped and clearcoat content and\n"
+      "every content type under taa = true. A normal-mapped material that names its variant is fed the geometric normal with\n"
+      "the map baked into the roughness (hdrp), sampled one MIP level coarser.\n"
       "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
       "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
       "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"

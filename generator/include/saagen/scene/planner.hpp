@@ -24,7 +24,9 @@
 //   its cheaper choice when it is one of them, so does an anisotropic material its rule's matrix
 //   form forward-aniso-*; rule "advice" where that changes the variant), and
 //   plans no filter (variant "none") where the material can use none of them: under TAA, on
-//   clearcoat, on curved content for anisotropic deferred materials. With a trade table's
+//   normal-mapped and clearcoat content, on curved content for anisotropic deferred materials. A
+//   normal-mapped material that names its variant is fed the geometric normal with the map baked
+//   into the roughness (advice::kFeed, kPrefilter, kPrefilterLodBias). With a trade table's
 //   by_content rows for the content, the table's "none" row decides instead.
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
