@@ -38,15 +38,17 @@ struct Rule {
   Tri normal_maps = Tri::any;
 };
 
-// saagen's trade on curved content without normal maps (sphere, torus, tubes, torus knot; `saagen
-// bench --preset medium`, the "curved" rows of its JSON; docs/DEFERRED_KERNEL.md), with the
-// tail-preserving filtered GGX the planner shades GGX with.
+// saagen's trade on curved content without normal maps (sphere, torus, tubes, torus knot,
+// 2CylinderEngine; `saagen bench --preset medium`, the "curved" rows of its JSON, as
+// saagen/advice.hpp quotes them; docs/DEFERRED_KERNEL.md), with the tail-preserving filtered GGX the
+// planner shades GGX with.
 constexpr const char* kMeasuredDeferredAniso =
     "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, each eigenvalue clamped to kappa) and the "
     "lighting pass scales it by (n.h)^2 per light into the roughness matrix of the tail-preserving filtered GGX, which keeps "
     "the kernel's orientation (across a tube, not along it) that the isotropic deferred kernels lose; on curved content without "
-    "normal maps: mean LDR-FLIP 0.0294 vs 0.0550 for deferred-avg and 0.0346 for no SAA, TDE 0.0139 vs 0.0179 and 0.0169 "
-    "(forward-aniso-projected 0.0291, 0.0138; docs/DEFERRED_KERNEL.md). Costs 3 G-buffer values and a matrix BRDF per light";
+    "normal maps: mean LDR-FLIP 0.0259 vs 0.0497 for deferred-avg and 0.0308 for no SAA, TDE 0.01187 vs 0.01553 and "
+    "0.01436 (forward-aniso-projected 0.0253, 0.01184; saagen/advice.hpp, docs/DEFERRED_KERNEL.md). Costs 3 G-buffer values "
+    "and a matrix BRDF per light";
 
 // Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
 // with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
@@ -91,13 +93,13 @@ constexpr const char* kMeasuredGgxKernelGain =
     "with the tail-preserving filtered GGX, scene x path rows where the best configuration beats no SAA and every engine in "
     "LDR-FLIP and TDE: 6 of 14 at 0.25, 8 at 0.125, 4 at 0.0625 (4, 5 and 2 without deferred-aniso)";
 
-// The same trade on curved content (sphere, torus, tubes, torus knot; no normal map) in the
+// The same trade on curved content (sphere, torus, tubes, torus knot, 2CylinderEngine) in the
 // deferred path, for a material that does not get deferred-aniso (prefer speed, or a variant
 // named): the isotropic deferred kernels lose to no SAA there (docs/DEFERRED_KERNEL.md).
 constexpr const char* kMeasuredDeferredCurved =
     "on curved content without normal maps the isotropic deferred kernels lose to no SAA in saagen's trade (mean LDR-FLIP "
-    "0.0550 for deferred-avg with the tail-preserving GGX vs 0.0346, TDE 0.0179 vs 0.0169): they blur the highlight along a "
-    "tube to cover it across; deferred-aniso (rule D0, prefer = \"accuracy\") reaches 0.0294 and TDE 0.0139 for 3 G-buffer "
+    "0.0497 for deferred-avg with the tail-preserving GGX vs 0.0308, TDE 0.01553 vs 0.01436): they blur the highlight along "
+    "a tube to cover it across; deferred-aniso (rule D0, prefer = \"accuracy\") reaches 0.0259 and TDE 0.01187 for 3 G-buffer "
     "values and a matrix BRDF per light (docs/DEFERRED_KERNEL.md)";
 
 // `saagen bench --preset medium --taa --sigma2 X --json F; python3 scripts/taa_kernel.py ...`
