@@ -338,6 +338,7 @@ struct Measured {
   double max_error = 0.0;  // absolute (filters) or relative (BRDF functions)
   std::size_t worst = 0;
   std::size_t non_finite = 0;
+  std::size_t first_non_finite = 0;  // the element of the first non-finite output
   std::size_t count = 0;
 };
 
@@ -366,7 +367,7 @@ Measured measure(const Function& f, const Inputs& in, const std::vector<float>& 
       const double g = got[std::size_t{e} * in.outputs + k], x = expected[k];
       ++m.count;
       if (!std::isfinite(g)) {
-        ++m.non_finite;
+        if (m.non_finite++ == 0) m.first_non_finite = e;
         continue;
       }
       const double error = relative_metric(f) ? std::fabs(g - x) / scale_of(f, x)
@@ -376,6 +377,19 @@ Measured measure(const Function& f, const Inputs& in, const std::vector<float>& 
     }
   }
   return m;
+}
+
+// One line naming element e's inputs, so that a non-finite output on any device says what input it
+// was: a core function's fields, or a wrapper's four quad pixels (its derivatives difference them).
+std::string inputs_of(const Function& f, const Inputs& in, std::size_t e) {
+  const std::size_t stride = in.layout.stride;
+  const auto fields = [&](std::size_t element) {
+    return fmt::format("{:.9g}", fmt::join(in.data.begin() + element * stride, in.data.begin() + (element + 1) * stride, ", "));
+  };
+  if (!is_wrapper(f)) return fmt::format("element {}: [{}]", e, fields(e));
+  const std::size_t x = e % kWidth, y = e / kWidth, corner = (y & ~std::size_t{1}) * kWidth + (x & ~std::size_t{1});
+  return fmt::format("element {} (pixel {} of its quad): quad [{}] [{}] [{}] [{}]", e, (x & 1) + 2 * (y & 1), fields(corner),
+                     fields(corner + 1), fields(corner + kWidth), fields(corner + kWidth + 1));
 }
 
 // Asserted bounds (docs/STABILITY.md), each at least 1.5x the largest error measured over
@@ -482,6 +496,9 @@ TEST_P(HalfPrecision, ErrorAgainstTheReferenceStaysWithinTheStatedBound) {
         line += fmt::format("; alpha >= 0.01: max relative error {:.3g}, {} non-finite", all.max_error, all.non_finite);
       }
       std::cout << line << "\n";
+      if (stated.non_finite > 0)
+        std::cout << "[ precision] non-finite input " << name << " " << (half ? "fp16" : "min16") << " "
+                  << inputs_of(f, in, stated.first_non_finite) << "\n";
       EXPECT_EQ(stated.non_finite, 0u) << name << (half ? " fp16" : " min16");
       EXPECT_LE(stated.max_error, limit) << name << (half ? " fp16" : " min16") << " worst element " << stated.worst;
     }

@@ -33,7 +33,7 @@ struct GuardConstants {
   double filtered_ratio_max = 0.0;  // FILTERED_RATIO_MAX (30-brdf.saa): r of the filtered GGX capped here
 };
 inline constexpr GuardConstants kGuardConstantsFp32{1e-4, 1e9, 1e-30, 1e-7, 1e-3, 1e4, 104.0, 1.1754943508222875e-38, 1e6};
-inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 1e-4, 0.1, 100.0, 17.5, 6.103515625e-5, 1e4};
+inline constexpr GuardConstants kGuardConstantsHalf{1e-4, 100.0, 6.2e-5, 0.0078125, 0.1, 100.0, 17.5, 6.103515625e-5, 1e4};
 
 // The emission-time constants of templates/00-common.saa, and the emission form.
 struct Params {
