@@ -25,6 +25,7 @@
 #include "saagen/reference/prefilter.hpp"
 #include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/render.hpp"
+#include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
 
@@ -152,21 +153,10 @@ std::vector<Case> cases() {
   };
 }
 
+// The trade's own preset (the ground-truth cache keys depend on every number in it).
 TradeConfig preset(const std::string& name) {
-  TradeConfig config;
-  config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
-  if (name == "medium") {  // report.cpp, preset_config("medium")
-    config.width = config.height = 128;
-    config.strata = 16;
-    config.flicker_width = config.flicker_height = 64;
-    config.flicker_strata = 8;
-    config.frames = 16;
-    config.rotation_degrees_per_frame = 0.5;
-    config.fresnel_modes = {false};
-  } else if (name != "full") {
-    throw std::invalid_argument("prefilter_flicker: --preset full or medium");
-  }
-  return config;
+  if (name != "medium" && name != "full") throw std::invalid_argument("prefilter_flicker: --preset full or medium");
+  return saagen::report::preset_config(name);
 }
 
 GBuffer case_buffer(const Case& c, const Scene& scene, int width, int height, const NormalMap& map) {
