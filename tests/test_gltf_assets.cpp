@@ -15,6 +15,7 @@
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -668,8 +669,9 @@ TEST(GltfAnisotropy, TheTextureTurnsAndScalesTheLobe) {
   const fs::path dir = scratch("anisotropy-texture");
   // A 2 x 2 anisotropyTexture of one texel value: direction (R, G) = (64, 224) / 255 * 2 - 1,
   // strength factor B = 204 / 255; anisotropyRotation 30 degrees turns the direction further.
-  std::vector<unsigned char> pixels;
-  for (int i = 0; i < 4; ++i) pixels.insert(pixels.end(), {64, 224, 204});
+  const std::array<unsigned char, 3> texel = {64, 224, 204};
+  std::vector<unsigned char> pixels(4 * texel.size());
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = texel[i % texel.size()];
   write_file(dir / "anisotropy.png", png(2, 2, 3, pixels));
   const GltfAsset asset = load_gltf(write_quad(dir, "textured.gltf",
                                                anisotropic_quad(R"({"anisotropyStrength": 0.5, "anisotropyRotation": 0.5235987755982988,
