@@ -338,6 +338,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     if (progress) progress(state);
   };
 
+  std::uint64_t base = 0;
   auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings, const std::string& stage, std::uint64_t base) {
     report(stage, base);
     bool hit = false;
@@ -353,12 +354,22 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     }
     return gt;
   };
+  // One image per worker: the rows of a frame run in parallel (for_each_row), each on one thread.
   auto shade = [&](const FrameBuffers& buffers, const RowKey& key, const Material& material) {
-    return render_variant(buffers.for_prefilter(key.prefilter), key.variant, material, config.params, config.derivative, config.threads,
-                          key.feed, key.prefilter, config.prefilter_scale, key.lobe);
+    return render_variant(buffers.for_prefilter(key.prefilter), key.variant, material, config.params, config.derivative, 1, key.feed,
+                          key.prefilter, config.prefilter_scale, key.lobe);
+  };
+  // Runs body(r) for the n_materials x n_keys rows of a frame (r = m * n_keys + k) on the
+  // configured threads; the progress advances `base` by pixels_per_row for each row done.
+  // The images are small (FLIP's convolutions dominate), so rows, not pixels, are the unit.
+  auto for_each_row = [&](std::size_t n_rows, std::uint64_t pixels_per_row, const std::string& stage,
+                          const std::function<void(std::size_t r)>& body) {
+    const std::uint64_t start = base;
+    parallel_rows(static_cast<int>(n_rows), config.threads, [&](int r) { body(static_cast<std::size_t>(r)); },
+                  [&](int done) { report(stage, start + static_cast<std::uint64_t>(done) * pixels_per_row); });
+    base = start + n_rows * pixels_per_row;
   };
 
-  std::uint64_t base = 0;
   for (const SceneId id : config.scenes) {
     const std::string name(scene_name(id));
     const TradeConfig sized = sized_for_scene(config, id);
@@ -384,40 +395,45 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     report("1-spp variants " + name, base);
     const FrameBuffers gbuffer = frame_buffers(config, id, scene, sized.width, sized.height);
     const std::size_t first_row = table.rows.size();
-    for (std::size_t m = 0; m < n_materials; ++m) {
-      const Image reference_display = tonemapped(gt.images[m]);
-      ImageSet set;
-      if (config.keep_images) {
+    std::vector<Image> reference_displays;
+    for (std::size_t m = 0; m < n_materials; ++m) reference_displays.push_back(tonemapped(gt.images[m]));
+    std::vector<TradeRow> rows(n_materials * n_keys);
+    std::vector<Image> images(config.keep_images ? rows.size() : 0);
+    for_each_row(rows.size(), main_pixels, "1-spp variants " + name, [&](std::size_t r) {
+      const std::size_t m = r / n_keys;
+      const RowKey& key = keys[r % n_keys];
+      Image image = shade(gbuffer, key, materials[m]);
+      const ImageError e = compare_images(image, gt.images[m]);
+      TradeRow& row = rows[r];
+      row.variant = key.variant;
+      row.feed = key.feed;
+      row.prefilter = key.prefilter;
+      row.lobe = key.lobe;
+      row.scene = id;
+      row.alpha = materials[m].alpha;
+      row.fresnel = materials[m].fresnel;
+      row.rmse_linear = e.rmse_linear;
+      row.rmse_tonemapped = e.rmse_tonemapped;
+      row.max_error = e.max_error;
+      row.non_finite = e.non_finite;
+      if (config.flip) {
+        row.flip_ldr = ldr_flip_mean_grey(reference_displays[m], tonemapped(image));
+        row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
+      }
+      if (config.keep_images) images[r] = std::move(image);
+    });
+    table.rows.insert(table.rows.end(), rows.begin(), rows.end());
+    if (config.keep_images) {
+      for (std::size_t m = 0; m < n_materials; ++m) {
+        ImageSet set;
         set.scene = id;
         set.material = materials[m];
         set.reference = gt.images[m];
         set.coverage = gt.coverage;
+        for (std::size_t k = 0; k < n_keys; ++k)
+          set.variants.push_back({keys[k].variant, keys[k].feed, keys[k].prefilter, keys[k].lobe, std::move(images[m * n_keys + k])});
+        table.images.push_back(std::move(set));
       }
-      for (const RowKey& key : keys) {
-        Image image = shade(gbuffer, key, materials[m]);
-        const ImageError e = compare_images(image, gt.images[m]);
-        TradeRow row;
-        row.variant = key.variant;
-        row.feed = key.feed;
-        row.prefilter = key.prefilter;
-        row.lobe = key.lobe;
-        row.scene = id;
-        row.alpha = materials[m].alpha;
-        row.fresnel = materials[m].fresnel;
-        row.rmse_linear = e.rmse_linear;
-        row.rmse_tonemapped = e.rmse_tonemapped;
-        row.max_error = e.max_error;
-        row.non_finite = e.non_finite;
-        if (config.flip) {
-          row.flip_ldr = ldr_flip_mean_grey(reference_display, tonemapped(image));
-          row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
-        }
-        table.rows.push_back(row);
-        if (config.keep_images) set.variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(image)});
-        base += main_pixels;
-        report("1-spp variants " + name, base);
-      }
-      if (config.keep_images) table.images.push_back(std::move(set));
     }
 
     // Temporal metrics: the animation at the flicker resolution; TDE in display values,
@@ -441,23 +457,25 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         if (config.taa) reference_frames.push_back(frame_gt.images);
         base += sizes.flicker_gt;
         const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
+        std::vector<Image> reference_frame(n_materials), reference_frame_tonemapped(n_materials);
         for (std::size_t m = 0; m < n_materials; ++m) {
-          Image reference_frame = display_image(frame_gt.images[m]);
+          reference_frame[m] = display_image(frame_gt.images[m]);
+          reference_frame_tonemapped[m] = tonemapped(frame_gt.images[m]);
           reference_stats[m].add(frame_gt.images[m]);
-          reference_display[m].add(tonemapped(frame_gt.images[m]));
-          for (std::size_t k = 0; k < n_keys; ++k) {
-            const std::size_t r = m * n_keys + k;
-            const Image image = shade(frame_buffer, keys[k], materials[m]);
-            variant_stats[r].add(image);
-            variant_display[r].add(tonemapped(image));
-            if (config.taa) flip_animation[r] += ldr_flip_mean_grey(tonemapped(frame_gt.images[m]), tonemapped(image));
-            Image frame_display = display_image(image);
-            if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame);
-            previous_variant[r] = std::move(frame_display);
-            base += flicker_pixels;
-          }
-          previous_reference[m] = std::move(reference_frame);
+          reference_display[m].add(reference_frame_tonemapped[m]);
         }
+        for_each_row(n_rows, flicker_pixels, stage, [&](std::size_t r) {
+          const std::size_t m = r / n_keys;
+          const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
+          variant_stats[r].add(image);
+          const Image image_tonemapped = tonemapped(image);
+          variant_display[r].add(image_tonemapped);
+          if (config.taa) flip_animation[r] += ldr_flip_mean_grey(reference_frame_tonemapped[m], image_tonemapped);
+          Image frame_display = display_image(image);
+          if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame[m]);
+          previous_variant[r] = std::move(frame_display);
+        });
+        previous_reference = std::move(reference_frame);
         report(stage, base);
       }
       for (std::size_t m = 0; m < n_materials; ++m) {

@@ -2,6 +2,7 @@
 #include "trade_taa.hpp"
 
 #include "saagen/reference/render/flip.hpp"
+#include "saagen/reference/render/parallel.hpp"
 #include "saagen/reference/render/taa.hpp"
 
 #include <cmath>
@@ -113,28 +114,42 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id))
       prefiltered = render_gbuffer(scene, fw, fh, config.threads, config.prefilter_lod_bias);
     const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
-    for (std::size_t m = 0; m < materials.size(); ++m) {
-      Image reference_display_frame;
-      if (frame >= 0) {
+    std::vector<Image> reference_display_frames(materials.size());
+    if (frame >= 0) {
+      for (std::size_t m = 0; m < materials.size(); ++m) {
         const Image& reference = reference_frames[static_cast<std::size_t>(frame)][m];
         reference_stats[m].add(reference);
         reference_display[m].add(tonemapped(reference));
-        reference_display_frame = display_image(reference);
+        reference_display_frames[m] = display_image(reference);
       }
-      for (std::size_t k = 0; k < n_keys; ++k) {
-        TaaAccumulator& a = accumulators[m * n_keys + k];
-        const GBuffer& buffer = keys[k].prefilter != Prefilter::none && prefiltered ? *prefiltered : gbuffer;
-        const Image samples = render_variant(buffer, keys[k].variant, materials[m], config.params, config.derivative, config.threads,
-                                             keys[k].feed, keys[k].prefilter, config.prefilter_scale, keys[k].lobe);
-        const Image& out = a.resolve.resolve(samples, jitter, positions);
-        const bool last = frame + 1 == config.frames;
-        if (frame >= 0)
-          measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], reference_display_frame,
-                        frame > 0 ? &previous_reference_display[m] : nullptr, last);
-        if (images && last) last_frames[m].variants.push_back({keys[k].variant, keys[k].feed, keys[k].prefilter, keys[k].lobe, out});
-        if (shaded) shaded(static_cast<std::uint64_t>(fw) * fh);
-      }
-      if (frame >= 0) previous_reference_display[m] = std::move(reference_display_frame);
+    }
+    const bool last = frame + 1 == config.frames;
+    std::vector<Image> last_outputs(images && last ? accumulators.size() : 0);
+    // The rows of a frame in parallel, each on one thread (as the trade's other rows).
+    int reported = 0;
+    parallel_rows(
+        static_cast<int>(accumulators.size()), config.threads,
+        [&](int row) {
+          const std::size_t r = static_cast<std::size_t>(row), m = r / n_keys;
+          const TaaRowKey& key = keys[r % n_keys];
+          TaaAccumulator& a = accumulators[r];
+          const GBuffer& buffer = key.prefilter != Prefilter::none && prefiltered ? *prefiltered : gbuffer;
+          const Image samples = render_variant(buffer, key.variant, materials[m], config.params, config.derivative, 1, key.feed,
+                                               key.prefilter, config.prefilter_scale, key.lobe);
+          const Image& out = a.resolve.resolve(samples, jitter, positions);
+          if (frame >= 0)
+            measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], reference_display_frames[m],
+                          frame > 0 ? &previous_reference_display[m] : nullptr, last);
+          if (!last_outputs.empty()) last_outputs[r] = out;
+        },
+        [&](int done) {
+          if (shaded && done > reported) shaded(static_cast<std::uint64_t>(done - reported) * fw * fh);
+          reported = done;
+        });
+    if (frame >= 0) previous_reference_display = std::move(reference_display_frames);
+    for (std::size_t r = 0; r < last_outputs.size(); ++r) {
+      const TaaRowKey& key = keys[r % n_keys];
+      last_frames[r / n_keys].variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(last_outputs[r])});
     }
     previous = scene;
   }
