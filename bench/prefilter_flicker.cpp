@@ -214,15 +214,8 @@ int main(int argc, char** argv) try {
   const std::vector<Case> all = cases();
   const std::size_t n = measured.size();
 
-  GroundTruthSettings main_settings;
-  main_settings.width = config.width;
-  main_settings.height = config.height;
-  main_settings.strata = config.strata;
-  main_settings.seed = config.seed;
-  GroundTruthSettings flicker_settings = main_settings;
-  flicker_settings.width = config.flicker_width;
-  flicker_settings.height = config.flicker_height;
-  flicker_settings.strata = config.flicker_strata;
+  const GroundTruthSettings main_settings = ground_truth_settings(config);
+  const GroundTruthSettings flicker_settings = ground_truth_settings(config, true);
 
   const Scene scene = make_scene(*id, 0.0);
   const GroundTruth main_gt = cached_ground_truth(scene, main_settings, materials, cache);

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -416,6 +417,39 @@ TEST(FlipGrey, ConvenienceFunctionsMatchTheRgbPath) {
   EXPECT_EQ(ldr_flip_mean_grey(rd, td), mean(ldr_flip_map(grey_rgb(rd, true), grey_rgb(td, true))));
   EXPECT_EQ(hdr_flip_mean_grey(r, t), mean(hdr_flip_map(grey_rgb(r, false), grey_rgb(t, false))));
   EXPECT_GT(ldr_flip_mean_grey(rd, td), 0.0);
+}
+
+// One reference against many tests (the trade's use) must give the convenience functions' means
+// bit for bit: the cached reference half runs the same operations in the same order. Three tests
+// per reference, one with NaN and infinite pixels (the colour path, uncached), and a non-square
+// image so that rows and columns cannot be swapped unnoticed.
+TEST(FlipGrey, OneReferenceManyTestsMatchesTheConvenienceFunctions) {
+  Image r, t;
+  highlight_pair(40, r, t);
+  Image shifted(40, 40), broken = t;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) shifted.at(x, y) = r.at((x + 3) % 40, y);
+  broken.at(5, 7) = std::numeric_limits<float>::quiet_NaN();
+  broken.at(20, 20) = std::numeric_limits<float>::infinity();
+  Image wide(48, 30), wide_test(48, 30);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 48; ++x) {
+      wide.at(x, y) = r.at(x % 40, y);
+      wide_test.at(x, y) = t.at((x + 5) % 40, y);
+    }
+  const auto display = [](Image image) {
+    for (float& v : image.pixels) v = static_cast<float>(tonemap(v));
+    return image;
+  };
+  const GreyFlipReference hdr(r, GreyFlipReference::Range::hdr), ldr(display(r), GreyFlipReference::Range::ldr);
+  for (const Image* test : {&t, &shifted, &broken}) {
+    EXPECT_EQ(hdr.mean_error(*test), hdr_flip_mean_grey(r, *test));
+    EXPECT_EQ(ldr.mean_error(display(*test)), ldr_flip_mean_grey(display(r), display(*test)));
+  }
+  EXPECT_GT(hdr.mean_error(t), 0.0);
+  EXPECT_EQ(GreyFlipReference(wide, GreyFlipReference::Range::hdr).mean_error(wide_test), hdr_flip_mean_grey(wide, wide_test));
+  EXPECT_EQ(GreyFlipReference(display(wide), GreyFlipReference::Range::ldr).mean_error(display(wide_test)),
+            ldr_flip_mean_grey(display(wide), display(wide_test)));
 }
 
 // Grey images take the achromatic path (chroma channels identically 0, HyAB = |dL|); it must agree

@@ -232,7 +232,7 @@ struct Workspace {
   bool achromatic = false;  // both images grey: Cx = Cz = 0, the chroma planes are not used
   std::vector<double> planes[2][kPlanes];
   std::vector<double> pad;   // one row padded by edge replication
-  std::vector<double> rows;  // row buffers of the vertical passes (8 rows)
+  std::vector<double> rows;  // row buffers of the vertical passes (8 rows per image)
   std::vector<const double*> taps;
   std::vector<double> colour_row;
 
@@ -243,7 +243,7 @@ struct Workspace {
         if (!grey || !(p == kCx || p == kCz || p == kHCx || p == kHCz1 || p == kHCz2)) image[p].resize(n);
     const int r = std::max(k.csf_radius, k.feature_radius);
     pad.resize(static_cast<std::size_t>(w) + 2 * r);
-    rows.resize(static_cast<std::size_t>(w) * 8);
+    rows.resize(static_cast<std::size_t>(w) * 16);
     taps.resize(2 * r + 1);
     colour_row.resize(w);
   }
@@ -351,70 +351,123 @@ double grey_colour_error(const ColourConstants& k, double y_r, double y_t) {
   return remap_colour(k, std::fabs(lightness(y_r) - lightness(y_t)));
 }
 
-// LDR-FLIP of the YCxCz planes kY, kCx, kCz of both images; writes (or, with take_max, maxes)
-// the error into out.
-void flip_core(Workspace& ws, const Kernels& k, float* out, bool take_max) {
+// The filtered rows of one image at one row y: the CSF-filtered YCxCz (the two blue-yellow terms
+// summed; steps 2-3) and the four feature responses edge x = dG(x) G(y), point x = ddG(x) G(y),
+// edge y = G(x) dG(y), point y = G(x) ddG(y) (step 7).
+struct FilteredRow {
+  const double *y = nullptr, *cx = nullptr, *cz = nullptr;
+  const double *dx = nullptr, *ddx = nullptr, *dy = nullptr, *ddy = nullptr;
+};
+
+// Writable row buffers of one image (FilteredRow's rows and a scratch row for the second
+// blue-yellow term).
+struct RowBuffers {
+  double *y, *cx, *cz, *cz2, *dx, *ddx, *dy, *ddy;
+  FilteredRow row() const { return {y, cx, cz, dx, ddx, dy, ddy}; }
+};
+
+RowBuffers row_buffers(double* base, int w) {
+  double* r[8];
+  for (int i = 0; i < 8; ++i) r[i] = base + static_cast<std::size_t>(i) * w;
+  return {r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]};
+}
+
+// Horizontal passes of image `img`'s planes kY (kCx, kCz) and the feature input (Y + 16) / 116.
+void horizontal_passes(Workspace& ws, const Kernels& k, int img) {
+  horizontal<1, 0>(ws, ws.plane(img, kY), {&k.y}, {ws.plane(img, kHY)});
+  if (!ws.achromatic) {
+    horizontal<1, 0>(ws, ws.plane(img, kCx), {&k.cx}, {ws.plane(img, kHCx)});
+    horizontal<2, 0>(ws, ws.plane(img, kCz), {&k.cz1, &k.cz2}, {ws.plane(img, kHCz1), ws.plane(img, kHCz2)});
+  }
+  // Features on the achromatic channel normalised to [0,1].
+  const double* Y = ws.plane(img, kY);
+  double* yn = ws.plane(img, kYn);
+  for (std::size_t i = 0; i < ws.n; ++i) yn[i] = (Y[i] + 16.0) / 116.0;
+  horizontal<2, 1>(ws, yn, {&k.g, &k.ddg, &k.dg}, {ws.plane(img, kHG), ws.plane(img, kHDdx), ws.plane(img, kHDx)});
+}
+
+// Vertical passes of image `img` at row y into `out` (after horizontal_passes).
+void vertical_passes(Workspace& ws, const Kernels& k, int img, int y, const RowBuffers& out) {
+  vertical<1, 0>(ws, ws.plane(img, kHY), y, {&k.y}, {out.y});
+  if (!ws.achromatic) {
+    vertical<1, 0>(ws, ws.plane(img, kHCx), y, {&k.cx}, {out.cx});
+    vertical<1, 0>(ws, ws.plane(img, kHCz1), y, {&k.cz1}, {out.cz});
+    vertical<1, 0>(ws, ws.plane(img, kHCz2), y, {&k.cz2}, {out.cz2});
+    for (int x = 0; x < ws.w; ++x) out.cz[x] += out.cz2[x];
+  }
+  vertical<1, 0>(ws, ws.plane(img, kHDx), y, {&k.g}, {out.dx});
+  vertical<1, 0>(ws, ws.plane(img, kHDdx), y, {&k.g}, {out.ddx});
+  vertical<1, 1>(ws, ws.plane(img, kHG), y, {&k.ddg, &k.dg}, {out.ddy, out.dy});
+}
+
+// Steps 3-8 of one row from both images' filtered rows; writes (or, with take_max, maxes) the
+// error into orow.
+void combine_row(Workspace& ws, const FilteredRow& r, const FilteredRow& t, float* orow, bool take_max) {
   const ColourConstants& cc = colour_constants();
   const int w = ws.w;
-  const bool grey = ws.achromatic;
-
-  for (int img = 0; img < 2; ++img) {
-    horizontal<1, 0>(ws, ws.plane(img, kY), {&k.y}, {ws.plane(img, kHY)});
-    if (!grey) {
-      horizontal<1, 0>(ws, ws.plane(img, kCx), {&k.cx}, {ws.plane(img, kHCx)});
-      horizontal<2, 0>(ws, ws.plane(img, kCz), {&k.cz1, &k.cz2}, {ws.plane(img, kHCz1), ws.plane(img, kHCz2)});
-    }
-    // Features on the achromatic channel normalised to [0,1].
-    const double* Y = ws.plane(img, kY);
-    double* yn = ws.plane(img, kYn);
-    for (std::size_t i = 0; i < ws.n; ++i) yn[i] = (Y[i] + 16.0) / 116.0;
-    horizontal<2, 1>(ws, yn, {&k.g, &k.ddg, &k.dg}, {ws.plane(img, kHG), ws.plane(img, kHDdx), ws.plane(img, kHDx)});
+  if (ws.achromatic) {
+    for (int x = 0; x < w; ++x) ws.colour_row[x] = grey_colour_error(cc, r.y[x], t.y[x]);
+  } else {
+    for (int x = 0; x < w; ++x) ws.colour_row[x] = colour_error(cc, r.y[x], r.cx[x], r.cz[x], t.y[x], t.cx[x], t.cz[x]);
   }
-
   const double inv_sqrt2 = 1.0 / std::sqrt(2.0);
-  double* rb[8];
-  for (int i = 0; i < 8; ++i) rb[i] = ws.rows.data() + static_cast<std::size_t>(i) * w;
-  for (int y = 0; y < ws.h; ++y) {
-    // Colour: vertical CSF passes (the two blue-yellow terms summed), then steps 3-6.
-    for (int img = 0; img < 2; ++img) {
-      double** r = rb + 4 * img;
-      vertical<1, 0>(ws, ws.plane(img, kHY), y, {&k.y}, {r[0]});
-      if (!grey) {
-        vertical<1, 0>(ws, ws.plane(img, kHCx), y, {&k.cx}, {r[1]});
-        vertical<1, 0>(ws, ws.plane(img, kHCz1), y, {&k.cz1}, {r[2]});
-        vertical<1, 0>(ws, ws.plane(img, kHCz2), y, {&k.cz2}, {r[3]});
-        for (int x = 0; x < w; ++x) r[2][x] += r[3][x];
-      }
+  for (int x = 0; x < w; ++x) {
+    if (ws.colour_row[x] == 0.0) {  // Ec = 0: e = 0 (see flip.hpp, step 8)
+      if (!take_max) orow[x] = 0.0f;
+      continue;
     }
-    if (grey) {
-      for (int x = 0; x < w; ++x) ws.colour_row[x] = grey_colour_error(cc, rb[0][x], rb[4][x]);
-    } else {
-      for (int x = 0; x < w; ++x) ws.colour_row[x] = colour_error(cc, rb[0][x], rb[1][x], rb[2][x], rb[4][x], rb[5][x], rb[6][x]);
-    }
+    const double edge = std::fabs(std::sqrt(r.dx[x] * r.dx[x] + r.dy[x] * r.dy[x]) - std::sqrt(t.dx[x] * t.dx[x] + t.dy[x] * t.dy[x]));
+    const double point =
+        std::fabs(std::sqrt(r.ddx[x] * r.ddx[x] + r.ddy[x] * r.ddy[x]) - std::sqrt(t.ddx[x] * t.ddx[x] + t.ddy[x] * t.ddy[x]));
+    static_assert(kQf == 0.5, "the feature exponent is applied as a square root");
+    const double ef = std::sqrt(inv_sqrt2 * std::max(edge, point));
+    const float e = static_cast<float>(std::pow(ws.colour_row[x], 1.0 - ef));
+    if (!take_max || e > orow[x]) orow[x] = e;
+  }
+}
 
-    // Features: edge x = dG(x) G(y), point x = ddG(x) G(y), edge y = G(x) dG(y),
-    // point y = G(x) ddG(y).
-    for (int img = 0; img < 2; ++img) {
-      double** r = rb + 4 * img;
-      vertical<1, 0>(ws, ws.plane(img, kHDx), y, {&k.g}, {r[0]});
-      vertical<1, 0>(ws, ws.plane(img, kHDdx), y, {&k.g}, {r[1]});
-      vertical<1, 1>(ws, ws.plane(img, kHG), y, {&k.ddg, &k.dg}, {r[3], r[2]});
-    }
-    float* orow = out + static_cast<std::size_t>(y) * w;
-    for (int x = 0; x < w; ++x) {
-      if (ws.colour_row[x] == 0.0) {  // Ec = 0: e = 0 (see flip.hpp, step 8)
-        if (!take_max) orow[x] = 0.0f;
-        continue;
-      }
-      const double dxr = rb[0][x], ddxr = rb[1][x], dyr = rb[2][x], ddyr = rb[3][x];
-      const double dxt = rb[4][x], ddxt = rb[5][x], dyt = rb[6][x], ddyt = rb[7][x];
-      const double edge = std::fabs(std::sqrt(dxr * dxr + dyr * dyr) - std::sqrt(dxt * dxt + dyt * dyt));
-      const double point = std::fabs(std::sqrt(ddxr * ddxr + ddyr * ddyr) - std::sqrt(ddxt * ddxt + ddyt * ddyt));
-      static_assert(kQf == 0.5, "the feature exponent is applied as a square root");
-      const double ef = std::sqrt(inv_sqrt2 * std::max(edge, point));
-      const float e = static_cast<float>(std::pow(ws.colour_row[x], 1.0 - ef));
-      if (!take_max || e > orow[x]) orow[x] = e;
-    }
+// One image's filtered rows for every row y, kept whole: the reference's side of flip_core,
+// computed once for many test images (GreyFlipReference).
+struct FilteredImage {
+  int w = 0;
+  std::vector<double> y, cx, cz, cz2, dx, ddx, dy, ddy;  // cz2: scratch of the blue-yellow sum
+  RowBuffers rows(int row) {
+    const std::size_t o = static_cast<std::size_t>(row) * w;
+    auto at = [o](std::vector<double>& plane) { return plane.empty() ? nullptr : plane.data() + o; };
+    return {at(y), at(cx), at(cz), at(cz2), at(dx), at(ddx), at(dy), at(ddy)};
+  }
+  FilteredRow row(int row) const {
+    const std::size_t o = static_cast<std::size_t>(row) * w;
+    auto at = [o](const std::vector<double>& plane) { return plane.empty() ? nullptr : plane.data() + o; };
+    return {at(y), at(cx), at(cz), at(dx), at(ddx), at(dy), at(ddy)};
+  }
+};
+
+// The filtered rows of image `img` of the workspace (its YCxCz planes loaded).
+FilteredImage filter_image(Workspace& ws, const Kernels& k, int img) {
+  horizontal_passes(ws, k, img);
+  FilteredImage f;
+  f.w = ws.w;
+  for (std::vector<double>* plane : {&f.y, &f.dx, &f.ddx, &f.dy, &f.ddy}) plane->resize(ws.n);
+  if (!ws.achromatic)
+    for (std::vector<double>* plane : {&f.cx, &f.cz, &f.cz2}) plane->resize(ws.n);
+  for (int y = 0; y < ws.h; ++y) vertical_passes(ws, k, img, y, f.rows(y));
+  return f;
+}
+
+// LDR-FLIP of the YCxCz planes kY, kCx, kCz of both images; writes (or, with take_max, maxes)
+// the error into out. With `reference`, image 0's filtered rows are read from it instead.
+void flip_core(Workspace& ws, const Kernels& k, float* out, bool take_max, const FilteredImage* reference = nullptr) {
+  const int w = ws.w;
+  if (!reference) horizontal_passes(ws, k, 0);
+  horizontal_passes(ws, k, 1);
+  const RowBuffers reference_rows = row_buffers(ws.rows.data(), w);
+  const RowBuffers test_rows = row_buffers(ws.rows.data() + static_cast<std::size_t>(8) * w, w);
+  for (int y = 0; y < ws.h; ++y) {
+    if (!reference) vertical_passes(ws, k, 0, y, reference_rows);
+    vertical_passes(ws, k, 1, y, test_rows);
+    combine_row(ws, reference ? reference->row(y) : reference_rows.row(), test_rows.row(), out + static_cast<std::size_t>(y) * w,
+                take_max);
   }
 }
 
@@ -470,25 +523,44 @@ bool is_grey(const RgbImage& img) {
 double flip_aces_tonemap(double x) { return aces(x); }
 double flip_aces_x_max() { return aces_x_max(); }
 
-// Both images into the workspace's YCxCz planes, each channel value first mapped to linear
-// display RGB in [0, 1] by `to_linear` (LDR: the sRGB EOTF; HDR: exposure and tone mapping).
-// Grey images fill Y alone (L* = 116 Y - 16 with the white point's Y = 1).
+// An image into the workspace's YCxCz planes of image `img`, each channel value first mapped to
+// linear display RGB in [0, 1] by `to_linear` (LDR: the sRGB EOTF; HDR: exposure and tone
+// mapping). Grey images fill Y alone (L* = 116 Y - 16 with the white point's Y = 1).
+template <class ToLinear>
+void load_plane(Workspace& ws, int img, const RgbImage& image, bool grey, ToLinear to_linear) {
+  const ColourConstants& cc = colour_constants();
+  const float* p = image.rgb.data();
+  double* Y = ws.plane(img, kY);
+  if (grey) {
+    for (std::size_t i = 0; i < ws.n; ++i) Y[i] = 116.0 * to_linear(p[3 * i]) - 16.0;
+    return;
+  }
+  double* Cx = ws.plane(img, kCx);
+  double* Cz = ws.plane(img, kCz);
+  for (std::size_t i = 0; i < ws.n; ++i)
+    linear_to_ycxcz(cc, to_linear(p[3 * i]), to_linear(p[3 * i + 1]), to_linear(p[3 * i + 2]), Y[i], Cx[i], Cz[i]);
+}
+
 template <class ToLinear>
 void load_planes(Workspace& ws, const RgbImage& reference, const RgbImage& test, bool grey, ToLinear to_linear) {
-  const ColourConstants& cc = colour_constants();
-  const RgbImage* imgs[2] = {&reference, &test};
-  for (int img = 0; img < 2; ++img) {
-    const float* p = imgs[img]->rgb.data();
-    double* Y = ws.plane(img, kY);
-    if (grey) {
-      for (std::size_t i = 0; i < ws.n; ++i) Y[i] = 116.0 * to_linear(p[3 * i]) - 16.0;
-      continue;
-    }
-    double* Cx = ws.plane(img, kCx);
-    double* Cz = ws.plane(img, kCz);
-    for (std::size_t i = 0; i < ws.n; ++i)
-      linear_to_ycxcz(cc, to_linear(p[3 * i]), to_linear(p[3 * i + 1]), to_linear(p[3 * i + 2]), Y[i], Cx[i], Cz[i]);
-  }
+  load_plane(ws, 0, reference, grey, to_linear);
+  load_plane(ws, 1, test, grey, to_linear);
+}
+
+// LDR-FLIP's first step: the sRGB-encoded signal decoded to linear display values.
+double decoded(float v) { return srgb_eotf(clamp01(v)); }
+
+// HDR-FLIP's exposure i of e (its scale 2^c) and what it does to a value: expose, tone map,
+// clamp (NaN -> 0).
+double exposure_scale(const HdrExposures& e, int i) {
+  const double c = e.count == 1 ? e.start : e.start + i * (e.stop - e.start) / (e.count - 1);
+  return std::exp2(c);
+}
+auto exposed(double scale) {
+  return [scale](float v) {
+    if (std::isnan(v)) return 0.0;
+    return clamp01(aces(scale * static_cast<double>(v)));
+  };
 }
 
 std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test, const FlipSettings& settings) {
@@ -498,7 +570,7 @@ std::vector<float> ldr_flip_map(const RgbImage& reference, const RgbImage& test,
   if (out.empty()) return out;
   const bool grey = is_grey(reference) && is_grey(test);
   Workspace ws(reference.width, reference.height, k, grey);
-  load_planes(ws, reference, test, grey, [](float v) { return srgb_eotf(clamp01(v)); });
+  load_planes(ws, reference, test, grey, decoded);
   flip_core(ws, k, out.data(), false);
   return out;
 }
@@ -552,12 +624,7 @@ std::vector<float> hdr_flip_map(const RgbImage& reference, const RgbImage& test,
   const bool grey = is_grey(reference) && is_grey(test);
   Workspace ws(reference.width, reference.height, k, grey);
   for (int i = 0; i < ex.count; ++i) {
-    const double c = ex.count == 1 ? ex.start : ex.start + i * (ex.stop - ex.start) / (ex.count - 1);
-    const double scale = std::exp2(c);
-    load_planes(ws, reference, test, grey, [scale](float v) {  // expose, tone map, clamp (NaN -> 0)
-      if (std::isnan(v)) return 0.0;
-      return clamp01(aces(scale * static_cast<double>(v)));
-    });
+    load_planes(ws, reference, test, grey, exposed(exposure_scale(ex, i)));
     flip_core(ws, k, out.data(), i > 0);
   }
   return out;
@@ -576,6 +643,62 @@ double ldr_flip_mean_grey(const Image& reference_display, const Image& test_disp
 
 double hdr_flip_mean_grey(const Image& reference_linear, const Image& test_linear) {
   return mean(hdr_flip_map(grey_to_rgb(reference_linear, false), grey_to_rgb(test_linear, false)));
+}
+
+// ---- One reference, many tests ---------------------------------------------------------------
+
+struct GreyFlipReference::State {
+  Range range = Range::ldr;
+  Kernels kernels;
+  RgbImage reference;
+  HdrExposures exposures;  // HDR: from the reference; LDR: one pass
+  bool grey = true;        // false when the reference has NaN pixels: every comparison uncached
+  std::vector<FilteredImage> filtered;  // the reference's filtered rows, one per exposure
+};
+
+GreyFlipReference::GreyFlipReference(const Image& reference, Range range, const FlipSettings& settings) {
+  auto state = std::make_shared<State>();
+  state->range = range;
+  state->kernels = make_kernels(settings.pixels_per_degree);
+  state->reference = grey_to_rgb(reference, range == Range::ldr);
+  state->grey = is_grey(state->reference);
+  HdrFlipSettings hdr;
+  hdr.base = settings;
+  state->exposures = range == Range::hdr ? hdr_flip_exposures(state->reference, hdr) : HdrExposures{0.0, 0.0, 1};
+  if (state->grey && !state->reference.rgb.empty()) {
+    Workspace ws(reference.width, reference.height, state->kernels, true);
+    for (int i = 0; i < state->exposures.count; ++i) {
+      if (range == Range::ldr)
+        load_plane(ws, 0, state->reference, true, decoded);
+      else
+        load_plane(ws, 0, state->reference, true, exposed(exposure_scale(state->exposures, i)));
+      state->filtered.push_back(filter_image(ws, state->kernels, 0));
+    }
+  }
+  settings_ = settings;
+  state_ = std::move(state);
+}
+
+double GreyFlipReference::mean_error(const Image& test) const {
+  const State& s = *state_;
+  const RgbImage rgb = grey_to_rgb(test, s.range == Range::ldr);
+  if (!s.grey || !is_grey(rgb)) {  // NaN pixels: the colour path, as the uncached functions take
+    HdrFlipSettings hdr;
+    hdr.base = settings_;
+    return mean(s.range == Range::ldr ? ldr_flip_map(s.reference, rgb, settings_) : hdr_flip_map(s.reference, rgb, hdr));
+  }
+  check_pair(s.reference, rgb, "GreyFlipReference");
+  std::vector<float> out(static_cast<std::size_t>(rgb.width) * rgb.height, 0.0f);
+  if (out.empty()) return mean(out);
+  Workspace ws(rgb.width, rgb.height, s.kernels, true);
+  for (int i = 0; i < s.exposures.count; ++i) {
+    if (s.range == Range::ldr)
+      load_plane(ws, 1, rgb, true, decoded);
+    else
+      load_plane(ws, 1, rgb, true, exposed(exposure_scale(s.exposures, i)));
+    flip_core(ws, s.kernels, out.data(), i > 0, &s.filtered[static_cast<std::size_t>(i)]);
+  }
+  return mean(out);
 }
 
 }  // namespace saagen::render

@@ -496,7 +496,22 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
   return q;
 }
 
+void gather_quads(GBuffer& gbuffer, int threads) {
+  std::vector<QuadFields> quads(gbuffer.pixels.size());
+  parallel_rows(gbuffer.height, threads, [&](int y) {
+    for (int x = 0; x < gbuffer.width; ++x)
+      if (gbuffer.at(x, y).hit) quads[static_cast<std::size_t>(y) * gbuffer.width + x] = gather_quad(gbuffer, x, y);
+  });
+  gbuffer.quads = std::move(quads);
+}
+
 namespace {
+
+// The quad inputs of hit pixel (x, y): gbuffer.quads' when gathered, else gathered into `storage`.
+const QuadFields& quad_fields(const GBuffer& gbuffer, int x, int y, std::optional<QuadFields>& storage) {
+  if (!gbuffer.quads.empty()) return gbuffer.quads[static_cast<std::size_t>(y) * gbuffer.width + x];
+  return storage.emplace(gather_quad(gbuffer, x, y));
+}
 
 // The quad inputs a filter reads, from the shading or the geometric frame.
 struct FeedQuads {
@@ -668,7 +683,8 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   if (variant == Variant::none) {
     isotropic_form([](double unfiltered) { return unfiltered; });
   } else if (is_engine(variant)) {
-    const double engine = engine_alpha2(variant, alpha, gather_quad(gbuffer, x, y), mode);
+    std::optional<QuadFields> gathered;
+    const double engine = engine_alpha2(variant, alpha, quad_fields(gbuffer, x, y, gathered), mode);
     if (!per_axis) {
       isotropic(engine);
     } else {  // the extension's mapping on the engine's filtered alpha' (three.js's order)
@@ -676,7 +692,8 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
       shade_axis({with_isotropic_texture(e.x), with_isotropic_texture(e.y)});
     }
   } else {
-    const QuadFields q = gather_quad(gbuffer, x, y);
+    std::optional<QuadFields> gathered;
+    const QuadFields& q = quad_fields(gbuffer, x, y, gathered);
     const FeedQuads in = feed_quads(q, feed);
     switch (variant) {
       case Variant::forward_aniso_slope:

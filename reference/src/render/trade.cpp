@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -209,8 +210,11 @@ struct FrameBuffers {
 
 FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
   FrameBuffers buffers{render_gbuffer(scene, width, height, config.threads), std::nullopt};
-  if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id))
+  gather_quads(buffers.plain, config.threads);
+  if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
     buffers.prefiltered = render_gbuffer(scene, width, height, config.threads, config.prefilter_lod_bias);
+    gather_quads(*buffers.prefiltered, config.threads);
+  }
   return buffers;
 }
 
@@ -291,6 +295,16 @@ TradeConfig sized_for_scene(const TradeConfig& config, SceneId id) {
     break;
   }
   return sized;
+}
+
+GroundTruthSettings ground_truth_settings(const TradeConfig& sized, bool animation) {
+  GroundTruthSettings settings;
+  settings.width = animation ? sized.flicker_width : sized.width;
+  settings.height = animation ? sized.flicker_height : sized.height;
+  settings.strata = animation ? sized.flicker_strata : sized.strata;
+  settings.seed = sized.seed;
+  settings.threads = sized.threads;
+  return settings;
 }
 
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
@@ -375,16 +389,8 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     const TradeConfig sized = sized_for_scene(config, id);
     const Sizes sizes = sizes_of(id);
     const std::uint64_t main_pixels = sizes.main_pixels, flicker_pixels = sizes.flicker_pixels;
-    GroundTruthSettings main_settings;
-    main_settings.width = sized.width;
-    main_settings.height = sized.height;
-    main_settings.strata = sized.strata;
-    main_settings.seed = config.seed;
-    main_settings.threads = config.threads;
-    GroundTruthSettings flicker_settings = main_settings;
-    flicker_settings.width = sized.flicker_width;
-    flicker_settings.height = sized.flicker_height;
-    flicker_settings.strata = sized.flicker_strata;
+    const GroundTruthSettings main_settings = ground_truth_settings(sized);
+    const GroundTruthSettings flicker_settings = ground_truth_settings(sized, true);
     const std::vector<RowKey> keys = row_keys(config, id);
     const std::size_t n_keys = keys.size();
 
@@ -395,8 +401,14 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     report("1-spp variants " + name, base);
     const FrameBuffers gbuffer = frame_buffers(config, id, scene, sized.width, sized.height);
     const std::size_t first_row = table.rows.size();
-    std::vector<Image> reference_displays;
-    for (std::size_t m = 0; m < n_materials; ++m) reference_displays.push_back(tonemapped(gt.images[m]));
+    // FLIP's reference half once per material: [m] for LDR-FLIP, [n_materials + m] for HDR-FLIP.
+    std::vector<std::optional<GreyFlipReference>> flip_references(config.flip ? 2 * n_materials : 0);
+    parallel_rows(static_cast<int>(flip_references.size()), config.threads, [&](int i) {
+      const std::size_t m = static_cast<std::size_t>(i) % n_materials;
+      flip_references[static_cast<std::size_t>(i)] =
+          i < static_cast<int>(n_materials) ? GreyFlipReference(tonemapped(gt.images[m]), GreyFlipReference::Range::ldr)
+                                            : GreyFlipReference(gt.images[m], GreyFlipReference::Range::hdr);
+    });
     std::vector<TradeRow> rows(n_materials * n_keys);
     std::vector<Image> images(config.keep_images ? rows.size() : 0);
     for_each_row(rows.size(), main_pixels, "1-spp variants " + name, [&](std::size_t r) {
@@ -417,8 +429,8 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       row.max_error = e.max_error;
       row.non_finite = e.non_finite;
       if (config.flip) {
-        row.flip_ldr = ldr_flip_mean_grey(reference_displays[m], tonemapped(image));
-        row.flip_hdr = hdr_flip_mean_grey(gt.images[m], image);
+        row.flip_ldr = flip_references[m]->mean_error(tonemapped(image));
+        row.flip_hdr = flip_references[n_materials + m]->mean_error(image);
       }
       if (config.keep_images) images[r] = std::move(image);
     });
@@ -457,12 +469,14 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         if (config.taa) reference_frames.push_back(frame_gt.images);
         base += sizes.flicker_gt;
         const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
-        std::vector<Image> reference_frame(n_materials), reference_frame_tonemapped(n_materials);
+        std::vector<Image> reference_frame(n_materials);
+        std::vector<std::optional<GreyFlipReference>> flip_references(n_materials);  // the +taa rows' LDR-FLIP
         for (std::size_t m = 0; m < n_materials; ++m) {
+          const Image reference_tonemapped = tonemapped(frame_gt.images[m]);
           reference_frame[m] = display_image(frame_gt.images[m]);
-          reference_frame_tonemapped[m] = tonemapped(frame_gt.images[m]);
           reference_stats[m].add(frame_gt.images[m]);
-          reference_display[m].add(reference_frame_tonemapped[m]);
+          reference_display[m].add(reference_tonemapped);
+          if (config.taa) flip_references[m].emplace(reference_tonemapped, GreyFlipReference::Range::ldr);
         }
         for_each_row(n_rows, flicker_pixels, stage, [&](std::size_t r) {
           const std::size_t m = r / n_keys;
@@ -470,7 +484,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           variant_stats[r].add(image);
           const Image image_tonemapped = tonemapped(image);
           variant_display[r].add(image_tonemapped);
-          if (config.taa) flip_animation[r] += ldr_flip_mean_grey(reference_frame_tonemapped[m], image_tonemapped);
+          if (config.taa) flip_animation[r] += flip_references[m]->mean_error(image_tonemapped);
           Image frame_display = display_image(image);
           if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame[m]);
           previous_variant[r] = std::move(frame_display);

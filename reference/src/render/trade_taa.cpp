@@ -108,11 +108,14 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
     const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
     const Scene scene = jittered_frame(config, id, frame, jitter);
-    const GBuffer gbuffer = render_gbuffer(scene, fw, fh, config.threads);
+    GBuffer gbuffer = render_gbuffer(scene, fw, fh, config.threads);
+    gather_quads(gbuffer, config.threads);
     // The prefiltered rows sample the normal map TradeConfig::prefilter_lod_bias levels coarser.
     std::optional<GBuffer> prefiltered;
-    if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id))
+    if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
       prefiltered = render_gbuffer(scene, fw, fh, config.threads, config.prefilter_lod_bias);
+      gather_quads(*prefiltered, config.threads);
+    }
     const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
     std::vector<Image> reference_display_frames(materials.size());
     if (frame >= 0) {

@@ -78,6 +78,7 @@
 
 #include "saagen/reference/render/image.hpp"
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -137,5 +138,23 @@ double mean(const std::vector<float>& map);
 double ldr_flip_mean_grey(const Image& reference_display, const Image& test_display);
 // hdr_flip_mean_grey: linear radiance, automatic exposures; mean(hdr_flip_map(...)).
 double hdr_flip_mean_grey(const Image& reference_linear, const Image& test_linear);
+
+// ldr_flip_mean_grey / hdr_flip_mean_grey of many test images against one reference (the trade
+// compares every configuration with one ground truth). The reference's half of the work, its
+// CSF and feature filtering (for HDR-FLIP at each of its exposures), is done once here, so each
+// comparison filters only its test image. The results are those functions' exactly: the same
+// operations in the same order (a test or reference with NaN pixels takes their path).
+// mean_error may be called from several threads at once.
+class GreyFlipReference {
+ public:
+  enum class Range { ldr, hdr };  // ldr: display values in [0, 1]; hdr: linear radiance
+  GreyFlipReference(const Image& reference, Range range, const FlipSettings& settings = {});
+  double mean_error(const Image& test) const;
+
+ private:
+  struct State;
+  std::shared_ptr<const State> state_;
+  FlipSettings settings_;
+};
 
 }  // namespace saagen::render

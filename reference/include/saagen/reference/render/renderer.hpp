@@ -306,21 +306,6 @@ struct QuadPixel {
   Vec3 geometric_normal, geometric_tangent, geometric_bitangent, geometric_half_ts;
 };
 
-struct GBuffer {
-  int width = 0;
-  int height = 0;
-  std::vector<PixelFields> pixels;  // row-major
-  // Scenes with per-triangle quads (Scene::per_triangle_quads): per pixel and quad position
-  // ((x & 1) + 2 (y & 1)), the fields a helper invocation of the pixel's triangle computes there
-  // (Scene::extrapolate_surface; the normal map's trilinear sample at the extrapolated uv and the
-  // pixel's own LOD); valid only where that quad pixel is not on the same triangle. Empty for
-  // the other scenes.
-  std::vector<std::array<QuadPixel, 4>> helpers;
-  const PixelFields& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
-};
-
-GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0, double normal_lod_bias = 0.0);
-
 // The quad inputs of a pixel: the fields of the four pixels of its 2x2 quad, partners off the
 // surface replaced by the pixel's own fields (see the top of this file).
 struct QuadFields {
@@ -336,8 +321,29 @@ struct QuadFields {
   int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
 };
 
+struct GBuffer {
+  int width = 0;
+  int height = 0;
+  std::vector<PixelFields> pixels;  // row-major
+  // Scenes with per-triangle quads (Scene::per_triangle_quads): per pixel and quad position
+  // ((x & 1) + 2 (y & 1)), the fields a helper invocation of the pixel's triangle computes there
+  // (Scene::extrapolate_surface; the normal map's trilinear sample at the extrapolated uv and the
+  // pixel's own LOD); valid only where that quad pixel is not on the same triangle. Empty for
+  // the other scenes.
+  std::vector<std::array<QuadPixel, 4>> helpers;
+  // Per pixel, its quad inputs gathered once (gather_quads; default fields where the pixel misses),
+  // for many shadings of one G-buffer; empty: each shading gathers them (gather_quad).
+  std::vector<QuadFields> quads;
+  const PixelFields& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0, double normal_lod_bias = 0.0);
+
 // Precondition: gbuffer.at(x, y).hit.
 QuadFields gather_quad(const GBuffer& gbuffer, int x, int y);
+// Fills gbuffer.quads: what gather_quad returns, for every hit pixel. shade_pixel reads them
+// instead of gathering: the trade shades each G-buffer once per row (configuration x material).
+void gather_quads(GBuffer& gbuffer, int threads = 0);
 
 struct PixelShade {
   double radiance = 0.0;

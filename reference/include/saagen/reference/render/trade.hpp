@@ -238,6 +238,9 @@ using TradeProgressFn = std::function<void(const TradeProgress&)>;
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {});
 // The config with a scene's own sizes (TradeConfig::scene_sizes) in width ... flicker_strata.
 TradeConfig sized_for_scene(const TradeConfig& config, SceneId id);
+// The ground truth a sized config (sized_for_scene) renders: its main image's settings, or with
+// `animation` its animation frames' (flicker_width, flicker_height, flicker_strata).
+GroundTruthSettings ground_truth_settings(const TradeConfig& sized, bool animation = false);
 
 // Frame `frame` of the animation the temporal metrics measure (see the top of this file).
 Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame);
