@@ -269,6 +269,9 @@ ReportCommands::ReportCommands(CLI::App& app) {
   bench_ = app.add_subcommand("bench", "Render the ground truths and print the speed/accuracy trade table of every variant");
   add_common(bench_, bench_common_);
   bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)");
+  bench_->add_option("--report", bench_report_,
+                     "Also write the report of the same table into this directory, as `saagen report -o DIR` would (one "
+                     "measurement for both)");
   bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
   bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
   bench_->add_option("--isa-table", bench_isa_table_,
@@ -291,11 +294,16 @@ int ReportCommands::run_bench() const {
         bench_json_));
   }
   auto costs = load_costs(bench_common_.cost_json);
-  const render::TradeConfig config = configure(bench_common_, false);
-  // Both outputs together (never one file twice), and never over the --cost table.
+  if (bench_isa_only_ && !bench_report_.empty()) {
+    throw Error(fmt::format("--report {}: --isa-only computes no trade table to report; drop --isa-only", bench_report_));
+  }
+  const render::TradeConfig config = configure(bench_common_, !bench_report_.empty());
+  // Every output together (never one file twice), and never over the --cost table.
   std::vector<std::filesystem::path> outputs;
   if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
   if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
+  if (!bench_report_.empty())
+    for (const std::filesystem::path& path : report::report_paths(config, bench_report_)) outputs.push_back(path);
   check_output_paths(outputs, bench_common_.force, {bench_common_.cost_json});
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
   if (isa && !bench_isa_table_.empty())
@@ -318,6 +326,10 @@ int ReportCommands::run_bench() const {
     nlohmann::json json = report::trade_json(table, summary, cost_table);
     if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
     write_outputs({{bench_json_, json.dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
+  }
+  if (!bench_report_.empty()) {
+    const auto images = report::write_report(table, cost_table, bench_report_, bench_common_.force, config.taa ? &measured : nullptr);
+    std::cout << fmt::format("\nwrote {}/index.html, report.md and {} images\n", bench_report_, images.size());
   }
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
