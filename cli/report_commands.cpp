@@ -105,6 +105,13 @@ std::string asset_summaries(const render::TradeConfig& config) {
   return text;
 }
 
+// How the ground truths were had: printed, not written into the table or the report, whose bytes
+// must not change from one run of the same measurement to the next.
+std::string ground_truth_line(const render::TradeTable& table) {
+  return fmt::format("ground truths: {} rendered in {:.1f} s, {} read from the cache\n", table.cache_misses, table.ground_truth_seconds,
+                     table.cache_hits);
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -311,6 +318,7 @@ int ReportCommands::run_bench() const {
   if (bench_isa_only_) return 0;
   std::cout << asset_summaries(config);
   const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  std::cout << ground_truth_line(measured);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
   const render::TradeTable table = report::without_taa_rows(measured);
   const auto summary = report::summarize(table);
@@ -343,6 +351,7 @@ int ReportCommands::run_report() const {
   measure_isa(report_common_.isa_families, costs, std::cerr);
   std::cout << asset_summaries(config);
   const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  std::cout << ground_truth_line(measured);
   const render::TradeTable table = report::without_taa_rows(measured);
   const auto images =
       report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force, config.taa ? &measured : nullptr);

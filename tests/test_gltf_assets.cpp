@@ -743,6 +743,40 @@ TEST(GltfAnisotropy, TheOneSampleFormsFilterTheAnisotropicRoughness) {
 
 class GltfCli : public saagen::test::CliTest {};
 
+// One measurement for the table and the report (what scripts/run.sh does): bench --report writes
+// the same files, byte for byte, as report -o with the same options, and still prints the table.
+TEST_F(GltfCli, BenchWritesTheReportOfItsOwnTable) {
+  const std::vector<std::string> options = {"--scene", kEngine, "--preset", "quick", "--resolution", "8"};
+  auto with = [&](std::vector<std::string> command, std::vector<std::string> tail) {
+    command.insert(command.end(), options.begin(), options.end());
+    command.insert(command.end(), tail.begin(), tail.end());
+    return command;
+  };
+  const auto report = saagen(with({"report"}, {"-o", (scratch_ / "report").string()}));
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  const auto bench = saagen(with({"bench"}, {"--report", (scratch_ / "bench").string(), "--json", (scratch_ / "t.json").string()}));
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("wrote " + (scratch_ / "bench").string() + "/index.html"), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find("engine-unreal"), std::string::npos) << bench.out;
+  EXPECT_TRUE(fs::exists(scratch_ / "t.json"));
+  std::set<std::string> files;
+  for (const auto& entry : fs::directory_iterator(scratch_ / "report")) files.insert(entry.path().filename().string());
+  EXPECT_GT(files.size(), 3u);
+  for (const std::string& file : files) {
+    ASSERT_TRUE(fs::exists(scratch_ / "bench" / file)) << file;
+    EXPECT_EQ(saagen::test::read_text(scratch_ / "bench" / file), saagen::test::read_text(scratch_ / "report" / file)) << file;
+  }
+  // How long the ground truths took is printed, never written: the files' bytes are the
+  // measurement's alone. Five: the main image and the quick preset's four animation frames.
+  EXPECT_NE(bench.out.find("ground truths: 5 rendered in "), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find(", 0 read from the cache"), std::string::npos) << bench.out;
+  // --isa-only measures no table, so there is nothing to report.
+  const auto isa_only = saagen({"bench", "--isa", "vega10", "--isa-only", "--report", (scratch_ / "x").string()});
+  EXPECT_EQ(isa_only.exit_code, 1);
+  EXPECT_NE(isa_only.err.find("--isa-only computes no trade table to report"), std::string::npos) << isa_only.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "x"));
+}
+
 TEST_F(GltfCli, BenchAndReportOnAnAsset) {
   const auto run = saagen({"bench", "--scene", kClearCoat, "--preset", "quick", "--resolution", "8"});
   ASSERT_EQ(run.exit_code, 0) << run.err;

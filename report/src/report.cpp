@@ -765,11 +765,10 @@ std::string config_line(const render::TradeTable& table) {
   return fmt::format(
              "{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
              "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "
-             "prefiltered rows at normal-map LOD bias {}; ground truth {:.1f} s ({} cache hits, {} misses)",
+             "prefiltered rows at normal-map LOD bias {}",
              c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x,
              c.pan_pixels_per_frame.y, c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2,
-             c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", c.prefilter_lod_bias, table.ground_truth_seconds,
-             table.cache_hits, table.cache_misses) +
+             c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", c.prefilter_lod_bias) +
          scene_sizes_line(c);
 }
 
