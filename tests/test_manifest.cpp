@@ -468,6 +468,42 @@ TEST(Planner, WithATableASpeedChoiceThatLosesGivesWay) {
       << plan.reason;
 }
 
+// With a table, accuracy is judged on the material's content: the table's best configuration there
+// that beats no SAA, not the variant with the lowest mean over every scene (there deferred-aniso,
+// measured on curved content behind forward-aniso-projected). So a table made of the same
+// measurement as saagen's advice plans what the advice says.
+TEST(Planner, WithATableAccuracyTakesTheBestOnTheMaterialsContent) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"variant": "deferred-aniso", "error": 0.0655}, {"variant": "forward-aniso-projected", "error": 0.0656}], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.0308, "tde": 0.01436},
+      {"content": "curved", "configuration": "forward-aniso-projected/tail", "error": 0.0253, "tde": 0.01184},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.0259, "tde": 0.01187},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.0497, "tde": 0.01553}]})",
+                                                                     "content.json");
+  const auto plan_of = [&](const std::string& keys) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\n" + keys), &table).materials.at(0);
+  };
+  const saagen::MaterialPlan forward = plan_of("path = \"forward\"\ntangents = true\n");
+  EXPECT_EQ(forward.variant, "forward-aniso-projected");
+  EXPECT_EQ(forward.rule, "trade table");
+  EXPECT_NE(forward.reason.find("forward-aniso-projected/tail 0.0253 / 0.01184 has the lowest error of the configurations this "
+                                "material can use that beat no SAA none 0.0308 / 0.01436 in content.json (curved content); the "
+                                "planned deferred-aniso measured deferred-aniso/tail 0.0259 / 0.01187"),
+            std::string::npos)
+      << forward.reason;
+  // What the advice plans without a table, from the same figures (advice.hpp).
+  EXPECT_EQ(saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"forward\"\ntangents = true\n"))
+                .materials.at(0)
+                .variant,
+            forward.variant);
+  // A deferred material cannot use the forward form: deferred-aniso, the best it can use.
+  EXPECT_EQ(plan_of("path = \"deferred\"\n").variant, "deferred-aniso");
+  // Speed: the cheapest choice, deferred-avg, loses to no SAA here, so it gives way too.
+  const saagen::MaterialPlan speed = plan_of("path = \"forward\"\ntangents = true\nprefer = \"speed\"\n");
+  EXPECT_EQ(speed.variant, "forward-aniso-projected");
+  EXPECT_NE(speed.reason.find("the planned deferred-avg does not"), std::string::npos) << speed.reason;
+}
+
 // A normal-mapped deferred material planned deferred-aniso with a prefiltered map gets the lighting
 // pass with the texture covariance (A = diag(alpha^2) + (n.h)^2 K + C, as the trade's
 // deferred-aniso:FEED+PREFILTER rows shade): with LEAN the geometry pass's

@@ -600,8 +600,10 @@ void apply_advice(const Material& material, bool taa, const std::vector<const Va
 
 // With a trade table's rows for the material's content: the planned configuration must beat the
 // table's no-SAA row in its error (and TDE where both have one); else the best one the material can
-// use that does, else no filter. Rows of the lobe the planner shades GGX with (advice::kLobe) when
-// the table has them: the others measure an engine's own BRDF.
+// use that does, else no filter. A material that prefers accuracy takes that best one whenever it
+// has a lower error than the planned one: the content's rows, not the means over every scene, are
+// what saagen's advice (advice.hpp) is made of. Rows of the lobe the planner shades GGX with
+// (advice::kLobe) when the table has them: the others measure an engine's own BRDF.
 void check_against_no_filter(const MeasuredTradeTable& table, const Material& material, const std::vector<const Variant*>& eligible,
                              MaterialPlan& plan) {
   const std::string content(advice::table_content(content_of(material)));
@@ -626,9 +628,14 @@ void check_against_no_filter(const MeasuredTradeTable& table, const Material& ma
     if (is_planned && (!planned || row->error < planned->error)) planned = *row;
     if (beats_none(*row) && (!best || row->error < best->error)) best = *row;
   }
-  if (!planned || beats_none(*planned)) return;
+  const bool planned_wins = planned && beats_none(*planned);
+  const bool by_accuracy = material.prefer == Preference::accuracy;
+  const bool take_best = by_accuracy && best && (!planned || best->error < planned->error);
   const std::string against =
       fmt::format("no SAA {} in {} ({} content)", figure_text("none", none->error, none->tde), table.source_name, content);
+  if (!take_best && planned_wins)
+    plan.reason += fmt::format(" [{} beats {}]", figure_text(planned->configuration, planned->error, planned->tde), against);
+  if (!take_best && (!planned || planned_wins)) return;
   if (!best) {
     plan_no_filter(material, "trade table",
                    fmt::format("no filter: no configuration this material can use beats {}; the planned {} measured {}", against,
@@ -637,8 +644,17 @@ void check_against_no_filter(const MeasuredTradeTable& table, const Material& ma
     return;
   }
   const Configuration c = parse_configuration(best->configuration);
-  plan.reason = fmt::format("{} beats {}; the planned {} does not ({})", figure_text(best->configuration, best->error, best->tde), against,
-                            plan.variant, figure_text(planned->configuration, planned->error, planned->tde));
+  const std::string chosen = figure_text(best->configuration, best->error, best->tde);
+  if (!planned)
+    plan.reason = fmt::format("{} has the lowest error of the configurations this material can use that beat {}; the table has no row "
+                              "for the planned {} ({})",
+                              chosen, against, plan.variant, plan.reason);
+  else if (planned_wins)
+    plan.reason = fmt::format("{} has the lowest error of the configurations this material can use that beat {}; the planned {} measured {}",
+                              chosen, against, plan.variant, figure_text(planned->configuration, planned->error, planned->tde));
+  else
+    plan.reason = fmt::format("{} beats {}; the planned {} does not ({})", chosen, against, plan.variant,
+                              figure_text(planned->configuration, planned->error, planned->tde));
   plan.variant = c.variant;
   plan.rule = "trade table";
   take_normal_handling(material, c, figure_text(best->configuration, best->error, best->tde), plan);
