@@ -208,12 +208,6 @@ double half_trace_kernel(const render::GBuffer& gbuffer, const std::vector<Footp
   return 0.5 * (k.xx + k.yy);
 }
 
-render::Image tonemapped(const render::Image& image) {
-  render::Image out(image.width, image.height);
-  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(render::tonemap(image.pixels[i]));
-  return out;
-}
-
 render::SceneId scene_id(const std::string& name) {
   for (render::SceneId id : render::all_scenes())
     if (render::scene_name(id) == name) return id;

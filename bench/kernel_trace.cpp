@@ -463,12 +463,6 @@ std::vector<render::Image> method_images(const render::GBuffer& gbuffer, double 
   return images;
 }
 
-render::Image tonemapped(const render::Image& radiance) {
-  render::Image out = radiance;
-  for (float& v : out.pixels) v = static_cast<float>(render::tonemap(v));
-  return out;
-}
-
 double largest_relative_difference(const render::Image& a, const render::Image& b) {
   double largest = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i)

@@ -165,12 +165,6 @@ GBuffer case_buffer(const Case& c, const Scene& scene, int width, int height, co
   return g;
 }
 
-Image tonemapped(const Image& image) {
-  Image out(image.width, image.height);
-  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
-  return out;
-}
-
 // An 8-bit PGM of display values in [0, 1] (--dump: the first alpha's frames 10 and 11).
 void write_pgm(const std::string& path, const Image& display) {
   std::ofstream out(path, std::ios::binary);

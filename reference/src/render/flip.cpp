@@ -649,6 +649,7 @@ double hdr_flip_mean_grey(const Image& reference_linear, const Image& test_linea
 
 struct GreyFlipReference::State {
   Range range = Range::ldr;
+  FlipSettings settings;
   Kernels kernels;
   RgbImage reference;
   HdrExposures exposures;  // HDR: from the reference; LDR: one pass
@@ -659,6 +660,7 @@ struct GreyFlipReference::State {
 GreyFlipReference::GreyFlipReference(const Image& reference, Range range, const FlipSettings& settings) {
   auto state = std::make_shared<State>();
   state->range = range;
+  state->settings = settings;
   state->kernels = make_kernels(settings.pixels_per_degree);
   state->reference = grey_to_rgb(reference, range == Range::ldr);
   state->grey = is_grey(state->reference);
@@ -675,7 +677,6 @@ GreyFlipReference::GreyFlipReference(const Image& reference, Range range, const 
       state->filtered.push_back(filter_image(ws, state->kernels, 0));
     }
   }
-  settings_ = settings;
   state_ = std::move(state);
 }
 
@@ -684,8 +685,8 @@ double GreyFlipReference::mean_error(const Image& test) const {
   const RgbImage rgb = grey_to_rgb(test, s.range == Range::ldr);
   if (!s.grey || !is_grey(rgb)) {  // NaN pixels: the colour path, as the uncached functions take
     HdrFlipSettings hdr;
-    hdr.base = settings_;
-    return mean(s.range == Range::ldr ? ldr_flip_map(s.reference, rgb, settings_) : hdr_flip_map(s.reference, rgb, hdr));
+    hdr.base = s.settings;
+    return mean(s.range == Range::ldr ? ldr_flip_map(s.reference, rgb, s.settings) : hdr_flip_map(s.reference, rgb, hdr));
   }
   check_pair(s.reference, rgb, "GreyFlipReference");
   std::vector<float> out(static_cast<std::size_t>(rgb.width) * rgb.height, 0.0f);

@@ -21,6 +21,12 @@ double srgb_encode(double display_linear) {
 
 double display_value(double radiance) { return srgb_encode(tonemap(radiance)); }
 
+Image tonemapped(const Image& radiance) {
+  Image out(radiance.width, radiance.height);
+  for (std::size_t i = 0; i < radiance.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(radiance.pixels[i]));
+  return out;
+}
+
 Image display_image(const Image& radiance) {
   Image out(radiance.width, radiance.height);
   for (std::size_t i = 0; i < radiance.size(); ++i) out.pixels[i] = static_cast<float>(display_value(radiance.pixels[i]));

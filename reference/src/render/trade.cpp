@@ -200,24 +200,6 @@ bool scene_has_normal_detail(SceneId id) { return scene_has_procedural_normals(i
 
 namespace {
 
-// The G-buffers of one frame: the implicit LOD's, and on a normal-mapped scene with a bias the
-// prefiltered rows' (TradeConfig::prefilter_lod_bias).
-struct FrameBuffers {
-  GBuffer plain;
-  std::optional<GBuffer> prefiltered;
-  const GBuffer& for_prefilter(Prefilter prefilter) const { return prefilter != Prefilter::none && prefiltered ? *prefiltered : plain; }
-};
-
-FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
-  FrameBuffers buffers{render_gbuffer(scene, width, height, config.threads), std::nullopt};
-  gather_quads(buffers.plain, config.threads);
-  if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
-    buffers.prefiltered = render_gbuffer(scene, width, height, config.threads, config.prefilter_lod_bias);
-    gather_quads(*buffers.prefiltered, config.threads);
-  }
-  return buffers;
-}
-
 // One row's configuration: a variant and the normal it reads.
 struct RowKey {
   Variant variant;
@@ -274,13 +256,17 @@ std::vector<TaaRowKey> taa_keys(const TradeConfig& config, SceneId scene) {
   return out;
 }
 
-Image tonemapped(const Image& image) {
-  Image out(image.width, image.height);
-  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
-  return out;
-}
-
 }  // namespace
+
+FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
+  FrameBuffers buffers{render_gbuffer(scene, width, height, config.threads), std::nullopt};
+  gather_quads(buffers.plain, config.threads);
+  if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
+    buffers.prefiltered = render_gbuffer(scene, width, height, config.threads, config.prefilter_lod_bias);
+    gather_quads(*buffers.prefiltered, config.threads);
+  }
+  return buffers;
+}
 
 TradeConfig sized_for_scene(const TradeConfig& config, SceneId id) {
   TradeConfig sized = config;

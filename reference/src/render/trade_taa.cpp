@@ -11,12 +11,6 @@ namespace saagen::render {
 
 namespace {
 
-Image tonemapped(const Image& image) {
-  Image out(image.width, image.height);
-  for (std::size_t i = 0; i < image.size(); ++i) out.pixels[i] = static_cast<float>(tonemap(image.pixels[i]));
-  return out;
-}
-
 // What one +taa configuration accumulates over the measured frames.
 struct TaaAccumulator {
   TaaResolve resolve;
@@ -108,15 +102,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
     const Vec2 jitter = taa_jitter(frame + warmup, config.taa_options.sequence_length);
     const Scene scene = jittered_frame(config, id, frame, jitter);
-    GBuffer gbuffer = render_gbuffer(scene, fw, fh, config.threads);
-    gather_quads(gbuffer, config.threads);
-    // The prefiltered rows sample the normal map TradeConfig::prefilter_lod_bias levels coarser.
-    std::optional<GBuffer> prefiltered;
-    if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
-      prefiltered = render_gbuffer(scene, fw, fh, config.threads, config.prefilter_lod_bias);
-      gather_quads(*prefiltered, config.threads);
-    }
-    const std::vector<Vec2> positions = previous ? reproject_history(gbuffer, scene, *previous) : std::vector<Vec2>{};
+    const FrameBuffers buffers = frame_buffers(config, id, scene, fw, fh);
+    const std::vector<Vec2> positions = previous ? reproject_history(buffers.plain, scene, *previous) : std::vector<Vec2>{};
     std::vector<Image> reference_display_frames(materials.size());
     if (frame >= 0) {
       for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -136,8 +123,7 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
           const std::size_t r = static_cast<std::size_t>(row), m = r / n_keys;
           const TaaRowKey& key = keys[r % n_keys];
           TaaAccumulator& a = accumulators[r];
-          const GBuffer& buffer = key.prefilter != Prefilter::none && prefiltered ? *prefiltered : gbuffer;
-          const Image samples = render_variant(buffer, key.variant, materials[m], config.params, config.derivative, 1, key.feed,
+          const Image samples = render_variant(buffers.for_prefilter(key.prefilter), key.variant, materials[m], config.params, config.derivative, 1, key.feed,
                                                key.prefilter, config.prefilter_scale, key.lobe);
           const Image& out = a.resolve.resolve(samples, jitter, positions);
           if (frame >= 0)

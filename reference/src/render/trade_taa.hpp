@@ -5,10 +5,20 @@
 #include "saagen/reference/render/trade.hpp"
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace saagen::render {
+
+// The G-buffers of one frame, their quad inputs gathered (gather_quads): the implicit LOD's, and
+// on a normal-mapped scene with a bias the prefiltered rows' (TradeConfig::prefilter_lod_bias).
+struct FrameBuffers {
+  GBuffer plain;
+  std::optional<GBuffer> prefiltered;
+  const GBuffer& for_prefilter(Prefilter prefilter) const { return prefilter != Prefilter::none && prefiltered ? *prefiltered : plain; }
+};
+FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height);
 
 // One configuration to run under TAA (a trade row's key).
 struct TaaRowKey {

@@ -154,7 +154,6 @@ class GreyFlipReference {
  private:
   struct State;
   std::shared_ptr<const State> state_;
-  FlipSettings settings_;
 };
 
 }  // namespace saagen::render

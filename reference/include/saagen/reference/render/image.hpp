@@ -29,6 +29,8 @@ struct Image {
 // of low-roughness highlights so that the tonemapped RMSE measures what a viewer sees rather
 // than a handful of pixels. Negative values (never produced) are clamped to 0.
 double tonemap(double x);
+// tonemap() of every pixel: display-linear values, the input of ldr_flip_mean_grey.
+Image tonemapped(const Image& radiance);
 
 // The sRGB encoding (IEC 61966-2-1 OETF: 12.92 v for v <= 0.0031308, else 1.055 v^(1/2.4) -
 // 0.055) of a display-linear value, clamped to [0, 1] first (NaN -> 0): the signal LDR-FLIP
