@@ -16,6 +16,7 @@
 // the conversion to a 16-bit float format round to nearest or towards zero (lavapipe truncates).
 #include "deferred_pass_runner.hpp"
 #include "gpu_support.hpp"
+#include "host_compiler.hpp"
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
@@ -334,6 +335,7 @@ TEST(DeferredPass, OptionsAreDeterministicAndChecked) {
 int run_command(const std::string& command) { return std::system((command + " > /dev/null 2>&1").c_str()); }
 
 TEST(DeferredPass, CliWritesValidatesAndTheHeaderCompilesAsCppAndC) {
+  SAAGEN_SKIP_WITHOUT_HOST_COMPILER(SAAGEN_TEST_CXX_COMPILER);
   const fs::path directory = fs::temp_directory_path() / fmt::format("saagen_pass_cli_{}", ::getpid());
   fs::remove_all(directory);
   const std::string cli = SAAGEN_CLI_PATH;

@@ -1,13 +1,16 @@
 // Tests of the headless Vulkan harness (harness/) on the default device, lavapipe.
 //
-// No test skips: when no Vulkan device is available, creating the context throws and the tests
-// fail with the harness's message (so CI=true runs cannot pass silently without a device).
-// Select another device with SAAGEN_VK_DEVICE=<name substring>.
+// When no Vulkan device is available, creating the context throws and the tests fail with the
+// harness's message (so CI=true runs cannot pass silently without a device). Select another
+// device with SAAGEN_VK_DEVICE=<name substring>. Two facts hold for lavapipe alone and are
+// checked only there: the default device is lavapipe (skipped where lavapipe is not installed),
+// and its sqrt is correctly rounded (elsewhere sqrt is held to the specification's precision).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -80,6 +83,14 @@ VulkanContext& context() {
   return *shared;
 }
 
+bool on_lavapipe() { return contains(lowercase(context().info().name), "llvmpipe"); }
+
+// GLSL sqrt on any device: Vulkan "Precision and Operation of SPIR-V Instructions": sqrt is
+// "inherited from 1.0 / inversesqrt()", inversesqrt is 2 ULP, x / y (here 1.0 / y) 2.5 ULP. An
+// ULP of a normal float is at most 2^-23 of it, so the result is r (1 + e2) / (1 + e1) with
+// |e1| <= 2 2^-23, |e2| <= 2.5 2^-23: relative error <= 4.5 2^-23 + O(2^-46) (4.51 covers it).
+Tolerance sqrt_tolerance() { return Tolerance{0.0, 4.51 * 0x1.0p-23}; }
+
 ShaderDesc glsl_compute(const std::string& source) { return shader_desc(Language::glsl, Stage::compute, source); }
 
 // Deterministic floats in [lo, hi).
@@ -98,7 +109,31 @@ std::uint32_t groups_for(std::size_t count, std::uint32_t group_size) {
 // ---------------------------------------------------------------------------------------------
 // Device selection
 
+bool lavapipe_installed() {
+  for (const std::string& name : VulkanContext::available_devices())
+    if (contains(lowercase(name), "llvmpipe")) return true;
+  return false;
+}
+
+std::string device_list() {
+  std::string list;
+  for (const std::string& name : VulkanContext::available_devices()) list += (list.empty() ? "" : "; ") + name;
+  return list;
+}
+
+// The name with every other letter's case swapped ("NVIDIA H200" -> "nViDiA h200").
+std::string mixed_case(std::string name) {
+  for (std::size_t i = 0; i < name.size(); i += 2) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    name[i] = static_cast<char>(std::isupper(c) ? std::tolower(c) : std::toupper(c));
+  }
+  return name;
+}
+
 TEST(HarnessDevice, DefaultIsLavapipe) {
+  if (!lavapipe_installed())
+    GTEST_SKIP() << "a lavapipe fact: lavapipe (llvmpipe, mesa-vulkan-drivers) is not among this machine's Vulkan devices ("
+                 << device_list() << "), so the default is the first CPU device or the first device";
   ContextOptions options;
   options.read_environment = false;  // the default, whatever SAAGEN_VK_DEVICE says
   VulkanContext ctx(options);
@@ -112,16 +147,21 @@ TEST(HarnessDevice, DefaultIsLavapipe) {
   EXPECT_GE(info.max_push_constants_size, 128u);
 }
 
+// Every device of the machine, each by its name in mixed case.
 TEST(HarnessDevice, SelectsByCaseInsensitiveName) {
   ScopedEnv env(device_env_var, "no-such-device");  // an explicit name wins over the environment
-  VulkanContext ctx(ContextOptions{"LLVMPipe"});
-  EXPECT_TRUE(contains(lowercase(ctx.info().name), "llvmpipe")) << ctx.info().name;
+  for (const std::string& name : VulkanContext::available_devices()) {
+    VulkanContext ctx(ContextOptions{mixed_case(name)});
+    EXPECT_TRUE(contains(lowercase(ctx.info().name), lowercase(name))) << ctx.info().name << " for " << mixed_case(name);
+  }
 }
 
 TEST(HarnessDevice, SelectsFromEnvironment) {
-  ScopedEnv env(device_env_var, "LlVmPiPe");
-  VulkanContext ctx;
-  EXPECT_TRUE(contains(lowercase(ctx.info().name), "llvmpipe")) << ctx.info().name;
+  for (const std::string& name : VulkanContext::available_devices()) {
+    ScopedEnv env(device_env_var, mixed_case(name));
+    VulkanContext ctx;
+    EXPECT_TRUE(contains(lowercase(ctx.info().name), lowercase(name))) << ctx.info().name << " for " << mixed_case(name);
+  }
 }
 
 TEST(HarnessDevice, UnknownNameListsAvailableDevices) {
@@ -170,7 +210,7 @@ TEST(HarnessDevice, TakesDeviceFlagFromArgv) {
 
 constexpr std::size_t large_count = 100000;
 
-TEST(HarnessCompute, GlslFmaAndSqrtMatchCpuExactly) {
+TEST(HarnessCompute, GlslFmaAndSqrtMatchTheCpuToTheirPrecision) {
   const ShaderDesc shader = glsl_compute(R"(#version 450
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) readonly buffer A { float a[]; };
@@ -222,15 +262,16 @@ void main() {
                 : unfused_report.ok() ? "mul+add (two roundings)"
                                       : "neither")
             << "\n";
-  // sqrt is exact on lavapipe (llvm.sqrt -> vsqrtps, correctly rounded). Vulkan only requires
-  // the precision of 1.0 / inversesqrt(x), so another device might need a few ulp here.
-  const CompareReport sqrt_report = compare(result.buffer_as<float>(4), expected_sqrt, {}, "glsl sqrt", describe);
+  // sqrt is exact on lavapipe (llvm.sqrt -> vsqrtps, correctly rounded): a lavapipe fact.
+  // Elsewhere, the specification's precision (sqrt_tolerance).
+  const CompareReport sqrt_report =
+      compare(result.buffer_as<float>(4), expected_sqrt, on_lavapipe() ? Tolerance{} : sqrt_tolerance(), "glsl sqrt", describe);
   EXPECT_TRUE(sqrt_report.ok()) << sqrt_report.summary();
   EXPECT_GT(result.timing.pipeline_create_ms, 0.0);
   ASSERT_EQ(result.timing.host_ms.size(), 1u);
 }
 
-TEST(HarnessCompute, HlslSqrtMatchesCpuExactly) {
+TEST(HarnessCompute, HlslSqrtMatchesTheCpuToItsPrecision) {
   const ShaderDesc shader = shader_desc(Language::hlsl, Stage::compute, R"(
 struct Params { uint count; };
 [[vk::push_constant]] ConstantBuffer<Params> params;
@@ -256,8 +297,13 @@ void cs_main(uint3 id : SV_DispatchThreadID) {
   // Evaluated in float, step by step, as the shader does: *0.5 is exact, so no contraction can
   // change the result even if the compiler fused the multiply-add.
   for (std::size_t i = 0; i < large_count; ++i) expected[i] = std::sqrt(x[i]) * 0.5f + 1.0f;
+  // Exact on lavapipe (a lavapipe fact). Elsewhere: sqrt's relative error (sqrt_tolerance) on
+  // s / 2 <= r = s / 2 + 1, plus the two correctly rounded additions (the device's and the
+  // reference's) differing by at most one ulp of r <= 2^-23 r.
+  Tolerance tolerance;
+  if (!on_lavapipe()) tolerance.rel_tol = sqrt_tolerance().rel_tol + 0x1.0p-23;
   const CompareReport report =
-      compare(result.buffer_as<float>(1), expected, {}, "hlsl sqrt", [&](std::size_t i) { return "x=" + std::to_string(x[i]); });
+      compare(result.buffer_as<float>(1), expected, tolerance, "hlsl sqrt", [&](std::size_t i) { return "x=" + std::to_string(x[i]); });
   EXPECT_EQ(report.compared, large_count);
   EXPECT_TRUE(report.ok()) << report.summary();
 }

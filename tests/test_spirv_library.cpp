@@ -19,6 +19,7 @@
 // terms: |f| (1 + conditioning + Beckmann exponent), Lambda terms: (1 + |f|)(1 + conditioning)),
 // twice test_gpu_core's 2e-5.
 #include "gpu_support.hpp"
+#include "host_compiler.hpp"
 #include "reference_dispatch.hpp"
 
 #include "saagen/emit/engines.hpp"
@@ -188,6 +189,7 @@ TEST(SpirvLibrary, ReflectionIsTheListJsonOfTheExportedFunctions) {
 }
 
 TEST(SpirvLibrary, HeaderEmbedsTheWordsAndCompilesAsCppAndC) {
+  SAAGEN_SKIP_WITHOUT_HOST_COMPILER(SAAGEN_TEST_CXX_COMPILER);
   const auto& library = library_of("deferred-sum");
   const std::string header = saagen::spirv_library_header(Catalogue::builtin(), library);
   EXPECT_EQ(header.find("// saagen-marker: target=spirv variants=deferred-sum prefix=saa_"), header.find("// saagen-marker:"));
