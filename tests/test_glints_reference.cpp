@@ -100,6 +100,33 @@ TEST(GlintSampler, HalfResultWidensTheRangeToTheNeighbouringHalves) {
   }
 }
 
+// lambda's accuracy: the coarser of mipmapPrecisionBits and the conformance suite's 4 bits. At
+// 0.026 above an integer LOD the finer level alone is within it (an NVIDIA H200 returns that);
+// at 0.1 above it is not, and with 2 bits it is again.
+TEST(GlintSampler, LodAccuracyIsTheConformanceSuitesWhereTheDeviceClaimsMore) {
+  const auto texture = ramp_texture();
+  const g::SamplerTolerance eight = g::vulkan_sampler_tolerance(8, 8);
+  EXPECT_EQ(eight.lod_accuracy, 0.0625);
+  EXPECT_EQ(eight.level_weight, 0x1.0p-8);
+  EXPECT_EQ(g::vulkan_sampler_tolerance(2, 8).lod_accuracy, 0.25);
+  const double u = 3.1 / 8.0;
+  const g::Texel finer_alone = g::texture_lod(texture, u, 1.0, 1.0);
+  const g::Texel coarser_alone = g::texture_lod(texture, u, 1.0, 2.0);
+  ASSERT_NE(finer_alone[0], coarser_alone[0]);  // the levels differ at u
+  auto holds = [&](double lod, const g::SamplerTolerance& tolerance, const g::Texel& value) {
+    const g::TexelRange range = g::texture_lod_range(texture, u, 1.0, lod, tolerance);
+    for (int c = 0; c < 4; ++c)
+      if (value[c] < range.low[c] || value[c] > range.high[c]) return false;
+    return true;
+  };
+  EXPECT_TRUE(holds(1.026, eight, finer_alone));
+  EXPECT_FALSE(holds(1.1, eight, finer_alone));
+  EXPECT_TRUE(holds(1.1, g::vulkan_sampler_tolerance(2, 8), finer_alone));
+  g::SamplerTolerance mipmap_bits_alone = eight;  // the specification's sentence alone
+  mipmap_bits_alone.lod_accuracy = mipmap_bits_alone.level_weight;
+  EXPECT_FALSE(holds(1.026, mipmap_bits_alone, finer_alone));
+}
+
 // lavapipe's LOD (measured, docs/GLINTS.md): exact at powers of two, at most 0.0430 below the
 // specification's log2 in between (0.5 (log2(1 + f) - f) peaks at f = 1 / ln 2 - 1).
 TEST(GlintSampler, LavapipeLodModelStaysWithinItsBound) {

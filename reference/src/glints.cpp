@@ -84,8 +84,11 @@ SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_tex
   SamplerTolerance t;
   t.level_weight = std::ldexp(1.0, -mipmap_precision_bits);
   t.texel_weight = std::ldexp(1.0, -sub_texel_precision_bits);
-  t.lod_below = t.level_weight;        // the snapped log2 (see the header)
-  t.lod_above = 0.5 + t.level_weight;  // f_x <= sqrt(2) |m_ux| for a 1D image
+  // The coarser of the specification's mipmapPrecisionBits and the conformance suite's 4 bits
+  // (see the header).
+  t.lod_accuracy = std::ldexp(1.0, -std::min(mipmap_precision_bits, kConformanceLodBits));
+  t.lod_below = 0.0;  // f_x >= max(|m_ux|): lambda >= log2(rho_max) before its accuracy
+  t.lod_above = 0.5;  // f_x <= sqrt(2) |m_ux| for a 1D image
   return t;
 }
 
@@ -161,10 +164,11 @@ TexelRange texture_grad_range(const Texture1DArray& texture, double u, double la
     lo = base - t.lod_below;
     hi = base + t.lod_above;
   }
-  // The two levels' weights are snapped to 2^-mipmapPrecisionBits: lambda's fraction within
-  // +-level_weight, i.e. lambda itself within that of [lo, hi] (the filter is continuous in lambda).
-  lo = clamp(lo - t.level_weight, 0.0, q);
-  hi = clamp(hi + t.level_weight, 0.0, q);
+  // lambda is computed to lod_accuracy (explicit or from the gradients), then the two levels'
+  // weights are snapped to 2^-mipmapPrecisionBits: lambda's fraction within +-level_weight, i.e.
+  // lambda itself within that of [lo, hi] (the filter is continuous in lambda).
+  lo = clamp(lo - t.lod_accuracy - t.level_weight, 0.0, q);
+  hi = clamp(hi + t.lod_accuracy + t.level_weight, 0.0, q);
   if (std::isnan(lo)) lo = 0.0;  // log2(0) = -inf, clamped
   if (std::isnan(hi)) hi = 0.0;
   // The trilinear value is piecewise linear in lambda between integer levels: its range over
