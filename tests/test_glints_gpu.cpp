@@ -42,6 +42,13 @@ hx::VulkanContext& gpu() {
 
 bool on_lavapipe() { return gpu().info().name.find("llvmpipe") != std::string::npos; }
 
+// The tight checks feed the reference lavapipe's own LOD arithmetic: a lavapipe fact, said so
+// where it is not run.
+void say_no_lavapipe_check(const std::string& what) {
+  std::cout << "[ skipped  ] " << what << " with lavapipe's LOD model: a lavapipe fact, not checked on " << gpu().info().name
+            << " (the specification's check above is)\n";
+}
+
 // The spec's sampler freedom on this device (its reported precision limits).
 const g::SamplerTolerance& spec_tolerance() {
   static const g::SamplerTolerance tolerance = [] {
@@ -193,7 +200,7 @@ TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
             << fmt::format("[ sampler  ] with lambda to mipmapPrecisionBits alone (+-{}): {} of {} failing, worst err {:.3g} x tol\n",
                            strict_tolerance.lod_accuracy, strict_failing, got.size(), strict_worst);
   EXPECT_EQ(spec.failing, 0u) << spec.summary();
-  if (!lavapipe) return;
+  if (!lavapipe) return say_no_lavapipe_check("the sampler");
   const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureGrad/textureLod (lavapipe LOD model)", describe);
   double worst_abs = 0.0;
   for (std::size_t i = 0; i < got.size(); ++i) worst_abs = std::max(worst_abs, std::fabs(got[i] - expected[i]));
@@ -313,7 +320,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
   EXPECT_EQ(spec.failing, 0u) << spec.summary();
   EXPECT_EQ(comparison.outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
   EXPECT_GT(nonzero, expected.size() / 2);  // the inputs do hit lobes
-  if (!lavapipe) return;
+  if (!lavapipe) return say_no_lavapipe_check(c.target + " " + c.function);
   const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe LOD model)", c.target, c.function));
   std::cout << "[ worst    ] " << report.summary() << "\n[ worst    ] max relative error (|expected| > 1e-3): " << worst_relative << "; "
             << nonzero << " of " << expected.size() << " outputs non-zero\n";
