@@ -1,0 +1,149 @@
+#include "saagen/decision.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace saagen::decision {
+namespace {
+
+bool better(const Difference& d) { return d.high < 0.0; }
+bool worse(const Difference& d) { return d.low > 0.0; }
+
+// Whether a is more accurate than b: the image mean, then the temporal mean.
+bool more_accurate(const Candidate& a, const Candidate& b) {
+  if (a.against_none.image.mean != b.against_none.image.mean) return a.against_none.image.mean < b.against_none.image.mean;
+  return a.against_none.temporal.mean < b.against_none.temporal.mean;
+}
+
+bool within_budget(const Candidate& c, const Preference& p) { return !p.budget || (c.cost_ratio && *c.cost_ratio <= *p.budget); }
+
+// "1 usable configuration", "3 usable configurations".
+std::string usable_count(std::size_t n) { return fmt::format("{} usable configuration{}", n, n == 1 ? "" : "s"); }
+
+std::string cost_text(const Candidate& c) { return c.cost_ratio ? fmt::format("{:.3g}x no SAA's shading cost", *c.cost_ratio) : "cost unknown"; }
+
+std::string figures(const Candidate& c) {
+  return fmt::format("{} (image {}, temporal {} against no SAA; {})", c.configuration, describe(c.against_none.image),
+                     describe(c.against_none.temporal), cost_text(c));
+}
+
+// The largest known cost among the usable candidates, and how many candidates are usable.
+std::pair<std::optional<double>, std::size_t> usable_cost_range(std::span<const Candidate> candidates) {
+  std::optional<double> most;
+  std::size_t usable = 0;
+  for (const Candidate& c : candidates) {
+    if (!c.usable) continue;
+    ++usable;
+    if (c.cost_ratio && (!most || *c.cost_ratio > *most)) most = c.cost_ratio;
+  }
+  return {most, usable};
+}
+
+bool is_most_expensive(const Candidate& c, std::optional<double> most) {
+  return most && c.cost_ratio && *c.cost_ratio * (1.0 + kCostTieTolerance) >= *most;
+}
+
+std::optional<std::size_t> most_accurate(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
+  std::optional<std::size_t> best;
+  for (std::size_t i : pool)
+    if (!best || more_accurate(candidates[i], candidates[*best])) best = i;
+  return best;
+}
+
+// The cheapest of the pool (equal costs: the more accurate), skipping the most expensive usable
+// form unless it is the only usable candidate.
+std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
+  const auto [most, usable] = usable_cost_range(candidates);
+  std::vector<std::size_t> affordable;
+  for (std::size_t i : pool)
+    if (candidates[i].cost_ratio && (usable == 1 || !is_most_expensive(candidates[i], most))) affordable.push_back(i);
+  if (affordable.empty()) return std::nullopt;
+  double lowest = *candidates[affordable.front()].cost_ratio;
+  for (std::size_t i : affordable) lowest = std::min(lowest, *candidates[i].cost_ratio);
+  std::vector<std::size_t> equal;
+  for (std::size_t i : affordable)
+    if (*candidates[i].cost_ratio <= lowest * (1.0 + kCostTieTolerance)) equal.push_back(i);
+  return most_accurate(candidates, equal);
+}
+
+std::string no_filter_reason(std::span<const Candidate> candidates, const std::vector<Outcome>& outcomes,
+                             const std::vector<std::size_t>& beating, const Preference& preference) {
+  std::size_t usable = 0;
+  std::vector<std::size_t> tried;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (candidates[i].usable) ++usable, tried.push_back(i);
+  if (candidates.empty()) return "no filter: no configuration was measured against no SAA here";
+  if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
+  if (beating.empty()) {
+    const std::size_t best = *most_accurate(candidates, tried);
+    return fmt::format("no filter: none of the {} beats no SAA; the lowest image error, {}, {}", usable_count(usable),
+                       figures(candidates[best]), name(outcomes[best]));
+  }
+  std::vector<std::string> listed;
+  for (std::size_t i : beating) listed.push_back(figures(candidates[i]));
+  if (preference.budget) {
+    bool any_in_budget = false;
+    for (std::size_t i : beating) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
+    if (!any_in_budget)
+      return fmt::format("no filter: what beats no SAA costs more than the budget {:.3g}: {}", *preference.budget, fmt::join(listed, ", "));
+  }
+  return fmt::format(
+      "no filter: what beats no SAA is the most expensive form here (prefer = \"speed\" never takes it; prefer = \"accuracy\" "
+      "does): {}",
+      fmt::join(listed, ", "));
+}
+
+}  // namespace
+
+std::string_view name(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::beats:
+      return "beats";
+    case Outcome::ties:
+      return "ties";
+    case Outcome::loses:
+      return "loses";
+    case Outcome::mixed:
+      return "mixed";
+  }
+  return "?";
+}
+
+Outcome outcome(const Comparison& c) {
+  const int better_count = better(c.image) + better(c.temporal);
+  const int worse_count = worse(c.image) + worse(c.temporal);
+  if (better_count && worse_count) return Outcome::mixed;
+  if (better_count) return Outcome::beats;
+  if (worse_count) return Outcome::loses;
+  return Outcome::ties;
+}
+
+std::string describe(const Difference& d) {
+  if (d.low == d.mean && d.high == d.mean) return fmt::format("{:+.4g}", d.mean);
+  return fmt::format("{:+.4g} [{:+.4g}, {:+.4g}]", d.mean, d.low, d.high);
+}
+
+Decision decide(std::span<const Candidate> candidates, const Preference& preference) {
+  Decision decision;
+  std::vector<std::size_t> beating, eligible;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    decision.outcomes.push_back(outcome(candidates[i].against_none));
+    if (!candidates[i].usable || decision.outcomes[i] != Outcome::beats) continue;
+    beating.push_back(i);
+    if (within_budget(candidates[i], preference)) eligible.push_back(i);
+  }
+  const bool speed = preference.prefer == Prefer::speed;
+  decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate(candidates, eligible);
+  if (!decision.chosen) {
+    decision.reason = no_filter_reason(candidates, decision.outcomes, beating, preference);
+    return decision;
+  }
+  const Candidate& chosen = candidates[*decision.chosen];
+  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen),
+                                speed ? "lowest cost" : "largest image improvement", usable_count(eligible.size()),
+                                preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
+  return decision;
+}
+
+}  // namespace saagen::decision

@@ -1,0 +1,81 @@
+// saagen's one decision: given what each configuration a material (or a render path and content
+// type) can use measured against no SAA, which one to use, or no filter. The bench's verdict
+// (report/src/findings.cpp), the report, `saagen plan` with and without a trade table
+// (saagen/scene/planner.hpp) and, through the bench's JSON, the scripts all read it; nothing
+// else decides.
+//
+// A comparison is a configuration's error minus no SAA's on the same content (lower is better),
+// for an image metric and a temporal metric, each with a 95 % interval. Where a table carries
+// only means (today's trade JSON: LDR-FLIP and TDE means), low = high = mean
+// (comparison_against in saagen/scene/cost_tables.hpp is the one adapter).
+//
+// The rules (decide()):
+//   - outcome(): a metric is better when its whole interval lies below 0 (high < 0), worse when
+//     it lies above 0 (low > 0), else tied. beats: no metric worse and at least one better;
+//     loses: the mirror; mixed: one better and one worse; ties: every interval spans 0.
+//   - Only usable candidates that beat no SAA, and cost at most the budget when one is set,
+//     are eligible; none eligible: no filter, with the reason.
+//   - accuracy: the eligible one with the largest improvement in the image metric (the most
+//     negative image mean), equal image means broken by the temporal mean, then by the order of
+//     the candidates. The image metric ranks because it is the one the viewer sees in every
+//     frame; the temporal metric only has to be no worse (beats).
+//   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and the more
+//     accurate of equals wins); never the most expensive form among the usable candidates unless
+//     it is the only usable candidate. A candidate without a known cost is never taken for speed.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace saagen::decision {
+
+// configuration - baseline, with its 95 % interval (low <= mean <= high); lower is better.
+struct Difference {
+  double mean = 0, low = 0, high = 0;
+};
+// A difference known only by its mean (low = high = mean).
+constexpr Difference exact(double mean) { return {mean, mean, mean}; }
+
+enum class Outcome { beats, ties, loses, mixed };
+std::string_view name(Outcome outcome);  // "beats", "ties", "loses", "mixed"
+
+struct Comparison {
+  Difference image;     // image metric (today: mean LDR-FLIP)
+  Difference temporal;  // temporal metric (today: mean TDE)
+};
+Outcome outcome(const Comparison& comparison);
+
+struct Candidate {
+  std::string configuration;  // as `saagen bench` names it: VARIANT[:FEED][+PREFILTER][/LOBE]
+  Comparison against_none;
+  // Shading cost over no SAA (the vega10 ISA inverse-throughput ratio where known); nullopt: unknown.
+  std::optional<double> cost_ratio;
+  bool usable = true;  // whether the material (or path) can use it at all
+};
+
+enum class Prefer { accuracy, speed };
+struct Preference {
+  Prefer prefer = Prefer::accuracy;
+  std::optional<double> budget;  // at most this cost ratio over no SAA
+};
+
+// Costs within this fraction of each other rank as equal (one instruction of ACO's static
+// estimate is ~0.5 % of these shaders; the same tolerance as the planner's kIsaTieTolerance).
+inline constexpr double kCostTieTolerance = 0.01;
+
+struct Decision {
+  std::optional<std::size_t> chosen;  // index into the candidates; nullopt: no filter
+  std::string reason;                 // one sentence: what was chosen and why, or why nothing was
+  std::vector<Outcome> outcomes;      // per candidate, its outcome against no SAA
+};
+
+Decision decide(std::span<const Candidate> candidates, const Preference& preference);
+
+// "+0.0012" or "-0.0041 [-0.0050, -0.0032]": a difference as the reasons print it.
+std::string describe(const Difference& difference);
+
+}  // namespace saagen::decision

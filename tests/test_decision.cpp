@@ -1,0 +1,112 @@
+// saagen's one decision (saagen/decision.hpp): each rule asserts a value a wrong rule would change.
+#include "saagen/decision.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace {
+
+using namespace saagen::decision;
+
+Comparison means(double image, double temporal) { return {exact(image), exact(temporal)}; }
+
+Candidate candidate(const char* name, double image, double temporal, std::optional<double> cost = 1.2, bool usable = true) {
+  return {name, means(image, temporal), cost, usable};
+}
+
+TEST(Decision, OutcomeIsDecidedByTheIntervalsNotTheMeans) {
+  EXPECT_EQ(outcome(means(-0.01, -0.001)), Outcome::beats);
+  EXPECT_EQ(outcome(means(-0.01, 0.0)), Outcome::beats);  // one better, the other tied
+  EXPECT_EQ(outcome(means(0.01, 0.0)), Outcome::loses);
+  EXPECT_EQ(outcome(means(-0.01, 0.002)), Outcome::mixed);
+  EXPECT_EQ(outcome(means(0.0, 0.0)), Outcome::ties);
+  // A negative mean whose interval spans 0 is a tie, not a win.
+  EXPECT_EQ(outcome({{-0.01, -0.03, 0.01}, {-0.002, -0.004, 0.0005}}), Outcome::ties);
+  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, -0.004, 0.005}}), Outcome::beats);
+  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, 0.001, 0.005}}), Outcome::mixed);
+  EXPECT_EQ(outcome({{0.01, 0.001, 0.03}, {0.002, -0.001, 0.005}}), Outcome::loses);
+}
+
+TEST(Decision, OnlyWhatBeatsNoSaaIsEligible) {
+  // The lowest image error loses in the temporal metric: it is never chosen; nothing else beats.
+  const std::vector<Candidate> c = {candidate("forward-axis-projected/tail", -0.02, 0.0013),
+                                    candidate("forward-aniso-projected:geometric/mapped", 0.001, 0.002)};
+  const Decision d = decide(c, {});
+  EXPECT_FALSE(d.chosen);
+  EXPECT_EQ(d.outcomes, (std::vector<Outcome>{Outcome::mixed, Outcome::loses}));
+  EXPECT_NE(d.reason.find("no filter: none of the 2 usable configurations beats no SAA"), std::string::npos) << d.reason;
+  EXPECT_NE(d.reason.find("forward-axis-projected/tail"), std::string::npos) << d.reason;
+}
+
+TEST(Decision, AccuracyTakesTheLargestImageImprovementAmongThoseThatBeat) {
+  const std::vector<Candidate> c = {candidate("mixed-but-lowest", -0.05, 0.001), candidate("small", -0.001, -0.001),
+                                    candidate("large", -0.005, -0.0001), candidate("unusable", -0.01, -0.01, 1.1, false)};
+  const Decision d = decide(c, {});
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(*d.chosen, 2u);
+  EXPECT_NE(d.reason.find("large"), std::string::npos);
+  EXPECT_NE(d.reason.find("largest image improvement of the 2"), std::string::npos) << d.reason;
+}
+
+TEST(Decision, EqualImageImprovementsAreBrokenByTheTemporalMean) {
+  const std::vector<Candidate> c = {candidate("a", -0.004, -0.001), candidate("b", -0.004, -0.003), candidate("c", -0.004, -0.002)};
+  EXPECT_EQ(decide(c, {}).chosen, std::optional<std::size_t>(1));
+}
+
+TEST(Decision, SpeedTakesTheCheapestThatBeats) {
+  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874), candidate("deferred-avg/tail", -0.001, -0.0001, 1.355),
+                                    candidate("deferred-sum/tail", -0.002, -0.0001, 1.349), candidate("deferred-avg", 0.01, 0.001, 1.105)};
+  const Decision d = decide(c, {Prefer::speed, std::nullopt});
+  ASSERT_TRUE(d.chosen);
+  // deferred-sum/tail and deferred-avg/tail cost the same within 1 %: the more accurate of them.
+  EXPECT_EQ(*d.chosen, 2u);
+  EXPECT_NE(d.reason.find("lowest cost"), std::string::npos);
+}
+
+TEST(Decision, SpeedNeverTakesTheMostExpensiveFormUnlessItIsTheOnlyOne) {
+  // Only the most expensive usable form beats no SAA: speed plans no filter.
+  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874), candidate("deferred-avg/tail", 0.02, 0.001, 1.355)};
+  const Decision d = decide(c, {Prefer::speed, std::nullopt});
+  EXPECT_FALSE(d.chosen);
+  EXPECT_NE(d.reason.find("most expensive form"), std::string::npos) << d.reason;
+  EXPECT_EQ(decide(c, {}).chosen, std::optional<std::size_t>(0));  // accuracy takes it
+  // The only usable candidate may be taken.
+  const std::vector<Candidate> only = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
+                                       candidate("forward-aniso-projected/tail", -0.03, -0.002, 1.385, false)};
+  EXPECT_EQ(decide(only, {Prefer::speed, std::nullopt}).chosen, std::optional<std::size_t>(0));
+}
+
+TEST(Decision, ABudgetCapsTheCost) {
+  const std::vector<Candidate> c = {candidate("expensive", -0.02, -0.002, 1.874), candidate("mid", -0.01, -0.001, 1.385),
+                                    candidate("cheap", -0.001, -0.001, 1.105)};
+  EXPECT_EQ(decide(c, {Prefer::accuracy, 1.5}).chosen, std::optional<std::size_t>(1));
+  EXPECT_EQ(decide(c, {Prefer::accuracy, 1.9}).chosen, std::optional<std::size_t>(0));
+  const Decision none = decide(c, {Prefer::accuracy, 1.05});
+  EXPECT_FALSE(none.chosen);
+  EXPECT_NE(none.reason.find("budget 1.05"), std::string::npos) << none.reason;
+}
+
+TEST(Decision, ACandidateWithoutACostIsNotTakenForSpeed) {
+  const std::vector<Candidate> c = {candidate("unknown", -0.02, -0.002, std::nullopt), candidate("known", -0.001, -0.001, 1.3),
+                                    candidate("dear", 0.01, 0.01, 1.9)};
+  EXPECT_EQ(decide(c, {Prefer::speed, std::nullopt}).chosen, std::optional<std::size_t>(1));
+  EXPECT_EQ(decide(c, {}).chosen, std::optional<std::size_t>(0));
+}
+
+TEST(Decision, NothingUsableIsNoFilter) {
+  const std::vector<Candidate> c = {candidate("x", -0.02, -0.002, 1.2, false)};
+  const Decision d = decide(c, {});
+  EXPECT_FALSE(d.chosen);
+  EXPECT_EQ(d.reason, "no filter: none of the 1 measured configurations can be used here");
+  const Decision empty = decide(std::vector<Candidate>{}, {});
+  EXPECT_FALSE(empty.chosen);
+  EXPECT_EQ(empty.reason, "no filter: no configuration was measured against no SAA here");
+}
+
+TEST(Decision, DescribePrintsTheIntervalOnlyWhenThereIsOne) {
+  EXPECT_EQ(describe(exact(-0.0041)), "-0.0041");
+  EXPECT_EQ(describe({-0.0041, -0.005, -0.0032}), "-0.0041 [-0.005, -0.0032]");
+}
+
+}  // namespace
