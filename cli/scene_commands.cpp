@@ -261,6 +261,7 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON, as bench_shading --json writes); rules otherwise");
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
+  plan_->add_flag("--json", plan_json_, "Print the plan as JSON (per material: variant, wrapper, BRDF, feed, prefilter, why)");
   plan_->add_flag("--taa", plan_taa_, "Plan for a scene under TAA, as `taa = true` in the manifest (sigma2 0.0625 unless set)");
   CLI::Option* gltf = plan_->add_option("--gltf", plan_gltf_,
                                         "Write the scene manifest of a glTF 2.0 asset (.gltf or .glb) to --output, one material per glTF "
@@ -311,6 +312,10 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
   ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
+  if (plan_json_) {
+    std::cout << plan_json(manifest, plan);
+    return 0;
+  }
   if (!plan_no_cost_) measure_costs(planned, manifest, plan);
   std::cout << format_plan(planned, manifest, plan);
   return 0;

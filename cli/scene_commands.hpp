@@ -39,6 +39,7 @@ class SceneCommands {
   std::string plan_trade_table_;
   bool plan_no_cost_ = false;
   bool plan_rules_ = false;
+  bool plan_json_ = false;
   bool plan_taa_ = false;
   // plan --gltf ASSET -o MANIFEST: the manifest written from a glTF asset's materials.
   std::string plan_gltf_;

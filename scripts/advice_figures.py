@@ -1,23 +1,21 @@
 #!/usr/bin/env python3
 """The figures of saagen's advice table (generator/include/saagen/advice.hpp, without TAA) from a
-trade table: per content type of its "by_content" rows, no SAA and the configurations shaded with
-the planner's lobe that beat no SAA in both LDR-FLIP and TDE, lowest LDR-FLIP first (the first five,
-as the table keeps them), printed as the table's C++ initialisers.
+trade table: per content type of its "by_content" rows, no SAA and the usable configurations of the
+bench's decisions (its "decisions", saagen/decision.hpp) that beat no SAA on either path, lowest
+LDR-FLIP first (the first five, as the table keeps them), printed as the table's C++ initialisers;
+the decision itself is the planner's, on these figures.
 
-    saagen bench --preset medium --json T.json && python3 scripts/advice_figures.py T.json [tail]
+    saagen bench --preset medium --json T.json && python3 scripts/advice_figures.py T.json
 """
 import json
 import sys
 
 
-def lobe_of(configuration):
-    return configuration.split('/')[1] if '/' in configuration else 'papers'
-
-
-def winners(rows, lobe):
-    none = next(r for r in rows if r['configuration'] == 'none')
-    beating = [r for r in rows if lobe_of(r['configuration']) == lobe and r['error'] < none['error'] and r['tde'] < none['tde']]
-    return none, sorted(beating, key=lambda r: r['error'])[:5]
+def winners(table, content):
+    rows = {r['configuration']: r for r in table['by_content'] if r['content'] == content}
+    beating = {c['configuration'] for d in table['decisions']['by_content'] if d['content'] == content
+               for c in d['candidates'] if c['usable'] and c['outcome'] == 'beats'}
+    return rows['none'], sorted((rows[c] for c in beating), key=lambda r: r['error'])[:5]
 
 
 def figure(row):
@@ -26,10 +24,9 @@ def figure(row):
 
 def main():
     table = json.load(open(sys.argv[1]))
-    lobe = sys.argv[2] if len(sys.argv) > 2 else 'tail'
     contents = sorted({r['content'] for r in table['by_content']})
     for content in contents:
-        none, best = winners([r for r in table['by_content'] if r['content'] == content], lobe)
+        none, best = winners(table, content)
         print(f"{content}: none {figure(none)}")
         print("  {{" + ",\n   ".join(figure(r) for r in best) + "}}" if best else "  {} (no configuration beats no SAA)")
 

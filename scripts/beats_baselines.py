@@ -1,13 +1,12 @@
 #!/usr/bin/env python3
-"""Per scene and render path of a `saagen bench --json` table: the best saagen configuration by
-mean LDR-FLIP among those that beat no SAA and every engine form in both LDR-FLIP and TDE (means
-over the scene's alphas, no Fresnel), and how many of the scene x path rows have one.
+"""Per scene and render path of a `saagen bench --json` table: saagen's decision on that scene
+(the "decisions" the bench writes, made by the one decision function, saagen/decision.hpp: the
+configuration that beats no SAA with the largest LDR-FLIP gain, or none), and whether it also
+beats every engine form on that scene; then how many of the scene x path rows beat no SAA and
+every engine. This script decides nothing itself.
 
-    python3 scripts/beats_baselines.py trade.json [papers|tail|mapped|exact|any]
-
-The optional lobe restricts saagen's configurations to one lobe (`VARIANT/tail`, ...; papers:
-no suffix). `any` leaves out the exact lobe (`saagen bench --exact-lobe`), a measurement that no
-target emits."""
+    python3 scripts/beats_baselines.py trade.json
+"""
 import collections
 import json
 import sys
@@ -30,24 +29,26 @@ def scene_means(cases, image_metric='flip_ldr'):
     return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
 
 
+def scene_decisions(table):
+    """The bench's per scene x path decisions: (scene, path, chosen, beats every engine too)."""
+    for entry in table['decisions']['per_scene']:
+        engines = entry['against_engines']
+        beats_all = entry['chosen'] != 'none' and all(outcome == 'beats' for outcome in engines.values())
+        yield entry['scene'], entry['path'], entry['chosen'], beats_all
+
+
 def main():
     table = json.load(open(sys.argv[1]))
-    lobe = sys.argv[2] if len(sys.argv) > 2 else 'any'
+    means = scene_means(table['cases'])
     wins = rows = 0
-    for scene, means in scene_means(table['cases']).items():
-        baselines = [v for c, v in means.items() if c == 'none' or c.startswith('engine-')]
-        for path in ('forward', 'deferred'):
-            candidates = {c: v for c, v in means.items()
-                          if c.startswith(path) and (lobe == lobe_of(c) or (lobe == 'any' and lobe_of(c) != 'exact'))}
-            winners = {c: v for c, v in candidates.items() if all(v[0] < b[0] and v[1] < b[1] for b in baselines)}
-            pool = winners or candidates
-            best = min(pool, key=lambda c: pool[c][0])
-            rows += 1
-            wins += bool(winners)
-            print(f"{scene:17s} {path:8s} {'beats' if winners else 'loses'} {best:48s} LDR-FLIP {means[best][0]:.4f} "
-                  f"(none {means['none'][0]:.4f})  TDE {means[best][1]:.5f} (none {means['none'][1]:.5f})")
-    print(f"{wins} of {rows} scene x path rows: the best saagen configuration ({lobe}) beats no SAA and every engine "
-          f"form in LDR-FLIP and TDE")
+    for scene, path, chosen, beats_all in scene_decisions(table):
+        rows += 1
+        wins += beats_all
+        verdict = 'beats' if beats_all else ('no filter' if chosen == 'none' else 'beats none')
+        best, none = means[scene][chosen], means[scene]['none']
+        print(f"{scene:17s} {path:8s} {verdict:10s} {chosen:48s} LDR-FLIP {best[0]:.4f} (none {none[0]:.4f})  "
+              f"TDE {best[1]:.5f} (none {none[1]:.5f})")
+    print(f"{wins} of {rows} scene x path rows: saagen's decision beats no SAA and every engine form in LDR-FLIP and TDE")
 
 
 if __name__ == '__main__':

@@ -1,34 +1,24 @@
 #!/usr/bin/env python3
 """Per scene and render path of a `saagen bench --json` table: LDR-FLIP, HDR-FLIP, tonemapped RMSE
 and TDE (means over the scene's alphas, no Fresnel) of no SAA, of the best engine form by LDR-FLIP
-and of saagen's best configuration as beats_baselines.py chooses it, as a Markdown table (each cell
-LDR-FLIP / HDR-FLIP / tonemapped RMSE / TDE).
+and of saagen's decision on the scene (the bench's "decisions"; none where nothing beats no SAA),
+as a Markdown table (each cell LDR-FLIP / HDR-FLIP / tonemapped RMSE / TDE).
 
-    python3 scripts/row_metrics.py trade.json [papers|tail|mapped|exact|any]"""
+    python3 scripts/row_metrics.py trade.json"""
 import json
 import sys
 
-from beats_baselines import lobe_of, scene_means
+from beats_baselines import scene_decisions, scene_means
 
 METRICS = ('flip_ldr', 'flip_hdr', 'rmse_tonemapped')
-
-
-def best_saagen(means, path, lobe):
-    """beats_baselines.py's choice: the lowest LDR-FLIP among the configurations that beat every
-    baseline in LDR-FLIP and TDE, else among all; and whether one beats them."""
-    baselines = [v for c, v in means.items() if c == 'none' or c.startswith('engine-')]
-    candidates = {c: v for c, v in means.items()
-                  if c.startswith(path) and (lobe == lobe_of(c) or (lobe == 'any' and lobe_of(c) != 'exact'))}
-    winners = {c: v for c, v in candidates.items() if all(v[0] < b[0] and v[1] < b[1] for b in baselines)}
-    pool = winners or candidates
-    return min(pool, key=lambda c: pool[c][0]), bool(winners)
 
 
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    cases = json.load(open(sys.argv[1]))['cases']
-    lobe = sys.argv[2] if len(sys.argv) > 2 else 'any'
+    table = json.load(open(sys.argv[1]))
+    cases = table['cases']
+    decided = {(scene, path): (chosen, beats) for scene, path, chosen, beats in scene_decisions(table)}
     by_metric = {m: scene_means(cases, m) for m in METRICS}
     print('| scene | path | none | best engine | best saagen | |')
     print('|---|---|---|---|---|---|')
@@ -40,9 +30,9 @@ def main():
             return ' / '.join(f'{by_metric[m][scene][c][0]:.4f}' for m in METRICS) + f' / {means[c][1]:.5f}'
 
         for path in ('forward', 'deferred'):
-            best, beats = best_saagen(means, path, lobe)
+            best, beats = decided[(scene, path)]
             print(f"| {scene} | {path} | {cell('none')} | {engine[len('engine-'):]} {cell(engine)} | {best} {cell(best)} | "
-                  f"{'beats' if beats else 'loses'} |")
+                  f"{'beats' if beats else ('no filter' if best == 'none' else 'beats none only')} |")
 
 if __name__ == '__main__':
     main()

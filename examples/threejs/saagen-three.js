@@ -45,6 +45,17 @@
 // change across the quad's pixels faster than the normal itself: the kernels depend only on the
 // lengths of the normal's screen derivatives, which a rotation keeps, so three.js's view-space
 // normals serve (the camera's rotation is the same at the four pixels of a quad).
+//
+// installPlan(material, entry, { snippet }) installs what `saagen plan MANIFEST --json` says for
+// one material (its entry in "materials"), the way to use this module: no filter (variant
+// "none": three.js's own geometric roughness term dropped, so the material shades its own
+// roughness), a tangent-free filter of the roughness, or, with the tail-preserving filtered GGX
+// (the plan's brdf ggx_brdf_filtered_*: docs/FILTERED_GGX.md), three.js's BRDF_GGX patched to
+// evaluate saagen's lobe for the punctual lights: forward-aniso-projected and
+// forward-axis-projected per light on the half vector, deferred-aniso's G-buffer tensor scaled
+// by (n.h)^2 per light (docs/DEFERRED_KERNEL.md), the tangent-free filters' roughness. The
+// snippet is the bundle `saagen emit --manifest MANIFEST` writes for a manifest with
+// targets = ["gles"]; installSaagen below is the lower-level roughness-only form.
 import * as THREE from 'three';
 
 // The wrappers that need only alpha^2 and a normal (no tangent frame, no half vector).
@@ -189,4 +200,141 @@ export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_
   material.customProgramCacheKey = () => key;
   material.needsUpdate = true;
   return material;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Installing a plan (`saagen plan MANIFEST --json`, one entry of "materials")
+
+// The plan's wrappers this module installs, and how: 'roughness' filters three.js's roughness
+// (a tangent-free wrapper, alpha^2 in and out); 'tensor' writes deferred-aniso's kernel tensor
+// per pixel and evaluates its lighting pass per light; 'matrix' and 'axis' filter per light on
+// the half vector (forward-*), returning a roughness matrix or per-axis alpha^2.
+export const PLAN_WRAPPERS = {
+  deferred_sum_fragment: 'roughness',
+  deferred_avg_fragment: 'roughness',
+  deferred_max_tangent_free_fragment: 'roughness',
+  deferred_projected_space_fragment: 'roughness',
+  deferred_aniso_fragment: 'tensor',
+  forward_aniso_projected_fragment: 'matrix',
+  forward_aniso_slope_fragment: 'matrix',
+  forward_axis_projected_fragment: 'axis',
+  forward_axis_slope_fragment: 'axis',
+};
+
+const BRDF_GGX_HEAD = 'vec3 BRDF_GGX( const in vec3 lightDir, const in vec3 viewDir, const in vec3 normal, const in PhysicalMaterial material ) {';
+const BRDF_GGX_RETURN = 'return F * ( V * D );';
+
+// The GLSL the plan's lobe needs: the material's own alpha^2, the normal the filter read, the
+// filter's per-pixel result, a tangent frame built from a normal (Duff et al. 2017, "Building an
+// Orthonormal Basis, Revisited", JCGT 6(1), Listing 3: continuous except where n.z changes sign;
+// the isotropic materials this module serves need any frame, the same at the four pixels of a
+// quad), and saagenSpecular(l, v), the specular BRDF value without Fresnel that replaces
+// three.js's V * D.
+function lobeGlsl(kind, prefix, brdf) {
+  const specular = {
+    roughness: `return ${prefix}ggx_brdf_filtered_axis(i, o, vec2(saagenFiltered), vec2(saagenAlpha2));`,
+    tensor: `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
+    matrix: `highp vec3 a = ${prefix}${brdf.wrapper}(vec2(saagenAlpha2), normalize(i + o));
+  return ${prefix}ggx_brdf_filtered_matrix(i, o, a, vec2(saagenAlpha2));`,
+    axis: `highp vec2 a = ${prefix}${brdf.wrapper}(vec2(saagenAlpha2), normalize(i + o));
+  return ${prefix}ggx_brdf_filtered_axis(i, o, a, vec2(saagenAlpha2));`,
+  }[kind];
+  return `
+highp float saagenAlpha2;      // the material's own alpha^2 (three.js: r^4)
+highp float saagenFiltered;    // a tangent-free filter's alpha^2
+highp vec3 saagenTensor;       // deferred-aniso's kernel tensor (Kxx, Kxy, Kyy)
+highp vec3 saagenFeedNormal;   // the normal the filter read
+void saagenFrame(highp vec3 n, out highp vec3 t, out highp vec3 b) {
+  highp float s = n.z >= 0.0 ? 1.0 : -1.0;
+  highp float a = -1.0 / (s + n.z);
+  highp float c = n.x * n.y * a;
+  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+  b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+highp float saagenSpecular(highp vec3 l, highp vec3 v) {
+  highp vec3 t, b;
+  saagenFrame(saagenFeedNormal, t, b);
+  highp vec3 n = saagenFeedNormal;
+  highp vec3 i = vec3(dot(l, t), dot(l, b), dot(l, n)), o = vec3(dot(v, t), dot(v, b), dot(v, n));
+  ${specular}
+}
+`;
+}
+
+// The lines that replace three.js's geometric roughness term in lights_physical_fragment, per kind.
+function perPixelGlsl(kind, prefix, wrapper, normal) {
+  const own = `saagenFeedNormal = ${normal};
+saagenAlpha2 = pow2(pow2(material.roughness));`;
+  if (kind === 'tensor') return `${own}\nsaagenTensor = ${prefix}${wrapper}(${normal});`;
+  if (kind === 'roughness') {
+    return `${own}\nsaagenFiltered = ${prefix}${wrapper}(saagenAlpha2, ${normal});\nmaterial.roughness = sqrt(sqrt(saagenFiltered));`;
+  }
+  return own;  // matrix, axis: per light, in saagenSpecular
+}
+
+// three.js's BRDF_GGX with its V * D replaced by saagenSpecular.
+function patchedBrdf(pars) {
+  const head = pars.indexOf(BRDF_GGX_HEAD);
+  const ret = head < 0 ? -1 : pars.indexOf(BRDF_GGX_RETURN, head);
+  if (ret < 0) throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${BRDF_GGX_RETURN}' in BRDF_GGX; this module needs updating`);
+  return pars.slice(0, ret) + 'return F * saagenSpecular( lightDir, viewDir );' + pars.slice(ret + BRDF_GGX_RETURN.length);
+}
+
+// How the plan's entry is installed: { kind, wrapper, tail, normal, bias }, or throws saying why not.
+function planKind(entry) {
+  if (entry.variant === 'none') return { kind: 'none' };
+  const wrapper = entry.wrapper;
+  const kind = PLAN_WRAPPERS[wrapper];
+  if (!kind) throw new Error(`saagen-three: the plan's wrapper '${wrapper}' is not one of ${Object.keys(PLAN_WRAPPERS).join(', ')}`);
+  const tail = typeof entry.brdf === 'string' && (entry.brdf.startsWith('ggx_brdf_filtered_') || entry.brdf.startsWith('deferred_aniso_brdf'));
+  if (kind !== 'roughness' && !tail) {
+    throw new Error(`saagen-three: ${entry.variant} without the tail-preserving lobe (brdf ${entry.brdf}) needs a matrix BRDF three.js does not have`);
+  }
+  if (entry.prefilter !== 'none' && kind !== 'roughness') {
+    throw new Error(`saagen-three: ${entry.variant} with the ${entry.prefilter} bake (a texture covariance) is not installable by this module; plan it with a tangent-free variant`);
+  }
+  const normal = entry.feed === 'shading' ? 'normal' : 'nonPerturbedNormal';
+  return { kind, wrapper, tail, normal, bias: entry.prefilter !== 'none' };
+}
+
+// Installs one material's plan entry. Options: snippet, the bundle's text (gles, with the
+// entry's functions); clearcoat, 'none' (default: saagen's advice for clearcoat content is no
+// filter) or a tangent-free wrapper name for the coat's roughness.
+export function installPlan(material, entry, { snippet = '', clearcoat = 'none' } = {}) {
+  const plan = planKind(entry);
+  if (plan.kind === 'none') return installSaagen(material, { filter: false });
+  const prefix = snippetPrefix(snippet);
+  for (const name of entry.functions ?? [plan.wrapper]) {
+    if (!snippet.includes(`${prefix}${name}(`)) throw new Error(`saagen-three: the snippet defines no ${prefix}${name}; emit the manifest's bundle`);
+  }
+  if (!plan.tail) {
+    // The roughness filter alone, with three.js's own GGX.
+    return installSaagen(material, { snippet, wrapper: plan.wrapper, normal: plan.normal === 'normal' ? 'shading' : 'geometric',
+                                     clearcoat: clearcoat !== 'none' });
+  }
+  const key = `saagen-plan|${prefix}|${plan.kind}|${plan.wrapper}|${plan.normal}|${plan.bias}|${clearcoat}|${fingerprint(snippet)}`;
+  material.onBeforeCompile = (shader) => {
+    const head = snippet + lobeGlsl(plan.kind, prefix, plan) + (clearcoat !== 'none' ? roughnessFilter(prefix + clearcoat) : '');
+    const shipped = THREE.ShaderChunk.lights_physical_fragment;
+    const lights = plan.bias ? biasedChunk('lights_physical_fragment', shipped) : shipped;
+    for (const line of [ROUGHNESS_LINE, CLEARCOAT_LINE]) {
+      if (!lights.includes(line)) throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${line}' in lights_physical_fragment; this module needs updating`);
+    }
+    const coat = clearcoat !== 'none' ? `material.clearcoatRoughness = saagenFilterRoughness(material.clearcoatRoughness, ${NORMALS.geometric[1]});` : '';
+    const chunk = lights.replace(ROUGHNESS_LINE, perPixelGlsl(plan.kind, prefix, plan.wrapper, plan.normal)).replace(CLEARCOAT_LINE, coat);
+    const fragment = plan.bias ? withBiasedReads(shader.fragmentShader) : shader.fragmentShader;
+    shader.fragmentShader = head + fragment
+      .replace('#include <lights_physical_pars_fragment>', patchedBrdf(THREE.ShaderChunk.lights_physical_pars_fragment))
+      .replace('#include <lights_physical_fragment>', chunk);
+  };
+  material.customProgramCacheKey = () => key;
+  material.needsUpdate = true;
+  return material;
+}
+
+// The plan's entry for a material name (`saagen plan --json` output, parsed).
+export function planEntry(plan, name) {
+  const entry = (plan.materials ?? []).find((m) => m.material === name);
+  if (!entry) throw new Error(`saagen-three: the plan has no material '${name}'`);
+  return entry;
 }

@@ -2,7 +2,7 @@
 // specular highlights alias) with a clearcoat, lit by a directional light, rendered with three.js
 // in WebGL2 in three forms: three.js as shipped, unfiltered, and filtered by a saagen snippet.
 import * as THREE from 'three';
-import { installSaagen } from './saagen-three.js';
+import { installPlan, installSaagen } from './saagen-three.js';
 
 export const SIZE = 256;
 
@@ -35,11 +35,12 @@ export function bumpNormalMap(size = 64, bumps = 8, height = 0.6) {
 }
 
 // Renders one frame of the scene in `mode` ('three': three.js as shipped, with its own geometric
-// roughness; 'unfiltered': without it; 'saagen': the snippet's filter) and returns the RGBA8 pixels
+// roughness; 'unfiltered': without it; 'saagen': the snippet's filter; 'plan': what the plan's
+// entry says, installPlan with the manifest's bundle as snippet) and returns the RGBA8 pixels
 // (bottom row first, as gl.readPixels returns them). clearcoatFilter: false leaves the clearcoat
 // roughness unfiltered; normal: the normal the filter reads ('geometric' or 'shading', see
 // installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer and clearcoat).
-export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true } = {}) {
+export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true, entry = null } = {}) {
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0x000000);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
@@ -54,7 +55,8 @@ export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_
     material.normalMap = bumpNormalMap();
     material.clearcoatNormalMap = material.normalMap;
   }
-  if (mode !== 'three') installSaagen(material, { snippet, wrapper, normal, filter: mode === 'saagen', clearcoat: clearcoatFilter });
+  if (mode === 'plan') installPlan(material, entry, { snippet });
+  else if (mode !== 'three') installSaagen(material, { snippet, wrapper, normal, filter: mode === 'saagen', clearcoat: clearcoatFilter });
   const geometry = new THREE.SphereGeometry(1, 64, 32);
   for (let row = 0; row < 3; ++row) {
     for (let column = 0; column < 3; ++column) {

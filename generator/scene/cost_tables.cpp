@@ -32,6 +32,28 @@ std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::st
   return sum / count;
 }
 
+// A by_content row's "against_none": {"image": {"mean", "low", "high"}, "temporal": {...}},
+// low <= mean <= high, finite.
+decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view source_name, std::size_t index) {
+  const auto difference = [&](const char* metric) {
+    const auto fail = [&] {
+      throw Error(fmt::format("{}: by_content[{}]: \"against_none\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, "
+                              "low <= mean <= high",
+                              source_name, index, metric));
+    };
+    if (!value.is_object() || !value.contains(metric) || !value[metric].is_object()) fail();
+    decision::Difference d;
+    for (auto [key, field] : {std::pair{"mean", &decision::Difference::mean}, {"low", &decision::Difference::low}, {"high", &decision::Difference::high}}) {
+      const nlohmann::json& number = value[metric].contains(key) ? value[metric][key] : nlohmann::json();
+      if (!number.is_number() || !std::isfinite(number.get<double>())) fail();
+      d.*field = number.get<double>();
+    }
+    if (!(d.low <= d.mean && d.mean <= d.high)) fail();
+    return d;
+  };
+  return {difference("image"), difference("temporal")};
+}
+
 }  // namespace
 
 std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
@@ -122,6 +144,12 @@ const IsaTable& committed_isa_costs() {
   return table;
 }
 
+decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline) {
+  if (baseline.configuration == "none" && row.against_none) return *row.against_none;
+  const double temporal = row.tde && baseline.tde ? *row.tde - *baseline.tde : 0.0;
+  return {decision::exact(row.error - baseline.error), decision::exact(temporal)};
+}
+
 bool MeasuredTradeTable::has_errors() const {
   return std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.error.has_value(); });
 }
@@ -193,6 +221,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
       if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
       entry.error = *error;
       entry.tde = number(row, "tde", index);
+      if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], source_name, index);
       table.content_rows.push_back(std::move(entry));
     }
   }

@@ -542,124 +542,57 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
       fmt::format("feed the {} normal; {}{}; measured: {}", c.feed, bake, sampling_advice(c.prefilter), std::move(figures));
 }
 
-// Without a trade table's rows for the material's content: saagen's advice (saagen/advice.hpp).
-// The plan keeps a filter only where it is one of the configurations that beat no SAA in both
-// LDR-FLIP and TDE on that content; accuracy takes the first of them the material can use, speed
-// keeps its cheaper choice when it is one of them, else takes that first one; where the material
-// can use none of them, no filter. An anisotropic material whose rule gave a matrix form
-// (forward-aniso-*) keeps it when it is one of them: it adds its kernel to the anisotropic
-// roughness matrix and keeps the kernel's own orientation, where an axis-aligned form filters only
-// along the anisotropy's axes and a deferred-* kernel is applied once per axis.
-void apply_advice(const Material& material, bool taa, const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
-  const advice::Content content = content_of(material);
-  const advice::ContentAdvice& entry = advice::lookup(content, taa);
-  std::size_t winners = 0;
-  const advice::Figure* chosen = nullptr;
-  const advice::Figure* kept = nullptr;
-  for (const advice::Figure& figure : entry.winners) {
-    if (figure.configuration.empty()) continue;
-    if (!can_prefilter(material, parse_configuration(std::string(figure.configuration)))) continue;
-    ++winners;
-    const std::string variant = parse_configuration(std::string(figure.configuration)).variant;
-    if (!chosen && can_use(eligible, variant)) chosen = &figure;
-    if (!kept && variant == plan.variant) kept = &figure;
-  }
-  if (!chosen) {
-    std::vector<std::string> listed;
-    for (const advice::Figure& figure : entry.winners)
-      if (!figure.configuration.empty() && can_prefilter(material, parse_configuration(std::string(figure.configuration))))
-        listed.push_back(figure_text(figure.configuration, figure.flip, figure.tde));
-    plan_no_filter(material, "advice",
-                   fmt::format("no filter: on {} no configuration {}beats no SAA in both LDR-FLIP and TDE in saagen's trade ({}{}); "
-                               "name a variant (variant = \"...\") to filter anyway",
-                               content_words(content, taa), winners ? "this material can use " : "",
-                               winners ? fmt::format("those that do: {}; ", fmt::join(listed, ", ")) : "", entry.evidence),
-                   plan);
-    return;
-  }
-  const bool keep_matrix_form = material.anisotropic && plan.variant.rfind("forward-aniso-", 0) == 0;
-  const advice::Figure& taken = (material.prefer == Preference::speed || keep_matrix_form) && kept ? *kept : *chosen;
-  const Configuration c = parse_configuration(std::string(taken.configuration));
-  const std::string measured =
-      fmt::format("LDR-FLIP / TDE {} against no SAA's {} / {} on {} ({})", figure_text(taken.configuration, taken.flip, taken.tde),
-                  fixed(entry.none.flip), fixed(entry.none.tde), content_words(content, taa), entry.evidence);
-  if (c.variant == plan.variant) {
-    plan.reason += fmt::format(" [saagen's trade: {}]", measured);
-  } else {
-    plan.reason = fmt::format(
-        "the first this material can use of the {} configuration(s) that beat no SAA in both metrics in saagen's trade: {}; "
-        "{} ({}) is not among them",
-        winners, measured, plan.variant, plan.rule);
-    plan.variant = c.variant;
-    plan.rule = "advice";
-    plan.no_filter_advice.clear();
-  }
-  take_normal_handling(material, c,
-                       figure_text(taken.configuration, taken.flip, taken.tde) +
-                           fmt::format(" against no SAA's {} / {}", fixed(entry.none.flip), fixed(entry.none.tde)),
-                       plan);
+// saagen's committed figures for a content type (advice.hpp) as content rows: no SAA's and the
+// measured configurations', the rows the table-free decision is made on.
+std::vector<ContentRow> advice_rows(const advice::ContentAdvice& entry) {
+  std::vector<ContentRow> rows;
+  const std::string content(advice::table_content(entry.content));
+  if (!entry.none.configuration.empty()) rows.push_back({content, std::string(entry.none.configuration), entry.none.flip, entry.none.tde});
+  for (const advice::Figure& figure : entry.measured)
+    if (!figure.configuration.empty()) rows.push_back({content, std::string(figure.configuration), figure.flip, figure.tde});
+  return rows;
 }
 
-// With a trade table's rows for the material's content: the planned configuration must beat the
-// table's no-SAA row in its error (and TDE where both have one); else the best one the material can
-// use that does, else no filter. A material that prefers accuracy takes that best one whenever it
-// has a lower error than the planned one: the content's rows, not the means over every scene, are
-// what saagen's advice (advice.hpp) is made of. Rows of the lobe the planner shades GGX with
-// (advice::kLobe) when the table has them: the others measure an engine's own BRDF.
-void check_against_no_filter(const MeasuredTradeTable& table, const Material& material, const std::vector<const Variant*>& eligible,
-                             MaterialPlan& plan) {
-  const std::string content(advice::table_content(content_of(material)));
-  std::optional<ContentRow> none, planned, best;
-  std::vector<const ContentRow*> rows;
-  for (const ContentRow& row : table.content_rows)
-    if (row.content == content && !content.empty()) rows.push_back(&row);
-  for (const ContentRow* row : rows)
-    if (row->configuration == "none") none = *row;
-  if (!none) return;
-  const auto beats_none = [&](const ContentRow& row) {
-    return row.error < none->error && (!row.tde || !none->tde || *row.tde < *none->tde);
-  };
-  const bool has_lobe = std::any_of(rows.begin(), rows.end(),
-                                    [](const ContentRow* row) { return parse_configuration(row->configuration).lobe == advice::kLobe; });
-  for (const ContentRow* row : rows) {
-    const Configuration c = parse_configuration(row->configuration);
-    if (c.variant == "none" || row->configuration.rfind("engine-", 0) == 0 || !can_use(eligible, c.variant)) continue;
-    if (has_lobe && c.lobe != advice::kLobe) continue;
-    if (!can_prefilter(material, c)) continue;
-    const bool is_planned = c.variant == plan.variant && (!material.normal_maps || (c.feed == plan.feed && c.prefilter == plan.prefilter));
-    if (is_planned && (!planned || row->error < planned->error)) planned = *row;
-    if (beats_none(*row) && (!best || row->error < best->error)) best = *row;
+// Where the table-free advice has no evidence on content it was not derived from, or did not hold
+// there: say so, and how to measure the user's own content.
+std::string measure_advice(const advice::ContentAdvice& entry) {
+  constexpr const char* how =
+      "measure your own asset: `saagen bench --scene ASSET.glb --json T.json` (or a scene of the presets like it), then "
+      "`saagen plan MANIFEST --trade-table T.json`";
+  switch (entry.held_out) {
+    case advice::HeldOut::held:
+      return fmt::format("this advice held on content it was not derived from ({})", entry.held_out_evidence);
+    case advice::HeldOut::did_not_hold:
+      return fmt::format("this advice did not hold on content it was not derived from: {}; {}", entry.held_out_evidence, how);
+    case advice::HeldOut::not_measured:
+      break;
   }
-  const bool planned_wins = planned && beats_none(*planned);
-  const bool by_accuracy = material.prefer == Preference::accuracy;
-  const bool take_best = by_accuracy && best && (!planned || best->error < planned->error);
-  const std::string against =
-      fmt::format("no SAA {} in {} ({} content)", figure_text("none", none->error, none->tde), table.source_name, content);
-  if (!take_best && planned_wins)
-    plan.reason += fmt::format(" [{} beats {}]", figure_text(planned->configuration, planned->error, planned->tde), against);
-  if (!take_best && (!planned || planned_wins)) return;
-  if (!best) {
-    plan_no_filter(material, "trade table",
-                   fmt::format("no filter: no configuration this material can use beats {}; the planned {} measured {}", against,
-                               plan.variant, figure_text(planned->configuration, planned->error, planned->tde)),
+  return fmt::format("this advice comes from saagen's own scenes and was not checked on content it was not derived from; {}", how);
+}
+
+// The plan of saagen's decision (decision.hpp) on a content's rows: the chosen configuration's
+// variant, feed and prefilter, or no filter, with the decision's reason.
+void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
+                    std::string_view source, bool from_table, MaterialPlan& plan) {
+  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows);
+  const std::string where = fmt::format("{} in {}", content_words(content_of(material), manifest.taa), source);
+  const std::string rule = from_table ? "trade table" : "advice";
+  if (!made.decision.chosen) {
+    plan_no_filter(material, rule, fmt::format("{}; on {}; name a variant (variant = \"...\") to filter anyway", made.decision.reason, where),
                    plan);
     return;
   }
-  const Configuration c = parse_configuration(best->configuration);
-  const std::string chosen = figure_text(best->configuration, best->error, best->tde);
-  if (!planned)
-    plan.reason = fmt::format("{} has the lowest error of the configurations this material can use that beat {}; the table has no row "
-                              "for the planned {} ({})",
-                              chosen, against, plan.variant, plan.reason);
-  else if (planned_wins)
-    plan.reason = fmt::format("{} has the lowest error of the configurations this material can use that beat {}; the planned {} measured {}",
-                              chosen, against, plan.variant, figure_text(planned->configuration, planned->error, planned->tde));
-  else
-    plan.reason = fmt::format("{} beats {}; the planned {} does not ({})", chosen, against, plan.variant,
-                              figure_text(planned->configuration, planned->error, planned->tde));
-  plan.variant = c.variant;
-  plan.rule = "trade table";
-  take_normal_handling(material, c, figure_text(best->configuration, best->error, best->tde), plan);
+  const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
+  const Configuration c = parse_configuration(chosen.configuration);
+  if (c.variant == plan.variant) {
+    plan.reason += fmt::format(" [saagen's decision on {}: {}]", where, made.decision.reason);
+  } else {
+    plan.reason = fmt::format("saagen's decision on {}: {}; {} ({}) is not it", where, made.decision.reason, plan.variant, plan.rule);
+    plan.variant = c.variant;
+    plan.rule = rule;
+    plan.no_filter_advice.clear();
+  }
+  take_normal_handling(material, c, chosen.configuration + " (" + made.decision.reason + ")", plan);
 }
 
 void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {
@@ -683,6 +616,74 @@ void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable&
 }
 
 }  // namespace
+
+namespace {
+
+bool is_taa(const std::string& configuration) { return configuration.find("+taa") != std::string::npos; }
+
+// Whether the material can use a measured configuration (the decision's Candidate::usable): a
+// saagen configuration (not no SAA, an engine's form or the exact-lobe yardstick) of a variant
+// the material can use, of the lobe the planner shades GGX with where the rows have it (the
+// others measure an engine's own BRDF), with a prefilter the plan can give (an anisotropic forward
+// material can use the forward-* forms only: ineligibility()).
+bool usable(const Material& material, const std::vector<const Variant*>& eligible, bool rows_have_lobe, const std::string& configuration) {
+  const Configuration c = parse_configuration(configuration);
+  if (c.variant == "none" || configuration.rfind("engine-", 0) == 0 || c.lobe == "exact" || !can_use(eligible, c.variant)) return false;
+  if (rows_have_lobe && c.lobe != advice::kLobe) return false;
+  return can_prefilter(material, c);
+}
+
+// The shading cost of a configuration over no SAA: the committed ISA model's forward-shader ratio
+// on the GPU family (every target it has), of the variant with its lobe where the model has that
+// (the feed and the prefilter change inputs, not code), and the tangent-free form without tangents.
+std::optional<double> configuration_cost(const Catalogue& catalogue, const Material& material, std::string_view family,
+                                         const std::string& configuration) {
+  const Configuration c = parse_configuration(configuration);
+  const Variant* variant = catalogue.find_variant(c.variant);
+  std::string costed = c.variant;
+  if (variant && !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)) costed += "-tangent-free";
+  const IsaTable& isa = committed_isa_costs();
+  if (c.lobe != "papers")
+    if (const auto ratio = isa.forward_ratio(family, costed + "/" + c.lobe, {})) return ratio;
+  return isa.forward_ratio(family, costed, {});
+}
+
+}  // namespace
+
+MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
+                                 const std::vector<ContentRow>& rows) {
+  MaterialDecision made;
+  const std::string family = gpu_family.empty() ? std::string(kDefaultGpuFamily) : std::string(gpu_family);
+  const auto eligible = eligible_variants(catalogue, material);
+  const auto none = std::find_if(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
+  const bool has_lobe = std::any_of(rows.begin(), rows.end(),
+                                    [](const ContentRow& row) { return parse_configuration(row.configuration).lobe == advice::kLobe; });
+  if (none == rows.end()) {
+    made.decision.reason = "no filter: no configuration was measured against no SAA here";
+    return made;
+  }
+  for (const ContentRow& row : rows) {
+    const Configuration c = parse_configuration(row.configuration);
+    // Rows under TAA (`saagen bench --taa`: "+taa") compare with none+taa, not with no SAA.
+    if (c.variant == "none" || row.configuration.rfind("engine-", 0) == 0 || c.lobe == "exact" || is_taa(row.configuration)) continue;
+    made.candidates.push_back({row.configuration, comparison_against(row, *none),
+                               configuration_cost(catalogue, material, family, row.configuration),
+                               usable(material, eligible, has_lobe, row.configuration)});
+  }
+  const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
+  made.decision = decision::decide(made.candidates, {prefer, std::nullopt});
+  return made;
+}
+
+Material reference_material(RenderPath path, advice::Content content) {
+  Material material;
+  material.name = "reference";
+  material.path = path;
+  material.tangents = path == RenderPath::forward;
+  material.normal_maps = content == advice::Content::normal_mapped;
+  material.content = content;
+  return material;
+}
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table) {
   if (table) check_trade_table_ids(catalogue, *table);
@@ -817,8 +818,13 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // normal-mapped content, a material the planner chooses for gets no filter below
         // (apply_advice); one that names its variant keeps this feed, with what it trades.
         const advice::ContentAdvice& entry = advice::lookup(advice::Content::normal_mapped, false);
-        const bool has_winner = !entry.winners.front().configuration.empty();
-        const advice::Figure& best = has_winner ? entry.winners.front() : entry.named;
+        const auto winner = std::find_if(entry.measured.begin(), entry.measured.end(), [&](const advice::Figure& figure) {
+          return !figure.configuration.empty() &&
+                 decision::outcome(comparison_against({"", "", figure.flip, figure.tde}, {"", "", entry.none.flip, entry.none.tde})) ==
+                     decision::Outcome::beats;
+        });
+        const bool has_winner = winner != entry.measured.end();
+        const advice::Figure& best = has_winner ? *winner : entry.named;
         Configuration c;
         c.feed = advice::kFeed;
         c.prefilter = advice::kPrefilter;
@@ -837,17 +843,26 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
         !material.variant && plan.variant != "deferred-aniso")
       plan.no_filter_advice = kMeasuredDeferredCurved;
-    // What the measured content says: GGX materials the planner chooses for (no variant named, no
-    // engine preset) never keep a configuration that loses to no SAA on their content.
+    // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
+    // named, no engine preset): on the table's rows for the material's content, else on saagen's
+    // committed figures (advice.hpp), with how far those hold on content they were not made on.
     if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
-      const std::string_view content = advice::table_content(content_of(material));
-      const bool table_has_content =
-          table && std::any_of(table->content_rows.begin(), table->content_rows.end(),
-                               [&](const ContentRow& row) { return !content.empty() && row.content == content; });
-      if (table_has_content)
-        check_against_no_filter(*table, material, eligible, plan);
-      else if (!table || !table->has_errors() || material.prefer == Preference::speed)
-        apply_advice(material, manifest.taa, eligible, plan);
+      const std::string content(advice::table_content(content_of(material)));
+      std::vector<ContentRow> rows;
+      if (table)
+        for (const ContentRow& row : table->content_rows)
+          if (row.content == content) rows.push_back(row);
+      const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
+      if (has_none) {
+        apply_decision(catalogue, manifest, material, rows, table->source_name, true, plan);
+      } else if (!rows.empty()) {
+        // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
+        // the lowest error chosen above stands.
+      } else if (!table || !table->has_errors() || material.prefer == Preference::speed) {
+        const advice::ContentAdvice& entry = advice::lookup(content_of(material), manifest.taa);
+        apply_decision(catalogue, manifest, material, advice_rows(entry), fmt::format("saagen's trade ({})", entry.evidence), false, plan);
+        plan.measure_advice = measure_advice(entry);
+      }
     }
     if (plan.variant == "none") {
       scene.materials.push_back(std::move(plan));
@@ -935,12 +950,13 @@ std::string rules_text() {
       "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
       "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
       "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
-      "GGX materials without variant or preset then follow saagen's advice for their content (content = \"curved\",\n"
-      "\"normal-mapped\", \"bumps\", \"clearcoat\"; generator/include/saagen/advice.hpp): a filter only where it is one of the\n"
-      "configurations that beat no SAA in LDR-FLIP and TDE on that content (rule \"advice\" where that changes the variant), no\n"
-      "filter (variant none) where the material can use none of them, which includes normal-mapped and clearcoat content and\n"
-      "every content type under taa = true. A normal-mapped material that names its variant is fed the geometric normal with\n"
-      "the map baked into the roughness (hdrp), sampled one MIP level coarser.\n"
+      "GGX materials without variant or preset are then decided by saagen's one decision (generator/include/saagen/decision.hpp,\n"
+      "the bench's verdict's too) on their content's figures (content = \"curved\", \"normal-mapped\", \"bumps\", \"clearcoat\"):\n"
+      "the trade table's rows, else saagen's (generator/include/saagen/advice.hpp). Only what beats no SAA is eligible; accuracy\n"
+      "takes the largest LDR-FLIP gain, speed the cheapest (vega10 ISA) and never the most expensive form the material can use;\n"
+      "no filter (variant none) where nothing is eligible, which includes normal-mapped and clearcoat content and every content\n"
+      "type under taa = true (rule \"advice\" or \"trade table\" where that changes the variant). A normal-mapped material that\n"
+      "names its variant is fed the geometric normal with the map baked into the roughness (hdrp), sampled one MIP level coarser.\n"
       "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
       "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
       "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
@@ -967,6 +983,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
+    if (!material_plan.measure_advice.empty()) text += fmt::format("  measure   {}\n", material_plan.measure_advice);
     if (material_plan.variant == "none") {
       text += "  shade     the engine's own BRDF at the material's own roughness: no SAA filter, nothing in the bundle\n";
       if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
@@ -1050,6 +1067,28 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     text += fmt::format("  {}  {} public function(s), {} in the closure\n", file.file_name, file.marker.functions.size(), functions.size());
   }
   return text;
+}
+
+std::string plan_json(const Manifest& manifest, const ScenePlan& plan) {
+  nlohmann::json materials = nlohmann::json::array();
+  for (const MaterialPlan& m : plan.materials) {
+    materials.push_back({{"material", m.material},
+                         {"variant", m.variant},
+                         {"rule", m.rule},
+                         {"reason", m.reason},
+                         {"measure", m.measure_advice},
+                         {"wrapper", m.wrapper},
+                         {"brdf", m.brdf ? nlohmann::json(*m.brdf) : nlohmann::json()},
+                         {"functions", m.functions},
+                         {"feed", m.feed},
+                         {"prefilter", m.prefilter},
+                         {"per_axis", m.per_axis},
+                         {"precision", std::string(to_string(m.precision))}});
+  }
+  nlohmann::json options = nlohmann::json::object();
+  for (const auto& [option, value] : plan.option_values) options[option] = value;
+  return nlohmann::json{{"scene", manifest.name}, {"trade_table", plan.trade_table}, {"options", options}, {"materials", materials}}.dump(2) +
+         "\n";
 }
 
 std::vector<EmittedFile> emit_scene(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {

@@ -178,17 +178,53 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
   return true;
 }
 
+std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope) {
+  std::vector<ContentRow> rows;
+  for (const std::string& id : configurations(table)) {
+    const Metrics m = mean_metrics(table, id, keep);
+    if (m.cases && !is_measurement_configuration(id)) rows.push_back({std::string(scope), id, m.flip_ldr, m.tde});
+  }
+  return rows;
+}
+
+namespace {
+
+advice::Content advice_content(Content content) {
+  switch (content) {
+    case Content::curved:
+      return advice::Content::curved;
+    case Content::normal_mapped:
+      return advice::Content::normal_mapped;
+    case Content::bump:
+      return advice::Content::bumps;
+    case Content::clearcoat:
+      return advice::Content::clearcoat;
+  }
+  return advice::Content::curved;
+}
+
+}  // namespace
+
+MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed) {
+  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, advice_content(content));
+  if (speed) material.prefer = Preference::speed;
+  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows);
+}
+
+std::string chosen_configuration(const MaterialDecision& made) {
+  return made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none";
+}
+
 std::vector<Recommendation> recommend(const render::TradeTable& table) {
   std::vector<Recommendation> recs;
   for (Content content : contents_of(table)) {
+    // Without TAA: the +taa rows are compared with none+taa (taa_summary.hpp).
+    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
-      std::optional<Recommendation> best;
-      for (const std::string& id : configurations_of(table, content)) {
-        if (!is_saagen_configuration(id) || !serves(id, path)) continue;
-        const Metrics m = mean_metrics(table, id, content_filter(content));
-        if (!best || better_image(m, best->metrics)) best = Recommendation{path, content, id, m};
-      }
-      if (best) recs.push_back(*best);
+      const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
+      const std::string id = chosen_configuration(made);
+      recs.push_back({path, content, id, mean_metrics(table, id, keep), made.decision.reason, chosen_configuration(speed), speed.decision.reason});
     }
   }
   return recs;

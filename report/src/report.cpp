@@ -456,7 +456,9 @@ TextTable cases_table(const render::TradeTable& table) {
 template <class Section>
 void for_each_finding(const render::TradeTable& table, const CostTable* costs, Section section) {
   const std::vector<Recommendation> recs = recommend(table);
-  section("Recommended configuration per render path and content (lowest mean LDR-FLIP)", recommendation_table(recs, costs));
+  section("Recommended configuration per render path and content (saagen's decision: what beats no SAA, largest LDR-FLIP gain; "
+          "none where nothing does)",
+          recommendation_table(recs, costs));
   section(std::string("Switching from an engine's shipped form: the best saagen configuration at equal or lower cost") +
               (costs ? "" : " (no cost file: cost not compared)"),
           switch_table(engine_switches(table, costs)));
@@ -485,6 +487,7 @@ std::string metric_comparison(const char* metric, double ours, double none, cons
 
 std::string headline(const Verdict& v) {
   const Recommendation& r = v.recommendation;
+  if (r.configuration == "none") return fmt::format("{}, {}: no filter -- {}", path_name(r.path), content_name(r.content), r.reason);
   return fmt::format("{}, {}: {} -- {}, {}", path_name(r.path), content_name(r.content), r.configuration,
                      metric_comparison("LDR-FLIP", r.metrics.flip_ldr, v.none.flip_ldr, v.best_engine_image, v.engine_image.flip_ldr, 4),
                      metric_comparison("TDE", r.metrics.tde, v.none.tde, v.best_engine_motion, v.engine_motion.tde, 5));
@@ -531,9 +534,13 @@ std::string scene_losses(const Verdict& v) {
 // The verdict lines of one recommendation: the headline, then where it loses (or that it does not).
 std::vector<std::string> verdict_lines(const Verdict& v) {
   std::vector<std::string> lines{headline(v)};
+  const Recommendation& r = v.recommendation;
+  if (r.speed_configuration != r.configuration)
+    lines.push_back(r.speed_configuration == "none" ? "prefer speed: no filter -- " + r.speed_reason
+                                                    : "prefer speed: " + r.speed_configuration + " -- " + r.speed_reason);
   if (!v.losses.empty()) lines.push_back("loses on the content means: " + mean_losses(v));
   if (!v.scene_losses.empty()) lines.push_back("loses per scene: " + scene_losses(v));
-  if (v.losses.empty() && v.scene_losses.empty())
+  if (v.losses.empty() && v.scene_losses.empty() && v.recommendation.configuration != "none")
     lines.push_back("beats none and every engine on LDR-FLIP, TDE, HDR-FLIP and tonemapped RMSE, on every scene");
   return lines;
 }
@@ -590,6 +597,7 @@ std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Ver
       if (v.recommendation.content != content_of(scene)) continue;
       if (!v.best_engine_image.empty() && columns.size() == 1)
         columns.emplace_back("best engine: " + v.best_engine_image, v.best_engine_image);
+      if (v.recommendation.configuration == "none") continue;  // no filter: the first column
       columns.emplace_back(fmt::format("{}: {}", path_name(v.recommendation.path), v.recommendation.configuration),
                            v.recommendation.configuration);
     }
@@ -1077,6 +1085,65 @@ std::string format_verdict(const render::TradeTable& table) {
   return text;
 }
 
+// saagen's decision (findings.hpp, decide_on) as the JSON carries it, for the scripts to read
+// instead of deciding again: the chosen configuration ("none": no filter), the reason, and every
+// candidate's comparison with no SAA and outcome; per_scene adds the chosen configuration's
+// outcome against each engine's form on that scene.
+nlohmann::json decision_json(const MaterialDecision& made) {
+  const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
+  nlohmann::json candidates = nlohmann::json::array();
+  for (std::size_t i = 0; i < made.candidates.size(); ++i) {
+    const decision::Candidate& c = made.candidates[i];
+    candidates.push_back({{"configuration", c.configuration},
+                          {"usable", c.usable},
+                          {"outcome", std::string(decision::name(made.decision.outcomes[i]))},
+                          {"image", difference(c.against_none.image)},
+                          {"temporal", difference(c.against_none.temporal)},
+                          {"cost_ratio", c.cost_ratio ? nlohmann::json(*c.cost_ratio) : nlohmann::json()}});
+  }
+  return {{"chosen", made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none"},
+          {"reason", made.decision.reason},
+          {"candidates", candidates}};
+}
+
+nlohmann::json decisions_json(const render::TradeTable& table) {
+  nlohmann::json by_content = nlohmann::json::array(), per_scene = nlohmann::json::array();
+  for (Content content : kContents) {
+    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
+    if (rows.empty()) continue;
+    for (Path path : {Path::forward, Path::deferred}) {
+      nlohmann::json entry = decision_json(decide_on(rows, path, content));
+      entry["content"] = std::string(content_name(content)), entry["path"] = std::string(path_name(path));
+      by_content.push_back(entry);
+    }
+  }
+  for (render::SceneId scene : table.config.scenes) {
+    const RowFilter keep = [scene](const render::TradeRow& row) { return !row.taa && row.scene == scene; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, render::scene_name(scene));
+    for (Path path : {Path::forward, Path::deferred}) {
+      const MaterialDecision made = decide_on(rows, path, content_of(scene));
+      nlohmann::json entry = decision_json(made);
+      entry["scene"] = std::string(render::scene_name(scene)), entry["path"] = std::string(path_name(path));
+      entry["content"] = std::string(content_name(content_of(scene)));
+      nlohmann::json engines = nlohmann::json::object();
+      const std::string chosen = chosen_configuration(made);
+      const auto chosen_row = std::find_if(rows.begin(), rows.end(), [&](const ContentRow& r) { return r.configuration == chosen; });
+      for (const ContentRow& row : rows)
+        if (is_engine_configuration(row.configuration) && chosen_row != rows.end())
+          engines[row.configuration] = std::string(decision::name(decision::outcome(comparison_against(*chosen_row, row))));
+      entry["against_engines"] = engines;
+      per_scene.push_back(entry);
+    }
+  }
+  return {{"rule", "only what beats no SAA (no metric worse beyond its interval, one better) is chosen; accuracy: the largest "
+                   "image-metric gain, temporal as tie-break; none where nothing beats no SAA (saagen/decision.hpp)"},
+          {"image_metric", "LDR-FLIP"},
+          {"temporal_metric", "TDE"},
+          {"by_content", by_content},
+          {"per_scene", per_scene}};
+}
+
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
@@ -1136,6 +1203,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
     }
   }
   return {{"generator", std::string(output_tag) + " saagen bench"},
+          {"decisions", decisions_json(table)},
           {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
           {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
           {"config", config_line(table)},

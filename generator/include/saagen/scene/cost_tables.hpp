@@ -3,6 +3,7 @@
 // generator/data/isa_cost.json. Manifests name the table's GPU families (gpu_family).
 #pragma once
 
+#include "saagen/decision.hpp"
 #include "saagen/io/marker.hpp"
 
 #include <filesystem>
@@ -35,7 +36,18 @@ struct ContentRow {
   std::string configuration;
   double error = 0.0;
   std::optional<double> tde;  // the temporal difference error, when the table has it
+  // The row minus no SAA's with 95 % intervals, when the table carries one ("against_none":
+  // {"image": {"mean", "low", "high"}, "temporal": {...}}); comparison_against prefers it.
+  std::optional<decision::Comparison> against_none;
 };
+
+// The one adapter from a trade table's measurements to a decision's comparison
+// (saagen/decision.hpp): `row` minus `baseline` (no SAA's row of the same content or scene, or an
+// engine's). Today's tables carry means only (LDR-FLIP "error" and "tde"), so each difference is
+// its mean with low = high = mean; a row without a TDE compares as tied in the temporal metric.
+// A row that carries its comparison with no SAA (ContentRow::against_none, intervals included) is
+// compared with no SAA by that instead.
+decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline);
 
 struct MeasuredTradeTable {
   std::string source_name;

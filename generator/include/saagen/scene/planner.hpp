@@ -17,17 +17,18 @@
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
 //   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
 //   filter (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf.
-//   GGX materials without a `variant` or `preset` then follow saagen's advice for their content
-//   type (`content`, saagen/advice.hpp; examples/INTEGRATION.md "saagen's advice, per content"):
-//   the plan keeps a filter only if it is one of the configurations that beat no SAA in both
-//   LDR-FLIP and TDE on that content (accuracy takes the first the material can use, speed keeps
-//   its cheaper choice when it is one of them, so does an anisotropic material its rule's matrix
-//   form forward-aniso-*; rule "advice" where that changes the variant), and
-//   plans no filter (variant "none") where the material can use none of them: under TAA, on
-//   normal-mapped and clearcoat content, on curved content for anisotropic deferred materials. A
-//   normal-mapped material that names its variant is fed the geometric normal with the map baked
-//   into the roughness (advice::kFeed, kPrefilter, kPrefilterLodBias). With a trade table's
-//   by_content rows for the content, the table's "none" row decides instead.
+//   GGX materials without a `variant` or `preset` are then decided by saagen's one decision
+//   (saagen/decision.hpp through decide_material below; the bench's verdict uses the same) on their
+//   content type's figures (`content`): a trade table's by_content rows for it, else saagen's
+//   committed figures (saagen/advice.hpp; the plan then says how they held on held-out content and
+//   how to measure one's own, MaterialPlan::measure_advice). Only configurations that beat no SAA
+//   are eligible; accuracy takes the one with the largest image-metric gain, speed the cheapest
+//   (vega10 ISA) and never the most expensive form the material can use; no filter (variant
+//   "none") where nothing is eligible: under TAA, on normal-mapped and clearcoat content, on
+//   curved content for anisotropic deferred materials and for deferred materials that prefer
+//   speed (rule "advice" or "trade table" where that changes the variant). A normal-mapped
+//   material that names its variant is fed the geometric normal with the map baked into the
+//   roughness (advice::kFeed, kPrefilter, kPrefilterLodBias).
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
 //   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
@@ -82,6 +83,9 @@ struct MaterialPlan {
   std::string feed = "shading";
   std::string prefilter = "none";
   std::string normal_advice;
+  // Where the plan rests on saagen's committed figures (no trade table rows for the content): how
+  // far they held on content they were not derived from, and how to measure the user's own.
+  std::string measure_advice;
 };
 
 struct ScenePlan {
@@ -98,6 +102,24 @@ struct ScenePlan {
 inline constexpr double kGgxSigma2 = advice::kSigma2;
 inline constexpr double kTaaSigma2 = advice::kTaaSigma2;
 
+// saagen's decision (saagen/decision.hpp) for a material on its content's measured rows (a trade
+// table's by_content rows of one content, or saagen's committed figures, advice.hpp), each row
+// against the rows' "none" through comparison_against (cost_tables.hpp): every saagen
+// configuration of the rows is a candidate, usable where the material can use its variant, feed,
+// prefilter and lobe; its cost is the committed ISA model's (generator/data/isa_cost.json) on
+// gpu_family (empty: vega10). The planner plans what it chooses; the bench's verdict decides for
+// reference_material(path, content) with the same function, so the two give one answer.
+struct MaterialDecision {
+  std::vector<decision::Candidate> candidates;
+  decision::Decision decision;
+};
+MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
+                                 const std::vector<ContentRow>& rows);
+// The material the bench's verdict decides for on a render path and content type: GGX, isotropic,
+// tangents on the forward path (none on the deferred path's G-buffer), normal maps on
+// normal-mapped content, prefer accuracy.
+Material reference_material(RenderPath path, advice::Content content);
+
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table = nullptr);
@@ -111,6 +133,12 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
 std::string rules_text();
 // `saagen plan` output: per material, the variant, why, what to call and the cost.
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan);
+
+// `saagen plan --json`: the plan as JSON, for tools that install what it says (the three.js
+// module, examples/threejs/saagen-three.js): {"scene", "trade_table", "options", "materials": [
+// {"material", "variant" ("none": no filter), "rule", "reason", "measure", "wrapper", "brdf",
+// "functions", "feed", "prefilter", "per_axis", "precision"}]}.
+std::string plan_json(const Manifest& manifest, const ScenePlan& plan);
 
 // The emission options of a manifest for one target and precision.
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const OutputTarget& target, Precision precision);

@@ -1,5 +1,7 @@
-// What the trade table says: per content type and render path, the configuration that wins on
-// the display-referred metrics; per engine, the best saagen configuration at equal or lower cost;
+// What the trade table says: per content type and render path, saagen's decision (decide_on below:
+// saagen/decision.hpp through the planner's decide_material, so the bench's verdict and `saagen
+// plan` give one answer): the configuration that beats no SAA with the largest image gain, or
+// none; per engine, the best saagen configuration at equal or lower cost;
 // per scene, whether the recommendation beats no SAA and every engine's shipped form. The advice
 // of `saagen bench`, `saagen report` and the planner comes from here.
 //
@@ -12,8 +14,10 @@
 // A configuration "beats" another on a metric when its value is lower.
 #pragma once
 
+#include "saagen/decision.hpp"
 #include "saagen/reference/render/trade.hpp"
 #include "saagen/report/cost_table.hpp"
+#include "saagen/scene/planner.hpp"
 
 #include <functional>
 #include <optional>
@@ -79,14 +83,32 @@ std::optional<double> configuration_isa_cost(const CostTable* costs, const std::
 // else the SPIR-V delta, else the time ratio; true when none is known, and the caller says so).
 bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
 
+// The measured rows of a set of trade rows, one per configuration: the means the trade's JSON
+// writes ("by_content") and saagen's decision reads (through comparison_against,
+// saagen/scene/cost_tables.hpp). `scope` names the content type or the scene.
+std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope);
+
+// saagen's decision (saagen/decision.hpp, through the planner's decide_material) on measured rows
+// for a path's reference material of a content type (reference_material): what `saagen plan`
+// gives such a material with this table.
+MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed = false);
+
+// The configuration a decision chose, "none" for no filter.
+std::string chosen_configuration(const MaterialDecision& made);
+
 struct Recommendation {
   Path path = Path::deferred;
   Content content = Content::curved;
-  std::string configuration;
+  std::string configuration;  // "none": no filter (nothing beats no SAA on the content)
   Metrics metrics;
+  std::string reason;  // the decision's
+  // The same decision for prefer = "speed" (the cheapest that beats no SAA, never the most
+  // expensive form): configuration ("none": no filter) and reason.
+  std::string speed_configuration;
+  std::string speed_reason;
 };
-// Per path and content type present in the table: the saagen configuration with the lowest mean
-// LDR-FLIP over that content's scenes.
+// Per path and content type present in the table: saagen's decision on that content's means
+// (decide_on): the configuration that beats no SAA with the largest image improvement, or none.
 std::vector<Recommendation> recommend(const render::TradeTable& table);
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
 

@@ -1,0 +1,103 @@
+// The three.js module installs what `saagen plan` says, per material (examples/threejs/
+// scene.saagen.toml, planned with --json, its gles bundle emitted with emit --manifest), in
+// headless Chromium, WebGL2 on SwiftShader: no filter renders exactly as the unfiltered material;
+// forward-aniso-projected and forward-axis-projected per light with the tail-preserving filtered
+// GGX, and deferred-aniso's tensor and lighting pass, compile, change the picture on the spheres
+// only and widen the highlights; one renderer keeps every configuration's program apart.
+//   node tests/webgl/threejs_plan_test.mjs SAAGEN_CLI
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { launchChromium, openPage, serveDirectory } from './browser.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const cli = process.argv[2];
+if (!cli) {
+  console.error('usage: node tests/webgl/threejs_plan_test.mjs PATH_TO_SAAGEN_CLI');
+  process.exit(2);
+}
+
+const failures = [];
+function check(condition, what) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!condition) failures.push(what);
+}
+
+const manifest = path.join(root, 'examples/threejs/scene.saagen.toml');
+const plan = JSON.parse(execFileSync(cli, ['plan', manifest, '--json'], { encoding: 'utf8' }));
+const output = fs.mkdtempSync(path.join(os.tmpdir(), 'saagen-threejs-plan-'));
+execFileSync(cli, ['emit', '--manifest', manifest, '--output', output]);
+const snippet = fs.readFileSync(path.join(output, 'saa_threejs.essl'), 'utf8');
+fs.rmSync(output, { recursive: true, force: true });
+
+const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
+check(variants.glossy === 'forward-aniso-projected' && variants.glossy_fast === 'forward-axis-projected' &&
+      variants.glossy_deferred === 'deferred-aniso' && variants.bumpy === 'none',
+      `the plan: ${JSON.stringify(variants)}`);
+
+const { server, origin } = await serveDirectory(root);
+const { browser, close } = await launchChromium();
+try {
+  const { page, errors } = await openPage(browser, `${origin}/tests/webgl/threejs.html`);
+  await page.waitForFunction('window.saagenReady === true', { timeout: 20000 });
+  const result = await page.evaluate((snippet, plan) => {
+    const { createRenderer, renderScene } = window.saagenScene;
+    const render = (renderer, mode, options) => renderScene(renderer, mode, { snippet, ...options });
+    const fresh = (mode, options = {}) => {
+      const renderer = createRenderer(document.createElement('canvas'));
+      const pixels = render(renderer, mode, options);
+      renderer.dispose();
+      return pixels;
+    };
+    const luminance = (p, i) => (0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2]) / 255;
+    const stats = (pixels) => {
+      let peak = 0, sum = 0;
+      for (let i = 0; i < pixels.length; i += 4) { const y = luminance(pixels, i); peak = Math.max(peak, y); sum += y; }
+      let bright = 0;
+      for (let i = 0; i < pixels.length; i += 4) if (luminance(pixels, i) >= 0.5 * peak) ++bright;
+      return { bright, mean: sum / (pixels.length / 4) };
+    };
+    const compare = (a, b) => {
+      let differing = 0, outside = 0;
+      for (let i = 0; i < a.length; i += 4) {
+        const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]));
+        const covered = a[i] + a[i + 1] + a[i + 2] + b[i] + b[i + 1] + b[i + 2] > 0;
+        if (d > 2) { ++differing; if (!covered) ++outside; }
+      }
+      return { differing, outside };
+    };
+    const out = {};
+    const shared = createRenderer(document.createElement('canvas'));
+    for (const entry of plan.materials) {
+      const normalMap = entry.material === 'bumpy';
+      const unfiltered = fresh('unfiltered', { normalMap });
+      const planned = fresh('plan', { entry, normalMap });
+      const again = render(shared, 'plan', { entry, normalMap });
+      out[entry.material] = { vsUnfiltered: compare(planned, unfiltered), planned: stats(planned), unfiltered: stats(unfiltered),
+                              shared: compare(again, planned).differing };
+    }
+    out.programs = shared.info.programs.length;
+    return out;
+  }, snippet, plan);
+  check(errors.length === 0, `no console errors or exceptions (${errors.slice(0, 3).join(' | ')})`);
+  const none = result.bumpy;
+  check(none.vsUnfiltered.differing === 0, `variant none renders as the unfiltered material (${none.vsUnfiltered.differing} pixels differ)`);
+  for (const name of ['glossy', 'glossy_fast', 'glossy_deferred']) {
+    const r = result[name];
+    check(r.vsUnfiltered.differing > 50 && r.vsUnfiltered.outside === 0,
+          `${name} (${variants[name]}): the filter acts on the spheres (${r.vsUnfiltered.differing} pixels) and nowhere else (${r.vsUnfiltered.outside})`);
+    check(r.planned.bright > r.unfiltered.bright,
+          `${name}: the highlights widen (${r.planned.bright} vs ${r.unfiltered.bright} pixels at half the peak or more)`);
+    check(r.shared === 0, `${name}: one renderer, every configuration in turn, the same picture as a fresh renderer (${r.shared} pixels differ)`);
+  }
+  check(result.programs >= 4, `one program per configuration (${result.programs})`);
+} finally {
+  await close();
+  server.close();
+}
+if (failures.length > 0) {
+  console.error(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
