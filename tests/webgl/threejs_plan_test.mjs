@@ -3,7 +3,8 @@
 // headless Chromium, WebGL2 on SwiftShader: no filter renders exactly as the unfiltered material;
 // forward-aniso-projected and forward-axis-projected per light with the tail-preserving filtered
 // GGX, and deferred-aniso's tensor and lighting pass, compile, change the picture on the spheres
-// only and widen the highlights; one renderer keeps every configuration's program apart.
+// only and widen the highlights, and with a pixel filter of almost no width give three.js's own
+// GGX picture; one renderer keeps every configuration's program apart.
 //   node tests/webgl/threejs_plan_test.mjs SAAGEN_CLI
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -30,6 +31,13 @@ const plan = JSON.parse(execFileSync(cli, ['plan', manifest, '--json'], { encodi
 const output = fs.mkdtempSync(path.join(os.tmpdir(), 'saagen-threejs-plan-'));
 execFileSync(cli, ['emit', '--manifest', manifest, '--output', output]);
 const snippet = fs.readFileSync(path.join(output, 'saa_threejs.essl'), 'utf8');
+// The same bundle with a pixel filter of almost no width: saagen's lobe must then be three.js's
+// own GGX (the same D, the same height-correlated Smith G2), which checks the patch's frames,
+// domains and units against three.js itself.
+const narrow = path.join(output, 'narrow.saagen.toml');
+fs.writeFileSync(narrow, fs.readFileSync(manifest, 'utf8').replace('prefix = "saa_"', 'prefix = "saa_"\nsigma2 = 0.000001'));
+execFileSync(cli, ['emit', '--manifest', narrow, '--output', path.join(output, 'narrow')]);
+const narrowSnippet = fs.readFileSync(path.join(output, 'narrow', 'saa_threejs.essl'), 'utf8');
 fs.rmSync(output, { recursive: true, force: true });
 
 const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
@@ -42,7 +50,7 @@ const { browser, close } = await launchChromium();
 try {
   const { page, errors } = await openPage(browser, `${origin}/tests/webgl/threejs.html`);
   await page.waitForFunction('window.saagenReady === true', { timeout: 20000 });
-  const result = await page.evaluate((snippet, plan) => {
+  const result = await page.evaluate((snippet, narrowSnippet, plan) => {
     const { createRenderer, renderScene } = window.saagenScene;
     const render = (renderer, mode, options) => renderScene(renderer, mode, { snippet, ...options });
     const fresh = (mode, options = {}) => {
@@ -75,12 +83,13 @@ try {
       const unfiltered = fresh('unfiltered', { normalMap });
       const planned = fresh('plan', { entry, normalMap });
       const again = render(shared, 'plan', { entry, normalMap });
+      const narrowed = entry.variant === 'none' ? planned : fresh('plan', { entry, normalMap, snippet: narrowSnippet });
       out[entry.material] = { vsUnfiltered: compare(planned, unfiltered), planned: stats(planned), unfiltered: stats(unfiltered),
-                              shared: compare(again, planned).differing };
+                              shared: compare(again, planned).differing, narrowVsUnfiltered: compare(narrowed, unfiltered).differing };
     }
     out.programs = shared.info.programs.length;
     return out;
-  }, snippet, plan);
+  }, snippet, narrowSnippet, plan);
   check(errors.length === 0, `no console errors or exceptions (${errors.slice(0, 3).join(' | ')})`);
   const none = result.bumpy;
   check(none.vsUnfiltered.differing === 0, `variant none renders as the unfiltered material (${none.vsUnfiltered.differing} pixels differ)`);
@@ -90,6 +99,8 @@ try {
           `${name} (${variants[name]}): the filter acts on the spheres (${r.vsUnfiltered.differing} pixels) and nowhere else (${r.vsUnfiltered.outside})`);
     check(r.planned.bright > r.unfiltered.bright,
           `${name}: the highlights widen (${r.planned.bright} vs ${r.unfiltered.bright} pixels at half the peak or more)`);
+    check(r.narrowVsUnfiltered <= 5,
+          `${name}: with sigma^2 = 1e-6 saagen's lobe is three.js's GGX (${r.narrowVsUnfiltered} pixels differ by > 2/255)`);
     check(r.shared === 0, `${name}: one renderer, every configuration in turn, the same picture as a fresh renderer (${r.shared} pixels differ)`);
   }
   check(result.programs >= 4, `one program per configuration (${result.programs})`);
