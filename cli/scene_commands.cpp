@@ -312,6 +312,14 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
   ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
+  if (!plan_gltf_.empty()) {  // the asset to measure is the one planned
+    for (MaterialPlan& material : plan.materials) {
+      for (const auto& [placeholder, value] : {std::pair<std::string, std::string>{"`saagen bench --scene ASSET.glb", "`saagen bench --scene " + plan_gltf_},
+                                               {"`saagen plan MANIFEST", "`saagen plan " + manifest_path}})
+        if (const auto at = material.measure_advice.find(placeholder); at != std::string::npos)
+          material.measure_advice.replace(at, placeholder.size(), value);
+    }
+  }
   if (plan_json_) {
     std::cout << plan_json(manifest, plan);
     return 0;

@@ -485,9 +485,16 @@ std::string metric_comparison(const char* metric, double ours, double none, cons
   return text + ")";
 }
 
+// A decision's reason after "no filter -- ": without its own "no filter: ".
+std::string without_no_filter(const std::string& reason) {
+  constexpr std::string_view prefix = "no filter: ";
+  return reason.starts_with(prefix) ? reason.substr(prefix.size()) : reason;
+}
+
 std::string headline(const Verdict& v) {
   const Recommendation& r = v.recommendation;
-  if (r.configuration == "none") return fmt::format("{}, {}: no filter -- {}", path_name(r.path), content_name(r.content), r.reason);
+  if (r.configuration == "none")
+    return fmt::format("{}, {}: no filter -- {}", path_name(r.path), content_name(r.content), without_no_filter(r.reason));
   return fmt::format("{}, {}: {} -- {}, {}", path_name(r.path), content_name(r.content), r.configuration,
                      metric_comparison("LDR-FLIP", r.metrics.flip_ldr, v.none.flip_ldr, v.best_engine_image, v.engine_image.flip_ldr, 4),
                      metric_comparison("TDE", r.metrics.tde, v.none.tde, v.best_engine_motion, v.engine_motion.tde, 5));
@@ -536,7 +543,7 @@ std::vector<std::string> verdict_lines(const Verdict& v) {
   std::vector<std::string> lines{headline(v)};
   const Recommendation& r = v.recommendation;
   if (r.speed_configuration != r.configuration)
-    lines.push_back(r.speed_configuration == "none" ? "prefer speed: no filter -- " + r.speed_reason
+    lines.push_back(r.speed_configuration == "none" ? "prefer speed: no filter -- " + without_no_filter(r.speed_reason)
                                                     : "prefer speed: " + r.speed_configuration + " -- " + r.speed_reason);
   if (!v.losses.empty()) lines.push_back("loses on the content means: " + mean_losses(v));
   if (!v.scene_losses.empty()) lines.push_back("loses per scene: " + scene_losses(v));
