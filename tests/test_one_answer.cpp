@@ -126,6 +126,18 @@ TEST(OneAnswer, SpeedNeverPlansTheMostExpensiveFormWithoutATable) {
   EXPECT_NE(format_plan(catalogue, manifest, plan).find("  measure   this advice did not hold"), std::string::npos);
 }
 
+// Switching from an engine's form is the same decision with that form as the baseline: on the
+// curved scene forward-aniso-projected beats engine-hdrp in both metrics; on the normal-mapped one
+// every form lowers LDR-FLIP and raises TDE against it, so nothing is offered.
+TEST(OneAnswer, SwitchingFromAnEngineIsTheDecisionAgainstIt) {
+  const std::vector<report::EngineSwitch> switches = report::engine_switches(small_table(), nullptr);
+  ASSERT_EQ(switches.size(), 2u);
+  EXPECT_EQ(switches[0].content, report::Content::curved);
+  EXPECT_EQ(switches[0].configuration, "forward-aniso-projected/tail");
+  EXPECT_EQ(switches[1].content, report::Content::normal_mapped);
+  EXPECT_EQ(switches[1].configuration, "");
+}
+
 // A table whose rows carry their comparison with no SAA with intervals is decided by the
 // intervals, not the means: a lower mean whose interval spans 0 ties, and plans no filter.
 TEST(OneAnswer, IntervalsInTheTableDecide) {

@@ -216,7 +216,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
           throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
         return row[key].get<std::string>();
       };
-      ContentRow entry{text("content"), text("configuration"), 0.0, std::nullopt};
+      ContentRow entry{text("content"), text("configuration"), 0.0, std::nullopt, std::nullopt};
       const auto error = number(row, "error", index);
       if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
       entry.error = *error;

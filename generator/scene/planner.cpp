@@ -547,9 +547,9 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 std::vector<ContentRow> advice_rows(const advice::ContentAdvice& entry) {
   std::vector<ContentRow> rows;
   const std::string content(advice::table_content(entry.content));
-  if (!entry.none.configuration.empty()) rows.push_back({content, std::string(entry.none.configuration), entry.none.flip, entry.none.tde});
+  if (!entry.none.configuration.empty()) rows.push_back({content, std::string(entry.none.configuration), entry.none.flip, entry.none.tde, std::nullopt});
   for (const advice::Figure& figure : entry.measured)
-    if (!figure.configuration.empty()) rows.push_back({content, std::string(figure.configuration), figure.flip, figure.tde});
+    if (!figure.configuration.empty()) rows.push_back({content, std::string(figure.configuration), figure.flip, figure.tde, std::nullopt});
   return rows;
 }
 
@@ -820,7 +820,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         const advice::ContentAdvice& entry = advice::lookup(advice::Content::normal_mapped, false);
         const auto winner = std::find_if(entry.measured.begin(), entry.measured.end(), [&](const advice::Figure& figure) {
           return !figure.configuration.empty() &&
-                 decision::outcome(comparison_against({"", "", figure.flip, figure.tde}, {"", "", entry.none.flip, entry.none.tde})) ==
+                 decision::outcome(comparison_against({"", "", figure.flip, figure.tde, std::nullopt}, {"", "", entry.none.flip, entry.none.tde, std::nullopt})) ==
                      decision::Outcome::beats;
         });
         const bool has_winner = winner != entry.measured.end();

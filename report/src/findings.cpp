@@ -20,12 +20,6 @@ bool is_saagen_configuration(const std::string& configuration) {
   return configuration != "none" && !is_engine_configuration(configuration) && !is_measurement_configuration(configuration);
 }
 
-// Image criterion: LDR-FLIP, then tonemapped RMSE.
-bool better_image(const Metrics& a, const Metrics& b) {
-  if (a.flip_ldr != b.flip_ldr) return a.flip_ldr < b.flip_ldr;
-  return a.rmse_tonemapped < b.rmse_tonemapped;
-}
-
 RowFilter content_filter(Content content) {
   return [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
 }
@@ -182,7 +176,7 @@ std::vector<ContentRow> measured_rows(const render::TradeTable& table, const Row
   std::vector<ContentRow> rows;
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
-    if (m.cases && !is_measurement_configuration(id)) rows.push_back({std::string(scope), id, m.flip_ldr, m.tde});
+    if (m.cases && !is_measurement_configuration(id)) rows.push_back({std::string(scope), id, m.flip_ldr, m.tde, std::nullopt});
   }
   return rows;
 }
@@ -239,14 +233,20 @@ const Recommendation* find_recommendation(const std::vector<Recommendation>& rec
 std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs) {
   std::vector<EngineSwitch> switches;
   for (Content content : contents_of(table)) {
-    const std::vector<std::string> ids = configurations_of(table, content);
-    for (const std::string& engine : ids) {
-      if (!is_engine_configuration(engine)) continue;
-      EngineSwitch entry{engine, content, "", mean_metrics(table, engine, content_filter(content)), {}};
-      for (const std::string& id : ids) {
-        if (!is_saagen_configuration(id) || !costs_at_most(costs, id, engine)) continue;
-        const Metrics m = mean_metrics(table, id, content_filter(content));
-        if (entry.configuration.empty() || better_image(m, entry.saagen_metrics)) entry.configuration = id, entry.saagen_metrics = m;
+    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
+    for (const ContentRow& engine : rows) {
+      if (!is_engine_configuration(engine.configuration)) continue;
+      // saagen's decision with the engine's form as the baseline: what beats it, at no more cost.
+      std::vector<decision::Candidate> candidates;
+      for (const ContentRow& row : rows)
+        if (is_saagen_configuration(row.configuration))
+          candidates.push_back({row.configuration, comparison_against(row, engine), 1.0, costs_at_most(costs, row.configuration, engine.configuration)});
+      const decision::Decision made = decision::decide(candidates, {});
+      EngineSwitch entry{engine.configuration, content, "", mean_metrics(table, engine.configuration, keep), {}};
+      if (made.chosen) {
+        entry.configuration = candidates[*made.chosen].configuration;
+        entry.saagen_metrics = mean_metrics(table, entry.configuration, keep);
       }
       switches.push_back(entry);
     }

@@ -406,12 +406,12 @@ TextTable recommendation_table(const std::vector<Recommendation>& recs, const Co
 }
 
 TextTable switch_table(const std::vector<EngineSwitch>& switches) {
-  TextTable t{{"switching from", "content", "engine LDR-FLIP", "best saagen at <= cost", "LDR-FLIP", "change LDR-FLIP", "change TDE",
+  TextTable t{{"switching from", "content", "engine LDR-FLIP", "saagen that beats it at <= cost", "LDR-FLIP", "change LDR-FLIP", "change TDE",
                "change HDR-FLIP", "change RMSE tm"},
               {}};
   for (const EngineSwitch& s : switches) {
     if (s.configuration.empty()) {
-      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none)", "-",
+      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none beats it)", "-",
                         "-", "-", "-", "-"});
       continue;
     }
@@ -459,7 +459,8 @@ void for_each_finding(const render::TradeTable& table, const CostTable* costs, S
   section("Recommended configuration per render path and content (saagen's decision: what beats no SAA, largest LDR-FLIP gain; "
           "none where nothing does)",
           recommendation_table(recs, costs));
-  section(std::string("Switching from an engine's shipped form: the best saagen configuration at equal or lower cost") +
+  section(std::string("Switching from an engine's shipped form: saagen's decision against it (what beats it in LDR-FLIP and TDE, "
+                      "largest LDR-FLIP gain) at equal or lower cost") +
               (costs ? "" : " (no cost file: cost not compared)"),
           switch_table(engine_switches(table, costs)));
   section("Per scene: the recommendation against no SAA and every engine (LDR-FLIP, TDE, HDR-FLIP, tonemapped RMSE)",

@@ -115,12 +115,13 @@ const Recommendation* find_recommendation(const std::vector<Recommendation>& rec
 struct EngineSwitch {
   std::string engine;
   Content content = Content::curved;
-  std::string configuration;  // the best saagen configuration at equal or lower cost; empty: none
+  std::string configuration;  // what beats the engine's form at equal or lower cost; empty: nothing does
   Metrics engine_metrics;
   Metrics saagen_metrics;
 };
-// Per engine and content type: the saagen configuration (either path) with the lowest mean
-// LDR-FLIP among those whose cost is at most the engine's.
+// Per engine and content type: saagen's decision (saagen/decision.hpp) with the engine's form as
+// the baseline, among the saagen configurations (either path) whose cost is at most the engine's:
+// the one that beats the engine's form with the largest LDR-FLIP gain; empty where none does.
 std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
 
 // The metrics a verdict compares, in the order they are reported: LDR-FLIP, TDE, HDR-FLIP,
