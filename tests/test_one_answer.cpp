@@ -138,6 +138,20 @@ TEST(OneAnswer, SwitchingFromAnEngineIsTheDecisionAgainstIt) {
   EXPECT_EQ(switches[1].configuration, "");
 }
 
+// Under TAA a table's by_content rows (measured without TAA) do not decide: saagen's TAA figures
+// do, no filter.
+TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
+  const render::TradeTable trade = small_table();
+  const MeasuredTradeTable table = parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
+  Manifest manifest = parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n", "s.toml",
+                                     Catalogue::builtin());
+  EXPECT_EQ(plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0).variant, "deferred-aniso");
+  manifest.taa = true;
+  const MaterialPlan taa = plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0);
+  EXPECT_EQ(taa.variant, "none");
+  EXPECT_NE(taa.reason.find("curved content under TAA in saagen's trade"), std::string::npos) << taa.reason;
+}
+
 // A table whose rows carry their comparison with no SAA with intervals is decided by the
 // intervals, not the means: a lower mean whose interval spans 0 ties, and plans no filter.
 TEST(OneAnswer, IntervalsInTheTableDecide) {

@@ -848,8 +848,10 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     // committed figures (advice.hpp), with how far those hold on content they were not made on.
     if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
       const std::string content(advice::table_content(content_of(material)));
+      // A table's by_content rows are measured without TAA (its +taa rows compare with none+taa on
+      // the animation, docs/TAA.md): under TAA saagen's committed TAA figures decide.
       std::vector<ContentRow> rows;
-      if (table)
+      if (table && !manifest.taa)
         for (const ContentRow& row : table->content_rows)
           if (row.content == content) rows.push_back(row);
       const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
@@ -858,7 +860,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       } else if (!rows.empty()) {
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
-      } else if (!table || !table->has_errors() || material.prefer == Preference::speed) {
+      } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed) {
         const advice::ContentAdvice& entry = advice::lookup(content_of(material), manifest.taa);
         apply_decision(catalogue, manifest, material, advice_rows(entry), fmt::format("saagen's trade ({})", entry.evidence), false, plan);
         plan.measure_advice = measure_advice(entry);
