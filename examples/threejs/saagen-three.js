@@ -228,15 +228,17 @@ const BRDF_GGX_RETURN = 'return F * ( V * D );';
 // filter's per-pixel result, a tangent frame built from a normal (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited", JCGT 6(1), Listing 3: continuous except where n.z changes sign;
 // the isotropic materials this module serves need any frame, the same at the four pixels of a
-// quad), and saagenSpecular(l, v), the specular BRDF value without Fresnel that replaces
-// three.js's V * D.
-function lobeGlsl(kind, prefix, brdf) {
+// quad), and saagenSpecular(l, v, n), the specular BRDF value without Fresnel that replaces
+// three.js's V * D. The lobe is evaluated about the shading normal n (BRDF_GGX's, normal-mapped
+// where the material has a map); the forward filters measure the half vector in the frame of the
+// normal they are fed, deferred-aniso's lighting pass rebuilds its tensor's frame from that normal.
+function lobeGlsl(kind, prefix, plan) {
   const specular = {
     roughness: `return ${prefix}ggx_brdf_filtered_axis(i, o, vec2(saagenFiltered), vec2(saagenAlpha2));`,
     tensor: `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
-    matrix: `highp vec3 a = ${prefix}${brdf.wrapper}(vec2(saagenAlpha2), normalize(i + o));
+    matrix: `highp vec3 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), saagenFeedHalf(l, v));
   return ${prefix}ggx_brdf_filtered_matrix(i, o, a, vec2(saagenAlpha2));`,
-    axis: `highp vec2 a = ${prefix}${brdf.wrapper}(vec2(saagenAlpha2), normalize(i + o));
+    axis: `highp vec2 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), saagenFeedHalf(l, v));
   return ${prefix}ggx_brdf_filtered_axis(i, o, a, vec2(saagenAlpha2));`,
   }[kind];
   return `
@@ -251,10 +253,16 @@ void saagenFrame(highp vec3 n, out highp vec3 t, out highp vec3 b) {
   t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
   b = vec3(c, s + n.y * n.y * a, -n.y);
 }
-highp float saagenSpecular(highp vec3 l, highp vec3 v) {
+// The half vector in the frame of the normal the filter is fed.
+highp vec3 saagenFeedHalf(highp vec3 l, highp vec3 v) {
   highp vec3 t, b;
   saagenFrame(saagenFeedNormal, t, b);
-  highp vec3 n = saagenFeedNormal;
+  highp vec3 h = normalize(l + v);
+  return vec3(dot(h, t), dot(h, b), dot(h, saagenFeedNormal));
+}
+highp float saagenSpecular(highp vec3 l, highp vec3 v, highp vec3 n) {
+  highp vec3 t, b;
+  saagenFrame(n, t, b);
   highp vec3 i = vec3(dot(l, t), dot(l, b), dot(l, n)), o = vec3(dot(v, t), dot(v, b), dot(v, n));
   ${specular}
 }
@@ -277,7 +285,7 @@ function patchedBrdf(pars) {
   const head = pars.indexOf(BRDF_GGX_HEAD);
   const ret = head < 0 ? -1 : pars.indexOf(BRDF_GGX_RETURN, head);
   if (ret < 0) throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${BRDF_GGX_RETURN}' in BRDF_GGX; this module needs updating`);
-  return pars.slice(0, ret) + 'return F * saagenSpecular( lightDir, viewDir );' + pars.slice(ret + BRDF_GGX_RETURN.length);
+  return pars.slice(0, ret) + 'return F * saagenSpecular( lightDir, viewDir, normal );' + pars.slice(ret + BRDF_GGX_RETURN.length);
 }
 
 // How the plan's entry is installed: { kind, wrapper, tail, normal, bias }, or throws saying why not.

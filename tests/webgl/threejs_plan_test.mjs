@@ -42,7 +42,7 @@ fs.rmSync(output, { recursive: true, force: true });
 
 const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
 check(variants.glossy === 'forward-aniso-projected' && variants.glossy_fast === 'forward-axis-projected' &&
-      variants.glossy_deferred === 'deferred-aniso' && variants.bumpy === 'none',
+      variants.glossy_deferred === 'deferred-aniso' && variants.bumpy === 'none' && variants.bumpy_named === 'deferred-sum',
       `the plan: ${JSON.stringify(variants)}`);
 
 const { server, origin } = await serveDirectory(root);
@@ -79,7 +79,7 @@ try {
     const out = {};
     const shared = createRenderer(document.createElement('canvas'));
     for (const entry of plan.materials) {
-      const normalMap = entry.material === 'bumpy';
+      const normalMap = entry.material.startsWith('bumpy');
       const unfiltered = fresh('unfiltered', { normalMap });
       const planned = fresh('plan', { entry, normalMap });
       const again = render(shared, 'plan', { entry, normalMap });
@@ -93,13 +93,14 @@ try {
   check(errors.length === 0, `no console errors or exceptions (${errors.slice(0, 3).join(' | ')})`);
   const none = result.bumpy;
   check(none.vsUnfiltered.differing === 0, `variant none renders as the unfiltered material (${none.vsUnfiltered.differing} pixels differ)`);
-  for (const name of ['glossy', 'glossy_fast', 'glossy_deferred']) {
+  for (const name of ['glossy', 'glossy_fast', 'glossy_deferred', 'bumpy_named']) {
     const r = result[name];
     check(r.vsUnfiltered.differing > 50 && r.vsUnfiltered.outside === 0,
           `${name} (${variants[name]}): the filter acts on the spheres (${r.vsUnfiltered.differing} pixels) and nowhere else (${r.vsUnfiltered.outside})`);
     check(r.planned.bright > r.unfiltered.bright,
           `${name}: the highlights widen (${r.planned.bright} vs ${r.unfiltered.bright} pixels at half the peak or more)`);
-    check(r.narrowVsUnfiltered <= 5,
+    // (The bake's LOD bias moves the normal map one level coarser: no such check where the plan has one.)
+    if (plan.materials.find((m) => m.material === name).prefilter === 'none') check(r.narrowVsUnfiltered <= 5,
           `${name}: with sigma^2 = 1e-6 saagen's lobe is three.js's GGX (${r.narrowVsUnfiltered} pixels differ by > 2/255)`);
     check(r.shared === 0, `${name}: one renderer, every configuration in turn, the same picture as a fresh renderer (${r.shared} pixels differ)`);
   }
