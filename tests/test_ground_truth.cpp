@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -738,6 +739,36 @@ TEST(Cache, RoundTripAndKey) {
   const std::vector<Material> rougher{{0.06, false}, {0.05, true}};
   EXPECT_NE(key, ground_truth_cache_key(scene, settings, rougher));
   EXPECT_NE(ground_truth_cache_file(key), ground_truth_cache_file(ground_truth_cache_key(scene, settings, rougher)));
+  std::filesystem::remove_all(dir);
+}
+
+// Pixels overwritten under an intact header (NaN, 1e30) are a miss that renders again, and the
+// file is rewritten: the checksum over the payload no longer matches.
+TEST(Cache, ACorruptedPayloadIsAMissThatRecomputes) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("saagen_gt_cache_corrupt_" + std::to_string(std::random_device{}()));
+  std::filesystem::remove_all(dir);
+  const Scene scene = make_scene(SceneId::sphere);
+  const std::vector<Material> materials{{0.05, false}};
+  GroundTruthSettings settings;
+  settings.width = settings.height = 8;
+  settings.strata = 2;
+  const GroundTruth first = cached_ground_truth(scene, settings, materials, dir.string());
+  const std::filesystem::path file = dir / ground_truth_cache_file(ground_truth_cache_key(scene, settings, materials));
+  const auto size = std::filesystem::file_size(file);
+  for (const float bad : {std::nanf(""), 1e30f}) {
+    {
+      std::fstream stream(file, std::ios::in | std::ios::out | std::ios::binary);
+      stream.seekp(static_cast<std::streamoff>(size - 4 * 8 * 8 - 4 * 10));  // a pixel of the material's image
+      stream.write(reinterpret_cast<const char*>(&bad), sizeof bad);
+    }
+    bool hit = true;
+    const GroundTruth again = cached_ground_truth(scene, settings, materials, dir.string(), {}, &hit);
+    EXPECT_FALSE(hit);
+    EXPECT_EQ(again.images[0].pixels, first.images[0].pixels);
+    cached_ground_truth(scene, settings, materials, dir.string(), {}, &hit);
+    EXPECT_TRUE(hit);  // rewritten whole
+  }
   std::filesystem::remove_all(dir);
 }
 

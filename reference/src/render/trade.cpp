@@ -22,7 +22,8 @@ namespace saagen::render {
 
 namespace {
 
-constexpr char kCacheMagic[8] = {'S', 'A', 'A', 'G', 'T', '0', '0', '1'};
+// Version 2 adds the payload's checksum: pixels overwritten under an intact header are a miss.
+constexpr char kCacheMagic[8] = {'S', 'A', 'A', 'G', 'T', '0', '0', '2'};
 // Bump when anything that changes ground-truth pixels without appearing in the key changes
 // (shading model, sampler, scene code).
 constexpr const char* kCacheFormat = "saagen-ground-truth-v2";
@@ -39,8 +40,8 @@ std::uint64_t fnv1a64(std::string_view text) {
 }
 
 template <class T>
-void write_pod(std::ostream& out, const T& value) {
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+void append_pod(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
 }
 
 template <class T>
@@ -48,6 +49,32 @@ bool read_pod(std::istream& in, T& value) {
   return static_cast<bool>(in.read(reinterpret_cast<char*>(&value), sizeof(T)));
 }
 
+// The images' floats, in order: the payload the checksum covers.
+std::string cache_payload(const GroundTruth& gt) {
+  std::string payload;
+  auto append_image = [&](const Image& image) {
+    payload.append(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(float));
+  };
+  for (const Image& image : gt.images) append_image(image);
+  append_image(gt.coverage);
+  return payload;
+}
+
+// A cache file: magic, key (size, bytes), width, height, image count, the payload's FNV-1a, payload.
+std::string cache_bytes(const std::string& key, const GroundTruth& gt) {
+  const std::string payload = cache_payload(gt);
+  std::string out(kCacheMagic, 8);
+  append_pod(out, static_cast<std::uint64_t>(key.size()));
+  out += key;
+  append_pod(out, static_cast<std::int32_t>(gt.coverage.width));
+  append_pod(out, static_cast<std::int32_t>(gt.coverage.height));
+  append_pod(out, static_cast<std::uint64_t>(gt.images.size()));
+  append_pod(out, fnv1a64(payload));
+  return out + payload;
+}
+
+// The ground truth a cache file holds for `key`; false (a miss) for anything else: another key,
+// size or format, a short file, or a payload whose checksum does not match.
 bool load_cache(const std::filesystem::path& path, const std::string& key, int width, int height, std::size_t count, GroundTruth& gt) {
   // Only a regular file is read: a FIFO (or device) planted at the name would block the open.
   std::error_code kind_error;
@@ -61,8 +88,8 @@ bool load_cache(const std::filesystem::path& path, const std::string& key, int w
   std::string stored(key_size, '\0');
   if (!in.read(stored.data(), static_cast<std::streamsize>(key_size)) || stored != key) return false;
   std::int32_t w = 0, h = 0;
-  std::uint64_t n = 0;
-  if (!read_pod(in, w) || !read_pod(in, h) || !read_pod(in, n)) return false;
+  std::uint64_t n = 0, checksum = 0;
+  if (!read_pod(in, w) || !read_pod(in, h) || !read_pod(in, n) || !read_pod(in, checksum)) return false;
   if (w != width || h != height || n != count) return false;
   GroundTruth loaded;
   auto read_image = [&](Image& image) {
@@ -74,31 +101,22 @@ bool load_cache(const std::filesystem::path& path, const std::string& key, int w
   for (Image& image : loaded.images)
     if (!read_image(image)) return false;
   if (!read_image(loaded.coverage)) return false;
+  if (in.peek() != std::char_traits<char>::eof()) return false;  // trailing bytes: not a file this wrote
+  if (fnv1a64(cache_payload(loaded)) != checksum) return false;
   gt = std::move(loaded);
   return true;
 }
 
-void store_cache(const std::filesystem::path& path, const std::string& key, const GroundTruth& gt) {
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  // Write to a unique temporary name, then rename: readers never see a partial file.
+// The library's own writer: a unique temporary beside the file, then a rename (readers never see
+// a partial file).
+void write_cache_file_directly(const std::filesystem::path& path, const std::string& bytes) {
   std::random_device rd;
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(rd()) + std::to_string(rd());
+  std::error_code ec;
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return;  // the cache is an optimisation: failing to write it is not an error
-    out.write(kCacheMagic, 8);
-    write_pod(out, static_cast<std::uint64_t>(key.size()));
-    out.write(key.data(), static_cast<std::streamsize>(key.size()));
-    const Image& first = gt.coverage;
-    write_pod(out, static_cast<std::int32_t>(first.width));
-    write_pod(out, static_cast<std::int32_t>(first.height));
-    write_pod(out, static_cast<std::uint64_t>(gt.images.size()));
-    auto write_image = [&](const Image& image) {
-      out.write(reinterpret_cast<const char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size() * sizeof(float)));
-    };
-    for (const Image& image : gt.images) write_image(image);
-    write_image(gt.coverage);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     if (!out) {
       out.close();
       std::filesystem::remove(temporary, ec);
@@ -107,6 +125,38 @@ void store_cache(const std::filesystem::path& path, const std::string& key, cons
   }
   std::filesystem::rename(temporary, path, ec);
   if (ec) std::filesystem::remove(temporary, ec);
+}
+
+CacheFileWriter& cache_file_writer() {
+  static CacheFileWriter writer = write_cache_file_directly;
+  return writer;
+}
+
+void store_cache(const std::filesystem::path& path, const std::string& key, const GroundTruth& gt) {
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  cache_file_writer()(path, cache_bytes(key, gt));
+}
+
+// A ground truth that cannot be measured against: a non-finite pixel, or black in every material
+// (every configuration would err by 0 and "win").
+void check_ground_truth(const Scene& scene, const GroundTruth& gt, std::span<const Material> materials) {
+  bool lit = false;
+  for (std::size_t m = 0; m < gt.images.size(); ++m) {
+    for (const float value : gt.images[m].pixels) {
+      if (!std::isfinite(value)) {
+        std::ostringstream s;
+        s << "scene " << scene.name() << ": the ground truth at alpha " << materials[m].alpha
+          << " holds a non-finite pixel; nothing can be measured against it (check the scene's geometry and material factors)";
+        throw TradeError(s.str());
+      }
+      lit = lit || value != 0.0f;
+    }
+  }
+  if (!lit)
+    throw TradeError("scene " + std::string(scene.name()) +
+                     ": the ground truth is black at every alpha (no lit surface in view: check the scene's scale, camera and light); "
+                     "every configuration would err by 0");
 }
 
 }  // namespace
@@ -122,6 +172,10 @@ std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings
     << ";F0=" << kFresnelF0 << ";materials=";
   for (const Material& m : materials) s << "(" << m.alpha << "," << (m.fresnel ? 1 : 0) << ")";
   return s.str();
+}
+
+void set_ground_truth_cache_writer(CacheFileWriter writer) {
+  cache_file_writer() = writer ? std::move(writer) : CacheFileWriter(write_cache_file_directly);
 }
 
 std::string ground_truth_cache_file(const std::string& key) {
@@ -345,6 +399,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     const auto start = std::chrono::steady_clock::now();
     GroundTruth gt = cached_ground_truth(
         scene, settings, materials, config.cache_dir, [&](std::uint64_t done, std::uint64_t) { report(stage, base + done); }, &hit);
+    check_ground_truth(scene, gt, materials);
     if (hit) {
       ++table.cache_hits;
     } else {

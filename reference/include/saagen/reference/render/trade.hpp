@@ -51,7 +51,13 @@
 // Ground-truth images can be cached on disk (cache_dir): one file per (scene, rotation, camera
 // (hence the pan), size, samples, seed, filter, material list), named by a 64-bit FNV-1a hash of a text key holding
 // every one of those numbers (and a format version); the key is stored in the file and
-// compared on load, so a hash collision or a stale file only costs a re-render.
+// compared on load, so a hash collision or a stale file only costs a re-render; so does a file
+// whose pixels do not match the FNV-1a checksum stored with them (a corrupted file).
+//
+// A ground truth is checked before it is measured against: one holding a non-finite pixel, or
+// black in every material (nothing of the scene lit in view: a camera scaled to nothing, an
+// asset at one point), is a TradeError naming the scene, not a measurement in which every
+// configuration errs by 0.
 //
 // Under TAA (TradeConfig::taa; taa.hpp). Each configuration (no SAA, every variant with its
 // feeds, prefilters and lobes, every engine form) is also run through the TAA resolve as a row
@@ -76,13 +82,21 @@
 #include "saagen/reference/saa.hpp"
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 namespace saagen::render {
+
+// A measurement that cannot be made (a degenerate ground truth): one line naming the scene.
+class TradeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // saagen's variants, the no-SAA baseline and the engines' shipped forms.
 std::vector<Variant> default_trade_variants();
@@ -252,6 +266,13 @@ std::vector<Material> trade_materials(const TradeConfig& config);
 // entry is missing or stale). *cache_hit (when given) tells which happened.
 GroundTruth cached_ground_truth(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials,
                                 const std::string& cache_dir, const SampleProgress& progress = {}, bool* cache_hit = nullptr);
+
+// How a ground-truth cache file is written: (path, bytes), failures ignored (the cache is an
+// optimisation). By default a temporary beside the path, renamed over it; a program with an
+// output layer passes its own (the CLI's removes the temporary on a signal that ends the
+// process). An empty writer restores the default.
+using CacheFileWriter = std::function<void(const std::filesystem::path& path, const std::string& bytes)>;
+void set_ground_truth_cache_writer(CacheFileWriter writer);
 
 // The cache key text and its file name ("gt-<16 hex digits>.bin").
 std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials);
