@@ -4,6 +4,7 @@
 
 #include "saagen/error.hpp"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,6 +25,11 @@ inline void check_named_once(std::string_view option, const std::vector<std::str
       throw Error(fmt::format("{} {}: named twice; name each value once", option, *value));
     }
   }
+}
+
+// A value must be given: CLI11 takes an empty one ("--scale ''") as the option's default.
+inline CLI::Validator value_given() {
+  return CLI::Validator([](std::string& text) { return text.empty() ? std::string("empty; pass a value") : std::string(); }, "", "given");
 }
 
 // An output directory or file must be named: an empty one would write into the current directory.

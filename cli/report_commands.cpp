@@ -1,5 +1,7 @@
 #include "report_commands.hpp"
 
+#include "arguments.hpp"
+
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/assets.hpp"
@@ -112,6 +114,80 @@ std::string ground_truth_line(const render::TradeTable& table) {
                      table.cache_hits);
 }
 
+// Every file a run reads, which no output may be (compared by identity, not even with --force):
+// the cost table, each glTF scene's files (the asset, its buffers and images) and the files in
+// the ground-truth cache.
+std::vector<std::filesystem::path> run_inputs(const ReportCommands::Common& common, const render::TradeConfig& config) {
+  std::vector<std::filesystem::path> inputs;
+  if (!common.cost_json.empty()) inputs.emplace_back(common.cost_json);
+  for (render::SceneId id : config.scenes)
+    if (const auto asset = render::gltf_asset_of(id))
+      for (const std::string& file : asset->files) inputs.emplace_back(file);
+  if (!common.cache_dir.empty()) {
+    std::error_code error;
+    for (std::filesystem::directory_iterator entry(common.cache_dir, error), end; !error && entry != end; entry.increment(error))
+      if (entry->is_regular_file(error)) inputs.push_back(entry->path());
+  }
+  return inputs;
+}
+
+// The ground-truth cache is written through the output layer: a temporary created exclusively
+// beside the file, removed by a signal that ends the process (Ctrl-C, a file-size limit) or a
+// failed write; a cache that cannot be written is only slower.
+void write_cache_through_output_layer() {
+  render::set_ground_truth_cache_writer([](const std::filesystem::path& path, const std::string& bytes) {
+    // A FIFO or device planted at the cache's own name goes (the output layer writes over no
+    // special file); a link is replaced itself, never followed.
+    std::error_code error;
+    const auto status = std::filesystem::symlink_status(path, error);
+    if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) && !std::filesystem::is_symlink(status) &&
+        !std::filesystem::is_directory(status))
+      std::filesystem::remove(path, error);
+    try {
+      write_outputs({{path, bytes}}, /*force=*/true);  // the cache's own file names
+    } catch (const Error&) {
+    }
+  });
+}
+
+// The trade table of a run. A degenerate measurement (a black or non-finite ground truth, a
+// metric that is not finite) is an error naming the scene, not a verdict.
+render::TradeTable measure_trade(const render::TradeConfig& config) {
+  const render::TradeTable table = [&] {
+    try {
+      return render::compute_trade_table(config, report::progress_bar());
+    } catch (const render::TradeError& error) {
+      throw Error(error.what());
+    }
+  }();
+  for (const render::TradeRow& row : table.rows) {
+    const std::pair<const char*, double> metrics[] = {{"linear RMSE", row.rmse_linear},
+                                                      {"display RMSE", row.rmse_tonemapped},
+                                                      {"LDR-FLIP", row.flip_ldr},
+                                                      {"HDR-FLIP", row.flip_hdr},
+                                                      {"TDE", row.tde}};
+    for (const auto& [metric, value] : metrics) {
+      if (!std::isfinite(value)) {
+        throw Error(fmt::format("scene {}: the {} of {} at alpha {} is {}; a measurement that is not finite gives no verdict",
+                                render::scene_name(row.scene), metric, render::configuration_id(row), row.alpha, value));
+      }
+    }
+  }
+  return table;
+}
+
+// The GPU families of --isa, checked before anything is loaded or measured.
+void check_isa_families(const std::string& families) {
+#ifdef SAAGEN_HAVE_ISA_COST
+  if (!families.empty()) report::parse_isa_families(families);
+#else
+  if (!families.empty()) {
+    throw Error(
+        fmt::format("--isa {}: this saagen was built without the Vulkan harness (SAAGEN_BUILD_HARNESS=OFF); rebuild with it", families));
+  }
+#endif
+}
+
 // The configuration of a run, its options checked before any rendering.
 render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -121,6 +197,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
       throw Error(fmt::format("--cache {}: exists and is not a directory; pass a directory for the ground-truth cache", common.cache_dir));
     }
     check_cache_writable(common.cache_dir);
+    write_cache_through_output_layer();
   }
   render::TradeConfig config = report::preset_config(common.preset);
   if (!common.scenes.empty()) {
@@ -219,7 +296,7 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
       ->capture_default_str();
   command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
-  command->add_option("--threads", common.threads, "Render threads (0: all cores)")->capture_default_str();
+  command->add_option("--threads", common.threads, "Render threads (0: all cores)")->check(value_given())->capture_default_str();
   command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
       ->check(finite_range(1e-6, 16.0));
   command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(finite_range(1e-6, 1.0));
@@ -300,24 +377,29 @@ int ReportCommands::run_bench() const {
         "--json {}: --isa-only computes no trade table to write; drop --isa-only, or write the ISA statistics with --isa-table FILE",
         bench_json_));
   }
-  auto costs = load_costs(bench_common_.cost_json);
   if (bench_isa_only_ && !bench_report_.empty()) {
     throw Error(fmt::format("--report {}: --isa-only computes no trade table to report; drop --isa-only", bench_report_));
   }
+  check_isa_families(bench_common_.isa_families);
+  auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, !bench_report_.empty());
-  // Every output together (never one file twice), and never over the --cost table.
+  // Every output together (never one file twice), and never over an input.
   std::vector<std::filesystem::path> outputs;
   if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
   if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
   if (!bench_report_.empty())
     for (const std::filesystem::path& path : report::report_paths(config, bench_report_)) outputs.push_back(path);
-  check_output_paths(outputs, bench_common_.force, {bench_common_.cost_json});
+  check_output_paths(outputs, bench_common_.force, run_inputs(bench_common_, config));
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
-  if (isa && !bench_isa_table_.empty())
-    write_outputs({{bench_isa_table_, isa->dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
-  if (bench_isa_only_) return 0;
+  // Every output of the run is written in one commit, after every input has been read.
+  std::vector<OutputFile> files;
+  if (isa && !bench_isa_table_.empty()) files.push_back({bench_isa_table_, isa->dump(2) + "\n"});
+  if (bench_isa_only_) {
+    if (!files.empty()) write_outputs(files, bench_common_.force, run_inputs(bench_common_, config));
+    return 0;
+  }
   std::cout << asset_summaries(config);
-  const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  const render::TradeTable measured = measure_trade(config);
   std::cout << ground_truth_line(measured);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
   const render::TradeTable table = report::without_taa_rows(measured);
@@ -333,29 +415,36 @@ int ReportCommands::run_bench() const {
   if (!bench_json_.empty()) {
     nlohmann::json json = report::trade_json(table, summary, cost_table);
     if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
-    write_outputs({{bench_json_, json.dump(2) + "\n"}}, bench_common_.force, {bench_common_.cost_json});
+    files.push_back({bench_json_, json.dump(2) + "\n"});
   }
+  std::optional<report::ReportFiles> report_output;
   if (!bench_report_.empty()) {
-    const auto images = report::write_report(table, cost_table, bench_report_, bench_common_.force, config.taa ? &measured : nullptr);
-    std::cout << fmt::format("\nwrote {}/index.html, report.md and {} images\n", bench_report_, images.size());
+    report_output = report::report_files(table, cost_table, bench_report_, config.taa ? &measured : nullptr);
+    files.insert(files.end(), report_output->outputs.begin(), report_output->outputs.end());
   }
+  if (!files.empty()) write_outputs(files, bench_common_.force, run_inputs(bench_common_, config));
+  if (report_output)
+    std::cout << fmt::format("\nwrote {}/index.html, report.md and {} images\n", bench_report_, report_output->images.size());
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;
 }
 
 int ReportCommands::run_report() const {
+  check_output_named("--output", report_directory_);
+  check_isa_families(report_common_.isa_families);
   auto costs = load_costs(report_common_.cost_json);
   const render::TradeConfig config = configure(report_common_, true);
-  check_output_paths(report::report_paths(config, report_directory_), report_common_.force, {report_common_.cost_json});
+  check_output_paths(report::report_paths(config, report_directory_), report_common_.force, run_inputs(report_common_, config));
   measure_isa(report_common_.isa_families, costs, std::cerr);
   std::cout << asset_summaries(config);
-  const render::TradeTable measured = render::compute_trade_table(config, report::progress_bar());
+  const render::TradeTable measured = measure_trade(config);
   std::cout << ground_truth_line(measured);
   const render::TradeTable table = report::without_taa_rows(measured);
-  const auto images =
-      report::write_report(table, costs ? &*costs : nullptr, report_directory_, report_common_.force, config.taa ? &measured : nullptr);
-  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, images.size());
+  const report::ReportFiles files =
+      report::report_files(table, costs ? &*costs : nullptr, report_directory_, config.taa ? &measured : nullptr);
+  write_outputs(files.outputs, report_common_.force, run_inputs(report_common_, config));
+  std::cout << fmt::format("wrote {}/index.html, report.md and {} images\n\n", report_directory_, files.images.size());
   if (config.taa) std::cout << report::format_taa_summary(measured) << "\n";
   std::cout << report::format_verdict(table);
   return 0;

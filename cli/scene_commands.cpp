@@ -176,6 +176,78 @@ std::string identifier_from(std::string_view text, bool allow_dash, std::string_
   return out.substr(0, 56);
 }
 
+// The next code point of valid UTF-8 at text[at] (advancing at); nullopt for an invalid sequence.
+std::optional<char32_t> next_code_point(std::string_view text, std::size_t& at) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned char lead = byte(at);
+  const int length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+  if (length == 0 || at + static_cast<std::size_t>(length) > text.size()) return std::nullopt;
+  char32_t code = length == 1 ? lead : lead & (0x7f >> length);
+  for (int i = 1; i < length; ++i) {
+    const unsigned char next = byte(at + static_cast<std::size_t>(i));
+    if ((next & 0xc0) != 0x80) return std::nullopt;
+    code = (code << 6) | (next & 0x3f);
+  }
+  static constexpr char32_t smallest[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (code < smallest[length] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return std::nullopt;
+  at += static_cast<std::size_t>(length);
+  return code;
+}
+
+// TOML's short escape letter of a control character (\b \t \n \f \r); 0 for the others.
+char short_escape(char32_t code) {
+  switch (code) {
+    case '\b':
+      return 'b';
+    case '\t':
+      return 't';
+    case '\n':
+      return 'n';
+    case '\f':
+      return 'f';
+    case '\r':
+      return 'r';
+    default:
+      return 0;
+  }
+}
+
+// Text as a TOML basic string, quotes included, in printable ASCII: control characters, DEL and
+// every non-ASCII character escaped (\uXXXX, \UXXXXXXXX), so that no name can end the string or the
+// line; nullopt when the text is not valid UTF-8 (TOML strings are Unicode).
+std::optional<std::string> toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (std::size_t at = 0; at < text.size();) {
+    const auto code = next_code_point(text, at);
+    if (!code) return std::nullopt;
+    if (*code == '"' || *code == '\\') {
+      out += '\\';
+      out += static_cast<char>(*code);
+    } else if (const char letter = short_escape(*code)) {
+      out += '\\';
+      out += letter;
+    } else if (*code >= 0x20 && *code < 0x7f) {
+      out += static_cast<char>(*code);
+    } else if (*code <= 0xffff) {
+      out += fmt::format("\\u{:04X}", static_cast<std::uint32_t>(*code));
+    } else {
+      out += fmt::format("\\U{:08X}", static_cast<std::uint32_t>(*code));
+    }
+  }
+  return out + "\"";
+}
+
+// Where a manifest material comes from (written as a TOML string); a name that cannot be written is
+// reported against the asset.
+std::string material_source(const render::GltfAsset& asset, std::size_t index) {
+  const render::GltfMaterial& material = asset.materials[index];
+  if (!toml_string(material.name)) {
+    throw Error(fmt::format("--gltf {}: material {}'s name is not valid UTF-8, which a manifest cannot hold; rename the material",
+                            asset.path, index));
+  }
+  return fmt::format("glTF material {} '{}'", index, material.name);
+}
+
 // The scene manifest of a glTF asset (docs/GLTF_SCENES.md, "The manifest of an asset"): one
 // material per glTF material its primitives use, in the asset's order, and after each
 // KHR_materials_clearcoat material its coat as a second filtered lobe. Every glTF mesh has
@@ -190,8 +262,20 @@ std::string identifier_from(std::string_view text, bool allow_dash, std::string_
 // "perceptual", glTF's roughness (roughnessFactor x G).
 std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view path, const std::vector<std::string>& targets) {
   std::ostringstream s;
-  s << "# Scene manifest of " << asset.path << ", written by `saagen plan --gltf` from its materials.\n"
+  // A path that is not UTF-8 is written with its odd bytes as U+FFFD: the key is a note.
+  std::string path_text;
+  for (std::size_t at = 0; at < asset.path.size();) {
+    const std::size_t from = at;
+    if (next_code_point(asset.path, at)) {
+      path_text.append(asset.path, from, at - from);
+    } else {
+      path_text += "\xEF\xBF\xBD";
+      at = from + 1;
+    }
+  }
+  s << "# Scene manifest of the glTF asset named by `source`, written by `saagen plan --gltf` from its materials.\n"
     << "# Edit it freely; `saagen plan` and `saagen emit --manifest` read it as any manifest.\n\n";
+  s << "source = " << *toml_string(path_text) << "\n";
   s << "name = \"" << identifier_from(asset.name, false, "asset") << "\"\n";
   s << "targets = [";
   for (std::size_t i = 0; i < targets.size(); ++i) s << (i ? ", " : "") << "\"" << targets[i] << "\"";
@@ -205,13 +289,14 @@ std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view 
     names.insert(name);
     return name;
   };
-  auto lobe = [&](const std::string& name, bool normal_maps, bool anisotropic, bool coat_layer, const std::string& comment) {
+  auto lobe = [&](const std::string& name, const std::string& source, bool normal_maps, bool anisotropic, bool coat_layer,
+                  const std::string& comment) {
     s << "\n# " << comment << "\n";
     if (anisotropic)
       s << "# KHR_materials_anisotropy: alpha2 = (alpha_t^2, alpha_b^2), alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, in the\n"
            "# tangent frame turned to the anisotropy direction (half_ts in that frame); the matrix form adds its kernel to\n"
            "# diag(alpha2) and keeps the kernel's own orientation\n";
-    s << "[[material]]\nname = \"" << name << "\"\npath = \"" << path << "\"\ntangents = true\n";
+    s << "[[material]]\nsource = " << *toml_string(source) << "\nname = \"" << name << "\"\npath = \"" << path << "\"\ntangents = true\n";
     if (normal_maps) s << "normal_maps = true\n";
     if (anisotropic) s << "anisotropic = true\n";
     if (coat_layer) s << "content = \"clearcoat\"\n";
@@ -222,9 +307,10 @@ std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view 
     const std::string name = unique(identifier_from(material.name, true, "material"), m);
     const bool anisotropic = material.anisotropy && (material.anisotropy_strength != 0.0 || material.anisotropy_texture);
     const bool coated = material.clearcoat && material.clearcoat_factor > 0.0;
-    lobe(name, material.normal_map != nullptr, anisotropic, false, "glTF material " + std::to_string(m) + ": " + material.describe());
+    const std::string source = material_source(asset, m);
+    lobe(name, source, material.normal_map != nullptr, anisotropic, false, "glTF material " + std::to_string(m) + ": " + material.describe_factors());
     if (coated)
-      lobe(unique(name.substr(0, 50) + "_coat", m), material.clearcoat_normal_map != nullptr, false, true,
+      lobe(unique(name.substr(0, 50) + "_coat", m), source + ", its clearcoat", material.clearcoat_normal_map != nullptr, false, true,
            "its KHR_materials_clearcoat layer, a second filtered lobe: roughness " +
                fmt::format("{}", material.clearcoat_roughness_factor) +
                (material.clearcoat_normal_map ? ", the coat's own normal texture" : ", the geometric normal (no coat normal texture)"));
@@ -236,17 +322,22 @@ std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view 
 
 std::string SceneCommands::write_gltf_manifest(const Catalogue& catalogue) const {
   if (plan_output_.empty()) throw Error("--gltf " + plan_gltf_ + ": name the manifest to write with --output FILE");
-  check_output_paths({plan_output_}, plan_force_, {plan_gltf_});
+  const OutputFile sidecar_name = ownership_sidecar(plan_output_, "", "");
+  std::vector<fs::path> inputs = {plan_gltf_};
+  if (!plan_trade_table_.empty()) inputs.emplace_back(plan_trade_table_);
+  check_output_paths({plan_output_, sidecar_name.path}, plan_force_, inputs);
   render::GltfAsset asset;
   try {
     asset = render::load_gltf(plan_gltf_);
   } catch (const render::GltfError& error) {
     throw Error(fmt::format("--gltf {}", error.what()));
   }
+  // Every file the asset was read from (its buffers and images too) is an input.
+  inputs.insert(inputs.end(), asset.files.begin(), asset.files.end());
   const std::string text = gltf_manifest_text(asset, plan_path_, plan_targets_);
   parse_manifest(text, plan_output_, catalogue);  // what is written must plan: checked before writing
   const WriteReport report = write_outputs({{plan_output_, text}, ownership_sidecar(plan_output_, text, "scene manifest of " + plan_gltf_)},
-                                           plan_force_, {plan_gltf_});
+                                           plan_force_, inputs);
   for (const fs::path& path : report.written)
     if (path == fs::path(plan_output_)) std::cout << "wrote     " << path.string() << "\n";
   for (const fs::path& path : report.unchanged)
@@ -305,12 +396,13 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
     throw Error("plan needs a MANIFEST (see examples/scene.saagen.toml), --gltf ASSET -o MANIFEST, or --rules");
   }
   if (plan_rules_) std::cout << "\n";
+  // Every input is read before anything is written: a bad table leaves no manifest behind.
+  std::optional<MeasuredTradeTable> table;
+  if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
   const std::string manifest_path = plan_gltf_.empty() ? plan_manifest_ : write_gltf_manifest(catalogue);
   Manifest manifest = load_manifest(manifest_path, catalogue);
   if (plan_taa_) manifest.taa = true;
   const Catalogue& planned = scene_catalogue(manifest, catalogue);
-  std::optional<MeasuredTradeTable> table;
-  if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
   ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
   if (!plan_gltf_.empty()) {  // the asset to measure is the one planned
     for (MaterialPlan& material : plan.materials) {

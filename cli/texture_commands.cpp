@@ -1,5 +1,7 @@
 #include "texture_commands.hpp"
 
+#include "arguments.hpp"
+
 #include "saagen/advice.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
@@ -46,16 +48,22 @@ TextureCommands::TextureCommands(CLI::App& app) {
       ->add_option("--domain", domain_,
                    "Domain of --roughness and of the toksvig output: alpha2, alpha, perceptual (alpha = r^2) or smoothness (1 - r)")
       ->capture_default_str();
-  prefilter_->add_option("--roughness", roughness_, "Constant base roughness in that domain, in [0, 1]")->capture_default_str();
+  prefilter_->add_option("--roughness", roughness_, "Constant base roughness in that domain, in [0, 1]")
+      ->check(value_given())
+      ->capture_default_str();
   prefilter_->add_flag("--float32", float32_, "Roughness methods: R32_SFLOAT instead of R16_SFLOAT");
-  prefilter_->add_flag("--gltf", gltf_,
+  CLI::Option* gltf = prefilter_->add_flag("--gltf", gltf_,
                        "Roughness methods: glTF metallicRoughnessTexture layout, R8G8B8A8_UNORM with G = perceptual roughness, B = "
                        "--metallic, R = A = 1");
-  prefilter_->add_option("--metallic", metallic_, "--gltf: metallic value of the B channel, in [0, 1]")->capture_default_str();
+  prefilter_->add_option("--metallic", metallic_, "--gltf: metallic value of the B channel, in [0, 1]")
+      ->check(value_given())
+      ->needs(gltf)
+      ->capture_default_str();
   prefilter_
       ->add_option("--scale", scale_,
                    "Roughness methods: the bake's addition to alpha^2 times this, in [0, 4] (1: as published; the best strength "
                    "depends on the map: measure it with saagen bench --prefilter-scale, docs/PREFILTER.md)")
+      ->check(value_given())
       ->capture_default_str();
   prefilter_->add_flag("--force", force_, "Overwrite a file that saagen did not write");
 }

@@ -16,10 +16,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -93,21 +95,28 @@ struct QuadAsset {
   int mode = 4;
   std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
   bool normals = true;  // false: no NORMAL attribute (flat normals)
+  std::string buffer_uri;  // empty: the buffer is embedded as a data URI; else write_quad writes it there
+  std::string version = "2.0";
 };
 
-std::string quad_gltf(const QuadAsset& q) {
-  const std::vector<float>& positions = q.positions;
+std::string quad_buffer(const QuadAsset& q) {
   const std::vector<float> normals{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
   if (q.uv_mirrored)
     for (std::size_t i = 0; i < uv.size(); i += 2) uv[i] = 1.0f - uv[i];
   const std::vector<std::uint16_t> indices{0, 1, 2, 0, 2, 3};
   std::string bytes;
-  append(bytes, positions);
+  append(bytes, q.positions);
   append(bytes, normals);
   append(bytes, uv);
   append(bytes, indices);
-  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  return bytes;
+}
+
+std::string quad_gltf(const QuadAsset& q) {
+  const std::string bytes = quad_buffer(q);
+  const std::string uri = q.buffer_uri.empty() ? "data:application/octet-stream;base64," + base64(bytes) : q.buffer_uri;
+  return R"({"asset": {"version": ")" + q.version + R"("}, "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{)" +
          q.node + R"(}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, )" +
@@ -116,8 +125,7 @@ std::string quad_gltf(const QuadAsset& q) {
   "materials": [)" +
          q.material + R"(],
   "buffers": [{"byteLength": )" +
-         std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) +
-         R"("}],
+         std::to_string(bytes.size()) + R"(, "uri": ")" + uri + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
                   {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
@@ -130,6 +138,7 @@ std::string quad_gltf(const QuadAsset& q) {
 fs::path write_quad(const fs::path& dir, const std::string& name, const QuadAsset& q) {
   const fs::path path = dir / name;
   write_file(path, quad_gltf(q));
+  if (!q.buffer_uri.empty()) write_file(dir / q.buffer_uri, quad_buffer(q));
   return path;
 }
 
@@ -913,4 +922,330 @@ TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
   const auto material = run.out.find("material brushed (forward, anisotropic");
   ASSERT_NE(material, std::string::npos) << run.out;
   EXPECT_EQ(run.out.find("  variant   none  [advice]", material), run.out.find("  variant ", material)) << run.out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hostile assets: what a user may point the loader at without having checked it. Each asset is
+// made here, small; each is refused with one line naming the file (or loads, where the old loader
+// crashed or hung on a valid one), quickly and without output.
+
+namespace {
+
+// The quad with the JSON text `from` replaced by `to` (once).
+std::string edited_quad(const QuadAsset& q, const std::string& from, const std::string& to) {
+  std::string text = quad_gltf(q);
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// A chain of `count` nodes, each the only child of the one before; the last holds the quad's mesh.
+std::string node_chain(std::size_t count) {
+  std::string nodes;
+  for (std::size_t i = 0; i + 1 < count; ++i) nodes += R"({"children": [)" + std::to_string(i + 1) + "]}, ";
+  nodes += R"({"mesh": 0})";
+  std::string text = quad_gltf({});
+  const std::string node = R"("nodes": [{"mesh": 0}])";
+  text.replace(text.find(node), node.size(), R"("nodes": [)" + nodes + "]");
+  return text;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+TEST(GltfHostile, NonFinitePositionsAreRefusedNotCrashed) {
+  const fs::path dir = scratch("non-finite");
+  for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    QuadAsset q;
+    q.positions[4] = bad;
+    EXPECT_NE(bad_asset_message(write_quad(dir, "bad.gltf", q)).find("vertex 1's position after the node transforms"), std::string::npos);
+  }
+  QuadAsset far;  // a finite quad moved beyond any sum of positions by its node
+  far.node = R"("mesh": 0, "translation": [1e308, 0, 0])";
+  EXPECT_NE(bad_asset_message(write_quad(dir, "far.gltf", far)).find("beyond 1e100 in magnitude"), std::string::npos);
+  QuadAsset point;  // every vertex at one point
+  point.positions = std::vector<float>(12, 0.5f);
+  EXPECT_NE(bad_asset_message(write_quad(dir, "point.gltf", point)).find("every vertex lies at one point"), std::string::npos);
+  QuadAsset camera;  // a camera scaled to nothing
+  camera.node = R"("mesh": 0, "children": [1]}, {"camera": 0, "scale": [0, 0, 0])";
+  camera.top_extra = R"(, "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.01}}])";
+  EXPECT_NE(bad_asset_message(write_quad(dir, "camera.gltf", camera)).find("camera 0: its node transform leaves no view"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, DepthIsLimitedBeforeParsingAndNodesAreWalkedWithoutRecursion) {
+  const fs::path dir = scratch("depth");
+  write_file(dir / "chain.gltf", node_chain(20000));  // 20000 nested nodes: a valid asset
+  EXPECT_EQ(load_gltf((dir / "chain.gltf").string()).mesh->triangles().size(), 2u);
+  const std::string deep = std::string(20000, '[') + std::string(20000, ']');
+  write_file(dir / "extras.gltf", edited_quad({}, R"("scene": 0)", R"("extras": )" + deep + R"(, "scene": 0)"));
+  EXPECT_NE(bad_asset_message(dir / "extras.gltf").find("line 1: JSON nested deeper than 64 levels"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, NodeInstancesAreCountedBeforeExpanding) {
+  const fs::path dir = scratch("instances");
+  // 40 nodes each listing the next one twice: 2^40 paths to the last.
+  std::string nodes;
+  for (int i = 0; i + 1 < 40; ++i) nodes += R"({"children": [)" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}, ";
+  for (const std::string& last : {std::string(R"({})"), std::string(R"({"mesh": 0})")}) {
+    std::string text = quad_gltf({});
+    const std::string node = R"("nodes": [{"mesh": 0}])";
+    text.replace(text.find(node), node.size(), R"("nodes": [)" + nodes + last + "]");
+    write_file(dir / "dag.gltf", text);
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_NE(bad_asset_message(dir / "dag.gltf").find("the scene instances its nodes 1099511627775 times"), std::string::npos);
+    EXPECT_LT(seconds_since(start), 1.0);
+  }
+  {  // within the instance limit, beyond the triangle limit: refused before a triangle is made
+    QuadAsset q;
+    q.node = R"("children": [1, 1, 1, 1]}, {"mesh": 0)";
+    write_file(dir / "wide.gltf", quad_gltf(q));
+    GltfLimits limits;
+    limits.max_triangles = 7;
+    EXPECT_NE(bad_asset_message(dir / "wide.gltf", limits).find("the scene instances 8 triangles, beyond the limit of 7"),
+              std::string::npos);
+    EXPECT_EQ(load_gltf((dir / "wide.gltf").string()).mesh->triangles().size(), 8u);  // four instances of the quad
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, TotalsAreCappedBeforeTheWork) {
+  const fs::path dir = scratch("totals");
+  {  // only used images are decoded: an unused image entry whose pixels are broken loads
+    std::vector<unsigned char> pixels(4 * 4 * 3, 200);
+    const std::string good = png(4, 4, 3, pixels);
+    write_file(dir / "good.png", good);
+    write_file(dir / "broken.png", good.substr(0, 40));  // the header, no pixel data
+    QuadAsset q;
+    q.material = R"({"normalTexture": {"index": 0}})";
+    q.top_extra = R"(, "textures": [{"source": 0}, {"source": 1}], "images": [{"uri": "good.png"}, {"uri": "broken.png"}])";
+    EXPECT_TRUE(load_gltf(write_quad(dir, "unused.gltf", q).string()).materials[0].normal_map);
+    std::string used = quad_gltf(q);
+    used.replace(used.find(R"("normalTexture": {"index": 0})"), 29, R"("normalTexture": {"index": 1})");
+    write_file(dir / "used.gltf", used);
+    EXPECT_NE(bad_asset_message(dir / "used.gltf").find("image 1 ('broken.png') could not be decoded"), std::string::npos);
+  }
+  {  // three external buffers each within the per-file limit, beyond the total
+    QuadAsset q;
+    q.buffer_uri = "quad.bin";
+    const std::string one = R"({"byteLength": 140, "uri": "quad.bin"})";
+    std::string text = edited_quad(q, one, one + ", " + one + ", " + one);
+    write_file(dir / "three.gltf", text);
+    write_file(dir / "quad.bin", quad_buffer(q));
+    GltfLimits limits;
+    limits.max_total_bytes = fs::file_size(dir / "three.gltf") + 2 * 140;
+    EXPECT_NE(bad_asset_message(dir / "three.gltf", limits).find("in all"), std::string::npos);
+    EXPECT_EQ(load_gltf((dir / "three.gltf").string()).files.size(), 4u);  // the asset and its buffer, read three times
+  }
+  {  // the JSON's size and number of values
+    const fs::path path = write_quad(dir, "plain.gltf", {});
+    GltfLimits bytes;
+    bytes.max_json_bytes = 500;
+    EXPECT_NE(bad_asset_message(path, bytes).find("bytes, beyond the limit of 500"), std::string::npos);
+    GltfLimits values;
+    values.max_json_values = 50;
+    EXPECT_NE(bad_asset_message(path, values).find("more than 50 JSON values"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, EveryUseOfATextureIsChecked) {
+  const fs::path dir = scratch("texture-uses");
+  std::vector<unsigned char> pixels(4 * 4 * 3, 200);
+  write_file(dir / "n.png", png(4, 4, 3, pixels));
+  const std::string top = R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{}, {"wrapS": 33071}])";
+  const std::vector<std::pair<std::string, std::string>> second_uses = {
+      {R"({"index": 0, "texCoord": 1})", "uses TEXCOORD_1"},
+      {R"({"index": 0, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}})", "KHR_texture_transform is not supported"}};
+  for (const auto& [use, message] : second_uses) {
+    QuadAsset q;
+    q.material = R"({"name": "first", "normalTexture": {"index": 0}}, {"name": "second", "normalTexture": )" + use + "}";
+    q.top_extra = top;
+    q.node = R"("mesh": 0}, {"mesh": 1)";
+    q.primitive_extra = R"(}]}, {"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 1)";
+    const std::string text = edited_quad(q, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 1]}])");
+    write_file(dir / "second.gltf", text);
+    EXPECT_NE(bad_asset_message(dir / "second.gltf").find("material 1 ('second') normalTexture: " + message), std::string::npos);
+  }
+  {  // a second texture of the same image through a CLAMP sampler
+    QuadAsset q;
+    q.material = R"({"name": "first", "normalTexture": {"index": 0}}, {"name": "second", "normalTexture": {"index": 1}})";
+    q.top_extra = R"(, "textures": [{"source": 0}, {"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{"wrapS": 33071}])";
+    q.node = R"("mesh": 0}, {"mesh": 1)";
+    q.primitive_extra = R"(}]}, {"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 1)";
+    write_file(dir / "clamp.gltf", edited_quad(q, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 1]}])"));
+    EXPECT_NE(bad_asset_message(dir / "clamp.gltf").find("sampler 0 does not wrap with REPEAT"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, FactorsOutsideTheSpecificationAreRefused) {
+  const fs::path dir = scratch("factors");
+  const std::vector<std::pair<std::string, std::string>> materials = {
+      {R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1e308}}})", "clearcoatFactor 1e+308 is outside [0, 1]"},
+      {R"({"pbrMetallicRoughness": {"roughnessFactor": -0.5}})", "roughnessFactor -0.5 is outside [0, 1]"},
+      {R"({"extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 2}}})", "anisotropyStrength 2 is outside [0, 1]"},
+      {R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 1e300}}}})",
+       "index 1.0000000000000001e+300 is not an index"},
+  };
+  for (const auto& [material, message] : materials) {
+    QuadAsset q;
+    q.material = material;
+    EXPECT_NE(bad_asset_message(write_quad(dir, "factor.gltf", q)).find(message), std::string::npos) << material;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, IndicesVersionsAndUrisAreChecked) {
+  const fs::path dir = scratch("indices");
+  {  // a light index of 1e300 is named as written
+    QuadAsset q;
+    q.node = R"("mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 1e300}})";
+    EXPECT_NE(bad_asset_message(write_quad(dir, "light.gltf", q)).find("light 1.0000000000000001e+300 is not an index"),
+              std::string::npos);
+  }
+  {  // an accessor index beyond 32 bits would be truncated to accessor 0 by tinygltf
+    write_file(dir / "huge.gltf", edited_quad({}, R"("POSITION": 0)", R"("POSITION": 1099511627776)"));
+    EXPECT_NE(bad_asset_message(dir / "huge.gltf").find("the integer 1099511627776 is beyond the 32 bits"), std::string::npos);
+  }
+  {
+    QuadAsset q;
+    q.version = "1.0";
+    EXPECT_NE(bad_asset_message(write_quad(dir, "old.gltf", q)).find("asset.version is '1.0'"), std::string::npos);
+  }
+  fs::create_directories(dir / "inner");
+  write_file(dir / "secret.bin", quad_buffer({}));  // readable, a valid buffer, but outside the asset's folder
+  for (const auto& [uri, message] : std::vector<std::pair<std::string, std::string>>{
+           {"../secret.bin", "leaves the asset's folder"}, {(dir / "secret.bin").string(), "is an absolute URI"}}) {
+    QuadAsset q;
+    q.buffer_uri = uri;
+    write_file(dir / "inner" / "uri.gltf", quad_gltf(q));
+    EXPECT_NE(bad_asset_message(dir / "inner" / "uri.gltf").find(message), std::string::npos) << uri;
+  }
+  {  // an image URI too, though the image is never used
+    QuadAsset q;
+    q.top_extra = R"(, "images": [{"uri": "../../../../../../etc/passwd"}])";
+    EXPECT_NE(bad_asset_message(write_quad(dir / "inner", "image.gltf", q)).find("leaves the asset's folder"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(GltfHostile, SummariesEscapeControlCharacters) {
+  const fs::path dir = scratch("summary");
+  QuadAsset q;
+  q.material = R"({"name": "a\u001b]0;title\u0007b\rc"})";
+  const GltfAsset asset = load_gltf(write_quad(dir, "names.gltf", q).string());
+  const std::string summary = asset.summary();
+  EXPECT_NE(summary.find("a\\x1b]0;title\\x07b\\x0dc: roughness"), std::string::npos) << summary;
+  for (char c : summary) EXPECT_TRUE(c == '\n' || static_cast<unsigned char>(c) >= 0x20) << summary;
+  fs::remove_all(dir);
+}
+
+TEST_F(GltfCli, NoOutputIsAFileTheAssetIsMadeOf) {
+  QuadAsset q;
+  q.buffer_uri = "ext.bin";
+  const fs::path asset = write_quad(scratch_, "ext.gltf", q);
+  const std::string asset_bytes = saagen::test::read_text(asset), buffer_bytes = saagen::test::read_text(scratch_ / "ext.bin");
+  const std::vector<std::string> quick = {"--preset", "quick", "--resolution", "8", "--force"};
+  auto bench = [&](std::vector<std::string> tail) {
+    std::vector<std::string> command = {"bench", "--scene", asset.string()};
+    command.insert(command.end(), quick.begin(), quick.end());
+    command.insert(command.end(), tail.begin(), tail.end());
+    return saagen(command);
+  };
+  const auto json = bench({"--json", asset.string()});
+  EXPECT_NE(json.exit_code, 0);
+  EXPECT_NE(json.err.find("is an input of this command"), std::string::npos) << json.err;
+  const auto buffer = saagen({"plan", "--gltf", asset.string(), "-o", (scratch_ / "ext.bin").string(), "--force", "--no-cost"});
+  EXPECT_NE(buffer.exit_code, 0);
+  EXPECT_NE(buffer.err.find("is an input of this command"), std::string::npos) << buffer.err;
+  // The manifest's sidecar (m.toml.saagen) may not be a buffer either.
+  QuadAsset sidecar_named;
+  sidecar_named.buffer_uri = "m.toml.saagen";
+  const fs::path sidecar_asset = write_quad(scratch_, "sidecar.gltf", sidecar_named);
+  const std::string sidecar_bytes = saagen::test::read_text(scratch_ / "m.toml.saagen");
+  const auto sidecar = saagen({"plan", "--gltf", sidecar_asset.string(), "-o", (scratch_ / "m.toml").string(), "--force", "--no-cost"});
+  EXPECT_NE(sidecar.exit_code, 0);
+  EXPECT_NE(sidecar.err.find("is an input of this command"), std::string::npos) << sidecar.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "m.toml"));
+  EXPECT_EQ(saagen::test::read_text(scratch_ / "m.toml.saagen"), sidecar_bytes);
+  // A report whose index.html is the asset's texture.
+  std::vector<unsigned char> pixels(4 * 4 * 3, 200);
+  fs::create_directories(scratch_ / "r");
+  write_file(scratch_ / "r" / "index.html", png(4, 4, 3, pixels));
+  const std::string texture_bytes = saagen::test::read_text(scratch_ / "r" / "index.html");
+  QuadAsset textured;
+  textured.material = R"({"normalTexture": {"index": 0}})";
+  textured.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "index.html"}])";
+  const fs::path textured_asset = write_quad(scratch_ / "r", "tex.gltf", textured);
+  const auto report = saagen({"bench", "--scene", textured_asset.string(), "--preset", "quick", "--resolution", "8", "--report",
+                              (scratch_ / "r").string(), "--force"});
+  EXPECT_NE(report.exit_code, 0);
+  EXPECT_NE(report.err.find("is an input of this command"), std::string::npos) << report.err;
+  EXPECT_EQ(saagen::test::read_text(scratch_ / "r" / "index.html"), texture_bytes);
+  // A trade table read by plan is not its output.
+  write_file(scratch_ / "table.json", "{}");
+  const auto table = saagen({"plan", "--gltf", asset.string(), "-o", (scratch_ / "table.json").string(), "--trade-table",
+                             (scratch_ / "table.json").string(), "--force", "--no-cost"});
+  EXPECT_NE(table.exit_code, 0);
+  EXPECT_EQ(saagen::test::read_text(scratch_ / "table.json"), "{}");
+  EXPECT_EQ(saagen::test::read_text(asset), asset_bytes);
+  EXPECT_EQ(saagen::test::read_text(scratch_ / "ext.bin"), buffer_bytes);
+  EXPECT_EQ(json.out, "");
+}
+
+TEST_F(GltfCli, NamesAreWrittenAsEscapedStrings) {
+  QuadAsset q;
+  q.material = R"({"name": "x\nsigma2 = 4\nkappa = 1\nprefix = \"pwn_\"\n#"})";
+  const fs::path injected = write_quad(scratch_, "inject\n[[material]].gltf", q);
+  const std::string manifest = (scratch_ / "m.toml").string();
+  const auto run = saagen({"plan", "--gltf", injected.string(), "-o", manifest, "--no-cost"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string text = saagen::test::read_text(manifest);
+  EXPECT_EQ(text.find("\nsigma2"), std::string::npos) << text;
+  EXPECT_EQ(text.find("\nprefix"), std::string::npos) << text;
+  EXPECT_EQ(text.find("\n[[material]].gltf"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"(source = "glTF material 0 'x\nsigma2 = 4\nkappa = 1\nprefix = \"pwn_\"\n#'")"), std::string::npos) << text;
+  EXPECT_NE(run.out.find("prefix saa_, kappa = 0.18, sigma2 = 0.25"), std::string::npos) << run.out;  // the defaults
+  // Names holding ESC, DEL, CR and NUL are data too: written escaped, and the manifest plans.
+  QuadAsset controls;
+  controls.material = R"({"name": "a\u001bb\u007fc\rd\u0000e \u00e9"})";
+  const fs::path asset = write_quad(scratch_, "controls.gltf", controls);
+  const auto written = saagen({"plan", "--gltf", asset.string(), "-o", (scratch_ / "c.toml").string(), "--no-cost"});
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  EXPECT_NE(saagen::test::read_text(scratch_ / "c.toml").find(R"('a\u001Bb\u007Fc\rd\u0000e \u00E9')"), std::string::npos)
+      << saagen::test::read_text(scratch_ / "c.toml");
+}
+
+TEST_F(GltfCli, DegenerateMeasurementsAreErrorsNamingTheScene) {
+  QuadAsset tiny;  // lit nowhere the camera sees at this scale
+  tiny.node = R"("mesh": 0, "scale": [1e-40, 1e-40, 1e-40])";
+  const fs::path asset = write_quad(scratch_, "tiny.gltf", tiny);
+  const auto run = saagen({"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json",
+                           (scratch_ / "t.json").string()});
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("scene tiny: the ground truth is black at every alpha"), std::string::npos) << run.err;
+  EXPECT_EQ(run.out.find("beats"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(scratch_ / "t.json"));
+}
+
+TEST_F(GltfCli, EveryOutputOfARunIsOneCommitAfterEveryInput) {
+  const fs::path asset = write_quad(scratch_, "quad.gltf", {});
+  const fs::path both = scratch_ / "both";
+  const auto run = saagen({"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json", both.string(),
+                           "--report", both.string()});
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("is both an output file and the directory of"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(both));
+  const auto plan = saagen({"plan", "--gltf", asset.string(), "-o", (scratch_ / "m.toml").string(), "--trade-table",
+                            (scratch_ / "missing.json").string(), "--no-cost"});
+  EXPECT_NE(plan.exit_code, 0);
+  EXPECT_FALSE(fs::exists(scratch_ / "m.toml"));
+  EXPECT_FALSE(fs::exists(scratch_ / "m.toml.saagen"));
 }

@@ -129,7 +129,7 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
-const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, variant";
+const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, variant, source";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
@@ -143,7 +143,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{
             "unknown_top_key", header + "colour = 1\n" + forward_material,
             "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
-            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, material"},
+            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, source, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,

@@ -9,6 +9,7 @@
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/io/include_expansion.hpp"
+#include "saagen/io/ktx2.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/products/prefilter.hpp"
@@ -630,8 +631,71 @@ TEST_F(Safety, AFifoInTheBenchCacheIsAMissNotAHang) {
   EXPECT_EQ(entries(cache), cached);
 }
 
+// The ground-truth cache is written through the output layer: a file-size limit's SIGXFSZ while a
+// cache file is staged removes its temporary (the cache's own writer left gt-....bin.tmpNNNN).
+TEST_F(Safety, ASignalWhileWritingTheCacheLeavesNoTemporary) {
+  const fs::path cache = scratch_ / "cache";
+  const CliRun run = run_shell("ulimit -f 4; exec " + shell_quote(SAAGEN_CLI_PATH) +
+                               " bench --scene sphere --preset quick --resolution 32 --cache " + shell_quote(cache.string()));
+  EXPECT_EQ(run.exit_code, 128 + SIGXFSZ) << run.err;
+  for (const std::string& name : entries(cache)) {
+    EXPECT_EQ(name.rfind("gt-", 0), 0u) << name;
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // 9. Messages: one line that names the file or the option and says what to do.
+
+// LEAN moments are floats: a normal within 1e-18 of the surface plane (z = 1e-30 in a float KTX2)
+// would store +inf; it is refused naming the texel, and nothing is written.
+TEST_F(Safety, LeanMomentsAreFiniteOrTheTexelIsNamed) {
+  saagen::Ktx2Image image;
+  image.vk_format = 109;  // R32G32B32A32_SFLOAT
+  image.type_size = 4;
+  image.width = image.height = 2;
+  const std::vector<float> texels = {0, 0, 1, 1, 1, 0, 1e-30f, 1, 0, 0, 1, 1, 0, 0, 1, 1};
+  image.levels.emplace_back(reinterpret_cast<const std::uint8_t*>(texels.data()),
+                            reinterpret_cast<const std::uint8_t*>(texels.data() + texels.size()));
+  const std::vector<std::uint8_t> bytes = saagen::write_ktx2(image);
+  write(scratch_ / "flat.ktx2", std::string(bytes.begin(), bytes.end()));
+  expect_one_line_error(
+      saagen({"texture", "prefilter", (scratch_ / "flat.ktx2").string(), "-o", (scratch_ / "lean.ktx2").string(), "--method", "lean"}),
+      "texel (1, 0) decodes to (1, 0, 1e-30), a normal within 1e-18 of the surface plane");
+  EXPECT_FALSE(fs::exists(scratch_ / "lean.ktx2"));
+}
+
+// Empty values are refused, not taken as defaults; an option that applies to another one needs
+// it; a GPU family is named once and checked before anything is loaded.
+TEST_F(Safety, EmptyValuesRepeatedFamiliesAndLoneOptionsAreRefused) {
+  expect_one_line_error(saagen({"report", "-o", ""}), "--output: empty");
+  const std::string map = (scratch_ / "n.png").string(), out = (scratch_ / "o.ktx2").string();
+  for (const std::string option : {"--scale", "--roughness", "--metallic"}) {
+    const CliRun run = saagen({"texture", "prefilter", map, "-o", out, "--gltf", option, ""});
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("empty"), std::string::npos) << run.err;
+  }
+  const CliRun threads = saagen({"bench", "--threads", "", "--preset", "quick"});
+  EXPECT_NE(threads.exit_code, 0);
+  EXPECT_NE(threads.err.find("--threads"), std::string::npos) << threads.err;
+  const CliRun metallic = saagen({"texture", "prefilter", map, "-o", out, "--metallic", "0.5"});
+  EXPECT_NE(metallic.exit_code, 0);
+  EXPECT_NE(metallic.err.find("--gltf"), std::string::npos) << metallic.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun twice = saagen({"bench", "--isa", "vega10,vega10", "--isa-only"});
+  EXPECT_NE(twice.exit_code, 0);
+  if (twice.err.find("built without the Vulkan harness") == std::string::npos) {
+    EXPECT_NE(twice.err.find("'vega10' is named twice"), std::string::npos) << twice.err;
+  }
+  // --isa is checked before the scenes are loaded (a missing asset would otherwise be reported first).
+  const CliRun bogus = saagen({"bench", "--isa", "bogus", "--scene", (scratch_ / "missing.gltf").string()});
+  EXPECT_NE(bogus.exit_code, 0);
+  EXPECT_NE(bogus.err.find("--isa"), std::string::npos) << bogus.err;
+  EXPECT_EQ(bogus.err.find("missing.gltf"), std::string::npos) << bogus.err;
+}
+
+
 
 TEST_F(Safety, MessagesNameTheFileOrOption) {
   expect_one_line_error(saagen({"plan", "/tmp"}), "/tmp: is a directory; pass a scene manifest");

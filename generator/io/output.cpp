@@ -273,6 +273,15 @@ void check_named_once(const std::vector<fs::path>& paths) {
                       path.string()));
     }
   }
+  // A file and a directory of the same run may not share a name (bench --json X --report X).
+  for (const fs::path& name : seen) {
+    for (fs::path parent = name.parent_path(); parent.has_relative_path(); parent = parent.parent_path()) {
+      if (seen.count(parent)) {
+        throw Error(fmt::format("{}: is both an output file and the directory of {} in one run; choose different paths", parent.string(),
+                                name.string()));
+      }
+    }
+  }
 }
 
 // No output is one of the command's inputs, whatever its name (not even with --force).

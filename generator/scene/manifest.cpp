@@ -27,6 +27,8 @@
 namespace saagen {
 namespace {
 
+constexpr const char* kSourceRule = "a string: where the scene or material comes from (informational)";
+
 // A value as it may be shown in a one-line message: printable ASCII, at most 40 characters.
 std::string show(std::string_view text, std::size_t limit = 40) {
   std::string shown;
@@ -288,6 +290,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   if (!name) reader.missing("name", name_rule);
   if (!is_identifier(*name, true)) reader.fail_key("name", fmt::format("\"{}\" is not an identifier", show(*name)), name_rule);
   material.name = *name;
+  reader.string("source", kSourceRule);  // a note for the reader (e.g. the glTF material it was written from)
 
   const auto path = reader.choice("path", {"forward", "deferred"});
   if (!path) reader.missing("path", "\"forward\", \"deferred\"");
@@ -558,7 +561,7 @@ const std::vector<std::string>& manifest_keys() {
     for (const Constant& constant : glints::catalogue().constants()) {  // the SAA options, then the glint options
       if (!constant.option.empty()) names.push_back(constant.option);
     }
-    names.insert(names.end(), {"preset", "domain", "import_path", "taa", "material"});
+    names.insert(names.end(), {"preset", "domain", "import_path", "taa", "source", "material"});
     return names;
   }();
   return keys;
@@ -566,7 +569,7 @@ const std::vector<std::string>& manifest_keys() {
 
 const std::vector<std::string>& material_keys() {
   static const std::vector<std::string> keys = {"name",    "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
-                                                "content", "glints", "precision",   "prefer",   "variant"};
+                                                "content", "glints", "precision",   "prefer",   "variant", "source"};
   return keys;
 }
 
@@ -584,6 +587,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
 
   const TableReader top(manifest, document, "", manifest_keys());
   read_targets(manifest, top);
+  top.string("source", kSourceRule);  // a note for the reader (e.g. the asset plan --gltf read), not planned
 
   const std::string prefix_rule = "letters, digits and '_', starting with a letter, at most 32 characters, no '__', not 'gl_'";
   if (const auto prefix = top.string("prefix", prefix_rule)) {

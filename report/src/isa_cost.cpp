@@ -132,7 +132,10 @@ std::vector<std::string> parse_isa_families(const std::string& list) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
       throw Error(fmt::format("--isa: unknown GPU family '{}'; allowed: {} (comma-separated)", name, fmt::join(known, ", ")));
     }
-    if (std::find(families.begin(), families.end(), name) == families.end()) families.push_back(name);
+    if (std::find(families.begin(), families.end(), name) != families.end()) {
+      throw Error(fmt::format("--isa {}: GPU family '{}' is named twice; name each once", list, name));
+    }
+    families.push_back(name);
     start = comma + 1;
   }
   return families;

@@ -1237,6 +1237,12 @@ std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::
 
 std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force,
                                       const render::TradeTable* taa) {
+  ReportFiles files = report_files(table, costs, dir, taa);
+  write_outputs(files.outputs, force);
+  return files.images;
+}
+
+ReportFiles report_files(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, const render::TradeTable* taa) {
   if (table.images.empty()) throw Error("the trade table holds no images; compute it with keep_images");
   std::vector<OutputFile> outputs;
   std::vector<std::string> sheets;
@@ -1260,14 +1266,13 @@ std::vector<std::string> write_report(const render::TradeTable& table, const Cos
   const TaaSection* taa_section_written = taa_part ? &*taa_part : nullptr;
   outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, image_strips, taa_section_written)});
   outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns, image_strips, taa_section_written)});
-  write_outputs(outputs, force);
   std::vector<std::string> images;
   for (const Strip& strip : image_strips) images.push_back(strip.file);
   if (taa_part)
     for (const Strip& strip : taa_part->strips) images.push_back(strip.file);
   images.insert(images.end(), sheets.begin(), sheets.end());
   images.push_back("cost_vs_error.svg");
-  return images;
+  return {std::move(outputs), std::move(images)};
 }
 
 render::TradeProgressFn progress_bar() {

@@ -6,10 +6,16 @@
 #include <stb/stb_image.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -103,6 +109,94 @@ std::string one_line(std::string text) {
   return out;
 }
 
+// Control characters (and DEL) as \xNN, so that text from an asset cannot drive the terminal.
+std::string printable(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// What is wrong with the asset's JSON before it is parsed (nlohmann's parse and tinygltf's
+// conversion recurse per nesting level and take ~0.3 KB per value): deeper than the limit, more
+// values than the limit, or an integer beyond 32 bits outside "extras" (tinygltf truncates such
+// an index to int: 2^40 would read as accessor 0). Empty when none; else "line L: ...".
+std::string json_problem(std::string_view text, const GltfLimits& limits) {
+  int depth = 0, extras_depth = -1;
+  std::size_t values = 0;
+  bool after_key = false;  // the next value is an object member's, named `key`
+  std::string key;
+  auto at_line = [&](std::size_t offset, const std::string& what) {
+    return "line " + std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n')) + ": " + what;
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',' || c == ':') continue;
+    const bool value_of_extras = after_key && key == "extras";
+    after_key = false;
+    if (++values > limits.max_json_values)
+      return at_line(i, "more than " + std::to_string(limits.max_json_values) + " JSON values, beyond the limit");
+    if (c == '"') {
+      const std::size_t start = ++i;
+      while (i < text.size() && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
+      std::size_t next = i + 1;
+      while (next < text.size() && (text[next] == ' ' || text[next] == '\t' || text[next] == '\n' || text[next] == '\r')) ++next;
+      if (next < text.size() && text[next] == ':') {
+        key.assign(text.substr(start, std::min(i, text.size()) - start));
+        after_key = true;
+        --values;  // a member's name is not a value
+      }
+    } else if (c == '{' || c == '[') {
+      if (++depth > limits.max_json_depth)
+        return at_line(i, "JSON nested deeper than " + std::to_string(limits.max_json_depth) + " levels, beyond the limit");
+      if (value_of_extras && extras_depth < 0) extras_depth = depth;
+    } else if (c == '}' || c == ']') {
+      if (depth == extras_depth) extras_depth = -1;
+      --depth;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      std::size_t end = i;
+      bool integer = true;
+      while (end < text.size() && text[end] != '\0' && std::strchr("+-0123456789.eE", text[end]) != nullptr) {
+        if (text[end] == '.' || text[end] == 'e' || text[end] == 'E') integer = false;
+        ++end;
+      }
+      const std::string number(text.substr(i, end - i));
+      if (integer && extras_depth < 0 && !value_of_extras) {
+        errno = 0;
+        const long long value = std::strtoll(number.c_str(), nullptr, 10);
+        if (errno == ERANGE || value > std::numeric_limits<int>::max() || value < std::numeric_limits<int>::min())
+          return at_line(i, "the integer " + number + " is beyond the 32 bits glTF's indices and counts take here");
+      }
+      i = end - 1;
+    }
+  }
+  return {};
+}
+
+// Positions (after the node transforms) are at most this in magnitude, so that sums, products and
+// areas of them stay finite (a box translated by 1e308 has centroids of inf).
+constexpr double kMaxCoordinate = 1e100;
+std::string coordinates_limit() { return "1e100"; }
+
+bool is_bounded(Vec3 p) {
+  return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate;
+}
+
+std::string coordinates(Vec3 p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << p.x << ", " << p.y << ", " << p.z;
+  return s.str();
+}
+
 std::string sanitized_stem(const std::string& path) {
   std::string stem = std::filesystem::path(path).stem().string();
   for (char& c : stem)
@@ -122,6 +216,7 @@ class Loader {
     check_required_extensions();
     GltfAsset asset;
     asset.path = path_;
+    asset.files = files_;
     asset.name = sanitized_stem(path_);
     for (std::size_t i = 0; i < model_.materials.size(); ++i) asset.materials.push_back(material(static_cast<int>(i)));
     default_material_ = static_cast<int>(asset.materials.size());
@@ -141,6 +236,7 @@ class Loader {
       asset.bounds_hi = {std::max(asset.bounds_hi.x, v.position.x), std::max(asset.bounds_hi.y, v.position.y),
                          std::max(asset.bounds_hi.z, v.position.z)};
     }
+    check_bounds(asset.bounds_lo, asset.bounds_hi);
     asset.camera = camera_;
     if (light_) {
       asset.light = *light_;
@@ -206,11 +302,23 @@ class Loader {
     return coats;
   }
 
+  // The box the camera frames and the light is placed from: finite in size, and not one point.
+  void check_bounds(Vec3 lo, Vec3 hi) const {
+    const Vec3 extent = hi - lo;
+    if (!std::isfinite(extent.x) || !std::isfinite(extent.y) || !std::isfinite(extent.z))
+      fail("the scene's bounds (" + coordinates(lo) + ") - (" + coordinates(hi) + ") are larger than a double can hold");
+    if (extent.x == 0.0 && extent.y == 0.0 && extent.z == 0.0)
+      fail("every vertex lies at one point (" + coordinates(lo) + "); nothing to render");
+  }
+
   // --- file -------------------------------------------------------------------------------
 
-  static bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int req_width, int req_height,
-                         const unsigned char* bytes, int size, void* user) {
-    const auto* self = static_cast<const Loader*>(user);
+  // tinygltf's image callback: the header is read and checked (a size beyond the limit is refused
+  // before anything is decoded), the encoded bytes kept; an image is decoded only when a material
+  // uses it (decoded_image), after the texel budget has been checked.
+  static bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int, const unsigned char* bytes,
+                         int size, void* user) {
+    auto* self = static_cast<Loader*>(user);
     int w = 0, h = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &w, &h, &components)) {
       if (err) *err += "image " + std::to_string(index) + " ('" + image->uri + "') is not a PNG or JPEG stb_image can decode";
@@ -222,30 +330,77 @@ class Loader {
                 ", beyond the limit of " + std::to_string(self->limits_.max_texture_size) + " texels per side";
       return false;
     }
-    return tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr);
+    image->width = w;
+    image->height = h;
+    image->component = components;
+    EncodedImage& encoded = self->encoded_[index];
+    if (image->bufferView >= 0) {  // inside a buffer that stays in the model: no copy
+      encoded.data = bytes;
+      encoded.size = static_cast<std::size_t>(size);
+    } else {
+      encoded.owned.assign(bytes, bytes + size);
+      encoded.data = encoded.owned.data();
+      encoded.size = encoded.owned.size();
+    }
+    return true;
+  }
+
+  // The path of an external file as tinygltf joined it: the asset's folder, then the URI.
+  std::string folder_prefix() const { return base_dir_.empty() ? std::string() : (base_dir_.back() == '/' ? base_dir_ : base_dir_ + "/"); }
+
+  // Why a URI may not be opened: an absolute one, or a relative one that leaves the asset's
+  // folder. Empty when it may.
+  std::string uri_problem(const std::string& path) const {
+    const std::string prefix = folder_prefix();
+    if (path.compare(0, prefix.size(), prefix) != 0) return "is outside the asset's folder";
+    const std::filesystem::path uri(path.substr(prefix.size()));
+    if (uri.is_absolute()) return "is an absolute URI; an asset's files are named relative to its folder";
+    const std::filesystem::path normal = uri.lexically_normal();
+    if (normal.empty() || *normal.begin() == "..") return "leaves the asset's folder; an asset's files must lie in its folder or below";
+    return {};
+  }
+
+  // tinygltf searches the asset's folder, then the current directory: only the first is the asset's.
+  bool is_current_directory_fallback(const std::string& path) const {
+    return !base_dir_.empty() && base_dir_ != "." && path.compare(0, folder_prefix().size(), folder_prefix()) != 0;
   }
 
   // tinygltf's file reader for the asset's external buffers and images, behind the checks a
-  // hostile URI needs: only a regular file (a FIFO would block the read, /dev/zero never ends),
-  // at most max_file_bytes.
+  // hostile URI needs: inside the asset's folder, only a regular file (a FIFO would block the
+  // read, /dev/zero never ends), at most max_file_bytes, and max_total_bytes with the others.
   static bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-    const auto* self = static_cast<const Loader*>(user);
+    auto* self = static_cast<Loader*>(user);
+    if (std::string problem = self->uri_problem(path); !problem.empty()) {
+      if (self->uri_refusal_.empty()) self->uri_refusal_ = "'" + path + "' " + problem;
+      if (err) *err += "'" + path + "' " + problem;
+      return false;
+    }
     if (const std::string problem = self->file_problem(path); !problem.empty()) {
       if (err) *err += "'" + path + "' " + problem;
       return false;
     }
-    return tinygltf::ReadWholeFile(out, err, path, nullptr);
+    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    self->files_.push_back(path);
+    return true;
   }
 
   // Whether a file exists, without opening it (tinygltf's own FileExists opens it for reading,
-  // which blocks on a FIFO).
-  static bool file_exists(const std::string& path, void*) {
+  // which blocks on a FIFO); a URI that may not be opened "exists", so that the reader refuses it
+  // by name.
+  static bool file_exists(const std::string& path, void* user) {
+    const auto* self = static_cast<const Loader*>(user);
+    if (self->is_current_directory_fallback(path)) return false;
+    if (!self->uri_problem(path).empty()) return true;
     std::error_code error;
     return std::filesystem::exists(path, error);
   }
 
-  // Why a file cannot be read as part of the asset; empty when it can.
-  std::string file_problem(const std::string& path) const {
+  // The URI as written (tinygltf's default expands ~ and $VARIABLES with wordexp).
+  static std::string expand_file_path(const std::string& path, void*) { return path; }
+
+  // Why a file cannot be read as part of the asset; empty when it can. Counts its bytes into the
+  // asset's total.
+  std::string file_problem(const std::string& path) {
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
     if (error || !std::filesystem::exists(status)) return "does not exist";
@@ -254,26 +409,64 @@ class Loader {
     if (error) return "cannot be sized";
     if (size > limits_.max_file_bytes)
       return "is " + std::to_string(size) + " bytes, beyond the limit of " + std::to_string(limits_.max_file_bytes);
+    if (size > limits_.max_total_bytes - std::min(total_bytes_, limits_.max_total_bytes))
+      return "brings the asset's files to " + std::to_string(total_bytes_ + size) + " bytes, beyond the limit of " +
+             std::to_string(limits_.max_total_bytes) + " in all";
+    total_bytes_ += size;
     return {};
+  }
+
+  // The asset's file, read whole (file_problem checked it first).
+  std::string read_asset_file() {
+    std::ifstream in(path_, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) fail("cannot be read");
+    files_.push_back(path_);
+    return bytes;
+  }
+
+  // The JSON of a .glb (its first chunk, when the container's header holds together; tinygltf
+  // reports a broken container), or of a .gltf (the whole file).
+  static std::string_view json_text(std::string_view bytes, bool binary) {
+    if (!binary) return bytes;
+    auto u32 = [&](std::size_t at) {
+      std::uint32_t v = 0;
+      std::memcpy(&v, bytes.data() + at, 4);
+      return v;
+    };
+    if (bytes.size() < 20 || bytes.substr(0, 4) != "glTF" || u32(16) != 0x4E4F534Au || u32(12) > bytes.size() - 20) return {};
+    return bytes.substr(20, u32(12));
+  }
+
+  void check_json(std::string_view json) const {
+    if (json.size() > limits_.max_json_bytes)
+      fail("its JSON is " + std::to_string(json.size()) + " bytes, beyond the limit of " + std::to_string(limits_.max_json_bytes));
+    if (const std::string problem = json_problem(json, limits_); !problem.empty()) fail(problem);
   }
 
   void read_model() {
     if (const std::string problem = file_problem(path_); !problem.empty())
       fail(problem + (problem == "does not exist" ? " (a .gltf or .glb asset is expected)" : ""));
     const std::string extension = std::filesystem::path(path_).extension().string();
+    const bool binary = extension == ".glb" || extension == ".GLB";
+    if (!binary && extension != ".gltf" && extension != ".GLTF") fail("not a .gltf or .glb file");
+    const std::string bytes = read_asset_file();
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail("too large for tinygltf");
+    check_json(json_text(bytes, binary));
+    const std::size_t slash = path_.find_last_of('/');
+    base_dir_ = slash == std::string::npos ? std::string() : path_.substr(0, slash);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&Loader::load_image, this);
-    loader.SetFsCallbacks({&Loader::file_exists, &tinygltf::ExpandFilePath, &Loader::read_whole_file, &tinygltf::WriteWholeFile, this});
+    loader.SetFsCallbacks({&Loader::file_exists, &Loader::expand_file_path, &Loader::read_whole_file, &tinygltf::WriteWholeFile, this});
     std::string err, warn;
-    bool ok = false;
-    if (extension == ".glb" || extension == ".GLB") {
-      ok = loader.LoadBinaryFromFile(&model_, &err, &warn, path_);
-    } else if (extension == ".gltf" || extension == ".GLTF") {
-      ok = loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
-    } else {
-      fail("not a .gltf or .glb file");
-    }
+    const auto size = static_cast<unsigned int>(bytes.size());
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()), size,
+                                                         base_dir_)
+                           : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(), size, base_dir_);
+    if (!uri_refusal_.empty()) fail(uri_refusal_);  // an image's, which tinygltf only warns about
     if (!ok) fail("not a readable glTF 2.0 asset (tinygltf: " + one_line(err.empty() ? "no message" : err) + ")");
+    if (model_.asset.version.rfind("2.", 0) != 0)
+      fail("asset.version is '" + printable(model_.asset.version) + "'; this loader reads glTF 2.0 (version \"2.0\")");
     warnings_ = one_line(warn);
   }
 
@@ -397,8 +590,9 @@ class Loader {
 
   // --- textures -------------------------------------------------------------------------------
 
-  // The decoded image behind a texture reference, checked for what the MIP chains need.
-  const tinygltf::Image& texture_image(int texture, int texcoord, const tinygltf::ExtensionMap& extensions, const std::string& what) const {
+  // What every use of a texture must satisfy (checked on each use: a map built for one use is
+  // shared only with uses that pass these too).
+  void check_texture_use(int texture, int texcoord, const tinygltf::ExtensionMap& extensions, const std::string& what) const {
     if (texture < 0 || texture >= static_cast<int>(model_.textures.size()))
       fail(what + ": texture " + std::to_string(texture) + " does not exist");
     if (texcoord != 0) fail(what + ": uses TEXCOORD_" + std::to_string(texcoord) + "; only TEXCOORD_0 is loaded");
@@ -411,10 +605,16 @@ class Loader {
     }
     if (t.source < 0 || t.source >= static_cast<int>(model_.images.size()))
       fail(what + ": texture " + std::to_string(texture) + " has no PNG or JPEG source image");
-    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(t.source)];
-    const std::string name = "image " + std::to_string(t.source) + (image.uri.empty() ? std::string() : " ('" + image.uri + "')");
-    if (image.image.empty() || image.width <= 0 || image.height <= 0)
-      fail(what + ": " + name + " could not be read (missing or undecodable file)");
+  }
+
+  // The decoded image behind a texture (check_texture_use first), checked for what the MIP chains
+  // need; its texels counted into the budget of the maps built, before it is decoded.
+  const tinygltf::Image& texture_image(int texture, const std::string& what) {
+    const int source = model_.textures[static_cast<std::size_t>(texture)].source;
+    tinygltf::Image& image = model_.images[static_cast<std::size_t>(source)];
+    const std::string name = "image " + std::to_string(source) + (image.uri.empty() ? std::string() : " ('" + printable(image.uri) + "')");
+    const auto encoded = encoded_.find(source);
+    if (image.image.empty() && encoded == encoded_.end()) fail(what + ": " + name + " could not be read (missing or undecodable file)");
     auto pot = [](int v) { return v > 0 && (v & (v - 1)) == 0; };
     if (!pot(image.width) || !pot(image.height))
       fail(what + ": " + name + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
@@ -424,6 +624,13 @@ class Loader {
       fail(what + ": " + name + " brings the decoded textures to " + std::to_string(texels_ + texels) + " texels, beyond the limit of " +
            std::to_string(limits_.max_texels));
     texels_ += texels;
+    if (image.image.empty()) {
+      std::string err, warn;
+      const bool decoded = tinygltf::LoadImageData(&image, source, &err, &warn, 0, 0, encoded->second.data,
+                                                   static_cast<int>(encoded->second.size), nullptr);
+      encoded_.erase(encoded);
+      if (!decoded || image.image.empty()) fail(what + ": " + name + " could not be decoded (" + one_line(err) + ")");
+    }
     if ((image.bits != 8 && image.bits != 16) || image.component < 1 ||
         image.image.size() < static_cast<std::size_t>(image.width) * image.height * image.component * (image.bits / 8))
       fail(what + ": " + name + " has an unexpected pixel layout");
@@ -457,9 +664,10 @@ class Loader {
   // One channel (0 = R, 1 = G) of a texture as a ScalarMap, linear values in [0, 1].
   std::shared_ptr<const ScalarMap> channel_map(const tinygltf::TextureInfo& info, int c, const std::string& what) {
     if (info.index < 0) return nullptr;
+    check_texture_use(info.index, info.texCoord, info.extensions, what);
     const std::string key = "c" + std::to_string(c) + "," + std::to_string(image_of(info.index));
     if (auto found = scalar_cache_.find(key); found != scalar_cache_.end()) return found->second;
-    const tinygltf::Image& image = texture_image(info.index, info.texCoord, info.extensions, what);
+    const tinygltf::Image& image = texture_image(info.index, what);
     std::vector<double> values(static_cast<std::size_t>(image.width) * image.height);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = channel(image, i, c);
     auto map = std::make_shared<const ScalarMap>(image.width, image.height, std::move(values));
@@ -473,11 +681,12 @@ class Loader {
   std::shared_ptr<const NormalMap> normal_map(int texture, int texcoord, double scale, const tinygltf::ExtensionMap& extensions,
                                               const std::string& what) {
     if (texture < 0) return nullptr;
+    check_texture_use(texture, texcoord, extensions, what);
     std::ostringstream key;
     key.precision(17);
     key << "n" << image_of(texture) << "," << scale;
     if (auto found = normal_cache_.find(key.str()); found != normal_cache_.end()) return found->second;
-    const tinygltf::Image& image = texture_image(texture, texcoord, extensions, what);
+    const tinygltf::Image& image = texture_image(texture, what);
     if (image.component < 3) fail(what + ": a normal texture needs RGB, image has " + std::to_string(image.component) + " channel(s)");
     std::vector<Vec3> normals(static_cast<std::size_t>(image.width) * image.height);
     for (std::size_t i = 0; i < normals.size(); ++i) {
@@ -492,10 +701,57 @@ class Loader {
 
   // --- materials ------------------------------------------------------------------------------
 
-  static double number(const tinygltf::Value& object, const char* key, double fallback) {
+
+  static constexpr double kHuge = std::numeric_limits<double>::max();
+
+  // A non-negative integer member (an index), -1 when absent; anything else is refused: a
+  // fraction, a negative number or one beyond int (1e300 would convert to INT_MIN).
+  int index_member(const tinygltf::Value& object, const char* key, const std::string& what) const {
+    if (!object.IsObject() || !object.Has(key)) return -1;
+    const tinygltf::Value& v = object.Get(key);
+    const double value = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    if (!v.IsNumber() || !(value >= 0.0) || value > std::numeric_limits<int>::max() || value != std::floor(value)) {
+      std::ostringstream shown;
+      shown.precision(17);
+      if (v.IsNumber()) shown << value;
+      fail(what + ": " + key + " " + (v.IsNumber() ? shown.str() : std::string("(not a number)")) + " is not an index (an integer from 0)");
+    }
+    return static_cast<int>(value);
+  }
+
+  // A number member within the glTF specification's range [low, high], `fallback` when absent.
+  double factor(const tinygltf::Value& object, const char* key, double fallback, double low, double high, const std::string& what) const {
     if (!object.IsObject() || !object.Has(key)) return fallback;
     const tinygltf::Value& v = object.Get(key);
-    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+    if (!v.IsNumber()) fail(what + ": " + key + " is not a number");
+    return checked_factor(v.GetNumberAsDouble(), key, low, high, what);
+  }
+
+  double checked_factor(double value, const char* key, double low, double high, const std::string& what) const {
+    if (!(std::isfinite(value) && value >= low && value <= high)) {
+      std::ostringstream s;
+      s.precision(17);
+      s << what << ": " << key << " " << value << " is outside ";
+      if (high == kHuge)
+        s << "the finite numbers";
+      else
+        s << "[" << low << ", " << high << "], the glTF specification's range";
+      fail(s.str());
+    }
+    return value;
+  }
+
+  // The core material's factors, within the specification's ranges (a clearcoatFactor of 1e308
+  // would make every pixel inf and every metric meaningless).
+  void check_core_factors(const tinygltf::Material& m, const std::string& what) const {
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    for (double c : pbr.baseColorFactor) checked_factor(c, "baseColorFactor", 0.0, 1.0, what);
+    checked_factor(pbr.metallicFactor, "metallicFactor", 0.0, 1.0, what);
+    checked_factor(pbr.roughnessFactor, "roughnessFactor", 0.0, 1.0, what);
+    for (double c : m.emissiveFactor) checked_factor(c, "emissiveFactor", 0.0, 1.0, what);
+    checked_factor(m.normalTexture.scale, "normalTexture.scale", -kHuge, kHuge, what);
+    checked_factor(m.occlusionTexture.strength, "occlusionTexture.strength", 0.0, 1.0, what);
+    checked_factor(m.alphaCutoff, "alphaCutoff", 0.0, kHuge, what);
   }
 
   // A textureInfo object inside an extension: (index, texCoord, scale), index -1 when absent.
@@ -505,13 +761,16 @@ class Loader {
     double scale = 1.0;
     tinygltf::ExtensionMap extensions;
   };
-  static ExtensionTexture extension_texture(const tinygltf::Value& object, const char* key) {
+  ExtensionTexture extension_texture(const tinygltf::Value& object, const char* key, const std::string& what) const {
     ExtensionTexture t;
-    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsObject()) return t;
+    if (!object.IsObject() || !object.Has(key)) return t;
+    if (!object.Get(key).IsObject()) fail(what + " " + key + ": not a textureInfo object");
     const tinygltf::Value& info = object.Get(key);
-    t.index = static_cast<int>(number(info, "index", -1));
-    t.texcoord = static_cast<int>(number(info, "texCoord", 0));
-    t.scale = number(info, "scale", 1.0);
+    const std::string where = what + " " + key;
+    t.index = index_member(info, "index", where);
+    if (t.index < 0) fail(where + ": no texture index");
+    t.texcoord = std::max(0, index_member(info, "texCoord", where));
+    t.scale = factor(info, "scale", 1.0, -kHuge, kHuge, where);
     if (info.Has("extensions") && info.Get("extensions").IsObject())
       for (const std::string& name : info.Get("extensions").Keys()) t.extensions[name] = info.Get("extensions").Get(name);
     return t;
@@ -519,7 +778,8 @@ class Loader {
 
   GltfMaterial material(int index) {
     const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(index)];
-    const std::string what = "material " + std::to_string(index) + (m.name.empty() ? std::string() : " ('" + m.name + "')");
+    const std::string what = "material " + std::to_string(index) + (m.name.empty() ? std::string() : " ('" + printable(m.name) + "')");
+    check_core_factors(m, what);
     GltfMaterial out;
     out.name = m.name.empty() ? "material" + std::to_string(index) : m.name;
     out.roughness_factor = m.pbrMetallicRoughness.roughnessFactor;
@@ -530,9 +790,10 @@ class Loader {
     if (auto it = m.extensions.find("KHR_materials_clearcoat"); it != m.extensions.end()) {
       const tinygltf::Value& c = it->second;
       out.clearcoat = true;
-      out.clearcoat_factor = number(c, "clearcoatFactor", 0.0);
-      out.clearcoat_roughness_factor = number(c, "clearcoatRoughnessFactor", 0.0);
-      const ExtensionTexture roughness = extension_texture(c, "clearcoatRoughnessTexture");
+      const std::string coat_what = what + " KHR_materials_clearcoat";
+      out.clearcoat_factor = factor(c, "clearcoatFactor", 0.0, 0.0, 1.0, coat_what);
+      out.clearcoat_roughness_factor = factor(c, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0, coat_what);
+      const ExtensionTexture roughness = extension_texture(c, "clearcoatRoughnessTexture", coat_what);
       if (roughness.index >= 0) {
         tinygltf::TextureInfo info;
         info.index = roughness.index;
@@ -540,7 +801,7 @@ class Loader {
         info.extensions = roughness.extensions;
         out.clearcoat_roughness_map = green_map(info, what + " clearcoatRoughnessTexture");
       }
-      const ExtensionTexture coat = extension_texture(c, "clearcoatTexture");
+      const ExtensionTexture coat = extension_texture(c, "clearcoatTexture", coat_what);
       if (coat.index >= 0) {
         tinygltf::TextureInfo info;
         info.index = coat.index;
@@ -548,7 +809,7 @@ class Loader {
         info.extensions = coat.extensions;
         out.clearcoat_map = channel_map(info, 0, what + " clearcoatTexture");
       }
-      const ExtensionTexture normal = extension_texture(c, "clearcoatNormalTexture");
+      const ExtensionTexture normal = extension_texture(c, "clearcoatNormalTexture", coat_what);
       out.clearcoat_normal_scale = normal.scale;
       out.clearcoat_normal_map =
           normal_map(normal.index, normal.texcoord, normal.scale, normal.extensions, what + " clearcoatNormalTexture");
@@ -556,9 +817,10 @@ class Loader {
     if (auto it = m.extensions.find("KHR_materials_anisotropy"); it != m.extensions.end()) {
       const tinygltf::Value& a = it->second;
       out.anisotropy = true;
-      out.anisotropy_strength = number(a, "anisotropyStrength", 0.0);
-      out.anisotropy_rotation = number(a, "anisotropyRotation", 0.0);
-      const ExtensionTexture texture = extension_texture(a, "anisotropyTexture");
+      const std::string anisotropy_what = what + " KHR_materials_anisotropy";
+      out.anisotropy_strength = factor(a, "anisotropyStrength", 0.0, 0.0, 1.0, anisotropy_what);
+      out.anisotropy_rotation = factor(a, "anisotropyRotation", 0.0, -kHuge, kHuge, anisotropy_what);
+      const ExtensionTexture texture = extension_texture(a, "anisotropyTexture", anisotropy_what);
       auto lobe = std::make_shared<Anisotropy>();
       lobe->strength = out.anisotropy_strength;
       lobe->rotation = {std::cos(out.anisotropy_rotation), std::sin(out.anisotropy_rotation)};
@@ -582,7 +844,7 @@ class Loader {
 
   // --- scene ----------------------------------------------------------------------------------
 
-  void traverse_scene(GltfAsset& asset) {
+  std::vector<int> scene_roots() const {
     std::vector<int> roots;
     const int scene = model_.defaultScene >= 0 ? model_.defaultScene : (model_.scenes.empty() ? -1 : 0);
     if (scene >= static_cast<int>(model_.scenes.size())) fail("default scene " + std::to_string(scene) + " does not exist");
@@ -597,14 +859,113 @@ class Loader {
       for (std::size_t i = 0; i < child.size(); ++i)
         if (!child[i]) roots.push_back(static_cast<int>(i));
     }
-    std::vector<bool> on_path(model_.nodes.size(), false);
-    for (int root : roots) visit(root, Mat4{}, on_path, asset);
+    for (int root : roots) check_node(root);
+    return roots;
   }
 
-  void visit(int index, const Mat4& parent, std::vector<bool>& on_path, GltfAsset& asset) {
+  void check_node(int index) const {
     if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
-    if (on_path[static_cast<std::size_t>(index)]) fail("node " + std::to_string(index) + " is its own ancestor (a cycle)");
-    on_path[static_cast<std::size_t>(index)] = true;
+  }
+
+  // The triangles one instance of a node's mesh adds (from its accessors' counts; 0 where they
+  // are broken, which the walk then reports).
+  std::size_t mesh_triangles(const tinygltf::Node& node) const {
+    if (node.mesh < 0 || node.mesh >= static_cast<int>(model_.meshes.size())) return 0;
+    std::size_t total = 0;
+    for (const tinygltf::Primitive& primitive : model_.meshes[static_cast<std::size_t>(node.mesh)].primitives) {
+      int accessor = primitive.indices;
+      if (accessor < 0) {
+        const auto position = primitive.attributes.find("POSITION");
+        accessor = position == primitive.attributes.end() ? -1 : position->second;
+      }
+      if (accessor < 0 || accessor >= static_cast<int>(model_.accessors.size())) continue;
+      const std::size_t count = model_.accessors[static_cast<std::size_t>(accessor)].count;
+      const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+      total += mode == TINYGLTF_MODE_TRIANGLES ? count / 3 : (count >= 3 ? count - 2 : 0);
+    }
+    return total;
+  }
+
+  // The nodes reachable from the roots, parents before children (a cycle is refused).
+  std::vector<int> nodes_in_order(const std::vector<int>& roots) const {
+    enum class Mark : unsigned char { unseen, open, done };
+    std::vector<Mark> mark(model_.nodes.size(), Mark::unseen);
+    std::vector<int> finished;  // children before parents
+    std::vector<std::pair<int, std::size_t>> stack;  // node, next child
+    for (int root : roots) {
+      if (mark[static_cast<std::size_t>(root)] != Mark::unseen) continue;
+      stack.push_back({root, 0});
+      mark[static_cast<std::size_t>(root)] = Mark::open;
+      while (!stack.empty()) {
+        auto& [node, next] = stack.back();
+        const std::vector<int>& children = model_.nodes[static_cast<std::size_t>(node)].children;
+        if (next == children.size()) {
+          mark[static_cast<std::size_t>(node)] = Mark::done;
+          finished.push_back(node);
+          stack.pop_back();
+          continue;
+        }
+        const int child = children[next++];
+        check_node(child);
+        if (mark[static_cast<std::size_t>(child)] == Mark::open) fail("node " + std::to_string(child) + " is its own ancestor (a cycle)");
+        if (mark[static_cast<std::size_t>(child)] == Mark::unseen) {
+          mark[static_cast<std::size_t>(child)] = Mark::open;
+          stack.push_back({child, 0});
+        }
+      }
+    }
+    return {finished.rbegin(), finished.rend()};
+  }
+
+  // Counts the scene's node instances (paths from a root: a node listed twice by its parent, or
+  // by two parents, is instanced twice, and so is everything below it) and the triangles they
+  // instance, refusing either beyond its limit before anything is expanded (40 nodes each listing
+  // the next twice are 2^40 instances).
+  void check_instance_counts(const std::vector<int>& roots) const {
+    const std::vector<int> order = nodes_in_order(roots);
+    constexpr std::uint64_t saturated = std::uint64_t{1} << 62;
+    auto add = [&](std::uint64_t a, std::uint64_t b) { return std::min(saturated, a + b); };
+    std::vector<std::uint64_t> instances(model_.nodes.size(), 0);
+    for (int root : roots) instances[static_cast<std::size_t>(root)] = add(instances[static_cast<std::size_t>(root)], 1);
+    std::uint64_t visits = 0, triangles = 0;
+    for (int node : order) {
+      const std::uint64_t n = instances[static_cast<std::size_t>(node)];
+      visits = add(visits, n);
+      const std::uint64_t per_instance = mesh_triangles(model_.nodes[static_cast<std::size_t>(node)]);
+      triangles = per_instance == 0 ? triangles
+                                    : add(triangles, n > saturated / per_instance ? saturated : n * per_instance);
+      for (int child : model_.nodes[static_cast<std::size_t>(node)].children)
+        instances[static_cast<std::size_t>(child)] = add(instances[static_cast<std::size_t>(child)], n);
+    }
+    auto shown = [&](std::uint64_t v) { return v >= saturated ? std::string("more than 2^62") : std::to_string(v); };
+    if (visits > limits_.max_node_instances)
+      fail("the scene instances its nodes " + shown(visits) + " times (a node listed by several parents is instanced once per path), "
+           "beyond the limit of " + std::to_string(limits_.max_node_instances));
+    if (triangles > limits_.max_triangles)
+      fail("the scene instances " + shown(triangles) + " triangles, beyond the limit of " + std::to_string(limits_.max_triangles));
+  }
+
+  // The scene's nodes, depth first without recursion (a chain of 20000 nodes is no stack depth).
+  void traverse_scene(GltfAsset&) {
+    const std::vector<int> roots = scene_roots();
+    check_instance_counts(roots);
+    struct Pending {
+      int node;
+      Mat4 parent;
+    };
+    std::vector<Pending> stack;
+    for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, Mat4{}});
+    while (!stack.empty()) {
+      const Pending pending = stack.back();
+      stack.pop_back();
+      const std::vector<int>& children = model_.nodes[static_cast<std::size_t>(pending.node)].children;
+      const Mat4 world = visit(pending.node, pending.parent);
+      for (auto child = children.rbegin(); child != children.rend(); ++child) stack.push_back({*child, world});
+    }
+  }
+
+  // One node instance: its mesh's primitives, camera and light, under `parent`; returns its world matrix.
+  Mat4 visit(int index, const Mat4& parent) {
     const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
     const Mat4 world = multiply(parent, local_matrix(node));
     if (node.mesh >= 0) {
@@ -616,8 +977,7 @@ class Loader {
     }
     if (node.camera >= 0 && !camera_) take_camera(node, world);
     if (!light_) take_light(node, world);
-    for (int child : node.children) visit(child, world, on_path, asset);
-    on_path[static_cast<std::size_t>(index)] = false;
+    return world;
   }
 
   void take_camera(const tinygltf::Node& node, const Mat4& world) {
@@ -626,8 +986,13 @@ class Loader {
     if (c.type != "perspective" || !(c.perspective.yfov > 0.0 && c.perspective.yfov < kPi)) return;
     Camera camera;
     camera.position = world.point({0.0, 0.0, 0.0});
-    camera.look_at = camera.position + normalize(world.vector({0.0, 0.0, -1.0}));
-    camera.up = normalize(world.vector({0.0, 1.0, 0.0}));
+    const Vec3 forward = world.vector({0.0, 0.0, -1.0}), up = world.vector({0.0, 1.0, 0.0});
+    if (!is_bounded(camera.position) || !(length(forward) > 0.0) || !(length(cross(forward, up)) > 0.0) ||
+        !std::isfinite(length(forward)) || !std::isfinite(length(up)))
+      fail("camera " + std::to_string(node.camera) + ": its node transform leaves no view (position " + coordinates(camera.position) +
+           ", forward " + coordinates(forward) + ", up " + coordinates(up) + ")");
+    camera.look_at = camera.position + normalize(forward);
+    camera.up = normalize(up);
     camera.fov_y_degrees = c.perspective.yfov * 180.0 / kPi;
     camera_ = camera;
   }
@@ -635,18 +1000,22 @@ class Loader {
   void take_light(const tinygltf::Node& node, const Mat4& world) {
     auto it = node.extensions.find("KHR_lights_punctual");
     if (it == node.extensions.end()) return;
-    const int index = static_cast<int>(number(it->second, "light", -1));
+    const int index = index_member(it->second, "light", "node KHR_lights_punctual");
     if (index < 0 || index >= static_cast<int>(model_.lights.size()))
       fail("KHR_lights_punctual light " + std::to_string(index) + " does not exist");
     const tinygltf::Light& l = model_.lights[static_cast<std::size_t>(index)];
     Light light;
     if (l.type == "directional") {
       light.kind = Light::Kind::directional;
-      light.vector = normalize(world.vector({0.0, 0.0, 1.0}));  // towards the light: the node's +z
+      const Vec3 towards = world.vector({0.0, 0.0, 1.0});  // towards the light: the node's +z
+      if (!(length(towards) > 0.0) || !std::isfinite(length(towards)))
+        fail("light " + std::to_string(index) + ": its node transform leaves no direction (" + coordinates(towards) + ")");
+      light.vector = normalize(towards);
       light.intensity = 1.0;
     } else {
       light.kind = Light::Kind::point;
       light.vector = world.point({0.0, 0.0, 0.0});
+      if (!is_bounded(light.vector)) fail("light " + std::to_string(index) + ": its position " + coordinates(light.vector) + " is not finite");
     }
     light_ = light;
   }
@@ -705,8 +1074,12 @@ class Loader {
     if (vertices_.size() + local.size() > limits_.max_vertices)
       fail(std::to_string(vertices_.size() + local.size()) + " vertices so far, beyond the limit of " +
            std::to_string(limits_.max_vertices));
-    for (MeshVertex& v : local) {
+    for (std::size_t i = 0; i < local.size(); ++i) {
+      MeshVertex& v = local[i];
       v.position = world.point(v.position);
+      if (!is_bounded(v.position))
+        fail(where + ": vertex " + std::to_string(i) + "'s position after the node transforms (" + coordinates(v.position) +
+             ") is not finite or beyond " + coordinates_limit() + " in magnitude; every position must be a finite point");
       v.normal = world.normal(v.normal);
       const double l = length(v.normal);
       if (!(l > 0.0) || !std::isfinite(l)) fail(where + ": a zero or non-finite normal");
@@ -770,8 +1143,20 @@ class Loader {
     vertices = std::move(out);
   }
 
+  // An image's encoded bytes, kept until a material uses it.
+  struct EncodedImage {
+    const unsigned char* data = nullptr;
+    std::size_t size = 0;
+    std::vector<unsigned char> owned;  // empty when data points into a buffer of the model
+  };
+
   std::string path_;
   GltfLimits limits_;
+  std::string base_dir_;  // the asset's folder, as tinygltf joins URIs to it
+  std::vector<std::string> files_;
+  std::uintmax_t total_bytes_ = 0;
+  std::string uri_refusal_;
+  std::map<int, EncodedImage> encoded_;
   tinygltf::Model model_;
   std::string warnings_;
   int default_material_ = 0;
@@ -844,10 +1229,12 @@ void generate_tangents(std::vector<MeshVertex>& vertices, const std::vector<std:
   }
 }
 
-std::string GltfMaterial::describe() const {
+std::string GltfMaterial::describe() const { return printable(name) + ": " + describe_factors(); }
+
+std::string GltfMaterial::describe_factors() const {
   std::ostringstream s;
   s.precision(4);
-  s << name << ": roughness " << roughness_factor << (roughness_map ? " x G texture" : "");
+  s << "roughness " << roughness_factor << (roughness_map ? " x G texture" : "");
   if (normal_map) s << ", normal texture " << normal_map->width(0) << "x" << normal_map->height(0) << " scale " << normal_scale;
   if (clearcoat) {
     s << ", clearcoat " << clearcoat_factor << " roughness " << clearcoat_roughness_factor
@@ -874,7 +1261,7 @@ bool GltfAsset::has_normal_map() const {
 
 std::string GltfAsset::summary() const {
   std::ostringstream s;
-  s << name << " (" << path << "): " << mesh->triangles().size() << " triangles, " << mesh->vertices().size() << " vertices, " << primitives
+  s << name << " (" << printable(path) << "): " << mesh->triangles().size() << " triangles, " << mesh->vertices().size() << " vertices, " << primitives
     << " primitives (" << generated_tangent_primitives << " with generated tangents), " << materials.size() - 1 << " materials; camera "
     << (camera ? "the asset's" : "framed from the bounds") << ", light "
     << (light ? (light->kind == Light::Kind::directional ? "the asset's directional" : "the asset's point") : "directional (default)")

@@ -4,6 +4,7 @@
 // self-contained report (`saagen report -o DIR`: index.html, report.md, PNG sheets, an SVG plot).
 #pragma once
 
+#include "saagen/io/output.hpp"
 #include "saagen/reference/render/trade.hpp"
 #include "saagen/report/cost_table.hpp"
 
@@ -112,6 +113,14 @@ std::string taa_note(const render::TradeTable& table);
 // TAA and the best engine form under TAA, at the alpha where none+taa errs most.
 std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
                                       bool force = false, const render::TradeTable* taa = nullptr);
+// The files write_report writes (to write them in one commit with a run's other outputs) and the
+// image files among them.
+struct ReportFiles {
+  std::vector<OutputFile> outputs;
+  std::vector<std::string> images;
+};
+ReportFiles report_files(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
+                         const render::TradeTable* taa = nullptr);
 // The paths write_report will write for a configuration, to check them before rendering.
 std::vector<std::filesystem::path> report_paths(const render::TradeConfig& config, const std::filesystem::path& dir);
 

@@ -55,7 +55,14 @@
 // regular file (a FIFO would block the read, a device never end) or is beyond the size limit, a required extension not listed above, points
 // and lines, sparse or out-of-range accessors, indices beyond the vertices, a material's image
 // that is missing or undecodable, textures of another size, wrap mode or texture coordinate
-// set, and counts beyond GltfLimits.
+// set (checked on every use), counts beyond GltfLimits (totals checked before the work), a URI
+// that is absolute or leaves the asset's folder (before anything is opened), JSON deeper or
+// larger than the limits (before it is parsed), an integer beyond 32 bits (tinygltf would
+// truncate it into another index), an index that is not a whole number, a material factor
+// outside the specification's range, a position that is not finite (or beyond 1e100) after the
+// node transforms, all vertices at one point, a degenerate camera or light transform, and an
+// asset.version other than 2.x. Text from the asset (names, URIs) is quoted with its control
+// characters escaped.
 #pragma once
 
 #include "saagen/reference/render/anisotropy.hpp"
@@ -82,12 +89,22 @@ class GltfError : public std::runtime_error {
 
 // What one asset may hold, checked before the memory is taken (a vertex costs ~100 bytes, a
 // triangle with its BVH share ~200, a decoded normal-map texel with its MIP chain ~120).
+// Totals are checked before the work they bound: the asset's JSON is scanned (size, nesting,
+// values) before it is parsed, a file is sized before it is read, an image's header is read
+// before it is decoded (and only images a material uses are decoded), the node graph's instances
+// and their triangles are counted before any is expanded.
 struct GltfLimits {
-  std::size_t max_triangles = 4'000'000;
-  std::size_t max_vertices = 12'000'000;       // flat-shaded primitives take 3 per triangle
-  int max_texture_size = 4096;                 // texels per side, checked before decoding
-  std::size_t max_texels = 4096 * 4096;        // level-0 texels of all decoded textures together
-  std::uintmax_t max_file_bytes = 1ull << 30;  // the asset and each external buffer or image
+  std::size_t max_triangles = 4'000'000;          // instanced, in all
+  std::size_t max_vertices = 12'000'000;          // flat-shaded primitives take 3 per triangle
+  int max_texture_size = 4096;                    // texels per side, checked before decoding
+  std::size_t max_texels = 4096 * 4096;           // level-0 texels of all texture maps built, together
+  std::uintmax_t max_file_bytes = 1ull << 30;     // the asset and each external buffer or image
+  std::uintmax_t max_total_bytes = 1ull << 30;    // the asset and every external file it reads, together
+  std::size_t max_json_bytes = 64u << 20;         // the JSON (a .gltf file, a .glb's JSON chunk)
+  std::size_t max_json_values = 4'000'000;        // values in that JSON (each costs ~0.3 KB parsed)
+  int max_json_depth = 64;                        // nesting of its arrays and objects
+  std::size_t max_node_instances = 1'000'000;     // node visits of the scene's walk (a node listed
+                                                  // by two parents is visited twice)
 };
 
 struct GltfMaterial {
@@ -113,11 +130,15 @@ struct GltfMaterial {
   // and no texture (isotropic).
   std::shared_ptr<const Anisotropy> anisotropic_lobe;
 
+  // "NAME: roughness ..., normal texture ..." (control characters in the name as \xNN).
   std::string describe() const;
+  // The same without the name.
+  std::string describe_factors() const;
 };
 
 struct GltfAsset {
   std::string path;
+  std::vector<std::string> files;            // every file read: the asset, then its external buffers and images
   std::string name;                          // the file's stem in [A-Za-z0-9_.-]: the scene's name
   std::shared_ptr<const TriangleMesh> mesh;  // world space; object = instanced primitive
   std::vector<int> object_material;          // per object: index into materials
