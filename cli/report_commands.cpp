@@ -294,8 +294,9 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
           "--preset", common.preset,
           "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
       ->capture_default_str();
-  command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)");
-  command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs");
+  command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)")
+      ->check(value_given());
+  command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs")->check(value_given());
   command->add_option("--threads", common.threads, "Render threads (0: all cores)")->check(value_given())->capture_default_str();
   command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
       ->check(finite_range(1e-6, 16.0));
@@ -352,15 +353,18 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
 ReportCommands::ReportCommands(CLI::App& app) {
   bench_ = app.add_subcommand("bench", "Render the ground truths and print the speed/accuracy trade table of every variant");
   add_common(bench_, bench_common_);
-  bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)");
+  bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)")
+      ->check(value_given());
   bench_->add_option("--report", bench_report_,
                      "Also write the report of the same table into this directory, as `saagen report -o DIR` would (one "
-                     "measurement for both)");
+                     "measurement for both)")
+      ->check(value_given());
   bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
   bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
   bench_->add_option("--isa-table", bench_isa_table_,
                      "With --isa: also write the ISA statistics as JSON (generator/data/isa_cost.json, the planner's table, is this "
-                     "file for --isa vega10,navi21)");
+                     "file for --isa vega10,navi21)")
+      ->check(value_given());
 
   report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, cost-vs-error plot");
   add_common(report_, report_common_);

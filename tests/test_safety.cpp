@@ -676,9 +676,12 @@ TEST_F(Safety, EmptyValuesRepeatedFamiliesAndLoneOptionsAreRefused) {
     EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("empty"), std::string::npos) << run.err;
   }
-  const CliRun threads = saagen({"bench", "--threads", "", "--preset", "quick"});
-  EXPECT_NE(threads.exit_code, 0);
-  EXPECT_NE(threads.err.find("--threads"), std::string::npos) << threads.err;
+  for (const std::string option : {"--threads", "--json", "--report", "--cache", "--cost"}) {
+    const CliRun run = saagen({"bench", option, "", "--preset", "quick"});
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find("ground truth"), std::string::npos) << run.err;  // refused before rendering
+  }
   const CliRun metallic = saagen({"texture", "prefilter", map, "-o", out, "--metallic", "0.5"});
   EXPECT_NE(metallic.exit_code, 0);
   EXPECT_NE(metallic.err.find("--gltf"), std::string::npos) << metallic.err;
