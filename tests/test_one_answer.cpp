@@ -152,6 +152,24 @@ TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
   EXPECT_NE(taa.reason.find("curved content under TAA in saagen's trade"), std::string::npos) << taa.reason;
 }
 
+// The decision's costs: the committed vega10 ISA model, the lobe's own row where it has one, else
+// the variant's papers row plus the lobe's overhead on the form sharing its BRDF (deferred-avg's
+// for the axis BRDF), and the tangent-free form without tangents.
+TEST(OneAnswer, CostsAreTheCommittedIsaModel) {
+  const std::vector<ContentRow> rows = {{"bump", "none", 0.3, 0.1, std::nullopt},
+                                        {"bump", "deferred-aniso/tail", 0.2, 0.09, std::nullopt},
+                                        {"bump", "deferred-max/tail", 0.2, 0.09, std::nullopt}};
+  const auto cost_of = [&](const Material& material, std::size_t index) {
+    return *decide_material(Catalogue::builtin(), material, "vega10", rows).candidates.at(index).cost_ratio;
+  };
+  Material forward = reference_material(RenderPath::forward, advice::Content::bumps);
+  const double avg_tail_overhead = 1.3549257759784075 - 1.105263157894737;
+  EXPECT_NEAR(cost_of(forward, 0), 1.874493927125506, 1e-9);
+  EXPECT_NEAR(cost_of(forward, 1), 1.3427800269905532 + avg_tail_overhead, 1e-9);
+  Material deferred = reference_material(RenderPath::deferred, advice::Content::bumps);  // no tangents
+  EXPECT_NEAR(cost_of(deferred, 1), 1.1592442645074224 + avg_tail_overhead, 1e-9);
+}
+
 // A table whose rows carry their comparison with no SAA with intervals is decided by the
 // intervals, not the means: a lower mean whose interval spans 0 ties, and plans no filter.
 TEST(OneAnswer, IntervalsInTheTableDecide) {

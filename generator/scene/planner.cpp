@@ -638,6 +638,9 @@ bool usable(const Material& material, const std::vector<const Variant*>& eligibl
 // The shading cost of a configuration over no SAA: the committed ISA model's forward-shader ratio
 // on the GPU family (every target it has), of the variant with its lobe where the model has that
 // (the feed and the prefilter change inputs, not code), and the tangent-free form without tangents.
+// Where the model has the variant only with the papers' lobe, the lobe's overhead is added as the
+// model measures it on the form that shares the lobe's BRDF: forward-aniso-projected's for the
+// matrix forms (forward-aniso-*), deferred-avg's for the others (the axis BRDF).
 std::optional<double> configuration_cost(const Catalogue& catalogue, const Material& material, std::string_view family,
                                          const std::string& configuration) {
   const Configuration c = parse_configuration(configuration);
@@ -645,9 +648,15 @@ std::optional<double> configuration_cost(const Catalogue& catalogue, const Mater
   std::string costed = c.variant;
   if (variant && !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)) costed += "-tangent-free";
   const IsaTable& isa = committed_isa_costs();
+  const auto ratio = [&](const std::string& id) { return isa.forward_ratio(family, id, {}); };
   if (c.lobe != "papers")
-    if (const auto ratio = isa.forward_ratio(family, costed + "/" + c.lobe, {})) return ratio;
-  return isa.forward_ratio(family, costed, {});
+    if (const auto with_lobe = ratio(costed + "/" + c.lobe)) return with_lobe;
+  const auto papers = ratio(costed);
+  if (c.lobe == "papers" || !papers) return papers;
+  const std::string sharing = c.variant.rfind("forward-aniso-", 0) == 0 ? "forward-aniso-projected" : "deferred-avg";
+  const auto shared_lobe = ratio(sharing + "/" + c.lobe), shared_papers = ratio(sharing);
+  if (!shared_lobe || !shared_papers) return std::nullopt;
+  return *papers + (*shared_lobe - *shared_papers);
 }
 
 }  // namespace
