@@ -125,15 +125,54 @@ def load_grey_frame(path, np):
     return 0.2126 * a[:, :, 0] + 0.7152 * a[:, :, 1] + 0.0722 * a[:, :, 2]
 
 
-def load_clip(frames_dir, rel, count, np):
-    folder = os.path.join(frames_dir, rel)
-    if not os.path.isdir(folder):
-        raise FileNotFoundError(f"{folder}: no such clip folder")
-    names = sorted(n for n in os.listdir(folder) if re.fullmatch(r"frame-\d+\.png", n))
+def load_clip(frames_dir, rel, clip, np):
+    """A clip as a (frames, height, width) float32 array: one PNG with the frames stacked top to
+    bottom (what saagen bench --frames writes), or a folder of frame-NN.png."""
+    path = os.path.join(frames_dir, rel)
+    count, height = clip.get("frames"), clip.get("height")
+    if os.path.isfile(path):
+        stacked = load_grey_frame(path, np)
+        if not count:
+            if not height:
+                raise ValueError(f"{path}: the index gives neither the frame count nor the height")
+            count = stacked.shape[0] // height
+        if stacked.shape[0] % count:
+            raise ValueError(f"{path}: {stacked.shape[0]} rows do not hold {count} frames")
+        frame_height = stacked.shape[0] // count
+        if height and frame_height != height:
+            raise ValueError(f"{path}: frames of {frame_height} rows, the index says {height}")
+        if clip.get("width") and stacked.shape[1] != clip["width"]:
+            raise ValueError(f"{path}: {stacked.shape[1]} columns, the index says {clip['width']}")
+        return stacked.reshape(count, frame_height, stacked.shape[1])
+    if not os.path.isdir(path):
+        raise FileNotFoundError(f"{path}: no such clip (file or folder)")
+    names = [n for n in os.listdir(path) if re.fullmatch(r"frame-\d+\.png", n)]
     if count and len(names) != count:
-        raise ValueError(f"{folder}: {len(names)} frames, the index says {count}")
+        raise ValueError(f"{path}: {len(names)} frames, the index says {count}")
     names.sort(key=lambda n: int(n[6:-4]))
-    return np.stack([load_grey_frame(os.path.join(folder, n), np) for n in names])
+    return np.stack([load_grey_frame(os.path.join(path, n), np) for n in names])
+
+
+def index_clips(index):
+    """The index's clips, one per (scene, material), as {scene, alpha, fresnel, width, height,
+    frames, reference, rows: [{configuration, path}], criterion}. Reads saagen's layout
+    ("groups", each with "clips" of {configuration, file}) and the earlier draft's ("clips", each
+    with "rows" of {configuration, dir})."""
+    groups = index.get("groups")
+    if groups is None:
+        groups = index.get("clips", [])
+    out = []
+    for group in groups:
+        rows = group.get("clips") if "groups" in index else group.get("rows")
+        clip = {k: group.get(k) for k in ("scene", "alpha", "width", "height", "frames", "reference")}
+        clip["fresnel"] = bool(group.get("fresnel", False))
+        clip["criterion"] = group.get("criterion")
+        clip["rows"] = [{"configuration": r["configuration"], "path": r.get("file") or r.get("dir"),
+                         "criterion": r.get("criterion")} for r in rows or []]
+        if clip["reference"] is None:
+            raise ValueError(f"index: {clip['scene']} alpha {clip['alpha']}: no reference clip")
+        out.append(clip)
+    return out
 
 
 # ---------------------------------------------------------------------------------------------
@@ -262,6 +301,7 @@ def index_criteria(clip):
     {column: value}}} or {"criterion": {column: {configuration: value}}}, or "criterion" on a row."""
     out = {}
     names = {row["configuration"] for row in clip.get("rows", [])}
+    names.add("none")
     block = clip.get("criterion") or {}
     for key, value in block.items():
         if not isinstance(value, dict):
@@ -281,7 +321,18 @@ def index_criteria(clip):
     return out
 
 
+def _number(value):
+    """A criterion value: a number, or the mean of an interval {"mean", "low", "high"}."""
+    if isinstance(value, dict):
+        value = value.get("mean")
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    return None
+
+
 def table_criteria(table_path):
+    """{(scene, alpha, fresnel): {configuration: {column: value}}} from the bench's --json: its
+    "cases" (configurations) and its "sanity" rows (as "sanity:NAME")."""
     with open(table_path) as f:
         table = json.load(f)
     cases = table.get("cases")
@@ -290,14 +341,18 @@ def table_criteria(table_path):
     out = {}
     for case in cases:
         key = clip_key(case["scene"], case["alpha"], case.get("fresnel", False))
+        values = {k: _number(v) for k, v in case.items() if k != "alpha"}
         out.setdefault(key, {})[case["configuration"]] = {
-            k: float(v) for k, v in case.items() if isinstance(v, (int, float))
-            and not isinstance(v, bool) and k not in ("alpha",)}
+            k: v for k, v in values.items() if v is not None}
+    for row in table.get("sanity") or []:
+        key = clip_key(row["scene"], row["alpha"], row.get("fresnel", False))
+        values = {k: _number(v) for k, v in row.items() if k != "alpha"}
+        out.setdefault(key, {})["sanity:" + row["result"]] = {
+            k: v for k, v in values.items() if v is not None}
     return out
 
 
-DEFAULT_COLUMNS = ("flicker_error", "flip_ldr_animation", "tde", "flip_ldr", "flicker_display",
-                   "rmse_tonemapped")
+DEFAULT_COLUMNS = ("flicker_error", "image_error", "tde", "flip_ldr", "flip_ldr_animation")
 
 
 def agreement(results, criteria, columns, rows_of_kind):
@@ -321,6 +376,22 @@ def agreement(results, criteria, columns, rows_of_kind):
 
 def is_sanity(configuration):
     return configuration.startswith("sanity:")
+
+
+def sanity_verdict(jod):
+    """The sanity suite's ranking rules (report/sanity.hpp) read with JOD: another seed and the
+    quarter-sample ground truth above every other result; delayed, frozen and no-highlight below
+    the quarter-sample ground truth."""
+    best = [jod[c] for c in ("sanity:other-seed", "sanity:quarter-samples") if c in jod]
+    if not best:
+        return ""
+    broken = [c.replace("sanity:", "") + " ties or beats the best" for c, v in jod.items()
+              if c not in ("sanity:other-seed", "sanity:quarter-samples") and v >= max(best)]
+    quarter = jod.get("sanity:quarter-samples")
+    if quarter is not None:
+        broken += [c + " not below quarter-samples" for c in ("delayed", "frozen", "no-highlight")
+                   if jod.get("sanity:" + c, -math.inf) >= quarter]
+    return "  [" + ("as expected" if not broken else "; ".join(broken)) + "]"
 
 
 def print_report(results, criteria, columns, out=sys.stdout):
@@ -367,7 +438,8 @@ def print_report(results, criteria, columns, out=sys.stdout):
         rows.sort(key=lambda r: -r["jod"])
         scene = key[0] + (" (F)" if key[2] else "")
         print(f"{scene:<22} {key[1]:>7}  " + "  ".join(
-            f"{r['configuration'].replace('sanity:', '')} {r['jod']:.2f}" for r in rows), file=out)
+            f"{r['configuration'].replace('sanity:', '')} {r['jod']:.2f}" for r in rows)
+            + sanity_verdict({r["configuration"]: r["jod"] for r in rows}), file=out)
 
 
 def group_results(rows):
@@ -495,12 +567,16 @@ def main():
         index = json.load(f)
     if index.get("version") != 1:
         fail(f"{index_path}: version {index.get('version')!r}, this script reads version 1")
+    try:
+        clips = index_clips(index)
+    except (KeyError, TypeError, ValueError) as e:
+        fail(f"{index_path}: not the layout saagen bench --frames writes ({e!r})")
     pattern = re.compile(args.filter) if args.filter else None
 
     criteria = None
     if args.table:
         criteria = table_criteria(args.table)
-        for clip in index.get("clips", []):
+        for clip in clips:
             extra = index_criteria(clip)
             if extra:
                 target = criteria.setdefault(clip_key(clip["scene"], clip["alpha"],
@@ -554,7 +630,7 @@ def main():
         if previous.get("display") == display and previous.get("fps") == fps:
             for r in previous.get("rows", []):
                 done[(r["scene"], alpha_key(r["alpha"]), bool(r["fresnel"]), r["configuration"],
-                      r["dir"])] = r
+                      r["clip"])] = r
 
     import logging
     logging.getLogger().setLevel(logging.ERROR)
@@ -570,7 +646,6 @@ def main():
             json.dump(result, f, indent=1)
         os.replace(tmp, args.out)
 
-    clips = index.get("clips", [])
     todo = []
     for clip in clips:
         rows = [r for r in clip.get("rows", []) if not pattern or pattern.search(row_label(clip, r))]
@@ -585,22 +660,22 @@ def main():
         for row in rows:
             count += 1
             key = (clip["scene"], alpha_key(clip["alpha"]), bool(clip.get("fresnel", False)),
-                   row["configuration"], row["dir"])
+                   row["configuration"], row["path"])
             if key in done:
                 result["rows"].append(done[key])
             else:
                 pending.append(row)
         if not pending:
             continue
-        reference = load_clip(args.frames, clip["reference"], clip.get("frames"), np)
+        reference = load_clip(args.frames, clip["reference"], clip, np)
         reference_rgb = torch.from_numpy(np.repeat(reference[None, :, None], 3, axis=2))
         for first in range(0, len(pending), max(1, args.batch)):
             chunk = pending[first:first + max(1, args.batch)]
             tests = []
             for row in chunk:
-                test = load_clip(args.frames, row["dir"], clip.get("frames"), np)
+                test = load_clip(args.frames, row["path"], clip, np)
                 if test.shape != reference.shape:
-                    raise ValueError(f"{row['dir']}: frames {test.shape}, reference {reference.shape}")
+                    raise ValueError(f"{row['path']}: frames {test.shape}, reference {reference.shape}")
                 tests.append(test)
             # One batch of rows against the same reference (the same JODs as one call per row,
             # about 1.7x faster on a CPU).
@@ -617,7 +692,7 @@ def main():
                 result["rows"].append({
                     "scene": clip["scene"], "alpha": clip["alpha"],
                     "fresnel": bool(clip.get("fresnel", False)),
-                    "configuration": row["configuration"], "dir": row["dir"],
+                    "configuration": row["configuration"], "clip": row["path"],
                     "jod": round(float(jod), 4), "seconds": round(seconds / len(chunk), 3)})
         save()
         print(f"  {count}/{total} rows, {computed_seconds / max(computed, 1):.2f} s per clip row",
