@@ -15,13 +15,14 @@ they are not installed they are replaced by modules that raise on use. Torch 1.1
 bookworm) cannot index with int32 tensors, which one interpolation helper of the metric returns;
 the helper is wrapped so that its indices are int64 (the same values).
 
-Each clip of DIR/index.json (see docs/TEMPORAL.md) is compared with its reference, every frame's
-grey value put in R, G and B, display-encoded (the PNGs hold the display values: Reinhard, then the
-sRGB encoding), one image pixel per display pixel. The JOD of each clip row (10: no visible
-difference, higher is better) goes to --out. With --table (the bench's --json), each row is matched
-to the table's case of the same scene, alpha, Fresnel mode and configuration, and for each
-(scene, alpha) the Kendall tau-b between JOD and each criterion column (lower is better) is
-printed: tau = 1 when the column orders the configurations exactly as ColorVideoVDP does.
+Each clip of DIR/index.json (saagen bench --frames; docs/COLORVIDEOVDP.md) is compared with its
+reference, every frame's grey value put in R, G and B, display-encoded (the PNGs hold the display
+values: Reinhard, then the sRGB encoding), one image pixel per display pixel. The JOD of each clip
+row (10: no visible difference, higher is better) goes to --out. With --table (the bench's --json),
+each row is matched to the table's case of the same scene, alpha, Fresnel mode and configuration,
+and for each (scene, alpha) the Kendall tau-b between JOD and each criterion column (lower is
+better) is printed: tau = 1 when the column orders the configurations exactly as ColorVideoVDP
+does.
 """
 
 import argparse
@@ -379,18 +380,21 @@ def is_sanity(configuration):
 
 
 def sanity_verdict(jod):
-    """The sanity suite's ranking rules (report/sanity.hpp) read with JOD: another seed and the
-    quarter-sample ground truth above every other result; delayed, frozen and no-highlight below
-    the quarter-sample ground truth."""
-    best = [jod[c] for c in ("sanity:other-seed", "sanity:quarter-samples") if c in jod]
-    if not best:
-        return ""
-    broken = [c.replace("sanity:", "") + " ties or beats the best" for c, v in jod.items()
-              if c not in ("sanity:other-seed", "sanity:quarter-samples") and v >= max(best)]
-    quarter = jod.get("sanity:quarter-samples")
+    """The sanity suite's rules (report/sanity.hpp) read with JOD, without intervals: nothing above
+    another seed; none of 1-spp no SAA, blurred, frozen and no-highlight above the quarter-sample
+    ground truth; frozen and no-highlight below it; delayed below its own frames on time (another
+    seed)."""
+    other, quarter = jod.get("sanity:other-seed"), jod.get("sanity:quarter-samples")
+    broken = []
+    if other is not None:
+        broken += [f"{c.replace('sanity:', '')} above other-seed" for c, v in jod.items()
+                   if c != "sanity:other-seed" and v > other]
     if quarter is not None:
-        broken += [c + " not below quarter-samples" for c in ("delayed", "frozen", "no-highlight")
-                   if jod.get("sanity:" + c, -math.inf) >= quarter]
+        broken += [f"{c} above quarter-samples" for c in ("none", "blurred", "frozen", "no-highlight")
+                   if jod.get(c if c == "none" else "sanity:" + c, -math.inf) > quarter
+                   and not (other is not None and jod.get(c if c == "none" else "sanity:" + c) > other)]
+    if other is None and quarter is None:
+        return ""
     return "  [" + ("as expected" if not broken else "; ".join(broken)) + "]"
 
 
@@ -543,6 +547,13 @@ def main():
                         "'display' when it names one, else standard_fhd)")
     parser.add_argument("--fps", type=float, help="frames per second (default: the index's 'fps', "
                         "else 30)")
+    parser.add_argument("--reference-clip", metavar="NAME",
+                        help="compare with this clip of each group instead of the ground truth "
+                        "(e.g. sanity:other-seed; the ground truth becomes a row)")
+    parser.add_argument("--ceiling", metavar="R2.json",
+                        help="an --out of a run with --reference-clip: its JOD enters the tau table "
+                        "as the column 'ceiling' (how far ColorVideoVDP agrees with itself when "
+                        "only the ground truth's noise changes)")
     parser.add_argument("--resume", action="store_true",
                         help="keep the rows already in --out (same display and fps) and skip them")
     parser.add_argument("--batch", type=int, default=16,
@@ -553,7 +564,7 @@ def main():
     args = parser.parse_args()
 
     if not args.report_only and not args.cvvdp:
-        fail("--cvvdp DIR is required: a ColorVideoVDP checkout (see docs/TEMPORAL.md)")
+        fail("--cvvdp DIR is required: a ColorVideoVDP checkout (see docs/COLORVIDEOVDP.md)")
     if args.report_only:
         pass
     elif not os.path.isdir(args.cvvdp):
@@ -583,11 +594,18 @@ def main():
                                                      clip.get("fresnel", False)), {})
                 for configuration, values in extra.items():
                     target.setdefault(configuration, {}).update(values)
+    if args.ceiling:
+        if criteria is None:
+            fail("--ceiling needs --table")
+        with open(args.ceiling) as f:
+            for r in json.load(f)["rows"]:
+                criteria.setdefault(clip_key(r["scene"], r["alpha"], r["fresnel"]), {}).setdefault(
+                    r["configuration"], {})["ceiling"] = -float(r["jod"])  # lower is better
     if args.columns:
         columns = [c for c in args.columns.split(",") if c]
     elif criteria is not None:
         present = {c for per in criteria.values() for values in per.values() for c in values}
-        columns = [c for c in DEFAULT_COLUMNS if c in present]
+        columns = [c for c in DEFAULT_COLUMNS if c in present] + (["ceiling"] if args.ceiling else [])
     else:
         columns = []
 
@@ -627,7 +645,8 @@ def main():
     if args.resume and os.path.isfile(args.out):
         with open(args.out) as f:
             previous = json.load(f)
-        if previous.get("display") == display and previous.get("fps") == fps:
+        if (previous.get("display") == display and previous.get("fps") == fps
+                and previous.get("reference_clip") == (args.reference_clip or "ground-truth")):
             for r in previous.get("rows", []):
                 done[(r["scene"], alpha_key(r["alpha"]), bool(r["fresnel"]), r["configuration"],
                       r["clip"])] = r
@@ -638,7 +657,8 @@ def main():
 
     result = {"metric": "ColorVideoVDP", "cvvdp_version": version, "cvvdp_commit": commit,
               "torch": torch.__version__, "display": display, "fps": fps,
-              "frames": os.path.abspath(args.frames), "filter": args.filter, "rows": []}
+              "frames": os.path.abspath(args.frames), "filter": args.filter,
+              "reference_clip": args.reference_clip or "ground-truth", "rows": []}
 
     def save():
         tmp = args.out + ".tmp"
@@ -648,6 +668,15 @@ def main():
 
     todo = []
     for clip in clips:
+        if args.reference_clip:
+            # Another clip of the group as the reference (e.g. the ground truth with another seed):
+            # the ground truth becomes a row.
+            swap = [r for r in clip["rows"] if r["configuration"] == args.reference_clip]
+            if not swap:
+                continue
+            clip = dict(clip, reference=swap[0]["path"],
+                        rows=[{"configuration": "ground-truth", "path": clip["reference"]}]
+                        + [r for r in clip["rows"] if r["configuration"] != args.reference_clip])
         rows = [r for r in clip.get("rows", []) if not pattern or pattern.search(row_label(clip, r))]
         if rows:
             todo.append((clip, rows))
