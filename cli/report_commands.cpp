@@ -6,7 +6,9 @@
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/assets.hpp"
 #include "saagen/reference/render/gltf.hpp"
+#include "saagen/report/frames.hpp"
 #include "saagen/report/report.hpp"
+#include "saagen/report/sanity.hpp"
 #ifdef SAAGEN_HAVE_ISA_COST
 #include "saagen/report/isa_cost.hpp"
 #endif
@@ -20,6 +22,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <system_error>
 
 #include <fcntl.h>
@@ -152,10 +155,10 @@ void write_cache_through_output_layer() {
 
 // The trade table of a run. A degenerate measurement (a black or non-finite ground truth, a
 // metric that is not finite) is an error naming the scene, not a verdict.
-render::TradeTable measure_trade(const render::TradeConfig& config) {
+render::TradeTable measure_trade(const render::TradeConfig& config, const render::AnimationFrameFn& on_frame = {}) {
   const render::TradeTable table = [&] {
     try {
-      return render::compute_trade_table(config, report::progress_bar());
+      return render::compute_trade_table(config, report::progress_bar(), on_frame);
     } catch (const render::TradeError& error) {
       throw Error(error.what());
     }
@@ -350,6 +353,30 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
                     "VARIANT/exact): what a closed-form lobe could reach. A measurement, not a BRDF saagen emits");
 }
 
+namespace {
+
+// The --frames directory: new, or empty (saagen writes many files into it; it never mixes them
+// with a user's).
+std::filesystem::path frames_directory(const std::string& directory, bool force) {
+  std::error_code ec;
+  const std::filesystem::path path(directory);
+  if (directory.empty()) throw Error("--frames: the directory name is empty");
+  if (std::filesystem::exists(path, ec) && !(std::filesystem::is_directory(path, ec) && std::filesystem::is_empty(path, ec)) && !force)
+    throw Error(fmt::format("--frames {}: exists and is not an empty directory; name a new directory (or pass --force to write into it)",
+                            directory));
+  return path;
+}
+
+std::regex frames_filter(const std::string& pattern) {
+  try {
+    return std::regex(pattern, std::regex::ECMAScript);
+  } catch (const std::regex_error& bad) {
+    throw Error(fmt::format("--frames-filter '{}': not a regular expression ({})", pattern, bad.what()));
+  }
+}
+
+}  // namespace
+
 ReportCommands::ReportCommands(CLI::App& app) {
   bench_ = app.add_subcommand("bench", "Render the ground truths and print the speed/accuracy trade table of every variant");
   add_common(bench_, bench_common_);
@@ -359,6 +386,13 @@ ReportCommands::ReportCommands(CLI::App& app) {
                      "Also write the report of the same table into this directory, as `saagen report -o DIR` would (one "
                      "measurement for both)")
       ->check(value_given());
+  bench_->add_option("--frames", bench_frames_,
+                     "Also write the animation clips behind every row into this new directory (DIR/index.json and one PNG per "
+                     "clip, its frames stacked, in the display values the verdict reads), for an external video metric")
+      ->check(value_given());
+  bench_->add_option("--frames-filter", bench_frames_filter_,
+                     "With --frames: only the clips whose configuration id (or sanity:NAME) matches this regular expression "
+                     "(ECMAScript; e.g. '^(none|engine-.*|.*/tail|sanity:.*)$'); the ground truth's always");
   bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
   bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
   bench_->add_option("--isa-table", bench_isa_table_,
@@ -402,9 +436,19 @@ int ReportCommands::run_bench() const {
     if (!files.empty()) write_outputs(files, bench_common_.force, run_inputs(bench_common_, config));
     return 0;
   }
+  std::optional<report::ClipWriter> clips;
+  if (!bench_frames_.empty()) clips.emplace(frames_directory(bench_frames_, bench_common_.force), frames_filter(bench_frames_filter_));
   std::cout << asset_summaries(config);
-  const render::TradeTable measured = measure_trade(config);
+  render::AnimationFrameFn on_frame;
+  if (clips) on_frame = [&](const render::AnimationFrame& frame) { clips->add(frame, config.frames); };
+  const render::TradeTable measured = measure_trade(config, on_frame);
   std::cout << ground_truth_line(measured);
+  // The instrument before anything it ranks: the sanity suite (report/sanity.hpp).
+  const std::vector<report::SceneSanity> sanity = report::check_sanity(measured);
+  if (!sanity.empty())
+    std::cout << "\nSanity suite (results whose ranking is known; image error: LDR-FLIP per frame, flicker error: pooled change; "
+                 "docs/TEMPORAL.md):\n"
+              << report::format_sanity(sanity);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
   const render::TradeTable table = report::without_taa_rows(measured);
   const auto summary = report::summarize(table);
@@ -419,7 +463,14 @@ int ReportCommands::run_bench() const {
   if (!bench_json_.empty()) {
     nlohmann::json json = report::trade_json(table, summary, cost_table);
     if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
+    json["sanity_checks"] = report::sanity_json(sanity);
     files.push_back({bench_json_, json.dump(2) + "\n"});
+  }
+  std::size_t clip_files = 0;
+  if (clips) {
+    const std::vector<OutputFile> clip_outputs = clips->outputs();
+    clip_files = clip_outputs.size() - 1;
+    files.insert(files.end(), clip_outputs.begin(), clip_outputs.end());
   }
   std::optional<report::ReportFiles> report_output;
   if (!bench_report_.empty()) {
@@ -429,6 +480,7 @@ int ReportCommands::run_bench() const {
   if (!files.empty()) write_outputs(files, bench_common_.force, run_inputs(bench_common_, config));
   if (report_output)
     std::cout << fmt::format("\nwrote {}/index.html, report.md and {} images\n", bench_report_, report_output->images.size());
+  if (clips) std::cout << fmt::format("\nwrote {} animation clips and {}/index.json\n", clip_files, bench_frames_);
   // Last, what a reader needs first: what to use, by how much, and where it loses.
   std::cout << "\n" << report::format_verdict(table);
   return 0;

@@ -1152,6 +1152,14 @@ nlohmann::json decisions_json(const render::TradeTable& table) {
           {"per_scene", per_scene}};
 }
 
+namespace {
+
+nlohmann::json interval_json(const render::Interval& interval) {
+  return {{"mean", interval.mean}, {"low", interval.low}, {"high", interval.high}};
+}
+
+}  // namespace
+
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();
   for (const VariantSummary& row : summary) {
@@ -1190,8 +1198,20 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                      {"tde_excess_flicker", row.tde_excess_flicker},
                      {"tde_lost_motion", row.tde_lost_motion},
                      {"flicker", row.flicker},
-                     {"flicker_display", row.flicker_display}});
+                     {"flicker_display", row.flicker_display},
+                     {"image_error", interval_json(row.image_error)},
+                     {"flicker_error", interval_json(row.flicker_error)},
+                     {"flicker_excess", row.flicker_excess},
+                     {"flicker_missing", row.flicker_missing}});
   }
+  nlohmann::json sanity = nlohmann::json::array();
+  for (const render::SanityRow& row : table.sanity)
+    sanity.push_back({{"scene", std::string(render::scene_name(row.scene))},
+                      {"alpha", row.alpha},
+                      {"fresnel", row.fresnel},
+                      {"result", std::string(render::sanity_name(row.result))},
+                      {"image_error", row.image_error},
+                      {"flicker_error", row.flicker_error}});
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
@@ -1217,7 +1237,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
           {"config", config_line(table)},
           {"rows", rows},
           {"by_content", by_content},
-          {"cases", cases}};
+          {"cases", cases},
+          {"sanity", sanity}};
 }
 
 std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {
@@ -1293,6 +1314,19 @@ render::TradeProgressFn progress_bar() {
               << std::flush;
     if (progress.total && progress.done >= progress.total) std::cerr << "\n";
   };
+}
+
+}  // namespace saagen::report
+
+namespace saagen::report {
+
+std::string encode_tagged_png(int width, int height, int channels, const std::vector<std::uint8_t>& pixels, std::string_view what) {
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, channels, pixels.data(), width * channels)) throw Error("cannot encode a PNG");
+  return with_text_chunk(png, "Software", std::string(output_tag) + " " + std::string(what));
 }
 
 }  // namespace saagen::report

@@ -241,6 +241,24 @@ std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilt
   return id;
 }
 
+std::string_view sanity_name(SanityResult result) {
+  switch (result) {
+    case SanityResult::other_seed:
+      return "other-seed";
+    case SanityResult::quarter_samples:
+      return "quarter-samples";
+    case SanityResult::delayed:
+      return "delayed";
+    case SanityResult::blurred:
+      return "blurred";
+    case SanityResult::frozen:
+      return "frozen";
+    case SanityResult::no_highlight:
+      return "no-highlight";
+  }
+  return "?";
+}
+
 std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }
 
 bool scene_has_normal_map(SceneId id) {
@@ -310,6 +328,102 @@ std::vector<TaaRowKey> taa_keys(const TradeConfig& config, SceneId scene) {
   return out;
 }
 
+// The seeds of the animation's further ground truths: the second seed (verdict metrics against
+// two references) and the third (the sanity suite's quarter-sample result); any fixed values
+// unlike the first, which the cache keys record.
+std::uint64_t second_seed(std::uint64_t seed) { return seed ^ 0x9e3779b97f4a7c15ULL; }
+std::uint64_t third_seed(std::uint64_t seed) { return seed ^ 0xc2b2ae3d27d4eb4fULL; }
+
+// The animation's ground-truth renders per frame, in units of one full-sample render: one per
+// seed, and a quarter for the sanity suite's quarter-sample result.
+double animation_ground_truths(const TradeConfig& config) {
+  const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
+  return seeds + (config.sanity && seeds == 2 && config.frames >= 2 ? 0.25 : 0.0);
+}
+
+// One ground-truth seed's frame of one material, as the verdict metrics read it.
+struct SeedReference {
+  std::optional<GreyFlipReference> flip;  // LDR-FLIP's reference half (TradeConfig::flip)
+  Image display;                          // display values
+  Image change;                           // G * |R_t - R_{t-1}| (frames after the first)
+};
+
+SeedReference seed_reference(const Image& linear, const SeedReference* previous, bool flip) {
+  SeedReference r;
+  if (flip) r.flip.emplace(tonemapped(linear), GreyFlipReference::Range::ldr);
+  r.display = display_image(linear);
+  if (previous) r.change = pooled_change(previous->display, r.display);
+  return r;
+}
+
+// A clip's state across frames: its previous display frame, its per-seed series and the sums of
+// the flicker error's parts.
+struct ClipRecorder {
+  AnimationSeries series;
+  Image previous_display;
+  double excess = 0.0, missing = 0.0;
+  int flicker_values = 0;
+
+  // Frame t of the clip (linear radiance) against each seed's reference of that frame.
+  void add(const Image& linear, std::span<const SeedReference> references) {
+    Image display = display_image(linear);
+    const Image tonemapped_frame = tonemapped(linear);
+    const bool has_previous = previous_display.size() == display.size() && previous_display.size() > 0;
+    const Image change = has_previous ? pooled_change(previous_display, display) : Image();
+    for (std::size_t s = 0; s < references.size(); ++s) {
+      const SeedReference& reference = references[s];
+      if (reference.flip) series.image[s].push_back(reference.flip->mean_error(tonemapped_frame));
+      if (!has_previous) continue;
+      const FlickerError e = flicker_error(change, reference.change);
+      series.flicker[s].push_back(e.error);
+      excess += e.excess;
+      missing += e.missing;
+      ++flicker_values;
+    }
+    previous_display = std::move(display);
+  }
+};
+
+// A row's verdict metrics from its recorder (trade.hpp).
+void finish_verdict_metrics(const ClipRecorder& clip, TradeRow& row) {
+  row.series = clip.series;
+  row.image_error = series_interval(std::span<const SeedSeries>(&row.series.image, 1));
+  row.flicker_error = series_interval(std::span<const SeedSeries>(&row.series.flicker, 1));
+  row.flip_ldr_animation = row.series.image[0].empty() ? 0.0 : mean_interval(row.series.image[0], 0.0).mean;
+  if (clip.flicker_values > 0) {
+    row.flicker_excess = clip.excess / clip.flicker_values;
+    row.flicker_missing = clip.missing / clip.flicker_values;
+  }
+}
+
+// The sanity suite's results of one material (trade.hpp, SanityResult), frame by frame, from the
+// second seed's frames and the quarter-sample ground truth's.
+class SanityClips {
+ public:
+  // Frame t: `other` and `quarter` are the second seed's and the quarter-sample ground truth's
+  // linear frames; `reference` the first seed's references.
+  void add(const Image& other, const Image& quarter, const SeedReference& reference) {
+    if (!first_) first_ = other;
+    const Image& delayed = previous_ ? *previous_ : other;
+    const Image inputs[] = {other, quarter, delayed, gaussian_pooled(other, kSanityBlurSigma), *first_,
+                            Image(other.width, other.height, 0.0f)};
+    for (std::size_t i = 0; i < kSanityResults.size(); ++i) clips_[i].add(inputs[i], std::span<const SeedReference>(&reference, 1));
+    previous_ = other;
+  }
+  const Image& last(SanityResult result) const { return clips_[static_cast<std::size_t>(result)].previous_display; }
+  SanityRow row(SceneId scene, const Material& material, SanityResult result) const {
+    const ClipRecorder& clip = clips_[static_cast<std::size_t>(result)];
+    SanityRow row{scene, material.alpha, material.fresnel, result, 0.0, 0.0, clip.series};
+    row.image_error = mean_interval(clip.series.image[0], 0.0).mean;
+    row.flicker_error = mean_interval(clip.series.flicker[0], 0.0).mean;
+    return row;
+  }
+
+ private:
+  std::array<ClipRecorder, kSanityResults.size()> clips_;
+  std::optional<Image> first_, previous_;
+};
+
 }  // namespace
 
 FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
@@ -347,7 +461,7 @@ GroundTruthSettings ground_truth_settings(const TradeConfig& sized, bool animati
   return settings;
 }
 
-TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress) {
+TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress, const AnimationFrameFn& on_frame) {
   for (const SceneId id : config.scenes) {
     const TradeConfig sized = sized_for_scene(config, id);
     if (sized.width <= 0 || sized.height <= 0 || sized.strata <= 0)
@@ -382,7 +496,8 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                                                        n_materials * taa_keys(config, id).size()
                                                  : 0;
     return sizes.main_gt + main_pixels * shading_per_frame +
-           (config.frames > 0 ? config.frames * (sizes.flicker_gt + flicker_pixels * shading_per_frame) : 0) + taa_shading;
+           (config.frames > 0 ? config.frames * (static_cast<std::uint64_t>(animation_ground_truths(config) * static_cast<double>(sizes.flicker_gt)) + flicker_pixels * shading_per_frame) : 0) +
+           taa_shading;
   };
   TradeProgress state;
   for (SceneId id : config.scenes) state.total += scene_work(id);
@@ -502,35 +617,74 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
       std::vector<Image> previous_variant(n_rows);
       std::vector<std::vector<Image>> reference_frames;  // [frame][material], for the +taa rows
-      std::vector<double> flip_animation(n_rows, 0.0);
+      // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
+      const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
+      const bool sanity = config.sanity && seeds == 2 && config.frames >= 2;
+      std::vector<ClipRecorder> clips(n_rows);
+      std::vector<std::vector<SeedReference>> seed_references(n_materials);  // [m][seed], of the previous frame
+      std::vector<SanityClips> sanity_clips(sanity ? n_materials : 0);
+      const auto emit_frame = [&](std::size_t m, const std::string& clip, int frame, const Image& display) {
+        if (on_frame) on_frame({id, materials[m].alpha, materials[m].fresnel, clip, frame, &display});
+      };
       for (int frame = 0; frame < config.frames; ++frame) {
         const Scene moved = trade_animation_frame(sized, id, frame);
         const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
         const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
         if (config.taa) reference_frames.push_back(frame_gt.images);
         base += sizes.flicker_gt;
+        std::optional<GroundTruth> other_gt, quarter_gt;
+        if (seeds == 2) {
+          GroundTruthSettings other = flicker_settings;
+          other.seed = second_seed(flicker_settings.seed);
+          other_gt = ground_truth(moved, other, stage, base);
+          base += sizes.flicker_gt;
+        }
+        if (sanity) {
+          GroundTruthSettings quarter = flicker_settings;
+          quarter.seed = third_seed(flicker_settings.seed);
+          quarter.strata = std::max(1, flicker_settings.strata / 2);
+          quarter_gt = ground_truth(moved, quarter, stage, base);
+          base += sizes.flicker_gt / 4;
+        }
         const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
         std::vector<Image> reference_frame(n_materials);
         std::vector<std::optional<GreyFlipReference>> flip_references(n_materials);  // the +taa rows' LDR-FLIP
+        std::vector<std::vector<SeedReference>> frame_references(n_materials);
+        for (std::size_t m = 0; m < n_materials; ++m) frame_references[m].resize(seeds);
+        parallel_rows(static_cast<int>(n_materials * seeds), config.threads, [&](int i) {
+          const std::size_t m = static_cast<std::size_t>(i) / seeds, seed = static_cast<std::size_t>(i) % seeds;
+          const Image& linear = seed == 0 ? frame_gt.images[m] : other_gt->images[m];
+          const SeedReference* previous = frame > 0 ? &seed_references[m][seed] : nullptr;
+          frame_references[m][seed] = seed_reference(linear, previous, config.flip);
+        });
         for (std::size_t m = 0; m < n_materials; ++m) {
           const Image reference_tonemapped = tonemapped(frame_gt.images[m]);
-          reference_frame[m] = display_image(frame_gt.images[m]);
+          reference_frame[m] = frame_references[m][0].display;
           reference_stats[m].add(frame_gt.images[m]);
           reference_display[m].add(reference_tonemapped);
           if (config.taa) flip_references[m].emplace(reference_tonemapped, GreyFlipReference::Range::ldr);
+          emit_frame(m, "ground-truth", frame, reference_frame[m]);
         }
         for_each_row(n_rows, flicker_pixels, stage, [&](std::size_t r) {
           const std::size_t m = r / n_keys;
           const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
           variant_stats[r].add(image);
-          const Image image_tonemapped = tonemapped(image);
-          variant_display[r].add(image_tonemapped);
-          if (config.taa) flip_animation[r] += flip_references[m]->mean_error(image_tonemapped);
-          Image frame_display = display_image(image);
-          if (frame > 0) differences[r].add_pair(previous_variant[r], frame_display, previous_reference[m], reference_frame[m]);
-          previous_variant[r] = std::move(frame_display);
+          variant_display[r].add(tonemapped(image));
+          clips[r].add(image, frame_references[m]);
+          if (frame > 0) differences[r].add_pair(previous_variant[r], clips[r].previous_display, previous_reference[m], reference_frame[m]);
+          previous_variant[r] = clips[r].previous_display;
         });
+        if (sanity)
+          parallel_rows(static_cast<int>(n_materials), config.threads, [&](int i) {
+            const std::size_t m = static_cast<std::size_t>(i);
+            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0]);
+          });
+        for (std::size_t r = 0; r < n_rows; ++r) emit_frame(r / n_keys, configuration_id(table.rows[first_row + r]), frame, previous_variant[r]);
+        for (std::size_t m = 0; m < sanity_clips.size(); ++m)
+          for (SanityResult result : kSanityResults)
+            emit_frame(m, "sanity:" + std::string(sanity_name(result)), frame, sanity_clips[m].last(result));
         previous_reference = std::move(reference_frame);
+        seed_references = std::move(frame_references);
         report(stage, base);
       }
       for (std::size_t m = 0; m < n_materials; ++m) {
@@ -549,8 +703,10 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
           row.reference_temporal_stddev_display = reference_std_display;
           row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
-          row.flip_ldr_animation = flip_animation[r] / config.frames;
+          finish_verdict_metrics(clips[r], row);
         }
+        if (sanity)
+          for (SanityResult result : kSanityResults) table.sanity.push_back(sanity_clips[m].row(id, materials[m], result));
       }
       if (config.taa) {
         const std::string stage = "taa " + name;

@@ -13,7 +13,9 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace saagen::report {
@@ -127,5 +129,9 @@ std::vector<std::filesystem::path> report_paths(const render::TradeConfig& confi
 // A progress callback drawing a one-line bar on stderr ("\r[#####.....]  42%  ground truth sphere");
 // when stderr is not a terminal, one line per stage instead ("[ 42%] ground truth sphere").
 render::TradeProgressFn progress_bar();
+
+// PNG bytes of 8-bit pixels (1: grey, 3: RGB) carrying saagen's output tag (io/output.hpp) with
+// `what` after it, so that the output layer recognises the file as saagen's.
+std::string encode_tagged_png(int width, int height, int channels, const std::vector<std::uint8_t>& pixels, std::string_view what);
 
 }  // namespace saagen::report

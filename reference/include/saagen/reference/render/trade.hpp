@@ -75,12 +75,14 @@
 #pragma once
 
 #include "saagen/reference/quad.hpp"
+#include "saagen/reference/render/animation_error.hpp"
 #include "saagen/reference/render/image.hpp"
 #include "saagen/reference/render/renderer.hpp"
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/reference/render/taa.hpp"
 #include "saagen/reference/saa.hpp"
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -169,6 +171,43 @@ struct TradeConfig {
   bool taa = false;
   TaaOptions taa_options{};
   int taa_warmup_frames = 0;  // frames resolved before frame 0; 0: one jitter cycle
+  // The animation's ground truth is rendered with this many seeds (1 or 2): with two, every
+  // verdict metric is measured against each and averaged, and their spread is the ground truth's
+  // Monte-Carlo error in every interval (animation_error.hpp, ground_truth_spread()).
+  int ground_truth_seeds = 2;
+  // The sanity suite (TradeTable::sanity; needs frames >= 2 and two ground-truth seeds).
+  bool sanity = true;
+};
+
+// The per-frame values behind a row's verdict metrics, against each ground-truth seed ([0]: the
+// config's seed, [1]: the second seed; empty without it): the image error of every frame and the
+// flicker error of every frame pair (animation_error.hpp). Comparisons pair them frame by frame.
+struct AnimationSeries {
+  SeedSeries image;
+  SeedSeries flicker;
+};
+
+// The results of the sanity suite, whose ranking is known before any metric is computed: the
+// converged animation with another seed and with a quarter of its samples must rank best; the
+// others are degenerate and must rank clearly worse (the ground truth moves) and never win.
+enum class SanityResult { other_seed, quarter_samples, delayed, blurred, frozen, no_highlight };
+inline constexpr std::array<SanityResult, 6> kSanityResults = {SanityResult::other_seed, SanityResult::quarter_samples,
+                                                              SanityResult::delayed,    SanityResult::blurred,
+                                                              SanityResult::frozen,     SanityResult::no_highlight};
+std::string_view sanity_name(SanityResult result);  // "other-seed", ...
+// The 1 px Gaussian of the blurred result (standard deviation in pixels of the animation).
+inline constexpr double kSanityBlurSigma = 1.0;
+
+// One sanity result on one (scene, material), against the config's ground-truth seed only (the
+// results are made from the second seed's frames, or a third seed's, never from the reference's).
+struct SanityRow {
+  SceneId scene = SceneId::sphere;
+  double alpha = 0.0;
+  bool fresnel = false;
+  SanityResult result = SanityResult::other_seed;
+  double image_error = 0.0;
+  double flicker_error = 0.0;
+  AnimationSeries series;  // [0] only
 };
 
 struct TradeRow {
@@ -204,8 +243,16 @@ struct TradeRow {
   // The configuration resolved by TAA (configuration id "...+taa"; see the top of this file).
   bool taa = false;
   // Mean LDR-FLIP of the measured animation frames against their ground truths (flicker
-  // resolution); computed when TradeConfig::taa, for every row.
+  // resolution): the image_error against the config's seed alone.
   double flip_ldr_animation = 0.0;
+  // The verdict's metrics (animation_error.hpp), means over the animation and over the
+  // ground-truth seeds, with 95 % intervals (over frame blocks, widened by the ground truth's
+  // seed-to-seed spread): image_error (LDR-FLIP per frame) and flicker_error (pooled change).
+  Interval image_error;
+  Interval flicker_error;
+  double flicker_excess = 0.0;   // flicker_error's parts, means over pairs and seeds
+  double flicker_missing = 0.0;
+  AnimationSeries series;
 };
 
 // The images behind the rows of one (scene, material): frame 0 at the main resolution.
@@ -235,6 +282,8 @@ struct TradeTable {
   // When config.keep_images and config.taa: per (scene, material), the animation's last frame at
   // the flicker resolution: its ground truth and every +taa row's resolved image, in row order.
   std::vector<ImageSet> taa_images;
+  // The sanity suite's rows (TradeConfig::sanity): per scene and material, each SanityResult.
+  std::vector<SanityRow> sanity;
 
   const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed = NormalFeed::shading,
                        Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers, bool taa = false) const;
@@ -249,7 +298,20 @@ struct TradeProgress {
 // Called on the calling thread, at most about every 100 ms and at each stage change.
 using TradeProgressFn = std::function<void(const TradeProgress&)>;
 
-TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {});
+// One clip of the animation, as the trade measured it (display values, display_image()), handed
+// to an observer frame by frame: the ground truth's ("ground-truth"), every row's (its
+// configuration id) and every sanity result's ("sanity:NAME"). Called on the calling thread.
+struct AnimationFrame {
+  SceneId scene = SceneId::sphere;
+  double alpha = 0.0;
+  bool fresnel = false;
+  std::string clip;  // "ground-truth", a configuration id, or "sanity:NAME"
+  int frame = 0;
+  const Image* display = nullptr;
+};
+using AnimationFrameFn = std::function<void(const AnimationFrame&)>;
+
+TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {}, const AnimationFrameFn& frames = {});
 // The config with a scene's own sizes (TradeConfig::scene_sizes) in width ... flicker_strata.
 TradeConfig sized_for_scene(const TradeConfig& config, SceneId id);
 // The ground truth a sized config (sized_for_scene) renders: its main image's settings, or with

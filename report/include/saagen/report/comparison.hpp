@@ -1,0 +1,49 @@
+// Paired comparisons of two configurations of a trade table, with 95 % intervals: the numbers
+// every verdict (beats / ties / loses) is read from.
+//
+// For each cell (a scene and material both configurations were measured on), the two rows' verdict
+// series (trade.hpp, AnimationSeries) are differenced frame by frame against each ground-truth
+// seed (paired: the same frames, pixels and references); the difference's mean over the cells
+// gets the interval of render::series_interval(): the variation over frame blocks, pixels and
+// cells, widened by the ground truth's Monte-Carlo error (the spread between the two seeds).
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+
+#include <functional>
+#include <string>
+
+namespace saagen::report {
+
+// One metric's difference (configuration - baseline; lower is better) and the ground truth's part
+// of its uncertainty.
+struct MetricDifference {
+  render::Interval difference;
+  double ground_truth_sd = 0.0;  // standard deviation of the mean due to the ground truth alone
+  // The ground truth's noise is larger than a quarter of the difference: too noisy to call, a tie
+  // whatever the interval says (more ground-truth samples would settle it).
+  bool ground_truth_limited = false;
+};
+
+enum class MetricOutcome { better, tie, worse };
+// better: the interval lies below 0; worse: above; tie: it spans 0, or the ground truth limits.
+MetricOutcome outcome_of(const MetricDifference& difference);
+
+struct PairedComparison {
+  std::string configuration;
+  std::string baseline;
+  int cells = 0;  // 0: no cell has both (the comparison is empty)
+  MetricDifference image;    // image_error (LDR-FLIP per frame of the animation)
+  MetricDifference flicker;  // flicker_error (pooled change)
+};
+
+using CellFilter = std::function<bool(const render::TradeRow&)>;
+// `configuration` against `baseline` over the non-Fresnel, non-TAA cells `keep` accepts (a row of
+// the configuration and the baseline's row of the same scene and material).
+PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                        const CellFilter& keep);
+
+// The same for two series of one cell (a sanity result against a row, two rows).
+MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b);
+
+}  // namespace saagen::report

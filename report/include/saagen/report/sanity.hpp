@@ -1,0 +1,51 @@
+// The sanity suite: the verdict metrics must rank results whose ranking is known before they
+// rank any configuration (trade.hpp, SanityResult). Per scene, over its materials (no Fresnel):
+//
+//   best             no other result (1-spp no SAA, delayed, blurred, frozen, no highlight) beats
+//                    the ground truth with another seed or the one with a quarter of its samples
+//                    ("beats": better beyond the interval in one metric and worse in none, the
+//                    verdict's rule);
+//   clearly worse    delayed, frozen and no-highlight are worse than the quarter-sample ground
+//                    truth beyond the interval in at least one metric (so the verdict never has
+//                    them beat it), on every scene where the ground truth moves (frozen's
+//                    flicker error, the ground truth's pooled motion, lies above another seed's);
+//   never wins       entered as configurations beside every measured one, no degenerate result
+//                    (delayed, blurred, frozen, no highlight) is the configuration the verdict
+//                    would choose against no SAA on the scene (the best image error among those
+//                    that beat no SAA).
+// All comparisons are paired, frame by frame, against the first ground-truth seed (the results are
+// made from the second seed's frames and a third seed's).
+#pragma once
+
+#include "saagen/reference/render/trade.hpp"
+#include "saagen/report/comparison.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace saagen::report {
+
+struct SanityEntry {
+  std::string result;  // a sanity result's name, or "none" (1-spp no SAA)
+  double image_error = 0.0;    // mean over the scene's materials
+  double flicker_error = 0.0;
+  MetricDifference image_vs_quarter, flicker_vs_quarter;  // against the quarter-sample ground truth
+};
+
+struct SceneSanity {
+  render::SceneId scene = render::SceneId::sphere;
+  bool moves = false;  // the ground truth moves (see the top of this file)
+  std::vector<SanityEntry> entries;
+  std::vector<std::string> failures;  // one line per broken rule; empty: passed
+};
+
+// Every scene of the table that has sanity rows.
+std::vector<SceneSanity> check_sanity(const render::TradeTable& table);
+// The suite's table (one block per scene) and a last line: passed, or how many rules failed.
+std::string format_sanity(const std::vector<SceneSanity>& scenes);
+// The same for `saagen bench --json` ("sanity_checks").
+nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes);
+
+}  // namespace saagen::report

@@ -1,0 +1,53 @@
+// Paired comparisons with intervals (see comparison.hpp).
+#include "saagen/report/comparison.hpp"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+namespace saagen::report {
+
+MetricOutcome outcome_of(const MetricDifference& d) {
+  if (d.ground_truth_limited) return MetricOutcome::tie;
+  if (d.difference.high < 0.0) return MetricOutcome::better;
+  if (d.difference.low > 0.0) return MetricOutcome::worse;
+  return MetricOutcome::tie;
+}
+
+MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");
+  std::vector<render::SeedSeries> differences;
+  differences.reserve(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) differences.push_back(render::paired_difference(a[i], b[i]));
+  MetricDifference d;
+  d.difference = render::series_interval(differences);
+  d.ground_truth_sd = render::series_ground_truth_sd(differences);
+  d.ground_truth_limited = d.ground_truth_sd > 0.25 * std::fabs(d.difference.mean);
+  return d;
+}
+
+PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                        const CellFilter& keep) {
+  using Cell = std::tuple<render::SceneId, double>;
+  std::map<Cell, const render::TradeRow*> baseline_rows;
+  for (const render::TradeRow& row : table.rows)
+    if (!row.fresnel && !row.taa && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel || row.taa || !keep(row) || render::configuration_id(row) != configuration) continue;
+    const auto base = baseline_rows.find({row.scene, row.alpha});
+    if (base == baseline_rows.end()) continue;
+    image_a.push_back(row.series.image);
+    image_b.push_back(base->second->series.image);
+    flicker_a.push_back(row.series.flicker);
+    flicker_b.push_back(base->second->series.flicker);
+  }
+  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}};
+  if (c.cells == 0) return c;
+  c.image = compare_series(image_a, image_b);
+  c.flicker = compare_series(flicker_a, flicker_b);
+  return c;
+}
+
+}  // namespace saagen::report

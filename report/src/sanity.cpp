@@ -1,0 +1,185 @@
+// The sanity suite (see sanity.hpp).
+#include "saagen/report/sanity.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+
+namespace saagen::report {
+
+namespace {
+
+// The series of one clip per material of a scene, against the first ground-truth seed only.
+using Clip = std::vector<render::SeedSeries>;
+
+render::SeedSeries first_seed(const render::SeedSeries& series) { return {series[0], {}}; }
+
+struct SceneClips {
+  std::vector<double> alphas;
+  std::map<std::string, std::pair<Clip, Clip>> clips;  // name -> (image, flicker), one per alpha
+};
+
+SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
+  SceneClips out;
+  for (const render::SanityRow& row : table.sanity) {
+    if (row.scene != scene || row.fresnel) continue;
+    if (std::find(out.alphas.begin(), out.alphas.end(), row.alpha) == out.alphas.end()) out.alphas.push_back(row.alpha);
+    auto& [image, flicker] = out.clips[std::string(render::sanity_name(row.result))];
+    image.push_back(first_seed(row.series.image));
+    flicker.push_back(first_seed(row.series.flicker));
+  }
+  return out;
+}
+
+// A configuration's clips on the scene's sanity materials, first seed only (nullopt if missing).
+std::optional<std::pair<Clip, Clip>> configuration_clips(const render::TradeTable& table, render::SceneId scene,
+                                                         const std::vector<double>& alphas, const std::string& configuration) {
+  std::pair<Clip, Clip> out;
+  for (double alpha : alphas) {
+    const render::TradeRow* found = nullptr;
+    for (const render::TradeRow& row : table.rows)
+      if (row.scene == scene && row.alpha == alpha && !row.fresnel && !row.taa && render::configuration_id(row) == configuration)
+        found = &row;
+    if (!found) return std::nullopt;
+    out.first.push_back(first_seed(found->series.image));
+    out.second.push_back(first_seed(found->series.flicker));
+  }
+  return out;
+}
+
+double clip_mean(const Clip& clip) { return render::series_interval(clip).mean; }
+
+bool worse(const MetricDifference& d) { return outcome_of(d) == MetricOutcome::worse; }
+bool better(const MetricDifference& d) { return outcome_of(d) == MetricOutcome::better; }
+// The verdict's "beats": better beyond the interval in one metric, worse in none.
+bool beats(const MetricDifference& image, const MetricDifference& flicker) {
+  return !worse(image) && !worse(flicker) && (better(image) || better(flicker));
+}
+
+constexpr const char* kBest[] = {"other-seed", "quarter-samples"};
+constexpr const char* kClearlyWorse[] = {"delayed", "frozen", "no-highlight"};
+constexpr const char* kDegenerate[] = {"delayed", "blurred", "frozen", "no-highlight"};
+
+bool is_degenerate(const std::string& name) {
+  return std::find(std::begin(kDegenerate), std::end(kDegenerate), name) != std::end(kDegenerate);
+}
+
+// The verdict's choice on the scene among `candidates` against no SAA: the lowest image error
+// among those no worse than no SAA in either metric and better in at least one ("" if none).
+std::string verdict_choice(const std::map<std::string, std::pair<Clip, Clip>>& candidates, const std::pair<Clip, Clip>& none) {
+  std::string chosen;
+  double best = 0.0;
+  for (const auto& [name, clips] : candidates) {
+    const MetricDifference image = compare_series(clips.first, none.first), flicker = compare_series(clips.second, none.second);
+    if (!beats(image, flicker)) continue;
+    if (chosen.empty() || image.difference.mean < best) chosen = name, best = image.difference.mean;
+  }
+  return chosen;
+}
+
+SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) {
+  SceneSanity out;
+  out.scene = scene;
+  SceneClips clips = scene_clips(table, scene);
+  const auto none = configuration_clips(table, scene, clips.alphas, "none");
+  if (none) clips.clips["none"] = *none;
+  const auto& quarter = clips.clips.at("quarter-samples");
+  for (const auto& [name, clip] : clips.clips) {
+    SanityEntry entry{name, clip_mean(clip.first), clip_mean(clip.second), compare_series(clip.first, quarter.first),
+                      compare_series(clip.second, quarter.second)};
+    out.entries.push_back(entry);
+  }
+  const auto& frozen = clips.clips.at("frozen");
+  out.moves = worse(compare_series(frozen.second, clips.clips.at("other-seed").second));
+  for (const char* best : kBest) {
+    for (const auto& [name, clip] : clips.clips) {
+      if (std::find(std::begin(kBest), std::end(kBest), name) != std::end(kBest)) continue;
+      const MetricDifference image = compare_series(clip.first, clips.clips.at(best).first);
+      const MetricDifference flicker = compare_series(clip.second, clips.clips.at(best).second);
+      if (beats(image, flicker))
+        out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, flicker {:+.4g})", render::scene_name(scene), name, best,
+                                           image.difference.mean, flicker.difference.mean));
+    }
+  }
+  if (out.moves) {
+    for (const char* name : kClearlyWorse) {
+      const auto& clip = clips.clips.at(name);
+      const MetricDifference image = compare_series(clip.first, quarter.first), flicker = compare_series(clip.second, quarter.second);
+      if (!worse(image) && !worse(flicker))
+        out.failures.push_back(fmt::format("{}: {} is not worse than quarter-samples beyond the interval in either metric (image {:+.4g} "
+                                           "[{:+.4g}, {:+.4g}], flicker {:+.4g} [{:+.4g}, {:+.4g}])",
+                                           render::scene_name(scene), name, image.difference.mean, image.difference.low,
+                                           image.difference.high, flicker.difference.mean, flicker.difference.low, flicker.difference.high));
+    }
+  }
+  if (none) {
+    std::map<std::string, std::pair<Clip, Clip>> candidates;
+    for (const char* name : kDegenerate) candidates[name] = clips.clips.at(name);
+    std::vector<std::string> ids;
+    for (const render::TradeRow& row : table.rows)
+      if (row.scene == scene && !row.taa && std::find(ids.begin(), ids.end(), render::configuration_id(row)) == ids.end())
+        ids.push_back(render::configuration_id(row));
+    for (const std::string& id : ids)
+      if (id != "none")
+        if (const auto c = configuration_clips(table, scene, clips.alphas, id)) candidates[id] = *c;
+    const std::string chosen = verdict_choice(candidates, *none);
+    if (is_degenerate(chosen)) out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", render::scene_name(scene), chosen));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SceneSanity> check_sanity(const render::TradeTable& table) {
+  std::vector<SceneSanity> scenes;
+  for (render::SceneId scene : table.config.scenes) {
+    const bool has_rows = std::any_of(table.sanity.begin(), table.sanity.end(), [&](const render::SanityRow& r) { return r.scene == scene; });
+    if (has_rows) scenes.push_back(check_scene(table, scene));
+  }
+  return scenes;
+}
+
+std::string format_sanity(const std::vector<SceneSanity>& scenes) {
+  std::string text = fmt::format("{:<20} {:<16} {:>11} {:>13}  {:<22} {:<22}\n", "scene", "result", "image error", "flicker error",
+                                 "image vs quarter", "flicker vs quarter");
+  const auto cell = [](const MetricDifference& d) {
+    return fmt::format("{:+.4f} [{:+.4f},{:+.4f}]", d.difference.mean, d.difference.low, d.difference.high);
+  };
+  int failures = 0;
+  for (const SceneSanity& scene : scenes) {
+    for (const SanityEntry& e : scene.entries)
+      text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f}  {:<22} {:<22}\n", render::scene_name(scene.scene), e.result, e.image_error,
+                          e.flicker_error, cell(e.image_vs_quarter), cell(e.flicker_vs_quarter));
+    for (const std::string& failure : scene.failures) text += "  FAILED " + failure + "\n";
+    failures += static_cast<int>(scene.failures.size());
+  }
+  text += failures == 0 ? fmt::format("sanity: passed on {} scenes\n", scenes.size())
+                        : fmt::format("sanity: {} rule(s) failed on {} scenes\n", failures, scenes.size());
+  return text;
+}
+
+nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
+  const auto difference = [](const MetricDifference& d) {
+    return nlohmann::json{{"mean", d.difference.mean}, {"low", d.difference.low}, {"high", d.difference.high}};
+  };
+  nlohmann::json out = nlohmann::json::array();
+  for (const SceneSanity& scene : scenes) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (const SanityEntry& e : scene.entries)
+      entries.push_back({{"result", e.result},
+                         {"image_error", e.image_error},
+                         {"flicker_error", e.flicker_error},
+                         {"image_vs_quarter", difference(e.image_vs_quarter)},
+                         {"flicker_vs_quarter", difference(e.flicker_vs_quarter)}});
+    out.push_back({{"scene", std::string(render::scene_name(scene.scene))},
+                   {"moves", scene.moves},
+                   {"entries", entries},
+                   {"failures", scene.failures},
+                   {"passed", scene.failures.empty()}});
+  }
+  return out;
+}
+
+}  // namespace saagen::report
