@@ -15,6 +15,28 @@ MetricOutcome outcome_of(const MetricDifference& d) {
   return MetricOutcome::tie;
 }
 
+std::string_view metric_outcome_name(MetricOutcome outcome) {
+  switch (outcome) {
+    case MetricOutcome::better:
+      return "better";
+    case MetricOutcome::worse:
+      return "worse";
+    case MetricOutcome::tie:
+      break;
+  }
+  return "tie";
+}
+
+std::string_view comparison_outcome_name(const PairedComparison& c) {
+  const MetricOutcome image = outcome_of(c.image), flicker = outcome_of(c.flicker);
+  const bool better = image == MetricOutcome::better || flicker == MetricOutcome::better;
+  const bool worse = image == MetricOutcome::worse || flicker == MetricOutcome::worse;
+  if (better && worse) return "mixed";
+  if (better) return "beats";
+  if (worse) return "loses";
+  return "ties";
+}
+
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");
   std::vector<render::SeedSeries> differences;

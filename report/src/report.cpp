@@ -1,4 +1,5 @@
 #include "saagen/report/report.hpp"
+#include "saagen/report/comparison.hpp"
 
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
@@ -1158,6 +1159,14 @@ nlohmann::json interval_json(const render::Interval& interval) {
   return {{"mean", interval.mean}, {"low", interval.low}, {"high", interval.high}};
 }
 
+nlohmann::json difference_json(const MetricDifference& d) {
+  nlohmann::json out = interval_json(d.difference);
+  out["ground_truth_sd"] = d.ground_truth_sd;
+  out["ground_truth_limited"] = d.ground_truth_limited;
+  out["outcome"] = std::string(metric_outcome_name(outcome_of(d)));
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
@@ -1230,6 +1239,23 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                             {"flicker_display", m.flicker_display}});
     }
   }
+  // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
+  // type and per scene; the verdicts, the planner and the scripts read these.
+  nlohmann::json comparisons = nlohmann::json::array();
+  const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep) {
+    for (const std::string& id : configurations(table)) {
+      if (id == "none" || is_measurement_configuration(id)) continue;
+      const PairedComparison c = compare_configurations(table, id, "none", keep);
+      if (c.cells == 0) continue;
+      comparisons.push_back({{"scope", scope}, {"name", name}, {"configuration", id}, {"baseline", "none"}, {"cells", c.cells},
+                             {"image_error", difference_json(c.image)}, {"flicker_error", difference_json(c.flicker)},
+                             {"outcome", std::string(comparison_outcome_name(c))}});
+    }
+  };
+  for (Content content : kContents)
+    add_comparisons("content", std::string(content_name(content)), [content](const render::TradeRow& row) { return content_of(row.scene) == content; });
+  for (const render::SceneId scene : table.config.scenes)
+    add_comparisons("scene", std::string(render::scene_name(scene)), [scene](const render::TradeRow& row) { return row.scene == scene; });
   return {{"generator", std::string(output_tag) + " saagen bench"},
           {"decisions", decisions_json(table)},
           {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
@@ -1238,7 +1264,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
           {"rows", rows},
           {"by_content", by_content},
           {"cases", cases},
-          {"sanity", sanity}};
+          {"sanity", sanity},
+          {"comparisons", comparisons}};
 }
 
 std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {

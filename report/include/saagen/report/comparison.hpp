@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace saagen::report {
 
@@ -28,6 +29,7 @@ struct MetricDifference {
 enum class MetricOutcome { better, tie, worse };
 // better: the interval lies below 0; worse: above; tie: it spans 0, or the ground truth limits.
 MetricOutcome outcome_of(const MetricDifference& difference);
+std::string_view metric_outcome_name(MetricOutcome outcome);  // "better", "tie", "worse"
 
 struct PairedComparison {
   std::string configuration;
@@ -42,6 +44,11 @@ using CellFilter = std::function<bool(const render::TradeRow&)>;
 // the configuration and the baseline's row of the same scene and material).
 PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
+
+// The verdict's reading of a comparison: "beats" (better beyond the interval in one metric, worse
+// in none), "loses" (worse in one, better in none), "ties" (neither), "mixed" (better in one,
+// worse in the other: not a win).
+std::string_view comparison_outcome_name(const PairedComparison& comparison);
 
 // The same for two series of one cell (a sanity result against a row, two rows).
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b);
