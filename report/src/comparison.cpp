@@ -1,6 +1,7 @@
 // Paired comparisons with intervals (see comparison.hpp).
 #include "saagen/report/comparison.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -36,6 +37,18 @@ std::string_view comparison_outcome_name(const PairedComparison& c) {
   if (worse) return "loses";
   return "ties";
 }
+
+namespace {
+
+decision::Difference decision_difference(const MetricDifference& d) {
+  decision::Difference out{d.difference.mean, d.difference.low, d.difference.high};
+  if (d.ground_truth_limited) out.low = std::min(out.low, 0.0), out.high = std::max(out.high, 0.0);
+  return out;
+}
+
+}  // namespace
+
+decision::Comparison to_decision(const PairedComparison& c) { return {decision_difference(c.image), decision_difference(c.flicker)}; }
 
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");

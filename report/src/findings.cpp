@@ -1,5 +1,7 @@
 #include "saagen/report/findings.hpp"
 
+#include "saagen/report/comparison.hpp"
+
 #include "saagen/reference/render/gltf.hpp"
 #include "saagen/scene/planner.hpp"
 
@@ -74,6 +76,8 @@ Metrics row_metrics(const render::TradeRow& row) {
   m.tde_lost_motion = row.tde_lost_motion;
   m.flicker = row.flicker;
   m.flicker_display = row.flicker_display;
+  m.image_error = row.image_error.mean;
+  m.flicker_error = row.flicker_error.mean;
   m.cases = 1;
   return m;
 }
@@ -83,7 +87,8 @@ namespace {
 // The averaged fields of Metrics (max_error is a maximum, cases a count).
 constexpr double Metrics::*kMeanFields[] = {
     &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,       &Metrics::tde,
-    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display};
+    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display,
+    &Metrics::image_error,        &Metrics::flicker_error};
 
 }  // namespace
 
@@ -176,7 +181,14 @@ std::vector<ContentRow> measured_rows(const render::TradeTable& table, const Row
   std::vector<ContentRow> rows;
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
-    if (m.cases && !is_measurement_configuration(id)) rows.push_back({std::string(scope), id, m.flip_ldr, m.tde, std::nullopt});
+    if (!m.cases || is_measurement_configuration(id)) continue;
+    ContentRow row{std::string(scope), id, m.image_error, m.flicker_error, std::nullopt};
+    // The decision reads the paired comparison with its intervals (comparison.hpp).
+    if (id != "none") {
+      const PairedComparison against_none = compare_configurations(table, id, "none", keep);
+      if (against_none.cells > 0) row.against_none = to_decision(against_none);
+    }
+    rows.push_back(std::move(row));
   }
   return rows;
 }

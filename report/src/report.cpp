@@ -1236,7 +1236,15 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                             {"tde", m.tde},
                             {"tde_excess_flicker", m.tde_excess_flicker},
                             {"tde_lost_motion", m.tde_lost_motion},
-                            {"flicker_display", m.flicker_display}});
+                            {"flicker_display", m.flicker_display},
+                            {"image_error", m.image_error},
+                            {"flicker_error", m.flicker_error}});
+      if (id == "none") continue;
+      const PairedComparison against_none = compare_configurations(table, id, "none", keep);
+      if (against_none.cells == 0) continue;
+      const decision::Comparison c = to_decision(against_none);
+      const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
+      by_content.back()["against_none"] = {{"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
     }
   }
   // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content

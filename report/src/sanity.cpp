@@ -58,8 +58,16 @@ bool beats(const MetricDifference& image, const MetricDifference& flicker) {
   return !worse(image) && !worse(flicker) && (better(image) || better(flicker));
 }
 
-constexpr const char* kBest[] = {"other-seed", "quarter-samples"};
-constexpr const char* kClearlyWorse[] = {"delayed", "frozen", "no-highlight"};
+// Each degenerate result that must rank clearly worse, and the result it is compared with: frozen
+// and no-highlight against the quarter-sample ground truth; delayed, which is made from the second
+// seed's frames (four times the quarter's samples), against those frames on time.
+constexpr std::pair<const char*, const char*> kClearlyWorse[] = {
+    {"delayed", "other-seed"}, {"frozen", "quarter-samples"}, {"no-highlight", "quarter-samples"}};
+// The degenerate results that must never be the verdict's choice. The delayed result is the
+// converged animation one frame late: where the motion per frame is below the ground truth's
+// resolution it is a converged image, which no 1-spp configuration matches; it is reported (the
+// suite's table, "delayed wins") but not held to this rule (docs/TEMPORAL.md).
+constexpr const char* kNeverWins[] = {"blurred", "frozen", "no-highlight"};
 constexpr const char* kDegenerate[] = {"delayed", "blurred", "frozen", "no-highlight"};
 
 bool is_degenerate(const std::string& name) {
@@ -93,9 +101,10 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
   }
   const auto& frozen = clips.clips.at("frozen");
   out.moves = worse(compare_series(frozen.second, clips.clips.at("other-seed").second));
-  for (const char* best : kBest) {
-    for (const auto& [name, clip] : clips.clips) {
-      if (std::find(std::begin(kBest), std::end(kBest), name) != std::end(kBest)) continue;
+  // best: nothing beats another seed; nothing made from fewer samples beats a quarter of them.
+  for (const auto& [name, clip] : clips.clips) {
+    for (const char* best : {"other-seed", "quarter-samples"}) {
+      if (name == best || name == "other-seed" || (std::string_view(best) == "quarter-samples" && name == "delayed")) continue;
       const MetricDifference image = compare_series(clip.first, clips.clips.at(best).first);
       const MetricDifference flicker = compare_series(clip.second, clips.clips.at(best).second);
       if (beats(image, flicker))
@@ -103,14 +112,16 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
                                            image.difference.mean, flicker.difference.mean));
     }
   }
+  // clearly worse, where the ground truth moves: each against the result of the same samples.
   if (out.moves) {
-    for (const char* name : kClearlyWorse) {
+    for (const auto& [name, against] : kClearlyWorse) {
       const auto& clip = clips.clips.at(name);
-      const MetricDifference image = compare_series(clip.first, quarter.first), flicker = compare_series(clip.second, quarter.second);
+      const auto& base = clips.clips.at(against);
+      const MetricDifference image = compare_series(clip.first, base.first), flicker = compare_series(clip.second, base.second);
       if (!worse(image) && !worse(flicker))
-        out.failures.push_back(fmt::format("{}: {} is not worse than quarter-samples beyond the interval in either metric (image {:+.4g} "
+        out.failures.push_back(fmt::format("{}: {} is not worse than {} beyond the interval in either metric (image {:+.4g} "
                                            "[{:+.4g}, {:+.4g}], flicker {:+.4g} [{:+.4g}, {:+.4g}])",
-                                           render::scene_name(scene), name, image.difference.mean, image.difference.low,
+                                           render::scene_name(scene), name, against, image.difference.mean, image.difference.low,
                                            image.difference.high, flicker.difference.mean, flicker.difference.low, flicker.difference.high));
     }
   }
@@ -125,7 +136,9 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
       if (id != "none")
         if (const auto c = configuration_clips(table, scene, clips.alphas, id)) candidates[id] = *c;
     const std::string chosen = verdict_choice(candidates, *none);
-    if (is_degenerate(chosen)) out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", render::scene_name(scene), chosen));
+    out.verdict_choice = chosen;
+    if (std::find(std::begin(kNeverWins), std::end(kNeverWins), chosen) != std::end(kNeverWins))
+      out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", render::scene_name(scene), chosen));
   }
   return out;
 }
@@ -152,6 +165,8 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
     for (const SanityEntry& e : scene.entries)
       text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f}  {:<22} {:<22}\n", render::scene_name(scene.scene), e.result, e.image_error,
                           e.flicker_error, cell(e.image_vs_quarter), cell(e.flicker_vs_quarter));
+    text += fmt::format("  the verdict's choice with the degenerate results entered: {}{}\n", scene.verdict_choice.empty() ? "no filter" : scene.verdict_choice,
+                        is_degenerate(scene.verdict_choice) ? " (degenerate)" : "");
     for (const std::string& failure : scene.failures) text += "  FAILED " + failure + "\n";
     failures += static_cast<int>(scene.failures.size());
   }
@@ -177,6 +192,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                    {"moves", scene.moves},
                    {"entries", entries},
                    {"failures", scene.failures},
+                   {"verdict_choice", scene.verdict_choice},
                    {"passed", scene.failures.empty()}});
   }
   return out;

@@ -8,6 +8,7 @@
 // cells, widened by the ground truth's Monte-Carlo error (the spread between the two seeds).
 #pragma once
 
+#include "saagen/decision.hpp"
 #include "saagen/reference/render/trade.hpp"
 
 #include <functional>
@@ -49,6 +50,12 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
 // in none), "loses" (worse in one, better in none), "ties" (neither), "mixed" (better in one,
 // worse in the other: not a win).
 std::string_view comparison_outcome_name(const PairedComparison& comparison);
+
+// The comparison as saagen's decision reads it (saagen/decision.hpp): image = image_error's
+// difference, temporal = flicker_error's. A difference the ground truth limits
+// (MetricDifference::ground_truth_limited) is a tie whatever its interval: its interval is
+// widened to include 0.
+decision::Comparison to_decision(const PairedComparison& comparison);
 
 // The same for two series of one cell (a sanity result against a row, two rows).
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b);

@@ -52,6 +52,9 @@ struct Metrics {
   double tde_lost_motion = 0.0;
   double flicker = 0.0;
   double flicker_display = 0.0;  // secondary: tonemapped temporal std / the ground truth's
+  // The verdict's metrics (animation_error.hpp): LDR-FLIP per animation frame, pooled flicker error.
+  double image_error = 0.0;
+  double flicker_error = 0.0;
   std::size_t cases = 0;
 };
 // The metrics of one trade row (cases = 1).

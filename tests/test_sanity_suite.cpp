@@ -1,0 +1,67 @@
+// The sanity suite (report/sanity.hpp) on the built-in scenes: the verdict's two metrics rank the
+// results whose ranking is known as expected, before they rank any configuration. A small trade
+// (32 x 32 animation, 16 frames, 64-spp ground truth: the quarter-sample result has 16) keeps
+// this a CI test; `saagen bench --preset medium` prints the same suite on every preset scene
+// (docs/TEMPORAL.md).
+#include "saagen/report/sanity.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace saagen;
+using render::SceneId;
+
+namespace {
+
+render::TradeConfig sanity_config() {
+  render::TradeConfig config;
+  config.width = config.height = 32;
+  config.strata = 4;
+  config.flicker_width = config.flicker_height = 32;
+  config.flicker_strata = 8;
+  config.frames = 16;
+  config.rotation_degrees_per_frame = 0.5;
+  config.scenes = {SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane, SceneId::nmap_sphere};
+  config.alphas = {0.01, 0.1};
+  config.fresnel_modes = {false};
+  config.variants = {render::Variant::none, render::Variant::forward_aniso_projected, render::Variant::deferred_aniso};
+  config.feeds = {render::NormalFeed::shading};
+  config.prefilters = {};
+  config.lobes = {render::Lobe::tail};
+  config.flip = true;
+  return config;
+}
+
+const render::TradeTable& table() {
+  static const render::TradeTable measured = render::compute_trade_table(sanity_config());
+  return measured;
+}
+
+TEST(SanitySuite, EveryRuleHoldsOnEveryBuiltInScene) {
+  const std::vector<report::SceneSanity> scenes = report::check_sanity(table());
+  ASSERT_EQ(scenes.size(), sanity_config().scenes.size());
+  for (const report::SceneSanity& scene : scenes) {
+    EXPECT_TRUE(scene.moves) << render::scene_name(scene.scene);
+    EXPECT_TRUE(scene.failures.empty()) << report::format_sanity({scene});
+  }
+}
+
+// The ranking the suite rests on, in the means: another seed has the lowest image and flicker
+// errors of all results; frozen and no-highlight miss the same motion (equal flicker errors).
+TEST(SanitySuite, AnotherSeedHasTheLowestErrorsAndFrozenMissesAllTheMotion) {
+  for (const report::SceneSanity& scene : report::check_sanity(table())) {
+    const auto entry = [&](std::string_view name) {
+      return *std::find_if(scene.entries.begin(), scene.entries.end(), [&](const report::SanityEntry& e) { return e.result == name; });
+    };
+    const report::SanityEntry other = entry("other-seed");
+    for (const report::SanityEntry& e : scene.entries) {
+      if (e.result == "other-seed") continue;
+      EXPECT_LT(other.image_error, e.image_error) << render::scene_name(scene.scene) << " " << e.result;
+      EXPECT_LT(other.flicker_error, e.flicker_error) << render::scene_name(scene.scene) << " " << e.result;
+    }
+    EXPECT_NEAR(entry("frozen").flicker_error, entry("no-highlight").flicker_error, 1e-12) << render::scene_name(scene.scene);
+  }
+}
+
+}  // namespace
