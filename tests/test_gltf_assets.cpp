@@ -508,7 +508,9 @@ TEST(GltfAsset, TradeOnBothSamplesAtATinySizeIsCached) {
   const fs::path cache = scratch("cache");
   config.cache_dir = cache.string();
   const TradeTable first = compute_trade_table(config);
-  EXPECT_EQ(first.cache_misses, 2 * (1 + config.frames));
+  // Per scene: the main image, and per frame the animation's two ground-truth seeds and the sanity
+  // suite's quarter-sample ground truth.
+  EXPECT_EQ(first.cache_misses, 2 * (1 + 3 * config.frames));
   // Every variant and engine on both; the prefiltered rows only where the asset has normal maps.
   for (SceneId scene : config.scenes) {
     std::set<std::string> ids;
@@ -523,7 +525,7 @@ TEST(GltfAsset, TradeOnBothSamplesAtATinySizeIsCached) {
     EXPECT_TRUE(std::isfinite(row.flip_ldr) && std::isfinite(row.tde)) << configuration_id(row);
   }
   const TradeTable second = compute_trade_table(config);
-  EXPECT_EQ(second.cache_hits, 2 * (1 + config.frames));
+  EXPECT_EQ(second.cache_hits, 2 * (1 + 3 * config.frames));
   EXPECT_EQ(second.ground_truth_samples, 0u);
   ASSERT_EQ(second.rows.size(), first.rows.size());
   for (std::size_t i = 0; i < first.rows.size(); ++i) EXPECT_EQ(second.rows[i].flip_ldr, first.rows[i].flip_ldr);
@@ -776,8 +778,9 @@ TEST_F(GltfCli, BenchWritesTheReportOfItsOwnTable) {
     EXPECT_EQ(saagen::test::read_text(scratch_ / "bench" / file), saagen::test::read_text(scratch_ / "report" / file)) << file;
   }
   // How long the ground truths took is printed, never written: the files' bytes are the
-  // measurement's alone. Five: the main image and the quick preset's four animation frames.
-  EXPECT_NE(bench.out.find("ground truths: 5 rendered in "), std::string::npos) << bench.out;
+  // measurement's alone. Thirteen: the main image and, for each of the quick preset's four
+  // animation frames, two ground-truth seeds and the sanity suite's quarter-sample ground truth.
+  EXPECT_NE(bench.out.find("ground truths: 13 rendered in "), std::string::npos) << bench.out;
   EXPECT_NE(bench.out.find(", 0 read from the cache"), std::string::npos) << bench.out;
   // --isa-only measures no table, so there is nothing to report.
   const auto isa_only = saagen({"bench", "--isa", "vega10", "--isa-only", "--report", (scratch_ / "x").string()});
