@@ -16,15 +16,23 @@ def lobe_of(configuration):
     return configuration.split('/')[1] if '/' in configuration else 'papers'
 
 
-def scene_means(cases, image_metric='flip_ldr'):
-    """Per scene and configuration: the means of image_metric and TDE over the alphas, no Fresnel."""
+def metric_value(case, name):
+    """A case's metric: a number, or the mean of an interval ({"mean", "low", "high"})."""
+    value = case[name]
+    return value['mean'] if isinstance(value, dict) else value
+
+
+def scene_means(cases, image_metric='image_error', temporal_metric='flicker_error'):
+    """Per scene and configuration: the means of the image and temporal metrics over the alphas,
+    no Fresnel (by default the verdict's: image error and flicker error, docs/TEMPORAL.md)."""
     sums = collections.defaultdict(lambda: collections.defaultdict(lambda: [0.0, 0.0, 0]))
     for case in cases:
         if case['fresnel']:
             continue
         entry = sums[case['scene']][case['configuration']]
-        entry[0] += case[image_metric]
-        entry[1] += case['tde']
+        entry[0] += metric_value(case, image_metric)
+        # TAA cases carry TDE only (docs/TEMPORAL.md: the flicker error is measured without TAA).
+        entry[1] += metric_value(case, temporal_metric if temporal_metric in case else 'tde')
         entry[2] += 1
     return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
 
@@ -33,7 +41,7 @@ def scene_decisions(table):
     """The bench's per scene x path decisions: (scene, path, chosen, beats every engine too)."""
     for entry in table['decisions']['per_scene']:
         engines = entry['against_engines']
-        beats_all = entry['chosen'] != 'none' and all(outcome == 'beats' for outcome in engines.values())
+        beats_all = entry['chosen'] != 'none' and all(against['outcome'] == 'beats' for against in engines.values())
         yield entry['scene'], entry['path'], entry['chosen'], beats_all
 
 
@@ -46,9 +54,9 @@ def main():
         wins += beats_all
         verdict = 'beats' if beats_all else ('no filter' if chosen == 'none' else 'beats none')
         best, none = means[scene][chosen], means[scene]['none']
-        print(f"{scene:17s} {path:8s} {verdict:10s} {chosen:48s} LDR-FLIP {best[0]:.4f} (none {none[0]:.4f})  "
-              f"TDE {best[1]:.5f} (none {none[1]:.5f})")
-    print(f"{wins} of {rows} scene x path rows: saagen's decision beats no SAA and every engine form in LDR-FLIP and TDE")
+        print(f"{scene:17s} {path:8s} {verdict:10s} {chosen:48s} image error {best[0]:.4f} (none {none[0]:.4f})  "
+              f"flicker error {best[1]:.5f} (none {none[1]:.5f})")
+    print(f"{wins} of {rows} scene x path rows: saagen's decision beats no SAA and every engine form beyond the intervals")
 
 
 if __name__ == '__main__':

@@ -24,6 +24,14 @@ render::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lo
   render::TradeRow r;
   r.scene = scene, r.variant = variant, r.lobe = variant == Variant::none || render::is_engine(variant) ? Lobe::papers : lobe;
   r.feed = feed, r.prefilter = prefilter, r.alpha = 0.05, r.flip_ldr = flip, r.tde = tde;
+  // The verdict's metrics (trade.hpp): the same values on every frame against both seeds, so that
+  // every paired difference is exact (a zero-width interval) and the decision turns on the means.
+  r.image_error = {flip, flip, flip};
+  r.flicker_error = {tde, tde, tde};
+  for (int seed = 0; seed < 2; ++seed) {
+    r.series.image[seed].assign(16, flip);
+    r.series.flicker[seed].assign(15, tde);
+  }
   return r;
 }
 
@@ -108,7 +116,7 @@ TEST(OneAnswer, TheJsonCarriesTheDecisionTheVerdictPrints) {
   for (const nlohmann::json& entry : decisions.at("per_scene")) {
     if (entry["scene"] != "sphere" || entry["path"] != "forward") continue;
     EXPECT_EQ(entry["chosen"], "forward-aniso-projected/tail");
-    EXPECT_EQ(entry["against_engines"]["engine-hdrp"], "beats");
+    EXPECT_EQ(entry["against_engines"]["engine-hdrp"]["outcome"], "beats");
   }
 }
 

@@ -1115,6 +1115,12 @@ nlohmann::json decision_json(const MaterialDecision& made) {
           {"candidates", candidates}};
 }
 
+// The chosen configuration against an engine's form on a scene, paired with intervals.
+nlohmann::json engine_comparison_json(const decision::Comparison& c) {
+  const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
+  return {{"outcome", std::string(decision::name(decision::outcome(c)))}, {"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
+}
+
 nlohmann::json decisions_json(const render::TradeTable& table) {
   nlohmann::json by_content = nlohmann::json::array(), per_scene = nlohmann::json::array();
   for (Content content : kContents) {
@@ -1140,7 +1146,7 @@ nlohmann::json decisions_json(const render::TradeTable& table) {
       const auto chosen_row = std::find_if(rows.begin(), rows.end(), [&](const ContentRow& r) { return r.configuration == chosen; });
       for (const ContentRow& row : rows)
         if (is_engine_configuration(row.configuration) && chosen_row != rows.end())
-          engines[row.configuration] = std::string(decision::name(decision::outcome(comparison_against(*chosen_row, row))));
+          engines[row.configuration] = engine_comparison_json(to_decision(compare_configurations(table, chosen, row.configuration, keep)));
       entry["against_engines"] = engines;
       per_scene.push_back(entry);
     }
