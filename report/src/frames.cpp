@@ -64,6 +64,9 @@ std::vector<OutputFile> ClipWriter::outputs() const {
   }
   nlohmann::json index = {{"generator", std::string(output_tag) + " saagen bench --frames"},
                           {"version", 1},
+                          // The animation has no rate of its own; the rate the clips are meant to be played at
+                          // (the verdict's metrics do not depend on it).
+                          {"fps", 30},
                           {"display",
                            "8-bit greyscale PNG, the clip's frames stacked top to bottom; display values: Reinhard x / (1 + x) of the "
                            "linear specular radiance, then the sRGB encoding; one image pixel per display pixel"},
