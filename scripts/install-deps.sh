@@ -20,6 +20,9 @@ packages=(
   # and content nobody here authored: Khronos's CC-BY 4.0 sample models ClearCoatTest and
   # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/test_gltf_assets.cpp)
   libtinygltf-dev assimp-testmodels
+  # assimp's command-line tool converts assimp-testmodels' other formats to glTF: the held-out
+  # models the table-free advice is reported on (scripts/held_out.sh)
+  assimp-utils
   # the CC0 tangent-space normal maps of the npm package @pmndrs/assets (package.json) are WebP
   # images: libwebp decodes them for the presets' pmndrs-NNNN scenes (reference/render/assets.hpp),
   # webp's dwebp for scripts/normal_map_sphere.py

@@ -3,12 +3,14 @@
 
 #include "saagen/reference/render/gltf.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <tiny_gltf.h>
@@ -83,13 +85,22 @@ std::vector<SceneId> register_preset_assets() {
   return ids;
 }
 
+std::optional<PresetAsset> pmndrs_map_named(const std::string& scene) {
+  const std::string prefix = "pmndrs-";
+  if (!scene.starts_with(prefix) || scene.size() != prefix.size() + 4) return std::nullopt;
+  const std::string map = scene.substr(prefix.size());
+  if (!std::all_of(map.begin(), map.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+  return PresetAsset{scene, pmndrs_module(map.c_str()), pmndrs_install()};
+}
+
 std::vector<SceneId> register_preset_asset(const std::string& scene) {
-  for (const PresetAsset& asset : preset_assets()) {
-    if (asset.scene != scene) continue;
-    check_installed(asset);
-    return register_asset(asset);
-  }
-  return {};
+  std::optional<PresetAsset> found;
+  for (const PresetAsset& asset : preset_assets())
+    if (asset.scene == scene) found = asset;
+  if (!found) found = pmndrs_map_named(scene);
+  if (!found) return {};
+  check_installed(*found);
+  return register_asset(*found);
 }
 
 bool is_preset_asset_scene(SceneId id) {
@@ -97,7 +108,7 @@ bool is_preset_asset_scene(SceneId id) {
   const std::string_view name = scene_name(id);
   for (const PresetAsset& asset : preset_assets())
     if (name == asset.scene || name == asset.scene + "-coat") return true;
-  return false;
+  return pmndrs_map_named(std::string(name)).has_value();
 }
 
 std::string webp_from_data_uri_module(const std::string& path) {

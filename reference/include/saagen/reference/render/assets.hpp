@@ -27,6 +27,7 @@
 #include "saagen/reference/render/scene.hpp"
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,9 +67,12 @@ std::vector<PresetAsset> preset_assets();
 std::vector<SceneId> register_preset_assets();
 
 // The scenes of one preset asset by its scene's name (a glTF asset's coat scene after it),
-// registered; empty for a name that is no preset asset's. AssetMissing as above.
+// registered; also any map of @pmndrs/assets' normals as "pmndrs-NNNN" on the sphere (the
+// held-out maps, scripts/held_out.sh); empty for a name that is neither. AssetMissing as above.
 std::vector<SceneId> register_preset_asset(const std::string& scene);
-// Whether a scene is a preset asset's (by name, the coat scenes included).
+// "pmndrs-NNNN": that normal map of @pmndrs/assets as an asset (not checked to exist).
+std::optional<PresetAsset> pmndrs_map_named(const std::string& scene);
+// Whether a scene is a preset asset's (by name, the coat scenes and any pmndrs-NNNN map included).
 bool is_preset_asset_scene(SceneId id);
 
 // The WebP bytes of an ES module holding one base64 data URI 'data:image/webp;base64,...'.
