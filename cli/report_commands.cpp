@@ -291,6 +291,19 @@ CLI::Validator finite_range(double low, double high) {
 
 }  // namespace
 
+std::string measure_asset_table(const std::string& asset, const std::string& cache_dir) {
+  ReportCommands::Common common;
+  common.preset = "medium";
+  common.scenes = {asset};
+  common.cache_dir = cache_dir;
+  const render::TradeConfig config = configure(common, false);
+  std::cerr << asset_summaries(config);
+  const render::TradeTable table = report::without_taa_rows(measure_trade(config));
+  nlohmann::json json = report::trade_json(table, report::summarize(table), nullptr);
+  json["sanity_checks"] = report::sanity_json(report::check_sanity(table));
+  return json.dump();
+}
+
 void ReportCommands::add_common(CLI::App* command, Common& common) {
   command
       ->add_option(

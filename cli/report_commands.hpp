@@ -11,6 +11,11 @@
 
 namespace saagen::cli {
 
+// The trade table of one glTF asset, measured as `saagen bench --preset medium --scene ASSET
+// --json` would (ground truths cached in cache_dir when not empty), in the JSON `saagen plan
+// --trade-table` reads: what `saagen plan --gltf ASSET --measure` plans with. Progress to stderr.
+std::string measure_asset_table(const std::string& asset, const std::string& cache_dir);
+
 class ReportCommands {
  public:
   explicit ReportCommands(CLI::App& app);

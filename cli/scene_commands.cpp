@@ -1,5 +1,7 @@
 #include "scene_commands.hpp"
 
+#include "report_commands.hpp"
+
 #include "saagen/emit/emitter.hpp"
 #include "saagen/error.hpp"
 #include "saagen/integrate/include_handler.hpp"
@@ -352,6 +354,9 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON, as bench_shading --json writes); rules otherwise");
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
+  plan_->add_flag("--advice", plan_advice_,
+                  "Print saagen's table-free advice per content, render path and preference (Markdown), with its comparison with "
+                  "no SAA on saagen's scenes and on held-out scenes");
   plan_->add_flag("--json", plan_json_, "Print the plan as JSON (per material: variant, wrapper, BRDF, feed, prefilter, why)");
   plan_->add_flag("--taa", plan_taa_, "Plan for a scene under TAA, as `taa = true` in the manifest (sigma2 0.0625 unless set)");
   CLI::Option* gltf = plan_->add_option("--gltf", plan_gltf_,
@@ -365,6 +370,11 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
       ->needs(gltf);
   plan_->add_option("--target", plan_targets_, "With --gltf: the manifest's targets (repeatable)")->capture_default_str()->needs(gltf);
   plan_->add_flag("--force", plan_force_, "With --gltf: overwrite a manifest that saagen did not write")->needs(gltf);
+  CLI::Option* measure = plan_->add_flag("--measure", plan_measure_,
+                                         "With --gltf: first measure the asset as `saagen bench --preset medium --scene ASSET` does "
+                                         "(minutes), then plan with that trade table instead of saagen's own scenes'");
+  measure->needs(gltf)->excludes(plan_->get_option("--trade-table"));
+  plan_->add_option("--cache", plan_cache_, "With --measure: directory caching ground-truth images between runs")->needs(measure);
 
   CLI::Option* manifest =
       emit->add_option("--manifest,-m", emit_manifest_, "Scene manifest: one bundle per target with only the functions its materials need");
@@ -390,6 +400,11 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
 }
 
 int SceneCommands::run_plan(const Catalogue& catalogue) const {
+  if (plan_advice_) {
+    std::cout << advice_markdown(catalogue);
+    if (plan_manifest_.empty() && plan_gltf_.empty() && !plan_rules_) return 0;
+    std::cout << "\n";
+  }
   if (plan_rules_) std::cout << rules_text();
   if (plan_manifest_.empty() && plan_gltf_.empty()) {
     if (plan_rules_) return 0;
@@ -399,6 +414,7 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   // Every input is read before anything is written: a bad table leaves no manifest behind.
   std::optional<MeasuredTradeTable> table;
   if (!plan_trade_table_.empty()) table = load_trade_table(plan_trade_table_);
+  if (plan_measure_) table = parse_trade_table(measure_asset_table(plan_gltf_, plan_cache_), "the measurement of " + plan_gltf_);
   const std::string manifest_path = plan_gltf_.empty() ? plan_manifest_ : write_gltf_manifest(catalogue);
   Manifest manifest = load_manifest(manifest_path, catalogue);
   if (plan_taa_) manifest.taa = true;

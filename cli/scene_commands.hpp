@@ -39,6 +39,7 @@ class SceneCommands {
   std::string plan_trade_table_;
   bool plan_no_cost_ = false;
   bool plan_rules_ = false;
+  bool plan_advice_ = false;  // print saagen's table-free advice (advice_markdown)
   bool plan_json_ = false;
   bool plan_taa_ = false;
   // plan --gltf ASSET -o MANIFEST: the manifest written from a glTF asset's materials.
@@ -47,6 +48,10 @@ class SceneCommands {
   std::string plan_path_ = "forward";
   std::vector<std::string> plan_targets_{"glsl"};
   bool plan_force_ = false;
+  // plan --gltf ASSET --measure: measure the asset first (`saagen bench --preset medium --scene
+  // ASSET`, ground truths cached in plan_cache_) and plan with that table.
+  bool plan_measure_ = false;
+  std::string plan_cache_;
 
   std::string emit_manifest_;
   std::string emit_trade_table_;

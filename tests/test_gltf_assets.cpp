@@ -856,14 +856,14 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
   // normal texture), not clearcoat.
   EXPECT_NE(text.find("name = \"BaseNorm_Coated\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n\n"), std::string::npos)
       << text;
-  // Coated materials follow saagen's advice for clearcoat (no filter: the filters raise LDR-FLIP
-  // and TDE on ClearCoatTest's coat), normal-mapped ones that for normal-mapped content (no filter:
-  // every configuration raises the mean TDE); the others are planned a filter.
+  // Coated materials follow saagen's advice for clearcoat (no filter: nothing beats no SAA on
+  // ClearCoatTest's coat), normal-mapped ones that for normal-mapped content (deferred-aniso, which
+  // beat no SAA and held on the held-out maps: `saagen plan --advice`).
   const auto coat = run.out.find("material CoatNorm_Coated_coat (deferred");
   EXPECT_EQ(run.out.find("  variant   none  [advice]", coat), run.out.find("  variant ", coat)) << run.out;
   const auto base = run.out.find("material BaseNorm_Coated (deferred");
   ASSERT_NE(base, std::string::npos) << run.out;
-  EXPECT_EQ(run.out.find("  variant   none  [advice]", base), run.out.find("  variant ", base)) << run.out;
+  EXPECT_EQ(run.out.find("  variant   deferred-aniso  [advice]", base), run.out.find("  variant ", base)) << run.out;
   // Written once: the same bytes again are left alone; emit takes the manifest as any other.
   const auto again = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
   EXPECT_NE(again.out.find("unchanged " + manifest), std::string::npos) << again.out;
@@ -882,9 +882,11 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
 }
 
 TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
-  // KHR_materials_anisotropy: an anisotropic forward material is planned the matrix form, which
-  // adds its kernel to diag(alpha_t^2, alpha_b^2); with a normal texture it follows the advice for
-  // normal-mapped content, no filter.
+  // KHR_materials_anisotropy: an anisotropic forward material is planned the matrix form (rule
+  // F1), which adds its kernel to diag(alpha_t^2, alpha_b^2), where saagen's decision gives it:
+  // with a normal texture (normal-mapped content, where it beat no SAA and held on held-out maps);
+  // without one the decision withholds it (curved content in a forward pass: it lost to no SAA on
+  // the held-out models) and plans no filter.
   QuadAsset plain_quad;
   plain_quad.material = R"({"name": "brushed", "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.6}}})";
   plain_quad.top_extra = R"(, "extensionsUsed": ["KHR_materials_anisotropy"])";
@@ -893,11 +895,10 @@ TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   const auto plain_material = plain.out.find("material brushed (forward, anisotropic");
   ASSERT_NE(plain_material, std::string::npos) << plain.out;
-  EXPECT_EQ(plain.out.find("  variant   forward-aniso-projected", plain_material), plain.out.find("  variant ", plain_material))
-      << plain.out;
-  EXPECT_NE(plain.out.find("saa_ggx_brdf_filtered_matrix", plain_material), std::string::npos) << plain.out;
-  // Planned from saagen's own figures, which did not hold on curved content they were not derived
-  // from: the plan says how to measure this asset and plan with its table.
+  EXPECT_EQ(plain.out.find("  variant   none  [advice]", plain_material), plain.out.find("  variant ", plain_material)) << plain.out;
+  // Planned from saagen's own measurement, whose choice did not hold on curved content it was not
+  // derived from: the plan says how to measure this asset and plan with its table.
+  EXPECT_NE(plain.out.find("this advice did not hold", plain_material), std::string::npos) << plain.out;
   EXPECT_NE(plain.out.find("`saagen bench --scene " + plain_asset.string() + " --json T.json`", plain_material), std::string::npos)
       << plain.out;
   EXPECT_NE(plain.out.find("`saagen plan " + (scratch_ / "plain.saagen.toml").string() + " --trade-table T.json`", plain_material),
@@ -924,7 +925,8 @@ TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
       << text;
   const auto material = run.out.find("material brushed (forward, anisotropic");
   ASSERT_NE(material, std::string::npos) << run.out;
-  EXPECT_EQ(run.out.find("  variant   none  [advice]", material), run.out.find("  variant ", material)) << run.out;
+  EXPECT_EQ(run.out.find("  variant   forward-aniso-projected  [F1]", material), run.out.find("  variant ", material)) << run.out;
+  EXPECT_NE(run.out.find("saa_ggx_brdf_filtered_matrix", material), std::string::npos) << run.out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1201,6 +1203,22 @@ TEST_F(GltfCli, NoOutputIsAFileTheAssetIsMadeOf) {
   EXPECT_EQ(saagen::test::read_text(asset), asset_bytes);
   EXPECT_EQ(saagen::test::read_text(scratch_ / "ext.bin"), buffer_bytes);
   EXPECT_EQ(json.out, "");
+}
+
+// `plan --gltf ASSET --measure` measures the asset as `bench --preset medium --scene ASSET` does,
+// then plans with that table: the decision's words name the measurement, not saagen's scenes.
+TEST_F(GltfCli, PlanMeasureDecidesOnTheAssetsOwnTable) {
+  const fs::path asset = write_quad(scratch_, "quad.gltf", QuadAsset{});
+  const std::string manifest = (scratch_ / "m.toml").string();
+  const auto run = saagen({"plan", "--gltf", asset.string(), "-o", manifest, "--measure", "--no-cost"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(manifest));
+  EXPECT_NE(run.out.find("[trade table]"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("on curved content in the measurement of " + asset.string()), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("saagen's trade ("), std::string::npos) << run.out;  // not the committed advice
+  // --measure needs the asset and replaces a table.
+  EXPECT_NE(saagen({"plan", (scratch_ / "m.toml").string(), "--measure"}).exit_code, 0);
+  EXPECT_NE(saagen({"plan", "--gltf", asset.string(), "-o", manifest, "--measure", "--trade-table", manifest}).exit_code, 0);
 }
 
 TEST_F(GltfCli, NamesAreWrittenAsEscapedStrings) {

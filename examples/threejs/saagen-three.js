@@ -12,11 +12,11 @@
 // `material.roughness += geometryRoughness;` becomes a call of the snippet.
 //
 // Which normal (option `normal`): 'geometric' (the default) feeds `nonPerturbedNormal`, the normal
-// three.js's own term reads: saagen's advice for a normal-mapped material that is filtered
-// (generator/include/saagen/advice.hpp, quoted in examples/INTEGRATION.md), as HDRP, Filament and
-// Unreal also do. Without a named filter saagen's advice for normal-mapped content is none (render
-// with filter: false): every configuration it measured raises the mean TDE over no SAA there;
-// install the snippet where the lower LDR-FLIP is wanted. The normal map's detail is the texture's
+// three.js's own term reads: the feed saagen gives a named filter on a normal-mapped material
+// (generator/include/saagen/advice.hpp), as HDRP, Filament and Unreal also do; 'shading' feeds the
+// normal-mapped normal, where the plan's measured configuration is fed it (installPlan follows the
+// plan's `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
+// The normal map's detail is the texture's
 // to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp --gltf`),
 // not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks; deferred-sum,
 // the default wrapper, on the geometric normal with that bake measured LDR-FLIP 0.0604 / TDE

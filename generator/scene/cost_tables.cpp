@@ -228,6 +228,78 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   return table;
 }
 
+std::optional<decision::Comparison> AdviceMeasurement::held_out(std::string_view configuration) const {
+  for (const auto& [name, comparison] : held_out_rows)
+    if (name == configuration) return comparison;
+  return std::nullopt;
+}
+
+const AdviceMeasurement* AdviceTable::find(std::string_view content) const {
+  for (const AdviceMeasurement& entry : contents)
+    if (entry.content == content) return &entry;
+  return nullptr;
+}
+
+AdviceTable parse_advice_table(std::string_view json_text, std::string_view source_name) {
+  const auto fail = [&](std::string_view what) {
+    throw Error(fmt::format("{}: {}; regenerate it with scripts/advice_data.py", source_name, what));
+  };
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::exception&) {
+    fail("not valid JSON");
+  }
+  if (!document.is_object() || document.value("schema", "") != "saagen advice 1" || !document.contains("content") ||
+      !document["content"].is_array())
+    fail("not a \"saagen advice 1\" document with a \"content\" array");
+  AdviceTable table;
+  table.source_name = std::string(source_name);
+  const auto described = [&](const char* key) {
+    const nlohmann::json& from = document.value(key, nlohmann::json::object());
+    return fmt::format("{} ({})", from.value("table", std::string("?")), from.value("config", std::string("?")));
+  };
+  table.derived_from = described("derived_from");
+  table.held_out_from = described("held_out");
+  const auto names = [&](const nlohmann::json& entry, const char* key) {
+    std::vector<std::string> out;
+    for (const nlohmann::json& name : entry.value(key, nlohmann::json::array()))
+      if (name.is_string()) out.push_back(name.get<std::string>());
+    return out;
+  };
+  for (std::size_t index = 0; index < document["content"].size(); ++index) {
+    const nlohmann::json& entry = document["content"][index];
+    if (!entry.is_object() || !entry.contains("content") || !entry["content"].is_string() || !entry.contains("rows") || !entry["rows"].is_array())
+      fail(fmt::format("content[{}] needs a string \"content\" and a \"rows\" array", index));
+    AdviceMeasurement measured{entry["content"].get<std::string>(), names(entry, "scenes"), names(entry, "held_out_scenes"), {}, {}};
+    for (const nlohmann::json& row : entry["rows"]) {
+      const auto number = [&](const char* key) {
+        if (!row.is_object() || !row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
+          fail(fmt::format("content[{}]: every row needs a finite \"{}\"", index, key));
+        return row[key].get<double>();
+      };
+      if (!row.contains("configuration") || !row["configuration"].is_string()) fail(fmt::format("content[{}]: a row without a \"configuration\"", index));
+      ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), number("flicker_error"), std::nullopt};
+      if (row.contains("against_none")) kept.against_none = parse_comparison(row["against_none"], source_name, index);
+      if (row.contains("held_out")) measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
+      measured.rows.push_back(std::move(kept));
+    }
+    table.contents.push_back(std::move(measured));
+  }
+  return table;
+}
+
+const AdviceTable& committed_advice() {
+  static const AdviceTable table = [] {
+    constexpr const char* name = "generator/data/advice.json";
+    const auto& files = embedded::files();
+    const auto found = files.find(name);
+    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+    return parse_advice_table(found->second, name);
+  }();
+  return table;
+}
+
 MeasuredTradeTable load_trade_table(const std::filesystem::path& path) {
   return parse_trade_table(read_input_file(path, table_size_limit, "the file `bench_shading --json` writes"), path.string());
 }

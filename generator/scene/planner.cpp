@@ -38,17 +38,13 @@ struct Rule {
   Tri normal_maps = Tri::any;
 };
 
-// saagen's trade on curved content without normal maps (sphere, torus, tubes, torus knot,
-// 2CylinderEngine; `saagen bench --preset medium`, the "curved" rows of its JSON, as
-// saagen/advice.hpp quotes them; docs/DEFERRED_KERNEL.md), with the tail-preserving filtered GGX the
-// planner shades GGX with.
+// deferred-aniso with the tail-preserving filtered GGX the planner shades GGX with; what it measured
+// against no SAA is the decision's own text (generator/data/advice.json), appended to the plan.
 constexpr const char* kMeasuredDeferredAniso =
     "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, each eigenvalue clamped to kappa) and the "
     "lighting pass scales it by (n.h)^2 per light into the roughness matrix of the tail-preserving filtered GGX, which keeps "
-    "the kernel's orientation (across a tube, not along it) that the isotropic deferred kernels lose; on curved content without "
-    "normal maps: mean LDR-FLIP 0.0259 vs 0.0497 for deferred-avg and 0.0308 for no SAA, TDE 0.01187 vs 0.01553 and "
-    "0.01436 (forward-aniso-projected 0.0253, 0.01184; saagen/advice.hpp, docs/DEFERRED_KERNEL.md). Costs 3 G-buffer values "
-    "and a matrix BRDF per light";
+    "the kernel's orientation (across a tube, not along it) that the isotropic deferred kernels lose (docs/DEFERRED_KERNEL.md). "
+    "Costs 3 G-buffer values and a matrix BRDF per light";
 
 // Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
 // with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
@@ -95,16 +91,8 @@ constexpr const char* kMeasuredGgxKernelGain =
     "with the tail-preserving filtered GGX, some configuration beats no SAA and every engine in LDR-FLIP and TDE on 14 of 14 "
     "built-in scene x path rows at 0.25, 0.125 and 0.0625 alike (15, 15 and 16 of 26 with the asset scenes; 10 of 14 without "
     "deferred-aniso); saagen's decision, which a plan can give, does on 12 of 14 at 0.25 (14 of 26 with the asset scenes: on the "
-    "bump plane only the band-limited +lean rows beat every engine)";
-
-// The same trade on curved content (sphere, torus, tubes, torus knot, 2CylinderEngine) in the
-// deferred path, for a material that does not get deferred-aniso (prefer speed, or a variant
-// named): the isotropic deferred kernels lose to no SAA there (docs/DEFERRED_KERNEL.md).
-constexpr const char* kMeasuredDeferredCurved =
-    "on curved content without normal maps the isotropic deferred kernels lose to no SAA in saagen's trade (mean LDR-FLIP "
-    "0.0497 for deferred-avg with the tail-preserving GGX vs 0.0308, TDE 0.01553 vs 0.01436): they blur the highlight along "
-    "a tube to cover it across; deferred-aniso (rule D0, prefer = \"accuracy\") reaches 0.0259 and TDE 0.01187 for 3 G-buffer "
-    "values and a matrix BRDF per light (docs/DEFERRED_KERNEL.md)";
+    "bump plane only the band-limited +lean rows beat every engine; measured in LDR-FLIP and TDE, before the criterion of "
+    "docs/TEMPORAL.md)";
 
 // `saagen bench --preset medium --taa --sigma2 X --json F; python3 scripts/taa_kernel.py ...`
 // (docs/TAA.md).
@@ -510,10 +498,6 @@ std::string content_words(advice::Content content, bool taa) {
   return fmt::format("{} content{}", advice::name(content), taa ? " under TAA" : "");
 }
 
-std::string figure_text(std::string_view configuration, double flip, std::optional<double> tde) {
-  return tde ? fmt::format("{} {} / {}", configuration, fixed(flip), fixed(*tde)) : fmt::format("{} {}", configuration, fixed(flip));
-}
-
 // Recommends no filter: the material shades with the engine's own BRDF at its own roughness, and
 // the bundle holds nothing for it.
 void plan_no_filter(const Material& material, std::string rule, std::string reason, MaterialPlan& plan) {
@@ -544,41 +528,109 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
       fmt::format("feed the {} normal; {}{}; measured: {}", c.feed, bake, sampling_advice(c.prefilter), std::move(figures));
 }
 
-// saagen's committed figures for a content type (advice.hpp) as content rows: no SAA's and the
-// measured configurations', the rows the table-free decision is made on.
-std::vector<ContentRow> advice_rows(const advice::ContentAdvice& entry) {
-  std::vector<ContentRow> rows;
-  const std::string content(advice::table_content(entry.content));
-  if (!entry.none.configuration.empty()) rows.push_back({content, std::string(entry.none.configuration), entry.none.flip, entry.none.tde, std::nullopt});
-  for (const advice::Figure& figure : entry.measured)
-    if (!figure.configuration.empty()) rows.push_back({content, std::string(figure.configuration), figure.flip, figure.tde, std::nullopt});
-  return rows;
+// saagen's committed measurement of a content type (generator/data/advice.json), the rows the
+// table-free decision is made on; none under TAA, whose rows were measured before the validated
+// criterion (advice.hpp's TAA evidence): there the decision finds nothing and plans no filter.
+const AdviceMeasurement* advice_measurement(advice::Content content, bool taa) {
+  if (taa) return nullptr;
+  return committed_advice().find(advice::table_content(content));
 }
 
-// Where the table-free advice has no evidence on content it was not derived from, or did not hold
-// there: say so, and how to measure the user's own content.
-std::string measure_advice(const advice::ContentAdvice& entry) {
-  constexpr const char* how =
-      "measure your own asset: `saagen bench --scene ASSET.glb --json T.json` (or a scene of the presets like it), then "
-      "`saagen plan MANIFEST --trade-table T.json`";
-  switch (entry.held_out) {
-    case advice::HeldOut::held:
-      return fmt::format("this advice held on content it was not derived from ({})", entry.held_out_evidence);
-    case advice::HeldOut::did_not_hold:
-      return fmt::format("this advice did not hold on content it was not derived from: {}; {}", entry.held_out_evidence, how);
-    case advice::HeldOut::not_measured:
-      break;
-  }
-  return fmt::format("this advice comes from saagen's own scenes and was not checked on content it was not derived from; {}", how);
+std::string scene_list(const std::vector<std::string>& scenes) {
+  return scenes.empty() ? std::string("no scene") : fmt::format("{}", fmt::join(scenes, ", "));
+}
+
+// A configuration's comparison with no SAA, as the plan states it.
+std::string comparison_text(const decision::Comparison& c) {
+  return fmt::format("image error {}, flicker error {} against no SAA: {}", decision::describe(c.image), decision::describe(c.temporal),
+                     decision::name(decision::outcome(c)));
+}
+
+constexpr const char* kMeasureOwnAsset =
+    "measure your own asset: `saagen bench --scene ASSET.glb --json T.json` (or a scene of the presets like it), then "
+    "`saagen plan MANIFEST --trade-table T.json`; or both in one step: `saagen plan --gltf ASSET.glb -o MANIFEST --measure`";
+
+// How the table-free advice fared on the held-out scenes it was not derived from.
+std::string held_out_text(const AdviceMeasurement& measured, const std::optional<std::string>& chosen) {
+  if (measured.held_out_scenes.empty())
+    return fmt::format("this advice comes from saagen's own scenes ({}) and has no held-out {} content to be checked on; {}",
+                       scene_list(measured.scenes), measured.content, kMeasureOwnAsset);
+  const std::string held_out = fmt::format("held-out scenes {}", scene_list(measured.held_out_scenes));
+  if (!chosen)
+    return fmt::format("no filter chosen on saagen's scenes ({}); the {} are only reported on, never chosen on; {}", scene_list(measured.scenes),
+                       held_out, kMeasureOwnAsset);
+  const auto there = measured.held_out(*chosen);
+  if (!there) return fmt::format("{} was not measured on the {}; {}", *chosen, held_out, kMeasureOwnAsset);
+  const decision::Outcome outcome = decision::outcome(*there);
+  const bool held = outcome == decision::Outcome::beats || outcome == decision::Outcome::ties;
+  return fmt::format("this advice {} on content it was not derived from ({}: {}); {}", held ? "held" : "did not hold", held_out,
+                     comparison_text(*there), kMeasureOwnAsset);
+}
+
+// Whether the table-free advice's choice loses to no SAA beyond its interval, in either metric,
+// on the held-out scenes: then it is not given (no filter), whatever it measured on saagen's own.
+bool fails_held_out(const AdviceMeasurement& measured, const std::string& chosen) {
+  const auto there = measured.held_out(chosen);
+  if (!there) return false;
+  const decision::Outcome outcome = decision::outcome(*there);
+  return outcome == decision::Outcome::loses || outcome == decision::Outcome::mixed;
+}
+
+// The same trade on curved content in the deferred path, for a material that does not get
+// deferred-aniso (prefer speed, or a variant named): the isotropic deferred kernels against the
+// anisotropic one (docs/DEFERRED_KERNEL.md).
+std::string deferred_curved_note() {
+  const AdviceMeasurement* measured = advice_measurement(advice::Content::curved, false);
+  const auto figures = [&](std::string_view configuration) {
+    if (measured)
+      for (const ContentRow& row : measured->rows)
+        if (row.configuration == configuration && row.against_none) return comparison_text(*row.against_none);
+    return std::string("not measured");
+  };
+  return fmt::format(
+      "on curved content without normal maps, in saagen's trade ({}): deferred-avg/tail {}; deferred-aniso/tail (rule D0, "
+      "prefer = \"accuracy\") {}, for 3 G-buffer values and a matrix BRDF per light (docs/DEFERRED_KERNEL.md)",
+      measured ? scene_list(measured->scenes) : std::string("not measured"), figures("deferred-avg/tail"), figures("deferred-aniso/tail"));
+}
+
+// What saagen's trade measured for the advised feed of a filtered normal-mapped material (the
+// geometric normal and the map's bake, advice::kFeed and kPrefilter): its best configuration by
+// image error, against no SAA.
+std::string advised_feed_figures() {
+  const AdviceMeasurement* measured = advice_measurement(advice::Content::normal_mapped, false);
+  const ContentRow* best = nullptr;
+  if (measured)
+    for (const ContentRow& row : measured->rows) {
+      const Configuration c = parse_configuration(row.configuration);
+      if (c.feed == advice::kFeed && c.prefilter == advice::kPrefilter && c.lobe == advice::kLobe && row.against_none &&
+          (!best || row.error < best->error))
+        best = &row;
+    }
+  if (!best) return "not measured";
+  const bool beats = decision::outcome(*best->against_none) == decision::Outcome::beats;
+  return fmt::format("{}: {} (saagen's trade on normal-mapped content{})", best->configuration, comparison_text(*best->against_none),
+                     beats ? "" : "; without a named variant the advice is no filter");
 }
 
 // The plan of saagen's decision (decision.hpp) on a content's rows: the chosen configuration's
 // variant, feed and prefilter, or no filter, with the decision's reason.
 void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
-                    std::string_view source, bool from_table, MaterialPlan& plan) {
+                    std::string_view source, const AdviceMeasurement* advice, MaterialPlan& plan) {
   const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows);
   const std::string where = fmt::format("{} in {}", content_words(content_of(material), manifest.taa), source);
-  const std::string rule = from_table ? "trade table" : "advice";
+  const std::string rule = advice ? "advice" : "trade table";
+  if (advice) {
+    std::optional<std::string> chosen;
+    if (made.decision.chosen) chosen = made.candidates[*made.decision.chosen].configuration;
+    plan.measure_advice = held_out_text(*advice, chosen);
+    if (chosen && fails_held_out(*advice, *chosen)) {
+      plan_no_filter(material, rule,
+                     fmt::format("no filter: on {} {}, but it does not hold on the held-out scenes ({}: {}), so it is not given",
+                                 where, made.decision.reason, scene_list(advice->held_out_scenes), comparison_text(*advice->held_out(*chosen))),
+                     plan);
+      return;
+    }
+  }
   if (!made.decision.chosen) {
     plan_no_filter(material, rule, fmt::format("{}; on {}; name a variant (variant = \"...\") to filter anyway", made.decision.reason, where),
                    plan);
@@ -594,7 +646,7 @@ void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const 
     plan.rule = rule;
     plan.no_filter_advice.clear();
   }
-  take_normal_handling(material, c, chosen.configuration + " (" + made.decision.reason + ")", plan);
+  take_normal_handling(material, c, made.decision.reason, plan);
 }
 
 void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable& table) {
@@ -828,23 +880,10 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // normal and the map baked into the roughness. Where no configuration beats no SAA on
         // normal-mapped content, a material the planner chooses for gets no filter below
         // (apply_advice); one that names its variant keeps this feed, with what it trades.
-        const advice::ContentAdvice& entry = advice::lookup(advice::Content::normal_mapped, false);
-        const auto winner = std::find_if(entry.measured.begin(), entry.measured.end(), [&](const advice::Figure& figure) {
-          return !figure.configuration.empty() &&
-                 decision::outcome(comparison_against({"", "", figure.flip, figure.tde, std::nullopt}, {"", "", entry.none.flip, entry.none.tde, std::nullopt})) ==
-                     decision::Outcome::beats;
-        });
-        const bool has_winner = winner != entry.measured.end();
-        const advice::Figure& best = has_winner ? *winner : entry.named;
         Configuration c;
         c.feed = advice::kFeed;
         c.prefilter = advice::kPrefilter;
-        take_normal_handling(
-            material, c,
-            fmt::format("{} against no SAA's {} / {} (saagen's trade on normal-mapped content{})",
-                        figure_text(best.configuration, best.flip, best.tde), fixed(entry.none.flip), fixed(entry.none.tde),
-                        has_winner ? "" : "; lower LDR-FLIP, higher TDE: without a named variant the advice is no filter"),
-            plan);
+        take_normal_handling(material, c, advised_feed_figures(), plan);
       } else if (plan.normal_advice.empty()) {
         // What the measurements favour with the papers' lobe: the vertex normal.
         plan.feed = "geometric";
@@ -853,7 +892,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     }
     if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
         !material.variant && plan.variant != "deferred-aniso")
-      plan.no_filter_advice = kMeasuredDeferredCurved;
+      plan.no_filter_advice = deferred_curved_note();
     // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
     // named, no engine preset): on the table's rows for the material's content, else on saagen's
     // committed figures (advice.hpp), with how far those hold on content they were not made on.
@@ -867,14 +906,19 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
           if (row.content == content) rows.push_back(row);
       const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
       if (has_none) {
-        apply_decision(catalogue, manifest, material, rows, table->source_name, true, plan);
+        apply_decision(catalogue, manifest, material, rows, table->source_name, nullptr, plan);
       } else if (!rows.empty()) {
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
       } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed) {
         const advice::ContentAdvice& entry = advice::lookup(content_of(material), manifest.taa);
-        apply_decision(catalogue, manifest, material, advice_rows(entry), fmt::format("saagen's trade ({})", entry.evidence), false, plan);
-        plan.measure_advice = measure_advice(entry);
+        const AdviceMeasurement* measured = advice_measurement(content_of(material), manifest.taa);
+        static const AdviceMeasurement kNothingMeasured;
+        const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
+        apply_decision(catalogue, manifest, material, rows_of.rows,
+                       measured ? fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes))
+                                : fmt::format("saagen's trade ({})", entry.evidence),
+                       measured, plan);
       }
     }
     if (plan.variant == "none") {
@@ -885,6 +929,52 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     scene.materials.push_back(std::move(plan));
   }
   return scene;
+}
+
+std::string advice_markdown(const Catalogue& catalogue) {
+  const auto figures = [](const std::optional<decision::Comparison>& c) {
+    return c ? fmt::format("{} / {}: {}", decision::describe(c->image), decision::describe(c->temporal), decision::name(decision::outcome(*c)))
+             : std::string("-");
+  };
+  std::string text =
+      "| content | path | prefer | plan | its image / flicker error against no SAA on saagen's scenes | on the held-out scenes |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const advice::Content content : {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
+    for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
+      for (const Preference prefer : {Preference::accuracy, Preference::speed}) {
+        Manifest manifest;
+        manifest.source_name = "advice";
+        manifest.targets = {OutputTarget::named("glsl")};
+        Material material = reference_material(path, content);
+        material.prefer = prefer;
+        manifest.materials = {material};
+        const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
+        const AdviceMeasurement* measured = advice_measurement(content, false);
+        std::string configuration = "none", nothing = "nothing beats no SAA";
+        std::optional<decision::Comparison> derived, held_out;
+        if (measured) {
+          const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows);
+          for (std::size_t i = 0; i < made.candidates.size(); ++i)
+            if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
+              nothing = "only the most expensive form beats no SAA, which prefer = \"speed\" never takes";
+          if (made.decision.chosen) {
+            const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
+            configuration = chosen.configuration;
+            derived = chosen.against_none;
+            held_out = measured->held_out(configuration);
+          }
+        }
+        const std::string planned = plan.variant == "none" ? std::string("**no filter**")
+                                                             : fmt::format("`{}`", configuration);
+        const std::string why = configuration == "none" ? nothing
+                                : plan.variant == "none" ? fmt::format("`{}` {}", configuration, figures(derived))
+                                                         : figures(derived);
+        text += fmt::format("| {} | {} | {} | {} | {} | {} |\n", advice::name(content), to_string(path), to_string(prefer), planned, why,
+                            figures(held_out));
+      }
+    }
+  }
+  return text;
 }
 
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const OutputTarget& target, Precision precision) {

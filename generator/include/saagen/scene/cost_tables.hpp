@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace saagen {
@@ -95,5 +96,32 @@ const IsaTable& committed_isa_costs();
 
 MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_view source_name);
 MeasuredTradeTable load_trade_table(const std::filesystem::path& path);
+
+// The measurement saagen's table-free advice is decided on (saagen/advice.hpp), committed as
+// generator/data/advice.json (embedded) and written by scripts/advice_data.py from two
+// `saagen bench --json` tables: one of the scenes the advice is derived from (the medium preset)
+// and one of held-out scenes it is only reported on (scripts/held_out.sh), never chosen on.
+struct AdviceMeasurement {
+  std::string content;                     // a trade table's by_content name ("curved", "bump", ...)
+  std::vector<std::string> scenes;         // what the advice is derived from
+  std::vector<std::string> held_out_scenes;  // what it is reported on
+  // No SAA's row and every configuration's, as a trade table's by_content rows: error is the
+  // image error, tde the flicker error, against_none the paired comparison with its intervals.
+  std::vector<ContentRow> rows;
+  // A configuration's comparison with no SAA on the held-out scenes, where measured.
+  std::optional<decision::Comparison> held_out(std::string_view configuration) const;
+  std::vector<std::pair<std::string, decision::Comparison>> held_out_rows;
+};
+
+struct AdviceTable {
+  std::string source_name;
+  std::string derived_from;  // the derivation table's command and configuration line
+  std::string held_out_from;
+  std::vector<AdviceMeasurement> contents;
+  const AdviceMeasurement* find(std::string_view content) const;
+};
+
+AdviceTable parse_advice_table(std::string_view json_text, std::string_view source_name);
+const AdviceTable& committed_advice();
 
 }  // namespace saagen

@@ -131,6 +131,12 @@ void measure_costs(const Catalogue& catalogue, const Manifest& manifest, ScenePl
 
 // The rules table, as text.
 std::string rules_text();
+// saagen's table-free advice as a Markdown table: per content type, render path and preference,
+// what `saagen plan` gives a GGX material it chooses for (reference_material: tangents on the
+// forward path), the decision's comparison with no SAA on saagen's scenes and on the held-out
+// scenes (generator/data/advice.json). `saagen plan --advice` prints it; examples/INTEGRATION.md
+// holds it (a test checks they agree).
+std::string advice_markdown(const Catalogue& catalogue);
 // `saagen plan` output: per material, the variant, why, what to call and the cost.
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan);
 

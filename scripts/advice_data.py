@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Writes generator/data/advice.json, the measurement the table-free advice is decided on, from two
+`saagen bench --json` tables: the one it is derived from and the held-out one it is reported on.
+
+    saagen bench --preset medium --json T.json
+    bash scripts/held_out.sh OUT          # writes OUT/held_out.json
+    python3 scripts/advice_data.py T.json OUT/held_out.json > generator/data/advice.json
+
+It copies figures; it decides nothing. The planner (saagen/scene/cost_tables.hpp: committed_advice) reads the file,
+embedded in the library (saagen/scene/cost_tables.hpp: committed_advice), and makes saagen's one decision (saagen/decision.hpp) on its rows: on the
+derivation rows' comparisons with no SAA, then held against the held-out rows' comparisons.
+"""
+import json
+import sys
+
+# The bench's by_content figures the advice keeps per configuration.
+FIGURES = ("image_error", "flicker_error")
+
+
+def scenes_by_content(table):
+    """Each content type's scenes, in the table's order (from its per-scene decisions)."""
+    scenes = {}
+    for entry in table["decisions"]["per_scene"]:
+        names = scenes.setdefault(entry["content"], [])
+        if entry["scene"] not in names:
+            names.append(entry["scene"])
+    return scenes
+
+
+def rows_by_content(table):
+    rows = {}
+    for row in table["by_content"]:
+        rows.setdefault(row["content"], {})[row["configuration"]] = row
+    return rows
+
+
+def advice_document(derived, held_out, derived_name, held_out_name):
+    derived_rows, held_rows = rows_by_content(derived), rows_by_content(held_out)
+    derived_scenes, held_scenes = scenes_by_content(derived), scenes_by_content(held_out)
+    contents = []
+    for content, rows in derived_rows.items():
+        held = held_rows.get(content, {})
+        entry = {"content": content, "scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []}
+        for configuration, row in rows.items():
+            kept = {"configuration": configuration}
+            kept.update({figure: row[figure] for figure in FIGURES})
+            if "against_none" in row:
+                kept["against_none"] = row["against_none"]
+            if "against_none" in held.get(configuration, {}):
+                kept["held_out"] = held[configuration]["against_none"]
+            entry["rows"].append(kept)
+        contents.append(entry)
+    return {
+        "schema": "saagen advice 1",
+        "about": "the table-free advice's measurement: per content type, every configuration's figures and its paired "
+                 "comparison with no SAA (95 % intervals) on the scenes the advice is derived from, and on held-out scenes "
+                 "it is only reported on; written by scripts/advice_data.py, read by the planner (saagen/scene/cost_tables.hpp: committed_advice)",
+        "derived_from": {"table": derived_name, "config": derived["config"]},
+        "held_out": {"table": held_out_name, "command": "bash scripts/held_out.sh OUT", "config": held_out["config"]},
+        "image_metric": "image error: LDR-FLIP of every animation frame against the ground truth's",
+        "temporal_metric": "flicker error: pooled frame-to-frame change against the ground truth's (docs/TEMPORAL.md)",
+        "content": contents,
+    }
+
+
+def rounded(value):
+    """Figures to 6 significant digits: far below any interval, and a file a diff can read."""
+    if isinstance(value, float):
+        return float(f"{value:.6g}")
+    if isinstance(value, dict):
+        return {key: rounded(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [rounded(item) for item in value]
+    return value
+
+
+def write(document, out):
+    """One configuration's row per line."""
+    compact = lambda value: json.dumps(rounded(value), separators=(",", ":"))
+    out.write("{\n")
+    keys = [key for key in document if key != "content"]
+    for key in keys:
+        out.write(f' {json.dumps(key)}: {compact(document[key])},\n')
+    out.write(' "content": [\n')
+    for i, entry in enumerate(document["content"]):
+        head = {key: value for key, value in entry.items() if key != "rows"}
+        out.write("  " + compact(head)[:-1] + ',"rows": [\n')
+        out.write(",\n".join("   " + compact(row) for row in entry["rows"]))
+        out.write("\n  ]}" + ("," if i + 1 < len(document["content"]) else "") + "\n")
+    out.write(" ]\n}\n")
+
+
+def main(argv):
+    if len(argv) != 3:
+        sys.exit("usage: advice_data.py DERIVED.json HELD_OUT.json > generator/data/advice.json")
+    with open(argv[1]) as f:
+        derived = json.load(f)
+    with open(argv[2]) as f:
+        held_out = json.load(f)
+    document = advice_document(derived, held_out, "saagen bench --preset medium --json T.json", "scripts/held_out.sh")
+    write(document, sys.stdout)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
