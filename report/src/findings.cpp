@@ -313,8 +313,8 @@ std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector
     Verdict v;
     v.recommendation = rec;
     v.none = mean_metrics(table, "none", content_filter(rec.content));
-    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::flip_ldr);
-    std::tie(v.best_engine_motion, v.engine_motion) = best_engine(table, rec.content, &Metrics::tde);
+    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::image_error);
+    std::tie(v.best_engine_motion, v.engine_motion) = best_engine(table, rec.content, &Metrics::flicker_error);
     for (const VerdictMetric& metric : kVerdictMetrics) {
       const double ours = rec.metrics.*metric.value;
       if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});

@@ -165,9 +165,9 @@ std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const 
 struct Verdict {
   Recommendation recommendation;
   Metrics none;
-  std::string best_engine_image;  // the engine with the lowest mean LDR-FLIP ("" without engines)
+  std::string best_engine_image;  // the engine with the lowest mean image error ("" without engines)
   Metrics engine_image;
-  std::string best_engine_motion;  // the engine with the lowest mean TDE
+  std::string best_engine_motion;  // the engine with the lowest mean flicker error
   Metrics engine_motion;
   std::vector<Loss> losses;                                                 // against none and, per metric, that metric's best engine
   std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only

@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""Prints the sanity suite of a `saagen bench --json` table as the Markdown table docs/TEMPORAL.md
+shows: per scene, each known result's image error / flicker error (means over the scene's alphas),
+the verdict's choice with the degenerate results entered, and the rules that failed.
+
+    python3 scripts/sanity_table.py T.json
+
+It reads what the bench measured and checked (`sanity`, `sanity_checks`); it checks nothing itself.
+"""
+import json
+import sys
+
+RESULTS = ("other-seed", "quarter-samples", "delayed", "blurred", "frozen", "no-highlight", "none")
+
+
+def main(argv):
+    if len(argv) != 2:
+        sys.exit("usage: sanity_table.py T.json")
+    with open(argv[1]) as f:
+        table = json.load(f)
+    checks = table["sanity_checks"]
+    print("| scene | " + " | ".join("1-spp no SAA" if r == "none" else r for r in RESULTS) + " | verdict's choice, degenerates entered |")
+    print("|---" * (len(RESULTS) + 2) + "|")
+    failures = []
+    for check in checks:
+        by_result = {entry["result"]: entry for entry in check["entries"]}
+        cells = [f'{by_result[r]["image_error"]:.4f} / {by_result[r]["flicker_error"]:.5f}' if r in by_result else "-" for r in RESULTS]
+        print(f'| {check["scene"]} | ' + " | ".join(cells) + f' | {check["verdict_choice"] or "no filter"} |')
+        failures += check["failures"]
+    print()
+    print(f"{sum(1 for c in checks if c['passed'])} of {len(checks)} scenes pass every rule" + (":" if failures else "."))
+    for failure in failures:
+        print(f"- {failure}")
+
+
+if __name__ == "__main__":
+    main(sys.argv)
