@@ -99,7 +99,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
-  EXPECT_EQ(car.position.line, 25);
+  EXPECT_EQ(car.position.line, 27);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -129,7 +129,7 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
-const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, variant, source";
+const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, variant, source";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
@@ -400,6 +400,30 @@ TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
   // A named variant, a Beckmann material and an engine's preset keep what they say.
   EXPECT_EQ(plan_of("taa = true\n", "\"deferred\"\nvariant = \"deferred-sum\"\n").variant, "deferred-sum");
   EXPECT_EQ(plan_of("taa = true\n", "\"deferred\"\nndf = \"beckmann\"\n").variant, "deferred-avg");
+}
+
+// `budget`: the most accurate configuration within that shading cost over no SAA (vega10 ISA) that
+// beats no SAA, else no filter with the reason; a budget outside [1, 16] is one line.
+TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
+  const auto plan_of = [](const std::string& keys) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = " + keys)).materials.at(0);
+  };
+  // Curved content, deferred: only deferred-aniso/tail (1.87x) beats no SAA.
+  const auto tight = plan_of("\"deferred\"\nbudget = 1.5\n");
+  EXPECT_EQ(tight.variant, "none");
+  EXPECT_NE(tight.reason.find("costs more than the budget 1.5"), std::string::npos) << tight.reason;
+  const auto loose = plan_of("\"deferred\"\nbudget = 2\nprefer = \"speed\"\n");  // the budget decides, not prefer
+  EXPECT_EQ(loose.variant, "deferred-aniso");
+  EXPECT_NE(loose.reason.find("within the budget 2"), std::string::npos) << loose.reason;
+  // Normal-mapped content, deferred: deferred-aniso/tail is the most accurate; within 1.4 a cheaper
+  // form that also beats no SAA is taken.
+  const auto mapped = plan_of("\"deferred\"\nnormal_maps = true\nbudget = 1.4\n");
+  EXPECT_NE(mapped.variant, "none");
+  EXPECT_NE(mapped.variant, "deferred-aniso");
+  EXPECT_NE(mapped.reason.find("within the budget 1.4"), std::string::npos) << mapped.reason;
+  EXPECT_EQ(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 0.5\n").rfind("scene.toml:5:10: key 'budget'", 0), 0u)
+      << error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 0.5\n");
+  EXPECT_NE(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = \"a lot\"\n").find("budget"), std::string::npos);
 }
 
 // The goal of the table-free advice, on every content type, path and preference: what a plan

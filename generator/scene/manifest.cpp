@@ -321,6 +321,11 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
     material.prefer = *prefer == "accuracy" ? Preference::accuracy : Preference::speed;
   }
+  const std::string budget_rule = "a number from 1 to 16: the most shading cost over no SAA the material may spend (1.25: 25 % more)";
+  if (const auto budget = reader.number("budget", budget_rule)) {
+    if (!(*budget >= 1.0 && *budget <= 16.0)) reader.fail_key("budget", fmt::format("{} is outside [1, 16]", *budget), budget_rule);
+    material.budget = *budget;
+  }
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
@@ -569,7 +574,7 @@ const std::vector<std::string>& manifest_keys() {
 
 const std::vector<std::string>& material_keys() {
   static const std::vector<std::string> keys = {"name",    "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
-                                                "content", "glints", "precision",   "prefer",   "variant", "source"};
+                                                "content", "glints", "precision",   "prefer",   "budget",  "variant", "source"};
   return keys;
 }
 

@@ -734,7 +734,9 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
                                usable(material, eligible, has_lobe, row.configuration)});
   }
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
-  made.decision = decision::decide(made.candidates, {prefer, std::nullopt});
+  // A budget takes the most accurate configuration within it (prefer only orders without one).
+  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget})
+                                  : decision::decide(made.candidates, {prefer, std::nullopt});
   return made;
 }
 

@@ -44,6 +44,10 @@ struct Material {
   bool glints = false;                    // the glinty BRDF (forward, tangents): the planner picks a glint variant
   Precision precision = Precision::fp32;  // fp32 or fp16 (per target: see target_precision)
   Preference prefer = Preference::accuracy;
+  // `budget`: at most this shading cost over no SAA (the ISA ratio on the manifest's gpu_family,
+  // generator/data/isa_cost.json); the plan then takes the most accurate configuration within it
+  // that beats no SAA, whatever `prefer` says, else no filter.
+  std::optional<double> budget;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header
   // Position of each key given in the file (values), for diagnostics found after parsing.
