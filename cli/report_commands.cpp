@@ -6,6 +6,7 @@
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/assets.hpp"
 #include "saagen/reference/render/gltf.hpp"
+#include "saagen/report/findings.hpp"
 #include "saagen/report/frames.hpp"
 #include "saagen/report/report.hpp"
 #include "saagen/report/sanity.hpp"
@@ -472,6 +473,7 @@ int ReportCommands::run_bench() const {
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
+  std::cout << report::format_frontier(table);
   if (config.taa) std::cout << "\n" << report::format_taa_summary(measured);
   if (!bench_json_.empty()) {
     nlohmann::json json = report::trade_json(table, summary, cost_table);

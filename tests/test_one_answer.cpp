@@ -205,3 +205,18 @@ TEST(OneAnswer, IntervalsInTheTableDecide) {
 }
 
 }  // namespace
+
+// The frontier the bench prints is the decision's candidates read by cost: cheapest first, each
+// lower in image error than every cheaper one; the budget line is the decision within each budget.
+TEST(OneAnswer, TheFrontierIsTheDecisionsCandidatesByCost) {
+  const render::TradeTable trade = small_table();
+  const std::string text = report::format_frontier(trade);
+  const auto block = text.find("  deferred, curved:\n");
+  ASSERT_NE(block, std::string::npos) << text;
+  const auto budgets = text.find("    at x", block);
+  ASSERT_NE(budgets, std::string::npos) << text;
+  const std::string lines = text.substr(block, text.find('\n', budgets) - block);
+  EXPECT_NE(lines.find("deferred-aniso/tail"), std::string::npos) << lines;  // the decision's choice is on the frontier
+  EXPECT_NE(lines.find("at x1.05 (the papers' overhead): none; at x1.25: none; unlimited: deferred-aniso/tail"), std::string::npos)
+      << lines;
+}

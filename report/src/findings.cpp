@@ -330,4 +330,58 @@ std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector
   return out;
 }
 
+namespace {
+
+// The usable candidates with a known cost, cheapest first, that no other beats in both cost and
+// image error (the mean of the comparison with no SAA).
+std::vector<const decision::Candidate*> frontier_of(const MaterialDecision& made) {
+  std::vector<const decision::Candidate*> usable;
+  for (const decision::Candidate& c : made.candidates)
+    if (c.usable && c.cost_ratio) usable.push_back(&c);
+  std::sort(usable.begin(), usable.end(), [](const decision::Candidate* a, const decision::Candidate* b) {
+    return std::tie(*a->cost_ratio, a->against_none.image.mean) < std::tie(*b->cost_ratio, b->against_none.image.mean);
+  });
+  std::vector<const decision::Candidate*> frontier;
+  double best_image = 0.0;  // no SAA's, at cost 1: a frontier point must do better than it
+  for (const decision::Candidate* c : usable) {
+    if (c->against_none.image.mean >= best_image) continue;
+    frontier.push_back(c);
+    best_image = c->against_none.image.mean;
+  }
+  return frontier;
+}
+
+std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Content content, std::optional<double> budget) {
+  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, advice_content(content));
+  material.budget = budget;
+  return chosen_configuration(decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows));
+}
+
+}  // namespace
+
+std::string format_frontier(const render::TradeTable& table) {
+  std::string text =
+      "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
+      "vega10 ISA ratio to no SAA, image / flicker error against no SAA with 95 % intervals:\n";
+  for (Content content : contents_of(table)) {
+    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
+    for (Path path : {Path::forward, Path::deferred}) {
+      const MaterialDecision made = decide_on(rows, path, content);
+      text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(path), content_name(content), "configuration",
+                          "cost", "image error", "flicker error", "against no SAA");
+      text += fmt::format("    {:<44} {:>5.3f}\n", "none", 1.0);
+      for (const decision::Candidate* c : frontier_of(made)) {
+        const std::size_t index = static_cast<std::size_t>(c - made.candidates.data());
+        text += fmt::format("    {:<44} {:>5.3f}  {:<34} {:<34} {}\n", c->configuration, *c->cost_ratio, decision::describe(c->against_none.image),
+                            decision::describe(c->against_none.temporal), decision::name(made.decision.outcomes[index]));
+      }
+      text += fmt::format("    at x{} (the papers' overhead): {}; at x1.25: {}; unlimited: {}\n", kPapersBudget,
+                          budget_choice(rows, path, content, kPapersBudget), budget_choice(rows, path, content, 1.25),
+                          budget_choice(rows, path, content, std::nullopt));
+    }
+  }
+  return text;
+}
+
 }  // namespace saagen::report

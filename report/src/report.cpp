@@ -499,7 +499,7 @@ std::string headline(const Verdict& v) {
   const Recommendation& r = v.recommendation;
   if (r.configuration == "none")
     return fmt::format("{}, {}: no filter -- {}", path_name(r.path), content_name(r.content), without_no_filter(r.reason));
-  return fmt::format("{}, {}: {} -- {}; {}, {}", path_name(r.path), content_name(r.content), r.configuration, r.reason,
+  return fmt::format("{}, {}: {}; {}, {}", path_name(r.path), content_name(r.content), r.reason,
                      metric_comparison("image error", r.metrics.image_error, v.none.image_error, v.best_engine_image,
                                        v.engine_image.image_error, 4),
                      metric_comparison("flicker error", r.metrics.flicker_error, v.none.flicker_error, v.best_engine_motion,

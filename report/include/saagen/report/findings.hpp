@@ -99,6 +99,14 @@ MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Conte
 // The configuration a decision chose, "none" for no filter.
 std::string chosen_configuration(const MaterialDecision& made);
 
+// The trade as a user reads it, per content type and render path: the frontier, the usable
+// configurations no other beats in both cost (the committed ISA model's ratio to no SAA on vega10,
+// the planner's) and image error against no SAA (the decision's comparison, its mean), with each
+// one's comparison and outcome; then saagen's decision at three budgets: the papers' overhead
+// (x1.05, Tokuyoshi & Kaplanyan 2019 Table 2), x1.25 and unlimited.
+inline constexpr double kPapersBudget = 1.05;
+std::string format_frontier(const render::TradeTable& table);
+
 struct Recommendation {
   Path path = Path::deferred;
   Content content = Content::curved;
