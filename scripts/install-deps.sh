@@ -33,6 +33,8 @@ packages=(
   # clang: test.sh compiles the library and CLI with it too, so that scripts/sanitize.sh and
   # scripts/fuzz.sh (clang's sanitizers and libFuzzer) cannot break unseen
   clang
+  # clang-format: ctest's format_check (scripts/format_check.sh) holds the sources to .clang-format
+  clang-format
 )
 
 missing=()
