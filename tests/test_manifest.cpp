@@ -1151,9 +1151,9 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
 
   // INTEGRATION.md lists every target (its advice table: IntegrationGuideHoldsTheAdviceTable).
   const std::string integration = read_text(root / "examples" / "INTEGRATION.md");
-  // INTEGRATION.md, README.md and docs/PREFILTER.md give the same bias argument.
+  // INTEGRATION.md, the user guide and docs/PREFILTER.md give the same bias argument.
   const std::string bias_argument = "texture(map, uv, " + std::to_string(saagen::advice::kPrefilterLodBias) + ".0)";
-  for (const char* doc : {"examples/INTEGRATION.md", "README.md", "docs/PREFILTER.md"}) {
+  for (const char* doc : {"examples/INTEGRATION.md", "docs/GUIDE.md", "docs/PREFILTER.md"}) {
     EXPECT_NE(read_text(root / doc).find(bias_argument), std::string::npos) << doc << ": " << bias_argument;
   }
   const auto targets_row = integration.find("| `targets` |");
