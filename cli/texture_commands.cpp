@@ -27,7 +27,7 @@ std::vector<std::uint8_t> read_input(const std::string& path) {
 }  // namespace
 
 TextureCommands::TextureCommands(CLI::App& app) {
-  texture_ = app.add_subcommand("texture", "Texture tools: normal-map prefiltering (README.md, \"Normal-map prefiltering\")");
+  texture_ = app.add_subcommand("texture", "Texture tools: normal-map prefiltering (docs/GUIDE.md, \"Normal-map prefiltering\")");
   texture_->require_subcommand(1);
   prefilter_ = texture_->add_subcommand(
       "prefilter", fmt::format("Normal map (PNG or KTX2) to a KTX2 MIP chain of roughness (Toksvig or an engine's bake) or LEAN "
