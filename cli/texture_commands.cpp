@@ -52,9 +52,10 @@ TextureCommands::TextureCommands(CLI::App& app) {
       ->check(value_given())
       ->capture_default_str();
   prefilter_->add_flag("--float32", float32_, "Roughness methods: R32_SFLOAT instead of R16_SFLOAT");
-  CLI::Option* gltf = prefilter_->add_flag("--gltf", gltf_,
-                       "Roughness methods: glTF metallicRoughnessTexture layout, R8G8B8A8_UNORM with G = perceptual roughness, B = "
-                       "--metallic, R = A = 1");
+  CLI::Option* gltf =
+      prefilter_->add_flag("--gltf", gltf_,
+                           "Roughness methods: glTF metallicRoughnessTexture layout, R8G8B8A8_UNORM with G = perceptual roughness, B = "
+                           "--metallic, R = A = 1");
   prefilter_->add_option("--metallic", metallic_, "--gltf: metallic value of the B channel, in [0, 1]")
       ->check(value_given())
       ->needs(gltf)

@@ -21,8 +21,6 @@
 #include "saagen/reference/render/scene.hpp"
 #include "saagen/reference/render/trade.hpp"
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -35,6 +33,8 @@
 #include <system_error>
 #include <vector>
 
+#include <unistd.h>
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -42,13 +42,13 @@ using namespace saagen::render;
 constexpr const char* target = "cache_fuzzer";
 
 struct Fixture {
-  fs::path dir;       // the cache folder
-  fs::path file;      // the entry's file in it
+  fs::path dir;   // the cache folder
+  fs::path file;  // the entry's file in it
   Scene scene = make_scene(SceneId::sphere);
   GroundTruthSettings settings;
   std::vector<Material> materials{{0.05, false}, {0.3, true}};
-  GroundTruth rendered;      // what the first call rendered
-  std::string written;       // the file it wrote
+  GroundTruth rendered;  // what the first call rendered
+  std::string written;   // the file it wrote
 };
 
 std::string read_all(const fs::path& path) {
@@ -76,7 +76,10 @@ Fixture& fixture() {
     std::string pattern = (base / "saagen-cache-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) saagen::fuzz::finding(target, "cannot create a cache folder", pattern);
     f->dir = pattern;
-    std::atexit([] { std::error_code ignored; fs::remove_all(fixture().dir, ignored); });
+    std::atexit([] {
+      std::error_code ignored;
+      fs::remove_all(fixture().dir, ignored);
+    });
     f->settings.width = 3;
     f->settings.height = 2;
     f->settings.strata = 1;

@@ -17,8 +17,6 @@
 #include "saagen/reference/render/gltf.hpp"
 #include "saagen/reference/render/renderer.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +27,8 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+
+#include <unistd.h>
 
 namespace {
 
@@ -43,7 +43,10 @@ const fs::path& work_dir() {
     const fs::path base = fs::is_directory("/dev/shm", error) ? fs::path("/dev/shm") : fs::temp_directory_path();
     std::string pattern = (base / "saagen-gltf-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) saagen::fuzz::finding(target, "cannot create a work folder", pattern);
-    std::atexit([] { std::error_code ignored; fs::remove_all(work_dir(), ignored); });
+    std::atexit([] {
+      std::error_code ignored;
+      fs::remove_all(work_dir(), ignored);
+    });
     return fs::path(pattern);
   }();
   return dir;
@@ -52,8 +55,7 @@ const fs::path& work_dir() {
 bool plain_name(std::string_view name) {
   if (name.empty() || name.size() > 64 || name.front() == '.') return false;
   for (const char c : name)
-    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-'))
-      return false;
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-')) return false;
   return true;
 }
 
