@@ -99,7 +99,8 @@ def draft(saagen):
             print('| option | value | meaning |\n|---|---|---|')
             for (names, spec, description, _), _ in rows:
                 value = spec[len(spec.split()[0]):].strip()
-                print(f'| {", ".join(f"`{n}`" for n in names)} | {value} | {description} |')
+                cell = lambda text: text.replace('|', '\\|')
+                print(f'| {", ".join(f"`{n}`" for n in names)} | {cell(value)} | {cell(description)} |')
             print()
 
 
