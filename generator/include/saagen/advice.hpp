@@ -87,23 +87,19 @@ inline constexpr std::array<ContentAdvice, 8> kTable = {{
     {Content::normal_mapped, false, "generator/data/advice.json"},
     {Content::bumps, false, "generator/data/advice.json"},
     {Content::clearcoat, false, "generator/data/advice.json"},
-    {Content::curved,
-     true,
+    {Content::curved, true,
      "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa, tail-preserving "
      "lobe: sphere 0.0258 / 0.00153 against forward-aniso-projected/tail 0.0255 / 0.00154, torus 0.0520 / 0.00363 against "
      "0.0505 / 0.00371, torus knot 0.0424 / 0.00385 against 0.0381 / 0.00420, tubes 0.1888 / 0.03828 against "
      "deferred-aniso/tail 0.1716 / 0.0387 (lower LDR-FLIP, higher TDE; every lobe and sigma2 measured loses in TDE)"},
-    {Content::normal_mapped,
-     true,
+    {Content::normal_mapped, true,
      "saagen bench --preset medium --taa (docs/TAA.md), none+taa against the best saagen+taa: nmap-sphere 0.0474 / 0.00666 "
      "against deferred-sum:geometric+hdrp/tail 0.0360 / 0.00672, nmap-sphere-fine 0.0485 / 0.00757 against 0.0364 / 0.00757 "
      "(LDR-FLIP 24 % lower, TDE 1 % higher and tied)"},
-    {Content::bumps,
-     true,
+    {Content::bumps, true,
      "saagen bench --preset medium --taa --sigma2 0.0625 (docs/TAA.md), none+taa against the best saagen+taa: bump_plane "
      "0.4166 / 0.09168 against deferred-avg/tail 0.2643 / 0.0955 (LDR-FLIP 37 % lower, TDE 4 % higher)"},
-    {Content::clearcoat,
-     true,
+    {Content::clearcoat, true,
      "not measured under TAA; without TAA no filter already wins on clearcoat (ClearCoatTest-coat none 0.0148 / 0.00541 "
      "against deferred-aniso/tail 0.0153 / 0.00667), and under TAA no filter wins on every other content type (docs/TAA.md)"},
 }};

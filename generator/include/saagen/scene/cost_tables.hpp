@@ -102,8 +102,8 @@ MeasuredTradeTable load_trade_table(const std::filesystem::path& path);
 // `saagen bench --json` tables: one of the scenes the advice is derived from (the medium preset)
 // and one of held-out scenes it is only reported on (scripts/held_out.sh), never chosen on.
 struct AdviceMeasurement {
-  std::string content;                     // a trade table's by_content name ("curved", "bump", ...)
-  std::vector<std::string> scenes;         // what the advice is derived from
+  std::string content;                       // a trade table's by_content name ("curved", "bump", ...)
+  std::vector<std::string> scenes;           // what the advice is derived from
   std::vector<std::string> held_out_scenes;  // what it is reported on
   // No SAA's row and every configuration's, as a trade table's by_content rows: error is the
   // image error, tde the flicker error, against_none the paired comparison with its intervals.
