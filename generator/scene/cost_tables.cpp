@@ -133,14 +133,20 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
   return table;
 }
 
+namespace {
+
+// The text of a file embedded in the library (generator/CMakeLists.txt: saagen_embed_files).
+std::string_view embedded_file(const char* name) {
+  const auto& files = embedded::files();
+  const auto found = files.find(name);
+  if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
+  return found->second;
+}
+
+}  // namespace
+
 const IsaTable& committed_isa_costs() {
-  static const IsaTable table = [] {
-    constexpr const char* name = "generator/data/isa_cost.json";
-    const auto& files = embedded::files();
-    const auto found = files.find(name);
-    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
-    return parse_isa_table(found->second, name);
-  }();
+  static const IsaTable table = parse_isa_table(embedded_file("generator/data/isa_cost.json"), "generator/data/isa_cost.json");
   return table;
 }
 
@@ -290,13 +296,7 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
 }
 
 const AdviceTable& committed_advice() {
-  static const AdviceTable table = [] {
-    constexpr const char* name = "generator/data/advice.json";
-    const auto& files = embedded::files();
-    const auto found = files.find(name);
-    if (found == files.end()) throw Error(fmt::format("internal error: {} is not embedded", name));
-    return parse_advice_table(found->second, name);
-  }();
+  static const AdviceTable table = parse_advice_table(embedded_file("generator/data/advice.json"), "generator/data/advice.json");
   return table;
 }
 
