@@ -1,6 +1,6 @@
 // Cost of geometric glint anti-aliasing: a fragment kernel shades a glinty sphere
 // (saagen glint snippet, GLSL and HLSL) once with GGAA (glint_brdf_filtered_fragment: ddx/ddy of
-// the projected half vector, textureGrad on the MIP-mapped dictionary) and once with the 2020
+// the projected half vector, two integer levels of the MIP-mapped dictionary blended) and once with the 2020
 // baseline (glint_brdf_fragment: textureLod on a dictionary without MIPs), interleaved in one run
 // on the harness device (lavapipe by default), as Chermain et al. 2021 Table 1 compares them.
 //

@@ -58,6 +58,6 @@ F ddx_coarse(F) derivative
 F ddy_coarse(F) derivative
 
 # The glint dictionary (templates/glints/): a 1D array texture of RGBA densities, read at
-# (u, layer) at LOD 0 or with the screen-space gradients of u.
-real4 glint_dictionary_lod(real, real) resource glint_dictionary
-real4 glint_dictionary_grad(real, real, real, real) resource glint_dictionary
+# (u, layer) at an explicit MIP level (the templates pass integer levels only: the result then
+# depends on no LOD the driver computes and on no blend between levels).
+real4 glint_dictionary_lod(real, real, real) resource glint_dictionary

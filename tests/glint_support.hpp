@@ -29,8 +29,12 @@
 // 2^-mipmapPrecisionBits, the texel coordinate to 2^-subTexelPrecisionBits. The reference is
 // evaluated at both ends of that range (every lookup at its low, then its high end: the glint
 // functions are non-negative sums of products of non-negative lookups) and the device must lie
-// in between, plus the fp32 bound above and T_trig (Comparison::spec_*). A tighter check
-// (Comparison::expected, bounds) feeds the reference one LOD model and leaves T_trig out.
+// in between, plus the fp32 bound above and T_trig (Comparison::spec_*). The snippets read the
+// dictionary at integer levels only (the GGAA lookup computes its LOD and blends two levels
+// itself), so of that freedom only the texel coordinate and the result's rounding apply
+// (ref::glints::texture_level_range): no LOD rule, LOD accuracy or level weight of the device
+// enters. A tighter check (Comparison::expected, bounds) takes the exact sampler and leaves
+// T_trig out.
 #pragma once
 
 #include "saagen/front/catalogue.hpp"
@@ -79,10 +83,9 @@ inline const ref::glints::Texture1DArray& default_reference_texture() {
   return texture;
 }
 
-inline ref::glints::Dictionary default_reference_dictionary(ref::glints::LodModel model = ref::glints::LodModel::exact) {
+inline ref::glints::Dictionary default_reference_dictionary() {
   ref::glints::Dictionary dictionary;
   dictionary.texture = &default_reference_texture();
-  dictionary.lod_model = model;
   return dictionary;
 }
 
@@ -279,7 +282,7 @@ inline g::Dictionary configured(g::Dictionary dictionary, const Options& options
 
 // The outputs of one run against the reference, per output in the device's order.
 struct Comparison {
-  // The tight check: the reference with one LOD model, and the fp32 bound (no cos / sin allowance).
+  // The tight check: the reference with the exact sampler, and the fp32 bound (no cos / sin allowance).
   std::vector<double> expected, bounds;
   // The specification check: the centre and half-width of [low, high], widened by the fp32 bound
   // and the cos / sin allowance.
@@ -296,12 +299,11 @@ inline void push_interval(std::vector<double>& expected, std::vector<double>& bo
 }
 
 // The reference and bounds of `function` over `count` elements of packed fp32 inputs
-// (`input_stride` floats each). `model`: the LOD model of the tight check (lavapipe's on
-// lavapipe, exact elsewhere); `spec`: the sampler freedom of the specification check.
+// (`input_stride` floats each). `spec`: the sampler freedom of the specification check.
 inline Comparison core_comparison(const std::string& function, const Options& options, const std::vector<float>& inputs, std::size_t count,
-                                  std::size_t input_stride, const g::SamplerTolerance& spec, g::LodModel model) {
-  // Nominal: the exact LOD rule. Low / high: every lookup at the end of what the spec allows.
-  const g::Dictionary dictionary = configured(default_reference_dictionary(g::LodModel::exact), options);
+                                  std::size_t input_stride, const g::SamplerTolerance& spec) {
+  // Nominal: the exact sampler. Low / high: every lookup at the end of what the spec allows.
+  const g::Dictionary dictionary = configured(default_reference_dictionary(), options);
   const auto reference = reference_functions(dictionary).at(function);
   g::Dictionary low_dictionary = dictionary, high_dictionary = dictionary;
   low_dictionary.tolerance = high_dictionary.tolerance = &spec;
@@ -309,13 +311,12 @@ inline Comparison core_comparison(const std::string& function, const Options& op
   high_dictionary.side = 1;
   const auto low_reference = reference_functions(low_dictionary).at(function);
   const auto high_reference = reference_functions(high_dictionary).at(function);
-  const auto model_reference = reference_functions(configured(default_reference_dictionary(model), options)).at(function);
   // The reference with the footprint's log2 and the cell scale's exp2 at either end of the
   // spec's allowance (g::Dictionary::log2_side, exp2_side), for the transcendental term.
   std::vector<ReferenceFunction> transcendental_references;
   for (const int log2_side : {-1, 1}) {
     for (const int exp2_side : {-1, 1}) {
-      g::Dictionary d = configured(default_reference_dictionary(model), options);
+      g::Dictionary d = dictionary;
       d.log2_side = log2_side;
       d.exp2_side = exp2_side;
       transcendental_references.push_back(reference_functions(d).at(function));
@@ -325,7 +326,7 @@ inline Comparison core_comparison(const std::string& function, const Options& op
   // (g::Dictionary::trig_side).
   std::vector<ReferenceFunction> trig_references;
   for (const int trig_side : {-1, 1}) {
-    g::Dictionary d = configured(default_reference_dictionary(model), options);
+    g::Dictionary d = dictionary;
     d.trig_side = trig_side;
     trig_references.push_back(reference_functions(d).at(function));
   }
@@ -343,16 +344,16 @@ inline Comparison core_comparison(const std::string& function, const Options& op
   std::mt19937_64 random(99);
   for (std::size_t e = 0; e < count; ++e) {
     const std::vector<double> x(inputs.begin() + e * input_stride, inputs.begin() + (e + 1) * input_stride);
-    Inputs in(x), low_in(x), high_in(x), model_in(x);
+    Inputs in(x), low_in(x), high_in(x);
     const auto nominal = reference(in);
     const auto low = low_reference(low_in), high = high_reference(high_in);
-    const auto value = model == g::LodModel::exact ? nominal : model_reference(model_in);
+    const auto& value = nominal;
     std::vector<double> spread(value.size(), 0.0);
     for (int k = 0; k < 6; ++k) {
       std::vector<double> p = x;
       for (double& v : p) v *= 1.0 + ((random() & 1) ? 0x1.0p-21 : -0x1.0p-21);
       Inputs perturbed_in(p);
-      const auto perturbed = model_reference(perturbed_in);
+      const auto perturbed = reference(perturbed_in);
       for (std::size_t m = 0; m < value.size(); ++m) spread[m] = std::max(spread[m], std::fabs(perturbed[m] - value[m]));
     }
     const auto transcendental = largest_change(transcendental_references, x, value);
@@ -419,9 +420,9 @@ constexpr const char* baseline_wrapper_body = R"(    real2 p = saagen_frag_coord
 // quad differences (fine: the pixel's own row and column of its quad; coarse: the quad's first
 // row and column).
 inline Comparison fragment_comparison(bool filtered, std::uint32_t width, std::uint32_t height, ref::Derivative derivative,
-                                      const g::SamplerTolerance& spec, g::LodModel model) {
-  const g::Dictionary dictionary = default_reference_dictionary(model);
-  g::Dictionary low_dictionary = default_reference_dictionary(g::LodModel::exact), high_dictionary = low_dictionary;
+                                      const g::SamplerTolerance& spec) {
+  const g::Dictionary dictionary = default_reference_dictionary();
+  g::Dictionary low_dictionary = dictionary, high_dictionary = dictionary;
   low_dictionary.tolerance = high_dictionary.tolerance = &spec;
   low_dictionary.side = -1;
   high_dictionary.side = 1;

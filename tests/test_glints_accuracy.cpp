@@ -286,7 +286,7 @@ Score score(const r::Image& image, const r::Image& truth) {
 }
 
 g::Dictionary dictionary_with_kernel(double kernel_scale) {
-  g::Dictionary dictionary = saagen::test::default_reference_dictionary(g::LodModel::exact);
+  g::Dictionary dictionary = saagen::test::default_reference_dictionary();
   dictionary.params.kernel_scale = kernel_scale;
   return dictionary;
 }

@@ -92,12 +92,14 @@ TEST(GlintEmission, FilesNameTheDictionaryByMacroAndDeclareNothing) {
       EXPECT_EQ(file.content.find("saagen_glint"), std::string::npos);  // the skeleton's names stay out
     }
     const std::string lookup = target == "glsl" ? "textureLod(SAA_GLINT_DICTIONARY" : "SAA_GLINT_DICTIONARY.SampleLevel(SAA_GLINT_SAMPLER";
-    const std::string filtered =
-        target == "glsl" ? "textureGrad(SAA_GLINT_DICTIONARY" : "SAA_GLINT_DICTIONARY.SampleGrad(SAA_GLINT_SAMPLER";
-    EXPECT_NE(files[0].content.find(lookup), std::string::npos);
-    EXPECT_EQ(files[0].content.find(filtered), std::string::npos);
-    EXPECT_NE(files[1].content.find(filtered), std::string::npos);
-    EXPECT_EQ(files[1].content.find(lookup), std::string::npos);
+    // Both variants read explicit levels only: the GGAA lookup computes its LOD and blends two
+    // levels itself, so no gradient lookup leaves the LOD or the mip blend to the driver.
+    const std::string gradient = target == "glsl" ? "textureGrad(" : ".SampleGrad(";
+    for (const auto& file : files) {
+      EXPECT_NE(file.content.find(lookup), std::string::npos);
+      EXPECT_EQ(file.content.find(gradient), std::string::npos);
+    }
+    EXPECT_NE(files[1].content.find("GLINT_RESOLUTION"), std::string::npos);
   }
 }
 
@@ -116,6 +118,10 @@ TEST(GlintEmission, OptionsReachTheConstantsAndTheMarker) {
   EXPECT_THROW(glints::emit(options), saagen::Error);  // not a multiple of 4
   options.option_values = {{"glint_kernel_scale", 0.0}};
   EXPECT_THROW(glints::emit(options), saagen::Error);  // out of (0, 8]
+  options.option_values = {{"glint_resolution", 128}};
+  EXPECT_NE(glints::emit(options).front().content.find("const float saa_GLINT_RESOLUTION = 128.0;"), std::string::npos);
+  options.option_values = {{"glint_resolution", 48}};
+  EXPECT_THROW(glints::emit(options), saagen::Error);  // not a power of two
 }
 
 TEST(GlintEmission, IsDeterministicAndPrefixed) {
@@ -126,7 +132,7 @@ TEST(GlintEmission, IsDeterministicAndPrefixed) {
   ASSERT_EQ(first.size(), second.size());
   for (std::size_t k = 0; k < first.size(); ++k) EXPECT_EQ(first[k].content, second[k].content);
   EXPECT_NE(first[1].content.find("float eng_glint_brdf_filtered("), std::string::npos);
-  EXPECT_NE(first[1].content.find("ENG_GLINT_DICTIONARY.SampleGrad(ENG_GLINT_SAMPLER"), std::string::npos);
+  EXPECT_NE(first[1].content.find("ENG_GLINT_DICTIONARY.SampleLevel(ENG_GLINT_SAMPLER"), std::string::npos);
   EXPECT_NE(first[1].content.find("#ifndef ENG_CORE_ONLY"), std::string::npos);
   EXPECT_TRUE(saagen::validate_file(glints::catalogue(), first[1].file_name, first[1].content).ok());
 }

@@ -1,23 +1,26 @@
 // The glints on a Vulkan device (lavapipe in CI): the dictionary bound as a sampled 1D array image
-// with its MIP chain (RGBA16F, LINEAR/LINEAR/LINEAR, MIRRORED_REPEAT), read with explicit
-// gradients in compute shaders.
-//   - GlintSamplerOnGpu: textureGrad / textureLod against the software sampler of the reference,
-//     texel by texel; the energy of the filtered distributions measured on the device.
-//   - GlintSnippetOnGpu: the emitted glint functions (GLSL and HLSL; GGAA and the textureLod
+// with its MIP chain (RGBA16F, LINEAR/LINEAR/LINEAR, MIRRORED_REPEAT), read in compute shaders.
+//   - GlintSamplerOnGpu: textureLod at integer levels (the only reads the snippets make) against
+//     the software sampler of the reference, texel by texel; the energy of the filtered
+//     distributions measured on the device.
+//   - GlintSnippetOnGpu: the emitted glint functions (GLSL and HLSL; GGAA and the level-0
 //     baseline; SDF, BRDF, LEAN) against the double-precision reference.
 //
 // Error bounds: the fp32 bound, the transcendental and cos / sin allowances and the sampler's
-// freedom are derived in glint_support.hpp (shared with the WebGPU and WebGL2 suites). Here the
-// sampler freedom is the device's own (ref::glints::SamplerTolerance from its
-// mipmapPrecisionBits and subTexelPrecisionBits; "Scale Factor Operation, Level-of-Detail
-// Operation and Image Level(s) Selection": f_x <= sqrt(2) |m_ux| in 1D; lambda to the
-// conformance suite's 4 bits where the device claims more, SamplerTolerance::lod_accuracy) and the RGBA16F
-// format's (half_float_result: the filtered value may come back rounded either way to a half,
+// freedom are derived in glint_support.hpp (shared with the WebGPU and WebGL2 suites). The GGAA
+// lookup computes its LOD in the shader (log2 within the transcendental allowance) and reads the
+// two integer levels around it with an explicit LOD, blending them itself. An explicit integer
+// LOD with no bias is lambda exactly (Vulkan specification, "Scale Factor Operation,
+// Level-of-Detail Operation and Image Level(s) Selection": lambda' = lambda_base + bias), and
+// "Image Level(s) Selection" takes delta = lambda - floor(lambda) = 0, which quantising to any
+// mipmapPrecisionBits leaves 0: one level alone, so the device's LOD rule, LOD accuracy and mip
+// blend do not enter. What remains of the sampler's freedom is the texel coordinate to
+// subTexelPrecisionBits ("Texel Coordinate Operations"; ref::glints::texture_level_range) and
+// the RGBA16F format's rounding of the result (half_float_result: rounded either way to a half,
 // "Numeric Representation and Computation" and "Floating-Point Format Conversions"; NVIDIA
-// does, lavapipe and SwiftShader filter in fp32; docs/GLINTS.md). SwiftShader uses about
-// 0.4 of the cos / sin allowance (1.9e-4), lavapipe 1e-7. On lavapipe a second, tighter check
-// uses lavapipe's own LOD arithmetic (0.5 fastlog2(rho^2), measured, docs/GLINTS.md) with the
-// fp32 bound alone.
+// does, lavapipe and SwiftShader filter in fp32; docs/GLINTS.md). SwiftShader uses about 0.4 of
+// the cos / sin allowance (1.9e-4), lavapipe 1e-7. On lavapipe a second, tighter check takes the
+// exact sampler with the fp32 bound alone (lavapipe filters in fp32 with unquantised weights).
 #include "glint_support.hpp"
 
 #include "saagen/validate/kernels.hpp"
@@ -42,10 +45,10 @@ hx::VulkanContext& gpu() {
 
 bool on_lavapipe() { return gpu().info().name.find("llvmpipe") != std::string::npos; }
 
-// The tight checks feed the reference lavapipe's own LOD arithmetic: a lavapipe fact, said so
-// where it is not run.
+// The tight checks take lavapipe's exact fp32 filter (no sub-texel quantisation, no half result):
+// a lavapipe fact, said so where it is not run.
 void say_no_lavapipe_check(const std::string& what) {
-  std::cout << "[ skipped  ] " << what << " with lavapipe's LOD model: a lavapipe fact, not checked on " << gpu().info().name
+  std::cout << "[ skipped  ] " << what << " against the exact fp32 filter: a lavapipe fact, not checked on " << gpu().info().name
             << " (the specification's check above is)\n";
 }
 
@@ -57,10 +60,9 @@ const g::SamplerTolerance& spec_tolerance() {
         g::vulkan_sampler_tolerance(static_cast<int>(limits.mipmapPrecisionBits), static_cast<int>(limits.subTexelPrecisionBits));
     t.half_float_result = true;  // the dictionary is RGBA16F (dictionary_binding)
     std::cout << fmt::format(
-        "[ sampler  ] {}: mipmapPrecisionBits {}, subTexelPrecisionBits {}: lambda in [log2 rho - {}, log2 rho + {}] to +-{}, "
-        "level weight +-{}, texel coordinate +-{}, result rounded either way to a half\n",
-        gpu().info().name, limits.mipmapPrecisionBits, limits.subTexelPrecisionBits, t.lod_below, t.lod_above, t.lod_accuracy,
-        t.level_weight, t.texel_weight);
+        "[ sampler  ] {}: mipmapPrecisionBits {} (not used: integer levels only), subTexelPrecisionBits {}: texel coordinate +-{}, "
+        "result rounded either way to a half\n",
+        gpu().info().name, limits.mipmapPrecisionBits, limits.subTexelPrecisionBits, t.texel_weight);
     return t;
   }();
   return tolerance;
@@ -108,22 +110,15 @@ void main() {
   return hx::run_compute(gpu(), run).buffer_as<float>(1);
 }
 
-g::Texel reference_query(const Query& q, g::LodModel model) {
-  const auto& texture = saagen::test::default_reference_texture();
-  if (std::isnan(q.b)) return g::texture_lod(texture, q.u, q.layer, q.a);
-  return g::texture_grad(texture, q.u, q.layer, q.a, q.b, model);
-}
-
+// The snippets read the dictionary with textureLod at integer levels only (q.a an integer, q.b NaN).
 g::TexelRange reference_range(const Query& q, const g::SamplerTolerance& tolerance) {
-  const auto& texture = saagen::test::default_reference_texture();
-  if (std::isnan(q.b)) return g::texture_lod_range(texture, q.u, q.layer, q.a, tolerance);
-  return g::texture_grad_range(texture, q.u, q.layer, q.a, q.b, tolerance);
+  return g::texture_level_range(saagen::test::default_reference_texture(), q.u, q.layer, static_cast<int>(q.a), tolerance);
 }
 
-TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
-  // The spec check on every device; on lavapipe also the tight check with its LOD model.
+TEST(GlintSamplerOnGpu, TextureLodAtIntegerLevelsMatchesTheSoftwareSampler) {
+  // The spec check on every device; on lavapipe also the tight check (its filter is exact fp32).
   const bool lavapipe = on_lavapipe();
-  const g::LodModel model = lavapipe ? g::LodModel::lavapipe : g::LodModel::exact;
+  const auto& texture = saagen::test::default_reference_texture();
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Query> queries;
@@ -131,84 +126,56 @@ TEST(GlintSamplerOnGpu, TextureGradAndLodMatchTheSoftwareSampler) {
   while (queries.size() < 32768) {
     const float u = static_cast<float>(-2.5 + 5.0 * unit(random));
     const float layer = static_cast<float>(std::floor(768.0 * unit(random)));
-    if (queries.size() % 4 == 0) {
-      queries.push_back({u, layer, static_cast<float>(-1.0 + 9.0 * unit(random)), nan});
-    } else {
-      const double gradient = std::exp2(-3.0 + 12.0 * unit(random)) / 64.0;
-      const double ratio = -1.5 + 3.0 * unit(random);
-      queries.push_back({u, layer, static_cast<float>(gradient), static_cast<float>(gradient * ratio)});
-    }
+    // Levels -1 .. 8: below 0 and above the last level (6) the sampler clamps an explicit LOD.
+    const float level = static_cast<float>(std::floor(-1.0 + 10.0 * unit(random)));
+    queries.push_back({u, layer, level, nan});
   }
   const auto got = run_queries(queries);
   // The same check without the format's rounding: what the half result adds on this device.
   g::SamplerTolerance unrounded_tolerance = spec_tolerance();
   unrounded_tolerance.half_float_result = false;
-  // And with lambda to mipmapPrecisionBits alone (the specification's sentence, stricter than
-  // the conformance suite's 4 bits when the device reports more): reported, not asserted.
-  g::SamplerTolerance strict_tolerance = spec_tolerance();
-  strict_tolerance.lod_accuracy = strict_tolerance.level_weight;
-  std::vector<double> expected, bounds, exact_model_error, spec_expected, spec_bounds, unrounded_expected, unrounded_bounds, strict_expected,
-      strict_bounds;
+  std::vector<double> expected, bounds, spec_expected, spec_bounds, unrounded_expected, unrounded_bounds;
   for (const Query& q : queries) {
     const g::TexelRange range = reference_range(q, spec_tolerance());
     const g::TexelRange unrounded = reference_range(q, unrounded_tolerance);
-    const g::TexelRange strict = reference_range(q, strict_tolerance);
-    const g::Texel value = reference_query(q, model);
+    const g::Texel value = g::texture_level(texture, q.u, q.layer, static_cast<int>(q.a));
+    // fp32: the rounding of u * width (a backward error of a few ulps of u).
     g::Texel spread{};
     for (double su : {-1.0, 1.0}) {
-      for (double sg : {-1.0, 1.0}) {
-        Query p = q;
-        p.u = static_cast<float>(q.u * (1.0 + su * 0x1.0p-22));
-        p.a = static_cast<float>(q.a * (1.0 + sg * 0x1.0p-22));
-        if (!std::isnan(q.b)) p.b = static_cast<float>(q.b * (1.0 - sg * 0x1.0p-22));
-        const g::Texel perturbed = reference_query(p, model);
-        for (int c = 0; c < 4; ++c) spread[c] = std::max(spread[c], std::fabs(perturbed[c] - value[c]));
-      }
+      const g::Texel perturbed = g::texture_level(texture, q.u * (1.0 + su * 0x1.0p-22), q.layer, static_cast<int>(q.a));
+      for (int c = 0; c < 4; ++c) spread[c] = std::max(spread[c], std::fabs(perturbed[c] - value[c]));
     }
-    const g::Texel exact = reference_query(q, g::LodModel::exact);
     for (int c = 0; c < 4; ++c) {
       const double fp32 = 2.0 * spread[c] + 2e-6 * std::fabs(value[c]) + 1e-9;
       expected.push_back(value[c]);
       bounds.push_back(fp32);
-      exact_model_error.push_back(std::fabs(exact[c] - value[c]));
       glint::push_interval(spec_expected, spec_bounds, range.low[c], range.high[c], fp32);
       glint::push_interval(unrounded_expected, unrounded_bounds, unrounded.low[c], unrounded.high[c], fp32);
-      glint::push_interval(strict_expected, strict_bounds, strict.low[c], strict.high[c], fp32);
     }
   }
   const auto describe = [&](std::size_t i) {
     const Query& q = queries[i / 4];
-    return fmt::format("u {} layer {} {} {} {}", q.u, q.layer, std::isnan(q.b) ? "lod" : "grad", q.a, q.b);
+    return fmt::format("u {} layer {} level {}", q.u, q.layer, q.a);
   };
-  const auto spec =
-      hx::compare_with_bounds(got, spec_expected, spec_bounds, "dictionary textureGrad/textureLod (Vulkan spec sampler rules)", describe);
+  const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds, "dictionary textureLod at integer levels (Vulkan spec sampler rules)",
+                                            describe);
   // Not through compare_with_bounds: the run's "[ bound ]" totals count the checks made.
-  const auto outside = [&](const std::vector<double>& centre, const std::vector<double>& half_width) {
-    std::pair<std::size_t, double> failing_worst{0, 0.0};
-    for (std::size_t i = 0; i < got.size(); ++i) {
-      const double ratio = std::fabs(got[i] - centre[i]) / half_width[i];
-      failing_worst.first += ratio > 1.0;
-      failing_worst.second = std::max(failing_worst.second, ratio);
-    }
-    return failing_worst;
-  };
-  const auto [unrounded_failing, unrounded_worst] = outside(unrounded_expected, unrounded_bounds);
-  const auto [strict_failing, strict_worst] = outside(strict_expected, strict_bounds);
+  std::pair<std::size_t, double> unrounded_failing_worst{0, 0.0};
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const double ratio = std::fabs(got[i] - unrounded_expected[i]) / unrounded_bounds[i];
+    unrounded_failing_worst.first += ratio > 1.0;
+    unrounded_failing_worst.second = std::max(unrounded_failing_worst.second, ratio);
+  }
   std::cout << "[ sampler  ] spec: " << spec.summary() << "\n"
             << fmt::format("[ sampler  ] without the half rounding of the result: {} of {} failing, worst err {:.3g} x tol\n",
-                           unrounded_failing, got.size(), unrounded_worst)
-            << fmt::format("[ sampler  ] with lambda to mipmapPrecisionBits alone (+-{}): {} of {} failing, worst err {:.3g} x tol\n",
-                           strict_tolerance.lod_accuracy, strict_failing, got.size(), strict_worst);
+                           unrounded_failing_worst.first, got.size(), unrounded_failing_worst.second);
   EXPECT_EQ(spec.failing, 0u) << spec.summary();
   if (!lavapipe) return say_no_lavapipe_check("the sampler");
-  const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureGrad/textureLod (lavapipe LOD model)", describe);
+  const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureLod at integer levels (exact fp32 filter)", describe);
   double worst_abs = 0.0;
   for (std::size_t i = 0; i < got.size(); ++i) worst_abs = std::max(worst_abs, std::fabs(got[i] - expected[i]));
-  std::cout << "[ sampler  ] device " << gpu().info().name << ", LOD model " << (model == g::LodModel::lavapipe ? "lavapipe" : "exact")
-            << ": " << report.summary() << "\n"
-            << "[ sampler  ] max |device - reference| = " << worst_abs
-            << " (texel values up to ~10); the exact log2 LOD would differ by up to "
-            << *std::max_element(exact_model_error.begin(), exact_model_error.end()) << "\n";
+  std::cout << "[ sampler  ] device " << gpu().info().name << ", exact filter: " << report.summary() << "\n"
+            << "[ sampler  ] max |device - reference| = " << worst_abs << " (texel values up to ~10)\n";
   EXPECT_EQ(report.failing, 0u) << report.summary();
 }
 
@@ -284,10 +251,10 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
   run.groups = {static_cast<std::uint32_t>(count / request.workgroup_size)};
   const auto got = hx::run_compute(gpu(), run).buffer_as<float>(1);
 
-  // On lavapipe, the tight check feeds the reference lavapipe's LOD arithmetic.
+  // On lavapipe, the tight check: the exact sampler with the fp32 bound alone.
   const bool lavapipe = on_lavapipe();
-  const glint::Comparison comparison = glint::core_comparison(c.function, c.options, inputs, count, request.input_stride, spec_tolerance(),
-                                                              lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+  const glint::Comparison comparison =
+      glint::core_comparison(c.function, c.options, inputs, count, request.input_stride, spec_tolerance());
   const std::vector<double>& expected = comparison.expected;
   const std::vector<double>& bounds = comparison.bounds;
   double worst_relative = 0.0;
@@ -321,7 +288,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
   EXPECT_EQ(comparison.outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
   EXPECT_GT(nonzero, expected.size() / 2);  // the inputs do hit lobes
   if (!lavapipe) return say_no_lavapipe_check(c.target + " " + c.function);
-  const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe LOD model)", c.target, c.function));
+  const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe: exact fp32 filter)", c.target, c.function));
   std::cout << "[ worst    ] " << report.summary() << "\n[ worst    ] max relative error (|expected| > 1e-3): " << worst_relative << "; "
             << nonzero << " of " << expected.size() << " outputs non-zero\n";
   EXPECT_EQ(report.failing, 0u) << report.summary();
@@ -357,8 +324,8 @@ TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
       run.groups = {pixels / request.workgroup_size};
       const auto got = hx::run_compute(gpu(), run).buffer_as<float>(1);
 
-      const glint::Comparison comparison = glint::fragment_comparison(
-          filtered, width, height, saagen::ref::Derivative::fine, spec_tolerance(), lavapipe ? g::LodModel::lavapipe : g::LodModel::exact);
+      const glint::Comparison comparison =
+          glint::fragment_comparison(filtered, width, height, saagen::ref::Derivative::fine, spec_tolerance());
       std::size_t nonzero = 0;
       for (double v : comparison.expected) nonzero += v > 0.0;
       const std::string what =
@@ -369,7 +336,7 @@ TEST(GlintFragmentOnGpu, WrappersMatchTheReferenceFedTheSameQuads) {
       EXPECT_EQ(spec.failing, 0u) << spec.summary();
       EXPECT_GT(nonzero, comparison.expected.size() / 2);
       if (!lavapipe) continue;
-      const auto report = hx::compare_with_bounds(got, comparison.expected, comparison.bounds, what + " (lavapipe LOD model)");
+      const auto report = hx::compare_with_bounds(got, comparison.expected, comparison.bounds, what + " (lavapipe: exact fp32 filter)");
       std::cout << "[ fragment ] " << report.summary() << "\n";
       EXPECT_EQ(report.failing, 0u) << report.summary();
     }

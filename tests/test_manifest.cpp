@@ -143,7 +143,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{
             "unknown_top_key", header + "colour = 1\n" + forward_material,
             "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
-            "glint_alpha, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, source, material"},
+            "glint_alpha, glint_resolution, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, source, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,

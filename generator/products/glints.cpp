@@ -435,6 +435,7 @@ std::vector<std::uint8_t> dictionary_ktx2_for(const std::map<std::string, double
   };
   params.count = static_cast<int>(option("glint_count", params.count));
   params.lods = static_cast<int>(option("glint_lods", params.lods));
+  params.resolution = static_cast<int>(option("glint_resolution", params.resolution));
   params.alpha = option("glint_alpha", params.alpha);
   params.validate();
   return write_ktx2(dictionary_ktx2(dictionary_texture(generate_dictionary(params), true), params));
@@ -446,6 +447,12 @@ std::vector<EmittedFile> emit(const EmitOptions& options) {
   if (const auto count = options.option_values.find("glint_count"); count != options.option_values.end()) {
     if (std::fmod(count->second, 4.0) != 0.0) {
       throw Error(fmt::format("--glint_count {} must be a multiple of 4 (four distributions per RGBA texel)", count->second));
+    }
+  }
+  if (const auto resolution = options.option_values.find("glint_resolution"); resolution != options.option_values.end()) {
+    const double r = resolution->second;
+    if (r != std::floor(r) || r < 2.0 || r > 4096.0 || !is_power_of_two(static_cast<int>(r))) {
+      throw Error(fmt::format("--glint_resolution {} must be a power of two in [2, 4096] (the dictionary's texels per distribution)", r));
     }
   }
   return emit_variants(catalogue(), glint_options);

@@ -247,7 +247,7 @@ SourcePosition key_position(const Material& material, std::string_view key) {
 // The glint rules: the glinty BRDF (Chermain et al. 2020, with the 2021 slope correlation) is
 // the material's specular BRDF; accuracy takes GGAA, speed the textureLod baseline.
 constexpr const char* kGlintAccuracyReason =
-    "glints = true, prefer accuracy: GGAA (textureGrad on the dictionary's MIP chain) lowers RMSE and flicker against a 1024-spp "
+    "glints = true, prefer accuracy: GGAA (the dictionary's MIP chain filtered over the footprint) lowers RMSE and flicker against a 1024-spp "
     "ground truth on both measured curved scenes (docs/GLINTS.md)";
 constexpr const char* kGlintSpeedReason =
     "glints = true, prefer speed: the textureLod baseline, about 1.7x faster than GGAA on lavapipe, with more glint aliasing on "

@@ -15,6 +15,7 @@ constexpr double kRhoMax = 0.999;                    // GLINT_RHO_MAX
 constexpr double kInv2Ln2 = 0.721347520444482;       // GLINT_INV_2LN2
 constexpr double kTurn = 3.0517578125e-05;           // GLINT_TURN = 2^-15
 constexpr double kTinyPositive = 1e-30;              // TINY_POSITIVE
+constexpr double kTopLevel = 12.0;                   // GLINT_TOP_LEVEL
 constexpr double kSlopeMinZ = 1e-4;                  // SLOPE_MIN_Z
 
 // Round half to even, as the Vulkan layer selection does.
@@ -78,6 +79,11 @@ Texel texture_lod(const Texture1DArray& texture, double u, double layer, double 
 
 Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy, LodModel model) {
   return texture_lod(texture, u, layer, lod_from_gradients(du_dx, du_dy, texture.width, model));
+}
+
+Texel texture_level(const Texture1DArray& texture, double u, double layer, int level) {
+  const int layer_index = static_cast<int>(clamp(round_half_even(layer), 0.0, texture.layers - 1.0));
+  return sample_level(texture, std::clamp(level, 0, texture.level_count() - 1), u, layer_index);
 }
 
 SamplerTolerance vulkan_sampler_tolerance(int mipmap_precision_bits, int sub_texel_precision_bits) {
@@ -149,6 +155,18 @@ TexelRange level_range(const Texture1DArray& texture, int level, double u, int l
 
 TexelRange texture_lod_range(const Texture1DArray& texture, double u, double layer, double lod, const SamplerTolerance& t) {
   return texture_grad_range(texture, u, layer, std::numeric_limits<double>::quiet_NaN(), lod, t);
+}
+
+TexelRange texture_level_range(const Texture1DArray& texture, double u, double layer, int level, const SamplerTolerance& t) {
+  const int layer_index = static_cast<int>(clamp(round_half_even(layer), 0.0, texture.layers - 1.0));
+  TexelRange range = level_range(texture, std::clamp(level, 0, texture.level_count() - 1), u, layer_index, t.texel_weight);
+  if (t.half_float_result) {
+    for (int k = 0; k < 4; ++k) {
+      range.low[k] = half_at_or_below(range.low[k]);
+      range.high[k] = half_at_or_above(range.high[k]);
+    }
+  }
+  return range;
 }
 
 // With du_dx NaN, du_dy is the shader's lambda (textureLod), known exactly.
@@ -309,31 +327,46 @@ double layer_of(const Params& params, int distribution, int level) {
 
 }  // namespace
 
+namespace {
+
+// One channel of the texture at an integer level; with a tolerance and a side, the low or high end
+// of what a conforming sampler may return there (texture_level_range).
+double level_value(const Dictionary& dictionary, double u, double layer, int level, int distribution) {
+  if (dictionary.tolerance && dictionary.side != 0) {
+    const TexelRange range = texture_level_range(*dictionary.texture, u, layer, level, *dictionary.tolerance);
+    return select_channel(dictionary.side < 0 ? range.low : range.high, distribution % 4);
+  }
+  return select_channel(texture_level(*dictionary.texture, u, layer, level), distribution % 4);
+}
+
+// log2(x) at either end of the Vulkan allowance when log2_side != 0: 3 ulp outside [0.5, 2.0],
+// absolute error < 2^-21 inside ("Precision and Operation of SPIR-V Instructions").
+double shader_log2(const Dictionary& dictionary, double x) {
+  const double exact = std::log2(x);
+  const double allowance = (x >= 0.5 && x <= 2.0) ? 0x1.0p-21 : 3.0 * 0x1.0p-23 * std::fabs(exact);
+  return exact + dictionary.log2_side * allowance;
+}
+
+}  // namespace
+
 double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level) {
   const double u = x / dictionary_range(dictionary.params);
   if (!(std::fabs(u) < 1.0)) return 0.0;
-  const double layer = layer_of(dictionary.params, distribution, level);
-  if (dictionary.tolerance && dictionary.side != 0) {
-    const TexelRange range = texture_lod_range(*dictionary.texture, u, layer, 0.0, *dictionary.tolerance);
-    return select_channel(dictionary.side < 0 ? range.low : range.high, distribution % 4);
-  }
-  const Texel texel = texture_lod(*dictionary.texture, u, layer, 0.0);
-  return select_channel(texel, distribution % 4);
+  return level_value(dictionary, u, layer_of(dictionary.params, distribution, level), 0, distribution);
 }
 
 double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_dx, double dx_dy, int distribution, int level) {
   const double to_u = 1.0 / dictionary_range(dictionary.params);
   const double u = x * to_u;
   if (!(std::fabs(u) < 1.0)) return 0.0;
-  const double s = dictionary.params.kernel_scale * to_u;
-  if (dictionary.tolerance && dictionary.side != 0) {
-    const TexelRange range = texture_grad_range(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), s * dx_dx,
-                                                s * dx_dy, *dictionary.tolerance);
-    return select_channel(dictionary.side < 0 ? range.low : range.high, distribution % 4);
-  }
-  const Texel texel =
-      texture_grad(*dictionary.texture, u, layer_of(dictionary.params, distribution, level), s * dx_dx, s * dx_dy, dictionary.lod_model);
-  return select_channel(texel, distribution % 4);
+  const double rho = dictionary.params.kernel_scale * to_u * std::max(std::fabs(dx_dx), std::fabs(dx_dy)) * dictionary.params.resolution;
+  const double lod = clamp(shader_log2(dictionary, std::max(rho, kTinyPositive)), 0.0, kTopLevel);
+  const double fine = std::floor(lod);
+  const double t = lod - fine;
+  const double layer = layer_of(dictionary.params, distribution, level);
+  const double at_fine = level_value(dictionary, u, layer, static_cast<int>(fine), distribution);
+  // Weights 1 - t and t are non-negative: the low (high) ends combine into the low (high) end.
+  return t == 0.0 ? at_fine : (1.0 - t) * at_fine + t * level_value(dictionary, u, layer, static_cast<int>(fine) + 1, distribution);
 }
 
 namespace {
@@ -393,13 +426,9 @@ void add_level_cells(const Dictionary& dictionary, Vec2 uv, const FootprintAxes&
   for (std::size_t n = begin; n < patch.cells.size(); ++n) patch.cells[n].weight *= norm;
 }
 
-// log2 of the minor axis' length, at either end of the Vulkan allowance when log2_side != 0:
-// 3 ulp outside [0.5, 2.0], absolute error < 2^-21 inside.
+// log2 of the minor axis' length, at either end of the Vulkan allowance when log2_side != 0.
 double minor_log2(const Dictionary& dictionary, const FootprintAxes& axes) {
-  const double minor = std::max(length(axes.minor), kTinyPositive);
-  const double exact = std::log2(minor);
-  const double allowance = (minor >= 0.5 && minor <= 2.0) ? 0x1.0p-21 : 3.0 * 0x1.0p-23 * std::fabs(exact);
-  return exact + dictionary.log2_side * allowance;
+  return shader_log2(dictionary, std::max(length(axes.minor), kTinyPositive));
 }
 
 }  // namespace

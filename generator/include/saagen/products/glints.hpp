@@ -126,13 +126,14 @@ const Catalogue& catalogue();
 // The default dictionary (generate_dictionary({}) with its MIP chain) as KTX2 bytes: what a scene
 // bundle with glints = true ships next to its shader files.
 std::vector<std::uint8_t> default_dictionary_ktx2();
-// The dictionary that matches emission options (glint_count, glint_lods and glint_alpha of the
-// glint catalogue; the defaults where absent), with its MIP chain, as KTX2 bytes.
+// The dictionary that matches emission options (glint_count, glint_lods, glint_resolution and
+// glint_alpha of the glint catalogue; the defaults where absent), with its MIP chain, as KTX2 bytes.
 std::vector<std::uint8_t> dictionary_ktx2_for(const std::map<std::string, double>& option_values);
 
 // emit_variants over catalogue(); options.variants empty means both glint variants. Option
-// names: glint_count, glint_lods, glint_alpha, glint_kernel_scale (and sigma2/kappa, unused).
-// Throws saagen::Error when glint_count is not a multiple of 4.
+// names: glint_count, glint_lods, glint_resolution, glint_alpha, glint_kernel_scale (and
+// sigma2/kappa, unused). Throws saagen::Error when glint_count is not a multiple of 4 or
+// glint_resolution not a power of two.
 std::vector<EmittedFile> emit(const EmitOptions& options);
 
 }  // namespace saagen::glints

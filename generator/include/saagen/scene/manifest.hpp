@@ -100,7 +100,7 @@ Manifest load_manifest(const std::filesystem::path& path, const Catalogue& catal
 
 // The glint dictionary written next to the bundles when a material has glints = true:
 // <prefix><name>_glint_dictionary.ktx2 (glints::dictionary_ktx2_for the manifest's options: the
-// dictionary its glint_count, glint_lods and glint_alpha describe).
+// dictionary its glint_count, glint_lods, glint_resolution and glint_alpha describe).
 std::string glint_dictionary_file_name(const Manifest& manifest);
 bool plans_glints(const Manifest& manifest);
 

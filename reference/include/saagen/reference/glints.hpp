@@ -59,6 +59,11 @@ Texel texture_lod(const Texture1DArray& texture, double u, double layer, double 
 // textureGrad / SampleGrad: lambda from the gradients (`model`), then as texture_lod.
 Texel texture_grad(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy, LodModel model = LodModel::exact);
 
+// textureLod at an integer level (what the glint snippets use, the only reads they make):
+// LINEAR filtering in that level alone, level clamped to [0, levels - 1] (the sampler's clamp of
+// an explicit LOD), layer as texture_lod.
+Texel texture_level(const Texture1DArray& texture, double u, double layer, int level);
+
 // What any conforming Vulkan implementation may return for a LINEAR/LINEAR/LINEAR lookup, as
 // a per-channel interval [low, high] (the texture-space rules of the Vulkan 1.3 specification,
 // chapter "Image Operations"):
@@ -115,6 +120,12 @@ struct TexelRange {
   Texel low{}, high{};
 };
 TexelRange texture_lod_range(const Texture1DArray& texture, double u, double layer, double lod, const SamplerTolerance& tolerance);
+// The same for texture_level: an explicit integer LOD with no bias is lambda exactly ("Level-of-
+// Detail Operation": lambda' = lambda_base + bias), and "Image Level(s) Selection" takes
+// delta = lambda - floor(lambda) = 0, which snapping to any mipmapPrecisionBits leaves 0: one
+// level alone, whatever the device's LOD accuracy. Only texel_weight and half_float_result of
+// `tolerance` apply (lod_*, level_weight do not).
+TexelRange texture_level_range(const Texture1DArray& texture, double u, double layer, int level, const SamplerTolerance& tolerance);
 TexelRange texture_grad_range(const Texture1DArray& texture, double u, double layer, double du_dx, double du_dy,
                               const SamplerTolerance& tolerance);
 
@@ -125,6 +136,7 @@ TexelRange texture_grad_range(const Texture1DArray& texture, double u, double la
 struct Params {
   int count = 192;              // N distributions (a multiple of 4)
   int lods = 16;                // L LODs
+  int resolution = 64;          // R: the texture's level-0 width, which the GGAA lookup's LOD assumes
   double alpha_dict = 0.5;      // Beckmann roughness of the dictionary (sigma_o = alpha / sqrt(2))
   double kernel_scale = 0.5;    // s_K (2021 Eq. 19)
   double max_anisotropy = 8.0;  // largest major / minor axis ratio of the footprint (2020 Alg. 1)
@@ -135,11 +147,11 @@ struct Params {
 };
 
 // The dictionary as the shader sees it: its texture (RGBA, 4 distributions per texel; layer =
-// lod * count / 4 + d / 4, channel d % 4), the options, and the sampler's LOD rule.
+// lod * count / 4 + d / 4, channel d % 4) and the options. Every lookup reads integer levels
+// (texture_level): the GGAA lookup computes its LOD as the shader does.
 struct Dictionary {
   const Texture1DArray* texture = nullptr;
   Params params;
-  LodModel lod_model = LodModel::exact;
   // With a tolerance and side = -1 (+1), every dictionary lookup returns the low (high) end of
   // what a conforming sampler may return (texture_*_range): the glint functions are sums of
   // non-negative weights times products of non-negative lookups, so they bound the device.
@@ -148,8 +160,9 @@ struct Dictionary {
   // The precision the Vulkan specification grants the shader's transcendentals (section
   // "Precision and Operation of SPIR-V Instructions"), applied at the end of the allowance given
   // by the sign (-1, 0 = exact, +1); the tests take the change of the result as part of their
-  // bound. log2_side: the footprint LOD's log2(|minor axis|) off by 3 ulp of the result outside
-  // [0.5, 2] (at most 3 2^-23 |log2 size|), by 2^-21 absolute inside. exp2_side: the cell
+  // bound. log2_side: the footprint LOD's log2(|minor axis|) and the GGAA lookup's
+  // log2(rho_max) off by 3 ulp of the result outside [0.5, 2] (at most 3 2^-23 |log2 x|), by
+  // 2^-21 absolute inside. exp2_side: the cell
   // scale exp2(x), x = log_density / (2 ln 2) - level, and the EWA weights exp(x), x = -2 r^2,
   // off by (3 + 2|x|) ulp, i.e. by a factor 1 +- (3 + 2|x|) 2^-23.
   int log2_side = 0;
@@ -216,8 +229,10 @@ FootprintAxes footprint_axes(const Params& params, Vec2 duv_dx, Vec2 duv_dy);
 // l_P = clamp(log2(|minor|) + log_density / (2 ln 2), 0, L - 1) (2020 Alg. 1 line 6).
 double footprint_lod(const Params& params, Vec2 duv_dx, Vec2 duv_dy, double log_density);
 
-// One 1D distribution at x: textureLod at mip 0 / textureGrad with the kernel-scaled
-// derivatives of x; 0 for |x| >= x_max.
+// One 1D distribution at x, 0 for |x| >= x_max: at MIP level 0 / filtered over the kernel-scaled
+// derivatives of x: lambda = log2(max(|du/dx|, |du/dy|) R) clamped to [0, 12] (textureGrad's
+// exact rule for a 1D image, computed by the shader), the levels floor(lambda) and
+// floor(lambda) + 1 read with texture_level and blended with weight lambda - floor(lambda).
 double dictionary_lod_value(const Dictionary& dictionary, double x, int distribution, int level);
 double dictionary_grad_value(const Dictionary& dictionary, double x, double dx_dx, double dx_dy, int distribution, int level);
 
