@@ -94,6 +94,7 @@ struct QuadAsset {
   std::string top_extra;
   int mode = 4;
   std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
   bool normals = true;  // false: no NORMAL attribute (flat normals)
   std::string buffer_uri;  // empty: the buffer is embedded as a data URI; else write_quad writes it there
   std::string version = "2.0";
@@ -101,7 +102,7 @@ struct QuadAsset {
 
 std::string quad_buffer(const QuadAsset& q) {
   const std::vector<float> normals{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
+  std::vector<float> uv = q.uv;
   if (q.uv_mirrored)
     for (std::size_t i = 0; i < uv.size(); i += 2) uv[i] = 1.0f - uv[i];
   const std::vector<std::uint16_t> indices{0, 1, 2, 0, 2, 3};
@@ -980,6 +981,22 @@ TEST(GltfHostile, NonFinitePositionsAreRefusedNotCrashed) {
   camera.top_extra = R"(, "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.01}}])";
   EXPECT_NE(bad_asset_message(write_quad(dir, "camera.gltf", camera)).find("camera 0: its node transform leaves no view"),
             std::string::npos);
+  fs::remove_all(dir);
+}
+
+// Texture coordinates so large that the texel index floor(u size) left the int range (undefined
+// behaviour in the renderer's bilinear lookups; found by the glTF fuzzer at u = -5.3e21) are
+// refused; within the bound they load and render.
+TEST(GltfHostile, TextureCoordinatesBeyondTheTexelIndexRangeAreRefused) {
+  const fs::path dir = scratch("uv-range");
+  for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity(), -5.26745e21f, 262145.0f}) {
+    QuadAsset q;
+    q.uv[3] = bad;
+    EXPECT_NE(bad_asset_message(write_quad(dir, "bad.gltf", q)).find("vertex 1's TEXCOORD_0"), std::string::npos) << bad;
+  }
+  QuadAsset tiled;  // 2^18 = 2^30 / 4096: the largest coordinate allowed
+  tiled.uv = {0, 1, 262144, 1, 262144, 0, 0, 0};
+  EXPECT_EQ(load_gltf(write_quad(dir, "tiled.gltf", tiled).string()).mesh->triangles().size(), 2u);
   fs::remove_all(dir);
 }
 

@@ -1054,7 +1054,22 @@ class Loader {
     if (has_uv) {
       const View uv = attribute(primitive, "TEXCOORD_0", where, 2, true);
       check_count(uv, "TEXCOORD_0");
-      for (std::size_t i = 0; i < n; ++i) local[i].uv = {component(uv, i, 0), component(uv, i, 1)};
+      // The renderer samples a texture at the integer texel floor(u size - 1/2) (repeat
+      // addressing): |u| size must stay well inside a 32-bit int for every texture the asset may
+      // have, and a hit's uv is a convex combination of its triangle's, so the bound on the
+      // vertices holds for every hit.
+      const double uv_limit = std::ldexp(1.0, 30) / std::max(limits_.max_texture_size, 1);
+      for (std::size_t i = 0; i < n; ++i) {
+        local[i].uv = {component(uv, i, 0), component(uv, i, 1)};
+        if (!(std::fabs(local[i].uv.x) <= uv_limit && std::fabs(local[i].uv.y) <= uv_limit)) {
+          std::ostringstream s;
+          s.precision(6);
+          s << where << ": vertex " << i << "'s TEXCOORD_0 (" << local[i].uv.x << ", " << local[i].uv.y << ") is not finite or beyond "
+            << uv_limit << " in magnitude (2^30 over the " << limits_.max_texture_size
+            << " texels per side a texture may have: the texel index must stay a 32-bit integer)";
+          fail(s.str());
+        }
+      }
     }
     if (has_tangents) {
       const View tangents = attribute(primitive, "TANGENT", where, 4, false);
