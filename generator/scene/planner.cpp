@@ -77,7 +77,7 @@ const std::vector<Rule>& rules() {
 
 // saagen's trade on its normal-mapped scenes (a sphere with a MIP-mapped normal map, features of
 // ~4 px and ~0.5 px), mean LDR-FLIP over the scenes and six alphas (`saagen bench --preset full
-// --sigma2 0.0625`, the "normal-mapped" rows of its JSON; README "Does it make images better?").
+// --sigma2 0.0625`, the "normal-mapped" rows of its JSON; docs/GUIDE.md "Does it make images better?").
 // With the papers' GGX(alpha^2 + K) (Beckmann materials, and engines that keep their own BRDF):
 constexpr const char* kMeasuredNormalAdvice =
     "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
@@ -418,7 +418,7 @@ std::string sampling_advice(std::string_view prefilter) {
 }
 
 // Without a trade table, for Beckmann materials: what saagen's own trade measured with the papers'
-// lobe (README "Does it make images better?"); GGX materials get saagen's advice (advice.hpp).
+// lobe (docs/GUIDE.md "Does it make images better?"); GGX materials get saagen's advice (advice.hpp).
 std::string measured_normal_advice(const MaterialPlan& plan) {
   return fmt::format("feed the {} normal{}{}; measured: {}", plan.feed,
                      plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "

@@ -18,7 +18,7 @@
 //            layer 1 = (E[xy], 0, 0, 0), s = -n.xy / n.z. The shader forms the covariance
 //            (saa_lean_covariance) and the roughness (saa_prefilter_lean*).
 // The levels are box reductions of level 0, as reference/render/normal_map.hpp defines them.
-// The key "saagen.prefilter" holds the layout as JSON. docs: README.md "Normal-map prefiltering".
+// The key "saagen.prefilter" holds the layout as JSON. docs: docs/GUIDE.md "Normal-map prefiltering".
 #pragma once
 
 #include "saagen/domain.hpp"

@@ -3,7 +3,7 @@
 // (scripts/install-deps.sh), never copied into the repository:
 //
 //   ClearCoatTest, ClearCoatTest-coat, 2CylinderEngine
-//       Khronos's glTF 2.0 sample models (CC-BY 4.0; README.md, docs/GLTF_SCENES.md), from
+//       Khronos's glTF 2.0 sample models (CC-BY 4.0; docs/GLTF_SCENES.md), from
 //       Debian's assimp-testmodels under /usr/share/assimp/models/glTF2/, loaded as
 //       `saagen bench --scene ASSET` loads them (gltf.hpp; the coat lobe is its own scene).
 //   pmndrs-0014, pmndrs-0019, pmndrs-0010

@@ -93,7 +93,7 @@ struct Material {
   bool fresnel = false;
 };
 
-// The variants, named as in the catalogue (README "Variants"), plus the no-SAA baseline and
+// The variants, named as in the catalogue (docs/GUIDE.md "Variants"), plus the no-SAA baseline and
 // deferred-max's tangent-free form as a variant of its own.
 enum class Variant {
   none,
