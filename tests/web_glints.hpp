@@ -121,8 +121,7 @@ inline nlohmann::json write_dictionary(const std::filesystem::path& directory) {
 
 // The reference of a case, over the outputs in the runner's order (element- or pixel-major).
 inline glint::Comparison comparison(const Case& c, const std::vector<float>& inputs, std::size_t input_stride, ref::Derivative derivative) {
-  if (c.wrapper)
-    return glint::fragment_comparison(c.variant == "glints-ggaa", side, side, derivative, sampler_tolerance());
+  if (c.wrapper) return glint::fragment_comparison(c.variant == "glints-ggaa", side, side, derivative, sampler_tolerance());
   return glint::core_comparison(c.function, {}, inputs, elements, input_stride, sampler_tolerance());
 }
 
