@@ -414,7 +414,7 @@ ReportCommands::ReportCommands(CLI::App& app) {
                      "file for --isa vega10,navi21)")
       ->check(value_given());
 
-  report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, cost-vs-error plot");
+  report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, a cost-error plot per content and path");
   add_common(report_, report_common_);
   report_->add_option("--output,-o", report_directory_, "Report directory")->required();
 }

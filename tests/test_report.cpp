@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -64,7 +65,8 @@ class Report : public ::testing::Test {
 TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   ASSERT_EQ(report_exit_, 0) << read_text(scratch_ / "report.log");
   const fs::path dir = scratch_ / "report";
-  for (const char* file : {"index.html", "report.md", "cost_vs_error.svg"}) EXPECT_TRUE(fs::exists(dir / file)) << file;
+  for (const char* file : {"index.html", "report.md", "trade_curved_forward.svg", "trade_curved_deferred.svg", "trade_bump_forward.svg"})
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
   int sheets = 0, strips = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().extension() != ".png") continue;
@@ -91,15 +93,24 @@ TEST_F(Report, WritesHtmlMarkdownSheetsAndPlot) {
   const std::string markdown = read_text(dir / "report.md");
   EXPECT_NE(markdown.find("| deferred-avg |"), std::string::npos);
   EXPECT_NE(markdown.find("test fixture"), std::string::npos);
-  const std::string svg = read_text(dir / "cost_vs_error.svg");
-  EXPECT_NE(svg.find("GPU time with SAA / without"), std::string::npos);
-  EXPECT_EQ(std::count(svg.begin(), svg.end(), '\n') > 10, true);
-  // The engines' shipped forms are points of their own colour (6 engines + the legend's swatch),
-  // and the findings are in the report: recommendation, switching from each engine, verdicts.
+  // The trade of one content and path: no SAA's point, the engines as unlabelled orange
+  // diamonds (6 engines + the legend's swatch), the frontier's labels in a column, none over
+  // another (14 px apart at least).
+  const std::string svg = read_text(dir / "trade_curved_forward.svg");
+  EXPECT_NE(svg.find("forward, curved: image error against cost"), std::string::npos);
+  EXPECT_NE(svg.find(">no SAA<"), std::string::npos);
   std::size_t orange = 0;
   for (std::size_t at = svg.find("#e67e22"); at != std::string::npos; at = svg.find("#e67e22", at + 1)) ++orange;
   EXPECT_EQ(orange, 7u);
-  EXPECT_NE(svg.find(">engine-godot<"), std::string::npos);
+  EXPECT_EQ(svg.find("engine-godot</text>"), std::string::npos);  // named in its tooltip only
+  EXPECT_NE(svg.find("<title>engine-godot</title>"), std::string::npos);
+  std::vector<double> label_y;
+  for (std::size_t at = svg.find("<text x=\"442\" y=\""); at != std::string::npos; at = svg.find("<text x=\"442\" y=\"", at + 1))
+    label_y.push_back(std::stod(svg.substr(at + 17)));
+  std::sort(label_y.begin(), label_y.end());
+  for (std::size_t i = 1; i < label_y.size(); ++i) EXPECT_GE(label_y[i] - label_y[i - 1], 14.0 - 1e-9);
+  EXPECT_NE(markdown.find("## The trade per content and render path"), std::string::npos);
+  EXPECT_NE(markdown.find("](trade_curved_forward.svg)"), std::string::npos);
   for (const char* section :
        {"## Recommended configuration", "## Switching from an engine's shipped form", "## Per scene:", "| engine-hdrp | curved |",
         "LDR-FLIP", "HDR-FLIP", "TDE", "excess flicker", "lost motion", "flicker tm ratio"})
@@ -119,7 +130,7 @@ TEST_F(Report, EveryImageLoadsInHeadlessChromium) {
   const std::string page = read_text(dom);
   ASSERT_TRUE(std::regex_search(page, match, std::regex(R"(images loaded: (\d+)/(\d+))"))) << page.substr(0, 500);
   EXPECT_EQ(match[1].str(), match[2].str());
-  EXPECT_EQ(match[2].str(), "13");  // 4 strips, 8 sheets and the plot
+  EXPECT_EQ(match[2].str(), "16");  // 4 strips, 8 sheets and the trade plots (curved and bump, forward and deferred)
 }
 
 TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {

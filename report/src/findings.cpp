@@ -332,23 +332,39 @@ std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector
 
 namespace {
 
-// The usable candidates with a known cost, cheapest first, that no other beats in both cost and
-// image error (the mean of the comparison with no SAA).
-std::vector<const decision::Candidate*> frontier_of(const MaterialDecision& made) {
-  std::vector<const decision::Candidate*> usable;
-  for (const decision::Candidate& c : made.candidates)
-    if (c.usable && c.cost_ratio) usable.push_back(&c);
-  std::sort(usable.begin(), usable.end(), [](const decision::Candidate* a, const decision::Candidate* b) {
-    return std::tie(*a->cost_ratio, a->against_none.image.mean) < std::tie(*b->cost_ratio, b->against_none.image.mean);
-  });
-  std::vector<const decision::Candidate*> frontier;
-  double best_image = 0.0;  // no SAA's, at cost 1: a frontier point must do better than it
-  for (const decision::Candidate* c : usable) {
-    if (c->against_none.image.mean >= best_image) continue;
-    frontier.push_back(c);
-    best_image = c->against_none.image.mean;
+// The usable candidates with a known cost, each marked when no other is both cheaper and lower in
+// image error (the mean of the comparison with no SAA; no SAA itself is the point (1, 0)).
+std::vector<TradePoint> candidate_points(const MaterialDecision& made) {
+  std::vector<TradePoint> points;
+  for (std::size_t i = 0; i < made.candidates.size(); ++i) {
+    const decision::Candidate& c = made.candidates[i];
+    if (c.usable && c.cost_ratio) points.push_back({c.configuration, *c.cost_ratio, c.against_none, made.decision.outcomes[i]});
   }
-  return frontier;
+  std::sort(points.begin(), points.end(), [](const TradePoint& a, const TradePoint& b) {
+    return std::tie(a.cost, a.against_none.image.mean) < std::tie(b.cost, b.against_none.image.mean);
+  });
+  double best_image = 0.0;  // no SAA's, at cost 1: a frontier point must do better than it
+  for (TradePoint& point : points) {
+    if (point.against_none.image.mean >= best_image) continue;
+    point.frontier = true;
+    best_image = point.against_none.image.mean;
+  }
+  return points;
+}
+
+// The engines' shipped forms, at deferred-sum's cost (the convention of configuration_cost).
+std::vector<TradePoint> engine_points(const MaterialDecision& made, const std::vector<ContentRow>& rows) {
+  const auto sum = std::find_if(made.candidates.begin(), made.candidates.end(),
+                                [](const decision::Candidate& c) { return c.configuration == "deferred-sum"; });
+  if (sum == made.candidates.end() || !sum->cost_ratio) return {};
+  std::vector<TradePoint> points;
+  for (const ContentRow& row : rows)
+    if (is_engine_configuration(row.configuration) && row.against_none) {
+      TradePoint point{row.configuration, *sum->cost_ratio, *row.against_none, decision::outcome(*row.against_none)};
+      point.engine = true;
+      points.push_back(std::move(point));
+    }
+  return points;
 }
 
 std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Content content, std::optional<double> budget) {
@@ -359,27 +375,37 @@ std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Conten
 
 }  // namespace
 
-std::string format_frontier(const render::TradeTable& table) {
-  std::string text =
-      "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
-      "vega10 ISA ratio to no SAA, image / flicker error against no SAA with 95 % intervals:\n";
+std::vector<ContentTrade> content_trades(const render::TradeTable& table) {
+  std::vector<ContentTrade> trades;
   for (Content content : contents_of(table)) {
     const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
-      const MaterialDecision made = decide_on(rows, path, content);
-      text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(path), content_name(content), "configuration",
-                          "cost", "image error", "flicker error", "against no SAA");
-      text += fmt::format("    {:<44} {:>5.3f}\n", "none", 1.0);
-      for (const decision::Candidate* c : frontier_of(made)) {
-        const std::size_t index = static_cast<std::size_t>(c - made.candidates.data());
-        text += fmt::format("    {:<44} {:>5.3f}  {:<34} {:<34} {}\n", c->configuration, *c->cost_ratio, decision::describe(c->against_none.image),
-                            decision::describe(c->against_none.temporal), decision::name(made.decision.outcomes[index]));
-      }
-      text += fmt::format("    at x{} (the papers' overhead): {}; at x1.25: {}; unlimited: {}\n", kPapersBudget,
-                          budget_choice(rows, path, content, kPapersBudget), budget_choice(rows, path, content, 1.25),
-                          budget_choice(rows, path, content, std::nullopt));
+      ContentTrade trade{content, path, {}, "", decide_on(rows, path, content), rows};
+      trade.points = candidate_points(trade.made);
+      for (TradePoint& engine : engine_points(trade.made, rows)) trade.points.push_back(std::move(engine));
+      trade.chosen = chosen_configuration(trade.made);
+      trades.push_back(std::move(trade));
     }
+  }
+  return trades;
+}
+
+std::string format_frontier(const render::TradeTable& table) {
+  std::string text =
+      "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
+      "vega10 ISA ratio to no SAA, image / flicker error against no SAA with 95 % intervals:\n";
+  for (const ContentTrade& trade : content_trades(table)) {
+    text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(trade.path), content_name(trade.content), "configuration",
+                        "cost", "image error", "flicker error", "against no SAA");
+    text += fmt::format("    {:<44} {:>5.3f}\n", "none", 1.0);
+    for (const TradePoint& point : trade.points)
+      if (point.frontier)
+        text += fmt::format("    {:<44} {:>5.3f}  {:<34} {:<34} {}\n", point.configuration, point.cost, decision::describe(point.against_none.image),
+                            decision::describe(point.against_none.temporal), decision::name(point.outcome));
+    text += fmt::format("    at x{} (the papers' overhead): {}; at x1.25: {}; unlimited: {}\n", kPapersBudget,
+                        budget_choice(trade.rows, trade.path, trade.content, kPapersBudget),
+                        budget_choice(trade.rows, trade.path, trade.content, 1.25), budget_choice(trade.rows, trade.path, trade.content, std::nullopt));
   }
   return text;
 }

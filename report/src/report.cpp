@@ -6,6 +6,7 @@
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/assets.hpp"
 #include "saagen/report/findings.hpp"
+#include "saagen/report/plots.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -207,77 +208,6 @@ std::string sheet_name(const render::ImageSet& set) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The cost-vs-error plot (SVG): x = the ISA inverse-throughput ratio when measured, else the
-// lavapipe time ratio, else the SPIR-V delta;
-// y = mean tonemapped RMSE.
-
-std::optional<double> cost_of(const CostTable* costs, const std::string& configuration, bool time) {
-  return configuration_cost(costs, configuration, time);
-}
-
-std::string plot_svg(const std::vector<VariantSummary>& summary, const CostTable* costs) {
-  const bool isa = costs && !costs->isa_family.empty();
-  const bool time =
-      costs && std::any_of(costs->rows.begin(), costs->rows.end(), [](const VariantCost& c) { return c.time_ratio.has_value(); });
-  std::vector<std::tuple<std::string, double, double>> points;
-  for (const VariantSummary& row : summary) {
-    const auto cost = isa ? configuration_isa_cost(costs, row.variant) : cost_of(costs, row.variant, time);
-    if (cost) points.emplace_back(row.variant, *cost, row.rmse_tonemapped);
-  }
-  const double width = 720, height = 480, left = 70, right = 200, top = 30, bottom = 60;
-  double x_min = 1e300, x_max = -1e300, y_max = 0.0;
-  for (const auto& [name, x, y] : points) x_min = std::min(x_min, x), x_max = std::max(x_max, x), y_max = std::max(y_max, y);
-  if (points.empty()) x_min = 0.0, x_max = 1.0, y_max = 1.0;
-  const double x_pad = std::max((x_max - x_min) * 0.08, 1e-3);
-  x_min -= x_pad, x_max += x_pad, y_max *= 1.1;
-  const auto sx = [&](double x) { return left + (x - x_min) / (x_max - x_min) * (width - left - right); };
-  const auto sy = [&](double y) { return height - bottom - y / y_max * (height - top - bottom); };
-  std::ostringstream svg;
-  svg << "<!-- " << output_tag << " report -->\n";  // first: where saagen looks for its tag (output.cpp)
-  svg << fmt::format(R"s(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="12">)s", width,
-                     height)
-      << "\n";
-  svg << fmt::format(R"s(<rect width="{}" height="{}" fill="white"/>)s", width, height) << "\n";
-  svg << fmt::format(
-             R"s(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="black"/><line x1="{0}" y1="{1}" x2="{0}" y2="{3}" stroke="black"/>)s",
-             left, height - bottom, width - right, top)
-      << "\n";
-  for (int tick = 0; tick <= 4; ++tick) {
-    const double x = x_min + (x_max - x_min) * tick / 4.0, y = y_max * tick / 4.0;
-    svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">{:.3g}</text>)s", sx(x), height - bottom + 18, x) << "\n";
-    svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="end">{:.3g}</text>)s", left - 6, sy(y) + 4, y) << "\n";
-  }
-  svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">{}</text>)s", (left + width - right) / 2, height - 15,
-                     isa    ? "cost: ACO inverse throughput with SAA / without (RADV " + costs->isa_family + ")"
-                     : time ? std::string("cost: GPU time with SAA / without (lavapipe)")
-                            : std::string("cost: optimized SPIR-V instructions added"))
-      << "\n";
-  svg << fmt::format(R"s(<text x="16" y="{}" transform="rotate(-90 16 {})" text-anchor="middle">error: mean tonemapped RMSE</text>)s",
-                     (top + height - bottom) / 2, (top + height - bottom) / 2)
-      << "\n";
-  for (const auto& [name, x, y] : points) {
-    const std::string colour = name.rfind("engine-", 0) == 0    ? "#e67e22"
-                               : name.rfind("forward", 0) == 0  ? "#c0392b"
-                               : name.rfind("deferred", 0) == 0 ? "#2471a3"
-                                                                : "#555555";
-    svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", sx(x), sy(y), colour,
-                       sx(x) + 8, sy(y) + 4, name)
-        << "\n";
-  }
-  // Legend: which colour is which family (engines' shipped forms in their own colour).
-  const std::pair<const char*, const char*> legend[] = {
-      {"#c0392b", "saagen forward"}, {"#2471a3", "saagen deferred"}, {"#e67e22", "engine shipped form"}, {"#555555", "no SAA"}};
-  for (std::size_t i = 0; i < std::size(legend); ++i) {
-    const double y = top + 14.0 * static_cast<double>(i);
-    svg << fmt::format(R"s(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="{}"/><text x="{:.1f}" y="{:.1f}">{}</text>)s", width - right + 20, y,
-                       legend[i].first, width - right + 28, y + 4, legend[i].second)
-        << "\n";
-  }
-  svg << "</svg>\n";
-  return svg.str();
-}
-
-// ---------------------------------------------------------------------------------------------
 // Tables.
 
 std::string optional_number(const std::optional<double>& value, const char* format) {
@@ -342,7 +272,7 @@ std::vector<std::string> metric_cells(const Metrics& m) {
 // ISA inverse-throughput ratio (primary), lavapipe time ratio (secondary), SPIR-V delta.
 std::vector<std::string> cost_cells(const CostTable* costs, const std::string& configuration) {
   return {optional_number(configuration_isa_cost(costs, configuration), "{:.3f}"),
-          optional_number(cost_of(costs, configuration, true), "{:.3f}"), optional_number(cost_of(costs, configuration, false), "{:+.0f}")};
+          optional_number(configuration_cost(costs, configuration, true), "{:.3f}"), optional_number(configuration_cost(costs, configuration, false), "{:+.0f}")};
 }
 
 Metrics metrics_of(const VariantSummary& s) {
@@ -809,8 +739,15 @@ std::vector<std::pair<std::string, std::vector<std::string>>> loss_lists(const r
 
 constexpr const char* kLossListTitle = "Where the recommendation loses, per scene (against none and every engine)";
 
+constexpr const char* kTradeTitle = "The trade per content and render path";
+constexpr const char* kTradeNote =
+    "Each plot: the shading cost of every configuration the path can use (the planner's ratio to no SAA) against its image error "
+    "minus no SAA's, lower is better. The labelled points are the frontier (nothing is both cheaper and lower in error), with 95 % "
+    "intervals and each one's outcome against no SAA in both metrics (image and flicker error); saagen's choice is ringed.";
+
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                            const std::vector<std::string>& sheets, const std::vector<Strip>& image_strips, const TaaSection* taa) {
+                            const std::vector<std::string>& sheets, const std::vector<std::string>& plots, const std::vector<Strip>& image_strips,
+                            const TaaSection* taa) {
   std::ostringstream md;
   md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n(" << kVerdictNote
      << ")\n\n";
@@ -821,6 +758,8 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   }
   md << "\n";
   for (const Strip& strip : image_strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
+  md << "## " << kTradeTitle << "\n\n" << kTradeNote << "\n\n";
+  for (const std::string& plot : plots) md << "![" << plot << "](" << plot << ")\n\n";
   if (taa) {
     md << "## " << kTaaTitle << "\n\n(" << taa->note << ")\n\n" << as_markdown(taa->table) << "\n" << kTaaImageNote << "\n\n";
     for (const Strip& strip : taa->strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
@@ -839,7 +778,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   for (Content content : kContents)
     md << "\n## " << content_name(content) << " scenes (means over their scenes and alphas)\n\n"
        << as_markdown(content_table(table, content, costs));
-  md << "\n![cost vs error](cost_vs_error.svg)\n\n## Every case\n\n" << as_markdown(cases_table(table));
+  md << "\n## Every case\n\n" << as_markdown(cases_table(table));
   md << "\n## Images\n\nEach sheet: the ground truth, then every configuration's 1-spp image (top, labelled); their tonemapped "
         "differences from the ground truth, red brighter, blue darker, full colour at 0.25 (bottom).\n\n";
   for (const std::string& sheet : sheets) md << "![" << sheet << "](" << sheet << ")\n\n";
@@ -869,7 +808,7 @@ std::string html_loss_lists(const render::TradeTable& table) {
 }
 
 std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                        const std::vector<std::string>& sheets, const std::vector<std::string>& columns,
+                        const std::vector<std::string>& sheets, const std::vector<std::string>& plots, const std::vector<std::string>& columns,
                         const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<!-- " << output_tag
@@ -884,6 +823,8 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   for (const Strip& strip : image_strips)
     html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>"
          << html_escape(strip.caption) << "</figcaption></figure>\n";
+  html << "<h2>" << html_escape(kTradeTitle) << "</h2>\n<p>" << html_escape(kTradeNote) << "</p>\n";
+  for (const std::string& plot : plots) html << "<img src=\"" << plot << "\" alt=\"" << plot << "\">\n";
   if (taa) {
     html << "<h2>" << html_escape(kTaaTitle) << "</h2>\n<p>(" << html_escape(taa->note) << ")</p>\n"
          << as_html(taa->table) << "<p>" << html_escape(kTaaImageNote) << "</p>\n";
@@ -900,7 +841,6 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   html << "<h2>Summary (means over every scene and alpha, no Fresnel)</h2>\n" << as_html(summary_table(summary, costs));
   for (Content content : kContents)
     html << "<h2>" << content_name(content) << " scenes</h2>\n" << as_html(content_table(table, content, costs));
-  html << "<h2>Cost against error</h2>\n<img src=\"cost_vs_error.svg\" alt=\"cost against error\">\n";
   html << "<h2>Images</h2>\n<p>Columns: " << html_escape(fmt::format("{}", fmt::join(columns, ", ")))
        << ". Top: images; bottom: tonemapped difference from the ground truth (red brighter, blue darker, full colour at 0.25).</p>\n";
   for (const std::string& sheet : sheets) html << "<h3>" << sheet << "</h3>\n<img src=\"" << sheet << "\" alt=\"" << sheet << "\">\n";
@@ -1198,8 +1138,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       entry["isa_inverse_throughput_ratio"] = *ratio;
       entry["isa_family"] = costs->isa_family;
     }
-    if (const auto ratio = cost_of(costs, row.variant, true)) entry["ratio_median"] = *ratio;
-    if (const auto delta = cost_of(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
+    if (const auto ratio = configuration_cost(costs, row.variant, true)) entry["ratio_median"] = *ratio;
+    if (const auto delta = configuration_cost(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
     rows.push_back(entry);
   }
   nlohmann::json cases = nlohmann::json::array();
@@ -1289,7 +1229,12 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
 }
 
 std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {
-  std::vector<fs::path> paths = {dir / "index.html", dir / "report.md", dir / "cost_vs_error.svg"};
+  std::vector<fs::path> paths = {dir / "index.html", dir / "report.md"};
+  std::vector<Content> contents;
+  for (const render::SceneId scene : config.scenes)
+    if (std::find(contents.begin(), contents.end(), content_of(scene)) == contents.end()) contents.push_back(content_of(scene));
+  for (const Content content : contents)
+    for (const Path path : {Path::forward, Path::deferred}) paths.push_back(dir / trade_plot_name(content, path));
   for (const render::SceneId scene : config.scenes) {
     paths.push_back(dir / strip_name(scene));
     if (config.taa) paths.push_back(dir / taa_strip_name(scene));
@@ -1330,16 +1275,20 @@ ReportFiles report_files(const render::TradeTable& table, const CostTable* costs
     for (const Strip& strip : taa_part->strips) outputs.push_back({dir / strip.file, strip.png});
 
   const auto summary = summarize(table);
-  outputs.push_back({dir / "cost_vs_error.svg", plot_svg(summary, costs)});
+  std::vector<std::string> plots;
+  for (const ContentTrade& trade : content_trades(table)) {
+    plots.push_back(trade_plot_name(trade));
+    outputs.push_back({dir / plots.back(), trade_plot_svg(trade)});
+  }
   const TaaSection* taa_section_written = taa_part ? &*taa_part : nullptr;
-  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, image_strips, taa_section_written)});
-  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, columns, image_strips, taa_section_written)});
+  outputs.push_back({dir / "report.md", markdown_report(table, summary, costs, sheets, plots, image_strips, taa_section_written)});
+  outputs.push_back({dir / "index.html", html_report(table, summary, costs, sheets, plots, columns, image_strips, taa_section_written)});
   std::vector<std::string> images;
   for (const Strip& strip : image_strips) images.push_back(strip.file);
   if (taa_part)
     for (const Strip& strip : taa_part->strips) images.push_back(strip.file);
   images.insert(images.end(), sheets.begin(), sheets.end());
-  images.push_back("cost_vs_error.svg");
+  images.insert(images.end(), plots.begin(), plots.end());
   return {std::move(outputs), std::move(images)};
 }
 

@@ -107,6 +107,26 @@ std::string chosen_configuration(const MaterialDecision& made);
 inline constexpr double kPapersBudget = 1.05;
 std::string format_frontier(const render::TradeTable& table);
 
+// One configuration on the trade's picture of a content type and render path.
+struct TradePoint {
+  std::string configuration;
+  double cost = 1.0;                  // the planner's cost ratio to no SAA (vega10 ISA)
+  decision::Comparison against_none;  // image / temporal error minus no SAA's, 95 % intervals
+  decision::Outcome outcome = decision::Outcome::ties;
+  bool frontier = false;  // no usable configuration is both cheaper and lower in image error
+  bool engine = false;    // an engine's shipped form, at deferred-sum's cost (configuration_cost)
+};
+struct ContentTrade {
+  Content content = Content::curved;
+  Path path = Path::forward;
+  std::vector<TradePoint> points;  // the usable configurations with a known cost, then the engines
+  std::string chosen;              // saagen's decision ("none": no filter)
+  MaterialDecision made;           // the decision the points come from (decide_on)
+  std::vector<ContentRow> rows;    // what it decided on
+};
+// Per content type of the table and render path: what format_frontier prints and the report plots.
+std::vector<ContentTrade> content_trades(const render::TradeTable& table);
+
 struct Recommendation {
   Path path = Path::deferred;
   Content content = Content::curved;

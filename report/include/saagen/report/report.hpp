@@ -102,7 +102,7 @@ std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table);
 // What the comparison's figures are (frames, warm-up, resolution, ground truth), for captions.
 std::string taa_note(const render::TradeTable& table);
 
-// Writes DIR/index.html, DIR/report.md, DIR/cost_vs_error.svg, DIR/sheet_<scene>_<alpha>.png
+// Writes DIR/index.html, DIR/report.md, DIR/trade_<content>_<path>.svg (plots.hpp), DIR/sheet_<scene>_<alpha>.png
 // (the ground truth beside every variant's 1-spp image, over false-colour difference maps) and
 // DIR/strip_<scene>.png (the ground truth, no SAA, the best engine form and the recommendations
 // at the alpha where no SAA errs most; the report opens with these and the verdict).
