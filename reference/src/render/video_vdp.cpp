@@ -35,15 +35,32 @@ struct Plane {
   Plane(int w, int h, double fill = 0.0) : width(w), height(h), v(static_cast<std::size_t>(w) * h, fill) {}
   double& at(int x, int y) { return v[static_cast<std::size_t>(y) * width + x]; }
   double at(int x, int y) const { return v[static_cast<std::size_t>(y) * width + x]; }
+  double* row(int y) { return v.data() + static_cast<std::size_t>(y) * width; }
+  const double* row(int y) const { return v.data() + static_cast<std::size_t>(y) * width; }
   std::size_t size() const { return v.size(); }
 };
 
 using Channels = std::array<Plane, kChannels>;
 
 // The reference implementation's power with an offset (video_vdp.hpp, step 8): differentiable at
-// 0, and what the parameters were calibrated with.
+// 0, and what the parameters were calibrated with: pow(x, e) = (x + 1e-5)^e - 1e-5^e. The
+// exponents 2, 4, 1/2 and 1/4 (the pooling's) by products and square roots.
 constexpr double kPowOffset = 1e-5;
-double offset_pow(double x, double e) { return std::pow(x + kPowOffset, e) - std::pow(kPowOffset, e); }
+class OffsetPow {
+ public:
+  explicit OffsetPow(double e) : e_(e), offset_(std::pow(kPowOffset, e)) {}
+  double operator()(double x) const {
+    const double y = x + kPowOffset;
+    if (e_ == 2.0) return y * y - offset_;
+    if (e_ == 4.0) return (y * y) * (y * y) - offset_;
+    if (e_ == 0.5) return std::sqrt(y) - offset_;
+    if (e_ == 0.25) return std::sqrt(std::sqrt(y)) - offset_;
+    return static_cast<double>(std::pow(static_cast<float>(y), static_cast<float>(e_))) - offset_;
+  }
+
+ private:
+  double e_, offset_;
+};
 
 // ---- Step 1: display model -------------------------------------------------------------------
 
@@ -174,54 +191,61 @@ int symmetric_index(int i, int n) {
 Plane reduce(const Plane& in) {
   const int w = (in.width + 1) / 2, h = (in.height + 1) / 2;
   Plane rows(w, in.height);
-  for (int y = 0; y < in.height; ++y)
+  std::vector<double> line(static_cast<std::size_t>(in.width) + 4);  // a row, two samples of border each side
+  for (int y = 0; y < in.height; ++y) {
+    for (int i = -2; i < in.width + 2; ++i) line[i + 2] = in.at(symmetric_index(i, in.width), y);
     for (int x = 0; x < w; ++x) {
       double sum = 0.0;
-      for (int k = -2; k <= 2; ++k) sum += kKernel[k + 2] * in.at(symmetric_index(2 * x + k, in.width), y);
+      for (int k = 0; k < 5; ++k) sum += kKernel[k] * line[2 * x + k];
       rows.at(x, y) = sum;
     }
+  }
   Plane out(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double sum = 0.0;
-      for (int k = -2; k <= 2; ++k) sum += kKernel[k + 2] * rows.at(x, symmetric_index(2 * y + k, in.height));
-      out.at(x, y) = sum;
+  for (int y = 0; y < h; ++y) {
+    double* o = out.row(y);
+    for (int k = 0; k < 5; ++k) {
+      const double* r = rows.row(symmetric_index(2 * y + k - 2, in.height));
+      for (int x = 0; x < w; ++x) o[x] += kKernel[k] * r[x];
     }
+  }
   return out;
 }
 
-// One line of the expansion to `size` samples from ceil(size / 2): the samples at the even
-// positions, zeros between, the first sample repeated at position -2 and the last at the first
-// even position past the end; filtered with twice the kernel. `get(i)` reads input sample i.
-template <class Get>
-double expand_sample(int i, int size, int inputs, const Get& get) {
-  double sum = 0.0;
-  const int beyond = size % 2 == 0 ? size : size + 1;  // the first even position past the end
-  for (int k = -2; k <= 2; ++k) {
-    const int j = i + k;
-    if (j % 2 != 0) continue;  // odd positions (negative ones included) are the interleaved zeros
-    double value = 0.0;
-    if (j == -2)
-      value = get(0);
-    else if (j >= 0 && j < size)
-      value = get(j / 2);
-    else if (j == beyond)
-      value = get(inputs - 1);
-    else
-      continue;
-    sum += 2.0 * kKernel[k + 2] * value;
-  }
-  return sum;
+// The expansion of a line of ceil(size / 2) samples to `size`: sample i at position 2 i, zeros
+// between, the first sample repeated at position -2 and the last at the first even position
+// past the end; filtered with twice the kernel. The input sample at position j, or -1 for a zero.
+int expand_source(int j, int size, int inputs) {
+  if (j == -2) return 0;
+  if (j >= 0 && j < size) return j % 2 == 0 ? j / 2 : -1;
+  if (j == (size % 2 == 0 ? size : size + 1)) return inputs - 1;
+  return -1;
 }
 
 // The expansion of a pyramid level to width x height (the next finer level's size): along y, then x.
 Plane expand(const Plane& in, int width, int height) {
   Plane cols(in.width, height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < in.width; ++x) cols.at(x, y) = expand_sample(y, height, in.height, [&](int j) { return in.at(x, j); });
+  for (int y = 0; y < height; ++y) {
+    double* o = cols.row(y);
+    for (int k = 0; k < 5; ++k) {
+      const int source = expand_source(y + k - 2, height, in.height);
+      if (source < 0) continue;
+      const double* r = in.row(source);
+      for (int x = 0; x < in.width; ++x) o[x] += 2.0 * kKernel[k] * r[x];
+    }
+  }
   Plane out(width, height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) out.at(x, y) = expand_sample(x, width, in.width, [&](int j) { return cols.at(j, y); });
+  std::vector<double> line(static_cast<std::size_t>(width) + 4);  // the upsampled row, position j at j + 2
+  for (int y = 0; y < height; ++y) {
+    for (int j = -2; j < width + 2; ++j) {
+      const int source = expand_source(j, width, in.width);
+      line[j + 2] = source < 0 ? 0.0 : cols.at(source, y);
+    }
+    for (int x = 0; x < width; ++x) {
+      double sum = 0.0;
+      for (int k = 0; k < 5; ++k) sum += 2.0 * kKernel[k] * line[x + k];
+      out.at(x, y) = sum;
+    }
+  }
   return out;
 }
 
@@ -335,7 +359,7 @@ class Sensitivity {
   double correction_;  // 10^(sensitivity_correction / 20)  [sensitivity_correction, in dB]
 };
 
-// ---- Step 7: masking -------------------------------------------------------------------------
+// ---- Step 7: masking, its channel gains and phase-uncertainty blur ---------------------------
 
 constexpr double kChannelGain[kChannels] = {1.0, 1.45, 1.0, 1.0};  // the masking model's channel gains
 
@@ -361,19 +385,27 @@ class PhaseUncertainty {
   bool applies(const Plane& p) const { return pad_ > 0 && p.width > pad_ && p.height > pad_; }
   // In place, `scratch` a buffer of the plane's size.
   void blur(Plane& p, Plane& scratch) const {
-    const int w = p.width, h = p.height;
-    for (int y = 0; y < h; ++y)
+    const int w = p.width, h = p.height, r = radius_;
+    // Along x: each row mirrored into a padded line, then the kernel.
+    std::vector<double> line(static_cast<std::size_t>(w + 2 * r));
+    for (int y = 0; y < h; ++y) {
+      for (int i = -r; i < w + r; ++i) line[i + r] = p.at(mirror(i, w), y);
       for (int x = 0; x < w; ++x) {
         double sum = 0.0;
-        for (int k = -radius_; k <= radius_; ++k) sum += kernel_[k + radius_] * p.at(mirror(x + k, w), y);
+        for (int k = 0; k <= 2 * r; ++k) sum += kernel_[k] * line[x + k];
         scratch.at(x, y) = sum;
       }
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        double sum = 0.0;
-        for (int k = -radius_; k <= radius_; ++k) sum += kernel_[k + radius_] * scratch.at(x, mirror(y + k, h));
-        p.at(x, y) = sum;
+    }
+    // Along y: whole rows, the mirrored row indices looked up once per output row.
+    for (int y = 0; y < h; ++y) {
+      double* out = p.row(y);
+      std::fill(out, out + w, 0.0);
+      for (int k = 0; k <= 2 * r; ++k) {
+        const double* in = scratch.row(mirror(y + k - r, h));
+        const double weight = kernel_[k];
+        for (int x = 0; x < w; ++x) out[x] += weight * in[x];
       }
+    }
   }
 
  private:
@@ -385,14 +417,126 @@ class PhaseUncertainty {
   int radius_ = 0, pad_ = 0;
 };
 
-// ---- Step 8 and 9: pooling and JOD -----------------------------------------------------------
+// ---- Step 8: pooling ------------------------------------------------------------------------
 
-// The p-mean of a band's differences over its pixels: pow(sum pow(D, beta) / n, 1 / beta).
-double pixel_mean(const std::vector<double>& d, double beta) {
-  double sum = 0.0;
-  for (double v : d) sum += offset_pow(v, beta);
-  return offset_pow(sum / static_cast<double>(d.size()), 1.0 / beta);
-}
+class Pooling {
+ public:
+  explicit Pooling(int channels)
+      : channels_(channels),
+        pixel_power_(data::kParameters.beta),
+        pixel_root_(1.0 / data::kParameters.beta),
+        band_power_(data::kParameters.beta_sch),
+        band_root_(1.0 / data::kParameters.beta_sch),
+        channel_power_(data::kParameters.beta_tch),
+        channel_root_(1.0 / data::kParameters.beta_tch),
+        frame_power_(data::kParameters.beta_t),
+        frame_root_(1.0 / data::kParameters.beta_t) {}
+
+  // The p-mean of a band's differences over its pixels: pow(sum pow(D, beta) / n, 1 / beta).  [beta]
+  double pixels(const std::vector<double>& d) const {
+    double sum = 0.0;
+    for (double v : d) sum += pixel_power_(v);
+    return pixel_root_(sum / static_cast<double>(d.size()));
+  }
+
+  // The base band, not masked: D = S |T - R| per channel, pooled over the pixels.
+  std::array<double, kChannels> base_band(const Channels& test, const Channels& reference, const Channels& sensitivity) const {
+    std::array<double, kChannels> q{};
+    for (int c = 0; c < channels_; ++c) {
+      std::vector<double> d(test[c].size());
+      for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::abs(test[c].v[i] - reference[c].v[i]) * sensitivity[c].v[i];
+      q[c] = pixels(d);
+    }
+    return q;
+  }
+
+  // One frame's value from q[channel][band]: the p-norm over the bands of q times the channel's
+  // weight (and on the base band the baseband_weight), then over the channels.
+  // [beta_sch, beta_tch, ch_chrom_w, ch_trans_w, baseband_weight]
+  double frame(const std::array<std::vector<double>, kChannels>& q) const {
+    const data::VideoVdpParameters& P = data::kParameters;
+    const double channel_weight[kChannels] = {1.0, P.ch_chrom_w, P.ch_chrom_w, P.ch_trans_w};
+    double channel_sum = 0.0;
+    for (int c = 0; c < channels_; ++c) {
+      double band_sum = 0.0;
+      for (std::size_t b = 0; b < q[c].size(); ++b) {
+        const double w = channel_weight[c] * (b + 1 == q[c].size() ? P.baseband_weight[c] : 1.0);
+        band_sum += band_power_(q[c][b] * w);
+      }
+      channel_sum += channel_power_(band_root_(band_sum));
+    }
+    return channel_root_(channel_sum);
+  }
+
+  // The p-mean over the frames.  [beta_t]
+  double frames(const std::vector<double>& frame_q) const {
+    double sum = 0.0;
+    for (double v : frame_q) sum += frame_power_(v);
+    return frame_root_(sum / static_cast<double>(frame_q.size()));
+  }
+
+ private:
+  int channels_;
+  OffsetPow pixel_power_, pixel_root_, band_power_, band_root_, channel_power_, channel_root_, frame_power_, frame_root_;
+};
+
+// ---- Step 7: masking (the bands below the base band) -----------------------------------------
+
+class Masking {
+ public:
+  Masking()
+      : d_max_(std::pow(10.0, data::kParameters.d_max)),
+        mask_scale_(std::pow(10.0, data::kParameters.mask_c)),
+        difference_power_(data::kParameters.mask_p),
+        masker_power_{OffsetPow(data::kParameters.mask_q[0]), OffsetPow(data::kParameters.mask_q[1]),
+                      OffsetPow(data::kParameters.mask_q[2]), OffsetPow(data::kParameters.mask_q[3])} {
+    for (int k = 0; k < kChannels; ++k)
+      for (int c = 0; c < kChannels; ++c) cross_[k][c] = std::exp2(data::kParameters.xcm_weights[4 * k + c]);
+  }
+
+  // One band's pooled differences per channel: `test` the test's contrast, `reference` the
+  // reference's R' = g S R, `sensitivity` S.
+  std::array<double, kChannels> band(const Channels& test, const Channels& reference, const Channels& sensitivity, int channels,
+                                     const PhaseUncertainty& phase_uncertainty, const Pooling& pooling) const {
+    const std::size_t pixels = test[0].size();
+    // T' = g S T; the mutual masker min(|T'|, |R'|), blurred, scaled by 10^mask_c, to its
+    // channel's power q_k.  [mask_c, mask_q]
+    Channels test_p, masker;
+    Plane scratch(test[0].width, test[0].height);
+    for (int c = 0; c < channels; ++c) {
+      test_p[c] = test[c];
+      masker[c] = Plane(test[c].width, test[c].height);
+      for (std::size_t i = 0; i < pixels; ++i) {
+        test_p[c].v[i] *= kChannelGain[c] * sensitivity[c].v[i];
+        masker[c].v[i] = std::min(std::abs(test_p[c].v[i]), std::abs(reference[c].v[i]));
+      }
+      if (phase_uncertainty.applies(masker[c])) phase_uncertainty.blur(masker[c], scratch);
+      for (double& m : masker[c].v) m = masker_power_[c](std::abs(m * mask_scale_));
+    }
+    std::array<double, kChannels> q{};
+    std::vector<double> d(pixels);
+    for (int c = 0; c < channels; ++c) {
+      for (std::size_t i = 0; i < pixels; ++i) {
+        // Cross-channel masking: sum over the maskers k of 2^xcm[4k + c] M_k.  [xcm_weights]
+        double m = 0.0;
+        for (int k = 0; k < channels; ++k) m += cross_[k][c] * masker[k].v[i];
+        // pow(|T' - R'|, p) / (1 + M), soft-clamped to D_max.  [mask_p, d_max]
+        const double u = difference_power_(std::abs(test_p[c].v[i] - reference[c].v[i])) / (1.0 + m);
+        d[i] = d_max_ * u / (d_max_ + u);
+      }
+      q[c] = pooling.pixels(d);
+    }
+    return q;
+  }
+
+ private:
+  double d_max_, mask_scale_;
+  OffsetPow difference_power_;
+  std::array<OffsetPow, kChannels> masker_power_;
+  double cross_[kChannels][kChannels];  // [masker][masked]
+};
+
+// ---- Step 9: JOD ------------------------------------------------------------------------------
 
 // Q -> JOD (step 9).
 double jod_of(double q) {
@@ -510,80 +654,30 @@ int VideoVdpReference::bands() const { return state_->pyramid_height + 1; }
 
 VideoVdpResult VideoVdpReference::compare(const GreyClip& test) const {
   const State& s = *state_;
-  const data::VideoVdpParameters& P = data::kParameters;
   check_clip(test, "test");
   if (test.width != s.width || test.height != s.height || test.frames != s.frames)
     throw std::invalid_argument("ColorVideoVDP: the test clip is " + std::to_string(test.width) + " x " + std::to_string(test.height) +
                                 " x " + std::to_string(test.frames) + ", the reference " + std::to_string(s.width) + " x " +
                                 std::to_string(s.height) + " x " + std::to_string(s.frames));
-  const int n_bands = s.pyramid_height + 1;
-  const double d_max = std::pow(10.0, P.d_max);
-  const double mask_scale = std::pow(10.0, P.mask_c);
-  const double channel_weight[kChannels] = {1.0, P.ch_chrom_w, P.ch_chrom_w, P.ch_trans_w};
+  const Masking masking;
+  const Pooling pooling(s.channels);
   const std::vector<std::array<Plane, 3>> dkl = dkl_frames(test, s.display);
-
-  double frame_sum = 0.0;  // sum over frames of pow(Q_frame, beta_t)
-  double image_q = 0.0;
+  std::vector<double> frame_q(static_cast<std::size_t>(s.frames));
   for (int t = 0; t < s.frames; ++t) {
     const std::vector<Band> bands = contrast_bands(s.channels_of(dkl, t), s.channels, s.pyramid_height);
-    // Q[c][b]: the p-mean over the pixels of the masked differences (step 8).
+    // q[c][b]: the p-mean over the pixels of the band's differences (step 8).
     std::array<std::vector<double>, kChannels> q;
-    for (int b = 0; b < n_bands; ++b) {
-      const bool base = b == s.pyramid_height;
+    for (int b = 0; b <= s.pyramid_height; ++b) {
       const State::FrameBand& ref = s.bands[t][b];
-      const std::size_t pixels = bands[b].contrast[0].size();
-      if (base) {
-        // The base band is not masked: D = S |T - R|.
-        for (int c = 0; c < s.channels; ++c) {
-          std::vector<double> d(pixels);
-          for (std::size_t i = 0; i < pixels; ++i)
-            d[i] = std::abs(bands[b].contrast[c].v[i] - ref.reference[c].v[i]) * ref.sensitivity[c].v[i];
-          q[c].push_back(pixel_mean(d, P.beta));
-        }
-        continue;
-      }
-      // T' = g S T; the mutual masker min(|T'|, |R'|), blurred, scaled by 10^mask_c, to its
-      // channel's power q_k.
-      Channels test_p, masker;
-      Plane scratch(bands[b].contrast[0].width, bands[b].contrast[0].height);
-      for (int c = 0; c < s.channels; ++c) {
-        test_p[c] = bands[b].contrast[c];
-        masker[c] = Plane(test_p[c].width, test_p[c].height);
-        for (std::size_t i = 0; i < pixels; ++i) {
-          test_p[c].v[i] *= kChannelGain[c] * ref.sensitivity[c].v[i];
-          masker[c].v[i] = std::min(std::abs(test_p[c].v[i]), std::abs(ref.reference[c].v[i]));
-        }
-        if (s.phase_uncertainty.applies(masker[c])) s.phase_uncertainty.blur(masker[c], scratch);
-        for (double& m : masker[c].v) m = offset_pow(std::abs(m * mask_scale), P.mask_q[c]);
-      }
-      for (int c = 0; c < s.channels; ++c) {
-        std::vector<double> d(pixels);
-        for (std::size_t i = 0; i < pixels; ++i) {
-          // Cross-channel masking: sum over the maskers k of 2^xcm[4k + c] M_k.
-          double m = 0.0;
-          for (int k = 0; k < s.channels; ++k) m += std::exp2(P.xcm_weights[4 * k + c]) * masker[k].v[i];
-          const double u = offset_pow(std::abs(test_p[c].v[i] - ref.reference[c].v[i]), P.mask_p) / (1.0 + m);
-          d[i] = d_max * u / (d_max + u);  // the soft clamp
-        }
-        q[c].push_back(pixel_mean(d, P.beta));
-      }
+      const std::array<double, kChannels> band_q =
+          b == s.pyramid_height ? pooling.base_band(bands[b].contrast, ref.reference, ref.sensitivity)
+                                : masking.band(bands[b].contrast, ref.reference, ref.sensitivity, s.channels, s.phase_uncertainty, pooling);
+      for (int c = 0; c < s.channels; ++c) q[c].push_back(band_q[c]);
     }
-    // Over the bands (the base band weighted by baseband_weight), then over the channels.
-    double channel_sum = 0.0;
-    for (int c = 0; c < s.channels; ++c) {
-      double band_sum = 0.0;
-      for (int b = 0; b < n_bands; ++b) {
-        const double w = channel_weight[c] * (b == s.pyramid_height ? P.baseband_weight[c] : 1.0);
-        band_sum += offset_pow(q[c][b] * w, P.beta_sch);
-      }
-      channel_sum += offset_pow(offset_pow(band_sum, 1.0 / P.beta_sch), P.beta_tch);
-    }
-    const double frame_q = offset_pow(channel_sum, 1.0 / P.beta_tch);
-    if (s.frames == 1) image_q = frame_q * P.image_int;
-    frame_sum += offset_pow(frame_q, P.beta_t);
+    frame_q[t] = pooling.frame(q);
   }
   VideoVdpResult result;
-  result.quality = s.frames == 1 ? image_q : offset_pow(frame_sum / s.frames, 1.0 / P.beta_t);
+  result.quality = s.frames == 1 ? frame_q[0] * data::kParameters.image_int : pooling.frames(frame_q);
   result.jod = jod_of(result.quality);
   return result;
 }

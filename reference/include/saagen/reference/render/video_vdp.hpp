@@ -73,11 +73,13 @@
 //  9. JOD (paper: JOD regression): Q_JOD = 10 - jod_a Q^jod_exp for Q > 0.1, and the tangent
 //     line of that curve at Q = 0.1 below it (10 - jod_a 0.1^(jod_exp - 1) Q).  [jod_a, jod_exp]
 //
-// Implementation notes: double precision throughout (the reference computes in float32); one
-// thread per comparison; the reference clip's half of the work (its channels, pyramid,
-// adaptation luminance and sensitivities) is done once by VideoVdpReference. The reference
-// implementation's column pass of the pyramid's reduction reads the parity of the rows (the
-// same for a square image); here each axis uses its own, which changes nothing on square clips.
+// Implementation notes: double precision, but for the powers with a fractional exponent of
+// step 7 (in single precision, as the reference computes everything: they move a JOD by < 1e-7
+// and take half the time); one thread per comparison; the reference clip's half of the work (its
+// channels, pyramid, adaptation luminance and sensitivities) is done once by VideoVdpReference.
+// The reference implementation's column pass of the pyramid's reduction reads the parity of the
+// rows (the same for a square image); here each axis uses its own, which changes nothing on
+// square clips.
 #pragma once
 
 #include <memory>
