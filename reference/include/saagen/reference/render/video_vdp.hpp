@@ -68,8 +68,8 @@
 //     frames (beta_t = 2), or for an image the value times image_int.
 //     Every power here and in step 7 is the reference's offset power
 //         pow(x, e) = (x + 1e-5)^e - 1e-5^e,
-//     whose offset the parameters were calibrated with (it moves the pooled value of a small
-//     difference visibly: 1e-5^(1/4) = 0.056).
+//     whose offset the parameters were calibrated with (without it the JODs of the bench's
+//     clips move by up to 0.007).
 //  9. JOD (paper: JOD regression): Q_JOD = 10 - jod_a Q^jod_exp for Q > 0.1, and the tangent
 //     line of that curve at Q = 0.1 below it (10 - jod_a 0.1^(jod_exp - 1) Q).  [jod_a, jod_exp]
 //
@@ -77,9 +77,9 @@
 // step 7 (in single precision, as the reference computes everything: they move a JOD by < 1e-7
 // and take half the time); one thread per comparison; the reference clip's half of the work (its
 // channels, pyramid, adaptation luminance and sensitivities) is done once by VideoVdpReference.
-// The reference implementation's column pass of the pyramid's reduction reads the parity of the
-// rows (the same for a square image); here each axis uses its own, which changes nothing on
-// square clips.
+// The reference implementation's pyramid reduction borders the last column by the parity of the
+// rows, not of the columns (a difference only where they differ: never on a square clip); that is
+// reproduced (reduce() in video_vdp.cpp), so that non-square clips match too.
 #pragma once
 
 #include <memory>
