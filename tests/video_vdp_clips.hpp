@@ -48,13 +48,17 @@ inline constexpr SyntheticVariant kSyntheticVariants[] = {
 
 // The clips' sizes: the bench's 64 x 64 x 16 and 32 x 32 x 16, a clip shorter than the 9-tap
 // temporal filter (32 x 32 x 5), a small one with three pyramid bands (8 x 8 x 16), an image
-// (64 x 64 x 1).
+// (64 x 64 x 1), odd sizes at every pyramid level but the last (27 x 27 x 12: 27, 14, 7, 4), a
+// wide one (48 x 32 x 8) and two where a level's width and height differ in parity (46 x 24 x 8:
+// 23 x 12; 24 x 46 x 8: 12 x 23), where the reference implementation's pyramid borders the last
+// column by the height's parity.
 struct SyntheticSize {
   const char* name;
   int width, height, frames;
 };
-inline constexpr SyntheticSize kSyntheticSizes[] = {
-    {"s64", 64, 64, 16}, {"s32", 32, 32, 16}, {"short", 32, 32, 5}, {"tiny", 8, 8, 16}, {"image", 64, 64, 1}};
+inline constexpr SyntheticSize kSyntheticSizes[] = {{"s64", 64, 64, 16}, {"s32", 32, 32, 16},   {"short", 32, 32, 5},
+                                                    {"tiny", 8, 8, 16},  {"image", 64, 64, 1},  {"odd", 27, 27, 12},
+                                                    {"wide", 48, 32, 8}, {"uneven", 46, 24, 8}, {"uneven-tall", 24, 46, 8}};
 
 // splitmix64 of (seed, t, x, y): a uniform value in [0, 1), the same on every platform.
 inline double synthetic_uniform(std::uint64_t seed, int t, int x, int y) {
