@@ -104,17 +104,15 @@ std::array<double, 3> grey_to_dkl() {
   return dkl;
 }
 
-// A clip's frames in DKL: [frame][colour channel], each a plane.
-std::vector<std::array<Plane, 3>> dkl_frames(const GreyClip& clip, const Photometry& p) {
-  const std::array<double, 3> dkl = grey_to_dkl();
+// A clip's frames as emitted luminance planes (step 1). Their DKL channels (step 2) are these
+// times grey_to_dkl(): the transform of a grey pixel is one factor per channel, applied by
+// channels_of() after the temporal filter (linear, so the order does not matter).
+std::vector<Plane> luminance_frames(const GreyClip& clip, const Photometry& p) {
   const std::size_t pixels = static_cast<std::size_t>(clip.width) * clip.height;
-  std::vector<std::array<Plane, 3>> frames(static_cast<std::size_t>(clip.frames));
+  std::vector<Plane> frames(static_cast<std::size_t>(clip.frames));
   for (int t = 0; t < clip.frames; ++t) {
-    for (Plane& plane : frames[t]) plane = Plane(clip.width, clip.height);
-    for (std::size_t i = 0; i < pixels; ++i) {
-      const double l = emitted_luminance(clip.pixels[static_cast<std::size_t>(t) * pixels + i], p);
-      for (int c = 0; c < 3; ++c) frames[t][c].v[i] = l * dkl[c];
-    }
+    frames[t] = Plane(clip.width, clip.height);
+    for (std::size_t i = 0; i < pixels; ++i) frames[t].v[i] = emitted_luminance(clip.pixels[static_cast<std::size_t>(t) * pixels + i], p);
   }
   return frames;
 }
@@ -155,20 +153,19 @@ std::array<std::vector<double>, kChannels> temporal_filters(double fps) {
   return filters;
 }
 
-// Frame t of the four temporal channels: sum_k F_c[k] X[max(t - k, 0)], X the DKL channel that
-// feeds channel c (the achromatic one for the sustained and transient achromatic channels).
-Channels temporal_channels(const std::vector<std::array<Plane, 3>>& frames, int t,
-                           const std::array<std::vector<double>, kChannels>& filters) {
-  const int width = frames[0][0].width, height = frames[0][0].height;
+// Frame t of the four temporal channels: dkl_c sum_k F_c[k] L[max(t - k, 0)], L the luminance
+// frames, dkl_c the DKL factor of the colour channel that feeds channel c (the achromatic one
+// for the sustained and transient achromatic channels).
+Channels temporal_channels(const std::vector<Plane>& frames, int t, const std::array<std::vector<double>, kChannels>& filters) {
+  const std::array<double, 3> dkl = grey_to_dkl();
   Channels out;
   for (int c = 0; c < kChannels; ++c) {
-    const int source = c == 3 ? 0 : c;
     Plane& plane = out[c];
-    plane = Plane(width, height);
+    plane = Plane(frames[0].width, frames[0].height);
     const std::vector<double>& taps = filters[c];
     for (std::size_t k = 0; k < taps.size(); ++k) {
-      const Plane& x = frames[std::max(t - static_cast<int>(k), 0)][source];
-      const double w = taps[k];
+      const Plane& x = frames[std::max(t - static_cast<int>(k), 0)];
+      const double w = taps[k] * dkl[c == 3 ? 0 : c];
       for (std::size_t i = 0; i < plane.size(); ++i) plane.v[i] += w * x.v[i];
     }
   }
@@ -249,10 +246,11 @@ Plane expand(const Plane& in, int width, int height) {
       const int source = expand_source(j, width, in.width);
       line[j + 2] = source < 0 ? 0.0 : cols.at(source, y);
     }
-    for (int x = 0; x < width; ++x) {
-      double sum = 0.0;
-      for (int k = 0; k < 5; ++k) sum += 2.0 * kKernel[k] * line[x + k];
-      out.at(x, y) = sum;
+    double* o = out.row(y);
+    for (int k = 0; k < 5; ++k) {
+      const double weight = 2.0 * kKernel[k];
+      const double* in = line.data() + k;
+      for (int x = 0; x < width; ++x) o[x] += weight * in[x];
     }
   }
   return out;
@@ -399,10 +397,12 @@ class PhaseUncertainty {
     std::vector<double> line(static_cast<std::size_t>(w + 2 * r));
     for (int y = 0; y < h; ++y) {
       for (int i = -r; i < w + r; ++i) line[i + r] = p.at(mirror(i, w), y);
-      for (int x = 0; x < w; ++x) {
-        double sum = 0.0;
-        for (int k = 0; k <= 2 * r; ++k) sum += kernel_[k] * line[x + k];
-        scratch.at(x, y) = sum;
+      double* out = scratch.row(y);
+      std::fill(out, out + w, 0.0);
+      for (int k = 0; k <= 2 * r; ++k) {
+        const double weight = kernel_[k];
+        const double* in = line.data() + k;
+        for (int x = 0; x < w; ++x) out[x] += weight * in[x];
       }
     }
     // Along y: whole rows, the mirrored row indices looked up once per output row.
@@ -503,17 +503,17 @@ class Masking {
       for (int c = 0; c < kChannels; ++c) cross_[k][c] = std::exp2(data::kParameters.xcm_weights[4 * k + c]);
   }
 
-  // One band's pooled differences per channel: `test` the test's contrast, `reference` the
-  // reference's R' = g S R, `sensitivity` S.
-  std::array<double, kChannels> band(const Channels& test, const Channels& reference, const Channels& sensitivity, int channels,
+  // One band's pooled differences per channel: `test` the test's contrast (overwritten with T' = g S T),
+  // `reference` the reference's R' = g S R, `sensitivity` S.
+  std::array<double, kChannels> band(Channels& test, const Channels& reference, const Channels& sensitivity, int channels,
                                      const PhaseUncertainty& phase_uncertainty, const Pooling& pooling) const {
     const std::size_t pixels = test[0].size();
-    // T' = g S T; the mutual masker min(|T'|, |R'|), blurred, scaled by 10^mask_c, to its
-    // channel's power q_k.  [mask_c, mask_q]
-    Channels test_p, masker;
+    // T' = g S T (in place); the mutual masker min(|T'|, |R'|), blurred, scaled by 10^mask_c, to
+    // its channel's power q_k.  [mask_c, mask_q]
+    Channels& test_p = test;
+    Channels masker;
     Plane scratch(test[0].width, test[0].height);
     for (int c = 0; c < channels; ++c) {
-      test_p[c] = test[c];
       masker[c] = Plane(test[c].width, test[c].height);
       for (std::size_t i = 0; i < pixels; ++i) {
         test_p[c].v[i] *= kChannelGain[c] * sensitivity[c].v[i];
@@ -522,15 +522,18 @@ class Masking {
       if (phase_uncertainty.applies(masker[c])) phase_uncertainty.blur(masker[c], scratch);
       for (double& m : masker[c].v) m = masker_power_[c](std::abs(m * mask_scale_));
     }
+    // An image has no transient channel: a masker of zeros in its place adds nothing.
+    for (int c = channels; c < kChannels; ++c) masker[c] = Plane(test[0].width, test[0].height);
     std::array<double, kChannels> q{};
     std::vector<double> d(pixels);
     for (int c = 0; c < channels; ++c) {
+      // pow(|T' - R'|, p) / (1 + M), soft-clamped to D_max, with the cross-channel masker M = sum
+      // over the maskers k of 2^xcm[4k + c] M_k.  [mask_p, xcm_weights, d_max]
+      for (std::size_t i = 0; i < pixels; ++i) d[i] = difference_power_(std::abs(test_p[c].v[i] - reference[c].v[i]));
+      const double w0 = cross_[0][c], w1 = cross_[1][c], w2 = cross_[2][c], w3 = cross_[3][c];
+      const double *m0 = masker[0].v.data(), *m1 = masker[1].v.data(), *m2 = masker[2].v.data(), *m3 = masker[3].v.data();
       for (std::size_t i = 0; i < pixels; ++i) {
-        // Cross-channel masking: sum over the maskers k of 2^xcm[4k + c] M_k.  [xcm_weights]
-        double m = 0.0;
-        for (int k = 0; k < channels; ++k) m += cross_[k][c] * masker[k].v[i];
-        // pow(|T' - R'|, p) / (1 + M), soft-clamped to D_max.  [mask_p, d_max]
-        const double u = difference_power_(std::abs(test_p[c].v[i] - reference[c].v[i])) / (1.0 + m);
+        const double u = d[i] / (1.0 + (w0 * m0[i] + w1 * m1[i] + w2 * m2[i] + w3 * m3[i]));
         d[i] = d_max_ * u / (d_max_ + u);
       }
       q[c] = pooling.pixels(d);
@@ -602,11 +605,15 @@ struct VideoVdpReference::State {
   std::vector<std::vector<FrameBand>> bands;  // [frame][band]
   PhaseUncertainty phase_uncertainty;
 
-  Channels channels_of(const std::vector<std::array<Plane, 3>>& dkl, int t) const {
-    if (frames > 1) return temporal_channels(dkl, t, filters);
+  Channels channels_of(const std::vector<Plane>& luminance, int t) const {
+    if (frames > 1) return temporal_channels(luminance, t, filters);
     // An image: the three colour channels unfiltered.
+    const std::array<double, 3> dkl = grey_to_dkl();
     Channels out;
-    for (int c = 0; c < 3; ++c) out[c] = dkl[t][c];
+    for (int c = 0; c < 3; ++c) {
+      out[c] = luminance[t];
+      for (double& v : out[c].v) v *= dkl[c];
+    }
     return out;
   }
 };
@@ -636,10 +643,10 @@ VideoVdpReference::VideoVdpReference(const GreyClip& reference, const VideoVdpDi
     // The transient channel reads the 5 Hz table, the others the 0 Hz ones.
     for (int c = 0; c < state->channels; ++c) csf.back().emplace_back(c, band_frequency(b, state->pyramid_height, ppd));
   }
-  const std::vector<std::array<Plane, 3>> dkl = dkl_frames(reference, state->display);
+  const std::vector<Plane> luminance = luminance_frames(reference, state->display);
   state->bands.resize(static_cast<std::size_t>(reference.frames));
   for (int t = 0; t < reference.frames; ++t) {
-    const std::vector<Band> bands = contrast_bands(state->channels_of(dkl, t), state->channels, state->pyramid_height);
+    const std::vector<Band> bands = contrast_bands(state->channels_of(luminance, t), state->channels, state->pyramid_height);
     std::vector<State::FrameBand>& out = state->bands[t];
     out.resize(bands.size());
     for (int b = 0; b <= state->pyramid_height; ++b) {
@@ -670,10 +677,10 @@ VideoVdpResult VideoVdpReference::compare(const GreyClip& test) const {
                                 std::to_string(s.height) + " x " + std::to_string(s.frames));
   const Masking masking;
   const Pooling pooling(s.channels);
-  const std::vector<std::array<Plane, 3>> dkl = dkl_frames(test, s.display);
+  const std::vector<Plane> luminance = luminance_frames(test, s.display);
   std::vector<double> frame_q(static_cast<std::size_t>(s.frames));
   for (int t = 0; t < s.frames; ++t) {
-    const std::vector<Band> bands = contrast_bands(s.channels_of(dkl, t), s.channels, s.pyramid_height);
+    std::vector<Band> bands = contrast_bands(s.channels_of(luminance, t), s.channels, s.pyramid_height);
     // q[c][b]: the p-mean over the pixels of the band's differences (step 8).
     std::array<std::vector<double>, kChannels> q;
     for (int b = 0; b <= s.pyramid_height; ++b) {
