@@ -18,7 +18,9 @@
 // ranking is asserted only between clips whose golden JODs differ by more than twice that, where
 // two values each within the tolerance cannot be in the other order.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -27,6 +29,7 @@
 #include <vector>
 
 #define STB_IMAGE_IMPLEMENTATION
+#include "cli_support.hpp"
 #include "video_vdp_clips.hpp"
 
 #include "saagen/reference/render/video_vdp.hpp"
@@ -80,6 +83,18 @@ GreyClip clip_of(int width, int height, int frames, const std::vector<std::uint8
   GreyClip clip{width, height, frames, std::vector<float>(bytes.size())};
   for (std::size_t i = 0; i < bytes.size(); ++i) clip.pixels[i] = bytes[i] / 255.0f;  // as a PNG reader gives them
   return clip;
+}
+
+// A clip PNG as `saagen bench --frames` writes it: `frames` frames stacked top to bottom.
+GreyClip load_clip(const std::string& path, int frames) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* p = stbi_load(path.c_str(), &w, &h, &n, 1);
+  if (!p) throw std::runtime_error("cannot read " + path);
+  const std::vector<std::uint8_t> bytes(p, p + static_cast<std::size_t>(w) * h);
+  stbi_image_free(p);
+  if (h % frames != 0)
+    throw std::runtime_error(path + ": " + std::to_string(h) + " rows do not hold " + std::to_string(frames) + " frames");
+  return clip_of(w, h / frames, frames, bytes);
 }
 
 const test::SyntheticSize& size_named(const std::string& name) {
@@ -148,15 +163,7 @@ TEST(VideoVdp, RanksAsTheReferenceImplementationWhereItsGapsExceedTheTolerance) 
 // Real clips of the bench (tests/data/video_vdp/README.md): 32 x 32 x 16, pmndrs-0014 at alpha 0.05.
 TEST(VideoVdp, MatchesTheReferenceImplementationOnBenchClips) {
   const std::string data = std::string(SAAGEN_SOURCE_DIR) + "/tests/data/video_vdp/pmndrs-0014_a0.05_";
-  const auto load = [&](const std::string& name) {
-    int w = 0, h = 0, n = 0;
-    unsigned char* p = stbi_load((data + name + ".png").c_str(), &w, &h, &n, 1);
-    if (!p) throw std::runtime_error("cannot read " + data + name + ".png");
-    const std::vector<std::uint8_t> bytes(p, p + static_cast<std::size_t>(w) * h);
-    stbi_image_free(p);
-    EXPECT_EQ(h, 16 * w);
-    return clip_of(w, h / 16, 16, bytes);
-  };
+  const auto load = [&](const std::string& name) { return load_clip(data + name + ".png", 16); };
   const VideoVdpReference reference(load("ground-truth"), video_vdp_standard_fhd(), 30.0);
   EXPECT_EQ(reference.bands(), 5);
   const std::pair<const char*, double> rows[] = {{"none", 8.2954},
@@ -207,4 +214,48 @@ TEST(VideoVdp, RefusesMalformedInput) {
   const VideoVdpReference reference(clip, display, 30.0);
   EXPECT_THROW(reference.compare(GreyClip{8, 8, 3, std::vector<float>(8 * 8 * 3, 0.5f)}), std::invalid_argument);    // frames
   EXPECT_THROW(reference.compare(GreyClip{4, 16, 4, std::vector<float>(4 * 16 * 4, 0.5f)}), std::invalid_argument);  // size
+}
+
+// saagen bench --jod: every case and sanity row of the --json table carries the JOD of exactly the
+// clip --frames writes, against the ground truth's clip.
+class VideoVdpCli : public saagen::test::CliTest {};
+
+TEST_F(VideoVdpCli, BenchJodMeasuresTheClipsFramesWrites) {
+  const std::string table = (scratch_ / "t.json").string(), frames = (scratch_ / "frames").string();
+  const auto run =
+      saagen({"bench", "--scene", "sphere", "--preset", "quick", "--resolution", "16", "--jod", "--json", table, "--frames", frames});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("ColorVideoVDP (--jod): "), std::string::npos) << run.out;
+  const nlohmann::json json = nlohmann::json::parse(saagen::test::read_text(table));
+  const nlohmann::json index = nlohmann::json::parse(saagen::test::read_text(scratch_ / "frames" / "index.json"));
+  ASSERT_EQ(index["groups"].size(), 2u);  // the quick preset's two alphas
+  int checked = 0;
+  for (const nlohmann::json& group : index["groups"]) {
+    const int n = group["frames"];
+    const VideoVdpReference reference(load_clip(frames + "/" + group["reference"].get<std::string>(), n), video_vdp_standard_fhd(), 30.0);
+    for (const nlohmann::json& clip : group["clips"]) {
+      const std::string configuration = clip["configuration"];
+      const bool sanity = configuration.starts_with("sanity:");
+      const nlohmann::json& rows = json[sanity ? "sanity" : "cases"];
+      const auto row = std::find_if(rows.begin(), rows.end(), [&](const nlohmann::json& r) {
+        return r["alpha"] == group["alpha"] && r["fresnel"] == group["fresnel"] &&
+               (sanity ? "sanity:" + r["result"].get<std::string>() : r["configuration"].get<std::string>()) == configuration;
+      });
+      ASSERT_NE(row, rows.end()) << configuration;
+      ASSERT_TRUE(row->contains("jod")) << configuration;
+      const double expected = reference.compare(load_clip(frames + "/" + clip["file"].get<std::string>(), n)).jod;
+      EXPECT_NEAR((*row)["jod"].get<double>(), expected, 1e-12) << configuration;
+      EXPECT_LE((*row)["jod"].get<double>(), 10.0) << configuration;
+      ++checked;
+    }
+  }
+  // Every case and sanity row was a clip.
+  EXPECT_EQ(checked, static_cast<int>(json["cases"].size() + json["sanity"].size()));
+
+  // --jod writes into the table: without --json it is refused, in one line, before any rendering.
+  const auto alone = saagen({"bench", "--scene", "sphere", "--preset", "quick", "--jod"});
+  EXPECT_EQ(alone.exit_code, 1);
+  EXPECT_NE(alone.err.find("--jod writes each case's JOD into the --json table: add --json FILE"), std::string::npos) << alone.err;
+  EXPECT_EQ(std::count(alone.err.begin(), alone.err.end(), '\n'), 1) << alone.err;
+  EXPECT_TRUE(alone.out.empty()) << alone.out;
 }
