@@ -70,8 +70,9 @@
 //         pow(x, e) = (x + 1e-5)^e - 1e-5^e,
 //     whose offset the parameters were calibrated with (without it the JODs of the bench's
 //     clips move by up to 0.007).
-//  9. JOD (paper: JOD regression): Q_JOD = 10 - jod_a Q^jod_exp for Q > 0.1, and the tangent
-//     line of that curve at Q = 0.1 below it (10 - jod_a 0.1^(jod_exp - 1) Q).  [jod_a, jod_exp]
+//  9. JOD (paper: JOD regression): Q_JOD = 10 - jod_a Q^jod_exp for Q > 0.1, and below it the
+//     straight line from 10 at Q = 0 to that curve at Q = 0.1, 10 - jod_a 0.1^(jod_exp - 1) Q
+//     (the reference's form, differentiable at 0).  [jod_a, jod_exp]
 //
 // Implementation notes: double precision, but for the powers with a fractional exponent of
 // step 7 (in single precision, as the reference computes everything: they move a JOD by < 1e-7
