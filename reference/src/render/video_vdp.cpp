@@ -1,8 +1,8 @@
 // ColorVideoVDP (see video_vdp.hpp for the steps and their sources).
 //
-// Layout: planar double images. A clip's frames go through the display model and the colour
-// transform once (three DKL planes per frame), then, frame by frame, the four temporal channels,
-// their Gaussian pyramids and contrast bands. The reference clip's bands, sensitivities and
+// Layout: planar double images. A clip's frames go through the display model once (a luminance
+// plane per frame), then, frame by frame, the four temporal channels (each times its colour
+// channel's DKL factor), their Gaussian pyramids and contrast bands. The reference clip's bands, sensitivities and
 // masked-contrast inputs are kept per frame (VideoVdpReference::State); a comparison computes the
 // test clip's bands and pools the masked differences frame by frame.
 #include "saagen/reference/render/video_vdp.hpp"
@@ -13,8 +13,10 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace saagen::render {
 namespace {
