@@ -14,7 +14,7 @@ import json
 import sys
 
 # The bench's by_content figures the advice keeps per configuration.
-FIGURES = ("image_error", "flicker_error")
+FIGURES = ("image_error", "flicker_error", "video_error")
 
 
 def scenes_by_content(table):
@@ -43,7 +43,7 @@ def advice_document(derived, held_out, derived_name, held_out_name):
         entry = {"content": content, "scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []}
         for configuration, row in rows.items():
             kept = {"configuration": configuration}
-            kept.update({figure: row[figure] for figure in FIGURES})
+            kept.update({figure: row[figure] for figure in FIGURES if figure in row})
             if "against_none" in row:
                 kept["against_none"] = row["against_none"]
             if "against_none" in held.get(configuration, {}):
@@ -58,7 +58,7 @@ def advice_document(derived, held_out, derived_name, held_out_name):
         "derived_from": {"table": derived_name, "config": derived["config"]},
         "held_out": {"table": held_out_name, "command": "bash scripts/held_out.sh OUT", "config": held_out["config"]},
         "image_metric": "image error: LDR-FLIP of every animation frame against the ground truth's",
-        "temporal_metric": "flicker error: pooled frame-to-frame change against the ground truth's (docs/TEMPORAL.md)",
+        "temporal_metric": "video error: 10 - the ColorVideoVDP JOD of the animation clip against the ground truth's (docs/TEMPORAL.md)",
         "content": contents,
     }
 

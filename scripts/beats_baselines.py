@@ -47,7 +47,9 @@ def scene_decisions(table):
 
 def main():
     table = json.load(open(sys.argv[1]))
-    means = scene_means(table['cases'])
+    # The verdict's temporal metric: the video error (10 - ColorVideoVDP's JOD) where measured.
+    video = any(case.get('video_error', {}).get('mean', 0.0) > 0.0 for case in table['cases'])
+    means = scene_means(table['cases'], temporal_metric='video_error' if video else 'flicker_error')
     wins = rows = 0
     for scene, path, chosen, beats_all in scene_decisions(table):
         rows += 1
@@ -55,7 +57,7 @@ def main():
         verdict = 'beats' if beats_all else ('no filter' if chosen == 'none' else 'beats none')
         best, none = means[scene][chosen], means[scene]['none']
         print(f"{scene:17s} {path:8s} {verdict:10s} {chosen:48s} image error {best[0]:.4f} (none {none[0]:.4f})  "
-              f"flicker error {best[1]:.5f} (none {none[1]:.5f})")
+              + (f"JOD {10 - best[1]:.2f} (none {10 - none[1]:.2f})" if video else f"flicker error {best[1]:.5f} (none {none[1]:.5f})"))
     print(f"{wins} of {rows} scene x path rows: saagen's decision beats no SAA and every engine form beyond the intervals")
 
 

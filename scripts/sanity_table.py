@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Prints the sanity suite of a `saagen bench --json` table as the Markdown table docs/TEMPORAL.md
-shows: per scene, each known result's image error / flicker error (means over the scene's alphas),
+shows: per scene, each known result's image error / temporal error (the video error, 10 - ColorVideoVDP's
+JOD, where the table has it, else the flicker error; means over the scene's alphas),
 the verdict's choice with the degenerate results entered, and the rules that failed.
 
     python3 scripts/sanity_table.py T.json
@@ -11,6 +12,11 @@ import json
 import sys
 
 RESULTS = ("other-seed", "quarter-samples", "delayed", "blurred", "frozen", "no-highlight", "none")
+
+
+def temporal(entry):
+    """The entry's temporal error: the video error (JOD loss) where measured, else the flicker error."""
+    return f'{entry["video_error"]:.2f}' if "video_error" in entry else f'{entry["flicker_error"]:.5f}'
 
 
 def main(argv):
@@ -24,7 +30,7 @@ def main(argv):
     failures = []
     for check in checks:
         by_result = {entry["result"]: entry for entry in check["entries"]}
-        cells = [f'{by_result[r]["image_error"]:.4f} / {by_result[r]["flicker_error"]:.5f}' if r in by_result else "-" for r in RESULTS]
+        cells = [f'{by_result[r]["image_error"]:.4f} / {temporal(by_result[r])}' if r in by_result else "-" for r in RESULTS]
         print(f'| {check["scene"]} | ' + " | ".join(cells) + f' | {check["verdict_choice"] or "no filter"} |')
         failures += check["failures"]
     print()

@@ -10,10 +10,11 @@ namespace {
 bool better(const Difference& d) { return d.high < 0.0; }
 bool worse(const Difference& d) { return d.low > 0.0; }
 
-// Whether a is more accurate than b: the image mean, then the temporal mean.
+// Whether a is more accurate than b: the temporal mean (the video metric, which judges the
+// animation as a viewer sees it), then the image mean.
 bool more_accurate(const Candidate& a, const Candidate& b) {
-  if (a.against_none.image.mean != b.against_none.image.mean) return a.against_none.image.mean < b.against_none.image.mean;
-  return a.against_none.temporal.mean < b.against_none.temporal.mean;
+  if (a.against_none.temporal.mean != b.against_none.temporal.mean) return a.against_none.temporal.mean < b.against_none.temporal.mean;
+  return a.against_none.image.mean < b.against_none.image.mean;
 }
 
 bool within_budget(const Candidate& c, const Preference& p) { return !p.budget || (c.cost_ratio && *c.cost_ratio <= *p.budget); }
@@ -77,7 +78,7 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
   if (beating.empty()) {
     const std::size_t best = *most_accurate(candidates, tried);
-    return fmt::format("no filter: none of the {} beats no SAA; the lowest image error, {}, {}", usable_count(usable),
+    return fmt::format("no filter: none of the {} beats no SAA; the lowest temporal error, {}, {}", usable_count(usable),
                        figures(candidates[best]), name(outcomes[best]));
   }
   std::vector<std::string> listed;
@@ -141,7 +142,7 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
   }
   const Candidate& chosen = candidates[*decision.chosen];
   decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen),
-                                speed ? "lowest cost" : "largest image improvement", usable_count(eligible.size()),
+                                speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
   return decision;
 }

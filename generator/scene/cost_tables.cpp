@@ -285,7 +285,9 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
         return row[key].get<double>();
       };
       if (!row.contains("configuration") || !row["configuration"].is_string()) fail(fmt::format("content[{}]: a row without a \"configuration\"", index));
-      ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), number("flicker_error"), std::nullopt};
+      // The temporal figure: the video error (10 - JOD) where the table has it, else the flicker error.
+      const double temporal = row.is_object() && row.contains("video_error") ? number("video_error") : number("flicker_error");
+      ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), temporal, std::nullopt};
       if (row.contains("against_none")) kept.against_none = parse_comparison(row["against_none"], source_name, index);
       if (row.contains("held_out")) measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
       measured.rows.push_back(std::move(kept));

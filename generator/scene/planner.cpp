@@ -542,7 +542,7 @@ std::string scene_list(const std::vector<std::string>& scenes) {
 
 // A configuration's comparison with no SAA, as the plan states it.
 std::string comparison_text(const decision::Comparison& c) {
-  return fmt::format("image error {}, flicker error {} against no SAA: {}", decision::describe(c.image), decision::describe(c.temporal),
+  return fmt::format("image error {}, video error {} against no SAA: {}", decision::describe(c.image), decision::describe(c.temporal),
                      decision::name(decision::outcome(c)));
 }
 
@@ -939,7 +939,7 @@ std::string advice_markdown(const Catalogue& catalogue) {
              : std::string("-");
   };
   std::string text =
-      "| content | path | prefer | plan | its image / flicker error against no SAA on saagen's scenes | on the held-out scenes |\n"
+      "| content | path | prefer | plan | its image / video error (10 - JOD) against no SAA on saagen's scenes | on the held-out scenes |\n"
       "|---|---|---|---|---|---|\n";
   for (const advice::Content content : {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
     for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {

@@ -28,8 +28,10 @@ std::string_view metric_outcome_name(MetricOutcome outcome) {
   return "tie";
 }
 
+const MetricDifference& temporal_metric(const PairedComparison& c) { return c.video ? *c.video : c.flicker; }
+
 std::string_view comparison_outcome_name(const PairedComparison& c) {
-  const MetricOutcome image = outcome_of(c.image), flicker = outcome_of(c.flicker);
+  const MetricOutcome image = outcome_of(c.image), flicker = outcome_of(temporal_metric(c));
   const bool better = image == MetricOutcome::better || flicker == MetricOutcome::better;
   const bool worse = image == MetricOutcome::worse || flicker == MetricOutcome::worse;
   if (better && worse) return "mixed";
@@ -48,7 +50,9 @@ decision::Difference decision_difference(const MetricDifference& d) {
 
 }  // namespace
 
-decision::Comparison to_decision(const PairedComparison& c) { return {decision_difference(c.image), decision_difference(c.flicker)}; }
+decision::Comparison to_decision(const PairedComparison& c) {
+  return {decision_difference(c.image), decision_difference(temporal_metric(c))};
+}
 
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");
@@ -68,7 +72,7 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
   std::map<Cell, const render::TradeRow*> baseline_rows;
   for (const render::TradeRow& row : table.rows)
     if (!row.fresnel && !row.taa && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
-  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b;
+  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b;
   for (const render::TradeRow& row : table.rows) {
     if (row.fresnel || row.taa || !keep(row) || render::configuration_id(row) != configuration) continue;
     const auto base = baseline_rows.find({row.scene, row.alpha});
@@ -77,11 +81,16 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
     image_b.push_back(base->second->series.image);
     flicker_a.push_back(row.series.flicker);
     flicker_b.push_back(base->second->series.flicker);
+    video_a.push_back(row.series.video);
+    video_b.push_back(base->second->series.video);
   }
-  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}};
+  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}, std::nullopt};
   if (c.cells == 0) return c;
   c.image = compare_series(image_a, image_b);
   c.flicker = compare_series(flicker_a, flicker_b);
+  const auto measured = [](const render::SeedSeries& series) { return !series[0].empty(); };
+  if (std::all_of(video_a.begin(), video_a.end(), measured) && std::all_of(video_b.begin(), video_b.end(), measured))
+    c.video = compare_series(video_a, video_b);
   return c;
 }
 

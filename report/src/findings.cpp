@@ -78,6 +78,7 @@ Metrics row_metrics(const render::TradeRow& row) {
   m.flicker_display = row.flicker_display;
   m.image_error = row.image_error.mean;
   m.flicker_error = row.flicker_error.mean;
+  m.video_error = row.video_error.mean;
   m.cases = 1;
   return m;
 }
@@ -88,9 +89,13 @@ namespace {
 constexpr double Metrics::*kMeanFields[] = {
     &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,       &Metrics::tde,
     &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display,
-    &Metrics::image_error,        &Metrics::flicker_error};
+    &Metrics::image_error,        &Metrics::flicker_error,   &Metrics::video_error};
 
 }  // namespace
+
+bool has_video_metric(const render::TradeTable& table) {
+  return std::any_of(table.rows.begin(), table.rows.end(), [](const render::TradeRow& row) { return !row.series.video[0].empty(); });
+}
 
 Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
   Metrics m;
@@ -179,10 +184,11 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 
 std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope) {
   std::vector<ContentRow> rows;
+  const bool video = has_video_metric(table);
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
     if (!m.cases || is_measurement_configuration(id)) continue;
-    ContentRow row{std::string(scope), id, m.image_error, m.flicker_error, std::nullopt};
+    ContentRow row{std::string(scope), id, m.image_error, video ? m.video_error : m.flicker_error, std::nullopt};
     // The decision reads the paired comparison with its intervals (comparison.hpp).
     if (id != "none") {
       const PairedComparison against_none = compare_configurations(table, id, "none", keep);
@@ -314,7 +320,9 @@ std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector
     v.recommendation = rec;
     v.none = mean_metrics(table, "none", content_filter(rec.content));
     std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::image_error);
-    std::tie(v.best_engine_motion, v.engine_motion) = best_engine(table, rec.content, &Metrics::flicker_error);
+    v.video = has_video_metric(table);
+    std::tie(v.best_engine_motion, v.engine_motion) =
+        best_engine(table, rec.content, v.video ? &Metrics::video_error : &Metrics::flicker_error);
     for (const VerdictMetric& metric : kVerdictMetrics) {
       const double ours = rec.metrics.*metric.value;
       if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});
@@ -394,10 +402,10 @@ std::vector<ContentTrade> content_trades(const render::TradeTable& table) {
 std::string format_frontier(const render::TradeTable& table) {
   std::string text =
       "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
-      "vega10 ISA ratio to no SAA, image / flicker error against no SAA with 95 % intervals:\n";
+      "vega10 ISA ratio to no SAA, image / video error (10 - JOD) against no SAA with 95 % intervals:\n";
   for (const ContentTrade& trade : content_trades(table)) {
     text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(trade.path), content_name(trade.content), "configuration",
-                        "cost", "image error", "flicker error", "against no SAA");
+                        "cost", "image error", "video error (10 - JOD)", "against no SAA");
     text += fmt::format("    {:<44} {:>5.3f}\n", "none", 1.0);
     for (const TradePoint& point : trade.points)
       if (point.frontier)

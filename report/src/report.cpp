@@ -432,8 +432,10 @@ std::string headline(const Verdict& v) {
   return fmt::format("{}, {}: {}; {}, {}", path_name(r.path), content_name(r.content), r.reason,
                      metric_comparison("image error", r.metrics.image_error, v.none.image_error, v.best_engine_image,
                                        v.engine_image.image_error, 4),
-                     metric_comparison("flicker error", r.metrics.flicker_error, v.none.flicker_error, v.best_engine_motion,
-                                       v.engine_motion.flicker_error, 5));
+                     v.video ? metric_comparison("video error (10 - JOD)", r.metrics.video_error, v.none.video_error, v.best_engine_motion,
+                                                 v.engine_motion.video_error, 3)
+                             : metric_comparison("flicker error", r.metrics.flicker_error, v.none.flicker_error, v.best_engine_motion,
+                                                 v.engine_motion.flicker_error, 5));
 }
 
 // "HDR-FLIP to engine-godot (0.0512 vs 0.0498)", per content-mean loss.
@@ -1107,6 +1109,15 @@ nlohmann::json decisions_json(const render::TradeTable& table) {
 
 namespace {
 
+// The clip's JOD against the first ground-truth seed (the clip `--frames` writes as the ground
+// truth); 10 without the video metric.
+double first_seed_jod(const render::TradeRow& row) {
+  const std::vector<double>& losses = row.series.video[0];
+  double sum = 0.0;
+  for (const double loss : losses) sum += loss;
+  return losses.empty() ? 10.0 : 10.0 - sum / static_cast<double>(losses.size());
+}
+
 nlohmann::json interval_json(const render::Interval& interval) {
   return {{"mean", interval.mean}, {"low", interval.low}, {"high", interval.high}};
 }
@@ -1162,6 +1173,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                      {"flicker_display", row.flicker_display},
                      {"image_error", interval_json(row.image_error)},
                      {"flicker_error", interval_json(row.flicker_error)},
+                     {"video_error", interval_json(row.video_error)},
+                     {"jod", first_seed_jod(row)},
                      {"flicker_excess", row.flicker_excess},
                      {"flicker_missing", row.flicker_missing}});
   }
@@ -1172,7 +1185,9 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                       {"fresnel", row.fresnel},
                       {"result", std::string(render::sanity_name(row.result))},
                       {"image_error", row.image_error},
-                      {"flicker_error", row.flicker_error}});
+                      {"flicker_error", row.flicker_error},
+                      {"video_error", row.video_error},
+                      {"jod", 10.0 - row.video_error}});
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
@@ -1190,7 +1205,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                             {"tde_lost_motion", m.tde_lost_motion},
                             {"flicker_display", m.flicker_display},
                             {"image_error", m.image_error},
-                            {"flicker_error", m.flicker_error}});
+                            {"flicker_error", m.flicker_error},
+                            {"video_error", m.video_error}});
       if (id == "none") continue;
       const PairedComparison against_none = compare_configurations(table, id, "none", keep);
       if (against_none.cells == 0) continue;
@@ -1210,6 +1226,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       comparisons.push_back({{"scope", scope}, {"name", name}, {"configuration", id}, {"baseline", "none"}, {"cells", c.cells},
                              {"image_error", difference_json(c.image)}, {"flicker_error", difference_json(c.flicker)},
                              {"outcome", std::string(comparison_outcome_name(c))}});
+      if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
     }
   };
   for (Content content : kContents)

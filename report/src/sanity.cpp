@@ -15,10 +15,15 @@ namespace {
 using Clip = std::vector<render::SeedSeries>;
 
 render::SeedSeries first_seed(const render::SeedSeries& series) { return {series[0], {}}; }
+// The verdict's temporal metric (comparison.hpp, temporal_metric): the video error where measured.
+render::SeedSeries first_seed_temporal(const render::AnimationSeries& series) {
+  return first_seed(series.video[0].empty() ? series.flicker : series.video);
+}
 
 struct SceneClips {
   std::vector<double> alphas;
-  std::map<std::string, std::pair<Clip, Clip>> clips;  // name -> (image, flicker), one per alpha
+  std::map<std::string, std::pair<Clip, Clip>> clips;  // name -> (image, temporal), one per alpha
+  std::map<std::string, Clip> flicker;                 // name -> flicker error: whether the ground truth moves
 };
 
 SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
@@ -26,9 +31,11 @@ SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
   for (const render::SanityRow& row : table.sanity) {
     if (row.scene != scene || row.fresnel) continue;
     if (std::find(out.alphas.begin(), out.alphas.end(), row.alpha) == out.alphas.end()) out.alphas.push_back(row.alpha);
-    auto& [image, flicker] = out.clips[std::string(render::sanity_name(row.result))];
+    const std::string name(render::sanity_name(row.result));
+    auto& [image, temporal] = out.clips[name];
     image.push_back(first_seed(row.series.image));
-    flicker.push_back(first_seed(row.series.flicker));
+    temporal.push_back(first_seed_temporal(row.series));
+    out.flicker[name].push_back(first_seed(row.series.flicker));
   }
   return out;
 }
@@ -44,7 +51,7 @@ std::optional<std::pair<Clip, Clip>> configuration_clips(const render::TradeTabl
         found = &row;
     if (!found) return std::nullopt;
     out.first.push_back(first_seed(found->series.image));
-    out.second.push_back(first_seed(found->series.flicker));
+    out.second.push_back(first_seed_temporal(found->series));
   }
   return out;
 }
@@ -74,15 +81,17 @@ bool is_degenerate(const std::string& name) {
   return std::find(std::begin(kDegenerate), std::end(kDegenerate), name) != std::end(kDegenerate);
 }
 
-// The verdict's choice on the scene among `candidates` against no SAA: the lowest image error
-// among those no worse than no SAA in either metric and better in at least one ("" if none).
+// The verdict's choice on the scene among `candidates` against no SAA (saagen/decision.hpp's
+// accuracy rule): among those no worse than no SAA in either metric and better in at least one,
+// the lowest temporal error, then image error ("" if none).
 std::string verdict_choice(const std::map<std::string, std::pair<Clip, Clip>>& candidates, const std::pair<Clip, Clip>& none) {
   std::string chosen;
-  double best = 0.0;
+  std::pair<double, double> best{0.0, 0.0};
   for (const auto& [name, clips] : candidates) {
-    const MetricDifference image = compare_series(clips.first, none.first), flicker = compare_series(clips.second, none.second);
-    if (!beats(image, flicker)) continue;
-    if (chosen.empty() || image.difference.mean < best) chosen = name, best = image.difference.mean;
+    const MetricDifference image = compare_series(clips.first, none.first), temporal = compare_series(clips.second, none.second);
+    if (!beats(image, temporal)) continue;
+    const std::pair<double, double> key{temporal.difference.mean, image.difference.mean};
+    if (chosen.empty() || key < best) chosen = name, best = key;
   }
   return chosen;
 }
@@ -99,8 +108,8 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
                       compare_series(clip.second, quarter.second)};
     out.entries.push_back(entry);
   }
-  const auto& frozen = clips.clips.at("frozen");
-  out.moves = worse(compare_series(frozen.second, clips.clips.at("other-seed").second));
+  out.moves = worse(compare_series(clips.flicker.at("frozen"), clips.flicker.at("other-seed")));
+  out.video = std::any_of(table.sanity.begin(), table.sanity.end(), [](const render::SanityRow& r) { return !r.series.video[0].empty(); });
   // best: nothing beats another seed; nothing made from fewer samples beats a quarter of them.
   for (const auto& [name, clip] : clips.clips) {
     for (const char* best : {"other-seed", "quarter-samples"}) {
@@ -108,7 +117,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
       const MetricDifference image = compare_series(clip.first, clips.clips.at(best).first);
       const MetricDifference flicker = compare_series(clip.second, clips.clips.at(best).second);
       if (beats(image, flicker))
-        out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, flicker {:+.4g})", render::scene_name(scene), name, best,
+        out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, temporal {:+.4g})", render::scene_name(scene), name, best,
                                            image.difference.mean, flicker.difference.mean));
     }
   }
@@ -120,7 +129,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
       const MetricDifference image = compare_series(clip.first, base.first), flicker = compare_series(clip.second, base.second);
       if (!worse(image) && !worse(flicker))
         out.failures.push_back(fmt::format("{}: {} is not worse than {} beyond the interval in either metric (image {:+.4g} "
-                                           "[{:+.4g}, {:+.4g}], flicker {:+.4g} [{:+.4g}, {:+.4g}])",
+                                           "[{:+.4g}, {:+.4g}], temporal {:+.4g} [{:+.4g}, {:+.4g}])",
                                            render::scene_name(scene), name, against, image.difference.mean, image.difference.low,
                                            image.difference.high, flicker.difference.mean, flicker.difference.low, flicker.difference.high));
     }
@@ -155,8 +164,10 @@ std::vector<SceneSanity> check_sanity(const render::TradeTable& table) {
 }
 
 std::string format_sanity(const std::vector<SceneSanity>& scenes) {
-  std::string text = fmt::format("{:<20} {:<16} {:>11} {:>13}  {:<22} {:<22}\n", "scene", "result", "image error", "flicker error",
-                                 "image vs quarter", "flicker vs quarter");
+  const bool video = std::any_of(scenes.begin(), scenes.end(), [](const SceneSanity& scene) { return scene.video; });
+  const std::string temporal = video ? "video error" : "flicker error";
+  std::string text = fmt::format("{:<20} {:<16} {:>11} {:>13}  {:<22} {:<22}\n", "scene", "result", "image error", temporal,
+                                 "image vs quarter", temporal + " vs quarter");
   const auto cell = [](const MetricDifference& d) {
     return fmt::format("{:+.4f} [{:+.4f},{:+.4f}]", d.difference.mean, d.difference.low, d.difference.high);
   };
@@ -185,9 +196,9 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
     for (const SanityEntry& e : scene.entries)
       entries.push_back({{"result", e.result},
                          {"image_error", e.image_error},
-                         {"flicker_error", e.flicker_error},
+                         {scene.video ? "video_error" : "flicker_error", e.flicker_error},
                          {"image_vs_quarter", difference(e.image_vs_quarter)},
-                         {"flicker_vs_quarter", difference(e.flicker_vs_quarter)}});
+                         {scene.video ? "video_vs_quarter" : "flicker_vs_quarter", difference(e.flicker_vs_quarter)}});
     out.push_back({{"scene", std::string(render::scene_name(scene.scene))},
                    {"moves", scene.moves},
                    {"entries", entries},

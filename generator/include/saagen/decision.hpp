@@ -15,10 +15,12 @@
 //     loses: the mirror; mixed: one better and one worse; ties: every interval spans 0.
 //   - Only usable candidates that beat no SAA, and cost at most the budget when one is set,
 //     are eligible; none eligible: no filter, with the reason.
-//   - accuracy: the eligible one with the largest improvement in the image metric (the most
-//     negative image mean), equal image means broken by the temporal mean, then by the order of
-//     the candidates. The image metric ranks because it is the one the viewer sees in every
-//     frame; the temporal metric only has to be no worse (beats).
+//   - accuracy: the eligible one with the largest improvement in the temporal metric (the most
+//     negative temporal mean), equal temporal means broken by the image mean, then by the order
+//     of the candidates. The temporal metric ranks because the bench's is the video metric,
+//     ColorVideoVDP's JOD of the animation (the field's perceptual video metric, Mantiuk et al.
+//     2024), so the verdict orders configurations as it does; the image metric only has to be no
+//     worse (beats).
 //   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and the more
 //     accurate of equals wins); never the most expensive form among the usable candidates unless
 //     it is the only usable candidate. A candidate without a known cost is never taken for speed.
@@ -45,7 +47,7 @@ std::string_view name(Outcome outcome);  // "beats", "ties", "loses", "mixed"
 
 struct Comparison {
   Difference image;     // image metric (today: mean LDR-FLIP)
-  Difference temporal;  // temporal metric (today: mean TDE)
+  Difference temporal;  // temporal metric (the bench's: 10 - ColorVideoVDP's JOD; older tables: TDE or flicker error)
 };
 Outcome outcome(const Comparison& comparison);
 

@@ -5,6 +5,7 @@
 
 #include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/parallel.hpp"
+#include "saagen/reference/render/video_vdp.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -356,13 +357,36 @@ SeedReference seed_reference(const Image& linear, const SeedReference* previous,
   return r;
 }
 
-// A clip's state across frames: its previous display frame, its per-seed series and the sums of
-// the flicker error's parts.
+// A clip's frames as the video metric reads them: the 8-bit display values that `saagen bench
+// --frames` writes (round(255 v), v clamped to [0, 1], NaN as 0), kept as bytes until compared.
+struct ClipFrames {
+  int width = 0, height = 0, frames = 0;
+  std::vector<std::uint8_t> bytes;
+
+  void append(const Image& display) {
+    if (frames == 0) width = display.width, height = display.height;
+    for (const float v : display.pixels) {
+      const float clamped = v >= 0.0f ? std::min(v, 1.0f) : 0.0f;  // NaN compares false: 0
+      bytes.push_back(static_cast<std::uint8_t>(std::lround(clamped * 255.0f)));
+    }
+    ++frames;
+  }
+  GreyClip grey() const {
+    GreyClip clip{width, height, frames, std::vector<float>(bytes.size())};
+    std::transform(bytes.begin(), bytes.end(), clip.pixels.begin(), [](std::uint8_t b) { return static_cast<float>(b) / 255.0f; });
+    return clip;
+  }
+};
+
+// A clip's state across frames: its previous display frame, its per-seed series, the sums of
+// the flicker error's parts and, for the video metric, its frames.
 struct ClipRecorder {
   AnimationSeries series;
   Image previous_display;
   double excess = 0.0, missing = 0.0;
   int flicker_values = 0;
+  ClipFrames frames;  // kept only with the video metric
+  bool keep_frames = false;
 
   // Frame t of the clip (linear radiance) against each seed's reference of that frame.
   void add(const Image& linear, std::span<const SeedReference> references) {
@@ -380,7 +404,24 @@ struct ClipRecorder {
       missing += e.missing;
       ++flicker_values;
     }
+    if (keep_frames) frames.append(display);
     previous_display = std::move(display);
+  }
+
+  // The video metric against each seed's ground-truth clip; the frames are dropped. The series
+  // is per frame, so that its interval sees the variation over the frames (animation_error.hpp):
+  // the frames' losses (10 - VideoVdpResult::frame_jod) shifted so that their mean is the clip's
+  // loss, 10 - JOD.
+  void finish_video(std::span<const VideoVdpReference> references) {
+    const GreyClip clip = frames.grey();
+    for (std::size_t s = 0; s < references.size(); ++s) {
+      const VideoVdpResult result = references[s].compare(clip);
+      double frame_mean = 0.0;
+      for (const double jod : result.frame_jod) frame_mean += jod / static_cast<double>(result.frame_jod.size());
+      series.video[s].clear();
+      for (const double jod : result.frame_jod) series.video[s].push_back((10.0 - jod) - (10.0 - frame_mean) + (10.0 - result.jod));
+    }
+    frames = ClipFrames();
   }
 };
 
@@ -389,6 +430,7 @@ void finish_verdict_metrics(const ClipRecorder& clip, TradeRow& row) {
   row.series = clip.series;
   row.image_error = series_interval(std::span<const SeedSeries>(&row.series.image, 1));
   row.flicker_error = series_interval(std::span<const SeedSeries>(&row.series.flicker, 1));
+  if (!row.series.video[0].empty()) row.video_error = series_interval(std::span<const SeedSeries>(&row.series.video, 1));
   row.flip_ldr_animation = row.series.image[0].empty() ? 0.0 : mean_interval(row.series.image[0], 0.0).mean;
   if (clip.flicker_values > 0) {
     row.flicker_excess = clip.excess / clip.flicker_values;
@@ -402,6 +444,9 @@ class SanityClips {
  public:
   // Frame t: `other` and `quarter` are the second seed's and the quarter-sample ground truth's
   // linear frames; `reference` the first seed's references.
+  explicit SanityClips(bool keep_frames = false) {
+    for (ClipRecorder& clip : clips_) clip.keep_frames = keep_frames;
+  }
   void add(const Image& other, const Image& quarter, const SeedReference& reference) {
     if (!first_) first_ = other;
     const Image& delayed = previous_ ? *previous_ : other;
@@ -411,11 +456,13 @@ class SanityClips {
     previous_ = other;
   }
   const Image& last(SanityResult result) const { return clips_[static_cast<std::size_t>(result)].previous_display; }
+  ClipRecorder& clip(SanityResult result) { return clips_[static_cast<std::size_t>(result)]; }
   SanityRow row(SceneId scene, const Material& material, SanityResult result) const {
     const ClipRecorder& clip = clips_[static_cast<std::size_t>(result)];
-    SanityRow row{scene, material.alpha, material.fresnel, result, 0.0, 0.0, clip.series};
+    SanityRow row{scene, material.alpha, material.fresnel, result, 0.0, 0.0, 0.0, clip.series};
     row.image_error = mean_interval(clip.series.image[0], 0.0).mean;
     row.flicker_error = mean_interval(clip.series.flicker[0], 0.0).mean;
+    if (!clip.series.video[0].empty()) row.video_error = mean_interval(clip.series.video[0], 0.0).mean;
     return row;
   }
 
@@ -423,6 +470,27 @@ class SanityClips {
   std::array<ClipRecorder, kSanityResults.size()> clips_;
   std::optional<Image> first_, previous_;
 };
+
+// The video metric of a scene's clips (ClipRecorder::finish_video): each material's reference
+// half once per seed, then every row's clip (rows r = m * n_keys + k) and the sanity results'
+// (against the first seed, as their other metrics), on the configured threads.
+void compare_clips(const TradeConfig& config, const std::vector<std::vector<ClipFrames>>& reference_clips, std::size_t n_keys,
+                   std::vector<ClipRecorder>& clips, std::vector<SanityClips>& sanity_clips) {
+  const std::size_t n_materials = reference_clips.size(), seeds = n_materials ? reference_clips[0].size() : 0;
+  std::vector<std::vector<VideoVdpReference>> references(n_materials);
+  std::vector<std::optional<VideoVdpReference>> built(n_materials * seeds);
+  parallel_rows(static_cast<int>(built.size()), config.threads, [&](int i) {
+    const std::size_t m = static_cast<std::size_t>(i) / seeds, seed = static_cast<std::size_t>(i) % seeds;
+    built[static_cast<std::size_t>(i)].emplace(reference_clips[m][seed].grey(), video_vdp_standard_fhd(), config.clip_frames_per_second);
+  });
+  for (std::size_t i = 0; i < built.size(); ++i) references[i / seeds].push_back(std::move(*built[i]));
+  parallel_rows(static_cast<int>(clips.size()), config.threads,
+                [&](int r) { clips[static_cast<std::size_t>(r)].finish_video(references[static_cast<std::size_t>(r) / n_keys]); });
+  parallel_rows(static_cast<int>(sanity_clips.size() * kSanityResults.size()), config.threads, [&](int i) {
+    const std::size_t m = static_cast<std::size_t>(i) / kSanityResults.size();
+    sanity_clips[m].clip(kSanityResults[static_cast<std::size_t>(i) % kSanityResults.size()]).finish_video(std::span(references[m]).first(1));
+  });
+}
 
 }  // namespace
 
@@ -624,9 +692,12 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
       const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
       const bool sanity = config.sanity && seeds == 2 && config.frames >= 2;
+      const bool video = config.video_metric;
       std::vector<ClipRecorder> clips(n_rows);
+      for (ClipRecorder& clip : clips) clip.keep_frames = video;
       std::vector<std::vector<SeedReference>> seed_references(n_materials);  // [m][seed], of the previous frame
-      std::vector<SanityClips> sanity_clips(sanity ? n_materials : 0);
+      std::vector<SanityClips> sanity_clips(sanity ? n_materials : 0, SanityClips(video));
+      std::vector<std::vector<ClipFrames>> reference_clips(video ? n_materials : 0, std::vector<ClipFrames>(seeds));  // [m][seed]
       const auto emit_frame = [&](std::size_t m, const std::string& clip, int frame, const Image& display) {
         if (on_frame) on_frame({id, materials[m].alpha, materials[m].fresnel, clip, frame, &display});
       };
@@ -660,6 +731,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           const Image& linear = seed == 0 ? frame_gt.images[m] : other_gt->images[m];
           const SeedReference* previous = frame > 0 ? &seed_references[m][seed] : nullptr;
           frame_references[m][seed] = seed_reference(linear, previous, config.flip);
+          if (video) reference_clips[m][seed].append(frame_references[m][seed].display);
         });
         for (std::size_t m = 0; m < n_materials; ++m) {
           const Image reference_tonemapped = tonemapped(frame_gt.images[m]);
@@ -690,6 +762,10 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         previous_reference = std::move(reference_frame);
         seed_references = std::move(frame_references);
         report(stage, base);
+      }
+      if (video) {
+        report("video metric " + name, base);
+        compare_clips(config, reference_clips, n_keys, clips, sanity_clips);
       }
       for (std::size_t m = 0; m < n_materials; ++m) {
         const double reference_std = mean_temporal_stddev(reference_stats[m]);

@@ -697,6 +697,7 @@ VideoVdpResult VideoVdpReference::compare(const GreyClip& test) const {
   VideoVdpResult result;
   result.quality = s.frames == 1 ? frame_q[0] * data::kParameters.image_int : pooling.frames(frame_q);
   result.jod = jod_of(result.quality);
+  for (const double q : frame_q) result.frame_jod.push_back(jod_of(q));
   return result;
 }
 

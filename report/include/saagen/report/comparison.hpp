@@ -12,6 +12,7 @@
 #include "saagen/reference/render/trade.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -38,7 +39,12 @@ struct PairedComparison {
   int cells = 0;  // 0: no cell has both (the comparison is empty)
   MetricDifference image;    // image_error (LDR-FLIP per frame of the animation)
   MetricDifference flicker;  // flicker_error (pooled change)
+  // video_error (10 - ColorVideoVDP's JOD of the clip), when every cell has it: the verdict's
+  // temporal metric (to_decision); without it the flicker error is.
+  std::optional<MetricDifference> video;
 };
+// The metric the verdict reads as temporal: the video metric where measured, else the flicker error.
+const MetricDifference& temporal_metric(const PairedComparison& comparison);
 
 using CellFilter = std::function<bool(const render::TradeRow&)>;
 // `configuration` against `baseline` over the non-Fresnel, non-TAA cells `keep` accepts (a row of
@@ -46,13 +52,13 @@ using CellFilter = std::function<bool(const render::TradeRow&)>;
 PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
 
-// The verdict's reading of a comparison: "beats" (better beyond the interval in one metric, worse
+// The verdict's reading of a comparison (image and temporal_metric): "beats" (better beyond the interval in one metric, worse
 // in none), "loses" (worse in one, better in none), "ties" (neither), "mixed" (better in one,
 // worse in the other: not a win).
 std::string_view comparison_outcome_name(const PairedComparison& comparison);
 
 // The comparison as saagen's decision reads it (saagen/decision.hpp): image = image_error's
-// difference, temporal = flicker_error's. A difference the ground truth limits
+// difference, temporal = temporal_metric()'s. A difference the ground truth limits
 // (MetricDifference::ground_truth_limited) is a tie whatever its interval: its interval is
 // widened to include 0.
 decision::Comparison to_decision(const PairedComparison& comparison);

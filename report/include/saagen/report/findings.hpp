@@ -55,8 +55,12 @@ struct Metrics {
   // The verdict's metrics (animation_error.hpp): LDR-FLIP per animation frame, pooled flicker error.
   double image_error = 0.0;
   double flicker_error = 0.0;
+  double video_error = 0.0;  // 10 - ColorVideoVDP's JOD (0 where the table has no video metric)
   std::size_t cases = 0;
 };
+// Whether the table's rows carry the video metric (TradeConfig::video_metric), which the verdict
+// then reads as its temporal metric (comparison.hpp, temporal_metric).
+bool has_video_metric(const render::TradeTable& table);
 // The metrics of one trade row (cases = 1).
 Metrics row_metrics(const render::TradeRow& row);
 
@@ -195,10 +199,11 @@ struct Verdict {
   Metrics none;
   std::string best_engine_image;  // the engine with the lowest mean image error ("" without engines)
   Metrics engine_image;
-  std::string best_engine_motion;  // the engine with the lowest mean flicker error
+  std::string best_engine_motion;  // the engine with the lowest mean temporal error (video error, else flicker error)
   Metrics engine_motion;
   std::vector<Loss> losses;                                                 // against none and, per metric, that metric's best engine
   std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
+  bool video = false;                                                       // the temporal metric is the video error (has_video_metric)
 };
 std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
 

@@ -12,8 +12,8 @@
 //                    made of shown on time (another seed), so the verdict never has them beat these;
 //   never wins       entered as configurations beside every measured one, no degenerate result
 //                    (blurred, frozen, no highlight) is the configuration the verdict would choose
-//                    against no SAA on the scene (the best image error among those that beat no
-//                    SAA). The delayed result is the converged animation one frame late: where it
+//                    against no SAA on the scene (the decision's accuracy rule: the best temporal
+//                    error, then image error, among those that beat no SAA). The delayed result is the converged animation one frame late: where it
 //                    is chosen, the table says so (its lag is measured by the rule above).
 // All comparisons are paired, frame by frame, against the first ground-truth seed (the results are
 // made from the second seed's frames and a third seed's).
@@ -39,6 +39,9 @@ struct SanityEntry {
 struct SceneSanity {
   render::SceneId scene = render::SceneId::sphere;
   bool moves = false;  // the ground truth moves (see the top of this file)
+  // The temporal metric is the video error, 10 - ColorVideoVDP's JOD (comparison.hpp,
+  // temporal_metric); else the flicker error. SanityEntry's flicker fields then hold it.
+  bool video = false;
   std::vector<SanityEntry> entries;
   std::vector<std::string> failures;  // one line per broken rule; empty: passed
   std::string verdict_choice;         // the verdict's choice with the degenerate results entered ("": no filter)

@@ -177,6 +177,11 @@ struct TradeConfig {
   int ground_truth_seeds = 2;
   // The sanity suite (TradeTable::sanity; needs frames >= 2 and two ground-truth seeds).
   bool sanity = true;
+  // The video metric (video_vdp.hpp): every clip's ColorVideoVDP JOD against each seed's ground
+  // truth clip, on the 8-bit display values `saagen bench --frames` writes, played at this rate
+  // (the animation has none of its own) on the display standard_fhd.
+  bool video_metric = true;
+  double clip_frames_per_second = 30.0;
 };
 
 // The per-frame values behind a row's verdict metrics, against each ground-truth seed ([0]: the
@@ -185,6 +190,9 @@ struct TradeConfig {
 struct AnimationSeries {
   SeedSeries image;
   SeedSeries flicker;
+  // The video metric's loss, 10 - JOD (ColorVideoVDP; lower is better, 0 = no visible
+  // difference): one value per seed for the whole clip, empty without the video metric.
+  SeedSeries video;
 };
 
 // The results of the sanity suite, whose ranking is known before any metric is computed: the
@@ -207,6 +215,7 @@ struct SanityRow {
   SanityResult result = SanityResult::other_seed;
   double image_error = 0.0;
   double flicker_error = 0.0;
+  double video_error = 0.0;  // 10 - JOD
   AnimationSeries series;  // [0] only
 };
 
@@ -250,6 +259,9 @@ struct TradeRow {
   // seed-to-seed spread): image_error (LDR-FLIP per frame) and flicker_error (pooled change).
   Interval image_error;
   Interval flicker_error;
+  // The video metric: 10 - the ColorVideoVDP JOD of the clip (video_vdp.hpp), mean over the
+  // seeds with its interval (the ground truth's spread); all 0 without it (TradeConfig).
+  Interval video_error;
   double flicker_excess = 0.0;   // flicker_error's parts, means over pairs and seeds
   double flicker_missing = 0.0;
   AnimationSeries series;

@@ -121,6 +121,9 @@ double video_vdp_pixels_per_degree(const VideoVdpDisplay& display);
 struct VideoVdpResult {
   double jod = 10.0;     // 10: no visible difference; lower is worse (may go below 0)
   double quality = 0.0;  // the pooled difference Q (step 8) the JOD maps
+  // Per frame: the JOD of a clip whose every frame differed as this one (step 9 of the frame's
+  // pooled Q, before the p-mean over the frames): how the difference varies over the clip.
+  std::vector<double> frame_jod;
 };
 
 // The reference clip's half of ColorVideoVDP, computed once; compare() any number of test clips
