@@ -66,8 +66,8 @@ TEST(SanitySuite, AnotherSeedHasTheLowestErrorsAndFrozenMissesAllTheMotion) {
   for (const render::SanityRow& frozen : table().sanity) {
     if (frozen.result != render::SanityResult::frozen) continue;
     for (const render::SanityRow& dark : table().sanity) {
-      if (dark.result == render::SanityResult::no_highlight && dark.scene == frozen.scene && dark.alpha == frozen.alpha)
-        EXPECT_NEAR(frozen.flicker_error, dark.flicker_error, 1e-12) << render::scene_name(frozen.scene);
+      if (dark.result != render::SanityResult::no_highlight || dark.scene != frozen.scene || dark.alpha != frozen.alpha) continue;
+      EXPECT_NEAR(frozen.flicker_error, dark.flicker_error, 1e-12) << render::scene_name(frozen.scene);
     }
   }
 }
