@@ -407,10 +407,6 @@ ReportCommands::ReportCommands(CLI::App& app) {
   bench_->add_option("--frames-filter", bench_frames_filter_,
                      "With --frames: only the clips whose configuration id (or sanity:NAME) matches this regular expression "
                      "(ECMAScript; e.g. '^(none|engine-.*|.*/tail|sanity:.*)$'); the ground truth's always");
-  bench_->add_flag("--jod", bench_jod_,
-                   "With --json: also measure every case's animation clip (the one --frames writes) against the animation's ground "
-                   "truth with ColorVideoVDP (display standard_fhd, 30 fps) and write its JOD (10: no visible difference) as the "
-                   "case's field jod");
   bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
   bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
   bench_->add_option("--isa-table", bench_isa_table_,
@@ -436,8 +432,6 @@ int ReportCommands::run_bench() const {
   if (bench_isa_only_ && !bench_report_.empty()) {
     throw Error(fmt::format("--report {}: --isa-only computes no trade table to report; drop --isa-only", bench_report_));
   }
-  if (bench_jod_ && bench_json_.empty())
-    throw Error("--jod writes each case's JOD into the --json table: add --json FILE (the table is written nowhere else)");
   check_isa_families(bench_common_.isa_families);
   auto costs = load_costs(bench_common_.cost_json);
   const render::TradeConfig config = configure(bench_common_, !bench_report_.empty());
@@ -459,26 +453,15 @@ int ReportCommands::run_bench() const {
   std::optional<report::ClipWriter> clips;
   if (!bench_frames_.empty()) clips.emplace(frames_directory(bench_frames_, bench_common_.force), frames_filter(bench_frames_filter_));
   std::cout << asset_summaries(config);
-  std::optional<report::ClipJods> jods;
-  if (bench_jod_) jods.emplace(config.threads);
   render::AnimationFrameFn on_frame;
-  if (clips || jods)
-    on_frame = [&](const render::AnimationFrame& frame) {
-      if (clips) clips->add(frame, config.frames);
-      if (jods) jods->add(frame, config.frames);
-    };
+  if (clips) on_frame = [&](const render::AnimationFrame& frame) { clips->add(frame, config.frames); };
   const render::TradeTable measured = measure_trade(config, on_frame);
   std::cout << ground_truth_line(measured);
-  if (jods) {
-    jods->finish();
-    std::cout << fmt::format("ColorVideoVDP (--jod): {} animation clips against their ground truths, {:.1f} ms per clip (wall time, one thread each)\n",
-                             jods->clips(), jods->clips() ? 1e3 * jods->compare_seconds() / static_cast<double>(jods->clips()) : 0.0);
-  }
   // The instrument before anything it ranks: the sanity suite (report/sanity.hpp).
   const std::vector<report::SceneSanity> sanity = report::check_sanity(measured);
   if (!sanity.empty())
-    std::cout << "\nSanity suite (results whose ranking is known; image error: LDR-FLIP per frame, flicker error: pooled change; "
-                 "docs/TEMPORAL.md):\n"
+    std::cout << "\nSanity suite (results whose ranking is known; image error: LDR-FLIP per frame, video error: 10 - ColorVideoVDP's "
+                 "JOD of the clip; docs/TEMPORAL.md):\n"
               << report::format_sanity(sanity);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
   const render::TradeTable table = report::without_taa_rows(measured);
@@ -496,7 +479,6 @@ int ReportCommands::run_bench() const {
     nlohmann::json json = report::trade_json(table, summary, cost_table);
     if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
     json["sanity_checks"] = report::sanity_json(sanity);
-    if (jods) jods->annotate(json);
     files.push_back({bench_json_, json.dump(2) + "\n"});
   }
   std::size_t clip_files = 0;

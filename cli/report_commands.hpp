@@ -70,7 +70,6 @@ class ReportCommands {
   std::string bench_isa_table_;  // write the ISA statistics as JSON (the planner's table format)
   std::string bench_frames_;         // also write the animation clips behind every row
   std::string bench_frames_filter_ = ".";  // the clips (configuration ids, sanity:NAME) written
-  bool bench_jod_ = false;                 // ColorVideoVDP's JOD of every animation clip, in --json
   std::string bench_report_;     // also write the report of the same table (as `report -o`)
 
   CLI::App* report_ = nullptr;

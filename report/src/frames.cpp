@@ -1,15 +1,12 @@
 // The animation clips behind the trade's rows (see frames.hpp).
 #include "saagen/report/frames.hpp"
 
-#include "saagen/reference/render/parallel.hpp"
-#include "saagen/reference/render/video_vdp.hpp"
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace saagen::report {
@@ -95,73 +92,6 @@ std::vector<OutputFile> ClipWriter::outputs() const {
   for (auto& [key, group] : groups) index["groups"].push_back(group);
   files.push_back({directory_ / "index.json", index.dump(1) + "\n"});
   return files;
-}
-
-ClipJods::ClipJods(int threads) : threads_(threads) {}
-ClipJods::~ClipJods() = default;
-
-void ClipJods::add(const render::AnimationFrame& frame, int frames) {
-  // A new scene: every clip of the previous one is complete.
-  if (scene_ && *scene_ != frame.scene) flush();
-  scene_ = frame.scene;
-  const render::Image& image = *frame.display;
-  const Group group{std::string(render::scene_name(frame.scene)), frame.alpha, frame.fresnel};
-  Pending& clip = partial_[{group, frame.clip}];
-  if (clip.bytes.empty()) clip = {group, frame.clip, image.width, image.height, std::vector<std::uint8_t>(image.size() * frames)};
-  const std::vector<std::uint8_t> bytes = clip_bytes(image);
-  std::copy(bytes.begin(), bytes.end(), clip.bytes.begin() + static_cast<std::ptrdiff_t>(frame.frame * image.size()));
-  if (frame.frame != frames - 1) return;
-  Pending done = std::move(clip);
-  partial_.erase({group, frame.clip});
-  if (done.clip != "ground-truth") {
-    complete_.push_back(std::move(done));
-    return;
-  }
-  render::GreyClip reference{done.width, done.height, frames, std::vector<float>(done.bytes.size())};
-  for (std::size_t i = 0; i < done.bytes.size(); ++i) reference.pixels[i] = done.bytes[i] / 255.0f;
-  references_[group] = std::make_shared<const render::VideoVdpReference>(reference, render::video_vdp_standard_fhd(), kClipFramesPerSecond);
-}
-
-void ClipJods::flush() {
-  std::vector<double> jods(complete_.size()), seconds(complete_.size());
-  std::vector<char> measured(complete_.size(), 0);  // not vector<bool>: written from several threads
-  render::parallel_rows(static_cast<int>(complete_.size()), threads_, [&](int i) {
-    const Pending& clip = complete_[static_cast<std::size_t>(i)];
-    const auto reference = references_.find(clip.group);
-    if (reference == references_.end()) return;  // no ground truth of its group: no JOD
-    const int frames = static_cast<int>(clip.bytes.size() / (static_cast<std::size_t>(clip.width) * clip.height));
-    render::GreyClip test{clip.width, clip.height, frames, std::vector<float>(clip.bytes.size())};
-    for (std::size_t p = 0; p < clip.bytes.size(); ++p) test.pixels[p] = clip.bytes[p] / 255.0f;
-    const auto start = std::chrono::steady_clock::now();
-    jods[i] = reference->second->compare(test).jod;
-    seconds[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    measured[i] = 1;
-  });
-  for (std::size_t i = 0; i < complete_.size(); ++i) {
-    if (!measured[i]) continue;
-    jods_[{complete_[i].group, complete_[i].clip}] = jods[i];
-    compare_seconds_ += seconds[i];
-  }
-  complete_.clear();
-  partial_.clear();
-  references_.clear();
-}
-
-void ClipJods::finish() { flush(); }
-
-std::size_t ClipJods::annotate(nlohmann::json& table) const {
-  std::size_t count = 0;
-  const auto set = [&](nlohmann::json& row, const std::string& clip) {
-    const auto it = jods_.find({{row.at("scene").get<std::string>(), row.at("alpha").get<double>(), row.at("fresnel").get<bool>()}, clip});
-    if (it == jods_.end()) return;
-    row["jod"] = it->second;
-    ++count;
-  };
-  if (table.contains("cases"))
-    for (nlohmann::json& row : table["cases"]) set(row, row.at("configuration").get<std::string>());
-  if (table.contains("sanity"))
-    for (nlohmann::json& row : table["sanity"]) set(row, "sanity:" + row.at("result").get<std::string>());
-  return count;
 }
 
 }  // namespace saagen::report

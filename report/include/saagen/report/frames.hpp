@@ -12,25 +12,16 @@
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/trade.hpp"
 
-#include <nlohmann/json_fwd.hpp>
-
 #include <cstdint>
 #include <map>
-#include <memory>
-#include <optional>
 #include <regex>
 #include <string>
-#include <tuple>
 #include <vector>
-
-namespace saagen::render {
-class VideoVdpReference;
-}
 
 namespace saagen::report {
 
-// The rate the clips are meant to be played at, which DIR/index.json states and `--jod` measures
-// at: the animation has none of its own.
+// The rate the clips are meant to be played at, which DIR/index.json states and the trade's video
+// metric measures at (render::TradeConfig::clip_frames_per_second): the animation has none of its own.
 inline constexpr int kClipFramesPerSecond = 30;
 
 // A frame's display values as the clips store them: round(255 v), v clamped to [0, 1] (NaN: 0).
@@ -57,44 +48,6 @@ class ClipWriter {
   std::filesystem::path directory_;
   std::regex keep_;
   std::map<std::string, Clip> clips_;  // by path
-};
-
-// `saagen bench --jod`: the ColorVideoVDP JOD (render/video_vdp.hpp; display standard_fhd,
-// kClipFramesPerSecond) of every clip against its ground truth, computed on exactly the 8-bit
-// clips ClipWriter writes. Frames arrive in the trade's order (render::AnimationFrameFn: a scene's
-// every frame before the next scene's; within a frame the ground truth's before the rows'), so a
-// scene's clips are complete when the next scene starts: they are compared then (on `threads`
-// threads), and their 8-bit frames and references dropped.
-class ClipJods {
- public:
-  explicit ClipJods(int threads);
-  ~ClipJods();
-  void add(const render::AnimationFrame& frame, int frames);
-  // Compares the clips still pending; call once the trade is measured.
-  void finish();
-  // Sets "jod" on each of trade_json's "cases" and "sanity" rows whose clip was measured; returns
-  // how many.
-  std::size_t annotate(nlohmann::json& table) const;
-  std::size_t clips() const { return jods_.size(); }
-  double compare_seconds() const { return compare_seconds_; }  // summed over the clips, one thread each
-
- private:
-  using Group = std::tuple<std::string, double, bool>;  // scene, alpha, Fresnel
-  struct Pending {
-    Group group;
-    std::string clip;
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> bytes;  // frames x height x width
-  };
-  void flush();
-
-  int threads_ = 0;
-  std::optional<render::SceneId> scene_;
-  std::map<std::pair<Group, std::string>, Pending> partial_;  // clips still receiving frames
-  std::vector<Pending> complete_;                             // clips awaiting their comparison
-  std::map<Group, std::shared_ptr<const render::VideoVdpReference>> references_;
-  std::map<std::pair<Group, std::string>, double> jods_;
-  double compare_seconds_ = 0.0;
 };
 
 }  // namespace saagen::report
