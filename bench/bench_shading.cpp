@@ -2,15 +2,17 @@
 // variant and target shades a bumpy sphere with the GGX specular term, filtered through the
 // variant's fragment wrapper, and is timed against the same shading without SAA in the same run.
 //
-//   build-bench/bench/bench_shading [--device NAME] [--quick] [--size N|WxH] [--repetitions N]
-//                                   [--csv FILE] [--json FILE]
+//   build-bench/bench/bench_shading [--device NAME] [--quick] [--size N|WxH] [--lights N]
+//                                   [--repetitions N] [--csv FILE] [--json FILE]
 //
 // Per target (glsl, hlsl) it prints: variant | median ms | median no-SAA ms of the rounds
 // interleaved with it | ratio variant / no SAA (median of the per-round ratios, with quartiles) |
 // ratio of the fastest rounds | optimized SPIR-V instructions of the variant shader minus the
 // no-SAA shader's | mean per-pixel change and change of the mean of the shaded value | the
 // paper's Table 2 ratios. Forward anisotropic variants shade with the matrix GGX BRDF, the others
-// (and no SAA) with the axis-aligned one, so their cost includes the matrix BRDF's.
+// (and no SAA) with the axis-aligned one, so their cost includes the matrix BRDF's. --lights N
+// shades N lights (shading_scene.hpp: a forward form filters and shades per light, a deferred form
+// computes its roughness once per pixel), each ratio against no SAA with the same N lights.
 //
 // It exits non-zero with one line on stderr when a shader fails to compile or validate, when a
 // shaded value on the sphere is non-finite or negative, or when a variant leaves the image
@@ -50,7 +52,7 @@ struct Failure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-using saagen::report::baseline_shade;
+using saagen::report::baseline_shading;
 using saagen::report::body_with;
 using saagen::report::paper_no_saa_ms;
 using saagen::report::parameter_buffer;
@@ -66,6 +68,7 @@ struct Options {
   std::uint32_t height = 1000;
   std::uint32_t repetitions = 15;
   std::uint32_t warmup = 2;
+  std::uint32_t lights = 1;
   bool quick = false;
   std::string csv_path;
   std::string json_path;
@@ -117,11 +120,14 @@ Options parse_options(int argc, char** argv) {
       size = parse_size(value());
     } else if (argument == "--repetitions") {
       repetitions = parse_count(argument, value(), 1, 1000);
+    } else if (argument == "--lights") {
+      options.lights = parse_count(argument, value(), 1, saagen::report::kMaxSceneLights);
     } else if (argument == "--help" || argument == "-h") {
       std::printf(
-          "usage: bench_shading [--device NAME] [--quick] [--size N|WxH] [--repetitions N] [--csv FILE] [--json FILE]\n"
+          "usage: bench_shading [--device NAME] [--quick] [--size N|WxH] [--lights N] [--repetitions N] [--csv FILE] [--json FILE]\n"
           "  --quick          smoke run: 128x128 pixels, 3 repetitions\n"
           "  --size N|WxH     framebuffer N x N or W x H, e.g. 3840x2160 (even; default 1000)\n"
+          "  --lights N       directional lights per pixel, 1 to 64 (default 1); ratios are to no SAA with as many\n"
           "  --repetitions N  timed rounds per variant (default 15), after two warm-up rounds\n"
           "  --csv FILE       the table as CSV; --json FILE the same as JSON\n");
       std::exit(0);
@@ -319,6 +325,7 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Opt
   document["width"] = options.width;
   document["height"] = options.height;
   document["repetitions"] = options.repetitions;
+  document["lights"] = options.lights;
   document["time_source"] = time_source;
   document["alpha"] = std::sqrt(scene_parameters(2, 2).front().values.front());
   nlohmann::json entries = nlohmann::json::array();
@@ -383,9 +390,9 @@ int run_bench(const Options& options) {
   const bool timestamps = info.timestamps_supported();
   const char* time_source = timestamps ? "GPU timestamp" : "host wall-clock";
   fmt::print(
-      "scene: bumpy GGX sphere, alpha 0.05, {}x{} px, {} warm-up + {} timed rounds per variant, "
+      "scene: bumpy GGX sphere, alpha 0.05, {}x{} px, {} light{}, {} warm-up + {} timed rounds per variant, "
       "baseline and variant interleaved (ABBA)\n",
-      options.width, options.height, options.warmup, options.repetitions);
+      options.width, options.height, options.lights, options.lights == 1 ? "" : "s", options.warmup, options.repetitions);
 
   const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
   {
@@ -414,9 +421,10 @@ int run_bench(const Options& options) {
     };
     const saagen::EmittedFile& brdf = file_of("brdf-ggx");
 
-    const Shader baseline_shader =
-        build_shader(target, "no-saa", brdf, brdf.content, body_with(baseline_shade, options.width, options.height), options.width);
-    Kernel baseline(context, baseline_shader, options.width, options.height, parameter_buffer(options.width, options.height));
+    const Shader baseline_shader = build_shader(target, "no-saa", brdf, brdf.content,
+                                                body_with(baseline_shading, options.width, options.height, options.lights), options.width);
+    const std::vector<float> parameters = parameter_buffer(options.width, options.height, options.lights);
+    Kernel baseline(context, baseline_shader, options.width, options.height, parameters);
     baseline.run_once(timestamps);
     const std::vector<float> baseline_image = baseline.output();
     const ImageStats baseline_stats = check_image(target, "no-saa", baseline_image);
@@ -426,8 +434,8 @@ int run_bench(const Options& options) {
     for (const VariantCase& variant : variant_cases()) {
       const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
       const Shader shader = build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
-                                         body_with(variant.shade, options.width, options.height), options.width);
-      Kernel kernel(context, shader, options.width, options.height, parameter_buffer(options.width, options.height));
+                                         body_with(variant.shading, options.width, options.height, options.lights), options.width);
+      Kernel kernel(context, shader, options.width, options.height, parameters);
 
       std::vector<double> variant_samples, baseline_samples, ratios;
       for (std::uint32_t round = 0; round < options.warmup + options.repetitions; ++round) {

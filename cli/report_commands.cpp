@@ -236,8 +236,8 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
 }
 
 // The ISA statistics of `families` ("" measures nothing), printed as tables to `out`, and
-// their forward-shading inverse-throughput ratios (first family, mean over GLSL and HLSL) added
-// to `costs` as the primary cost column.
+// their forward-shading inverse-throughput ratios (first family, one light as the trade renders,
+// mean over GLSL and HLSL) added to `costs` as the primary cost column.
 std::optional<nlohmann::json> measure_isa(const std::string& families, std::optional<report::CostTable>& costs, std::ostream& out) {
   if (families.empty()) return std::nullopt;
 #ifdef SAAGEN_HAVE_ISA_COST
@@ -254,7 +254,8 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
   std::map<std::string, std::vector<double>> ratios;
   std::vector<std::string> order;
   for (const report::IsaCostRow& row : table.rows) {
-    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline) continue;
+    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline || row.lights != 1)
+      continue;
     if (!ratios.count(row.variant)) order.push_back(row.variant);
     ratios[row.variant].push_back(row.inverse_throughput_ratio());
   }

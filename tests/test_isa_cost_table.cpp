@@ -2,6 +2,7 @@
 // forward-shading fragment shader of bench_shading and the deferred pass) on RADV's
 // null-hardware devices, and the planner's committed table (generator/data/isa_cost.json,
 // embedded) is that measurement for vega10 and navi21. Compilation only.
+#include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/report/isa_cost.hpp"
@@ -10,11 +11,13 @@
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -25,9 +28,10 @@ const saagen::report::IsaCostTable& measured() {
   return table;
 }
 
-const IsaCostRow* find_row(const std::string& family, const std::string& shader, const std::string& target, const std::string& variant) {
+const IsaCostRow* find_row(const std::string& family, const std::string& shader, const std::string& target, const std::string& variant,
+                           std::uint32_t lights = 1) {
   for (const IsaCostRow& row : measured().rows) {
-    if (row.family == family && row.shader == shader && row.target == target && row.variant == variant) return &row;
+    if (row.family == family && row.shader == shader && row.target == target && row.variant == variant && row.lights == lights) return &row;
   }
   return nullptr;
 }
@@ -38,13 +42,15 @@ TEST(IsaCost, EveryVariantAndPassIsMeasuredOnBothFamiliesAndTargets) {
   for (const std::string family : {"vega10", "navi21"}) {
     for (const std::string target : {"glsl", "hlsl"}) {
       for (const auto& variant : saagen::report::variant_cases()) {
-        const IsaCostRow* row = find_row(family, saagen::report::isa_forward_shader, target, variant.id);
-        ASSERT_NE(row, nullptr) << family << " " << target << " " << variant.id;
-        EXPECT_GT(row->statistics.instructions, 0);
-        EXPECT_GT(row->statistics.inverse_throughput, 0);
-        EXPECT_GE(row->statistics.subgroups_per_simd, 1);
-        // Filtering adds work to the same shader: never fewer instructions than without SAA.
-        EXPECT_GT(row->statistics.instructions, row->baseline.instructions) << family << " " << target << " " << variant.id;
+        for (const std::uint32_t lights : saagen::report::kMeasuredLightCounts) {
+          const IsaCostRow* row = find_row(family, saagen::report::isa_forward_shader, target, variant.id, lights);
+          ASSERT_NE(row, nullptr) << family << " " << target << " " << variant.id << " " << lights;
+          EXPECT_GT(row->statistics.instructions, 0);
+          EXPECT_GT(row->statistics.inverse_throughput, 0);
+          EXPECT_GE(row->statistics.subgroups_per_simd, 1);
+          // Filtering adds work to the same shader: never fewer instructions than without SAA.
+          EXPECT_GT(row->statistics.instructions, row->baseline.instructions) << family << " " << target << " " << variant.id;
+        }
       }
       for (const std::string& pass : passes) {
         const IsaCostRow* row = find_row(family, saagen::report::isa_deferred_shader, target, pass);
@@ -53,6 +59,59 @@ TEST(IsaCost, EveryVariantAndPassIsMeasuredOnBothFamiliesAndTargets) {
       }
     }
   }
+}
+
+// N lights: the per-pixel scene once, then each light in a block of its own (its direction, the
+// form's per-light statements, the sum); the one-light body has no block, so it is the scene the
+// committed one-light figures were measured on. Every light's direction is distinct.
+TEST(IsaCost, TheSceneShadesEveryLightOnceAndTheFormsWorkOncePerPixel) {
+  const auto count = [](const std::string& text, const std::string& what) {
+    std::size_t found = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++found;
+    return found;
+  };
+  const auto& cases = saagen::report::variant_cases();
+  const auto deferred = std::find_if(cases.begin(), cases.end(), [](const auto& c) { return c.id == "deferred-avg/tail"; });
+  const auto forward = std::find_if(cases.begin(), cases.end(), [](const auto& c) { return c.id == "forward-aniso-projected"; });
+  ASSERT_NE(deferred, cases.end());
+  ASSERT_NE(forward, cases.end());
+  for (const std::uint32_t lights : {1u, 4u, 16u}) {
+    const std::string deferred_body = saagen::report::body_with(deferred->shading, 64, 64, lights);
+    const std::string forward_body = saagen::report::body_with(forward->shading, 64, 64, lights);
+    EXPECT_EQ(count(deferred_body, "deferred_avg_fragment("), 1u) << lights;  // the G-buffer side: once per pixel
+    EXPECT_EQ(count(deferred_body, "ggx_brdf_filtered_axis("), lights);
+    EXPECT_EQ(count(forward_body, "forward_aniso_projected_fragment("), lights);  // per light: it filters the half vector
+    EXPECT_EQ(count(forward_body, "real3 light_ws = normalize("), lights);
+    EXPECT_EQ(count(forward_body, "radiance += value;"), lights == 1 ? 0u : lights);
+  }
+  std::set<std::vector<float>> directions;
+  for (const auto& parameter : saagen::report::scene_parameters(64, 64, 16))
+    if (parameter.name.rfind("light_direction", 0) == 0) directions.insert(parameter.values);
+  EXPECT_EQ(directions.size(), 16u);
+  // The one-light parameters keep their offsets: the 16-light buffer starts with the one-light one.
+  const std::vector<float> one = saagen::report::parameter_buffer(64, 64, 1), sixteen = saagen::report::parameter_buffer(64, 64, 16);
+  EXPECT_TRUE(std::equal(one.begin(), one.end() - 1, sixteen.begin()));
+  EXPECT_THROW((void)saagen::report::body_with(deferred->shading, 64, 64, 0), saagen::Error);
+}
+
+// Cost as work grows: a deferred form computes its roughness once per pixel, so its ratio to no
+// SAA (which shades the same lights) falls as the lights grow; a forward form filters per light.
+TEST(IsaCost, DeferredOverheadIsPaidOncePerPixelAndForwardPerLight) {
+  for (const std::string family : {"vega10", "navi21"}) {
+    const auto ratio = [&](const std::string& variant, std::uint32_t lights) {
+      const auto value = saagen::report::mean_inverse_throughput_ratio(measured(), family, variant, lights);
+      EXPECT_TRUE(value.has_value()) << variant << " " << lights;
+      return value.value_or(0.0);
+    };
+    EXPECT_LT(ratio("deferred-avg", 16), ratio("deferred-avg", 1)) << family;
+    EXPECT_LT(ratio("deferred-avg", 16) - 1.0, (ratio("deferred-avg", 1) - 1.0) / 4.0) << family;
+    EXPECT_GT(ratio("forward-axis-projected", 16), ratio("forward-axis-projected", 1)) << family;
+  }
+  const std::string text = saagen::report::format_light_count_table(measured());
+  EXPECT_NE(text.find("deferred-aniso/tail"), std::string::npos) << text;
+  EXPECT_NE(text.find(fmt::format("{:.3f}", *saagen::report::mean_inverse_throughput_ratio(measured(), "navi21", "deferred-avg", 16))),
+            std::string::npos)
+      << text;
 }
 
 // GFX9 runs wave64 on 4 SIMD16 units (an instruction issues over 4 cycles), RDNA2 wave32 on
@@ -85,6 +144,7 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
     const saagen::IsaRow& a = committed.rows[index];
     const saagen::IsaRow& b = expected.rows[index];
     EXPECT_EQ(a.family + a.shader + a.target.name() + a.variant, b.family + b.shader + b.target.name() + b.variant);
+    EXPECT_EQ(a.lights, b.lights) << b.family << " " << b.target.name() << " " << b.variant;
     EXPECT_EQ(a.instructions, b.instructions)
         << b.family << " " << b.target.name() << " " << b.variant
         << ": regenerate generator/data/isa_cost.json (saagen bench --isa vega10,navi21 --isa-only --isa-table FILE)";

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 namespace saagen {
@@ -71,12 +72,31 @@ std::optional<double> MeasuredTradeTable::isa_cost(std::string_view variant, std
   return mean_of(of_family, variant, &MeasuredTradeRow::isa_ratio);
 }
 
-std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant,
-                                              const std::vector<OutputTarget>& targets) const {
+std::vector<int> IsaTable::light_counts(std::string_view family) const {
+  std::vector<int> counts;
+  for (const IsaRow& row : rows)
+    if (row.family == family && row.shader == "forward" && std::find(counts.begin(), counts.end(), row.lights) == counts.end())
+      counts.push_back(row.lights);
+  std::sort(counts.begin(), counts.end());
+  return counts;
+}
+
+int IsaTable::cost_light_count(std::string_view family, int lights) const {
+  const std::vector<int> counts = light_counts(family);
+  if (counts.empty()) return lights;
+  int chosen = counts.front();
+  for (const int count : counts)
+    if (count <= lights) chosen = count;
+  return chosen;
+}
+
+std::optional<double> IsaTable::forward_ratio(std::string_view family, std::string_view variant, const std::vector<OutputTarget>& targets,
+                                              int lights) const {
+  const int measured = cost_light_count(family, lights);
   double sum = 0.0;
   int count = 0;
   for (const IsaRow& row : rows) {
-    if (row.family != family || row.shader != "forward" || row.variant != variant) continue;
+    if (row.family != family || row.shader != "forward" || row.variant != variant || row.lights != measured) continue;
     if (!targets.empty() && std::find(targets.begin(), targets.end(), row.target) == targets.end()) continue;
     sum += row.inverse_throughput_ratio;
     ++count;
@@ -128,6 +148,12 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     entry.inverse_throughput = number("inverse_throughput");
     entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
     if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    if (row.contains("lights")) {
+      const nlohmann::json& lights = row["lights"];
+      if (!lights.is_number_integer() || lights.get<std::int64_t>() < 1 || lights.get<std::int64_t>() > kMaxLights)
+        fail(fmt::format("a row's \"lights\" must be an integer from 1 to {} (absent: one light)", kMaxLights));
+      entry.lights = static_cast<int>(lights.get<std::int64_t>());
+    }
     table.rows.push_back(std::move(entry));
   }
   return table;

@@ -63,33 +63,35 @@ const EmittedFile& file_of(const std::vector<EmittedFile>& files, const std::str
 struct ForwardCase {
   std::string id;
   std::string file_variant;  // the catalogue variant whose emitted file defines the wrapper
-  std::string shade;
+  SceneShading shading;
 };
 
 std::vector<ForwardCase> forward_cases() {
   std::vector<ForwardCase> cases;
-  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shade});
-  cases.push_back({"deferred-max-tangent-free", "deferred-max",
-                   "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n"
-                   "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"});
+  for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shading});
+  cases.push_back({"deferred-max-tangent-free",
+                   "deferred-max",
+                   {"    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n",
+                    "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"}});
   return cases;
 }
 
-// The forward-shading rows of one family and target: the no-SAA baseline, then every variant.
-void measure_forward(const hx::IsaCompiler& compiler, const std::string& target, std::vector<IsaCostRow>& rows) {
+// The forward-shading rows of one family and target at one light count: the no-SAA baseline at
+// that count, then every variant.
+void measure_forward(const hx::IsaCompiler& compiler, const std::string& target, std::uint32_t lights, std::vector<IsaCostRow>& rows) {
   EmitOptions emit;
   emit.target = target;
   const std::vector<EmittedFile> files = emit_variants(Catalogue::builtin(), emit);
   const EmittedFile& brdf = file_of(files, "brdf-ggx");
   const auto baseline = compiler.fragment(
-      scene_shader_spirv(target, brdf.file_name, brdf.content, body_with(baseline_shade, scene_size, scene_size), scene_size),
+      scene_shader_spirv(target, brdf.file_name, brdf.content, body_with(baseline_shading, scene_size, scene_size, lights), scene_size),
       scene_layout());
-  rows.push_back({compiler.family(), isa_forward_shader, target, isa_baseline, baseline, baseline});
+  rows.push_back({compiler.family(), isa_forward_shader, target, isa_baseline, baseline, baseline, lights});
   for (const ForwardCase& item : forward_cases()) {
     const EmittedFile& file = file_of(files, item.file_variant);
     const auto spirv = scene_shader_spirv(target, file.file_name, file.content + "\n" + brdf.content,
-                                          body_with(item.shade, scene_size, scene_size), scene_size);
-    rows.push_back({compiler.family(), isa_forward_shader, target, item.id, compiler.fragment(spirv, scene_layout()), baseline});
+                                          body_with(item.shading, scene_size, scene_size, lights), scene_size);
+    rows.push_back({compiler.family(), isa_forward_shader, target, item.id, compiler.fragment(spirv, scene_layout()), baseline, lights});
   }
 }
 
@@ -149,23 +151,71 @@ IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const I
     if (progress) progress(fmt::format("ISA statistics on {}", family));
     const hx::IsaCompiler compiler(family);
     table.driver = compiler.driver_info();
-    for (const TargetSyntax* target : vulkan_targets()) measure_forward(compiler, target->name, table.rows);
+    for (const TargetSyntax* target : vulkan_targets())
+      for (const std::uint32_t lights : kMeasuredLightCounts) measure_forward(compiler, target->name, lights, table.rows);
     for (const TargetSyntax* target : vulkan_targets()) measure_deferred(compiler, target->name, passes, table.rows);
   }
   return table;
+}
+
+std::optional<double> mean_inverse_throughput_ratio(const IsaCostTable& table, std::string_view family, std::string_view variant,
+                                                    std::uint32_t lights) {
+  double sum = 0.0;
+  int count = 0;
+  for (const IsaCostRow& row : table.rows) {
+    if (row.family == family && row.shader == isa_forward_shader && row.variant == variant && row.lights == lights) {
+      sum += row.inverse_throughput_ratio();
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+std::string format_light_count_table(const IsaCostTable& table) {
+  std::vector<std::string> variants;
+  for (const IsaCostRow& row : table.rows) {
+    if (row.shader == isa_forward_shader && row.variant != isa_baseline &&
+        std::find(variants.begin(), variants.end(), row.variant) == variants.end())
+      variants.push_back(row.variant);
+  }
+  std::string text =
+      "\nCost as work grows: the forward-shading shader's inverse-throughput ratio to no SAA with the same lights (mean of GLSL\n"
+      "and HLSL). A forward form filters each light's half vector and shades it (N x (filter + BRDF)); a deferred form\n"
+      "computes its roughness (deferred-aniso: its tensor) once per pixel, as its G-buffer side does, then its lobe per light.\n";
+  text += fmt::format("{:<30}", "configuration");
+  for (const std::string& family : table.families) text += fmt::format(" | {:<8} {:>5} {:>5} {:>5}", family, "1", "4", "16");
+  text += "  paper Table 2\n";
+  for (const std::string& variant : variants) {
+    text += fmt::format("{:<30}", variant);
+    for (const std::string& family : table.families) {
+      text += fmt::format(" | {:<8}", "");
+      for (const std::uint32_t lights : kMeasuredLightCounts) {
+        const auto ratio = mean_inverse_throughput_ratio(table, family, variant, lights);
+        text += ratio ? fmt::format(" {:>5.3f}", *ratio) : fmt::format(" {:>5}", "-");
+      }
+    }
+    text += fmt::format("  {}\n", paper_ratio(variant));
+  }
+  return text +
+         "columns: lights per pixel; a configuration's feed (:geometric) and prefilter (+toksvig, +lean) change its inputs, not\n"
+         "its code: deferred-sum:geometric/tail costs what deferred-sum/tail does. The planner reads these ratios at a manifest's\n"
+         "`lights` (the nearest measured count not above it). paper: Table 2's measured time ratio, forward shading at 8K\n";
 }
 
 std::string format_isa_table(const IsaCostTable& table) {
   std::string text = fmt::format("GPU cost model: {}; {}\n", cost_model_name, table.driver);
   std::string family, shader;
   for (const IsaCostRow& row : table.rows) {
+    if (row.lights != 1) continue;  // the light-count table below has the other counts
     if (row.family != family || row.shader != shader) {
       family = row.family;
       shader = row.shader;
       const auto& stats = row.statistics;
-      text += fmt::format("\n{} ({}), {} shader{}\n", family, stats.device_name,
-                          shader == isa_forward_shader ? "forward-shading fragment" : "deferred-pass compute",
-                          shader == isa_forward_shader ? " (bench_shading's scene; no SAA = unfiltered GGX)" : " (no SAA = the copy pass)");
+      text += fmt::format(
+          "\n{} ({}), {} shader{}\n", family, stats.device_name,
+          shader == isa_forward_shader ? "forward-shading fragment" : "deferred-pass compute",
+          shader == isa_forward_shader ? " (bench_shading's scene, one light; no SAA = unfiltered GGX)" : " (no SAA = the copy pass)");
       text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n", "variant", "tgt", "instr", "VGPR",
                           "SGPR", "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency",
                           shader == isa_forward_shader ? "paper Table 2" : "");
@@ -179,26 +229,29 @@ std::string format_isa_table(const IsaCostTable& table) {
       "\ninstr: ISA instructions; waves: subgroups per SIMD (occupancy); latency, inv.thr: ACO's estimates in cycles per wave\n"
       "(inverse throughput: the cost at full occupancy); x ...: ratio to no SAA; paper: Tokuyoshi & Kaplanyan 2019 Table 2,\n"
       "measured time ratio on an RX Vega 56 (vega10) over Sponza, Bistro and San Miguel\n";
-  return text;
+  return text + format_light_count_table(table);
 }
 
 nlohmann::json isa_json(const IsaCostTable& table) {
   nlohmann::json rows = nlohmann::json::array();
   for (const IsaCostRow& row : table.rows) {
     const auto& s = row.statistics;
-    rows.push_back({{"family", row.family},
-                    {"shader", row.shader},
-                    {"target", row.target},
-                    {"variant", row.variant},
-                    {"instructions", s.instructions},
-                    {"vgprs", s.vgprs},
-                    {"sgprs", s.sgprs},
-                    {"subgroups_per_simd", s.subgroups_per_simd},
-                    {"latency", s.latency},
-                    {"inverse_throughput", s.inverse_throughput},
-                    {"instructions_ratio", row.instructions_ratio()},
-                    {"inverse_throughput_ratio", row.inverse_throughput_ratio()},
-                    {"latency_ratio", row.latency_ratio()}});
+    nlohmann::json entry = {{"family", row.family},
+                            {"shader", row.shader},
+                            {"target", row.target},
+                            {"variant", row.variant},
+                            {"instructions", s.instructions},
+                            {"vgprs", s.vgprs},
+                            {"sgprs", s.sgprs},
+                            {"subgroups_per_simd", s.subgroups_per_simd},
+                            {"latency", s.latency},
+                            {"inverse_throughput", s.inverse_throughput},
+                            {"instructions_ratio", row.instructions_ratio()},
+                            {"inverse_throughput_ratio", row.inverse_throughput_ratio()},
+                            {"latency_ratio", row.latency_ratio()}};
+    // The deferred pass runs once per pixel whatever the light count: its rows carry none.
+    if (row.shader == isa_forward_shader) entry["lights"] = row.lights;
+    rows.push_back(std::move(entry));
   }
   // "generator": the ownership tag, so that `--isa-table F` may rewrite its own file without --force.
   return {{"cost_model", cost_model_name},

@@ -10,6 +10,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace saagen::report {
 namespace {
 
@@ -20,10 +23,13 @@ namespace {
 // Camera at the origin looking down -z. A ray that misses the sphere uses the point of closest
 // approach instead of the hit point, so every quantity (and every derivative of it) stays finite
 // and the derivative intrinsics run in uniform control flow; such pixels store -1.
+//
+// {light}, {incident} and {half} hold the one light's statements (light_statements) in the
+// one-light body, the form every committed one-light figure was measured with; with more lights
+// they are empty and {shade} shades each light in a block of its own (lights_shade).
 constexpr const char* scene_body = R"(    real2 ndc = saagen_frag_coord * inverse_size * 2.0 - 1.0;
     real3 ray = normalize(real3(ndc.x * tan_half_fov * inverse_size.y / inverse_size.x, -ndc.y * tan_half_fov, -1.0));
-    real3 light_ws = normalize(light_direction);
-    real3 centre = real3(0.0, 0.0, -centre_distance);
+{light}    real3 centre = real3(0.0, 0.0, -centre_distance);
     real closest = dot(ray, centre);
     real discriminant = closest * closest - dot(centre, centre) + radius * radius;
     bool hit = discriminant > 0.0;
@@ -39,17 +45,65 @@ constexpr const char* scene_body = R"(    real2 ndc = saagen_frag_coord * invers
     tangent = tangent * rsqrt(max(dot(tangent, tangent), 1e-12));
     real3 bitangent = cross(normal, tangent);
     real3 view_ws = -ray;
-    real3 i_ts = real3(dot(light_ws, tangent), dot(light_ws, bitangent), dot(light_ws, normal));
-    real3 o_ts = real3(dot(view_ws, tangent), dot(view_ws, bitangent), dot(view_ws, normal));
-    real3 half_ts = normalize(i_ts + o_ts);
-    real2 alpha2 = real2(alpha2_material, alpha2_material);
+{incident}    real3 o_ts = real3(dot(view_ws, tangent), dot(view_ws, bitangent), dot(view_ws, normal));
+{half}    real2 alpha2 = real2(alpha2_material, alpha2_material);
 {shade}    SAAGEN_STORE(0, hit ? value : -1.0);
 )";
 
+// A light's statements at `indent`: its direction (light_ws) from the parameter `direction`, the
+// direction in the tangent frame (i_ts) and the half vector (half_ts).
+struct LightStatements {
+  std::string light, incident, half;
+};
+
+LightStatements light_statements(std::string_view direction, std::string_view indent) {
+  return {fmt::format("{}real3 light_ws = normalize({});\n", indent, direction),
+          fmt::format("{}real3 i_ts = real3(dot(light_ws, tangent), dot(light_ws, bitangent), dot(light_ws, normal));\n", indent),
+          fmt::format("{}real3 half_ts = normalize(i_ts + o_ts);\n", indent)};
+}
+
+// The parameter holding light `index`'s direction: the one-light scene's light_direction, then
+// light_direction_1, light_direction_2, ...
+std::string light_parameter(std::uint32_t index) { return index == 0 ? "light_direction" : fmt::format("light_direction_{}", index); }
+
+// Statements moved one level deeper (four more spaces on every line).
+std::string indented(const std::string& statements) {
+  std::string text;
+  std::size_t start = 0;
+  while (start < statements.size()) {
+    const std::size_t end = std::min(statements.find('\n', start), statements.size() - 1) + 1;
+    text += "    " + statements.substr(start, end - start);
+    start = end;
+  }
+  return text;
+}
+
+// {shade} with `lights` > 1: the per-pixel statements once, then each light in a block of its
+// own that adds the light's `value` to the sum the kernel stores.
+std::string lights_shade(const SceneShading& shading, std::uint32_t lights) {
+  std::string text = shading.per_pixel + "    real radiance = 0.0;\n";
+  for (std::uint32_t index = 0; index < lights; ++index) {
+    const LightStatements light = light_statements(light_parameter(index), "        ");
+    text += "    {\n" + light.light + light.incident + light.half + indented(shading.per_light) + "        radiance += value;\n    }\n";
+  }
+  return text + "    real value = radiance;\n";
+}
+
+// Unit directions towards light k = 1, 2, ... (light 0 is the one-light scene's), in front of the
+// sphere: a golden-ratio sequence in height and the golden angle around the view axis, so every
+// direction is distinct whatever the light count.
+std::array<float, 3> extra_light_direction(std::uint32_t index) {
+  constexpr double golden_ratio = 1.618033988749895, golden_angle = 2.399963229728653;  // pi (3 - sqrt(5))
+  const double fraction = static_cast<double>(index) * golden_ratio - std::floor(static_cast<double>(index) * golden_ratio);
+  const double z = 0.1 + 0.9 * fraction, ring = std::sqrt(1.0 - z * z), angle = golden_angle * static_cast<double>(index);
+  return {static_cast<float>(ring * std::cos(angle)), static_cast<float>(ring * std::sin(angle)), static_cast<float>(z)};
+}
+
 }  // namespace
 
-std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t height) {
-  return {
+std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t height, std::uint32_t lights) {
+  check_light_count(lights);
+  std::vector<SceneParameter> parameters = {
       {"real", "alpha2_material", {0.0025f}},  // alpha = 0.05
       {"real2", "inverse_size", {1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height)}},
       {"real", "tan_half_fov", {0.5f}},                     // about 53 degrees vertically
@@ -59,12 +113,18 @@ std::vector<SceneParameter> scene_parameters(std::uint32_t width, std::uint32_t 
       {"real", "bump_amplitude", {0.25f}},   // normal tilt (radians, roughly)
       {"real", "bump_frequency", {120.0f}},  // bumps of about 20 px at 1000 px: strong specular aliasing
   };
+  // The other lights' directions follow, so the one-light parameters keep their offsets.
+  for (std::uint32_t index = 1; index < lights; ++index) {
+    const std::array<float, 3> direction = extra_light_direction(index);
+    parameters.push_back({"real3", light_parameter(index), {direction.begin(), direction.end()}});
+  }
+  return parameters;
 }
 
 // The input buffer: every parameter's components, then a sentinel 1.0.
-std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height) {
+std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height, std::uint32_t lights) {
   std::vector<float> buffer;
-  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+  for (const SceneParameter& parameter : scene_parameters(width, height, lights)) {
     buffer.insert(buffer.end(), parameter.values.begin(), parameter.values.end());
   }
   buffer.push_back(1.0f);
@@ -76,10 +136,10 @@ std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height) {
 // internal edge of the clipped full-screen triangle (the diagonal x = y) use for derivatives; a
 // loaded sentinel detects such lanes, which then take the same values as literals. On a driver
 // that loads in helper lanes the literals are never selected.
-static std::string parameter_block(std::uint32_t width, std::uint32_t height) {
-  std::string block = fmt::format("    bool load_missing = SAAGEN_LOAD({}) == 0.0;\n", parameter_buffer(width, height).size() - 1);
+static std::string parameter_block(std::uint32_t width, std::uint32_t height, std::uint32_t lights) {
+  std::string block = fmt::format("    bool load_missing = SAAGEN_LOAD({}) == 0.0;\n", parameter_buffer(width, height, lights).size() - 1);
   std::uint32_t offset = 0;
-  for (const SceneParameter& parameter : scene_parameters(width, height)) {
+  for (const SceneParameter& parameter : scene_parameters(width, height, lights)) {
     std::string literal, loaded;
     for (std::size_t component = 0; component < parameter.values.size(); ++component) {
       literal += fmt::format("{}{:.9e}", component == 0 ? "" : ", ", parameter.values[component]);
@@ -94,8 +154,8 @@ static std::string parameter_block(std::uint32_t width, std::uint32_t height) {
   return block;
 }
 
-// Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF.
-const char* const baseline_shade = "    real value = ggx_brdf_axis(i_ts, o_ts, alpha2);\n";
+// Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF, per light.
+const SceneShading baseline_shading = {"", "    real value = ggx_brdf_axis(i_ts, o_ts, alpha2);\n"};
 
 // Paper, Table 2 (Tokuyoshi & Kaplanyan 2019): forward shading at 8K in ms, for Sponza, Bistro
 // and San Miguel, without SAA and with each variant. The bench shows the range of the ratios.
@@ -106,25 +166,27 @@ const std::array<double, 3> paper_no_saa_ms = {1.80, 2.06, 3.65};
 // (ggx_brdf_filtered_matrix, ggx_brdf_filtered_axis; docs/FILTERED_GGX.md).
 enum class Lobe { papers, tail };
 
-// A forward wrapper's statements: `filtered` is a roughness matrix (real3) or per-axis (real2).
-std::string forward_shade(std::string_view wrapper, bool matrix, Lobe lobe) {
+// A forward wrapper's statements, all per light (the wrapper filters the light's half vector):
+// `filtered` is a roughness matrix (real3) or per-axis (real2).
+SceneShading forward_shade(std::string_view wrapper, bool matrix, Lobe lobe) {
   const std::string filter = fmt::format("    {} filtered = {}_fragment(alpha2, half_ts);\n", matrix ? "real3" : "real2", wrapper);
   if (matrix) {
-    return filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n"
-                                          : "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n");
+    return {"", filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n"
+                                               : "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n")};
   }
-  return filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n"
-                                        : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n");
+  return {"", filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, filtered);\n"
+                                             : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n")};
 }
 
-// A deferred wrapper's statements: one filtered alpha^2 for both axes, from the G-buffer normal
-// (with the tangent frame and the pixel position where the variant reads them).
-std::string deferred_shade(std::string_view wrapper, bool tangent_frame, Lobe lobe) {
+// A deferred wrapper's statements: once per pixel (the G-buffer side) one filtered alpha^2 for
+// both axes, from the G-buffer normal (with the tangent frame and the pixel position where the
+// variant reads them); per light the lobe with it.
+SceneShading deferred_shade(std::string_view wrapper, bool tangent_frame, Lobe lobe) {
   const std::string_view arguments =
       tangent_frame ? "alpha2_material, normal, tangent, bitangent, saagen_frag_coord" : "alpha2_material, normal";
-  return fmt::format("    real filtered = {}_fragment({});\n", wrapper, arguments) +
-         (lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"
-                               : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n");
+  return {fmt::format("    real filtered = {}_fragment({});\n", wrapper, arguments),
+          lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"
+                               : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"};
 }
 
 const std::vector<VariantCase>& variant_cases() {
@@ -148,12 +210,12 @@ const std::vector<VariantCase>& variant_cases() {
       // deferred-aniso (docs/DEFERRED_KERNEL.md): the geometry pass's tensor and the lighting
       // pass's BRDF in one shader, as a forward renderer would run both.
       {"deferred-aniso/tail",
-       "    real3 tensor = deferred_aniso_fragment(normal);\n"
-       "    real value = deferred_aniso_brdf(light_ws, view_ws, normal, tensor, alpha2_material);\n",
+       {"    real3 tensor = deferred_aniso_fragment(normal);\n",
+        "    real value = deferred_aniso_brdf(light_ws, view_ws, normal, tensor, alpha2_material);\n"},
        std::nullopt},
       {"deferred-avg/mapped",
-       "    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n"
-       "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n",
+       {"    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n",
+        "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"},
        std::nullopt},
   };
   return cases;
@@ -164,10 +226,22 @@ std::string catalogue_variant(const VariantCase& variant) {
   return id.substr(0, id.find('/'));
 }
 
-std::string body_with(const std::string& shade, std::uint32_t width, std::uint32_t height) {
+void check_light_count(std::uint32_t lights) {
+  if (lights < 1 || lights > kMaxSceneLights)
+    throw Error(fmt::format("the shading scene takes 1 to {} lights, not {}", kMaxSceneLights, lights));
+}
+
+std::string body_with(const SceneShading& shading, std::uint32_t width, std::uint32_t height, std::uint32_t lights) {
+  check_light_count(lights);
+  const bool one = lights == 1;
+  const LightStatements light = one ? light_statements(light_parameter(0), "    ") : LightStatements{};
   std::string body = scene_body;
-  body.replace(body.find("{shade}"), 7, shade);
-  return parameter_block(width, height) + body;
+  const auto fill = [&](std::string_view slot, const std::string& text) { body.replace(body.find(slot), slot.size(), text); };
+  fill("{light}", light.light);
+  fill("{incident}", light.incident);
+  fill("{half}", light.half);
+  fill("{shade}", one ? shading.per_pixel + shading.per_light : lights_shade(shading, lights));
+  return parameter_block(width, height, lights) + body;
 }
 
 std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const std::string& file_name, const std::string& content,

@@ -79,16 +79,34 @@ struct IsaRow {
   OutputTarget target;  // a snippet of glsl or hlsl
   std::string variant;  // a variant id, a deferred pass id, or "no-saa"
   double instructions = 0, vgprs = 0, sgprs = 0, subgroups_per_simd = 0, latency = 0, inverse_throughput = 0;
-  double inverse_throughput_ratio = 1;  // over the same shader without SAA
+  double inverse_throughput_ratio = 1;  // over the same shader without SAA (with as many lights)
+  // "lights": the lights the forward shader shades, 1 to kMaxLights; a row without it (a
+  // table written before light counts were measured, or a deferred-pass row) is one light.
+  int lights = 1;
 };
+
+// The most lights per pixel a manifest's `lights` and a cost table's row take (the cost scene,
+// report/include/saagen/report/shading_scene.hpp, shades up to as many).
+inline constexpr int kMaxLights = 64;
 
 struct IsaTable {
   std::string source_name;
   std::string driver;  // the Mesa version that compiled it
   std::vector<std::string> families;
   std::vector<IsaRow> rows;
-  // Mean over `targets` (those the table has) of the forward shader's inverse-throughput ratio.
-  std::optional<double> forward_ratio(std::string_view family, std::string_view variant, const std::vector<OutputTarget>& targets) const;
+  // The light counts the forward shader of `family` was measured at, ascending (the committed
+  // table: 1, 4, 16); empty when the family has no forward rows.
+  std::vector<int> light_counts(std::string_view family) const;
+  // The measured light count a material shaded by `lights` lights is costed at: the largest
+  // measured count not above it (the smallest measured count when all are above). Not an
+  // interpolation: every cost the planner states is a figure the table holds at a count it
+  // names, and the ratio moves monotonically between measured counts (from the one-light ratio
+  // towards the per-light lobe's), so the light-count table bounds the error.
+  int cost_light_count(std::string_view family, int lights) const;
+  // Mean over `targets` (those the table has; all when empty) of the forward shader's
+  // inverse-throughput ratio at cost_light_count(family, lights).
+  std::optional<double> forward_ratio(std::string_view family, std::string_view variant, const std::vector<OutputTarget>& targets,
+                                      int lights = 1) const;
 };
 
 IsaTable parse_isa_table(std::string_view json_text, std::string_view source_name);

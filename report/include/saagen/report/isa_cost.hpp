@@ -2,7 +2,9 @@
 // real AMD GPU families on RADV's null-hardware devices (saagen/harness/isa.hpp), nothing
 // executed. Per family, variant and target (GLSL, HLSL) it reads, for the forward-shading
 // fragment shader bench_shading times (shading_scene.hpp) and for the deferred roughness-limiter
-// compute pass, the ISA statistics and their ratio to the same shader without SAA.
+// compute pass, the ISA statistics and their ratio to the same shader without SAA. The forward
+// shader is measured at every count of kMeasuredLightCounts (1, 4, 16 lights; shading_scene.hpp
+// says what a form pays per pixel and per light), each against no SAA at the same count.
 //
 // `saagen bench --isa FAMILY[,FAMILY]` prints format_isa_table() and puts isa_json() into the trade
 // JSON; the planner's committed table (generator/data/isa_cost.json) is isa_json() of vega10 and
@@ -11,9 +13,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <saagen/harness/isa.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace saagen::report {
@@ -30,6 +35,7 @@ struct IsaCostRow {
   std::string variant;  // a catalogue variant, a deferred pass id, or isa_baseline
   harness::IsaStatistics statistics;
   harness::IsaStatistics baseline;  // the same shader without SAA (the copy pass for deferred-pass)
+  std::uint32_t lights = 1;         // lights the forward shader shades (the deferred pass: always 1)
   double instructions_ratio() const { return statistics.instructions / baseline.instructions; }
   double inverse_throughput_ratio() const { return statistics.inverse_throughput / baseline.inverse_throughput; }
   double latency_ratio() const { return statistics.latency / baseline.latency; }
@@ -38,7 +44,7 @@ struct IsaCostRow {
 struct IsaCostTable {
   std::string driver;  // e.g. "Mesa 22.3.6"
   std::vector<std::string> families;
-  std::vector<IsaCostRow> rows;  // baselines first per family, shader and target
+  std::vector<IsaCostRow> rows;  // baselines first per family, shader, target and light count
 };
 
 // Families from "vega10,navi21": each must be one of harness::isa_families(). Throws
@@ -48,14 +54,22 @@ std::vector<std::string> parse_isa_families(const std::string& list);
 using IsaProgressFn = std::function<void(const std::string&)>;
 IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress = {});
 
+// The forward shader's inverse-throughput ratio of `variant` on `family` at `lights`, the mean
+// over the targets measured; nullopt when not measured.
+std::optional<double> mean_inverse_throughput_ratio(const IsaCostTable& table, std::string_view family, std::string_view variant,
+                                                    std::uint32_t lights);
+
 // Terminal tables: per family and shader, variant x target with instructions, VGPRs, SGPRs,
-// subgroups per SIMD, latency, inverse throughput and the ratios to no SAA, next to the paper's
-// Table 2 ratio (forward shader).
+// subgroups per SIMD, latency, inverse throughput and the ratios to no SAA at one light, next to
+// the paper's Table 2 ratio (forward shader); then format_light_count_table.
 std::string format_isa_table(const IsaCostTable& table);
+// The light-count table: every configuration x family x light count, its forward shader's
+// inverse-throughput ratio to no SAA with the same lights (mean_inverse_throughput_ratio).
+std::string format_light_count_table(const IsaCostTable& table);
 
 // {"cost_model": "...", "driver", "rows": [{"family", "shader", "target", "variant",
 // "instructions", "vgprs", "sgprs", "subgroups_per_simd", "latency", "inverse_throughput",
-// "instructions_ratio", "inverse_throughput_ratio", "latency_ratio"}]}
+// "instructions_ratio", "inverse_throughput_ratio", "latency_ratio", "lights" (forward rows)}]}
 nlohmann::json isa_json(const IsaCostTable& table);
 
 }  // namespace saagen::report
