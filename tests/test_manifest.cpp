@@ -8,6 +8,7 @@
 #include "saagen/scene/planner.hpp"
 #include "saagen/validate/validation.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -99,7 +100,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
-  EXPECT_EQ(car.position.line, 27);
+  EXPECT_EQ(car.position.line, 28);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -114,7 +115,19 @@ TEST(Manifest, DefaultsAndIntegerNumbers) {
   EXPECT_EQ(material.ndf, saagen::Ndf::ggx);
   EXPECT_EQ(material.precision, saagen::Precision::fp32);
   EXPECT_EQ(material.prefer, saagen::Preference::accuracy);
+  EXPECT_EQ(material.lights, 1);
+  EXPECT_EQ(manifest.lights, 1);
   EXPECT_FALSE(material.variant);
+}
+
+// `lights`: scene-wide, the default of every material, which may set its own.
+TEST(Manifest, LightsAreSceneWideAndPerMaterial) {
+  const saagen::Manifest manifest =
+      parse(header + "lights = 4\n" + forward_material + "[[material]]\nname = \"n\"\npath = \"deferred\"\nlights = 16\n");
+  EXPECT_EQ(manifest.lights, 4);
+  EXPECT_EQ(manifest.materials.at(0).lights, 4);
+  EXPECT_EQ(manifest.materials.at(1).lights, 16);
+  EXPECT_EQ(parse(header + forward_material + "lights = 64\n").materials.at(0).lights, 64);
 }
 
 struct BadCase {
@@ -129,20 +142,35 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
-const std::string material_keys = "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, variant, source";
+const std::string material_keys =
+    "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, lights, variant, source";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
 
+const std::string lights_rule =
+    "an integer from 1 to 64: the lights that shade a pixel, at which the shading cost over no SAA is read (the nearest measured "
+    "count not above it: 1, 4 or 16); default ";
+
 INSTANTIATE_TEST_SUITE_P(
     Errors, BadManifest,
     ::testing::Values(
+        BadCase{"lights_zero", header + forward_material + "lights = 0\n",
+                "scene.toml:5:10: key 'lights' of material 'm': 0 is outside [1, 64]; allowed: " + lights_rule +
+                    "the scene's `lights`, else 1"},
+        BadCase{"lights_too_many", header + "lights = 65\n" + forward_material,
+                "scene.toml:2:10: key 'lights': 65 is outside [1, 64]; allowed: " + lights_rule + "1"},
+        BadCase{"lights_fraction", header + forward_material + "lights = 4.5\n",
+                "scene.toml:5:10: key 'lights' of material 'm': must be an integer, got a floating-point number; allowed: " + lights_rule +
+                    "the scene's `lights`, else 1"},
+        BadCase{"lights_string", header + "lights = \"4\"\n" + forward_material,
+                "scene.toml:2:10: key 'lights': must be an integer, got a string; allowed: " + lights_rule + "1"},
         BadCase{"toml_syntax", header + "prefix = = 1\n",
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},
         BadCase{
             "unknown_top_key", header + "colour = 1\n" + forward_material,
-            "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, sigma2, kappa, glint_count, glint_lods, "
+            "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, lights, sigma2, kappa, glint_count, glint_lods, "
             "glint_alpha, glint_resolution, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, source, material"},
         BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
                 "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
@@ -428,6 +456,153 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   EXPECT_NE(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = \"a lot\"\n").find("budget"), std::string::npos);
 }
 
+// The ISA ratios at a material's light count, from the committed table (vega10, every target).
+double committed_ratio(const std::string& configuration, int lights) {
+  const auto ratio = saagen::committed_isa_costs().forward_ratio("vega10", configuration, {}, lights);
+  EXPECT_TRUE(ratio.has_value()) << configuration << " at " << lights << " lights";
+  return ratio.value_or(0.0);
+}
+
+// deferred-aniso evaluates a 2x2 matrix lobe per light, so its cost over no SAA grows with the
+// lights: a budget between its one-light and 16-light ratios fits at one light and not at 16,
+// and the plan names the light count the cost was read at.
+TEST(Planner, BudgetIsReadAtTheMaterialsLightCount) {
+  const double one = committed_ratio("deferred-aniso/tail", 1), four = committed_ratio("deferred-aniso/tail", 4),
+               sixteen = committed_ratio("deferred-aniso/tail", 16);
+  ASSERT_LT(one, four);
+  ASSERT_LT(four, sixteen);
+  const auto plan_of = [](double budget, const std::string& lights) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n" +
+                                                          fmt::format("budget = {:.6f}\n", budget) + lights))
+        .materials.at(0);
+  };
+  const double between = (one + sixteen) / 2;
+  const auto at_one = plan_of(between, "");
+  EXPECT_EQ(at_one.variant, "deferred-aniso") << at_one.reason;
+  EXPECT_EQ(at_one.cost_lights, 1);
+  EXPECT_NE(at_one.reason.find(fmt::format("{:.3g}x no SAA's shading cost at 1 light", one)), std::string::npos) << at_one.reason;
+  const auto at_sixteen = plan_of(between, "lights = 16\n");
+  EXPECT_EQ(at_sixteen.variant, "none") << at_sixteen.reason;
+  EXPECT_NE(at_sixteen.reason.find("deferred-aniso/tail (image"), std::string::npos) << at_sixteen.reason;
+  EXPECT_NE(at_sixteen.reason.find(fmt::format("{:.3g}x no SAA's shading cost at 16 lights", sixteen)), std::string::npos)
+      << at_sixteen.reason;
+  EXPECT_NE(at_sixteen.reason.find("costs more than the budget"), std::string::npos) << at_sixteen.reason;
+  // Between measured counts the cost is the nearest measured count's not above: 15 lights read
+  // the 4-light ratio, which a budget between the 4- and 16-light ratios admits.
+  const auto at_fifteen = plan_of((four + sixteen) / 2, "lights = 15\n");
+  EXPECT_EQ(at_fifteen.variant, "deferred-aniso") << at_fifteen.reason;
+  EXPECT_EQ(at_fifteen.lights, 15);
+  EXPECT_EQ(at_fifteen.cost_lights, 4);
+  EXPECT_NE(at_fifteen.reason.find("at 4 lights (the nearest measured count not above 15)"), std::string::npos) << at_fifteen.reason;
+}
+
+// The papers' deferred forms compute the roughness once per pixel and then shade with the plain
+// BRDF: their overhead shrinks as the lights grow. Every lobe saagen shades with costs per light
+// (the forward forms filter per light too), so theirs grows.
+TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
+  for (const std::string per_pixel : {"deferred-avg", "deferred-sum"}) {
+    EXPECT_LT(committed_ratio(per_pixel, 4), committed_ratio(per_pixel, 1)) << per_pixel;
+    EXPECT_LT(committed_ratio(per_pixel, 16), committed_ratio(per_pixel, 4)) << per_pixel;
+  }
+  for (const std::string per_light : {"forward-aniso-projected", "forward-aniso-projected/tail", "forward-axis-projected/tail",
+                                      "deferred-avg/tail", "deferred-sum/tail", "deferred-aniso/tail"}) {
+    EXPECT_GT(committed_ratio(per_light, 4), committed_ratio(per_light, 1)) << per_light;
+    EXPECT_GT(committed_ratio(per_light, 16), committed_ratio(per_light, 4)) << per_light;
+  }
+  // A table without light counts (written before they were measured) is one light's.
+  const saagen::IsaTable old = saagen::parse_isa_table(
+      R"({"families": ["vega10"], "rows": [{"family": "vega10", "shader": "forward", "target": "glsl", "variant": "deferred-avg",
+          "instructions": 1, "vgprs": 1, "sgprs": 1, "subgroups_per_simd": 1, "latency": 1, "inverse_throughput": 1,
+          "inverse_throughput_ratio": 1.25}]})",
+      "old.json");
+  EXPECT_EQ(old.rows.at(0).lights, 1);
+  EXPECT_EQ(old.cost_light_count("vega10", 16), 1);
+  EXPECT_EQ(old.forward_ratio("vega10", "deferred-avg", {}, 16), 1.25);
+  const saagen::IsaTable& committed = saagen::committed_isa_costs();
+  EXPECT_EQ(committed.light_counts("vega10"), (std::vector<int>{1, 4, 16}));
+  EXPECT_EQ(committed.cost_light_count("vega10", 3), 1);
+  EXPECT_EQ(committed.cost_light_count("vega10", 4), 4);
+  EXPECT_EQ(committed.cost_light_count("vega10", 64), 16);
+  const auto bad_lights = [](const std::string& value) -> std::string {
+    try {
+      (void)saagen::parse_isa_table(R"({"families": ["vega10"], "rows": [{"family": "vega10", "shader": "forward", "target": "glsl",
+          "variant": "deferred-avg", "instructions": 1, "vgprs": 1, "sgprs": 1, "subgroups_per_simd": 1, "latency": 1,
+          "inverse_throughput": 1, "inverse_throughput_ratio": 1.25, "lights": )" + value + "}]}",
+                                    "bad.json");
+    } catch (const saagen::Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(bad_lights("0").find("bad.json: a row's \"lights\" must be an integer from 1 to 64"), std::string::npos) << bad_lights("0");
+  EXPECT_NE(bad_lights("2.5").find("must be an integer"), std::string::npos) << bad_lights("2.5");
+  EXPECT_EQ(bad_lights("64"), "");
+}
+
+// prefer = "speed" at any light count: the decision's costs are the committed ratios at that
+// count, and it never takes the most expensive form the material can use (unless it is the only
+// one), on every content type and path of saagen's committed measurement.
+TEST(Planner, SpeedAtEveryLightCountNeverTakesTheDearestForm) {
+  int decided = 0;
+  for (const saagen::advice::Content content : {saagen::advice::Content::curved, saagen::advice::Content::normal_mapped,
+                                                saagen::advice::Content::bumps, saagen::advice::Content::clearcoat}) {
+    const saagen::AdviceMeasurement* measured = saagen::committed_advice().find(saagen::advice::table_content(content));
+    if (!measured) continue;
+    for (const saagen::RenderPath path : {saagen::RenderPath::forward, saagen::RenderPath::deferred}) {
+      for (const int lights : {1, 4, 16, 40}) {
+        saagen::Material material = saagen::reference_material(path, content);
+        material.prefer = saagen::Preference::speed;
+        material.lights = lights;
+        const saagen::MaterialDecision made = saagen::decide_material(Catalogue::builtin(), material, "", measured->rows);
+        std::optional<double> dearest;
+        int usable = 0;
+        for (const saagen::decision::Candidate& candidate : made.candidates) {
+          if (candidate.configuration == "deferred-aniso/tail") {
+            EXPECT_EQ(candidate.cost_ratio, committed_ratio("deferred-aniso/tail", lights)) << lights;
+          }
+          if (!candidate.usable) continue;
+          ++usable;
+          if (candidate.cost_ratio && (!dearest || *candidate.cost_ratio > *dearest)) dearest = candidate.cost_ratio;
+        }
+        if (!made.decision.chosen || usable == 1) continue;
+        ++decided;
+        const saagen::decision::Candidate& chosen = made.candidates[*made.decision.chosen];
+        ASSERT_TRUE(chosen.cost_ratio.has_value());
+        EXPECT_LT(*chosen.cost_ratio * (1.0 + saagen::decision::kCostTieTolerance), *dearest)
+            << saagen::advice::name(content) << " " << saagen::to_string(path) << " at " << lights << ": " << made.decision.reason;
+        const std::string words = lights == 1 ? "at 1 light" : fmt::format("at {} lights", std::min(lights, 16));
+        EXPECT_NE(made.decision.reason.find(words), std::string::npos)
+            << made.decision.reason;
+      }
+    }
+  }
+  EXPECT_GE(decided, 8);  // normal-mapped and bump content on both paths at every count
+}
+
+// The rules' speed ranking reads the light count too, and a trade table's ISA figures (one
+// light, as `saagen bench` measures) serve only materials costed at one light.
+TEST(Planner, RuleSpeedRankingStatesItsLightCount) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"variant": "deferred-sum", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.0},
+      {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5}]})",
+                                                                     "bench.json");
+  const auto plan_of = [&](const std::string& lights) {
+    return saagen::plan_scene(Catalogue::builtin(),
+                              parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n" +
+                                    lights),
+                              &table)
+        .materials.at(0);
+  };
+  const auto one = plan_of("");
+  EXPECT_EQ(one.variant, "deferred-sum") << one.reason;
+  EXPECT_NE(one.reason.find("bench.json (at 1 light)"), std::string::npos) << one.reason;
+  const auto sixteen = plan_of("lights = 16\n");
+  EXPECT_NE(sixteen.reason.find("generator/data/isa_cost.json (vega10, Mesa"), std::string::npos) << sixteen.reason;
+  EXPECT_NE(sixteen.reason.find("at 16 lights"), std::string::npos) << sixteen.reason;
+  EXPECT_NE(sixteen.reason.find(fmt::format("deferred-avg {:.4g}", committed_ratio("deferred-avg", 16))), std::string::npos)
+      << sixteen.reason;
+}
+
 // The goal of the table-free advice, on every content type, path and preference: what a plan
 // gives beats no SAA beyond its interval on saagen's scenes and does not lose to it (in either
 // metric) on the held-out scenes; where it gives nothing, the decision found nothing there or its
@@ -582,7 +757,7 @@ TEST(Planner, WithATableAccuracyTakesTheBestOnTheMaterialsContent) {
   EXPECT_EQ(forward.variant, "forward-aniso-projected");
   EXPECT_EQ(forward.rule, "trade table");
   EXPECT_NE(forward.reason.find("saagen's decision on curved content in content.json: forward-aniso-projected/tail (image -0.0055, "
-                                "temporal -0.00252 against no SAA; 1.38x no SAA's shading cost) beats no SAA: the largest temporal "
+                                "temporal -0.00252 against no SAA; 1.38x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
                                 "improvement of the 2 usable configurations that do; deferred-aniso (trade table) is not it"),
             std::string::npos)
       << forward.reason;

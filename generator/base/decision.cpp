@@ -22,11 +22,14 @@ bool within_budget(const Candidate& c, const Preference& p) { return !p.budget |
 // "1 usable configuration", "3 usable configurations".
 std::string usable_count(std::size_t n) { return fmt::format("{} usable configuration{}", n, n == 1 ? "" : "s"); }
 
-std::string cost_text(const Candidate& c) { return c.cost_ratio ? fmt::format("{:.3g}x no SAA's shading cost", *c.cost_ratio) : "cost unknown"; }
+std::string cost_text(const Candidate& c, const Preference& p) {
+  if (!c.cost_ratio) return "cost unknown";
+  return fmt::format("{:.3g}x no SAA's shading cost{}", *c.cost_ratio, p.cost_basis.empty() ? "" : " " + p.cost_basis);
+}
 
-std::string figures(const Candidate& c) {
+std::string figures(const Candidate& c, const Preference& p) {
   return fmt::format("{} (image {}, temporal {} against no SAA; {})", c.configuration, describe(c.against_none.image),
-                     describe(c.against_none.temporal), cost_text(c));
+                     describe(c.against_none.temporal), cost_text(c, p));
 }
 
 // The largest known cost among the usable candidates, and how many candidates are usable.
@@ -79,10 +82,10 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   if (beating.empty()) {
     const std::size_t best = *most_accurate(candidates, tried);
     return fmt::format("no filter: none of the {} beats no SAA; the lowest temporal error, {}, {}", usable_count(usable),
-                       figures(candidates[best]), name(outcomes[best]));
+                       figures(candidates[best], preference), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : beating) listed.push_back(figures(candidates[i]));
+  for (std::size_t i : beating) listed.push_back(figures(candidates[i], preference));
   if (preference.budget) {
     bool any_in_budget = false;
     for (std::size_t i : beating) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
@@ -141,7 +144,7 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
     return decision;
   }
   const Candidate& chosen = candidates[*decision.chosen];
-  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen),
+  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen, preference),
                                 speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
   return decision;

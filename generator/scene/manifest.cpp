@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 
@@ -28,6 +29,14 @@ namespace saagen {
 namespace {
 
 constexpr const char* kSourceRule = "a string: where the scene or material comes from (informational)";
+
+// `lights`, scene-wide and per material.
+std::string lights_rule(std::string_view default_text) {
+  return fmt::format(
+      "an integer from 1 to {}: the lights that shade a pixel, at which the shading cost over no SAA is read (the nearest "
+      "measured count not above it: 1, 4 or 16); default {}",
+      kMaxLights, default_text);
+}
 
 // A value as it may be shown in a one-line message: printable ASCII, at most 40 characters.
 std::string show(std::string_view text, std::size_t limit = 40) {
@@ -145,6 +154,16 @@ class TableReader {
     return node->as_boolean()->get();
   }
 
+  // An integer in [low, high]: a floating-point value (4.0 included) is the wrong type.
+  std::optional<int> integer(std::string_view key, int low, int high, const std::string& allowed) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_integer()) wrong_type(key, *node, allowed);
+    const std::int64_t value = node->as_integer()->get();
+    if (value < low || value > high) fail_key(key, fmt::format("{} is outside [{}, {}]", value, low, high), allowed);
+    return static_cast<int>(value);
+  }
+
   std::optional<double> number(std::string_view key, const std::string& allowed) const {
     const toml::node* node = find(key);
     if (!node) return std::nullopt;
@@ -159,6 +178,7 @@ class TableReader {
   static std::string allowed_type_of(const std::string& allowed) {
     if (allowed == "true, false") return "a boolean";
     if (allowed.rfind("a number", 0) == 0) return "a number";
+    if (allowed.rfind("an integer", 0) == 0) return "an integer";
     if (allowed.rfind("an array of tables", 0) == 0) return "an array of tables";
     if (allowed.rfind("an array", 0) == 0) return "an array";
     return "a string";
@@ -326,6 +346,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
     if (!(*budget >= 1.0 && *budget <= 16.0)) reader.fail_key("budget", fmt::format("{} is outside [1, 16]", *budget), budget_rule);
     material.budget = *budget;
   }
+  material.lights = reader.integer("lights", 1, kMaxLights, lights_rule("the scene's `lights`, else 1")).value_or(manifest.lights);
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
@@ -562,7 +583,7 @@ std::string Manifest::where(SourcePosition position) const {
 
 const std::vector<std::string>& manifest_keys() {
   static const std::vector<std::string> keys = [] {
-    std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family"};
+    std::vector<std::string> names = {"name", "targets", "prefix", "gpu_family", "lights"};
     for (const Constant& constant : glints::catalogue().constants()) {  // the SAA options, then the glint options
       if (!constant.option.empty()) names.push_back(constant.option);
     }
@@ -573,8 +594,9 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",    "path",   "anisotropic", "tangents", "ndf",    "normal_maps",
-                                                "content", "glints", "precision",   "prefer",   "budget",  "variant", "source"};
+  static const std::vector<std::string> keys = {"name",      "path",   "anisotropic", "tangents", "ndf",
+                                                "normal_maps", "content", "glints",    "precision", "prefer",
+                                                "budget",    "lights", "variant",     "source"};
   return keys;
 }
 
@@ -618,6 +640,7 @@ Manifest parse_manifest(std::string_view text, std::string_view source_name, con
   }
 
   if (const auto family = top.choice("gpu_family", committed_isa_costs().families)) manifest.gpu_family = *family;
+  manifest.lights = top.integer("lights", 1, kMaxLights, lights_rule("1")).value_or(1);
   const std::string import_rule = "identifiers joined by '::' (e.g. \"saagen::scene\"), for a module target (wgsl) in targets";
   if (const auto path = top.string("import_path", import_rule)) {
     try {

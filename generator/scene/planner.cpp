@@ -688,8 +688,9 @@ bool usable(const Material& material, const std::vector<const Variant*>& eligibl
 }
 
 // The shading cost of a configuration over no SAA: the committed ISA model's forward-shader ratio
-// on the GPU family (every target it has), of the variant with its lobe where the model has that
-// (the feed and the prefilter change inputs, not code), and the tangent-free form without tangents.
+// on the GPU family (every target it has) at the material's light count (the nearest measured
+// count not above it), of the variant with its lobe where the model has that (the feed and the
+// prefilter change inputs, not code), and the tangent-free form without tangents.
 // Where the model has the variant only with the papers' lobe, the lobe's overhead is added as the
 // model measures it on the form that shares the lobe's BRDF: forward-aniso-projected's for the
 // matrix forms (forward-aniso-*), deferred-avg's for the others (the axis BRDF).
@@ -700,7 +701,7 @@ std::optional<double> configuration_cost(const Catalogue& catalogue, const Mater
   std::string costed = c.variant;
   if (variant && !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)) costed += "-tangent-free";
   const IsaTable& isa = committed_isa_costs();
-  const auto ratio = [&](const std::string& id) { return isa.forward_ratio(family, id, {}); };
+  const auto ratio = [&](const std::string& id) { return isa.forward_ratio(family, id, {}, material.lights); };
   if (c.lobe != "papers")
     if (const auto with_lobe = ratio(costed + "/" + c.lobe)) return with_lobe;
   const auto papers = ratio(costed);
@@ -709,6 +710,13 @@ std::optional<double> configuration_cost(const Catalogue& catalogue, const Mater
   const auto shared_lobe = ratio(sharing + "/" + c.lobe), shared_papers = ratio(sharing);
   if (!shared_lobe || !shared_papers) return std::nullopt;
   return *papers + (*shared_lobe - *shared_papers);
+}
+
+// "at 4 lights", or "at 4 lights (the nearest measured count not above 10)": the light count a
+// material's ISA cost is read at, as the plan states it.
+std::string light_count_words(int lights, int measured) {
+  const std::string at = fmt::format("at {} light{}", measured, measured == 1 ? "" : "s");
+  return measured == lights ? at : fmt::format("{} (the nearest measured count not above {})", at, lights);
 }
 
 }  // namespace
@@ -734,9 +742,10 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
                                usable(material, eligible, has_lobe, row.configuration)});
   }
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
+  const std::string basis = light_count_words(material.lights, committed_isa_costs().cost_light_count(family, material.lights));
   // A budget takes the most accurate configuration within it (prefer only orders without one).
-  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget})
-                                  : decision::decide(made.candidates, {prefer, std::nullopt});
+  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget, basis})
+                                  : decision::decide(made.candidates, {prefer, std::nullopt, basis});
   return made;
 }
 
@@ -792,6 +801,9 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     MaterialPlan plan;
     plan.material = material.name;
     plan.precision = material.precision;
+    plan.lights = material.lights;
+    plan.cost_lights = committed_isa_costs().cost_light_count(
+        manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family, material.lights);
     if (material.glints) {
       plan_glints(catalogue, manifest, material, plan);
       choose_functions(catalogue, material, manifest.preset.has_value(), plan);
@@ -825,15 +837,19 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       plan.reason = rule.why;
       const bool speed = material.prefer == Preference::speed;
       if (table || speed) {
-        // Speed: the ISA cost on the manifest's GPU family, from the trade table when it has
-        // figures for that family, else from the committed table. Accuracy: the table's error.
+        // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
+        // trade table when it has figures for that family (`saagen bench` measures one light, so
+        // only for a material costed at one light), else from the committed table. Accuracy: the
+        // table's error.
         const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
-        const bool table_has_isa = table && std::any_of(table->rows.begin(), table->rows.end(), [&](const MeasuredTradeRow& row) {
-                                     return row.isa_ratio && row.isa_family == family;
-                                   });
-        const std::string source =
-            table_has_isa ? table->source_name
-                          : fmt::format("{} ({}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver);
+        const bool table_has_isa = plan.cost_lights == 1 && table &&
+                                   std::any_of(table->rows.begin(), table->rows.end(),
+                                               [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
+        const std::string lights = light_count_words(material.lights, plan.cost_lights);
+        const std::string source = !speed         ? table->source_name
+                                   : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
+                                                   : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family,
+                                                                 committed_isa_costs().driver, lights);
         std::vector<std::pair<double, const Variant*>> ranked;
         for (const Variant* variant : eligible) {
           // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
@@ -842,7 +858,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
                                          : variant->id;
           const auto value = !speed          ? table->error(variant->id)
                              : table_has_isa ? table->isa_cost(costed, family)
-                                             : committed_isa_costs().forward_ratio(family, costed, manifest.targets);
+                                             : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
           if (value) ranked.emplace_back(*value, variant);
         }
         // Ties keep the rule's choice first, then catalogue order.
@@ -861,14 +877,14 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
           plan.variant = ranked.front().second->id;
           plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
-          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, speed ? source : table->source_name,
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source,
                                     describe_choice(ranked, metric), rule.id, rule.variant);
         } else if (!ranked.empty()) {
           plan.reason += fmt::format(" [{} the lowest {} in {}: {}]",
                                      rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also", metric, source,
                                      describe_choice(ranked, metric));
         } else {
-          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", speed ? source : table->source_name,
+          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source,
                                      metric, ids_of(eligible), rule.id);
         }
       }
@@ -1058,14 +1074,19 @@ std::string rules_text() {
       "GGX materials without variant or preset are then decided by saagen's one decision (generator/include/saagen/decision.hpp,\n"
       "the bench's verdict's too) on their content's figures (content = \"curved\", \"normal-mapped\", \"bumps\", \"clearcoat\"):\n"
       "the trade table's rows, else saagen's (generator/include/saagen/advice.hpp). Only what beats no SAA is eligible; accuracy\n"
-      "takes the largest LDR-FLIP gain, speed the cheapest (vega10 ISA) and never the most expensive form the material can use;\n"
+      "takes the largest LDR-FLIP gain, speed the cheapest (vega10 ISA at the material's lights) and never the most expensive\n"
+      "form the material can use;\n"
       "no filter (variant none) where nothing is eligible, which includes normal-mapped and clearcoat content and every content\n"
       "type under taa = true (rule \"advice\" or \"trade table\" where that changes the variant). A normal-mapped material that\n"
       "names its variant is fed the geometric normal with the map baked into the roughness (hdrp), sampled one MIP level coarser.\n"
       "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
       "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"
       "generator/data/isa_cost.json; ties keep the rule's variant). With --trade-table, prefer = \"accuracy\" takes the one of\n"
-      "lowest measured \"error\" when the table has errors.\n";
+      "lowest measured \"error\" when the table has errors.\n"
+      "lights = N (scene-wide or per material, 1 to 64, default 1): the lights that shade a pixel. A forward filter and every lobe\n"
+      "are paid per light, a deferred filter's roughness once per pixel, so speed and budget read the ISA ratio at the nearest\n"
+      "measured count not above N (the committed table measures 1, 4 and 16 lights; the trade table's figures are one light's\n"
+      "and serve materials costed at one light), and the plan says at which count.\n";
   return text;
 }
 
@@ -1084,6 +1105,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     if (material.normal_maps) traits.push_back("normal maps");
     traits.emplace_back(to_string(material.precision));
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
+    traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));
     if (material.glints) traits.push_back("glints");
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
@@ -1151,7 +1173,7 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
       for (const OutputTarget& target : manifest.targets) {
         if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target.name(), material_plan.cost.at(target)));
       }
-      text += fmt::format("  cost      {} optimized SPIR-V instructions ({}; filter{} vs the unfiltered {}_brdf_axis)\n",
+      text += fmt::format("  cost      {} optimized SPIR-V instructions ({}, one light; filter{} vs the unfiltered {}_brdf_axis)\n",
                           fmt::join(costs, ", "), to_string(material.precision),
                           !material_plan.brdf                              ? " + axis BRDF"
                           : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
@@ -1188,6 +1210,8 @@ std::string plan_json(const Manifest& manifest, const ScenePlan& plan) {
                          {"feed", m.feed},
                          {"prefilter", m.prefilter},
                          {"per_axis", m.per_axis},
+                         {"lights", m.lights},
+                         {"cost_lights", m.cost_lights},
                          {"precision", std::string(to_string(m.precision))}});
   }
   nlohmann::json options = nlohmann::json::object();

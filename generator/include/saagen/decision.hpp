@@ -63,6 +63,9 @@ enum class Prefer { accuracy, speed };
 struct Preference {
   Prefer prefer = Prefer::accuracy;
   std::optional<double> budget;  // at most this cost ratio over no SAA
+  // How the costs were measured, as the reasons print it after "no SAA's shading cost" (the
+  // planner: "at 4 lights"); empty: nothing.
+  std::string cost_basis;
 };
 
 // Costs within this fraction of each other rank as equal (one instruction of ACO's static

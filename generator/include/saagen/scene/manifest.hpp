@@ -48,6 +48,11 @@ struct Material {
   // generator/data/isa_cost.json); the plan then takes the most accurate configuration within it
   // that beats no SAA, whatever `prefer` says, else no filter.
   std::optional<double> budget;
+  // `lights`: the lights that shade a pixel of the material, 1 to kMaxLights (the manifest's
+  // scene-wide `lights` when the material sets none; default 1). A forward filter and every lobe
+  // are paid per light, a deferred filter's roughness once per pixel, so the shading cost over no
+  // SAA that `prefer = "speed"` and `budget` read depends on it (IsaTable::cost_light_count).
+  int lights = 1;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header
   // Position of each key given in the file (values), for diagnostics found after parsing.
@@ -63,6 +68,8 @@ struct Manifest {
   // The GPU family whose ISA cost ranks `prefer = "speed"` (a family of the committed ISA table,
   // planner.hpp); empty: kDefaultGpuFamily (vega10).
   std::string gpu_family;
+  // `lights`: the scene-wide light count, the default of every material's `lights` (default 1).
+  int lights = 1;
   // `preset`: an engine's form (saagen/emit/engines.hpp): its sigma2 and kappa where the file sets
   // none, its variant for deferred materials that name none, and its roughness domain.
   std::optional<std::string> preset;

@@ -75,7 +75,11 @@ struct MaterialPlan {
   std::string no_filter_advice;
   bool per_axis = false;  // isotropic filter on anisotropic roughness: once per axis
   Precision precision = Precision::fp32;
-  std::map<OutputTarget, long> cost;  // target -> optimized SPIR-V instructions added
+  std::map<OutputTarget, long> cost;  // target -> optimized SPIR-V instructions added (one light)
+  // The material's `lights`, and the measured light count its ISA cost (prefer = "speed",
+  // budget) was read at (IsaTable::cost_light_count: the nearest measured count not above it).
+  int lights = 1;
+  int cost_lights = 1;
   // Which normal feeds the filter ("shading": the normal-mapped normal, "geometric": the vertex
   // normal) and whether to prefilter the normal map ("none", "toksvig", "lean", or an engine's
   // bake: "unreal", "filament-vmf", "hdrp"; `saagen texture prefilter --method`), with the
