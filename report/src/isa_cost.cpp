@@ -59,7 +59,8 @@ const EmittedFile& file_of(const std::vector<EmittedFile>& files, const std::str
 }
 
 // What the forward shader is measured with: bench_shading's variant cases, plus the
-// tangent-free form of deferred-max, which the trade measures as a configuration of its own.
+// tangent-free form of deferred-max (with either lobe), which the trade measures as a
+// configuration of its own.
 struct ForwardCase {
   std::string id;
   std::string file_variant;  // the catalogue variant whose emitted file defines the wrapper
@@ -69,10 +70,13 @@ struct ForwardCase {
 std::vector<ForwardCase> forward_cases() {
   std::vector<ForwardCase> cases;
   for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shading});
+  const std::string tangent_free = "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n";
   cases.push_back({"deferred-max-tangent-free",
                    "deferred-max",
-                   {"    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n",
-                    "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"}});
+                   {tangent_free, "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"}});
+  cases.push_back({"deferred-max-tangent-free/tail",
+                   "deferred-max",
+                   {tangent_free, "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"}});
   return cases;
 }
 

@@ -217,6 +217,9 @@ const std::vector<VariantCase>& variant_cases() {
        {"    real filtered = ggx_filtered_alpha2(alpha2_material, deferred_avg_fragment(alpha2_material, normal) - alpha2_material);\n",
         "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"},
        std::nullopt},
+      // The other deferred kernels the advice may choose with saagen's lobe (generator/data/advice.json).
+      {"deferred-max/tail", deferred_shade("deferred_max", true, Lobe::tail), std::nullopt},
+      {"deferred-projected-space/tail", deferred_shade("deferred_projected_space", false, Lobe::tail), std::nullopt},
   };
   return cases;
 }
