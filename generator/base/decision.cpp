@@ -22,14 +22,14 @@ bool within_budget(const Candidate& c, const Preference& p) { return !p.budget |
 // "1 usable configuration", "3 usable configurations".
 std::string usable_count(std::size_t n) { return fmt::format("{} usable configuration{}", n, n == 1 ? "" : "s"); }
 
-std::string cost_text(const Candidate& c, const Preference& p) {
+std::string cost_text(const Candidate& c, std::string_view basis) {
   if (!c.cost_ratio) return "cost unknown";
-  return fmt::format("{:.3g}x no SAA's shading cost{}", *c.cost_ratio, p.cost_basis.empty() ? "" : " " + p.cost_basis);
+  return fmt::format("{:.3g}x no SAA's shading cost{}{}", *c.cost_ratio, basis.empty() ? "" : " ", basis);
 }
 
-std::string figures(const Candidate& c, const Preference& p) {
+std::string figures(const Candidate& c, std::string_view basis) {
   return fmt::format("{} (image {}, temporal {} against no SAA; {})", c.configuration, describe(c.against_none.image),
-                     describe(c.against_none.temporal), cost_text(c, p));
+                     describe(c.against_none.temporal), cost_text(c, basis));
 }
 
 // The largest known cost among the usable candidates, and how many candidates are usable.
@@ -72,7 +72,7 @@ std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const
 }
 
 std::string no_filter_reason(std::span<const Candidate> candidates, const std::vector<Outcome>& outcomes,
-                             const std::vector<std::size_t>& beating, const Preference& preference) {
+                             const std::vector<std::size_t>& beating, const Preference& preference, std::string_view basis) {
   std::size_t usable = 0;
   std::vector<std::size_t> tried;
   for (std::size_t i = 0; i < candidates.size(); ++i)
@@ -82,10 +82,10 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   if (beating.empty()) {
     const std::size_t best = *most_accurate(candidates, tried);
     return fmt::format("no filter: none of the {} beats no SAA; the lowest temporal error, {}, {}", usable_count(usable),
-                       figures(candidates[best], preference), name(outcomes[best]));
+                       figures(candidates[best], basis), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : beating) listed.push_back(figures(candidates[i], preference));
+  for (std::size_t i : beating) listed.push_back(figures(candidates[i], basis));
   if (preference.budget) {
     bool any_in_budget = false;
     for (std::size_t i : beating) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
@@ -128,7 +128,7 @@ std::string describe(const Difference& d) {
   return fmt::format("{:+.4g} [{:+.4g}, {:+.4g}]", d.mean, d.low, d.high);
 }
 
-Decision decide(std::span<const Candidate> candidates, const Preference& preference) {
+Decision decide(std::span<const Candidate> candidates, const Preference& preference, std::string_view cost_basis) {
   Decision decision;
   std::vector<std::size_t> beating, eligible;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -140,11 +140,11 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
   const bool speed = preference.prefer == Prefer::speed;
   decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate(candidates, eligible);
   if (!decision.chosen) {
-    decision.reason = no_filter_reason(candidates, decision.outcomes, beating, preference);
+    decision.reason = no_filter_reason(candidates, decision.outcomes, beating, preference, cost_basis);
     return decision;
   }
   const Candidate& chosen = candidates[*decision.chosen];
-  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen, preference),
+  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen, cost_basis),
                                 speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
   return decision;

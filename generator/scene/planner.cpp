@@ -744,8 +744,8 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
   const std::string basis = light_count_words(material.lights, committed_isa_costs().cost_light_count(family, material.lights));
   // A budget takes the most accurate configuration within it (prefer only orders without one).
-  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget, basis})
-                                  : decision::decide(made.candidates, {prefer, std::nullopt, basis});
+  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget}, basis)
+                                  : decision::decide(made.candidates, {prefer, std::nullopt}, basis);
   return made;
 }
 

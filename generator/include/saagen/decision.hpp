@@ -63,9 +63,6 @@ enum class Prefer { accuracy, speed };
 struct Preference {
   Prefer prefer = Prefer::accuracy;
   std::optional<double> budget;  // at most this cost ratio over no SAA
-  // How the costs were measured, as the reasons print it after "no SAA's shading cost" (the
-  // planner: "at 4 lights"); empty: nothing.
-  std::string cost_basis;
 };
 
 // Costs within this fraction of each other rank as equal (one instruction of ACO's static
@@ -78,7 +75,9 @@ struct Decision {
   std::vector<Outcome> outcomes;      // per candidate, its outcome against no SAA
 };
 
-Decision decide(std::span<const Candidate> candidates, const Preference& preference);
+// `cost_basis`: how the costs were measured, as the reasons print it after "no SAA's shading
+// cost" (the planner: "at 4 lights"); empty: nothing.
+Decision decide(std::span<const Candidate> candidates, const Preference& preference, std::string_view cost_basis = {});
 
 // "+0.0012" or "-0.0041 [-0.0050, -0.0032]": a difference as the reasons print it.
 std::string describe(const Difference& difference);
