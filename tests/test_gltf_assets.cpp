@@ -997,6 +997,39 @@ TEST(GltfHostile, TextureCoordinatesBeyondTheTexelIndexRangeAreRefused) {
   fs::remove_all(dir);
 }
 
+// An image in a buffer view that runs past its buffer (tinygltf checks only the view's and the
+// buffer's indices; stb_image read past the buffer, found by the glTF fuzzer in a GLB whose
+// buffer was shorter than its last view) is refused before a byte of it is read.
+TEST(GltfHostile, ImageBufferViewsRunningPastTheirBufferAreRefused) {
+  const fs::path dir = scratch("image-view");
+  const std::string image = png(4, 4, 3, std::vector<unsigned char>(4 * 4 * 3, 200));
+  const std::string size = std::to_string(image.size());
+  const std::string last_view = R"({"buffer": 0, "byteOffset": 128, "byteLength": 12})";
+  for (const auto& [offset, length] : std::vector<std::pair<std::size_t, std::size_t>>{
+           {0, image.size()}, {0, image.size() + 29}, {image.size() + 64, 8}, {8, image.size()}}) {
+    QuadAsset q;
+    q.buffer_uri = "quad.bin";
+    q.material = R"({"normalTexture": {"index": 0}})";
+    q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"bufferView": 4, "mimeType": "image/png"}])";
+    std::string text = edited_quad(
+        q, last_view,
+        last_view + R"(, {"buffer": 1, "byteOffset": )" + std::to_string(offset) + R"(, "byteLength": )" + std::to_string(length) + "}");
+    const std::string buffer = R"({"byteLength": 140, "uri": "quad.bin"})";
+    text.replace(text.find(buffer), buffer.size(),
+                 buffer + R"(, {"byteLength": )" + size + R"(, "uri": "data:application/octet-stream;base64,)" + base64(image) + R"("})");
+    write_file(dir / "quad.bin", quad_buffer(q));
+    write_file(dir / "view.gltf", text);
+    if (length == image.size() && offset == 0) {
+      EXPECT_TRUE(load_gltf((dir / "view.gltf").string()).materials[0].normal_map);
+      continue;
+    }
+    EXPECT_NE(bad_asset_message(dir / "view.gltf").find("image 0: buffer view 4 runs past its buffer's " + size + " bytes"),
+              std::string::npos)
+        << offset << " " << length;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(GltfHostile, DepthIsLimitedBeforeParsingAndNodesAreWalkedWithoutRecursion) {
   const fs::path dir = scratch("depth");
   write_file(dir / "chain.gltf", node_chain(20000));  // 20000 nested nodes: a valid asset

@@ -319,6 +319,16 @@ class Loader {
   static bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int, const unsigned char* bytes,
                          int size, void* user) {
     auto* self = static_cast<Loader*>(user);
+    if (image->bufferView >= 0) {  // tinygltf checks the indices (its buffers and views are read first), not the range
+      const tinygltf::BufferView& view = self->model_.bufferViews[static_cast<std::size_t>(image->bufferView)];
+      const std::size_t buffer_size = self->model_.buffers[static_cast<std::size_t>(view.buffer)].data.size();
+      if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
+        if (err)
+          *err += "image " + std::to_string(index) + ": buffer view " + std::to_string(image->bufferView) + " runs past its buffer's " +
+                  std::to_string(buffer_size) + " bytes";
+        return false;
+      }
+    }
     int w = 0, h = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &w, &h, &components)) {
       if (err) *err += "image " + std::to_string(index) + " ('" + image->uri + "') is not a PNG or JPEG stb_image can decode";
