@@ -77,6 +77,18 @@ TEST(FlickerError, IdenticalAnimationsScoreZero) {
   EXPECT_EQ(flicker(r0, r1, r0, r1), 0.0);
 }
 
+// The ground truth's highlight moves from (10, 10) to (11, 10). A result on time scores the
+// motion's energy below 0 (-2 pixels of unit change over 1024), one a frame late the same above;
+// a result that shows no highlight scores 0 (as far from either frame).
+TEST(LagError, IsMinusTheMotionOnTimeAndPlusItAFrameLate) {
+  const Image previous = highlight(10, 10), current = highlight(11, 10);
+  EXPECT_NEAR(lag_error(current, current, previous), -2.0 / 1024.0, 1e-12);
+  EXPECT_NEAR(lag_error(previous, current, previous), 2.0 / 1024.0, 1e-12);
+  EXPECT_NEAR(lag_error(Image(32, 32, 0.0f), current, previous), 0.0, 1e-12);
+  // A dimmer highlight on time: (0.5 - 1)^2 on time against 1 + 0.5^2 a frame late.
+  EXPECT_NEAR(lag_error(highlight(11, 10, 0.5f), current, previous), (0.25 - 1.25) / 1024.0, 1e-12);
+}
+
 TEST(Intervals, StudentQuantilesMatchTheTableAndTheNormalLimit) {
   EXPECT_DOUBLE_EQ(student_t_975(1), 12.706);
   EXPECT_DOUBLE_EQ(student_t_975(10), 2.228);

@@ -9,7 +9,7 @@ namespace {
 
 using namespace saagen::decision;
 
-Comparison means(double image, double temporal) { return {exact(image), exact(temporal)}; }
+Comparison means(double image, double temporal, double lag = 0.0) { return {exact(image), exact(temporal), exact(lag)}; }
 
 Candidate candidate(const char* name, double image, double temporal, std::optional<double> cost = 1.2, bool usable = true) {
   return {name, means(image, temporal), cost, usable};
@@ -22,10 +22,10 @@ TEST(Decision, OutcomeIsDecidedByTheIntervalsNotTheMeans) {
   EXPECT_EQ(outcome(means(-0.01, 0.002)), Outcome::mixed);
   EXPECT_EQ(outcome(means(0.0, 0.0)), Outcome::ties);
   // A negative mean whose interval spans 0 is a tie, not a win.
-  EXPECT_EQ(outcome({{-0.01, -0.03, 0.01}, {-0.002, -0.004, 0.0005}}), Outcome::ties);
-  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, -0.004, 0.005}}), Outcome::beats);
-  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, 0.001, 0.005}}), Outcome::mixed);
-  EXPECT_EQ(outcome({{0.01, 0.001, 0.03}, {0.002, -0.001, 0.005}}), Outcome::loses);
+  EXPECT_EQ(outcome({{-0.01, -0.03, 0.01}, {-0.002, -0.004, 0.0005}, {}}), Outcome::ties);
+  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, -0.004, 0.005}, {}}), Outcome::beats);
+  EXPECT_EQ(outcome({{-0.01, -0.03, -0.001}, {0.002, 0.001, 0.005}, {}}), Outcome::mixed);
+  EXPECT_EQ(outcome({{0.01, 0.001, 0.03}, {0.002, -0.001, 0.005}, {}}), Outcome::loses);
 }
 
 TEST(Decision, OnlyWhatBeatsNoSaaIsEligible) {
@@ -56,8 +56,26 @@ TEST(Decision, EqualTemporalImprovementsAreBrokenByTheImageMean) {
   EXPECT_EQ(decide(c, {}).chosen, std::optional<std::size_t>(1));
 }
 
+TEST(Decision, ALateConfigurationIsNeverTaken) {
+  // The largest temporal improvement is late (its lag lies above 0: closer to the ground truth's
+  // previous frames): the next one is taken; a lag whose interval spans 0 is not late.
+  std::vector<Candidate> c = {candidate("late", -0.01, -2.0), candidate("on-time", -0.01, -1.0)};
+  c[0].against_none.lag = {4e-4, 1e-4, 7e-4};
+  c[1].against_none.lag = {1e-4, -2e-4, 4e-4};
+  EXPECT_TRUE(late(c[0].against_none));
+  EXPECT_FALSE(late(c[1].against_none));
+  EXPECT_EQ(decide(c, {}).chosen, 1u);
+  // Lagging less than no SAA is no merit: the outcome ignores it.
+  EXPECT_EQ(outcome(means(0.0, 0.0, -1.0)), Outcome::ties);
+  // Only late candidates beat: no filter, and the reason says why.
+  const Decision d = decide(std::span(c).first(1), {});
+  EXPECT_FALSE(d.chosen);
+  EXPECT_NE(d.reason.find("is late"), std::string::npos) << d.reason;
+}
+
 TEST(Decision, SpeedTakesTheCheapestThatBeats) {
-  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874), candidate("deferred-avg/tail", -0.001, -0.0001, 1.355),
+  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
+                                    candidate("deferred-avg/tail", -0.001, -0.0001, 1.355),
                                     candidate("deferred-sum/tail", -0.002, -0.0001, 1.349), candidate("deferred-avg", 0.01, 0.001, 1.105)};
   const Decision d = decide(c, {Prefer::speed, std::nullopt});
   ASSERT_TRUE(d.chosen);
@@ -68,7 +86,8 @@ TEST(Decision, SpeedTakesTheCheapestThatBeats) {
 
 TEST(Decision, SpeedNeverTakesTheMostExpensiveFormUnlessItIsTheOnlyOne) {
   // Only the most expensive usable form beats no SAA: speed plans no filter.
-  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874), candidate("deferred-avg/tail", 0.02, 0.001, 1.355)};
+  const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
+                                    candidate("deferred-avg/tail", 0.02, 0.001, 1.355)};
   const Decision d = decide(c, {Prefer::speed, std::nullopt});
   EXPECT_FALSE(d.chosen);
   EXPECT_NE(d.reason.find("most expensive form"), std::string::npos) << d.reason;

@@ -79,16 +79,27 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
     if (candidates[i].usable) ++usable, tried.push_back(i);
   if (candidates.empty()) return "no filter: no configuration was measured against no SAA here";
   if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
+  std::vector<std::size_t> on_time;
+  for (std::size_t i : beating)
+    if (!late(candidates[i].against_none)) on_time.push_back(i);
+  if (!beating.empty() && on_time.empty()) {
+    std::vector<std::string> listed;
+    for (std::size_t i : beating)
+      listed.push_back(fmt::format("{} (lag {})", figures(candidates[i], basis), describe(candidates[i].against_none.lag)));
+    return fmt::format(
+        "no filter: what beats no SAA is late (its frames are closer to the ground truth's previous frames than to their own): {}",
+        fmt::join(listed, ", "));
+  }
   if (beating.empty()) {
     const std::size_t best = *most_accurate(candidates, tried);
     return fmt::format("no filter: none of the {} beats no SAA; the lowest temporal error, {}, {}", usable_count(usable),
                        figures(candidates[best], basis), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : beating) listed.push_back(figures(candidates[i], basis));
+  for (std::size_t i : on_time) listed.push_back(figures(candidates[i], basis));
   if (preference.budget) {
     bool any_in_budget = false;
-    for (std::size_t i : beating) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
+    for (std::size_t i : on_time) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
     if (!any_in_budget)
       return fmt::format("no filter: what beats no SAA costs more than the budget {:.3g}: {}", *preference.budget, fmt::join(listed, ", "));
   }
@@ -123,6 +134,8 @@ Outcome outcome(const Comparison& c) {
   return Outcome::ties;
 }
 
+bool late(const Comparison& c) { return worse(c.lag); }
+
 std::string describe(const Difference& d) {
   if (d.low == d.mean && d.high == d.mean) return fmt::format("{:+.4g}", d.mean);
   return fmt::format("{:+.4g} [{:+.4g}, {:+.4g}]", d.mean, d.low, d.high);
@@ -135,7 +148,7 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
     decision.outcomes.push_back(outcome(candidates[i].against_none));
     if (!candidates[i].usable || decision.outcomes[i] != Outcome::beats) continue;
     beating.push_back(i);
-    if (within_budget(candidates[i], preference)) eligible.push_back(i);
+    if (!late(candidates[i].against_none) && within_budget(candidates[i], preference)) eligible.push_back(i);
   }
   const bool speed = preference.prefer == Prefer::speed;
   decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate(candidates, eligible);

@@ -33,8 +33,8 @@ std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::st
   return sum / count;
 }
 
-// A by_content row's "against_none": {"image": {"mean", "low", "high"}, "temporal": {...}},
-// low <= mean <= high, finite.
+// A by_content row's "against_none": {"image": {"mean", "low", "high"}, "temporal": {...}} and,
+// in tables that measured it, "lag": {...}; low <= mean <= high, finite.
 decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view source_name, std::size_t index) {
   const auto difference = [&](const char* metric) {
     const auto fail = [&] {
@@ -52,7 +52,8 @@ decision::Comparison parse_comparison(const nlohmann::json& value, std::string_v
     if (!(d.low <= d.mean && d.mean <= d.high)) fail();
     return d;
   };
-  return {difference("image"), difference("temporal")};
+  const decision::Difference lag = value.is_object() && value.contains("lag") ? difference("lag") : decision::exact(0.0);
+  return {difference("image"), difference("temporal"), lag};
 }
 
 }  // namespace
@@ -179,7 +180,7 @@ const IsaTable& committed_isa_costs() {
 decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline) {
   if (baseline.configuration == "none" && row.against_none) return *row.against_none;
   const double temporal = row.tde && baseline.tde ? *row.tde - *baseline.tde : 0.0;
-  return {decision::exact(row.error - baseline.error), decision::exact(temporal)};
+  return {decision::exact(row.error - baseline.error), decision::exact(temporal), decision::exact(0.0)};
 }
 
 bool MeasuredTradeTable::has_errors() const {

@@ -51,7 +51,7 @@ decision::Difference decision_difference(const MetricDifference& d) {
 }  // namespace
 
 decision::Comparison to_decision(const PairedComparison& c) {
-  return {decision_difference(c.image), decision_difference(temporal_metric(c))};
+  return {decision_difference(c.image), decision_difference(temporal_metric(c)), decision_difference(c.lag)};
 }
 
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
@@ -66,13 +66,23 @@ MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span
   return d;
 }
 
+MetricDifference lag_of(std::span<const render::SeedSeries> cells) {
+  const bool measured =
+      !cells.empty() && std::all_of(cells.begin(), cells.end(), [](const render::SeedSeries& s) { return !s[0].empty(); });
+  if (!measured) return {};
+  MetricDifference d;
+  d.difference = render::series_interval(cells);
+  d.ground_truth_sd = render::series_ground_truth_sd(cells);
+  return d;
+}
+
 PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep) {
   using Cell = std::tuple<render::SceneId, double>;
   std::map<Cell, const render::TradeRow*> baseline_rows;
   for (const render::TradeRow& row : table.rows)
     if (!row.fresnel && !row.taa && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
-  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b;
+  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
   for (const render::TradeRow& row : table.rows) {
     if (row.fresnel || row.taa || !keep(row) || render::configuration_id(row) != configuration) continue;
     const auto base = baseline_rows.find({row.scene, row.alpha});
@@ -83,14 +93,16 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
     flicker_b.push_back(base->second->series.flicker);
     video_a.push_back(row.series.video);
     video_b.push_back(base->second->series.video);
+    lag_a.push_back(row.series.lag);
   }
-  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}, std::nullopt};
+  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}, std::nullopt, {}};
   if (c.cells == 0) return c;
   c.image = compare_series(image_a, image_b);
   c.flicker = compare_series(flicker_a, flicker_b);
   const auto measured = [](const render::SeedSeries& series) { return !series[0].empty(); };
   if (std::all_of(video_a.begin(), video_a.end(), measured) && std::all_of(video_b.begin(), video_b.end(), measured))
     c.video = compare_series(video_a, video_b);
+  c.lag = lag_of(lag_a);
   return c;
 }
 

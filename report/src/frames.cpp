@@ -24,18 +24,7 @@ std::string clip_path(const render::AnimationFrame& frame) {
                      file_name(frame.clip));
 }
 
-std::uint8_t to_byte(float display) {
-  const double v = std::isfinite(display) ? std::clamp(static_cast<double>(display), 0.0, 1.0) : 0.0;
-  return static_cast<std::uint8_t>(std::lround(v * 255.0));
-}
-
 }  // namespace
-
-std::vector<std::uint8_t> clip_bytes(const render::Image& display) {
-  std::vector<std::uint8_t> bytes(display.size());
-  for (std::size_t i = 0; i < display.size(); ++i) bytes[i] = to_byte(display.pixels[i]);
-  return bytes;
-}
 
 ClipWriter::ClipWriter(std::filesystem::path directory, std::regex keep) : directory_(std::move(directory)), keep_(std::move(keep)) {}
 
@@ -55,7 +44,7 @@ void ClipWriter::add(const render::AnimationFrame& frame, int frames) {
             std::vector<std::uint8_t>(static_cast<std::size_t>(image.width) * image.height * frames, 0),
             {}};
   }
-  const std::vector<std::uint8_t> bytes = clip_bytes(image);
+  const std::vector<std::uint8_t> bytes = render::display_bytes(image);
   std::copy(bytes.begin(), bytes.end(), clip.pixels.begin() + static_cast<std::ptrdiff_t>(frame.frame * image.size()));
   if (frame.frame == frames - 1) {
     clip.png = encode_tagged_png(clip.width, clip.height * clip.frames, 1, clip.pixels, "bench --frames");

@@ -1113,9 +1113,7 @@ namespace {
 // truth); 10 without the video metric.
 double first_seed_jod(const render::TradeRow& row) {
   const std::vector<double>& losses = row.series.video[0];
-  double sum = 0.0;
-  for (const double loss : losses) sum += loss;
-  return losses.empty() ? 10.0 : 10.0 - sum / static_cast<double>(losses.size());
+  return losses.empty() ? 10.0 : 10.0 - render::mean_interval(losses, 0.0).mean;
 }
 
 nlohmann::json interval_json(const render::Interval& interval) {
@@ -1175,6 +1173,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                      {"flicker_error", interval_json(row.flicker_error)},
                      {"video_error", interval_json(row.video_error)},
                      {"jod", first_seed_jod(row)},
+                     {"lag", interval_json(row.lag)},
                      {"flicker_excess", row.flicker_excess},
                      {"flicker_missing", row.flicker_missing}});
   }
@@ -1187,7 +1186,8 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
                       {"image_error", row.image_error},
                       {"flicker_error", row.flicker_error},
                       {"video_error", row.video_error},
-                      {"jod", 10.0 - row.video_error}});
+                      {"jod", 10.0 - row.video_error},
+                      {"lag", row.lag}});
   // Per content type, the same means: the planner's advice for a material with or without normal maps.
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
@@ -1212,7 +1212,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       if (against_none.cells == 0) continue;
       const decision::Comparison c = to_decision(against_none);
       const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
-      by_content.back()["against_none"] = {{"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
+      by_content.back()["against_none"] = {{"image", difference(c.image)}, {"temporal", difference(c.temporal)}, {"lag", difference(c.lag)}};
     }
   }
   // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
@@ -1225,6 +1225,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       if (c.cells == 0) continue;
       comparisons.push_back({{"scope", scope}, {"name", name}, {"configuration", id}, {"baseline", "none"}, {"cells", c.cells},
                              {"image_error", difference_json(c.image)}, {"flicker_error", difference_json(c.flicker)},
+                             {"lag", difference_json(c.lag)},
                              {"outcome", std::string(comparison_outcome_name(c))}});
       if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
     }

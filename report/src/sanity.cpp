@@ -20,10 +20,15 @@ render::SeedSeries first_seed_temporal(const render::AnimationSeries& series) {
   return first_seed(series.video[0].empty() ? series.flicker : series.video);
 }
 
+// One result's clips on a scene's sanity materials (one per alpha), per metric.
+struct Clips {
+  Clip image, temporal, lag;
+};
+
 struct SceneClips {
   std::vector<double> alphas;
-  std::map<std::string, std::pair<Clip, Clip>> clips;  // name -> (image, temporal), one per alpha
-  std::map<std::string, Clip> flicker;                 // name -> flicker error: whether the ground truth moves
+  std::map<std::string, Clips> clips;   // by result name
+  std::map<std::string, Clip> flicker;  // name -> flicker error: whether the ground truth moves
 };
 
 SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
@@ -32,26 +37,28 @@ SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
     if (row.scene != scene || row.fresnel) continue;
     if (std::find(out.alphas.begin(), out.alphas.end(), row.alpha) == out.alphas.end()) out.alphas.push_back(row.alpha);
     const std::string name(render::sanity_name(row.result));
-    auto& [image, temporal] = out.clips[name];
-    image.push_back(first_seed(row.series.image));
-    temporal.push_back(first_seed_temporal(row.series));
+    Clips& clips = out.clips[name];
+    clips.image.push_back(first_seed(row.series.image));
+    clips.temporal.push_back(first_seed_temporal(row.series));
+    clips.lag.push_back(first_seed(row.series.lag));
     out.flicker[name].push_back(first_seed(row.series.flicker));
   }
   return out;
 }
 
 // A configuration's clips on the scene's sanity materials, first seed only (nullopt if missing).
-std::optional<std::pair<Clip, Clip>> configuration_clips(const render::TradeTable& table, render::SceneId scene,
-                                                         const std::vector<double>& alphas, const std::string& configuration) {
-  std::pair<Clip, Clip> out;
+std::optional<Clips> configuration_clips(const render::TradeTable& table, render::SceneId scene, const std::vector<double>& alphas,
+                                         const std::string& configuration) {
+  Clips out;
   for (double alpha : alphas) {
     const render::TradeRow* found = nullptr;
     for (const render::TradeRow& row : table.rows)
       if (row.scene == scene && row.alpha == alpha && !row.fresnel && !row.taa && render::configuration_id(row) == configuration)
         found = &row;
     if (!found) return std::nullopt;
-    out.first.push_back(first_seed(found->series.image));
-    out.second.push_back(first_seed_temporal(found->series));
+    out.image.push_back(first_seed(found->series.image));
+    out.temporal.push_back(first_seed_temporal(found->series));
+    out.lag.push_back(first_seed(found->series.lag));
   }
   return out;
 }
@@ -70,26 +77,27 @@ bool beats(const MetricDifference& image, const MetricDifference& flicker) {
 // seed's frames (four times the quarter's samples), against those frames on time.
 constexpr std::pair<const char*, const char*> kClearlyWorse[] = {
     {"delayed", "other-seed"}, {"frozen", "quarter-samples"}, {"no-highlight", "quarter-samples"}};
-// The degenerate results that must never be the verdict's choice. The delayed result is the
-// converged animation one frame late: where the motion per frame is below the ground truth's
-// resolution it is a converged image, which no 1-spp configuration matches; it is reported (the
-// suite's table, "delayed wins") but not held to this rule (docs/TEMPORAL.md).
-constexpr const char* kNeverWins[] = {"blurred", "frozen", "no-highlight"};
-constexpr const char* kDegenerate[] = {"delayed", "blurred", "frozen", "no-highlight"};
+// The degenerate results, which must never be the verdict's choice: each misses what the ground
+// truth shows (its timing, its motion, its highlight). The blurred result is not one of them: it
+// must rank below the quarter-sample ground truth (the first rule), but a 1 px blur of the
+// converged image is what a pixel-footprint filter aims at, and where it beats every 1-spp
+// configuration the table says so.
+constexpr const char* kDegenerate[] = {"delayed", "frozen", "no-highlight"};
 
 bool is_degenerate(const std::string& name) {
   return std::find(std::begin(kDegenerate), std::end(kDegenerate), name) != std::end(kDegenerate);
 }
 
 // The verdict's choice on the scene among `candidates` against no SAA (saagen/decision.hpp's
-// accuracy rule): among those no worse than no SAA in either metric and better in at least one,
+// accuracy rule): among those no worse than no SAA in either metric, better in at least one and
+// not late (following the ground truth more than half a frame late beyond the interval, lag_of),
 // the lowest temporal error, then image error ("" if none).
-std::string verdict_choice(const std::map<std::string, std::pair<Clip, Clip>>& candidates, const std::pair<Clip, Clip>& none) {
+std::string verdict_choice(const std::map<std::string, Clips>& candidates, const Clips& none) {
   std::string chosen;
   std::pair<double, double> best{0.0, 0.0};
   for (const auto& [name, clips] : candidates) {
-    const MetricDifference image = compare_series(clips.first, none.first), temporal = compare_series(clips.second, none.second);
-    if (!beats(image, temporal)) continue;
+    const MetricDifference image = compare_series(clips.image, none.image), temporal = compare_series(clips.temporal, none.temporal);
+    if (!beats(image, temporal) || worse(lag_of(clips.lag))) continue;
     const std::pair<double, double> key{temporal.difference.mean, image.difference.mean};
     if (chosen.empty() || key < best) chosen = name, best = key;
   }
@@ -104,8 +112,12 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
   if (none) clips.clips["none"] = *none;
   const auto& quarter = clips.clips.at("quarter-samples");
   for (const auto& [name, clip] : clips.clips) {
-    SanityEntry entry{name, clip_mean(clip.first), clip_mean(clip.second), compare_series(clip.first, quarter.first),
-                      compare_series(clip.second, quarter.second)};
+    SanityEntry entry{name,
+                      clip_mean(clip.image),
+                      clip_mean(clip.temporal),
+                      compare_series(clip.image, quarter.image),
+                      compare_series(clip.temporal, quarter.temporal),
+                      clip_mean(clip.lag)};
     out.entries.push_back(entry);
   }
   out.moves = worse(compare_series(clips.flicker.at("frozen"), clips.flicker.at("other-seed")));
@@ -114,8 +126,8 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
   for (const auto& [name, clip] : clips.clips) {
     for (const char* best : {"other-seed", "quarter-samples"}) {
       if (name == best || name == "other-seed" || (std::string_view(best) == "quarter-samples" && name == "delayed")) continue;
-      const MetricDifference image = compare_series(clip.first, clips.clips.at(best).first);
-      const MetricDifference flicker = compare_series(clip.second, clips.clips.at(best).second);
+      const MetricDifference image = compare_series(clip.image, clips.clips.at(best).image);
+      const MetricDifference flicker = compare_series(clip.temporal, clips.clips.at(best).temporal);
       if (beats(image, flicker))
         out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, temporal {:+.4g})", render::scene_name(scene), name, best,
                                            image.difference.mean, flicker.difference.mean));
@@ -126,17 +138,20 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
     for (const auto& [name, against] : kClearlyWorse) {
       const auto& clip = clips.clips.at(name);
       const auto& base = clips.clips.at(against);
-      const MetricDifference image = compare_series(clip.first, base.first), flicker = compare_series(clip.second, base.second);
-      if (!worse(image) && !worse(flicker))
-        out.failures.push_back(fmt::format("{}: {} is not worse than {} beyond the interval in either metric (image {:+.4g} "
-                                           "[{:+.4g}, {:+.4g}], temporal {:+.4g} [{:+.4g}, {:+.4g}])",
-                                           render::scene_name(scene), name, against, image.difference.mean, image.difference.low,
-                                           image.difference.high, flicker.difference.mean, flicker.difference.low, flicker.difference.high));
+      const MetricDifference image = compare_series(clip.image, base.image), flicker = compare_series(clip.temporal, base.temporal);
+      const MetricDifference lag = compare_series(clip.lag, base.lag);
+      const auto text = [](const MetricDifference& d) {
+        return fmt::format("{:+.4g} [{:+.4g}, {:+.4g}]", d.difference.mean, d.difference.low, d.difference.high);
+      };
+      if (!worse(image) && !worse(flicker) && !worse(lag))
+        out.failures.push_back(fmt::format("{}: {} is not worse than {} beyond the interval in any metric (image {}, temporal {}, lag {})",
+                                           render::scene_name(scene), name, against, text(image), text(flicker), text(lag)));
     }
   }
   if (none) {
-    std::map<std::string, std::pair<Clip, Clip>> candidates;
+    std::map<std::string, Clips> candidates;
     for (const char* name : kDegenerate) candidates[name] = clips.clips.at(name);
+    candidates["blurred"] = clips.clips.at("blurred");
     std::vector<std::string> ids;
     for (const render::TradeRow& row : table.rows)
       if (row.scene == scene && !row.taa && std::find(ids.begin(), ids.end(), render::configuration_id(row)) == ids.end())
@@ -146,7 +161,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
         if (const auto c = configuration_clips(table, scene, clips.alphas, id)) candidates[id] = *c;
     const std::string chosen = verdict_choice(candidates, *none);
     out.verdict_choice = chosen;
-    if (std::find(std::begin(kNeverWins), std::end(kNeverWins), chosen) != std::end(kNeverWins))
+    if (is_degenerate(chosen))
       out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", render::scene_name(scene), chosen));
   }
   return out;
@@ -157,7 +172,8 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
 std::vector<SceneSanity> check_sanity(const render::TradeTable& table) {
   std::vector<SceneSanity> scenes;
   for (render::SceneId scene : table.config.scenes) {
-    const bool has_rows = std::any_of(table.sanity.begin(), table.sanity.end(), [&](const render::SanityRow& r) { return r.scene == scene; });
+    const bool has_rows =
+        std::any_of(table.sanity.begin(), table.sanity.end(), [&](const render::SanityRow& r) { return r.scene == scene; });
     if (has_rows) scenes.push_back(check_scene(table, scene));
   }
   return scenes;
@@ -166,7 +182,7 @@ std::vector<SceneSanity> check_sanity(const render::TradeTable& table) {
 std::string format_sanity(const std::vector<SceneSanity>& scenes) {
   const bool video = std::any_of(scenes.begin(), scenes.end(), [](const SceneSanity& scene) { return scene.video; });
   const std::string temporal = video ? "video error" : "flicker error";
-  std::string text = fmt::format("{:<20} {:<16} {:>11} {:>13}  {:<22} {:<22}\n", "scene", "result", "image error", temporal,
+  std::string text = fmt::format("{:<20} {:<16} {:>11} {:>13} {:>10}  {:<22} {:<22}\n", "scene", "result", "image error", temporal, "lag",
                                  "image vs quarter", temporal + " vs quarter");
   const auto cell = [](const MetricDifference& d) {
     return fmt::format("{:+.4f} [{:+.4f},{:+.4f}]", d.difference.mean, d.difference.low, d.difference.high);
@@ -174,10 +190,13 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
   int failures = 0;
   for (const SceneSanity& scene : scenes) {
     for (const SanityEntry& e : scene.entries)
-      text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f}  {:<22} {:<22}\n", render::scene_name(scene.scene), e.result, e.image_error,
-                          e.flicker_error, cell(e.image_vs_quarter), cell(e.flicker_vs_quarter));
-    text += fmt::format("  the verdict's choice with the degenerate results entered: {}{}\n", scene.verdict_choice.empty() ? "no filter" : scene.verdict_choice,
-                        is_degenerate(scene.verdict_choice) ? " (degenerate)" : "");
+      text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f} {:>+10.2e}  {:<22} {:<22}\n", render::scene_name(scene.scene), e.result,
+                          e.image_error, e.flicker_error, e.lag, cell(e.image_vs_quarter), cell(e.flicker_vs_quarter));
+    text += fmt::format("  the verdict's choice with the degenerate results entered: {}{}\n",
+                        scene.verdict_choice.empty() ? "no filter" : scene.verdict_choice,
+                        is_degenerate(scene.verdict_choice) ? " (degenerate)"
+                        : scene.verdict_choice == "blurred" ? " (the converged animation blurred by 1 px beats every 1-spp configuration)"
+                                                            : "");
     for (const std::string& failure : scene.failures) text += "  FAILED " + failure + "\n";
     failures += static_cast<int>(scene.failures.size());
   }
@@ -198,7 +217,8 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                          {"image_error", e.image_error},
                          {scene.video ? "video_error" : "flicker_error", e.flicker_error},
                          {"image_vs_quarter", difference(e.image_vs_quarter)},
-                         {scene.video ? "video_vs_quarter" : "flicker_vs_quarter", difference(e.flicker_vs_quarter)}});
+                         {scene.video ? "video_vs_quarter" : "flicker_vs_quarter", difference(e.flicker_vs_quarter)},
+                         {"lag", e.lag}});
     out.push_back({{"scene", std::string(render::scene_name(scene.scene))},
                    {"moves", scene.moves},
                    {"entries", entries},

@@ -13,8 +13,9 @@
 //   - outcome(): a metric is better when its whole interval lies below 0 (high < 0), worse when
 //     it lies above 0 (low > 0), else tied. beats: no metric worse and at least one better;
 //     loses: the mirror; mixed: one better and one worse; ties: every interval spans 0.
-//   - Only usable candidates that beat no SAA, and cost at most the budget when one is set,
-//     are eligible; none eligible: no filter, with the reason.
+//   - Only usable candidates that beat no SAA, are not late (late(): they follow the ground
+//     truth more than half a frame late beyond the interval), and cost at most the budget when
+//     one is set, are eligible; none eligible: no filter, with the reason.
 //   - accuracy: the eligible one with the largest improvement in the temporal metric (the most
 //     negative temporal mean), equal temporal means broken by the image mean, then by the order
 //     of the candidates. The temporal metric ranks because the bench's is the video metric,
@@ -48,7 +49,14 @@ std::string_view name(Outcome outcome);  // "beats", "ties", "loses", "mixed"
 struct Comparison {
   Difference image;     // image metric (today: mean LDR-FLIP)
   Difference temporal;  // temporal metric (the bench's: 10 - ColorVideoVDP's JOD; older tables: TDE or flicker error)
+  // The configuration's own lag, not a difference (the bench's report/comparison.hpp, lag_of):
+  // above 0 beyond the interval, its frames are closer to the ground truth's previous frames than
+  // to their own, i.e. more than half a frame late (latency, ghosting). Not a merit but a gate:
+  // a late configuration is never taken. Tables without it: exact(0), never late.
+  Difference lag;
 };
+// Whether the comparison says the configuration is late (its lag lies above 0 beyond the interval).
+bool late(const Comparison& comparison);
 Outcome outcome(const Comparison& comparison);
 
 struct Candidate {

@@ -61,6 +61,18 @@ Image pooled_change(const Image& previous, const Image& current, double sigma) {
   return gaussian_pooled(change, sigma);
 }
 
+double lag_error(const Image& result, const Image& reference, const Image& previous_reference) {
+  check_same_size(result, reference);
+  check_same_size(result, previous_reference);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    const double on_time = static_cast<double>(result.pixels[i]) - reference.pixels[i];
+    const double late = static_cast<double>(result.pixels[i]) - previous_reference.pixels[i];
+    sum += on_time * on_time - late * late;
+  }
+  return result.size() ? sum / static_cast<double>(result.size()) : 0.0;
+}
+
 FlickerError flicker_error(const Image& pooled_change_result, const Image& pooled_change_reference) {
   check_same_size(pooled_change_result, pooled_change_reference);
   FlickerError e;

@@ -33,6 +33,15 @@ Image display_image(const Image& radiance) {
   return out;
 }
 
+std::vector<std::uint8_t> display_bytes(const Image& display) {
+  std::vector<std::uint8_t> bytes(display.size());
+  for (std::size_t i = 0; i < display.size(); ++i) {
+    const float v = display.pixels[i] >= 0.0f ? std::min(display.pixels[i], 1.0f) : 0.0f;  // NaN compares false: 0
+    bytes[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+  }
+  return bytes;
+}
+
 ImageError compare_images(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height) throw std::invalid_argument("compare_images: size mismatch");
   ImageError e;

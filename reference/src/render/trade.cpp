@@ -358,17 +358,15 @@ SeedReference seed_reference(const Image& linear, const SeedReference* previous,
 }
 
 // A clip's frames as the video metric reads them: the 8-bit display values that `saagen bench
-// --frames` writes (round(255 v), v clamped to [0, 1], NaN as 0), kept as bytes until compared.
+// --frames` writes (display_bytes()), kept as bytes until compared.
 struct ClipFrames {
   int width = 0, height = 0, frames = 0;
   std::vector<std::uint8_t> bytes;
 
   void append(const Image& display) {
     if (frames == 0) width = display.width, height = display.height;
-    for (const float v : display.pixels) {
-      const float clamped = v >= 0.0f ? std::min(v, 1.0f) : 0.0f;  // NaN compares false: 0
-      bytes.push_back(static_cast<std::uint8_t>(std::lround(clamped * 255.0f)));
-    }
+    const std::vector<std::uint8_t> frame = display_bytes(display);
+    bytes.insert(bytes.end(), frame.begin(), frame.end());
     ++frames;
   }
   GreyClip grey() const {
@@ -388,8 +386,9 @@ struct ClipRecorder {
   ClipFrames frames;  // kept only with the video metric
   bool keep_frames = false;
 
-  // Frame t of the clip (linear radiance) against each seed's reference of that frame.
-  void add(const Image& linear, std::span<const SeedReference> references) {
+  // Frame t of the clip (linear radiance) against each seed's reference of that frame and, after
+  // the first frame, of the previous one (`previous`, the same seeds).
+  void add(const Image& linear, std::span<const SeedReference> references, std::span<const SeedReference> previous) {
     Image display = display_image(linear);
     const Image tonemapped_frame = tonemapped(linear);
     const bool has_previous = previous_display.size() == display.size() && previous_display.size() > 0;
@@ -397,6 +396,7 @@ struct ClipRecorder {
     for (std::size_t s = 0; s < references.size(); ++s) {
       const SeedReference& reference = references[s];
       if (reference.flip) series.image[s].push_back(reference.flip->mean_error(tonemapped_frame));
+      if (s < previous.size()) series.lag[s].push_back(lag_error(display, reference.display, previous[s].display));
       if (!has_previous) continue;
       const FlickerError e = flicker_error(change, reference.change);
       series.flicker[s].push_back(e.error);
@@ -431,6 +431,7 @@ void finish_verdict_metrics(const ClipRecorder& clip, TradeRow& row) {
   row.image_error = series_interval(std::span<const SeedSeries>(&row.series.image, 1));
   row.flicker_error = series_interval(std::span<const SeedSeries>(&row.series.flicker, 1));
   if (!row.series.video[0].empty()) row.video_error = series_interval(std::span<const SeedSeries>(&row.series.video, 1));
+  if (!row.series.lag[0].empty()) row.lag = series_interval(std::span<const SeedSeries>(&row.series.lag, 1));
   row.flip_ldr_animation = row.series.image[0].empty() ? 0.0 : mean_interval(row.series.image[0], 0.0).mean;
   if (clip.flicker_values > 0) {
     row.flicker_excess = clip.excess / clip.flicker_values;
@@ -447,22 +448,24 @@ class SanityClips {
   explicit SanityClips(bool keep_frames = false) {
     for (ClipRecorder& clip : clips_) clip.keep_frames = keep_frames;
   }
-  void add(const Image& other, const Image& quarter, const SeedReference& reference) {
+  void add(const Image& other, const Image& quarter, const SeedReference& reference, const SeedReference* previous_reference) {
     if (!first_) first_ = other;
     const Image& delayed = previous_ ? *previous_ : other;
     const Image inputs[] = {other, quarter, delayed, gaussian_pooled(other, kSanityBlurSigma), *first_,
                             Image(other.width, other.height, 0.0f)};
-    for (std::size_t i = 0; i < kSanityResults.size(); ++i) clips_[i].add(inputs[i], std::span<const SeedReference>(&reference, 1));
+    const std::span<const SeedReference> previous = previous_reference ? std::span(previous_reference, 1) : std::span<const SeedReference>();
+    for (std::size_t i = 0; i < kSanityResults.size(); ++i) clips_[i].add(inputs[i], std::span(&reference, 1), previous);
     previous_ = other;
   }
   const Image& last(SanityResult result) const { return clips_[static_cast<std::size_t>(result)].previous_display; }
   ClipRecorder& clip(SanityResult result) { return clips_[static_cast<std::size_t>(result)]; }
   SanityRow row(SceneId scene, const Material& material, SanityResult result) const {
     const ClipRecorder& clip = clips_[static_cast<std::size_t>(result)];
-    SanityRow row{scene, material.alpha, material.fresnel, result, 0.0, 0.0, 0.0, clip.series};
+    SanityRow row{scene, material.alpha, material.fresnel, result, 0.0, 0.0, 0.0, 0.0, clip.series};
     row.image_error = mean_interval(clip.series.image[0], 0.0).mean;
     row.flicker_error = mean_interval(clip.series.flicker[0], 0.0).mean;
     if (!clip.series.video[0].empty()) row.video_error = mean_interval(clip.series.video[0], 0.0).mean;
+    if (!clip.series.lag[0].empty()) row.lag = mean_interval(clip.series.lag[0], 0.0).mean;
     return row;
   }
 
@@ -746,14 +749,14 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
           variant_stats[r].add(image);
           variant_display[r].add(tonemapped(image));
-          clips[r].add(image, frame_references[m]);
+          clips[r].add(image, frame_references[m], frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
           if (frame > 0) differences[r].add_pair(previous_variant[r], clips[r].previous_display, previous_reference[m], reference_frame[m]);
           previous_variant[r] = clips[r].previous_display;
         });
         if (sanity)
           parallel_rows(static_cast<int>(n_materials), config.threads, [&](int i) {
             const std::size_t m = static_cast<std::size_t>(i);
-            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0]);
+            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0], frame > 0 ? &seed_references[m][0] : nullptr);
           });
         for (std::size_t r = 0; r < n_rows; ++r) emit_frame(r / n_keys, configuration_id(table.rows[first_row + r]), frame, previous_variant[r]);
         for (std::size_t m = 0; m < sanity_clips.size(); ++m)

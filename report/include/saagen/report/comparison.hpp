@@ -42,6 +42,9 @@ struct PairedComparison {
   // video_error (10 - ColorVideoVDP's JOD of the clip), when every cell has it: the verdict's
   // temporal metric (to_decision); without it the flicker error is.
   std::optional<MetricDifference> video;
+  // The configuration's own lag (lag_of; not a difference to the baseline): the decision's gate,
+  // not a merit (decision::late). All 0 where the table has no lag.
+  MetricDifference lag;
 };
 // The metric the verdict reads as temporal: the video metric where measured, else the flicker error.
 const MetricDifference& temporal_metric(const PairedComparison& comparison);
@@ -58,12 +61,19 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
 std::string_view comparison_outcome_name(const PairedComparison& comparison);
 
 // The comparison as saagen's decision reads it (saagen/decision.hpp): image = image_error's
-// difference, temporal = temporal_metric()'s. A difference the ground truth limits
+// difference, temporal = temporal_metric()'s, lag = the lag's. A difference the ground truth limits
 // (MetricDifference::ground_truth_limited) is a tie whatever its interval: its interval is
 // widened to include 0.
 decision::Comparison to_decision(const PairedComparison& comparison);
 
 // The same for two series of one cell (a sanity result against a row, two rows).
 MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b);
+
+// A result's own lag over cells (animation_error.hpp, lag_error), with its interval: a result
+// shown tau frames late, R_t = E I_{t - tau}, has E[lag] = (2 tau - 1) |motion|^2, so a lag above
+// 0 beyond the interval says its frames follow the ground truth more than half a frame late,
+// whatever the motion's size. The interval includes the ground truth's spread; the quarter rule
+// (ground_truth_limited) does not apply to this gate.
+MetricDifference lag_of(std::span<const render::SeedSeries> cells);
 
 }  // namespace saagen::report

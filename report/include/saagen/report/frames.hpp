@@ -24,9 +24,6 @@ namespace saagen::report {
 // metric measures at (render::TradeConfig::clip_frames_per_second): the animation has none of its own.
 inline constexpr int kClipFramesPerSecond = 30;
 
-// A frame's display values as the clips store them: round(255 v), v clamped to [0, 1] (NaN: 0).
-std::vector<std::uint8_t> clip_bytes(const render::Image& display);
-
 class ClipWriter {
  public:
   // Clips whose name matches `keep` (and the ground truth's, always) are kept.

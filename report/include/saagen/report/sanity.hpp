@@ -9,12 +9,14 @@
 //                    ground truth's pooled motion, lies above another seed's): frozen and
 //                    no-highlight are worse than the quarter-sample ground truth beyond the
 //                    interval in at least one metric, and delayed is worse than the frames it is
-//                    made of shown on time (another seed), so the verdict never has them beat these;
-//   never wins       entered as configurations beside every measured one, no degenerate result
-//                    (blurred, frozen, no highlight) is the configuration the verdict would choose
-//                    against no SAA on the scene (the decision's accuracy rule: the best temporal
-//                    error, then image error, among those that beat no SAA). The delayed result is the converged animation one frame late: where it
-//                    is chosen, the table says so (its lag is measured by the rule above).
+//                    made of shown on time (another seed), in the image or temporal metric or the
+//                    lag (animation_error.hpp);
+//   never wins       entered as configurations beside every measured one (blurred too), no
+//                    degenerate result (delayed, frozen, no highlight) is the configuration the
+//                    verdict would choose against no SAA on the scene (the decision's rule: among
+//                    those that beat no SAA and are not late, the best temporal error, then image
+//                    error). The blurred result is the converged animation blurred by 1 px, what a
+//                    pixel-footprint filter aims at: where it is chosen, the table says so.
 // All comparisons are paired, frame by frame, against the first ground-truth seed (the results are
 // made from the second seed's frames and a third seed's).
 #pragma once
@@ -34,6 +36,7 @@ struct SanityEntry {
   double image_error = 0.0;    // mean over the scene's materials
   double flicker_error = 0.0;
   MetricDifference image_vs_quarter, flicker_vs_quarter;  // against the quarter-sample ground truth
+  double lag = 0.0;  // mean lag (animation_error.hpp)
 };
 
 struct SceneSanity {

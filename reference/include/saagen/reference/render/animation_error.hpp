@@ -24,6 +24,15 @@
 //                              (aliasing: a highlight popping from pixel to pixel);
 //                     missing  mean max(0, G*|dR| - G*|dI|): motion the result does not show.
 //                   error = excess + missing.
+//   lag             for each frame t after the first, the mean over pixels of
+//                     (I_t - R_t)^2 - (I_t - R_{t-1})^2:
+//                   whether frame t of the result is closer to the ground truth's frame t or to
+//                   its previous frame. With independent noise in I and R its expectation is
+//                   |E I_t - E R_t|^2 - |E I_t - E R_{t-1}|^2 (the noise cancels): about -|motion|^2
+//                   for a result that follows the motion, +|motion|^2 for one a frame late. The
+//                   video metric hardly sees a one-frame delay (a converged image shown a frame
+//                   late is a good-looking clip); a result that lags more than no SAA is late,
+//                   and the decision never takes it (saagen/decision.hpp).
 //
 // Neither criterion ranks anything before it passed the sanity suite (sanity.hpp): results whose
 // ranking is known (the ground truth with another seed, with a quarter of its samples, delayed by
@@ -57,6 +66,11 @@ struct FlickerError {
 
 // The flicker error of one frame pair from the two pooled changes (pooled_change()).
 FlickerError flicker_error(const Image& pooled_change_result, const Image& pooled_change_reference);
+
+// The lag of one frame (see the top of this file): mean over pixels of (I - R)^2 - (I - P)^2 for
+// the result's frame I, the ground truth's frame R and its previous frame P (display values,
+// display_image()). All three of one size.
+double lag_error(const Image& result, const Image& reference, const Image& previous_reference);
 
 // A mean and its 95 % interval.
 struct Interval {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -41,6 +42,10 @@ double srgb_encode(double display_linear);
 // The values LDR-FLIP compares and the temporal difference error is measured in.
 double display_value(double radiance);
 Image display_image(const Image& radiance);
+// A display image (display_image()) as the 8-bit values a display receives, round(255 v), v
+// clamped to [0, 1] and NaN as 0: the clips the video metric reads and `saagen bench --frames`
+// writes.
+std::vector<std::uint8_t> display_bytes(const Image& display);
 
 // Error metrics of an image against a reference of the same size, over all pixels (background
 // pixels included; both images are 0 there unless a silhouette pixel is partially covered).

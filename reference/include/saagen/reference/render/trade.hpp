@@ -193,6 +193,9 @@ struct AnimationSeries {
   // The video metric's loss, 10 - JOD (ColorVideoVDP; lower is better, 0 = no visible
   // difference): one value per seed for the whole clip, empty without the video metric.
   SeedSeries video;
+  // The lag of every frame after the first (animation_error.hpp, lag_error): > 0 where the frame
+  // is closer to the ground truth's previous frame than to its own.
+  SeedSeries lag;
 };
 
 // The results of the sanity suite, whose ranking is known before any metric is computed: the
@@ -216,7 +219,8 @@ struct SanityRow {
   double image_error = 0.0;
   double flicker_error = 0.0;
   double video_error = 0.0;  // 10 - JOD
-  AnimationSeries series;  // [0] only
+  double lag = 0.0;          // mean lag (animation_error.hpp)
+  AnimationSeries series;    // [0] only
 };
 
 struct TradeRow {
@@ -262,6 +266,8 @@ struct TradeRow {
   // The video metric: 10 - the ColorVideoVDP JOD of the clip (video_vdp.hpp), mean over the
   // seeds with its interval (the ground truth's spread); all 0 without it (TradeConfig).
   Interval video_error;
+  // The mean lag (animation_error.hpp, lag_error) over the frames and seeds, with its interval.
+  Interval lag;
   double flicker_excess = 0.0;   // flicker_error's parts, means over pairs and seeds
   double flicker_missing = 0.0;
   AnimationSeries series;
