@@ -34,7 +34,7 @@ TEST(LagOf, AFrameLateIsLateAndATenthOfAFrameIsNot) {
   EXPECT_EQ(report::outcome_of(report::lag_of(spanning)), report::MetricOutcome::tie);
 }
 
-// A table without the lag (older tables, the +taa rows): nothing is late.
+// A table without the lag (older tables): nothing is late.
 TEST(LagOf, WithoutTheSeriesItIsATie) {
   const std::vector<render::SeedSeries> empty(2);
   const report::MetricDifference d = report::lag_of(empty);

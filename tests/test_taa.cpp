@@ -258,6 +258,16 @@ TEST(TaaTrade, EveryConfigurationOnceMoreUnderTaa) {
     EXPECT_GT(taa.flip_ldr, 0.0);
     EXPECT_GT(taa.tde, 0.0);
     EXPECT_GE(taa.tde + 1e-12, taa.tde_excess_flicker + taa.tde_lost_motion);
+    // The verdict's metrics, against both ground-truth seeds as the rows without TAA.
+    for (std::size_t seed = 0; seed < 2; ++seed) {
+      EXPECT_EQ(taa.series.image[seed].size(), 3u);
+      EXPECT_EQ(taa.series.video[seed].size(), 3u);
+      EXPECT_EQ(taa.series.lag[seed].size(), 2u);
+    }
+    EXPECT_NEAR(taa.flip_ldr_animation, mean_interval(taa.series.image[0], 0.0).mean, 1e-9);
+    EXPECT_GT(taa.image_error.mean, 0.0);
+    EXPECT_GT(taa.video_error.mean, 0.0);
+    EXPECT_LE(taa.video_error.low, taa.video_error.mean);
   }
   EXPECT_EQ(configuration_id(Variant::deferred_avg, NormalFeed::geometric, Prefilter::lean, Lobe::tail, true),
             "deferred-avg:geometric+lean+taa/tail");
@@ -357,8 +367,9 @@ TEST_F(TaaCli, BenchTaaPrintsTheTaaTable) {
 }
 
 // saagen report --taa: a "With TAA" section in index.html and report.md (after the strips), with
-// the per-scene comparison and one image per scene (taa_<scene>.png: a crop of the last frame of
-// the ground truth, none+taa, the best saagen configuration and the best engine form under TAA).
+// the per-scene verdict and comparison and one image per scene (taa_<scene>.png: a crop of the last
+// frame of the ground truth, none+taa, the configuration the verdict takes under TAA where one
+// beats none+taa, and the best engine form under TAA).
 TEST_F(TaaCli, ReportTaaHasTheWithTaaSection) {
   const std::filesystem::path dir = scratch_ / "report";
   const auto run = saagen({"report", "--scene", "sphere", "--preset", "quick", "--resolution", "8", "--taa", "-o", dir.string()});
@@ -370,8 +381,8 @@ TEST_F(TaaCli, ReportTaaHasTheWithTaaSection) {
   ASSERT_NE(image, std::string::npos);
   EXPECT_LT(markdown.find("](strip_sphere.png)"), section);
   EXPECT_LT(section, image);
-  for (const char* text : {"| sphere | TAA | none+taa |", "| sphere | best saagen |", "| sphere | engine | engine-hdrp+taa |",
-                           "ground truth, none+taa ", ", best saagen: ", ", best engine: engine-"})
+  for (const char* text : {"- sphere: ", "| sphere | TAA | none+taa |", "| sphere | engine | engine-hdrp+taa |", "ground truth, none+taa ",
+                           ", best engine: engine-"})
     EXPECT_NE(markdown.find(text), std::string::npos) << text;
   const std::string html = saagen::test::read_text(dir / "index.html");
   EXPECT_NE(html.find("<h2>With TAA"), std::string::npos);

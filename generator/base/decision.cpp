@@ -27,9 +27,9 @@ std::string cost_text(const Candidate& c, std::string_view basis) {
   return fmt::format("{:.3g}x no SAA's shading cost{}{}", *c.cost_ratio, basis.empty() ? "" : " ", basis);
 }
 
-std::string figures(const Candidate& c, std::string_view basis) {
-  return fmt::format("{} (image {}, temporal {} against no SAA; {})", c.configuration, describe(c.against_none.image),
-                     describe(c.against_none.temporal), cost_text(c, basis));
+std::string figures(const Candidate& c, std::string_view basis, std::string_view baseline) {
+  return fmt::format("{} (image {}, temporal {} against {}; {})", c.configuration, describe(c.against_none.image),
+                     describe(c.against_none.temporal), baseline, cost_text(c, basis));
 }
 
 // The largest known cost among the usable candidates, and how many candidates are usable.
@@ -77,7 +77,8 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   std::vector<std::size_t> tried;
   for (std::size_t i = 0; i < candidates.size(); ++i)
     if (candidates[i].usable) ++usable, tried.push_back(i);
-  if (candidates.empty()) return "no filter: no configuration was measured against no SAA here";
+  const std::string_view baseline = preference.baseline;
+  if (candidates.empty()) return fmt::format("no filter: no configuration was measured against {} here", baseline);
   if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
   std::vector<std::size_t> on_time;
   for (std::size_t i : beating)
@@ -85,28 +86,29 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   if (!beating.empty() && on_time.empty()) {
     std::vector<std::string> listed;
     for (std::size_t i : beating)
-      listed.push_back(fmt::format("{} (lag {})", figures(candidates[i], basis), describe(candidates[i].against_none.lag)));
+      listed.push_back(fmt::format("{} (lag {})", figures(candidates[i], basis, baseline), describe(candidates[i].against_none.lag)));
     return fmt::format(
-        "no filter: what beats no SAA is late (its frames are closer to the ground truth's previous frames than to their own): {}",
+        "no filter: what beats {} is late (its frames are closer to the ground truth's previous frames than to their own): {}", baseline,
         fmt::join(listed, ", "));
   }
   if (beating.empty()) {
     const std::size_t best = *most_accurate(candidates, tried);
-    return fmt::format("no filter: none of the {} beats no SAA; the lowest temporal error, {}, {}", usable_count(usable),
-                       figures(candidates[best], basis), name(outcomes[best]));
+    return fmt::format("no filter: none of the {} beats {}; the lowest temporal error, {}, {}", usable_count(usable), baseline,
+                       figures(candidates[best], basis, baseline), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : on_time) listed.push_back(figures(candidates[i], basis));
+  for (std::size_t i : on_time) listed.push_back(figures(candidates[i], basis, baseline));
   if (preference.budget) {
     bool any_in_budget = false;
     for (std::size_t i : on_time) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
     if (!any_in_budget)
-      return fmt::format("no filter: what beats no SAA costs more than the budget {:.3g}: {}", *preference.budget, fmt::join(listed, ", "));
+      return fmt::format("no filter: what beats {} costs more than the budget {:.3g}: {}", baseline, *preference.budget,
+                         fmt::join(listed, ", "));
   }
   return fmt::format(
-      "no filter: what beats no SAA is the most expensive form here (prefer = \"speed\" never takes it; prefer = \"accuracy\" "
+      "no filter: what beats {} is the most expensive form here (prefer = \"speed\" never takes it; prefer = \"accuracy\" "
       "does): {}",
-      fmt::join(listed, ", "));
+      baseline, fmt::join(listed, ", "));
 }
 
 }  // namespace
@@ -157,8 +159,8 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
     return decision;
   }
   const Candidate& chosen = candidates[*decision.chosen];
-  decision.reason = fmt::format("{} beats no SAA: the {} of the {} that do{}", figures(chosen, cost_basis),
-                                speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
+  decision.reason = fmt::format("{} beats {}: the {} of the {} that do{}", figures(chosen, cost_basis, preference.baseline),
+                                preference.baseline, speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
   return decision;
 }

@@ -81,10 +81,10 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
   using Cell = std::tuple<render::SceneId, double>;
   std::map<Cell, const render::TradeRow*> baseline_rows;
   for (const render::TradeRow& row : table.rows)
-    if (!row.fresnel && !row.taa && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+    if (!row.fresnel && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
   std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
   for (const render::TradeRow& row : table.rows) {
-    if (row.fresnel || row.taa || !keep(row) || render::configuration_id(row) != configuration) continue;
+    if (row.fresnel || !keep(row) || render::configuration_id(row) != configuration) continue;
     const auto base = baseline_rows.find({row.scene, row.alpha});
     if (base == baseline_rows.end()) continue;
     image_a.push_back(row.series.image);

@@ -638,14 +638,14 @@ Strip taa_strip(const render::TradeTable& taa, const TaaComparison& comparison, 
     if (rendered == set.variants.end() || !row) continue;
     images.push_back(cropped(rendered->image, crop));
     labels.push_back(column.first);  // the label of the image kept, also when an earlier column had none
-    figures.push_back(fmt::format("{} {:.4f} / {:.5f}", column.first, row->flip_ldr_animation, row->tde));
+    figures.push_back(fmt::format("{} {:.4f} / {:.2f}", column.first, row->image_error.mean, row->video_error.mean));
   }
   std::vector<Tile> tiles;
   for (std::size_t i = 0; i < images.size(); ++i) tiles.push_back({labels[i], &images[i]});
   const std::string scene(render::scene_name(set.scene));
   return {taa_strip_name(set.scene),
           fmt::format("{} under TAA, alpha {} (where none+taa errs most), last animation frame, the {} x {} px crop at ({}, {}) "
-                      "shown {}x: ground truth, {} (LDR-FLIP of the animation / TDE at this alpha)",
+                      "shown {}x: ground truth, {} (image error / video error at this alpha)",
                       scene, set.material.alpha, crop.size, crop.size, crop.x, crop.y, crop.scale, fmt::join(figures, ", ")),
           grid_png(cropped(set.reference, crop), tiles)};
 }
@@ -653,25 +653,29 @@ Strip taa_strip(const render::TradeTable& taa, const TaaComparison& comparison, 
 struct TaaSection {
   std::string note;
   TextTable table;
+  std::vector<std::string> verdicts;  // per scene, the decision's reason under TAA
   std::vector<Strip> strips;
 };
 
 TaaSection taa_section(const render::TradeTable& taa) {
   TaaSection section;
   section.note = taa_note(taa);
-  section.table.headers = {"scene", "row", "configuration", "LDR-FLIP", "TDE", "excess flicker", "lost motion"};
+  section.table.headers = taa_headers();
+  section.table.headers.insert(section.table.headers.begin(), "scene");
   for (const TaaComparison& comparison : taa_comparisons(taa)) {
-    for (const TaaComparisonRow& row : comparison.rows)
-      section.table.rows.push_back({std::string(render::scene_name(comparison.scene)), row.label, row.configuration,
-                                    fmt::format("{:.4f}", row.flip_ldr), fmt::format("{:.5f}", row.tde),
-                                    fmt::format("{:.5f}", row.tde_excess_flicker), fmt::format("{:.5f}", row.tde_lost_motion)});
+    for (const TaaComparisonRow& row : comparison.rows) {
+      std::vector<std::string> columns = taa_columns(row);
+      columns.insert(columns.begin(), std::string(render::scene_name(comparison.scene)));
+      section.table.rows.push_back(std::move(columns));
+    }
+    section.verdicts.push_back(std::string(render::scene_name(comparison.scene)) + ": " + comparison.verdict);
     if (const render::ImageSet* set = worst_case_for_none_taa(taa, comparison.scene))
       section.strips.push_back(taa_strip(taa, comparison, *set));
   }
   return section;
 }
 
-constexpr const char* kTaaTitle = "With TAA: none+taa, the best saagen configuration and each engine form under TAA";
+constexpr const char* kTaaTitle = "With TAA: none+taa, the configuration the verdict takes under TAA and each engine form under TAA";
 constexpr const char* kTaaImageNote =
     "Images: top, the crop of the animation's last frame; bottom, the tonemapped difference from the ground truth (red brighter, blue "
     "darker, full colour at 0.25).";
@@ -763,7 +767,9 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   md << "## " << kTradeTitle << "\n\n" << kTradeNote << "\n\n";
   for (const std::string& plot : plots) md << "![" << plot << "](" << plot << ")\n\n";
   if (taa) {
-    md << "## " << kTaaTitle << "\n\n(" << taa->note << ")\n\n" << as_markdown(taa->table) << "\n" << kTaaImageNote << "\n\n";
+    md << "## " << kTaaTitle << "\n\n(" << taa->note << ")\n\n";
+    for (const std::string& verdict : taa->verdicts) md << "- " << verdict << "\n";
+    md << "\n" << as_markdown(taa->table) << "\n" << kTaaImageNote << "\n\n";
     for (const Strip& strip : taa->strips) md << "![" << strip.caption << "](" << strip.file << ")\n\n";
   }
   md << config_line(table) << ".\n\n" << kMetricNote << "\n\n";
@@ -828,8 +834,9 @@ std::string html_report(const render::TradeTable& table, const std::vector<Varia
   html << "<h2>" << html_escape(kTradeTitle) << "</h2>\n<p>" << html_escape(kTradeNote) << "</p>\n";
   for (const std::string& plot : plots) html << "<img src=\"" << plot << "\" alt=\"" << plot << "\">\n";
   if (taa) {
-    html << "<h2>" << html_escape(kTaaTitle) << "</h2>\n<p>(" << html_escape(taa->note) << ")</p>\n"
-         << as_html(taa->table) << "<p>" << html_escape(kTaaImageNote) << "</p>\n";
+    html << "<h2>" << html_escape(kTaaTitle) << "</h2>\n<p>(" << html_escape(taa->note) << ")</p>\n<ul>\n";
+    for (const std::string& verdict : taa->verdicts) html << "<li>" << html_escape(verdict) << "</li>\n";
+    html << "</ul>\n" << as_html(taa->table) << "<p>" << html_escape(kTaaImageNote) << "</p>\n";
     for (const Strip& strip : taa->strips)
       html << "<figure><img src=\"" << strip.file << "\" alt=\"" << html_escape(strip.caption) << "\"><figcaption>"
            << html_escape(strip.caption) << "</figcaption></figure>\n";

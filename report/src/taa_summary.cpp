@@ -1,5 +1,7 @@
 // The trade under TAA: the +taa rows apart from the summaries, their per-scene comparison and
 // its table (see report.hpp).
+#include "saagen/decision.hpp"
+#include "saagen/report/comparison.hpp"
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
@@ -13,12 +15,6 @@ namespace saagen::report {
 
 namespace {
 
-// Sums over a scene's alphas (no Fresnel) of one configuration's comparison figures.
-struct TaaSums {
-  double flip = 0.0, tde = 0.0, excess = 0.0, lost = 0.0;
-  int cases = 0;
-};
-
 bool is_engine(const std::string& id) { return id.starts_with("engine-"); }
 
 // A saagen SAA configuration under TAA, any feed, prefilter or lobe ("deferred-aniso+taa/tail");
@@ -27,22 +23,65 @@ bool is_saagen_taa(const std::string& id) { return id.find("+taa") != std::strin
 
 bool is_engine_taa(const std::string& id) { return is_engine(id) && id.find("+taa") != std::string::npos; }
 
-TaaComparisonRow row_of(const std::string& label, const std::string& id, const TaaSums& s) {
-  return {label, id, s.flip / s.cases, s.tde / s.cases, s.excess / s.cases, s.lost / s.cases};
+// One scene's rows (no Fresnel) by configuration, in the table's order of first appearance.
+struct SceneRows {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const render::TradeRow*>> rows;
+};
+
+std::vector<std::pair<render::SceneId, SceneRows>> rows_by_scene(const render::TradeTable& table) {
+  std::vector<std::pair<render::SceneId, SceneRows>> scenes;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel) continue;
+    auto scene = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.first == row.scene; });
+    if (scene == scenes.end()) scene = scenes.insert(scenes.end(), {row.scene, SceneRows{}});
+    const std::string id = render::configuration_id(row);
+    std::vector<const render::TradeRow*>& rows = scene->second.rows[id];
+    if (rows.empty()) scene->second.order.push_back(id);
+    rows.push_back(&row);
+  }
+  return scenes;
 }
 
-// The configuration with the lowest mean LDR-FLIP among those `keep` accepts ("" if none).
-template <typename Keep>
-std::string best_by_flip(const std::map<std::string, TaaSums>& configs, Keep keep) {
-  std::string best;
-  for (const auto& [id, s] : configs)
-    if (keep(id) && (best.empty() || s.flip / s.cases < configs.at(best).flip / configs.at(best).cases)) best = id;
-  return best;
+// A configuration's own figure over its rows (render::series_interval over the cells).
+template <typename Series>
+render::Interval own_interval(const std::vector<const render::TradeRow*>& rows, Series series) {
+  std::vector<render::SeedSeries> cells;
+  for (const render::TradeRow* row : rows) cells.push_back(row->series.*series);
+  return render::series_interval(cells);
 }
 
-std::string means_line(const std::string& scene, const TaaComparisonRow& row) {
-  return fmt::format("{:<17} {:<14} {:<40} {:>8.4f} {:>9.5f} {:>10.5f} {:>9.5f}\n", scene, row.label, row.configuration, row.flip_ldr,
-                     row.tde, row.tde_excess_flicker, row.tde_lost_motion);
+TaaComparisonRow row_of(const render::TradeTable& table, render::SceneId scene, const std::string& label, const std::string& id,
+                        const std::vector<const render::TradeRow*>& rows) {
+  TaaComparisonRow out{label, id, own_interval(rows, &render::AnimationSeries::image), std::nullopt, 0.0, std::nullopt};
+  const bool video = std::all_of(rows.begin(), rows.end(), [](const render::TradeRow* r) { return !r->series.video[0].empty(); });
+  if (video) out.video_error = own_interval(rows, &render::AnimationSeries::video);
+  for (const render::TradeRow* row : rows) out.tde += row->tde / static_cast<double>(rows.size());
+  if (id != "none+taa")
+    out.against_taa = compare_configurations(table, id, "none+taa", [scene](const render::TradeRow& row) { return row.scene == scene; });
+  return out;
+}
+
+// What the decision takes among saagen's configurations under TAA against none+taa.
+decision::Decision decide_under_taa(const std::vector<TaaComparisonRow>& saagen_rows, std::vector<std::string>& ids) {
+  std::vector<decision::Candidate> candidates;
+  for (const TaaComparisonRow& row : saagen_rows) {
+    candidates.push_back({row.configuration, to_decision(*row.against_taa), std::nullopt, true});
+    ids.push_back(row.configuration);
+  }
+  decision::Preference preference;
+  preference.baseline = "none+taa";
+  return decision::decide(candidates, preference);
+}
+
+double temporal_mean(const TaaComparisonRow& row) { return row.video_error ? row.video_error->mean : row.image_error.mean; }
+
+std::string interval_text(const render::Interval& i) { return fmt::format("{:.4f} [{:.4f}, {:.4f}]", i.mean, i.low, i.high); }
+
+std::string difference_text(const std::optional<PairedComparison>& c, bool video) {
+  if (!c || c->cells == 0) return "";
+  const MetricDifference& d = video && c->video ? *c->video : c->image;
+  return fmt::format("{:+.4f} [{:+.4f}, {:+.4f}] {}", d.difference.mean, d.difference.low, d.difference.high, comparison_outcome_name(*c));
 }
 
 }  // namespace
@@ -54,31 +93,30 @@ render::TradeTable without_taa_rows(const render::TradeTable& table) {
 }
 
 std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
-  std::vector<render::SceneId> scenes;
-  std::map<render::SceneId, std::map<std::string, TaaSums>> sums;  // scene -> configuration -> sums
-  for (const render::TradeRow& row : table.rows) {
-    if (row.fresnel) continue;
-    if (std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
-    TaaSums& s = sums[row.scene][render::configuration_id(row)];
-    s.flip += row.flip_ldr_animation;
-    s.tde += row.tde;
-    s.excess += row.tde_excess_flicker;
-    s.lost += row.tde_lost_motion;
-    ++s.cases;
-  }
   std::vector<TaaComparison> out;
-  for (render::SceneId scene : scenes) {
-    const auto& configs = sums[scene];
-    if (!configs.count("none+taa")) continue;
+  for (const auto& [scene, configs] : rows_by_scene(table)) {
+    if (!configs.rows.count("none+taa")) continue;
     TaaComparison c;
     c.scene = scene;
-    if (configs.count("none")) c.rows.push_back(row_of("no TAA", "none", configs.at("none")));
-    c.rows.push_back(row_of("TAA", "none+taa", configs.at("none+taa")));
-    c.best_saagen = best_by_flip(configs, is_saagen_taa);
-    if (!c.best_saagen.empty()) c.rows.push_back(row_of("best saagen", c.best_saagen, configs.at(c.best_saagen)));
-    c.best_engine = best_by_flip(configs, is_engine_taa);
-    for (const auto& [id, s] : configs)
-      if (is_engine_taa(id)) c.rows.push_back(row_of("engine", id, s));
+    if (configs.rows.count("none")) c.rows.push_back(row_of(table, scene, "no TAA", "none", configs.rows.at("none")));
+    c.rows.push_back(row_of(table, scene, "TAA", "none+taa", configs.rows.at("none+taa")));
+    std::vector<TaaComparisonRow> saagen, engines;
+    for (const std::string& id : configs.order) {
+      if (is_saagen_taa(id)) saagen.push_back(row_of(table, scene, "saagen", id, configs.rows.at(id)));
+      if (is_engine_taa(id)) engines.push_back(row_of(table, scene, "engine", id, configs.rows.at(id)));
+    }
+    std::vector<std::string> ids;
+    const decision::Decision made = decide_under_taa(saagen, ids);
+    c.verdict = made.reason;
+    if (made.chosen) {
+      c.best_saagen = ids[*made.chosen];
+      c.rows.push_back(saagen[*made.chosen]);
+    }
+    const auto best_engine = std::min_element(engines.begin(), engines.end(), [](const TaaComparisonRow& a, const TaaComparisonRow& b) {
+      return temporal_mean(a) < temporal_mean(b);
+    });
+    if (best_engine != engines.end()) c.best_engine = best_engine->configuration;
+    c.rows.insert(c.rows.end(), engines.begin(), engines.end());
     out.push_back(std::move(c));
   }
   return out;
@@ -87,20 +125,40 @@ std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
 std::string taa_note(const render::TradeTable& table) {
   const render::TradeConfig& c = table.config;
   return fmt::format(
-      "means over the alphas without Fresnel; LDR-FLIP of the {} animation frames after a warm-up of {} at {} x {} px against their "
-      "{}-spp ground truths; TDE over those frames",
+      "means over the alphas without Fresnel with 95 % intervals; the {} animation frames after a warm-up of {} at {} x {} px "
+      "against their {}-spp ground truths; image error: LDR-FLIP per frame; video error: 10 - ColorVideoVDP's JOD of the clip; "
+      "against none+taa: the paired difference in the video error (the image error without the video metric) and the "
+      "verdict's reading of both",
       c.frames, c.taa_warmup_frames > 0 ? c.taa_warmup_frames : c.taa_options.sequence_length, c.flicker_width, c.flicker_height,
       c.flicker_strata * c.flicker_strata);
 }
+
+std::vector<std::string> taa_columns(const TaaComparisonRow& row) {
+  const bool video = row.video_error.has_value();
+  return {row.label,
+          row.configuration,
+          interval_text(row.image_error),
+          video ? interval_text(*row.video_error) : "",
+          difference_text(row.against_taa, video),
+          fmt::format("{:.5f}", row.tde)};
+}
+
+std::vector<std::string> taa_headers() { return {"row", "configuration", "image error", "video error", "against none+taa", "TDE"}; }
 
 std::string format_taa_summary(const render::TradeTable& table) {
   const std::vector<TaaComparison> comparisons = taa_comparisons(table);
   if (comparisons.empty()) return {};
   std::string text = "With TAA (" + taa_note(table) + "):\n";
-  text += fmt::format("{:<17} {:<14} {:<40} {:>8} {:>9} {:>10} {:>9}\n", "scene", "row", "configuration", "ldr_flip", "tde", "tde_excess",
-                      "tde_lost");
-  for (const TaaComparison& c : comparisons)
-    for (const TaaComparisonRow& row : c.rows) text += means_line(std::string(render::scene_name(c.scene)), row);
+  const std::vector<std::string> headers = taa_headers();
+  const std::string format = "{:<14} {:<36} {:<26} {:<26} {:<38} {:>8}\n";
+  for (const TaaComparison& c : comparisons) {
+    text += fmt::format("{}: {}\n", render::scene_name(c.scene), c.verdict);
+    text += fmt::format(fmt::runtime(format), headers[0], headers[1], headers[2], headers[3], headers[4], headers[5]);
+    for (const TaaComparisonRow& row : c.rows) {
+      const std::vector<std::string> v = taa_columns(row);
+      text += fmt::format(fmt::runtime(format), v[0], v[1], v[2], v[3], v[4], v[5]);
+    }
+  }
   return text;
 }
 
@@ -113,6 +171,9 @@ nlohmann::json taa_cases_json(const render::TradeTable& table) {
                      {"configuration", render::configuration_id(row)},
                      {"taa", row.taa},
                      {"flip_ldr_animation", row.flip_ldr_animation},
+                     {"image_error", row.image_error.mean},
+                     {"video_error", row.series.video[0].empty() ? nlohmann::json() : nlohmann::json(row.video_error.mean)},
+                     {"lag", row.lag.mean},
                      {"tde", row.tde},
                      {"tde_excess_flicker", row.tde_excess_flicker},
                      {"tde_lost_motion", row.tde_lost_motion}});

@@ -71,6 +71,8 @@ enum class Prefer { accuracy, speed };
 struct Preference {
   Prefer prefer = Prefer::accuracy;
   std::optional<double> budget;  // at most this cost ratio over no SAA
+  // What the comparisons are against, as the reasons print it ("none+taa" under TAA).
+  std::string baseline = "no SAA";
 };
 
 // Costs within this fraction of each other rank as equal (one instruction of ACO's static

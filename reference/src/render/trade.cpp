@@ -1,6 +1,7 @@
 // The SAA quality trade table (see trade.hpp).
 #include "saagen/reference/render/trade.hpp"
 
+#include "trade_clips.hpp"
 #include "trade_taa.hpp"
 
 #include "saagen/reference/render/flip.hpp"
@@ -342,103 +343,6 @@ double animation_ground_truths(const TradeConfig& config) {
   return seeds + (config.sanity && seeds == 2 && config.frames >= 2 ? 0.25 : 0.0);
 }
 
-// One ground-truth seed's frame of one material, as the verdict metrics read it.
-struct SeedReference {
-  std::optional<GreyFlipReference> flip;  // LDR-FLIP's reference half (TradeConfig::flip)
-  Image display;                          // display values
-  Image change;                           // G * |R_t - R_{t-1}| (frames after the first)
-};
-
-SeedReference seed_reference(const Image& linear, const SeedReference* previous, bool flip) {
-  SeedReference r;
-  if (flip) r.flip.emplace(tonemapped(linear), GreyFlipReference::Range::ldr);
-  r.display = display_image(linear);
-  if (previous) r.change = pooled_change(previous->display, r.display);
-  return r;
-}
-
-// A clip's frames as the video metric reads them: the 8-bit display values that `saagen bench
-// --frames` writes (display_bytes()), kept as bytes until compared.
-struct ClipFrames {
-  int width = 0, height = 0, frames = 0;
-  std::vector<std::uint8_t> bytes;
-
-  void append(const Image& display) {
-    if (frames == 0) width = display.width, height = display.height;
-    const std::vector<std::uint8_t> frame = display_bytes(display);
-    bytes.insert(bytes.end(), frame.begin(), frame.end());
-    ++frames;
-  }
-  GreyClip grey() const {
-    GreyClip clip{width, height, frames, std::vector<float>(bytes.size())};
-    std::transform(bytes.begin(), bytes.end(), clip.pixels.begin(), [](std::uint8_t b) { return static_cast<float>(b) / 255.0f; });
-    return clip;
-  }
-};
-
-// A clip's state across frames: its previous display frame, its per-seed series, the sums of
-// the flicker error's parts and, for the video metric, its frames.
-struct ClipRecorder {
-  AnimationSeries series;
-  Image previous_display;
-  double excess = 0.0, missing = 0.0;
-  int flicker_values = 0;
-  ClipFrames frames;  // kept only with the video metric
-  bool keep_frames = false;
-
-  // Frame t of the clip (linear radiance) against each seed's reference of that frame and, after
-  // the first frame, of the previous one (`previous`, the same seeds).
-  void add(const Image& linear, std::span<const SeedReference> references, std::span<const SeedReference> previous) {
-    Image display = display_image(linear);
-    const Image tonemapped_frame = tonemapped(linear);
-    const bool has_previous = previous_display.size() == display.size() && previous_display.size() > 0;
-    const Image change = has_previous ? pooled_change(previous_display, display) : Image();
-    for (std::size_t s = 0; s < references.size(); ++s) {
-      const SeedReference& reference = references[s];
-      if (reference.flip) series.image[s].push_back(reference.flip->mean_error(tonemapped_frame));
-      if (s < previous.size()) series.lag[s].push_back(lag_error(display, reference.display, previous[s].display));
-      if (!has_previous) continue;
-      const FlickerError e = flicker_error(change, reference.change);
-      series.flicker[s].push_back(e.error);
-      excess += e.excess;
-      missing += e.missing;
-      ++flicker_values;
-    }
-    if (keep_frames) frames.append(display);
-    previous_display = std::move(display);
-  }
-
-  // The video metric against each seed's ground-truth clip; the frames are dropped. The series
-  // is per frame, so that its interval sees the variation over the frames (animation_error.hpp):
-  // the frames' losses (10 - VideoVdpResult::frame_jod) shifted so that their mean is the clip's
-  // loss, 10 - JOD.
-  void finish_video(std::span<const VideoVdpReference> references) {
-    const GreyClip clip = frames.grey();
-    for (std::size_t s = 0; s < references.size(); ++s) {
-      const VideoVdpResult result = references[s].compare(clip);
-      double frame_mean = 0.0;
-      for (const double jod : result.frame_jod) frame_mean += jod / static_cast<double>(result.frame_jod.size());
-      series.video[s].clear();
-      for (const double jod : result.frame_jod) series.video[s].push_back((10.0 - jod) - (10.0 - frame_mean) + (10.0 - result.jod));
-    }
-    frames = ClipFrames();
-  }
-};
-
-// A row's verdict metrics from its recorder (trade.hpp).
-void finish_verdict_metrics(const ClipRecorder& clip, TradeRow& row) {
-  row.series = clip.series;
-  row.image_error = series_interval(std::span<const SeedSeries>(&row.series.image, 1));
-  row.flicker_error = series_interval(std::span<const SeedSeries>(&row.series.flicker, 1));
-  if (!row.series.video[0].empty()) row.video_error = series_interval(std::span<const SeedSeries>(&row.series.video, 1));
-  if (!row.series.lag[0].empty()) row.lag = series_interval(std::span<const SeedSeries>(&row.series.lag, 1));
-  row.flip_ldr_animation = row.series.image[0].empty() ? 0.0 : mean_interval(row.series.image[0], 0.0).mean;
-  if (clip.flicker_values > 0) {
-    row.flicker_excess = clip.excess / clip.flicker_values;
-    row.flicker_missing = clip.missing / clip.flicker_values;
-  }
-}
-
 // The sanity suite's results of one material (trade.hpp, SanityResult), frame by frame, from the
 // second seed's frames and the quarter-sample ground truth's.
 class SanityClips {
@@ -479,14 +383,7 @@ class SanityClips {
 // (against the first seed, as their other metrics), on the configured threads.
 void compare_clips(const TradeConfig& config, const std::vector<std::vector<ClipFrames>>& reference_clips, std::size_t n_keys,
                    std::vector<ClipRecorder>& clips, std::vector<SanityClips>& sanity_clips) {
-  const std::size_t n_materials = reference_clips.size(), seeds = n_materials ? reference_clips[0].size() : 0;
-  std::vector<std::vector<VideoVdpReference>> references(n_materials);
-  std::vector<std::optional<VideoVdpReference>> built(n_materials * seeds);
-  parallel_rows(static_cast<int>(built.size()), config.threads, [&](int i) {
-    const std::size_t m = static_cast<std::size_t>(i) / seeds, seed = static_cast<std::size_t>(i) % seeds;
-    built[static_cast<std::size_t>(i)].emplace(reference_clips[m][seed].grey(), video_vdp_standard_fhd(), config.clip_frames_per_second);
-  });
-  for (std::size_t i = 0; i < built.size(); ++i) references[i / seeds].push_back(std::move(*built[i]));
+  const std::vector<std::vector<VideoVdpReference>> references = video_references(config, reference_clips);
   parallel_rows(static_cast<int>(clips.size()), config.threads,
                 [&](int r) { clips[static_cast<std::size_t>(r)].finish_video(references[static_cast<std::size_t>(r) / n_keys]); });
   parallel_rows(static_cast<int>(sanity_clips.size() * kSanityResults.size()), config.threads, [&](int i) {
@@ -691,7 +588,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       std::vector<TemporalDifference> differences(n_rows);
       std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
       std::vector<Image> previous_variant(n_rows);
-      std::vector<std::vector<Image>> reference_frames;  // [frame][material], for the +taa rows
+      std::vector<std::vector<Image>> reference_frames, second_seed_frames;  // [frame][material], for the +taa rows
       // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
       const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
       const bool sanity = config.sanity && seeds == 2 && config.frames >= 2;
@@ -715,6 +612,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           GroundTruthSettings other = flicker_settings;
           other.seed = second_seed(flicker_settings.seed);
           other_gt = ground_truth(moved, other, stage, base, false);
+          if (config.taa) second_seed_frames.push_back(other_gt->images);
           base += sizes.flicker_gt;
         }
         if (sanity) {
@@ -797,7 +695,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           base += pixels;
           report(stage, base);
         };
-        append_taa_rows(sized, id, materials, taa_keys(config, id), reference_frames, table.rows, shaded,
+        append_taa_rows(sized, id, materials, taa_keys(config, id), reference_frames, second_seed_frames, table.rows, shaded,
                         config.keep_images ? &table.taa_images : nullptr);
       }
     }

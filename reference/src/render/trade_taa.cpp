@@ -1,6 +1,8 @@
 // The trade's +taa rows (see trade.hpp, TradeConfig::taa, and trade_taa.hpp).
 #include "trade_taa.hpp"
 
+#include "trade_clips.hpp"
+
 #include "saagen/reference/render/flip.hpp"
 #include "saagen/reference/render/parallel.hpp"
 #include "saagen/reference/render/taa.hpp"
@@ -17,6 +19,7 @@ struct TaaAccumulator {
   TemporalStats stats, stats_display;
   TemporalDifference difference;
   Image previous_display;
+  ClipRecorder clip;  // the verdict metrics (trade_clips.hpp) against the first ground-truth seed
   double rmse_linear = 0.0, rmse_tonemapped = 0.0, max_error = 0.0, flip_ldr = 0.0, flip_hdr = 0.0;
   std::size_t non_finite = 0;
   TaaAccumulator(int w, int h, const TaaOptions& options) : resolve(w, h, options), stats(w, h), stats_display(w, h) {}
@@ -31,8 +34,13 @@ Scene jittered_frame(const TradeConfig& config, SceneId id, int frame, Vec2 jitt
 
 // Frame `frame` (>= 0) of a configuration after its resolve: the image metrics against the
 // frame's ground truth and the temporal ones against the previous frame's.
-void measure_frame(TaaAccumulator& a, const Image& out, const Image& reference, const Image& reference_display,
-                   const Image* previous_reference_display, bool last) {
+// The verdict metrics read every seed's reference (`references`, and `previous` after the first
+// frame); the older figures the first seed's.
+void measure_frame(TaaAccumulator& a, const Image& out, const Image& reference, std::span<const SeedReference> references,
+                   std::span<const SeedReference> previous, bool last) {
+  const Image& reference_display = references[0].display;
+  const Image* previous_reference_display = previous.empty() ? nullptr : &previous[0].display;
+  a.clip.add(out, references, previous);
   const ImageError e = compare_images(out, reference);
   a.rmse_linear += e.rmse_linear;
   a.rmse_tonemapped += e.rmse_tonemapped;
@@ -50,6 +58,7 @@ void measure_frame(TaaAccumulator& a, const Image& out, const Image& reference, 
 TradeRow finished_row(const TaaAccumulator& a, const TaaRowKey& key, SceneId id, const Material& material, int frames,
                       const TemporalStats& reference_stats, const TemporalStats& reference_display) {
   TradeRow row;
+  finish_verdict_metrics(a.clip, row);
   row.variant = key.variant;
   row.feed = key.feed;
   row.prefilter = key.prefilter;
@@ -85,18 +94,24 @@ int taa_warmup(const TradeConfig& config) {
 }
 
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
-                     const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
+                     const std::vector<std::vector<Image>>& reference_frames, const std::vector<std::vector<Image>>& second_seed_frames,
+                     std::vector<TradeRow>& rows,
                      const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images) {
   const int fw = config.flicker_width, fh = config.flicker_height, warmup = taa_warmup(config);
   const std::size_t n_keys = keys.size();
   std::vector<TaaAccumulator> accumulators;
   accumulators.reserve(materials.size() * n_keys);
-  for (std::size_t r = 0; r < materials.size() * n_keys; ++r) accumulators.emplace_back(fw, fh, config.taa_options);
+  for (std::size_t r = 0; r < materials.size() * n_keys; ++r) {
+    accumulators.emplace_back(fw, fh, config.taa_options);
+    accumulators.back().clip.keep_frames = config.video_metric;
+  }
+  const std::size_t seeds = second_seed_frames.empty() ? 1 : 2;
+  std::vector<std::vector<ClipFrames>> reference_clips(config.video_metric ? materials.size() : 0, std::vector<ClipFrames>(seeds));  // [m][seed]
   std::vector<TemporalStats> reference_stats(materials.size(), TemporalStats(fw, fh));
   std::vector<TemporalStats> reference_display(materials.size(), TemporalStats(fw, fh));
 
   std::optional<Scene> previous;
-  std::vector<Image> previous_reference_display(materials.size());
+  std::vector<std::vector<SeedReference>> previous_references(materials.size());  // [m][seed], of the previous frame
   std::vector<ImageSet> last_frames(images ? materials.size() : 0);
   for (int frame = -warmup; frame < config.frames; ++frame) {
     // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
@@ -104,13 +119,18 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     const Scene scene = jittered_frame(config, id, frame, jitter);
     const FrameBuffers buffers = frame_buffers(config, id, scene, fw, fh);
     const std::vector<Vec2> positions = previous ? reproject_history(buffers.plain, scene, *previous) : std::vector<Vec2>{};
-    std::vector<Image> reference_display_frames(materials.size());
+    std::vector<std::vector<SeedReference>> references(materials.size(), std::vector<SeedReference>(seeds));
     if (frame >= 0) {
+      const auto f = static_cast<std::size_t>(frame);
       for (std::size_t m = 0; m < materials.size(); ++m) {
-        const Image& reference = reference_frames[static_cast<std::size_t>(frame)][m];
+        const Image& reference = reference_frames[f][m];
         reference_stats[m].add(reference);
         reference_display[m].add(tonemapped(reference));
-        reference_display_frames[m] = display_image(reference);
+        for (std::size_t s = 0; s < seeds; ++s) {
+          references[m][s] = seed_reference(s == 0 ? reference : second_seed_frames[f][m], frame > 0 ? &previous_references[m][s] : nullptr,
+                                            config.flip);
+          if (!reference_clips.empty()) reference_clips[m][s].append(references[m][s].display);
+        }
       }
     }
     const bool last = frame + 1 == config.frames;
@@ -127,15 +147,15 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
                                                key.prefilter, config.prefilter_scale, key.lobe);
           const Image& out = a.resolve.resolve(samples, jitter, positions);
           if (frame >= 0)
-            measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], reference_display_frames[m],
-                          frame > 0 ? &previous_reference_display[m] : nullptr, last);
+            measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], references[m],
+                          frame > 0 ? std::span<const SeedReference>(previous_references[m]) : std::span<const SeedReference>(), last);
           if (!last_outputs.empty()) last_outputs[r] = out;
         },
         [&](int done) {
           if (shaded && done > reported) shaded(static_cast<std::uint64_t>(done - reported) * fw * fh);
           reported = done;
         });
-    if (frame >= 0) previous_reference_display = std::move(reference_display_frames);
+    if (frame >= 0) previous_references = std::move(references);
     for (std::size_t r = 0; r < last_outputs.size(); ++r) {
       const TaaRowKey& key = keys[r % n_keys];
       last_frames[r / n_keys].variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(last_outputs[r])});
@@ -147,6 +167,12 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     last_frames[m].material = materials[m];
     last_frames[m].reference = reference_frames.back()[m];
     images->push_back(std::move(last_frames[m]));
+  }
+  if (!reference_clips.empty()) {
+    const std::vector<std::vector<VideoVdpReference>> video = video_references(config, reference_clips);
+    parallel_rows(static_cast<int>(accumulators.size()), config.threads, [&](int r) {
+      accumulators[static_cast<std::size_t>(r)].clip.finish_video(video[static_cast<std::size_t>(r) / n_keys]);
+    });
   }
   for (std::size_t m = 0; m < materials.size(); ++m)
     for (std::size_t k = 0; k < n_keys; ++k)

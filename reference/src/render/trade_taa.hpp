@@ -33,11 +33,14 @@ int taa_warmup(const TradeConfig& config);
 
 // The +taa rows of scene `id`, material-major then key order, appended to `rows`.
 // reference_frames[f][m]: the ground truth of animation frame f (0 .. config.frames - 1) for
-// material m at the flicker resolution. shaded(pixels) reports 1-spp shading work. When
+// material m at the flicker resolution; second_seed_frames the same with the second ground-truth
+// seed (empty when one was rendered): the verdict metrics read both, as the trade's other rows'.
+// shaded(pixels) reports 1-spp shading work. When
 // `images` is given, each material's last frame (its ground truth and every key's resolved
 // image) is appended to it (TradeTable::taa_images).
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
-                     const std::vector<std::vector<Image>>& reference_frames, std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images = nullptr);
+                     const std::vector<std::vector<Image>>& reference_frames, const std::vector<std::vector<Image>>& second_seed_frames,
+                     std::vector<TradeRow>& rows, const std::function<void(std::uint64_t pixels)>& shaded,
+                     std::vector<ImageSet>* images = nullptr);
 
 }  // namespace saagen::render

@@ -50,8 +50,10 @@ struct PairedComparison {
 const MetricDifference& temporal_metric(const PairedComparison& comparison);
 
 using CellFilter = std::function<bool(const render::TradeRow&)>;
-// `configuration` against `baseline` over the non-Fresnel, non-TAA cells `keep` accepts (a row of
-// the configuration and the baseline's row of the same scene and material).
+// `configuration` against `baseline` over the non-Fresnel cells `keep` accepts (a row of the
+// configuration and the baseline's row of the same scene and material). The ids tell TAA apart
+// ("none+taa" is no SAA under TAA): "deferred-aniso+taa/tail" against "none+taa" compares under
+// TAA, "none+taa" against "none" what TAA alone does.
 PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
 

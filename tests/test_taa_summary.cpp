@@ -1,0 +1,116 @@
+// The comparison under TAA (report/src/taa_summary.cpp, taa_comparisons): read with the
+// verdict's metrics and decision against none+taa, on hand-made rows whose answer is known.
+#include "saagen/report/report.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace saagen;
+using render::SceneId;
+using render::Variant;
+
+namespace {
+
+constexpr int kFrames = 16;
+
+// A series of kFrames (or kFrames - 1) values `level` against both seeds, with a small
+// deterministic noise of its own per seed.
+render::SeedSeries series(double level, int frames = kFrames) {
+  render::SeedSeries s;
+  for (int t = 0; t < frames; ++t) {
+    s[0].push_back(level + 1e-4 * std::sin(1.7 * t));
+    s[1].push_back(level + 1e-4 * std::sin(2.3 * t + 0.5));
+  }
+  return s;
+}
+
+// A row of `variant` on the sphere at `alpha` with its verdict series: image error `image`,
+// video error `video`, lag `lag` per frame.
+render::TradeRow row(Variant variant, bool taa, double alpha, double image, double video, double lag = -1e-4) {
+  render::TradeRow r;
+  r.variant = variant;
+  r.taa = taa;
+  r.scene = SceneId::sphere;
+  r.alpha = alpha;
+  r.series.image = series(image);
+  r.series.video = series(video);
+  r.series.flicker = series(image, kFrames - 1);
+  r.series.lag = series(lag, kFrames - 1);
+  r.tde = video / 100.0;
+  return r;
+}
+
+// no SAA, TAA alone, two saagen configurations under TAA (one better than none+taa, one worse)
+// and an engine form under TAA, at two alphas.
+render::TradeTable table_with(double better_lag) {
+  render::TradeTable table;
+  for (const double alpha : {0.01, 0.1}) {
+    table.rows.push_back(row(Variant::none, false, alpha, 0.20, 6.0));
+    table.rows.push_back(row(Variant::none, true, alpha, 0.10, 3.0));
+    table.rows.push_back(row(Variant::deferred_avg, true, alpha, 0.08, 2.0, better_lag));
+    table.rows.push_back(row(Variant::deferred_max, true, alpha, 0.12, 4.0));
+    table.rows.push_back(row(Variant::engine_filament, true, alpha, 0.09, 2.5));
+  }
+  return table;
+}
+
+const report::TaaComparisonRow* find_row(const report::TaaComparison& c, const std::string& configuration) {
+  for (const report::TaaComparisonRow& r : c.rows)
+    if (r.configuration == configuration) return &r;
+  return nullptr;
+}
+
+TEST(TaaComparisons, TheDecisionTakesWhatBeatsTaaAloneWithItsIntervals) {
+  const render::TradeTable table = table_with(-1e-4);
+  const std::string better = render::configuration_id(table.rows[2]), worse = render::configuration_id(table.rows[3]);
+  const std::vector<report::TaaComparison> comparisons = report::taa_comparisons(table);
+  ASSERT_EQ(comparisons.size(), 1u);
+  const report::TaaComparison& c = comparisons.front();
+  EXPECT_EQ(c.best_saagen, better);
+  EXPECT_EQ(c.best_engine, "engine-filament+taa");
+  EXPECT_NE(c.verdict.find(better), std::string::npos) << c.verdict;
+  // Rows: no TAA, TAA, the chosen saagen configuration, the engine; not the worse configuration.
+  ASSERT_EQ(c.rows.size(), 4u);
+  EXPECT_EQ(c.rows[0].label, "no TAA");
+  EXPECT_EQ(c.rows[1].label, "TAA");
+  EXPECT_FALSE(c.rows[1].against_taa.has_value());
+  EXPECT_EQ(c.rows[2].label, "saagen");
+  EXPECT_EQ(find_row(c, worse), nullptr);
+  // Own figures: means over the alphas with intervals around them.
+  const report::TaaComparisonRow& chosen = c.rows[2];
+  EXPECT_NEAR(chosen.image_error.mean, 0.08, 1e-4);
+  ASSERT_TRUE(chosen.video_error.has_value());
+  EXPECT_NEAR(chosen.video_error->mean, 2.0, 1e-4);
+  EXPECT_LT(chosen.video_error->low, 2.0);
+  EXPECT_GT(chosen.video_error->high, 2.0);
+  // Paired against none+taa: -1 in the video error, -0.02 in the image error, "beats".
+  ASSERT_TRUE(chosen.against_taa.has_value());
+  ASSERT_TRUE(chosen.against_taa->video.has_value());
+  EXPECT_NEAR(chosen.against_taa->video->difference.mean, -1.0, 1e-12);
+  EXPECT_NEAR(chosen.against_taa->image.difference.mean, -0.02, 1e-12);
+  EXPECT_FALSE(chosen.against_taa->video->ground_truth_limited);
+  EXPECT_EQ(report::comparison_outcome_name(*chosen.against_taa), "beats");
+  // TAA alone against no TAA: no SAA without TAA loses to it.
+  EXPECT_EQ(report::comparison_outcome_name(*c.rows[0].against_taa), "loses");
+  // The terminal table carries the verdict and the comparison.
+  const std::string text = report::format_taa_summary(table);
+  EXPECT_NE(text.find("sphere: " + c.verdict), std::string::npos) << text;
+  EXPECT_NE(text.find("-1.0000 ["), std::string::npos) << text;
+  EXPECT_NE(text.find("beats"), std::string::npos) << text;
+}
+
+// The one better than none+taa follows the ground truth a frame late: the gate refuses it, and
+// nothing else beats TAA alone: no filter under TAA.
+TEST(TaaComparisons, ALateConfigurationIsNotTakenUnderTaa) {
+  const std::vector<report::TaaComparison> comparisons = report::taa_comparisons(table_with(+1e-3));
+  ASSERT_EQ(comparisons.size(), 1u);
+  const report::TaaComparison& c = comparisons.front();
+  EXPECT_EQ(c.best_saagen, "");
+  EXPECT_TRUE(c.verdict.starts_with("no filter")) << c.verdict;
+  for (const report::TaaComparisonRow& r : c.rows) EXPECT_NE(r.label, "saagen");
+}
+
+}  // namespace
