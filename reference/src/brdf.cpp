@@ -234,8 +234,8 @@ double Brdf::filtered_ggx_mixture(Sym2 m, Vec2 alpha2, double tail_scale, double
   const double p = hx2 / alpha2.x + hy2 / alpha2.y + tail_scale * cos2;
   const double t = 1.0 / guarded(max(p * cos2, g.divisor_min), p * cos2);
   const double inverse_cos2 = p * t, inverse_p = cos2 * t;
-  // w GGX(lambda A0) = 1 / (pi sqrt(det A0) p^2) in h (w lambda = 1).
-  const double tail = inverse_p * inverse_p / (kPi * std::sqrt(max(det0, tiny())));
+  // w GGX(lambda A0) = 1 / (pi sqrt(det A0) p^2) in h (w lambda = 1); 1 / sqrt(det A0) per axis, as in the template.
+  const double tail = inverse_p * inverse_p / (kPi * std::sqrt(alpha2.x) * std::sqrt(alpha2.y));
   const double scale = inverse_cos2 * inverse_cos2 / (kPi * std::sqrt(det));
   const double shoulder = falloff(projected * inverse_cos2 / kFilteredShoulderScale);
   const double core = std::pow(shoulder, kFilteredShoulderScale);
