@@ -222,7 +222,7 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
 // cancels det(M) to any sign) and TINY_POSITIVE, the Beckmann exponent's hxy^T M^-1 hxy at
 // |hxy|^2 lambda_min(A0) / det(M) (lambda_max(M) <= det(M) / lambda_min(A0), as M >= A0), the
 // shared divisor p hz^2 (p = hx^2 / ax^2 + hy^2 / ay^2 + lambda hz^2) at DIVISOR_MIN, exp(-x) as
-// in beckmann_ndf_matrix and the Beckmann scale capped at 1 / DIVISOR_MIN. One reciprocal of
+// in beckmann_ndf_matrix and the Beckmann scale (before its 1 / pi) capped at 1 / DIVISOR_MIN. One reciprocal of
 // p hz^2 gives 1 / hz^2 and 1 / p, and one exponential both Beckmann lobes, as in the template.
 double Brdf::filtered_ggx_mixture(Sym2 m, Vec2 alpha2, double tail_scale, double w, double f, Vec3 h) const {
   const GuardConstants& g = params.guard_constants();
@@ -234,13 +234,14 @@ double Brdf::filtered_ggx_mixture(Sym2 m, Vec2 alpha2, double tail_scale, double
   const double p = hx2 / alpha2.x + hy2 / alpha2.y + tail_scale * cos2;
   const double t = 1.0 / guarded(max(p * cos2, g.divisor_min), p * cos2);
   const double inverse_cos2 = p * t, inverse_p = cos2 * t;
-  // w GGX(lambda A0) = 1 / (pi sqrt(det A0) p^2) in h (w lambda = 1); 1 / sqrt(det A0) per axis, as in the template.
-  const double tail = inverse_p * inverse_p / (kPi * std::sqrt(alpha2.x) * std::sqrt(alpha2.y));
-  const double scale = inverse_cos2 * inverse_cos2 / (kPi * std::sqrt(det));
+  // w GGX(lambda A0) = 1 / (pi sqrt(det A0) p^2) in h (w lambda = 1); 1 / sqrt(det A0) per axis, and
+  // 1 / pi applied once to the sum, as in the template.
+  const double tail = inverse_p * inverse_p / (std::sqrt(alpha2.x) * std::sqrt(alpha2.y));
+  const double scale = inverse_cos2 * inverse_cos2 / std::sqrt(det);
   const double shoulder = falloff(projected * inverse_cos2 / kFilteredShoulderScale);
   const double core = std::pow(shoulder, kFilteredShoulderScale);
   const double mixture = (1.0 - f) * core + f * shoulder / kFilteredShoulderScale;
-  return tail + (1.0 - w) * mixture * guarded(min(scale, 1.0 / g.divisor_min), scale);
+  return (tail + (1.0 - w) * mixture * guarded(min(scale, 1.0 / g.divisor_min), scale)) / kPi;
 }
 
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
