@@ -7,6 +7,7 @@ library alone:
     python3 scripts/fit_filtered_ggx.py --check         # print the committed coefficients per kernel only
     python3 scripts/fit_filtered_ggx.py --anisotropic   # fit the u-widened lobe over anisotropic kernels
     python3 scripts/fit_filtered_ggx.py --single-beckmann  # best two-lobe form (no shoulder) per r
+    python3 scripts/fit_filtered_ggx.py --linear-c [--linear-f]  # refit with c (and f) linear in w
 
 The problem in the unfiltered lobe's frame: whitening the slopes by A0^(-1/2) turns GGX(A0) into
 GGX(I) and the kernel K = 2 Sigma into S = A0^(-1/2) K A0^(-1/2); GGX(I) is rotation invariant, so
@@ -329,6 +330,20 @@ def main():
     p = [COMMITTED[name] for name in NAMES]
     if '--anisotropic' in sys.argv[1:]:
         p = fit(lambda x: anisotropic_objective(x, cases, anisotropic), ANISOTROPIC_INITIAL, [0.2, 0.3, 0.3, 0.1, 0.1, 0.1])
+    elif '--linear-c' in sys.argv[1:] or '--linear-f' in sys.argv[1:]:
+        # c2 = 0 and / or f2 = 0: each polynomial one instruction instead of three (docs/FILTERED_GGX.md,
+        # "Cheaper evaluation of the same lobe").
+        free = [i for i, name in enumerate(NAMES[:5])
+                if not (name == 'c2' and '--linear-c' in sys.argv[1:]) and not (name == 'f2' and '--linear-f' in sys.argv[1:])]
+
+        def expand(x):
+            full = [0.0] * 6
+            for i, value in zip(free, x):
+                full[i] = value
+            return full
+
+        q = fit(lambda x: isotropic_objective(expand(x), cases), [INITIAL[i] for i in free], [[0.2, 0.3, 0.3, 0.1, 0.1][i] for i in free])
+        p = expand(q)
     elif '--check' not in sys.argv[1:]:
         p = fit(lambda x: isotropic_objective(x + [0.0], cases), INITIAL, [0.2, 0.3, 0.3, 0.1, 0.1]) + [0.0]
     print_table(p, cases, anisotropic)
