@@ -6,6 +6,8 @@ library alone:
     python3 scripts/fit_filtered_ggx.py                 # fit the shipped lobe (s = 0), print it per kernel
     python3 scripts/fit_filtered_ggx.py --check         # print the committed coefficients per kernel only
     python3 scripts/fit_filtered_ggx.py --anisotropic   # fit the u-widened lobe over anisotropic kernels
+    python3 scripts/fit_filtered_ggx.py --single-beckmann  # best two-lobe form (no shoulder) per r
+    python3 scripts/fit_filtered_ggx.py --linear-c [--linear-f]  # refit with c (and f) linear in w
 
 The problem in the unfiltered lobe's frame: whitening the slopes by A0^(-1/2) turns GGX(A0) into
 GGX(I) and the kernel K = 2 Sigma into S = A0^(-1/2) K A0^(-1/2); GGX(I) is rotation invariant, so
@@ -303,12 +305,45 @@ def print_table(p, cases, anisotropic):
     print(f'anisotropic: mean L1 {total / len(anisotropic):.4f}, worst {worst_2d:.4f}')
 
 
+def single_beckmann():
+    """Without the shoulder (f = 0): GGX tail (w lambda = 1) and one Beckmann(A0 + c K), the best
+    (lambda, c) at each of a few r, with the mass beyond 4 sqrt(k) within the test's 25 %."""
+    for r in (0.1, 0.316, 1.0, 3.16, 10.0, 31.6, 100.0):
+        case = Case(r)
+
+        def objective(x):
+            l1, tail = distance([x[0], x[1], 0.0, 0.0, 0.0, 0.0], case)
+            return 10.0 if tail <= 0.0 else l1 + 10.0 * max(0.0, abs(math.log(tail)) - math.log(1.25))
+
+        x, _ = min((nelder_mead(objective, [a, c1], [0.3, 0.3]) for a in (0.5, 1.0, 2.0, 4.0) for c1 in (-0.5, 0.0, 0.5)),
+                   key=lambda result: result[1])
+        l1, tail = distance([x[0], x[1], 0.0, 0.0, 0.0, 0.0], case)
+        print(f'r {r:7.3g}: best L1 {l1:.4f}, tail mass / exact {tail:.3f} (lambda = 1 + 2 ({x[0]:.4g}) r, c1 {x[1]:.4g})')
+
+
 def main():
+    if '--single-beckmann' in sys.argv[1:]:
+        single_beckmann()
+        return
     cases = [Case(10.0 ** (-3.0 + 0.25 * i)) for i in range(34)]
     anisotropic = [AnisotropicCase(case.r, anisotropy) for case in cases[::3] for anisotropy in ANISOTROPY]
     p = [COMMITTED[name] for name in NAMES]
     if '--anisotropic' in sys.argv[1:]:
         p = fit(lambda x: anisotropic_objective(x, cases, anisotropic), ANISOTROPIC_INITIAL, [0.2, 0.3, 0.3, 0.1, 0.1, 0.1])
+    elif '--linear-c' in sys.argv[1:] or '--linear-f' in sys.argv[1:]:
+        # c2 = 0 and / or f2 = 0: each polynomial one instruction instead of three (docs/FILTERED_GGX.md,
+        # "Cheaper evaluation of the same lobe").
+        free = [i for i, name in enumerate(NAMES[:5])
+                if not (name == 'c2' and '--linear-c' in sys.argv[1:]) and not (name == 'f2' and '--linear-f' in sys.argv[1:])]
+
+        def expand(x):
+            full = [0.0] * 6
+            for i, value in zip(free, x):
+                full[i] = value
+            return full
+
+        q = fit(lambda x: isotropic_objective(expand(x), cases), [INITIAL[i] for i in free], [[0.2, 0.3, 0.3, 0.1, 0.1][i] for i in free])
+        p = expand(q)
     elif '--check' not in sys.argv[1:]:
         p = fit(lambda x: isotropic_objective(x + [0.0], cases), INITIAL, [0.2, 0.3, 0.3, 0.1, 0.1]) + [0.0]
     print_table(p, cases, anisotropic)

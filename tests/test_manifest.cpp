@@ -349,7 +349,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n", "advice", "none", {}},
                       // Curved content, deferred, speed: only deferred-aniso beats no SAA, the most expensive deferred
-                      // form (1.87x); speed never takes it, and the cheaper deferred kernels lose: no filter.
+                      // form (1.82x); speed never takes it, and the cheaper deferred kernels lose: no filter.
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n",
                                "D2",
@@ -438,7 +438,7 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   const auto plan_of = [](const std::string& keys) {
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = " + keys)).materials.at(0);
   };
-  // Curved content, deferred: only deferred-aniso/tail (1.87x) beats no SAA.
+  // Curved content, deferred: only deferred-aniso/tail (1.82x) beats no SAA.
   const auto tight = plan_of("\"deferred\"\nbudget = 1.5\n");
   EXPECT_EQ(tight.variant, "none");
   EXPECT_NE(tight.reason.find("costs more than the budget 1.5"), std::string::npos) << tight.reason;
@@ -757,7 +757,7 @@ TEST(Planner, WithATableAccuracyTakesTheBestOnTheMaterialsContent) {
   EXPECT_EQ(forward.variant, "forward-aniso-projected");
   EXPECT_EQ(forward.rule, "trade table");
   EXPECT_NE(forward.reason.find("saagen's decision on curved content in content.json: forward-aniso-projected/tail (image -0.0055, "
-                                "temporal -0.00252 against no SAA; 1.38x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
+                                "temporal -0.00252 against no SAA; 1.33x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
                                 "improvement of the 2 usable configurations that do; deferred-aniso (trade table) is not it"),
             std::string::npos)
       << forward.reason;

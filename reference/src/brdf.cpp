@@ -216,31 +216,41 @@ double Brdf::filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const {
   return min(max(r, 0.0), params.guard_constants().filtered_ratio_max);
 }
 
-// Template filtered_beckmann_lobe: (1 - f) Beckmann(M) + f Beckmann(4 M) for the core matrix
-// M = A0 + c K. Guarded: det(M) floored at det(A0) + c (ax^2 K11 + ay^2 K00) (det(K) >= 0 for a PSD
-// kernel; a numerically rank-1 kernel cancels det(M) to any sign) and TINY_POSITIVE, the exponent
-// at |h.xy|^2 / (tr(M) h.z^2), cos^2 and cos^4 at TINY_POSITIVE, exp(-x) and the divisor as in
-// beckmann_ndf_matrix; one exponential serves both lobes, exp(-x) = exp(-x / 4)^4, as in the template.
-double Brdf::filtered_beckmann_lobe(Sym2 m, double det_floor, double f, Vec3 h) const {
-  const double det = max(sym2_determinant(m), guarded(max(det_floor, tiny()), det_floor));
-  const double cos2 = h.z * h.z, length2 = h.x * h.x + h.y * h.y;
+// Template filtered_ggx_mixture: w GGX(lambda A0) + (1 - w) ((1 - f) Beckmann(M) + f Beckmann(4 M))
+// for the core matrix M = A0 + c K and the floored (ax^2, ay^2). Guarded as the template: det(M)
+// floored at det(A0) (det(A0 + c K) >= det(A0) for a PSD kernel; a numerically rank-1 kernel
+// cancels det(M) to any sign) and TINY_POSITIVE, the Beckmann exponent's hxy^T M^-1 hxy at
+// |hxy|^2 lambda_min(A0) / det(M) (lambda_max(M) <= det(M) / lambda_min(A0), as M >= A0), the
+// shared divisor p hz^2 (p = hx^2 / ax^2 + hy^2 / ay^2 + lambda hz^2) at DIVISOR_MIN, exp(-x) as
+// in beckmann_ndf_matrix and the Beckmann scale (before its 1 / pi) capped at 1 / DIVISOR_MIN. One reciprocal of
+// p hz^2 gives 1 / hz^2 and 1 / p, and one exponential both Beckmann lobes, as in the template.
+double Brdf::filtered_ggx_mixture(Sym2 m, Vec2 alpha2, double tail_scale, double w, double f, Vec3 h) const {
+  const GuardConstants& g = params.guard_constants();
+  const double det0 = alpha2.x * alpha2.y;
+  const double det = max(sym2_determinant(m), guarded(max(det0, tiny()), det0));
+  const double hx2 = h.x * h.x, hy2 = h.y * h.y, cos2 = h.z * h.z;
   const double spread = sym2_quadratic_form(adjugate(m), h.xy()) / det;
-  const double exponent = guarded(max(spread, length2 / max(m.xx + m.yy, tiny())) / max(cos2, tiny()), spread / cos2);
-  const double divisor = kPi * std::sqrt(det) * guarded(max(cos2 * cos2, tiny()), cos2 * cos2);
-  const double shoulder = falloff(exponent / kFilteredShoulderScale);
+  const double projected = guarded(max(spread, (hx2 + hy2) * min(alpha2.x, alpha2.y) / det), spread);
+  const double p = hx2 / alpha2.x + hy2 / alpha2.y + tail_scale * cos2;
+  const double t = 1.0 / guarded(max(p * cos2, g.divisor_min), p * cos2);
+  const double inverse_cos2 = p * t, inverse_p = cos2 * t;
+  // w GGX(lambda A0) = 1 / (pi sqrt(det A0) p^2) in h (w lambda = 1); 1 / sqrt(det A0) per axis, and
+  // 1 / pi applied once to the sum, as in the template.
+  const double tail = inverse_p * inverse_p / (std::sqrt(alpha2.x) * std::sqrt(alpha2.y));
+  const double scale = inverse_cos2 * inverse_cos2 / std::sqrt(det);
+  const double shoulder = falloff(projected * inverse_cos2 / kFilteredShoulderScale);
   const double core = std::pow(shoulder, kFilteredShoulderScale);
-  return ((1.0 - f) * core + f * shoulder / kFilteredShoulderScale) / this->divisor(divisor);
+  const double mixture = (1.0 - f) * core + f * shoulder / kFilteredShoulderScale;
+  return (tail + (1.0 - w) * mixture * guarded(min(scale, 1.0 / g.divisor_min), scale)) / kPi;
 }
 
 double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
   if (h.z <= 0.0) return 0.0;
   const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, alpha2));
   const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
-  const Sym2 kernel = a - unfiltered;
-  const double c = lobes.core_kernel;
-  const double det_floor = alpha2.x * alpha2.y + c * (alpha2.x * kernel.yy + alpha2.y * kernel.xx);
-  const double beckmann = filtered_beckmann_lobe(unfiltered + c * kernel, det_floor, lobes.shoulder_fraction, h);
-  return lobes.tail_weight * ggx_ndf_axis(h, lobes.tail_scale * alpha2) + (1.0 - lobes.tail_weight) * beckmann;
+  const Vec2 floored{max(alpha2.x, tiny()), max(alpha2.y, tiny())};
+  const Sym2 core = unfiltered + lobes.core_kernel * (a - unfiltered);
+  return filtered_ggx_mixture(core, floored, lobes.tail_scale, lobes.tail_weight, lobes.shoulder_fraction, h);
 }
 
 double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {

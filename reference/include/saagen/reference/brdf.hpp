@@ -178,8 +178,9 @@ struct Brdf {
   double beckmann_ndf_axis(Vec3 h, Vec2 alpha2) const;
   double beckmann_brdf_axis(Vec3 i, Vec3 o, Vec2 alpha2) const;
   double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) const;
-  // Template filtered_beckmann_lobe: (1 - f) Beckmann(m) + f Beckmann(4 m), det(m) floored at det_floor.
-  double filtered_beckmann_lobe(Sym2 m, double det_floor, double f, Vec3 h) const;
+  // Template filtered_ggx_mixture: w GGX(lambda A0) + (1 - w) ((1 - f) Beckmann(m) + f Beckmann(4 m)),
+  // alpha2 the floored (ax^2, ay^2) of A0.
+  double filtered_ggx_mixture(Sym2 m, Vec2 alpha2, double tail_scale, double w, double f, Vec3 h) const;
   double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
