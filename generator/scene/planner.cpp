@@ -529,9 +529,8 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 }
 
 // saagen's committed measurement of a content type (generator/data/advice.json), the rows the
-// table-free decision is made on; none under TAA, whose rows are measured per scene but not yet
-// per content nor on held-out scenes (advice.hpp's TAA evidence): there the decision finds
-// nothing and plans no filter.
+// table-free decision is made on; none under TAA, whose rows are decided per scene but not yet
+// per content (advice.hpp's TAA evidence): there the decision finds nothing and plans no filter.
 const AdviceMeasurement* advice_measurement(advice::Content content, bool taa) {
   if (taa) return nullptr;
   return committed_advice().find(advice::table_content(content));

@@ -75,9 +75,9 @@ inline constexpr std::string_view table_content(Content content) { return conten
 // flicker error, 95 % intervals) on the scenes the advice is derived from (`saagen bench --preset
 // medium`) and on held-out scenes it is only reported on (scripts/held_out.sh), written by
 // scripts/advice_data.py and read by the planner (saagen/scene/cost_tables.hpp: committed_advice).
-// Under TAA the evidence below is the TAA trade's per scene, measured with the verdict's metrics
-// (report/src/taa_summary.cpp) but not per content nor on held-out scenes, so the table-free
-// advice there is still no filter.
+// Under TAA the evidence below is the TAA trade's per-scene decision with the verdict's metrics
+// (report/src/taa_summary.cpp) on the medium and held-out scenes; no advice is derived per content
+// from it yet, so the table-free advice there is still no filter.
 struct ContentAdvice {
   Content content;
   bool taa;
@@ -94,14 +94,15 @@ inline constexpr std::array<ContentAdvice, 8> kTable = {{
      "0.0625, docs/TAA.md), saagen's choice beats none+taa in video error (10 - JOD) on every curved scene: sphere "
      "deferred-sum/tail -0.67 [-1.09, -0.26], torus deferred-avg/tail -1.47 [-2.28, -0.66], torus knot deferred-aniso/mapped "
      "-3.00 [-4.22, -1.77], tubes forward-aniso-slope -3.07 [-3.88, -2.26], 2CylinderEngine deferred-aniso -0.57 [-1.06, "
-     "-0.07]; not yet derived per content nor checked on held-out scenes: measure yours with saagen bench --scene ASSET --taa"},
+     "-0.07]; per scene it also beats none+taa on the held-out duck, WusonOBJ and teapots (-2.44, -1.59, -0.80), but it is "
+     "not yet derived per content: measure yours with saagen bench --scene ASSET --taa"},
     {Content::normal_mapped, true,
      "not advised under TAA yet: measured per scene with the verdict's metrics (saagen bench --preset medium --taa --sigma2 "
      "0.0625, docs/TAA.md), saagen's choice beats none+taa in video error (10 - JOD) on every normal-mapped scene: nmap-sphere "
      "deferred-sum:geometric+hdrp/tail -3.13 [-4.33, -1.93], nmap-sphere-fine the same -3.29 [-4.56, -2.03], ClearCoatTest "
      "deferred-avg/tail -2.66 [-3.52, -1.81], pmndrs-0014 deferred-avg/tail -1.85, pmndrs-0019 forward-axis-projected -1.96, "
-     "pmndrs-0010 deferred-previous -2.32; not yet derived per content nor checked on held-out scenes: measure yours with "
-     "saagen bench --scene ASSET --taa"},
+     "pmndrs-0010 deferred-previous -2.32; per scene it also beats none+taa on the held-out maps pmndrs-0000, 0001 and 0002 "
+     "(-1.88, -1.48, -2.40), but it is not yet derived per content: measure yours with saagen bench --scene ASSET --taa"},
     {Content::bumps, true,
      "not advised under TAA yet: measured with the verdict's metrics (saagen bench --preset medium --taa --sigma2 0.0625, "
      "docs/TAA.md), on the bump plane deferred-avg/tail beats none+taa: video error -0.56 [-0.78, -0.34], image error "
