@@ -310,7 +310,8 @@ TEST(TaaTrade, LobesAndBakesRunThroughTheResolve) {
   ASSERT_NE(table.find(Variant::deferred_avg, SceneId::nmap_sphere, 0.05, false, NormalFeed::shading, Prefilter::none, Lobe::mapped, true),
             nullptr);
   EXPECT_GT(bake_tail->tde, 0.0);
-  EXPECT_GT(bake_tail->flip_ldr_animation, 0.0);
+  EXPECT_GT(bake_tail->rmse_tonemapped, 0.0);
+  EXPECT_EQ(bake_tail->flip_ldr_animation, 0.0);  // config.flip = false: no FLIP, as in the rows without TAA
 
   ASSERT_EQ(table.taa_images.size(), 1u);
   const ImageSet& last = table.taa_images.front();

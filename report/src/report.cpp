@@ -1,10 +1,10 @@
 #include "saagen/report/report.hpp"
-#include "saagen/report/comparison.hpp"
 
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/reference/render/assets.hpp"
+#include "saagen/report/comparison.hpp"
 #include "saagen/report/findings.hpp"
 #include "saagen/report/plots.hpp"
 
@@ -272,7 +272,8 @@ std::vector<std::string> metric_cells(const Metrics& m) {
 // ISA inverse-throughput ratio (primary), lavapipe time ratio (secondary), SPIR-V delta.
 std::vector<std::string> cost_cells(const CostTable* costs, const std::string& configuration) {
   return {optional_number(configuration_isa_cost(costs, configuration), "{:.3f}"),
-          optional_number(configuration_cost(costs, configuration, true), "{:.3f}"), optional_number(configuration_cost(costs, configuration, false), "{:+.0f}")};
+          optional_number(configuration_cost(costs, configuration, true), "{:.3f}"),
+          optional_number(configuration_cost(costs, configuration, false), "{:+.0f}")};
 }
 
 Metrics metrics_of(const VariantSummary& s) {
@@ -337,13 +338,13 @@ TextTable recommendation_table(const std::vector<Recommendation>& recs, const Co
 }
 
 TextTable switch_table(const std::vector<EngineSwitch>& switches) {
-  TextTable t{{"switching from", "content", "engine LDR-FLIP", "saagen that beats it at <= cost", "LDR-FLIP", "change LDR-FLIP", "change TDE",
-               "change HDR-FLIP", "change RMSE tm"},
+  TextTable t{{"switching from", "content", "engine LDR-FLIP", "saagen that beats it at <= cost", "LDR-FLIP", "change LDR-FLIP",
+               "change TDE", "change HDR-FLIP", "change RMSE tm"},
               {}};
   for (const EngineSwitch& s : switches) {
     if (s.configuration.empty()) {
-      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none beats it)", "-",
-                        "-", "-", "-", "-"});
+      t.rows.push_back({s.engine, std::string(content_name(s.content)), fmt::format("{:.4f}", s.engine_metrics.flip_ldr), "(none beats it)",
+                        "-", "-", "-", "-", "-"});
       continue;
     }
     t.rows.push_back(
@@ -387,9 +388,10 @@ TextTable cases_table(const render::TradeTable& table) {
 template <class Section>
 void for_each_finding(const render::TradeTable& table, const CostTable* costs, Section section) {
   const std::vector<Recommendation> recs = recommend(table);
-  section("Recommended configuration per render path and content (saagen's decision: what beats no SAA, largest LDR-FLIP gain; "
-          "none where nothing does)",
-          recommendation_table(recs, costs));
+  section(
+      "Recommended configuration per render path and content (saagen's decision: what beats no SAA, largest LDR-FLIP gain; "
+      "none where nothing does)",
+      recommendation_table(recs, costs));
   section(std::string("Switching from an engine's shipped form: saagen's decision against it (what beats it in LDR-FLIP and TDE, "
                       "largest LDR-FLIP gain) at equal or lower cost") +
               (costs ? "" : " (no cost file: cost not compared)"),
@@ -429,13 +431,13 @@ std::string headline(const Verdict& v) {
   const Recommendation& r = v.recommendation;
   if (r.configuration == "none")
     return fmt::format("{}, {}: no filter -- {}", path_name(r.path), content_name(r.content), without_no_filter(r.reason));
-  return fmt::format("{}, {}: {}; {}, {}", path_name(r.path), content_name(r.content), r.reason,
-                     metric_comparison("image error", r.metrics.image_error, v.none.image_error, v.best_engine_image,
-                                       v.engine_image.image_error, 4),
-                     v.video ? metric_comparison("video error (10 - JOD)", r.metrics.video_error, v.none.video_error, v.best_engine_motion,
-                                                 v.engine_motion.video_error, 3)
-                             : metric_comparison("flicker error", r.metrics.flicker_error, v.none.flicker_error, v.best_engine_motion,
-                                                 v.engine_motion.flicker_error, 5));
+  return fmt::format(
+      "{}, {}: {}; {}, {}", path_name(r.path), content_name(r.content), r.reason,
+      metric_comparison("image error", r.metrics.image_error, v.none.image_error, v.best_engine_image, v.engine_image.image_error, 4),
+      v.video ? metric_comparison("video error (10 - JOD)", r.metrics.video_error, v.none.video_error, v.best_engine_motion,
+                                  v.engine_motion.video_error, 3)
+              : metric_comparison("flicker error", r.metrics.flicker_error, v.none.flicker_error, v.best_engine_motion,
+                                  v.engine_motion.flicker_error, 5));
 }
 
 // "HDR-FLIP to engine-godot (0.0512 vs 0.0498)", per content-mean loss.
@@ -752,8 +754,8 @@ constexpr const char* kTradeNote =
     "intervals and each one's outcome against no SAA in both metrics (image and flicker error); saagen's choice is ringed.";
 
 std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                            const std::vector<std::string>& sheets, const std::vector<std::string>& plots, const std::vector<Strip>& image_strips,
-                            const TaaSection* taa) {
+                            const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
+                            const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream md;
   md << "<!-- " << output_tag << " report -->\n# saagen speed/accuracy trade report\n\n## " << kVerdictTitle << "\n\n(" << kVerdictNote
      << ")\n\n";
@@ -816,8 +818,8 @@ std::string html_loss_lists(const render::TradeTable& table) {
 }
 
 std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
-                        const std::vector<std::string>& sheets, const std::vector<std::string>& plots, const std::vector<std::string>& columns,
-                        const std::vector<Strip>& image_strips, const TaaSection* taa) {
+                        const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
+                        const std::vector<std::string>& columns, const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<!-- " << output_tag
        << " report -->\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>saagen trade report</title>\n"
@@ -1073,7 +1075,8 @@ nlohmann::json decision_json(const MaterialDecision& made) {
 // The chosen configuration against an engine's form on a scene, paired with intervals.
 nlohmann::json engine_comparison_json(const decision::Comparison& c) {
   const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
-  return {{"outcome", std::string(decision::name(decision::outcome(c)))}, {"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
+  return {
+      {"outcome", std::string(decision::name(decision::outcome(c)))}, {"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
 }
 
 nlohmann::json decisions_json(const render::TradeTable& table) {
@@ -1106,10 +1109,14 @@ nlohmann::json decisions_json(const render::TradeTable& table) {
       per_scene.push_back(entry);
     }
   }
-  return {{"rule", "only what beats no SAA (no metric worse beyond its interval, one better) is chosen; accuracy: the largest "
-                   "image-metric gain, temporal as tie-break; none where nothing beats no SAA (saagen/decision.hpp)"},
+  return {{"rule",
+           "only what beats no SAA (no metric worse beyond its interval, one better) and is not late is chosen; "
+           "accuracy: the largest gain in the temporal metric, the image metric as tie-break; none where nothing "
+           "beats no SAA (saagen/decision.hpp)"},
           {"image_metric", "image error (LDR-FLIP of every animation frame)"},
-          {"temporal_metric", "flicker error (pooled frame-to-frame change against the ground truth's)"},
+          {"temporal_metric", has_video_metric(table)
+                                  ? "video error (10 - ColorVideoVDP's JOD of the animation clip against the ground truth's)"
+                                  : "flicker error (pooled frame-to-frame change against the ground truth's)"},
           {"by_content", by_content},
           {"per_scene", per_scene}};
 }
@@ -1218,8 +1225,11 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       const PairedComparison against_none = compare_configurations(table, id, "none", keep);
       if (against_none.cells == 0) continue;
       const decision::Comparison c = to_decision(against_none);
-      const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
-      by_content.back()["against_none"] = {{"image", difference(c.image)}, {"temporal", difference(c.temporal)}, {"lag", difference(c.lag)}};
+      const auto difference = [](const decision::Difference& d) {
+        return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}};
+      };
+      by_content.back()["against_none"] = {
+          {"image", difference(c.image)}, {"temporal", difference(c.temporal)}, {"lag", difference(c.lag)}};
     }
   }
   // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
@@ -1230,15 +1240,21 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       if (id == "none" || is_measurement_configuration(id)) continue;
       const PairedComparison c = compare_configurations(table, id, "none", keep);
       if (c.cells == 0) continue;
-      comparisons.push_back({{"scope", scope}, {"name", name}, {"configuration", id}, {"baseline", "none"}, {"cells", c.cells},
-                             {"image_error", difference_json(c.image)}, {"flicker_error", difference_json(c.flicker)},
+      comparisons.push_back({{"scope", scope},
+                             {"name", name},
+                             {"configuration", id},
+                             {"baseline", "none"},
+                             {"cells", c.cells},
+                             {"image_error", difference_json(c.image)},
+                             {"flicker_error", difference_json(c.flicker)},
                              {"lag", difference_json(c.lag)},
                              {"outcome", std::string(comparison_outcome_name(c))}});
       if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
     }
   };
   for (Content content : kContents)
-    add_comparisons("content", std::string(content_name(content)), [content](const render::TradeRow& row) { return content_of(row.scene) == content; });
+    add_comparisons("content", std::string(content_name(content)),
+                    [content](const render::TradeRow& row) { return content_of(row.scene) == content; });
   for (const render::SceneId scene : table.config.scenes)
     add_comparisons("scene", std::string(render::scene_name(scene)), [scene](const render::TradeRow& row) { return row.scene == scene; });
   return {{"generator", std::string(output_tag) + " saagen bench"},

@@ -63,12 +63,10 @@ TaaComparisonRow row_of(const render::TradeTable& table, render::SceneId scene, 
 }
 
 // What the decision takes among saagen's configurations under TAA against none+taa.
-decision::Decision decide_under_taa(const std::vector<TaaComparisonRow>& saagen_rows, std::vector<std::string>& ids) {
+decision::Decision decide_under_taa(const std::vector<TaaComparisonRow>& saagen_rows) {
   std::vector<decision::Candidate> candidates;
-  for (const TaaComparisonRow& row : saagen_rows) {
+  for (const TaaComparisonRow& row : saagen_rows)
     candidates.push_back({row.configuration, to_decision(*row.against_taa), std::nullopt, true});
-    ids.push_back(row.configuration);
-  }
   decision::Preference preference;
   preference.baseline = "none+taa";
   return decision::decide(candidates, preference);
@@ -105,11 +103,10 @@ std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
       if (is_saagen_taa(id)) saagen.push_back(row_of(table, scene, "saagen", id, configs.rows.at(id)));
       if (is_engine_taa(id)) engines.push_back(row_of(table, scene, "engine", id, configs.rows.at(id)));
     }
-    std::vector<std::string> ids;
-    const decision::Decision made = decide_under_taa(saagen, ids);
+    const decision::Decision made = decide_under_taa(saagen);
     c.verdict = made.reason;
     if (made.chosen) {
-      c.best_saagen = ids[*made.chosen];
+      c.best_saagen = saagen[*made.chosen].configuration;
       c.rows.push_back(saagen[*made.chosen]);
     }
     const auto best_engine = std::min_element(engines.begin(), engines.end(), [](const TaaComparisonRow& a, const TaaComparisonRow& b) {

@@ -20,7 +20,7 @@ struct TaaAccumulator {
   TemporalDifference difference;
   Image previous_display;
   ClipRecorder clip;  // the verdict metrics (trade_clips.hpp) against the first ground-truth seed
-  double rmse_linear = 0.0, rmse_tonemapped = 0.0, max_error = 0.0, flip_ldr = 0.0, flip_hdr = 0.0;
+  double rmse_linear = 0.0, rmse_tonemapped = 0.0, max_error = 0.0, flip_hdr = 0.0;
   std::size_t non_finite = 0;
   TaaAccumulator(int w, int h, const TaaOptions& options) : resolve(w, h, options), stats(w, h), stats_display(w, h) {}
 };
@@ -46,7 +46,6 @@ void measure_frame(TaaAccumulator& a, const Image& out, const Image& reference, 
   a.rmse_tonemapped += e.rmse_tonemapped;
   a.max_error = std::max(a.max_error, e.max_error);
   a.non_finite += e.non_finite;
-  a.flip_ldr += ldr_flip_mean_grey(tonemapped(reference), tonemapped(out));
   if (last) a.flip_hdr = hdr_flip_mean_grey(reference, out);
   a.stats.add(out);
   a.stats_display.add(tonemapped(out));
@@ -71,7 +70,7 @@ TradeRow finished_row(const TaaAccumulator& a, const TaaRowKey& key, SceneId id,
   row.rmse_tonemapped = a.rmse_tonemapped / frames;
   row.max_error = a.max_error;
   row.non_finite = a.non_finite;
-  row.flip_ldr = row.flip_ldr_animation = a.flip_ldr / frames;
+  row.flip_ldr = row.flip_ldr_animation;  // the image series' mean (finish_verdict_metrics)
   row.flip_hdr = a.flip_hdr;
   const TemporalError temporal = a.difference.mean();
   row.tde = temporal.tde;
@@ -95,8 +94,7 @@ int taa_warmup(const TradeConfig& config) {
 
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
                      const std::vector<std::vector<Image>>& reference_frames, const std::vector<std::vector<Image>>& second_seed_frames,
-                     std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images) {
+                     std::vector<TradeRow>& rows, const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images) {
   const int fw = config.flicker_width, fh = config.flicker_height, warmup = taa_warmup(config);
   const std::size_t n_keys = keys.size();
   std::vector<TaaAccumulator> accumulators;
@@ -106,7 +104,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     accumulators.back().clip.keep_frames = config.video_metric;
   }
   const std::size_t seeds = second_seed_frames.empty() ? 1 : 2;
-  std::vector<std::vector<ClipFrames>> reference_clips(config.video_metric ? materials.size() : 0, std::vector<ClipFrames>(seeds));  // [m][seed]
+  std::vector<std::vector<ClipFrames>> reference_clips(config.video_metric ? materials.size() : 0,
+                                                       std::vector<ClipFrames>(seeds));  // [m][seed]
   std::vector<TemporalStats> reference_stats(materials.size(), TemporalStats(fw, fh));
   std::vector<TemporalStats> reference_display(materials.size(), TemporalStats(fw, fh));
 
@@ -127,8 +126,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
         reference_stats[m].add(reference);
         reference_display[m].add(tonemapped(reference));
         for (std::size_t s = 0; s < seeds; ++s) {
-          references[m][s] = seed_reference(s == 0 ? reference : second_seed_frames[f][m], frame > 0 ? &previous_references[m][s] : nullptr,
-                                            config.flip);
+          references[m][s] =
+              seed_reference(s == 0 ? reference : second_seed_frames[f][m], frame > 0 ? &previous_references[m][s] : nullptr, config.flip);
           if (!reference_clips.empty()) reference_clips[m][s].append(references[m][s].display);
         }
       }
@@ -143,8 +142,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
           const std::size_t r = static_cast<std::size_t>(row), m = r / n_keys;
           const TaaRowKey& key = keys[r % n_keys];
           TaaAccumulator& a = accumulators[r];
-          const Image samples = render_variant(buffers.for_prefilter(key.prefilter), key.variant, materials[m], config.params, config.derivative, 1, key.feed,
-                                               key.prefilter, config.prefilter_scale, key.lobe);
+          const Image samples = render_variant(buffers.for_prefilter(key.prefilter), key.variant, materials[m], config.params,
+                                               config.derivative, 1, key.feed, key.prefilter, config.prefilter_scale, key.lobe);
           const Image& out = a.resolve.resolve(samples, jitter, positions);
           if (frame >= 0)
             measure_frame(a, out, reference_frames[static_cast<std::size_t>(frame)][m], references[m],
@@ -170,9 +169,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
   }
   if (!reference_clips.empty()) {
     const std::vector<std::vector<VideoVdpReference>> video = video_references(config, reference_clips);
-    parallel_rows(static_cast<int>(accumulators.size()), config.threads, [&](int r) {
-      accumulators[static_cast<std::size_t>(r)].clip.finish_video(video[static_cast<std::size_t>(r) / n_keys]);
-    });
+    parallel_rows(static_cast<int>(accumulators.size()), config.threads,
+                  [&](int r) { accumulators[static_cast<std::size_t>(r)].clip.finish_video(video[static_cast<std::size_t>(r) / n_keys]); });
   }
   for (std::size_t m = 0; m < materials.size(); ++m)
     for (std::size_t k = 0; k < n_keys; ++k)
