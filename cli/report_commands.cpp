@@ -397,25 +397,29 @@ ReportCommands::ReportCommands(CLI::App& app) {
   add_common(bench_, bench_common_);
   bench_->add_option("--json", bench_json_, "Also write the table as JSON (the format `saagen plan --trade-table` reads)")
       ->check(value_given());
-  bench_->add_option("--report", bench_report_,
-                     "Also write the report of the same table into this directory, as `saagen report -o DIR` would (one "
-                     "measurement for both)")
+  bench_
+      ->add_option("--report", bench_report_,
+                   "Also write the report of the same table into this directory, as `saagen report -o DIR` would (one "
+                   "measurement for both)")
       ->check(value_given());
-  bench_->add_option("--frames", bench_frames_,
-                     "Also write the animation clips behind every row into this new directory (DIR/index.json and one PNG per "
-                     "clip, its frames stacked, in the display values the verdict reads), for an external video metric")
+  bench_
+      ->add_option("--frames", bench_frames_,
+                   "Also write the animation clips behind every row into this new directory (DIR/index.json and one PNG per "
+                   "clip, its frames stacked, in the display values the verdict reads), for an external video metric")
       ->check(value_given());
   bench_->add_option("--frames-filter", bench_frames_filter_,
                      "With --frames: only the clips whose configuration id (or sanity:NAME) matches this regular expression "
                      "(ECMAScript; e.g. '^(none|engine-.*|.*/tail|sanity:.*)$'); the ground truth's always");
   bench_->add_flag("--every-case", bench_every_case_, "Print every scene x alpha x Fresnel x variant row, not only the means");
   bench_->add_flag("--isa-only", bench_isa_only_, "With --isa: print the ISA statistics only (no ground-truth rendering)");
-  bench_->add_option("--isa-table", bench_isa_table_,
-                     "With --isa: also write the ISA statistics as JSON (generator/data/isa_cost.json, the planner's table, is this "
-                     "file for --isa vega10,navi21)")
+  bench_
+      ->add_option("--isa-table", bench_isa_table_,
+                   "With --isa: also write the ISA statistics as JSON (generator/data/isa_cost.json, the planner's table, is this "
+                   "file for --isa vega10,navi21)")
       ->check(value_given());
 
-  report_ = app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, a cost-error plot per content and path");
+  report_ =
+      app.add_subcommand("report", "Write the trade report: index.html, report.md, PNG sheets, a cost-error plot per content and path");
   add_common(report_, report_common_);
   report_->add_option("--output,-o", report_directory_, "Report directory")->required();
 }
@@ -478,7 +482,11 @@ int ReportCommands::run_bench() const {
   if (config.taa) std::cout << "\n" << report::format_taa_summary(measured);
   if (!bench_json_.empty()) {
     nlohmann::json json = report::trade_json(table, summary, cost_table);
-    if (config.taa) json["taa_cases"] = report::taa_cases_json(measured);
+    if (config.taa) {
+      json["taa_cases"] = report::taa_cases_json(measured);
+      json["taa_by_content"] = report::taa_by_content_json(measured);
+      json["decisions"]["taa_by_content"] = report::taa_decisions_json(measured);
+    }
     json["sanity_checks"] = report::sanity_json(sanity);
     files.push_back({bench_json_, json.dump(2) + "\n"});
   }

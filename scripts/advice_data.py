@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """Writes generator/data/advice.json, the measurement the table-free advice is decided on, from two
-`saagen bench --json` tables: the one it is derived from and the held-out one it is reported on.
+`saagen bench --json` tables: the one it is derived from and the held-out one it is reported on;
+and, under TAA, two more of the same scenes measured with --taa (their "taa_by_content" rows,
+each configuration against none+taa).
 
     saagen bench --preset medium --json T.json
     bash scripts/held_out.sh OUT          # writes OUT/held_out.json
-    python3 scripts/advice_data.py T.json OUT/held_out.json > generator/data/advice.json
+    saagen bench --preset medium --taa --sigma2 0.0625 --json TAA.json
+    bash scripts/held_out.sh TAA_OUT --taa --sigma2 0.0625
+    python3 scripts/advice_data.py T.json OUT/held_out.json TAA.json TAA_OUT/held_out.json > generator/data/advice.json
 
 It copies figures; it decides nothing. The planner (saagen/scene/cost_tables.hpp: committed_advice) reads the file,
 embedded in the library (saagen/scene/cost_tables.hpp: committed_advice), and makes saagen's one decision (saagen/decision.hpp) on its rows: on the
@@ -27,20 +31,25 @@ def scenes_by_content(table):
     return scenes
 
 
-def rows_by_content(table):
+def rows_by_content(table, key="by_content"):
     rows = {}
-    for row in table["by_content"]:
+    for row in table.get(key, []):
         rows.setdefault(row["content"], {})[row["configuration"]] = row
     return rows
 
 
-def advice_document(derived, held_out, derived_name, held_out_name):
-    derived_rows, held_rows = rows_by_content(derived), rows_by_content(held_out)
+def content_entries(derived, held_out, key, taa):
+    """Per content type, every configuration's figures and comparisons: without TAA (by_content,
+    against no SAA) or under TAA (taa_by_content, against none+taa)."""
+    derived_rows, held_rows = rows_by_content(derived, key), rows_by_content(held_out, key)
     derived_scenes, held_scenes = scenes_by_content(derived), scenes_by_content(held_out)
     contents = []
     for content, rows in derived_rows.items():
         held = held_rows.get(content, {})
-        entry = {"content": content, "scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []}
+        entry = {"content": content}
+        if taa:
+            entry.update({"taa": True, "baseline": "none+taa"})
+        entry.update({"scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []})
         for configuration, row in rows.items():
             kept = {"configuration": configuration}
             kept.update({figure: row[figure] for figure in FIGURES if figure in row})
@@ -50,6 +59,17 @@ def advice_document(derived, held_out, derived_name, held_out_name):
                 kept["held_out"] = held[configuration]["against_none"]
             entry["rows"].append(kept)
         contents.append(entry)
+    return contents
+
+
+def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None):
+    contents = content_entries(derived, held_out, "by_content", False)
+    taa = {}
+    if taa_derived is not None:
+        contents += content_entries(taa_derived, taa_held_out, "taa_by_content", True)
+        taa = {"taa": {"table": "saagen bench --preset medium --taa --sigma2 0.0625 --json TAA.json",
+                       "held_out_command": "bash scripts/held_out.sh OUT --taa --sigma2 0.0625",
+                       "config": taa_derived["config"]}}
     return {
         "schema": "saagen advice 1",
         "about": "the table-free advice's measurement: per content type, every configuration's figures and its paired "
@@ -59,6 +79,7 @@ def advice_document(derived, held_out, derived_name, held_out_name):
         "held_out": {"table": held_out_name, "command": "bash scripts/held_out.sh OUT", "config": held_out["config"]},
         "image_metric": "image error: LDR-FLIP of every animation frame against the ground truth's",
         "temporal_metric": "video error: 10 - the ColorVideoVDP JOD of the animation clip against the ground truth's (docs/TEMPORAL.md)",
+        **taa,
         "content": contents,
     }
 
@@ -90,14 +111,16 @@ def write(document, out):
     out.write(" ]\n}\n")
 
 
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
 def main(argv):
-    if len(argv) != 3:
-        sys.exit("usage: advice_data.py DERIVED.json HELD_OUT.json > generator/data/advice.json")
-    with open(argv[1]) as f:
-        derived = json.load(f)
-    with open(argv[2]) as f:
-        held_out = json.load(f)
-    document = advice_document(derived, held_out, "saagen bench --preset medium --json T.json", "scripts/held_out.sh")
+    if len(argv) not in (3, 5):
+        sys.exit("usage: advice_data.py DERIVED.json HELD_OUT.json [TAA_DERIVED.json TAA_HELD_OUT.json] > generator/data/advice.json")
+    tables = [load(path) for path in argv[1:]]
+    document = advice_document(tables[0], tables[1], "saagen bench --preset medium --json T.json", "scripts/held_out.sh", *tables[2:])
     write(document, sys.stdout)
 
 

@@ -38,13 +38,15 @@ std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::st
 decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view source_name, std::size_t index) {
   const auto difference = [&](const char* metric) {
     const auto fail = [&] {
-      throw Error(fmt::format("{}: by_content[{}]: \"against_none\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, "
-                              "low <= mean <= high",
-                              source_name, index, metric));
+      throw Error(
+          fmt::format("{}: by_content[{}]: \"against_none\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, "
+                      "low <= mean <= high",
+                      source_name, index, metric));
     };
     if (!value.is_object() || !value.contains(metric) || !value[metric].is_object()) fail();
     decision::Difference d;
-    for (auto [key, field] : {std::pair{"mean", &decision::Difference::mean}, {"low", &decision::Difference::low}, {"high", &decision::Difference::high}}) {
+    for (auto [key, field] :
+         {std::pair{"mean", &decision::Difference::mean}, {"low", &decision::Difference::low}, {"high", &decision::Difference::high}}) {
       const nlohmann::json& number = value[metric].contains(key) ? value[metric][key] : nlohmann::json();
       if (!number.is_number() || !std::isfinite(number.get<double>())) fail();
       d.*field = number.get<double>();
@@ -239,25 +241,32 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
     table.rows.push_back(std::move(entry));
   }
-  if (document.contains("by_content")) {
-    const nlohmann::json& content_rows = document["by_content"];
-    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"by_content\" must be an array", source_name));
+  // A content type's rows: "by_content" (against no SAA) and, under TAA, "taa_by_content"
+  // (against none+taa, named without "+taa"); the same form.
+  const auto content_rows_of = [&](const char* section) {
+    std::vector<ContentRow> out;
+    if (!document.contains(section)) return out;
+    const nlohmann::json& content_rows = document[section];
+    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"{}\" must be an array", source_name, section));
     for (std::size_t index = 0; index < content_rows.size(); ++index) {
       const nlohmann::json& row = content_rows[index];
       const auto text = [&](const char* key) {
         if (!row.is_object() || !row.contains(key) || !row[key].is_string())
-          throw Error(fmt::format("{}: by_content[{}]: needs a string \"{}\"", source_name, index, key));
+          throw Error(fmt::format("{}: {}[{}]: needs a string \"{}\"", source_name, section, index, key));
         return row[key].get<std::string>();
       };
       ContentRow entry{text("content"), text("configuration"), 0.0, std::nullopt, std::nullopt};
       const auto error = number(row, "error", index);
-      if (!error) throw Error(fmt::format("{}: by_content[{}]: needs a number \"error\"", source_name, index));
+      if (!error) throw Error(fmt::format("{}: {}[{}]: needs a number \"error\"", source_name, section, index));
       entry.error = *error;
       entry.tde = number(row, "tde", index);
       if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], source_name, index);
-      table.content_rows.push_back(std::move(entry));
+      out.push_back(std::move(entry));
     }
-  }
+    return out;
+  };
+  table.content_rows = content_rows_of("by_content");
+  table.taa_content_rows = content_rows_of("taa_by_content");
   return table;
 }
 
@@ -267,9 +276,9 @@ std::optional<decision::Comparison> AdviceMeasurement::held_out(std::string_view
   return std::nullopt;
 }
 
-const AdviceMeasurement* AdviceTable::find(std::string_view content) const {
+const AdviceMeasurement* AdviceTable::find(std::string_view content, bool taa) const {
   for (const AdviceMeasurement& entry : contents)
-    if (entry.content == content) return &entry;
+    if (entry.content == content && entry.taa == taa) return &entry;
   return nullptr;
 }
 
@@ -302,21 +311,32 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
   };
   for (std::size_t index = 0; index < document["content"].size(); ++index) {
     const nlohmann::json& entry = document["content"][index];
-    if (!entry.is_object() || !entry.contains("content") || !entry["content"].is_string() || !entry.contains("rows") || !entry["rows"].is_array())
+    if (!entry.is_object() || !entry.contains("content") || !entry["content"].is_string() || !entry.contains("rows") ||
+        !entry["rows"].is_array())
       fail(fmt::format("content[{}] needs a string \"content\" and a \"rows\" array", index));
-    AdviceMeasurement measured{entry["content"].get<std::string>(), names(entry, "scenes"), names(entry, "held_out_scenes"), {}, {}};
+    AdviceMeasurement measured;
+    measured.content = entry["content"].get<std::string>();
+    if (entry.contains("taa") && !entry["taa"].is_boolean()) fail(fmt::format("content[{}]: \"taa\" must be true or false", index));
+    if (entry.contains("baseline") && !entry["baseline"].is_string())
+      fail(fmt::format("content[{}]: \"baseline\" must be a string", index));
+    measured.taa = entry.value("taa", false);
+    measured.baseline = entry.value("baseline", measured.baseline);
+    measured.scenes = names(entry, "scenes");
+    measured.held_out_scenes = names(entry, "held_out_scenes");
     for (const nlohmann::json& row : entry["rows"]) {
       const auto number = [&](const char* key) {
         if (!row.is_object() || !row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
           fail(fmt::format("content[{}]: every row needs a finite \"{}\"", index, key));
         return row[key].get<double>();
       };
-      if (!row.contains("configuration") || !row["configuration"].is_string()) fail(fmt::format("content[{}]: a row without a \"configuration\"", index));
+      if (!row.contains("configuration") || !row["configuration"].is_string())
+        fail(fmt::format("content[{}]: a row without a \"configuration\"", index));
       // The temporal figure: the video error (10 - JOD) where the table has it, else the flicker error.
       const double temporal = row.is_object() && row.contains("video_error") ? number("video_error") : number("flicker_error");
       ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), temporal, std::nullopt};
       if (row.contains("against_none")) kept.against_none = parse_comparison(row["against_none"], source_name, index);
-      if (row.contains("held_out")) measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
+      if (row.contains("held_out"))
+        measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
       measured.rows.push_back(std::move(kept));
     }
     table.contents.push_back(std::move(measured));

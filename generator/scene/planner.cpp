@@ -529,42 +529,50 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 }
 
 // saagen's committed measurement of a content type (generator/data/advice.json), the rows the
-// table-free decision is made on; none under TAA, whose rows are decided per scene but not yet
-// per content (advice.hpp's TAA evidence): there the decision finds nothing and plans no filter.
+// table-free decision is made on: without TAA against no SAA, under TAA against none+taa.
 const AdviceMeasurement* advice_measurement(advice::Content content, bool taa) {
-  if (taa) return nullptr;
-  return committed_advice().find(advice::table_content(content));
+  return committed_advice().find(advice::table_content(content), taa);
 }
+
+// What a content's rows are compared with: no SAA, or TAA alone under TAA.
+std::string_view baseline_of(bool taa) { return taa ? "none+taa" : "no SAA"; }
 
 std::string scene_list(const std::vector<std::string>& scenes) {
   return scenes.empty() ? std::string("no scene") : fmt::format("{}", fmt::join(scenes, ", "));
 }
 
-// A configuration's comparison with no SAA, as the plan states it.
-std::string comparison_text(const decision::Comparison& c) {
-  return fmt::format("image error {}, video error {} against no SAA: {}", decision::describe(c.image), decision::describe(c.temporal),
+// A configuration's comparison with its baseline (no SAA; none+taa under TAA), as the plan states it.
+std::string comparison_text(const decision::Comparison& c, std::string_view baseline = "no SAA") {
+  return fmt::format("image error {}, video error {} against {}: {}", decision::describe(c.image), decision::describe(c.temporal), baseline,
                      decision::name(decision::outcome(c)));
 }
 
-constexpr const char* kMeasureOwnAsset =
-    "measure your own asset: `saagen bench --scene ASSET.glb --json T.json` (or a scene of the presets like it), then "
-    "`saagen plan MANIFEST --trade-table T.json`; or both in one step: `saagen plan --gltf ASSET.glb -o MANIFEST --measure`";
+// How to measure one's own asset instead of relying on saagen's scenes.
+std::string measure_own_asset(bool taa) {
+  if (taa)
+    return fmt::format(
+        "measure your own asset under TAA: `saagen bench --scene ASSET.glb --taa --sigma2 {} --json T.json` (or a scene of the presets "
+        "like it), then `saagen plan MANIFEST --trade-table T.json`",
+        advice::kTaaSigma2);
+  return "measure your own asset: `saagen bench --scene ASSET.glb --json T.json` (or a scene of the presets like it), then "
+         "`saagen plan MANIFEST --trade-table T.json`; or both in one step: `saagen plan --gltf ASSET.glb -o MANIFEST --measure`";
+}
 
 // How the table-free advice fared on the held-out scenes it was not derived from.
 std::string held_out_text(const AdviceMeasurement& measured, const std::optional<std::string>& chosen) {
   if (measured.held_out_scenes.empty())
     return fmt::format("this advice comes from saagen's own scenes ({}) and has no held-out {} content to be checked on; {}",
-                       scene_list(measured.scenes), measured.content, kMeasureOwnAsset);
+                       scene_list(measured.scenes), measured.content, measure_own_asset(measured.taa));
   const std::string held_out = fmt::format("held-out scenes {}", scene_list(measured.held_out_scenes));
   if (!chosen)
-    return fmt::format("no filter chosen on saagen's scenes ({}); the {} are only reported on, never chosen on; {}", scene_list(measured.scenes),
-                       held_out, kMeasureOwnAsset);
+    return fmt::format("no filter chosen on saagen's scenes ({}); the {} are only reported on, never chosen on; {}",
+                       scene_list(measured.scenes), held_out, measure_own_asset(measured.taa));
   const auto there = measured.held_out(*chosen);
-  if (!there) return fmt::format("{} was not measured on the {}; {}", *chosen, held_out, kMeasureOwnAsset);
+  if (!there) return fmt::format("{} was not measured on the {}; {}", *chosen, held_out, measure_own_asset(measured.taa));
   const decision::Outcome outcome = decision::outcome(*there);
   const bool held = outcome == decision::Outcome::beats || outcome == decision::Outcome::ties;
   return fmt::format("this advice {} on content it was not derived from ({}: {}); {}", held ? "held" : "did not hold", held_out,
-                     comparison_text(*there), kMeasureOwnAsset);
+                     comparison_text(*there, measured.baseline), measure_own_asset(measured.taa));
 }
 
 // Whether the table-free advice's choice loses to no SAA beyond its interval, in either metric,
@@ -616,7 +624,7 @@ std::string advised_feed_figures() {
 // variant, feed and prefilter, or no filter, with the decision's reason.
 void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
                     std::string_view source, const AdviceMeasurement* advice, MaterialPlan& plan) {
-  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows);
+  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows, baseline_of(manifest.taa));
   const std::string where = fmt::format("{} in {}", content_words(content_of(material), manifest.taa), source);
   const std::string rule = advice ? "advice" : "trade table";
   if (advice) {
@@ -625,15 +633,16 @@ void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const 
     plan.measure_advice = held_out_text(*advice, chosen);
     if (chosen && fails_held_out(*advice, *chosen)) {
       plan_no_filter(material, rule,
-                     fmt::format("no filter: on {} {}, but it does not hold on the held-out scenes ({}: {}), so it is not given",
-                                 where, made.decision.reason, scene_list(advice->held_out_scenes), comparison_text(*advice->held_out(*chosen))),
+                     fmt::format("no filter: on {} {}, but it does not hold on the held-out scenes ({}: {}), so it is not given", where,
+                                 made.decision.reason, scene_list(advice->held_out_scenes),
+                                 comparison_text(*advice->held_out(*chosen), advice->baseline)),
                      plan);
       return;
     }
   }
   if (!made.decision.chosen) {
-    plan_no_filter(material, rule, fmt::format("{}; on {}; name a variant (variant = \"...\") to filter anyway", made.decision.reason, where),
-                   plan);
+    plan_no_filter(material, rule,
+                   fmt::format("{}; on {}; name a variant (variant = \"...\") to filter anyway", made.decision.reason, where), plan);
     return;
   }
   const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
@@ -722,7 +731,7 @@ std::string light_count_words(int lights, int measured) {
 }  // namespace
 
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows) {
+                                 const std::vector<ContentRow>& rows, std::string_view baseline) {
   MaterialDecision made;
   const std::string family = gpu_family.empty() ? std::string(kDefaultGpuFamily) : std::string(gpu_family);
   const auto eligible = eligible_variants(catalogue, material);
@@ -744,8 +753,8 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
   const std::string basis = light_count_words(material.lights, committed_isa_costs().cost_light_count(family, material.lights));
   // A budget takes the most accurate configuration within it (prefer only orders without one).
-  made.decision = material.budget ? decision::decide(made.candidates, {decision::Prefer::accuracy, material.budget}, basis)
-                                  : decision::decide(made.candidates, {prefer, std::nullopt}, basis);
+  decision::Preference preference{material.budget ? decision::Prefer::accuracy : prefer, material.budget, std::string(baseline)};
+  made.decision = decision::decide(made.candidates, preference, basis);
   return made;
 }
 
@@ -846,7 +855,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
                                    std::any_of(table->rows.begin(), table->rows.end(),
                                                [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
         const std::string lights = light_count_words(material.lights, plan.cost_lights);
-        const std::string source = !speed         ? table->source_name
+        const std::string source = !speed          ? table->source_name
                                    : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                                                    : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family,
                                                                  committed_isa_costs().driver, lights);
@@ -877,15 +886,15 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
           plan.variant = ranked.front().second->id;
           plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
-          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source,
-                                    describe_choice(ranked, metric), rule.id, rule.variant);
+          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id,
+                                    rule.variant);
         } else if (!ranked.empty()) {
           plan.reason += fmt::format(" [{} the lowest {} in {}: {}]",
                                      rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also", metric, source,
                                      describe_choice(ranked, metric));
         } else {
-          plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source,
-                                     metric, ids_of(eligible), rule.id);
+          plan.reason +=
+              fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source, metric, ids_of(eligible), rule.id);
         }
       }
     }
@@ -916,11 +925,11 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     // committed figures (advice.hpp), with how far those hold on content they were not made on.
     if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
       const std::string content(advice::table_content(content_of(material)));
-      // A table's by_content rows are measured without TAA (its +taa rows compare with none+taa on
-      // the animation, docs/TAA.md): under TAA saagen's committed TAA figures decide.
+      // Under TAA the table's taa_by_content rows (`saagen bench --taa`: each against none+taa);
+      // a table without them leaves the decision to saagen's committed TAA figures.
       std::vector<ContentRow> rows;
-      if (table && !manifest.taa)
-        for (const ContentRow& row : table->content_rows)
+      if (table)
+        for (const ContentRow& row : manifest.taa ? table->taa_content_rows : table->content_rows)
           if (row.content == content) rows.push_back(row);
       const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
       if (has_none) {
@@ -951,13 +960,15 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
 
 std::string advice_markdown(const Catalogue& catalogue) {
   const auto figures = [](const std::optional<decision::Comparison>& c) {
-    return c ? fmt::format("{} / {}: {}", decision::describe(c->image), decision::describe(c->temporal), decision::name(decision::outcome(*c)))
+    return c ? fmt::format("{} / {}: {}", decision::describe(c->image), decision::describe(c->temporal),
+                           decision::name(decision::outcome(*c)))
              : std::string("-");
   };
   std::string text =
       "| content | path | prefer | plan | its image / video error (10 - JOD) against no SAA on saagen's scenes | on the held-out scenes |\n"
       "|---|---|---|---|---|---|\n";
-  for (const advice::Content content : {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
+  for (const advice::Content content :
+       {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
     for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
       for (const Preference prefer : {Preference::accuracy, Preference::speed}) {
         Manifest manifest;
@@ -982,9 +993,8 @@ std::string advice_markdown(const Catalogue& catalogue) {
             held_out = measured->held_out(configuration);
           }
         }
-        const std::string planned = plan.variant == "none" ? std::string("**no filter**")
-                                                             : fmt::format("`{}`", configuration);
-        const std::string why = configuration == "none" ? nothing
+        const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
+        const std::string why = configuration == "none"  ? nothing
                                 : plan.variant == "none" ? fmt::format("`{}` {}", configuration, figures(derived))
                                                          : figures(derived);
         text += fmt::format("| {} | {} | {} | {} | {} | {} |\n", advice::name(content), to_string(path), to_string(prefer), planned, why,
@@ -1216,7 +1226,8 @@ std::string plan_json(const Manifest& manifest, const ScenePlan& plan) {
   }
   nlohmann::json options = nlohmann::json::object();
   for (const auto& [option, value] : plan.option_values) options[option] = value;
-  return nlohmann::json{{"scene", manifest.name}, {"trade_table", plan.trade_table}, {"options", options}, {"materials", materials}}.dump(2) +
+  return nlohmann::json{{"scene", manifest.name}, {"trade_table", plan.trade_table}, {"options", options}, {"materials", materials}}.dump(
+             2) +
          "\n";
 }
 

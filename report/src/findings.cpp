@@ -1,8 +1,7 @@
 #include "saagen/report/findings.hpp"
 
-#include "saagen/report/comparison.hpp"
-
 #include "saagen/reference/render/gltf.hpp"
+#include "saagen/report/comparison.hpp"
 #include "saagen/scene/planner.hpp"
 
 #include <fmt/format.h>
@@ -87,9 +86,9 @@ namespace {
 
 // The averaged fields of Metrics (max_error is a maximum, cases a count).
 constexpr double Metrics::*kMeanFields[] = {
-    &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,       &Metrics::tde,
-    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display,
-    &Metrics::image_error,        &Metrics::flicker_error,   &Metrics::video_error};
+    &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,        &Metrics::tde,
+    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display, &Metrics::image_error,
+    &Metrics::flicker_error,      &Metrics::video_error};
 
 }  // namespace
 
@@ -199,6 +198,31 @@ std::vector<ContentRow> measured_rows(const render::TradeTable& table, const Row
   return rows;
 }
 
+std::string without_taa(std::string configuration) {
+  constexpr std::string_view taa = "+taa";
+  if (const std::size_t at = configuration.find(taa); at != std::string::npos) configuration.erase(at, taa.size());
+  return configuration;
+}
+
+std::vector<ContentRow> measured_taa_rows(const render::TradeTable& table, Content content) {
+  const RowFilter keep = [content](const render::TradeRow& row) { return row.taa && content_of(row.scene) == content; };
+  const bool video = has_video_metric(table);
+  std::vector<ContentRow> rows;
+  for (const std::string& id : configurations(table)) {
+    if (id.find("+taa") == std::string::npos || is_measurement_configuration(id)) continue;
+    const Metrics m = mean_metrics(table, id, keep);
+    if (!m.cases) continue;
+    ContentRow row{std::string(content_name(content)), without_taa(id), m.image_error, video ? m.video_error : m.flicker_error,
+                   std::nullopt};
+    if (id != "none+taa") {
+      const PairedComparison against_taa = compare_configurations(table, id, "none+taa", keep);
+      if (against_taa.cells > 0) row.against_none = to_decision(against_taa);
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
 namespace {
 
 advice::Content advice_content(Content content) {
@@ -217,10 +241,10 @@ advice::Content advice_content(Content content) {
 
 }  // namespace
 
-MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed) {
+MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed, std::string_view baseline) {
   Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, advice_content(content));
   if (speed) material.prefer = Preference::speed;
-  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows);
+  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline);
 }
 
 std::string chosen_configuration(const MaterialDecision& made) {
@@ -236,7 +260,8 @@ std::vector<Recommendation> recommend(const render::TradeTable& table) {
     for (Path path : {Path::forward, Path::deferred}) {
       const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
       const std::string id = chosen_configuration(made);
-      recs.push_back({path, content, id, mean_metrics(table, id, keep), made.decision.reason, chosen_configuration(speed), speed.decision.reason});
+      recs.push_back(
+          {path, content, id, mean_metrics(table, id, keep), made.decision.reason, chosen_configuration(speed), speed.decision.reason});
     }
   }
   return recs;
@@ -259,7 +284,8 @@ std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const
       std::vector<decision::Candidate> candidates;
       for (const ContentRow& row : rows)
         if (is_saagen_configuration(row.configuration))
-          candidates.push_back({row.configuration, comparison_against(row, engine), 1.0, costs_at_most(costs, row.configuration, engine.configuration)});
+          candidates.push_back(
+              {row.configuration, comparison_against(row, engine), 1.0, costs_at_most(costs, row.configuration, engine.configuration)});
       const decision::Decision made = decision::decide(candidates, {});
       EngineSwitch entry{engine.configuration, content, "", mean_metrics(table, engine.configuration, keep), {}};
       if (made.chosen) {
@@ -404,16 +430,18 @@ std::string format_frontier(const render::TradeTable& table) {
       "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
       "vega10 ISA ratio to no SAA, image / video error (10 - JOD) against no SAA with 95 % intervals:\n";
   for (const ContentTrade& trade : content_trades(table)) {
-    text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(trade.path), content_name(trade.content), "configuration",
-                        "cost", "image error", "video error (10 - JOD)", "against no SAA");
+    text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(trade.path), content_name(trade.content),
+                        "configuration", "cost", "image error", "video error (10 - JOD)", "against no SAA");
     text += fmt::format("    {:<44} {:>5.3f}\n", "none", 1.0);
     for (const TradePoint& point : trade.points)
       if (point.frontier)
-        text += fmt::format("    {:<44} {:>5.3f}  {:<34} {:<34} {}\n", point.configuration, point.cost, decision::describe(point.against_none.image),
-                            decision::describe(point.against_none.temporal), decision::name(point.outcome));
+        text += fmt::format("    {:<44} {:>5.3f}  {:<34} {:<34} {}\n", point.configuration, point.cost,
+                            decision::describe(point.against_none.image), decision::describe(point.against_none.temporal),
+                            decision::name(point.outcome));
     text += fmt::format("    at x{} (the papers' overhead): {}; at x1.25: {}; unlimited: {}\n", kPapersBudget,
                         budget_choice(trade.rows, trade.path, trade.content, kPapersBudget),
-                        budget_choice(trade.rows, trade.path, trade.content, 1.25), budget_choice(trade.rows, trade.path, trade.content, std::nullopt));
+                        budget_choice(trade.rows, trade.path, trade.content, 1.25),
+                        budget_choice(trade.rows, trade.path, trade.content, std::nullopt));
   }
   return text;
 }

@@ -1051,20 +1051,29 @@ std::string format_verdict(const render::TradeTable& table) {
   return text;
 }
 
+namespace {
+
+nlohmann::json difference_json(const decision::Difference& d) { return {{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; }
+
+nlohmann::json comparison_json(const decision::Comparison& c) {
+  return {{"image", difference_json(c.image)}, {"temporal", difference_json(c.temporal)}, {"lag", difference_json(c.lag)}};
+}
+
+}  // namespace
+
 // saagen's decision (findings.hpp, decide_on) as the JSON carries it, for the scripts to read
 // instead of deciding again: the chosen configuration ("none": no filter), the reason, and every
 // candidate's comparison with no SAA and outcome; per_scene adds the chosen configuration's
 // outcome against each engine's form on that scene.
 nlohmann::json decision_json(const MaterialDecision& made) {
-  const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
   nlohmann::json candidates = nlohmann::json::array();
   for (std::size_t i = 0; i < made.candidates.size(); ++i) {
     const decision::Candidate& c = made.candidates[i];
     candidates.push_back({{"configuration", c.configuration},
                           {"usable", c.usable},
                           {"outcome", std::string(decision::name(made.decision.outcomes[i]))},
-                          {"image", difference(c.against_none.image)},
-                          {"temporal", difference(c.against_none.temporal)},
+                          {"image", difference_json(c.against_none.image)},
+                          {"temporal", difference_json(c.against_none.temporal)},
                           {"cost_ratio", c.cost_ratio ? nlohmann::json(*c.cost_ratio) : nlohmann::json()}});
   }
   return {{"chosen", made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none"},
@@ -1074,9 +1083,40 @@ nlohmann::json decision_json(const MaterialDecision& made) {
 
 // The chosen configuration against an engine's form on a scene, paired with intervals.
 nlohmann::json engine_comparison_json(const decision::Comparison& c) {
-  const auto difference = [](const decision::Difference& d) { return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; };
-  return {
-      {"outcome", std::string(decision::name(decision::outcome(c)))}, {"image", difference(c.image)}, {"temporal", difference(c.temporal)}};
+  return {{"outcome", std::string(decision::name(decision::outcome(c)))},
+          {"image", difference_json(c.image)},
+          {"temporal", difference_json(c.temporal)}};
+}
+
+// Under TAA, per content type and path: saagen's decision on the content's +taa rows against
+// none+taa (findings.hpp, measured_taa_rows), what `saagen plan` gives with taa = true.
+nlohmann::json taa_decisions_json(const render::TradeTable& table) {
+  nlohmann::json out = nlohmann::json::array();
+  for (Content content : kContents) {
+    const std::vector<ContentRow> rows = measured_taa_rows(table, content);
+    if (rows.empty()) continue;
+    for (Path path : {Path::forward, Path::deferred}) {
+      nlohmann::json entry = decision_json(decide_on(rows, path, content, false, "none+taa"));
+      entry["content"] = std::string(content_name(content)), entry["path"] = std::string(path_name(path));
+      out.push_back(entry);
+    }
+  }
+  return out;
+}
+
+// Under TAA, per content type: every configuration's means and its pairing with none+taa
+// (measured_taa_rows), in by_content's form; `saagen plan --trade-table` reads it with taa = true.
+nlohmann::json taa_by_content_json(const render::TradeTable& table) {
+  nlohmann::json out = nlohmann::json::array();
+  const std::string temporal = has_video_metric(table) ? "video_error" : "flicker_error";
+  for (Content content : kContents)
+    for (const ContentRow& row : measured_taa_rows(table, content)) {
+      nlohmann::json entry = {{"content", row.content}, {"configuration", row.configuration}, {"baseline", "none+taa"},
+                              {"error", row.error},     {"image_error", row.error},           {temporal, row.tde.value_or(0.0)}};
+      if (row.against_none) entry["against_none"] = comparison_json(*row.against_none);
+      out.push_back(entry);
+    }
+  return out;
 }
 
 nlohmann::json decisions_json(const render::TradeTable& table) {
@@ -1224,12 +1264,7 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
       if (id == "none") continue;
       const PairedComparison against_none = compare_configurations(table, id, "none", keep);
       if (against_none.cells == 0) continue;
-      const decision::Comparison c = to_decision(against_none);
-      const auto difference = [](const decision::Difference& d) {
-        return nlohmann::json{{"mean", d.mean}, {"low", d.low}, {"high", d.high}};
-      };
-      by_content.back()["against_none"] = {
-          {"image", difference(c.image)}, {"temporal", difference(c.temporal)}, {"lag", difference(c.lag)}};
+      by_content.back()["against_none"] = comparison_json(to_decision(against_none));
     }
   }
   // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content

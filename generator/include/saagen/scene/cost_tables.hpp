@@ -54,6 +54,9 @@ struct MeasuredTradeTable {
   std::string source_name;
   std::vector<MeasuredTradeRow> rows;
   std::vector<ContentRow> content_rows;
+  // Under TAA (`saagen bench --taa`, "taa_by_content"): the configurations without "+taa", "none"
+  // being none+taa, each compared with none+taa.
+  std::vector<ContentRow> taa_content_rows;
   // Mean cost of a variant: the time ratio when any row has one, else the SPIR-V delta.
   std::optional<double> cost(std::string_view variant) const;
   std::optional<double> error(std::string_view variant) const;
@@ -121,6 +124,8 @@ MeasuredTradeTable load_trade_table(const std::filesystem::path& path);
 // and one of held-out scenes it is only reported on (scripts/held_out.sh), never chosen on.
 struct AdviceMeasurement {
   std::string content;                       // a trade table's by_content name ("curved", "bump", ...)
+  bool taa = false;                          // measured under TAA: "none" is none+taa, the baseline
+  std::string baseline = "no SAA";           // what against_none and held_out compare with
   std::vector<std::string> scenes;           // what the advice is derived from
   std::vector<std::string> held_out_scenes;  // what it is reported on
   // No SAA's row and every configuration's, as a trade table's by_content rows: error is the
@@ -136,7 +141,7 @@ struct AdviceTable {
   std::string derived_from;  // the derivation table's command and configuration line
   std::string held_out_from;
   std::vector<AdviceMeasurement> contents;
-  const AdviceMeasurement* find(std::string_view content) const;
+  const AdviceMeasurement* find(std::string_view content, bool taa = false) const;
 };
 
 AdviceTable parse_advice_table(std::string_view json_text, std::string_view source_name);

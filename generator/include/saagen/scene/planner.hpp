@@ -117,8 +117,10 @@ struct MaterialDecision {
   std::vector<decision::Candidate> candidates;
   decision::Decision decision;
 };
+// `baseline` names what the rows' "none" is, as the reasons print it ("none+taa" for rows
+// measured under TAA).
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows);
+                                 const std::vector<ContentRow>& rows, std::string_view baseline = "no SAA");
 // The material the bench's verdict decides for on a render path and content type: GGX, isotropic,
 // tangents on the forward path (none on the deferred path's G-buffer), normal maps on
 // normal-mapped content, prefer accuracy.

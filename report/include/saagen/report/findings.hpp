@@ -95,10 +95,20 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 // saagen/scene/cost_tables.hpp). `scope` names the content type or the scene.
 std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope);
 
+// Under TAA (`saagen bench --taa`): a content type's +taa rows, named as the configurations a
+// material under TAA uses (without "+taa"; none+taa is "none"), each paired against none+taa:
+// what `saagen plan` decides on with taa = true (the JSON's "taa_by_content").
+std::vector<ContentRow> measured_taa_rows(const render::TradeTable& table, Content content);
+// A +taa configuration's id without "+taa" ("deferred-avg:geometric+hdrp+taa/tail" ->
+// "deferred-avg:geometric+hdrp/tail"; "none+taa" -> "none").
+std::string without_taa(std::string configuration);
+
 // saagen's decision (saagen/decision.hpp, through the planner's decide_material) on measured rows
 // for a path's reference material of a content type (reference_material): what `saagen plan`
 // gives such a material with this table.
-MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed = false);
+// `baseline` names what the rows' comparisons are against ("none+taa" for measured_taa_rows).
+MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed = false,
+                           std::string_view baseline = "no SAA");
 
 // The configuration a decision chose, "none" for no filter.
 std::string chosen_configuration(const MaterialDecision& made);

@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
-#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -81,6 +81,12 @@ nlohmann::json trade_json(const render::TradeTable& table, const std::vector<Var
 render::TradeTable without_taa_rows(const render::TradeTable& table);
 std::string format_taa_summary(const render::TradeTable& table);
 nlohmann::json taa_cases_json(const render::TradeTable& table);
+// Under TAA, per content type (findings.hpp, measured_taa_rows): every configuration's means and
+// its pairing with none+taa in by_content's form, the JSON's "taa_by_content" that `saagen plan
+// --trade-table` reads with taa = true; and saagen's decision on them per path, the JSON's
+// decisions.taa_by_content.
+nlohmann::json taa_by_content_json(const render::TradeTable& table);
+nlohmann::json taa_decisions_json(const render::TradeTable& table);
 
 // The per-scene comparison under TAA behind format_taa_summary and the report's "with TAA"
 // section, read with the verdict's metrics and decision (comparison.hpp, saagen/decision.hpp):
@@ -90,8 +96,8 @@ nlohmann::json taa_cases_json(const render::TradeTable& table);
 // alphas without Fresnel, with 95 % intervals) and its paired comparison against none+taa.
 struct TaaComparisonRow {
   std::string label;
-  std::string configuration;  // render::configuration_id
-  render::Interval image_error;                // LDR-FLIP per frame of the animation
+  std::string configuration;                    // render::configuration_id
+  render::Interval image_error;                 // LDR-FLIP per frame of the animation
   std::optional<render::Interval> video_error;  // 10 - ColorVideoVDP's JOD; nullopt without the video metric
   double tde = 0.0;                             // the older temporal figure, for comparison with older tables
   std::optional<PairedComparison> against_taa;  // against none+taa; nullopt on none+taa's own row
