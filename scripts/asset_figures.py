@@ -2,7 +2,8 @@
 """Per scene of a `saagen bench --json` table (the asset scenes, docs/GLTF_SCENES.md "Figures"):
 no SAA, per render path the saagen configuration of the tail-preserving lobe with the lowest mean
 LDR-FLIP, and the engine forms with the lowest LDR-FLIP and the lowest TDE (means over the scene's
-alphas, no Fresnel; LDR-FLIP / TDE), as a Markdown table.
+alphas, no Fresnel; LDR-FLIP / TDE), as a Markdown table: the older figures of docs/GLTF_SCENES.md,
+before the video metric (the verdict's metrics with intervals: scripts/verdict_rows.py).
 
     saagen bench --preset medium --scene ClearCoatTest --scene 2CylinderEngine --json T.json
     python3 scripts/asset_figures.py T.json [SCENE ...]

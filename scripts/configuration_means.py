@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Per scene of a `saagen bench --json` table: mean LDR-FLIP / TDE (over the scene's alphas, no
 Fresnel) of the named configurations, of no SAA and of the best engine form by LDR-FLIP, as a
-Markdown table (the per-row figures of docs/DEFERRED_KERNEL.md).
+Markdown table (the older figures of docs/DEFERRED_KERNEL.md, before the video metric; the verdict's
+metrics with intervals: scripts/verdict_rows.py).
 
     python3 scripts/configuration_means.py trade.json CONFIGURATION...
 
