@@ -16,7 +16,13 @@ baseline row without a prefilter is BASE itself (for `none`, no SAA).
 The strength sweep: tables measured with `saagen bench --prefilter-scale S`, as one table per
 scene of the Toksvig and HDRP rows of BASE by strength c, the multiple of Toksvig's addition
 2 (1 - L) / L (Toksvig at scale S is c = S; HDRP at scale S is about c = S / 4, exactly so
-below its cap)."""
+below its cap).
+
+    python3 scripts/prefilter_table.py --strength-verdict BASE S=trade.json ...
+
+The same sweep in the verdict's metrics (docs/TEMPORAL.md): per scene and strength, the image
+error and video error (means over the alphas) and the paired comparison against no SAA with its
+95 % interval and outcome (scripts/verdict_rows.py reads them)."""
 import collections
 import json
 import sys
@@ -93,9 +99,39 @@ def strength_tables(base, runs):
         print()
 
 
+def strength_verdict_tables(base, runs):
+    """The strength sweep in the verdict's metrics: per scene, each (c, row)'s image / video error
+    and its comparison with no SAA, from the bench's own `comparisons`."""
+    from verdict_rows import cells, comparisons, row_means
+    points = collections.defaultdict(dict)  # scene -> (c, label) -> (means, compared, configuration)
+    for scale, path in runs:
+        table = json.load(open(path))
+        means_, compared = row_means(table['cases']), comparisons(table, 'scene')
+        for scene in dict.fromkeys(name for name, _ in compared):
+            if (scene, configuration(base, '')) in means_:
+                points[scene][(0.0, 'no prefilter')] = (means_, compared, configuration(base, ''))
+            for form, factor in (('toksvig', 1.0), ('hdrp', 0.25)):
+                if (scene, configuration(base, form)) in means_:
+                    points[scene][(scale * factor, f'{form} x {scale:g}')] = (means_, compared, configuration(base, form))
+    for scene, by_c in points.items():
+        if len(by_c) < 2:  # no prefiltered row on this scene (no normal map)
+            continue
+        print(f'{scene}, base `{base}`, strength c = multiple of Toksvig\'s 2 (1 - L) / L\n')
+        print('| c | row | image error | video error | against no SAA: image | video | outcome |')
+        print('|---:|---|---:|---:|---:|---:|---|')
+        for c, label in sorted(by_c):
+            means_, compared, config = by_c[(c, label)]
+            print(f'| {c:.4g} | {label} | {cells(means_, compared, scene, config)} |')
+        print()
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
+    if sys.argv[1] == '--strength-verdict':
+        runs = [(float(arg.split('=', 1)[0]), arg.split('=', 1)[1]) for arg in sys.argv[3:]]
+        strength_verdict_tables(sys.argv[2], runs)
+        return
     if sys.argv[1] == '--strength':
         runs = [(float(arg.split('=', 1)[0]), arg.split('=', 1)[1]) for arg in sys.argv[3:]]
         strength_tables(sys.argv[2], runs)
