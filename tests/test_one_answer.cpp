@@ -19,8 +19,8 @@ using render::Prefilter;
 using render::SceneId;
 using render::Variant;
 
-render::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lobe lobe = Lobe::tail,
-                     NormalFeed feed = NormalFeed::shading, Prefilter prefilter = Prefilter::none) {
+render::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lobe lobe = Lobe::tail, NormalFeed feed = NormalFeed::shading,
+                     Prefilter prefilter = Prefilter::none) {
   render::TradeRow r;
   r.scene = scene, r.variant = variant, r.lobe = variant == Variant::none || render::is_engine(variant) ? Lobe::papers : lobe;
   r.feed = feed, r.prefilter = prefilter, r.alpha = 0.05, r.flip_ldr = flip, r.tde = tde;
@@ -75,8 +75,7 @@ std::string planned_configuration(const MaterialPlan& plan) {
 TEST(OneAnswer, ThePlanOfTheExampleSceneIsTheBenchVerdict) {
   const render::TradeTable trade = small_table();
   const std::vector<report::Recommendation> recs = report::recommend(trade);
-  const MeasuredTradeTable table =
-      parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
+  const MeasuredTradeTable table = parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
   const Catalogue& catalogue = Catalogue::builtin();
   const Manifest manifest = load_manifest(SAAGEN_SOURCE_DIR "/examples/scene.saagen.toml", catalogue);
   const ScenePlan plan = plan_scene(catalogue, manifest, &table);
@@ -146,8 +145,9 @@ TEST(OneAnswer, SwitchingFromAnEngineIsTheDecisionAgainstIt) {
   EXPECT_EQ(switches[1].configuration, "");
 }
 
-// Under TAA a table's by_content rows (measured without TAA) do not decide: saagen's TAA figures
-// do, no filter.
+// Under TAA a table's by_content rows (measured without TAA) do not decide: without the table's
+// own rows under TAA, saagen's committed TAA figures do (generator/data/advice.json, each
+// configuration against none+taa), as the plan without a table.
 TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
   const render::TradeTable trade = small_table();
   const MeasuredTradeTable table = parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
@@ -156,8 +156,39 @@ TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
   EXPECT_EQ(plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0).variant, "deferred-aniso");
   manifest.taa = true;
   const MaterialPlan taa = plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0);
-  EXPECT_EQ(taa.variant, "none");
   EXPECT_NE(taa.reason.find("curved content under TAA in saagen's trade"), std::string::npos) << taa.reason;
+  EXPECT_EQ(taa.variant, plan_scene(Catalogue::builtin(), manifest, nullptr).materials.at(0).variant);
+  const AdviceMeasurement* committed = committed_advice().find("curved", true);
+  ASSERT_NE(committed, nullptr);
+  EXPECT_EQ(committed->baseline, "none+taa");
+  const MaterialDecision made = decide_material(Catalogue::builtin(), manifest.materials.at(0), "vega10", committed->rows, "none+taa");
+  const std::string chosen = made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none";
+  EXPECT_EQ(taa.variant, chosen.substr(0, chosen.find_first_of(":+/")));  // the configuration's variant
+}
+
+// A table measured with --taa carries its rows under TAA ("taa_by_content", each against
+// none+taa): under TAA they decide, and the reason names the baseline.
+TEST(OneAnswer, UnderTaaATablesRowsUnderTaaDecide) {
+  const MeasuredTradeTable table = parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02,
+       "against_none": {"image": {"mean": -0.01, "low": -0.012, "high": -0.008}, "temporal": {"mean": -1, "low": -1.2, "high": -0.8}}}],
+      "taa_by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.04},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.05,
+       "against_none": {"image": {"mean": 0.01, "low": 0.008, "high": 0.012}, "temporal": {"mean": 0.5, "low": 0.3, "high": 0.7}}},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.03,
+       "against_none": {"image": {"mean": -0.01, "low": -0.012, "high": -0.008}, "temporal": {"mean": -1, "low": -1.2, "high": -0.8}}}]})",
+                                                     "taa.json");
+  ASSERT_EQ(table.taa_content_rows.size(), 3u);
+  Manifest manifest = parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n", "s.toml",
+                                     Catalogue::builtin());
+  EXPECT_EQ(plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0).variant, "deferred-aniso");
+  manifest.taa = true;
+  const MaterialPlan taa = plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0);
+  EXPECT_EQ(taa.variant, "deferred-avg");
+  EXPECT_NE(taa.reason.find("against none+taa"), std::string::npos) << taa.reason;
+  EXPECT_NE(taa.reason.find("curved content under TAA in taa.json"), std::string::npos) << taa.reason;
 }
 
 // The decision's costs: the committed vega10 ISA model, the lobe's own row where it has one, else
@@ -185,7 +216,8 @@ TEST(OneAnswer, IntervalsInTheTableDecide) {
     const MeasuredTradeTable table = parse_trade_table(R"({"rows": [], "by_content": [
         {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
         {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.009,
-         "against_none": {"image": {"mean": -0.01, "low": -0.012, "high": )" + temporal + R"(},
+         "against_none": {"image": {"mean": -0.01, "low": -0.012, "high": )" +
+                                                           temporal + R"(},
                           "temporal": {"mean": -0.001, "low": -0.003, "high": 0.001}}}]})",
                                                        "intervals.json");
     const Manifest manifest = parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n",

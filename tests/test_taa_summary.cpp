@@ -1,5 +1,6 @@
 // The comparison under TAA (report/src/taa_summary.cpp, taa_comparisons): read with the
 // verdict's metrics and decision against none+taa, on hand-made rows whose answer is known.
+#include "saagen/report/findings.hpp"
 #include "saagen/report/report.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,6 @@
 
 using namespace saagen;
 using render::SceneId;
-using render::Variant;
 
 namespace {
 
@@ -29,7 +29,7 @@ render::SeedSeries series(double level, int frames = kFrames) {
 
 // A row of `variant` on the sphere at `alpha` with its verdict series: image error `image`,
 // video error `video`, lag `lag` per frame.
-render::TradeRow row(Variant variant, bool taa, double alpha, double image, double video, double lag = -1e-4) {
+render::TradeRow row(render::Variant variant, bool taa, double alpha, double image, double video, double lag = -1e-4) {
   render::TradeRow r;
   r.variant = variant;
   r.taa = taa;
@@ -48,11 +48,11 @@ render::TradeRow row(Variant variant, bool taa, double alpha, double image, doub
 render::TradeTable table_with(double better_lag) {
   render::TradeTable table;
   for (const double alpha : {0.01, 0.1}) {
-    table.rows.push_back(row(Variant::none, false, alpha, 0.20, 6.0));
-    table.rows.push_back(row(Variant::none, true, alpha, 0.10, 3.0));
-    table.rows.push_back(row(Variant::deferred_avg, true, alpha, 0.08, 2.0, better_lag));
-    table.rows.push_back(row(Variant::deferred_max, true, alpha, 0.12, 4.0));
-    table.rows.push_back(row(Variant::engine_filament, true, alpha, 0.09, 2.5));
+    table.rows.push_back(row(render::Variant::none, false, alpha, 0.20, 6.0));
+    table.rows.push_back(row(render::Variant::none, true, alpha, 0.10, 3.0));
+    table.rows.push_back(row(render::Variant::deferred_avg, true, alpha, 0.08, 2.0, better_lag));
+    table.rows.push_back(row(render::Variant::deferred_max, true, alpha, 0.12, 4.0));
+    table.rows.push_back(row(render::Variant::engine_filament, true, alpha, 0.09, 2.5));
   }
   return table;
 }
@@ -111,6 +111,38 @@ TEST(TaaComparisons, ALateConfigurationIsNotTakenUnderTaa) {
   EXPECT_EQ(c.best_saagen, "");
   EXPECT_TRUE(c.verdict.starts_with("no filter")) << c.verdict;
   for (const report::TaaComparisonRow& r : c.rows) EXPECT_NE(r.label, "saagen");
+}
+
+// Per content type under TAA (what `saagen plan` decides on with taa = true): the +taa rows named
+// as a material uses them, each against none+taa, and the decision over them.
+TEST(TaaComparisons, PerContentTheRowsAreAgainstTaaAloneAndNamedWithoutTaa) {
+  const render::TradeTable table = table_with(-1e-4);
+  const std::vector<ContentRow> rows = report::measured_taa_rows(table, report::Content::curved);
+  ASSERT_EQ(rows.size(), 4u);  // none+taa, deferred-avg, deferred-max, engine-filament: no row without TAA
+  EXPECT_EQ(rows[0].configuration, "none");
+  EXPECT_FALSE(rows[0].against_none.has_value());
+  EXPECT_EQ(rows[1].configuration, "deferred-avg");
+  ASSERT_TRUE(rows[1].against_none.has_value());
+  EXPECT_NEAR(rows[1].against_none->temporal.mean, -1.0, 1e-12);  // 2.0 against none+taa's 3.0, not none's 6.0
+  EXPECT_NEAR(rows[1].against_none->image.mean, -0.02, 1e-12);
+  EXPECT_NEAR(rows[2].against_none->temporal.mean, 1.0, 1e-12);
+  EXPECT_EQ(rows[3].configuration, "engine-filament");
+  EXPECT_EQ(report::without_taa("deferred-avg:geometric+hdrp+taa/tail"), "deferred-avg:geometric+hdrp/tail");
+
+  const nlohmann::json decisions = report::taa_decisions_json(table);
+  ASSERT_EQ(decisions.size(), 2u);  // curved: forward and deferred
+  const nlohmann::json& deferred = decisions[1];
+  EXPECT_EQ(deferred["path"], "deferred");
+  EXPECT_EQ(deferred["chosen"], "deferred-avg");
+  EXPECT_NE(deferred["reason"].get<std::string>().find("none+taa"), std::string::npos) << deferred["reason"];
+  const nlohmann::json content = report::taa_by_content_json(table);
+  ASSERT_EQ(content.size(), 4u);
+  EXPECT_EQ(content[1]["configuration"], "deferred-avg");
+  EXPECT_EQ(content[1]["baseline"], "none+taa");
+  EXPECT_NEAR(content[1]["against_none"]["temporal"]["mean"].get<double>(), -1.0, 1e-12);
+
+  // A late one is refused per content as per scene.
+  EXPECT_EQ(report::taa_decisions_json(table_with(+1e-3))[1]["chosen"], "none");
 }
 
 }  // namespace

@@ -159,8 +159,11 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
     return decision;
   }
   const Candidate& chosen = candidates[*decision.chosen];
-  decision.reason = fmt::format("{} beats {}: the {} of the {} that do{}", figures(chosen, cost_basis, preference.baseline),
-                                preference.baseline, speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()),
+  const std::string among =
+      eligible.size() == 1
+          ? std::string("the only usable configuration that does")
+          : fmt::format("the {} of the {} that do", speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()));
+  decision.reason = fmt::format("{} beats {}: {}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
   return decision;
 }

@@ -938,13 +938,12 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
       } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed) {
-        const advice::ContentAdvice& entry = advice::lookup(content_of(material), manifest.taa);
         const AdviceMeasurement* measured = advice_measurement(content_of(material), manifest.taa);
         static const AdviceMeasurement kNothingMeasured;
         const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
         apply_decision(catalogue, manifest, material, rows_of.rows,
                        measured ? fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes))
-                                : fmt::format("saagen's trade ({})", entry.evidence),
+                                : std::string("saagen's trade (not measured)"),
                        measured, plan);
       }
     }
@@ -965,40 +964,45 @@ std::string advice_markdown(const Catalogue& catalogue) {
              : std::string("-");
   };
   std::string text =
-      "| content | path | prefer | plan | its image / video error (10 - JOD) against no SAA on saagen's scenes | on the held-out scenes |\n"
-      "|---|---|---|---|---|---|\n";
-  for (const advice::Content content :
-       {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
-    for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
-      for (const Preference prefer : {Preference::accuracy, Preference::speed}) {
-        Manifest manifest;
-        manifest.source_name = "advice";
-        manifest.targets = {OutputTarget::named("glsl")};
-        Material material = reference_material(path, content);
-        material.prefer = prefer;
-        manifest.materials = {material};
-        const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
-        const AdviceMeasurement* measured = advice_measurement(content, false);
-        std::string configuration = "none", nothing = "nothing beats no SAA";
-        std::optional<decision::Comparison> derived, held_out;
-        if (measured) {
-          const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows);
-          for (std::size_t i = 0; i < made.candidates.size(); ++i)
-            if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
-              nothing = "only the most expensive form beats no SAA, which prefer = \"speed\" never takes";
-          if (made.decision.chosen) {
-            const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
-            configuration = chosen.configuration;
-            derived = chosen.against_none;
-            held_out = measured->held_out(configuration);
+      "| content | TAA | path | prefer | plan | its image / video error (10 - JOD) against its baseline on saagen's scenes (no SAA; "
+      "under TAA none+taa) | on the held-out scenes |\n"
+      "|---|---|---|---|---|---|---|\n";
+  for (const bool taa : {false, true}) {
+    for (const advice::Content content :
+         {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
+      for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
+        for (const Preference prefer : {Preference::accuracy, Preference::speed}) {
+          Manifest manifest;
+          manifest.source_name = "advice";
+          manifest.targets = {OutputTarget::named("glsl")};
+          manifest.taa = taa;
+          Material material = reference_material(path, content);
+          material.prefer = prefer;
+          manifest.materials = {material};
+          const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
+          const AdviceMeasurement* measured = advice_measurement(content, taa);
+          const std::string baseline(baseline_of(taa));
+          std::string configuration = "none", nothing = fmt::format("nothing beats {}", baseline);
+          std::optional<decision::Comparison> derived, held_out;
+          if (measured) {
+            const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows, baseline);
+            for (std::size_t i = 0; i < made.candidates.size(); ++i)
+              if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
+                nothing = fmt::format("only the most expensive form beats {}, which prefer = \"speed\" never takes", baseline);
+            if (made.decision.chosen) {
+              const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
+              configuration = chosen.configuration;
+              derived = chosen.against_none;
+              held_out = measured->held_out(configuration);
+            }
           }
+          const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
+          const std::string why = configuration == "none"  ? nothing
+                                  : plan.variant == "none" ? fmt::format("`{}` {}", configuration, figures(derived))
+                                                           : figures(derived);
+          text += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", advice::name(content), taa ? "yes" : "no", to_string(path),
+                              to_string(prefer), planned, why, figures(held_out));
         }
-        const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
-        const std::string why = configuration == "none"  ? nothing
-                                : plan.variant == "none" ? fmt::format("`{}` {}", configuration, figures(derived))
-                                                         : figures(derived);
-        text += fmt::format("| {} | {} | {} | {} | {} | {} |\n", advice::name(content), to_string(path), to_string(prefer), planned, why,
-                            figures(held_out));
       }
     }
   }
@@ -1083,11 +1087,12 @@ std::string rules_text() {
       "A deferred-* filter on anisotropic roughness is called once per axis (its kernel is isotropic).\n"
       "GGX materials without variant or preset are then decided by saagen's one decision (generator/include/saagen/decision.hpp,\n"
       "the bench's verdict's too) on their content's figures (content = \"curved\", \"normal-mapped\", \"bumps\", \"clearcoat\"):\n"
-      "the trade table's rows, else saagen's (generator/include/saagen/advice.hpp). Only what beats no SAA is eligible; accuracy\n"
-      "takes the largest LDR-FLIP gain, speed the cheapest (vega10 ISA at the material's lights) and never the most expensive\n"
-      "form the material can use;\n"
-      "no filter (variant none) where nothing is eligible, which includes normal-mapped and clearcoat content and every content\n"
-      "type under taa = true (rule \"advice\" or \"trade table\" where that changes the variant). A normal-mapped material that\n"
+      "the trade table's rows, else saagen's (generator/data/advice.json); under taa = true the rows measured under TAA, against\n"
+      "none+taa. Only what beats its baseline (no SAA; TAA alone) in image and video error beyond their intervals is eligible;\n"
+      "accuracy takes the largest video-error gain, speed the cheapest (vega10 ISA at the material's lights) and never the most\n"
+      "expensive form the material can use;\n"
+      "no filter (variant none) where nothing is eligible (rule \"advice\" or \"trade table\" where that changes the variant;\n"
+      "plan --advice prints what that gives per content). A normal-mapped material that\n"
       "names its variant is fed the geometric normal with the map baked into the roughness (hdrp), sampled one MIP level coarser.\n"
       "prefer = \"speed\" takes the eligible variant of lowest ISA inverse-throughput ratio (Mesa's ACO for the manifest's\n"
       "gpu_family, default vega10: the trade table's isa_inverse_throughput_ratio when it has them, else the committed\n"

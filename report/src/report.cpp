@@ -389,14 +389,14 @@ template <class Section>
 void for_each_finding(const render::TradeTable& table, const CostTable* costs, Section section) {
   const std::vector<Recommendation> recs = recommend(table);
   section(
-      "Recommended configuration per render path and content (saagen's decision: what beats no SAA, largest LDR-FLIP gain; "
-      "none where nothing does)",
+      "Recommended configuration per render path and content (saagen's decision: what beats no SAA in image and video error "
+      "beyond their intervals, the largest video-error gain; none where nothing does; the columns: the older means)",
       recommendation_table(recs, costs));
-  section(std::string("Switching from an engine's shipped form: saagen's decision against it (what beats it in LDR-FLIP and TDE, "
-                      "largest LDR-FLIP gain) at equal or lower cost") +
+  section(std::string("Switching from an engine's shipped form: saagen's decision against it (what beats it in image and video "
+                      "error beyond their intervals, the largest video-error gain) at equal or lower cost") +
               (costs ? "" : " (no cost file: cost not compared)"),
           switch_table(engine_switches(table, costs)));
-  section("Per scene: the recommendation against no SAA and every engine (LDR-FLIP, TDE, HDR-FLIP, tonemapped RMSE)",
+  section("Per scene: the recommendation against no SAA and every engine (the older means: LDR-FLIP, TDE, HDR-FLIP, tonemapped RMSE)",
           verdict_table(scene_verdicts(table, recs)));
 }
 

@@ -2,6 +2,7 @@
 // its table (see report.hpp).
 #include "saagen/decision.hpp"
 #include "saagen/report/comparison.hpp"
+#include "saagen/report/findings.hpp"
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
@@ -155,6 +156,16 @@ std::string format_taa_summary(const render::TradeTable& table) {
       const std::vector<std::string> v = taa_columns(row);
       text += fmt::format(fmt::runtime(format), v[0], v[1], v[2], v[3], v[4], v[5]);
     }
+  }
+  text +=
+      "Per content and render path under TAA (saagen's decision against none+taa over the content's scenes; what `saagen plan` "
+      "gives with taa = true and this table):\n";
+  for (Content content : kContents) {
+    const std::vector<ContentRow> rows = measured_taa_rows(table, content);
+    if (rows.empty()) continue;
+    for (Path path : {Path::forward, Path::deferred})
+      text += fmt::format("  {}, {}: {}\n", path_name(path), content_name(content),
+                          decide_on(rows, path, content, false, "none+taa").decision.reason);
   }
   return text;
 }

@@ -2,8 +2,8 @@
 // what the advice per content type rests on. The planner's one decision (saagen/decision.hpp, the
 // same function the bench's verdict uses) chooses per material on the committed measurement
 // (generator/data/advice.json; saagen/scene/cost_tables.hpp: committed_advice): the configuration
-// that beats no SAA (most accurate, or cheapest for prefer = "speed"), or no filter where none
-// does, and no filter where its choice loses to no SAA on the held-out scenes. The planner's
+// that beats no SAA (under TAA: TAA alone) (most accurate, or cheapest for prefer = "speed"), or
+// no filter where none does, and no filter where its choice loses on the held-out scenes. The planner's
 // table-free rules (saagen/scene/planner.hpp), emit's default constants and the emitted headers'
 // text about the normal (the templates' {advice:...} fields, filled in by the built-in catalogue)
 // read it; examples/INTEGRATION.md quotes it and tests check the examples agree with it.
@@ -12,7 +12,9 @@
 // px and its asset scenes at 64 x 64 px: ClearCoatTest, 2CylinderEngine and the CC0 @pmndrs normal
 // maps on the sphere; docs/GLTF_SCENES.md), `bash scripts/held_out.sh OUT` (the held-out scenes),
 // then `python3 scripts/advice_data.py T.json OUT/held_out.json > generator/data/advice.json`.
-// Under TAA: `saagen bench --preset medium --taa --sigma2 0.0625` (docs/TAA.md).
+// Under TAA the same two measurements with `--taa --sigma2 0.0625`, each configuration against
+// none+taa (docs/TAA.md), passed as the script's third and fourth tables. The figures are
+// measured, not written here.
 #pragma once
 
 #include <array>
@@ -69,55 +71,5 @@ inline constexpr std::optional<Content> content_named(std::string_view text) {
 // The content type's name in a trade table's "by_content" rows (`saagen bench --json`; clearcoat:
 // the coat lobe's scene of a KHR_materials_clearcoat asset, NAME-coat).
 inline constexpr std::string_view table_content(Content content) { return content == Content::bumps ? "bump" : name(content); }
-
-// What the advice per content type rests on. Without TAA the figures are measured, not written
-// here: generator/data/advice.json holds every configuration's comparison with no SAA (image and
-// flicker error, 95 % intervals) on the scenes the advice is derived from (`saagen bench --preset
-// medium`) and on held-out scenes it is only reported on (scripts/held_out.sh), written by
-// scripts/advice_data.py and read by the planner (saagen/scene/cost_tables.hpp: committed_advice).
-// Under TAA the evidence below is the TAA trade's per-scene decision with the verdict's metrics
-// (report/src/taa_summary.cpp) on the medium and held-out scenes; no advice is derived per content
-// from it yet, so the table-free advice there is still no filter.
-struct ContentAdvice {
-  Content content;
-  bool taa;
-  std::string_view evidence;
-};
-
-inline constexpr std::array<ContentAdvice, 8> kTable = {{
-    {Content::curved, false, "generator/data/advice.json"},
-    {Content::normal_mapped, false, "generator/data/advice.json"},
-    {Content::bumps, false, "generator/data/advice.json"},
-    {Content::clearcoat, false, "generator/data/advice.json"},
-    {Content::curved, true,
-     "not advised under TAA yet: measured per scene with the verdict's metrics (saagen bench --preset medium --taa --sigma2 "
-     "0.0625, docs/TAA.md), saagen's choice beats none+taa in video error (10 - JOD) on every curved scene: sphere "
-     "deferred-sum/tail -0.67 [-1.09, -0.26], torus deferred-avg/tail -1.47 [-2.28, -0.66], torus knot deferred-aniso/mapped "
-     "-3.00 [-4.22, -1.77], tubes forward-aniso-slope -3.07 [-3.88, -2.26], 2CylinderEngine deferred-aniso -0.57 [-1.06, "
-     "-0.07]; per scene it also beats none+taa on the held-out duck, WusonOBJ and teapots (-2.44, -1.59, -0.80), but it is "
-     "not yet derived per content: measure yours with saagen bench --scene ASSET --taa"},
-    {Content::normal_mapped, true,
-     "not advised under TAA yet: measured per scene with the verdict's metrics (saagen bench --preset medium --taa --sigma2 "
-     "0.0625, docs/TAA.md), saagen's choice beats none+taa in video error (10 - JOD) on every normal-mapped scene: nmap-sphere "
-     "deferred-sum:geometric+hdrp/tail -3.13 [-4.33, -1.93], nmap-sphere-fine the same -3.29 [-4.56, -2.03], ClearCoatTest "
-     "deferred-avg/tail -2.66 [-3.52, -1.81], pmndrs-0014 deferred-avg/tail -1.85, pmndrs-0019 forward-axis-projected -1.96, "
-     "pmndrs-0010 deferred-previous -2.32; per scene it also beats none+taa on the held-out maps pmndrs-0000, 0001 and 0002 "
-     "(-1.88, -1.48, -2.40), but it is not yet derived per content: measure yours with saagen bench --scene ASSET --taa"},
-    {Content::bumps, true,
-     "not advised under TAA yet: measured with the verdict's metrics (saagen bench --preset medium --taa --sigma2 0.0625, "
-     "docs/TAA.md), on the bump plane deferred-avg/tail beats none+taa: video error -0.56 [-0.78, -0.34], image error "
-     "-0.152 [-0.202, -0.102]; one scene, no held-out check: measure yours with saagen bench --scene ASSET --taa"},
-    {Content::clearcoat, true,
-     "not advised under TAA yet: measured with the verdict's metrics (saagen bench --preset medium --taa --sigma2 0.0625, "
-     "docs/TAA.md), on ClearCoatTest-coat deferred-avg:geometric/mapped beats none+taa in video error -1.87 [-3.06, -0.68] "
-     "(image error tied); one scene, no held-out check (without TAA no filter wins on clearcoat): measure yours with saagen "
-     "bench --scene ASSET --taa"},
-}};
-
-inline constexpr const ContentAdvice& lookup(Content content, bool taa) {
-  for (const ContentAdvice& entry : kTable)
-    if (entry.content == content && entry.taa == taa) return entry;
-  return kTable[0];  // unreachable: the table has every content type with and without TAA
-}
 
 }  // namespace saagen::advice

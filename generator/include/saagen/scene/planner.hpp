@@ -19,14 +19,14 @@
 //   filter (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf.
 //   GGX materials without a `variant` or `preset` are then decided by saagen's one decision
 //   (saagen/decision.hpp through decide_material below; the bench's verdict uses the same) on their
-//   content type's figures (`content`): a trade table's by_content rows for it, else saagen's
-//   committed figures (saagen/advice.hpp; the plan then says how they held on held-out content and
-//   how to measure one's own, MaterialPlan::measure_advice). Only configurations that beat no SAA
-//   are eligible; accuracy takes the one with the largest image-metric gain, speed the cheapest
-//   (vega10 ISA) and never the most expensive form the material can use; no filter (variant
-//   "none") where nothing is eligible: under TAA, on normal-mapped and clearcoat content, on
-//   curved content for anisotropic deferred materials and for deferred materials that prefer
-//   speed (rule "advice" or "trade table" where that changes the variant). A normal-mapped
+//   content type's figures (`content`): a trade table's by_content rows for it (under TAA its
+//   taa_by_content rows, against none+taa), else saagen's committed figures (saagen/advice.hpp;
+//   the plan then says how they held on held-out content and how to measure one's own,
+//   MaterialPlan::measure_advice). Only configurations that beat the baseline (no SAA; under TAA,
+//   TAA alone) are eligible; accuracy takes the one with the largest temporal (video error) gain,
+//   speed the cheapest (vega10 ISA) and never the most expensive form the material can use; no
+//   filter (variant "none") where nothing is eligible (rule "advice" or "trade table" where that
+//   changes the variant; `saagen plan --advice` prints what that gives per content). A normal-mapped
 //   material that names its variant is fed the geometric normal with the map baked into the
 //   roughness (advice::kFeed, kPrefilter, kPrefilterLodBias).
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).

@@ -166,7 +166,8 @@ struct EngineSwitch {
 };
 // Per engine and content type: saagen's decision (saagen/decision.hpp) with the engine's form as
 // the baseline, among the saagen configurations (either path) whose cost is at most the engine's:
-// the one that beats the engine's form with the largest LDR-FLIP gain; empty where none does.
+// the one that beats the engine's form (decision::decide: the largest temporal gain, the video
+// error where measured); empty where none does.
 std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
 
 // The metrics a verdict compares, in the order they are reported: LDR-FLIP, TDE, HDR-FLIP,
