@@ -6,6 +6,7 @@
 #include "pass_commands.hpp"
 #include "report_commands.hpp"
 #include "scene_commands.hpp"
+#include "score_command.hpp"
 #include "texture_commands.hpp"
 
 #include "saagen/emit/emitter.hpp"
@@ -303,6 +304,8 @@ int main(int argc, char** argv) {
   const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
   // The speed/accuracy trade: `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
+  // Clips rendered elsewhere, scored with the trade's metrics: `score`; see score_command.cpp.
+  const saagen::cli::ScoreCommand score(app);
   // The deferred roughness-limiter pass: `pass`; see pass_commands.cpp.
   const saagen::cli::PassCommand deferred_pass(app);
   // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
@@ -312,7 +315,7 @@ int main(int argc, char** argv) {
       app.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; }).empty()) {
     std::cerr
         << "saagen: error: unknown command '" << saagen::one_line(argv[1])
-        << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs (run `saagen --help`)\n";
+        << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs, score for clips rendered elsewhere (run `saagen --help`)\n";
     return exit_usage;
   }
   try {
@@ -335,6 +338,7 @@ int main(int argc, char** argv) {
     if (scene.compile_requested()) return scene.run_compile();
     if (trade.bench_requested()) return trade.run_bench();
     if (trade.report_requested()) return trade.run_report();
+    if (score.requested()) return score.run();
     if (*emit) {
       if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
       if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);

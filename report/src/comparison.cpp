@@ -76,24 +76,16 @@ MetricDifference lag_of(std::span<const render::SeedSeries> cells) {
   return d;
 }
 
-PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
-                                        const CellFilter& keep) {
-  using Cell = std::tuple<render::SceneId, double>;
-  std::map<Cell, const render::TradeRow*> baseline_rows;
-  for (const render::TradeRow& row : table.rows)
-    if (!row.fresnel && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells) {
   std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
-  for (const render::TradeRow& row : table.rows) {
-    if (row.fresnel || !keep(row) || render::configuration_id(row) != configuration) continue;
-    const auto base = baseline_rows.find({row.scene, row.alpha});
-    if (base == baseline_rows.end()) continue;
-    image_a.push_back(row.series.image);
-    image_b.push_back(base->second->series.image);
-    flicker_a.push_back(row.series.flicker);
-    flicker_b.push_back(base->second->series.flicker);
-    video_a.push_back(row.series.video);
-    video_b.push_back(base->second->series.video);
-    lag_a.push_back(row.series.lag);
+  for (const CellPair& cell : cells) {
+    image_a.push_back(cell.configuration->image);
+    image_b.push_back(cell.baseline->image);
+    flicker_a.push_back(cell.configuration->flicker);
+    flicker_b.push_back(cell.baseline->flicker);
+    video_a.push_back(cell.configuration->video);
+    video_b.push_back(cell.baseline->video);
+    lag_a.push_back(cell.configuration->lag);
   }
   PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}, std::nullopt, {}};
   if (c.cells == 0) return c;
@@ -104,6 +96,21 @@ PairedComparison compare_configurations(const render::TradeTable& table, const s
     c.video = compare_series(video_a, video_b);
   c.lag = lag_of(lag_a);
   return c;
+}
+
+PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                        const CellFilter& keep) {
+  using Cell = std::tuple<render::SceneId, double>;
+  std::map<Cell, const render::TradeRow*> baseline_rows;
+  for (const render::TradeRow& row : table.rows)
+    if (!row.fresnel && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+  std::vector<CellPair> cells;
+  for (const render::TradeRow& row : table.rows) {
+    if (row.fresnel || !keep(row) || render::configuration_id(row) != configuration) continue;
+    const auto base = baseline_rows.find({row.scene, row.alpha});
+    if (base != baseline_rows.end()) cells.push_back({&row.series, &base->second->series});
+  }
+  return compare_cells(configuration, baseline, cells);
 }
 
 }  // namespace saagen::report

@@ -1170,6 +1170,8 @@ double first_seed_jod(const render::TradeRow& row) {
   return losses.empty() ? 10.0 : 10.0 - render::mean_interval(losses, 0.0).mean;
 }
 
+}  // namespace
+
 nlohmann::json interval_json(const render::Interval& interval) {
   return {{"mean", interval.mean}, {"low", interval.low}, {"high", interval.high}};
 }
@@ -1181,8 +1183,6 @@ nlohmann::json difference_json(const MetricDifference& d) {
   out["outcome"] = std::string(metric_outcome_name(outcome_of(d)));
   return out;
 }
-
-}  // namespace
 
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   nlohmann::json rows = nlohmann::json::array();

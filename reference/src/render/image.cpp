@@ -19,6 +19,12 @@ double srgb_encode(double display_linear) {
   return 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
+double srgb_decode(double encoded) {
+  const double v = encoded > 0.0 ? std::min(encoded, 1.0) : 0.0;  // NaN -> 0
+  if (v <= 0.04045) return v / 12.92;
+  return std::pow((v + 0.055) / 1.055, 2.4);
+}
+
 double display_value(double radiance) { return srgb_encode(tonemap(radiance)); }
 
 Image tonemapped(const Image& radiance) {

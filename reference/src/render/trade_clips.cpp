@@ -6,9 +6,13 @@
 namespace saagen::render {
 
 SeedReference seed_reference(const Image& linear, const SeedReference* previous, bool flip) {
+  return seed_reference(display_image(linear), tonemapped(linear), previous, flip);
+}
+
+SeedReference seed_reference(Image display, const Image& tonemapped_frame, const SeedReference* previous, bool flip) {
   SeedReference r;
-  if (flip) r.flip.emplace(tonemapped(linear), GreyFlipReference::Range::ldr);
-  r.display = display_image(linear);
+  if (flip) r.flip.emplace(tonemapped_frame, GreyFlipReference::Range::ldr);
+  r.display = std::move(display);
   if (previous) r.change = pooled_change(previous->display, r.display);
   return r;
 }

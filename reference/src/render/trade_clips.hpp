@@ -23,6 +23,9 @@ struct SeedReference {
 };
 
 SeedReference seed_reference(const Image& linear, const SeedReference* previous, bool flip);
+// The same from a frame already in display values and their display-linear (tonemapped) values:
+// a frame rendered elsewhere (clip_score.hpp).
+SeedReference seed_reference(Image display, const Image& tonemapped, const SeedReference* previous, bool flip);
 
 // A clip's frames as the video metric reads them: the 8-bit display values that `saagen bench
 // --frames` writes (display_bytes()), kept as bytes until compared.
@@ -56,8 +59,11 @@ struct ClipRecorder {
   // Frame t of the clip (linear radiance) against each seed's reference of that frame and, after
   // the first frame, of the previous one (`previous`, the same seeds).
   void add(const Image& linear, std::span<const SeedReference> references, std::span<const SeedReference> previous) {
-    Image display = display_image(linear);
-    const Image tonemapped_frame = tonemapped(linear);
+    add_display(display_image(linear), tonemapped(linear), references, previous);
+  }
+  // The same from the frame's display values and their display-linear (tonemapped) values.
+  void add_display(Image display, const Image& tonemapped_frame, std::span<const SeedReference> references,
+                   std::span<const SeedReference> previous) {
     const bool has_previous = previous_display.size() == display.size() && previous_display.size() > 0;
     const Image change = has_previous ? pooled_change(previous_display, display) : Image();
     for (std::size_t s = 0; s < references.size(); ++s) {

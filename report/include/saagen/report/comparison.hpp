@@ -12,6 +12,7 @@
 #include "saagen/reference/render/trade.hpp"
 
 #include <functional>
+#include <span>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,6 +57,15 @@ using CellFilter = std::function<bool(const render::TradeRow&)>;
 // TAA, "none+taa" against "none" what TAA alone does.
 PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
+
+// The same over given cells: per cell, the configuration's series and the baseline's (of the same
+// content, frames and ground-truth seeds); what compare_configurations computes once it has
+// paired a table's rows, and `saagen score` on clips rendered elsewhere.
+struct CellPair {
+  const render::AnimationSeries* configuration = nullptr;
+  const render::AnimationSeries* baseline = nullptr;
+};
+PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells);
 
 // The verdict's reading of a comparison (image and temporal_metric): "beats" (better beyond the interval in one metric, worse
 // in none), "loses" (worse in one, better in none), "ties" (neither), "mixed" (better in one,

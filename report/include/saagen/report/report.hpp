@@ -72,6 +72,11 @@ std::string format_verdict(const render::TradeTable& table);
 
 // Rows in the format bench_shading --json uses, each carrying "error" (mean LDR-FLIP),
 // so that `saagen plan --trade-table` can choose by accuracy; plus the full trade rows.
+// An interval as the JSON outputs write it ({mean, low, high}), and a paired difference's: the
+// interval with the ground truth's part of it and its reading (better / tie / worse).
+nlohmann::json interval_json(const render::Interval& interval);
+nlohmann::json difference_json(const MetricDifference& difference);
+
 nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
 
 // Under TAA (TradeConfig::taa): the table without its +taa rows, which the summaries, findings,

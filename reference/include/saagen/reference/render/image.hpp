@@ -37,6 +37,9 @@ Image tonemapped(const Image& radiance);
 // 0.055) of a display-linear value, clamped to [0, 1] first (NaN -> 0): the signal LDR-FLIP
 // takes and a PNG stores.
 double srgb_encode(double display_linear);
+// Its inverse (IEC 61966-2-1 EOTF: v / 12.92 for v <= 0.04045, else ((v + 0.055) / 1.055)^2.4),
+// clamped to [0, 1] first: the display-linear value of an encoded one (e.g. a clip's byte / 255).
+double srgb_decode(double encoded);
 
 // What a viewer's display receives for a radiance: srgb_encode(tonemap(radiance)), in [0, 1].
 // The values LDR-FLIP compares and the temporal difference error is measured in.
