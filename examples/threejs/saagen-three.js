@@ -18,16 +18,19 @@
 // plan's `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
 // The normal map's detail is the texture's
 // to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp --gltf`),
-// not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks; deferred-sum,
-// the default wrapper, on the geometric normal with that bake measured LDR-FLIP 0.0604 / TDE
-// 0.01607 against 0.0605 / 0.01458 for no SAA on the mean of saagen's normal-mapped scenes: it
-// beats no SAA in both on its built-in spheres (nmap-sphere-fine 0.0327 / 0.00767 against 0.0432 /
-// 0.00777) and raises TDE on authored maps (the CC0 @pmndrs maps; on pmndrs-0014 and ClearCoatTest
-// LDR-FLIP too) (examples/INTEGRATION.md, "Real normal maps").
-// 'shading' feeds the normal-mapped `normal` (and `clearcoatNormal`), which lowers LDR-FLIP less
-// and raises TDE where the map is not baked. Advice.ExamplesAndDocsAgreeWithThePlanner checks
+// not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks.
+// 'shading' feeds the normal-mapped `normal` (and `clearcoatNormal`). Without normal maps the two
+// are the same vector and give the same picture. Advice.ExamplesAndDocsAgreeWithThePlanner checks
 // these defaults against `saagen plan`.
-// Without normal maps the two are the same vector and give the same picture.
+//
+// Measured in three.js (examples/INTEGRATION.md, "Measured in three.js": the example scene at
+// 128 x 128 pixels, 24 frames, `saagen score` against a 1024-sample ground truth; differences in
+// image error (LDR-FLIP) / video error (10 - JOD), negative is better): on the smooth spheres every
+// tail-preserving plan beat no SAA in both (-0.0012 to -0.0015 / -1.33 to -1.41) yet was mixed
+// against three.js's own geometryRoughness (-0.0013 to -0.0016 / +0.25 to +0.33); on the
+// normal-mapped spheres deferred-sum on the geometric normal with the LOD bias (bumpy_named, no
+// bake in that scene) beat both no SAA and three.js's term (-0.0012 / -0.12 against three.js's),
+// and the plan's no filter (bumpy) lost to three.js's term (+0.0012 / +1.26).
 //
 // LOD bias: with 'geometric', the normal map's detail is the bake's, and the normal map and the
 // baked roughness map (and the clearcoat's) are sampled one MIP level coarser than the implicit

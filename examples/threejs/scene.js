@@ -34,13 +34,13 @@ export function bumpNormalMap(size = 64, bumps = 8, height = 0.6) {
   return texture;
 }
 
-// Renders one frame of the scene in `mode` ('three': three.js as shipped, with its own geometric
-// roughness; 'unfiltered': without it; 'saagen': the snippet's filter; 'plan': what the plan's
-// entry says, installPlan with the manifest's bundle as snippet) and returns the RGBA8 pixels
-// (bottom row first, as gl.readPixels returns them). clearcoatFilter: false leaves the clearcoat
-// roughness unfiltered; normal: the normal the filter reads ('geometric' or 'shading', see
-// installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer and clearcoat).
-export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true, entry = null } = {}) {
+// The scene in `mode` ('three': three.js as shipped, with its own geometric roughness;
+// 'unfiltered': without it; 'saagen': the snippet's filter; 'plan': what the plan's entry says,
+// installPlan with the manifest's bundle as snippet): { scene, camera }. clearcoatFilter: false
+// leaves the clearcoat roughness unfiltered; normal: the normal the filter reads ('geometric' or
+// 'shading', see installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer
+// and clearcoat).
+export function buildScene(mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true, entry = null } = {}) {
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0x000000);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
@@ -67,6 +67,13 @@ export function renderScene(renderer, mode, { snippet = '', wrapper = 'deferred_
       scene.add(sphere);
     }
   }
+  return { scene, camera };
+}
+
+// Renders one frame of the scene in `mode` (buildScene's modes and options) and returns the RGBA8
+// pixels (bottom row first, as gl.readPixels returns them).
+export function renderScene(renderer, mode, options = {}) {
+  const { scene, camera } = buildScene(mode, options);
   renderer.render(scene, camera);
   const gl = renderer.getContext();
   const pixels = new Uint8Array(SIZE * SIZE * 4);
