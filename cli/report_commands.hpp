@@ -66,11 +66,11 @@ class ReportCommands {
   Common bench_common_;
   std::string bench_json_;
   bool bench_every_case_ = false;
-  bool bench_isa_only_ = false;  // the ISA tables only, no ground-truth rendering
-  std::string bench_isa_table_;  // write the ISA statistics as JSON (the planner's table format)
-  std::string bench_frames_;         // also write the animation clips behind every row
+  bool bench_isa_only_ = false;            // the ISA tables only, no ground-truth rendering
+  std::string bench_isa_table_;            // write the ISA statistics as JSON (the planner's table format)
+  std::string bench_frames_;               // also write the animation clips behind every row
   std::string bench_frames_filter_ = ".";  // the clips (configuration ids, sanity:NAME) written
-  std::string bench_report_;     // also write the report of the same table (as `report -o`)
+  std::string bench_report_;               // also write the report of the same table (as `report -o`)
 
   CLI::App* report_ = nullptr;
   Common report_common_;

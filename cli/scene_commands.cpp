@@ -310,7 +310,8 @@ std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view 
     const bool anisotropic = material.anisotropy && (material.anisotropy_strength != 0.0 || material.anisotropy_texture);
     const bool coated = material.clearcoat && material.clearcoat_factor > 0.0;
     const std::string source = material_source(asset, m);
-    lobe(name, source, material.normal_map != nullptr, anisotropic, false, "glTF material " + std::to_string(m) + ": " + material.describe_factors());
+    lobe(name, source, material.normal_map != nullptr, anisotropic, false,
+         "glTF material " + std::to_string(m) + ": " + material.describe_factors());
     if (coated)
       lobe(unique(name.substr(0, 50) + "_coat", m), source + ", its clearcoat", material.clearcoat_normal_map != nullptr, false, true,
            "its KHR_materials_clearcoat layer, a second filtered lobe: roughness " +
@@ -338,8 +339,8 @@ std::string SceneCommands::write_gltf_manifest(const Catalogue& catalogue) const
   inputs.insert(inputs.end(), asset.files.begin(), asset.files.end());
   const std::string text = gltf_manifest_text(asset, plan_path_, plan_targets_);
   parse_manifest(text, plan_output_, catalogue);  // what is written must plan: checked before writing
-  const WriteReport report = write_outputs({{plan_output_, text}, ownership_sidecar(plan_output_, text, "scene manifest of " + plan_gltf_)},
-                                           plan_force_, inputs);
+  const WriteReport report =
+      write_outputs({{plan_output_, text}, ownership_sidecar(plan_output_, text, "scene manifest of " + plan_gltf_)}, plan_force_, inputs);
   for (const fs::path& path : report.written)
     if (path == fs::path(plan_output_)) std::cout << "wrote     " << path.string() << "\n";
   for (const fs::path& path : report.unchanged)
@@ -422,8 +423,9 @@ int SceneCommands::run_plan(const Catalogue& catalogue) const {
   ScenePlan plan = plan_scene(planned, manifest, table ? &*table : nullptr);
   if (!plan_gltf_.empty()) {  // the asset to measure is the one planned
     for (MaterialPlan& material : plan.materials) {
-      for (const auto& [placeholder, value] : {std::pair<std::string, std::string>{"`saagen bench --scene ASSET.glb", "`saagen bench --scene " + plan_gltf_},
-                                               {"`saagen plan MANIFEST", "`saagen plan " + manifest_path}})
+      for (const auto& [placeholder, value] :
+           {std::pair<std::string, std::string>{"`saagen bench --scene ASSET.glb", "`saagen bench --scene " + plan_gltf_},
+            {"`saagen plan MANIFEST", "`saagen plan " + manifest_path}})
         if (const auto at = material.measure_advice.find(placeholder); at != std::string::npos)
           material.measure_advice.replace(at, placeholder.size(), value);
     }

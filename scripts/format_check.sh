@@ -1,10 +1,7 @@
 #!/usr/bin/env bash
 # The formatting check (ctest `format_check`, so scripts/test.sh and CI run it): every C and C++
 # file of the repository must be as `clang-format` with the root .clang-format writes it
-# (`clang-format --dry-run -Werror`), except the files listed in scripts/format_pending.txt, which
-# were not formatted when the check came and wait for their owners to format them (a file listed
-# there that is formatted is reported so that its line can go; the list only shrinks). A new file
-# is checked from its first commit.
+# (`clang-format --dry-run -Werror`), the whole tree.
 #
 #   bash scripts/format_check.sh            # check; exit 1 naming each file that is not formatted
 #   bash scripts/format_check.sh --fix      # format every checked file in place (clang-format -i)
@@ -19,16 +16,6 @@ if ! command -v clang-format > /dev/null; then
   exit 1
 fi
 
-pending_list=scripts/format_pending.txt
-declare -A pending=()
-if [ -f "$pending_list" ]; then
-  while IFS= read -r line; do
-    line=${line%%#*}
-    line=${line//[[:space:]]/}
-    [ -n "$line" ] && pending["$line"]=1
-  done < "$pending_list"
-fi
-
 if git rev-parse --is-inside-work-tree > /dev/null 2>&1; then
   mapfile -t all < <(git ls-files --cached --others --exclude-standard -- '*.cpp' '*.hpp' '*.h' '*.c' '*.cc' '*.inl' |
                      grep -v -E '^(build[^/]*|node_modules|out)/' | sort -u)
@@ -39,15 +26,13 @@ else
 fi
 
 checked=()
-waiting=()
 for file in "${all[@]}"; do
-  [ -f "$file" ] || continue
-  if [ -n "${pending[$file]:-}" ]; then waiting+=("$file"); else checked+=("$file"); fi
+  [ -f "$file" ] && checked+=("$file")
 done
 
 if [ "${1:-}" = "--fix" ]; then
   printf '%s\0' "${checked[@]}" | xargs -0 clang-format -i
-  echo "format_check: formatted ${#checked[@]} files (not those in $pending_list)"
+  echo "format_check: formatted ${#checked[@]} files"
   exit 0
 fi
 
@@ -55,24 +40,13 @@ fi
 report=$(printf '%s\0' "${checked[@]}" | xargs -0 clang-format --dry-run -Werror 2>&1 || true)
 mapfile -t bad < <(printf '%s\n' "$report" | sed -n 's/^\(.*\):[0-9]*:[0-9]*: error: code should be clang-formatted.*/\1/p' | sort -u)
 
-formatted_now=()
-for file in "${waiting[@]}"; do
-  if clang-format --dry-run -Werror "$file" > /dev/null 2>&1; then formatted_now+=("$file"); fi
-done
-for file in "${formatted_now[@]}"; do
-  echo "format_check: $file is formatted now: remove its line from $pending_list"
-done
-for file in "${!pending[@]}"; do
-  [ -f "$file" ] || echo "format_check: $file is gone: remove its line from $pending_list"
-done
-
 version=$(clang-format --version | sed -n 's/.*version \([0-9][0-9.]*\).*/\1/p')
 if [ ${#bad[@]} -gt 0 ]; then
   for file in "${bad[@]}"; do
     echo "format_check: $file is not formatted (clang-format -i $file; the first differences:)"
     printf '%s\n' "$report" | grep -F -A 2 -m 3 "$file:" | sed 's/^/    /'
   done
-  echo "format_check: ${#bad[@]} of ${#checked[@]} files not formatted (clang-format $version); ${#waiting[@]} files pending in $pending_list"
+  echo "format_check: ${#bad[@]} of ${#checked[@]} files not formatted (clang-format $version)"
   exit 1
 fi
 if printf '%s\n' "$report" | grep -q 'error'; then
@@ -80,4 +54,4 @@ if printf '%s\n' "$report" | grep -q 'error'; then
   echo "format_check: clang-format failed"
   exit 1
 fi
-echo "format_check: ${#checked[@]} files formatted (clang-format $version); ${#waiting[@]} files pending in $pending_list"
+echo "format_check: ${#checked[@]} files formatted (clang-format $version)"

@@ -18,9 +18,9 @@ inline bool host_compiler_runs(const std::string& compiler) {
 }  // namespace saagen::test
 
 // In a TEST body: skip, naming the compiler, when it does not run on this machine.
-#define SAAGEN_SKIP_WITHOUT_HOST_COMPILER(compiler)                                                                     \
-  do {                                                                                                                  \
-    if (!saagen::test::host_compiler_runs(compiler))                                                                    \
-      GTEST_SKIP() << "no host C/C++ compiler here (" << (compiler)                                                     \
+#define SAAGEN_SKIP_WITHOUT_HOST_COMPILER(compiler)                                                                          \
+  do {                                                                                                                       \
+    if (!saagen::test::host_compiler_runs(compiler))                                                                         \
+      GTEST_SKIP() << "no host C/C++ compiler here (" << (compiler)                                                          \
                    << " does not run): this test compiles the emitted header, which needs the machine that built the tests"; \
   } while (false)

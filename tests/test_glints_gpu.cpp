@@ -157,8 +157,8 @@ TEST(GlintSamplerOnGpu, TextureLodAtIntegerLevelsMatchesTheSoftwareSampler) {
     const Query& q = queries[i / 4];
     return fmt::format("u {} layer {} level {}", q.u, q.layer, q.a);
   };
-  const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds, "dictionary textureLod at integer levels (Vulkan spec sampler rules)",
-                                            describe);
+  const auto spec = hx::compare_with_bounds(got, spec_expected, spec_bounds,
+                                            "dictionary textureLod at integer levels (Vulkan spec sampler rules)", describe);
   // Not through compare_with_bounds: the run's "[ bound ]" totals count the checks made.
   std::pair<std::size_t, double> unrounded_failing_worst{0, 0.0};
   for (std::size_t i = 0; i < got.size(); ++i) {
@@ -171,7 +171,8 @@ TEST(GlintSamplerOnGpu, TextureLodAtIntegerLevelsMatchesTheSoftwareSampler) {
                            unrounded_failing_worst.first, got.size(), unrounded_failing_worst.second);
   EXPECT_EQ(spec.failing, 0u) << spec.summary();
   if (!lavapipe) return say_no_lavapipe_check("the sampler");
-  const auto report = hx::compare_with_bounds(got, expected, bounds, "dictionary textureLod at integer levels (exact fp32 filter)", describe);
+  const auto report =
+      hx::compare_with_bounds(got, expected, bounds, "dictionary textureLod at integer levels (exact fp32 filter)", describe);
   double worst_abs = 0.0;
   for (std::size_t i = 0; i < got.size(); ++i) worst_abs = std::max(worst_abs, std::fabs(got[i] - expected[i]));
   std::cout << "[ sampler  ] device " << gpu().info().name << ", exact filter: " << report.summary() << "\n"
@@ -253,8 +254,7 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
 
   // On lavapipe, the tight check: the exact sampler with the fp32 bound alone.
   const bool lavapipe = on_lavapipe();
-  const glint::Comparison comparison =
-      glint::core_comparison(c.function, c.options, inputs, count, request.input_stride, spec_tolerance());
+  const glint::Comparison comparison = glint::core_comparison(c.function, c.options, inputs, count, request.input_stride, spec_tolerance());
   const std::vector<double>& expected = comparison.expected;
   const std::vector<double>& bounds = comparison.bounds;
   double worst_relative = 0.0;
@@ -288,7 +288,8 @@ TEST_P(GlintSnippetOnGpu, MatchesTheDoublePrecisionReference) {
   EXPECT_EQ(comparison.outside, 0u) << "the exact-LOD reference lies outside [low, high]: the lookups' bound is not monotone";
   EXPECT_GT(nonzero, expected.size() / 2);  // the inputs do hit lobes
   if (!lavapipe) return say_no_lavapipe_check(c.target + " " + c.function);
-  const auto report = hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe: exact fp32 filter)", c.target, c.function));
+  const auto report =
+      hx::compare_with_bounds(got, expected, bounds, fmt::format("{} {} (lavapipe: exact fp32 filter)", c.target, c.function));
   std::cout << "[ worst    ] " << report.summary() << "\n[ worst    ] max relative error (|expected| > 1e-3): " << worst_relative << "; "
             << nonzero << " of " << expected.size() << " outputs non-zero\n";
   EXPECT_EQ(report.failing, 0u) << report.summary();

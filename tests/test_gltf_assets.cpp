@@ -95,7 +95,7 @@ struct QuadAsset {
   int mode = 4;
   std::vector<float> positions{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
   std::vector<float> uv{0, 1, 1, 1, 1, 0, 0, 0};
-  bool normals = true;  // false: no NORMAL attribute (flat normals)
+  bool normals = true;     // false: no NORMAL attribute (flat normals)
   std::string buffer_uri;  // empty: the buffer is embedded as a data URI; else write_quad writes it there
   std::string version = "2.0";
 };
@@ -1111,7 +1111,8 @@ TEST(GltfHostile, EveryUseOfATextureIsChecked) {
   const fs::path dir = scratch("texture-uses");
   std::vector<unsigned char> pixels(4 * 4 * 3, 200);
   write_file(dir / "n.png", png(4, 4, 3, pixels));
-  const std::string top = R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{}, {"wrapS": 33071}])";
+  const std::string top =
+      R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{}, {"wrapS": 33071}])";
   const std::vector<std::pair<std::string, std::string>> second_uses = {
       {R"({"index": 0, "texCoord": 1})", "uses TEXCOORD_1"},
       {R"({"index": 0, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}})", "KHR_texture_transform is not supported"}};
@@ -1128,7 +1129,8 @@ TEST(GltfHostile, EveryUseOfATextureIsChecked) {
   {  // a second texture of the same image through a CLAMP sampler
     QuadAsset q;
     q.material = R"({"name": "first", "normalTexture": {"index": 0}}, {"name": "second", "normalTexture": {"index": 1}})";
-    q.top_extra = R"(, "textures": [{"source": 0}, {"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{"wrapS": 33071}])";
+    q.top_extra =
+        R"(, "textures": [{"source": 0}, {"source": 0, "sampler": 0}], "images": [{"uri": "n.png"}], "samplers": [{"wrapS": 33071}])";
     q.node = R"("mesh": 0}, {"mesh": 1)";
     q.primitive_extra = R"(}]}, {"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 1)";
     write_file(dir / "clamp.gltf", edited_quad(q, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 1]}])"));
@@ -1159,8 +1161,7 @@ TEST(GltfHostile, IndicesVersionsAndUrisAreChecked) {
   {  // a light index of 1e300 is named as written
     QuadAsset q;
     q.node = R"("mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 1e300}})";
-    EXPECT_NE(bad_asset_message(write_quad(dir, "light.gltf", q)).find("light 1.0000000000000001e+300 is not an index"),
-              std::string::npos);
+    EXPECT_NE(bad_asset_message(write_quad(dir, "light.gltf", q)).find("light 1.0000000000000001e+300 is not an index"), std::string::npos);
   }
   {  // an accessor index beyond 32 bits would be truncated to accessor 0 by tinygltf
     write_file(dir / "huge.gltf", edited_quad({}, R"("POSITION": 0)", R"("POSITION": 1099511627776)"));
@@ -1295,8 +1296,8 @@ TEST_F(GltfCli, DegenerateMeasurementsAreErrorsNamingTheScene) {
   QuadAsset tiny;  // lit nowhere the camera sees at this scale
   tiny.node = R"("mesh": 0, "scale": [1e-40, 1e-40, 1e-40])";
   const fs::path asset = write_quad(scratch_, "tiny.gltf", tiny);
-  const auto run = saagen({"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json",
-                           (scratch_ / "t.json").string()});
+  const auto run =
+      saagen({"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json", (scratch_ / "t.json").string()});
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("scene tiny: the ground truth is black at every alpha"), std::string::npos) << run.err;
   EXPECT_EQ(run.out.find("beats"), std::string::npos) << run.out;
@@ -1306,8 +1307,8 @@ TEST_F(GltfCli, DegenerateMeasurementsAreErrorsNamingTheScene) {
 TEST_F(GltfCli, EveryOutputOfARunIsOneCommitAfterEveryInput) {
   const fs::path asset = write_quad(scratch_, "quad.gltf", {});
   const fs::path both = scratch_ / "both";
-  const auto run = saagen({"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json", both.string(),
-                           "--report", both.string()});
+  const auto run = saagen(
+      {"bench", "--scene", asset.string(), "--preset", "quick", "--resolution", "8", "--json", both.string(), "--report", both.string()});
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("is both an output file and the directory of"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(both));

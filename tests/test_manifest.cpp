@@ -382,7 +382,8 @@ TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
   const auto forward = plan_of("", "\"forward\"\ntangents = true\n");
   EXPECT_EQ(forward.variant, "deferred-aniso");
   EXPECT_EQ(forward.rule, "advice");
-  EXPECT_NE(forward.measure_advice.find("this advice held on content it was not derived from"), std::string::npos) << forward.measure_advice;
+  EXPECT_NE(forward.measure_advice.find("this advice held on content it was not derived from"), std::string::npos)
+      << forward.measure_advice;
   // Curved, deferred: the same.
   const auto deferred = plan_of("", "\"deferred\"\n");
   EXPECT_EQ(deferred.variant, "deferred-aniso");
@@ -460,7 +461,8 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   EXPECT_NE(mapped.variant, "none");
   EXPECT_NE(mapped.variant, "deferred-aniso");
   EXPECT_NE(mapped.reason.find("within the budget 1.4"), std::string::npos) << mapped.reason;
-  EXPECT_EQ(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 0.5\n").rfind("scene.toml:5:10: key 'budget'", 0), 0u)
+  EXPECT_EQ(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 0.5\n").rfind("scene.toml:5:10: key 'budget'", 0),
+            0u)
       << error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 0.5\n");
   EXPECT_NE(error_of(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = \"a lot\"\n").find("budget"), std::string::npos);
 }
@@ -536,7 +538,8 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
     try {
       (void)saagen::parse_isa_table(R"({"families": ["vega10"], "rows": [{"family": "vega10", "shader": "forward", "target": "glsl",
           "variant": "deferred-avg", "instructions": 1, "vgprs": 1, "sgprs": 1, "subgroups_per_simd": 1, "latency": 1,
-          "inverse_throughput": 1, "inverse_throughput_ratio": 1.25, "lights": )" + value + "}]}",
+          "inverse_throughput": 1, "inverse_throughput_ratio": 1.25, "lights": )" +
+                                        value + "}]}",
                                     "bad.json");
     } catch (const saagen::Error& error) {
       return error.what();
@@ -580,8 +583,7 @@ TEST(Planner, SpeedAtEveryLightCountNeverTakesTheDearestForm) {
         EXPECT_LT(*chosen.cost_ratio * (1.0 + saagen::decision::kCostTieTolerance), *dearest)
             << saagen::advice::name(content) << " " << saagen::to_string(path) << " at " << lights << ": " << made.decision.reason;
         const std::string words = lights == 1 ? "at 1 light" : fmt::format("at {} lights", std::min(lights, 16));
-        EXPECT_NE(made.decision.reason.find(words), std::string::npos)
-            << made.decision.reason;
+        EXPECT_NE(made.decision.reason.find(words), std::string::npos) << made.decision.reason;
       }
     }
   }
@@ -596,10 +598,9 @@ TEST(Planner, RuleSpeedRankingStatesItsLightCount) {
       {"variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.5}]})",
                                                                      "bench.json");
   const auto plan_of = [&](const std::string& lights) {
-    return saagen::plan_scene(Catalogue::builtin(),
-                              parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n" +
-                                    lights),
-                              &table)
+    return saagen::plan_scene(
+               Catalogue::builtin(),
+               parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n" + lights), &table)
         .materials.at(0);
   };
   const auto one = plan_of("");
@@ -765,10 +766,11 @@ TEST(Planner, WithATableAccuracyTakesTheBestOnTheMaterialsContent) {
   const saagen::MaterialPlan forward = plan_of("path = \"forward\"\ntangents = true\n");
   EXPECT_EQ(forward.variant, "forward-aniso-projected");
   EXPECT_EQ(forward.rule, "trade table");
-  EXPECT_NE(forward.reason.find("saagen's decision on curved content in content.json: forward-aniso-projected/tail (image -0.0055, "
-                                "temporal -0.00252 against no SAA; 1.33x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
-                                "improvement of the 2 usable configurations that do; deferred-aniso (trade table) is not it"),
-            std::string::npos)
+  EXPECT_NE(
+      forward.reason.find("saagen's decision on curved content in content.json: forward-aniso-projected/tail (image -0.0055, "
+                          "temporal -0.00252 against no SAA; 1.33x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
+                          "improvement of the 2 usable configurations that do; deferred-aniso (trade table) is not it"),
+      std::string::npos)
       << forward.reason;
   // Without a table the committed measurement decides, and there deferred-aniso/tail improves the
   // video metric most and held on the held-out models (TableFreeAdviceFollowsTheMeasuredContent).
@@ -1044,7 +1046,8 @@ TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
   // The advice did not hold on the held-out maps (TableFreeAdviceFollowsTheMeasuredContent): no
   // filter, the normal-mapped normal at the material's roughness.
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + material));
-  EXPECT_EQ(plan.materials.at(0).normal_advice.rfind("no filter: shade the normal-mapped normal", 0), 0u) << plan.materials.at(0).normal_advice;
+  EXPECT_EQ(plan.materials.at(0).normal_advice.rfind("no filter: shade the normal-mapped normal", 0), 0u)
+      << plan.materials.at(0).normal_advice;
   const saagen::ScenePlan named = saagen::plan_scene(Catalogue::builtin(), parse(header + material + "variant = \"deferred-avg\"\n"));
   EXPECT_NE(named.materials.at(0).normal_advice.find("measured: "), std::string::npos) << named.materials.at(0).normal_advice;
 }
@@ -1138,8 +1141,8 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
   // The fp32 GLSL bundle: brushed_metal and terrain; not car_paint's nor foliage's filters
   // (advised no filter: nothing in the bundle).
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
-  EXPECT_TRUE(defined.count("forward_axis_projected_fragment"));  // brushed_metal
-  EXPECT_TRUE(defined.count("forward_axis_projected"));           // the wrapper pulls its core
+  EXPECT_TRUE(defined.count("forward_axis_projected_fragment"));    // brushed_metal
+  EXPECT_TRUE(defined.count("forward_axis_projected"));             // the wrapper pulls its core
   EXPECT_FALSE(defined.count("forward_aniso_projected_fragment"));  // car_paint: no filter
   EXPECT_FALSE(defined.count("deferred_aniso_fragment"));
   EXPECT_TRUE(defined.count("deferred_sum_fragment"));
@@ -1272,9 +1275,9 @@ TEST(Advice, ExamplesAndDocsAgreeWithThePlanner) {
   const saagen::Manifest example = saagen::load_manifest(example_manifest, Catalogue::builtin());
   const saagen::ScenePlan example_plan = saagen::plan_scene(Catalogue::builtin(), example);
   const bool normal_mapped_wins = planned(saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = "
-                                                                                       "\"deferred\"\nnormal_maps = true\n")),
-                                           "m")
-                                       .variant != "none";
+                                                                                                  "\"deferred\"\nnormal_maps = true\n")),
+                                          "m")
+                                      .variant != "none";
   EXPECT_EQ(planned(example_plan, "car_paint").variant == "none", !normal_mapped_wins);
   const saagen::MaterialPlan& terrain = planned(example_plan, "terrain");
   EXPECT_EQ(terrain.rule, "manifest");

@@ -702,8 +702,6 @@ TEST_F(Safety, EmptyValuesRepeatedFamiliesAndLoneOptionsAreRefused) {
   EXPECT_EQ(bogus.err.find("missing.gltf"), std::string::npos) << bogus.err;
 }
 
-
-
 TEST_F(Safety, MessagesNameTheFileOrOption) {
   expect_one_line_error(saagen({"plan", "/tmp"}), "/tmp: is a directory; pass a scene manifest");
   write(scratch_ / "v" / "bad.glsl", "// saagen-marker: target=metal variants=deferred-sum prefix=saa_\n");

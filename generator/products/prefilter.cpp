@@ -348,9 +348,10 @@ NormalImage normals_from_channels(int width, int height, int channels, std::span
     constexpr double max_slope = 1e18;
     const double slope = std::max(std::fabs(n[0]), std::fabs(n[1])) / n[2];
     if (!(slope <= max_slope)) {
-      throw Error(fmt::format("{}: texel ({}, {}) decodes to ({:.3g}, {:.3g}, {:.3g}), a normal within {:.0e} of the surface plane: its "
-                              "slope {:.3g} would make the slope moments infinite; is this a normal map?",
-                              what, t % width, t / width, n[0], n[1], n[2], 1.0 / max_slope, slope));
+      throw Error(
+          fmt::format("{}: texel ({}, {}) decodes to ({:.3g}, {:.3g}, {:.3g}), a normal within {:.0e} of the surface plane: its "
+                      "slope {:.3g} would make the slope moments infinite; is this a normal map?",
+                      what, t % width, t / width, n[0], n[1], n[2], 1.0 / max_slope, slope));
     }
     for (double v : n) image.normals.push_back(v / length);
   }

@@ -594,9 +594,8 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",      "path",   "anisotropic", "tangents", "ndf",
-                                                "normal_maps", "content", "glints",    "precision", "prefer",
-                                                "budget",    "lights", "variant",     "source"};
+  static const std::vector<std::string> keys = {"name",   "path",      "anisotropic", "tangents", "ndf",    "normal_maps", "content",
+                                                "glints", "precision", "prefer",      "budget",   "lights", "variant",     "source"};
   return keys;
 }
 

@@ -80,8 +80,10 @@ FlickerError flicker_error(const Image& pooled_change_result, const Image& poole
   if (n == 0) return e;
   for (std::size_t i = 0; i < n; ++i) {
     const double d = static_cast<double>(pooled_change_result.pixels[i]) - pooled_change_reference.pixels[i];
-    if (d > 0.0) e.excess += d;
-    else e.missing -= d;
+    if (d > 0.0)
+      e.excess += d;
+    else
+      e.missing -= d;
   }
   e.excess /= static_cast<double>(n);
   e.missing /= static_cast<double>(n);
@@ -112,8 +114,9 @@ std::vector<double> block_means(std::span<const double> series) {
   std::vector<double> means;
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t begin = b * block, end = b + 1 == blocks ? n : begin + block;
-    means.push_back(std::accumulate(series.begin() + static_cast<std::ptrdiff_t>(begin), series.begin() + static_cast<std::ptrdiff_t>(end), 0.0) /
-                    static_cast<double>(end - begin));
+    means.push_back(
+        std::accumulate(series.begin() + static_cast<std::ptrdiff_t>(begin), series.begin() + static_cast<std::ptrdiff_t>(end), 0.0) /
+        static_cast<double>(end - begin));
   }
   return means;
 }

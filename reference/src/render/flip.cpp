@@ -466,8 +466,7 @@ void flip_core(Workspace& ws, const Kernels& k, float* out, bool take_max, const
   for (int y = 0; y < ws.h; ++y) {
     if (!reference) vertical_passes(ws, k, 0, y, reference_rows);
     vertical_passes(ws, k, 1, y, test_rows);
-    combine_row(ws, reference ? reference->row(y) : reference_rows.row(), test_rows.row(), out + static_cast<std::size_t>(y) * w,
-                take_max);
+    combine_row(ws, reference ? reference->row(y) : reference_rows.row(), test_rows.row(), out + static_cast<std::size_t>(y) * w, take_max);
   }
 }
 
@@ -652,8 +651,8 @@ struct GreyFlipReference::State {
   FlipSettings settings;
   Kernels kernels;
   RgbImage reference;
-  HdrExposures exposures;  // HDR: from the reference; LDR: one pass
-  bool grey = true;        // false when the reference has NaN pixels: every comparison uncached
+  HdrExposures exposures;               // HDR: from the reference; LDR: one pass
+  bool grey = true;                     // false when the reference has NaN pixels: every comparison uncached
   std::vector<FilteredImage> filtered;  // the reference's filtered rows, one per exposure
 };
 

@@ -186,9 +186,7 @@ std::string json_problem(std::string_view text, const GltfLimits& limits) {
 constexpr double kMaxCoordinate = 1e100;
 std::string coordinates_limit() { return "1e100"; }
 
-bool is_bounded(Vec3 p) {
-  return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate;
-}
+bool is_bounded(Vec3 p) { return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate; }
 
 std::string coordinates(Vec3 p) {
   std::ostringstream s;
@@ -470,9 +468,9 @@ class Loader {
     loader.SetFsCallbacks({&Loader::file_exists, &Loader::expand_file_path, &Loader::read_whole_file, &tinygltf::WriteWholeFile, this});
     std::string err, warn;
     const auto size = static_cast<unsigned int>(bytes.size());
-    const bool ok = binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()), size,
-                                                         base_dir_)
-                           : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(), size, base_dir_);
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()), size, base_dir_)
+               : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(), size, base_dir_);
     if (!uri_refusal_.empty()) fail(uri_refusal_);  // an image's, which tinygltf only warns about
     if (!ok) fail("not a readable glTF 2.0 asset (tinygltf: " + one_line(err.empty() ? "no message" : err) + ")");
     if (model_.asset.version.rfind("2.", 0) != 0)
@@ -636,8 +634,8 @@ class Loader {
     texels_ += texels;
     if (image.image.empty()) {
       std::string err, warn;
-      const bool decoded = tinygltf::LoadImageData(&image, source, &err, &warn, 0, 0, encoded->second.data,
-                                                   static_cast<int>(encoded->second.size), nullptr);
+      const bool decoded =
+          tinygltf::LoadImageData(&image, source, &err, &warn, 0, 0, encoded->second.data, static_cast<int>(encoded->second.size), nullptr);
       encoded_.erase(encoded);
       if (!decoded || image.image.empty()) fail(what + ": " + name + " could not be decoded (" + one_line(err) + ")");
     }
@@ -710,7 +708,6 @@ class Loader {
   }
 
   // --- materials ------------------------------------------------------------------------------
-
 
   static constexpr double kHuge = std::numeric_limits<double>::max();
 
@@ -900,7 +897,7 @@ class Loader {
   std::vector<int> nodes_in_order(const std::vector<int>& roots) const {
     enum class Mark : unsigned char { unseen, open, done };
     std::vector<Mark> mark(model_.nodes.size(), Mark::unseen);
-    std::vector<int> finished;  // children before parents
+    std::vector<int> finished;                       // children before parents
     std::vector<std::pair<int, std::size_t>> stack;  // node, next child
     for (int root : roots) {
       if (mark[static_cast<std::size_t>(root)] != Mark::unseen) continue;
@@ -942,15 +939,16 @@ class Loader {
       const std::uint64_t n = instances[static_cast<std::size_t>(node)];
       visits = add(visits, n);
       const std::uint64_t per_instance = mesh_triangles(model_.nodes[static_cast<std::size_t>(node)]);
-      triangles = per_instance == 0 ? triangles
-                                    : add(triangles, n > saturated / per_instance ? saturated : n * per_instance);
+      triangles = per_instance == 0 ? triangles : add(triangles, n > saturated / per_instance ? saturated : n * per_instance);
       for (int child : model_.nodes[static_cast<std::size_t>(node)].children)
         instances[static_cast<std::size_t>(child)] = add(instances[static_cast<std::size_t>(child)], n);
     }
     auto shown = [&](std::uint64_t v) { return v >= saturated ? std::string("more than 2^62") : std::to_string(v); };
     if (visits > limits_.max_node_instances)
-      fail("the scene instances its nodes " + shown(visits) + " times (a node listed by several parents is instanced once per path), "
-           "beyond the limit of " + std::to_string(limits_.max_node_instances));
+      fail("the scene instances its nodes " + shown(visits) +
+           " times (a node listed by several parents is instanced once per path), "
+           "beyond the limit of " +
+           std::to_string(limits_.max_node_instances));
     if (triangles > limits_.max_triangles)
       fail("the scene instances " + shown(triangles) + " triangles, beyond the limit of " + std::to_string(limits_.max_triangles));
   }
@@ -1025,7 +1023,8 @@ class Loader {
     } else {
       light.kind = Light::Kind::point;
       light.vector = world.point({0.0, 0.0, 0.0});
-      if (!is_bounded(light.vector)) fail("light " + std::to_string(index) + ": its position " + coordinates(light.vector) + " is not finite");
+      if (!is_bounded(light.vector))
+        fail("light " + std::to_string(index) + ": its position " + coordinates(light.vector) + " is not finite");
     }
     light_ = light;
   }
@@ -1286,9 +1285,9 @@ bool GltfAsset::has_normal_map() const {
 
 std::string GltfAsset::summary() const {
   std::ostringstream s;
-  s << name << " (" << printable(path) << "): " << mesh->triangles().size() << " triangles, " << mesh->vertices().size() << " vertices, " << primitives
-    << " primitives (" << generated_tangent_primitives << " with generated tangents), " << materials.size() - 1 << " materials; camera "
-    << (camera ? "the asset's" : "framed from the bounds") << ", light "
+  s << name << " (" << printable(path) << "): " << mesh->triangles().size() << " triangles, " << mesh->vertices().size() << " vertices, "
+    << primitives << " primitives (" << generated_tangent_primitives << " with generated tangents), " << materials.size() - 1
+    << " materials; camera " << (camera ? "the asset's" : "framed from the bounds") << ", light "
     << (light ? (light->kind == Light::Kind::directional ? "the asset's directional" : "the asset's point") : "directional (default)")
     << (coat_surfaces ? "; its clearcoat lobe is the scene " + name + "-coat" : std::string()) << "\n";
   // The materials the primitives use, those alike once (with their count), in order.

@@ -355,9 +355,10 @@ class SanityClips {
   void add(const Image& other, const Image& quarter, const SeedReference& reference, const SeedReference* previous_reference) {
     if (!first_) first_ = other;
     const Image& delayed = previous_ ? *previous_ : other;
-    const Image inputs[] = {other, quarter, delayed, gaussian_pooled(other, kSanityBlurSigma), *first_,
-                            Image(other.width, other.height, 0.0f)};
-    const std::span<const SeedReference> previous = previous_reference ? std::span(previous_reference, 1) : std::span<const SeedReference>();
+    const Image inputs[] = {
+        other, quarter, delayed, gaussian_pooled(other, kSanityBlurSigma), *first_, Image(other.width, other.height, 0.0f)};
+    const std::span<const SeedReference> previous =
+        previous_reference ? std::span(previous_reference, 1) : std::span<const SeedReference>();
     for (std::size_t i = 0; i < kSanityResults.size(); ++i) clips_[i].add(inputs[i], std::span(&reference, 1), previous);
     previous_ = other;
   }
@@ -388,7 +389,9 @@ void compare_clips(const TradeConfig& config, const std::vector<std::vector<Clip
                 [&](int r) { clips[static_cast<std::size_t>(r)].finish_video(references[static_cast<std::size_t>(r) / n_keys]); });
   parallel_rows(static_cast<int>(sanity_clips.size() * kSanityResults.size()), config.threads, [&](int i) {
     const std::size_t m = static_cast<std::size_t>(i) / kSanityResults.size();
-    sanity_clips[m].clip(kSanityResults[static_cast<std::size_t>(i) % kSanityResults.size()]).finish_video(std::span(references[m]).first(1));
+    sanity_clips[m]
+        .clip(kSanityResults[static_cast<std::size_t>(i) % kSanityResults.size()])
+        .finish_video(std::span(references[m]).first(1));
   });
 }
 
@@ -464,7 +467,10 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
                                                        n_materials * taa_keys(config, id).size()
                                                  : 0;
     return sizes.main_gt + main_pixels * shading_per_frame +
-           (config.frames > 0 ? config.frames * (static_cast<std::uint64_t>(animation_ground_truths(config) * static_cast<double>(sizes.flicker_gt)) + flicker_pixels * shading_per_frame) : 0) +
+           (config.frames > 0
+                ? config.frames * (static_cast<std::uint64_t>(animation_ground_truths(config) * static_cast<double>(sizes.flicker_gt)) +
+                                   flicker_pixels * shading_per_frame)
+                : 0) +
            taa_shading;
   };
   TradeProgress state;
@@ -507,8 +513,9 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
   auto for_each_row = [&](std::size_t n_rows, std::uint64_t pixels_per_row, const std::string& stage,
                           const std::function<void(std::size_t r)>& body) {
     const std::uint64_t start = base;
-    parallel_rows(static_cast<int>(n_rows), config.threads, [&](int r) { body(static_cast<std::size_t>(r)); },
-                  [&](int done) { report(stage, start + static_cast<std::uint64_t>(done) * pixels_per_row); });
+    parallel_rows(
+        static_cast<int>(n_rows), config.threads, [&](int r) { body(static_cast<std::size_t>(r)); },
+        [&](int done) { report(stage, start + static_cast<std::uint64_t>(done) * pixels_per_row); });
     base = start + n_rows * pixels_per_row;
   };
 
@@ -533,9 +540,9 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
     std::vector<std::optional<GreyFlipReference>> flip_references(config.flip ? 2 * n_materials : 0);
     parallel_rows(static_cast<int>(flip_references.size()), config.threads, [&](int i) {
       const std::size_t m = static_cast<std::size_t>(i) % n_materials;
-      flip_references[static_cast<std::size_t>(i)] =
-          i < static_cast<int>(n_materials) ? GreyFlipReference(tonemapped(gt.images[m]), GreyFlipReference::Range::ldr)
-                                            : GreyFlipReference(gt.images[m], GreyFlipReference::Range::hdr);
+      flip_references[static_cast<std::size_t>(i)] = i < static_cast<int>(n_materials)
+                                                         ? GreyFlipReference(tonemapped(gt.images[m]), GreyFlipReference::Range::ldr)
+                                                         : GreyFlipReference(gt.images[m], GreyFlipReference::Range::hdr);
     });
     std::vector<TradeRow> rows(n_materials * n_keys);
     std::vector<Image> images(config.keep_images ? rows.size() : 0);
@@ -647,16 +654,19 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
           variant_stats[r].add(image);
           variant_display[r].add(tonemapped(image));
-          clips[r].add(image, frame_references[m], frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
+          clips[r].add(image, frame_references[m],
+                       frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
           if (frame > 0) differences[r].add_pair(previous_variant[r], clips[r].previous_display, previous_reference[m], reference_frame[m]);
           previous_variant[r] = clips[r].previous_display;
         });
         if (sanity)
           parallel_rows(static_cast<int>(n_materials), config.threads, [&](int i) {
             const std::size_t m = static_cast<std::size_t>(i);
-            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0], frame > 0 ? &seed_references[m][0] : nullptr);
+            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0],
+                                frame > 0 ? &seed_references[m][0] : nullptr);
           });
-        for (std::size_t r = 0; r < n_rows; ++r) emit_frame(r / n_keys, configuration_id(table.rows[first_row + r]), frame, previous_variant[r]);
+        for (std::size_t r = 0; r < n_rows; ++r)
+          emit_frame(r / n_keys, configuration_id(table.rows[first_row + r]), frame, previous_variant[r]);
         for (std::size_t m = 0; m < sanity_clips.size(); ++m)
           for (SanityResult result : kSanityResults)
             emit_frame(m, "sanity:" + std::string(sanity_name(result)), frame, sanity_clips[m].last(result));

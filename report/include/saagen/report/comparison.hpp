@@ -12,8 +12,8 @@
 #include "saagen/reference/render/trade.hpp"
 
 #include <functional>
-#include <span>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -37,7 +37,7 @@ std::string_view metric_outcome_name(MetricOutcome outcome);  // "better", "tie"
 struct PairedComparison {
   std::string configuration;
   std::string baseline;
-  int cells = 0;  // 0: no cell has both (the comparison is empty)
+  int cells = 0;             // 0: no cell has both (the comparison is empty)
   MetricDifference image;    // image_error (LDR-FLIP per frame of the animation)
   MetricDifference flicker;  // flicker_error (pooled change)
   // video_error (10 - ColorVideoVDP's JOD of the clip), when every cell has it: the verdict's

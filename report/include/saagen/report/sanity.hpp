@@ -32,11 +32,11 @@
 namespace saagen::report {
 
 struct SanityEntry {
-  std::string result;  // a sanity result's name, or "none" (1-spp no SAA)
-  double image_error = 0.0;    // mean over the scene's materials
+  std::string result;        // a sanity result's name, or "none" (1-spp no SAA)
+  double image_error = 0.0;  // mean over the scene's materials
   double flicker_error = 0.0;
   MetricDifference image_vs_quarter, flicker_vs_quarter;  // against the quarter-sample ground truth
-  double lag = 0.0;  // mean lag (animation_error.hpp)
+  double lag = 0.0;                                       // mean lag (animation_error.hpp)
 };
 
 struct SceneSanity {

@@ -94,17 +94,17 @@ class GltfError : public std::runtime_error {
 // before it is decoded (and only images a material uses are decoded), the node graph's instances
 // and their triangles are counted before any is expanded.
 struct GltfLimits {
-  std::size_t max_triangles = 4'000'000;          // instanced, in all
-  std::size_t max_vertices = 12'000'000;          // flat-shaded primitives take 3 per triangle
-  int max_texture_size = 4096;                    // texels per side, checked before decoding
-  std::size_t max_texels = 4096 * 4096;           // level-0 texels of all texture maps built, together
-  std::uintmax_t max_file_bytes = 1ull << 30;     // the asset and each external buffer or image
-  std::uintmax_t max_total_bytes = 1ull << 30;    // the asset and every external file it reads, together
-  std::size_t max_json_bytes = 64u << 20;         // the JSON (a .gltf file, a .glb's JSON chunk)
-  std::size_t max_json_values = 4'000'000;        // values in that JSON (each costs ~0.3 KB parsed)
-  int max_json_depth = 64;                        // nesting of its arrays and objects
-  std::size_t max_node_instances = 1'000'000;     // node visits of the scene's walk (a node listed
-                                                  // by two parents is visited twice)
+  std::size_t max_triangles = 4'000'000;        // instanced, in all
+  std::size_t max_vertices = 12'000'000;        // flat-shaded primitives take 3 per triangle
+  int max_texture_size = 4096;                  // texels per side, checked before decoding
+  std::size_t max_texels = 4096 * 4096;         // level-0 texels of all texture maps built, together
+  std::uintmax_t max_file_bytes = 1ull << 30;   // the asset and each external buffer or image
+  std::uintmax_t max_total_bytes = 1ull << 30;  // the asset and every external file it reads, together
+  std::size_t max_json_bytes = 64u << 20;       // the JSON (a .gltf file, a .glb's JSON chunk)
+  std::size_t max_json_values = 4'000'000;      // values in that JSON (each costs ~0.3 KB parsed)
+  int max_json_depth = 64;                      // nesting of its arrays and objects
+  std::size_t max_node_instances = 1'000'000;   // node visits of the scene's walk (a node listed
+                                                // by two parents is visited twice)
 };
 
 struct GltfMaterial {

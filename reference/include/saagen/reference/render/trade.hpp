@@ -203,8 +203,8 @@ struct AnimationSeries {
 // others are degenerate and must rank clearly worse (the ground truth moves) and never win.
 enum class SanityResult { other_seed, quarter_samples, delayed, blurred, frozen, no_highlight };
 inline constexpr std::array<SanityResult, 6> kSanityResults = {SanityResult::other_seed, SanityResult::quarter_samples,
-                                                              SanityResult::delayed,    SanityResult::blurred,
-                                                              SanityResult::frozen,     SanityResult::no_highlight};
+                                                               SanityResult::delayed,    SanityResult::blurred,
+                                                               SanityResult::frozen,     SanityResult::no_highlight};
 std::string_view sanity_name(SanityResult result);  // "other-seed", ...
 // The 1 px Gaussian of the blurred result (standard deviation in pixels of the animation).
 inline constexpr double kSanityBlurSigma = 1.0;
@@ -268,7 +268,7 @@ struct TradeRow {
   Interval video_error;
   // The mean lag (animation_error.hpp, lag_error) over the frames and seeds, with its interval.
   Interval lag;
-  double flicker_excess = 0.0;   // flicker_error's parts, means over pairs and seeds
+  double flicker_excess = 0.0;  // flicker_error's parts, means over pairs and seeds
   double flicker_missing = 0.0;
   AnimationSeries series;
 };
