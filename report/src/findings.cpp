@@ -181,7 +181,8 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
   return true;
 }
 
-std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope) {
+std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope,
+                                      const std::string& baseline) {
   std::vector<ContentRow> rows;
   const bool video = has_video_metric(table);
   for (const std::string& id : configurations(table)) {
@@ -189,9 +190,9 @@ std::vector<ContentRow> measured_rows(const render::TradeTable& table, const Row
     if (!m.cases || is_measurement_configuration(id)) continue;
     ContentRow row{std::string(scope), id, m.image_error, video ? m.video_error : m.flicker_error, std::nullopt};
     // The decision reads the paired comparison with its intervals (comparison.hpp).
-    if (id != "none") {
-      const PairedComparison against_none = compare_configurations(table, id, "none", keep);
-      if (against_none.cells > 0) row.against_none = to_decision(against_none);
+    if (id != baseline) {
+      const PairedComparison against_baseline = compare_configurations(table, id, baseline, keep);
+      if (against_baseline.cells > 0) row.against_none = to_decision(against_baseline);
     }
     rows.push_back(std::move(row));
   }
@@ -206,20 +207,8 @@ std::string without_taa(std::string configuration) {
 
 std::vector<ContentRow> measured_taa_rows(const render::TradeTable& table, Content content) {
   const RowFilter keep = [content](const render::TradeRow& row) { return row.taa && content_of(row.scene) == content; };
-  const bool video = has_video_metric(table);
-  std::vector<ContentRow> rows;
-  for (const std::string& id : configurations(table)) {
-    if (id.find("+taa") == std::string::npos || is_measurement_configuration(id)) continue;
-    const Metrics m = mean_metrics(table, id, keep);
-    if (!m.cases) continue;
-    ContentRow row{std::string(content_name(content)), without_taa(id), m.image_error, video ? m.video_error : m.flicker_error,
-                   std::nullopt};
-    if (id != "none+taa") {
-      const PairedComparison against_taa = compare_configurations(table, id, "none+taa", keep);
-      if (against_taa.cells > 0) row.against_none = to_decision(against_taa);
-    }
-    rows.push_back(std::move(row));
-  }
+  std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content), "none+taa");
+  for (ContentRow& row : rows) row.configuration = without_taa(row.configuration);
   return rows;
 }
 

@@ -1088,20 +1088,31 @@ nlohmann::json engine_comparison_json(const decision::Comparison& c) {
           {"temporal", difference_json(c.temporal)}};
 }
 
-// Under TAA, per content type and path: saagen's decision on the content's +taa rows against
-// none+taa (findings.hpp, measured_taa_rows), what `saagen plan` gives with taa = true.
-nlohmann::json taa_decisions_json(const render::TradeTable& table) {
+namespace {
+
+// Per content type and path: saagen's decision on each content's rows (`rows_of`) against
+// `baseline`, as the JSON carries it.
+template <class RowsOf>
+nlohmann::json content_decisions_json(RowsOf rows_of, std::string_view baseline) {
   nlohmann::json out = nlohmann::json::array();
   for (Content content : kContents) {
-    const std::vector<ContentRow> rows = measured_taa_rows(table, content);
+    const std::vector<ContentRow> rows = rows_of(content);
     if (rows.empty()) continue;
     for (Path path : {Path::forward, Path::deferred}) {
-      nlohmann::json entry = decision_json(decide_on(rows, path, content, false, "none+taa"));
+      nlohmann::json entry = decision_json(decide_on(rows, path, content, false, baseline));
       entry["content"] = std::string(content_name(content)), entry["path"] = std::string(path_name(path));
       out.push_back(entry);
     }
   }
   return out;
+}
+
+}  // namespace
+
+// Under TAA, per content type and path: saagen's decision on the content's +taa rows against
+// none+taa (findings.hpp, measured_taa_rows), what `saagen plan` gives with taa = true.
+nlohmann::json taa_decisions_json(const render::TradeTable& table) {
+  return content_decisions_json([&](Content content) { return measured_taa_rows(table, content); }, "none+taa");
 }
 
 // Under TAA, per content type: every configuration's means and its pairing with none+taa
@@ -1120,17 +1131,13 @@ nlohmann::json taa_by_content_json(const render::TradeTable& table) {
 }
 
 nlohmann::json decisions_json(const render::TradeTable& table) {
-  nlohmann::json by_content = nlohmann::json::array(), per_scene = nlohmann::json::array();
-  for (Content content : kContents) {
-    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
-    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
-    if (rows.empty()) continue;
-    for (Path path : {Path::forward, Path::deferred}) {
-      nlohmann::json entry = decision_json(decide_on(rows, path, content));
-      entry["content"] = std::string(content_name(content)), entry["path"] = std::string(path_name(path));
-      by_content.push_back(entry);
-    }
-  }
+  const nlohmann::json by_content = content_decisions_json(
+      [&](Content content) {
+        const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+        return measured_rows(table, keep, content_name(content));
+      },
+      "no SAA");
+  nlohmann::json per_scene = nlohmann::json::array();
   for (render::SceneId scene : table.config.scenes) {
     const RowFilter keep = [scene](const render::TradeRow& row) { return !row.taa && row.scene == scene; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, render::scene_name(scene));

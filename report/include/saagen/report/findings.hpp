@@ -92,8 +92,10 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 
 // The measured rows of a set of trade rows, one per configuration: the means the trade's JSON
 // writes ("by_content") and saagen's decision reads (through comparison_against,
-// saagen/scene/cost_tables.hpp). `scope` names the content type or the scene.
-std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope);
+// saagen/scene/cost_tables.hpp). `scope` names the content type or the scene; each row is paired
+// against the rows' `baseline` (its against_none; none+taa for measured_taa_rows).
+std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope,
+                                      const std::string& baseline = "none");
 
 // Under TAA (`saagen bench --taa`): a content type's +taa rows, named as the configurations a
 // material under TAA uses (without "+taa"; none+taa is "none"), each paired against none+taa:
