@@ -53,9 +53,9 @@ render::TradeConfig preset_config(std::string_view preset);
 // is missing, before anything is loaded.
 void add_preset_assets(std::string_view preset, render::TradeConfig& config);
 // The sizes the preset measures its asset scenes at (TradeConfig::scene_sizes), for those in
-// config.scenes: the medium preset 64 x 64 (animation 32 x 32), the full preset 128 x 128
-// (animation 64 x 64), both at the preset's samples per pixel: a quarter of the preset's
-// pixels, so that six more scenes keep the presets' run times (docs/GLTF_SCENES.md).
+// config.scenes: the medium preset 64 x 64, the full preset 128 x 128 (a quarter of the preset's
+// pixels, so that six more scenes keep the presets' run times), the animation never below
+// 64 x 64 (the sanity suite's floor), both at the preset's samples per pixel (docs/GLTF_SCENES.md).
 void size_preset_assets(std::string_view preset, render::TradeConfig& config);
 
 // Terminal table: one row per variant (means), with the cost columns when known.
