@@ -1,7 +1,7 @@
 // The animation clips behind the trade's rows (see frames.hpp).
 #include "saagen/report/frames.hpp"
 
-#include "saagen/report/report.hpp"
+#include "saagen/report/png.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

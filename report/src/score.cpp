@@ -5,7 +5,7 @@
 #include "saagen/io/input.hpp"
 #include "saagen/reference/render/parallel.hpp"
 #include "saagen/report/frames.hpp"
-#include "saagen/report/report.hpp"
+#include "saagen/report/trade_json.hpp"
 
 #include <fmt/format.h>
 

@@ -1,9 +1,10 @@
 // The trade under TAA: the +taa rows apart from the summaries, their per-scene comparison and
-// its table (see report.hpp).
+// its table (see taa_summary.hpp).
+#include "saagen/report/taa_summary.hpp"
+
 #include "saagen/decision.hpp"
 #include "saagen/report/comparison.hpp"
 #include "saagen/report/findings.hpp"
-#include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
 
