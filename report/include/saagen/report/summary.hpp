@@ -1,5 +1,5 @@
-// The trade table summed up: per configuration, the means over its cases, for the terminal, the
-// report and the JSON.
+// The trade table summed up: per configuration, the means over its cases, and one line saying
+// how the table was measured (its TradeConfig), for the terminal, the report and the JSON.
 #pragma once
 
 #include "saagen/reference/render/trade.hpp"
@@ -30,5 +30,9 @@ struct VariantSummary {
 };
 
 std::vector<VariantSummary> summarize(const render::TradeTable& table);
+
+// The table's configuration in one line: sizes, samples, animation, filter parameters, and the
+// scenes measured at sizes of their own.
+std::string config_line(const render::TradeTable& table);
 
 }  // namespace saagen::report
