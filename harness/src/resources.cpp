@@ -1,7 +1,7 @@
 #include "resources.hpp"
 
 #include "saagen/harness/error.hpp"
-#include "saagen/harness/program.hpp"
+#include "saagen/harness/formats.hpp"
 
 #include <fmt/format.h>
 

@@ -80,7 +80,7 @@ enum class ImageKind { image_1d, image_1d_array, image_2d, image_2d_array };
 // A sampled image with `levels.size()` mip levels (at most the full chain). Level l has
 // extent max(1, width >> l) x max(1, height >> l) (height is 1 for 1D kinds) and its bytes hold
 // all layers, layer after layer, each layer row after row, texels tightly packed.
-// Supported formats: see format_info() in program.hpp (R32G32B32A32_SFLOAT,
+// Supported formats: see format_info() in formats.hpp (R32G32B32A32_SFLOAT,
 // R16G16B16A16_SFLOAT, ...).
 struct SampledImage {
   ImageKind kind = ImageKind::image_2d;
