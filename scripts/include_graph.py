@@ -36,7 +36,6 @@ LEAVES = ['bench', 'tests', 'fuzz', 'examples']
 # that moves its files: reported, not failed on. A cycle not listed fails --check; a listed one
 # that is gone is reported so that its line can be removed.
 KNOWN_CYCLES = [
-    ['reference/render/mesh', 'reference/render/scene'],
     # The trade's private parts (its +taa rows, the clips both kinds of rows record) and trade.cpp.
     ['reference/render/trade', 'reference/render/trade_clips', 'reference/render/trade_taa'],
 ]

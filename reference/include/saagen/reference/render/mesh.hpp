@@ -17,7 +17,7 @@
 // for i = 0, 1 (Pharr, Jakob & Humphreys, PBRT 3rd ed., Sec. 3.6.2).
 #pragma once
 
-#include "saagen/reference/render/scene.hpp"
+#include "saagen/reference/render/shape.hpp"
 
 #include <array>
 #include <cstdint>
