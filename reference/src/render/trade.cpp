@@ -30,8 +30,6 @@ constexpr char kCacheMagic[8] = {'S', 'A', 'A', 'G', 'T', '0', '0', '2'};
 // (shading model, sampler, scene code).
 constexpr const char* kCacheFormat = "saagen-ground-truth-v2";
 
-constexpr double kPi = 3.14159265358979323846;
-
 std::uint64_t fnv1a64(std::string_view text) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char c : text) {
@@ -212,28 +210,6 @@ std::vector<Material> trade_materials(const TradeConfig& config) {
   return materials;
 }
 
-Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame) {
-  const Scene rotated = make_scene(id, frame * config.rotation_degrees_per_frame * kPi / 180.0);
-  const double steps = frame - 0.5 * (config.frames - 1);  // centred on the unpanned view
-  return rotated.with_camera(
-      rotated.camera().panned(steps * config.pan_pixels_per_frame.x, steps * config.pan_pixels_per_frame.y, config.flicker_height));
-}
-
-const TradeRow* TradeTable::find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed, Prefilter prefilter,
-                                 Lobe lobe, bool taa) const {
-  for (const TradeRow& row : rows)
-    if (row.variant == variant && row.scene == scene && row.alpha == alpha && row.fresnel == fresnel && row.feed == feed &&
-        row.prefilter == prefilter && row.lobe == lobe && row.taa == taa)
-      return &row;
-  return nullptr;
-}
-
-std::vector<Variant> default_trade_variants() {
-  std::vector<Variant> variants(all_variants().begin(), all_variants().end());
-  variants.insert(variants.end(), all_engines().begin(), all_engines().end());
-  return variants;
-}
-
 std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe, bool taa) {
   std::string id(variant_id(variant));
   if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none) id += ":geometric";
@@ -241,24 +217,6 @@ std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilt
   if (taa) id += "+taa";
   if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
   return id;
-}
-
-std::string_view sanity_name(SanityResult result) {
-  switch (result) {
-    case SanityResult::other_seed:
-      return "other-seed";
-    case SanityResult::quarter_samples:
-      return "quarter-samples";
-    case SanityResult::delayed:
-      return "delayed";
-    case SanityResult::blurred:
-      return "blurred";
-    case SanityResult::frozen:
-      return "frozen";
-    case SanityResult::no_highlight:
-      return "no-highlight";
-  }
-  return "?";
 }
 
 std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }

@@ -5,7 +5,7 @@
 
 #include "saagen/reference/render/animation_error.hpp"
 #include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/reference/render/trade_table.hpp"
 #include "saagen/reference/render/video_vdp.hpp"
 
 #include <cstdint>

@@ -2,7 +2,7 @@
 // by the TAA of taa.hpp over the animation, measured after a warm-up.
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/reference/render/trade_table.hpp"
 
 #include <functional>
 #include <optional>
