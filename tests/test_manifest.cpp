@@ -349,7 +349,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n", "advice", "none", {}},
                       // Curved content, deferred, speed: only deferred-aniso beats no SAA, the most expensive deferred
-                      // form (1.82x); speed never takes it, and the cheaper deferred kernels lose: no filter.
+                      // form (1.69x); speed never takes it, and the cheaper deferred kernels lose: no filter.
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n",
                                "D2",
@@ -448,7 +448,7 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   const auto plan_of = [](const std::string& keys) {
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = " + keys)).materials.at(0);
   };
-  // Curved content, deferred: only deferred-aniso/tail (1.82x) beats no SAA.
+  // Curved content, deferred: only deferred-aniso/tail (1.69x) beats no SAA.
   const auto tight = plan_of("\"deferred\"\nbudget = 1.5\n");
   EXPECT_EQ(tight.variant, "none");
   EXPECT_NE(tight.reason.find("costs more than the budget 1.5"), std::string::npos) << tight.reason;
@@ -474,14 +474,16 @@ double committed_ratio(const std::string& configuration, int lights) {
   return ratio.value_or(0.0);
 }
 
-// deferred-aniso evaluates a 2x2 matrix lobe per light, so its cost over no SAA grows with the
-// lights: a budget between its one-light and 16-light ratios fits at one light and not at 16,
-// and the plan names the light count the cost was read at.
+// deferred-aniso computes its tensor once per pixel and evaluates a 2x2 matrix lobe per light, so
+// its cost over no SAA moves with the lights (in the committed table it falls: the tensor's share
+// shrinks, and its lobe per light costs less over no SAA's BRDF than the one-light ratio): a budget
+// between its one-light and 16-light ratios fits at one of the two counts and not at the other, and
+// the plan names the light count the cost was read at.
 TEST(Planner, BudgetIsReadAtTheMaterialsLightCount) {
   const double one = committed_ratio("deferred-aniso/tail", 1), four = committed_ratio("deferred-aniso/tail", 4),
                sixteen = committed_ratio("deferred-aniso/tail", 16);
-  ASSERT_LT(one, four);
-  ASSERT_LT(four, sixteen);
+  ASSERT_NE(one, sixteen);
+  ASSERT_NE(four, sixteen);
   const auto plan_of = [](double budget, const std::string& lights) {
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n" +
                                                           fmt::format("budget = {:.6f}\n", budget) + lights))
@@ -489,19 +491,21 @@ TEST(Planner, BudgetIsReadAtTheMaterialsLightCount) {
   };
   const double between = (one + sixteen) / 2;
   const auto at_one = plan_of(between, "");
-  EXPECT_EQ(at_one.variant, "deferred-aniso") << at_one.reason;
+  const auto at_sixteen = plan_of(between, "lights = 16\n");
   EXPECT_EQ(at_one.cost_lights, 1);
   EXPECT_NE(at_one.reason.find(fmt::format("{:.3g}x no SAA's shading cost at 1 light", one)), std::string::npos) << at_one.reason;
-  const auto at_sixteen = plan_of(between, "lights = 16\n");
-  EXPECT_EQ(at_sixteen.variant, "none") << at_sixteen.reason;
-  EXPECT_NE(at_sixteen.reason.find("deferred-aniso/tail (image"), std::string::npos) << at_sixteen.reason;
   EXPECT_NE(at_sixteen.reason.find(fmt::format("{:.3g}x no SAA's shading cost at 16 lights", sixteen)), std::string::npos)
       << at_sixteen.reason;
-  EXPECT_NE(at_sixteen.reason.find("costs more than the budget"), std::string::npos) << at_sixteen.reason;
+  const auto& within = one < sixteen ? at_one : at_sixteen;
+  const auto& over = one < sixteen ? at_sixteen : at_one;
+  EXPECT_EQ(within.variant, "deferred-aniso") << within.reason;
+  EXPECT_EQ(over.variant, "none") << over.reason;
+  EXPECT_NE(over.reason.find("deferred-aniso/tail (image"), std::string::npos) << over.reason;
+  EXPECT_NE(over.reason.find("costs more than the budget"), std::string::npos) << over.reason;
   // Between measured counts the cost is the nearest measured count's not above: 15 lights read
-  // the 4-light ratio, which a budget between the 4- and 16-light ratios admits.
+  // the 4-light ratio, so a budget between the 4- and 16-light ratios decides as at 4 lights.
   const auto at_fifteen = plan_of((four + sixteen) / 2, "lights = 15\n");
-  EXPECT_EQ(at_fifteen.variant, "deferred-aniso") << at_fifteen.reason;
+  EXPECT_EQ(at_fifteen.variant, four < sixteen ? "deferred-aniso" : "none") << at_fifteen.reason;
   EXPECT_EQ(at_fifteen.lights, 15);
   EXPECT_EQ(at_fifteen.cost_lights, 4);
   EXPECT_NE(at_fifteen.reason.find("at 4 lights (the nearest measured count not above 15)"), std::string::npos) << at_fifteen.reason;
@@ -509,16 +513,24 @@ TEST(Planner, BudgetIsReadAtTheMaterialsLightCount) {
 
 // The papers' deferred forms compute the roughness once per pixel and then shade with the plain
 // BRDF: their overhead shrinks as the lights grow. Every lobe saagen shades with costs per light
-// (the forward forms filter per light too), so theirs grows.
+// (the forward forms filter per light too), so theirs stays.
 TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
   for (const std::string per_pixel : {"deferred-avg", "deferred-sum"}) {
     EXPECT_LT(committed_ratio(per_pixel, 4), committed_ratio(per_pixel, 1)) << per_pixel;
     EXPECT_LT(committed_ratio(per_pixel, 16), committed_ratio(per_pixel, 4)) << per_pixel;
   }
-  for (const std::string per_light : {"forward-aniso-projected", "forward-aniso-projected/tail", "forward-axis-projected/tail",
-                                      "deferred-avg/tail", "deferred-sum/tail", "deferred-aniso/tail"}) {
+  // The forward forms filter and shade per light: their cost grows.
+  for (const std::string per_light : {"forward-aniso-projected", "forward-aniso-projected/tail", "forward-axis-projected/tail"}) {
     EXPECT_GT(committed_ratio(per_light, 4), committed_ratio(per_light, 1)) << per_light;
     EXPECT_GT(committed_ratio(per_light, 16), committed_ratio(per_light, 4)) << per_light;
+  }
+  // A deferred form with saagen's lobe pays its roughness once per pixel and the lobe per light:
+  // its ratio tends to the lobe's own over no SAA's BRDF (from above in the committed table, where
+  // the lobe takes G2 and the cosines in one reciprocal), which does not vanish as the papers'
+  // per-pixel overhead does: at 16 lights at least ten times deferred-avg's.
+  const double papers_overhead = committed_ratio("deferred-avg", 16) - 1.0;
+  for (const std::string per_light : {"deferred-avg/tail", "deferred-sum/tail", "deferred-aniso/tail"}) {
+    EXPECT_GT(committed_ratio(per_light, 16) - 1.0, 10.0 * papers_overhead) << per_light;
   }
   // A table without light counts (written before they were measured) is one light's.
   const saagen::IsaTable old = saagen::parse_isa_table(
@@ -768,7 +780,7 @@ TEST(Planner, WithATableAccuracyTakesTheBestOnTheMaterialsContent) {
   EXPECT_EQ(forward.rule, "trade table");
   EXPECT_NE(
       forward.reason.find("saagen's decision on curved content in content.json: forward-aniso-projected/tail (image -0.0055, "
-                          "temporal -0.00252 against no SAA; 1.33x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
+                          "temporal -0.00252 against no SAA; 1.2x no SAA's shading cost at 1 light) beats no SAA: the largest temporal "
                           "improvement of the 2 usable configurations that do; deferred-aniso (trade table) is not it"),
       std::string::npos)
       << forward.reason;

@@ -253,10 +253,19 @@ double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
   return filtered_ggx_mixture(core, floored, lobes.tail_scale, lobes.tail_weight, lobes.shoulder_fraction, h);
 }
 
+// Template ggx_brdf_filtered_matrix: D G2 / (4 i.z o.z) with the papers' G2 of A, written as
+// D / (2 (o.z S(i) + i.z S(o))), S(v) = sqrt(v.xy^T A v.xy + v.z^2) (Lambda(v) = S(v) / (2 v.z) - 1/2),
+// the cosines floored at LAMBDA_MIN_Z as in ggx_lambda_matrix and cosines().
 double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {
   if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
   const Vec3 h = half_vector(params, i, o);
-  return ggx_ndf_filtered_matrix(h, a, alpha2) * ggx_g2_matrix(i, o, h, a) / (4.0 * cosines(i, o));
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const double floor = params.guard_constants().lambda_min_z;
+  const double zi = guarded(max(i.z, floor), i.z), zo = guarded(max(o.z, floor), o.z);
+  const double spread_i = sym2_quadratic_form(a, i.xy()), spread_o = sym2_quadratic_form(a, o.xy());
+  const double length_i = std::sqrt(guarded(max(spread_i, 0.0), spread_i) + zi * zi);
+  const double length_o = std::sqrt(guarded(max(spread_o, 0.0), spread_o) + zo * zo);
+  return 0.5 * ggx_ndf_filtered_matrix(h, a, alpha2) / (zo * length_i + zi * length_o);
 }
 
 double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const {
