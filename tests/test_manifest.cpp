@@ -1023,31 +1023,55 @@ TEST(Planner, NormalMappedMaterialsFollowTheMeasuredContentRows) {
   EXPECT_NE(saagen::format_plan(Catalogue::builtin(), manifest, plan).find("  normal    deferred-sum:geometric"), std::string::npos);
 }
 
-// An engine's bake is recommended only where it measured lowest, with the command that writes
-// it and the best figure without a prefilter; where a configuration without one wins, the advice
-// names the best prefiltered one it beat.
-TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereItWins) {
+// The normal handling of a material that names its variant, with a trade table, is saagen's one
+// decision among that variant's measured configurations: an engine's bake is recommended only where the decision takes it
+// (it beats no SAA beyond its interval, the largest video gain), with the command that writes it
+// and the decision's pick without a prefilter; a lower mean inside its interval is no win. A
+// table without no SAA's row can only rank means, and the plan says so.
+TEST(Planner, AnEngineBakeIsRecommendedOnlyWhereTheDecisionTakesIt) {
   const auto plan_with = [](const std::string& rows) {
     const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [)" + rows + "]}", "t.json");
-    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n"),
-                              &table)
+    return saagen::plan_scene(
+               Catalogue::builtin(),
+               parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\nvariant = \"deferred-avg\"\n"), &table)
         .materials.at(0);
   };
-  const auto wins = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.05},
-      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp", "error": 0.04},
-      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+toksvig", "error": 0.06})");
+  // A row against no SAA: image and video differences with their 95 % intervals.
+  const auto row = [](const std::string& configuration, const std::string& image, const std::string& video) {
+    return fmt::format(R"({{"content": "normal-mapped", "configuration": "{}", "error": 0.05,
+        "against_none": {{"image": {}, "temporal": {}}}}})",
+                       configuration, image, video);
+  };
+  const std::string none = R"({"content": "normal-mapped", "configuration": "none", "error": 0.05})";
+  const std::string better = R"({"mean": -0.01, "low": -0.02, "high": -0.005})", tied = R"({"mean": -0.01, "low": -0.03, "high": 0.01})";
+  const std::string much_better = R"({"mean": -2, "low": -3, "high": -1})", worse = R"({"mean": 0.01, "low": 0.005, "high": 0.02})";
+  const auto wins =
+      plan_with(none + "," + row("deferred-avg", better, better) + "," + row("deferred-avg:geometric+hdrp", better, much_better));
   EXPECT_EQ(wins.prefilter, "hdrp");
   EXPECT_NE(wins.normal_advice.find("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method hdrp --roughness R --gltf"),
             std::string::npos)
       << wins.normal_advice;
-  EXPECT_NE(wins.normal_advice.find("0.04 against 0.05 without a prefilter (deferred-avg)"), std::string::npos) << wins.normal_advice;
-  const auto loses = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.03},
-      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+filament-vmf", "error": 0.04})");
-  EXPECT_EQ(loses.prefilter, "none");
-  EXPECT_NE(loses.normal_advice.find("no texture prefilter: the best prefiltered configuration, deferred-avg:geometric+filament-vmf, "
-                                     "measured 0.04 against 0.03"),
+  EXPECT_NE(wins.normal_advice.find("without a prefilter the best is deferred-avg (image error -0.01 [-0.02, -0.005]"), std::string::npos)
+      << wins.normal_advice;
+  // The bake's larger mean gain lies inside its interval (tied image error): not taken.
+  const auto tie =
+      plan_with(none + "," + row("deferred-avg", better, better) + "," + row("deferred-avg:geometric+filament-vmf", tied, tied));
+  EXPECT_EQ(tie.prefilter, "none");
+  EXPECT_NE(tie.normal_advice.find("no texture prefilter: the best prefiltered configuration is none (no prefiltered configuration beats "
+                                   "no SAA)"),
             std::string::npos)
-      << loses.normal_advice;
+      << tie.normal_advice;
+  // Nothing beats no SAA: no bake, and the plan says why.
+  const auto nothing = plan_with(none + "," + row("deferred-avg", worse, better) + "," + row("deferred-avg:geometric+hdrp", tied, tied));
+  EXPECT_EQ(nothing.prefilter, "none");
+  EXPECT_EQ(nothing.normal_advice.rfind("no texture prefilter; on normal-mapped content in t.json no filter", 0), 0u)
+      << nothing.normal_advice;
+  // Means only (no row for no SAA): the lowest mean, said to be one.
+  const auto means = plan_with(R"({"content": "normal-mapped", "configuration": "deferred-avg", "error": 0.05},
+      {"content": "normal-mapped", "configuration": "deferred-avg:geometric+hdrp", "error": 0.04})");
+  EXPECT_EQ(means.prefilter, "hdrp");
+  EXPECT_NE(means.normal_advice.find("means without intervals: deferred-avg 0.05, deferred-avg:geometric+hdrp 0.04"), std::string::npos)
+      << means.normal_advice;
 }
 
 // Without a trade table a normal-mapped GGX material gets saagen's advice: the measured

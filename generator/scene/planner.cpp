@@ -442,46 +442,98 @@ std::vector<ContentRow> allowed_normal_mapped_rows(const MeasuredTradeTable& tab
   return rows;
 }
 
-// The texture prefilter a chosen configuration names, as the bake to run, against the best
-// allowed configuration without one; or, when no prefilter won, the best one that lost. The
-// prefilter is recommended only where the table's figures say it wins.
-std::string prefilter_advice(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
-                             const MaterialPlan& plan) {
-  std::optional<ContentRow> with, without;
-  for (const ContentRow& row : allowed_normal_mapped_rows(table, eligible, choose_variant, plan)) {
-    std::optional<ContentRow>& slot = parse_configuration(row.configuration).prefilter == "none" ? without : with;
-    if (!slot || row.error < slot->error) slot = row;
-  }
-  if (!with || !without) return "";
+// A configuration's comparison with its baseline (no SAA; none+taa under TAA), as the plan states it.
+std::string comparison_text(const decision::Comparison& c, std::string_view baseline = "no SAA") {
+  return fmt::format("image error {}, video error {} against {}: {}", decision::describe(c.image), decision::describe(c.temporal), baseline,
+                     decision::name(decision::outcome(c)));
+}
+
+// No SAA's normal-mapped row of a table, when it has one (every table `saagen bench` writes).
+const ContentRow* normal_mapped_none(const MeasuredTradeTable& table) {
+  const auto none = std::find_if(table.content_rows.begin(), table.content_rows.end(),
+                                 [](const ContentRow& row) { return row.content == "normal-mapped" && row.configuration == "none"; });
+  return none == table.content_rows.end() ? nullptr : &*none;
+}
+
+// saagen's one decision (decision.hpp, for accuracy) among `rows`, each against no SAA.
+decision::Decision decide_among(const std::vector<ContentRow>& rows, const ContentRow& none) {
+  std::vector<decision::Candidate> candidates;
+  for (const ContentRow& row : rows) candidates.push_back({row.configuration, comparison_against(row, none), std::nullopt});
+  return decision::decide(candidates, decision::Preference{});
+}
+
+std::vector<ContentRow> rows_with_prefilter(const std::vector<ContentRow>& rows, bool prefiltered) {
+  std::vector<ContentRow> kept;
+  for (const ContentRow& row : rows)
+    if ((parse_configuration(row.configuration).prefilter != "none") == prefiltered) kept.push_back(row);
+  return kept;
+}
+
+// "X (image error ..., video error ... against no SAA: beats)", or what beat nothing.
+std::string decided_text(const std::vector<ContentRow>& rows, const ContentRow& none, std::string_view nothing) {
+  const decision::Decision made = decide_among(rows, none);
+  if (!made.chosen) return std::string(nothing);
+  const ContentRow& row = rows[*made.chosen];
+  return fmt::format("{} ({})", row.configuration, comparison_text(comparison_against(row, none)));
+}
+
+// The texture prefilter the decided configuration names, as the bake to run, next to what the
+// decision takes without one; or, when the decision took none, the best prefiltered one it did
+// not take. Both sides are the one decision's picks among their rows, with their intervals.
+std::string prefilter_advice(const std::vector<ContentRow>& allowed, const ContentRow& none, const MaterialPlan& plan) {
+  const std::vector<ContentRow> with = rows_with_prefilter(allowed, true), without = rows_with_prefilter(allowed, false);
+  if (with.empty() || without.empty()) return "";
   if (plan.prefilter == "none") {
-    return fmt::format("; no texture prefilter: the best prefiltered configuration, {}, measured {} against {}", with->configuration,
-                       fixed(with->error), fixed(without->error));
+    return fmt::format("; no texture prefilter: the best prefiltered configuration is {}",
+                       decided_text(with, none, "none (no prefiltered configuration beats no SAA)"));
   }
   const std::string bake =
       plan.prefilter == "lean"
           ? "saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method lean (slope moments)"
           : fmt::format("saagen texture prefilter NORMAL_MAP -o OUT.ktx2 --method {} --roughness R --gltf", plan.prefilter);
-  return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md): {} against {} without a prefilter ({}){}", bake,
-                     fixed(with->error), fixed(without->error), without->configuration, sampling_advice(plan.prefilter));
+  return fmt::format("; bake the roughness with `{}` (docs/PREFILTER.md); without a prefilter the best is {}{}", bake,
+                     decided_text(without, none, "nothing (no configuration without a prefilter beats no SAA)"),
+                     sampling_advice(plan.prefilter));
 }
 
-// With a trade table's content rows: the lowest-error configuration of the material's variant on
-// normal-mapped content, and, when the planner chooses the variant by accuracy, of any eligible one.
-void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
-                            MaterialPlan& plan) {
-  std::optional<ContentRow> best;
+// A table without no SAA's row (not written by `saagen bench`) has nothing to decide against:
+// the lowest mean display error, said to be a mean without an interval.
+void choose_lowest_mean(const MeasuredTradeTable& table, const std::vector<ContentRow>& allowed, MaterialPlan& plan) {
   std::vector<std::string> figures;
-  for (const ContentRow& row : allowed_normal_mapped_rows(table, eligible, choose_variant, plan)) {
+  const ContentRow* best = nullptr;
+  for (const ContentRow& row : allowed) {
     figures.push_back(fmt::format("{} {}", row.configuration, fixed(row.error)));
-    if (!best || row.error < best->error) best = row;
+    if (!best || row.error < best->error) best = &row;
   }
-  if (!best) return;
   const Configuration c = parse_configuration(best->configuration);
   plan.variant = c.variant;
   plan.feed = c.feed;
   plan.prefilter = c.prefilter;
-  plan.normal_advice = fmt::format("{} (lowest display error on normal-mapped content in {}: {}){}", best->configuration, table.source_name,
-                                   fmt::join(figures, ", "), prefilter_advice(table, eligible, choose_variant, plan));
+  plan.normal_advice = fmt::format("{} (lowest mean display error on normal-mapped content in {}, means without intervals: {})",
+                                   best->configuration, table.source_name, fmt::join(figures, ", "));
+}
+
+// With a trade table's content rows: saagen's decision among the configurations of the
+// material's variant on normal-mapped content, or of any eligible one when the planner chooses
+// the variant by accuracy; where none beats no SAA the plan keeps its feed and says so.
+void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
+                            MaterialPlan& plan) {
+  const std::vector<ContentRow> allowed = allowed_normal_mapped_rows(table, eligible, choose_variant, plan);
+  if (allowed.empty()) return;
+  const ContentRow* none = normal_mapped_none(table);
+  if (!none) return choose_lowest_mean(table, allowed, plan);
+  const decision::Decision made = decide_among(allowed, *none);
+  if (!made.chosen) {
+    plan.prefilter = "none";
+    plan.normal_advice = fmt::format("no texture prefilter; on normal-mapped content in {} {}", table.source_name, made.reason);
+    return;
+  }
+  const Configuration c = parse_configuration(allowed[*made.chosen].configuration);
+  plan.variant = c.variant;
+  plan.feed = c.feed;
+  plan.prefilter = c.prefilter;
+  plan.normal_advice =
+      fmt::format("{} (on normal-mapped content in {}){}", made.reason, table.source_name, prefilter_advice(allowed, *none, plan));
 }
 
 // Whether the plan can give a configuration's prefilter: a normal map's bake. On bump content
@@ -539,12 +591,6 @@ std::string_view baseline_of(bool taa) { return taa ? "none+taa" : "no SAA"; }
 
 std::string scene_list(const std::vector<std::string>& scenes) {
   return scenes.empty() ? std::string("no scene") : fmt::format("{}", fmt::join(scenes, ", "));
-}
-
-// A configuration's comparison with its baseline (no SAA; none+taa under TAA), as the plan states it.
-std::string comparison_text(const decision::Comparison& c, std::string_view baseline = "no SAA") {
-  return fmt::format("image error {}, video error {} against {}: {}", decision::describe(c.image), decision::describe(c.temporal), baseline,
-                     decision::name(decision::outcome(c)));
 }
 
 // How to measure one's own asset instead of relying on saagen's scenes.
