@@ -83,16 +83,13 @@ constexpr const char* kMeasuredNormalAdvice =
     "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
     "normal-mapped normal, 0.1465 with Toksvig prefiltering; forward-aniso-projected 0.0331, 0.0390, 0.1457 with LEAN";
 
-// `saagen bench --preset medium --sigma2 X --json trade.json`, then before the bench wrote its
-// decisions the best configuration of any (docs/FILTERED_GGX.md), counted on the seven built-in
-// scenes and with the six asset scenes, and without deferred-aniso's rows; at 0.25 saagen's decision
-// per scene (`python3 scripts/beats_baselines.py trade.json`).
+// `saagen bench --preset medium --json T.json` (sigma^2 0.25), then `python3
+// scripts/beats_baselines.py T.json` (docs/TEMPORAL.md, "The verdict with the validated
+// criterion"); the narrower kernels were compared before the video metric only.
 constexpr const char* kMeasuredGgxKernelGain =
-    "with the tail-preserving filtered GGX, some configuration beats no SAA and every engine in LDR-FLIP and TDE on 14 of 14 "
-    "built-in scene x path rows at 0.25, 0.125 and 0.0625 alike (15, 15 and 16 of 26 with the asset scenes; 10 of 14 without "
-    "deferred-aniso); saagen's decision, which a plan can give, does on 12 of 14 at 0.25 (14 of 26 with the asset scenes: on the "
-    "bump plane only the band-limited +lean rows beat every engine; measured in LDR-FLIP and TDE, before the criterion of "
-    "docs/TEMPORAL.md)";
+    "saagen's decision beats no SAA and every engine's form beyond the 95 % intervals of the image error and ColorVideoVDP's JOD on 12 "
+    "of 14 built-in scene x path rows at 0.25 (22 of 26 with the asset scenes; on the bump plane it beats no SAA only); 0.125 and "
+    "0.0625 were compared in LDR-FLIP and TDE only, where they did no better";
 
 // `saagen bench --preset medium --taa --sigma2 X --json F` at 0.0625 and 0.25, the comparison
 // under TAA it prints ("With TAA": the verdict's metrics and decision against none+taa; docs/TAA.md).

@@ -42,7 +42,7 @@ const narrowSnippet = fs.readFileSync(path.join(output, 'narrow', 'saa_threejs.e
 fs.rmSync(output, { recursive: true, force: true });
 
 const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
-check(variants.glossy === 'deferred-aniso' && variants.glossy_matrix === 'forward-aniso-projected' && variants.glossy_axis === 'forward-axis-projected' &&
+check(variants.glossy === 'forward-aniso-projected' && variants.glossy_matrix === 'forward-aniso-projected' && variants.glossy_axis === 'forward-axis-projected' &&
       variants.glossy_deferred === 'deferred-aniso' && variants.bumpy === 'none' && variants.bumpy_named === 'deferred-sum',
       `the plan: ${JSON.stringify(variants)}`);
 
