@@ -111,12 +111,17 @@ std::string describe_pixel(const SweepInputs& in, std::uint32_t index, const flo
   return text;
 }
 
-// Runs `function` (a core/evaluate function or a wrapper) of `file` over the inputs and judges
-// every output.
-Tally sweep(const saagen::EmittedFile& file, const saagen::Function& function, const SweepInputs& in, bool keep_examples) {
+// The dispatch of one function over its inputs, the same in each of the four forms but for the
+// shader: the input buffer is built once per function, not once per form.
+struct Dispatch {
   saagen::KernelRequest request;
-  const bool wrapper = function.role == saagen::FunctionRole::fragment;
-  if (wrapper) {
+  saagen::harness::ComputeRun run;
+};
+
+Dispatch prepare_dispatch(const saagen::Function& function, const SweepInputs& in) {
+  Dispatch dispatch;
+  saagen::KernelRequest& request = dispatch.request;
+  if (function.role == saagen::FunctionRole::fragment) {
     request.kind = saagen::KernelKind::quad_compute;
     request.width = kWidth;
     request.output_stride = in.outputs;
@@ -124,11 +129,19 @@ Tally sweep(const saagen::EmittedFile& file, const saagen::Function& function, c
   } else {
     request.body = saagen::load_call_store_body(Catalogue::builtin(), function.name, request);
   }
-  saagen::harness::ComputeRun run;
-  run.shader.spirv = saagen::test::compile_kernel(file, request);
-  run.buffers = {saagen::harness::input_buffer(0, in.data), saagen::harness::output_buffer<float>(1, std::size_t{kElements} * in.outputs)};
-  run.groups = {kElements / request.workgroup_size, 1, 1};
-  const auto result = saagen::harness::run_compute(saagen::test::gpu(), run);
+  dispatch.run.buffers.push_back(saagen::harness::input_buffer(0, in.data));
+  dispatch.run.buffers.push_back(saagen::harness::output_buffer<float>(1, std::size_t{kElements} * in.outputs));
+  dispatch.run.groups = {kElements / request.workgroup_size, 1, 1};
+  return dispatch;
+}
+
+// Runs `function` (a core/evaluate function or a wrapper) of `file` over the inputs and judges
+// every output.
+Tally sweep(const saagen::EmittedFile& file, const saagen::Function& function, const SweepInputs& in, Dispatch& dispatch,
+            bool keep_examples) {
+  const bool wrapper = function.role == saagen::FunctionRole::fragment;
+  dispatch.run.shader.spirv = saagen::test::compile_kernel(file, dispatch.request);
+  const auto result = saagen::harness::run_compute(saagen::test::gpu(), dispatch.run);
   const auto out = result.buffer_as<float>(1);
 
   const stab::Claim claim = stab::claim_of(function.name);
@@ -194,9 +207,10 @@ TEST_P(AdversarialSweep, GuardedFormKeepsEveryClaimOnFiniteInputs) {
     const saagen::Function& function = *Catalogue::builtin().find_function(name);
     const bool wrapper = function.role == saagen::FunctionRole::fragment;
     const SweepInputs in = wrapper ? wrapper_inputs(function, ++seed) : core_inputs(function, ++seed);
+    Dispatch dispatch = prepare_dispatch(function, in);
     for (int f = 0; f < 4; ++f) {
       const Form& form = kForms[f];
-      const Tally tally = sweep(files[f], function, in, form.guards);
+      const Tally tally = sweep(files[f], function, in, dispatch, form.guards);
       table += fmt::format("[ sweep    ] {:<36} {:<14} | {} | {}\n", name, form.name(), counts_cell(tally.finite),
                            counts_cell(tally.non_finite));
       for (int cls = 0; cls < 2; ++cls) {
