@@ -15,10 +15,10 @@
 
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/scene.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/products/spirv_library.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
 #include "saagen/report/shading_scene.hpp"
 #include "saagen/validate/compiler.hpp"
 
@@ -100,10 +100,10 @@ int run(int argc, char** argv) {
 
   // The G-buffer: bump_plane seen from above, cropped so that the surface fills the image.
   const double megapixels = double(options.width) * options.height * 1e-6;
-  const auto scene = saagen::render::make_scene(saagen::render::SceneId::bump_plane);
+  const auto scene = saagen::measure::make_scene(saagen::measure::SceneId::bump_plane);
   const auto cropped = scene.with_camera(scene.camera().cropped(static_cast<int>(std::max(options.width, options.height)) / 2,
                                                                 static_cast<int>(std::max(options.width, options.height))));
-  const auto gbuffer = saagen::render::render_gbuffer(cropped, static_cast<int>(options.width), static_cast<int>(options.height));
+  const auto gbuffer = saagen::measure::render_gbuffer(cropped, static_cast<int>(options.width), static_cast<int>(options.height));
   saagen::test::GBufferImages images;
   images.width = options.width;
   images.height = options.height;

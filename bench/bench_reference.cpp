@@ -1,8 +1,8 @@
 // CPU cost of the double-precision side: the default glint dictionary's generation and the
 // supersampled ground truth's throughput (Msamples/s, extrapolated to the trade's 256 x 256 x
 // 1024 spp). Timing lives here, never in the unit tests.
+#include "saagen/measure/render.hpp"
 #include "saagen/products/glints.hpp"
-#include "saagen/reference/render/render.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -21,12 +21,12 @@ BENCHMARK(BM_GlintDictionaryDefaults)->Unit(benchmark::kMillisecond);
 
 // The sphere at 64 x 64 x 1024 spp, four alphas sharing one set of rays.
 void BM_GroundTruthSphere64(benchmark::State& state) {
-  namespace render = saagen::render;
-  const render::Scene scene = render::make_scene(render::SceneId::sphere);
-  const std::vector<render::Material> materials{{0.01, false}, {0.05, false}, {0.1, false}, {0.3, false}};
-  render::GroundTruthSettings settings;
+  namespace measure = saagen::measure;
+  const measure::Scene scene = measure::make_scene(measure::SceneId::sphere);
+  const std::vector<measure::Material> materials{{0.01, false}, {0.05, false}, {0.1, false}, {0.3, false}};
+  measure::GroundTruthSettings settings;
   settings.width = settings.height = 64;
-  for (auto _ : state) benchmark::DoNotOptimize(render::render_ground_truth(scene, settings, materials));
+  for (auto _ : state) benchmark::DoNotOptimize(measure::render_ground_truth(scene, settings, materials));
   const double samples = 64.0 * 64.0 * 1024.0;
   state.counters["Msamples/s"] = benchmark::Counter(samples * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["s_at_256x256"] =
@@ -37,16 +37,16 @@ BENCHMARK(BM_GroundTruthSphere64)->Unit(benchmark::kSecond)->UseRealTime();
 // The trade's cost per content scene (normal-mapped spheres, torus knot): 256 x 256 x 1024 spp,
 // the trade's eight materials (target: 60 s each on 2 threads). About a minute per scene.
 void BM_GroundTruthContent(benchmark::State& state) {
-  namespace render = saagen::render;
-  const render::SceneId id = render::content_scenes()[static_cast<std::size_t>(state.range(0))];
-  const render::Scene scene = render::make_scene(id);
-  std::vector<render::Material> materials;
+  namespace measure = saagen::measure;
+  const measure::SceneId id = measure::content_scenes()[static_cast<std::size_t>(state.range(0))];
+  const measure::Scene scene = measure::make_scene(id);
+  std::vector<measure::Material> materials;
   for (double alpha : {0.01, 0.05, 0.1, 0.3})
     for (bool fresnel : {false, true}) materials.push_back({alpha, fresnel});
-  render::GroundTruthSettings settings;
+  measure::GroundTruthSettings settings;
   settings.threads = 2;
-  for (auto _ : state) benchmark::DoNotOptimize(render::render_ground_truth(scene, settings, materials));
-  state.SetLabel(std::string(render::scene_name(id)));
+  for (auto _ : state) benchmark::DoNotOptimize(measure::render_ground_truth(scene, settings, materials));
+  state.SetLabel(std::string(measure::scene_name(id)));
 }
 BENCHMARK(BM_GroundTruthContent)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
@@ -69,36 +69,36 @@ double process_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-RenderTime mesh_ground_truth_seconds(const saagen::render::Scene& scene) {
-  namespace render = saagen::render;
-  std::vector<render::Material> materials;
+RenderTime mesh_ground_truth_seconds(const saagen::measure::Scene& scene) {
+  namespace measure = saagen::measure;
+  std::vector<measure::Material> materials;
   for (double alpha : {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3}) materials.push_back({alpha, false});
-  render::GroundTruthSettings settings;
+  measure::GroundTruthSettings settings;
   settings.width = settings.height = 64;
   settings.strata = 8;
   settings.threads = 2;
   const double cpu_start = process_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
-  benchmark::DoNotOptimize(render::render_ground_truth(scene, settings, materials));
+  benchmark::DoNotOptimize(measure::render_ground_truth(scene, settings, materials));
   return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), process_cpu_seconds() - cpu_start};
 }
 
 void BM_GroundTruthMesh(benchmark::State& state) {
-  namespace render = saagen::render;
+  namespace measure = saagen::measure;
   static const std::vector<std::string> assets{"", "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf",
                                                "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"};
   const std::string& asset = assets[static_cast<std::size_t>(state.range(0))];
-  render::SceneId id = render::SceneId::torus_knot;
+  measure::SceneId id = measure::SceneId::torus_knot;
   if (!asset.empty()) {
     try {
-      id = render::register_gltf_scene(asset);
+      id = measure::register_gltf_scene(asset);
     } catch (const std::exception& error) {
       state.SkipWithError(error.what());  // assimp-testmodels missing (scripts/install-deps.sh)
       return;
     }
   }
-  const render::Scene scene = render::make_scene(id);
-  static const double knot_seconds = mesh_ground_truth_seconds(render::make_scene(render::SceneId::torus_knot)).wall;
+  const measure::Scene scene = measure::make_scene(id);
+  static const double knot_seconds = mesh_ground_truth_seconds(measure::make_scene(measure::SceneId::torus_knot)).wall;
   RenderTime time;
   for (auto _ : state) {
     time = mesh_ground_truth_seconds(scene);
@@ -109,7 +109,7 @@ void BM_GroundTruthMesh(benchmark::State& state) {
   state.counters["s_at_256x256x1024"] = time.wall * goal_samples / samples;
   state.counters["cpu_s_at_256x256x1024"] = time.cpu / 2.0 * goal_samples / samples;
   state.counters["vs_torus_knot"] = time.wall / knot_seconds;
-  state.SetLabel(std::string(render::scene_name(id)));
+  state.SetLabel(std::string(measure::scene_name(id)));
 }
 BENCHMARK(BM_GroundTruthMesh)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseManualTime()->Iterations(1);
 

@@ -28,9 +28,9 @@
 // k = tr(K) / 2: how much the kernel estimate itself moves from one frame to the next.
 // `stable` and `bake` cast 64 rays per pixel: they are measurements of what a temporally stable
 // kernel and a bake could reach, not forms a shader evaluates from one sample.
+#include "saagen/measure/flip.hpp"
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
-#include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/render.hpp"
 
 #include <fmt/format.h>
 
@@ -44,7 +44,7 @@
 
 namespace {
 
-namespace render = saagen::render;
+namespace measure = saagen::measure;
 namespace ref = saagen::ref;
 using ref::Sym2;
 using ref::Vec2;
@@ -55,8 +55,8 @@ constexpr int kFootprintRays = 8;  // per axis
 
 // The medium preset's trade configuration (report::preset_config("medium"); the ground-truth cache
 // keys depend on every one of these numbers).
-render::TradeConfig medium_config() {
-  render::TradeConfig config;
+measure::TradeConfig medium_config() {
+  measure::TradeConfig config;
   config.width = config.height = kMainSize;
   config.strata = kMainStrata;
   config.flicker_width = config.flicker_height = kFlickerSize;
@@ -85,17 +85,17 @@ struct Footprint {
 };
 
 // Per pixel, the moments of the half vector's slope over the filter-distributed sub-pixel rays.
-std::vector<Footprint> footprints(const render::Scene& scene, int size) {
+std::vector<Footprint> footprints(const measure::Scene& scene, int size) {
   std::vector<Footprint> out(static_cast<std::size_t>(size) * size);
   std::vector<Sym2> second(out.size());
   for (int a = 0; a < kFootprintRays; ++a)
     for (int b = 0; b < kFootprintRays; ++b) {
-      render::Camera camera = scene.camera();
+      measure::Camera camera = scene.camera();
       camera.jitter = {0.5 * normal_quantile((a + 0.5) / kFootprintRays), 0.5 * normal_quantile((b + 0.5) / kFootprintRays)};
-      const render::Scene shifted = scene.with_camera(camera);
+      const measure::Scene shifted = scene.with_camera(camera);
       for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-          const render::PixelFields f = render::pixel_fields(shifted, x, y, size, size);
+          const measure::PixelFields f = measure::pixel_fields(shifted, x, y, size, size);
           if (!f.hit || f.half_ts.z <= 0.0) continue;
           const std::size_t i = static_cast<std::size_t>(y) * size + x;
           const Vec2 t{f.half_ts.x / f.half_ts.z, f.half_ts.y / f.half_ts.z};
@@ -148,7 +148,7 @@ const char* form_name(Form form) {
 
 // The exact filtered GGX BRDF of the footprint kernel, centred on the pixel's half vector (stable)
 // or on the footprint's mean slope (bake), with the centre's masking and cosines.
-double footprint_brdf(const render::PixelFields& f, const Footprint& footprint, double alpha2, double kappa, Form form) {
+double footprint_brdf(const measure::PixelFields& f, const Footprint& footprint, double alpha2, double kappa, Form form) {
   const Sym2 kernel = clamp_eigenvalues(2.0 * footprint.covariance, kappa);
   const Sym2 a{alpha2 + kernel.xx, kernel.xy, alpha2 + kernel.yy};
   if (form == Form::stable) return ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, a, {alpha2, alpha2});
@@ -162,22 +162,23 @@ double footprint_brdf(const render::PixelFields& f, const Footprint& footprint, 
 
 // The one-sample forms through the trade's own shading (exact filtered GGX): no SAA, the quad
 // kernel on the shading normal, or the band-limited procedural bumps (geometric feed + LEAN).
-render::PixelShade one_sample_shade(const render::GBuffer& gbuffer, int x, int y, const render::Material& material, Form form) {
-  const render::Variant variant = form == Form::none ? render::Variant::none : render::Variant::forward_aniso_projected;
+measure::PixelShade one_sample_shade(const measure::GBuffer& gbuffer, int x, int y, const measure::Material& material, Form form) {
+  const measure::Variant variant = form == Form::none ? measure::Variant::none : measure::Variant::forward_aniso_projected;
   const bool band_limited = form == Form::band_limited;
-  return render::shade_pixel(gbuffer, x, y, variant, material, ref::Params{}, ref::Derivative::coarse,
-                             band_limited ? render::NormalFeed::geometric : render::NormalFeed::shading,
-                             band_limited && gbuffer.at(x, y).has_footprint_moments ? render::Prefilter::lean : render::Prefilter::none,
-                             1.0, render::Lobe::exact);
+  return measure::shade_pixel(gbuffer, x, y, variant, material, ref::Params{}, ref::Derivative::coarse,
+                              band_limited ? measure::NormalFeed::geometric : measure::NormalFeed::shading,
+                              band_limited && gbuffer.at(x, y).has_footprint_moments ? measure::Prefilter::lean : measure::Prefilter::none,
+                              1.0, measure::Lobe::exact);
 }
 
-render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const render::Material& material, Form form) {
-  render::Image image(gbuffer.width, gbuffer.height);
+measure::Image shade(const measure::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const measure::Material& material,
+                     Form form) {
+  measure::Image image(gbuffer.width, gbuffer.height);
   const ref::Params params{};
   const double alpha2 = material.alpha * material.alpha;
   for (int y = 0; y < gbuffer.height; ++y)
     for (int x = 0; x < gbuffer.width; ++x) {
-      const render::PixelFields& f = gbuffer.at(x, y);
+      const measure::PixelFields& f = gbuffer.at(x, y);
       if (!f.hit) continue;
       if (form == Form::none || form == Form::quad || form == Form::band_limited) {
         image.at(x, y) = static_cast<float>(one_sample_shade(gbuffer, x, y, material, form).radiance);
@@ -187,13 +188,13 @@ render::Image shade(const render::GBuffer& gbuffer, const std::vector<Footprint>
       if (fp.samples < 2) continue;
       const double brdf = footprint_brdf(f, fp, alpha2, params.kappa, form);
       image.at(x, y) =
-          static_cast<float>(f.weight * render::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel));
+          static_cast<float>(f.weight * measure::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel));
     }
   return image;
 }
 
 // tr(K) / 2 of a form's kernel at a pixel (-1: no kernel there).
-double half_trace_kernel(const render::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const render::Material& material, int x,
+double half_trace_kernel(const measure::GBuffer& gbuffer, const std::vector<Footprint>& footprint, const measure::Material& material, int x,
                          int y, Form form) {
   if (!gbuffer.at(x, y).hit) return -1.0;
   const ref::Params params{};
@@ -208,49 +209,49 @@ double half_trace_kernel(const render::GBuffer& gbuffer, const std::vector<Footp
   return 0.5 * (k.xx + k.yy);
 }
 
-render::SceneId scene_id(const std::string& name) {
-  for (render::SceneId id : render::all_scenes())
-    if (render::scene_name(id) == name) return id;
-  for (render::SceneId id : render::content_scenes())
-    if (render::scene_name(id) == name) return id;
+measure::SceneId scene_id(const std::string& name) {
+  for (measure::SceneId id : measure::all_scenes())
+    if (measure::scene_name(id) == name) return id;
+  for (measure::SceneId id : measure::content_scenes())
+    if (measure::scene_name(id) == name) return id;
   throw std::invalid_argument("unknown scene '" + name + "'");
 }
 
 // One scene's frame-0 inputs and animation inputs.
 struct SceneInputs {
-  render::GroundTruth ground_truth;
-  render::GBuffer gbuffer;
+  measure::GroundTruth ground_truth;
+  measure::GBuffer gbuffer;
   std::vector<Footprint> footprint;
-  std::vector<render::GroundTruth> frame_truths;
-  std::vector<render::GBuffer> frame_gbuffers;
+  std::vector<measure::GroundTruth> frame_truths;
+  std::vector<measure::GBuffer> frame_gbuffers;
   std::vector<std::vector<Footprint>> frame_footprints;
 };
 
-SceneInputs scene_inputs(const render::TradeConfig& config, render::SceneId id, const std::vector<render::Material>& materials,
+SceneInputs scene_inputs(const measure::TradeConfig& config, measure::SceneId id, const std::vector<measure::Material>& materials,
                          const std::string& cache) {
-  render::GroundTruthSettings main_settings;
+  measure::GroundTruthSettings main_settings;
   main_settings.width = main_settings.height = kMainSize;
   main_settings.strata = kMainStrata;
   main_settings.seed = config.seed;
-  render::GroundTruthSettings flicker_settings = main_settings;
+  measure::GroundTruthSettings flicker_settings = main_settings;
   flicker_settings.width = flicker_settings.height = kFlickerSize;
   flicker_settings.strata = kFlickerStrata;
   SceneInputs in;
-  const render::Scene scene = render::make_scene(id, 0.0);
-  in.ground_truth = render::cached_ground_truth(scene, main_settings, materials, cache);
-  in.gbuffer = render::render_gbuffer(scene, kMainSize, kMainSize, 0);
+  const measure::Scene scene = measure::make_scene(id, 0.0);
+  in.ground_truth = measure::cached_ground_truth(scene, main_settings, materials, cache);
+  in.gbuffer = measure::render_gbuffer(scene, kMainSize, kMainSize, 0);
   in.footprint = footprints(scene, kMainSize);
   for (int frame = 0; frame < kFrames; ++frame) {
-    const render::Scene moved = render::trade_animation_frame(config, id, frame);
-    in.frame_truths.push_back(render::cached_ground_truth(moved, flicker_settings, materials, cache));
-    in.frame_gbuffers.push_back(render::render_gbuffer(moved, kFlickerSize, kFlickerSize, 0));
+    const measure::Scene moved = measure::trade_animation_frame(config, id, frame);
+    in.frame_truths.push_back(measure::cached_ground_truth(moved, flicker_settings, materials, cache));
+    in.frame_gbuffers.push_back(measure::render_gbuffer(moved, kFlickerSize, kFlickerSize, 0));
     in.frame_footprints.push_back(footprints(moved, kFlickerSize));
   }
   return in;
 }
 
 // The kernel's mean relative change between consecutive frames at the pixels the ground truth lights.
-double kernel_change(const SceneInputs& in, const render::Material& material, const std::vector<render::Image>& truths, Form form) {
+double kernel_change(const SceneInputs& in, const measure::Material& material, const std::vector<measure::Image>& truths, Form form) {
   constexpr double kLit = 0.05;
   double sum = 0.0;
   std::size_t count = 0;
@@ -273,8 +274,8 @@ double kernel_change(const SceneInputs& in, const render::Material& material, co
   return count ? sum / static_cast<double>(count) : 0.0;
 }
 
-void measure_scene(const render::TradeConfig& config, const std::string& name, const std::string& cache) {
-  const std::vector<render::Material> materials = render::trade_materials(config);
+void measure_scene(const measure::TradeConfig& config, const std::string& name, const std::string& cache) {
+  const std::vector<measure::Material> materials = measure::trade_materials(config);
   const SceneInputs in = scene_inputs(config, scene_id(name), materials, cache);
   fmt::print(
       "\n### {}\n\n| form | alpha | LDR-FLIP | TDE | excess flicker | lost motion | kernel change |\n|---|---:|---:|---:|---:|---:|---:|\n",
@@ -282,14 +283,14 @@ void measure_scene(const render::TradeConfig& config, const std::string& name, c
   for (Form form : kForms) {
     double flip_sum = 0.0, tde_sum = 0.0;
     for (std::size_t m = 0; m < materials.size(); ++m) {
-      const double flip = render::ldr_flip_mean_grey(tonemapped(in.ground_truth.images[m]),
-                                                     tonemapped(shade(in.gbuffer, in.footprint, materials[m], form)));
-      std::vector<render::Image> frames, truths;
+      const double flip = measure::ldr_flip_mean_grey(tonemapped(in.ground_truth.images[m]),
+                                                      tonemapped(shade(in.gbuffer, in.footprint, materials[m], form)));
+      std::vector<measure::Image> frames, truths;
       for (int frame = 0; frame < kFrames; ++frame) {
-        frames.push_back(render::display_image(shade(in.frame_gbuffers[frame], in.frame_footprints[frame], materials[m], form)));
-        truths.push_back(render::display_image(in.frame_truths[frame].images[m]));
+        frames.push_back(measure::display_image(shade(in.frame_gbuffers[frame], in.frame_footprints[frame], materials[m], form)));
+        truths.push_back(measure::display_image(in.frame_truths[frame].images[m]));
       }
-      const render::TemporalError temporal = render::temporal_difference_error(frames, truths);
+      const measure::TemporalError temporal = measure::temporal_difference_error(frames, truths);
       const std::string change = form == Form::none ? "" : fmt::format("{:.3f}", kernel_change(in, materials[m], truths, form));
       fmt::print("| {} | {} | {:.4f} | {:.5f} | {:.5f} | {:.5f} | {} |\n", form_name(form), materials[m].alpha, flip, temporal.tde,
                  temporal.excess_flicker, temporal.lost_motion, change);
@@ -318,7 +319,7 @@ int main(int argc, char** argv) {
       }
     }
     if (scenes.empty()) scenes.push_back("bump_plane");
-    const render::TradeConfig config = medium_config();
+    const measure::TradeConfig config = medium_config();
     for (const std::string& name : scenes) measure_scene(config, name, cache);
     return 0;
   } catch (const std::exception& e) {

@@ -27,9 +27,9 @@
 // rows dn_x, dn_y in the tangent plane), shaded as shade_pixel shades them, once with the
 // papers' GGX of the filtered roughness (checked against render_variant) and once with the
 // tail-preserving filtered GGX (ggx_brdf_filtered_matrix / _axis, brdf.hpp).
+#include "saagen/measure/flip.hpp"
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
-#include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/render.hpp"
 
 #include <fmt/format.h>
 
@@ -46,7 +46,7 @@
 
 namespace {
 
-namespace render = saagen::render;
+namespace measure = saagen::measure;
 namespace ref = saagen::ref;
 using ref::Quad;
 using ref::Sym2;
@@ -102,20 +102,20 @@ double forward_eigen_ratio(const ref::Params& params, double alpha2, const Quad<
 }
 
 // The world half vector of the shaded pixel expressed in every quad pixel's own frame.
-Quad<Vec3> half_in_partner_frames(const render::QuadFields& q, Vec3 half_ws) {
+Quad<Vec3> half_in_partner_frames(const measure::QuadFields& q, Vec3 half_ws) {
   return ref::map_indexed(q.normal, [&](Vec3 n, int p) { return ref::to_tangent_space(half_ws, q.tangent[p], q.bitangent[p], n); });
 }
 
 // The world half vector of the shaded pixel in frames parallel-transported from the shaded
 // pixel's frame to each partner's normal: only the tilt of the normal changes the coordinates.
-Quad<Vec3> half_in_transported_frames(const render::QuadFields& q, Vec3 half_ws) {
+Quad<Vec3> half_in_transported_frames(const measure::QuadFields& q, Vec3 half_ws) {
   const Vec3 n0 = q.normal[q.pixel], t0 = q.tangent[q.pixel], b0 = q.bitangent[q.pixel];
   return ref::map(q.normal,
                   [&](Vec3 n) { return ref::to_tangent_space(half_ws, rotate_between(n0, n, t0), rotate_between(n0, n, b0), n); });
 }
 
 // Filtered alpha^2 minus alpha^2 of every deferred form, kappa out of the way.
-void add_deferred_kernels(const render::QuadFields& q, double alpha2, PixelKernels& k) {
+void add_deferred_kernels(const measure::QuadFields& q, double alpha2, PixelKernels& k) {
   ref::Params unclamped;
   unclamped.kappa = 1e30;
   const double sum = ref::deferred_sum_fragment_quad(unclamped, alpha2, q.normal, q.pixel, kMode);
@@ -129,9 +129,9 @@ void add_deferred_kernels(const render::QuadFields& q, double alpha2, PixelKerne
   k.saturated = std::max({sum, avg, max}) >= 1.0;
 }
 
-PixelKernels pixel_kernels(const render::GBuffer& gbuffer, int x, int y, double alpha2) {
-  const render::PixelFields& f = gbuffer.at(x, y);
-  const render::QuadFields q = render::gather_quad(gbuffer, x, y);
+PixelKernels pixel_kernels(const measure::GBuffer& gbuffer, int x, int y, double alpha2) {
+  const measure::PixelFields& f = gbuffer.at(x, y);
+  const measure::QuadFields q = measure::gather_quad(gbuffer, x, y);
   const ref::Params params;
   const Vec3 half_ws = ref::normalize(f.to_light + f.to_view);
   PixelKernels k;
@@ -146,8 +146,8 @@ PixelKernels pixel_kernels(const render::GBuffer& gbuffer, int x, int y, double 
   return k;
 }
 
-std::vector<PixelKernels> scene_kernels(const render::Scene& scene, const Options& options) {
-  const render::GBuffer gbuffer = render::render_gbuffer(scene, options.size, options.size);
+std::vector<PixelKernels> scene_kernels(const measure::Scene& scene, const Options& options) {
+  const measure::GBuffer gbuffer = measure::render_gbuffer(scene, options.size, options.size);
   std::vector<PixelKernels> kernels;
   for (int y = 0; y < gbuffer.height; ++y)
     for (int x = 0; x < gbuffer.width; ++x)
@@ -350,11 +350,11 @@ struct SceneKernels {
 
 std::vector<SceneKernels> every_scene_kernels(const Options& options) {
   std::vector<SceneKernels> scenes;
-  auto add = [&](render::SceneId id) {
-    scenes.push_back({std::string(render::scene_name(id)), scene_kernels(render::make_scene(id), options)});
+  auto add = [&](measure::SceneId id) {
+    scenes.push_back({std::string(measure::scene_name(id)), scene_kernels(measure::make_scene(id), options)});
   };
-  for (render::SceneId id : render::all_scenes()) add(id);
-  for (render::SceneId id : render::content_scenes()) add(id);
+  for (measure::SceneId id : measure::all_scenes()) add(id);
+  for (measure::SceneId id : measure::content_scenes()) add(id);
   return scenes;
 }
 
@@ -373,7 +373,7 @@ struct Filtered {
   double alpha2 = 0.0;
 };
 
-double lobe_brdf(ImageLobe lobe, const render::PixelFields& f, const Filtered& filtered, double alpha2) {
+double lobe_brdf(ImageLobe lobe, const measure::PixelFields& f, const Filtered& filtered, double alpha2) {
   const Vec2 unfiltered{alpha2, alpha2};
   if (filtered.matrix)
     return lobe == ImageLobe::papers ? ref::ggx_brdf_matrix(f.light_ts, f.view_ts, filtered.a, ref::ndf_clamp_tau(unfiltered))
@@ -385,7 +385,7 @@ double lobe_brdf(ImageLobe lobe, const render::PixelFields& f, const Filtered& f
 
 // Eq. 5 with sigma^2 replaced by sigma^2 (n.h)^power: the candidates for power 1 and 2
 // (saturate(alpha^2 + min(sigma^2 (n.h)^power (|dn_x|^2 + |dn_y|^2), kappa))).
-double candidate_alpha2(const render::QuadFields& q, double half_z, double power, double alpha2) {
+double candidate_alpha2(const measure::QuadFields& q, double half_z, double power, double alpha2) {
   ref::Params params;
   params.sigma2 *= std::pow(std::max(half_z, 0.0), power);
   return ref::deferred_avg_fragment_quad(params, alpha2, q.normal, q.pixel, kMode);
@@ -393,7 +393,7 @@ double candidate_alpha2(const render::QuadFields& q, double half_z, double power
 
 // The forward kernel reduced to its isotropic equivalent tr(2 Sigma) / 2, kappa-clamped as the
 // deferred forms are: how much of the forward form's advantage is its anisotropy.
-double forward_isotropised_alpha2(const render::QuadFields& q, double alpha2) {
+double forward_isotropised_alpha2(const measure::QuadFields& q, double alpha2) {
   const ref::Params params;
   const double kernel = forward_isotropic_kernel(params, alpha2, q.half_ts, q.pixel);
   return ref::saturate(alpha2 + std::min(kernel, params.kappa));
@@ -402,7 +402,7 @@ double forward_isotropised_alpha2(const render::QuadFields& q, double alpha2) {
 // The first-order tilt part of the forward kernel, which a deferred pass can form without a
 // tangent: A = diag(alpha^2) + 2 sigma^2 (n.h)^2 Dn^T Dn, Dn the rows (dn_x, dn_y) in the
 // tangent plane (any orthonormal (t, b) there: the BRDF is evaluated in the same frame).
-Sym2 candidate_matrix(const render::QuadFields& q, double half_z, double alpha2) {
+Sym2 candidate_matrix(const measure::QuadFields& q, double half_z, double alpha2) {
   const ref::Params params;
   const Vec3 t = q.tangent[q.pixel], b = q.bitangent[q.pixel];
   const Vec3 dn_dx = ref::ddx(q.normal, q.pixel, kMode), dn_dy = ref::ddy(q.normal, q.pixel, kMode);
@@ -423,7 +423,7 @@ const std::vector<std::string>& image_methods() {
   return names;
 }
 
-Filtered method_roughness(std::size_t method, const render::PixelFields& f, const render::QuadFields& q, double alpha2) {
+Filtered method_roughness(std::size_t method, const measure::PixelFields& f, const measure::QuadFields& q, double alpha2) {
   const ref::Params params;
   switch (method) {
     case 0:
@@ -446,24 +446,24 @@ Filtered method_roughness(std::size_t method, const render::PixelFields& f, cons
 }
 
 // One 1-spp image per method, shaded as shade_pixel shades (renderer.hpp; no Fresnel).
-std::vector<render::Image> method_images(const render::GBuffer& gbuffer, double alpha, ImageLobe lobe) {
+std::vector<measure::Image> method_images(const measure::GBuffer& gbuffer, double alpha, ImageLobe lobe) {
   const double alpha2 = alpha * alpha;
-  std::vector<render::Image> images(image_methods().size(), render::Image(gbuffer.width, gbuffer.height));
+  std::vector<measure::Image> images(image_methods().size(), measure::Image(gbuffer.width, gbuffer.height));
   for (int y = 0; y < gbuffer.height; ++y)
     for (int x = 0; x < gbuffer.width; ++x) {
-      const render::PixelFields& f = gbuffer.at(x, y);
+      const measure::PixelFields& f = gbuffer.at(x, y);
       if (!f.hit) continue;
-      const render::QuadFields q = render::gather_quad(gbuffer, x, y);
+      const measure::QuadFields q = measure::gather_quad(gbuffer, x, y);
       for (std::size_t m = 0; m < images.size(); ++m) {
         const Filtered filtered = method_roughness(m, f, q, alpha2);
         const double brdf = m == 0 ? ref::ggx_brdf_axis(f.light_ts, f.view_ts, {alpha2, alpha2}) : lobe_brdf(lobe, f, filtered, alpha2);
-        images[m].at(x, y) = static_cast<float>(render::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, false));
+        images[m].at(x, y) = static_cast<float>(measure::specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, false));
       }
     }
   return images;
 }
 
-double largest_relative_difference(const render::Image& a, const render::Image& b) {
+double largest_relative_difference(const measure::Image& a, const measure::Image& b) {
   double largest = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i)
     largest = std::max(largest, std::fabs(double(a.pixels[i]) - b.pixels[i]) / (1.0 + std::fabs(double(b.pixels[i]))));
@@ -471,20 +471,20 @@ double largest_relative_difference(const render::Image& a, const render::Image& 
 }
 
 // The papers-lobe images must be the renderer's own (render_variant) for the catalogue variants.
-void check_against_renderer(const render::GBuffer& gbuffer, double alpha, const std::vector<render::Image>& images) {
-  const render::Variant variants[] = {render::Variant::none, render::Variant::forward_aniso_projected, render::Variant::deferred_avg,
-                                      render::Variant::deferred_sum};
+void check_against_renderer(const measure::GBuffer& gbuffer, double alpha, const std::vector<measure::Image>& images) {
+  const measure::Variant variants[] = {measure::Variant::none, measure::Variant::forward_aniso_projected, measure::Variant::deferred_avg,
+                                       measure::Variant::deferred_sum};
   for (std::size_t m = 0; m < std::size(variants); ++m) {
-    const double d = largest_relative_difference(images[m], render::render_variant(gbuffer, variants[m], {alpha, false}));
+    const double d = largest_relative_difference(images[m], measure::render_variant(gbuffer, variants[m], {alpha, false}));
     if (d > 1e-5) throw std::runtime_error(fmt::format("{} differs from render_variant by {}", image_methods()[m], d));
   }
 }
 
 void print_image_check(const Options& options, ImageLobe lobe, std::string_view lobe_title) {
   const std::vector<double> alphas{0.01, 0.05, 0.1};
-  std::vector<render::Material> materials;
+  std::vector<measure::Material> materials;
   for (double alpha : alphas) materials.push_back({alpha, false});
-  render::GroundTruthSettings settings;
+  measure::GroundTruthSettings settings;
   settings.width = settings.height = options.size;
   settings.strata = 16;
   std::cout << fmt::format(
@@ -495,20 +495,20 @@ void print_image_check(const Options& options, ImageLobe lobe, std::string_view 
   std::cout << "\n|---|---:|";
   for (std::size_t i = 0; i < image_methods().size(); ++i) std::cout << "---:|";
   std::cout << "\n";
-  std::vector<render::SceneId> ids(render::all_scenes().begin(), render::all_scenes().end());
-  ids.insert(ids.end(), render::content_scenes().begin(), render::content_scenes().end());
-  for (render::SceneId id : ids) {
-    const render::Scene scene = render::make_scene(id);
-    const render::GroundTruth truth = render::render_ground_truth(scene, settings, materials);
-    const render::GBuffer gbuffer = render::render_gbuffer(scene, options.size, options.size);
+  std::vector<measure::SceneId> ids(measure::all_scenes().begin(), measure::all_scenes().end());
+  ids.insert(ids.end(), measure::content_scenes().begin(), measure::content_scenes().end());
+  for (measure::SceneId id : ids) {
+    const measure::Scene scene = measure::make_scene(id);
+    const measure::GroundTruth truth = measure::render_ground_truth(scene, settings, materials);
+    const measure::GBuffer gbuffer = measure::render_gbuffer(scene, options.size, options.size);
     for (std::size_t m = 0; m < alphas.size(); ++m) {
-      const std::vector<render::Image> images = method_images(gbuffer, alphas[m], lobe);
+      const std::vector<measure::Image> images = method_images(gbuffer, alphas[m], lobe);
       if (lobe == ImageLobe::papers) check_against_renderer(gbuffer, alphas[m], images);
-      const render::Image reference_display = tonemapped(truth.images[m]);
-      std::cout << fmt::format("| {} | {} |", render::scene_name(id), alphas[m]);
-      for (const render::Image& image : images) {
-        const double flip = render::ldr_flip_mean_grey(reference_display, tonemapped(image));
-        const double rmse = render::compare_images(image, truth.images[m]).rmse_tonemapped;
+      const measure::Image reference_display = tonemapped(truth.images[m]);
+      std::cout << fmt::format("| {} | {} |", measure::scene_name(id), alphas[m]);
+      for (const measure::Image& image : images) {
+        const double flip = measure::ldr_flip_mean_grey(reference_display, tonemapped(image));
+        const double rmse = measure::compare_images(image, truth.images[m]).rmse_tonemapped;
         std::cout << fmt::format(" {:.4f} / {:.4f} |", flip, rmse);
       }
       std::cout << std::endl;

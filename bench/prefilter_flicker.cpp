@@ -22,9 +22,9 @@
 // and the ground truth's own noise (E|R_a - R_b| of one frame rendered with two seeds).
 // --dump DIR writes the first alpha's frames 10 and 11 of the ground truth and of every
 // configuration (numbered as printed, from 00) as 8-bit PGM display images.
+#include "saagen/measure/flip.hpp"
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/prefilter.hpp"
-#include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/render.hpp"
 #include "saagen/report/report.hpp"
 
 #include <fmt/format.h>
@@ -38,7 +38,7 @@
 #include <vector>
 
 using namespace saagen;
-using namespace saagen::render;
+using namespace saagen::measure;
 
 namespace {
 

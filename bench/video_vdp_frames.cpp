@@ -1,4 +1,4 @@
-// saagen's ColorVideoVDP (render/video_vdp.hpp) on the clips of a `saagen bench --frames DIR`
+// saagen's ColorVideoVDP (measure/video_vdp.hpp) on the clips of a `saagen bench --frames DIR`
 // folder: the JOD of every clip against its group's ground truth, written as the rows
 // scripts/video_metric.py writes (scene, alpha, fresnel, configuration, clip, jod, seconds), so
 // that scripts/video_vdp_match.py can compare the two (docs/COLORVIDEOVDP.md).
@@ -15,8 +15,8 @@
 // --write-synthetic writes the synthetic clips of tests/video_vdp_clips.hpp as such a folder.
 #include "video_vdp_clips.hpp"
 
-#include "saagen/reference/render/parallel.hpp"
-#include "saagen/reference/render/video_vdp.hpp"
+#include "saagen/measure/parallel.hpp"
+#include "saagen/measure/video_vdp.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,7 +36,7 @@
 
 namespace {
 
-using saagen::render::GreyClip;
+using saagen::measure::GreyClip;
 namespace fs = std::filesystem;
 
 [[noreturn]] void fail(const std::string& message) {
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   const nlohmann::json index = nlohmann::json::parse(index_file);
   if (fps <= 0.0) fps = index.value("fps", 30.0);
   const std::regex pattern(filter.empty() ? "." : filter, std::regex::ECMAScript);
-  const saagen::render::VideoVdpDisplay display = saagen::render::video_vdp_standard_fhd();
+  const saagen::measure::VideoVdpDisplay display = saagen::measure::video_vdp_standard_fhd();
 
   nlohmann::json rows = nlohmann::json::array();
   double compare_seconds = 0.0, reference_seconds = 0.0;
@@ -166,10 +166,10 @@ int main(int argc, char** argv) {
                   [&](const Row& r) { return !std::regex_search(fmt::format("{}/a{:g}/{}", scene, alpha, r.configuration), pattern); });
     if (todo.empty()) continue;
     const auto t0 = std::chrono::steady_clock::now();
-    const saagen::render::VideoVdpReference vdp(load_clip(fs::path(frames_dir) / reference, frames), display, fps);
+    const saagen::measure::VideoVdpReference vdp(load_clip(fs::path(frames_dir) / reference, frames), display, fps);
     reference_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++references;
-    saagen::render::parallel_rows(static_cast<int>(todo.size()), threads, [&](int i) {
+    saagen::measure::parallel_rows(static_cast<int>(todo.size()), threads, [&](int i) {
       const GreyClip test = load_clip(fs::path(frames_dir) / todo[i].file, frames);
       const auto start = std::chrono::steady_clock::now();
       todo[i].jod = vdp.compare(test).jod;

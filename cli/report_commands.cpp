@@ -4,8 +4,8 @@
 
 #include "saagen/error.hpp"
 #include "saagen/io/output.hpp"
-#include "saagen/reference/render/assets.hpp"
-#include "saagen/reference/render/gltf.hpp"
+#include "saagen/measure/assets.hpp"
+#include "saagen/measure/gltf.hpp"
 #include "saagen/report/findings.hpp"
 #include "saagen/report/frames.hpp"
 #include "saagen/report/report.hpp"
@@ -56,10 +56,10 @@ void check_cache_writable(const std::string& cache_dir) {
   ::unlink(probe.c_str());
 }
 
-// A preset asset's scenes by the scene's name (render/assets.hpp); empty for another name.
-std::vector<render::SceneId> preset_asset_scenes(const std::string& name) {
+// A preset asset's scenes by the scene's name (measure/assets.hpp); empty for another name.
+std::vector<measure::SceneId> preset_asset_scenes(const std::string& name) {
   try {
-    return render::register_preset_asset(name);
+    return measure::register_preset_asset(name);
   } catch (const std::exception& error) {  // AssetMissing, GltfError, AssetError
     throw Error(fmt::format("--scene {}: {}", name, error.what()));
   }
@@ -69,41 +69,42 @@ std::vector<render::SceneId> preset_asset_scenes(const std::string& name) {
 // 2CylinderEngine, pmndrs-0014, ...), or a glTF 2.0 asset (loaded and registered,
 // with its coat lobe's scene NAME-coat after it when it has clearcoat; a bad asset is one line
 // naming the file and what is wrong, before anything renders).
-std::vector<render::SceneId> scene_ids(const std::vector<std::string>& names) {
-  std::vector<render::SceneId> ids;
+std::vector<measure::SceneId> scene_ids(const std::vector<std::string>& names) {
+  std::vector<measure::SceneId> ids;
   for (const std::string& name : names) {
-    std::vector<render::SceneId> found;
-    if (const auto standard = render::scene_from_name(name); standard && !render::registered_scene(*standard)) {
+    std::vector<measure::SceneId> found;
+    if (const auto standard = measure::scene_from_name(name); standard && !measure::registered_scene(*standard)) {
       found.push_back(*standard);
-    } else if (std::vector<render::SceneId> asset = preset_asset_scenes(name); !asset.empty()) {
+    } else if (std::vector<measure::SceneId> asset = preset_asset_scenes(name); !asset.empty()) {
       found = std::move(asset);
     } else {
       const std::string extension = std::filesystem::path(name).extension().string();
       if (extension != ".gltf" && extension != ".glb" && extension != ".GLTF" && extension != ".GLB") {
         std::string known;
-        for (render::SceneId s : render::all_scenes()) known += std::string(known.empty() ? "" : ", ") + std::string(render::scene_name(s));
-        for (render::SceneId s : render::content_scenes()) known += ", " + std::string(render::scene_name(s));
-        for (const render::PresetAsset& asset : render::preset_assets()) known += ", " + asset.scene;
+        for (measure::SceneId s : measure::all_scenes())
+          known += std::string(known.empty() ? "" : ", ") + std::string(measure::scene_name(s));
+        for (measure::SceneId s : measure::content_scenes()) known += ", " + std::string(measure::scene_name(s));
+        for (const measure::PresetAsset& asset : measure::preset_assets()) known += ", " + asset.scene;
         throw Error(fmt::format("--scene {}: neither a scene ({}) nor a glTF 2.0 asset (.gltf or .glb)", name, known));
       }
       try {
-        found = render::register_gltf_scenes(name);
-      } catch (const render::GltfError& error) {
+        found = measure::register_gltf_scenes(name);
+      } catch (const measure::GltfError& error) {
         throw Error(fmt::format("--scene {}", error.what()));
       }
     }
-    for (render::SceneId id : found)
+    for (measure::SceneId id : found)
       if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   }
   return ids;
 }
 
 // What each glTF scene of a run is made of (counts, materials, camera and light), for stdout.
-std::string asset_summaries(const render::TradeConfig& config) {
+std::string asset_summaries(const measure::TradeConfig& config) {
   std::string text;
-  std::vector<const render::GltfAsset*> printed;
-  for (render::SceneId id : config.scenes) {
-    const auto asset = render::gltf_asset_of(id);
+  std::vector<const measure::GltfAsset*> printed;
+  for (measure::SceneId id : config.scenes) {
+    const auto asset = measure::gltf_asset_of(id);
     if (!asset || std::find(printed.begin(), printed.end(), asset.get()) != printed.end()) continue;
     printed.push_back(asset.get());
     text += asset->summary();
@@ -113,7 +114,7 @@ std::string asset_summaries(const render::TradeConfig& config) {
 
 // How the ground truths were had: printed, not written into the table or the report, whose bytes
 // must not change from one run of the same measurement to the next.
-std::string ground_truth_line(const render::TradeTable& table) {
+std::string ground_truth_line(const measure::TradeTable& table) {
   return fmt::format("ground truths: {} rendered in {:.1f} s, {} read from the cache\n", table.cache_misses, table.ground_truth_seconds,
                      table.cache_hits);
 }
@@ -121,11 +122,11 @@ std::string ground_truth_line(const render::TradeTable& table) {
 // Every file a run reads, which no output may be (compared by identity, not even with --force):
 // the cost table, each glTF scene's files (the asset, its buffers and images) and the files in
 // the ground-truth cache.
-std::vector<std::filesystem::path> run_inputs(const ReportCommands::Common& common, const render::TradeConfig& config) {
+std::vector<std::filesystem::path> run_inputs(const ReportCommands::Common& common, const measure::TradeConfig& config) {
   std::vector<std::filesystem::path> inputs;
   if (!common.cost_json.empty()) inputs.emplace_back(common.cost_json);
-  for (render::SceneId id : config.scenes)
-    if (const auto asset = render::gltf_asset_of(id))
+  for (measure::SceneId id : config.scenes)
+    if (const auto asset = measure::gltf_asset_of(id))
       for (const std::string& file : asset->files) inputs.emplace_back(file);
   if (!common.cache_dir.empty()) {
     std::error_code error;
@@ -139,7 +140,7 @@ std::vector<std::filesystem::path> run_inputs(const ReportCommands::Common& comm
 // beside the file, removed by a signal that ends the process (Ctrl-C, a file-size limit) or a
 // failed write; a cache that cannot be written is only slower.
 void write_cache_through_output_layer() {
-  render::set_ground_truth_cache_writer([](const std::filesystem::path& path, const std::string& bytes) {
+  measure::set_ground_truth_cache_writer([](const std::filesystem::path& path, const std::string& bytes) {
     // A FIFO or device planted at the cache's own name goes (the output layer writes over no
     // special file); a link is replaced itself, never followed.
     std::error_code error;
@@ -156,15 +157,15 @@ void write_cache_through_output_layer() {
 
 // The trade table of a run. A degenerate measurement (a black or non-finite ground truth, a
 // metric that is not finite) is an error naming the scene, not a verdict.
-render::TradeTable measure_trade(const render::TradeConfig& config, const render::AnimationFrameFn& on_frame = {}) {
-  const render::TradeTable table = [&] {
+measure::TradeTable measure_trade(const measure::TradeConfig& config, const measure::AnimationFrameFn& on_frame = {}) {
+  const measure::TradeTable table = [&] {
     try {
-      return render::compute_trade_table(config, report::progress_bar(), on_frame);
-    } catch (const render::TradeError& error) {
+      return measure::compute_trade_table(config, report::progress_bar(), on_frame);
+    } catch (const measure::TradeError& error) {
       throw Error(error.what());
     }
   }();
-  for (const render::TradeRow& row : table.rows) {
+  for (const measure::TradeRow& row : table.rows) {
     const std::pair<const char*, double> metrics[] = {{"linear RMSE", row.rmse_linear},
                                                       {"display RMSE", row.rmse_tonemapped},
                                                       {"LDR-FLIP", row.flip_ldr},
@@ -173,7 +174,7 @@ render::TradeTable measure_trade(const render::TradeConfig& config, const render
     for (const auto& [metric, value] : metrics) {
       if (!std::isfinite(value)) {
         throw Error(fmt::format("scene {}: the {} of {} at alpha {} is {}; a measurement that is not finite gives no verdict",
-                                render::scene_name(row.scene), metric, render::configuration_id(row), row.alpha, value));
+                                measure::scene_name(row.scene), metric, measure::configuration_id(row), row.alpha, value));
       }
     }
   }
@@ -193,7 +194,7 @@ void check_isa_families(const std::string& families) {
 }
 
 // The configuration of a run, its options checked before any rendering.
-render::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
+measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
   if (!common.cache_dir.empty()) {
     std::error_code error;
@@ -203,7 +204,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     check_cache_writable(common.cache_dir);
     write_cache_through_output_layer();
   }
-  render::TradeConfig config = report::preset_config(common.preset);
+  measure::TradeConfig config = report::preset_config(common.preset);
   if (!common.scenes.empty()) {
     config.scenes = scene_ids(common.scenes);
     report::size_preset_assets(common.preset, config);
@@ -231,7 +232,7 @@ render::TradeConfig configure(const ReportCommands::Common& common, bool keep_im
     throw Error("--taa-blend, --taa-clip-gamma, --taa-sequence and --taa-unweighted set the TAA resolve: add --taa");
   if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
   if (!common.derivatives.empty()) config.derivative = common.derivatives == "fine" ? ref::Derivative::fine : ref::Derivative::coarse;
-  if (common.exact_lobe) config.lobes.push_back(render::Lobe::exact);
+  if (common.exact_lobe) config.lobes.push_back(measure::Lobe::exact);
   return config;
 }
 
@@ -298,9 +299,9 @@ std::string measure_asset_table(const std::string& asset, const std::string& cac
   common.preset = "medium";
   common.scenes = {asset};
   common.cache_dir = cache_dir;
-  const render::TradeConfig config = configure(common, false);
+  const measure::TradeConfig config = configure(common, false);
   std::cerr << asset_summaries(config);
-  const render::TradeTable table = report::without_taa_rows(measure_trade(config));
+  const measure::TradeTable table = report::without_taa_rows(measure_trade(config));
   nlohmann::json json = report::trade_json(table, report::summarize(table), nullptr);
   json["sanity_checks"] = report::sanity_json(report::check_sanity(table));
   return json.dump();
@@ -439,7 +440,7 @@ int ReportCommands::run_bench() const {
   }
   check_isa_families(bench_common_.isa_families);
   auto costs = load_costs(bench_common_.cost_json);
-  const render::TradeConfig config = configure(bench_common_, !bench_report_.empty());
+  const measure::TradeConfig config = configure(bench_common_, !bench_report_.empty());
   // Every output together (never one file twice), and never over an input.
   std::vector<std::filesystem::path> outputs;
   if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
@@ -458,9 +459,9 @@ int ReportCommands::run_bench() const {
   std::optional<report::ClipWriter> clips;
   if (!bench_frames_.empty()) clips.emplace(frames_directory(bench_frames_, bench_common_.force), frames_filter(bench_frames_filter_));
   std::cout << asset_summaries(config);
-  render::AnimationFrameFn on_frame;
-  if (clips) on_frame = [&](const render::AnimationFrame& frame) { clips->add(frame, config.frames); };
-  const render::TradeTable measured = measure_trade(config, on_frame);
+  measure::AnimationFrameFn on_frame;
+  if (clips) on_frame = [&](const measure::AnimationFrame& frame) { clips->add(frame, config.frames); };
+  const measure::TradeTable measured = measure_trade(config, on_frame);
   std::cout << ground_truth_line(measured);
   // The instrument before anything it ranks: the sanity suite (report/sanity.hpp).
   const std::vector<report::SceneSanity> sanity = report::check_sanity(measured);
@@ -469,10 +470,10 @@ int ReportCommands::run_bench() const {
                  "JOD of the clip; docs/TEMPORAL.md):\n"
               << report::format_sanity(sanity);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
-  const render::TradeTable table = report::without_taa_rows(measured);
+  const measure::TradeTable table = report::without_taa_rows(measured);
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
-  if (bench_every_case_) std::cout << render::format_trade_table(measured) << "\n";
+  if (bench_every_case_) std::cout << measure::format_trade_table(measured) << "\n";
   std::cout << report::format_summary(summary, cost_table);
   std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}-spp ground truth; cost: {})\n",
                            table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
@@ -514,13 +515,13 @@ int ReportCommands::run_report() const {
   check_output_named("--output", report_directory_);
   check_isa_families(report_common_.isa_families);
   auto costs = load_costs(report_common_.cost_json);
-  const render::TradeConfig config = configure(report_common_, true);
+  const measure::TradeConfig config = configure(report_common_, true);
   check_output_paths(report::report_paths(config, report_directory_), report_common_.force, run_inputs(report_common_, config));
   measure_isa(report_common_.isa_families, costs, std::cerr);
   std::cout << asset_summaries(config);
-  const render::TradeTable measured = measure_trade(config);
+  const measure::TradeTable measured = measure_trade(config);
   std::cout << ground_truth_line(measured);
-  const render::TradeTable table = report::without_taa_rows(measured);
+  const measure::TradeTable table = report::without_taa_rows(measured);
   const report::ReportFiles files =
       report::report_files(table, costs ? &*costs : nullptr, report_directory_, config.taa ? &measured : nullptr);
   write_outputs(files.outputs, report_common_.force, run_inputs(report_common_, config));

@@ -35,7 +35,7 @@ class ReportCommands {
     // scale of the prefiltered texture term.
     std::optional<double> sigma2, kappa;
     double prefilter_scale = 1.0;
-    double prefilter_lod_bias = 1.0;  // render::TradeConfig::prefilter_lod_bias
+    double prefilter_lod_bias = 1.0;  // measure::TradeConfig::prefilter_lod_bias
     bool force = false;
     // The +taa rows (TradeConfig::taa) and the resolve's options when not the defaults.
     bool taa = false;

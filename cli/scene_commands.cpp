@@ -8,9 +8,9 @@
 #include "saagen/io/include_expansion.hpp"
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
+#include "saagen/measure/gltf.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/products/spirv_library.hpp"
-#include "saagen/reference/render/gltf.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
 #include "saagen/target/target.hpp"
@@ -241,8 +241,8 @@ std::optional<std::string> toml_string(std::string_view text) {
 
 // Where a manifest material comes from (written as a TOML string); a name that cannot be written is
 // reported against the asset.
-std::string material_source(const render::GltfAsset& asset, std::size_t index) {
-  const render::GltfMaterial& material = asset.materials[index];
+std::string material_source(const measure::GltfAsset& asset, std::size_t index) {
+  const measure::GltfMaterial& material = asset.materials[index];
   if (!toml_string(material.name)) {
     throw Error(fmt::format("--gltf {}: material {}'s name is not valid UTF-8, which a manifest cannot hold; rename the material",
                             asset.path, index));
@@ -257,12 +257,12 @@ std::string material_source(const render::GltfAsset& asset, std::size_t index) {
 // lobe's normal texture exists (the coat's own: a coat without one is shaded with the geometric
 // normal, KHR_materials_clearcoat); anisotropic where KHR_materials_anisotropy has a non-zero
 // strength or a texture (its lobe is the extension's (alpha_t, alpha_b) in the frame turned to its
-// direction, which the matrix form filters: saagen/reference/render/anisotropy.hpp); content =
+// direction, which the matrix form filters: saagen/measure/anisotropy.hpp); content =
 // "clearcoat" on a coat lobe (saagen's advice for clearcoat, saagen/advice.hpp), while the base
 // lobe under it is classified as any material's (normal-mapped with a normal texture, else
 // curved), as the trade's by_content rows classify the scenes NAME-coat and NAME; domain =
 // "perceptual", glTF's roughness (roughnessFactor x G).
-std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view path, const std::vector<std::string>& targets) {
+std::string gltf_manifest_text(const measure::GltfAsset& asset, std::string_view path, const std::vector<std::string>& targets) {
   std::ostringstream s;
   // A path that is not UTF-8 is written with its odd bytes as U+FFFD: the key is a note.
   std::string path_text;
@@ -305,7 +305,7 @@ std::string gltf_manifest_text(const render::GltfAsset& asset, std::string_view 
   };
   for (std::size_t m = 0; m < asset.materials.size(); ++m) {
     if (!used[m]) continue;
-    const render::GltfMaterial& material = asset.materials[m];
+    const measure::GltfMaterial& material = asset.materials[m];
     const std::string name = unique(identifier_from(material.name, true, "material"), m);
     const bool anisotropic = material.anisotropy && (material.anisotropy_strength != 0.0 || material.anisotropy_texture);
     const bool coated = material.clearcoat && material.clearcoat_factor > 0.0;
@@ -329,10 +329,10 @@ std::string SceneCommands::write_gltf_manifest(const Catalogue& catalogue) const
   std::vector<fs::path> inputs = {plan_gltf_};
   if (!plan_trade_table_.empty()) inputs.emplace_back(plan_trade_table_);
   check_output_paths({plan_output_, sidecar_name.path}, plan_force_, inputs);
-  render::GltfAsset asset;
+  measure::GltfAsset asset;
   try {
-    asset = render::load_gltf(plan_gltf_);
-  } catch (const render::GltfError& error) {
+    asset = measure::load_gltf(plan_gltf_);
+  } catch (const measure::GltfError& error) {
     throw Error(fmt::format("--gltf {}", error.what()));
   }
   // Every file the asset was read from (its buffers and images too) is an input.

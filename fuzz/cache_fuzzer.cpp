@@ -17,9 +17,9 @@
 // pixels again. Any exception, crash or sanitizer report is a finding.
 #include "fuzz_support.hpp"
 
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/scene.hpp"
+#include "saagen/measure/trade.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +38,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using namespace saagen::render;
+using namespace saagen::measure;
 constexpr const char* target = "cache_fuzzer";
 
 struct Fixture {

@@ -14,8 +14,8 @@
 // control characters other than line breaks.
 #include "fuzz_support.hpp"
 
-#include "saagen/reference/render/gltf.hpp"
-#include "saagen/reference/render/renderer.hpp"
+#include "saagen/measure/gltf.hpp"
+#include "saagen/measure/renderer.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -94,17 +94,17 @@ void check_text(std::string_view what, std::string_view text) {
   }
 }
 
-bool finite(const saagen::render::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const saagen::measure::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Every pixel of a 4x3 ground truth (one sample per pixel, one thread) of `scene`.
-void render_tiny(const saagen::render::Scene& scene) {
-  saagen::render::GroundTruthSettings settings;
+void render_tiny(const saagen::measure::Scene& scene) {
+  saagen::measure::GroundTruthSettings settings;
   settings.width = 4;
   settings.height = 3;
   settings.strata = 1;
   settings.threads = 1;
-  const saagen::render::Material materials[] = {{0.05, false}, {0.5, true}};
-  const saagen::render::GroundTruth gt = saagen::render::render_ground_truth(scene, settings, materials);
+  const saagen::measure::Material materials[] = {{0.05, false}, {0.5, true}};
+  const saagen::measure::GroundTruth gt = saagen::measure::render_ground_truth(scene, settings, materials);
   if (gt.images.size() != 2 || gt.coverage.size() != 12) saagen::fuzz::finding(target, "ground truth of the wrong shape", scene.name());
 }
 
@@ -115,16 +115,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string path = unpack(std::string_view(reinterpret_cast<const char*>(data), size));
   // Smaller than the defaults, so that one input stays within milliseconds and megabytes; the
   // checks against them are the same code.
-  saagen::render::GltfLimits limits;
+  saagen::measure::GltfLimits limits;
   limits.max_triangles = 20'000;
   limits.max_vertices = 60'000;
   limits.max_texture_size = 256;
   limits.max_texels = 256 * 256 * 4;
   limits.max_file_bytes = 1u << 20;
-  std::shared_ptr<saagen::render::GltfAsset> asset;
+  std::shared_ptr<saagen::measure::GltfAsset> asset;
   try {
-    asset = std::make_shared<saagen::render::GltfAsset>(saagen::render::load_gltf(path, limits));
-  } catch (const saagen::render::GltfError& error) {
+    asset = std::make_shared<saagen::measure::GltfAsset>(saagen::measure::load_gltf(path, limits));
+  } catch (const saagen::measure::GltfError& error) {
     // One line; control characters it quotes from the asset (tinygltf's "last read: '...'") are
     // escaped where the CLI prints it (saagen::Error's one_line).
     saagen::fuzz::check_message(target, error.what(), path + ": ");
@@ -147,7 +147,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   check_text("summary with control characters", asset->summary());
   for (const auto& material : asset->materials) check_text("material description with control characters", material.describe());
-  render_tiny(saagen::render::make_gltf_scene(asset));
-  if (asset->coat_surfaces) render_tiny(saagen::render::make_gltf_coat_scene(asset));
+  render_tiny(saagen::measure::make_gltf_scene(asset));
+  if (asset->coat_surfaces) render_tiny(saagen::measure::make_gltf_coat_scene(asset));
   return 0;
 }

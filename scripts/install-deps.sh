@@ -16,7 +16,7 @@ packages=(
   vulkan-validationlayers
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtomlplusplus-dev
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
-  # glTF 2.0 assets as trade scenes (reference/render/gltf.hpp: `saagen bench --scene ASSET`),
+  # glTF 2.0 assets as trade scenes (measure/gltf.hpp: `saagen bench --scene ASSET`),
   # and content nobody here authored: Khronos's CC-BY 4.0 sample models ClearCoatTest and
   # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/test_gltf_assets.cpp)
   libtinygltf-dev assimp-testmodels
@@ -24,7 +24,7 @@ packages=(
   # models the table-free advice is reported on (scripts/held_out.sh)
   assimp-utils
   # the CC0 tangent-space normal maps of the npm package @pmndrs/assets (package.json) are WebP
-  # images: libwebp decodes them for the presets' pmndrs-NNNN scenes (reference/render/assets.hpp),
+  # images: libwebp decodes them for the presets' pmndrs-NNNN scenes (measure/assets.hpp),
   # webp's dwebp for scripts/normal_map_sphere.py
   libwebp-dev webp
   # the report test opens the generated HTML report in headless Chromium; chromium also ships

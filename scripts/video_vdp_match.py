@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How closely saagen's C++ ColorVideoVDP (reference/include/saagen/reference/render/video_vdp.hpp)
+"""How closely saagen's C++ ColorVideoVDP (measure/include/saagen/measure/video_vdp.hpp)
 matches the reference implementation (pycvvdp) on the same clips: |JOD_cpp - JOD_py| over every
 row (max, median, 95th percentile), the same on the sanity rows (`sanity:*`), and Kendall tau-b
 between the two JODs per scene and alpha (docs/COLORVIDEOVDP.md).

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes reference/src/render/video_vdp_tables.cpp: the published data of ColorVideoVDP (Mantiuk,
+"""Writes measure/src/video_vdp_tables.cpp: the published data of ColorVideoVDP (Mantiuk,
 Hanji, Ashraf, Asano, Chapiro, ACM TOG 43(4), 2024) that saagen's C++ model
-(reference/include/saagen/reference/render/video_vdp.hpp) reads, taken from a checkout of
+(measure/include/saagen/measure/video_vdp.hpp) reads, taken from a checkout of
 https://github.com/gfxdisp/ColorVideoVDP (MIT): the calibrated parameters
 (pycvvdp/vvdp_data/cvvdp_parameters.json), the castleCSF lookup table of the parameter file's
 `csf` variant (csf_lut_<csf>.json), the display model `standard_fhd` (display_models.json) and
@@ -23,7 +23,7 @@ import shutil
 import subprocess
 import sys
 
-OUTPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", "src", "render",
+OUTPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "measure", "src",
                       "video_vdp_tables.cpp")
 
 # The parameter file's keys the model reads, in the order of VideoVdpParameters (video_vdp_tables.hpp).
@@ -88,7 +88,7 @@ def generate(path):
       display.get("colorspace", "sRGB") + ").")
     w('#include "video_vdp_tables.hpp"')
     w("")
-    w("namespace saagen::render::video_vdp_data {")
+    w("namespace saagen::measure::video_vdp_data {")
     w("")
     w("// cvvdp_parameters.json, by key.")
     w("const VideoVdpParameters kParameters = {")
@@ -130,7 +130,7 @@ def generate(path):
         w("    {" + ", ".join(array(row) for row in table) + "},")
     w("};")
     w("")
-    w("}  // namespace saagen::render::video_vdp_data")
+    w("}  // namespace saagen::measure::video_vdp_data")
     text = "\n".join(out) + "\n"
     clang_format = shutil.which("clang-format")
     if clang_format:

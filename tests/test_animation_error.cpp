@@ -1,8 +1,8 @@
 // The verdict metrics' parts (animation_error.hpp) on hand-made frames whose values are worked
 // out in the comments: the pooling, the flicker error's treatment of a displaced, a frozen and a
 // missing highlight (the cases the temporal difference error got wrong), and the intervals.
-#include "saagen/reference/render/animation_error.hpp"
-#include "saagen/reference/render/image.hpp"
+#include "saagen/measure/animation_error.hpp"
+#include "saagen/measure/image.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <numeric>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 
 namespace {
 

@@ -1,6 +1,6 @@
 // The deferred roughness-limiter compute pass (saagen/products/deferred_pass.hpp), emitted as
 // GLSL, HLSL, SPIR-V and a C/C++ header, run on the Vulkan device (lavapipe) over G-buffers
-// rendered by the issue-4 renderer (saagen::render: sphere, torus, tubes, bump_plane; 96 x 96,
+// rendered by the issue-4 renderer (saagen::measure: sphere, torus, tubes, bump_plane; 96 x 96,
 // and the sphere at an odd 75 x 61 for the borders) and compared pixel by pixel with the
 // double-precision reference: ref::deferred_*_fragment_quad on the quad (x & ~1, y & ~1) of the
 // same fp32 G-buffer texels, partners past the right/bottom edge clamped to the edge texel (the
@@ -20,11 +20,11 @@
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/scene.hpp"
 #include "saagen/products/output_validation.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/reference/reference.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -73,10 +73,10 @@ struct Encoding {
   }
 };
 
-TestGBuffer render(saagen::render::SceneId id, int width, int height, const Encoding& encoding) {
-  const auto scene = saagen::render::make_scene(id);
-  const auto gbuffer = saagen::render::render_gbuffer(scene, width, height);
-  TestGBuffer out{fmt::format("{} {}x{}", saagen::render::scene_name(id), width, height), {}};
+TestGBuffer render(saagen::measure::SceneId id, int width, int height, const Encoding& encoding) {
+  const auto scene = saagen::measure::make_scene(id);
+  const auto gbuffer = saagen::measure::render_gbuffer(scene, width, height);
+  TestGBuffer out{fmt::format("{} {}x{}", saagen::measure::scene_name(id), width, height), {}};
   auto& images = out.images;
   images.width = static_cast<std::uint32_t>(width);
   images.height = static_cast<std::uint32_t>(height);
@@ -101,8 +101,8 @@ TestGBuffer render(saagen::render::SceneId id, int width, int height, const Enco
 const std::vector<TestGBuffer>& standard_gbuffers() {
   static const std::vector<TestGBuffer> all = [] {
     std::vector<TestGBuffer> list;
-    for (const auto id : saagen::render::all_scenes()) list.push_back(render(id, 96, 96, {}));
-    list.push_back(render(saagen::render::SceneId::sphere, 75, 61, {}));  // odd: partial tiles, clamped partners
+    for (const auto id : saagen::measure::all_scenes()) list.push_back(render(id, 96, 96, {}));
+    list.push_back(render(saagen::measure::SceneId::sphere, 75, 61, {}));  // odd: partial tiles, clamped partners
     return list;
   }();
   return all;
@@ -440,7 +440,7 @@ TEST(DeferredPassOnGpu, RoughnessDomainsChannelsAndUnormEncodings) {
   for (const std::string id : {"deferred-max", "deferred-projected-space"}) {
     const auto pass = emit_pass(id);
     for (const Encoding& encoding : encodings) {
-      const TestGBuffer gbuffer = render(saagen::render::SceneId::torus, 64, 58, encoding);
+      const TestGBuffer gbuffer = render(saagen::measure::SceneId::torus, 64, 58, encoding);
       const auto report = run_and_compare(pass, pass.spirv, gbuffer, encoding, ref::Derivative::fine,
                                           fmt::format("glsl {} on {} (domain {}, channel {}, flags {})", pass.stem, gbuffer.name,
                                                       encoding.domain, encoding.channel, encoding.flags()));

@@ -1,16 +1,16 @@
-// The engines' shipped geometric SAA forms (reference/render/engines.hpp), the trade's baseline
+// The engines' shipped geometric SAA forms (measure/engines.hpp), the trade's baseline
 // rows: hand-computed values, and the exact equivalences shared/REFERENCES.md states (HDRP and
 // Filament are T&K 2019's Eq. 4 with their own sigma^2 and kappa).
-#include "saagen/reference/render/engines.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/sampling.hpp"
+#include "saagen/measure/engines.hpp"
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/sampling.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 using ref::Vec3;
 

@@ -15,8 +15,8 @@
 // Gaussian (Beckmann) lobes, which have no such wings along the unfiltered axis.
 #include "scale_mixture_quadrature.hpp"
 
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/reference.hpp"
-#include "saagen/reference/render/render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +26,7 @@
 #include <functional>
 
 using namespace saagen::ref;
-namespace render = saagen::render;
+namespace measure = saagen::measure;
 
 namespace {
 
@@ -96,18 +96,18 @@ TEST(ExactFilteredGgx, IsTheConvolution) {
 // and 1.6e-5; the ratio must stay below 1/20 for the mechanism below to be the torus's), and its
 // larger one is ~36 alpha^2, so r = tr(K) / (4 alpha^2) ~ 9.
 TEST(ExactFilteredGgx, TorusHighlightKernelIsRankOne) {
-  const render::Scene scene = render::make_scene(render::SceneId::torus, 0.0);
-  const render::GBuffer gbuffer = render::render_gbuffer(scene, 128, 128, 1);
-  render::Material material;
+  const measure::Scene scene = measure::make_scene(measure::SceneId::torus, 0.0);
+  const measure::GBuffer gbuffer = measure::render_gbuffer(scene, 128, 128, 1);
+  measure::Material material;
   material.alpha = 0.0064;
   const double alpha2 = material.alpha * material.alpha;
   double brightest = 0.0;
   Sym2 kernel{};
   for (int y = 0; y < gbuffer.height; ++y)
     for (int x = 0; x < gbuffer.width; ++x) {
-      const render::PixelShade shade =
-          render::shade_pixel(gbuffer, x, y, render::Variant::forward_aniso_projected, material, Params{}, Derivative::coarse,
-                              render::NormalFeed::shading, render::Prefilter::none, 1.0, render::Lobe::exact);
+      const measure::PixelShade shade =
+          measure::shade_pixel(gbuffer, x, y, measure::Variant::forward_aniso_projected, material, Params{}, Derivative::coarse,
+                               measure::NormalFeed::shading, measure::Prefilter::none, 1.0, measure::Lobe::exact);
       if (shade.radiance <= brightest) continue;
       brightest = shade.radiance;
       kernel = {shade.roughness.xx - alpha2, shade.roughness.xy, shade.roughness.yy - alpha2};

@@ -1,4 +1,4 @@
-// Tests of FLIP / HDR-FLIP (reference/src/render/flip.cpp) against the reference
+// Tests of FLIP / HDR-FLIP (measure/src/flip.cpp) against the reference
 // implementation's published outputs, plus properties.
 //
 // Test data (tests/data/flip/, see README there): NVlabs/flip's own pair images/reference.png /
@@ -31,12 +31,12 @@
 #include <vector>
 
 #define STB_IMAGE_IMPLEMENTATION
-#include "saagen/reference/render/flip.hpp"
-#include "saagen/reference/render/image.hpp"
+#include "saagen/measure/flip.hpp"
+#include "saagen/measure/image.hpp"
 
 #include <stb/stb_image.h>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 
 namespace {
 

@@ -6,9 +6,9 @@
 // checks the two properties that hold exactly: the forms agree at the top-left pixel of every
 // quad (both take (n_tr + n_bl) / 2 there), and on a normal field linear in screen position.
 // The figures are printed ([ quad-avg ] lines) and quoted in targets/gles.json's note.
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/scene.hpp"
 #include "saagen/reference/reference.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@
 namespace {
 
 namespace ref = saagen::ref;
-namespace render = saagen::render;
+namespace measure = saagen::measure;
 using ref::Derivative;
 using ref::Quad;
 using ref::Vec2;
@@ -39,7 +39,7 @@ struct Difference {
 
 // alpha'^2 of a wrapper with the quad average taken fine or coarse; the wrapper's own plain
 // derivatives are coarse in both, so only the average differs.
-double filtered(bool previous, const ref::Params& p, double alpha2, const render::QuadFields& q, Derivative average) {
+double filtered(bool previous, const ref::Params& p, double alpha2, const measure::QuadFields& q, Derivative average) {
   if (previous) {
     return ref::deferred_previous_fragment_quad(p, alpha2, q.normal, q.tangent, q.bitangent, q.frag_coord, q.pixel, Derivative::coarse,
                                                 average);
@@ -73,16 +73,16 @@ TEST(GlesQuadAverage, CoarseAndFineAgreeOnLinearFieldsAndAtTopLeftPixels) {
 
 TEST(GlesQuadAverage, CoarseSubstituteErrorOnTheTradeScenes) {
   const ref::Params p;
-  std::vector<render::SceneId> scenes(render::all_scenes().begin(), render::all_scenes().end());
-  scenes.insert(scenes.end(), render::content_scenes().begin(), render::content_scenes().end());
-  for (const render::SceneId id : scenes) {
-    const render::GBuffer gbuffer = render::render_gbuffer(render::make_scene(id), kSize, kSize);
+  std::vector<measure::SceneId> scenes(measure::all_scenes().begin(), measure::all_scenes().end());
+  scenes.insert(scenes.end(), measure::content_scenes().begin(), measure::content_scenes().end());
+  for (const measure::SceneId id : scenes) {
+    const measure::GBuffer gbuffer = measure::render_gbuffer(measure::make_scene(id), kSize, kSize);
     for (const bool previous : {true, false}) {
       Difference d;
       for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize; ++x) {
           if (!gbuffer.at(x, y).hit) continue;
-          const render::QuadFields q = render::gather_quad(gbuffer, x, y);
+          const measure::QuadFields q = measure::gather_quad(gbuffer, x, y);
           for (const double alpha : kAlphas) {
             const double fine = filtered(previous, p, alpha * alpha, q, Derivative::fine);
             const double coarse = filtered(previous, p, alpha * alpha, q, Derivative::coarse);
@@ -100,7 +100,7 @@ TEST(GlesQuadAverage, CoarseSubstituteErrorOnTheTradeScenes) {
       std::cout << fmt::format(
           "[ quad-avg ] {:<17} {:<18} |coarse - fine| in alpha'^2: mean {:.2e} ({:.2f}% of mean alpha'^2), max {:.2e}; "
           "{:.1f}% of pixel-alphas move by > 0.1%\n",
-          render::scene_name(id), previous ? "deferred-previous" : "deferred-max", d.sum / d.count, 100.0 * d.sum / d.sum_fine, d.max,
+          measure::scene_name(id), previous ? "deferred-previous" : "deferred-max", d.sum / d.count, 100.0 * d.sum / d.sum_fine, d.max,
           100.0 * d.changed / d.count);
       // Both forms add a kernel in [0, kappa] to the same alpha^2 (deferred_previous and
       // deferred_max clamp it by kappa before saturating), so they differ by at most kappa.

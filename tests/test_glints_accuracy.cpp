@@ -1,6 +1,6 @@
 // Accuracy: the glinty BRDF at one sample per pixel with and without GGAA, and with LEAN
 // (rho) / LEAN (rho = 0) / no LEAN, against a supersampled ground truth, in the issue-4 renderer's
-// scenes (saagen::render: analytic shapes, cameras, lights, the sigma^2 = 0.25 Gaussian pixel
+// scenes (saagen::measure: analytic shapes, cameras, lights, the sigma^2 = 0.25 Gaussian pixel
 // filter, the image metrics and the flicker metric).
 //
 // Ground truth of a pixel (2021 Eq. 9): the patch P is the pixel's footprint (uv and its screen
@@ -12,13 +12,13 @@
 // with ddx/ddy taken as a GPU does (fine 2x2-quad differences; a partner pixel off the surface or
 // on another tube contributes no difference, as in the renderer).
 //
-// Metrics (saagen::render): RMSE of linear radiance relative to the RMS of the ground truth (in
+// Metrics (saagen::measure): RMSE of linear radiance relative to the RMS of the ground truth (in
 // percent), the RMSE after Reinhard's tonemap, and the temporal flicker of an animation (the
 // shape turns about the vertical axis; mean per-pixel temporal standard deviation of the 1-spp
 // frames minus that of the ground-truth frames).
 #include "glint_support.hpp"
 
-#include "saagen/reference/render/render.hpp"
+#include "saagen/measure/render.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -31,7 +31,7 @@
 namespace {
 
 namespace g = saagen::ref::glints;
-namespace r = saagen::render;
+namespace r = saagen::measure;
 using saagen::ref::Vec2;
 using saagen::ref::Vec3;
 

@@ -1,13 +1,13 @@
-// glTF 2.0 assets as trade scenes (saagen/reference/render/gltf.hpp): the two Khronos sample
+// glTF 2.0 assets as trade scenes (saagen/measure/gltf.hpp): the two Khronos sample
 // models Debian's assimp-testmodels ships (ClearCoatTest.gltf with external PNG/JPEG textures,
 // 2CylinderEngine.glb), tiny assets written here (tangent generation, node transforms, texture
 // decoding, the bad-asset lines), the trade on both samples at a tiny resolution, and
 // `saagen bench --scene` / `saagen report --scene`.
 #include "cli_support.hpp"
 
+#include "saagen/measure/gltf.hpp"
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
-#include "saagen/reference/render/gltf.hpp"
-#include "saagen/reference/render/render.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 namespace fs = std::filesystem;
 

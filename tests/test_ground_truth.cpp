@@ -1,4 +1,4 @@
-// Tests of the ground-truth renderer (reference/src/render): analytic scenes against
+// Tests of the ground-truth renderer (measure/src): analytic scenes against
 // hand-derived hits and normals, the pixel filter's moments, convergence of the ground truth,
 // agreement of the 1-spp image with the ground truth where nothing aliases, the renderer's use
 // of the reference quad functions, the flicker metric, thread-count independence and the cache.
@@ -6,8 +6,8 @@
 // Runtime: the images are small (16 x 16 to 64 x 64) and sample counts are reduced where a
 // test allows (each says why), so the whole binary runs in a few seconds on 2 cores; the
 // renderer's throughput is in bench/bench_reference.cpp.
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
-#include "saagen/reference/render/render.hpp"
 #include "saagen/reference/saa.hpp"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 using ref::Vec2;
 using ref::Vec3;

@@ -163,7 +163,7 @@ TEST(IsaCost, TheTradeJsonCarriesTheIsaCostThePlannerRanksSpeedBy) {
   std::vector<saagen::report::VariantSummary> summary(2);
   summary[0].variant = "deferred-sum";
   summary[1].variant = "deferred-avg";
-  const nlohmann::json json = saagen::report::trade_json(saagen::render::TradeTable{}, summary, &costs);
+  const nlohmann::json json = saagen::report::trade_json(saagen::measure::TradeTable{}, summary, &costs);
   const saagen::MeasuredTradeTable table = saagen::parse_trade_table(json.dump(), "bench.json");
   ASSERT_EQ(table.isa_cost("deferred-sum", "navi21"), 1.0);
   EXPECT_FALSE(table.isa_cost("deferred-sum", "vega10").has_value());

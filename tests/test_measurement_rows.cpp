@@ -8,16 +8,16 @@
 
 #include <string>
 
-namespace render = saagen::render;
+namespace measure = saagen::measure;
 namespace report = saagen::report;
 
 namespace {
 
-render::TradeRow row(render::Variant variant, render::Lobe lobe, double flip, double tde) {
-  render::TradeRow r;
+measure::TradeRow row(measure::Variant variant, measure::Lobe lobe, double flip, double tde) {
+  measure::TradeRow r;
   r.variant = variant;
   r.lobe = lobe;
-  r.scene = render::SceneId::torus;
+  r.scene = measure::SceneId::torus;
   r.alpha = 0.01;
   r.flip_ldr = flip;
   r.tde = tde;
@@ -25,15 +25,15 @@ render::TradeRow row(render::Variant variant, render::Lobe lobe, double flip, do
 }
 
 // A torus table in which the exact lobe is the best configuration by far (as it measures).
-render::TradeTable torus_table() {
-  render::TradeTable table;
-  table.config.scenes = {render::SceneId::torus};
+measure::TradeTable torus_table() {
+  measure::TradeTable table;
+  table.config.scenes = {measure::SceneId::torus};
   table.config.alphas = {0.01};
   table.config.fresnel_modes = {false};
-  table.rows = {row(render::Variant::none, render::Lobe::papers, 0.0101, 0.0045),
-                row(render::Variant::engine_godot, render::Lobe::papers, 0.0166, 0.0051),
-                row(render::Variant::forward_aniso_projected, render::Lobe::tail, 0.0098, 0.0030),
-                row(render::Variant::forward_aniso_projected, render::Lobe::exact, 0.0014, 0.0015)};
+  table.rows = {row(measure::Variant::none, measure::Lobe::papers, 0.0101, 0.0045),
+                row(measure::Variant::engine_godot, measure::Lobe::papers, 0.0166, 0.0051),
+                row(measure::Variant::forward_aniso_projected, measure::Lobe::tail, 0.0098, 0.0030),
+                row(measure::Variant::forward_aniso_projected, measure::Lobe::exact, 0.0014, 0.0015)};
   return table;
 }
 
@@ -45,7 +45,7 @@ TEST(MeasurementRows, AreNeverRecommendedNorGivenToThePlanner) {
   EXPECT_FALSE(report::is_measurement_configuration("forward-aniso-projected/tail"));
   EXPECT_FALSE(report::is_measurement_configuration("none"));
 
-  const render::TradeTable table = torus_table();
+  const measure::TradeTable table = torus_table();
   const std::string verdict = report::format_verdict(table);
   EXPECT_NE(verdict.find("forward-aniso-projected/tail"), std::string::npos) << verdict;
   EXPECT_EQ(verdict.find("/exact"), std::string::npos) << verdict;

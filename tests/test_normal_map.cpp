@@ -1,16 +1,16 @@
-// Normal maps with a MIP chain (reference/render/normal_map.hpp): the box reduction's moments,
+// Normal maps with a MIP chain (measure/normal_map.hpp): the box reduction's moments,
 // Vulkan's bilinear / trilinear filtering and implicit LOD, checked on hand-made maps.
-#include "saagen/reference/render/normal_map.hpp"
-#include "saagen/reference/render/renderer.hpp"
-#include "saagen/reference/render/scene.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/normal_map.hpp"
+#include "saagen/measure/renderer.hpp"
+#include "saagen/measure/scene.hpp"
+#include "saagen/measure/trade.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 
 namespace {

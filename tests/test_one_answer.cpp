@@ -13,16 +13,16 @@
 namespace {
 
 using namespace saagen;
-using render::Lobe;
-using render::NormalFeed;
-using render::Prefilter;
-using render::SceneId;
-using render::Variant;
+using measure::Lobe;
+using measure::NormalFeed;
+using measure::Prefilter;
+using measure::SceneId;
+using measure::Variant;
 
-render::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lobe lobe = Lobe::tail, NormalFeed feed = NormalFeed::shading,
-                     Prefilter prefilter = Prefilter::none) {
-  render::TradeRow r;
-  r.scene = scene, r.variant = variant, r.lobe = variant == Variant::none || render::is_engine(variant) ? Lobe::papers : lobe;
+measure::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lobe lobe = Lobe::tail,
+                      NormalFeed feed = NormalFeed::shading, Prefilter prefilter = Prefilter::none) {
+  measure::TradeRow r;
+  r.scene = scene, r.variant = variant, r.lobe = variant == Variant::none || measure::is_engine(variant) ? Lobe::papers : lobe;
   r.feed = feed, r.prefilter = prefilter, r.alpha = 0.05, r.flip_ldr = flip, r.tde = tde;
   // The verdict's metrics (trade.hpp): the same values on every frame against both seeds, so that
   // every paired difference is exact (a zero-width interval) and the decision turns on the means.
@@ -37,8 +37,8 @@ render::TradeRow row(SceneId scene, Variant variant, double flip, double tde, Lo
 
 // A curved scene where the forward and deferred matrix forms beat no SAA and the cheaper
 // deferred form loses; a normal-mapped scene where everything lowers LDR-FLIP and raises TDE.
-render::TradeTable small_table() {
-  render::TradeTable table;
+measure::TradeTable small_table() {
+  measure::TradeTable table;
   table.config.scenes = {SceneId::sphere, SceneId::nmap_sphere};
   table.config.alphas = {0.05};
   table.rows = {row(SceneId::sphere, Variant::none, 0.030, 0.0140),
@@ -73,7 +73,7 @@ std::string planned_configuration(const MaterialPlan& plan) {
 }
 
 TEST(OneAnswer, ThePlanOfTheExampleSceneIsTheBenchVerdict) {
-  const render::TradeTable trade = small_table();
+  const measure::TradeTable trade = small_table();
   const std::vector<report::Recommendation> recs = report::recommend(trade);
   const MeasuredTradeTable table = parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
   const Catalogue& catalogue = Catalogue::builtin();
@@ -102,7 +102,7 @@ TEST(OneAnswer, ThePlanOfTheExampleSceneIsTheBenchVerdict) {
 }
 
 TEST(OneAnswer, TheJsonCarriesTheDecisionTheVerdictPrints) {
-  const render::TradeTable trade = small_table();
+  const measure::TradeTable trade = small_table();
   const nlohmann::json json = report::trade_json(trade, report::summarize(trade), nullptr);
   const nlohmann::json& decisions = json.at("decisions");
   bool found = false;
@@ -149,7 +149,7 @@ TEST(OneAnswer, SwitchingFromAnEngineIsTheDecisionAgainstIt) {
 // own rows under TAA, saagen's committed TAA figures do (generator/data/advice.json, each
 // configuration against none+taa), as the plan without a table.
 TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
-  const render::TradeTable trade = small_table();
+  const measure::TradeTable trade = small_table();
   const MeasuredTradeTable table = parse_trade_table(report::trade_json(trade, report::summarize(trade), nullptr).dump(), "small.json");
   Manifest manifest = parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n", "s.toml",
                                      Catalogue::builtin());
@@ -241,7 +241,7 @@ TEST(OneAnswer, IntervalsInTheTableDecide) {
 // The frontier the bench prints is the decision's candidates read by cost: cheapest first, each
 // lower in image error than every cheaper one; the budget line is the decision within each budget.
 TEST(OneAnswer, TheFrontierIsTheDecisionsCandidatesByCost) {
-  const render::TradeTable trade = small_table();
+  const measure::TradeTable trade = small_table();
   const std::string text = report::format_frontier(trade);
   const auto block = text.find("  deferred, curved:\n");
   ASSERT_NE(block, std::string::npos) << text;

@@ -2,7 +2,7 @@
 // analytic Toksvig and LEAN values, the combination with the screen-space kernel (kappa clamps
 // the kernel only), the roughness domains, and `saagen texture prefilter` as a whole process.
 //
-// Rounding bound of the stored levels: the tool and render::NormalMap compute the same double
+// Rounding bound of the stored levels: the tool and measure::NormalMap compute the same double
 // sums in the same order, so a stored value is round(x) with x within ~1e-15 of the reference
 // value r; round-to-nearest puts it within half an ulp: |stored - r| <= 2^-11 |r| (half; 2^-24 for
 // float32) + 1e-12 for the double-level difference and values in the subnormal range.
@@ -11,10 +11,10 @@
 #include "saagen/advice.hpp"
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/measure/normal_map.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/products/prefilter.hpp"
 #include "saagen/reference/reference.hpp"
-#include "saagen/reference/render/normal_map.hpp"
-#include "saagen/reference/render/trade.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -45,7 +45,7 @@ pf::NormalImage image_of(int width, int height, const std::vector<Vec3>& normals
 
 // A bumpy, anisotropic height field: sums of sines (periodic on the unit square).
 std::vector<Vec3> bumpy_normals(int size) {
-  return saagen::render::normals_from_gradient(size, [](Vec2 uv) {
+  return saagen::measure::normals_from_gradient(size, [](Vec2 uv) {
     const double tau = 6.283185307179586;
     return Vec2{0.8 * std::cos(tau * 3 * uv.x) + 0.3 * std::cos(tau * (5 * uv.x + 2 * uv.y)),
                 0.2 * std::cos(tau * uv.y) + 0.3 * std::cos(tau * (5 * uv.x + 2 * uv.y))};
@@ -75,7 +75,7 @@ TEST(PrefilterLevels, ToksvigMatchesTheReferenceNormalMapWithinHalfRounding) {
   const int width = 16, height = 8;  // non-square: the longer side keeps halving alone
   auto normals = bumpy_normals(16);
   normals.resize(static_cast<std::size_t>(width) * height);
-  const saagen::render::NormalMap map(width, height, normals);
+  const saagen::measure::NormalMap map(width, height, normals);
   const auto levels = pf::build_levels(image_of(width, height, normals));
   ASSERT_EQ(static_cast<int>(levels.size()), map.levels());
   for (const bool float32 : {false, true}) {
@@ -104,7 +104,7 @@ TEST(PrefilterLevels, ToksvigMatchesTheReferenceNormalMapWithinHalfRounding) {
 TEST(PrefilterLevels, LeanMomentsMatchTheReferenceNormalMapWithinFloatRounding) {
   const int size = 16;
   const auto normals = bumpy_normals(size);
-  const saagen::render::NormalMap map(size, size, normals);
+  const saagen::measure::NormalMap map(size, size, normals);
   const auto image = round_trip(pf::build_levels(image_of(size, size, normals)), pf::Options{pf::Method::lean});
   ASSERT_EQ(image.vk_format, 109u);
   ASSERT_EQ(image.layers, 2u);
@@ -494,7 +494,7 @@ TEST_F(TexturePrefilterCli, Ktx2InputToLeanMoments) {
   const auto image = saagen::read_ktx2(bytes_of(out_path));
   EXPECT_EQ(image.vk_format, 109u);
   EXPECT_EQ(image.levels.size(), 3u);
-  const Vec2 s = saagen::render::normal_slope(normals[0]);
+  const Vec2 s = saagen::measure::normal_slope(normals[0]);
   EXPECT_NEAR(value_at(image, 0, 0), s.x, 1e-6 * (1.0 + std::fabs(s.x)));  // float32 input rounding
   EXPECT_NEAR(value_at(image, 0, 2), s.x * s.x, 1e-6 * (1.0 + s.x * s.x));
 }
@@ -523,5 +523,5 @@ TEST_F(TexturePrefilterCli, BadInputsFailWithOneLineAndNoOutput) {
 
 // The advice's LOD bias is the one the trade's prefiltered rows are measured with.
 TEST(Advice, TheTradeMeasuresTheAdvisedLodBias) {
-  EXPECT_EQ(saagen::render::TradeConfig{}.prefilter_lod_bias, static_cast<double>(saagen::advice::kPrefilterLodBias));
+  EXPECT_EQ(saagen::measure::TradeConfig{}.prefilter_lod_bias, static_cast<double>(saagen::advice::kPrefilterLodBias));
 }

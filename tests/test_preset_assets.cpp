@@ -1,10 +1,10 @@
-// Content nobody here authored in the medium and full presets (saagen/reference/render/assets.hpp,
+// Content nobody here authored in the medium and full presets (saagen/measure/assets.hpp,
 // report::add_preset_assets): the scenes the presets list and their sizes, an @pmndrs/assets
 // normal map decoded as Debian's dwebp decodes it, and the one line a missing package gives.
 #include "cli_support.hpp"
 
-#include "saagen/reference/render/assets.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/assets.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/report.hpp"
 
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 namespace fs = std::filesystem;
 

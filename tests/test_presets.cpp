@@ -9,9 +9,9 @@
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/measure/engines.hpp"
 #include "saagen/products/output_validation.hpp"
 #include "saagen/products/spirv_library.hpp"
-#include "saagen/reference/render/engines.hpp"
 #include "saagen/reference/saa.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
@@ -112,7 +112,7 @@ TEST(Presets, MatchTheEnginesFormulasInTheirDomain) {
   }
 }
 
-// The trade report's engine rows (reference/render/engines.cpp) and the presets carry the same
+// The trade report's engine rows (measure/engines.cpp) and the presets carry the same
 // constants: the rows equal the presets' filters in alpha^2 (same operations, a few ulps).
 TEST(Presets, AgreeWithTheTradeReportsEngineRows) {
   const std::vector<Input> all = inputs(100000);
@@ -120,9 +120,9 @@ TEST(Presets, AgreeWithTheTradeReportsEngineRows) {
   const saagen::Preset& filament_preset = saagen::find_preset("filament");
   for (const Input& input : all) {
     const double alpha = input.value;
-    ASSERT_NEAR(saagen::render::hdrp_alpha2(alpha, input.du, input.dv),
+    ASSERT_NEAR(saagen::measure::hdrp_alpha2(alpha, input.du, input.dv),
                 ref::deferred_sum({hdrp_preset.sigma2, hdrp_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
-    ASSERT_NEAR(saagen::render::filament_alpha2(alpha, input.du, input.dv),
+    ASSERT_NEAR(saagen::measure::filament_alpha2(alpha, input.du, input.dv),
                 ref::deferred_sum({filament_preset.sigma2, filament_preset.kappa}, alpha * alpha, input.du, input.dv), 4e-16);
   }
 }

@@ -11,12 +11,12 @@
 #include <algorithm>
 
 using namespace saagen;
-using render::SceneId;
+using measure::SceneId;
 
 namespace {
 
-render::TradeConfig sanity_config() {
-  render::TradeConfig config;
+measure::TradeConfig sanity_config() {
+  measure::TradeConfig config;
   config.width = config.height = 32;
   config.strata = 4;
   config.flicker_width = config.flicker_height = 32;
@@ -26,16 +26,16 @@ render::TradeConfig sanity_config() {
   config.scenes = {SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane, SceneId::nmap_sphere};
   config.alphas = {0.01, 0.03, 0.1};
   config.fresnel_modes = {false};
-  config.variants = {render::Variant::none, render::Variant::forward_aniso_projected, render::Variant::deferred_aniso};
-  config.feeds = {render::NormalFeed::shading};
+  config.variants = {measure::Variant::none, measure::Variant::forward_aniso_projected, measure::Variant::deferred_aniso};
+  config.feeds = {measure::NormalFeed::shading};
   config.prefilters = {};
-  config.lobes = {render::Lobe::tail};
+  config.lobes = {measure::Lobe::tail};
   config.flip = true;
   return config;
 }
 
-const render::TradeTable& table() {
-  static const render::TradeTable measured = render::compute_trade_table(sanity_config());
+const measure::TradeTable& table() {
+  static const measure::TradeTable measured = measure::compute_trade_table(sanity_config());
   return measured;
 }
 
@@ -43,7 +43,7 @@ TEST(SanitySuite, EveryRuleHoldsOnEveryBuiltInScene) {
   const std::vector<report::SceneSanity> scenes = report::check_sanity(table());
   ASSERT_EQ(scenes.size(), sanity_config().scenes.size());
   for (const report::SceneSanity& scene : scenes) {
-    EXPECT_TRUE(scene.moves) << render::scene_name(scene.scene);
+    EXPECT_TRUE(scene.moves) << measure::scene_name(scene.scene);
     EXPECT_TRUE(scene.failures.empty()) << report::format_sanity({scene});
   }
 }
@@ -59,15 +59,15 @@ TEST(SanitySuite, AnotherSeedHasTheLowestErrorsAndFrozenMissesAllTheMotion) {
     const report::SanityEntry other = entry("other-seed");
     for (const report::SanityEntry& e : scene.entries) {
       if (e.result == "other-seed") continue;
-      EXPECT_LT(other.image_error, e.image_error) << render::scene_name(scene.scene) << " " << e.result;
-      EXPECT_LT(other.flicker_error, e.flicker_error) << render::scene_name(scene.scene) << " " << e.result;
+      EXPECT_LT(other.image_error, e.image_error) << measure::scene_name(scene.scene) << " " << e.result;
+      EXPECT_LT(other.flicker_error, e.flicker_error) << measure::scene_name(scene.scene) << " " << e.result;
     }
   }
-  for (const render::SanityRow& frozen : table().sanity) {
-    if (frozen.result != render::SanityResult::frozen) continue;
-    for (const render::SanityRow& dark : table().sanity) {
-      if (dark.result != render::SanityResult::no_highlight || dark.scene != frozen.scene || dark.alpha != frozen.alpha) continue;
-      EXPECT_NEAR(frozen.flicker_error, dark.flicker_error, 1e-12) << render::scene_name(frozen.scene);
+  for (const measure::SanityRow& frozen : table().sanity) {
+    if (frozen.result != measure::SanityResult::frozen) continue;
+    for (const measure::SanityRow& dark : table().sanity) {
+      if (dark.result != measure::SanityResult::no_highlight || dark.scene != frozen.scene || dark.alpha != frozen.alpha) continue;
+      EXPECT_NEAR(frozen.flicker_error, dark.flicker_error, 1e-12) << measure::scene_name(frozen.scene);
     }
   }
 }
@@ -81,10 +81,10 @@ TEST(SanitySuite, TheDelayedResultLagsAndTheResultsOnTimeDoNot) {
     const auto lag = [&](std::string_view name) {
       return std::find_if(scene.entries.begin(), scene.entries.end(), [&](const report::SanityEntry& e) { return e.result == name; })->lag;
     };
-    EXPECT_GT(lag("delayed"), 0.0) << render::scene_name(scene.scene);
+    EXPECT_GT(lag("delayed"), 0.0) << measure::scene_name(scene.scene);
     for (const char* on_time : {"other-seed", "quarter-samples", "none"})
-      EXPECT_LT(lag(on_time), 0.0) << render::scene_name(scene.scene) << " " << on_time;
-    EXPECT_NE(scene.verdict_choice, "delayed") << render::scene_name(scene.scene);
+      EXPECT_LT(lag(on_time), 0.0) << measure::scene_name(scene.scene) << " " << on_time;
+    EXPECT_NE(scene.verdict_choice, "delayed") << measure::scene_name(scene.scene);
   }
 }
 

@@ -1,4 +1,4 @@
-// Tests of the "real content" scenes (reference/src/render): the triangle mesh and its BVH, the
+// Tests of the "real content" scenes (measure/src): the triangle mesh and its BVH, the
 // torus-knot tube's interpolated normals against the analytic tube, the geometric and shading
 // frames of every hit, the normal-mapped sphere's ground-truth normals (level-0 bilinear through
 // the TBN) and its 1-spp texture sampling (coarse quad uv derivatives, implicit LOD, helper
@@ -7,9 +7,9 @@
 //
 // Runtime: G-buffers at the base 256 x 256 view of the unit sphere cost ~4 ray casts per pixel,
 // the ground-truth smoke renders are 16 x 16 x 16 spp; the binary runs in a few seconds.
+#include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
 #include "saagen/reference/prefilter.hpp"
-#include "saagen/reference/render/render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 using ref::Vec2;
 using ref::Vec3;

@@ -4,8 +4,8 @@
 // the history of a disoccluded highlight.
 #include "cli_support.hpp"
 
-#include "saagen/reference/render/render.hpp"
-#include "saagen/reference/render/taa.hpp"
+#include "saagen/measure/render.hpp"
+#include "saagen/measure/taa.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include <optional>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 using namespace saagen;
-using render::SceneId;
+using measure::SceneId;
 
 namespace {
 
@@ -18,8 +18,8 @@ constexpr int kFrames = 16;
 
 // A series of kFrames (or kFrames - 1) values `level` against both seeds, with a small
 // deterministic noise of its own per seed.
-render::SeedSeries series(double level, int frames = kFrames) {
-  render::SeedSeries s;
+measure::SeedSeries series(double level, int frames = kFrames) {
+  measure::SeedSeries s;
   for (int t = 0; t < frames; ++t) {
     s[0].push_back(level + 1e-4 * std::sin(1.7 * t));
     s[1].push_back(level + 1e-4 * std::sin(2.3 * t + 0.5));
@@ -29,8 +29,8 @@ render::SeedSeries series(double level, int frames = kFrames) {
 
 // A row of `variant` on the sphere at `alpha` with its verdict series: image error `image`,
 // video error `video`, lag `lag` per frame.
-render::TradeRow row(render::Variant variant, bool taa, double alpha, double image, double video, double lag = -1e-4) {
-  render::TradeRow r;
+measure::TradeRow row(measure::Variant variant, bool taa, double alpha, double image, double video, double lag = -1e-4) {
+  measure::TradeRow r;
   r.variant = variant;
   r.taa = taa;
   r.scene = SceneId::sphere;
@@ -45,14 +45,14 @@ render::TradeRow row(render::Variant variant, bool taa, double alpha, double ima
 
 // no SAA, TAA alone, two saagen configurations under TAA (one better than none+taa, one worse)
 // and an engine form under TAA, at two alphas.
-render::TradeTable table_with(double better_lag) {
-  render::TradeTable table;
+measure::TradeTable table_with(double better_lag) {
+  measure::TradeTable table;
   for (const double alpha : {0.01, 0.1}) {
-    table.rows.push_back(row(render::Variant::none, false, alpha, 0.20, 6.0));
-    table.rows.push_back(row(render::Variant::none, true, alpha, 0.10, 3.0));
-    table.rows.push_back(row(render::Variant::deferred_avg, true, alpha, 0.08, 2.0, better_lag));
-    table.rows.push_back(row(render::Variant::deferred_max, true, alpha, 0.12, 4.0));
-    table.rows.push_back(row(render::Variant::engine_filament, true, alpha, 0.09, 2.5));
+    table.rows.push_back(row(measure::Variant::none, false, alpha, 0.20, 6.0));
+    table.rows.push_back(row(measure::Variant::none, true, alpha, 0.10, 3.0));
+    table.rows.push_back(row(measure::Variant::deferred_avg, true, alpha, 0.08, 2.0, better_lag));
+    table.rows.push_back(row(measure::Variant::deferred_max, true, alpha, 0.12, 4.0));
+    table.rows.push_back(row(measure::Variant::engine_filament, true, alpha, 0.09, 2.5));
   }
   return table;
 }
@@ -64,8 +64,8 @@ const report::TaaComparisonRow* find_row(const report::TaaComparison& c, const s
 }
 
 TEST(TaaComparisons, TheDecisionTakesWhatBeatsTaaAloneWithItsIntervals) {
-  const render::TradeTable table = table_with(-1e-4);
-  const std::string better = render::configuration_id(table.rows[2]), worse = render::configuration_id(table.rows[3]);
+  const measure::TradeTable table = table_with(-1e-4);
+  const std::string better = measure::configuration_id(table.rows[2]), worse = measure::configuration_id(table.rows[3]);
   const std::vector<report::TaaComparison> comparisons = report::taa_comparisons(table);
   ASSERT_EQ(comparisons.size(), 1u);
   const report::TaaComparison& c = comparisons.front();
@@ -116,7 +116,7 @@ TEST(TaaComparisons, ALateConfigurationIsNotTakenUnderTaa) {
 // Per content type under TAA (what `saagen plan` decides on with taa = true): the +taa rows named
 // as a material uses them, each against none+taa, and the decision over them.
 TEST(TaaComparisons, PerContentTheRowsAreAgainstTaaAloneAndNamedWithoutTaa) {
-  const render::TradeTable table = table_with(-1e-4);
+  const measure::TradeTable table = table_with(-1e-4);
   const std::vector<ContentRow> rows = report::measured_taa_rows(table, report::Content::curved);
   ASSERT_EQ(rows.size(), 4u);  // none+taa, deferred-avg, deferred-max, engine-filament: no row without TAA
   EXPECT_EQ(rows[0].configuration, "none");

@@ -2,7 +2,7 @@
 // values are worked out in the comments, the display values it is measured in, and the trade's
 // animation (trade.hpp): the camera pan moves content by exactly the pixels asked for, and the
 // ground-truth cache key sees the pan.
-#include "saagen/reference/render/render.hpp"
+#include "saagen/measure/render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 using saagen::ref::Vec3;
 
 namespace {

@@ -1,5 +1,5 @@
 // The quality orderings that Tokuyoshi & Kaplanyan 2019 (T&K19) report, checked on saagen's
-// analytic scenes with the ground-truth renderer (reference/src/render). Every
+// analytic scenes with the ground-truth renderer (measure/src). Every
 // assertion prints the figures it compares.
 //
 // Configuration: 128 x 128 pixels, ground truth with 32 x 32 = 1024 stratified samples per
@@ -30,7 +30,7 @@
 //     error of evaluating the filtered BRDF with an inordinately elongated kernel (fp32 on the
 //     GPU); this reference evaluates in double, so what remains here is the "rim" of spurious
 //     highlights of Fig. 1a, not an overflow.
-#include "saagen/reference/render/render.hpp"
+#include "saagen/measure/render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,7 @@
 #include <string>
 #include <vector>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace ref = saagen::ref;
 using ref::Vec3;
 

@@ -8,7 +8,7 @@
 // The orderings asserted were checked at this size and in `saagen bench --preset medium`; margins
 // are stated per test. The ground truth's own error at 256 spp is below 3 % of its RMS at alpha >= 0.05
 // (test_ground_truth's convergence figures), far below the gaps asserted.
-#include "saagen/reference/render/render.hpp"
+#include "saagen/measure/render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@
 #include <string>
 #include <tuple>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 
 namespace {
 

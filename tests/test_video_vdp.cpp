@@ -1,4 +1,4 @@
-// Tests of ColorVideoVDP (reference/src/render/video_vdp.cpp) against the reference
+// Tests of ColorVideoVDP (measure/src/video_vdp.cpp) against the reference
 // implementation's JODs, plus properties. Neither the reference implementation nor torch is
 // needed here: its JODs were computed once and are the numbers below.
 //
@@ -32,11 +32,11 @@
 #include "cli_support.hpp"
 #include "video_vdp_clips.hpp"
 
-#include "saagen/reference/render/video_vdp.hpp"
+#include "saagen/measure/video_vdp.hpp"
 
 #include <stb/stb_image.h>
 
-using namespace saagen::render;
+using namespace saagen::measure;
 namespace test = saagen::test;
 
 namespace {
@@ -218,7 +218,7 @@ TEST(VideoVdp, RefusesMalformedInput) {
 
 // saagen bench: every case and sanity row of the --json table carries the JOD of exactly the clip
 // --frames writes, against the ground truth's clip (the verdict's video metric, against the first
-// ground-truth seed; render/trade.hpp, TradeConfig::video_metric).
+// ground-truth seed; measure/trade.hpp, TradeConfig::video_metric).
 class VideoVdpCli : public saagen::test::CliTest {};
 
 TEST_F(VideoVdpCli, BenchJodMeasuresTheClipsFramesWrites) {

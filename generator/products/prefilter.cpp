@@ -155,7 +155,7 @@ void add_texel(const double* n, Level& level) {
 }
 
 // Mean of the sx x sy children of one coarse texel, for one field with `count` values per texel
-// (the order of the sums is render::NormalMap's: rows, then columns, then one multiplication).
+// (the order of the sums is measure::NormalMap's: rows, then columns, then one multiplication).
 void reduce_field(const std::vector<double>& fine, int fine_width, int x, int y, int sx, int sy, int count, std::vector<double>& out) {
   const double weight = 1.0 / (sx * sy);
   for (int c = 0; c < count; ++c) {

@@ -54,30 +54,30 @@ decision::Comparison to_decision(const PairedComparison& c) {
   return {decision_difference(c.image), decision_difference(temporal_metric(c)), decision_difference(c.lag)};
 }
 
-MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b) {
+MetricDifference compare_series(std::span<const measure::SeedSeries> a, std::span<const measure::SeedSeries> b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");
-  std::vector<render::SeedSeries> differences;
+  std::vector<measure::SeedSeries> differences;
   differences.reserve(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) differences.push_back(render::paired_difference(a[i], b[i]));
+  for (std::size_t i = 0; i < a.size(); ++i) differences.push_back(measure::paired_difference(a[i], b[i]));
   MetricDifference d;
-  d.difference = render::series_interval(differences);
-  d.ground_truth_sd = render::series_ground_truth_sd(differences);
+  d.difference = measure::series_interval(differences);
+  d.ground_truth_sd = measure::series_ground_truth_sd(differences);
   d.ground_truth_limited = d.ground_truth_sd > 0.25 * std::fabs(d.difference.mean);
   return d;
 }
 
-MetricDifference lag_of(std::span<const render::SeedSeries> cells) {
+MetricDifference lag_of(std::span<const measure::SeedSeries> cells) {
   const bool measured =
-      !cells.empty() && std::all_of(cells.begin(), cells.end(), [](const render::SeedSeries& s) { return !s[0].empty(); });
+      !cells.empty() && std::all_of(cells.begin(), cells.end(), [](const measure::SeedSeries& s) { return !s[0].empty(); });
   if (!measured) return {};
   MetricDifference d;
-  d.difference = render::series_interval(cells);
-  d.ground_truth_sd = render::series_ground_truth_sd(cells);
+  d.difference = measure::series_interval(cells);
+  d.ground_truth_sd = measure::series_ground_truth_sd(cells);
   return d;
 }
 
 PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells) {
-  std::vector<render::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
+  std::vector<measure::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
   for (const CellPair& cell : cells) {
     image_a.push_back(cell.configuration->image);
     image_b.push_back(cell.baseline->image);
@@ -91,22 +91,22 @@ PairedComparison compare_cells(const std::string& configuration, const std::stri
   if (c.cells == 0) return c;
   c.image = compare_series(image_a, image_b);
   c.flicker = compare_series(flicker_a, flicker_b);
-  const auto measured = [](const render::SeedSeries& series) { return !series[0].empty(); };
+  const auto measured = [](const measure::SeedSeries& series) { return !series[0].empty(); };
   if (std::all_of(video_a.begin(), video_a.end(), measured) && std::all_of(video_b.begin(), video_b.end(), measured))
     c.video = compare_series(video_a, video_b);
   c.lag = lag_of(lag_a);
   return c;
 }
 
-PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
+PairedComparison compare_configurations(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep) {
-  using Cell = std::tuple<render::SceneId, double>;
-  std::map<Cell, const render::TradeRow*> baseline_rows;
-  for (const render::TradeRow& row : table.rows)
-    if (!row.fresnel && render::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+  using Cell = std::tuple<measure::SceneId, double>;
+  std::map<Cell, const measure::TradeRow*> baseline_rows;
+  for (const measure::TradeRow& row : table.rows)
+    if (!row.fresnel && measure::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
   std::vector<CellPair> cells;
-  for (const render::TradeRow& row : table.rows) {
-    if (row.fresnel || !keep(row) || render::configuration_id(row) != configuration) continue;
+  for (const measure::TradeRow& row : table.rows) {
+    if (row.fresnel || !keep(row) || measure::configuration_id(row) != configuration) continue;
     const auto base = baseline_rows.find({row.scene, row.alpha});
     if (base != baseline_rows.end()) cells.push_back({&row.series, &base->second->series});
   }

@@ -83,7 +83,7 @@ TextTable switch_table(const std::vector<EngineSwitch>& switches) {
 TextTable verdict_table(const std::vector<SceneVerdict>& verdicts) {
   TextTable t{{"scene", "path", "recommended", "LDR-FLIP", "TDE", "RMSE tonemapped", "beats none and every engine"}, {}};
   for (const SceneVerdict& v : verdicts) {
-    t.rows.push_back({std::string(render::scene_name(v.scene)), std::string(path_name(v.path)), v.configuration,
+    t.rows.push_back({std::string(measure::scene_name(v.scene)), std::string(path_name(v.path)), v.configuration,
                       fmt::format("{:.4f}", v.recommended.flip_ldr), fmt::format("{:.5f}", v.recommended.tde),
                       fmt::format("{:.4g}", v.recommended.rmse_tonemapped),
                       v.losses.empty() ? "yes"
@@ -109,12 +109,12 @@ TextTable summary_table(const std::vector<VariantSummary>& summary, const CostTa
   return t;
 }
 
-TextTable content_table(const render::TradeTable& table, Content content, const CostTable* costs) {
+TextTable content_table(const measure::TradeTable& table, Content content, const CostTable* costs) {
   TextTable t;
   t.headers = {"configuration"};
   t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
   t.headers.insert(t.headers.end(), {"ISA inv.thr", "time ratio", "dSPIR-V"});
-  const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+  const RowFilter keep = [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
     if (!m.cases) continue;
@@ -126,19 +126,19 @@ TextTable content_table(const render::TradeTable& table, Content content, const 
   return t;
 }
 
-TextTable cases_table(const render::TradeTable& table) {
+TextTable cases_table(const measure::TradeTable& table) {
   TextTable t{{"scene", "alpha", "Fresnel", "configuration"}, {}};
   t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
-  for (const render::TradeRow& row : table.rows) {
-    std::vector<std::string> cells{std::string(render::scene_name(row.scene)), fmt::format("{}", row.alpha), row.fresnel ? "yes" : "no",
-                                   render::configuration_id(row)};
+  for (const measure::TradeRow& row : table.rows) {
+    std::vector<std::string> cells{std::string(measure::scene_name(row.scene)), fmt::format("{}", row.alpha), row.fresnel ? "yes" : "no",
+                                   measure::configuration_id(row)};
     for (auto& c : metric_cells(row_metrics(row))) cells.push_back(c);
     t.rows.push_back(cells);
   }
   return t;
 }
 
-std::vector<TitledTable> finding_tables(const render::TradeTable& table, const CostTable* costs) {
+std::vector<TitledTable> finding_tables(const measure::TradeTable& table, const CostTable* costs) {
   const std::vector<Recommendation> recs = recommend(table);
   std::vector<TitledTable> tables;
   tables.push_back(

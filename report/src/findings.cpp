@@ -1,6 +1,6 @@
 #include "saagen/report/findings.hpp"
 
-#include "saagen/reference/render/gltf.hpp"
+#include "saagen/measure/gltf.hpp"
 #include "saagen/report/comparison.hpp"
 #include "saagen/scene/planner.hpp"
 
@@ -22,19 +22,19 @@ bool is_saagen_configuration(const std::string& configuration) {
 }
 
 RowFilter content_filter(Content content) {
-  return [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+  return [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
 }
 
-std::vector<Content> contents_of(const render::TradeTable& table) {
+std::vector<Content> contents_of(const measure::TradeTable& table) {
   std::vector<Content> contents;
-  for (render::SceneId scene : table.config.scenes)
+  for (measure::SceneId scene : table.config.scenes)
     if (std::find(contents.begin(), contents.end(), content_of(scene)) == contents.end()) contents.push_back(content_of(scene));
   return contents;
 }
 
 // The configurations measured on every scene of a content type (the geometric feed exists only
 // where the scene has normal detail).
-std::vector<std::string> configurations_of(const render::TradeTable& table, Content content) {
+std::vector<std::string> configurations_of(const measure::TradeTable& table, Content content) {
   std::vector<std::string> ids;
   for (const std::string& id : configurations(table))
     if (mean_metrics(table, id, content_filter(content)).cases > 0) ids.push_back(id);
@@ -57,13 +57,13 @@ std::string_view content_name(Content content) {
   return "?";
 }
 
-Content content_of(render::SceneId scene) {
-  if (render::is_gltf_coat_scene(scene)) return Content::clearcoat;
-  if (render::scene_has_normal_map(scene)) return Content::normal_mapped;
-  return render::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
+Content content_of(measure::SceneId scene) {
+  if (measure::is_gltf_coat_scene(scene)) return Content::clearcoat;
+  if (measure::scene_has_normal_map(scene)) return Content::normal_mapped;
+  return measure::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
 }
 
-Metrics row_metrics(const render::TradeRow& row) {
+Metrics row_metrics(const measure::TradeRow& row) {
   Metrics m;
   m.rmse_linear = row.rmse_linear;
   m.rmse_tonemapped = row.rmse_tonemapped;
@@ -92,14 +92,14 @@ constexpr double Metrics::*kMeanFields[] = {
 
 }  // namespace
 
-bool has_video_metric(const render::TradeTable& table) {
-  return std::any_of(table.rows.begin(), table.rows.end(), [](const render::TradeRow& row) { return !row.series.video[0].empty(); });
+bool has_video_metric(const measure::TradeTable& table) {
+  return std::any_of(table.rows.begin(), table.rows.end(), [](const measure::TradeRow& row) { return !row.series.video[0].empty(); });
 }
 
-Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
+Metrics mean_metrics(const measure::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
   Metrics m;
-  for (const render::TradeRow& row : table.rows) {
-    if (row.fresnel || render::configuration_id(row) != configuration || !keep(row)) continue;
+  for (const measure::TradeRow& row : table.rows) {
+    if (row.fresnel || measure::configuration_id(row) != configuration || !keep(row)) continue;
     const Metrics r = row_metrics(row);
     for (auto field : kMeanFields) m.*field += r.*field;
     m.max_error = std::max(m.max_error, r.max_error);
@@ -110,10 +110,10 @@ Metrics mean_metrics(const render::TradeTable& table, const std::string& configu
   return m;
 }
 
-std::vector<std::string> configurations(const render::TradeTable& table) {
+std::vector<std::string> configurations(const measure::TradeTable& table) {
   std::vector<std::string> ids;
-  for (const render::TradeRow& row : table.rows) {
-    const std::string id = render::configuration_id(row);
+  for (const measure::TradeRow& row : table.rows) {
+    const std::string id = measure::configuration_id(row);
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   }
   return ids;
@@ -181,7 +181,7 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
   return true;
 }
 
-std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope,
+std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline) {
   std::vector<ContentRow> rows;
   const bool video = has_video_metric(table);
@@ -205,8 +205,8 @@ std::string without_taa(std::string configuration) {
   return configuration;
 }
 
-std::vector<ContentRow> measured_taa_rows(const render::TradeTable& table, Content content) {
-  const RowFilter keep = [content](const render::TradeRow& row) { return row.taa && content_of(row.scene) == content; };
+std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Content content) {
+  const RowFilter keep = [content](const measure::TradeRow& row) { return row.taa && content_of(row.scene) == content; };
   std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content), "none+taa");
   for (ContentRow& row : rows) row.configuration = without_taa(row.configuration);
   return rows;
@@ -240,11 +240,11 @@ std::string chosen_configuration(const MaterialDecision& made) {
   return made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none";
 }
 
-std::vector<Recommendation> recommend(const render::TradeTable& table) {
+std::vector<Recommendation> recommend(const measure::TradeTable& table) {
   std::vector<Recommendation> recs;
   for (Content content : contents_of(table)) {
     // Without TAA: the +taa rows are compared with none+taa (taa_summary.hpp).
-    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
       const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
@@ -262,10 +262,10 @@ const Recommendation* find_recommendation(const std::vector<Recommendation>& rec
   return nullptr;
 }
 
-std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs) {
+std::vector<EngineSwitch> engine_switches(const measure::TradeTable& table, const CostTable* costs) {
   std::vector<EngineSwitch> switches;
   for (Content content : contents_of(table)) {
-    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (const ContentRow& engine : rows) {
       if (!is_engine_configuration(engine.configuration)) continue;
@@ -287,10 +287,10 @@ std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const
   return switches;
 }
 
-std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+std::vector<SceneVerdict> scene_verdicts(const measure::TradeTable& table, const std::vector<Recommendation>& recs) {
   std::vector<SceneVerdict> verdicts;
-  for (render::SceneId scene : table.config.scenes) {
-    const RowFilter on_scene = [scene](const render::TradeRow& row) { return row.scene == scene; };
+  for (measure::SceneId scene : table.config.scenes) {
+    const RowFilter on_scene = [scene](const measure::TradeRow& row) { return row.scene == scene; };
     for (Path path : {Path::forward, Path::deferred}) {
       const Recommendation* rec = find_recommendation(recs, path, content_of(scene));
       if (!rec) continue;
@@ -315,7 +315,7 @@ std::string describe(const Loss& loss) { return fmt::format("{}: {} {:.4g} > {:.
 namespace {
 
 // The engine with the lowest mean `value` on a content type ("" when the table has no engine).
-std::pair<std::string, Metrics> best_engine(const render::TradeTable& table, Content content, double Metrics::*value) {
+std::pair<std::string, Metrics> best_engine(const measure::TradeTable& table, Content content, double Metrics::*value) {
   std::pair<std::string, Metrics> best;
   for (const std::string& id : configurations_of(table, content)) {
     if (!is_engine_configuration(id)) continue;
@@ -327,7 +327,7 @@ std::pair<std::string, Metrics> best_engine(const render::TradeTable& table, Con
 
 }  // namespace
 
-std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs) {
+std::vector<Verdict> verdicts(const measure::TradeTable& table, const std::vector<Recommendation>& recs) {
   const std::vector<SceneVerdict> per_scene = scene_verdicts(table, recs);
   std::vector<Verdict> out;
   for (const Recommendation& rec : recs) {
@@ -398,10 +398,10 @@ std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Conten
 
 }  // namespace
 
-std::vector<ContentTrade> content_trades(const render::TradeTable& table) {
+std::vector<ContentTrade> content_trades(const measure::TradeTable& table) {
   std::vector<ContentTrade> trades;
   for (Content content : contents_of(table)) {
-    const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
       ContentTrade trade{content, path, {}, "", decide_on(rows, path, content), rows};
@@ -414,7 +414,7 @@ std::vector<ContentTrade> content_trades(const render::TradeTable& table) {
   return trades;
 }
 
-std::string format_frontier(const render::TradeTable& table) {
+std::string format_frontier(const measure::TradeTable& table) {
   std::string text =
       "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
       "vega10 ISA ratio to no SAA, image / video error (10 - JOD) against no SAA with 95 % intervals:\n";

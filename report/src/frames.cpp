@@ -19,8 +19,8 @@ std::string file_name(std::string clip) {
   return clip;
 }
 
-std::string clip_path(const render::AnimationFrame& frame) {
-  return fmt::format("{}/a{}{}/{}.png", render::scene_name(frame.scene), frame.alpha, frame.fresnel ? "-fresnel" : "",
+std::string clip_path(const measure::AnimationFrame& frame) {
+  return fmt::format("{}/a{}{}/{}.png", measure::scene_name(frame.scene), frame.alpha, frame.fresnel ? "-fresnel" : "",
                      file_name(frame.clip));
 }
 
@@ -28,12 +28,12 @@ std::string clip_path(const render::AnimationFrame& frame) {
 
 ClipWriter::ClipWriter(std::filesystem::path directory, std::regex keep) : directory_(std::move(directory)), keep_(std::move(keep)) {}
 
-void ClipWriter::add(const render::AnimationFrame& frame, int frames) {
+void ClipWriter::add(const measure::AnimationFrame& frame, int frames) {
   if (frame.clip != "ground-truth" && !std::regex_search(frame.clip, keep_)) return;
-  const render::Image& image = *frame.display;
+  const measure::Image& image = *frame.display;
   Clip& clip = clips_[clip_path(frame)];
   if (clip.pixels.empty() && clip.png.empty()) {
-    clip = {std::string(render::scene_name(frame.scene)),
+    clip = {std::string(measure::scene_name(frame.scene)),
             frame.clip,
             clip_path(frame),
             frame.alpha,
@@ -44,7 +44,7 @@ void ClipWriter::add(const render::AnimationFrame& frame, int frames) {
             std::vector<std::uint8_t>(static_cast<std::size_t>(image.width) * image.height * frames, 0),
             {}};
   }
-  const std::vector<std::uint8_t> bytes = render::display_bytes(image);
+  const std::vector<std::uint8_t> bytes = measure::display_bytes(image);
   std::copy(bytes.begin(), bytes.end(), clip.pixels.begin() + static_cast<std::ptrdiff_t>(frame.frame * image.size()));
   if (frame.frame == frames - 1) {
     clip.png = encode_tagged_png(clip.width, clip.height * clip.frames, 1, clip.pixels, "bench --frames");

@@ -34,13 +34,13 @@ const char* kMetricNote =
     "a highlight blurred away. Engines cost what deferred-sum costs (same operations).";
 
 // Per scene and path with losses: "scene, path, configuration" and each loss.
-std::vector<std::pair<std::string, std::vector<std::string>>> loss_lists(const render::TradeTable& table) {
+std::vector<std::pair<std::string, std::vector<std::string>>> loss_lists(const measure::TradeTable& table) {
   std::vector<std::pair<std::string, std::vector<std::string>>> lists;
   for (const SceneVerdict& v : scene_verdicts(table, recommend(table))) {
     if (v.losses.empty()) continue;
     std::vector<std::string> items;
     for (const Loss& loss : v.losses) items.push_back(describe(loss));
-    lists.emplace_back(fmt::format("{}, {}: {}", render::scene_name(v.scene), path_name(v.path), v.configuration), items);
+    lists.emplace_back(fmt::format("{}, {}: {}", measure::scene_name(v.scene), path_name(v.path), v.configuration), items);
   }
   return lists;
 }
@@ -70,7 +70,7 @@ constexpr const char* kHtmlTail =
     "  document.getElementById('image-check').textContent = 'images loaded: ' + loaded + '/' + images.length;\n"
     "});\n</script>\n</body></html>\n";
 
-std::string markdown_verdict(const render::TradeTable& table) {
+std::string markdown_verdict(const measure::TradeTable& table) {
   std::ostringstream md;
   md << "## " << kVerdictTitle << "\n\n(" << kVerdictNote << ")\n\n";
   for (const Verdict& v : ordered_verdicts(table)) {
@@ -90,7 +90,7 @@ std::string markdown_taa(const TaaSection& taa) {
   return md.str();
 }
 
-std::string markdown_loss_lists(const render::TradeTable& table) {
+std::string markdown_loss_lists(const measure::TradeTable& table) {
   std::ostringstream md;
   md << "## " << kLossListTitle << "\n\n";
   for (const auto& [heading, items] : loss_lists(table)) {
@@ -113,7 +113,7 @@ std::string html_taa(const TaaSection& taa) {
   return html;
 }
 
-std::string html_verdict(const render::TradeTable& table) {
+std::string html_verdict(const measure::TradeTable& table) {
   std::string html =
       fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(kVerdictNote));
   for (const Verdict& v : ordered_verdicts(table)) {
@@ -125,7 +125,7 @@ std::string html_verdict(const render::TradeTable& table) {
   return html + "</ul>\n";
 }
 
-std::string html_loss_lists(const render::TradeTable& table) {
+std::string html_loss_lists(const measure::TradeTable& table) {
   std::string html = fmt::format("<h2>{}</h2>\n<ul>\n", html_escape(kLossListTitle));
   for (const auto& [heading, items] : loss_lists(table)) {
     html += "<li>" + html_escape(heading) + "<ul>";
@@ -137,7 +137,7 @@ std::string html_loss_lists(const render::TradeTable& table) {
 
 }  // namespace
 
-TaaSection taa_section(const render::TradeTable& taa) {
+TaaSection taa_section(const measure::TradeTable& taa) {
   TaaSection section;
   section.note = taa_note(taa);
   section.table.headers = taa_headers();
@@ -145,16 +145,16 @@ TaaSection taa_section(const render::TradeTable& taa) {
   for (const TaaComparison& comparison : taa_comparisons(taa)) {
     for (const TaaComparisonRow& row : comparison.rows) {
       std::vector<std::string> columns = taa_columns(row);
-      columns.insert(columns.begin(), std::string(render::scene_name(comparison.scene)));
+      columns.insert(columns.begin(), std::string(measure::scene_name(comparison.scene)));
       section.table.rows.push_back(std::move(columns));
     }
-    section.verdicts.push_back(std::string(render::scene_name(comparison.scene)) + ": " + comparison.verdict);
+    section.verdicts.push_back(std::string(measure::scene_name(comparison.scene)) + ": " + comparison.verdict);
     if (std::optional<Strip> strip = taa_strip(taa, comparison)) section.strips.push_back(std::move(*strip));
   }
   return section;
 }
 
-std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
+std::string markdown_report(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
                             const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream md;
@@ -179,7 +179,7 @@ std::string markdown_report(const render::TradeTable& table, const std::vector<V
   return md.str();
 }
 
-std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
+std::string html_report(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                         const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
                         const std::vector<std::string>& columns, const std::vector<Strip>& image_strips, const TaaSection* taa) {
   std::ostringstream html;

@@ -5,7 +5,7 @@
 #include "strips.hpp"
 #include "text_table.hpp"
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/cost_table.hpp"
 #include "saagen/report/summary.hpp"
 
@@ -22,14 +22,14 @@ struct TaaSection {
   std::vector<std::string> verdicts;  // per scene, the decision's reason under TAA
   std::vector<Strip> strips;
 };
-TaaSection taa_section(const render::TradeTable& taa);
+TaaSection taa_section(const measure::TradeTable& taa);
 
 // The pages linking the files written beside them: the sheets, the plots and the strips by file
 // name; `columns` the sheets' column labels; `taa` the section under TAA, or nullptr.
-std::string markdown_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
+std::string markdown_report(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                             const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
                             const std::vector<Strip>& image_strips, const TaaSection* taa);
-std::string html_report(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
+std::string html_report(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs,
                         const std::vector<std::string>& sheets, const std::vector<std::string>& plots,
                         const std::vector<std::string>& columns, const std::vector<Strip>& image_strips, const TaaSection* taa);
 

@@ -2,7 +2,7 @@
 #include "saagen/report/presets.hpp"
 
 #include "saagen/error.hpp"
-#include "saagen/reference/render/assets.hpp"
+#include "saagen/measure/assets.hpp"
 
 #include <fmt/format.h>
 
@@ -11,12 +11,12 @@
 
 namespace saagen::report {
 
-render::TradeConfig preset_config(std::string_view preset) {
-  render::TradeConfig config;
+measure::TradeConfig preset_config(std::string_view preset) {
+  measure::TradeConfig config;
   // Every scene: the analytic ones and the real-content ones (normal maps with MIPs, a mesh),
   // and low roughness down to perceptual 0.05 (alpha 0.0025) and 0.08 (alpha 0.0064).
-  config.scenes.assign(render::all_scenes().begin(), render::all_scenes().end());
-  config.scenes.insert(config.scenes.end(), render::content_scenes().begin(), render::content_scenes().end());
+  config.scenes.assign(measure::all_scenes().begin(), measure::all_scenes().end());
+  config.scenes.insert(config.scenes.end(), measure::content_scenes().begin(), measure::content_scenes().end());
   config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
   if (preset == "full") return config;
   if (preset == "medium") {
@@ -37,7 +37,7 @@ render::TradeConfig preset_config(std::string_view preset) {
     config.flicker_width = config.flicker_height = 32;
     config.flicker_strata = 4;
     config.frames = 4;
-    config.scenes.assign(render::all_scenes().begin(), render::all_scenes().end());
+    config.scenes.assign(measure::all_scenes().begin(), measure::all_scenes().end());
     config.alphas = {0.01, 0.1};
     config.fresnel_modes = {false};
     return config;
@@ -49,7 +49,7 @@ render::TradeConfig preset_config(std::string_view preset) {
 constexpr int kMinAssetAnimationSize = 64;
 constexpr int kMinAssetAnimationStrata = 16;
 
-void size_preset_assets(std::string_view preset, render::TradeConfig& config) {
+void size_preset_assets(std::string_view preset, measure::TradeConfig& config) {
   if (preset != "medium" && preset != "full") return;
   // A large asset framed in the view has small highlights that move a fraction of a pixel per
   // frame. At 32 x 32 px they fall between the pixels, and with a 64-spp ground truth its two
@@ -58,23 +58,23 @@ void size_preset_assets(std::string_view preset, render::TradeConfig& config) {
   // and 64 spp: its lag interval spanned 0). At 64 px and 256 spp every asset scene passes.
   const int width = config.width / 2, flicker_width = std::max(config.flicker_width / 2, kMinAssetAnimationSize);
   const int flicker_strata = std::max(config.flicker_strata, kMinAssetAnimationStrata);
-  for (const render::SceneId id : config.scenes) {
-    if (!render::is_preset_asset_scene(id)) continue;
+  for (const measure::SceneId id : config.scenes) {
+    if (!measure::is_preset_asset_scene(id)) continue;
     config.scene_sizes.push_back({id, width, width, config.strata, flicker_width, flicker_width, flicker_strata});
   }
 }
 
-void add_preset_assets(std::string_view preset, render::TradeConfig& config) {
+void add_preset_assets(std::string_view preset, measure::TradeConfig& config) {
   if (preset != "medium" && preset != "full") return;
-  std::vector<render::SceneId> assets;
+  std::vector<measure::SceneId> assets;
   try {
-    assets = render::register_preset_assets();
-  } catch (const render::AssetMissing& missing) {
+    assets = measure::register_preset_assets();
+  } catch (const measure::AssetMissing& missing) {
     throw Error(fmt::format("preset {}: {}", preset, missing.what()));
   } catch (const std::exception& bad) {  // GltfError, AssetError: "PATH: what is wrong"
     throw Error(fmt::format("preset {}: {}", preset, bad.what()));
   }
-  for (const render::SceneId id : assets)
+  for (const measure::SceneId id : assets)
     if (std::find(config.scenes.begin(), config.scenes.end(), id) == config.scenes.end()) config.scenes.push_back(id);
   size_preset_assets(preset, config);
 }

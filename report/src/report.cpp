@@ -20,18 +20,18 @@ namespace saagen::report {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::path& dir) {
+std::vector<fs::path> report_paths(const measure::TradeConfig& config, const fs::path& dir) {
   std::vector<fs::path> paths = {dir / "index.html", dir / "report.md"};
   std::vector<Content> contents;
-  for (const render::SceneId scene : config.scenes)
+  for (const measure::SceneId scene : config.scenes)
     if (std::find(contents.begin(), contents.end(), content_of(scene)) == contents.end()) contents.push_back(content_of(scene));
   for (const Content content : contents)
     for (const Path path : {Path::forward, Path::deferred}) paths.push_back(dir / trade_plot_name(content, path));
-  for (const render::SceneId scene : config.scenes) {
+  for (const measure::SceneId scene : config.scenes) {
     paths.push_back(dir / strip_name(scene));
     if (config.taa) paths.push_back(dir / taa_strip_name(scene));
     for (const double alpha : config.alphas) {
-      render::ImageSet set;
+      measure::ImageSet set;
       set.scene = scene;
       set.material.alpha = alpha;
       paths.push_back(dir / sheet_name(set));
@@ -40,18 +40,18 @@ std::vector<fs::path> report_paths(const render::TradeConfig& config, const fs::
   return paths;
 }
 
-std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force,
-                                      const render::TradeTable* taa) {
+std::vector<std::string> write_report(const measure::TradeTable& table, const CostTable* costs, const fs::path& dir, bool force,
+                                      const measure::TradeTable* taa) {
   ReportFiles files = report_files(table, costs, dir, taa);
   write_outputs(files.outputs, force);
   return files.images;
 }
 
-ReportFiles report_files(const render::TradeTable& table, const CostTable* costs, const fs::path& dir, const render::TradeTable* taa) {
+ReportFiles report_files(const measure::TradeTable& table, const CostTable* costs, const fs::path& dir, const measure::TradeTable* taa) {
   if (table.images.empty()) throw Error("the trade table holds no images; compute it with keep_images");
   std::vector<OutputFile> outputs;
   std::vector<std::string> sheets;
-  for (const render::ImageSet& set : table.images) {
+  for (const measure::ImageSet& set : table.images) {
     if (set.material.fresnel) continue;  // the Fresnel images differ by a dim factor only
     sheets.push_back(sheet_name(set));
     outputs.push_back({dir / sheets.back(), sheet_png(set)});

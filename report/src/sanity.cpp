@@ -12,11 +12,11 @@ namespace saagen::report {
 namespace {
 
 // The series of one clip per material of a scene, against the first ground-truth seed only.
-using Clip = std::vector<render::SeedSeries>;
+using Clip = std::vector<measure::SeedSeries>;
 
-render::SeedSeries first_seed(const render::SeedSeries& series) { return {series[0], {}}; }
+measure::SeedSeries first_seed(const measure::SeedSeries& series) { return {series[0], {}}; }
 // The verdict's temporal metric (comparison.hpp, temporal_metric): the video error where measured.
-render::SeedSeries first_seed_temporal(const render::AnimationSeries& series) {
+measure::SeedSeries first_seed_temporal(const measure::AnimationSeries& series) {
   return first_seed(series.video[0].empty() ? series.flicker : series.video);
 }
 
@@ -31,12 +31,12 @@ struct SceneClips {
   std::map<std::string, Clip> flicker;  // name -> flicker error: whether the ground truth moves
 };
 
-SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
+SceneClips scene_clips(const measure::TradeTable& table, measure::SceneId scene) {
   SceneClips out;
-  for (const render::SanityRow& row : table.sanity) {
+  for (const measure::SanityRow& row : table.sanity) {
     if (row.scene != scene || row.fresnel) continue;
     if (std::find(out.alphas.begin(), out.alphas.end(), row.alpha) == out.alphas.end()) out.alphas.push_back(row.alpha);
-    const std::string name(render::sanity_name(row.result));
+    const std::string name(measure::sanity_name(row.result));
     Clips& clips = out.clips[name];
     clips.image.push_back(first_seed(row.series.image));
     clips.temporal.push_back(first_seed_temporal(row.series));
@@ -47,13 +47,13 @@ SceneClips scene_clips(const render::TradeTable& table, render::SceneId scene) {
 }
 
 // A configuration's clips on the scene's sanity materials, first seed only (nullopt if missing).
-std::optional<Clips> configuration_clips(const render::TradeTable& table, render::SceneId scene, const std::vector<double>& alphas,
+std::optional<Clips> configuration_clips(const measure::TradeTable& table, measure::SceneId scene, const std::vector<double>& alphas,
                                          const std::string& configuration) {
   Clips out;
   for (double alpha : alphas) {
-    const render::TradeRow* found = nullptr;
-    for (const render::TradeRow& row : table.rows)
-      if (row.scene == scene && row.alpha == alpha && !row.fresnel && !row.taa && render::configuration_id(row) == configuration)
+    const measure::TradeRow* found = nullptr;
+    for (const measure::TradeRow& row : table.rows)
+      if (row.scene == scene && row.alpha == alpha && !row.fresnel && !row.taa && measure::configuration_id(row) == configuration)
         found = &row;
     if (!found) return std::nullopt;
     out.image.push_back(first_seed(found->series.image));
@@ -63,7 +63,7 @@ std::optional<Clips> configuration_clips(const render::TradeTable& table, render
   return out;
 }
 
-double clip_mean(const Clip& clip) { return render::series_interval(clip).mean; }
+double clip_mean(const Clip& clip) { return measure::series_interval(clip).mean; }
 
 bool worse(const MetricDifference& d) { return outcome_of(d) == MetricOutcome::worse; }
 bool better(const MetricDifference& d) { return outcome_of(d) == MetricOutcome::better; }
@@ -104,7 +104,7 @@ std::string verdict_choice(const std::map<std::string, Clips>& candidates, const
   return chosen;
 }
 
-SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) {
+SceneSanity check_scene(const measure::TradeTable& table, measure::SceneId scene) {
   SceneSanity out;
   out.scene = scene;
   SceneClips clips = scene_clips(table, scene);
@@ -121,7 +121,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
     out.entries.push_back(entry);
   }
   out.moves = worse(compare_series(clips.flicker.at("frozen"), clips.flicker.at("other-seed")));
-  out.video = std::any_of(table.sanity.begin(), table.sanity.end(), [](const render::SanityRow& r) { return !r.series.video[0].empty(); });
+  out.video = std::any_of(table.sanity.begin(), table.sanity.end(), [](const measure::SanityRow& r) { return !r.series.video[0].empty(); });
   // best: nothing beats another seed; nothing made from fewer samples beats a quarter of them.
   for (const auto& [name, clip] : clips.clips) {
     for (const char* best : {"other-seed", "quarter-samples"}) {
@@ -129,7 +129,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
       const MetricDifference image = compare_series(clip.image, clips.clips.at(best).image);
       const MetricDifference flicker = compare_series(clip.temporal, clips.clips.at(best).temporal);
       if (beats(image, flicker))
-        out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, temporal {:+.4g})", render::scene_name(scene), name, best,
+        out.failures.push_back(fmt::format("{}: {} beats {} (image {:+.4g}, temporal {:+.4g})", measure::scene_name(scene), name, best,
                                            image.difference.mean, flicker.difference.mean));
     }
   }
@@ -145,7 +145,7 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
       };
       if (!worse(image) && !worse(flicker) && !worse(lag))
         out.failures.push_back(fmt::format("{}: {} is not worse than {} beyond the interval in any metric (image {}, temporal {}, lag {})",
-                                           render::scene_name(scene), name, against, text(image), text(flicker), text(lag)));
+                                           measure::scene_name(scene), name, against, text(image), text(flicker), text(lag)));
     }
   }
   if (none) {
@@ -153,27 +153,27 @@ SceneSanity check_scene(const render::TradeTable& table, render::SceneId scene) 
     for (const char* name : kDegenerate) candidates[name] = clips.clips.at(name);
     candidates["blurred"] = clips.clips.at("blurred");
     std::vector<std::string> ids;
-    for (const render::TradeRow& row : table.rows)
-      if (row.scene == scene && !row.taa && std::find(ids.begin(), ids.end(), render::configuration_id(row)) == ids.end())
-        ids.push_back(render::configuration_id(row));
+    for (const measure::TradeRow& row : table.rows)
+      if (row.scene == scene && !row.taa && std::find(ids.begin(), ids.end(), measure::configuration_id(row)) == ids.end())
+        ids.push_back(measure::configuration_id(row));
     for (const std::string& id : ids)
       if (id != "none")
         if (const auto c = configuration_clips(table, scene, clips.alphas, id)) candidates[id] = *c;
     const std::string chosen = verdict_choice(candidates, *none);
     out.verdict_choice = chosen;
     if (is_degenerate(chosen))
-      out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", render::scene_name(scene), chosen));
+      out.failures.push_back(fmt::format("{}: the degenerate result {} wins the verdict", measure::scene_name(scene), chosen));
   }
   return out;
 }
 
 }  // namespace
 
-std::vector<SceneSanity> check_sanity(const render::TradeTable& table) {
+std::vector<SceneSanity> check_sanity(const measure::TradeTable& table) {
   std::vector<SceneSanity> scenes;
-  for (render::SceneId scene : table.config.scenes) {
+  for (measure::SceneId scene : table.config.scenes) {
     const bool has_rows =
-        std::any_of(table.sanity.begin(), table.sanity.end(), [&](const render::SanityRow& r) { return r.scene == scene; });
+        std::any_of(table.sanity.begin(), table.sanity.end(), [&](const measure::SanityRow& r) { return r.scene == scene; });
     if (has_rows) scenes.push_back(check_scene(table, scene));
   }
   return scenes;
@@ -190,7 +190,7 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
   int failures = 0;
   for (const SceneSanity& scene : scenes) {
     for (const SanityEntry& e : scene.entries)
-      text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f} {:>+10.2e}  {:<22} {:<22}\n", render::scene_name(scene.scene), e.result,
+      text += fmt::format("{:<20} {:<16} {:>11.4f} {:>13.5f} {:>+10.2e}  {:<22} {:<22}\n", measure::scene_name(scene.scene), e.result,
                           e.image_error, e.flicker_error, e.lag, cell(e.image_vs_quarter), cell(e.flicker_vs_quarter));
     text += fmt::format("  the verdict's choice with the degenerate results entered: {}{}\n",
                         scene.verdict_choice.empty() ? "no filter" : scene.verdict_choice,
@@ -219,7 +219,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                          {"image_vs_quarter", difference(e.image_vs_quarter)},
                          {scene.video ? "video_vs_quarter" : "flicker_vs_quarter", difference(e.flicker_vs_quarter)},
                          {"lag", e.lag}});
-    out.push_back({{"scene", std::string(render::scene_name(scene.scene))},
+    out.push_back({{"scene", std::string(measure::scene_name(scene.scene))},
                    {"moves", scene.moves},
                    {"entries", entries},
                    {"failures", scene.failures},

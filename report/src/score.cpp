@@ -3,7 +3,7 @@
 
 #include "saagen/error.hpp"
 #include "saagen/io/input.hpp"
-#include "saagen/reference/render/parallel.hpp"
+#include "saagen/measure/parallel.hpp"
 #include "saagen/report/frames.hpp"
 #include "saagen/report/trade_json.hpp"
 
@@ -81,7 +81,7 @@ fs::path clip_path(const fs::path& directory, const std::string& file, const fs:
 }
 
 // An 8-bit greyscale PNG of width x (height * frames) pixels, as a clip.
-render::ByteClip read_clip(const fs::path& path, int width, int height, int frames) {
+measure::ByteClip read_clip(const fs::path& path, int width, int height, int frames) {
   const std::string bytes = read_input_file(path, image_size_limit, "a clip PNG `saagen bench --frames` writes");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
@@ -98,7 +98,7 @@ render::ByteClip read_clip(const fs::path& path, int width, int height, int fram
                     path.string(), w, h, width, static_cast<long long>(height) * frames, frames, width, height));
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 1), stbi_image_free);
   if (!pixels) throw Error(fmt::format("{}: not a readable PNG ({}); write 8-bit greyscale PNGs", path.string(), stbi_failure_reason()));
-  render::ByteClip clip{width, height, frames, {}};
+  measure::ByteClip clip{width, height, frames, {}};
   clip.bytes.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(w) * h);
   return clip;
 }
@@ -148,11 +148,11 @@ const ScoredResult* find_result(const ScoredGroup& group, const std::string& con
 }
 
 ScoredGroup score_group(const ClipGroupInput& input, double frames_per_second, int threads) {
-  const render::ClipScorer scorer(input.seeds, frames_per_second);
+  const measure::ClipScorer scorer(input.seeds, frames_per_second);
   ScoredGroup group{input.name,           input.scene,           input.material,        input.alpha, input.fresnel,
                     input.seeds[0].width, input.seeds[0].height, input.seeds[0].frames, {},          {}};
   group.results.resize(input.results.size());
-  render::parallel_rows(static_cast<int>(input.results.size()), threads, [&](int i) {
+  measure::parallel_rows(static_cast<int>(input.results.size()), threads, [&](int i) {
     const auto& [name, clip] = input.results[static_cast<std::size_t>(i)];
     const bool sanity = is_sanity(name);
     group.results[static_cast<std::size_t>(i)] = {name, sanity, scorer.score(clip, sanity ? 1 : scorer.seeds())};
@@ -171,7 +171,7 @@ void compare_with_baselines(ScoredGroup& group, const std::vector<std::string>& 
   }
 }
 
-std::string interval_text(const render::Interval& interval, int digits) {
+std::string interval_text(const measure::Interval& interval, int digits) {
   return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", interval.mean, digits, interval.low, digits, interval.high, digits);
 }
 

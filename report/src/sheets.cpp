@@ -27,20 +27,20 @@ struct Rgb {
 };
 
 Rgb display(double radiance) {
-  const std::uint8_t v = to_byte(render::display_value(radiance));
+  const std::uint8_t v = to_byte(measure::display_value(radiance));
   return {v, v, v};
 }
 
 Rgb difference_colour(double radiance, double reference) {
-  const double d = (render::tonemap(radiance) - render::tonemap(reference)) / difference_full_scale;
-  const double m = render::srgb_encode(std::min(std::fabs(d), 1.0));
+  const double d = (measure::tonemap(radiance) - measure::tonemap(reference)) / difference_full_scale;
+  const double m = measure::srgb_encode(std::min(std::fabs(d), 1.0));
   return d >= 0.0 ? Rgb{to_byte(m), 0, 0} : Rgb{0, 0, to_byte(m)};
 }
 
 // Images of 256 px and more are shown at half size (2x2 box) to keep the report light.
-int display_scale(const render::Image& image) { return image.width >= 256 ? 2 : 1; }
+int display_scale(const measure::Image& image) { return image.width >= 256 ? 2 : 1; }
 
-double box(const render::Image& image, int x, int y, int scale) {
+double box(const measure::Image& image, int x, int y, int scale) {
   double sum = 0.0;
   for (int dy = 0; dy < scale; ++dy)
     for (int dx = 0; dx < scale; ++dx) sum += image.at(x * scale + dx, y * scale + dy);
@@ -49,7 +49,7 @@ double box(const render::Image& image, int x, int y, int scale) {
 
 }  // namespace
 
-std::string grid_png(const render::Image& reference, const std::vector<Tile>& tiles) {
+std::string grid_png(const measure::Image& reference, const std::vector<Tile>& tiles) {
   const int scale = display_scale(reference);
   const int tile_w = reference.width / scale, tile_h = reference.height / scale, gutter = 2;
   const int band = kLabelLines * kLabelLineHeight + 4;
@@ -83,19 +83,19 @@ std::string grid_png(const render::Image& reference, const std::vector<Tile>& ti
   return encode_tagged_png(width, height, 3, pixels, "report");
 }
 
-std::string configuration_of(const render::ImageSet::Rendered& rendered) {
-  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe);
+std::string configuration_of(const measure::ImageSet::Rendered& rendered) {
+  return measure::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe);
 }
 
 // Every configuration of a (scene, material) beside the ground truth.
-std::string sheet_png(const render::ImageSet& set) {
+std::string sheet_png(const measure::ImageSet& set) {
   std::vector<Tile> tiles;
   for (const auto& rendered : set.variants) tiles.push_back({configuration_of(rendered), &rendered.image});
   return grid_png(set.reference, tiles);
 }
 
-std::string sheet_name(const render::ImageSet& set) {
-  return fmt::format("sheet_{}_alpha{:.4f}.png", render::scene_name(set.scene), set.material.alpha);
+std::string sheet_name(const measure::ImageSet& set) {
+  return fmt::format("sheet_{}_alpha{:.4f}.png", measure::scene_name(set.scene), set.material.alpha);
 }
 
 }  // namespace saagen::report

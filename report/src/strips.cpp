@@ -11,18 +11,18 @@
 namespace saagen::report {
 namespace {
 
-const render::ImageSet::Rendered* find_rendered(const render::ImageSet& set, const std::string& configuration) {
+const measure::ImageSet::Rendered* find_rendered(const measure::ImageSet& set, const std::string& configuration) {
   for (const auto& rendered : set.variants)
     if (configuration_of(rendered) == configuration) return &rendered;
   return nullptr;
 }
 
-const render::ImageSet* worst_case_for_none(const render::TradeTable& table, render::SceneId scene) {
-  const render::ImageSet* worst = nullptr;
+const measure::ImageSet* worst_case_for_none(const measure::TradeTable& table, measure::SceneId scene) {
+  const measure::ImageSet* worst = nullptr;
   double worst_error = -1.0;
-  for (const render::ImageSet& set : table.images) {
+  for (const measure::ImageSet& set : table.images) {
     if (set.scene != scene || set.material.fresnel) continue;
-    const render::TradeRow* none = table.find(render::Variant::none, scene, set.material.alpha, false);
+    const measure::TradeRow* none = table.find(measure::Variant::none, scene, set.material.alpha, false);
     if (none && none->flip_ldr > worst_error) worst = &set, worst_error = none->flip_ldr;
   }
   return worst;
@@ -30,12 +30,12 @@ const render::ImageSet* worst_case_for_none(const render::TradeTable& table, ren
 
 }  // namespace
 
-std::string strip_name(render::SceneId scene) { return fmt::format("strip_{}.png", render::scene_name(scene)); }
+std::string strip_name(measure::SceneId scene) { return fmt::format("strip_{}.png", measure::scene_name(scene)); }
 
-std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Verdict>& all) {
+std::vector<Strip> strips(const measure::TradeTable& table, const std::vector<Verdict>& all) {
   std::vector<Strip> out;
-  for (render::SceneId scene : table.config.scenes) {
-    const render::ImageSet* set = worst_case_for_none(table, scene);
+  for (measure::SceneId scene : table.config.scenes) {
+    const measure::ImageSet* set = worst_case_for_none(table, scene);
     if (!set) continue;
     std::vector<std::pair<std::string, std::string>> columns{{"none", "none"}};  // label, configuration
     for (const Verdict& v : all) {
@@ -52,7 +52,7 @@ std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Ver
       if (const auto* rendered = find_rendered(*set, configuration)) tiles.push_back({label, &rendered->image}), labels.push_back(label);
     out.push_back(
         {strip_name(scene),
-         fmt::format("{}, alpha {} (where no SAA errs most): {}", render::scene_name(scene), set->material.alpha, fmt::join(labels, ", ")),
+         fmt::format("{}, alpha {} (where no SAA errs most): {}", measure::scene_name(scene), set->material.alpha, fmt::join(labels, ", ")),
          grid_png(set->reference, tiles)});
   }
   return out;

@@ -3,7 +3,7 @@
 // these and the verdict.
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/findings.hpp"
 
 #include <string>
@@ -19,9 +19,9 @@ struct Strip {
 };
 
 // "strip_<scene>.png"
-std::string strip_name(render::SceneId scene);
+std::string strip_name(measure::SceneId scene);
 
 // One strip per scene of the table that has images, with the columns the verdicts (`all`) name.
-std::vector<Strip> strips(const render::TradeTable& table, const std::vector<Verdict>& all);
+std::vector<Strip> strips(const measure::TradeTable& table, const std::vector<Verdict>& all);
 
 }  // namespace saagen::report

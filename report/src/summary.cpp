@@ -16,25 +16,25 @@ double mean(const std::vector<double>& values) {
 }
 
 // "; NAME at WxH px (animation wxh px), ..." for the scenes with sizes of their own.
-std::string scene_sizes_line(const render::TradeConfig& c) {
+std::string scene_sizes_line(const measure::TradeConfig& c) {
   std::string line;
-  for (const render::TradeSceneSize& size : c.scene_sizes) {
+  for (const measure::TradeSceneSize& size : c.scene_sizes) {
     if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) == c.scenes.end()) continue;
-    line += fmt::format("{}{} at {}x{} px, {} spp (animation {}x{} px, {} spp)", line.empty() ? "; " : ", ", render::scene_name(size.scene),
-                        size.width, size.height, size.strata * size.strata, size.flicker_width, size.flicker_height,
-                        size.flicker_strata * size.flicker_strata);
+    line += fmt::format("{}{} at {}x{} px, {} spp (animation {}x{} px, {} spp)", line.empty() ? "; " : ", ",
+                        measure::scene_name(size.scene), size.width, size.height, size.strata * size.strata, size.flicker_width,
+                        size.flicker_height, size.flicker_strata * size.flicker_strata);
   }
   return line;
 }
 
 }  // namespace
 
-std::vector<VariantSummary> summarize(const render::TradeTable& table) {
+std::vector<VariantSummary> summarize(const measure::TradeTable& table) {
   std::vector<std::string> order;
-  std::map<std::string, std::vector<const render::TradeRow*>> by_configuration;
-  for (const render::TradeRow& row : table.rows) {
+  std::map<std::string, std::vector<const measure::TradeRow*>> by_configuration;
+  for (const measure::TradeRow& row : table.rows) {
     if (row.fresnel) continue;
-    const std::string id = render::configuration_id(row);
+    const std::string id = measure::configuration_id(row);
     if (!by_configuration.count(id)) order.push_back(id);
     by_configuration[id].push_back(&row);
   }
@@ -42,7 +42,7 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
   for (const std::string& id : order) {
     VariantSummary entry{id};
     std::vector<double> linear, tonemapped, flicker, flicker_display, flip_ldr, flip_hdr, tde, excess, lost;
-    for (const render::TradeRow* row : by_configuration[id]) {
+    for (const measure::TradeRow* row : by_configuration[id]) {
       tde.push_back(row->tde);
       excess.push_back(row->tde_excess_flicker);
       lost.push_back(row->tde_lost_motion);
@@ -69,8 +69,8 @@ std::vector<VariantSummary> summarize(const render::TradeTable& table) {
   return summary;
 }
 
-std::string config_line(const render::TradeTable& table) {
-  const render::TradeConfig& c = table.config;
+std::string config_line(const measure::TradeTable& table) {
+  const measure::TradeConfig& c = table.config;
   return fmt::format(
              "{}x{} px, {} spp ground truth (Gaussian pixel filter, sigma^2 = 0.25 px^2); animation over {} frames at "
              "{} deg/frame and a camera pan of ({}, {}) px/frame ({}x{} px, {} spp); sigma^2 = {}, kappa = {}; {} derivatives; "

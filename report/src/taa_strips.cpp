@@ -20,7 +20,7 @@ struct Crop {
 // The square window of half the frame's smaller side (8 px at least) holding the most
 // tonemapped ground-truth radiance (where the highlights are, whichever configuration is
 // shown), and the integer enlargement that shows it at 128 px or more. A summed-area table.
-Crop brightest_crop(const render::Image& reference) {
+Crop brightest_crop(const measure::Image& reference) {
   const int w = reference.width, h = reference.height;
   Crop crop;
   crop.size = std::min(std::min(w, h), std::max(8, std::min(w, h) / 2));
@@ -28,7 +28,7 @@ Crop brightest_crop(const render::Image& reference) {
   std::vector<double> sat(static_cast<std::size_t>(w + 1) * (h + 1), 0.0);
   const auto at = [&](int x, int y) -> double& { return sat[static_cast<std::size_t>(y) * (w + 1) + x]; };
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) at(x + 1, y + 1) = render::tonemap(reference.at(x, y)) + at(x, y + 1) + at(x + 1, y) - at(x, y);
+    for (int x = 0; x < w; ++x) at(x + 1, y + 1) = measure::tonemap(reference.at(x, y)) + at(x, y + 1) + at(x + 1, y) - at(x, y);
   double best = -1.0;
   for (int y = 0; y + crop.size <= h; ++y)
     for (int x = 0; x + crop.size <= w; ++x) {
@@ -38,48 +38,48 @@ Crop brightest_crop(const render::Image& reference) {
   return crop;
 }
 
-render::Image cropped(const render::Image& image, const Crop& crop) {
-  render::Image out(crop.size * crop.scale, crop.size * crop.scale);
+measure::Image cropped(const measure::Image& image, const Crop& crop) {
+  measure::Image out(crop.size * crop.scale, crop.size * crop.scale);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) out.at(x, y) = image.at(crop.x + x / crop.scale, crop.y + y / crop.scale);
   return out;
 }
 
-std::string taa_configuration_of(const render::ImageSet::Rendered& rendered) {
-  return render::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe, true);
+std::string taa_configuration_of(const measure::ImageSet::Rendered& rendered) {
+  return measure::configuration_id(rendered.variant, rendered.feed, rendered.prefilter, rendered.lobe, true);
 }
 
 // The +taa row of a case (scene, alpha, no Fresnel) by its configuration id.
-const render::TradeRow* taa_row(const render::TradeTable& taa, render::SceneId scene, double alpha, const std::string& configuration) {
-  for (const render::TradeRow& row : taa.rows)
-    if (row.taa && !row.fresnel && row.scene == scene && row.alpha == alpha && render::configuration_id(row) == configuration) return &row;
+const measure::TradeRow* taa_row(const measure::TradeTable& taa, measure::SceneId scene, double alpha, const std::string& configuration) {
+  for (const measure::TradeRow& row : taa.rows)
+    if (row.taa && !row.fresnel && row.scene == scene && row.alpha == alpha && measure::configuration_id(row) == configuration) return &row;
   return nullptr;
 }
 
-const render::ImageSet* worst_case_for_none_taa(const render::TradeTable& taa, render::SceneId scene) {
-  const render::ImageSet* worst = nullptr;
+const measure::ImageSet* worst_case_for_none_taa(const measure::TradeTable& taa, measure::SceneId scene) {
+  const measure::ImageSet* worst = nullptr;
   double worst_error = -1.0;
-  for (const render::ImageSet& set : taa.taa_images) {
+  for (const measure::ImageSet& set : taa.taa_images) {
     if (set.scene != scene || set.material.fresnel) continue;
-    const render::TradeRow* none = taa_row(taa, scene, set.material.alpha, "none+taa");
+    const measure::TradeRow* none = taa_row(taa, scene, set.material.alpha, "none+taa");
     if (none && none->flip_ldr_animation > worst_error) worst = &set, worst_error = none->flip_ldr_animation;
   }
   return worst;
 }
 
-Strip strip_of(const render::TradeTable& taa, const TaaComparison& comparison, const render::ImageSet& set) {
+Strip strip_of(const measure::TradeTable& taa, const TaaComparison& comparison, const measure::ImageSet& set) {
   const Crop crop = brightest_crop(set.reference);
   std::vector<std::pair<std::string, std::string>> columns{{"none+taa", "none+taa"}};  // label, configuration
   if (!comparison.best_saagen.empty()) columns.emplace_back("best saagen: " + comparison.best_saagen, comparison.best_saagen);
   if (!comparison.best_engine.empty()) columns.emplace_back("best engine: " + comparison.best_engine, comparison.best_engine);
-  std::vector<render::Image> images;
+  std::vector<measure::Image> images;
   std::vector<std::string> labels, figures;
   images.reserve(columns.size());
   for (const auto& column : columns) {
     const std::string& configuration = column.second;  // a named copy: clang 14 cannot capture a structured binding
     const auto rendered = std::find_if(set.variants.begin(), set.variants.end(),
-                                       [&](const render::ImageSet::Rendered& r) { return taa_configuration_of(r) == configuration; });
-    const render::TradeRow* row = taa_row(taa, set.scene, set.material.alpha, configuration);
+                                       [&](const measure::ImageSet::Rendered& r) { return taa_configuration_of(r) == configuration; });
+    const measure::TradeRow* row = taa_row(taa, set.scene, set.material.alpha, configuration);
     if (rendered == set.variants.end() || !row) continue;
     images.push_back(cropped(rendered->image, crop));
     labels.push_back(column.first);  // the label of the image kept, also when an earlier column had none
@@ -87,7 +87,7 @@ Strip strip_of(const render::TradeTable& taa, const TaaComparison& comparison, c
   }
   std::vector<Tile> tiles;
   for (std::size_t i = 0; i < images.size(); ++i) tiles.push_back({labels[i], &images[i]});
-  const std::string scene(render::scene_name(set.scene));
+  const std::string scene(measure::scene_name(set.scene));
   return {taa_strip_name(set.scene),
           fmt::format("{} under TAA, alpha {} (where none+taa errs most), last animation frame, the {} x {} px crop at ({}, {}) "
                       "shown {}x: ground truth, {} (image error / video error at this alpha)",
@@ -97,10 +97,10 @@ Strip strip_of(const render::TradeTable& taa, const TaaComparison& comparison, c
 
 }  // namespace
 
-std::string taa_strip_name(render::SceneId scene) { return fmt::format("taa_{}.png", render::scene_name(scene)); }
+std::string taa_strip_name(measure::SceneId scene) { return fmt::format("taa_{}.png", measure::scene_name(scene)); }
 
-std::optional<Strip> taa_strip(const render::TradeTable& taa, const TaaComparison& comparison) {
-  const render::ImageSet* set = worst_case_for_none_taa(taa, comparison.scene);
+std::optional<Strip> taa_strip(const measure::TradeTable& taa, const TaaComparison& comparison) {
+  const measure::ImageSet* set = worst_case_for_none_taa(taa, comparison.scene);
   if (!set) return std::nullopt;
   return strip_of(taa, comparison, *set);
 }

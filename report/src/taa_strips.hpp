@@ -6,7 +6,7 @@
 
 #include "strips.hpp"
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/taa_summary.hpp"
 
 #include <optional>
@@ -15,10 +15,10 @@
 namespace saagen::report {
 
 // "taa_<scene>.png"
-std::string taa_strip_name(render::SceneId scene);
+std::string taa_strip_name(measure::SceneId scene);
 
 // The strip of the comparison's scene from the table with its +taa rows and taa_images; nullopt
 // when the table holds no none+taa image of the scene.
-std::optional<Strip> taa_strip(const render::TradeTable& taa, const TaaComparison& comparison);
+std::optional<Strip> taa_strip(const measure::TradeTable& taa, const TaaComparison& comparison);
 
 }  // namespace saagen::report

@@ -28,39 +28,39 @@ bool is_engine_taa(const std::string& id) { return is_engine(id) && id.find("+ta
 // One scene's rows (no Fresnel) by configuration, in the table's order of first appearance.
 struct SceneRows {
   std::vector<std::string> order;
-  std::map<std::string, std::vector<const render::TradeRow*>> rows;
+  std::map<std::string, std::vector<const measure::TradeRow*>> rows;
 };
 
-std::vector<std::pair<render::SceneId, SceneRows>> rows_by_scene(const render::TradeTable& table) {
-  std::vector<std::pair<render::SceneId, SceneRows>> scenes;
-  for (const render::TradeRow& row : table.rows) {
+std::vector<std::pair<measure::SceneId, SceneRows>> rows_by_scene(const measure::TradeTable& table) {
+  std::vector<std::pair<measure::SceneId, SceneRows>> scenes;
+  for (const measure::TradeRow& row : table.rows) {
     if (row.fresnel) continue;
     auto scene = std::find_if(scenes.begin(), scenes.end(), [&](const auto& s) { return s.first == row.scene; });
     if (scene == scenes.end()) scene = scenes.insert(scenes.end(), {row.scene, SceneRows{}});
-    const std::string id = render::configuration_id(row);
-    std::vector<const render::TradeRow*>& rows = scene->second.rows[id];
+    const std::string id = measure::configuration_id(row);
+    std::vector<const measure::TradeRow*>& rows = scene->second.rows[id];
     if (rows.empty()) scene->second.order.push_back(id);
     rows.push_back(&row);
   }
   return scenes;
 }
 
-// A configuration's own figure over its rows (render::series_interval over the cells).
+// A configuration's own figure over its rows (measure::series_interval over the cells).
 template <typename Series>
-render::Interval own_interval(const std::vector<const render::TradeRow*>& rows, Series series) {
-  std::vector<render::SeedSeries> cells;
-  for (const render::TradeRow* row : rows) cells.push_back(row->series.*series);
-  return render::series_interval(cells);
+measure::Interval own_interval(const std::vector<const measure::TradeRow*>& rows, Series series) {
+  std::vector<measure::SeedSeries> cells;
+  for (const measure::TradeRow* row : rows) cells.push_back(row->series.*series);
+  return measure::series_interval(cells);
 }
 
-TaaComparisonRow row_of(const render::TradeTable& table, render::SceneId scene, const std::string& label, const std::string& id,
-                        const std::vector<const render::TradeRow*>& rows) {
-  TaaComparisonRow out{label, id, own_interval(rows, &render::AnimationSeries::image), std::nullopt, 0.0, std::nullopt};
-  const bool video = std::all_of(rows.begin(), rows.end(), [](const render::TradeRow* r) { return !r->series.video[0].empty(); });
-  if (video) out.video_error = own_interval(rows, &render::AnimationSeries::video);
-  for (const render::TradeRow* row : rows) out.tde += row->tde / static_cast<double>(rows.size());
+TaaComparisonRow row_of(const measure::TradeTable& table, measure::SceneId scene, const std::string& label, const std::string& id,
+                        const std::vector<const measure::TradeRow*>& rows) {
+  TaaComparisonRow out{label, id, own_interval(rows, &measure::AnimationSeries::image), std::nullopt, 0.0, std::nullopt};
+  const bool video = std::all_of(rows.begin(), rows.end(), [](const measure::TradeRow* r) { return !r->series.video[0].empty(); });
+  if (video) out.video_error = own_interval(rows, &measure::AnimationSeries::video);
+  for (const measure::TradeRow* row : rows) out.tde += row->tde / static_cast<double>(rows.size());
   if (id != "none+taa")
-    out.against_taa = compare_configurations(table, id, "none+taa", [scene](const render::TradeRow& row) { return row.scene == scene; });
+    out.against_taa = compare_configurations(table, id, "none+taa", [scene](const measure::TradeRow& row) { return row.scene == scene; });
   return out;
 }
 
@@ -76,7 +76,7 @@ decision::Decision decide_under_taa(const std::vector<TaaComparisonRow>& saagen_
 
 double temporal_mean(const TaaComparisonRow& row) { return row.video_error ? row.video_error->mean : row.image_error.mean; }
 
-std::string interval_text(const render::Interval& i) { return fmt::format("{:.4f} [{:.4f}, {:.4f}]", i.mean, i.low, i.high); }
+std::string interval_text(const measure::Interval& i) { return fmt::format("{:.4f} [{:.4f}, {:.4f}]", i.mean, i.low, i.high); }
 
 std::string difference_text(const std::optional<PairedComparison>& c, bool video) {
   if (!c || c->cells == 0) return "";
@@ -86,13 +86,13 @@ std::string difference_text(const std::optional<PairedComparison>& c, bool video
 
 }  // namespace
 
-render::TradeTable without_taa_rows(const render::TradeTable& table) {
-  render::TradeTable plain = table;
-  std::erase_if(plain.rows, [](const render::TradeRow& row) { return row.taa; });
+measure::TradeTable without_taa_rows(const measure::TradeTable& table) {
+  measure::TradeTable plain = table;
+  std::erase_if(plain.rows, [](const measure::TradeRow& row) { return row.taa; });
   return plain;
 }
 
-std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
+std::vector<TaaComparison> taa_comparisons(const measure::TradeTable& table) {
   std::vector<TaaComparison> out;
   for (const auto& [scene, configs] : rows_by_scene(table)) {
     if (!configs.rows.count("none+taa")) continue;
@@ -121,8 +121,8 @@ std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table) {
   return out;
 }
 
-std::string taa_note(const render::TradeTable& table) {
-  const render::TradeConfig& c = table.config;
+std::string taa_note(const measure::TradeTable& table) {
+  const measure::TradeConfig& c = table.config;
   return fmt::format(
       "means over the alphas without Fresnel with 95 % intervals; the {} animation frames after a warm-up of {} at {} x {} px "
       "against their {}-spp ground truths; image error: LDR-FLIP per frame; video error: 10 - ColorVideoVDP's JOD of the clip; "
@@ -144,14 +144,14 @@ std::vector<std::string> taa_columns(const TaaComparisonRow& row) {
 
 std::vector<std::string> taa_headers() { return {"row", "configuration", "image error", "video error", "against none+taa", "TDE"}; }
 
-std::string format_taa_summary(const render::TradeTable& table) {
+std::string format_taa_summary(const measure::TradeTable& table) {
   const std::vector<TaaComparison> comparisons = taa_comparisons(table);
   if (comparisons.empty()) return {};
   std::string text = "With TAA (" + taa_note(table) + "):\n";
   const std::vector<std::string> headers = taa_headers();
   const std::string format = "{:<14} {:<36} {:<26} {:<26} {:<38} {:>8}\n";
   for (const TaaComparison& c : comparisons) {
-    text += fmt::format("{}: {}\n", render::scene_name(c.scene), c.verdict);
+    text += fmt::format("{}: {}\n", measure::scene_name(c.scene), c.verdict);
     text += fmt::format(fmt::runtime(format), headers[0], headers[1], headers[2], headers[3], headers[4], headers[5]);
     for (const TaaComparisonRow& row : c.rows) {
       const std::vector<std::string> v = taa_columns(row);
@@ -171,13 +171,13 @@ std::string format_taa_summary(const render::TradeTable& table) {
   return text;
 }
 
-nlohmann::json taa_cases_json(const render::TradeTable& table) {
+nlohmann::json taa_cases_json(const measure::TradeTable& table) {
   nlohmann::json cases = nlohmann::json::array();
-  for (const render::TradeRow& row : table.rows)
-    cases.push_back({{"scene", std::string(render::scene_name(row.scene))},
+  for (const measure::TradeRow& row : table.rows)
+    cases.push_back({{"scene", std::string(measure::scene_name(row.scene))},
                      {"alpha", row.alpha},
                      {"fresnel", row.fresnel},
-                     {"configuration", render::configuration_id(row)},
+                     {"configuration", measure::configuration_id(row)},
                      {"taa", row.taa},
                      {"flip_ldr_animation", row.flip_ldr_animation},
                      {"image_error", row.image_error.mean},

@@ -12,13 +12,13 @@ std::string format_summary(const std::vector<VariantSummary>& summary, const Cos
   return as_text(summary_table(summary, costs));
 }
 
-std::string format_findings(const render::TradeTable& table, const CostTable* costs) {
+std::string format_findings(const measure::TradeTable& table, const CostTable* costs) {
   std::string text;
   for (const TitledTable& finding : finding_tables(table, costs)) text += "\n" + finding.title + ":\n" + as_text(finding.table);
   return text;
 }
 
-std::string format_verdict(const render::TradeTable& table) {
+std::string format_verdict(const measure::TradeTable& table) {
   std::string text = fmt::format("{}\n({}):\n", kVerdictTitle, kVerdictNote);
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);

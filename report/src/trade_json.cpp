@@ -11,7 +11,7 @@
 namespace saagen::report {
 namespace {
 
-std::string id_of(render::Variant variant) { return std::string(render::variant_id(variant)); }
+std::string id_of(measure::Variant variant) { return std::string(measure::variant_id(variant)); }
 
 nlohmann::json difference_json(const decision::Difference& d) { return {{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; }
 
@@ -63,21 +63,21 @@ nlohmann::json content_decisions_json(RowsOf rows_of, std::string_view baseline)
   return out;
 }
 
-nlohmann::json decisions_json(const render::TradeTable& table) {
+nlohmann::json decisions_json(const measure::TradeTable& table) {
   const nlohmann::json by_content = content_decisions_json(
       [&](Content content) {
-        const RowFilter keep = [content](const render::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+        const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
         return measured_rows(table, keep, content_name(content));
       },
       "no SAA");
   nlohmann::json per_scene = nlohmann::json::array();
-  for (render::SceneId scene : table.config.scenes) {
-    const RowFilter keep = [scene](const render::TradeRow& row) { return !row.taa && row.scene == scene; };
-    const std::vector<ContentRow> rows = measured_rows(table, keep, render::scene_name(scene));
+  for (measure::SceneId scene : table.config.scenes) {
+    const RowFilter keep = [scene](const measure::TradeRow& row) { return !row.taa && row.scene == scene; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, measure::scene_name(scene));
     for (Path path : {Path::forward, Path::deferred}) {
       const MaterialDecision made = decide_on(rows, path, content_of(scene));
       nlohmann::json entry = decision_json(made);
-      entry["scene"] = std::string(render::scene_name(scene)), entry["path"] = std::string(path_name(path));
+      entry["scene"] = std::string(measure::scene_name(scene)), entry["path"] = std::string(path_name(path));
       entry["content"] = std::string(content_name(content_of(scene)));
       nlohmann::json engines = nlohmann::json::object();
       const std::string chosen = chosen_configuration(made);
@@ -103,22 +103,22 @@ nlohmann::json decisions_json(const render::TradeTable& table) {
 
 // The clip's JOD against the first ground-truth seed (the clip `--frames` writes as the ground
 // truth); 10 without the video metric.
-double first_seed_jod(const render::TradeRow& row) {
+double first_seed_jod(const measure::TradeRow& row) {
   const std::vector<double>& losses = row.series.video[0];
-  return losses.empty() ? 10.0 : 10.0 - render::mean_interval(losses, 0.0).mean;
+  return losses.empty() ? 10.0 : 10.0 - measure::mean_interval(losses, 0.0).mean;
 }
 
 }  // namespace
 
 // Under TAA, per content type and path: saagen's decision on the content's +taa rows against
 // none+taa (findings.hpp, measured_taa_rows), what `saagen plan` gives with taa = true.
-nlohmann::json taa_decisions_json(const render::TradeTable& table) {
+nlohmann::json taa_decisions_json(const measure::TradeTable& table) {
   return content_decisions_json([&](Content content) { return measured_taa_rows(table, content); }, "none+taa");
 }
 
 // Under TAA, per content type: every configuration's means and its pairing with none+taa
 // (measured_taa_rows), in by_content's form; `saagen plan --trade-table` reads it with taa = true.
-nlohmann::json taa_by_content_json(const render::TradeTable& table) {
+nlohmann::json taa_by_content_json(const measure::TradeTable& table) {
   nlohmann::json out = nlohmann::json::array();
   const std::string temporal = has_video_metric(table) ? "video_error" : "flicker_error";
   for (Content content : kContents)
@@ -131,7 +131,7 @@ nlohmann::json taa_by_content_json(const render::TradeTable& table) {
   return out;
 }
 
-nlohmann::json interval_json(const render::Interval& interval) {
+nlohmann::json interval_json(const measure::Interval& interval) {
   return {{"mean", interval.mean}, {"low", interval.low}, {"high", interval.high}};
 }
 
@@ -172,15 +172,15 @@ nlohmann::json summary_rows_json(const std::vector<VariantSummary>& summary, con
 }
 
 // Every row of the table with its figures.
-nlohmann::json cases_json(const render::TradeTable& table) {
+nlohmann::json cases_json(const measure::TradeTable& table) {
   nlohmann::json cases = nlohmann::json::array();
-  for (const render::TradeRow& row : table.rows) {
-    cases.push_back({{"scene", std::string(render::scene_name(row.scene))},
+  for (const measure::TradeRow& row : table.rows) {
+    cases.push_back({{"scene", std::string(measure::scene_name(row.scene))},
                      {"alpha", row.alpha},
                      {"fresnel", row.fresnel},
                      {"variant", id_of(row.variant)},
-                     {"feed", std::string(render::feed_name(row.feed))},
-                     {"configuration", render::configuration_id(row)},
+                     {"feed", std::string(measure::feed_name(row.feed))},
+                     {"configuration", measure::configuration_id(row)},
                      {"rmse_linear", row.rmse_linear},
                      {"rmse_tonemapped", row.rmse_tonemapped},
                      {"max_error", row.max_error},
@@ -202,14 +202,14 @@ nlohmann::json cases_json(const render::TradeTable& table) {
   return cases;
 }
 
-// The sanity suite's rows (render::SanityRow).
-nlohmann::json sanity_json(const render::TradeTable& table) {
+// The sanity suite's rows (measure::SanityRow).
+nlohmann::json sanity_json(const measure::TradeTable& table) {
   nlohmann::json sanity = nlohmann::json::array();
-  for (const render::SanityRow& row : table.sanity)
-    sanity.push_back({{"scene", std::string(render::scene_name(row.scene))},
+  for (const measure::SanityRow& row : table.sanity)
+    sanity.push_back({{"scene", std::string(measure::scene_name(row.scene))},
                       {"alpha", row.alpha},
                       {"fresnel", row.fresnel},
-                      {"result", std::string(render::sanity_name(row.result))},
+                      {"result", std::string(measure::sanity_name(row.result))},
                       {"image_error", row.image_error},
                       {"flicker_error", row.flicker_error},
                       {"video_error", row.video_error},
@@ -219,10 +219,10 @@ nlohmann::json sanity_json(const render::TradeTable& table) {
 }
 
 // Per content type, the same means: the planner's advice for a material with or without normal maps.
-nlohmann::json by_content_json(const render::TradeTable& table) {
+nlohmann::json by_content_json(const measure::TradeTable& table) {
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
-    const RowFilter keep = [content](const render::TradeRow& row) { return content_of(row.scene) == content; };
+    const RowFilter keep = [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
     for (const std::string& id : configurations(table)) {
       const Metrics m = mean_metrics(table, id, keep);
       if (!m.cases || is_measurement_configuration(id)) continue;
@@ -249,7 +249,7 @@ nlohmann::json by_content_json(const render::TradeTable& table) {
 
 // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
 // type and per scene; the verdicts, the planner and the scripts read these.
-nlohmann::json comparisons_json(const render::TradeTable& table) {
+nlohmann::json comparisons_json(const measure::TradeTable& table) {
   nlohmann::json comparisons = nlohmann::json::array();
   const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep) {
     for (const std::string& id : configurations(table)) {
@@ -270,15 +270,15 @@ nlohmann::json comparisons_json(const render::TradeTable& table) {
   };
   for (Content content : kContents)
     add_comparisons("content", std::string(content_name(content)),
-                    [content](const render::TradeRow& row) { return content_of(row.scene) == content; });
-  for (const render::SceneId scene : table.config.scenes)
-    add_comparisons("scene", std::string(render::scene_name(scene)), [scene](const render::TradeRow& row) { return row.scene == scene; });
+                    [content](const measure::TradeRow& row) { return content_of(row.scene) == content; });
+  for (const measure::SceneId scene : table.config.scenes)
+    add_comparisons("scene", std::string(measure::scene_name(scene)), [scene](const measure::TradeRow& row) { return row.scene == scene; });
   return comparisons;
 }
 
 }  // namespace
 
-nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
+nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   return {{"generator", std::string(output_tag) + " saagen bench"},
           {"decisions", decisions_json(table)},
           {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},

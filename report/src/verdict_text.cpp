@@ -80,7 +80,7 @@ std::string scene_losses(const Verdict& v) {
         whom.insert(whom.end(), engines.begin(), engines.end());
       metrics.push_back(fmt::format("{} ({})", metric.name, fmt::join(whom, " + ")));
     }
-    scenes.push_back(fmt::format("{}: {}", render::scene_name(scene), fmt::join(metrics, ", ")));
+    scenes.push_back(fmt::format("{}: {}", measure::scene_name(scene), fmt::join(metrics, ", ")));
   }
   return fmt::format("{}", fmt::join(scenes, "; "));
 }
@@ -103,7 +103,7 @@ std::vector<std::string> verdict_lines(const Verdict& v) {
 }
 
 // Verdicts grouped by render path, then content type.
-std::vector<Verdict> ordered_verdicts(const render::TradeTable& table) {
+std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table) {
   std::vector<Verdict> all = verdicts(table, recommend(table));
   std::stable_sort(all.begin(), all.end(),
                    [](const Verdict& a, const Verdict& b) { return a.recommendation.path < b.recommendation.path; });

@@ -3,7 +3,7 @@
 // `saagen bench` and `saagen report` (terminal.hpp), and at the top of the report (pages.hpp).
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/findings.hpp"
 
 #include <string>
@@ -18,7 +18,7 @@ inline constexpr const char* kVerdictNote =
     "ground truth's (docs/TEMPORAL.md); % = change from the baseline";
 
 // Verdicts grouped by render path, then content type.
-std::vector<Verdict> ordered_verdicts(const render::TradeTable& table);
+std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table);
 
 // The verdict lines of one recommendation: the headline, then where it loses (or that it does not).
 std::vector<std::string> verdict_lines(const Verdict& v);

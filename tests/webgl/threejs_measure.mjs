@@ -85,7 +85,7 @@ export function greyPng(width, height, pixels) {
                         pngChunk('IDAT', zlib.deflateSync(rows)), pngChunk('IEND', Buffer.alloc(0))]);
 }
 
-// --- Display values, as saagen's clips hold them (reference/render/image.hpp: display_value).
+// --- Display values, as saagen's clips hold them (measure/image.hpp: display_value).
 
 function srgbEncode(v) {
   const c = Math.min(Math.max(v, 0), 1);

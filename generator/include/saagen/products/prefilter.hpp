@@ -17,7 +17,7 @@
 //            R32G32B32A32_SFLOAT, a 2-layer array, layer 0 = (E[x], E[y], E[x^2], E[y^2]),
 //            layer 1 = (E[xy], 0, 0, 0), s = -n.xy / n.z. The shader forms the covariance
 //            (saa_lean_covariance) and the roughness (saa_prefilter_lean*).
-// The levels are box reductions of level 0, as reference/render/normal_map.hpp defines them.
+// The levels are box reductions of level 0, as measure/normal_map.hpp defines them.
 // The key "saagen.prefilter" holds the layout as JSON. docs: docs/GUIDE.md "Normal-map prefiltering".
 #pragma once
 

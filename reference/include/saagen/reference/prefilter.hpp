@@ -2,7 +2,7 @@
 //
 // The texture-space half of SAA (Kaplanyan et al. 2016 Sec. 4): the spread of a normal map's
 // normals inside one MIP texel becomes roughness. Two measures of that spread, both stored per
-// texel by render::NormalMap (normal_map.hpp):
+// texel by measure::NormalMap (normal_map.hpp):
 //   - Toksvig 2005: the length L = |mean normal| of the unnormalised mean of the unit normals.
 //     |N_a| = 1 / (1 + sigma^2) gives the per-axis slope variance sigma^2 = (1 - L) / L.
 //   - LEAN mapping (Olano & Baker 2010): the slope moments E[s], E[s s^T]; the covariance is

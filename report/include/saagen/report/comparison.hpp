@@ -4,12 +4,12 @@
 // For each cell (a scene and material both configurations were measured on), the two rows' verdict
 // series (trade.hpp, AnimationSeries) are differenced frame by frame against each ground-truth
 // seed (paired: the same frames, pixels and references); the difference's mean over the cells
-// gets the interval of render::series_interval(): the variation over frame blocks, pixels and
+// gets the interval of measure::series_interval(): the variation over frame blocks, pixels and
 // cells, widened by the ground truth's Monte-Carlo error (the spread between the two seeds).
 #pragma once
 
 #include "saagen/decision.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 
 #include <functional>
 #include <optional>
@@ -22,7 +22,7 @@ namespace saagen::report {
 // One metric's difference (configuration - baseline; lower is better) and the ground truth's part
 // of its uncertainty.
 struct MetricDifference {
-  render::Interval difference;
+  measure::Interval difference;
   double ground_truth_sd = 0.0;  // standard deviation of the mean due to the ground truth alone
   // The ground truth's noise is larger than a quarter of the difference: too noisy to call, a tie
   // whatever the interval says (more ground-truth samples would settle it).
@@ -50,20 +50,20 @@ struct PairedComparison {
 // The metric the verdict reads as temporal: the video metric where measured, else the flicker error.
 const MetricDifference& temporal_metric(const PairedComparison& comparison);
 
-using CellFilter = std::function<bool(const render::TradeRow&)>;
+using CellFilter = std::function<bool(const measure::TradeRow&)>;
 // `configuration` against `baseline` over the non-Fresnel cells `keep` accepts (a row of the
 // configuration and the baseline's row of the same scene and material). The ids tell TAA apart
 // ("none+taa" is no SAA under TAA): "deferred-aniso+taa/tail" against "none+taa" compares under
 // TAA, "none+taa" against "none" what TAA alone does.
-PairedComparison compare_configurations(const render::TradeTable& table, const std::string& configuration, const std::string& baseline,
+PairedComparison compare_configurations(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
 
 // The same over given cells: per cell, the configuration's series and the baseline's (of the same
 // content, frames and ground-truth seeds); what compare_configurations computes once it has
 // paired a table's rows, and `saagen score` on clips rendered elsewhere.
 struct CellPair {
-  const render::AnimationSeries* configuration = nullptr;
-  const render::AnimationSeries* baseline = nullptr;
+  const measure::AnimationSeries* configuration = nullptr;
+  const measure::AnimationSeries* baseline = nullptr;
 };
 PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells);
 
@@ -79,13 +79,13 @@ std::string_view comparison_outcome_name(const PairedComparison& comparison);
 decision::Comparison to_decision(const PairedComparison& comparison);
 
 // The same for two series of one cell (a sanity result against a row, two rows).
-MetricDifference compare_series(std::span<const render::SeedSeries> a, std::span<const render::SeedSeries> b);
+MetricDifference compare_series(std::span<const measure::SeedSeries> a, std::span<const measure::SeedSeries> b);
 
 // A result's own lag over cells (animation_error.hpp, lag_error), with its interval: a result
 // shown tau frames late, R_t = E I_{t - tau}, has E[lag] = (2 tau - 1) |motion|^2, so a lag above
 // 0 beyond the interval says its frames follow the ground truth more than half a frame late,
 // whatever the motion's size. The interval includes the ground truth's spread; the quarter rule
 // (ground_truth_limited) does not apply to this gate.
-MetricDifference lag_of(std::span<const render::SeedSeries> cells);
+MetricDifference lag_of(std::span<const measure::SeedSeries> cells);
 
 }  // namespace saagen::report

@@ -15,7 +15,7 @@
 #pragma once
 
 #include "saagen/decision.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/cost_table.hpp"
 #include "saagen/scene/planner.hpp"
 
@@ -38,7 +38,7 @@ namespace saagen::report {
 enum class Content { curved, normal_mapped, bump, clearcoat };
 inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump, Content::clearcoat};
 std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump", "clearcoat"
-Content content_of(render::SceneId scene);
+Content content_of(measure::SceneId scene);
 
 // Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).
 struct Metrics {
@@ -60,15 +60,15 @@ struct Metrics {
 };
 // Whether the table's rows carry the video metric (TradeConfig::video_metric), which the verdict
 // then reads as its temporal metric (comparison.hpp, temporal_metric).
-bool has_video_metric(const render::TradeTable& table);
+bool has_video_metric(const measure::TradeTable& table);
 // The metrics of one trade row (cases = 1).
-Metrics row_metrics(const render::TradeRow& row);
+Metrics row_metrics(const measure::TradeRow& row);
 
-using RowFilter = std::function<bool(const render::TradeRow&)>;
-// Means of one configuration (render::configuration_id) over the non-Fresnel rows `keep` accepts.
-Metrics mean_metrics(const render::TradeTable& table, const std::string& configuration, const RowFilter& keep);
+using RowFilter = std::function<bool(const measure::TradeRow&)>;
+// Means of one configuration (measure::configuration_id) over the non-Fresnel rows `keep` accepts.
+Metrics mean_metrics(const measure::TradeTable& table, const std::string& configuration, const RowFilter& keep);
 // The configurations of a table in row order.
-std::vector<std::string> configurations(const render::TradeTable& table);
+std::vector<std::string> configurations(const measure::TradeTable& table);
 
 enum class Path { forward, deferred };
 std::string_view path_name(Path path);
@@ -94,13 +94,13 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 // writes ("by_content") and saagen's decision reads (through comparison_against,
 // saagen/scene/cost_tables.hpp). `scope` names the content type or the scene; each row is paired
 // against the rows' `baseline` (its against_none; none+taa for measured_taa_rows).
-std::vector<ContentRow> measured_rows(const render::TradeTable& table, const RowFilter& keep, std::string_view scope,
+std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline = "none");
 
 // Under TAA (`saagen bench --taa`): a content type's +taa rows, named as the configurations a
 // material under TAA uses (without "+taa"; none+taa is "none"), each paired against none+taa:
 // what `saagen plan` decides on with taa = true (the JSON's "taa_by_content").
-std::vector<ContentRow> measured_taa_rows(const render::TradeTable& table, Content content);
+std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Content content);
 // A +taa configuration's id without "+taa" ("deferred-avg:geometric+hdrp+taa/tail" ->
 // "deferred-avg:geometric+hdrp/tail"; "none+taa" -> "none").
 std::string without_taa(std::string configuration);
@@ -121,7 +121,7 @@ std::string chosen_configuration(const MaterialDecision& made);
 // one's comparison and outcome; then saagen's decision at three budgets: the papers' overhead
 // (x1.05, Tokuyoshi & Kaplanyan 2019 Table 2), x1.25 and unlimited.
 inline constexpr double kPapersBudget = 1.05;
-std::string format_frontier(const render::TradeTable& table);
+std::string format_frontier(const measure::TradeTable& table);
 
 // One configuration on the trade's picture of a content type and render path.
 struct TradePoint {
@@ -141,7 +141,7 @@ struct ContentTrade {
   std::vector<ContentRow> rows;    // what it decided on
 };
 // Per content type of the table and render path: what format_frontier prints and the report plots.
-std::vector<ContentTrade> content_trades(const render::TradeTable& table);
+std::vector<ContentTrade> content_trades(const measure::TradeTable& table);
 
 struct Recommendation {
   Path path = Path::deferred;
@@ -156,7 +156,7 @@ struct Recommendation {
 };
 // Per path and content type present in the table: saagen's decision on that content's means
 // (decide_on): the configuration that beats no SAA with the largest image improvement, or none.
-std::vector<Recommendation> recommend(const render::TradeTable& table);
+std::vector<Recommendation> recommend(const measure::TradeTable& table);
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
 
 struct EngineSwitch {
@@ -170,7 +170,7 @@ struct EngineSwitch {
 // the baseline, among the saagen configurations (either path) whose cost is at most the engine's:
 // the one that beats the engine's form (decision::decide: the largest temporal gain, the video
 // error where measured); empty where none does.
-std::vector<EngineSwitch> engine_switches(const render::TradeTable& table, const CostTable* costs);
+std::vector<EngineSwitch> engine_switches(const measure::TradeTable& table, const CostTable* costs);
 
 // The metrics a verdict compares, in the order they are reported: LDR-FLIP, TDE, HDR-FLIP,
 // tonemapped RMSE (all lower-is-better).
@@ -193,7 +193,7 @@ struct Loss {
 std::string describe(const Loss& loss);  // "engine-filament: LDR-FLIP 0.0312 > 0.0305"
 
 struct SceneVerdict {
-  render::SceneId scene = render::SceneId::sphere;
+  measure::SceneId scene = measure::SceneId::sphere;
   Path path = Path::deferred;
   std::string configuration;                               // the recommendation for its content
   Metrics recommended;                                     // over the scene's alphas
@@ -202,7 +202,7 @@ struct SceneVerdict {
 };
 // Per scene and path: the recommendation against no SAA and every engine, on every
 // kVerdictMetrics metric.
-std::vector<SceneVerdict> scene_verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+std::vector<SceneVerdict> scene_verdicts(const measure::TradeTable& table, const std::vector<Recommendation>& recs);
 
 // The short verdict per render path and content type: the recommendation against no SAA and the
 // best engine form on that content (the lowest mean of each metric over the engines), and every
@@ -214,10 +214,10 @@ struct Verdict {
   Metrics engine_image;
   std::string best_engine_motion;  // the engine with the lowest mean temporal error (video error, else flicker error)
   Metrics engine_motion;
-  std::vector<Loss> losses;                                                 // against none and, per metric, that metric's best engine
-  std::vector<std::pair<render::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
-  bool video = false;                                                       // the temporal metric is the video error (has_video_metric)
+  std::vector<Loss> losses;                                                  // against none and, per metric, that metric's best engine
+  std::vector<std::pair<measure::SceneId, std::vector<Loss>>> scene_losses;  // scenes with losses only
+  bool video = false;                                                        // the temporal metric is the video error (has_video_metric)
 };
-std::vector<Verdict> verdicts(const render::TradeTable& table, const std::vector<Recommendation>& recs);
+std::vector<Verdict> verdicts(const measure::TradeTable& table, const std::vector<Recommendation>& recs);
 
 }  // namespace saagen::report

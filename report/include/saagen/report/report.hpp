@@ -1,4 +1,4 @@
-// The speed/accuracy trade report: the ground-truth trade table of saagen::render joined with the
+// The speed/accuracy trade report: the ground-truth trade table of saagen::measure joined with the
 // measured cost of each variant (bench_shading --json: lavapipe time ratio and optimized SPIR-V
 // instruction delta), written as a self-contained directory (`saagen report -o DIR`: index.html,
 // report.md, PNG sheets and strips, SVG plots).
@@ -11,7 +11,7 @@
 #pragma once
 
 #include "saagen/io/output.hpp"
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/comparison.hpp"
 #include "saagen/report/cost_table.hpp"
 #include "saagen/report/png.hpp"
@@ -39,17 +39,17 @@ namespace saagen::report {
 // "With TAA" section: the per-scene comparison (taa_comparisons) and DIR/taa_<scene>.png, a crop
 // of the animation's last frame: the ground truth, none+taa, the best saagen configuration under
 // TAA and the best engine form under TAA, at the alpha where none+taa errs most.
-std::vector<std::string> write_report(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
-                                      bool force = false, const render::TradeTable* taa = nullptr);
+std::vector<std::string> write_report(const measure::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
+                                      bool force = false, const measure::TradeTable* taa = nullptr);
 // The files write_report writes (to write them in one commit with a run's other outputs) and the
 // image files among them.
 struct ReportFiles {
   std::vector<OutputFile> outputs;
   std::vector<std::string> images;
 };
-ReportFiles report_files(const render::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
-                         const render::TradeTable* taa = nullptr);
+ReportFiles report_files(const measure::TradeTable& table, const CostTable* costs, const std::filesystem::path& dir,
+                         const measure::TradeTable* taa = nullptr);
 // The paths write_report will write for a configuration, to check them before rendering.
-std::vector<std::filesystem::path> report_paths(const render::TradeConfig& config, const std::filesystem::path& dir);
+std::vector<std::filesystem::path> report_paths(const measure::TradeConfig& config, const std::filesystem::path& dir);
 
 }  // namespace saagen::report

@@ -21,7 +21,7 @@
 // made from the second seed's frames and a third seed's).
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/comparison.hpp"
 
 #include <nlohmann/json.hpp>
@@ -40,7 +40,7 @@ struct SanityEntry {
 };
 
 struct SceneSanity {
-  render::SceneId scene = render::SceneId::sphere;
+  measure::SceneId scene = measure::SceneId::sphere;
   bool moves = false;  // the ground truth moves (see the top of this file)
   // The temporal metric is the video error, 10 - ColorVideoVDP's JOD (comparison.hpp,
   // temporal_metric); else the flicker error. SanityEntry's flicker fields then hold it.
@@ -51,7 +51,7 @@ struct SceneSanity {
 };
 
 // Every scene of the table that has sanity rows.
-std::vector<SceneSanity> check_sanity(const render::TradeTable& table);
+std::vector<SceneSanity> check_sanity(const measure::TradeTable& table);
 // The suite's table (one block per scene) and a last line: passed, or how many rules failed.
 std::string format_sanity(const std::vector<SceneSanity>& scenes);
 // The same for `saagen bench --json` ("sanity_checks").

@@ -1,6 +1,6 @@
 // `saagen score --frames DIR`: the inverse of `saagen bench --frames DIR` (frames.hpp). Clips in
 // that format, rendered by anything (a browser, an engine), get the trade's verdict metrics
-// (render/clip_score.hpp: image error, video error, flicker error, lag, with 95 % intervals) and
+// (measure/clip_score.hpp: image error, video error, flicker error, lag, with 95 % intervals) and
 // each result its paired comparison with each baseline (comparison.hpp: beats / ties / loses).
 //
 // DIR/index.json as frames.hpp describes it. Per group, the ground truth has two seeds: the
@@ -11,7 +11,7 @@
 // Clips are 8-bit greyscale PNGs (no alpha), width x (height * frames).
 #pragma once
 
-#include "saagen/reference/render/clip_score.hpp"
+#include "saagen/measure/clip_score.hpp"
 #include "saagen/report/comparison.hpp"
 
 #include <nlohmann/json.hpp>
@@ -30,8 +30,8 @@ struct ClipGroupInput {
   std::string scene, material;
   double alpha = 0.0;
   bool fresnel = false;
-  std::vector<render::ByteClip> seeds;                            // the ground truth's two seeds
-  std::vector<std::pair<std::string, render::ByteClip>> results;  // every clip, in the index's order
+  std::vector<measure::ByteClip> seeds;                            // the ground truth's two seeds
+  std::vector<std::pair<std::string, measure::ByteClip>> results;  // every clip, in the index's order
 };
 
 struct ClipSetInput {
@@ -46,7 +46,7 @@ ClipSetInput read_clip_set(const std::filesystem::path& directory);
 struct ScoredResult {
   std::string configuration;
   bool sanity = false;  // a sanity result: scored against the first seed only
-  render::ClipScore score;
+  measure::ClipScore score;
 };
 
 struct ScoredGroup {

@@ -2,7 +2,7 @@
 // how the table was measured (its TradeConfig), for the terminal, the report and the JSON.
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 
 #include <cstddef>
 #include <string>
@@ -15,7 +15,7 @@ namespace saagen::report {
 // Means over the cases (scenes x alphas, no Fresnel) of one configuration: a variant, or a
 // variant fed the geometric normal ("deferred-avg:geometric"), or an engine's shipped form.
 struct VariantSummary {
-  std::string variant;  // render::configuration_id
+  std::string variant;  // measure::configuration_id
   double rmse_linear = 0.0;
   double rmse_tonemapped = 0.0;
   double max_error = 0.0;  // the largest over the cases
@@ -29,10 +29,10 @@ struct VariantSummary {
   std::size_t cases = 0;
 };
 
-std::vector<VariantSummary> summarize(const render::TradeTable& table);
+std::vector<VariantSummary> summarize(const measure::TradeTable& table);
 
 // The table's configuration in one line: sizes, samples, animation, filter parameters, and the
 // scenes measured at sizes of their own.
-std::string config_line(const render::TradeTable& table);
+std::string config_line(const measure::TradeTable& table);
 
 }  // namespace saagen::report

@@ -3,7 +3,7 @@
 // (pages.hpp) and the JSON's "taa_cases".
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/comparison.hpp"
 
 #include <nlohmann/json.hpp>
@@ -18,9 +18,9 @@ namespace saagen::report {
 // verdicts and trade_json read (their flip_ldr is the animation's, not frame 0's at the main
 // resolution); per scene, the comparison under TAA (taa_comparisons) as a terminal table (empty
 // without +taa rows); and every row's figures, for trade_json's "taa_cases".
-render::TradeTable without_taa_rows(const render::TradeTable& table);
-std::string format_taa_summary(const render::TradeTable& table);
-nlohmann::json taa_cases_json(const render::TradeTable& table);
+measure::TradeTable without_taa_rows(const measure::TradeTable& table);
+std::string format_taa_summary(const measure::TradeTable& table);
+nlohmann::json taa_cases_json(const measure::TradeTable& table);
 
 // The per-scene comparison under TAA behind format_taa_summary and the report's "with TAA"
 // section, read with the verdict's metrics and decision (comparison.hpp, saagen/decision.hpp):
@@ -30,24 +30,24 @@ nlohmann::json taa_cases_json(const render::TradeTable& table);
 // alphas without Fresnel, with 95 % intervals) and its paired comparison against none+taa.
 struct TaaComparisonRow {
   std::string label;
-  std::string configuration;                    // render::configuration_id
-  render::Interval image_error;                 // LDR-FLIP per frame of the animation
-  std::optional<render::Interval> video_error;  // 10 - ColorVideoVDP's JOD; nullopt without the video metric
-  double tde = 0.0;                             // the older temporal figure, for comparison with older tables
-  std::optional<PairedComparison> against_taa;  // against none+taa; nullopt on none+taa's own row
+  std::string configuration;                     // measure::configuration_id
+  measure::Interval image_error;                 // LDR-FLIP per frame of the animation
+  std::optional<measure::Interval> video_error;  // 10 - ColorVideoVDP's JOD; nullopt without the video metric
+  double tde = 0.0;                              // the older temporal figure, for comparison with older tables
+  std::optional<PairedComparison> against_taa;   // against none+taa; nullopt on none+taa's own row
 };
 struct TaaComparison {
-  render::SceneId scene = render::SceneId::sphere;
+  measure::SceneId scene = measure::SceneId::sphere;
   std::vector<TaaComparisonRow> rows;
   std::string best_saagen;  // the decision's choice under TAA ("" when none beats none+taa)
   std::string best_engine;  // the engine form under TAA with the lowest temporal error ("" when the table has none)
   std::string verdict;      // the decision's reason
 };
-std::vector<TaaComparison> taa_comparisons(const render::TradeTable& table);
+std::vector<TaaComparison> taa_comparisons(const measure::TradeTable& table);
 // A row's columns as the terminal table and the report print them, and their headers.
 std::vector<std::string> taa_headers();
 std::vector<std::string> taa_columns(const TaaComparisonRow& row);
 // What the comparison's figures are (frames, warm-up, resolution, ground truth), for captions.
-std::string taa_note(const render::TradeTable& table);
+std::string taa_note(const measure::TradeTable& table);
 
 }  // namespace saagen::report

@@ -2,7 +2,7 @@
 // short verdict as plain-text tables and lines.
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/cost_table.hpp"
 #include "saagen/report/summary.hpp"
 
@@ -16,11 +16,11 @@ std::string format_summary(const std::vector<VariantSummary>& summary, const Cos
 
 // The findings (findings.hpp) as terminal tables: recommendation per path and content, engine
 // switches, per-scene verdicts.
-std::string format_findings(const render::TradeTable& table, const CostTable* costs);
+std::string format_findings(const measure::TradeTable& table, const CostTable* costs);
 
 // The short verdict (findings.hpp, verdicts()): per render path and content type, what to use,
 // how much it beats no SAA and the best engine form in LDR-FLIP and TDE, and where it loses.
 // Printed last by `saagen bench` and `saagen report`, and at the top of the report.
-std::string format_verdict(const render::TradeTable& table);
+std::string format_verdict(const measure::TradeTable& table);
 
 }  // namespace saagen::report

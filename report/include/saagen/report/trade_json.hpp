@@ -4,7 +4,7 @@
 // deciding again.
 #pragma once
 
-#include "saagen/reference/render/trade.hpp"
+#include "saagen/measure/trade.hpp"
 #include "saagen/report/comparison.hpp"
 #include "saagen/report/cost_table.hpp"
 #include "saagen/report/summary.hpp"
@@ -17,16 +17,16 @@ namespace saagen::report {
 
 // An interval as the JSON outputs write it ({mean, low, high}), and a paired difference's: the
 // interval with the ground truth's part of it and its reading (better / tie / worse).
-nlohmann::json interval_json(const render::Interval& interval);
+nlohmann::json interval_json(const measure::Interval& interval);
 nlohmann::json difference_json(const MetricDifference& difference);
 
-nlohmann::json trade_json(const render::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
+nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs);
 
 // Under TAA, per content type (findings.hpp, measured_taa_rows): every configuration's means and
 // its pairing with none+taa in by_content's form, the JSON's "taa_by_content" that `saagen plan
 // --trade-table` reads with taa = true; and saagen's decision on them per path, the JSON's
 // decisions.taa_by_content.
-nlohmann::json taa_by_content_json(const render::TradeTable& table);
-nlohmann::json taa_decisions_json(const render::TradeTable& table);
+nlohmann::json taa_by_content_json(const measure::TradeTable& table);
+nlohmann::json taa_decisions_json(const measure::TradeTable& table);
 
 }  // namespace saagen::report
