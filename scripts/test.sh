@@ -7,11 +7,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
-# The library and the CLI compiled with clang as well (compile only; about 2 minutes on 2 cores):
-# the sanitizer and fuzz scripts build with clang, whose C++20 differs from GCC's in places.
+# The library and the CLI compiled with clang as well (compile only: nothing runs the binary, so it
+# is built without optimisation, -O0 with Release's -DNDEBUG, about 60 % less compile time than
+# -O3): the sanitizer and fuzz scripts build with clang, whose C++20 differs from GCC's in places.
 clang_log=$(mktemp)
 trap 'rm -f "$clang_log"' EXIT
-if ! { CC=clang CXX=clang++ cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=Release && cmake --build build-clang --target saagen_cli -j "$(nproc)"; } > "$clang_log" 2>&1; then
+if ! { CC=clang CXX=clang++ cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O0 -DNDEBUG" &&
+       cmake --build build-clang --target saagen_cli -j "$(nproc)"; } > "$clang_log" 2>&1; then
   grep -E "error|Error" "$clang_log" | head -n 20
   echo "test: the library or the CLI does not compile with clang"
   exit 1
