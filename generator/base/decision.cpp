@@ -22,13 +22,15 @@ bool within_budget(const Candidate& c, const Preference& p) { return !p.budget |
 // "1 usable configuration", "3 usable configurations".
 std::string usable_count(std::size_t n) { return fmt::format("{} usable configuration{}", n, n == 1 ? "" : "s"); }
 
+// "; 1.17x no SAA's shading cost at 1 light", or nothing where the candidate carries no cost (a
+// choice by accuracy alone, as among one variant's feeds and bakes).
 std::string cost_text(const Candidate& c, std::string_view basis) {
-  if (!c.cost_ratio) return "cost unknown";
-  return fmt::format("{:.3g}x no SAA's shading cost{}{}", *c.cost_ratio, basis.empty() ? "" : " ", basis);
+  if (!c.cost_ratio) return "";
+  return fmt::format("; {:.3g}x no SAA's shading cost{}{}", *c.cost_ratio, basis.empty() ? "" : " ", basis);
 }
 
 std::string figures(const Candidate& c, std::string_view basis, std::string_view baseline) {
-  return fmt::format("{} (image {}, temporal {} against {}; {})", c.configuration, describe(c.against_none.image),
+  return fmt::format("{} (image {}, temporal {} against {}{})", c.configuration, describe(c.against_none.image),
                      describe(c.against_none.temporal), baseline, cost_text(c, basis));
 }
 

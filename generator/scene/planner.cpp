@@ -75,14 +75,6 @@ const std::vector<Rule>& rules() {
   return table;
 }
 
-// saagen's trade on its normal-mapped scenes (a sphere with a MIP-mapped normal map, features of
-// ~4 px and ~0.5 px), mean LDR-FLIP over the scenes and six alphas (`saagen bench --preset full
-// --sigma2 0.0625`, the "normal-mapped" rows of its JSON; docs/GUIDE.md "Does it make images better?").
-// With the papers' GGX(alpha^2 + K) (Beckmann materials, and engines that keep their own BRDF):
-constexpr const char* kMeasuredNormalAdvice =
-    "mean LDR-FLIP on normal-mapped scenes, sigma2 0.0625: deferred-avg 0.0334 on the vertex normal, 0.0424 on the "
-    "normal-mapped normal, 0.1465 with Toksvig prefiltering; forward-aniso-projected 0.0331, 0.0390, 0.1457 with LEAN";
-
 // `saagen bench --preset medium --json T.json` (sigma^2 0.25), then `python3
 // scripts/beats_baselines.py T.json` (docs/TEMPORAL.md, "The verdict with the validated
 // criterion"); the narrower kernels were compared before the video metric only.
@@ -414,27 +406,25 @@ std::string sampling_advice(std::string_view prefilter) {
   return prefilter == "none" ? std::string() : fmt::format("; {}", advice::kPrefilterSamplingText);
 }
 
-// Without a trade table, for Beckmann materials: what saagen's own trade measured with the papers'
-// lobe (docs/GUIDE.md "Does it make images better?"); GGX materials get saagen's advice (advice.hpp).
-std::string measured_normal_advice(const MaterialPlan& plan) {
-  return fmt::format("feed the {} normal{}{}; measured: {}", plan.feed,
-                     plan.prefilter == "none" ? std::string(" and do not add the normal map's MIP variance to the roughness (it lowers "
-                                                            "tonemapped RMSE but adds haze)")
-                                              : fmt::format(", prefilter the map ({})", plan.prefilter),
-                     sampling_advice(plan.prefilter), kMeasuredNormalAdvice);
-}
+// The lobe a material's plan shades with, as the trade names it: GGX the tail-preserving filtered
+// GGX (advice::kLobe), Beckmann the papers' lobe.
+std::string_view planned_lobe(const Material& material) { return material.ndf == Ndf::ggx ? advice::kLobe : "papers"; }
 
-// The table's normal-mapped content rows the material may use: any eligible variant's when the
-// planner chooses the variant by accuracy, else the plan's variant's.
-std::vector<ContentRow> allowed_normal_mapped_rows(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible,
-                                                   bool choose_variant, const MaterialPlan& plan) {
+// The normal-mapped content rows the material may use: any eligible variant's when the planner
+// chooses the variant by accuracy, else the plan's variant's; of the lobe the plan shades with
+// where the rows have it (a table of an engine's own BRDF may not).
+std::vector<ContentRow> allowed_normal_mapped_rows(const std::vector<ContentRow>& content_rows, const std::vector<const Variant*>& eligible,
+                                                   bool choose_variant, std::string_view lobe, const MaterialPlan& plan) {
+  const bool rows_have_lobe = std::any_of(content_rows.begin(), content_rows.end(),
+                                          [&](const ContentRow& row) { return parse_configuration(row.configuration).lobe == lobe; });
   std::vector<ContentRow> rows;
-  for (const ContentRow& row : table.content_rows) {
+  for (const ContentRow& row : content_rows) {
     if (row.content != "normal-mapped") continue;
-    const std::string variant = parse_configuration(row.configuration).variant;
-    const bool allowed = choose_variant ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == variant; })
-                                        : variant == plan.variant;
-    if (allowed) rows.push_back(row);
+    const Configuration c = parse_configuration(row.configuration);
+    const bool allowed = choose_variant
+                             ? std::any_of(eligible.begin(), eligible.end(), [&](const Variant* v) { return v->id == c.variant; })
+                             : c.variant == plan.variant;
+    if (allowed && (!rows_have_lobe || c.lobe == lobe)) rows.push_back(row);
   }
   return rows;
 }
@@ -445,11 +435,11 @@ std::string comparison_text(const decision::Comparison& c, std::string_view base
                      decision::name(decision::outcome(c)));
 }
 
-// No SAA's normal-mapped row of a table, when it has one (every table `saagen bench` writes).
-const ContentRow* normal_mapped_none(const MeasuredTradeTable& table) {
-  const auto none = std::find_if(table.content_rows.begin(), table.content_rows.end(),
+// No SAA's normal-mapped row, when the rows have it (every table `saagen bench` writes does).
+const ContentRow* normal_mapped_none(const std::vector<ContentRow>& content_rows) {
+  const auto none = std::find_if(content_rows.begin(), content_rows.end(),
                                  [](const ContentRow& row) { return row.content == "normal-mapped" && row.configuration == "none"; });
-  return none == table.content_rows.end() ? nullptr : &*none;
+  return none == content_rows.end() ? nullptr : &*none;
 }
 
 // saagen's one decision (decision.hpp, for accuracy) among `rows`, each against no SAA.
@@ -495,7 +485,7 @@ std::string prefilter_advice(const std::vector<ContentRow>& allowed, const Conte
 
 // A table without no SAA's row (not written by `saagen bench`) has nothing to decide against:
 // the lowest mean display error, said to be a mean without an interval.
-void choose_lowest_mean(const MeasuredTradeTable& table, const std::vector<ContentRow>& allowed, MaterialPlan& plan) {
+void choose_lowest_mean(std::string_view source, const std::vector<ContentRow>& allowed, MaterialPlan& plan) {
   std::vector<std::string> figures;
   const ContentRow* best = nullptr;
   for (const ContentRow& row : allowed) {
@@ -507,30 +497,7 @@ void choose_lowest_mean(const MeasuredTradeTable& table, const std::vector<Conte
   plan.feed = c.feed;
   plan.prefilter = c.prefilter;
   plan.normal_advice = fmt::format("{} (lowest mean display error on normal-mapped content in {}, means without intervals: {})",
-                                   best->configuration, table.source_name, fmt::join(figures, ", "));
-}
-
-// With a trade table's content rows: saagen's decision among the configurations of the
-// material's variant on normal-mapped content, or of any eligible one when the planner chooses
-// the variant by accuracy; where none beats no SAA the plan keeps its feed and says so.
-void choose_normal_handling(const MeasuredTradeTable& table, const std::vector<const Variant*>& eligible, bool choose_variant,
-                            MaterialPlan& plan) {
-  const std::vector<ContentRow> allowed = allowed_normal_mapped_rows(table, eligible, choose_variant, plan);
-  if (allowed.empty()) return;
-  const ContentRow* none = normal_mapped_none(table);
-  if (!none) return choose_lowest_mean(table, allowed, plan);
-  const decision::Decision made = decide_among(allowed, *none);
-  if (!made.chosen) {
-    plan.prefilter = "none";
-    plan.normal_advice = fmt::format("no texture prefilter; on normal-mapped content in {} {}", table.source_name, made.reason);
-    return;
-  }
-  const Configuration c = parse_configuration(allowed[*made.chosen].configuration);
-  plan.variant = c.variant;
-  plan.feed = c.feed;
-  plan.prefilter = c.prefilter;
-  plan.normal_advice =
-      fmt::format("{} (on normal-mapped content in {}){}", made.reason, table.source_name, prefilter_advice(allowed, *none, plan));
+                                   best->configuration, source, fmt::join(figures, ", "));
 }
 
 // Whether the plan can give a configuration's prefilter: a normal map's bake. On bump content
@@ -644,23 +611,62 @@ std::string deferred_curved_note() {
       measured ? scene_list(measured->scenes) : std::string("not measured"), figures("deferred-avg/tail"), figures("deferred-aniso/tail"));
 }
 
-// What saagen's trade measured for the advised feed of a filtered normal-mapped material (the
-// geometric normal and the map's bake, advice::kFeed and kPrefilter): its best configuration by
-// image error, against no SAA.
-std::string advised_feed_figures() {
-  const AdviceMeasurement* measured = advice_measurement(advice::Content::normal_mapped, false);
-  const ContentRow* best = nullptr;
-  if (measured)
-    for (const ContentRow& row : measured->rows) {
-      const Configuration c = parse_configuration(row.configuration);
-      if (c.feed == advice::kFeed && c.prefilter == advice::kPrefilter && c.lobe == advice::kLobe && row.against_none &&
-          (!best || row.error < best->error))
-        best = &row;
-    }
-  if (!best) return "not measured";
-  const bool beats = decision::outcome(*best->against_none) == decision::Outcome::beats;
-  return fmt::format("{}: {} (saagen's trade on normal-mapped content{})", best->configuration, comparison_text(*best->against_none),
-                     beats ? "" : "; without a named variant the advice is no filter");
+// Where a material's normal-mapped rows come from: a trade table's, or saagen's committed
+// measurement (with the held-out scenes it is checked on, never chosen on).
+struct NormalMappedRows {
+  const std::vector<ContentRow>& rows;
+  std::string source;
+  const AdviceMeasurement* advice = nullptr;
+};
+
+// The variant's own input, the normal-mapped normal without a bake: what a normal-mapped material
+// gets where saagen's decision does not hold on the held-out maps, as no filter is for a material
+// the planner chooses for.
+void keep_shading_normal(const NormalMappedRows& from, const std::vector<ContentRow>& allowed, const ContentRow& none,
+                         const std::string& chosen, MaterialPlan& plan) {
+  plan.feed = "shading";
+  plan.prefilter = "none";
+  std::string own = "not measured";
+  for (const ContentRow& row : allowed) {
+    const Configuration c = parse_configuration(row.configuration);
+    if (c.feed != "shading" || c.prefilter != "none") continue;
+    const auto there = from.advice->held_out(row.configuration);
+    own = fmt::format("{} ({}; held out: {})", row.configuration, comparison_text(comparison_against(row, none)),
+                      there ? comparison_text(*there, from.advice->baseline) : std::string("not measured"));
+  }
+  plan.normal_advice = fmt::format(
+      "feed the normal-mapped normal, no texture prefilter: on normal-mapped content in {} saagen's decision takes {}, but "
+      "it does not hold on the held-out scenes ({}: {}), so it is not given; measured: {}",
+      from.source, chosen, scene_list(from.advice->held_out_scenes), comparison_text(*from.advice->held_out(chosen), from.advice->baseline),
+      own);
+}
+
+// saagen's one decision among the normal-mapped configurations of the material's variant (of any
+// eligible one when the planner chooses the variant by accuracy), in the lobe the plan shades
+// with: the feed and the bake of what beats no SAA the most, or, where nothing does, no texture
+// prefilter. On saagen's committed measurement a pick that does not hold on the held-out scenes
+// is not given.
+void choose_normal_handling(const NormalMappedRows& from, const std::vector<const Variant*>& eligible, bool choose_variant,
+                            std::string_view lobe, MaterialPlan& plan) {
+  const std::vector<ContentRow> allowed = allowed_normal_mapped_rows(from.rows, eligible, choose_variant, lobe, plan);
+  if (allowed.empty()) return;
+  const ContentRow* none = normal_mapped_none(from.rows);
+  if (!none) return choose_lowest_mean(from.source, allowed, plan);
+  const decision::Decision made = decide_among(allowed, *none);
+  if (!made.chosen) {
+    plan.prefilter = "none";
+    plan.normal_advice = fmt::format("no texture prefilter; on normal-mapped content in {} {}", from.source, made.reason);
+    return;
+  }
+  const std::string& chosen = allowed[*made.chosen].configuration;
+  if (from.advice && fails_held_out(*from.advice, chosen)) return keep_shading_normal(from, allowed, *none, chosen, plan);
+  const Configuration c = parse_configuration(chosen);
+  plan.variant = c.variant;
+  plan.feed = c.feed;
+  plan.prefilter = c.prefilter;
+  plan.normal_advice =
+      fmt::format("{} (on normal-mapped content in {}){}", made.reason, from.source, prefilter_advice(allowed, *none, plan));
+  if (from.advice) plan.normal_advice += "; " + held_out_text(*from.advice, chosen);
 }
 
 // The plan of saagen's decision (decision.hpp) on a content's rows: the chosen configuration's
@@ -942,23 +948,17 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       }
     }
     if (material.normal_maps) {
-      if (table && !table->content_rows.empty()) {
-        choose_normal_handling(*table, eligible, !material.variant && material.prefer == Preference::accuracy, plan);
-      }
-      if (plan.normal_advice.empty() && material.ndf == Ndf::ggx) {
-        // saagen's advice for a filtered normal-mapped material (saagen/advice.hpp): the geometric
-        // normal and the map baked into the roughness. Where no configuration beats no SAA on
-        // normal-mapped content, a material the planner chooses for gets no filter below
-        // (apply_advice); one that names its variant keeps this feed, with what it trades.
-        Configuration c;
-        c.feed = advice::kFeed;
-        c.prefilter = advice::kPrefilter;
-        take_normal_handling(material, c, advised_feed_figures(), plan);
-      } else if (plan.normal_advice.empty()) {
-        // What the measurements favour with the papers' lobe: the vertex normal.
-        plan.feed = "geometric";
-        plan.normal_advice = measured_normal_advice(plan);
-      }
+      // The table's rows, else saagen's committed measurement of normal-mapped content. For a
+      // material the planner chooses for, saagen's decision below (apply_decision) replaces this.
+      const std::string_view lobe = planned_lobe(material);
+      if (table && !table->content_rows.empty())
+        choose_normal_handling({table->content_rows, table->source_name}, eligible,
+                               !material.variant && material.prefer == Preference::accuracy, lobe, plan);
+      const AdviceMeasurement* measured = advice_measurement(advice::Content::normal_mapped, manifest.taa);
+      if (plan.normal_advice.empty() && measured)
+        choose_normal_handling(
+            {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
+            eligible, false, lobe, plan);
     }
     if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
         !material.variant && plan.variant != "deferred-aniso")

@@ -33,9 +33,6 @@ inline constexpr double kKappa = 0.18;
 // scenes (docs/TAA.md).
 inline constexpr double kTaaSigma2 = 0.0625;
 
-// The normal the kernels measure, and what to do with a normal map's detail instead.
-inline constexpr std::string_view kFeed = "geometric";
-inline constexpr std::string_view kPrefilter = "hdrp";
 // The LOD bias, in MIP levels, at which a prefiltered material samples its normal map and the
 // map's bake (the roughness map, the mean normal's length, LEAN's moments): one level coarser than
 // the implicit LOD, the level whose texels span two pixels, whose box has a zero at the pixel

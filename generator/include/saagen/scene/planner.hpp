@@ -27,8 +27,9 @@
 //   speed the cheapest (vega10 ISA) and never the most expensive form the material can use; no
 //   filter (variant "none") where nothing is eligible (rule "advice" or "trade table" where that
 //   changes the variant; `saagen plan --advice` prints what that gives per content). A normal-mapped
-//   material that names its variant is fed the geometric normal with the map baked into the
-//   roughness (advice::kFeed, kPrefilter, kPrefilterLodBias).
+//   material that names its variant gets the same decision among that variant's feeds and bakes
+//   (a bake sampled at advice::kPrefilterLodBias), or the normal-mapped normal without a bake where
+//   the decision's pick does not hold on the held-out maps.
 //   anisotropic = true with tangents = false is rejected (an anisotropic BRDF needs a frame).
 //   G1    glints = true (forward, tangents)     accuracy  glints-ggaa   lean_roughness
 //   G2    glints = true (forward, tangents)     speed     glints        lean_roughness
