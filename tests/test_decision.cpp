@@ -73,6 +73,37 @@ TEST(Decision, ALateConfigurationIsNeverTaken) {
   EXPECT_NE(d.reason.find("is late"), std::string::npos) << d.reason;
 }
 
+// A content's recommendation must lose on none of its content: a candidate that beats no SAA on
+// the content's mean but loses on one of its scenes is set aside, whatever its mean.
+TEST(Decision, WhatLosesOnASceneOfTheContentIsNeverTaken) {
+  Candidate bake = candidate("deferred-aniso:geometric+hdrp/tail", -0.005, -1.9);
+  bake.loses_on = {"pmndrs-0014"};
+  const Candidate plain = candidate("deferred-aniso/tail", -0.004, -1.7);
+  const Decision d = decide(std::vector<Candidate>{bake, plain}, {});
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(*d.chosen, 1u);
+  EXPECT_EQ(d.outcomes[0], Outcome::beats);  // on the mean it still beats; the rule sets it aside
+  EXPECT_NE(d.reason.find("set aside, more accurate on the mean but losing to no SAA on a scene of the content: "
+                          "deferred-aniso:geometric+hdrp/tail (loses on pmndrs-0014)"),
+            std::string::npos)
+      << d.reason;
+  // Alone, it leaves no filter, and the reason names the scene.
+  const Decision alone = decide(std::vector<Candidate>{bake}, {});
+  EXPECT_FALSE(alone.chosen);
+  EXPECT_NE(alone.reason.find("loses to it beyond the interval on a scene of the same content (deferred-aniso:geometric+hdrp/tail "
+                              "loses on pmndrs-0014)"),
+            std::string::npos)
+      << alone.reason;
+  // Speed obeys the same rule: the cheaper form that loses on a scene is not the cheapest eligible.
+  Candidate cheap = candidate("deferred-avg:geometric+hdrp/tail", -0.003, -1.8, 1.1);
+  cheap.loses_on = {"pmndrs-0014"};
+  const Decision speed = decide(std::vector<Candidate>{cheap, candidate("deferred-avg/tail", -0.003, -1.7, 1.15),
+                                                       candidate("deferred-aniso/tail", -0.004, -1.7, 1.7)},
+                                {Prefer::speed, std::nullopt, "no SAA"});
+  ASSERT_TRUE(speed.chosen);
+  EXPECT_EQ(*speed.chosen, 1u) << speed.reason;
+}
+
 TEST(Decision, SpeedTakesTheCheapestThatBeats) {
   const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
                                     candidate("deferred-avg/tail", -0.001, -0.0001, 1.355),

@@ -8,7 +8,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -165,6 +167,29 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
     EXPECT_LE(row["tde_excess_flicker"].get<double>() + row["tde_lost_motion"].get<double>(), row["tde"].get<double>() * (1.0 + 1e-12));
   }
   for (const auto& row : document["by_content"]) EXPECT_TRUE(row["tde"].is_number());
+  // A content row that beats no SAA names the content's scenes where it loses ("loses_on"): exactly
+  // those whose per-scene comparison with no SAA is "loses" or "mixed".
+  std::map<std::pair<std::string, std::string>, std::string> scene_outcome;
+  for (const auto& c : document["comparisons"])
+    if (c["scope"] == "scene") scene_outcome[{c["name"].get<std::string>(), c["configuration"].get<std::string>()}] = c["outcome"];
+  std::map<std::string, std::string> content_of_scene;
+  for (const auto& entry : document["decisions"]["per_scene"]) content_of_scene[entry["scene"]] = entry["content"];
+  std::size_t beating = 0;
+  for (const auto& row : document["by_content"]) {
+    if (!row.contains("against_none")) continue;
+    const auto& against = row["against_none"];
+    const bool beats_mean = (against["image"]["high"].get<double>() < 0 || against["temporal"]["high"].get<double>() < 0) &&
+                            against["image"]["low"].get<double>() <= 0 && against["temporal"]["low"].get<double>() <= 0;
+    if (!beats_mean) continue;
+    ++beating;
+    std::set<std::string> expected;
+    for (const auto& [key, outcome] : scene_outcome)
+      if (key.second == row["configuration"] && content_of_scene[key.first] == row["content"] && (outcome == "loses" || outcome == "mixed"))
+        expected.insert(key.first);
+    const std::set<std::string> written = row.contains("loses_on") ? row["loses_on"].get<std::set<std::string>>() : std::set<std::string>{};
+    EXPECT_EQ(written, expected) << row["content"] << " " << row["configuration"];
+  }
+  EXPECT_GT(beating, 0u);
   // 3 scenes without normal detail x 2 alphas x (18 + 14 lobe) configurations + the bump plane's 2 x 76.
   EXPECT_EQ(document["cases"].size(), 3u * 2u * 32u + 2u * 76u);
 }

@@ -11,12 +11,11 @@
 // before any normal exists, so the filter goes where three.js adds its geometric roughness:
 // `material.roughness += geometryRoughness;` becomes a call of the snippet.
 //
-// Which normal (option `normal`): 'shading' (the default) feeds the normal-mapped normal, what
-// `saagen plan` gives a named filter on a normal-mapped material without a trade table (the bake
-// on the geometric normal beat no SAA on saagen's maps but not on the held-out ones); 'geometric'
-// feeds `nonPerturbedNormal`, the normal three.js's own term reads, as HDRP, Filament and Unreal
-// also do, where the plan's measured configuration is fed it (installPlan follows the plan's
-// `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
+// Which normal (option `normal`): 'geometric' (the default) feeds `nonPerturbedNormal`, the normal
+// three.js's own term reads: the feed saagen gives a named filter on a normal-mapped material
+// (generator/include/saagen/advice.hpp), as HDRP, Filament and Unreal also do; 'shading' feeds the
+// normal-mapped normal, where the plan's measured configuration is fed it (installPlan follows the
+// plan's `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
 // The normal map's detail is the texture's
 // to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp --gltf`),
 // not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks.
@@ -172,15 +171,15 @@ function withBiasedReads(fragmentShader) {
 // Installs the snippet into `material`. Options:
 //   snippet   the text of a `saagen emit --target gles` file (fp32 or fp16) with the wrapper
 //   wrapper   the unprefixed wrapper name (one of TANGENT_FREE_WRAPPERS; default deferred_sum_fragment)
-//   normal    which normal the filter reads: 'shading' (default) the normal-mapped normal (and
-//             clearcoatNormal), for content without texture prefiltering, at the implicit LOD;
-//             'geometric' the interpolated vertex normal before the normal map (three.js's
-//             nonPerturbedNormal), with the map's detail prefiltered into the roughness map,
-//             both sampled PREFILTER_LOD_BIAS levels coarser
+//   normal    which normal the filter reads: 'geometric' (default) the interpolated vertex normal
+//             before the normal map (three.js's nonPerturbedNormal), with the map's detail
+//             prefiltered into the roughness map, both sampled PREFILTER_LOD_BIAS levels
+//             coarser; 'shading' the normal-mapped normal (and clearcoatNormal), only for
+//             content without texture prefiltering, at the implicit LOD
 //   filter    false: no filter and no three.js geometric roughness (the unfiltered render)
 //   clearcoat filter the clearcoat roughness too (default true; needs MeshPhysicalMaterial.clearcoat > 0)
 // Returns the material.
-export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'shading', filter = true, clearcoat = true } = {}) {
+export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', filter = true, clearcoat = true } = {}) {
   if (!TANGENT_FREE_WRAPPERS.includes(wrapper)) {
     throw new Error(`saagen-three: wrapper '${wrapper}' is not one of ${TANGENT_FREE_WRAPPERS.join(', ')}`);
   }

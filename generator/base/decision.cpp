@@ -73,6 +73,19 @@ std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const
   return most_accurate(candidates, equal);
 }
 
+// "; set aside: X, which beats no SAA on the mean but loses on S": the more accurate candidates
+// (by the mean) that the decision did not take because they lose on one of the pooled scenes.
+std::string set_aside(std::span<const Candidate> candidates, const std::vector<std::size_t>& beating, const Candidate& chosen,
+                      std::string_view baseline) {
+  std::vector<std::string> listed;
+  for (std::size_t i : beating)
+    if (!candidates[i].loses_on.empty() && !late(candidates[i].against_none) && more_accurate(candidates[i], chosen))
+      listed.push_back(fmt::format("{} (loses on {})", candidates[i].configuration, fmt::join(candidates[i].loses_on, ", ")));
+  if (listed.empty()) return "";
+  return fmt::format("; set aside, more accurate on the mean but losing to {} on a scene of the content: {}", baseline,
+                     fmt::join(listed, ", "));
+}
+
 std::string no_filter_reason(std::span<const Candidate> candidates, const std::vector<Outcome>& outcomes,
                              const std::vector<std::size_t>& beating, const Preference& preference, std::string_view basis) {
   std::size_t usable = 0;
@@ -82,9 +95,18 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   const std::string_view baseline = preference.baseline;
   if (candidates.empty()) return fmt::format("no filter: no configuration was measured against {} here", baseline);
   if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
-  std::vector<std::size_t> on_time;
+  std::vector<std::size_t> on_time, everywhere;
   for (std::size_t i : beating)
     if (!late(candidates[i].against_none)) on_time.push_back(i);
+  for (std::size_t i : on_time)
+    if (candidates[i].loses_on.empty()) everywhere.push_back(i);
+  if (!on_time.empty() && everywhere.empty()) {
+    std::vector<std::string> listed;
+    for (std::size_t i : on_time) listed.push_back(fmt::format("{} loses on {}", candidates[i].configuration, fmt::join(candidates[i].loses_on, ", ")));
+    return fmt::format("no filter: what beats {} on the mean loses to it beyond the interval on a scene of the same content ({})", baseline,
+                       fmt::join(listed, "; "));
+  }
+  on_time = everywhere;
   if (!beating.empty() && on_time.empty()) {
     std::vector<std::string> listed;
     for (std::size_t i : beating)
@@ -152,7 +174,8 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
     decision.outcomes.push_back(outcome(candidates[i].against_none));
     if (!candidates[i].usable || decision.outcomes[i] != Outcome::beats) continue;
     beating.push_back(i);
-    if (!late(candidates[i].against_none) && within_budget(candidates[i], preference)) eligible.push_back(i);
+    if (!late(candidates[i].against_none) && candidates[i].loses_on.empty() && within_budget(candidates[i], preference))
+      eligible.push_back(i);
   }
   const bool speed = preference.prefer == Prefer::speed;
   decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate(candidates, eligible);
@@ -165,8 +188,9 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
       eligible.size() == 1
           ? std::string("the only usable configuration that does")
           : fmt::format("the {} of the {} that do", speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()));
-  decision.reason = fmt::format("{} beats {}: {}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
-                                preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "");
+  decision.reason = fmt::format("{} beats {}: {}{}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
+                                preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "",
+                                set_aside(candidates, beating, chosen, preference.baseline));
   return decision;
 }
 

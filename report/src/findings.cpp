@@ -181,6 +181,25 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
   return true;
 }
 
+namespace {
+
+// The scenes among `keep`'s rows on which `configuration` loses to `baseline` beyond the interval
+// in either metric (loses or mixed there): what a recommendation for the rows' content must not do.
+std::vector<std::string> scenes_lost(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                     const RowFilter& keep) {
+  std::vector<std::string> lost;
+  for (const measure::SceneId scene : table.config.scenes) {
+    const RowFilter on_scene = [&](const measure::TradeRow& row) { return row.scene == scene && keep(row); };
+    const PairedComparison c = compare_configurations(table, configuration, baseline, on_scene);
+    if (c.cells == 0) continue;
+    const decision::Outcome there = decision::outcome(to_decision(c));
+    if (there == decision::Outcome::loses || there == decision::Outcome::mixed) lost.emplace_back(measure::scene_name(scene));
+  }
+  return lost;
+}
+
+}  // namespace
+
 std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline) {
   std::vector<ContentRow> rows;
@@ -193,6 +212,8 @@ std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const Ro
     if (id != baseline) {
       const PairedComparison against_baseline = compare_configurations(table, id, baseline, keep);
       if (against_baseline.cells > 0) row.against_none = to_decision(against_baseline);
+      if (row.against_none && decision::outcome(*row.against_none) == decision::Outcome::beats)
+        row.loses_on = scenes_lost(table, id, baseline, keep);
     }
     rows.push_back(std::move(row));
   }

@@ -5,6 +5,7 @@
 #include "saagen/report/findings.hpp"
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -126,6 +127,7 @@ nlohmann::json taa_by_content_json(const measure::TradeTable& table) {
       nlohmann::json entry = {{"content", row.content}, {"configuration", row.configuration}, {"baseline", "none+taa"},
                               {"error", row.error},     {"image_error", row.error},           {temporal, row.tde.value_or(0.0)}};
       if (row.against_none) entry["against_none"] = comparison_json(*row.against_none);
+      if (!row.loses_on.empty()) entry["loses_on"] = row.loses_on;
       out.push_back(entry);
     }
   return out;
@@ -223,6 +225,9 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
     const RowFilter keep = [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
+    // The comparisons with no SAA as the decision reads them (findings.hpp, measured_rows).
+    std::map<std::string, ContentRow> measured;
+    for (ContentRow& row : measured_rows(table, keep, content_name(content))) measured.emplace(row.configuration, std::move(row));
     for (const std::string& id : configurations(table)) {
       const Metrics m = mean_metrics(table, id, keep);
       if (!m.cases || is_measurement_configuration(id)) continue;
@@ -238,10 +243,10 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
                             {"image_error", m.image_error},
                             {"flicker_error", m.flicker_error},
                             {"video_error", m.video_error}});
-      if (id == "none") continue;
-      const PairedComparison against_none = compare_configurations(table, id, "none", keep);
-      if (against_none.cells == 0) continue;
-      by_content.back()["against_none"] = comparison_json(to_decision(against_none));
+      const auto row = measured.find(id);
+      if (row == measured.end() || !row->second.against_none) continue;
+      by_content.back()["against_none"] = comparison_json(*row->second.against_none);
+      if (!row->second.loses_on.empty()) by_content.back()["loses_on"] = row->second.loses_on;
     }
   }
   return by_content;

@@ -14,8 +14,9 @@
 //     it lies above 0 (low > 0), else tied. beats: no metric worse and at least one better;
 //     loses: the mirror; mixed: one better and one worse; ties: every interval spans 0.
 //   - Only usable candidates that beat no SAA, are not late (late(): they follow the ground
-//     truth more than half a frame late beyond the interval), and cost at most the budget when
-//     one is set, are eligible; none eligible: no filter, with the reason.
+//     truth more than half a frame late beyond the interval), lose on none of the scenes their
+//     comparison pools (Candidate::loses_on), and cost at most the budget when one is set, are
+//     eligible; none eligible: no filter, with the reason.
 //   - accuracy: the eligible one with the largest improvement in the temporal metric (the most
 //     negative temporal mean), equal temporal means broken by the image mean, then by the order
 //     of the candidates. The temporal metric ranks because the bench's is the video metric,
@@ -65,6 +66,11 @@ struct Candidate {
   // Shading cost over no SAA (the vega10 ISA inverse-throughput ratio where known); nullopt: unknown.
   std::optional<double> cost_ratio;
   bool usable = true;  // whether the material (or path) can use it at all
+  // Where the comparison pools several scenes (a content type's): the scenes on which the
+  // configuration loses to the baseline beyond the interval in either metric (loses or mixed
+  // there). A content's recommendation must lose on none of its content, so such a candidate is
+  // never taken, whatever its mean.
+  std::vector<std::string> loses_on = {};
 };
 
 enum class Prefer { accuracy, speed };

@@ -40,6 +40,9 @@ struct ContentRow {
   // The row minus no SAA's with 95 % intervals, when the table carries one ("against_none":
   // {"image": {"mean", "low", "high"}, "temporal": {...}}); comparison_against prefers it.
   std::optional<decision::Comparison> against_none;
+  // The content's scenes on which the row loses to no SAA beyond the interval ("loses_on"; the
+  // decision never takes such a row for the content: decision::Candidate::loses_on).
+  std::vector<std::string> loses_on = {};
 };
 
 // The one adapter from a trade table's measurements to a decision's comparison

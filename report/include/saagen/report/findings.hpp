@@ -93,7 +93,8 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 // The measured rows of a set of trade rows, one per configuration: the means the trade's JSON
 // writes ("by_content") and saagen's decision reads (through comparison_against,
 // saagen/scene/cost_tables.hpp). `scope` names the content type or the scene; each row is paired
-// against the rows' `baseline` (its against_none; none+taa for measured_taa_rows).
+// against the rows' `baseline` (its against_none; none+taa for measured_taa_rows), and where it
+// beats the baseline over the rows, the scenes among them on which it loses (its loses_on).
 std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline = "none");
 
