@@ -58,7 +58,10 @@ try {
           if (gl.getShaderParameter(shader, gl.SHADER_TYPE) === gl.FRAGMENT_SHADER) fragments.push(gl.getShaderSource(shader));
         }
       }
+      // Release the WebGL context now: Chromium keeps at most 16 live and loses the oldest (the
+      // shared renderer) when a 17th is created, which then renders a restored, different picture.
       renderer.dispose();
+      renderer.forceContextLoss();
       return { pixels, log, fragments };
     };
     // Luminance of the sRGB bytes, 0..1.
