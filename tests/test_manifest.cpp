@@ -420,7 +420,8 @@ TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
   EXPECT_NE(mapped.reason.find("set aside, more accurate on the mean but losing to no SAA on a scene of the content: "), std::string::npos)
       << mapped.reason;
   EXPECT_NE(mapped.reason.find("deferred-aniso:geometric+hdrp/tail (loses on pmndrs-0014)"), std::string::npos) << mapped.reason;
-  EXPECT_NE(mapped.measure_advice.find("this advice held on content it was not derived from (held-out scenes pmndrs-0000"), std::string::npos)
+  EXPECT_NE(mapped.measure_advice.find("this advice held on content it was not derived from (held-out scenes pmndrs-0000"),
+            std::string::npos)
       << mapped.measure_advice;
   // Named, a normal-mapped filter gets the same decision among its own feeds and bakes: deferred-sum
   // on the geometric normal without a bake (the map-fed form and the bake lose on pmndrs-0014).
@@ -683,6 +684,40 @@ TEST(Planner, TableFreeAdviceNeverGivesWhatLosesOnHeldOutContent) {
   }
   EXPECT_GT(given, 0);
   EXPECT_GT(withheld, 0);  // the gate is exercised by the committed measurement (curved, forward)
+}
+
+// The held-out check on a measurement of our own making: the decision's pick beats no SAA on the
+// scenes it is derived from and loses on the held-out ones, so it is withheld: no filter for a
+// material the planner chooses for; for one that names its variant, that variant's own input (the
+// normal-mapped normal without a bake), with that row's figures.
+TEST(Planner, APickThatFailsOnTheHeldOutScenesIsWithheld) {
+  const auto comparison = [](double image, double temporal) {
+    return fmt::format(R"({{"image": {{"mean": {0}, "low": {0}, "high": {0}}}, "temporal": {{"mean": {1}, "low": {1}, "high": {1}}}}})",
+                       image, temporal);
+  };
+  const std::string rows =
+      fmt::format(R"([{{"configuration": "none", "image_error": 0.05, "video_error": 4}},
+        {{"configuration": "deferred-sum:geometric+hdrp/tail", "image_error": 0.04, "video_error": 2, "against_none": {0}, "held_out": {1}}},
+        {{"configuration": "deferred-sum/tail", "image_error": 0.045, "video_error": 3, "against_none": {2}, "held_out": {3}}}])",
+                  comparison(-0.01, -2.0), comparison(0.005, -1.0), comparison(-0.005, -1.0), comparison(-0.004, -0.8));
+  const saagen::AdviceTable advice = saagen::parse_advice_table(
+      R"({"schema": "saagen advice 1", "content": [{"content": "normal-mapped", "scenes": ["a"], "held_out_scenes": ["b"], "rows": )" +
+          rows + "}]}",
+      "advice.json");
+  const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n";
+  const saagen::MaterialPlan chosen = saagen::plan_scene(Catalogue::builtin(), parse(header + material), nullptr, advice).materials.at(0);
+  EXPECT_EQ(chosen.variant, "none") << chosen.reason;
+  EXPECT_NE(chosen.reason.find("but it does not hold on the held-out scenes (b: image error +0.005"), std::string::npos) << chosen.reason;
+  const saagen::MaterialPlan named =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + material + "variant = \"deferred-sum\"\n"), nullptr, advice).materials.at(0);
+  EXPECT_EQ(named.variant, "deferred-sum");
+  EXPECT_EQ(named.feed, "shading");
+  EXPECT_EQ(named.prefilter, "none");
+  EXPECT_NE(
+      named.normal_advice.find("saagen's decision takes deferred-sum:geometric+hdrp/tail, but it does not hold on the held-out scenes"),
+      std::string::npos)
+      << named.normal_advice;
+  EXPECT_NE(named.normal_advice.find("measured: deferred-sum/tail (image error -0.005"), std::string::npos) << named.normal_advice;
 }
 
 // `saagen plan --advice`'s table is what examples/INTEGRATION.md holds.
@@ -1107,8 +1142,9 @@ TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
   const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n";
   // deferred-avg/tail on the normal-mapped normal (TableFreeAdviceFollowsTheMeasuredContent).
   const saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), parse(header + material));
-  EXPECT_EQ(plan.materials.at(0).normal_advice.rfind("feed the shading normal; no texture prefilter; measured: deferred-avg/tail (image -", 0),
-            0u)
+  EXPECT_EQ(
+      plan.materials.at(0).normal_advice.rfind("feed the shading normal; no texture prefilter; measured: deferred-avg/tail (image -", 0),
+      0u)
       << plan.materials.at(0).normal_advice;
   // Named deferred-avg: the same configuration, decided among deferred-avg's own rows (its hdrp bake
   // loses on ClearCoatTest and pmndrs-0014).
@@ -1137,10 +1173,12 @@ TEST(Planner, BadTradeTablesAreRejected) {
             "t.json: by_content[0]: needs a string \"configuration\"");
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
             "t.json: by_content[0]: needs a number \"error\"");
-  EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": "torus"}]})"),
-            "t.json: by_content[0]: \"loses_on\" must be an array of scene names");
-  EXPECT_EQ(error_of_table(R"({"rows": [], "taa_by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": [3]}]})"),
-            "t.json: taa_by_content[0]: \"loses_on\" must be an array of scene names");
+  EXPECT_EQ(
+      error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": "torus"}]})"),
+      "t.json: by_content[0]: \"loses_on\" must be an array of scene names");
+  EXPECT_EQ(
+      error_of_table(R"({"rows": [], "taa_by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": [3]}]})"),
+      "t.json: taa_by_content[0]: \"loses_on\" must be an array of scene names");
 }
 
 // A table's content row that beats no SAA on the content's mean but loses on one of its scenes
@@ -1481,7 +1519,8 @@ TEST_F(SceneCli, PlanPrintsVariantWhyCallAndCost) {
   EXPECT_NE(run.out.find("material terrain"), std::string::npos);
   EXPECT_NE(run.out.find("variant   deferred-sum  [manifest]"), std::string::npos) << run.out;  // terrain names it
   EXPECT_NE(run.out.find("variant   none  [advice]"), std::string::npos) << run.out;            // foliage
-  EXPECT_NE(run.out.find("why       saagen's decision on normal-mapped content in saagen's trade"), std::string::npos) << run.out;  // car_paint
+  EXPECT_NE(run.out.find("why       saagen's decision on normal-mapped content in saagen's trade"), std::string::npos)
+      << run.out;  // car_paint
   EXPECT_NE(run.out.find("  measure   this advice"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("why       "), std::string::npos);
   EXPECT_NE(run.out.find("cost      glsl +"), std::string::npos) << run.out;

@@ -102,7 +102,8 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
     if (candidates[i].loses_on.empty()) everywhere.push_back(i);
   if (!on_time.empty() && everywhere.empty()) {
     std::vector<std::string> listed;
-    for (std::size_t i : on_time) listed.push_back(fmt::format("{} loses on {}", candidates[i].configuration, fmt::join(candidates[i].loses_on, ", ")));
+    for (std::size_t i : on_time)
+      listed.push_back(fmt::format("{} loses on {}", candidates[i].configuration, fmt::join(candidates[i].loses_on, ", ")));
     return fmt::format("no filter: what beats {} on the mean loses to it beyond the interval on a scene of the same content ({})", baseline,
                        fmt::join(listed, "; "));
   }

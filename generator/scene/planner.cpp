@@ -547,8 +547,8 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 
 // saagen's committed measurement of a content type (generator/data/advice.json), the rows the
 // table-free decision is made on: without TAA against no SAA, under TAA against none+taa.
-const AdviceMeasurement* advice_measurement(advice::Content content, bool taa) {
-  return committed_advice().find(advice::table_content(content), taa);
+const AdviceMeasurement* advice_measurement(const AdviceTable& advice, advice::Content content, bool taa) {
+  return advice.find(advice::table_content(content), taa);
 }
 
 // What a content's rows are compared with: no SAA, or TAA alone under TAA.
@@ -598,8 +598,8 @@ bool fails_held_out(const AdviceMeasurement& measured, const std::string& chosen
 // The same trade on curved content in the deferred path, for a material that does not get
 // deferred-aniso (prefer speed, or a variant named): the isotropic deferred kernels against the
 // anisotropic one (docs/DEFERRED_KERNEL.md).
-std::string deferred_curved_note() {
-  const AdviceMeasurement* measured = advice_measurement(advice::Content::curved, false);
+std::string deferred_curved_note(const AdviceTable& advice) {
+  const AdviceMeasurement* measured = advice_measurement(advice, advice::Content::curved, false);
   const auto figures = [&](std::string_view configuration) {
     if (measured)
       for (const ContentRow& row : measured->rows)
@@ -819,6 +819,10 @@ Material reference_material(RenderPath path, advice::Content content) {
 }
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table) {
+  return plan_scene(catalogue, manifest, table, committed_advice());
+}
+
+ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table, const AdviceTable& advice) {
   if (table) check_trade_table_ids(catalogue, *table);
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
@@ -955,7 +959,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       if (table && !table->content_rows.empty())
         choose_normal_handling({table->content_rows, table->source_name}, eligible,
                                !material.variant && material.prefer == Preference::accuracy, lobe, plan);
-      const AdviceMeasurement* measured = advice_measurement(advice::Content::normal_mapped, manifest.taa);
+      const AdviceMeasurement* measured = advice_measurement(advice, advice::Content::normal_mapped, manifest.taa);
       if (plan.normal_advice.empty() && measured)
         choose_normal_handling(
             {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
@@ -963,7 +967,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     }
     if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
         !material.variant && plan.variant != "deferred-aniso")
-      plan.no_filter_advice = deferred_curved_note();
+      plan.no_filter_advice = deferred_curved_note(advice);
     // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
     // named, no engine preset): on the table's rows for the material's content, else on saagen's
     // committed figures (advice.hpp), with how far those hold on content they were not made on.
@@ -982,7 +986,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
       } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed) {
-        const AdviceMeasurement* measured = advice_measurement(content_of(material), manifest.taa);
+        const AdviceMeasurement* measured = advice_measurement(advice, content_of(material), manifest.taa);
         static const AdviceMeasurement kNothingMeasured;
         const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
         apply_decision(catalogue, manifest, material, rows_of.rows,
@@ -1024,7 +1028,7 @@ std::string advice_markdown(const Catalogue& catalogue) {
           material.prefer = prefer;
           manifest.materials = {material};
           const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
-          const AdviceMeasurement* measured = advice_measurement(content, taa);
+          const AdviceMeasurement* measured = advice_measurement(committed_advice(), content, taa);
           const std::string baseline(baseline_of(taa));
           std::string configuration = "none", nothing = fmt::format("nothing beats {}", baseline);
           std::optional<decision::Comparison> derived, held_out;

@@ -130,6 +130,9 @@ Material reference_material(RenderPath path, advice::Content content);
 // Plans every material. Throws saagen::Error with the manifest position for contradictions
 // (anisotropic without tangents, a `variant` the material cannot use).
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table = nullptr);
+// The same with another table-free measurement than saagen's committed one (committed_advice()):
+// what the decision and its held-out check read where the manifest has no trade table.
+ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table, const AdviceTable& advice);
 
 // Fills MaterialPlan::cost: per target, the optimized SPIR-V instruction count of a fragment
 // shader that filters and shades with the material's functions, minus the same shader shading
