@@ -28,9 +28,9 @@
 // image error (LDR-FLIP) / video error (10 - JOD), negative is better): on the smooth spheres every
 // tail-preserving plan beat no SAA in both (-0.0012 to -0.0015 / -1.33 to -1.41) yet was mixed
 // against three.js's own geometryRoughness (-0.0013 to -0.0016 / +0.25 to +0.33); on the
-// normal-mapped spheres deferred-sum on the geometric normal with the LOD bias (bumpy_named, no
-// bake in that scene) beat both no SAA and three.js's term (-0.0012 / -0.12 against three.js's),
-// and the plan's no filter (bumpy) lost to three.js's term (+0.0012 / +1.26).
+// normal-mapped spheres both plans beat no SAA and three.js's term: forward-axis-projected/tail on
+// the normal-mapped normal (bumpy, saagen's advice; -0.0012 / -0.07 against three.js's) and the
+// named deferred-sum on the geometric normal (bumpy_named; -0.0012 / -0.12).
 //
 // LOD bias: with 'geometric', the normal map's detail is the bake's, and the normal map and the
 // baked roughness map (and the clearcoat's) are sampled one MIP level coarser than the implicit
