@@ -27,7 +27,7 @@ const out = fs.mkdtempSync(path.join(os.tmpdir(), 'saagen-threejs-measure-test-'
 try {
   const index = await renderClips(cli, out, { size: 48, frames: 8, scale: 4, jitters: 25, pan: [0.37, 0.21], materials: null });
   const { json } = score(cli, out);
-  check(json.groups.length === index.groups.length && json.groups.length === 6, `every material of the plan scored (${json.groups.length})`);
+  check(json.groups.length === index.groups.length && json.groups.length === 7, `every material of the plan scored (${json.groups.length})`);
   for (const group of json.groups) {
     const result = (name) => group.results.find((r) => r.configuration === name);
     const plan = group.results.find((r) => r.configuration.startsWith('saagen:'));
