@@ -12,10 +12,10 @@
 // `material.roughness += geometryRoughness;` becomes a call of the snippet.
 //
 // Which normal (option `normal`): 'geometric' (the default) feeds `nonPerturbedNormal`, the normal
-// three.js's own term reads: the feed saagen gives a named filter on a normal-mapped material
-// (generator/include/saagen/advice.hpp), as HDRP, Filament and Unreal also do; 'shading' feeds the
-// normal-mapped normal, where the plan's measured configuration is fed it (installPlan follows the
-// plan's `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
+// three.js's own term reads: the feed `saagen plan` gives the example's named normal-mapped
+// filter (terrain; Advice.ExamplesAndDocsAgreeWithThePlanner), as HDRP, Filament and Unreal also
+// do; 'shading' feeds the normal-mapped normal, where the plan's measured configuration is fed it
+// (installPlan follows the plan's `feed`). What saagen advises per content is `saagen plan --advice` (examples/INTEGRATION.md).
 // The normal map's detail is the texture's
 // to filter (a roughness map baked from it with `saagen texture prefilter --method hdrp --gltf`),
 // not the kernel's, whose quad derivatives of a mapped normal alias into 2x2 blocks.

@@ -95,19 +95,19 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
   const std::string_view baseline = preference.baseline;
   if (candidates.empty()) return fmt::format("no filter: no configuration was measured against {} here", baseline);
   if (usable == 0) return fmt::format("no filter: none of the {} measured configurations can be used here", candidates.size());
-  std::vector<std::size_t> on_time, everywhere;
+  // What beats the baseline: on time (not late), and of those, what loses on none of the pooled scenes.
+  std::vector<std::size_t> on_time, holding;
   for (std::size_t i : beating)
     if (!late(candidates[i].against_none)) on_time.push_back(i);
   for (std::size_t i : on_time)
-    if (candidates[i].loses_on.empty()) everywhere.push_back(i);
-  if (!on_time.empty() && everywhere.empty()) {
+    if (candidates[i].loses_on.empty()) holding.push_back(i);
+  if (!on_time.empty() && holding.empty()) {
     std::vector<std::string> listed;
     for (std::size_t i : on_time)
       listed.push_back(fmt::format("{} loses on {}", candidates[i].configuration, fmt::join(candidates[i].loses_on, ", ")));
     return fmt::format("no filter: what beats {} on the mean loses to it beyond the interval on a scene of the same content ({})", baseline,
                        fmt::join(listed, "; "));
   }
-  on_time = everywhere;
   if (!beating.empty() && on_time.empty()) {
     std::vector<std::string> listed;
     for (std::size_t i : beating)
@@ -122,10 +122,10 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
                        figures(candidates[best], basis, baseline), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : on_time) listed.push_back(figures(candidates[i], basis, baseline));
+  for (std::size_t i : holding) listed.push_back(figures(candidates[i], basis, baseline));
   if (preference.budget) {
     bool any_in_budget = false;
-    for (std::size_t i : on_time) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
+    for (std::size_t i : holding) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
     if (!any_in_budget)
       return fmt::format("no filter: what beats {} costs more than the budget {:.3g}: {}", baseline, *preference.budget,
                          fmt::join(listed, ", "));
