@@ -55,8 +55,9 @@ def content_entries(derived, held_out, key, taa):
             kept.update({figure: row[figure] for figure in FIGURES if figure in row})
             if "against_none" in row:
                 kept["against_none"] = row["against_none"]
-            if row.get("loses_on"):
-                kept["loses_on"] = row["loses_on"]
+            for pairing in ("loses_on", "not_worse_than"):
+                if row.get(pairing):
+                    kept[pairing] = row[pairing]
             if "against_none" in held.get(configuration, {}):
                 kept["held_out"] = held[configuration]["against_none"]
             entry["rows"].append(kept)

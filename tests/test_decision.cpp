@@ -104,6 +104,38 @@ TEST(Decision, WhatLosesOnASceneOfTheContentIsNeverTaken) {
   EXPECT_EQ(*speed.chosen, 1u) << speed.reason;
 }
 
+TEST(Decision, ALeadInsideTheIntervalIsATieAndTheCheaperOfATieWins) {
+  // "aniso" has the largest temporal improvement on the mean, but "axis" is worse than it beyond
+  // the interval in neither metric (the bench's paired comparison of the two): a tie, and the
+  // cheaper "axis" is taken. "slope" is cheaper still but worse than "aniso": not a tie.
+  Candidate aniso = candidate("forward-aniso-projected/tail", -0.012, -1.78, 1.385);
+  Candidate axis = candidate("forward-axis-projected/tail", -0.0085, -1.63, 1.30);
+  axis.not_worse_than = {"forward-aniso-projected/tail"};
+  const Candidate slope = candidate("forward-axis-slope/tail", -0.002, -0.9, 1.16);
+  const Decision d = decide(std::vector<Candidate>{aniso, axis, slope}, {});
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(*d.chosen, 1u) << d.reason;
+  EXPECT_NE(d.reason.find("the lowest cost of the 3 usable configurations that do, as accurate as the most accurate; it ties with "
+                          "forward-aniso-projected/tail"),
+            std::string::npos)
+      << d.reason;
+  // Without the pairing (a table that has none) the mean decides, as before.
+  axis.not_worse_than.clear();
+  EXPECT_EQ(decide(std::vector<Candidate>{aniso, axis, slope}, {}).chosen, std::optional<std::size_t>(0));
+  // A tie that costs the same (within kCostTieTolerance) or more leaves the most accurate one.
+  axis.not_worse_than = {"forward-aniso-projected/tail"};
+  axis.cost_ratio = 1.385 * (1.0 + kCostTieTolerance / 2);
+  EXPECT_EQ(decide(std::vector<Candidate>{aniso, axis}, {}).chosen, std::optional<std::size_t>(0));
+  // Where the most accurate one's cost is unknown, nothing is known to be cheaper: it.
+  aniso.cost_ratio.reset();
+  axis.cost_ratio = 1.0;
+  EXPECT_EQ(decide(std::vector<Candidate>{aniso, axis}, {}).chosen, std::optional<std::size_t>(0));
+  // A tie that is not itself eligible (it loses on a scene) is never taken.
+  aniso.cost_ratio = 1.385;
+  axis.loses_on = {"torus"};
+  EXPECT_EQ(decide(std::vector<Candidate>{aniso, axis}, {}).chosen, std::optional<std::size_t>(0));
+}
+
 TEST(Decision, SpeedTakesTheCheapestThatBeats) {
   const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
                                     candidate("deferred-avg/tail", -0.001, -0.0001, 1.355),

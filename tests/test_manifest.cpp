@@ -1201,6 +1201,25 @@ TEST(Planner, WithATableARowThatLosesOnASceneIsNotPlanned) {
   EXPECT_NE(plan.materials.at(0).reason.find("deferred-aniso/tail (loses on tubes)"), std::string::npos) << plan.materials.at(0).reason;
 }
 
+TEST(Planner, WithATableATieOfTheMostAccurateGoesToTheCheaper) {
+  // deferred-aniso/tail improves TDE most on the mean, deferred-avg/tail ties with it (worse
+  // beyond the interval in neither metric, "not_worse_than") and costs less in the committed ISA
+  // table: deferred-avg is planned. Without the pairing the mean decides.
+  const std::string rows = R"({"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.008},)";
+  const auto plan_with = [&](const std::string& avg) {
+    const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [)" + rows + avg + "]}", "t.json");
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\n"), &table)
+        .materials.at(0);
+  };
+  const saagen::MaterialPlan tied = plan_with(
+      R"({"content": "curved", "configuration": "deferred-avg/tail", "error": 0.021, "tde": 0.0085, "not_worse_than": ["deferred-aniso/tail"]})");
+  EXPECT_EQ(tied.variant, "deferred-avg") << tied.reason;
+  EXPECT_NE(tied.reason.find("it ties with deferred-aniso/tail"), std::string::npos) << tied.reason;
+  EXPECT_EQ(plan_with(R"({"content": "curved", "configuration": "deferred-avg/tail", "error": 0.021, "tde": 0.0085})").variant,
+            "deferred-aniso");
+}
+
 TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
   saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);

@@ -190,6 +190,26 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
     EXPECT_EQ(written, expected) << row["content"] << " " << row["configuration"];
   }
   EXPECT_GT(beating, 0u);
+  // A row's "not_worse_than" (the decision's ties) names only other rows of its content that could
+  // be recommended as it could: beating no SAA and losing on none of the content's scenes.
+  std::set<std::pair<std::string, std::string>> recommendable;
+  for (const auto& row : document["by_content"])
+    if (row.contains("against_none") && !row.contains("loses_on") && row["against_none"]["image"]["low"].get<double>() <= 0 &&
+        row["against_none"]["temporal"]["low"].get<double>() <= 0 &&
+        (row["against_none"]["image"]["high"].get<double>() < 0 || row["against_none"]["temporal"]["high"].get<double>() < 0))
+      recommendable.emplace(row["content"].get<std::string>(), row["configuration"].get<std::string>());
+  std::size_t paired = 0;
+  for (const auto& row : document["by_content"]) {
+    if (!row.contains("not_worse_than")) continue;
+    const std::string content = row["content"], configuration = row["configuration"];
+    EXPECT_TRUE(recommendable.contains({content, configuration})) << row.dump();
+    for (const auto& other : row["not_worse_than"]) {
+      EXPECT_NE(other.get<std::string>(), configuration);
+      EXPECT_TRUE(recommendable.contains({content, other.get<std::string>()})) << configuration << " " << other;
+      ++paired;
+    }
+  }
+  EXPECT_GT(paired, 0u);
   // 3 scenes without normal detail x 2 alphas x (18 + 14 lobe) configurations + the bump plane's 2 x 76.
   EXPECT_EQ(document["cases"].size(), 3u * 2u * 32u + 2u * 76u);
 }

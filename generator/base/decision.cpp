@@ -57,6 +57,34 @@ std::optional<std::size_t> most_accurate(std::span<const Candidate> candidates, 
   return best;
 }
 
+// Whether `c` ties with `best`: their paired comparison is worse beyond the interval in neither metric.
+bool ties_with(const Candidate& c, const Candidate& best) {
+  return std::find(c.not_worse_than.begin(), c.not_worse_than.end(), best.configuration) != c.not_worse_than.end();
+}
+
+// The lowest-cost candidates of the pool: those with a known cost within kCostTieTolerance of the lowest.
+std::vector<std::size_t> lowest_cost(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
+  std::optional<double> lowest;
+  for (std::size_t i : pool)
+    if (candidates[i].cost_ratio && (!lowest || *candidates[i].cost_ratio < *lowest)) lowest = candidates[i].cost_ratio;
+  std::vector<std::size_t> equal;
+  for (std::size_t i : pool)
+    if (candidates[i].cost_ratio && *candidates[i].cost_ratio <= *lowest * (1.0 + kCostTieTolerance)) equal.push_back(i);
+  return equal;
+}
+
+// For accuracy: the most accurate of the pool by the mean, unless a candidate that ties with it
+// (within the interval in both metrics) costs less: then the cheapest of it and its ties (equal
+// costs: the more accurate). Where the most accurate one's cost is unknown, it.
+std::optional<std::size_t> most_accurate_for_its_cost(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
+  const std::optional<std::size_t> best = most_accurate(candidates, pool);
+  if (!best || !candidates[*best].cost_ratio) return best;
+  std::vector<std::size_t> tied{*best};
+  for (std::size_t i : pool)
+    if (i != *best && ties_with(candidates[i], candidates[*best])) tied.push_back(i);
+  return most_accurate(candidates, lowest_cost(candidates, tied));
+}
+
 // The cheapest of the pool (equal costs: the more accurate), skipping the most expensive usable
 // form unless it is the only usable candidate.
 std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
@@ -65,12 +93,16 @@ std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const
   for (std::size_t i : pool)
     if (candidates[i].cost_ratio && (usable == 1 || !is_most_expensive(candidates[i], most))) affordable.push_back(i);
   if (affordable.empty()) return std::nullopt;
-  double lowest = *candidates[affordable.front()].cost_ratio;
-  for (std::size_t i : affordable) lowest = std::min(lowest, *candidates[i].cost_ratio);
-  std::vector<std::size_t> equal;
-  for (std::size_t i : affordable)
-    if (*candidates[i].cost_ratio <= lowest * (1.0 + kCostTieTolerance)) equal.push_back(i);
-  return most_accurate(candidates, equal);
+  return most_accurate(candidates, lowest_cost(candidates, affordable));
+}
+
+// "; it ties with X, the largest temporal improvement on the mean (...), at lower cost": where the
+// accuracy choice took a cheaper tie of the most accurate candidate.
+std::string tie_text(const Candidate& best, std::string_view basis, std::string_view baseline) {
+  return fmt::format(
+      "; it ties with {}, the largest temporal improvement on the mean (their paired difference lies within the 95 % interval in "
+      "both metrics), at lower cost",
+      figures(best, basis, baseline));
 }
 
 // "; set aside: X, which beats no SAA on the mean but loses on S": the more accurate candidates
@@ -179,18 +211,23 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
       eligible.push_back(i);
   }
   const bool speed = preference.prefer == Prefer::speed;
-  decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate(candidates, eligible);
+  decision.chosen = speed ? cheapest(candidates, eligible) : most_accurate_for_its_cost(candidates, eligible);
   if (!decision.chosen) {
     decision.reason = no_filter_reason(candidates, decision.outcomes, beating, preference, cost_basis);
     return decision;
   }
   const Candidate& chosen = candidates[*decision.chosen];
+  // Where accuracy took a cheaper tie of the most accurate candidate, that candidate.
+  const std::size_t best = *most_accurate(candidates, eligible);
+  const bool tie = !speed && best != *decision.chosen;
   const std::string among =
-      eligible.size() == 1
-          ? std::string("the only usable configuration that does")
+      eligible.size() == 1 ? std::string("the only usable configuration that does")
+      : tie
+          ? fmt::format("the lowest cost of the {} that do, as accurate as the most accurate", usable_count(eligible.size()))
           : fmt::format("the {} of the {} that do", speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()));
-  decision.reason = fmt::format("{} beats {}: {}{}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
+  decision.reason = fmt::format("{} beats {}: {}{}{}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "",
+                                tie ? tie_text(candidates[best], cost_basis, preference.baseline) : "",
                                 set_aside(candidates, beating, chosen, preference.baseline));
   return decision;
 }

@@ -58,19 +58,26 @@ decision::Comparison parse_comparison(const nlohmann::json& value, std::string_v
   return {difference("image"), difference("temporal"), lag};
 }
 
-// A content row's "loses_on": the names of the content's scenes where the configuration loses to
-// no SAA beyond the interval (`saagen bench --json`); absent: none known.
-std::vector<std::string> parse_loses_on(const nlohmann::json& row, std::string_view where) {
-  std::vector<std::string> scenes;
-  if (!row.is_object() || !row.contains("loses_on")) return scenes;
-  const nlohmann::json& value = row["loses_on"];
-  if (!value.is_array()) throw Error(fmt::format("{}: \"loses_on\" must be an array of scene names", where));
+// A content row's list of names under `key` (`saagen bench --json`): "loses_on", the content's
+// scenes where the configuration loses to no SAA beyond the interval; "not_worse_than", the
+// configurations it ties with or beats. Absent: none known.
+std::vector<std::string> parse_names(const nlohmann::json& row, std::string_view key, std::string_view what, std::string_view where) {
+  std::vector<std::string> names;
+  if (!row.is_object() || !row.contains(key)) return names;
+  const nlohmann::json& value = row[key];
+  const auto bad = [&] { return Error(fmt::format("{}: \"{}\" must be an array of {} names", where, key, what)); };
+  if (!value.is_array()) throw bad();
   for (const nlohmann::json& name : value) {
-    if (!name.is_string() || name.get<std::string>().empty())
-      throw Error(fmt::format("{}: \"loses_on\" must be an array of scene names", where));
-    scenes.push_back(name.get<std::string>());
+    if (!name.is_string() || name.get<std::string>().empty()) throw bad();
+    names.push_back(name.get<std::string>());
   }
-  return scenes;
+  return names;
+}
+
+// A content row's "loses_on" and "not_worse_than" (ContentRow).
+void parse_pairings(const nlohmann::json& row, ContentRow& out, std::string_view where) {
+  out.loses_on = parse_names(row, "loses_on", "scene", where);
+  out.not_worse_than = parse_names(row, "not_worse_than", "configuration", where);
 }
 
 }  // namespace
@@ -276,7 +283,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
       entry.error = *error;
       entry.tde = number(row, "tde", index);
       if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], source_name, index);
-      entry.loses_on = parse_loses_on(row, fmt::format("{}: {}[{}]", source_name, section, index));
+      parse_pairings(row, entry, fmt::format("{}: {}[{}]", source_name, section, index));
       out.push_back(std::move(entry));
     }
     return out;
@@ -351,7 +358,7 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
       const double temporal = row.is_object() && row.contains("video_error") ? number("video_error") : number("flicker_error");
       ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), temporal, std::nullopt};
       if (row.contains("against_none")) kept.against_none = parse_comparison(row["against_none"], source_name, index);
-      kept.loses_on = parse_loses_on(row, fmt::format("{}: content[{}]", source_name, index));
+      parse_pairings(row, kept, fmt::format("{}: content[{}]", source_name, index));
       if (row.contains("held_out"))
         measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
       measured.rows.push_back(std::move(kept));

@@ -446,7 +446,7 @@ const ContentRow* normal_mapped_none(const std::vector<ContentRow>& content_rows
 decision::Decision decide_among(const std::vector<ContentRow>& rows, const ContentRow& none) {
   std::vector<decision::Candidate> candidates;
   for (const ContentRow& row : rows)
-    candidates.push_back({row.configuration, comparison_against(row, none), std::nullopt, true, row.loses_on});
+    candidates.push_back({row.configuration, comparison_against(row, none), std::nullopt, true, row.loses_on, row.not_worse_than});
   return decision::decide(candidates, decision::Preference{});
 }
 
@@ -798,7 +798,7 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
     if (c.variant == "none" || row.configuration.rfind("engine-", 0) == 0 || c.lobe == "exact" || is_taa(row.configuration)) continue;
     made.candidates.push_back({row.configuration, comparison_against(row, *none),
                                configuration_cost(catalogue, material, family, row.configuration),
-                               usable(material, eligible, has_lobe, row.configuration), row.loses_on});
+                               usable(material, eligible, has_lobe, row.configuration), row.loses_on, row.not_worse_than});
   }
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
   const std::string basis = light_count_words(material.lights, committed_isa_costs().cost_light_count(family, material.lights));

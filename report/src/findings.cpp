@@ -198,6 +198,29 @@ std::vector<std::string> scenes_lost(const measure::TradeTable& table, const std
   return lost;
 }
 
+// Whether the row can be a content's recommendation: it beats the baseline, is on time and loses
+// on none of the scenes (decision.hpp's eligibility, before a material's own constraints).
+bool may_be_recommended(const ContentRow& row) {
+  return row.against_none && decision::outcome(*row.against_none) == decision::Outcome::beats && !decision::late(*row.against_none) &&
+         row.loses_on.empty();
+}
+
+// Each recommendable row's not_worse_than: the other recommendable rows it is worse than beyond the
+// interval in neither metric, paired on `keep`'s cells (decision.hpp: a lead inside the interval
+// is a tie, and the cheaper of a tie wins).
+void pair_recommendable(const measure::TradeTable& table, const RowFilter& keep, std::vector<ContentRow>& rows) {
+  for (ContentRow& row : rows) {
+    if (!may_be_recommended(row)) continue;
+    for (const ContentRow& other : rows) {
+      if (&other == &row || !may_be_recommended(other)) continue;
+      const PairedComparison c = compare_configurations(table, row.configuration, other.configuration, keep);
+      if (c.cells == 0) continue;
+      const decision::Outcome against = decision::outcome(to_decision(c));
+      if (against == decision::Outcome::ties || against == decision::Outcome::beats) row.not_worse_than.push_back(other.configuration);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
@@ -217,6 +240,7 @@ std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const Ro
     }
     rows.push_back(std::move(row));
   }
+  pair_recommendable(table, keep, rows);
   return rows;
 }
 
@@ -229,7 +253,10 @@ std::string without_taa(std::string configuration) {
 std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Content content) {
   const RowFilter keep = [content](const measure::TradeRow& row) { return row.taa && content_of(row.scene) == content; };
   std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content), "none+taa");
-  for (ContentRow& row : rows) row.configuration = without_taa(row.configuration);
+  for (ContentRow& row : rows) {
+    row.configuration = without_taa(row.configuration);
+    for (std::string& other : row.not_worse_than) other = without_taa(other);
+  }
   return rows;
 }
 

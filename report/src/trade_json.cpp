@@ -128,6 +128,7 @@ nlohmann::json taa_by_content_json(const measure::TradeTable& table) {
                               {"error", row.error},     {"image_error", row.error},           {temporal, row.tde.value_or(0.0)}};
       if (row.against_none) entry["against_none"] = comparison_json(*row.against_none);
       if (!row.loses_on.empty()) entry["loses_on"] = row.loses_on;
+      if (!row.not_worse_than.empty()) entry["not_worse_than"] = row.not_worse_than;
       out.push_back(entry);
     }
   return out;
@@ -247,6 +248,7 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
       if (row == measured.end() || !row->second.against_none) continue;
       by_content.back()["against_none"] = comparison_json(*row->second.against_none);
       if (!row->second.loses_on.empty()) by_content.back()["loses_on"] = row->second.loses_on;
+      if (!row->second.not_worse_than.empty()) by_content.back()["not_worse_than"] = row->second.not_worse_than;
     }
   }
   return by_content;

@@ -22,7 +22,11 @@
 //     of the candidates. The temporal metric ranks because the bench's is the video metric,
 //     ColorVideoVDP's JOD of the animation (the field's perceptual video metric, Mantiuk et al.
 //     2024), so the verdict orders configurations as it does; the image metric only has to be no
-//     worse (beats).
+//     worse (beats). A lead inside the interval is a tie, not a win: the eligible candidates whose
+//     paired comparison with that most accurate one is worse beyond the interval in neither
+//     metric (Candidate::not_worse_than names it) are as accurate as it, and of it and them the
+//     cheapest is taken (as for speed, but the most expensive form is allowed); where none of
+//     them has a known cost below its own, the most accurate one.
 //   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and the more
 //     accurate of equals wins); never the most expensive form among the usable candidates unless
 //     it is the only usable candidate. A candidate without a known cost is never taken for speed.
@@ -71,6 +75,10 @@ struct Candidate {
   // there). A content's recommendation must lose on none of its content, so such a candidate is
   // never taken, whatever its mean.
   std::vector<std::string> loses_on = {};
+  // The configurations this one is worse than beyond the interval in neither metric, paired on the
+  // same cells (the bench's comparison of the two; empty where unknown): where one of them is the
+  // most accurate candidate by the mean, this one ties with it, and the cheaper of the two wins.
+  std::vector<std::string> not_worse_than = {};
 };
 
 enum class Prefer { accuracy, speed };

@@ -43,6 +43,9 @@ struct ContentRow {
   // The content's scenes on which the row loses to no SAA beyond the interval ("loses_on"; the
   // decision never takes such a row for the content: decision::Candidate::loses_on).
   std::vector<std::string> loses_on = {};
+  // The configurations the row is worse than beyond the interval in neither metric, paired on the
+  // same cells ("not_worse_than": decision::Candidate::not_worse_than, the decision's ties).
+  std::vector<std::string> not_worse_than = {};
 };
 
 // The one adapter from a trade table's measurements to a decision's comparison

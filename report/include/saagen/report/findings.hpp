@@ -94,7 +94,9 @@ bool costs_at_most(const CostTable* costs, const std::string& a, const std::stri
 // writes ("by_content") and saagen's decision reads (through comparison_against,
 // saagen/scene/cost_tables.hpp). `scope` names the content type or the scene; each row is paired
 // against the rows' `baseline` (its against_none; none+taa for measured_taa_rows), and where it
-// beats the baseline over the rows, the scenes among them on which it loses (its loses_on).
+// beats the baseline over the rows, the scenes among them on which it loses (its loses_on); each
+// row that may be recommended (beats, on time, loses on no scene) is paired with the others that
+// may, and names those it is worse than beyond the interval in neither metric (its not_worse_than).
 std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline = "none");
 
