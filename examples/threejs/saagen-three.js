@@ -32,15 +32,16 @@
 // the normal-mapped normal (bumpy, saagen's advice; -0.0012 / -0.07 against three.js's) and the
 // named deferred-sum on the geometric normal (bumpy_named; -0.0012 / -0.12).
 //
-// LOD bias: with 'geometric', the normal map's detail is the bake's, and the normal map and the
-// baked roughness map (and the clearcoat's) are sampled one MIP level coarser than the implicit
-// LOD (PREFILTER_LOD_BIAS, saagen's advice: generator/include/saagen/advice.hpp,
-// kPrefilterLodBias; docs/PREFILTER.md, "The LOD bias"): at the implicit LOD, map detail near the
-// pixel grid's Nyquist frequency stays in the shading normal, aliased, and the bake's wider lobe
-// turns it into flicker; one level coarser it moves into the bake. three.js's texture2D calls in
+// LOD bias: where the material's roughness map holds the normal map's bake (option `bake`, the
+// plan's `prefilter`), the normal map and the baked roughness map (and the clearcoat's) are
+// sampled one MIP level coarser than the implicit LOD (PREFILTER_LOD_BIAS, saagen's advice:
+// generator/include/saagen/advice.hpp, kPrefilterLodBias; docs/PREFILTER.md, "The LOD bias"), as
+// the trade measures its baked rows: at the implicit LOD, map detail near the pixel grid's Nyquist
+// frequency stays in the shading normal, aliased, and the bake's wider lobe turns it into
+// flicker; one level coarser it moves into the bake. three.js's texture2D calls in
 // normal_fragment_maps, roughnessmap_fragment, clearcoat_normal_fragment_maps and the clearcoat
-// roughness map's line get the bias argument. 'shading' (no bake) and filter: false keep the
-// implicit LOD, as the trade's rows without a bake do.
+// roughness map's line get the bias argument. Without a bake (whatever the normal) and with
+// filter: false the maps keep the implicit LOD, as the trade's rows without a bake do.
 //
 // Domains: three.js's roughness is perceptual (r, the glTF convention): its GGX takes
 // alpha = r^2, so alpha^2 = r^4. The tangent-free wrappers take and return alpha^2; the result
@@ -136,9 +137,9 @@ function biasedChunk(name, chunk) {
 // Patches three.js's lights_physical_fragment chunk: the filter replaces the geometric-roughness
 // term (filter = true), reading the normals of NORMALS[normal], or the term is dropped
 // (filter = false: the unfiltered reference render).
-function lightsChunk(filter, clearcoat, normal) {
+function lightsChunk(filter, clearcoat, normal, bake) {
   const shipped = THREE.ShaderChunk.lights_physical_fragment;
-  const chunk = biases(filter, normal) ? biasedChunk('lights_physical_fragment', shipped) : shipped;
+  const chunk = biases(filter, bake) ? biasedChunk('lights_physical_fragment', shipped) : shipped;
   for (const line of [ROUGHNESS_LINE, CLEARCOAT_LINE]) {
     if (!chunk.includes(line)) {
       throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${line}' in lights_physical_fragment; this module needs updating`);
@@ -153,10 +154,9 @@ function lightsChunk(filter, clearcoat, normal) {
   return chunk.replace(ROUGHNESS_LINE, base).replace(CLEARCOAT_LINE, coat);
 }
 
-// Whether the normal map and its bake are sampled with the LOD bias: the filter on the geometric
-// normal, whose map's detail is the bake's.
-function biases(filter, normal) {
-  return filter && normal === 'geometric';
+// Whether the normal map and its bake are sampled with the LOD bias: a filter with a bake.
+function biases(filter, bake) {
+  return filter && bake;
 }
 
 // The fragment shader's includes of the chunks with biased reads, expanded with the bias.
@@ -172,14 +172,15 @@ function withBiasedReads(fragmentShader) {
 //   snippet   the text of a `saagen emit --target gles` file (fp32 or fp16) with the wrapper
 //   wrapper   the unprefixed wrapper name (one of TANGENT_FREE_WRAPPERS; default deferred_sum_fragment)
 //   normal    which normal the filter reads: 'geometric' (default) the interpolated vertex normal
-//             before the normal map (three.js's nonPerturbedNormal), with the map's detail
-//             prefiltered into the roughness map, both sampled PREFILTER_LOD_BIAS levels
-//             coarser; 'shading' the normal-mapped normal (and clearcoatNormal), only for
-//             content without texture prefiltering, at the implicit LOD
+//             before the normal map (three.js's nonPerturbedNormal); 'shading' the normal-mapped
+//             normal (and clearcoatNormal)
+//   bake      true where material.roughnessMap holds the normal map's bake (`saagen texture
+//             prefilter`): the normal map and the roughness maps are sampled PREFILTER_LOD_BIAS
+//             levels coarser; false (default): the implicit LOD
 //   filter    false: no filter and no three.js geometric roughness (the unfiltered render)
 //   clearcoat filter the clearcoat roughness too (default true; needs MeshPhysicalMaterial.clearcoat > 0)
 // Returns the material.
-export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', filter = true, clearcoat = true } = {}) {
+export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', bake = false, filter = true, clearcoat = true } = {}) {
   if (!TANGENT_FREE_WRAPPERS.includes(wrapper)) {
     throw new Error(`saagen-three: wrapper '${wrapper}' is not one of ${TANGENT_FREE_WRAPPERS.join(', ')}`);
   }
@@ -193,13 +194,13 @@ export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_
       throw new Error(`saagen-three: the snippet defines no ${functionName}; emit the variant that has it`);
     }
   }
-  const key = filter ? `saagen|${functionName}|${normal}|${clearcoat}|${fingerprint(snippet)}` : 'saagen|unfiltered';
+  const key = filter ? `saagen|${functionName}|${normal}|${bake}|${clearcoat}|${fingerprint(snippet)}` : 'saagen|unfiltered';
   material.onBeforeCompile = (shader) => {
     const head = filter ? snippet + roughnessFilter(functionName) : '';
-    const fragment = biases(filter, normal) ? withBiasedReads(shader.fragmentShader) : shader.fragmentShader;
-    shader.fragmentShader = head + fragment.replace('#include <lights_physical_fragment>', lightsChunk(filter, clearcoat, normal));
+    const fragment = biases(filter, bake) ? withBiasedReads(shader.fragmentShader) : shader.fragmentShader;
+    shader.fragmentShader = head + fragment.replace('#include <lights_physical_fragment>', lightsChunk(filter, clearcoat, normal, bake));
   };
-  // Two configurations (snippet, wrapper, normal, clearcoat, on/off) never share a compiled program.
+  // Two configurations (snippet, wrapper, normal, bake, clearcoat, on/off) never share a compiled program.
   material.customProgramCacheKey = () => key;
   material.needsUpdate = true;
   return material;
@@ -321,7 +322,7 @@ export function installPlan(material, entry, { snippet = '', clearcoat = 'none' 
   if (!plan.tail) {
     // The roughness filter alone, with three.js's own GGX.
     return installSaagen(material, { snippet, wrapper: plan.wrapper, normal: plan.normal === 'normal' ? 'shading' : 'geometric',
-                                     clearcoat: clearcoat !== 'none' });
+                                     bake: plan.bias, clearcoat: clearcoat !== 'none' });
   }
   const key = `saagen-plan|${prefix}|${plan.kind}|${plan.wrapper}|${plan.normal}|${plan.bias}|${clearcoat}|${fingerprint(snippet)}`;
   material.onBeforeCompile = (shader) => {

@@ -38,9 +38,9 @@ export function bumpNormalMap(size = 64, bumps = 8, height = 0.6) {
 // 'unfiltered': without it; 'saagen': the snippet's filter; 'plan': what the plan's entry says,
 // installPlan with the manifest's bundle as snippet): { scene, camera }. clearcoatFilter: false
 // leaves the clearcoat roughness unfiltered; normal: the normal the filter reads ('geometric' or
-// 'shading', see installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer
+// 'shading', see installSaagen); bake: sample the maps as a bake's (installSaagen); normalMap: true gives the spheres bumpNormalMap() (base layer
 // and clearcoat).
-export function buildScene(mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', normalMap = false, roughness = 0.05, clearcoatFilter = true, entry = null } = {}) {
+export function buildScene(mode, { snippet = '', wrapper = 'deferred_sum_fragment', normal = 'geometric', bake = false, normalMap = false, roughness = 0.05, clearcoatFilter = true, entry = null } = {}) {
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0x000000);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
@@ -56,7 +56,7 @@ export function buildScene(mode, { snippet = '', wrapper = 'deferred_sum_fragmen
     material.clearcoatNormalMap = material.normalMap;
   }
   if (mode === 'plan') installPlan(material, entry, { snippet });
-  else if (mode !== 'three') installSaagen(material, { snippet, wrapper, normal, filter: mode === 'saagen', clearcoat: clearcoatFilter });
+  else if (mode !== 'three') installSaagen(material, { snippet, wrapper, normal, bake, filter: mode === 'saagen', clearcoat: clearcoatFilter });
   const geometry = new THREE.SphereGeometry(1, 64, 32);
   for (let row = 0; row < 3; ++row) {
     for (let column = 0; column < 3; ++column) {

@@ -100,8 +100,8 @@ std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const
 // accuracy choice took a cheaper tie of the most accurate candidate.
 std::string tie_text(const Candidate& best, std::string_view basis, std::string_view baseline) {
   return fmt::format(
-      "; it ties with {}, the largest temporal improvement on the mean (their paired difference lies within the 95 % interval in "
-      "both metrics), at lower cost",
+      "; it ties with {}, the largest temporal improvement on the mean (paired with it, worse beyond the 95 % interval in neither "
+      "metric), at lower cost",
       figures(best, basis, baseline));
 }
 

@@ -24,8 +24,8 @@
 // canvas output: the example renders without tone mapping, where every highlight clips at 1,
 // and the verdict's metrics are defined on these display values; every clip gets the same mapping.
 //
-// The example scene has no baked roughness map: bumpy_named's plan (deferred-sum with the hdrp
-// bake) is measured as the example installs it, the filter and the LOD bias without the bake.
+// The example scene has no baked roughness map: a plan with a bake would be measured without it
+// (the filter and the bake's LOD bias); the example's plans have none.
 //
 //   node tests/webgl/threejs_measure.mjs SAAGEN_CLI OUT_DIR [--size N] [--frames N] [--scale N]
 //        [--jitters N] [--pan X,Y] [--materials a,b] [--score-only]
