@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
       ++compared;
     }
   }
-  const nlohmann::json result = {{"metric", "ColorVideoVDP (saagen C++, render/video_vdp.hpp)"},
+  const nlohmann::json result = {{"metric", "ColorVideoVDP (saagen C++, saagen/measure/video_vdp.hpp)"},
                                  {"display", display.name},
                                  {"fps", fps},
                                  {"frames", fs::absolute(frames_dir).string()},

@@ -1220,6 +1220,29 @@ TEST(Planner, WithATableATieOfTheMostAccurateGoesToTheCheaper) {
             "deferred-aniso");
 }
 
+TEST(Planner, ATableOfOtherContentLeavesTheMaterialToSaagensOwnFigures) {
+  // A table measured on a curved asset only: its error means (curved) say nothing about a
+  // normal-mapped material, which gets saagen's committed normal-mapped decision (the plan without
+  // a table), and the reason says the table has no such rows. The curved material decides on it.
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
+      {"target": "glsl", "variant": "deferred-aniso", "error": 0.01}, {"target": "glsl", "variant": "forward-axis-projected", "error": 0.05}],
+      "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.02, "tde": 0.008}]})",
+                                                                     "curved.json");
+  const std::string materials =
+      "[[material]]\nname = \"m\"\npath = \"forward\"\ntangents = true\nnormal_maps = true\n"
+      "[[material]]\nname = \"c\"\npath = \"deferred\"\n";
+  const saagen::ScenePlan with_table = saagen::plan_scene(Catalogue::builtin(), parse(header + materials), &table);
+  const saagen::ScenePlan without = saagen::plan_scene(Catalogue::builtin(), parse(header + materials));
+  EXPECT_EQ(with_table.materials.at(0).variant, without.materials.at(0).variant) << with_table.materials.at(0).reason;
+  EXPECT_EQ(with_table.materials.at(0).rule, "advice");
+  EXPECT_NE(with_table.materials.at(0).reason.find("curved.json has no normal-mapped rows"), std::string::npos)
+      << with_table.materials.at(0).reason;
+  EXPECT_EQ(with_table.materials.at(1).variant, "deferred-avg") << with_table.materials.at(1).reason;
+  EXPECT_EQ(with_table.materials.at(1).rule, "trade table");
+}
+
 TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   const saagen::Manifest manifest = saagen::load_manifest(example_manifest, Catalogue::builtin());
   saagen::ScenePlan plan = saagen::plan_scene(Catalogue::builtin(), manifest);

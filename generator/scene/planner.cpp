@@ -899,7 +899,10 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       plan.rule = rule.id;
       plan.reason = rule.why;
       const bool speed = material.prefer == Preference::speed;
-      if (table || speed) {
+      // For speed, a GGX material the planner chooses for gets saagen's decision below, which costs
+      // every configuration itself; the ISA ranking here serves the others (Beckmann, presets).
+      const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
+      if ((table || speed) && !decision_costs) {
         // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
         // trade table when it has figures for that family (`saagen bench` measures one light, so
         // only for a material costed at one light), else from the committed table. Accuracy: the
@@ -980,18 +983,22 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         for (const ContentRow& row : manifest.taa ? table->taa_content_rows : table->content_rows)
           if (row.content == content) rows.push_back(row);
       const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
+      // A `saagen bench` table measured on other content (its by_content rows name none of this
+      // material's): its error means say nothing about this content, so saagen's own figures decide.
+      const bool other_content = table && rows.empty() && !table->content_rows.empty();
       if (has_none) {
         apply_decision(catalogue, manifest, material, rows, table->source_name, nullptr, plan);
       } else if (!rows.empty()) {
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
-      } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed) {
+      } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
         const AdviceMeasurement* measured = advice_measurement(advice, content_of(material), manifest.taa);
         static const AdviceMeasurement kNothingMeasured;
         const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
+        const std::string lacking = other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : "";
         apply_decision(catalogue, manifest, material, rows_of.rows,
-                       measured ? fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes))
-                                : std::string("saagen's trade (not measured)"),
+                       measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
+                                : fmt::format("saagen's trade (not measured){}", lacking),
                        measured, plan);
       }
     }

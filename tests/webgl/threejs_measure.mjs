@@ -28,7 +28,7 @@
 // (the filter and the bake's LOD bias); the example's plans have none.
 //
 //   node tests/webgl/threejs_measure.mjs SAAGEN_CLI OUT_DIR [--size N] [--frames N] [--scale N]
-//        [--jitters N] [--pan X,Y] [--materials a,b] [--score-only]
+//        [--jitters N] [--pan X,Y] [--materials a,b] [--trade-table T.json] [--score-only]
 // prints `saagen score`'s table and the per-material summary table (Markdown). The defaults: 128 x
 // 128 pixels, 24 frames, 1024 samples per pixel in the ground truth (4 x 4 x 64), a pan of
 // (0.37, 0.21) pixels per frame: about 6 minutes on 2 cores. --score-only scores OUT_DIR's clips
@@ -173,11 +173,15 @@ function pageSide() {
 
 // --- The measurement.
 
-function planAndSnippet(cli) {
+// The example manifest's plan and bundle; with `tradeTable` (a `saagen bench --json` table of
+// content like the example's), planned and emitted with that table, as a user measuring their own
+// content would.
+function planAndSnippet(cli, tradeTable) {
   const manifest = path.join(root, 'examples/threejs/scene.saagen.toml');
-  const plan = JSON.parse(execFileSync(cli, ['plan', manifest, '--json'], { encoding: 'utf8' }));
+  const table = tradeTable ? ['--trade-table', tradeTable] : [];
+  const plan = JSON.parse(execFileSync(cli, ['plan', manifest, '--json', ...table], { encoding: 'utf8' }));
   const output = fs.mkdtempSync(path.join(os.tmpdir(), 'saagen-threejs-measure-'));
-  execFileSync(cli, ['emit', '--manifest', manifest, '--output', output]);
+  execFileSync(cli, ['emit', '--manifest', manifest, '--output', output, ...table]);
   const snippet = fs.readFileSync(path.join(output, 'saa_threejs.essl'), 'utf8');
   fs.rmSync(output, { recursive: true, force: true });
   return { plan, snippet };
@@ -194,7 +198,7 @@ function fileName(clip) {
 // Renders every clip and writes OUT_DIR/index.json and the PNGs; returns the index.
 export async function renderClips(cli, outDir, settings) {
   const { size, frames, scale, jitters, pan } = settings;
-  const { plan, snippet } = planAndSnippet(cli);
+  const { plan, snippet } = planAndSnippet(cli, settings.tradeTable);
   const entries = plan.materials.filter((m) => !settings.materials || settings.materials.includes(m.material));
   if (entries.length === 0) throw new Error(`--materials ${settings.materials}: the plan has none of them`);
   const worldPerPixel = (2 * 12 * Math.tan((20 * Math.PI) / 180)) / size;  // scene.js's camera: 40 degrees, 12 from the spheres
@@ -316,7 +320,7 @@ export function summaryTable(scored) {
 function parseArguments(argv) {
   const [cli, outDir, ...rest] = argv;
   if (!cli || !outDir) {
-    console.error('usage: node tests/webgl/threejs_measure.mjs SAAGEN_CLI OUT_DIR [--size N] [--frames N] [--scale N] [--jitters N] [--pan X,Y] [--materials a,b] [--score-only]');
+    console.error('usage: node tests/webgl/threejs_measure.mjs SAAGEN_CLI OUT_DIR [--size N] [--frames N] [--scale N] [--jitters N] [--pan X,Y] [--materials a,b] [--trade-table T.json] [--score-only]');
     process.exit(2);
   }
   const settings = { ...DEFAULTS };
@@ -330,8 +334,9 @@ function parseArguments(argv) {
     if (value === undefined) throw new Error(`${name}: needs a value`);
     if (name === '--pan') settings.pan = value.split(',').map(Number);
     else if (name === '--materials') settings.materials = value.split(',');
+    else if (name === '--trade-table') settings.tradeTable = path.resolve(value);
     else if (['--size', '--frames', '--scale', '--jitters'].includes(name)) settings[name.slice(2)] = Number.parseInt(value, 10);
-    else throw new Error(`${name}: not an option (--size, --frames, --scale, --jitters, --pan, --materials, --score-only)`);
+    else throw new Error(`${name}: not an option (--size, --frames, --scale, --jitters, --pan, --materials, --trade-table, --score-only)`);
   }
   return { cli, outDir, settings };
 }
