@@ -74,8 +74,8 @@ std::vector<std::size_t> lowest_cost(std::span<const Candidate> candidates, cons
 }
 
 // For accuracy: the most accurate of the pool by the mean, unless a candidate that ties with it
-// (within the interval in both metrics) costs less: then the cheapest of it and its ties (equal
-// costs: the more accurate). Where the most accurate one's cost is unknown, it.
+// (worse than it beyond the interval in neither metric) costs less: then the cheapest of it and
+// its ties (equal costs: the more accurate). Where the most accurate one's cost is unknown, it.
 std::optional<std::size_t> most_accurate_for_its_cost(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
   const std::optional<std::size_t> best = most_accurate(candidates, pool);
   if (!best || !candidates[*best].cost_ratio) return best;
