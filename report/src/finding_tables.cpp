@@ -31,10 +31,8 @@ std::vector<std::string> cost_cells(const CostTable* costs, const std::string& c
 
 Metrics metrics_of(const VariantSummary& s) {
   Metrics m;
-  m.rmse_linear = s.rmse_linear, m.rmse_tonemapped = s.rmse_tonemapped, m.max_error = s.max_error;
-  m.flip_ldr = s.flip_ldr, m.flip_hdr = s.flip_hdr;
-  m.tde = s.tde, m.tde_excess_flicker = s.tde_excess_flicker, m.tde_lost_motion = s.tde_lost_motion;
-  m.flicker = s.flicker, m.flicker_display = s.flicker_display, m.cases = s.cases;
+  static_cast<measure::RowMetrics&>(m) = s;
+  m.cases = s.cases;
   return m;
 }
 

@@ -65,16 +65,7 @@ Content content_of(measure::SceneId scene) {
 
 Metrics row_metrics(const measure::TradeRow& row) {
   Metrics m;
-  m.rmse_linear = row.rmse_linear;
-  m.rmse_tonemapped = row.rmse_tonemapped;
-  m.max_error = row.max_error;
-  m.flip_ldr = row.flip_ldr;
-  m.flip_hdr = row.flip_hdr;
-  m.tde = row.tde;
-  m.tde_excess_flicker = row.tde_excess_flicker;
-  m.tde_lost_motion = row.tde_lost_motion;
-  m.flicker = row.flicker;
-  m.flicker_display = row.flicker_display;
+  static_cast<measure::RowMetrics&>(m) = row;
   m.image_error = row.image_error.mean;
   m.flicker_error = row.flicker_error.mean;
   m.video_error = row.video_error.mean;
@@ -84,11 +75,8 @@ Metrics row_metrics(const measure::TradeRow& row) {
 
 namespace {
 
-// The averaged fields of Metrics (max_error is a maximum, cases a count).
-constexpr double Metrics::*kMeanFields[] = {
-    &Metrics::rmse_linear,        &Metrics::rmse_tonemapped, &Metrics::flip_ldr, &Metrics::flip_hdr,        &Metrics::tde,
-    &Metrics::tde_excess_flicker, &Metrics::tde_lost_motion, &Metrics::flicker,  &Metrics::flicker_display, &Metrics::image_error,
-    &Metrics::flicker_error,      &Metrics::video_error};
+// The verdict's metrics of Metrics, averaged as the scalar metrics are.
+constexpr double Metrics::*kVerdictMeans[] = {&Metrics::image_error, &Metrics::flicker_error, &Metrics::video_error};
 
 }  // namespace
 
@@ -101,12 +89,13 @@ Metrics mean_metrics(const measure::TradeTable& table, const std::string& config
   for (const measure::TradeRow& row : table.rows) {
     if (row.fresnel || measure::configuration_id(row) != configuration || !keep(row)) continue;
     const Metrics r = row_metrics(row);
-    for (auto field : kMeanFields) m.*field += r.*field;
-    m.max_error = std::max(m.max_error, r.max_error);
+    measure::add_over_rows(m, r);
+    for (auto field : kVerdictMeans) m.*field += r.*field;
     ++m.cases;
   }
+  measure::means_over_rows(m, m.cases);
   if (m.cases)
-    for (auto field : kMeanFields) m.*field /= static_cast<double>(m.cases);
+    for (auto field : kVerdictMeans) m.*field /= static_cast<double>(m.cases);
   return m;
 }
 

@@ -9,12 +9,6 @@
 namespace saagen::report {
 namespace {
 
-double mean(const std::vector<double>& values) {
-  double sum = 0.0;
-  for (double value : values) sum += value;
-  return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-}
-
 // "; NAME at WxH px (animation wxh px), ..." for the scenes with sizes of their own.
 std::string scene_sizes_line(const measure::TradeConfig& c) {
   std::string line;
@@ -40,30 +34,12 @@ std::vector<VariantSummary> summarize(const measure::TradeTable& table) {
   }
   std::vector<VariantSummary> summary;
   for (const std::string& id : order) {
-    VariantSummary entry{id};
-    std::vector<double> linear, tonemapped, flicker, flicker_display, flip_ldr, flip_hdr, tde, excess, lost;
-    for (const measure::TradeRow* row : by_configuration[id]) {
-      tde.push_back(row->tde);
-      excess.push_back(row->tde_excess_flicker);
-      lost.push_back(row->tde_lost_motion);
-      flip_ldr.push_back(row->flip_ldr);
-      flip_hdr.push_back(row->flip_hdr);
-      linear.push_back(row->rmse_linear);
-      tonemapped.push_back(row->rmse_tonemapped);
-      flicker.push_back(row->flicker);
-      flicker_display.push_back(row->flicker_display);
-      entry.max_error = std::max(entry.max_error, row->max_error);
-    }
-    entry.cases = linear.size();
-    entry.rmse_linear = mean(linear);
-    entry.rmse_tonemapped = mean(tonemapped);
-    entry.tde = mean(tde);
-    entry.tde_excess_flicker = mean(excess);
-    entry.tde_lost_motion = mean(lost);
-    entry.flicker = mean(flicker);
-    entry.flicker_display = mean(flicker_display);
-    entry.flip_ldr = mean(flip_ldr);
-    entry.flip_hdr = mean(flip_hdr);
+    VariantSummary entry;
+    entry.variant = id;
+    const std::vector<const measure::TradeRow*>& rows = by_configuration[id];
+    for (const measure::TradeRow* row : rows) measure::add_over_rows(entry, *row);
+    measure::means_over_rows(entry, rows.size());
+    entry.cases = rows.size();
     summary.push_back(entry);
   }
   return summary;

@@ -184,16 +184,6 @@ nlohmann::json cases_json(const measure::TradeTable& table) {
                      {"variant", id_of(row.variant)},
                      {"feed", std::string(measure::feed_name(row.feed))},
                      {"configuration", measure::configuration_id(row)},
-                     {"rmse_linear", row.rmse_linear},
-                     {"rmse_tonemapped", row.rmse_tonemapped},
-                     {"max_error", row.max_error},
-                     {"flip_ldr", row.flip_ldr},
-                     {"flip_hdr", row.flip_hdr},
-                     {"tde", row.tde},
-                     {"tde_excess_flicker", row.tde_excess_flicker},
-                     {"tde_lost_motion", row.tde_lost_motion},
-                     {"flicker", row.flicker},
-                     {"flicker_display", row.flicker_display},
                      {"image_error", interval_json(row.image_error)},
                      {"flicker_error", interval_json(row.flicker_error)},
                      {"video_error", interval_json(row.video_error)},
@@ -201,6 +191,7 @@ nlohmann::json cases_json(const measure::TradeTable& table) {
                      {"lag", interval_json(row.lag)},
                      {"flicker_excess", row.flicker_excess},
                      {"flicker_missing", row.flicker_missing}});
+    for (const measure::RowMetricField& field : measure::kRowMetricFields) cases.back()[std::string(field.name)] = row.*field.value;
   }
   return cases;
 }

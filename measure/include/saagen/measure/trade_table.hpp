@@ -13,7 +13,9 @@
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/saa.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -148,14 +150,9 @@ struct SanityRow {
   AnimationSeries series;    // [0] only
 };
 
-struct TradeRow {
-  Variant variant = Variant::none;
-  NormalFeed feed = NormalFeed::shading;
-  Prefilter prefilter = Prefilter::none;
-  Lobe lobe = Lobe::papers;
-  SceneId scene = SceneId::sphere;
-  double alpha = 0.0;
-  bool fresnel = false;
+// A trade row's scalar metrics (trade.hpp defines each): one measured row's (TradeRow), or their
+// means over a set of rows (report::Metrics, whose max_error is the largest of the rows').
+struct RowMetrics {
   double rmse_linear = 0.0;
   double rmse_tonemapped = 0.0;
   double max_error = 0.0;
@@ -169,28 +166,75 @@ struct TradeRow {
   double tde_excess_flicker = 0.0;
   double tde_lost_motion = 0.0;
   double flicker = 0.0;
+  // Secondary: the tonemapped temporal std over the ground truth's (TradeRow's
+  // temporal_stddev_display / reference_temporal_stddev_display).
+  double flicker_display = 0.0;
+};
+
+// The scalar metrics by name (the trade JSON's keys), in declaration order.
+struct RowMetricField {
+  std::string_view name;
+  double RowMetrics::*value;
+};
+inline constexpr RowMetricField kRowMetricFields[] = {{"rmse_linear", &RowMetrics::rmse_linear},
+                                                      {"rmse_tonemapped", &RowMetrics::rmse_tonemapped},
+                                                      {"max_error", &RowMetrics::max_error},
+                                                      {"flip_ldr", &RowMetrics::flip_ldr},
+                                                      {"flip_hdr", &RowMetrics::flip_hdr},
+                                                      {"tde", &RowMetrics::tde},
+                                                      {"tde_excess_flicker", &RowMetrics::tde_excess_flicker},
+                                                      {"tde_lost_motion", &RowMetrics::tde_lost_motion},
+                                                      {"flicker", &RowMetrics::flicker},
+                                                      {"flicker_display", &RowMetrics::flicker_display}};
+
+// The metrics over a set of rows: add_over_rows() adds each row's to `over` (max_error keeps the
+// largest), then means_over_rows() divides the sums by the number of rows (none: left at 0).
+inline void add_over_rows(RowMetrics& over, const RowMetrics& row) {
+  for (const RowMetricField& field : kRowMetricFields)
+    over.*field.value =
+        field.value == &RowMetrics::max_error ? std::max(over.*field.value, row.*field.value) : over.*field.value + row.*field.value;
+}
+inline void means_over_rows(RowMetrics& over, std::size_t rows) {
+  if (rows == 0) return;
+  for (const RowMetricField& field : kRowMetricFields)
+    if (field.value != &RowMetrics::max_error) over.*field.value /= static_cast<double>(rows);
+}
+
+// The verdict's metrics (animation_error.hpp): image_error (LDR-FLIP per animation frame),
+// flicker_error (pooled change) and video_error (10 - the ColorVideoVDP JOD of the clip,
+// video_vdp.hpp; 0 without the video metric, TradeConfig). `Estimate` is Interval in a measured
+// row (TradeRow) and double, the intervals' means, in a mean over rows (report::Metrics).
+template <typename Estimate>
+struct VerdictMetrics {
+  Estimate image_error{};
+  Estimate flicker_error{};
+  Estimate video_error{};
+};
+
+// One measured row: its metrics (RowMetrics), and the verdict's metrics as means over the
+// animation and over the ground-truth seeds, with 95 % intervals (over frame blocks, widened by
+// the ground truth's seed-to-seed spread; the video error's, the ground truth's spread).
+struct TradeRow : RowMetrics, VerdictMetrics<Interval> {
+  Variant variant = Variant::none;
+  NormalFeed feed = NormalFeed::shading;
+  Prefilter prefilter = Prefilter::none;
+  Lobe lobe = Lobe::papers;
+  SceneId scene = SceneId::sphere;
+  double alpha = 0.0;
+  bool fresnel = false;
   double temporal_stddev = 0.0;            // mean per-pixel temporal std of the variant
   double reference_temporal_stddev = 0.0;  // the same for the ground truth
   // Display-referred flicker: the mean per-pixel temporal std of the tonemapped frames
-  // (tonemap(), image.hpp), of the variant and of the ground truth, and their ratio
+  // (tonemap(), image.hpp), of the variant and of the ground truth, and their ratio flicker_display
   // (1: flickers as much as the converged animation; > 1: aliasing; < 1: overblurred motion).
   double temporal_stddev_display = 0.0;
   double reference_temporal_stddev_display = 0.0;
-  double flicker_display = 0.0;  // temporal_stddev_display / reference's
-  std::size_t non_finite = 0;    // NaN/inf pixels of the frame-0 image (excluded)
+  std::size_t non_finite = 0;  // NaN/inf pixels of the frame-0 image (excluded)
   // The configuration resolved by TAA (configuration id "...+taa"; see the top of this file).
   bool taa = false;
   // Mean LDR-FLIP of the measured animation frames against their ground truths (flicker
   // resolution): the image_error against the config's seed alone.
   double flip_ldr_animation = 0.0;
-  // The verdict's metrics (animation_error.hpp), means over the animation and over the
-  // ground-truth seeds, with 95 % intervals (over frame blocks, widened by the ground truth's
-  // seed-to-seed spread): image_error (LDR-FLIP per frame) and flicker_error (pooled change).
-  Interval image_error;
-  Interval flicker_error;
-  // The video metric: 10 - the ColorVideoVDP JOD of the clip (video_vdp.hpp), mean over the
-  // seeds with its interval (the ground truth's spread); all 0 without it (TradeConfig).
-  Interval video_error;
   // The mean lag (animation_error.hpp, lag_error) over the frames and seeds, with its interval.
   Interval lag;
   double flicker_excess = 0.0;  // flicker_error's parts, means over pairs and seeds

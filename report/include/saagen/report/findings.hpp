@@ -40,22 +40,9 @@ inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped,
 std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump", "clearcoat"
 Content content_of(measure::SceneId scene);
 
-// Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only).
-struct Metrics {
-  double rmse_linear = 0.0;
-  double rmse_tonemapped = 0.0;
-  double max_error = 0.0;  // the largest
-  double flip_ldr = 0.0;
-  double flip_hdr = 0.0;
-  double tde = 0.0;
-  double tde_excess_flicker = 0.0;
-  double tde_lost_motion = 0.0;
-  double flicker = 0.0;
-  double flicker_display = 0.0;  // secondary: tonemapped temporal std / the ground truth's
-  // The verdict's metrics (animation_error.hpp): LDR-FLIP per animation frame, pooled flicker error.
-  double image_error = 0.0;
-  double flicker_error = 0.0;
-  double video_error = 0.0;  // 10 - ColorVideoVDP's JOD (0 where the table has no video metric)
+// Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only): the scalar
+// metrics (max_error the largest) and the verdict's metrics (their intervals' means).
+struct Metrics : measure::RowMetrics, measure::VerdictMetrics<double> {
   std::size_t cases = 0;
 };
 // Whether the table's rows carry the video metric (TradeConfig::video_metric), which the verdict

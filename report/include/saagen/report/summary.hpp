@@ -14,18 +14,9 @@ namespace saagen::report {
 // dimmer and the orderings are the same).
 // Means over the cases (scenes x alphas, no Fresnel) of one configuration: a variant, or a
 // variant fed the geometric normal ("deferred-avg:geometric"), or an engine's shipped form.
-struct VariantSummary {
+// Its metrics are the trade rows' (measure::RowMetrics), max_error the largest over the cases.
+struct VariantSummary : measure::RowMetrics {
   std::string variant;  // measure::configuration_id
-  double rmse_linear = 0.0;
-  double rmse_tonemapped = 0.0;
-  double max_error = 0.0;  // the largest over the cases
-  double tde = 0.0;        // temporal difference error (trade.hpp) and its two parts
-  double tde_excess_flicker = 0.0;
-  double tde_lost_motion = 0.0;
-  double flicker = 0.0;
-  double flicker_display = 0.0;  // secondary: tonemapped temporal std relative to the ground truth's
-  double flip_ldr = 0.0;
-  double flip_hdr = 0.0;
   std::size_t cases = 0;
 };
 
