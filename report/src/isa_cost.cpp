@@ -80,36 +80,79 @@ std::vector<ForwardCase> forward_cases() {
   return cases;
 }
 
-// The forward-shading rows of one family and target at one light count: the no-SAA baseline at
-// that count, then every variant.
-void measure_forward(const hx::IsaCompiler& compiler, const std::string& target, std::uint32_t lights, std::vector<IsaCostRow>& rows) {
+// One shader to measure: its SPIR-V, which is the same on every family, and its pipeline layout.
+struct IsaShader {
+  std::string variant;
+  std::vector<std::uint32_t> spirv;
+  hx::IsaLayout layout;
+};
+
+// The shaders measured against one baseline: one target's forward-shading shaders at one light
+// count (against no SAA at that count), or one target's deferred passes (against the copy pass).
+struct IsaGroup {
+  const char* shader = isa_forward_shader;
+  std::string target;
+  std::uint32_t lights = 1;
+  IsaShader baseline;
+  std::vector<IsaShader> shaders;
+};
+
+// The forward-shading shaders of one target at one light count: the no-SAA baseline, then every
+// variant.
+IsaGroup forward_group(const std::string& target, std::uint32_t lights) {
   EmitOptions emit;
   emit.target = target;
   const std::vector<EmittedFile> files = emit_variants(Catalogue::builtin(), emit);
   const EmittedFile& brdf = file_of(files, "brdf-ggx");
-  const auto baseline = compiler.fragment(
+  IsaGroup group{isa_forward_shader, target, lights, {}, {}};
+  group.baseline = {
+      isa_baseline,
       scene_shader_spirv(target, brdf.file_name, brdf.content, body_with(baseline_shading, scene_size, scene_size, lights), scene_size),
-      scene_layout());
-  rows.push_back({compiler.family(), isa_forward_shader, target, isa_baseline, baseline, baseline, lights});
+      scene_layout()};
   for (const ForwardCase& item : forward_cases()) {
     const EmittedFile& file = file_of(files, item.file_variant);
-    const auto spirv = scene_shader_spirv(target, file.file_name, file.content + "\n" + brdf.content,
-                                          body_with(item.shading, scene_size, scene_size, lights), scene_size);
-    rows.push_back({compiler.family(), isa_forward_shader, target, item.id, compiler.fragment(spirv, scene_layout()), baseline, lights});
+    group.shaders.push_back({item.id,
+                             scene_shader_spirv(target, file.file_name, file.content + "\n" + brdf.content,
+                                                body_with(item.shading, scene_size, scene_size, lights), scene_size),
+                             scene_layout()});
   }
+  return group;
 }
 
-// The deferred-pass rows of one family and target: the copy baseline, then every pass.
-void measure_deferred(const hx::IsaCompiler& compiler, const std::string& target, const std::vector<DeferredPass>& passes,
-                      std::vector<IsaCostRow>& rows) {
+// The deferred passes of one target: the copy baseline, then every pass.
+IsaGroup deferred_group(const std::string& target, const std::vector<DeferredPass>& passes) {
   const bool hlsl = builtin_target(target).language == SourceLanguage::hlsl;
-  const auto baseline =
-      compiler.compute(compute_spirv(target, "deferred_copy", hlsl ? deferred_copy_hlsl : deferred_copy_glsl), pass_layout(false));
-  rows.push_back({compiler.family(), isa_deferred_shader, target, isa_baseline, baseline, baseline});
+  IsaGroup group{isa_deferred_shader, target, 1, {}, {}};
+  group.baseline = {isa_baseline, compute_spirv(target, "deferred_copy", hlsl ? deferred_copy_hlsl : deferred_copy_glsl),
+                    pass_layout(false)};
   for (const DeferredPass& pass : passes) {
-    const auto spirv = compute_spirv(target, pass.stem, hlsl ? pass.hlsl : pass.glsl);
-    rows.push_back(
-        {compiler.family(), isa_deferred_shader, target, pass.kind.id, compiler.compute(spirv, pass_layout(pass.kind.tangents)), baseline});
+    group.shaders.push_back(
+        {pass.kind.id, compute_spirv(target, pass.stem, hlsl ? pass.hlsl : pass.glsl), pass_layout(pass.kind.tangents)});
+  }
+  return group;
+}
+
+// Every group: the forward shaders of each target at each light count, then the deferred passes
+// of each target (the order of the table's rows within a family).
+std::vector<IsaGroup> isa_groups() {
+  const std::vector<DeferredPass> passes = emit_deferred_passes(Catalogue::builtin(), {});
+  std::vector<IsaGroup> groups;
+  for (const TargetSyntax* target : vulkan_targets())
+    for (const std::uint32_t lights : kMeasuredLightCounts) groups.push_back(forward_group(target->name, lights));
+  for (const TargetSyntax* target : vulkan_targets()) groups.push_back(deferred_group(target->name, passes));
+  return groups;
+}
+
+// The rows of one group on one family: its baseline, then every shader.
+void measure_group(const hx::IsaCompiler& compiler, const IsaGroup& group, std::vector<IsaCostRow>& rows) {
+  const bool forward = group.shader == std::string_view(isa_forward_shader);
+  const auto statistics = [&](const IsaShader& shader) {
+    return forward ? compiler.fragment(shader.spirv, shader.layout) : compiler.compute(shader.spirv, shader.layout);
+  };
+  const hx::IsaStatistics baseline = statistics(group.baseline);
+  rows.push_back({compiler.family(), group.shader, group.target, isa_baseline, baseline, baseline, group.lights});
+  for (const IsaShader& shader : group.shaders) {
+    rows.push_back({compiler.family(), group.shader, group.target, shader.variant, statistics(shader), baseline, group.lights});
   }
 }
 
@@ -150,14 +193,15 @@ std::vector<std::string> parse_isa_families(const std::string& list) {
 IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress) {
   IsaCostTable table;
   table.families = families;
-  const std::vector<DeferredPass> passes = emit_deferred_passes(Catalogue::builtin(), {});
+  // The SPIR-V (glslang, then spirv-opt: most of the time) does not depend on the family: it is
+  // compiled once, on the first family's turn, and only the ISA compilation runs per family.
+  std::vector<IsaGroup> groups;
   for (const std::string& family : families) {
     if (progress) progress(fmt::format("ISA statistics on {}", family));
     const hx::IsaCompiler compiler(family);
     table.driver = compiler.driver_info();
-    for (const TargetSyntax* target : vulkan_targets())
-      for (const std::uint32_t lights : kMeasuredLightCounts) measure_forward(compiler, target->name, lights, table.rows);
-    for (const TargetSyntax* target : vulkan_targets()) measure_deferred(compiler, target->name, passes, table.rows);
+    if (groups.empty()) groups = isa_groups();
+    for (const IsaGroup& group : groups) measure_group(compiler, group, table.rows);
   }
   return table;
 }
