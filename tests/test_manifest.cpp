@@ -1239,6 +1239,8 @@ TEST(Planner, ATableOfOtherContentLeavesTheMaterialToSaagensOwnFigures) {
   EXPECT_EQ(with_table.materials.at(0).rule, "advice");
   EXPECT_NE(with_table.materials.at(0).reason.find("curved.json has no normal-mapped rows"), std::string::npos)
       << with_table.materials.at(0).reason;
+  // The table's curved error means rank nothing for it: no clause of the reason comes from them.
+  EXPECT_EQ(with_table.materials.at(0).reason.find("(trade table)"), std::string::npos) << with_table.materials.at(0).reason;
   EXPECT_EQ(with_table.materials.at(1).variant, "deferred-avg") << with_table.materials.at(1).reason;
   EXPECT_EQ(with_table.materials.at(1).rule, "trade table");
 }

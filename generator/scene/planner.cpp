@@ -551,6 +551,21 @@ const AdviceMeasurement* advice_measurement(const AdviceTable& advice, advice::C
   return advice.find(advice::table_content(content), taa);
 }
 
+// A table's by-content rows of one content: under TAA its taa_by_content rows (`saagen bench
+// --taa`: each against none+taa).
+std::vector<ContentRow> rows_of_content(const MeasuredTradeTable& table, bool taa, advice::Content content) {
+  std::vector<ContentRow> rows;
+  for (const ContentRow& row : taa ? table.taa_content_rows : table.content_rows)
+    if (row.content == advice::table_content(content)) rows.push_back(row);
+  return rows;
+}
+
+// A `saagen bench` table measured on other content: its by_content rows name none of this
+// content's, so its error means say nothing about it and saagen's own figures decide.
+bool lacks_content(const MeasuredTradeTable& table, bool taa, advice::Content content) {
+  return !table.content_rows.empty() && rows_of_content(table, taa, content).empty();
+}
+
 // What a content's rows are compared with: no SAA, or TAA alone under TAA.
 std::string_view baseline_of(bool taa) { return taa ? "none+taa" : "no SAA"; }
 
@@ -902,7 +917,11 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       // For speed, a GGX material the planner chooses for gets saagen's decision below, which costs
       // every configuration itself; the ISA ranking here serves the others (Beckmann, presets).
       const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
-      if ((table || speed) && !decision_costs) {
+      // A table without this material's content leaves a GGX material to saagen's decision on its
+      // own figures (below): the table's error means, of other content, rank nothing here.
+      const bool table_decides =
+          table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
+      if ((table_decides || speed) && !decision_costs) {
         // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
         // trade table when it has figures for that family (`saagen bench` measures one light, so
         // only for a material costed at one light), else from the committed table. Accuracy: the
@@ -976,16 +995,10 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     // committed figures (advice.hpp), with how far those hold on content they were not made on.
     if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
       const std::string content(advice::table_content(content_of(material)));
-      // Under TAA the table's taa_by_content rows (`saagen bench --taa`: each against none+taa);
-      // a table without them leaves the decision to saagen's committed TAA figures.
-      std::vector<ContentRow> rows;
-      if (table)
-        for (const ContentRow& row : manifest.taa ? table->taa_content_rows : table->content_rows)
-          if (row.content == content) rows.push_back(row);
+      // A table without taa_by_content rows leaves a TAA decision to saagen's committed TAA figures.
+      const std::vector<ContentRow> rows = table ? rows_of_content(*table, manifest.taa, content_of(material)) : std::vector<ContentRow>{};
       const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
-      // A `saagen bench` table measured on other content (its by_content rows name none of this
-      // material's): its error means say nothing about this content, so saagen's own figures decide.
-      const bool other_content = table && rows.empty() && !table->content_rows.empty();
+      const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
       if (has_none) {
         apply_decision(catalogue, manifest, material, rows, table->source_name, nullptr, plan);
       } else if (!rows.empty()) {
