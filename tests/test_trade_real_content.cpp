@@ -122,11 +122,11 @@ TEST(RealContent, TheEnginesBakesHdrpsQuarterIsTheLeastHazy) {
 
 // Another real inversion, and what the tail-preserving lobe changes about it: on the smooth
 // torus-knot mesh at alpha 0.05 every engine form and every filter shaded with the papers' or the
-// mapped lobe raises LDR-FLIP above no SAA's (0.0177; forward-aniso-projected 0.0455, Godot 0.0408,
-// deferred-avg 0.0855): the 1-spp highlight of a smooth mesh hardly aliases at this roughness, and
+// mapped lobe raises LDR-FLIP above no SAA's (0.0177; forward-aniso-projected 0.0451, Godot 0.0420,
+// deferred-avg 0.0871): the 1-spp highlight of a smooth mesh hardly aliases at this roughness, and
 // GGX(alpha^2 + K)'s tails are visible haze. The tail-preserving lobe with the anisotropic kernels,
-// whose footprint follows the knot's curvature, goes below it (forward-aniso-projected/tail 0.0144,
-// deferred-aniso/tail 0.0128 with the shipped lobe, docs/FILTERED_GGX.md); with the isotropic or
+// whose footprint follows the knot's curvature, goes below it (forward-aniso-projected/tail 0.0115,
+// deferred-aniso/tail 0.0110 with the shipped lobe, docs/FILTERED_GGX.md); with the isotropic or
 // axis-aligned kernels it stays above.
 TEST(RealContent, OnASmoothMeshOnlyTheTailLobeWithAnAnisotropicKernelBeatsNoSaaInFlip) {
   const TradeTable& t = table(SceneId::torus_knot, 0.05);
@@ -143,7 +143,7 @@ TEST(RealContent, OnASmoothMeshOnlyTheTailLobeWithAnAnisotropicKernelBeatsNoSaaI
 
 // Better than the paper for GGX: the kernel's sigma^2 = 0.25 is Beckmann's variance match (T&K
 // 2019 Sec. 2.2; their Sec. 6 names GGX's mismatch). A quarter of it (sigma^2 = 0.0625) halves
-// LDR-FLIP on the knot (forward-aniso-projected 0.0234 vs 0.0455, deferred-avg 0.0425 vs 0.0855)
+// LDR-FLIP on the knot (forward-aniso-projected 0.0222 vs 0.0451, deferred-avg 0.0414 vs 0.0871)
 // and lowers the 4-px normal map's too (deferred-avg 0.0416 vs 0.0427). Asserted: < 0.7x on the
 // knot, no higher on the normal map.
 TEST(RealContent, AQuarterOfTheKernelLowersFlipForGgx) {

@@ -662,6 +662,8 @@ bool Scene::intersect_surface(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
+bool Scene::per_triangle_quads() const { return surfaces_ != nullptr || dynamic_cast<const TriangleMesh*>(shape_.get()) != nullptr; }
+
 bool Scene::extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const {
   const auto* mesh = dynamic_cast<const TriangleMesh*>(shape_.get());
   if (!mesh || shaded.triangle < 0) return false;

@@ -43,12 +43,15 @@
 // (normal, frame, vectors), i.e. a zero difference across that edge; only its gl_FragCoord
 // stays its own (the rasteriser's value, which Listing 3's neighbour direction reads).
 //
-// Asset scenes (gltf.hpp; Scene::per_triangle_quads) follow the GPU's rule exactly instead: a
-// quad partner that is not on the shaded pixel's own triangle (another triangle of the mesh,
-// across a uv seam or a split normal, another primitive, or nothing) takes what a helper
-// invocation of that triangle computes, the triangle's attributes extrapolated to the partner's
-// ray (Scene::extrapolate_surface; GBuffer::helpers), its uv included (tangent_plane_uv, the
-// same plane); only partners on the same triangle take their own fields.
+// Triangle meshes (the asset scenes, gltf.hpp, and the torus knot; Scene::per_triangle_quads)
+// follow the GPU's rule exactly instead: a quad partner that is not on the shaded pixel's own
+// triangle (another triangle of the mesh, across a uv seam or a split normal, where the tube
+// passes in front of itself, another primitive, or nothing) takes what a helper invocation of
+// that triangle computes, the triangle's attributes extrapolated to the partner's ray
+// (Scene::extrapolate_surface; GBuffer::helpers), its uv included (tangent_plane_uv, the same
+// plane); only partners on the same triangle take their own fields. (The analytic rule above
+// took the far sheet's normal at the knot's occlusion edges: a kernel as wide as the angle between
+// two tubes, bright speckles no GPU draws.)
 //
 // Normal-mapped scenes (Scene::normal_map). Ground truth: every sample's shading normal is the
 // map's level-0 bilinear sample at its hit (Scene::intersect), so the 1024 samples integrate the

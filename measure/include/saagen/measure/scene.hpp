@@ -294,10 +294,11 @@ class Scene {
   // False when the shape is no triangle mesh, shaded.triangle is -1 or the ray misses the plane.
   bool extrapolate_surface(const SurfaceHit& shaded, const Ray& ray, SurfaceHit& hit) const;
   // Whether the 1-spp images take quad partners from the shaded triangle's extrapolated
-  // attributes whenever a partner pixel is not on that triangle, as a GPU's helper invocations do
-  // (asset scenes, whose meshes have uv seams and split normals: renderer.hpp); the built-in
-  // scenes take a partner's own fields on the same connected surface.
-  bool per_triangle_quads() const { return surfaces_ != nullptr; }
+  // attributes whenever a partner pixel is not on that triangle, as a GPU's helper invocations do:
+  // every triangle mesh (the asset scenes, whose meshes have uv seams and split normals, and the
+  // torus knot, whose tube passes in front of itself: renderer.hpp). The analytic shapes take a
+  // partner's own fields on the same connected surface (none of them passes in front of itself).
+  bool per_triangle_quads() const;
   // Sets the shading frame of a hit from a tangent-space normal m (any length, z > 0): the
   // TBN transform n = normalize(m.x t + s m.y b + m.z n_g) with the geometric frame (t, b, n_g)
   // and s = hit.bitangent_sign; the shading tangent is t made orthogonal to n, b = n x t.
