@@ -11,7 +11,7 @@
 // Rounds are interleaved (every pass once per round, after two warm-up rounds); each figure is
 // the median over the rounds. Exits non-zero with one line on stderr when a module fails to
 // compile or validate, or when a pass leaves the roughness unchanged everywhere (not wired in).
-#include "deferred_pass_runner.hpp"
+#include "support/deferred_pass_runner.hpp"
 
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"

@@ -6,7 +6,7 @@
 // guards) against the same headers included once each (a chain): linear in the unique text
 // means a ratio near 1 (the tree has twice the include lines).
 //   build/bench/bench_include [--rounds N]
-#include "include_shaders.hpp"
+#include "support/include_shaders.hpp"
 
 #include "saagen/integrate/include_handler.hpp"
 #include "saagen/io/include_expansion.hpp"

@@ -3,7 +3,7 @@
 // parsed, planned, costed (optimized SPIR-V instruction counts of the cost kernels, one compile
 // per distinct configuration) and formatted. Goal: under 10 s on the 2-core CI machine.
 //   build/bench/bench_plan
-#include "material_combinations.hpp"
+#include "support/material_combinations.hpp"
 
 #include "saagen/front/catalogue.hpp"
 #include "saagen/scene/manifest.hpp"

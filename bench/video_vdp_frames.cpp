@@ -12,8 +12,8 @@
 // becomes a row named "ground-truth"), as video_metric.py does. Display standard_fhd; fps: --fps,
 // else the index's "fps", else 30. "seconds" is the comparison's own time on one thread (the
 // group's reference half, done once per group, is reported apart).
-// --write-synthetic writes the synthetic clips of tests/video_vdp_clips.hpp as such a folder.
-#include "video_vdp_clips.hpp"
+// --write-synthetic writes the synthetic clips of tests/support/video_vdp_clips.hpp as such a folder.
+#include "support/video_vdp_clips.hpp"
 
 #include "saagen/measure/parallel.hpp"
 #include "saagen/measure/video_vdp.hpp"
@@ -91,7 +91,7 @@ int write_synthetic(const fs::path& directory) {
     }
     groups.push_back(group);
   }
-  const nlohmann::json index = {{"generator", "bench/video_vdp_frames --write-synthetic (tests/video_vdp_clips.hpp)"},
+  const nlohmann::json index = {{"generator", "bench/video_vdp_frames --write-synthetic (tests/support/video_vdp_clips.hpp)"},
                                 {"version", 1},
                                 {"fps", 30},
                                 {"groups", groups}};
