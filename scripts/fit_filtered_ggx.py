@@ -42,7 +42,7 @@ coefficients to the anisotropic objective below, from ANISOTROPIC_INITIAL: a low
 
 The fitting data: the exact filtered slope density (reference/src/brdf.cpp
 filtered_ggx_slope_density: trapezoid rule in ln w, step 0.02, ln w in [-70, 5]) on the radial grid
-tests/test_filtered_ggx.cpp uses (400 log-spaced radii from 1e-4 to 1e5 times sqrt(1 + 2 r)), at
+tests/reference/test_filtered_ggx.cpp uses (400 log-spaced radii from 1e-4 to 1e5 times sqrt(1 + 2 r)), at
 r = 10^(-3 + i / 4), i = 0..33 (1e-3 to 1.8e5: alpha^2 in [1e-6, 0.5] with k in [0, 0.18]); and
 the anisotropic grid: r2 / r1 in ANISOTROPY (0.1, 0.01, 0: rank 1) at every third of those r,
 the density (the same quadrature at step 0.1, ln w in [-45, 4]) on an elliptic polar grid (60

@@ -5,7 +5,7 @@ bound, and the validation-layer message count, from ctest's JUnit output.
     ctest --test-dir build -L vulkan -j2 --output-junit gpu.xml; python3 scripts/gpu_table.py build/gpu.xml
 
 Suites and devices come from the test names ("<device>.<Suite>.<Test>") and from the one
-"[ bound    ] <executable>: ..." line each GoogleTest run prints (tests/vulkan_validation.cpp).
+"[ bound    ] <executable>: ..." line each GoogleTest run prints (tests/support/vulkan_validation.cpp).
 """
 import re
 import sys

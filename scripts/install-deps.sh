@@ -18,7 +18,7 @@ packages=(
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev
   # glTF 2.0 assets as trade scenes (measure/gltf.hpp: `saagen bench --scene ASSET`),
   # and content nobody here authored: Khronos's CC-BY 4.0 sample models ClearCoatTest and
-  # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/test_gltf_assets.cpp)
+  # 2CylinderEngine under /usr/share/assimp/models/glTF2/ (tests/measure/test_gltf_assets.cpp)
   libtinygltf-dev assimp-testmodels
   # assimp's command-line tool converts assimp-testmodels' other formats to glTF: the held-out
   # models the table-free advice is reported on (scripts/held_out.sh)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The golden JODs of tests/test_video_vdp.cpp: the reference implementation of ColorVideoVDP
-(pycvvdp, from a checkout) on the test's synthetic clips (tests/video_vdp_clips.hpp), printed as
+"""The golden JODs of tests/measure/test_video_vdp.cpp: the reference implementation of ColorVideoVDP
+(pycvvdp, from a checkout) on the test's synthetic clips (tests/support/video_vdp_clips.hpp), printed as
 the test's C++ table.
 
     python3 scripts/video_vdp_golden.py --cvvdp /path/to/ColorVideoVDP [--tool build/bench/video_vdp_frames]

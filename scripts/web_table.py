@@ -2,7 +2,7 @@
 """The WebGPU and WebGL2 proofs as one table: per function and form, the worst error as a
 fraction of its bound on each web backend, from the lines the suites print
 ("[ webgpu   ] <function> (<variant>, <form>): worst error / bound R (...); F of N outside",
-tests/web_support.hpp's Worst::summary; "[ webgl2   ] highp|mediump <function> (...)").
+tests/support/web_support.hpp's Worst::summary; "[ webgl2   ] highp|mediump <function> (...)").
 
     python3 scripts/web_table.py build/tests/test_wgsl build/tests/test_webgl
     python3 scripts/web_table.py build/tests/test_wgsl build/tests/test_webgl -- --gtest_filter='*Glint*'   # the glint rows

@@ -195,7 +195,7 @@ double beckmann_lambda_exact(double a_param) {
 
 // Coefficients fitted by minimax of the L1 distance to the exact isotropic convolution over
 // r in [1e-3, 2e5], with the tail mass beyond 4 sqrt(k) held within 8 % (scripts/fit_filtered_ggx.py;
-// tests/test_filtered_ggx.cpp recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s
+// tests/reference/test_filtered_ggx.cpp recomputes both); the tail lobe's weight 1 / lambda keeps GGX(A0)'s
 // far tail exactly, and every parameter is a polynomial in that one reciprocal.
 FilteredGgxLobes filtered_ggx_lobes(double ratio) {
   const double r = max(ratio, 0.0);

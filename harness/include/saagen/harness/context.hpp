@@ -24,7 +24,7 @@ inline constexpr const char* validation_layer_name = "VK_LAYER_KHRONOS_validatio
 // Whether SAAGEN_VK_VALIDATION asks for the validation layer.
 bool validation_requested();
 // Warnings and errors the validation layer has reported in this process (each is also printed
-// to stderr as one "[validation] ..." line). Tests fail when it is not 0 (tests/vulkan_validation.cpp).
+// to stderr as one "[validation] ..." line). Tests fail when it is not 0 (tests/support/vulkan_validation.cpp).
 std::size_t validation_message_count();
 
 struct ContextOptions {

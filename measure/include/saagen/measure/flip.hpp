@@ -68,7 +68,7 @@
 //    (same rank rule) of the positive luminances; num_exposures == 1: one exposure at c_start.
 //
 // Implementation notes: double precision throughout (the reference is float32; see
-// tests/test_flip.cpp for the comparison with its published outputs, matched to its 6 printed
+// tests/measure/test_flip.cpp for the comparison with its published outputs, matched to its 6 printed
 // decimals and on >= 99.9% of the pixels of its 8-bit map). Single-threaded; separable filters
 // with precomputed kernels; NaN inputs count as 0. When both images are grey (R = G = B in every
 // pixel, e.g. saagen's specular images) the chroma channels are identically 0 and are neither
@@ -92,7 +92,7 @@ struct RgbImage {
 // FLIP's viewing setup: 0.7 m from a 0.7 m wide, 3840 px wide monitor gives
 // 0.7 * (3840 / 0.7) * pi / 180 = 67.0206... pixels per degree, the NVlabs tool's default (it
 // prints it rounded, "67"). FlipSettings defaults to 67.0 exactly, as saagen specified and as the
-// nv-flip Rust bindings do (their published outputs, used in tests/test_flip.cpp, are for 67.0);
+// nv-flip Rust bindings do (their published outputs, used in tests/measure/test_flip.cpp, are for 67.0);
 // pass kFlipToolPixelsPerDegree to reproduce the NVlabs tool's default run (the mean FLIP moves by
 // about 1e-5).
 inline constexpr double kFlipToolPixelsPerDegree = 0.7 * (3840.0 / 0.7) * (3.14159265358979323846 / 180.0);

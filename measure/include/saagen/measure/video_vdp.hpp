@@ -10,7 +10,7 @@
 // leaves a numerical detail open (border handling, offsets and clamps), the behaviour is that of
 // that release, which the parameters were calibrated with; each such detail says so below. The
 // match with the reference implementation (pycvvdp) is in docs/COLORVIDEOVDP.md and
-// tests/test_video_vdp.cpp.
+// tests/measure/test_video_vdp.cpp.
 //
 // The model, step by step (keys of cvvdp_parameters.json in brackets):
 //  1. Display model (paper: photometric display model). A display-encoded value V in [0, 1]
