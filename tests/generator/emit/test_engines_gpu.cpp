@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <random>
 
 namespace {
@@ -90,6 +91,10 @@ struct DomainCase {
   const char* domain;
   const char* variant;
 };
+
+// The parameter as ctest lists it (without a printer gtest prints the object's bytes, pointers
+// included, so the test's name would change from run to run).
+void PrintTo(const DomainCase& c, std::ostream* os) { *os << c.target << " " << c.domain << " " << c.variant; }
 
 class DomainWrappersOnGpu : public ::testing::TestWithParam<DomainCase> {};
 

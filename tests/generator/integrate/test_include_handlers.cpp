@@ -73,6 +73,10 @@ struct CompileCase {
   bool hlsl;
 };
 
+// The parameter as ctest lists it (without a printer gtest prints the object's bytes, pointers
+// included, so the test's name would change from run to run).
+void PrintTo(const CompileCase& c, std::ostream* os) { *os << c.compiler << (c.hlsl ? " hlsl" : " glsl"); }
+
 class IncludeHandlerCompile : public ::testing::TestWithParam<CompileCase> {};
 
 saagen::test::Compiled compile(const CompileCase& c, const std::string& source, const IncludeOptions& defaults) {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <ostream>
 
 namespace {
 
@@ -28,6 +29,9 @@ struct Form {
   std::string precision;
   bool guards;
 };
+
+// The parameter as ctest lists it (without a printer gtest prints the object's bytes).
+void PrintTo(const Form& form, std::ostream* os) { *os << form.target << " " << form.precision << (form.guards ? "" : " unguarded"); }
 
 class GlintEmission : public ::testing::TestWithParam<Form> {};
 

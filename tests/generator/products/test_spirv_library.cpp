@@ -213,6 +213,7 @@ TEST(SpirvLibrary, HeaderEmbedsTheWordsAndCompilesAsCppAndC) {
   std::ofstream(directory / library.header_name) << header;
   std::ofstream(directory / "main.cpp") << R"(#include "saa_deferred_sum.spv.h"
 #include <cstdio>
+#include <ostream>
 static_assert(saa_deferred_sum_spv[0] == 0x07230203u, "magic");
 static_assert(sizeof(saa_deferred_sum_spv) / 4 == saa_deferred_sum_spv_word_count, "count");
 int main() {
@@ -532,6 +533,10 @@ struct LinkCase {
   std::string variant;
   std::string function;
 };
+
+// The parameter as ctest lists it (without a printer gtest prints the object's bytes, pointers
+// included, so the test's name would change from run to run).
+void PrintTo(const LinkCase& c, std::ostream* os) { *os << c.variant << " " << c.function; }
 
 class LinkedLibraryOnGpu : public ::testing::TestWithParam<LinkCase> {};
 

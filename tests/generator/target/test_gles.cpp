@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <regex>
 
 namespace {
@@ -36,6 +37,10 @@ struct Form {
   std::string precision;
   bool guards;
 };
+
+// The parameter as ctest lists it (without a printer gtest prints the object's bytes, pointers
+// included, so the test's name would change from run to run).
+void PrintTo(const Form& form, std::ostream* os) { *os << form.precision << (form.guards ? "" : " unguarded"); }
 
 class GlesForm : public ::testing::TestWithParam<Form> {};
 
