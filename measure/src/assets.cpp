@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include <tiny_gltf.h>
 #include <webp/decode.h>
@@ -33,6 +35,9 @@ constexpr const char* kPmndrsMaps[] = {"0014", "0019", "0010"};
 constexpr const char* kDataUriPrefix = "data:image/webp;base64,";
 constexpr std::uintmax_t kMaxModuleBytes = 64u << 20;  // the package's largest normals module is < 1 MiB
 constexpr Vec2 kSphereTiling{2.0, 1.0};                // nmap-sphere's (scene.hpp)
+// A 512^2 map repeated (2, 1) times over the sphere: LOD 0.22 at the centre of a 256 x 256 view,
+// 2.22 at 64 x 64 (scene.hpp's nmap-sphere).
+constexpr int kSphereTilingLodAt64Px = 2;
 
 std::string pmndrs_install() {
   return "install the npm package @pmndrs/assets as package-lock.json pins it (npm ci in the source tree, which "
@@ -54,10 +59,10 @@ std::string node_modules_dir() {
 
 std::vector<PresetAsset> preset_assets() {
   std::vector<PresetAsset> assets{
-      {"ClearCoatTest", kGltfModels + "ClearCoat-glTF/ClearCoatTest.gltf", kAssimpTestmodels},
-      {"2CylinderEngine", kGltfModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", kAssimpTestmodels},
+      {"ClearCoatTest", kGltfModels + "ClearCoat-glTF/ClearCoatTest.gltf", kAssimpTestmodels, {}},
+      {"2CylinderEngine", kGltfModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", kAssimpTestmodels, {}},
   };
-  for (const char* map : kPmndrsMaps) assets.push_back({std::string("pmndrs-") + map, pmndrs_module(map), pmndrs_install()});
+  for (const char* map : kPmndrsMaps) assets.push_back({std::string("pmndrs-") + map, pmndrs_module(map), pmndrs_install(), {}});
   return assets;
 }
 
@@ -70,7 +75,7 @@ void check_installed(const PresetAsset& asset) {
 }
 
 std::vector<SceneId> register_asset(const PresetAsset& asset) {
-  if (asset.path.ends_with(".webp.js")) return {register_pmndrs_normal_map_scene(asset.path)};
+  if (asset.path.ends_with(".webp.js")) return {register_pmndrs_normal_map_scene(asset.path, asset.centre_lod)};
   return register_gltf_scenes(asset.path);
 }
 
@@ -85,12 +90,26 @@ std::vector<SceneId> register_preset_assets() {
   return ids;
 }
 
+namespace {
+
+bool all_digits(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+}  // namespace
+
 std::optional<PresetAsset> pmndrs_map_named(const std::string& scene) {
-  const std::string prefix = "pmndrs-";
-  if (!scene.starts_with(prefix) || scene.size() != prefix.size() + 4) return std::nullopt;
-  const std::string map = scene.substr(prefix.size());
-  if (!std::all_of(map.begin(), map.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
-  return PresetAsset{scene, pmndrs_module(map.c_str()), pmndrs_install()};
+  const std::string prefix = "pmndrs-", lod = "-lod";
+  if (!scene.starts_with(prefix) || scene.size() < prefix.size() + 4) return std::nullopt;
+  const std::string map = scene.substr(prefix.size(), 4);
+  if (!all_digits(map)) return std::nullopt;
+  std::optional<int> centre_lod;
+  if (scene.size() > prefix.size() + 4) {
+    const std::string_view suffix = std::string_view(scene).substr(prefix.size() + 4);
+    if (!suffix.starts_with(lod) || suffix.size() != lod.size() + 1 || !all_digits(suffix.substr(lod.size()))) return std::nullopt;
+    centre_lod = suffix.back() - '0';
+  }
+  return PresetAsset{scene, pmndrs_module(map.c_str()), pmndrs_install(), centre_lod};
 }
 
 std::vector<SceneId> register_preset_asset(const std::string& scene) {
@@ -153,14 +172,17 @@ std::shared_ptr<const NormalMap> decode_webp_normal_map(const std::string& webp,
   return std::make_shared<const NormalMap>(width, height, std::move(normals));
 }
 
-SceneId register_pmndrs_normal_map_scene(const std::string& module_path) {
+SceneId register_pmndrs_normal_map_scene(const std::string& module_path, std::optional<int> centre_lod) {
+  if (centre_lod && (*centre_lod < 0 || *centre_lod > 9))
+    throw AssetError(module_path + ": LOD " + std::to_string(*centre_lod) + " is outside 0 - 9");
   static std::mutex mutex;
   std::lock_guard lock(mutex);
   const std::string stem = std::filesystem::path(module_path).filename().string();
-  const std::string name = "pmndrs-" + stem.substr(0, stem.find('.'));
+  const std::string suffix = centre_lod ? "-lod" + std::to_string(*centre_lod) : "";
+  const std::string name = "pmndrs-" + stem.substr(0, stem.find('.')) + suffix;
   std::error_code error;
   const std::filesystem::path canonical = std::filesystem::weakly_canonical(module_path, error);
-  const std::string key = error ? module_path : canonical.string();
+  const std::string key = (error ? module_path : canonical.string()) + suffix;
   try {
     // Registered before: the same id for the same file, an error for another.
     if (const auto existing = scene_from_name(name); existing && registered_scene(*existing))
@@ -173,11 +195,13 @@ SceneId register_pmndrs_normal_map_scene(const std::string& module_path) {
   scene.name = name;
   scene.has_normal_map = true;
   const std::string source = "@pmndrs/assets normals/" + stem;
-  scene.make = [name, map, source](double rotation_radians) {
+  // Each level doubles the texels per pixel: 2^(lod - 2) times nmap-sphere's tiling.
+  const Vec2 tiling = std::ldexp(1.0, centre_lod.value_or(kSphereTilingLodAt64Px) - kSphereTilingLodAt64Px) * kSphereTiling;
+  scene.make = [name, map, source, tiling](double rotation_radians) {
     // nmap-sphere with this map (scene.cpp): the sphere scene's sphere, camera, light and pivot.
     const Scene base = make_scene(SceneId::sphere, rotation_radians);
     const Scene sphere(name, std::make_shared<Sphere>(1.0), Rigid{}, base.camera(), base.light(), {0.0, 0.0, -1.0}, rotation_radians);
-    return sphere.with_normal_map(map, kSphereTiling, source);
+    return sphere.with_normal_map(map, tiling, source);
   };
   try {
     return register_scene(std::move(scene), key);

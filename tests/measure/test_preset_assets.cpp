@@ -4,6 +4,7 @@
 #include "support/cli_support.hpp"
 
 #include "saagen/measure/assets.hpp"
+#include "saagen/measure/renderer.hpp"
 #include "saagen/measure/trade.hpp"
 #include "saagen/report/report.hpp"
 
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -135,6 +137,42 @@ TEST(PresetAssets, PmndrsNormalMapDecodesAsDwebpDoes) {
     EXPECT_EQ(std::string(error.what()), text.string() + ": holds no 'data:image/webp;base64,' data URI");
   }
   fs::remove(text);
+}
+
+// "pmndrs-NNNN-lodK" puts the map on the sphere repeated so that the implicit LOD at the centre
+// of a 64 x 64 image (the medium preset's asset size) is K + 0.22 (scene.hpp's nmap-sphere:
+// 0.224 - 0.253 over the central eighth at 256 px, two more at a quarter of the side): the
+// minification sweep's scenes. Each is an asset scene (sized as the presets size them), the
+// plain name is LOD 2's tiling, and a malformed or out-of-range suffix is no map's name.
+TEST(PresetAssets, APmndrsMapAtAnLodIsRepeatedToThatLodAtTheCentre) {
+  const int size = 64;
+  for (int lod : {0, 2, 4}) {
+    const std::string name = "pmndrs-0014-lod" + std::to_string(lod);
+    const std::optional<PresetAsset> asset = pmndrs_map_named(name);
+    ASSERT_TRUE(asset.has_value()) << name;
+    EXPECT_EQ(asset->centre_lod, lod);
+    const std::vector<SceneId> ids = register_preset_asset(name);
+    ASSERT_EQ(ids.size(), 1u);
+    EXPECT_EQ(scene_name(ids[0]), name);
+    EXPECT_TRUE(is_preset_asset_scene(ids[0]));
+    EXPECT_EQ(register_preset_asset(name), ids);  // the same id again
+    const GBuffer g = render_gbuffer(make_scene(ids[0]), size, size, 2);
+    double lo = 1e9, hi = -1e9;
+    for (int y = size / 2 - 4; y < size / 2 + 4; ++y)
+      for (int x = size / 2 - 4; x < size / 2 + 4; ++x) {
+        lo = std::min(lo, g.at(x, y).lod);
+        hi = std::max(hi, g.at(x, y).lod);
+      }
+    EXPECT_GE(lo, lod + 0.22) << name;
+    EXPECT_LE(hi, lod + 0.26) << name;
+  }
+  const std::string plain = make_scene(register_preset_asset("pmndrs-0014").at(0)).describe();
+  EXPECT_NE(plain.find("tiling=(2,1)"), std::string::npos);
+  EXPECT_NE(make_scene(register_preset_asset("pmndrs-0014-lod0").at(0)).describe().find("tiling=(0.5,0.25)"), std::string::npos);
+  EXPECT_FALSE(pmndrs_map_named("pmndrs-0014").value().centre_lod.has_value());
+  for (const char* bad :
+       {"pmndrs-0014-lod", "pmndrs-0014-lod10", "pmndrs-0014-lodx", "pmndrs-0014-lo2", "pmndrs-0014lod2", "pmndrs-001-lod2"})
+    EXPECT_FALSE(pmndrs_map_named(bad).has_value()) << bad;
 }
 
 class PresetAssetsCli : public saagen::test::CliTest {};

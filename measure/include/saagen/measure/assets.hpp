@@ -49,9 +49,10 @@ class AssetError : public std::runtime_error {
 };
 
 struct PresetAsset {
-  std::string scene;    // the (first) scene's name
-  std::string path;     // the file it is made from
-  std::string install;  // what installs it
+  std::string scene;              // the (first) scene's name
+  std::string path;               // the file it is made from
+  std::string install;            // what installs it
+  std::optional<int> centre_lod;  // a normal map's, when its name asks for one (below)
 };
 
 // Where the npm packages are: $SAAGEN_NODE_MODULES when set, else the source tree's
@@ -70,7 +71,12 @@ std::vector<SceneId> register_preset_assets();
 // registered; also any map of @pmndrs/assets' normals as "pmndrs-NNNN" on the sphere (the
 // held-out maps, scripts/held_out.sh); empty for a name that is neither. AssetMissing as above.
 std::vector<SceneId> register_preset_asset(const std::string& scene);
-// "pmndrs-NNNN": that normal map of @pmndrs/assets as an asset (not checked to exist).
+// "pmndrs-NNNN": that normal map of @pmndrs/assets as an asset (not checked to exist);
+// "pmndrs-NNNN-lodK" (K = 0 - 9): the same map repeated 2^(K - 2) times as often, so that the
+// implicit LOD at the centre of a 64 x 64 image (the medium preset's asset scenes) is K + 0.22
+// for the package's 512^2 maps (one less per doubling of the image's side): for sweeping what
+// filters do as a map recedes (engines bake their normal-map filtering into the MIP chain).
+// "pmndrs-NNNN" is the same as "pmndrs-NNNN-lod2".
 std::optional<PresetAsset> pmndrs_map_named(const std::string& scene);
 // Whether a scene is a preset asset's (by name, the coat scenes and any pmndrs-NNNN map included).
 bool is_preset_asset_scene(SceneId id);
@@ -83,8 +89,10 @@ std::string webp_from_data_uri_module(const std::string& path);
 std::shared_ptr<const NormalMap> decode_webp_normal_map(const std::string& webp, const std::string& what);
 
 // Registers the sphere scene carrying the normal map of an @pmndrs/assets normals module, named
-// "pmndrs-" and the module's stem (0014 for normals/0014.webp.js); the same path twice gives
-// the same id and decodes once.
-SceneId register_pmndrs_normal_map_scene(const std::string& module_path);
+// "pmndrs-" and the module's stem (0014 for normals/0014.webp.js), repeated over the sphere's uv
+// as nmap-sphere's map is, or, given a centre LOD K, 2^(K - 2) times as often and named with
+// "-lodK" (above); the same path and LOD twice give the same id and decode once. AssetError for
+// K outside 0 - 9.
+SceneId register_pmndrs_normal_map_scene(const std::string& module_path, std::optional<int> centre_lod = std::nullopt);
 
 }  // namespace saagen::measure
