@@ -354,7 +354,8 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
       ->delimiter(',')
       ->check(finite_range(-8.0, 8.0));
   command->add_option("--scene", common.scenes,
-                      "Measure these scenes instead of the preset's: a scene's name (sphere, torus-knot, ...) or a glTF 2.0 asset "
+                      "Measure these scenes instead of the preset's: a scene's name (sphere, torus-knot, ...; pmndrs-NNNN: that "
+                      "@pmndrs/assets normal map on the sphere, pmndrs-NNNN-lodK: at implicit LOD K in 64 px images) or a glTF 2.0 asset "
                       "(.gltf or .glb: its meshes, normal and roughness textures, first camera or a view framed from its bounds, "
                       "KHR_lights_punctual light or a directional one); repeatable");
   command->add_option("--resolution", common.resolution, "Main image size in pixels instead of the preset's (the animation at half of it)")

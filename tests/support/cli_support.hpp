@@ -56,6 +56,11 @@ class CliTest : public ::testing::Test {
     std::string command = shell_quote(SAAGEN_CLI_PATH);
     // append() rather than operator+: GCC 12 reports a spurious -Wrestrict on the latter.
     for (const std::string& argument : arguments) command.append(" ").append(shell_quote(argument));
+    return run_captured(command);
+  }
+
+  // Runs a shell command line (/bin/sh, as std::system does) with its stdout and stderr captured.
+  CliRun run_captured(std::string command) const {
     const std::filesystem::path out = scratch_ / "stdout.txt", err = scratch_ / "stderr.txt";
     command.append(" >").append(shell_quote(out.string())).append(" 2>").append(shell_quote(err.string()));
     const int status = std::system(command.c_str());

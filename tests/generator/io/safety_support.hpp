@@ -8,14 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
 
 namespace saagen::test {
 
@@ -34,18 +31,7 @@ class Safety : public saagen::test::CliTest {
     return run_shell(command);
   }
 
-  CliRun run_shell(const std::string& command) const {
-    const std::filesystem::path out = scratch_ / "shell-out.txt", err = scratch_ / "shell-err.txt";
-    const std::string line = "bash -c " + shell_quote(command) + " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string());
-    const int status = std::system(line.c_str());
-    CliRun run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = read_text(out);
-    run.err = read_text(err);
-    std::filesystem::remove(out);
-    std::filesystem::remove(err);
-    return run;
-  }
+  CliRun run_shell(const std::string& command) const { return run_captured("bash -c " + shell_quote(command)); }
 
   // Every entry of a directory, hidden ones (temporaries) included.
   std::set<std::string> entries(const std::filesystem::path& directory) const {
