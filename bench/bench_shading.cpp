@@ -20,6 +20,7 @@
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/report/shading_scene.hpp"
+#include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
 
@@ -171,7 +172,7 @@ Shader build_shader(const std::string& target, const std::string& what, const sa
   request.output_stride = 1;
   request.width = width;
   saagen::CompileRequest compile;
-  compile.language = target == "hlsl" ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
+  compile.language = saagen::builtin_target(target).language;
   compile.stage = saagen::ShaderStage::fragment;
   compile.sources = saagen::kernel_sources(saagen::Catalogue::builtin(), primary.file_name, content, request);
   const saagen::CompileResult compiled = saagen::compile_to_spirv(compile);

@@ -254,9 +254,4 @@ std::string print_wgsl(const Body& body, const TargetSyntax& target, const Print
   return WgslPrinter(target, options).body(body);
 }
 
-std::string print_body(const Body& body, const TargetSyntax& target, const PrintOptions& options) {
-  if (target.language == SourceLanguage::wgsl) return print_wgsl(body, target, options);
-  return print_c_like(body, target, *options.names, options.guarded);
-}
-
 }  // namespace saagen::dialect

@@ -2,6 +2,7 @@
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
+#include "saagen/print/backend.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
@@ -75,12 +76,12 @@ FileValidation validate_one(const Catalogue& catalogue, const std::string& name,
   }
 }
 
-// Tint validates a module language's files (WGSL), all in one run.
+// Tint validates the files of a language glslang does not compile (WGSL), all in one run.
 bool validated_by_tint(const std::string& content) {
   const auto marker = find_marker(content);
   if (!marker || is_spirv_or_pass_marker(*marker)) return false;
   const TargetSyntax* target = find_builtin_target(marker->target.table);
-  return target && target->language == SourceLanguage::wgsl;
+  return target && !language_backend(target->language).compiled_in_process();
 }
 
 }  // namespace

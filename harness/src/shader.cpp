@@ -23,7 +23,7 @@ saagen::ShaderStage to_compiler_stage(Stage stage) {
 std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source, const std::string& entry_point,
                                           const std::string& name) {
   saagen::CompileRequest request;
-  request.language = language == Language::hlsl ? saagen::SourceLanguage::hlsl : saagen::SourceLanguage::glsl;
+  request.language = language;
   request.stage = to_compiler_stage(stage);
   request.client = saagen::ClientApi::vulkan;
   request.sources = {{name, source}};

@@ -4,12 +4,13 @@
 
 #include <cstdint>
 #include <saagen/harness/description.hpp>
+#include <saagen/target/language.hpp>
 #include <string>
 #include <vector>
 
 namespace saagen::harness {
 
-enum class Language { glsl, hlsl };
+using Language = saagen::SourceLanguage;  // glsl or hlsl: the languages glslang compiles
 enum class Stage { vertex, fragment, compute };
 
 // Compiles one source string for Vulkan (SPIR-V 1.3, validated). Throws std::runtime_error
