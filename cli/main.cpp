@@ -21,6 +21,9 @@
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
+#ifdef SAAGEN_HAVE_HARNESS
+#include "saagen/harness/webgpu.hpp"
+#endif
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -241,6 +244,9 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef SAAGEN_HAVE_HARNESS
+  saagen::harness::install_webgpu_runner();  // `validate` checks WGSL with Tint through it
+#endif
   CLI::App app{"saagen: emits geometric specular anti-aliasing shader snippets (GLSL, HLSL) and validates them in-process"};
   app.set_version_flag("--version", std::string(saagen::version()));
   app.require_subcommand(1);

@@ -13,12 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
-#include <unistd.h>
+#include <utility>
 
 namespace saagen {
 namespace {
@@ -166,30 +161,21 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
 namespace saagen {
 namespace {
 
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
+// The runner that the program installed (install_webgpu_runner), or none.
+WebGpuRunner& installed_webgpu_runner() {
+  static WebGpuRunner runner;
+  return runner;
 }
 
-std::string environment_or(const char* name, const std::string& fallback) {
-  const char* value = std::getenv(name);
-  return value && *value ? value : fallback;
+nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs) {
+  const WebGpuRunner& runner = installed_webgpu_runner();
+  if (!runner) {
+    throw Error(
+        "WGSL validation needs a WebGPU runner, and this program installed none: the saagen command line installs the harness's "
+        "(saagen::harness::install_webgpu_runner)");
+  }
+  return runner(jobs);
 }
-
-// A temporary directory removed when the object goes.
-struct ScratchDirectory {
-  std::filesystem::path path;
-  ScratchDirectory() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "saagen-wgsl-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw Error("WGSL validation: cannot create a temporary directory; set TMPDIR to a writable one");
-    path = pattern;
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-};
 
 // The number of lines before the emitted file in a validation module, to report its own lines.
 int lines_before(const std::vector<SourcePiece>& pieces, const std::string& file_name) {
@@ -213,39 +199,7 @@ std::string describe_message(const nlohmann::json& message, const std::string& f
 
 }  // namespace
 
-std::string webgpu_runner_command() {
-  const std::string node = environment_or("SAAGEN_NODE", "node");
-  const std::string runner = environment_or("SAAGEN_WEBGPU_RUNNER", SAAGEN_WEBGPU_RUNNER);
-  if (!std::filesystem::is_regular_file(runner)) {
-    throw Error(
-        fmt::format("WGSL validation needs the WebGPU runner {} (Dawn for Node); set SAAGEN_WEBGPU_RUNNER to harness/webgpu/run.mjs "
-                    "of a saagen checkout whose `scripts/install-deps.sh` has run",
-                    runner));
-  }
-  return shell_quoted(node) + " " + shell_quoted(runner);
-}
-
-nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs, const std::filesystem::path& directory) {
-  std::ofstream(directory / "jobs.json") << jobs.dump();
-  const std::filesystem::path log = directory / "runner.log";
-  const std::string command =
-      fmt::format("{} {} > {} 2>&1", webgpu_runner_command(), shell_quoted(directory.string()), shell_quoted(log.string()));
-  const int status = std::system(command.c_str());
-  std::ifstream results(directory / "results.json");
-  if (status != 0 || !results) {
-    std::stringstream text;
-    text << std::ifstream(log).rdbuf();
-    std::string first_line = text.str().substr(0, text.str().find('\n'));
-    throw Error(
-        fmt::format("the WebGPU runner (Dawn for Node) failed: {}; run scripts/install-deps.sh (Node.js, npm ci) and check the Vulkan ICD",
-                    first_line.empty() ? "no output" : first_line));
-  }
-  try {
-    return nlohmann::json::parse(results);
-  } catch (const nlohmann::json::exception& error) {
-    throw Error(fmt::format("the WebGPU runner wrote an unreadable results.json: {}", error.what()));
-  }
-}
+void install_webgpu_runner(WebGpuRunner runner) { installed_webgpu_runner() = std::move(runner); }
 
 std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, const std::vector<std::pair<std::string, std::string>>& files) {
   struct Module {
@@ -272,8 +226,7 @@ std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, cons
       modules.push_back({index, "tint " + stage_word, lines_before(pieces, file_name), file_lines});
     }
   }
-  const ScratchDirectory directory;
-  const nlohmann::json results = run_webgpu_jobs(jobs, directory.path);
+  const nlohmann::json results = run_webgpu_jobs(jobs);
   std::vector<FileValidation> validations;
   for (const auto& [file_name, content] : files) validations.push_back({file_name, {}});
   const auto& list = results.at("results");

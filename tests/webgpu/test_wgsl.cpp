@@ -31,6 +31,7 @@
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/front/catalogue.hpp"
+#include "saagen/harness/webgpu.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/kernels.hpp"
@@ -230,7 +231,7 @@ const RunnerRun& runner_run() {
       if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
     }
     try {
-      result.results = saagen::run_webgpu_jobs(jobs, directory);
+      result.results = saagen::harness::run_webgpu_jobs(jobs, directory);
     } catch (const saagen::Error& error) {
       result.error = error.what();
     }
@@ -346,6 +347,7 @@ TEST(WebGpuAdapter, IsDawnOnSwiftShader) {
 TEST(Tint, ValidatesEveryVariantInEveryFormWithoutErrorsOrWarnings) {
   ASSERT_TRUE(runner_run().error.empty()) << runner_run().error;
   const auto files = files_to_validate(adapter_has_f16());
+  saagen::harness::install_webgpu_runner();
   const auto validations = saagen::validate_wgsl_files(saagen::glints::catalogue(), files);
   ASSERT_EQ(validations.size(), files.size());
   std::size_t modules = 0;
@@ -364,10 +366,22 @@ TEST(Tint, ReportsAnErrorAtTheLineOfTheEmittedFile) {
   const auto body = file.content.find("{\n", file.content.find("fn saa_deferred_sum(")) + 2;
   file.content.insert(body, broken_line);
   const int line = static_cast<int>(std::count(file.content.begin(), file.content.begin() + static_cast<long>(body), '\n')) + 1;
+  saagen::harness::install_webgpu_runner();
   const auto validations = saagen::validate_wgsl_files(Catalogue::builtin(), {{"broken.wgsl", file.content}});
   ASSERT_EQ(validations.size(), 1u);
   EXPECT_FALSE(validations[0].ok());
   EXPECT_NE(validations[0].summary().find(fmt::format("broken.wgsl:{}:", line)), std::string::npos) << validations[0].summary();
+}
+
+TEST(Tint, NeedsAnInstalledRunner) {
+  saagen::install_webgpu_runner(nullptr);
+  try {
+    saagen::validate_wgsl_files(Catalogue::builtin(), {{"saa_deferred_sum.wgsl", emit("deferred-sum").content}});
+    ADD_FAILURE() << "validated WGSL without a runner";
+  } catch (const saagen::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("installed none"), std::string::npos) << error.what();
+  }
+  saagen::harness::install_webgpu_runner();
 }
 
 TEST(Tint, RefusesADerivativeInNonUniformControlFlow) {
@@ -385,7 +399,7 @@ TEST(Tint, RefusesADerivativeInNonUniformControlFlow) {
                   {"entry_points", nlohmann::json::array({{{"stage", "fragment"}, {"name", "saagen_nonuniform"}}})}});
   const fs::path directory = fs::temp_directory_path() / fmt::format("saagen-wgsl-uniformity-{}", ::getpid());
   fs::create_directories(directory);
-  const nlohmann::json results = saagen::run_webgpu_jobs(jobs, directory);
+  const nlohmann::json results = saagen::harness::run_webgpu_jobs(jobs, directory);
   fs::remove_all(directory);
   const std::string text = results.at("results").at(0).dump();
   EXPECT_NE(text.find("uniform"), std::string::npos) << text;

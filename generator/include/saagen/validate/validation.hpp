@@ -10,7 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -38,17 +38,17 @@ std::vector<SourcePiece> validation_sources(const Catalogue& catalogue, const Em
 
 // Validates emitted WGSL files with Tint: each file inside a fragment and a compute entry point
 // that call its public functions (the compute one leaves the [fragment] functions out), compiled
-// by Dawn for Node (harness/webgpu/run.mjs, on SwiftShader's Vulkan) in one run for all files. A
-// check passes with zero errors and zero warnings. Throws saagen::Error when the runner cannot
-// run (no Node.js, no npm packages, no Vulkan ICD).
+// by the installed WebGPU runner in one run for all files. A check passes with zero errors and
+// zero warnings. Throws saagen::Error when no runner is installed or it cannot run (no Node.js,
+// no npm packages, no Vulkan ICD).
 std::vector<FileValidation> validate_wgsl_files(const Catalogue& catalogue, const std::vector<std::pair<std::string, std::string>>& files);
 
-// The WebGPU runner (harness/webgpu/run.mjs): `node RUNNER DIR` runs DIR/jobs.json and writes
-// DIR/results.json. The command is `$SAAGEN_NODE` (node) and `$SAAGEN_WEBGPU_RUNNER` (the
-// checkout's runner by default), shell-quoted; run_webgpu_jobs writes `jobs` to `directory`,
-// runs it, and returns the parsed results, or throws saagen::Error with the runner's first line.
-std::string webgpu_runner_command();
-nlohmann::json run_webgpu_jobs(const nlohmann::json& jobs, const std::filesystem::path& directory);
+// Runs the jobs of a WebGPU run (compile a WGSL module: {"id", "kind": "compile", "code",
+// "entry_points"}) and returns their results ({"results": [...], "features": [...]}); throws
+// saagen::Error when it cannot run. The harness provides one (saagen/harness/webgpu.hpp: Dawn for
+// Node through harness/webgpu/run.mjs); a program that validates WGSL installs it first.
+using WebGpuRunner = std::function<nlohmann::json(const nlohmann::json& jobs)>;
+void install_webgpu_runner(WebGpuRunner runner);
 
 // Validates an emitted file's content. Throws saagen::Error when the content has no saagen
 // marker or names an unknown target/variant.
