@@ -81,6 +81,13 @@ std::vector<SceneId> register_asset(const PresetAsset& asset) {
 
 }  // namespace
 
+std::vector<std::string> minification_sweep_scenes() {
+  std::vector<std::string> scenes;
+  for (const char* map : kPmndrsMaps)
+    for (int lod : {0, 1, 3, 4}) scenes.push_back(std::string("pmndrs-") + map + "-lod" + std::to_string(lod));
+  return scenes;
+}
+
 std::vector<SceneId> register_preset_assets() {
   const std::vector<PresetAsset> assets = preset_assets();
   for (const PresetAsset& asset : assets) check_installed(asset);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <string>
 
 namespace saagen::report {
 
@@ -69,6 +70,9 @@ void add_preset_assets(std::string_view preset, measure::TradeConfig& config) {
   std::vector<measure::SceneId> assets;
   try {
     assets = measure::register_preset_assets();
+    if (preset == "medium")
+      for (const std::string& scene : measure::minification_sweep_scenes())
+        for (const measure::SceneId id : measure::register_preset_asset(scene)) assets.push_back(id);
   } catch (const measure::AssetMissing& missing) {
     throw Error(fmt::format("preset {}: {}", preset, missing.what()));
   } catch (const std::exception& bad) {  // GltfError, AssetError: "PATH: what is wrong"

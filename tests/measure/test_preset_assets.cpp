@@ -38,14 +38,21 @@ Vec3 texel_normal(int r, int g, int b) {
 
 }  // namespace
 
-// The presets add six scenes after their built-in ones, at half the preset's width and height
+// The presets add six scenes after their built-in ones (the medium preset then its three maps'
+// minification sweep, LOD 0, 1, 3 and 4 at its 64 px), at half the preset's width and height
 // and the preset's samples per pixel, the animation never below 64 x 64 and 256 spp (the medium
 // preset's animation keeps its size and gets 4x its samples, the full preset's is halved to 64 px
 // at its own 256 spp); the quick preset adds none.
 TEST(PresetAssets, MediumAndFullListTheAssetScenesAtAQuarterOfThePixels) {
-  const std::vector<std::string> expected{"ClearCoatTest", "ClearCoatTest-coat", "2CylinderEngine",
-                                          "pmndrs-0014",   "pmndrs-0019",        "pmndrs-0010"};
+  const std::vector<std::string> assets{"ClearCoatTest", "ClearCoatTest-coat", "2CylinderEngine",
+                                        "pmndrs-0014",   "pmndrs-0019",        "pmndrs-0010"};
+  std::vector<std::string> sweep;
+  for (const char* map : {"0014", "0019", "0010"})
+    for (const char* lod : {"0", "1", "3", "4"}) sweep.push_back(std::string("pmndrs-") + map + "-lod" + lod);
+  EXPECT_EQ(minification_sweep_scenes(), sweep);
   for (const char* preset : {"medium", "full"}) {
+    std::vector<std::string> expected = assets;
+    if (std::string(preset) == "medium") expected.insert(expected.end(), sweep.begin(), sweep.end());
     TradeConfig config = saagen::report::preset_config(preset);
     const std::size_t built_in = config.scenes.size();
     saagen::report::add_preset_assets(preset, config);

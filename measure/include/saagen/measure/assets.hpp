@@ -78,6 +78,10 @@ std::vector<SceneId> register_preset_asset(const std::string& scene);
 // filters do as a map recedes (engines bake their normal-map filtering into the MIP chain).
 // "pmndrs-NNNN" is the same as "pmndrs-NNNN-lod2".
 std::optional<PresetAsset> pmndrs_map_named(const std::string& scene);
+// The medium preset's normal-map minification sweep: each of the presets' three maps at LOD 0, 1,
+// 3 and 4 ("pmndrs-NNNN-lodK"; LOD 2 is the map's own preset scene), so that the advice for
+// normal-mapped content is derived over the distances at which a map is seen, close up to far.
+std::vector<std::string> minification_sweep_scenes();
 // Whether a scene is a preset asset's (by name, the coat scenes and any pmndrs-NNNN map included).
 bool is_preset_asset_scene(SceneId id);
 

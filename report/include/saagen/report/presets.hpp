@@ -13,9 +13,10 @@ namespace saagen::report {
 measure::TradeConfig preset_config(std::string_view preset);
 
 // The medium and full presets' scenes of content nobody here authored (measure/assets.hpp:
-// ClearCoatTest and its coat, 2CylinderEngine, three @pmndrs/assets normal maps on the sphere):
-// registers them and appends them to config.scenes, then size_preset_assets; nothing for the
-// quick preset. Error (one line: the scene, the missing file, what to install) when a package
+// ClearCoatTest and its coat, 2CylinderEngine, three @pmndrs/assets normal maps on the sphere;
+// the medium preset also those maps' minification sweep, measure::minification_sweep_scenes, whose
+// LODs hold at its 64 px asset size): registers them and appends them to config.scenes, then
+// size_preset_assets; nothing for the quick preset. Error (one line: the scene, the missing file, what to install) when a package
 // is missing, before anything is loaded.
 void add_preset_assets(std::string_view preset, measure::TradeConfig& config);
 // The sizes the preset measures its asset scenes at (TradeConfig::scene_sizes), for those in
