@@ -29,7 +29,8 @@
 // tail-preserving plan beat no SAA in both (-0.0012 to -0.0015 / -1.33 to -1.41) yet was mixed
 // against three.js's own geometryRoughness (-0.0013 to -0.0016 / +0.25 to +0.33); on the
 // normal-mapped spheres both plans beat no SAA and three.js's term: forward-axis-projected/tail on
-// the normal-mapped normal (bumpy, saagen's advice; -0.0012 / -0.07 against three.js's) and the
+// the normal-mapped normal (bumpy, saagen's advice then, now forward-aniso-projected/tail;
+// -0.0012 / -0.07 against three.js's) and the
 // named deferred-sum on the geometric normal (bumpy_named; -0.0012 / -0.12).
 //
 // LOD bias: where the material's roughness map holds the normal map's bake (option `bake`, the

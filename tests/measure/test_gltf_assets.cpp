@@ -858,13 +858,13 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
   EXPECT_NE(text.find("name = \"BaseNorm_Coated\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n\n"), std::string::npos)
       << text;
   // Coated materials follow saagen's advice for clearcoat (deferred-aniso/tail beats no SAA on
-  // ClearCoatTest's coat), normal-mapped ones that for normal-mapped content (deferred-avg/tail in
-  // the deferred path, rule D1's variant: `saagen plan --advice`).
+  // ClearCoatTest's coat), normal-mapped ones that for normal-mapped content (deferred-aniso/tail in
+  // the deferred path: `saagen plan --advice`).
   const auto coat = run.out.find("material CoatNorm_Coated_coat (deferred");
   EXPECT_EQ(run.out.find("  variant   deferred-aniso  [advice]", coat), run.out.find("  variant ", coat)) << run.out;
   const auto base = run.out.find("material BaseNorm_Coated (deferred");
   ASSERT_NE(base, std::string::npos) << run.out;
-  EXPECT_EQ(run.out.find("  variant   deferred-avg  [D1]", base), run.out.find("  variant ", base)) << run.out;
+  EXPECT_EQ(run.out.find("  variant   deferred-aniso  [advice]", base), run.out.find("  variant ", base)) << run.out;
   // Written once: the same bytes again are left alone; emit takes the manifest as any other.
   const auto again = saagen({"plan", "--gltf", kClearCoat, "-o", manifest, "--path", "deferred", "--no-cost"});
   EXPECT_NE(again.out.find("unchanged " + manifest), std::string::npos) << again.out;
@@ -919,10 +919,10 @@ TEST_F(GltfCli, PlanNamesTheMatrixFormForAnisotropicMaterials) {
       << text;
   const auto material = run.out.find("material brushed (forward, anisotropic");
   ASSERT_NE(material, std::string::npos) << run.out;
-  // Planned from saagen's own measurement of normal-mapped content (forward-axis-projected/tail, an
-  // axis form the anisotropic material can use), with how it held on content it was not derived
-  // from and how to measure this asset and plan with its table.
-  EXPECT_EQ(run.out.find("  variant   forward-axis-projected  [advice]", material), run.out.find("  variant ", material)) << run.out;
+  // Planned from saagen's own measurement of normal-mapped content (forward-aniso-projected/tail, the
+  // matrix form of rule F1), with how it held on content it was not derived from and how to measure
+  // this asset and plan with its table.
+  EXPECT_EQ(run.out.find("  variant   forward-aniso-projected  [F1]", material), run.out.find("  variant ", material)) << run.out;
   EXPECT_NE(run.out.find("this advice held on content it was not derived from", material), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("`saagen bench --scene " + asset.string() + " --json T.json`", material), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("`saagen plan " + manifest + " --trade-table T.json`", material), std::string::npos) << run.out;

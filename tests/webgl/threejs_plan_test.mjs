@@ -43,7 +43,7 @@ fs.rmSync(output, { recursive: true, force: true });
 
 const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
 check(variants.glossy === 'forward-aniso-projected' && variants.glossy_matrix === 'forward-aniso-projected' && variants.glossy_axis === 'forward-axis-projected' &&
-      variants.glossy_deferred === 'deferred-aniso' && variants.glossy_fast === 'none' && variants.bumpy === 'forward-axis-projected' &&
+      variants.glossy_deferred === 'deferred-aniso' && variants.glossy_fast === 'none' && variants.bumpy === 'forward-aniso-projected' &&
       variants.bumpy_named === 'deferred-sum',
       `the plan: ${JSON.stringify(variants)}`);
 

@@ -15,6 +15,9 @@
 #include "saagen/reference/saa.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/validation.hpp"
+#ifdef SAAGEN_TEST_WEBGPU_RUNNER
+#include "saagen/harness/webgpu.hpp"
+#endif
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -192,6 +195,9 @@ TEST(Domains, UnknownNamesAreOneLine) {
 // DeferredPassOnGpu.RoughnessDomainsChannelsAndUnormEncodings; the libraries' domain wrappers run
 // linked by DomainLibraryOnGpu.
 TEST(Domains, EveryConvertibleVariantValidatesInEveryDomainAndOutput) {
+#ifdef SAAGEN_TEST_WEBGPU_RUNNER
+  saagen::harness::install_webgpu_runner();  // the WGSL outputs validate through it, as the CLI's do
+#endif
   const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
   std::map<std::string, std::map<std::string, std::size_t>> validated;  // domain -> output -> files
   std::vector<std::string> outputs = saagen::builtin_target_names();

@@ -88,12 +88,13 @@ INSTANTIATE_TEST_SUITE_P(
                                "D0",
                                "deferred-aniso",
                                {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
-                      // Normal-mapped content: deferred-avg/tail, the largest video gain of the forms that lose to
-                      // no SAA on none of saagen's maps (the hdrp bake loses on pmndrs-0014).
+                      // Normal-mapped content: deferred-aniso/tail, the largest video gain of the forms that lose to
+                      // no SAA on none of saagen's maps at any distance (deferred-avg/tail loses close up, at
+                      // LOD 0 on pmndrs-0010; the hdrp bake on pmndrs-0014).
                       RuleCase{"path = \"deferred\"\nnormal_maps = true\n",
-                               "D1",
-                               "deferred-avg",
-                               {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+                               "advice",
+                               "deferred-aniso",
+                               {"deferred_aniso", "deferred_aniso_fragment", "deferred_aniso_roughness", "deferred_aniso_brdf"}},
                       RuleCase{"path = \"deferred\"\nnormal_maps = true\nndf = \"beckmann\"\n",
                                "D1",
                                "deferred-avg",
@@ -102,11 +103,12 @@ INSTANTIATE_TEST_SUITE_P(
                           "path = \"deferred\"\nndf = \"beckmann\"\n", "D1", "deferred-avg", {"deferred_avg", "deferred_avg_fragment"}},
                       // Curved content: no filter an anisotropic deferred material can use beats no SAA.
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\n", "advice", "none", {}},
-                      // With normal maps the same deferred-avg/tail, which an anisotropic material can use too.
+                      // With normal maps an anisotropic material cannot take deferred-aniso (an isotropic
+                      // material's): the most accurate of the forms it can use that lose on none of the maps.
                       RuleCase{"path = \"deferred\"\nanisotropic = true\ntangents = true\nnormal_maps = true\n",
-                               "D1",
-                               "deferred-avg",
-                               {"deferred_avg", "deferred_avg_fragment", "ggx_brdf_filtered_axis"}},
+                               "advice",
+                               "deferred-projected-space",
+                               {"deferred_projected_space", "deferred_projected_space_fragment", "ggx_brdf_filtered_axis"}},
                       // Curved content, deferred, speed: only deferred-aniso beats no SAA, the most expensive deferred
                       // form (1.69x); speed never takes it, and the cheaper deferred kernels lose: no filter.
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "advice", "none", {}},
@@ -155,28 +157,27 @@ TEST(Planner, TableFreeAdviceFollowsTheMeasuredContent) {
   const auto speed = plan_of("", "\"deferred\"\nprefer = \"speed\"\n");
   EXPECT_EQ(speed.variant, "none");
   EXPECT_NE(speed.reason.find("most expensive form"), std::string::npos) << speed.reason;
-  // Normal-mapped: the forms with the largest video gain on the content's mean (the hdrp bake on
-  // the geometric normal, the map-fed deferred-sum/tail) lose to no SAA on one of its scenes
-  // (pmndrs-0014), so they are set aside; deferred-avg/tail beats no SAA on every one, and on the
-  // held-out maps.
+  // Normal-mapped: the content's scenes include the maps' minification sweep (LOD 0 - 4), on which
+  // the isotropic forms lose close up (deferred-avg/tail at LOD 0 on pmndrs-0010); deferred-aniso/tail
+  // beats no SAA on every one, with the largest video gain, and on the held-out maps.
   const auto mapped = plan_of("", "\"deferred\"\nnormal_maps = true\n");
-  EXPECT_EQ(mapped.variant, "deferred-avg");
+  EXPECT_EQ(mapped.variant, "deferred-aniso");
   EXPECT_EQ(mapped.feed, "shading");
   EXPECT_EQ(mapped.prefilter, "none");
-  EXPECT_NE(mapped.reason.find("set aside, more accurate on the mean but losing to no SAA on a scene of the content: "), std::string::npos)
-      << mapped.reason;
-  EXPECT_NE(mapped.reason.find("deferred-aniso:geometric+hdrp/tail (loses on pmndrs-0014)"), std::string::npos) << mapped.reason;
+  EXPECT_NE(mapped.reason.find("deferred-aniso/tail (image -"), std::string::npos) << mapped.reason;
+  EXPECT_NE(mapped.reason.find("pmndrs-0010-lod4; generator/data/advice.json"), std::string::npos) << mapped.reason;
   EXPECT_NE(mapped.measure_advice.find("this advice held on content it was not derived from (held-out scenes pmndrs-0000"),
             std::string::npos)
       << mapped.measure_advice;
   // Named, a normal-mapped filter gets the same decision among its own feeds and bakes: deferred-sum
-  // on the geometric normal without a bake (the map-fed form and the bake lose on pmndrs-0014).
+  // on the geometric normal without a bake (the map-fed form loses on pmndrs-0014 and, close up, more).
   const auto named = plan_of("", "\"deferred\"\nnormal_maps = true\nvariant = \"deferred-sum\"\n");
   EXPECT_EQ(named.variant, "deferred-sum");
   EXPECT_EQ(named.feed, "geometric");
   EXPECT_EQ(named.prefilter, "none");
   EXPECT_EQ(named.normal_advice.rfind("deferred-sum:geometric/tail (image ", 0), 0u) << named.normal_advice;
-  EXPECT_NE(named.normal_advice.find("deferred-sum/tail (loses on pmndrs-0014)"), std::string::npos) << named.normal_advice;
+  EXPECT_NE(named.normal_advice.find("deferred-sum/tail (loses on pmndrs-0014, pmndrs-0014-lod0, "), std::string::npos)
+      << named.normal_advice;
   EXPECT_NE(named.normal_advice.find("this advice held on content it was not derived from"), std::string::npos) << named.normal_advice;
   EXPECT_EQ(named.normal_advice.find("--method"), std::string::npos) << named.normal_advice;
   // Clearcoat: deferred-aniso/tail beats no SAA on ClearCoatTest's coat; no held-out content to
