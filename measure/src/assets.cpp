@@ -48,6 +48,10 @@ std::string pmndrs_module(const char* map) { return node_modules_dir() + "/@pmnd
 
 bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
+bool all_digits(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 bool is_base64(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/' || c == '='; }
 
 }  // namespace
@@ -96,14 +100,6 @@ std::vector<SceneId> register_preset_assets() {
     for (SceneId id : register_asset(asset)) ids.push_back(id);
   return ids;
 }
-
-namespace {
-
-bool all_digits(std::string_view text) {
-  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-}  // namespace
 
 std::optional<PresetAsset> pmndrs_map_named(const std::string& scene) {
   const std::string prefix = "pmndrs-", lod = "-lod";
