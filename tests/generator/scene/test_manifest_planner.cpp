@@ -110,7 +110,7 @@ INSTANTIATE_TEST_SUITE_P(
                                "deferred-projected-space",
                                {"deferred_projected_space", "deferred_projected_space_fragment", "ggx_brdf_filtered_axis"}},
                       // Curved content, deferred, speed: only deferred-aniso beats no SAA, the most expensive deferred
-                      // form (1.69x); speed never takes it, and the cheaper deferred kernels lose: no filter.
+                      // form (1.60x); speed never takes it, and the cheaper deferred kernels lose: no filter.
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\n", "advice", "none", {}},
                       RuleCase{"path = \"deferred\"\nprefer = \"speed\"\nndf = \"beckmann\"\n",
                                "D2",
@@ -217,7 +217,7 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   const auto plan_of = [](const std::string& keys) {
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = " + keys)).materials.at(0);
   };
-  // Curved content, deferred: only deferred-aniso/tail (1.69x) beats no SAA.
+  // Curved content, deferred: only deferred-aniso/tail (1.60x) beats no SAA.
   const auto tight = plan_of("\"deferred\"\nbudget = 1.5\n");
   EXPECT_EQ(tight.variant, "none");
   EXPECT_NE(tight.reason.find("costs more than the budget 1.5"), std::string::npos) << tight.reason;
