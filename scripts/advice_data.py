@@ -10,6 +10,14 @@ each configuration against none+taa).
     bash scripts/held_out.sh TAA_OUT --taa --sigma2 0.0625
     python3 scripts/advice_data.py T.json OUT/held_out.json TAA.json TAA_OUT/held_out.json > generator/data/advice.json
 
+and, for normal maps seen only from afar (a manifest's `map_lod`), pairs of tables of the minification
+sweep's scenes at that LOD (the derivation maps', the held-out maps'), each entered with
+--map-lod K DERIVED HELD_OUT before the positional tables:
+
+    saagen bench --preset medium --scene pmndrs-0014-lod4 --scene pmndrs-0019-lod4 --scene pmndrs-0010-lod4 --json D4.json
+    saagen bench --preset medium --scene pmndrs-0000-lod4 --scene pmndrs-0001-lod4 --scene pmndrs-0002-lod4 --json H4.json
+    python3 scripts/advice_data.py --map-lod 4 D4.json H4.json T.json OUT/held_out.json ... > generator/data/advice.json
+
 It copies figures; it decides nothing. The planner (saagen/scene/cost_tables.hpp: committed_advice) reads the file,
 embedded in the library (saagen/scene/cost_tables.hpp: committed_advice), and makes saagen's one decision (saagen/decision.hpp) on its rows: on the
 derivation rows' comparisons with no SAA, then held against the held-out rows' comparisons.
@@ -38,9 +46,10 @@ def rows_by_content(table, key="by_content"):
     return rows
 
 
-def content_entries(derived, held_out, key, taa):
+def content_entries(derived, held_out, key, taa, map_lod_min=0):
     """Per content type, every configuration's figures and comparisons: without TAA (by_content,
-    against no SAA) or under TAA (taa_by_content, against none+taa)."""
+    against no SAA) or under TAA (taa_by_content, against none+taa); map_lod_min > 0: tables of
+    scenes whose normal maps are all seen at that LOD or coarser."""
     derived_rows, held_rows = rows_by_content(derived, key), rows_by_content(held_out, key)
     derived_scenes, held_scenes = scenes_by_content(derived), scenes_by_content(held_out)
     contents = []
@@ -49,6 +58,8 @@ def content_entries(derived, held_out, key, taa):
         entry = {"content": content}
         if taa:
             entry.update({"taa": True, "baseline": "none+taa"})
+        if map_lod_min:
+            entry["map_lod_min"] = map_lod_min
         entry.update({"scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []})
         for configuration, row in rows.items():
             kept = {"configuration": configuration}
@@ -65,8 +76,11 @@ def content_entries(derived, held_out, key, taa):
     return contents
 
 
-def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None):
+def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None, by_map_lod=()):
+    """by_map_lod: (K, derived, held_out, derived_name, held_out_name) per map distance measured."""
     contents = content_entries(derived, held_out, "by_content", False)
+    for map_lod_min, lod_derived, lod_held_out, _, _ in by_map_lod:
+        contents += content_entries(lod_derived, lod_held_out, "by_content", False, map_lod_min)
     taa = {}
     if taa_derived is not None:
         contents += content_entries(taa_derived, taa_held_out, "taa_by_content", True)
@@ -83,6 +97,8 @@ def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=
         "image_metric": "image error: LDR-FLIP of every animation frame against the ground truth's",
         "temporal_metric": "video error: 10 - the ColorVideoVDP JOD of the animation clip against the ground truth's (docs/TEMPORAL.md)",
         **taa,
+        **({"map_lod": [{"map_lod_min": k, "table": d_name, "held_out": h_name, "config": d["config"]}
+                        for k, d, _, d_name, h_name in by_map_lod]} if by_map_lod else {}),
         "content": contents,
     }
 
@@ -119,11 +135,30 @@ def load(path):
         return json.load(f)
 
 
+def sweep_command(table):
+    """The bench command of a table of sweep scenes, from its scene names."""
+    scenes = []
+    for entry in table["decisions"]["per_scene"]:
+        if entry["scene"] not in scenes:
+            scenes.append(entry["scene"])
+    return "saagen bench --preset medium " + " ".join(f"--scene {scene}" for scene in scenes)
+
+
 def main(argv):
-    if len(argv) not in (3, 5):
-        sys.exit("usage: advice_data.py DERIVED.json HELD_OUT.json [TAA_DERIVED.json TAA_HELD_OUT.json] > generator/data/advice.json")
-    tables = [load(path) for path in argv[1:]]
-    document = advice_document(tables[0], tables[1], "saagen bench --preset medium --json T.json", "scripts/held_out.sh", *tables[2:])
+    usage = ("usage: advice_data.py [--map-lod K DERIVED.json HELD_OUT.json ...] DERIVED.json HELD_OUT.json "
+             "[TAA_DERIVED.json TAA_HELD_OUT.json] > generator/data/advice.json")
+    args, by_map_lod = argv[1:], []
+    while args and args[0] == "--map-lod":
+        if len(args) < 4 or not args[1].isdigit() or int(args[1]) < 1:
+            sys.exit(usage)
+        derived, held_out = load(args[2]), load(args[3])
+        by_map_lod.append((int(args[1]), derived, held_out, sweep_command(derived), sweep_command(held_out)))
+        args = args[4:]
+    if len(args) not in (2, 4):
+        sys.exit(usage)
+    tables = [load(path) for path in args]
+    document = advice_document(tables[0], tables[1], "saagen bench --preset medium --json T.json", "scripts/held_out.sh", *tables[2:],
+                               by_map_lod=by_map_lod)
     write(document, sys.stdout)
 
 

@@ -299,10 +299,12 @@ std::optional<decision::Comparison> AdviceMeasurement::held_out(std::string_view
   return std::nullopt;
 }
 
-const AdviceMeasurement* AdviceTable::find(std::string_view content, bool taa) const {
+const AdviceMeasurement* AdviceTable::find(std::string_view content, bool taa, int map_lod) const {
+  const AdviceMeasurement* found = nullptr;
   for (const AdviceMeasurement& entry : contents)
-    if (entry.content == content && entry.taa == taa) return &entry;
-  return nullptr;
+    if (entry.content == content && entry.taa == taa && entry.map_lod_min <= map_lod && (!found || entry.map_lod_min > found->map_lod_min))
+      found = &entry;
+  return found;
 }
 
 AdviceTable parse_advice_table(std::string_view json_text, std::string_view source_name) {
@@ -342,7 +344,10 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
     if (entry.contains("taa") && !entry["taa"].is_boolean()) fail(fmt::format("content[{}]: \"taa\" must be true or false", index));
     if (entry.contains("baseline") && !entry["baseline"].is_string())
       fail(fmt::format("content[{}]: \"baseline\" must be a string", index));
+    if (entry.contains("map_lod_min") && !(entry["map_lod_min"].is_number_unsigned() && entry["map_lod_min"].get<unsigned>() <= kMaxMapLod))
+      fail(fmt::format("content[{}]: \"map_lod_min\" must be an integer from 0 to {}", index, kMaxMapLod));
     measured.taa = entry.value("taa", false);
+    measured.map_lod_min = entry.value("map_lod_min", 0);
     measured.baseline = entry.value("baseline", measured.baseline);
     measured.scenes = names(entry, "scenes");
     measured.held_out_scenes = names(entry, "held_out_scenes");

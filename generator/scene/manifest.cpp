@@ -347,6 +347,14 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
     material.budget = *budget;
   }
   material.lights = reader.integer("lights", 1, kMaxLights, lights_rule("the scene's `lights`, else 1")).value_or(manifest.lights);
+  const std::string map_lod_rule = fmt::format(
+      "an integer from 0 to {}: the finest MIP level the material's normal maps are sampled at where it is seen closest (default 0: "
+      "close-ups)",
+      kMaxMapLod);
+  if (const auto map_lod = reader.integer("map_lod", 0, kMaxMapLod, map_lod_rule)) {
+    if (!material.normal_maps) reader.fail_key("map_lod", "a normal map's distance needs normal_maps = true", "normal_maps = true");
+    material.map_lod = *map_lod;
+  }
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
@@ -594,8 +602,9 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",   "path",      "anisotropic", "tangents", "ndf",    "normal_maps", "content",
-                                                "glints", "precision", "prefer",      "budget",   "lights", "variant",     "source"};
+  static const std::vector<std::string> keys = {"name",        "path",    "anisotropic", "tangents",  "ndf",
+                                                "normal_maps", "content", "glints",      "precision", "prefer",
+                                                "budget",      "lights",  "map_lod",     "variant",   "source"};
   return keys;
 }
 

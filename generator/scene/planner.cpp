@@ -546,9 +546,10 @@ void take_normal_handling(const Material& material, const Configuration& c, std:
 }
 
 // saagen's committed measurement of a content type (generator/data/advice.json), the rows the
-// table-free decision is made on: without TAA against no SAA, under TAA against none+taa.
-const AdviceMeasurement* advice_measurement(const AdviceTable& advice, advice::Content content, bool taa) {
-  return advice.find(advice::table_content(content), taa);
+// table-free decision is made on: without TAA against no SAA, under TAA against none+taa; for
+// normal maps seen no closer than `map_lod`, the scenes measured that far away where there are.
+const AdviceMeasurement* advice_measurement(const AdviceTable& advice, advice::Content content, bool taa, int map_lod = 0) {
+  return advice.find(advice::table_content(content), taa, map_lod);
 }
 
 // A table's by-content rows of one content: under TAA its taa_by_content rows (`saagen bench
@@ -981,7 +982,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       if (table && !table->content_rows.empty())
         choose_normal_handling({table->content_rows, table->source_name}, eligible,
                                !material.variant && material.prefer == Preference::accuracy, lobe, plan);
-      const AdviceMeasurement* measured = advice_measurement(advice, advice::Content::normal_mapped, manifest.taa);
+      const AdviceMeasurement* measured = advice_measurement(advice, advice::Content::normal_mapped, manifest.taa, material.map_lod);
       if (plan.normal_advice.empty() && measured)
         choose_normal_handling(
             {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
@@ -1005,7 +1006,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
       } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
-        const AdviceMeasurement* measured = advice_measurement(advice, content_of(material), manifest.taa);
+        const AdviceMeasurement* measured = advice_measurement(advice, content_of(material), manifest.taa, material.map_lod);
         static const AdviceMeasurement kNothingMeasured;
         const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
         const std::string lacking = other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : "";
@@ -1025,55 +1026,78 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   return scene;
 }
 
+namespace {
+
+// The normal-map distances saagen's advice has a content's figures for: 0 (every distance), then
+// each map_lod_min it was also measured at, in increasing order.
+std::vector<int> map_lods_measured(const AdviceTable& advice, advice::Content content, bool taa) {
+  std::vector<int> lods = {0};
+  for (const AdviceMeasurement& entry : advice.contents)
+    if (entry.content == advice::table_content(content) && entry.taa == taa && entry.map_lod_min > 0) lods.push_back(entry.map_lod_min);
+  std::sort(lods.begin(), lods.end());
+  lods.erase(std::unique(lods.begin(), lods.end()), lods.end());
+  return lods;
+}
+
+// "beats" figures of a comparison as the advice table prints them, or "-".
+std::string advice_figures(const std::optional<decision::Comparison>& c) {
+  return c ? fmt::format("{} / {}: {}", decision::describe(c->image), decision::describe(c->temporal),
+                         decision::name(decision::outcome(*c)))
+           : std::string("-");
+}
+
+// One row of `saagen plan --advice`: what the plan gives a reference material of the content, path
+// and preference (its normal maps seen no closer than map_lod), and the decision's figures.
+std::string advice_row(const Catalogue& catalogue, advice::Content content, bool taa, int map_lod, RenderPath path, Preference prefer) {
+  Manifest manifest;
+  manifest.source_name = "advice";
+  manifest.targets = {OutputTarget::named("glsl")};
+  manifest.taa = taa;
+  Material material = reference_material(path, content);
+  material.prefer = prefer;
+  material.map_lod = map_lod;
+  manifest.materials = {material};
+  const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
+  const AdviceMeasurement* measured = advice_measurement(committed_advice(), content, taa, map_lod);
+  const std::string baseline(baseline_of(taa));
+  std::string configuration = "none", nothing = fmt::format("nothing beats {}", baseline);
+  std::optional<decision::Comparison> derived, held_out;
+  if (measured) {
+    const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows, baseline);
+    for (std::size_t i = 0; i < made.candidates.size(); ++i)
+      if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
+        nothing = fmt::format("only the most expensive form beats {}, which prefer = \"speed\" never takes", baseline);
+    if (made.decision.chosen) {
+      const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
+      configuration = chosen.configuration;
+      derived = chosen.against_none;
+      held_out = measured->held_out(configuration);
+    }
+  }
+  const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
+  const std::string why = configuration == "none"  ? nothing
+                          : plan.variant == "none" ? fmt::format("`{}` {}", configuration, advice_figures(derived))
+                                                   : advice_figures(derived);
+  const std::string content_name =
+      map_lod > 0 ? fmt::format("{} (map_lod >= {})", advice::name(content), map_lod) : std::string(advice::name(content));
+  return fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", content_name, taa ? "yes" : "no", to_string(path), to_string(prefer),
+                     planned, why, advice_figures(held_out));
+}
+
+}  // namespace
+
 std::string advice_markdown(const Catalogue& catalogue) {
-  const auto figures = [](const std::optional<decision::Comparison>& c) {
-    return c ? fmt::format("{} / {}: {}", decision::describe(c->image), decision::describe(c->temporal),
-                           decision::name(decision::outcome(*c)))
-             : std::string("-");
-  };
   std::string text =
       "| content | TAA | path | prefer | plan | its image / video error (10 - JOD) against its baseline on saagen's scenes (no SAA; "
       "under TAA none+taa) | on the held-out scenes |\n"
       "|---|---|---|---|---|---|---|\n";
-  for (const bool taa : {false, true}) {
+  for (const bool taa : {false, true})
     for (const advice::Content content :
-         {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat}) {
-      for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
-        for (const Preference prefer : {Preference::accuracy, Preference::speed}) {
-          Manifest manifest;
-          manifest.source_name = "advice";
-          manifest.targets = {OutputTarget::named("glsl")};
-          manifest.taa = taa;
-          Material material = reference_material(path, content);
-          material.prefer = prefer;
-          manifest.materials = {material};
-          const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
-          const AdviceMeasurement* measured = advice_measurement(committed_advice(), content, taa);
-          const std::string baseline(baseline_of(taa));
-          std::string configuration = "none", nothing = fmt::format("nothing beats {}", baseline);
-          std::optional<decision::Comparison> derived, held_out;
-          if (measured) {
-            const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows, baseline);
-            for (std::size_t i = 0; i < made.candidates.size(); ++i)
-              if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
-                nothing = fmt::format("only the most expensive form beats {}, which prefer = \"speed\" never takes", baseline);
-            if (made.decision.chosen) {
-              const decision::Candidate& chosen = made.candidates[*made.decision.chosen];
-              configuration = chosen.configuration;
-              derived = chosen.against_none;
-              held_out = measured->held_out(configuration);
-            }
-          }
-          const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
-          const std::string why = configuration == "none"  ? nothing
-                                  : plan.variant == "none" ? fmt::format("`{}` {}", configuration, figures(derived))
-                                                           : figures(derived);
-          text += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", advice::name(content), taa ? "yes" : "no", to_string(path),
-                              to_string(prefer), planned, why, figures(held_out));
-        }
-      }
-    }
-  }
+         {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat})
+      for (const int map_lod : map_lods_measured(committed_advice(), content, taa))
+        for (const RenderPath path : {RenderPath::forward, RenderPath::deferred})
+          for (const Preference prefer : {Preference::accuracy, Preference::speed})
+            text += advice_row(catalogue, content, taa, map_lod, path, prefer);
   return text;
 }
 
@@ -1169,7 +1193,10 @@ std::string rules_text() {
       "lights = N (scene-wide or per material, 1 to 64, default 1): the lights that shade a pixel. A forward filter and every lobe\n"
       "are paid per light, a deferred filter's roughness once per pixel, so speed and budget read the ISA ratio at the nearest\n"
       "measured count not above N (the committed table measures 1, 4 and 16 lights; the trade table's figures are one light's\n"
-      "and serve materials costed at one light), and the plan says at which count.\n";
+      "and serve materials costed at one light), and the plan says at which count.\n"
+      "map_lod = K (normal-mapped materials, 0 to 16, default 0): the finest MIP level the normal maps are seen at; saagen's\n"
+      "advice then pools its scenes with maps seen at LOD K' or coarser, K' the largest it measured that is not above K\n"
+      "(plan --advice lists them), else every distance.\n";
   return text;
 }
 
@@ -1185,7 +1212,8 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     const Material& material = manifest.materials.at(index);
     std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
                                        material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
-    if (material.normal_maps) traits.push_back("normal maps");
+    if (material.normal_maps)
+      traits.push_back(material.map_lod > 0 ? fmt::format("normal maps at LOD >= {}", material.map_lod) : "normal maps");
     traits.emplace_back(to_string(material.precision));
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
     traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));

@@ -41,7 +41,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
-  EXPECT_EQ(car.position.line, 28);
+  EXPECT_EQ(car.position.line, 30);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -71,6 +71,13 @@ TEST(Manifest, LightsAreSceneWideAndPerMaterial) {
   EXPECT_EQ(parse(header + forward_material + "lights = 64\n").materials.at(0).lights, 64);
 }
 
+// `map_lod`: how far away a material's normal maps are seen, 0 (close-ups) by default.
+TEST(Manifest, MapLodIsAMaterialsNormalMapDistance) {
+  EXPECT_EQ(parse(header + forward_material + "normal_maps = true\n").materials.at(0).map_lod, 0);
+  EXPECT_EQ(parse(header + forward_material + "normal_maps = true\nmap_lod = 4\n").materials.at(0).map_lod, 4);
+  EXPECT_EQ(parse(header + forward_material + "normal_maps = true\nmap_lod = 16\n").materials.at(0).map_lod, 16);
+}
+
 struct BadCase {
   const char* what;
   std::string text;
@@ -84,7 +91,7 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
 const std::string material_keys =
-    "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, lights, variant, source";
+    "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, lights, map_lod, variant, source";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
@@ -106,6 +113,12 @@ INSTANTIATE_TEST_SUITE_P(
                     "the scene's `lights`, else 1"},
         BadCase{"lights_string", header + "lights = \"4\"\n" + forward_material,
                 "scene.toml:2:10: key 'lights': must be an integer, got a string; allowed: " + lights_rule + "1"},
+        BadCase{"map_lod_without_normal_maps", header + forward_material + "map_lod = 4\n",
+                "scene.toml:5:11: key 'map_lod' of material 'm': a normal map's distance needs normal_maps = true; allowed: normal_maps = "
+                "true"},
+        BadCase{"map_lod_too_far", header + forward_material + "normal_maps = true\nmap_lod = 17\n",
+                "scene.toml:6:11: key 'map_lod' of material 'm': 17 is outside [0, 16]; allowed: an integer from 0 to 16: the finest MIP "
+                "level the material's normal maps are sampled at where it is seen closest (default 0: close-ups)"},
         BadCase{"toml_syntax", header + "prefix = = 1\n",
                 "scene.toml:2:10: not valid TOML: Error while parsing value: could not determine value type; allowed: TOML 1.0 "
                 "(see examples/scene.saagen.toml)"},

@@ -473,6 +473,44 @@ TEST(Planner, APickThatFailsOnTheHeldOutScenesIsWithheld) {
   EXPECT_NE(named.normal_advice.find("measured: deferred-sum/tail (image error -0.005"), std::string::npos) << named.normal_advice;
 }
 
+// `map_lod`: a normal-mapped material seen only from afar is decided on saagen's scenes with maps
+// that far away (the entry of the largest map_lod_min not above it), nearer ones on every distance.
+TEST(Planner, MapLodTakesTheAdviceMeasuredThatFarAway) {
+  const auto comparison = [](double image, double temporal) {
+    return fmt::format(R"({{"image": {{"mean": {0}, "low": {0}, "high": {0}}}, "temporal": {{"mean": {1}, "low": {1}, "high": {1}}}}})",
+                       image, temporal);
+  };
+  const auto entry = [&](const std::string& head, const std::string& configuration) {
+    return fmt::format(R"({{"content": "normal-mapped", {}, "held_out_scenes": [], "rows": [
+        {{"configuration": "none", "image_error": 0.05, "video_error": 4}},
+        {{"configuration": "{}", "image_error": 0.04, "video_error": 2, "against_none": {}}}]}})",
+                       head, configuration, comparison(-0.01, -2.0));
+  };
+  const saagen::AdviceTable advice =
+      saagen::parse_advice_table(R"({"schema": "saagen advice 1", "content": [)" + entry(R"("scenes": ["near"])", "deferred-sum/tail") +
+                                     "," + entry(R"("map_lod_min": 4, "scenes": ["far"])", "deferred-sum:geometric+hdrp/tail") + "]}",
+                                 "advice.json");
+  const auto plan_at = [&](const std::string& map_lod) {
+    const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n" + map_lod;
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + material), nullptr, advice).materials.at(0);
+  };
+  for (const char* near : {"", "map_lod = 3\n"}) {
+    const saagen::MaterialPlan plan = plan_at(near);
+    EXPECT_EQ(plan.prefilter, "none") << plan.reason;
+    EXPECT_NE(plan.reason.find("saagen's trade (near;"), std::string::npos) << plan.reason;
+  }
+  for (const char* far : {"map_lod = 4\n", "map_lod = 9\n"}) {
+    const saagen::MaterialPlan plan = plan_at(far);
+    EXPECT_EQ(plan.variant, "deferred-sum") << plan.reason;
+    EXPECT_EQ(plan.feed, "geometric");
+    EXPECT_EQ(plan.prefilter, "hdrp");
+    EXPECT_NE(plan.reason.find("saagen's trade (far;"), std::string::npos) << plan.reason;
+  }
+  EXPECT_THROW(saagen::parse_advice_table(
+                   R"({"schema": "saagen advice 1", "content": [{"content": "curved", "map_lod_min": -1, "rows": []}]})", "advice.json"),
+               saagen::Error);
+}
+
 // `saagen plan --advice`'s table is what examples/INTEGRATION.md holds.
 TEST(Planner, IntegrationGuideHoldsTheAdviceTable) {
   const std::string guide = read_text(fs::path(SAAGEN_SOURCE_DIR) / "examples" / "INTEGRATION.md");

@@ -97,6 +97,9 @@ struct IsaRow {
 // The most lights per pixel a manifest's `lights` and a cost table's row take (the cost scene,
 // report/include/saagen/report/shading_scene.hpp, shades up to as many).
 inline constexpr int kMaxLights = 64;
+// The largest normal-map LOD a manifest's `map_lod` and the advice's map_lod_min take (a 64k
+// texture's MIP chain has 17 levels).
+inline constexpr int kMaxMapLod = 16;
 
 struct IsaTable {
   std::string source_name;
@@ -129,8 +132,13 @@ MeasuredTradeTable load_trade_table(const std::filesystem::path& path);
 // `saagen bench --json` tables: one of the scenes the advice is derived from (the medium preset)
 // and one of held-out scenes it is only reported on (scripts/held_out.sh), never chosen on.
 struct AdviceMeasurement {
-  std::string content;                       // a trade table's by_content name ("curved", "bump", ...)
-  bool taa = false;                          // measured under TAA: "none" is none+taa, the baseline
+  std::string content;  // a trade table's by_content name ("curved", "bump", ...)
+  bool taa = false;     // measured under TAA: "none" is none+taa, the baseline
+  // The finest MIP level the scenes sample their normal maps at (their implicit LOD at the
+  // centre): 0 for a content's scenes at every distance, K for scenes
+  // whose maps are all seen at LOD K or coarser (measure::minification_sweep_scenes). A material's
+  // `map_lod` takes the entry of the largest map_lod_min not above it.
+  int map_lod_min = 0;
   std::string baseline = "no SAA";           // what against_none and held_out compare with
   std::vector<std::string> scenes;           // what the advice is derived from
   std::vector<std::string> held_out_scenes;  // what it is reported on
@@ -147,7 +155,9 @@ struct AdviceTable {
   std::string derived_from;  // the derivation table's command and configuration line
   std::string held_out_from;
   std::vector<AdviceMeasurement> contents;
-  const AdviceMeasurement* find(std::string_view content, bool taa = false) const;
+  // The entry of a content (under TAA or not) for a material whose normal maps are seen at LOD
+  // map_lod or coarser: of those with map_lod_min <= map_lod, the largest map_lod_min.
+  const AdviceMeasurement* find(std::string_view content, bool taa = false, int map_lod = 0) const;
 };
 
 AdviceTable parse_advice_table(std::string_view json_text, std::string_view source_name);

@@ -53,6 +53,11 @@ struct Material {
   // are paid per light, a deferred filter's roughness once per pixel, so the shading cost over no
   // SAA that `prefer = "speed"` and `budget` read depends on it (IsaTable::cost_light_count).
   int lights = 1;
+  // `map_lod`: the finest MIP level the material's normal maps are sampled at in its views (the
+  // implicit LOD where it is seen closest; 0: close-ups at the map's full resolution). saagen's
+  // normal-mapped advice then pools only its scenes with maps that far away
+  // (AdviceTable::find), where it has measured them; 0 (the default): every distance.
+  int map_lod = 0;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header
   // Position of each key given in the file (values), for diagnostics found after parsing.
