@@ -6,12 +6,14 @@
 #include "saagen/measure/parallel.hpp"
 #include "saagen/reference/brdf.hpp"
 #include "saagen/reference/prefilter.hpp"
+#include "saagen/template_variants.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
+#include <variant>
 
 namespace saagen::measure {
 
@@ -21,21 +23,6 @@ using ref::Sym2;
 using ref::to_tangent_space;
 
 namespace {
-
-constexpr std::array<Variant, 12> kAllVariants{
-    Variant::none,
-    Variant::forward_aniso_slope,
-    Variant::forward_aniso_projected,
-    Variant::forward_axis_slope,
-    Variant::forward_axis_projected,
-    Variant::deferred_previous,
-    Variant::deferred_max,
-    Variant::deferred_max_tangent_free,
-    Variant::deferred_sum,
-    Variant::deferred_avg,
-    Variant::deferred_projected_space,
-    Variant::deferred_aniso,
-};
 
 constexpr std::array<Variant, 6> kAllEngines{
     Variant::engine_hdrp,   Variant::engine_filament, Variant::engine_godot,
@@ -76,57 +63,6 @@ double schlick_fresnel(double cos_theta, double f0) {
   return f0 + (1.0 - f0) * m2 * m2 * m;
 }
 
-std::string_view variant_id(Variant v) {
-  switch (v) {
-    case Variant::none:
-      return "none";
-    case Variant::forward_aniso_slope:
-      return "forward-aniso-slope";
-    case Variant::forward_aniso_projected:
-      return "forward-aniso-projected";
-    case Variant::forward_axis_slope:
-      return "forward-axis-slope";
-    case Variant::forward_axis_projected:
-      return "forward-axis-projected";
-    case Variant::deferred_previous:
-      return "deferred-previous";
-    case Variant::deferred_max:
-      return "deferred-max";
-    case Variant::deferred_max_tangent_free:
-      return "deferred-max-tangent-free";
-    case Variant::deferred_sum:
-      return "deferred-sum";
-    case Variant::deferred_avg:
-      return "deferred-avg";
-    case Variant::deferred_projected_space:
-      return "deferred-projected-space";
-    case Variant::deferred_aniso:
-      return "deferred-aniso";
-    case Variant::engine_hdrp:
-      return "engine-hdrp";
-    case Variant::engine_filament:
-      return "engine-filament";
-    case Variant::engine_godot:
-      return "engine-godot";
-    case Variant::engine_unreal:
-      return "engine-unreal";
-    case Variant::engine_threejs:
-      return "engine-threejs";
-    case Variant::engine_babylon:
-      return "engine-babylon";
-  }
-  return "?";
-}
-
-std::optional<Variant> variant_from_id(std::string_view id) {
-  for (Variant v : kAllVariants)
-    if (variant_id(v) == id) return v;
-  for (Variant v : kAllEngines)
-    if (variant_id(v) == id) return v;
-  return std::nullopt;
-}
-
-std::span<const Variant> all_variants() { return kAllVariants; }
 std::span<const Variant> all_engines() { return kAllEngines; }
 
 bool is_engine(Variant v) { return std::find(kAllEngines.begin(), kAllEngines.end(), v) != kAllEngines.end(); }
@@ -599,6 +535,133 @@ Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields&
   return {r0x * m00 + r0y * m01, r0x * m10 + r0y * m11, r1x * m10 + r1y * m11};
 }
 
+// ---------------------------------------------------------------------------------------------
+// The variants: one row each. A template's SAA filter is registered here once, with the CPU
+// reference of its fragment wrapper (saa.hpp) in the form shade_pixel applies it; which filters
+// there are, and their order, come from the templates (saagen/template_variants.hpp, generated
+// from templates/*.saa), and the static_asserts below refuse a template filter without a row.
+
+// What a filter's reference reads at a pixel.
+struct FilterInputs {
+  const ref::Params& params;
+  Vec2 alpha2;  // the unfiltered roughness per axis (the lobe's anisotropy included)
+  double a2;    // the material's alpha^2, before the lobe's anisotropy
+  const FeedQuads& in;
+  const QuadFields& q;
+  const PixelFields& f;
+  ref::Derivative mode;
+};
+
+// The three forms of a filter's result: a roughness matrix A (forward-aniso-*, deferred-aniso),
+// per-axis (ax'^2, ay'^2) (forward-axis-*), or an isotropic alpha^2 -> alpha'^2 (the other
+// deferred-*), which shade_pixel applies once per axis of an anisotropic lobe.
+using MatrixFilter = Sym2 (*)(const FilterInputs&);
+using AxisFilter = Vec2 (*)(const FilterInputs&);
+using IsotropicFilter = double (*)(const FilterInputs&, double unfiltered);
+using Filter = std::variant<std::monostate, MatrixFilter, AxisFilter, IsotropicFilter>;
+
+struct VariantRow {
+  Variant variant;
+  std::string_view id;
+  // The template filter whose row this one follows in all_variants(): a measurement-only form,
+  // a function of that template variant that the trade measures as a row of its own.
+  std::string_view form_of;
+  Filter filter;  // none and the engines: monostate (shade_pixel shades them itself)
+};
+
+// In the order of the Variant enumerators (checked below), so that a row is found by its value.
+constexpr std::array<VariantRow, 18> kVariantRows{{
+    {Variant::none, "none", "", {}},
+    {Variant::forward_aniso_slope, "forward-aniso-slope", "", MatrixFilter{[](const FilterInputs& x) {
+       return ref::forward_aniso_slope_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
+     }}},
+    {Variant::forward_aniso_projected, "forward-aniso-projected", "", MatrixFilter{[](const FilterInputs& x) {
+       return ref::forward_aniso_projected_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
+     }}},
+    {Variant::forward_axis_slope, "forward-axis-slope", "", AxisFilter{[](const FilterInputs& x) {
+       return ref::forward_axis_slope_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
+     }}},
+    {Variant::forward_axis_projected, "forward-axis-projected", "", AxisFilter{[](const FilterInputs& x) {
+       return ref::forward_axis_projected_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
+     }}},
+    {Variant::deferred_previous, "deferred-previous", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_previous_fragment_quad(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord,
+                                                   x.q.pixel, x.mode);
+     }}},
+    {Variant::deferred_max, "deferred-max", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_max_fragment_quad(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord, x.q.pixel,
+                                              x.mode);
+     }}},
+    {Variant::deferred_max_tangent_free, "deferred-max-tangent-free", "deferred-max",
+     IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_max_tangent_free_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
+     }}},
+    {Variant::deferred_sum, "deferred-sum", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_sum_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
+     }}},
+    {Variant::deferred_avg, "deferred-avg", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_avg_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
+     }}},
+    {Variant::deferred_projected_space, "deferred-projected-space", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+       return ref::deferred_projected_space_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
+     }}},
+    // The kernel on the base alpha^2, then the lobe's anisotropy along t (0 when isotropic).
+    {Variant::deferred_aniso, "deferred-aniso", "", MatrixFilter{[](const FilterInputs& x) {
+       return deferred_aniso_in_pixel_frame(x.params, x.f, x.in.normal, x.q.pixel, x.mode, x.a2) +
+              Sym2{x.alpha2.x - x.a2, 0.0, x.alpha2.y - x.a2};
+     }}},
+    {Variant::engine_hdrp, "engine-hdrp", "", {}},
+    {Variant::engine_filament, "engine-filament", "", {}},
+    {Variant::engine_godot, "engine-godot", "", {}},
+    {Variant::engine_unreal, "engine-unreal", "", {}},
+    {Variant::engine_threejs, "engine-threejs", "", {}},
+    {Variant::engine_babylon, "engine-babylon", "", {}},
+}};
+
+constexpr bool rows_follow_the_enum() {
+  for (std::size_t i = 0; i < kVariantRows.size(); ++i)
+    if (static_cast<std::size_t>(kVariantRows[i].variant) != i) return false;
+  return true;
+}
+static_assert(rows_follow_the_enum(), "kVariantRows: one row per Variant, in the enumerators' order");
+
+constexpr const VariantRow* find_row(std::string_view id) {
+  for (const VariantRow& row : kVariantRows)
+    if (row.id == id) return &row;
+  return nullptr;
+}
+
+constexpr bool every_template_filter_has_a_filter_row() {
+  for (std::string_view id : templates::kSaaFilterIds)
+    if (!find_row(id) || find_row(id)->filter.index() == 0) return false;
+  return true;
+}
+static_assert(every_template_filter_has_a_filter_row(),
+              "a template's SAA filter (templates/*.saa) has no row with its CPU reference in kVariantRows");
+
+constexpr std::size_t measurement_only_form_count() {
+  std::size_t count = 0;
+  for (const VariantRow& row : kVariantRows) count += row.form_of.empty() ? 0 : 1;
+  return count;
+}
+
+// saagen's variants as the trade measures them: the no-SAA baseline, then the templates' filters
+// in the templates' order, each followed by its measurement-only forms.
+constexpr std::size_t kAllVariantCount = 1 + templates::kSaaFilterIds.size() + measurement_only_form_count();
+constexpr std::array<Variant, kAllVariantCount> kAllVariants = [] {
+  std::array<Variant, kAllVariantCount> variants{};
+  std::size_t next = 0;
+  variants[next++] = Variant::none;
+  for (std::string_view id : templates::kSaaFilterIds) {
+    variants[next++] = find_row(id)->variant;
+    for (const VariantRow& row : kVariantRows)
+      if (row.form_of == id) variants[next++] = row.variant;
+  }
+  return variants;
+}();
+
+const VariantRow& variant_row(Variant v) { return kVariantRows.at(static_cast<std::size_t>(v)); }
+
 // The pixel's fields in the band-limited normal's frame (PixelFields::band_limited): what a
 // prefiltered row shades on procedural normal detail.
 PixelFields band_limited_fields(const PixelFields& f) {
@@ -613,6 +676,15 @@ PixelFields band_limited_fields(const PixelFields& f) {
 }
 
 }  // namespace
+
+std::string_view variant_id(Variant v) { return variant_row(v).id; }
+
+std::optional<Variant> variant_from_id(std::string_view id) {
+  if (const VariantRow* row = find_row(id)) return row->variant;
+  return std::nullopt;
+}
+
+std::span<const Variant> all_variants() { return kAllVariants; }
 
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, const Material& material, const ref::Params& params,
                        ref::Derivative mode, NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
@@ -695,49 +767,16 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
     std::optional<QuadFields> gathered;
     const QuadFields& q = quad_fields(gbuffer, x, y, gathered);
     const FeedQuads in = feed_quads(q, feed);
-    switch (variant) {
-      case Variant::forward_aniso_slope:
-        matrix(ref::forward_aniso_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-        break;
-      case Variant::forward_aniso_projected:
-        matrix(ref::forward_aniso_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-        break;
-      case Variant::forward_axis_slope:
-        axis(ref::forward_axis_slope_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-        break;
-      case Variant::forward_axis_projected:
-        axis(ref::forward_axis_projected_fragment_quad(params, alpha2, in.half_ts, q.pixel, mode));
-        break;
-      case Variant::deferred_previous:
-        isotropic_form([&](double unfiltered) {
-          return ref::deferred_previous_fragment_quad(params, unfiltered, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode);
-        });
-        break;
-      case Variant::deferred_max:
-        isotropic_form([&](double unfiltered) {
-          return ref::deferred_max_fragment_quad(params, unfiltered, in.normal, in.tangent, in.bitangent, q.frag_coord, q.pixel, mode);
-        });
-        break;
-      case Variant::deferred_max_tangent_free:
-        isotropic_form(
-            [&](double unfiltered) { return ref::deferred_max_tangent_free_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
-        break;
-      case Variant::deferred_sum:
-        isotropic_form([&](double unfiltered) { return ref::deferred_sum_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
-        break;
-      case Variant::deferred_avg:
-        isotropic_form([&](double unfiltered) { return ref::deferred_avg_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
-        break;
-      case Variant::deferred_projected_space:
-        isotropic_form(
-            [&](double unfiltered) { return ref::deferred_projected_space_fragment_quad(params, unfiltered, in.normal, q.pixel, mode); });
-        break;
-      case Variant::deferred_aniso:
-        // The kernel on the base alpha^2, then the lobe's anisotropy along t (0 when isotropic).
-        matrix(deferred_aniso_in_pixel_frame(params, f, in.normal, q.pixel, mode, a2) + Sym2{alpha2.x - a2, 0.0, alpha2.y - a2});
-        break;
-      default:
-        throw std::invalid_argument("shade_pixel: unknown variant");
+    const FilterInputs inputs{params, alpha2, a2, in, q, f, mode};
+    const Filter& filter = variant_row(variant).filter;
+    if (const MatrixFilter* form = std::get_if<MatrixFilter>(&filter)) {
+      matrix((*form)(inputs));
+    } else if (const AxisFilter* form = std::get_if<AxisFilter>(&filter)) {
+      axis((*form)(inputs));
+    } else if (const IsotropicFilter* form = std::get_if<IsotropicFilter>(&filter)) {
+      isotropic_form([&](double unfiltered) { return (*form)(inputs, unfiltered); });
+    } else {
+      throw std::invalid_argument("shade_pixel: unknown variant");
     }
   }
   out.radiance = f.weight * specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);

@@ -97,7 +97,9 @@ struct Material {
 };
 
 // The variants, named as in the catalogue (docs/GUIDE.md "Variants"), plus the no-SAA baseline and
-// deferred-max's tangent-free form as a variant of its own.
+// deferred-max's tangent-free form as a variant of its own. Each enumerator has one row in
+// renderer.cpp's kVariantRows (its id and its CPU reference); all_variants() follows the
+// templates (docs/ARCHITECTURE.md, "The registry of variants").
 enum class Variant {
   none,
   forward_aniso_slope,
@@ -126,7 +128,8 @@ enum class Variant {
 // "none", "forward-aniso-slope", ..., "deferred-max-tangent-free", ..., "engine-hdrp", ...
 std::string_view variant_id(Variant v);
 std::optional<Variant> variant_from_id(std::string_view id);
-// saagen's variants and the no-SAA baseline (catalogue ids, plus the tangent-free form).
+// saagen's variants and the no-SAA baseline (catalogue ids, plus the tangent-free form): none,
+// then the templates' SAA filters in the templates' order, each followed by its measurement-only forms.
 std::span<const Variant> all_variants();
 // The engines' shipped forms.
 std::span<const Variant> all_engines();
