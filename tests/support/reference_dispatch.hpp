@@ -55,13 +55,20 @@ inline std::vector<double> output_values(double v) { return {v}; }
 inline std::vector<double> output_values(ref::Vec2 v) { return {v.x, v.y}; }
 inline std::vector<double> output_values(ref::Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
-// The reference of fragment wrapper `name` at `pixel` of the first quad (pixel centres at .5),
-// given the quad values of its vector parameters by parameter name (half_ts, normal_ws,
-// tangent_ws, bitangent_ws, i, o).
+// The fragment coordinates of the first quad (pixel centres at .5).
+inline constexpr ref::Quad<ref::Vec2> kFirstQuadFragCoord{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
+
+// The reference of fragment wrapper `name` at `pixel` of a quad, given the quad values of its
+// vector parameters by parameter name (half_ts, normal_ws, tangent_ws, bitangent_ws, i, o): the
+// one dispatch from a template's fragment wrapper to its CPU reference (saa.hpp, brdf.hpp) that
+// every suite comparing wrappers uses (wrapper_cases.hpp too). `average`: how the quad-average
+// normal of deferred-previous/-max takes its derivatives (fine in GLSL and HLSL; the plain
+// derivative in GLSL ES, which has no fine one). Throws for a wrapper it does not know.
 inline std::vector<double> wrapper_reference_on_quad(const std::string& name, const ref::Params& p, ref::Vec2 alpha2,
                                                      std::map<std::string, ref::Quad<ref::Vec3>>& vectors, int pixel,
-                                                     ref::Derivative mode = ref::Derivative::coarse) {
-  const ref::Quad<ref::Vec2> frag{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
+                                                     ref::Derivative mode = ref::Derivative::coarse,
+                                                     ref::Derivative average = ref::Derivative::fine,
+                                                     const ref::Quad<ref::Vec2>& frag = kFirstQuadFragCoord) {
   const auto& h = vectors["half_ts"];
   const auto& n = vectors["normal_ws"];
   if (name == "forward_aniso_slope_fragment") return output_values(ref::forward_aniso_slope_fragment_quad(p, alpha2, h, pixel, mode));
@@ -71,11 +78,11 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
   if (name == "forward_axis_projected_fragment") return output_values(ref::forward_axis_projected_fragment_quad(p, alpha2, h, pixel, mode));
   if (name == "deferred_previous_fragment") {
     return output_values(
-        ref::deferred_previous_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
+        ref::deferred_previous_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode, average));
   }
   if (name == "deferred_max_fragment") {
     return output_values(
-        ref::deferred_max_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode));
+        ref::deferred_max_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode, average));
   }
   if (name == "deferred_max_tangent_free_fragment")
     return output_values(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));

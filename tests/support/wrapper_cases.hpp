@@ -12,6 +12,8 @@
 // itself (test_gpu_core).
 #pragma once
 
+#include "reference_dispatch.hpp"
+
 #include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
 #include "saagen/validate/kernels.hpp"
@@ -113,13 +115,9 @@ inline Quad<T> quad_of(const std::vector<PixelFields>& quad, Field field) {
   return {field(quad[0]), field(quad[1]), field(quad[2]), field(quad[3])};
 }
 
-inline std::vector<double> as_outputs(double v) { return {v}; }
-inline std::vector<double> as_outputs(Vec2 v) { return {v.x, v.y}; }
-inline std::vector<double> as_outputs(ref::Sym2 m) { return {m.xx, m.xy, m.yy}; }
-
-// The reference of a wrapper at one pixel of a quad.
-// `average`: how the quad-average normal of deferred-previous/-max takes its derivatives (fine in
-// GLSL and HLSL; the plain derivative in GLSL ES, which has no fine one).
+// The reference of a wrapper at one pixel of a quad: the shared dispatch
+// (reference_dispatch.hpp, wrapper_reference_on_quad) fed the quad's fields.
+// `average`: how the quad-average normal of deferred-previous/-max takes its derivatives.
 // `p`: the emission's constants (the half guard constants for a half-precision file).
 inline std::vector<double> reference_wrapper(const std::string& name, const std::vector<PixelFields>& q, int pixel, ref::Derivative mode,
                                              ref::Derivative average = ref::Derivative::fine, const ref::Params& p = {}) {
@@ -131,24 +129,9 @@ inline std::vector<double> reference_wrapper(const std::string& name, const std:
   const auto i = quad_of<Vec3>(q, [](const PixelFields& f) { return f.i_ts; });
   const auto o = quad_of<Vec3>(q, [](const PixelFields& f) { return f.o_ts; });
   const auto frag = quad_of<Vec2>(q, [](const PixelFields& f) { return f.frag; });
-  if (name == "forward_aniso_slope_fragment") return as_outputs(ref::forward_aniso_slope_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_aniso_projected_fragment") return as_outputs(ref::forward_aniso_projected_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_axis_slope_fragment") return as_outputs(ref::forward_axis_slope_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_axis_projected_fragment") return as_outputs(ref::forward_axis_projected_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "deferred_previous_fragment")
-    return as_outputs(ref::deferred_previous_fragment_quad(p, alpha2.x, n, t, b, frag, pixel, mode, average));
-  if (name == "deferred_max_fragment") return as_outputs(ref::deferred_max_fragment_quad(p, alpha2.x, n, t, b, frag, pixel, mode, average));
-  if (name == "deferred_max_tangent_free_fragment")
-    return as_outputs(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_sum_fragment") return as_outputs(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_avg_fragment") return as_outputs(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_projected_space_fragment")
-    return as_outputs(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_aniso_fragment") return as_outputs(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
-  if (name == "ggx_brdf_filtered_fragment") return as_outputs(ref::ggx_brdf_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
-  if (name == "ggx_brdf_tail_filtered_fragment") return as_outputs(ref::ggx_brdf_tail_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
-  if (name == "beckmann_brdf_filtered_fragment") return as_outputs(ref::beckmann_brdf_filtered_fragment_quad(p, i, o, alpha2, pixel, mode));
-  throw std::runtime_error("no reference for wrapper " + name);
+  std::map<std::string, Quad<Vec3>> vectors = {{"half_ts", h},      {"normal_ws", n}, {"tangent_ws", t},
+                                               {"bitangent_ws", b}, {"i", i},         {"o", o}};
+  return wrapper_reference_on_quad(name, p, alpha2, vectors, pixel, mode, average, frag);
 }
 
 // A run's per-pixel results next to the reference fed the run's own fields, with the bound of the

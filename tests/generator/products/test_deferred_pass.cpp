@@ -17,6 +17,7 @@
 #include "host_compiler.hpp"
 #include "support/deferred_pass_runner.hpp"
 #include "support/gpu_support.hpp"
+#include "support/reference_dispatch.hpp"
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
@@ -156,21 +157,11 @@ double reference_pass(const std::string& wrapper, double alpha2, const std::arra
   const Quad<Vec3> n{q[0].n, q[1].n, q[2].n, q[3].n};
   const Quad<Vec3> t{q[0].t, q[1].t, q[2].t, q[3].t};
   const Quad<Vec3> b{q[0].b, q[1].b, q[2].b, q[3].b};
-  double filtered = 0.0;
-  if (wrapper == "deferred_previous_fragment")
-    filtered = ref::deferred_previous_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
-  else if (wrapper == "deferred_max_fragment")
-    filtered = ref::deferred_max_fragment_quad(p, alpha2, n, t, b, frag, pixel, mode);
-  else if (wrapper == "deferred_max_tangent_free_fragment")
-    filtered = ref::deferred_max_tangent_free_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_sum_fragment")
-    filtered = ref::deferred_sum_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_avg_fragment")
-    filtered = ref::deferred_avg_fragment_quad(p, alpha2, n, pixel, mode);
-  else if (wrapper == "deferred_projected_space_fragment")
-    filtered = ref::deferred_projected_space_fragment_quad(p, alpha2, n, pixel, mode);
-  else
-    throw std::runtime_error("no reference for " + wrapper);
+  // The shared dispatch of the wrappers' references (support/reference_dispatch.hpp); the
+  // deferred wrappers read alpha2.x, and the quad average takes fine derivatives (the default).
+  std::map<std::string, Quad<Vec3>> vectors = {{"normal_ws", n}, {"tangent_ws", t}, {"bitangent_ws", b}};
+  const double filtered =
+      saagen::test::wrapper_reference_on_quad(wrapper, p, {alpha2, alpha2}, vectors, pixel, mode, ref::Derivative::fine, frag).at(0);
   return encode_output(filtered, domain);
 }
 
