@@ -71,6 +71,8 @@ def content_entries(derived, held_out, key, taa, map_lod_min=0):
                     kept[pairing] = row[pairing]
             if "against_none" in held.get(configuration, {}):
                 kept["held_out"] = held[configuration]["against_none"]
+            if held.get(configuration, {}).get("loses_on"):
+                kept["held_out_loses_on"] = held[configuration]["loses_on"]
             entry["rows"].append(kept)
         contents.append(entry)
     return contents

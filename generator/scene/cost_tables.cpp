@@ -299,6 +299,12 @@ std::optional<decision::Comparison> AdviceMeasurement::held_out(std::string_view
   return std::nullopt;
 }
 
+std::vector<std::string> AdviceMeasurement::held_out_loses_on(std::string_view configuration) const {
+  for (const auto& [name, scenes] : held_out_losses)
+    if (name == configuration) return scenes;
+  return {};
+}
+
 const AdviceMeasurement* AdviceTable::find(std::string_view content, bool taa, int map_lod) const {
   const AdviceMeasurement* found = nullptr;
   for (const AdviceMeasurement& entry : contents)
@@ -366,6 +372,11 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
       parse_pairings(row, kept, fmt::format("{}: content[{}]", source_name, index));
       if (row.contains("held_out"))
         measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
+      if (row.contains("held_out_loses_on")) {
+        if (!row["held_out_loses_on"].is_array())
+          fail(fmt::format("content[{}]: \"held_out_loses_on\" must be an array of scene names", index));
+        measured.held_out_losses.emplace_back(kept.configuration, names(row, "held_out_loses_on"));
+      }
       measured.rows.push_back(std::move(kept));
     }
     table.contents.push_back(std::move(measured));

@@ -585,6 +585,28 @@ std::string measure_own_asset(bool taa) {
          "`saagen plan MANIFEST --trade-table T.json`; or both in one step: `saagen plan --gltf ASSET.glb -o MANIFEST --measure`";
 }
 
+// Whether the table-free advice's choice loses to no SAA beyond its interval, in either metric,
+// on the held-out scenes pooled, or (Scenes::each) also on any one of them: then it is not given,
+// whatever it measured on saagen's own (the held-out scenes check a choice, they never make one).
+enum class Scenes { pooled, each };
+bool fails_held_out(const AdviceMeasurement& measured, const std::string& chosen, Scenes scenes = Scenes::each) {
+  const auto there = measured.held_out(chosen);
+  if (!there) return false;
+  const decision::Outcome outcome = decision::outcome(*there);
+  if (outcome == decision::Outcome::loses || outcome == decision::Outcome::mixed) return true;
+  return scenes == Scenes::each && !measured.held_out_loses_on(chosen).empty();
+}
+
+// "a, b: image error ..., video error ...[; it loses to no SAA beyond its interval on a]": how a
+// measured choice fared on the held-out scenes.
+std::string held_out_figures(const AdviceMeasurement& measured, const std::string& chosen) {
+  std::string text =
+      fmt::format("{}: {}", scene_list(measured.held_out_scenes), comparison_text(*measured.held_out(chosen), measured.baseline));
+  if (const std::vector<std::string> losses = measured.held_out_loses_on(chosen); !losses.empty())
+    text += fmt::format("; it loses to {} beyond its interval on {}", measured.baseline, scene_list(losses));
+  return text;
+}
+
 // How the table-free advice fared on the held-out scenes it was not derived from.
 std::string held_out_text(const AdviceMeasurement& measured, const std::optional<std::string>& chosen) {
   if (measured.held_out_scenes.empty())
@@ -596,19 +618,11 @@ std::string held_out_text(const AdviceMeasurement& measured, const std::optional
                        scene_list(measured.scenes), held_out, measure_own_asset(measured.taa));
   const auto there = measured.held_out(*chosen);
   if (!there) return fmt::format("{} was not measured on the {}; {}", *chosen, held_out, measure_own_asset(measured.taa));
-  const decision::Outcome outcome = decision::outcome(*there);
-  const bool held = outcome == decision::Outcome::beats || outcome == decision::Outcome::ties;
-  return fmt::format("this advice {} on content it was not derived from ({}: {}); {}", held ? "held" : "did not hold", held_out,
-                     comparison_text(*there, measured.baseline), measure_own_asset(measured.taa));
-}
-
-// Whether the table-free advice's choice loses to no SAA beyond its interval, in either metric,
-// on the held-out scenes: then it is not given (no filter), whatever it measured on saagen's own.
-bool fails_held_out(const AdviceMeasurement& measured, const std::string& chosen) {
-  const auto there = measured.held_out(chosen);
-  if (!there) return false;
-  const decision::Outcome outcome = decision::outcome(*there);
-  return outcome == decision::Outcome::loses || outcome == decision::Outcome::mixed;
+  return fmt::format("this advice {} on content it was not derived from (held-out scenes {}); {}",
+                     !fails_held_out(measured, *chosen)                   ? "held"
+                     : !fails_held_out(measured, *chosen, Scenes::pooled) ? "held pooled, not on each scene,"
+                                                                          : "did not hold",
+                     held_out_figures(measured, *chosen), measure_own_asset(measured.taa));
 }
 
 // The same trade on curved content in the deferred path, for a material that does not get
@@ -653,9 +667,8 @@ void keep_shading_normal(const NormalMappedRows& from, const std::vector<Content
   }
   plan.normal_advice = fmt::format(
       "feed the normal-mapped normal, no texture prefilter: on normal-mapped content in {} saagen's decision takes {}, but "
-      "it does not hold on the held-out scenes ({}: {}), so it is not given; measured: {}",
-      from.source, chosen, scene_list(from.advice->held_out_scenes), comparison_text(*from.advice->held_out(chosen), from.advice->baseline),
-      own);
+      "it does not hold on the held-out scenes ({}), so it is not given; measured: {}",
+      from.source, chosen, held_out_figures(*from.advice, chosen), own);
 }
 
 // saagen's one decision among the normal-mapped configurations of the material's variant (of any
@@ -676,7 +689,9 @@ void choose_normal_handling(const NormalMappedRows& from, const std::vector<cons
     return;
   }
   const std::string& chosen = allowed[*made.chosen].configuration;
-  if (from.advice && fails_held_out(*from.advice, chosen)) return keep_shading_normal(from, allowed, *none, chosen, plan);
+  // Pooled only: a material that names its variant cannot be given no filter, and its own input
+  // (keep_shading_normal) is what the decision found losing on saagen's own scenes.
+  if (from.advice && fails_held_out(*from.advice, chosen, Scenes::pooled)) return keep_shading_normal(from, allowed, *none, chosen, plan);
   const Configuration c = parse_configuration(chosen);
   plan.variant = c.variant;
   plan.feed = c.feed;
@@ -699,9 +714,8 @@ void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const 
     plan.measure_advice = held_out_text(*advice, chosen);
     if (chosen && fails_held_out(*advice, *chosen)) {
       plan_no_filter(material, rule,
-                     fmt::format("no filter: on {} {}, but it does not hold on the held-out scenes ({}: {}), so it is not given", where,
-                                 made.decision.reason, scene_list(advice->held_out_scenes),
-                                 comparison_text(*advice->held_out(*chosen), advice->baseline)),
+                     fmt::format("no filter: on {} {}, but it does not hold on the held-out scenes ({}), so it is not given", where,
+                                 made.decision.reason, held_out_figures(*advice, *chosen)),
                      plan);
       return;
     }
@@ -833,6 +847,33 @@ Material reference_material(RenderPath path, advice::Content content) {
   material.content = content;
   return material;
 }
+
+namespace {
+
+// saagen's committed measurement a material is decided on for a content: for normal maps seen no
+// closer than its map_lod, the entry measured that far away (AdviceTable::find) where the decision
+// there holds on its held-out maps; else the entry of every distance, whose scenes include those,
+// with a note saying why.
+struct MaterialAdvice {
+  const AdviceMeasurement* measured = nullptr;
+  std::string note;  // "" or "; at LOD >= 4 ... does not hold ..."
+};
+
+MaterialAdvice material_advice(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const AdviceTable& advice,
+                               advice::Content content) {
+  const AdviceMeasurement* far = advice_measurement(advice, content, manifest.taa, material.map_lod);
+  if (!far || far->map_lod_min == 0) return {far, ""};
+  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, far->rows, baseline_of(manifest.taa));
+  if (!made.decision.chosen) return {far, ""};
+  const std::string& chosen = made.candidates[*made.decision.chosen].configuration;
+  if (!fails_held_out(*far, chosen)) return {far, ""};
+  return {advice_measurement(advice, content, manifest.taa),
+          fmt::format("; with maps at LOD >= {} ({}) the decision takes {}, which does not hold on their held-out maps ({}), so the advice "
+                      "of every distance",
+                      far->map_lod_min, scene_list(far->scenes), chosen, held_out_figures(*far, chosen))};
+}
+
+}  // namespace
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table) {
   return plan_scene(catalogue, manifest, table, committed_advice());
@@ -982,7 +1023,7 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
       if (table && !table->content_rows.empty())
         choose_normal_handling({table->content_rows, table->source_name}, eligible,
                                !material.variant && material.prefer == Preference::accuracy, lobe, plan);
-      const AdviceMeasurement* measured = advice_measurement(advice, advice::Content::normal_mapped, manifest.taa, material.map_lod);
+      const AdviceMeasurement* measured = material_advice(catalogue, manifest, material, advice, advice::Content::normal_mapped).measured;
       if (plan.normal_advice.empty() && measured)
         choose_normal_handling(
             {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
@@ -1006,10 +1047,12 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
         // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
         // the lowest error chosen above stands.
       } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
-        const AdviceMeasurement* measured = advice_measurement(advice, content_of(material), manifest.taa, material.map_lod);
+        const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
+        const AdviceMeasurement* measured = chosen_advice.measured;
         static const AdviceMeasurement kNothingMeasured;
         const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
-        const std::string lacking = other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : "";
+        const std::string lacking =
+            (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
         apply_decision(catalogue, manifest, material, rows_of.rows,
                        measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
                                 : fmt::format("saagen's trade (not measured){}", lacking),
@@ -1058,10 +1101,12 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
   material.map_lod = map_lod;
   manifest.materials = {material};
   const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
-  const AdviceMeasurement* measured = advice_measurement(committed_advice(), content, taa, map_lod);
+  const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, committed_advice(), content);
+  const AdviceMeasurement* measured = chosen_advice.measured;
   const std::string baseline(baseline_of(taa));
   std::string configuration = "none", nothing = fmt::format("nothing beats {}", baseline);
   std::optional<decision::Comparison> derived, held_out;
+  std::vector<std::string> held_out_losses;
   if (measured) {
     const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows, baseline);
     for (std::size_t i = 0; i < made.candidates.size(); ++i)
@@ -1072,6 +1117,7 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
       configuration = chosen.configuration;
       derived = chosen.against_none;
       held_out = measured->held_out(configuration);
+      held_out_losses = measured->held_out_loses_on(configuration);
     }
   }
   const std::string planned = plan.variant == "none" ? std::string("**no filter**") : fmt::format("`{}`", configuration);
@@ -1079,9 +1125,13 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
                           : plan.variant == "none" ? fmt::format("`{}` {}", configuration, advice_figures(derived))
                                                    : advice_figures(derived);
   const std::string content_name =
-      map_lod > 0 ? fmt::format("{} (map_lod >= {})", advice::name(content), map_lod) : std::string(advice::name(content));
+      map_lod > 0 ? fmt::format("{} (map_lod >= {}{})", advice::name(content), map_lod,
+                                chosen_advice.note.empty() ? "" : ": its own choice does not hold held out, every distance's is given")
+                  : std::string(advice::name(content));
+  const std::string held_out_cell =
+      advice_figures(held_out) + (held_out_losses.empty() ? "" : fmt::format("; loses on {}", scene_list(held_out_losses)));
   return fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", content_name, taa ? "yes" : "no", to_string(path), to_string(prefer),
-                     planned, why, advice_figures(held_out));
+                     planned, why, held_out_cell);
 }
 
 }  // namespace

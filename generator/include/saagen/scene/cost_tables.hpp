@@ -148,6 +148,10 @@ struct AdviceMeasurement {
   // A configuration's comparison with no SAA on the held-out scenes, where measured.
   std::optional<decision::Comparison> held_out(std::string_view configuration) const;
   std::vector<std::pair<std::string, decision::Comparison>> held_out_rows;
+  // The held-out scenes on which a configuration loses to no SAA beyond the interval in either
+  // metric (loses or mixed there), where measured; empty: none.
+  std::vector<std::string> held_out_loses_on(std::string_view configuration) const;
+  std::vector<std::pair<std::string, std::vector<std::string>>> held_out_losses;
 };
 
 struct AdviceTable {
