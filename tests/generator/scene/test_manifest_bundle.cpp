@@ -362,8 +362,9 @@ TEST_F(SceneCli, EmitWritesOnlyWhenBytesChangeAndRefusesForeignFiles) {
 
 // A manifest whose every material is advised no filter writes nothing and says so.
 TEST_F(SceneCli, EmitOfOnlyNoFilterMaterialsWritesNothing) {
-  const fs::path manifest = scratch_ / "taa.toml";
-  write(manifest, header + "taa = true\n[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\n");
+  // Curved content, deferred, prefer speed: only the most expensive form beats no SAA, so no filter.
+  const fs::path manifest = scratch_ / "speed.toml";
+  write(manifest, header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nprefer = \"speed\"\n");
   const CliRun run = saagen("emit --manifest '" + manifest.string() + "' -o '" + (scratch_ / "out").string() + "'");
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("nothing to write: every material of"), std::string::npos) << run.out;
