@@ -585,7 +585,7 @@ std::string measure_own_asset(bool taa) {
          "`saagen plan MANIFEST --trade-table T.json`; or both in one step: `saagen plan --gltf ASSET.glb -o MANIFEST --measure`";
 }
 
-// Whether the table-free advice's choice loses to no SAA beyond its interval, in either metric,
+// Whether the table-free advice's choice loses to its baseline (no SAA; under TAA none+taa) beyond its interval, in either metric,
 // on the held-out scenes pooled, or (Scenes::each) also on any one of them: then it is not given,
 // whatever it measured on saagen's own (the held-out scenes check a choice, they never make one).
 enum class Scenes { pooled, each };
@@ -856,7 +856,7 @@ namespace {
 // with a note saying why.
 struct MaterialAdvice {
   const AdviceMeasurement* measured = nullptr;
-  std::string note;  // "" or "; at LOD >= 4 ... does not hold ..."
+  std::string note;  // "" or "; with maps at LOD >= 4 (...) the decision takes ..., which does not hold ..."
 };
 
 MaterialAdvice material_advice(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const AdviceTable& advice,
