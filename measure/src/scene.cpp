@@ -489,8 +489,6 @@ void Light::at(Vec3 p, Vec3& to_light, double& irradiance) const {
 // Scenes
 
 namespace {
-constexpr std::array<SceneId, 4> kAllScenes{SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane};
-constexpr std::array<SceneId, 3> kContentScenes{SceneId::nmap_sphere, SceneId::nmap_sphere_fine, SceneId::torus_knot};
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
 // The texture frame of a hit (MikkTSpace's per-pixel form): t = dpdu made orthogonal to the
@@ -512,93 +510,6 @@ Vec3 bilinear_level0_normal(const NormalMap& map, Vec2 uv) {
          ((1.0 - ax) * ay) * map.texel(0, ix, iy + 1).normal + (ax * ay) * map.texel(0, ix + 1, iy + 1).normal;
 }
 }  // namespace
-
-namespace {
-// Registered scenes: a deque keeps every entry (and the name a string_view refers to) in place.
-struct SceneRegistry {
-  std::mutex mutex;
-  std::deque<std::pair<std::string, RegisteredScene>> entries;  // (key, scene)
-};
-SceneRegistry& scene_registry() {
-  static SceneRegistry registry;
-  return registry;
-}
-constexpr int kFirstRegisteredScene = 64;
-bool valid_scene_name(const std::string& name) {
-  if (name.empty()) return false;
-  for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
-  return true;
-}
-}  // namespace
-
-SceneId register_scene(RegisteredScene scene, const std::string& key) {
-  if (!valid_scene_name(scene.name)) throw std::invalid_argument("scene name '" + scene.name + "': use letters, digits, '_', '-', '.'");
-  for (SceneId id : kAllScenes)
-    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
-  for (SceneId id : kContentScenes)
-    if (scene_name(id) == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
-  SceneRegistry& registry = scene_registry();
-  std::lock_guard lock(registry.mutex);
-  for (std::size_t i = 0; i < registry.entries.size(); ++i) {
-    if (registry.entries[i].second.name != scene.name) continue;
-    if (registry.entries[i].first == key) return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(i));
-    throw std::invalid_argument("scene name '" + scene.name + "' is already registered for " + registry.entries[i].first);
-  }
-  registry.entries.emplace_back(key, std::move(scene));
-  return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(registry.entries.size()) - 1);
-}
-
-const RegisteredScene* registered_scene(SceneId id) {
-  const int index = static_cast<int>(id) - kFirstRegisteredScene;
-  if (index < 0) return nullptr;
-  SceneRegistry& registry = scene_registry();
-  std::lock_guard lock(registry.mutex);
-  if (index >= static_cast<int>(registry.entries.size())) return nullptr;
-  return &registry.entries[static_cast<std::size_t>(index)].second;
-}
-
-double roughness_alpha_scale(double g) {
-  const double clamped = ref::min(ref::max(g, 1.0 / 255.0), 1.0);
-  return clamped * clamped;
-}
-
-std::string_view scene_name(SceneId id) {
-  if (const RegisteredScene* registered = registered_scene(id)) return registered->name;
-  switch (id) {
-    case SceneId::sphere:
-      return "sphere";
-    case SceneId::torus:
-      return "torus";
-    case SceneId::tubes:
-      return "tubes";
-    case SceneId::bump_plane:
-      return "bump_plane";
-    case SceneId::nmap_sphere:
-      return "nmap-sphere";
-    case SceneId::nmap_sphere_fine:
-      return "nmap-sphere-fine";
-    case SceneId::torus_knot:
-      return "torus-knot";
-  }
-  return "?";
-}
-
-std::optional<SceneId> scene_from_name(std::string_view name) {
-  for (SceneId id : kAllScenes)
-    if (scene_name(id) == name) return id;
-  for (SceneId id : kContentScenes)
-    if (scene_name(id) == name) return id;
-  for (int i = kFirstRegisteredScene;; ++i) {
-    const RegisteredScene* registered = registered_scene(static_cast<SceneId>(i));
-    if (!registered) break;
-    if (registered->name == name) return static_cast<SceneId>(i);
-  }
-  return std::nullopt;
-}
-
-std::span<const SceneId> all_scenes() { return kAllScenes; }
-std::span<const SceneId> content_scenes() { return kContentScenes; }
 
 Scene::Scene(std::string name, std::shared_ptr<const Shape> shape, Rigid placement, Camera camera, Light light, Vec3 pivot,
              double rotation_radians)
@@ -740,87 +651,229 @@ std::string Scene::describe() const {
   return s.str();
 }
 
+// ---------------------------------------------------------------------------------------------
+// The built-in scenes, as data (as pbrt-v4 describes a scene): each is one row of kBuiltinScenes,
+// with the function that builds it; adding a built-in scene adds its SceneId enumerator and its
+// row, and every list, name lookup and trade predicate reads the row.
+
+namespace {
+enum class SceneGroup { analytic, content };  // all_scenes(), content_scenes()
+
+struct BuiltinScene {
+  SceneId id;
+  std::string_view name;
+  SceneGroup group;
+  NormalDetail detail;                                       // the normal detail the trade feeds the filters
+  Scene (*make)(std::string name, double rotation_radians);  // the scene, named, turned about its pivot
+};
+
+Scene make_sphere_scene(std::string name, double rotation_radians) {
+  Camera camera{{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 34.0};
+  Light light{Light::Kind::directional, normalize(Vec3{-0.45, 0.55, 1.0}), 1.0};
+  return Scene(std::move(name), std::make_shared<Sphere>(1.0), Rigid{}, camera, light, {0.0, 0.0, -1.0}, rotation_radians);
+}
+
+Scene make_torus_scene(std::string name, double rotation_radians) {
+  // Tilt the torus axis (object y) 55 degrees towards the camera, then roll it by 20
+  // degrees about the view axis.
+  const Rigid placement = compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(20.0)), Rigid::rotation({1.0, 0.0, 0.0}, radians(55.0)));
+  Camera camera{{0.0, 0.0, 4.2}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 36.0};
+  const Vec3 light_position{-2.5, 3.0, 4.0};
+  // I = |position|^2 gives an irradiance of about 1 near the torus.
+  Light light{Light::Kind::point, light_position, dot(light_position, light_position)};
+  return Scene(std::move(name), std::make_shared<Torus>(1.0, 0.35), placement, camera, light, {0.0, 0.0, 0.0}, rotation_radians);
+}
+
+Scene make_tubes_scene(std::string name, double rotation_radians) {
+  // Axes (object x) turned 35 degrees into the depth, then tilted 8 degrees.
+  const Rigid placement = compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(8.0)), Rigid::rotation({0.0, 1.0, 0.0}, radians(35.0)));
+  Camera camera{{0.0, 0.1, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 36.0};
+  // A cylinder only shows a highlight line where the half vector is perpendicular to
+  // its axis a, i.e. where i.a = -o.a. The light direction is the view direction at
+  // the centre, o, mirrored across the plane normal to a (i.a = -o.a) and turned by
+  // 50 degrees about a, so the line runs along the upper side of every tube.
+  const Vec3 axis = placement.apply_vector({1.0, 0.0, 0.0});
+  const Vec3 view = normalize(camera.position - camera.look_at);
+  const Vec3 along = dot(view, axis) * axis;
+  const Rigid turn = Rigid::rotation(axis, radians(-50.0));
+  Light light{Light::Kind::directional, normalize(turn.apply_vector(view - along) - along), 1.0};
+  return Scene(std::move(name), std::make_shared<TubeRow>(9, 0.05, 0.22, 1.2), placement, camera, light, {0.0, 0.0, 0.0}, rotation_radians);
+}
+
+Scene make_bump_plane_scene(std::string name, double rotation_radians) {
+  // Object (x, y, z) -> world (x, -z, y): the bump plane's normal is world +y.
+  Rigid placement;
+  placement.col_x = {1.0, 0.0, 0.0};
+  placement.col_y = {0.0, 0.0, -1.0};
+  placement.col_z = {0.0, 1.0, 0.0};
+  // Waves: wavelength lambda along a direction, amplitude from the slope amplitude
+  // a |k| (the largest tilt each wave gives to the normal).
+  auto wave = [](double wavelength, Vec2 direction, double slope, double phase) {
+    const double k = 2.0 * kPi / wavelength;
+    const Vec2 unit = direction / ref::length(direction);
+    return SineWave{k * unit, slope / k, phase};
+  };
+  std::vector<SineWave> waves{wave(0.15, {1.0, 0.3}, 0.20, 0.3), wave(0.11, {-0.4, 1.0}, 0.15, 1.7), wave(0.083, {0.8, -0.7}, 0.12, 4.1),
+                              wave(0.23, {0.2, 1.0}, 0.18, 2.6)};
+  Camera camera{{0.0, 2.0, 3.4}, {0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, 40.0};
+  // Mirror of the view direction at the look-at point about the plane's normal,
+  // turned slightly, so the glint patch sits near the image centre.
+  const Vec3 view = normalize(camera.position - camera.look_at);
+  Light light{Light::Kind::directional, normalize(Vec3{0.12, view.y, -view.z}), 1.0};
+  return Scene(std::move(name), std::make_shared<BumpPlane>(2.5, std::move(waves)), placement, camera, light, {0.0, 0.0, 0.0},
+               rotation_radians);
+}
+
+// The sphere scene's sphere, camera, light and pivot, shaded with the content map. u spans 2 pi and
+// v spans pi on the unit sphere, so tiling (2k, k) keeps the texels square at the equator: a texel
+// is pi / (k 512) long.
+Scene make_normal_mapped_sphere(std::string name, Vec2 tiling, double rotation_radians) {
+  const Scene base = make_sphere_scene("sphere", rotation_radians);
+  Scene scene(std::move(name), std::make_shared<Sphere>(1.0), Rigid{}, base.camera(), base.light(), {0.0, 0.0, -1.0}, rotation_radians);
+  return scene.with_normal_map(content_normal_map(), tiling, content_height_field().describe());
+}
+
+Scene make_nmap_sphere_scene(std::string name, double rotation_radians) {
+  return make_normal_mapped_sphere(std::move(name), {2.0, 1.0}, rotation_radians);
+}
+
+Scene make_nmap_sphere_fine_scene(std::string name, double rotation_radians) {
+  return make_normal_mapped_sphere(std::move(name), {16.0, 8.0}, rotation_radians);
+}
+
+Scene make_torus_knot_scene(std::string name, double rotation_radians) {
+  // The knot lies in the object xy plane (core circle radius 1, extent ~1.65); tilted
+  // 25 degrees about x so that the strands overlap in depth, rolled 10 degrees.
+  // Shifted by (-0.08, 0.19) to centre its image; the pivot is the shifted centre.
+  const Vec3 centre{-0.08, 0.19, 0.0};
+  const Rigid placement = compose(
+      Rigid::translate(centre), compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(10.0)), Rigid::rotation({1.0, 0.0, 0.0}, radians(-25.0))));
+  Camera camera{{0.0, 0.0, 5.5}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 38.0};
+  Light light{Light::Kind::directional, normalize(Vec3{-0.4, 0.6, 1.0}), 1.0};
+  return Scene(std::move(name), content_torus_knot_mesh(), placement, camera, light, centre, rotation_radians);
+}
+
+constexpr std::array kBuiltinScenes{
+    BuiltinScene{SceneId::sphere, "sphere", SceneGroup::analytic, NormalDetail::none, make_sphere_scene},
+    BuiltinScene{SceneId::torus, "torus", SceneGroup::analytic, NormalDetail::none, make_torus_scene},
+    BuiltinScene{SceneId::tubes, "tubes", SceneGroup::analytic, NormalDetail::none, make_tubes_scene},
+    BuiltinScene{SceneId::bump_plane, "bump_plane", SceneGroup::analytic, NormalDetail::procedural, make_bump_plane_scene},
+    BuiltinScene{SceneId::nmap_sphere, "nmap-sphere", SceneGroup::content, NormalDetail::normal_map, make_nmap_sphere_scene},
+    BuiltinScene{SceneId::nmap_sphere_fine, "nmap-sphere-fine", SceneGroup::content, NormalDetail::normal_map, make_nmap_sphere_fine_scene},
+    BuiltinScene{SceneId::torus_knot, "torus-knot", SceneGroup::content, NormalDetail::none, make_torus_knot_scene},
+};
+
+constexpr bool rows_follow_the_enumerators() {
+  for (std::size_t i = 0; i < kBuiltinScenes.size(); ++i)
+    if (static_cast<std::size_t>(kBuiltinScenes[i].id) != i) return false;
+  return true;
+}
+static_assert(rows_follow_the_enumerators(), "kBuiltinScenes: one row per SceneId enumerator, in the enumerators' order");
+
+constexpr std::size_t scene_count(SceneGroup group) {
+  std::size_t count = 0;
+  for (const BuiltinScene& scene : kBuiltinScenes) count += scene.group == group ? 1 : 0;
+  return count;
+}
+
+template <SceneGroup group>
+constexpr std::array<SceneId, scene_count(group)> scenes_in() {
+  std::array<SceneId, scene_count(group)> ids{};
+  std::size_t next = 0;
+  for (const BuiltinScene& scene : kBuiltinScenes)
+    if (scene.group == group) ids[next++] = scene.id;
+  return ids;
+}
+
+constexpr auto kAnalyticScenes = scenes_in<SceneGroup::analytic>();
+constexpr auto kContentScenes = scenes_in<SceneGroup::content>();
+
+const BuiltinScene* builtin_scene(SceneId id) {
+  const auto index = static_cast<std::size_t>(id);
+  return index < kBuiltinScenes.size() ? &kBuiltinScenes[index] : nullptr;
+}
+}  // namespace
+
 Scene make_scene(SceneId id, double rotation_radians) {
   if (const RegisteredScene* registered = registered_scene(id)) return registered->make(rotation_radians);
-  switch (id) {
-    case SceneId::sphere: {
-      Camera camera{{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 34.0};
-      Light light{Light::Kind::directional, normalize(Vec3{-0.45, 0.55, 1.0}), 1.0};
-      return Scene("sphere", std::make_shared<Sphere>(1.0), Rigid{}, camera, light, {0.0, 0.0, -1.0}, rotation_radians);
-    }
-    case SceneId::torus: {
-      // Tilt the torus axis (object y) 55 degrees towards the camera, then roll it by 20
-      // degrees about the view axis.
-      const Rigid placement = compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(20.0)), Rigid::rotation({1.0, 0.0, 0.0}, radians(55.0)));
-      Camera camera{{0.0, 0.0, 4.2}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 36.0};
-      const Vec3 light_position{-2.5, 3.0, 4.0};
-      // I = |position|^2 gives an irradiance of about 1 near the torus.
-      Light light{Light::Kind::point, light_position, dot(light_position, light_position)};
-      return Scene("torus", std::make_shared<Torus>(1.0, 0.35), placement, camera, light, {0.0, 0.0, 0.0}, rotation_radians);
-    }
-    case SceneId::tubes: {
-      // Axes (object x) turned 35 degrees into the depth, then tilted 8 degrees.
-      const Rigid placement = compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(8.0)), Rigid::rotation({0.0, 1.0, 0.0}, radians(35.0)));
-      Camera camera{{0.0, 0.1, 4.0}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 36.0};
-      // A cylinder only shows a highlight line where the half vector is perpendicular to
-      // its axis a, i.e. where i.a = -o.a. The light direction is the view direction at
-      // the centre, o, mirrored across the plane normal to a (i.a = -o.a) and turned by
-      // 50 degrees about a, so the line runs along the upper side of every tube.
-      const Vec3 axis = placement.apply_vector({1.0, 0.0, 0.0});
-      const Vec3 view = normalize(camera.position - camera.look_at);
-      const Vec3 along = dot(view, axis) * axis;
-      const Rigid turn = Rigid::rotation(axis, radians(-50.0));
-      Light light{Light::Kind::directional, normalize(turn.apply_vector(view - along) - along), 1.0};
-      return Scene("tubes", std::make_shared<TubeRow>(9, 0.05, 0.22, 1.2), placement, camera, light, {0.0, 0.0, 0.0}, rotation_radians);
-    }
-    case SceneId::bump_plane: {
-      // Object (x, y, z) -> world (x, -z, y): the bump plane's normal is world +y.
-      Rigid placement;
-      placement.col_x = {1.0, 0.0, 0.0};
-      placement.col_y = {0.0, 0.0, -1.0};
-      placement.col_z = {0.0, 1.0, 0.0};
-      // Waves: wavelength lambda along a direction, amplitude from the slope amplitude
-      // a |k| (the largest tilt each wave gives to the normal).
-      auto wave = [](double wavelength, Vec2 direction, double slope, double phase) {
-        const double k = 2.0 * kPi / wavelength;
-        const Vec2 unit = direction / ref::length(direction);
-        return SineWave{k * unit, slope / k, phase};
-      };
-      std::vector<SineWave> waves{wave(0.15, {1.0, 0.3}, 0.20, 0.3), wave(0.11, {-0.4, 1.0}, 0.15, 1.7),
-                                  wave(0.083, {0.8, -0.7}, 0.12, 4.1), wave(0.23, {0.2, 1.0}, 0.18, 2.6)};
-      Camera camera{{0.0, 2.0, 3.4}, {0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, 40.0};
-      // Mirror of the view direction at the look-at point about the plane's normal,
-      // turned slightly, so the glint patch sits near the image centre.
-      const Vec3 view = normalize(camera.position - camera.look_at);
-      Light light{Light::Kind::directional, normalize(Vec3{0.12, view.y, -view.z}), 1.0};
-      return Scene("bump_plane", std::make_shared<BumpPlane>(2.5, std::move(waves)), placement, camera, light, {0.0, 0.0, 0.0},
-                   rotation_radians);
-    }
-    case SceneId::nmap_sphere:
-    case SceneId::nmap_sphere_fine: {
-      // The sphere scene's sphere, camera, light and pivot, shaded with the content map.
-      // u spans 2 pi and v spans pi on the unit sphere, so tiling (2k, k) keeps the
-      // texels square at the equator: a texel is pi / (k 512) long.
-      const Vec2 tiling = id == SceneId::nmap_sphere ? Vec2{2.0, 1.0} : Vec2{16.0, 8.0};
-      const Scene base = make_scene(SceneId::sphere, rotation_radians);
-      Scene scene(std::string(scene_name(id)), std::make_shared<Sphere>(1.0), Rigid{}, base.camera(), base.light(), {0.0, 0.0, -1.0},
-                  rotation_radians);
-      return scene.with_normal_map(content_normal_map(), tiling, content_height_field().describe());
-    }
-    case SceneId::torus_knot: {
-      // The knot lies in the object xy plane (core circle radius 1, extent ~1.65); tilted
-      // 25 degrees about x so that the strands overlap in depth, rolled 10 degrees.
-      // Shifted by (-0.08, 0.19) to centre its image; the pivot is the shifted centre.
-      const Vec3 centre{-0.08, 0.19, 0.0};
-      const Rigid placement = compose(Rigid::translate(centre), compose(Rigid::rotation({0.0, 0.0, 1.0}, radians(10.0)),
-                                                                        Rigid::rotation({1.0, 0.0, 0.0}, radians(-25.0))));
-      Camera camera{{0.0, 0.0, 5.5}, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 38.0};
-      Light light{Light::Kind::directional, normalize(Vec3{-0.4, 0.6, 1.0}), 1.0};
-      return Scene("torus-knot", content_torus_knot_mesh(), placement, camera, light, centre, rotation_radians);
-    }
-  }
+  if (const BuiltinScene* builtin = builtin_scene(id)) return builtin->make(std::string(builtin->name), rotation_radians);
   throw std::invalid_argument("unknown scene id");
 }
+
+namespace {
+// Registered scenes: a deque keeps every entry (and the name a string_view refers to) in place.
+struct SceneRegistry {
+  std::mutex mutex;
+  std::deque<std::pair<std::string, RegisteredScene>> entries;  // (key, scene)
+};
+SceneRegistry& scene_registry() {
+  static SceneRegistry registry;
+  return registry;
+}
+constexpr int kFirstRegisteredScene = 64;
+bool valid_scene_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+}  // namespace
+
+SceneId register_scene(RegisteredScene scene, const std::string& key) {
+  if (!valid_scene_name(scene.name)) throw std::invalid_argument("scene name '" + scene.name + "': use letters, digits, '_', '-', '.'");
+  for (const BuiltinScene& builtin : kBuiltinScenes)
+    if (builtin.name == scene.name) throw std::invalid_argument("scene name '" + scene.name + "' is a standard scene's");
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  for (std::size_t i = 0; i < registry.entries.size(); ++i) {
+    if (registry.entries[i].second.name != scene.name) continue;
+    if (registry.entries[i].first == key) return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(i));
+    throw std::invalid_argument("scene name '" + scene.name + "' is already registered for " + registry.entries[i].first);
+  }
+  registry.entries.emplace_back(key, std::move(scene));
+  return static_cast<SceneId>(kFirstRegisteredScene + static_cast<int>(registry.entries.size()) - 1);
+}
+
+const RegisteredScene* registered_scene(SceneId id) {
+  const int index = static_cast<int>(id) - kFirstRegisteredScene;
+  if (index < 0) return nullptr;
+  SceneRegistry& registry = scene_registry();
+  std::lock_guard lock(registry.mutex);
+  if (index >= static_cast<int>(registry.entries.size())) return nullptr;
+  return &registry.entries[static_cast<std::size_t>(index)].second;
+}
+
+double roughness_alpha_scale(double g) {
+  const double clamped = ref::min(ref::max(g, 1.0 / 255.0), 1.0);
+  return clamped * clamped;
+}
+
+std::string_view scene_name(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id)) return registered->name;
+  if (const BuiltinScene* builtin = builtin_scene(id)) return builtin->name;
+  return "?";
+}
+
+std::optional<SceneId> scene_from_name(std::string_view name) {
+  for (const BuiltinScene& builtin : kBuiltinScenes)
+    if (builtin.name == name) return builtin.id;
+  for (int i = kFirstRegisteredScene;; ++i) {
+    const RegisteredScene* registered = registered_scene(static_cast<SceneId>(i));
+    if (!registered) break;
+    if (registered->name == name) return static_cast<SceneId>(i);
+  }
+  return std::nullopt;
+}
+
+NormalDetail scene_normal_detail(SceneId id) {
+  if (const RegisteredScene* registered = registered_scene(id))
+    return registered->has_normal_map ? NormalDetail::normal_map : NormalDetail::none;
+  if (const BuiltinScene* builtin = builtin_scene(id)) return builtin->detail;
+  return NormalDetail::none;
+}
+
+std::span<const SceneId> all_scenes() { return kAnalyticScenes; }
+std::span<const SceneId> content_scenes() { return kContentScenes; }
 
 // ---------------------------------------------------------------------------------------------
 // Shared content (built once per process; function-local statics are initialised thread-safely)

@@ -221,12 +221,9 @@ std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilt
 
 std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }
 
-bool scene_has_normal_map(SceneId id) {
-  if (const RegisteredScene* registered = registered_scene(id)) return registered->has_normal_map;
-  return id == SceneId::nmap_sphere || id == SceneId::nmap_sphere_fine;
-}
+bool scene_has_normal_map(SceneId id) { return scene_normal_detail(id) == NormalDetail::normal_map; }
 
-bool scene_has_procedural_normals(SceneId id) { return id == SceneId::bump_plane; }
+bool scene_has_procedural_normals(SceneId id) { return scene_normal_detail(id) == NormalDetail::procedural; }
 
 bool scene_has_normal_detail(SceneId id) { return scene_has_procedural_normals(id) || scene_has_normal_map(id); }
 

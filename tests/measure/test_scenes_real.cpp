@@ -3,7 +3,7 @@
 // frames of every hit, the normal-mapped sphere's ground-truth normals (level-0 bilinear through
 // the TBN) and its 1-spp texture sampling (coarse quad uv derivatives, implicit LOD, helper
 // partners extrapolated on the tangent plane), and the feature sizes and LODs documented in
-// scene.hpp.
+// scene.hpp; the built-in scenes' table (lists, names, normal detail).
 //
 // Runtime: G-buffers at the base 256 x 256 view of the unit sphere cost ~4 ray casts per pixel,
 // the ground-truth smoke renders are 16 x 16 x 16 spp; the binary runs in a few seconds.
@@ -725,3 +725,24 @@ TEST(Scenes, GroundTruthSmoke) {
 }
 
 // The ground truth's cost per content scene: bench/bench_reference.cpp (BM_GroundTruthContent).
+
+// The built-in scenes are rows of one table: every enumerator is in exactly one group, its name
+// finds it again, and its normal detail is what the trade feeds it.
+TEST(BuiltinScenes, EveryRowIsListedNamedAndClassifiedOnce) {
+  std::vector<SceneId> listed(all_scenes().begin(), all_scenes().end());
+  listed.insert(listed.end(), content_scenes().begin(), content_scenes().end());
+  ASSERT_EQ(listed.size(), 7u);
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(listed[i]), i) << "the groups list the rows in order";
+    const std::string_view name = scene_name(listed[i]);
+    EXPECT_EQ(scene_from_name(name), listed[i]) << name;
+    EXPECT_EQ(make_scene(listed[i]).name(), name);
+  }
+  EXPECT_EQ(scene_name(SceneId::nmap_sphere_fine), "nmap-sphere-fine");
+  EXPECT_EQ(scene_normal_detail(SceneId::sphere), NormalDetail::none);
+  EXPECT_EQ(scene_normal_detail(SceneId::torus_knot), NormalDetail::none);
+  EXPECT_EQ(scene_normal_detail(SceneId::bump_plane), NormalDetail::procedural);
+  EXPECT_EQ(scene_normal_detail(SceneId::nmap_sphere), NormalDetail::normal_map);
+  EXPECT_EQ(scene_normal_detail(SceneId::nmap_sphere_fine), NormalDetail::normal_map);
+  EXPECT_FALSE(scene_from_name("no-such-scene").has_value());
+}

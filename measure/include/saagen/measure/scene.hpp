@@ -233,13 +233,20 @@ struct Light {
 };
 
 // The analytic scenes (all_scenes) and the "real content" scenes (content_scenes: normal maps
-// and a triangle mesh, see the top of this file).
+// and a triangle mesh, see the top of this file). Each built-in scene is an enumerator here and
+// one row of scene.cpp's kBuiltinScenes (name, group, normal detail, how it is built).
 enum class SceneId { sphere, torus, tubes, bump_plane, nmap_sphere, nmap_sphere_fine, torus_knot };
 
 std::string_view scene_name(SceneId id);
 std::optional<SceneId> scene_from_name(std::string_view name);  // any SceneId
 std::span<const SceneId> all_scenes();                          // sphere, torus, tubes, bump_plane
 std::span<const SceneId> content_scenes();                      // nmap-sphere, nmap-sphere-fine, torus-knot
+
+// The normal detail of a scene's surfaces, which decides the feeds and prefilters the trade measures
+// on it: none (the geometric normal is the shading normal), a procedural height field's normals
+// (bump_plane) or a normal map (the nmap spheres, an asset with a normal texture).
+enum class NormalDetail { none, procedural, normal_map };
+NormalDetail scene_normal_detail(SceneId id);
 
 struct Anisotropy;
 
