@@ -294,8 +294,19 @@ std::vector<DeferredPassKind> deferred_pass_kinds(const Catalogue& catalogue) {
   return kinds;
 }
 
+const std::string& DeferredPass::source(std::string_view target) const {
+  for (const DeferredPassSource& pass_source : sources) {
+    if (pass_source.target == target) return pass_source.text;
+  }
+  throw Error(fmt::format("{}: no deferred pass written in target '{}'", stem, target));
+}
+
 std::vector<std::pair<std::string, std::string>> DeferredPass::files() const {
-  return {{stem + ".comp", glsl}, {stem + ".hlsl", hlsl}, {stem + ".spv", spirv_file_bytes(spirv)}, {stem + ".h", header}};
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const DeferredPassSource& pass_source : sources) files.emplace_back(pass_source.file_name, pass_source.text);
+  files.emplace_back(stem + ".spv", spirv_file_bytes(spirv));
+  files.emplace_back(stem + ".h", header);
+  return files;
 }
 
 std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const DeferredPassOptions& options) {
@@ -337,22 +348,21 @@ std::vector<DeferredPass> emit_deferred_passes(const Catalogue& catalogue, const
       std::vector<std::string> functions = {kind.wrapper};
       for (const std::string& name : domain_conversion_functions()) functions.push_back(name);
       const EmittedFile file = emit_bundle(catalogue, emit, {"pass_" + underscored(kind.id), functions, {kind.variant}, {}});
-      const bool glsl = target->language == SourceLanguage::glsl;
-      std::string source =
-          pass_source(catalogue, *target, file, kind, options, header_for(glsl ? OutputKind::pass_glsl : OutputKind::pass_hlsl));
-      const std::string name = pass.stem + (glsl ? ".comp" : ".hlsl");
+      const OutputKind source_kind = pass_source_kind(target->name);
+      if (source_kind == OutputKind::snippet)
+        throw Error(fmt::format("target {}: a deferred pass needs its marker kind (pass-{})", target->name, target->name));
+      std::string source = pass_source(catalogue, *target, file, kind, options, header_for(source_kind));
+      const std::string name = pass.stem + target->deferred_pass_extension;
       const CompileResult compiled = compile_pass(target->language, name, source);
       if (!compiled.ok) throw Error(fmt::format("{}: the pass does not compile: {}", name, compiled.log));
-      if (glsl) {
-        pass.glsl = std::move(source);
+      if (target->spirv_library_source) {
         pass.spirv =
             add_module_processed(compiled.spirv, marker_line(pass_marker(OutputKind::pass_spirv, kind, options, option_values)) + "\n");
         if (const std::string log = validate_spirv(pass.spirv, ClientApi::vulkan); !log.empty()) {
           throw Error(fmt::format("{}.spv: invalid after adding the marker: {}", pass.stem, log));
         }
-      } else {
-        pass.hlsl = std::move(source);
       }
+      pass.sources.push_back({target->name, name, std::move(source)});
     }
     pass.header = pass_header(pass, options, description, pass_marker(OutputKind::pass_spirv, kind, options, option_values));
     passes.push_back(std::move(pass));

@@ -190,6 +190,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   if (json.contains("deferred_pass")) {
     target.deferred_pass =
         parse_sections(json.at("deferred_pass"), "deferred_pass", {"prologue", "resources", "tangent_resources", "main"}, {}, source);
+    target.deferred_pass_extension = require_string(json, "deferred_pass_extension", source);
   }
   const Json& validation = require(json, "validation", source);
   target.core_validation_stage = parse_core_stage(validation, source);

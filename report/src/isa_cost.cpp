@@ -121,13 +121,10 @@ IsaGroup forward_group(const std::string& target, std::uint32_t lights) {
 
 // The deferred passes of one target: the copy baseline, then every pass.
 IsaGroup deferred_group(const std::string& target, const std::vector<DeferredPass>& passes) {
-  const bool hlsl = builtin_target(target).language == SourceLanguage::hlsl;
   IsaGroup group{isa_deferred_shader, target, 1, {}, {}};
-  group.baseline = {isa_baseline, compute_spirv(target, "deferred_copy", hlsl ? deferred_copy_hlsl : deferred_copy_glsl),
-                    pass_layout(false)};
+  group.baseline = {isa_baseline, compute_spirv(target, "deferred_copy", deferred_copy_source(target)), pass_layout(false)};
   for (const DeferredPass& pass : passes) {
-    group.shaders.push_back(
-        {pass.kind.id, compute_spirv(target, pass.stem, hlsl ? pass.hlsl : pass.glsl), pass_layout(pass.kind.tangents)});
+    group.shaders.push_back({pass.kind.id, compute_spirv(target, pass.stem, pass.source(target)), pass_layout(pass.kind.tangents)});
   }
   return group;
 }

@@ -356,4 +356,12 @@ void main(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
 }
 )";
 
+const char* deferred_copy_source(std::string_view target) {
+  const std::pair<std::string_view, const char*> sources[] = {{"glsl", deferred_copy_glsl}, {"hlsl", deferred_copy_hlsl}};
+  for (const auto& [name, source] : sources) {
+    if (name == target) return source;
+  }
+  throw Error(fmt::format("the deferred pass's baseline is not written in target '{}'", target));
+}
+
 }  // namespace saagen::report

@@ -233,7 +233,7 @@ std::vector<std::uint32_t> spirv_of(const saagen::DeferredPass& pass, const std:
   saagen::CompileRequest request;
   request.language = saagen::SourceLanguage::hlsl;
   request.stage = saagen::ShaderStage::compute;
-  request.sources = {{pass.stem + ".hlsl", pass.hlsl}};
+  request.sources = {{pass.stem + ".hlsl", pass.source("hlsl")}};
   const auto result = saagen::compile_to_spirv(request);
   if (!result.ok) throw std::runtime_error(pass.stem + ".hlsl does not compile:\n" + result.log);
   return result.spirv;
@@ -285,8 +285,8 @@ TEST(DeferredPass, EveryDeferredWrapperHasAPassWithFourFiles) {
       EXPECT_TRUE(validation.ok()) << validation.summary();
     }
     // The tangent G-buffer is bound exactly by the passes whose wrapper takes a frame.
-    EXPECT_EQ(pass.glsl.find("binding = 3") != std::string::npos, pass.kind.tangents) << pass.stem;
-    EXPECT_EQ(pass.hlsl.find("vk::binding(3, 0)") != std::string::npos, pass.kind.tangents) << pass.stem;
+    EXPECT_EQ(pass.source("glsl").find("binding = 3") != std::string::npos, pass.kind.tangents) << pass.stem;
+    EXPECT_EQ(pass.source("hlsl").find("vk::binding(3, 0)") != std::string::npos, pass.kind.tangents) << pass.stem;
     EXPECT_EQ(pass.kind.tangents, pass.kind.id == "deferred-previous" || pass.kind.id == "deferred-max");
     // The header describes the interface and embeds the words.
     EXPECT_NE(pass.header.find("typedef struct saa_pass_constants"), std::string::npos);
@@ -306,11 +306,11 @@ TEST(DeferredPass, OptionsAreDeterministicAndChecked) {
   const auto a = emit_pass("deferred-sum"), b = emit_pass("deferred-sum");
   EXPECT_EQ(a.files(), b.files());
   const auto coarse = emit_pass("deferred-sum", saagen::PlainDerivative::coarse);
-  EXPECT_NE(coarse.glsl.find("#define dFdx(v) dFdxCoarse(v)"), std::string::npos);
-  EXPECT_NE(a.glsl.find("#define dFdx(v) dFdxFine(v)"), std::string::npos);
-  EXPECT_NE(a.hlsl.find("#define ddx(v) ddx_fine(v)"), std::string::npos);
+  EXPECT_NE(coarse.source("glsl").find("#define dFdx(v) dFdxCoarse(v)"), std::string::npos);
+  EXPECT_NE(a.source("glsl").find("#define dFdx(v) dFdxFine(v)"), std::string::npos);
+  EXPECT_NE(a.source("hlsl").find("#define ddx(v) ddx_fine(v)"), std::string::npos);
   const auto half = emit_pass("deferred-sum", saagen::PlainDerivative::fine, "r16f");
-  EXPECT_NE(half.glsl.find("binding = 2, r16f"), std::string::npos);
+  EXPECT_NE(half.source("glsl").find("binding = 2, r16f"), std::string::npos);
   EXPECT_NE(half.header.find("VK_FORMAT_R16_SFLOAT"), std::string::npos);
   saagen::DeferredPassOptions options;
   options.passes = {"deferred-nothing"};

@@ -46,6 +46,21 @@ constexpr OutputKind output_kind(std::string_view target) {
   return OutputKind::snippet;
 }
 
+// A deferred pass source's kind is named after the target table it is written in: "pass-glsl" is
+// the pass of the target glsl. The target a pass-source kind names ("" for another kind), and the
+// kind of a target's pass source (snippet when none is spelled for it).
+constexpr std::string_view pass_source_target(OutputKind kind) {
+  constexpr std::string_view pass = "pass-";
+  if (kind != OutputKind::pass_glsl && kind != OutputKind::pass_hlsl) return "";
+  return marker_target(kind).substr(pass.size());
+}
+constexpr OutputKind pass_source_kind(std::string_view target) {
+  for (OutputKind kind : {OutputKind::pass_glsl, OutputKind::pass_hlsl}) {
+    if (pass_source_target(kind) == target) return kind;
+  }
+  return OutputKind::snippet;
+}
+
 // What an emission is for, as a typed value: a snippet of the target table `table`, or a product
 // (its pseudo-target, `table` empty). A marker's `target=` and an emission's `--target` (and
 // EmitOptions::target) are read into one once, where the text enters: from text it converts

@@ -80,15 +80,23 @@ struct DeferredPassOptions {
   std::string output_format = "r32f";  // storage image format of the output: r32f or r16f
 };
 
+// The complete compute shader of a pass in one target's language (<stem><deferred_pass_extension>).
+struct DeferredPassSource {
+  std::string target;     // the target table it is written in: glsl (GLSL 4.50, Vulkan), hlsl (HLSL, entry main)
+  std::string file_name;  // saa_pass_deferred_sum.comp
+  std::string text;
+};
+
 struct DeferredPass {
   DeferredPassKind kind;
-  std::string stem;                  // saa_pass_deferred_sum
-  std::string glsl;                  // complete compute shader (GLSL 4.50, Vulkan)
-  std::string hlsl;                  // complete compute shader (HLSL, entry main)
-  std::vector<std::uint32_t> spirv;  // compiled from `glsl`, with the marker as OpModuleProcessed
-  std::string header;                // C/C++: bindings, push constants, dispatch, the SPIR-V words
+  std::string stem;                         // saa_pass_deferred_sum
+  std::vector<DeferredPassSource> sources;  // one per target with a deferred pass skeleton, in the targets' order
+  std::vector<std::uint32_t> spirv;         // compiled from the spirv_library_source target's source, with the marker as OpModuleProcessed
+  std::string header;                       // C/C++: bindings, push constants, dispatch, the SPIR-V words
 
-  // (file name, bytes) of the four outputs: <stem>.comp, <stem>.hlsl, <stem>.spv, <stem>.h.
+  // The pass written in target `target`; throws saagen::Error when it has none.
+  const std::string& source(std::string_view target) const;
+  // (file name, bytes) of the outputs: the sources (<stem>.comp, <stem>.hlsl), <stem>.spv, <stem>.h.
   std::vector<std::pair<std::string, std::string>> files() const;
 };
 

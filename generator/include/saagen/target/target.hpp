@@ -78,6 +78,9 @@ struct TargetSyntax {
   // Optional (key "deferred_pass"): the deferred pass skeleton's sections (prologue, resources,
   // tangent_resources, main); empty when the target has no deferred pass.
   std::map<std::string, std::string, std::less<>> deferred_pass;
+  // With deferred_pass (key "deferred_pass_extension", required there): the pass file's extension
+  // (".comp" for GLSL, as glslang names a compute shader by it).
+  std::string deferred_pass_extension;
 
   // Files of this target are #included by other shaders (include guards, CORE_ONLY); false for a
   // self-contained module language (key "module": WGSL).

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace saagen::report {
@@ -82,5 +83,7 @@ std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const s
 // compiles it.
 extern const char* const deferred_copy_glsl;
 extern const char* const deferred_copy_hlsl;
+// The baseline written in target `target` (glsl, hlsl); throws saagen::Error for a target without one.
+const char* deferred_copy_source(std::string_view target);
 
 }  // namespace saagen::report
