@@ -238,6 +238,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
     return value;
   };
+  if (document.contains("device") && document["device"].is_string()) table.device = document["device"].get<std::string>();
   const nlohmann::json& rows = document["rows"];
   for (std::size_t index = 0; index < rows.size(); ++index) {
     const nlohmann::json& row = rows[index];

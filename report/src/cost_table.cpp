@@ -2,12 +2,10 @@
 // --json file read, ACO's ratios added.
 #include "saagen/report/cost_table.hpp"
 
-#include "saagen/error.hpp"
-#include "saagen/io/input.hpp"
+#include "saagen/scene/cost_tables.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <map>
@@ -51,35 +49,20 @@ void add_isa_costs(CostTable& table, const std::string& family, const std::vecto
   }
 }
 
+// bench_shading's rows are read by the planner's parser (saagen/scene/cost_tables.hpp), the one
+// reader of the schema; the report keeps each variant's means over the targets.
 CostTable load_cost_table(const fs::path& path) {
-  const std::string text = read_input_file(path, table_size_limit, fmt::format("the file `bench_shading --json {}` writes", path.string()));
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw Error(fmt::format("{}: not valid JSON (byte {}); pass the file `bench_shading --json` writes", path.string(), error.byte));
-  } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
-    throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", path.string()));
-  }
-  if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
-    throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", path.string()));
-  }
+  const MeasuredTradeTable measured = load_trade_table(path);
   CostTable table;
   table.source = path.string();
-  table.device = document.value("device", std::string("unknown device"));
+  table.device = measured.device;
   std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_variant;
   std::vector<std::string> order;
-  for (const auto& row : document["rows"]) {
-    if (!row.is_object() || !row.contains("variant") || !row["variant"].is_string()) {
-      throw Error(fmt::format("{}: every row needs a string \"variant\"", path.string()));
-    }
-    const std::string variant = row["variant"].get<std::string>();
-    if (!by_variant.count(variant)) order.push_back(variant);
-    auto& [ratios, deltas] = by_variant[variant];
-    if (row.contains("ratio_median") && row["ratio_median"].is_number()) ratios.push_back(row["ratio_median"].get<double>());
-    if (row.contains("delta_spirv_instructions") && row["delta_spirv_instructions"].is_number()) {
-      deltas.push_back(row["delta_spirv_instructions"].get<double>());
-    }
+  for (const MeasuredTradeRow& row : measured.rows) {
+    if (!by_variant.count(row.variant)) order.push_back(row.variant);
+    auto& [ratios, deltas] = by_variant[row.variant];
+    if (row.cost_ratio) ratios.push_back(*row.cost_ratio);
+    if (row.delta_instructions) deltas.push_back(*row.delta_instructions);
   }
   for (const std::string& variant : order) {
     const auto& [ratios, deltas] = by_variant[variant];

@@ -58,6 +58,7 @@ decision::Comparison comparison_against(const ContentRow& row, const ContentRow&
 
 struct MeasuredTradeTable {
   std::string source_name;
+  std::string device = "unknown device";  // "device": what bench_shading timed on
   std::vector<MeasuredTradeRow> rows;
   std::vector<ContentRow> content_rows;
   // Under TAA (`saagen bench --taa`, "taa_by_content"): the configurations without "+taa", "none"
