@@ -5,13 +5,20 @@
 string(REPLACE "|" ";" templates "${TEMPLATES}")
 list(SORT templates)
 set(rows "")
+set(filters "")
 set(count 0)
 
+# A row of kTemplateVariants and, for a screen-space filter (forward-*, deferred-*: is_saa_filter
+# in the header, which checks that both agree), an entry X(identifier, "id") of SAAGEN_SAA_FILTERS.
 function(append_row id path file)
   if(path STREQUAL "")
     message(FATAL_ERROR "${file}: @variant ${id} has no path: key")
   endif()
   set(rows "${rows}    {\"${id}\", \"${path}\", \"${file}\"},\n" PARENT_SCOPE)
+  if(id MATCHES "^(forward|deferred)-")
+    string(REPLACE "-" "_" identifier ${id})
+    set(filters "${filters}  X(${identifier}, \"${id}\") \\\n" PARENT_SCOPE)
+  endif()
 endfunction()
 
 foreach(template IN LISTS templates)
@@ -43,5 +50,6 @@ endforeach()
 
 set(SAAGEN_TEMPLATE_VARIANT_COUNT ${count})
 set(SAAGEN_TEMPLATE_VARIANT_ROWS "${rows}")
+set(SAAGEN_SAA_FILTER_ENTRIES "${filters}")
 # configure_file writes only when the text changes: a template edit that adds no variant rebuilds nothing.
 configure_file(${INPUT} ${OUTPUT} @ONLY)

@@ -536,10 +536,12 @@ Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields&
 }
 
 // ---------------------------------------------------------------------------------------------
-// The variants: one row each. A template's SAA filter is registered here once, with the CPU
-// reference of its fragment wrapper (saa.hpp) in the form shade_pixel applies it; which filters
-// there are, and their order, come from the templates (saagen/template_variants.hpp, generated
-// from templates/*.saa), and the static_asserts below refuse a template filter without a row.
+// The variants: one row each. A template's SAA filter is registered here by naming convention: its
+// row calls the CPU reference of its fragment wrapper, ref::<identifier>_fragment_quad (saa.hpp),
+// in the form its signature has; which filters there are, and their order, come from the
+// templates (saagen/template_variants.hpp, generated from templates/*.saa). A filter whose
+// reference has none of the forms gets a row of its own in custom_filter(), and the
+// static_asserts below refuse a template filter without a reference.
 
 // What a filter's reference reads at a pixel.
 struct FilterInputs {
@@ -560,6 +562,67 @@ using AxisFilter = Vec2 (*)(const FilterInputs&);
 using IsotropicFilter = double (*)(const FilterInputs&, double unfiltered);
 using Filter = std::variant<std::monostate, MatrixFilter, AxisFilter, IsotropicFilter>;
 
+// A fragment wrapper's reference as a callable object, so that the forms below can ask which
+// arguments it takes (overload resolution, default arguments included).
+#define SAAGEN_FRAGMENT_REFERENCE(identifier) \
+  [](const auto&... args) -> decltype(ref::identifier##_fragment_quad(args...)) { return ref::identifier##_fragment_quad(args...); }
+
+// The forms of a fragment wrapper's reference, by the arguments it reads: the unfiltered
+// roughness per axis and the half vectors (forward-*); alpha^2 and the normal, tangent, bitangent
+// and fragment coordinates (a quad-average normal's frame: deferred-previous, deferred-max); or
+// alpha^2 and the normals alone (the other deferred-*).
+template <class Reference>
+constexpr bool reads_half_vectors = std::is_invocable_v<Reference, const ref::Params&, Vec2, const ref::Quad<Vec3>&, int, ref::Derivative>;
+template <class Reference>
+constexpr bool reads_normal_frame =
+    std::is_invocable_r_v<double, Reference, const ref::Params&, double, const ref::Quad<Vec3>&, const ref::Quad<Vec3>&,
+                          const ref::Quad<Vec3>&, const ref::Quad<Vec2>&, int, ref::Derivative>;
+template <class Reference>
+constexpr bool reads_normals =
+    std::is_invocable_r_v<double, Reference, const ref::Params&, double, const ref::Quad<Vec3>&, int, ref::Derivative>;
+
+// The row's filter of a fragment wrapper's reference, in the form its signature has; none when it
+// has none of them (then custom_filter() must have the row).
+template <class Reference>
+constexpr Filter filter_by_form(Reference) {
+  if constexpr (reads_half_vectors<Reference>) {
+    using Result = std::invoke_result_t<Reference, const ref::Params&, Vec2, const ref::Quad<Vec3>&, int, ref::Derivative>;
+    constexpr auto filter = [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); };
+    if constexpr (std::is_same_v<Result, Sym2>) {
+      return MatrixFilter{filter};
+    } else {
+      return AxisFilter{filter};
+    }
+  } else if constexpr (reads_normal_frame<Reference>) {
+    return IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
+      return Reference{}(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord, x.q.pixel, x.mode);
+    }};
+  } else if constexpr (reads_normals<Reference>) {
+    return IsotropicFilter{
+        [](const FilterInputs& x, double unfiltered) { return Reference{}(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode); }};
+  } else {
+    return Filter{};
+  }
+}
+
+// The filters whose row is not their wrapper's reference: deferred-aniso's tensor is turned into
+// the pixel's frame, on the base alpha^2, then the lobe's anisotropy is added along t (0 when isotropic).
+constexpr Filter custom_filter(Variant variant) {
+  if (variant == Variant::deferred_aniso) {
+    return MatrixFilter{[](const FilterInputs& x) {
+      return deferred_aniso_in_pixel_frame(x.params, x.f, x.in.normal, x.q.pixel, x.mode, x.a2) +
+             Sym2{x.alpha2.x - x.a2, 0.0, x.alpha2.y - x.a2};
+    }};
+  }
+  return Filter{};
+}
+
+template <class Reference>
+constexpr Filter filter_of(Variant variant, Reference reference) {
+  const Filter custom = custom_filter(variant);
+  return custom.index() != 0 ? custom : filter_by_form(reference);
+}
+
 struct VariantRow {
   Variant variant;
   std::string_view id;
@@ -570,53 +633,23 @@ struct VariantRow {
 };
 
 // In the order of the Variant enumerators (checked below), so that a row is found by its value.
-constexpr std::array<VariantRow, 18> kVariantRows{{
+#define SAAGEN_TEMPLATE_FILTER_ROW(identifier, id) \
+  {Variant::identifier, id, "", filter_of(Variant::identifier, SAAGEN_FRAGMENT_REFERENCE(identifier))},
+constexpr auto kVariantRows = std::to_array<VariantRow>({
     {Variant::none, "none", "", {}},
-    {Variant::forward_aniso_slope, "forward-aniso-slope", "", MatrixFilter{[](const FilterInputs& x) {
-       return ref::forward_aniso_slope_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
-     }}},
-    {Variant::forward_aniso_projected, "forward-aniso-projected", "", MatrixFilter{[](const FilterInputs& x) {
-       return ref::forward_aniso_projected_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
-     }}},
-    {Variant::forward_axis_slope, "forward-axis-slope", "", AxisFilter{[](const FilterInputs& x) {
-       return ref::forward_axis_slope_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
-     }}},
-    {Variant::forward_axis_projected, "forward-axis-projected", "", AxisFilter{[](const FilterInputs& x) {
-       return ref::forward_axis_projected_fragment_quad(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode);
-     }}},
-    {Variant::deferred_previous, "deferred-previous", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_previous_fragment_quad(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord,
-                                                   x.q.pixel, x.mode);
-     }}},
-    {Variant::deferred_max, "deferred-max", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_max_fragment_quad(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord, x.q.pixel,
-                                              x.mode);
-     }}},
+    SAAGEN_SAA_FILTERS(SAAGEN_TEMPLATE_FILTER_ROW)
+    // The measurement-only forms, then the engines' (shade_pixel shades them itself).
     {Variant::deferred_max_tangent_free, "deferred-max-tangent-free", "deferred-max",
-     IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_max_tangent_free_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
-     }}},
-    {Variant::deferred_sum, "deferred-sum", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_sum_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
-     }}},
-    {Variant::deferred_avg, "deferred-avg", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_avg_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
-     }}},
-    {Variant::deferred_projected_space, "deferred-projected-space", "", IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
-       return ref::deferred_projected_space_fragment_quad(x.params, unfiltered, x.in.normal, x.q.pixel, x.mode);
-     }}},
-    // The kernel on the base alpha^2, then the lobe's anisotropy along t (0 when isotropic).
-    {Variant::deferred_aniso, "deferred-aniso", "", MatrixFilter{[](const FilterInputs& x) {
-       return deferred_aniso_in_pixel_frame(x.params, x.f, x.in.normal, x.q.pixel, x.mode, x.a2) +
-              Sym2{x.alpha2.x - x.a2, 0.0, x.alpha2.y - x.a2};
-     }}},
+     filter_by_form(SAAGEN_FRAGMENT_REFERENCE(deferred_max_tangent_free))},
     {Variant::engine_hdrp, "engine-hdrp", "", {}},
     {Variant::engine_filament, "engine-filament", "", {}},
     {Variant::engine_godot, "engine-godot", "", {}},
     {Variant::engine_unreal, "engine-unreal", "", {}},
     {Variant::engine_threejs, "engine-threejs", "", {}},
     {Variant::engine_babylon, "engine-babylon", "", {}},
-}};
+});
+#undef SAAGEN_TEMPLATE_FILTER_ROW
+#undef SAAGEN_FRAGMENT_REFERENCE
 
 constexpr bool rows_follow_the_enum() {
   for (std::size_t i = 0; i < kVariantRows.size(); ++i)

@@ -197,41 +197,14 @@ Inputs wrapper_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
 using Reader = saagen::test::FloatReader;
 
 std::vector<double> values(double v) { return {v}; }
-std::vector<double> values(Vec2 v) { return {v.x, v.y}; }
-std::vector<double> values(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
 std::vector<double> reference_core(const ref::Params& p, const std::string& name, const float* x) {
   Reader in(x);
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
   if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
+  if (auto filter = saagen::test::filter_core_reference(name, p, in)) return *filter;
   const ref::Brdf brdf{p};
-  if (name.rfind("forward_aniso_", 0) == 0) {
-    const Vec2 a = in.vec2(), du = in.vec2();
-    return values(ref::filter_roughness_matrix(p, a, du, in.vec2()));
-  }
-  if (name.rfind("forward_axis_", 0) == 0) {
-    const Vec2 a = in.vec2(), du = in.vec2();
-    return values(ref::filter_roughness_rectangle(p, a, du, in.vec2()));
-  }
-  if (name == "deferred_previous") {
-    const double a = in.real();
-    const Vec2 du = in.vec2();
-    return values(ref::deferred_previous(p, a, du, in.vec2()));
-  }
-  if (name == "deferred_max") {
-    const double a = in.real();
-    const Vec2 du = in.vec2();
-    return values(ref::deferred_max(p, a, du, in.vec2()));
-  }
-  if (name.rfind("deferred_", 0) == 0) {
-    const double a = in.real();
-    const Vec3 dx = in.vec3(), dy = in.vec3();
-    if (name == "deferred_max_tangent_free") return values(ref::deferred_max_tangent_free(p, a, dx, dy));
-    if (name == "deferred_sum") return values(ref::deferred_sum(p, a, dx, dy));
-    if (name == "deferred_avg") return values(ref::deferred_avg(p, a, dx, dy));
-    return values(ref::deferred_projected_space(p, a, dx, dy));
-  }
   if (name == "ndf_clamp_tau") return values(ref::ndf_clamp_tau(in.vec2()));
   if (name == "ggx_ndf_matrix") {
     const Vec3 h = in.vec3();

@@ -324,36 +324,14 @@ class Reader {
 };
 
 Values values(double v) { return {v}; }
-Values values(Vec2 v) { return {v.x, v.y}; }
-Values values(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
 Values reference_core(const ref::Params& p, const std::string& name, const double* x) {
   Reader in(x);
   if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
   if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
   if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
+  if (auto filter = saagen::test::filter_core_reference(name, p, in)) return *filter;
   const ref::Brdf brdf{p};
-  if (name == "forward_aniso_slope" || name == "forward_aniso_projected") {
-    const Vec2 a = in.vec2(), du = in.vec2();
-    return values(ref::filter_roughness_matrix(p, a, du, in.vec2()));
-  }
-  if (name == "forward_axis_slope" || name == "forward_axis_projected") {
-    const Vec2 a = in.vec2(), du = in.vec2();
-    return values(ref::filter_roughness_rectangle(p, a, du, in.vec2()));
-  }
-  if (name == "deferred_previous" || name == "deferred_max") {
-    const double a = in.real();
-    const Vec2 du = in.vec2();
-    return values(name == "deferred_max" ? ref::deferred_max(p, a, du, in.vec2()) : ref::deferred_previous(p, a, du, in.vec2()));
-  }
-  if (name == "deferred_max_tangent_free" || name == "deferred_sum" || name == "deferred_avg" || name == "deferred_projected_space") {
-    const double a = in.real();
-    const Vec3 dx = in.vec3(), dy = in.vec3();
-    if (name == "deferred_max_tangent_free") return values(ref::deferred_max_tangent_free(p, a, dx, dy));
-    if (name == "deferred_sum") return values(ref::deferred_sum(p, a, dx, dy));
-    if (name == "deferred_avg") return values(ref::deferred_avg(p, a, dx, dy));
-    return values(ref::deferred_projected_space(p, a, dx, dy));
-  }
   if (name == "ndf_clamp_tau") return values(ref::ndf_clamp_tau(in.vec2()));
   if (name == "ggx_ndf_matrix" || name == "beckmann_ndf_matrix") {
     const Vec3 h = in.vec3();

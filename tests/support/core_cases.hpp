@@ -212,9 +212,6 @@ inline std::vector<double> outputs(double v) { return {v}; }
 inline std::vector<double> outputs(Vec2 v) { return {v.x, v.y}; }
 inline std::vector<double> outputs(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
-inline Vec2 abs2(Vec2 v) { return {std::fabs(v.x), std::fabs(v.y)}; }
-inline Vec3 abs3(Vec3 v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
-
 struct ReferenceFunction {
   std::function<std::vector<double>(Inputs&)> value;
   // Magnitude scale per output for the rounding bound (see the file comment).
@@ -246,55 +243,12 @@ inline void deferred_aniso_references(const ref::Params& p, std::map<std::string
 
 inline std::map<std::string, ReferenceFunction> reference_functions(const ref::Params& p) {
   std::map<std::string, ReferenceFunction> table;
-  // Filters: value on the inputs, scale on the absolute values of the derivative inputs.
-  const auto forward = [&](auto filter) {
-    return ReferenceFunction{[=](Inputs& in) {
-                               const Vec2 a = in.vec2();
-                               const Vec2 du = in.vec2();
-                               return outputs(filter(p, a, du, in.vec2()));
-                             },
-                             [=](Inputs& in) {
-                               const Vec2 a = in.vec2();
-                               const Vec2 du = abs2(in.vec2());
-                               auto s = outputs(filter(p, a, du, abs2(in.vec2())));
-                               for (double& v : s) v = std::fabs(v);
-                               return s;
-                             }};
-  };
-  table["forward_aniso_slope"] = forward(ref::forward_aniso_slope);
-  table["forward_aniso_projected"] = forward(ref::forward_aniso_projected);
-  table["forward_axis_slope"] = forward(ref::forward_axis_slope);
-  table["forward_axis_projected"] = forward(ref::forward_axis_projected);
-  const auto planar = [&](auto filter) {
-    return ReferenceFunction{[=](Inputs& in) {
-                               const double a = in.real();
-                               const Vec2 du = in.vec2();
-                               return outputs(filter(p, a, du, in.vec2()));
-                             },
-                             [=](Inputs& in) {
-                               const double a = in.real();
-                               const Vec2 du = abs2(in.vec2());
-                               return outputs(filter(p, a, du, abs2(in.vec2())));
-                             }};
-  };
-  table["deferred_previous"] = planar(ref::deferred_previous);
-  table["deferred_max"] = planar(ref::deferred_max);
-  const auto spatial = [&](auto filter) {
-    return ReferenceFunction{[=](Inputs& in) {
-                               const double a = in.real();
-                               const Vec3 dx = in.vec3();
-                               return outputs(filter(p, a, dx, in.vec3()));
-                             },
-                             [=](Inputs& in) {
-                               const double a = in.real();
-                               const Vec3 dx = abs3(in.vec3());
-                               return outputs(filter(p, a, dx, abs3(in.vec3())));
-                             }};
-  };
-  table["deferred_max_tangent_free"] = spatial(ref::deferred_max_tangent_free);
-  table["deferred_sum"] = spatial(ref::deferred_sum);
-  table["deferred_avg"] = spatial(ref::deferred_avg);
-  table["deferred_projected_space"] = spatial(ref::deferred_projected_space);
+  // Filters: value on the inputs, scale on the absolute values of the derivative inputs (the
+  // shared dispatch, reference_dispatch.hpp, by the templates' list).
+  for (const std::string& name : saagen::test::filter_core_names()) {
+    table[name] = {[=](Inputs& in) { return *saagen::test::filter_core_reference(name, p, in); },
+                   [=](Inputs& in) { return *saagen::test::filter_core_reference(name, p, in, true); }};
+  }
 
   table["ndf_clamp_tau"] = {[](Inputs& in) { return outputs(ref::ndf_clamp_tau(in.vec2())); },
                             [](Inputs& in) { return outputs(std::fabs(ref::ndf_clamp_tau(in.vec2()))); }};

@@ -1,9 +1,14 @@
 // Shared by the suites that compare emitted code with the double reference: reading packed fp32
-// inputs back as doubles, and evaluating a fragment wrapper's reference on a 2x2 quad by name.
+// inputs back as doubles, and evaluating by name a screen-space filter's core function and a
+// fragment wrapper's reference on a 2x2 quad. The filters' references are found by naming
+// convention from the templates' list (saagen/template_variants.hpp): filter `identifier`'s core
+// function is ref::<identifier> and its fragment wrapper's ref::<identifier>_fragment_quad, read
+// in the form their signatures have, so that a filter the templates add needs no line here.
 #pragma once
 
 #include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
+#include "saagen/template_variants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +17,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace saagen::test {
@@ -55,8 +61,145 @@ inline std::vector<double> output_values(double v) { return {v}; }
 inline std::vector<double> output_values(ref::Vec2 v) { return {v.x, v.y}; }
 inline std::vector<double> output_values(ref::Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
+// A reference function as a callable object, so that the forms below can ask which arguments it
+// takes (overload resolution, default arguments included).
+#define SAAGEN_TEST_REFERENCE(function) [](const auto&... args) -> decltype(ref::function(args...)) { return ref::function(args...); }
+
+// --- the screen-space filters' core functions (forward-*, deferred-*) ---------------------------
+
+// The forms of a filter's core function, by the inputs it reads after the parameters: the
+// unfiltered roughness per axis and two 2D derivatives (forward-*), alpha^2 and two 2D
+// derivatives (deferred-previous, deferred-max), alpha^2 and two 3D normal derivatives.
+template <class Core>
+constexpr bool reads_forward_inputs = std::is_invocable_v<Core, const ref::Params&, ref::Vec2, ref::Vec2, ref::Vec2>;
+template <class Core>
+constexpr bool reads_planar_inputs = std::is_invocable_r_v<double, Core, const ref::Params&, double, ref::Vec2, ref::Vec2>;
+template <class Core>
+constexpr bool reads_spatial_inputs = std::is_invocable_r_v<double, Core, const ref::Params&, double, ref::Vec3, ref::Vec3>;
+template <class Core>
+constexpr bool is_filter_core_form = reads_forward_inputs<Core> || reads_planar_inputs<Core> || reads_spatial_inputs<Core>;
+
+inline ref::Vec2 absolute(ref::Vec2 v) { return {std::fabs(v.x), std::fabs(v.y)}; }
+inline ref::Vec3 absolute(ref::Vec3 v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+
+// Core function `Core` on inputs read in parameter order (In: real, vec2, vec3, sym2). With
+// `magnitudes`, the magnitude scale of each output for the fp32 rounding bound (core_cases.hpp):
+// the function on the absolute values of its derivative inputs, by absolute value.
+template <class Core, class In>
+std::vector<double> filter_core_on(const ref::Params& p, In& in, bool magnitudes) {
+  const auto evaluate = [&](auto alpha2, auto dx, auto dy) {
+    if (!magnitudes) return output_values(Core{}(p, alpha2, dx, dy));
+    std::vector<double> scale = output_values(Core{}(p, alpha2, absolute(dx), absolute(dy)));
+    for (double& v : scale) v = std::fabs(v);
+    return scale;
+  };
+  if constexpr (reads_forward_inputs<Core>) {
+    const ref::Vec2 alpha2 = in.vec2(), dx = in.vec2(), dy = in.vec2();
+    return evaluate(alpha2, dx, dy);
+  } else if constexpr (reads_planar_inputs<Core>) {
+    const double alpha2 = in.real();
+    const ref::Vec2 dx = in.vec2(), dy = in.vec2();
+    return evaluate(alpha2, dx, dy);
+  } else {
+    static_assert(reads_spatial_inputs<Core>, "a filter's core function has none of the forms");
+    const double alpha2 = in.real();
+    const ref::Vec3 dx = in.vec3(), dy = in.vec3();
+    return evaluate(alpha2, dx, dy);
+  }
+}
+
+// Calls visit(name, core) for every filter core function of the forms above, core being its
+// reference as a callable object: the templates' filters, and deferred-max's tangent-free
+// function. deferred-aniso's core reads a tensor's inputs: deferred_aniso_reference below.
+template <class Visit>
+void for_each_filter_core(Visit&& visit) {
+  const auto visit_if_a_form = [&](const char* name, auto core) {
+    if constexpr (is_filter_core_form<decltype(core)>) visit(name, core);
+  };
+#define SAAGEN_VISIT_FILTER_CORE(identifier, id) visit_if_a_form(#identifier, SAAGEN_TEST_REFERENCE(identifier));
+  SAAGEN_SAA_FILTERS(SAAGEN_VISIT_FILTER_CORE)
+#undef SAAGEN_VISIT_FILTER_CORE
+  visit_if_a_form("deferred_max_tangent_free", SAAGEN_TEST_REFERENCE(deferred_max_tangent_free));
+}
+
+// The reference of filter core function `name` on inputs read in parameter order (In: real,
+// vec2, vec3, sym2), or with `magnitudes` its magnitude scale (filter_core_on); nullopt for
+// other functions. The one dispatch to the filters' core functions of every suite that compares
+// them (core_cases.hpp, test_precision, test_stability_properties, test_spirv_library).
+template <class In>
+std::optional<std::vector<double>> filter_core_reference(const std::string& name, const ref::Params& p, In& in, bool magnitudes = false) {
+  std::optional<std::vector<double>> result;
+  for_each_filter_core([&](const char* core_name, auto core) {
+    if (!result && name == core_name) result = filter_core_on<decltype(core)>(p, in, magnitudes);
+  });
+  return result;
+}
+
+// The names of the filter core functions that filter_core_reference evaluates.
+inline std::vector<std::string> filter_core_names() {
+  std::vector<std::string> names;
+  for_each_filter_core([&](const char* name, auto) { names.push_back(name); });
+  return names;
+}
+
+// --- the fragment wrappers ---------------------------------------------------------------------
+
 // The fragment coordinates of the first quad (pixel centres at .5).
 inline constexpr ref::Quad<ref::Vec2> kFirstQuadFragCoord{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
+
+// What a fragment wrapper's reference reads on a quad: the quad values of its vector parameters
+// by parameter name (half_ts, normal_ws, tangent_ws, bitangent_ws, i, o), and how it derives.
+struct WrapperQuad {
+  ref::Vec2 alpha2;
+  std::map<std::string, ref::Quad<ref::Vec3>>& vectors;
+  int pixel;
+  ref::Derivative mode;
+  ref::Derivative average;  // the quad-average normal's derivatives (deferred-previous, deferred-max)
+  const ref::Quad<ref::Vec2>& frag;
+};
+
+// The forms of a filter's fragment wrapper reference, by the quads it reads: the half vectors
+// (forward-*); the normal, tangent, bitangent and fragment coordinates (a quad-average normal's
+// frame: deferred-previous, deferred-max); the normals (the other deferred-*), after alpha^2 or
+// alone (deferred-aniso's tensor).
+using QuadOfVectors = const ref::Quad<ref::Vec3>&;
+template <class Wrapper>
+constexpr bool reads_half_vectors = std::is_invocable_v<Wrapper, const ref::Params&, ref::Vec2, QuadOfVectors, int, ref::Derivative>;
+template <class Wrapper>
+constexpr bool reads_normal_frame = std::is_invocable_v<Wrapper, const ref::Params&, double, QuadOfVectors, QuadOfVectors, QuadOfVectors,
+                                                        const ref::Quad<ref::Vec2>&, int, ref::Derivative, ref::Derivative>;
+template <class Wrapper>
+constexpr bool reads_normals = std::is_invocable_v<Wrapper, const ref::Params&, double, QuadOfVectors, int, ref::Derivative>;
+template <class Wrapper>
+constexpr bool reads_normals_alone = std::is_invocable_v<Wrapper, const ref::Params&, QuadOfVectors, int, ref::Derivative>;
+
+// Wrapper reference `Wrapper` on a quad, in the form its signature has.
+template <class Wrapper>
+std::vector<double> filter_wrapper_on(const ref::Params& p, WrapperQuad q) {
+  auto& v = q.vectors;
+  if constexpr (reads_half_vectors<Wrapper>) {
+    return output_values(Wrapper{}(p, q.alpha2, v["half_ts"], q.pixel, q.mode));
+  } else if constexpr (reads_normal_frame<Wrapper>) {
+    return output_values(Wrapper{}(p, q.alpha2.x, v["normal_ws"], v["tangent_ws"], v["bitangent_ws"], q.frag, q.pixel, q.mode, q.average));
+  } else if constexpr (reads_normals<Wrapper>) {
+    return output_values(Wrapper{}(p, q.alpha2.x, v["normal_ws"], q.pixel, q.mode));
+  } else {
+    static_assert(reads_normals_alone<Wrapper>, "a filter's fragment wrapper reference has none of the forms");
+    return output_values(Wrapper{}(p, v["normal_ws"], q.pixel, q.mode));
+  }
+}
+
+// The reference of a filter's fragment wrapper `name` (<identifier>_fragment: the templates'
+// filters, and deferred-max's tangent-free function) on a quad; nullopt for other functions.
+inline std::optional<std::vector<double>> filter_wrapper_reference(const std::string& name, const ref::Params& p, WrapperQuad q) {
+#define SAAGEN_FILTER_WRAPPER_CASE(identifier, id) \
+  if (name == #identifier "_fragment") return filter_wrapper_on<decltype(SAAGEN_TEST_REFERENCE(identifier##_fragment_quad))>(p, q);
+  SAAGEN_SAA_FILTERS(SAAGEN_FILTER_WRAPPER_CASE)
+#undef SAAGEN_FILTER_WRAPPER_CASE
+  if (name == "deferred_max_tangent_free_fragment")
+    return filter_wrapper_on<decltype(SAAGEN_TEST_REFERENCE(deferred_max_tangent_free_fragment_quad))>(p, q);
+  return std::nullopt;
+}
 
 // The reference of fragment wrapper `name` at `pixel` of a quad, given the quad values of its
 // vector parameters by parameter name (half_ts, normal_ws, tangent_ws, bitangent_ws, i, o): the
@@ -69,28 +212,7 @@ inline std::vector<double> wrapper_reference_on_quad(const std::string& name, co
                                                      ref::Derivative mode = ref::Derivative::coarse,
                                                      ref::Derivative average = ref::Derivative::fine,
                                                      const ref::Quad<ref::Vec2>& frag = kFirstQuadFragCoord) {
-  const auto& h = vectors["half_ts"];
-  const auto& n = vectors["normal_ws"];
-  if (name == "forward_aniso_slope_fragment") return output_values(ref::forward_aniso_slope_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_aniso_projected_fragment")
-    return output_values(ref::forward_aniso_projected_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_axis_slope_fragment") return output_values(ref::forward_axis_slope_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "forward_axis_projected_fragment") return output_values(ref::forward_axis_projected_fragment_quad(p, alpha2, h, pixel, mode));
-  if (name == "deferred_previous_fragment") {
-    return output_values(
-        ref::deferred_previous_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode, average));
-  }
-  if (name == "deferred_max_fragment") {
-    return output_values(
-        ref::deferred_max_fragment_quad(p, alpha2.x, n, vectors["tangent_ws"], vectors["bitangent_ws"], frag, pixel, mode, average));
-  }
-  if (name == "deferred_max_tangent_free_fragment")
-    return output_values(ref::deferred_max_tangent_free_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_sum_fragment") return output_values(ref::deferred_sum_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_avg_fragment") return output_values(ref::deferred_avg_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_projected_space_fragment")
-    return output_values(ref::deferred_projected_space_fragment_quad(p, alpha2.x, n, pixel, mode));
-  if (name == "deferred_aniso_fragment") return output_values(ref::deferred_aniso_fragment_quad(p, n, pixel, mode));
+  if (auto filter = filter_wrapper_reference(name, p, {alpha2, vectors, pixel, mode, average, frag})) return *filter;
   if (name == "ggx_brdf_filtered_fragment")
     return output_values(ref::ggx_brdf_filtered_fragment_quad(p, vectors["i"], vectors["o"], alpha2, pixel, mode));
   if (name == "ggx_brdf_tail_filtered_fragment") {

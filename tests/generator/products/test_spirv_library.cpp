@@ -380,15 +380,11 @@ struct Expected {
   double scale = 0.0;  // magnitude scale of the bound (see the file comment)
 };
 
-std::vector<double> values_of(Vec2 v) { return {v.x, v.y}; }
-std::vector<double> values_of(Sym2 m) { return {m.xx, m.xy, m.yy}; }
 double max_abs(const std::vector<double>& values) {
   double m = 0.0;
   for (double v : values) m = std::max(m, std::fabs(v));
   return m;
 }
-Vec2 abs2(Vec2 v) { return {std::fabs(v.x), std::fabs(v.y)}; }
-Vec3 abs3(Vec3 v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
 
 double conditioning(Sym2 a) {
   const double mean = 0.5 * (a.xx + a.yy), spread = std::sqrt(0.25 * (a.xx - a.yy) * (a.xx - a.yy) + a.xy * a.xy);
@@ -415,33 +411,10 @@ Expected reference(const std::string& name, Reader in) {
     const auto scale = *saagen::test::deferred_aniso_reference(name, p, terms, true);
     return {*tensor, std::max(max_abs(*tensor), max_abs(scale))};
   }
-  const auto filter2 = [&](auto f) {  // (alpha2 real2, du, dv)
-    const Vec2 a = in.vec2(), du = in.vec2(), dv = in.vec2();
-    auto v = values_of(f(p, a, du, dv));
-    return Expected{v, std::max(max_abs(v), max_abs(values_of(f(p, a, abs2(du), abs2(dv)))))};
-  };
-  const auto planar = [&](auto f) {
-    const double a = in.real();
-    const Vec2 du = in.vec2(), dv = in.vec2();
-    const double v = f(p, a, du, dv);
-    return Expected{{v}, std::max(std::fabs(v), std::fabs(f(p, a, abs2(du), abs2(dv))))};
-  };
-  const auto spatial = [&](auto f) {
-    const double a = in.real();
-    const Vec3 dx = in.vec3(), dy = in.vec3();
-    const double v = f(p, a, dx, dy);
-    return Expected{{v}, std::max(std::fabs(v), std::fabs(f(p, a, abs3(dx), abs3(dy))))};
-  };
-  if (name == "forward_aniso_slope") return filter2(ref::forward_aniso_slope);
-  if (name == "forward_aniso_projected") return filter2(ref::forward_aniso_projected);
-  if (name == "forward_axis_slope") return filter2(ref::forward_axis_slope);
-  if (name == "forward_axis_projected") return filter2(ref::forward_axis_projected);
-  if (name == "deferred_previous") return planar(ref::deferred_previous);
-  if (name == "deferred_max") return planar(ref::deferred_max);
-  if (name == "deferred_max_tangent_free") return spatial(ref::deferred_max_tangent_free);
-  if (name == "deferred_sum") return spatial(ref::deferred_sum);
-  if (name == "deferred_avg") return spatial(ref::deferred_avg);
-  if (name == "deferred_projected_space") return spatial(ref::deferred_projected_space);
+  if (auto filter = saagen::test::filter_core_reference(name, p, in)) {
+    const auto scale = *saagen::test::filter_core_reference(name, p, terms, true);
+    return {*filter, std::max(max_abs(*filter), max_abs(scale))};
+  }
   if (name == "ndf_clamp_tau") {
     const double v = ref::ndf_clamp_tau(in.vec2());
     return {{v}, std::fabs(v)};

@@ -74,6 +74,7 @@
 #include "saagen/reference/math.hpp"
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/saa.hpp"
+#include "saagen/template_variants.hpp"
 
 #include <array>
 #include <cstdint>
@@ -96,25 +97,18 @@ struct Material {
   bool fresnel = false;
 };
 
-// The variants, named as in the catalogue (docs/GUIDE.md "Variants"), plus the no-SAA baseline and
-// deferred-max's tangent-free form as a variant of its own. Each enumerator has one row in
-// renderer.cpp's kVariantRows (its id and its CPU reference); all_variants() follows the
-// templates (docs/ARCHITECTURE.md, "The registry of variants").
+// The variants, named as in the catalogue (docs/GUIDE.md "Variants"): the no-SAA baseline, the
+// templates' SAA filters (one enumerator each, deferred_avg for deferred-avg, written from the
+// templates' list, saagen/template_variants.hpp, in the templates' order), then the forms only the
+// trade measures. Each enumerator has one row in renderer.cpp's kVariantRows (its id and its CPU
+// reference); all_variants() follows the templates (docs/ARCHITECTURE.md, "The registry of variants").
 enum class Variant {
   none,
-  forward_aniso_slope,
-  forward_aniso_projected,
-  forward_axis_slope,
-  forward_axis_projected,
-  deferred_previous,
-  deferred_max,
+#define SAAGEN_VARIANT_ENUMERATOR(identifier, id) identifier,
+  SAAGEN_SAA_FILTERS(SAAGEN_VARIANT_ENUMERATOR)
+#undef SAAGEN_VARIANT_ENUMERATOR
+  // deferred-max's tangent-free function, measured as a row of its own.
   deferred_max_tangent_free,
-  deferred_sum,
-  deferred_avg,
-  deferred_projected_space,
-  // The normal-variation tensor in the G-buffer, (n.h)^2 per light into the matrix BRDF
-  // (templates/20-deferred.saa; docs/DEFERRED_KERNEL.md).
-  deferred_aniso,
   // The forms engines ship (shared/REFERENCES.md; engines.hpp): reference-renderer rows of the
   // trade only, never emitted. Each reads the normal its engine feeds it (engine_feed()).
   engine_hdrp,
