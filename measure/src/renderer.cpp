@@ -6,6 +6,7 @@
 #include "saagen/measure/parallel.hpp"
 #include "saagen/reference/brdf.hpp"
 #include "saagen/reference/prefilter.hpp"
+#include "saagen/reference/wrapper_forms.hpp"
 #include "saagen/template_variants.hpp"
 
 #include <algorithm>
@@ -562,29 +563,11 @@ using AxisFilter = Vec2 (*)(const FilterInputs&);
 using IsotropicFilter = double (*)(const FilterInputs&, double unfiltered);
 using Filter = std::variant<std::monostate, MatrixFilter, AxisFilter, IsotropicFilter>;
 
-// A fragment wrapper's reference as a callable object, so that the forms below can ask which
-// arguments it takes (overload resolution, default arguments included).
-#define SAAGEN_FRAGMENT_REFERENCE(identifier) \
-  [](const auto&... args) -> decltype(ref::identifier##_fragment_quad(args...)) { return ref::identifier##_fragment_quad(args...); }
-
-// The forms of a fragment wrapper's reference, by the arguments it reads: the unfiltered
-// roughness per axis and the half vectors (forward-*); alpha^2 and the normal, tangent, bitangent
-// and fragment coordinates (a quad-average normal's frame: deferred-previous, deferred-max); or
-// alpha^2 and the normals alone (the other deferred-*).
-template <class Reference>
-constexpr bool reads_half_vectors = std::is_invocable_v<Reference, const ref::Params&, Vec2, const ref::Quad<Vec3>&, int, ref::Derivative>;
-template <class Reference>
-constexpr bool reads_normal_frame =
-    std::is_invocable_r_v<double, Reference, const ref::Params&, double, const ref::Quad<Vec3>&, const ref::Quad<Vec3>&,
-                          const ref::Quad<Vec3>&, const ref::Quad<Vec2>&, int, ref::Derivative>;
-template <class Reference>
-constexpr bool reads_normals =
-    std::is_invocable_r_v<double, Reference, const ref::Params&, double, const ref::Quad<Vec3>&, int, ref::Derivative>;
-
 // The row's filter of a fragment wrapper's reference, in the form its signature has; none when it
 // has none of them (then custom_filter() must have the row).
 template <class Reference>
 constexpr Filter filter_by_form(Reference) {
+  using namespace ref::wrapper_forms;
   if constexpr (reads_half_vectors<Reference>) {
     using Result = std::invoke_result_t<Reference, const ref::Params&, Vec2, const ref::Quad<Vec3>&, int, ref::Derivative>;
     constexpr auto filter = [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); };
@@ -634,13 +617,13 @@ struct VariantRow {
 
 // In the order of the Variant enumerators (checked below), so that a row is found by its value.
 #define SAAGEN_TEMPLATE_FILTER_ROW(identifier, id) \
-  {Variant::identifier, id, "", filter_of(Variant::identifier, SAAGEN_FRAGMENT_REFERENCE(identifier))},
+  {Variant::identifier, id, "", filter_of(Variant::identifier, SAAGEN_REFERENCE_CALLABLE(identifier##_fragment_quad))},
 constexpr auto kVariantRows = std::to_array<VariantRow>({
     {Variant::none, "none", "", {}},
     SAAGEN_SAA_FILTERS(SAAGEN_TEMPLATE_FILTER_ROW)
     // The measurement-only forms, then the engines' (shade_pixel shades them itself).
     {Variant::deferred_max_tangent_free, "deferred-max-tangent-free", "deferred-max",
-     filter_by_form(SAAGEN_FRAGMENT_REFERENCE(deferred_max_tangent_free))},
+     filter_by_form(SAAGEN_REFERENCE_CALLABLE(deferred_max_tangent_free_fragment_quad))},
     {Variant::engine_hdrp, "engine-hdrp", "", {}},
     {Variant::engine_filament, "engine-filament", "", {}},
     {Variant::engine_godot, "engine-godot", "", {}},
@@ -649,7 +632,6 @@ constexpr auto kVariantRows = std::to_array<VariantRow>({
     {Variant::engine_babylon, "engine-babylon", "", {}},
 });
 #undef SAAGEN_TEMPLATE_FILTER_ROW
-#undef SAAGEN_FRAGMENT_REFERENCE
 
 constexpr bool rows_follow_the_enum() {
   for (std::size_t i = 0; i < kVariantRows.size(); ++i)

@@ -8,6 +8,7 @@
 
 #include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
+#include "saagen/reference/wrapper_forms.hpp"
 #include "saagen/template_variants.hpp"
 
 #include <algorithm>
@@ -61,10 +62,6 @@ inline std::vector<double> output_values(double v) { return {v}; }
 inline std::vector<double> output_values(ref::Vec2 v) { return {v.x, v.y}; }
 inline std::vector<double> output_values(ref::Sym2 m) { return {m.xx, m.xy, m.yy}; }
 
-// A reference function as a callable object, so that the forms below can ask which arguments it
-// takes (overload resolution, default arguments included).
-#define SAAGEN_TEST_REFERENCE(function) [](const auto&... args) -> decltype(ref::function(args...)) { return ref::function(args...); }
-
 // --- the screen-space filters' core functions (forward-*, deferred-*) ---------------------------
 
 // The forms of a filter's core function, by the inputs it reads after the parameters: the
@@ -116,10 +113,10 @@ void for_each_filter_core(Visit&& visit) {
   const auto visit_if_a_form = [&](const char* name, auto core) {
     if constexpr (is_filter_core_form<decltype(core)>) visit(name, core);
   };
-#define SAAGEN_VISIT_FILTER_CORE(identifier, id) visit_if_a_form(#identifier, SAAGEN_TEST_REFERENCE(identifier));
+#define SAAGEN_VISIT_FILTER_CORE(identifier, id) visit_if_a_form(#identifier, SAAGEN_REFERENCE_CALLABLE(identifier));
   SAAGEN_SAA_FILTERS(SAAGEN_VISIT_FILTER_CORE)
 #undef SAAGEN_VISIT_FILTER_CORE
-  visit_if_a_form("deferred_max_tangent_free", SAAGEN_TEST_REFERENCE(deferred_max_tangent_free));
+  visit_if_a_form("deferred_max_tangent_free", SAAGEN_REFERENCE_CALLABLE(deferred_max_tangent_free));
 }
 
 // The reference of filter core function `name` on inputs read in parameter order (In: real,
@@ -158,24 +155,10 @@ struct WrapperQuad {
   const ref::Quad<ref::Vec2>& frag;
 };
 
-// The forms of a filter's fragment wrapper reference, by the quads it reads: the half vectors
-// (forward-*); the normal, tangent, bitangent and fragment coordinates (a quad-average normal's
-// frame: deferred-previous, deferred-max); the normals (the other deferred-*), after alpha^2 or
-// alone (deferred-aniso's tensor).
-using QuadOfVectors = const ref::Quad<ref::Vec3>&;
-template <class Wrapper>
-constexpr bool reads_half_vectors = std::is_invocable_v<Wrapper, const ref::Params&, ref::Vec2, QuadOfVectors, int, ref::Derivative>;
-template <class Wrapper>
-constexpr bool reads_normal_frame = std::is_invocable_v<Wrapper, const ref::Params&, double, QuadOfVectors, QuadOfVectors, QuadOfVectors,
-                                                        const ref::Quad<ref::Vec2>&, int, ref::Derivative, ref::Derivative>;
-template <class Wrapper>
-constexpr bool reads_normals = std::is_invocable_v<Wrapper, const ref::Params&, double, QuadOfVectors, int, ref::Derivative>;
-template <class Wrapper>
-constexpr bool reads_normals_alone = std::is_invocable_v<Wrapper, const ref::Params&, QuadOfVectors, int, ref::Derivative>;
-
 // Wrapper reference `Wrapper` on a quad, in the form its signature has.
 template <class Wrapper>
 std::vector<double> filter_wrapper_on(const ref::Params& p, WrapperQuad q) {
+  using namespace ref::wrapper_forms;  // the wrappers' forms, as the renderer's rows read them
   auto& v = q.vectors;
   if constexpr (reads_half_vectors<Wrapper>) {
     return output_values(Wrapper{}(p, q.alpha2, v["half_ts"], q.pixel, q.mode));
@@ -193,11 +176,11 @@ std::vector<double> filter_wrapper_on(const ref::Params& p, WrapperQuad q) {
 // filters, and deferred-max's tangent-free function) on a quad; nullopt for other functions.
 inline std::optional<std::vector<double>> filter_wrapper_reference(const std::string& name, const ref::Params& p, WrapperQuad q) {
 #define SAAGEN_FILTER_WRAPPER_CASE(identifier, id) \
-  if (name == #identifier "_fragment") return filter_wrapper_on<decltype(SAAGEN_TEST_REFERENCE(identifier##_fragment_quad))>(p, q);
+  if (name == #identifier "_fragment") return filter_wrapper_on<decltype(SAAGEN_REFERENCE_CALLABLE(identifier##_fragment_quad))>(p, q);
   SAAGEN_SAA_FILTERS(SAAGEN_FILTER_WRAPPER_CASE)
 #undef SAAGEN_FILTER_WRAPPER_CASE
   if (name == "deferred_max_tangent_free_fragment")
-    return filter_wrapper_on<decltype(SAAGEN_TEST_REFERENCE(deferred_max_tangent_free_fragment_quad))>(p, q);
+    return filter_wrapper_on<decltype(SAAGEN_REFERENCE_CALLABLE(deferred_max_tangent_free_fragment_quad))>(p, q);
   return std::nullopt;
 }
 
