@@ -252,19 +252,13 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
     throw Error(fmt::format("--isa {}: {}", families, error.what()));
   }
   out << report::format_isa_table(table);
-  std::map<std::string, std::vector<double>> ratios;
-  std::vector<std::string> order;
-  for (const report::IsaCostRow& row : table.rows) {
-    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline || row.lights != 1)
-      continue;
-    if (!ratios.count(row.variant)) order.push_back(row.variant);
-    ratios[row.variant].push_back(row.inverse_throughput_ratio());
-  }
+  const IsaTable ratios = report::isa_table(table);
   std::vector<std::pair<std::string, double>> means;
-  for (const std::string& variant : order) {
-    double sum = 0.0;
-    for (double ratio : ratios[variant]) sum += ratio;
-    means.emplace_back(variant, sum / static_cast<double>(ratios[variant].size()));
+  for (const IsaRow& row : ratios.rows) {
+    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline ||
+        row.lights != 1 || std::any_of(means.begin(), means.end(), [&](const auto& mean) { return mean.first == row.variant; }))
+      continue;
+    means.emplace_back(row.variant, *ratios.forward_ratio(row.family, row.variant, {}, 1));
   }
   if (!costs) costs.emplace();
   report::add_isa_costs(*costs, parsed.front(), means);

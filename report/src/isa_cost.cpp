@@ -203,21 +203,10 @@ IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const I
   return table;
 }
 
-std::optional<double> mean_inverse_throughput_ratio(const IsaCostTable& table, std::string_view family, std::string_view variant,
-                                                    std::uint32_t lights) {
-  double sum = 0.0;
-  int count = 0;
-  for (const IsaCostRow& row : table.rows) {
-    if (row.family == family && row.shader == isa_forward_shader && row.variant == variant && row.lights == lights) {
-      sum += row.inverse_throughput_ratio();
-      ++count;
-    }
-  }
-  if (count == 0) return std::nullopt;
-  return sum / count;
-}
+IsaTable isa_table(const IsaCostTable& table) { return parse_isa_table(isa_json(table).dump(), "the measured ISA statistics"); }
 
 std::string format_light_count_table(const IsaCostTable& table) {
+  const IsaTable ratios = isa_table(table);
   std::vector<std::string> variants;
   for (const IsaCostRow& row : table.rows) {
     if (row.shader == isa_forward_shader && row.variant != isa_baseline &&
@@ -236,7 +225,7 @@ std::string format_light_count_table(const IsaCostTable& table) {
     for (const std::string& family : table.families) {
       text += fmt::format(" | {:<8}", "");
       for (const std::uint32_t lights : kMeasuredLightCounts) {
-        const auto ratio = mean_inverse_throughput_ratio(table, family, variant, lights);
+        const auto ratio = ratios.forward_ratio(family, variant, {}, static_cast<int>(lights));
         text += ratio ? fmt::format(" {:>5.3f}", *ratio) : fmt::format(" {:>5}", "-");
       }
     }

@@ -97,9 +97,10 @@ TEST(IsaCost, TheSceneShadesEveryLightOnceAndTheFormsWorkOncePerPixel) {
 // Cost as work grows: a deferred form computes its roughness once per pixel, so its ratio to no
 // SAA (which shades the same lights) falls as the lights grow; a forward form filters per light.
 TEST(IsaCost, DeferredOverheadIsPaidOncePerPixelAndForwardPerLight) {
+  const saagen::IsaTable table = saagen::report::isa_table(measured());
   for (const std::string family : {"vega10", "navi21"}) {
-    const auto ratio = [&](const std::string& variant, std::uint32_t lights) {
-      const auto value = saagen::report::mean_inverse_throughput_ratio(measured(), family, variant, lights);
+    const auto ratio = [&](const std::string& variant, int lights) {
+      const auto value = table.forward_ratio(family, variant, {}, lights);
       EXPECT_TRUE(value.has_value()) << variant << " " << lights;
       return value.value_or(0.0);
     };
@@ -109,9 +110,7 @@ TEST(IsaCost, DeferredOverheadIsPaidOncePerPixelAndForwardPerLight) {
   }
   const std::string text = saagen::report::format_light_count_table(measured());
   EXPECT_NE(text.find("deferred-aniso/tail"), std::string::npos) << text;
-  EXPECT_NE(text.find(fmt::format("{:.3f}", *saagen::report::mean_inverse_throughput_ratio(measured(), "navi21", "deferred-avg", 16))),
-            std::string::npos)
-      << text;
+  EXPECT_NE(text.find(fmt::format("{:.3f}", *table.forward_ratio("navi21", "deferred-avg", {}, 16))), std::string::npos) << text;
 }
 
 // GFX9 runs wave64 on 4 SIMD16 units (an instruction issues over 4 cycles), RDNA2 wave32 on

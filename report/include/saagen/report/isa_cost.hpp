@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 #include <saagen/harness/isa.hpp>
+#include <saagen/scene/cost_tables.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,17 +55,17 @@ std::vector<std::string> parse_isa_families(const std::string& list);
 using IsaProgressFn = std::function<void(const std::string&)>;
 IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress = {});
 
-// The forward shader's inverse-throughput ratio of `variant` on `family` at `lights`, the mean
-// over the targets measured; nullopt when not measured.
-std::optional<double> mean_inverse_throughput_ratio(const IsaCostTable& table, std::string_view family, std::string_view variant,
-                                                    std::uint32_t lights);
+// The measurement as the planner reads it: the rows of isa_json() in the one schema of an ISA
+// cost table (saagen::IsaTable, saagen/scene/cost_tables.hpp), whose forward_ratio() is every
+// mean ratio the report and the CLI print.
+IsaTable isa_table(const IsaCostTable& table);
 
 // Terminal tables: per family and shader, variant x target with instructions, VGPRs, SGPRs,
 // subgroups per SIMD, latency, inverse throughput and the ratios to no SAA at one light, next to
 // the paper's Table 2 ratio (forward shader); then format_light_count_table.
 std::string format_isa_table(const IsaCostTable& table);
 // The light-count table: every configuration x family x light count, its forward shader's
-// inverse-throughput ratio to no SAA with the same lights (mean_inverse_throughput_ratio).
+// inverse-throughput ratio to no SAA with the same lights (IsaTable::forward_ratio, all targets).
 std::string format_light_count_table(const IsaCostTable& table);
 
 // {"cost_model": "...", "driver", "rows": [{"family", "shader", "target", "variant",
