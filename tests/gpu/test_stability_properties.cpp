@@ -301,27 +301,7 @@ rc::Gen<std::vector<Element>> gen_batch(rc::Gen<Element> element) {
 // ---------------------------------------------------------------------------------------------
 // The reference of every core/evaluate function and wrapper, on packed inputs.
 
-class Reader {
- public:
-  explicit Reader(const double* data) : data_(data) {}
-  double real() { return data_[next_++]; }
-  Vec2 vec2() {
-    const double x = real();
-    return {x, real()};
-  }
-  Vec3 vec3() {
-    const double x = real(), y = real();
-    return {x, y, real()};
-  }
-  Sym2 sym2() {
-    const double x = real(), y = real();
-    return {x, y, real()};
-  }
-
- private:
-  const double* data_;
-  std::size_t next_ = 0;
-};
+using Reader = saagen::test::PackedReader<double>;
 
 Values values(double v) { return {v}; }
 

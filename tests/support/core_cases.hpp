@@ -186,27 +186,7 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
 }
 
 // Reads the packed fp32 inputs back as doubles, in parameter order.
-class Inputs {
- public:
-  explicit Inputs(const float* data) : data_(data) {}
-  double real() { return data_[next_++]; }
-  Vec2 vec2() {
-    const double x = real();
-    return {x, real()};
-  }
-  Vec3 vec3() {
-    const double x = real(), y = real();
-    return {x, y, real()};
-  }
-  Sym2 sym2() {
-    const double xx = real(), xy = real();
-    return {xx, xy, real()};
-  }
-
- private:
-  const float* data_;
-  std::size_t next_ = 0;
-};
+using Inputs = saagen::test::FloatReader;
 
 inline std::vector<double> outputs(double v) { return {v}; }
 inline std::vector<double> outputs(Vec2 v) { return {v.x, v.y}; }

@@ -23,10 +23,12 @@
 
 namespace saagen::test {
 
-// Reads packed fp32 inputs back as doubles, in parameter order.
-class FloatReader {
+// Reads packed inputs back as doubles, in parameter order: fp32 as a device reads them
+// (FloatReader), or doubles (the stability suite's pairs of inputs).
+template <class Scalar>
+class PackedReader {
  public:
-  explicit FloatReader(const float* data) : data_(data) {}
+  explicit PackedReader(const Scalar* data) : data_(data) {}
   double real() { return data_[next_++]; }
   ref::Vec2 vec2() {
     const double x = real();
@@ -42,9 +44,10 @@ class FloatReader {
   }
 
  private:
-  const float* data_;
+  const Scalar* data_;
   std::size_t next_ = 0;
 };
+using FloatReader = PackedReader<float>;
 
 // Whether a function reads a filtered matrix `a` next to the unfiltered `alpha2` it was filtered
 // from (the tail-preserving filtered GGX): then `a` = diag(alpha2) + the roughness matrix, a
