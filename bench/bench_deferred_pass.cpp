@@ -123,7 +123,7 @@ int run(int argc, char** argv) {
   {
     saagen::CompileRequest request;
     request.stage = saagen::ShaderStage::compute;
-    request.sources = {{"baseline.comp", saagen::report::deferred_copy_glsl}};
+    request.sources = {{"baseline.comp", saagen::report::deferred_copy_source("glsl")}};
     const auto compiled = saagen::compile_to_spirv(request);
     if (!compiled.ok) throw std::runtime_error("the baseline does not compile: " + compiled.log);
     entries.push_back({"baseline (copy)", compiled.spirv, false, nullptr, {}, {}});

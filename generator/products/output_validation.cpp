@@ -52,7 +52,7 @@ FileValidation validate_spirv_or_pass_file(const Catalogue& catalogue, const std
     validation.checks.push_back(std::move(check));
   } else {
     CompileRequest request;
-    request.language = builtin_target(pass_source_target(kind)).language;
+    request.language = builtin_target(marker->target.table).language;  // a pass source: pass-<table>
     request.stage = ShaderStage::compute;
     request.client = ClientApi::vulkan;
     request.sources = {{file_name, content}};

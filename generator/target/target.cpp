@@ -188,8 +188,8 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   target.resources_after_file = json.value("resources_after_file", false);
   target.spirv_library_source = json.value("spirv_library_source", false);
   if (json.contains("deferred_pass")) {
-    target.deferred_pass =
-        parse_sections(json.at("deferred_pass"), "deferred_pass", {"prologue", "resources", "tangent_resources", "main"}, {}, source);
+    target.deferred_pass = parse_sections(json.at("deferred_pass"), "deferred_pass",
+                                          {"prologue", "resources", "tangent_resources", "main", "baseline"}, {}, source);
     target.deferred_pass_extension = require_string(json, "deferred_pass_extension", source);
   }
   const Json& validation = require(json, "validation", source);

@@ -320,48 +320,11 @@ std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const s
   return optimized;
 }
 
-// The deferred pass's baseline: the passes' interface (deferred_pass_abi), the roughness copied;
-// the normal is read and enters the result through a term that cannot be folded away.
-const char* const deferred_copy_glsl = R"(#version 450
-#extension GL_EXT_samplerless_texture_functions : require
-layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform texture2D normal_gbuffer;
-layout(set = 0, binding = 1) uniform texture2D roughness_gbuffer;
-layout(set = 0, binding = 2, r32f) uniform writeonly image2D filtered;
-layout(push_constant) uniform Constants { uvec2 size; uint roughness_channel; uint flags; } constants;
-void main()
-{
-    uint lane = gl_LocalInvocationIndex;
-    uvec2 pixel = gl_WorkGroupID.xy * 8u + uvec2(lane & 7u, lane >> 3u);
-    ivec2 source = ivec2(min(pixel, constants.size - 1u));
-    vec3 n = texelFetch(normal_gbuffer, source, 0).xyz;
-    float r = texelFetch(roughness_gbuffer, source, 0)[constants.roughness_channel & 3u];
-    if (all(lessThan(pixel, constants.size))) imageStore(filtered, ivec2(pixel), vec4(min(r, r + abs(n.x) * 1e-30)));
-}
-)";
-
-const char* const deferred_copy_hlsl = R"([[vk::binding(0, 0)]] Texture2D<float4> normal_gbuffer : register(t0);
-[[vk::binding(1, 0)]] Texture2D<float4> roughness_gbuffer : register(t1);
-[[vk::binding(2, 0)]] RWTexture2D<float> filtered : register(u0);
-struct Constants { uint2 size; uint roughness_channel; uint flags; };
-[[vk::push_constant]] ConstantBuffer<Constants> constants;
-[numthreads(64, 1, 1)]
-void main(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
-{
-    uint2 pixel = group.xy * 8 + uint2(lane & 7, lane >> 3);
-    int2 source = int2(min(pixel, constants.size - 1));
-    float3 n = normal_gbuffer.Load(int3(source, 0)).xyz;
-    float r = roughness_gbuffer.Load(int3(source, 0))[constants.roughness_channel & 3];
-    if (all(pixel < constants.size)) filtered[pixel] = min(r, r + abs(n.x) * 1e-30);
-}
-)";
-
 const char* deferred_copy_source(std::string_view target) {
-  const std::pair<std::string_view, const char*> sources[] = {{"glsl", deferred_copy_glsl}, {"hlsl", deferred_copy_hlsl}};
-  for (const auto& [name, source] : sources) {
-    if (name == target) return source;
-  }
-  throw Error(fmt::format("the deferred pass's baseline is not written in target '{}'", target));
+  const auto& skeleton = builtin_target(target).deferred_pass;
+  const auto baseline = skeleton.find("baseline");
+  if (baseline == skeleton.end()) throw Error(fmt::format("the deferred pass's baseline is not written in target '{}'", target));
+  return baseline->second.c_str();
 }
 
 }  // namespace saagen::report

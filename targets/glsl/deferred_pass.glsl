@@ -2,6 +2,9 @@
 // prologue before the emitted file, resources and main after it, tangent_resources only for
 // passes that read the tangent G-buffer. Placeholders: {prefix}, {output_format}, {plain_ddx},
 // {plain_ddy} and {body}, the statements that read the G-buffer, call the filter and store.
+// baseline: a whole pass with the passes' interface (deferred_pass_abi) that copies the roughness
+// (the normal is read and enters the result through a term that cannot be folded away), which
+// `saagen bench --isa` measures every pass against.
 // saagen-section: prologue
 #version 450
 #extension GL_KHR_shader_subgroup_basic : require
@@ -53,3 +56,20 @@ void main()
     saagen_quad_sign_x = (gl_SubgroupInvocationID & 1u) == 0u ? 1.0 : -1.0;
     saagen_quad_sign_y = (gl_SubgroupInvocationID & 2u) == 0u ? 1.0 : -1.0;
 {body}}
+// saagen-section: baseline
+#version 450
+#extension GL_EXT_samplerless_texture_functions : require
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform texture2D normal_gbuffer;
+layout(set = 0, binding = 1) uniform texture2D roughness_gbuffer;
+layout(set = 0, binding = 2, r32f) uniform writeonly image2D filtered;
+layout(push_constant) uniform Constants { uvec2 size; uint roughness_channel; uint flags; } constants;
+void main()
+{
+    uint lane = gl_LocalInvocationIndex;
+    uvec2 pixel = gl_WorkGroupID.xy * 8u + uvec2(lane & 7u, lane >> 3u);
+    ivec2 source = ivec2(min(pixel, constants.size - 1u));
+    vec3 n = texelFetch(normal_gbuffer, source, 0).xyz;
+    float r = texelFetch(roughness_gbuffer, source, 0)[constants.roughness_channel & 3u];
+    if (all(lessThan(pixel, constants.size))) imageStore(filtered, ivec2(pixel), vec4(min(r, r + abs(n.x) * 1e-30)));
+}

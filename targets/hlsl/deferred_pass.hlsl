@@ -2,6 +2,9 @@
 // prologue before the emitted file, resources and main after it, tangent_resources only for
 // passes that read the tangent G-buffer. Placeholders: {prefix}, {output_format}, {plain_ddx},
 // {plain_ddy} and {body}, the statements that read the G-buffer, call the filter and store.
+// baseline: a whole pass with the passes' interface (deferred_pass_abi) that copies the roughness
+// (the normal is read and enters the result through a term that cannot be folded away), which
+// `saagen bench --isa` measures every pass against.
 // saagen-section: prologue
 // A compute shader has no ddx/ddy: lanes form 2x2 pixel quads (four consecutive wave lanes)
 // and the derivatives of the included file become quad wave operations (SM 6.0).
@@ -51,3 +54,18 @@ void main(uint3 saagen_group : SV_GroupID, uint saagen_group_index : SV_GroupInd
     saagen_quad_sign_x = (WaveGetLaneIndex() & 1) == 0 ? 1.0 : -1.0;
     saagen_quad_sign_y = (WaveGetLaneIndex() & 2) == 0 ? 1.0 : -1.0;
 {body}}
+// saagen-section: baseline
+[[vk::binding(0, 0)]] Texture2D<float4> normal_gbuffer : register(t0);
+[[vk::binding(1, 0)]] Texture2D<float4> roughness_gbuffer : register(t1);
+[[vk::binding(2, 0)]] RWTexture2D<float> filtered : register(u0);
+struct Constants { uint2 size; uint roughness_channel; uint flags; };
+[[vk::push_constant]] ConstantBuffer<Constants> constants;
+[numthreads(64, 1, 1)]
+void main(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
+{
+    uint2 pixel = group.xy * 8 + uint2(lane & 7, lane >> 3);
+    int2 source = int2(min(pixel, constants.size - 1));
+    float3 n = normal_gbuffer.Load(int3(source, 0)).xyz;
+    float r = roughness_gbuffer.Load(int3(source, 0))[constants.roughness_channel & 3];
+    if (all(pixel < constants.size)) filtered[pixel] = min(r, r + abs(n.x) * 1e-30);
+}

@@ -300,8 +300,7 @@ TEST(Marker, RoundTripsAndIsAbsentFromForeignFiles) {
 TEST(Marker, TargetsAreTypedSnippetsOrProducts) {
   EXPECT_EQ(saagen::OutputTarget::named("wgsl"), saagen::OutputTarget::snippet("wgsl"));
   EXPECT_TRUE(saagen::OutputTarget::named("wgsl").is_snippet());
-  for (const saagen::OutputKind kind :
-       {saagen::OutputKind::spirv_library, saagen::OutputKind::pass_glsl, saagen::OutputKind::pass_hlsl, saagen::OutputKind::pass_spirv}) {
+  for (const saagen::OutputKind kind : {saagen::OutputKind::spirv_library, saagen::OutputKind::pass_spirv}) {
     saagen::EmissionMarker marker;
     marker.target = saagen::OutputTarget::product(kind);
     marker.variants = {"deferred-sum"};
@@ -312,6 +311,16 @@ TEST(Marker, TargetsAreTypedSnippetsOrProducts) {
     EXPECT_TRUE(parsed->target.table.empty());
     EXPECT_EQ(parsed->target.name(), saagen::marker_target(kind));
   }
+  // A deferred pass's source names the table it is written in, whatever that table is: no
+  // language is spelled here.
+  for (const std::string table : {"glsl", "hlsl", "a-future-language"}) {
+    const saagen::OutputTarget target = saagen::OutputTarget::named("pass-" + table);
+    EXPECT_EQ(target, saagen::OutputTarget::pass_source(table));
+    EXPECT_FALSE(target.is_snippet());
+    EXPECT_EQ(target.name(), "pass-" + table);
+  }
+  EXPECT_EQ(saagen::OutputTarget::named("pass-spirv"), saagen::OutputTarget::product(saagen::OutputKind::pass_spirv));
+  EXPECT_TRUE(saagen::OutputTarget::named("pass-").is_snippet());  // no table: an unknown target, said as one
   // EmitOptions::target is the same typed value, read from `--target`'s text where it is set.
   saagen::EmitOptions options;
   EXPECT_EQ(options.target, saagen::OutputTarget::snippet("glsl"));

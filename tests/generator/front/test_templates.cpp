@@ -221,7 +221,7 @@ TEST(TargetTable, LoadsSkeletonsFromSourceFiles) {
   const auto pass = saagen::skeleton_sections("hlsl/deferred_pass.hlsl", "test");
   std::vector<std::string> names;
   for (const auto& [name, text] : pass) names.push_back(name);
-  EXPECT_EQ(names, (std::vector<std::string>{"main", "prologue", "resources", "tangent_resources"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"baseline", "main", "prologue", "resources", "tangent_resources"}));
   EXPECT_EQ(pass.at("main").substr(pass.at("main").size() - 8), "{body}}\n");
 
   std::ifstream file(SAAGEN_SOURCE_DIR "/targets/glsl.json");

@@ -16,48 +16,39 @@
 
 namespace saagen {
 
-// What a marker's `target=` names: a snippet of a target table (glsl, gles, hlsl, wgsl), or one of
-// the binary products, whose pseudo-targets are spelled here and nowhere else.
-enum class OutputKind { snippet, spirv_library, pass_glsl, pass_hlsl, pass_spirv };
+// What a marker's `target=` names: a snippet of a target table (glsl, gles, hlsl, wgsl), a
+// deferred pass's source written in a target table's language ("pass-" and the table's name:
+// pass-glsl, pass-hlsl), or one of the binary products, whose pseudo-targets are spelled here
+// and nowhere else.
+enum class OutputKind { snippet, pass_source, spirv_library, pass_spirv };
 
-// The `target=` of a product's marker: "spirv" (library modules and their headers, and the
-// `--target` that asks for them), "pass-glsl", "pass-hlsl", "pass-spirv" (the deferred pass files).
+// The prefix of a pass source's `target=`, before its table's name.
+inline constexpr std::string_view kPassSourcePrefix = "pass-";
+
+// The `target=` of a binary product's marker: "spirv" (library modules and their headers, and the
+// `--target` that asks for them), "pass-spirv" (the deferred pass's SPIR-V); "" for the kinds
+// that name a table.
 constexpr std::string_view marker_target(OutputKind kind) {
   switch (kind) {
     case OutputKind::spirv_library:
       return "spirv";
-    case OutputKind::pass_glsl:
-      return "pass-glsl";
-    case OutputKind::pass_hlsl:
-      return "pass-hlsl";
     case OutputKind::pass_spirv:
       return "pass-spirv";
     case OutputKind::snippet:
+    case OutputKind::pass_source:
       break;
   }
   return "";
 }
 
-// The kind a marker target names: a product's pseudo-target, else a snippet.
+// The kind a marker target names: a binary product's pseudo-target, a pass source ("pass-" and a
+// table's name), else a snippet.
 constexpr OutputKind output_kind(std::string_view target) {
-  for (OutputKind kind : {OutputKind::spirv_library, OutputKind::pass_glsl, OutputKind::pass_hlsl, OutputKind::pass_spirv}) {
+  for (OutputKind kind : {OutputKind::spirv_library, OutputKind::pass_spirv}) {
     if (target == marker_target(kind)) return kind;
   }
-  return OutputKind::snippet;
-}
-
-// A deferred pass source's kind is named after the target table it is written in: "pass-glsl" is
-// the pass of the target glsl. The target a pass-source kind names ("" for another kind), and the
-// kind of a target's pass source (snippet when none is spelled for it).
-constexpr std::string_view pass_source_target(OutputKind kind) {
-  constexpr std::string_view pass = "pass-";
-  if (kind != OutputKind::pass_glsl && kind != OutputKind::pass_hlsl) return "";
-  return marker_target(kind).substr(pass.size());
-}
-constexpr OutputKind pass_source_kind(std::string_view target) {
-  for (OutputKind kind : {OutputKind::pass_glsl, OutputKind::pass_hlsl}) {
-    if (pass_source_target(kind) == target) return kind;
-  }
+  if (target.size() > kPassSourcePrefix.size() && target.substr(0, kPassSourcePrefix.size()) == kPassSourcePrefix)
+    return OutputKind::pass_source;
   return OutputKind::snippet;
 }
 
@@ -75,15 +66,28 @@ struct OutputTarget {
   OutputTarget(const std::string& text) : OutputTarget(named(text)) {}
 
   static OutputTarget snippet(std::string table) { return {OutputKind::snippet, std::move(table)}; }
+  // The source of a deferred pass written in table `table`'s language.
+  static OutputTarget pass_source(std::string table) { return {OutputKind::pass_source, std::move(table)}; }
   static OutputTarget product(OutputKind kind) { return {kind, {}}; }
-  // The `target=` text a marker names: a product's pseudo-target, else a table's name.
+  // The `target=` text a marker names: a product's pseudo-target, a pass source, else a table's name.
   static OutputTarget named(std::string_view text) {
-    const OutputKind kind = output_kind(text);
-    return kind == OutputKind::snippet ? snippet(std::string(text)) : product(kind);
+    switch (output_kind(text)) {
+      case OutputKind::snippet:
+        return snippet(std::string(text));
+      case OutputKind::pass_source:
+        return pass_source(std::string(text.substr(kPassSourcePrefix.size())));
+      default:
+        return product(output_kind(text));
+    }
   }
   bool is_snippet() const { return kind == OutputKind::snippet; }
-  // The text form: the pseudo-target of a product, the table's name of a snippet.
-  std::string name() const { return is_snippet() ? table : std::string(marker_target(kind)); }
+  // The text form: the table's name of a snippet, "pass-" and it of a pass source, the
+  // pseudo-target of a product.
+  std::string name() const {
+    if (is_snippet()) return table;
+    if (kind == OutputKind::pass_source) return std::string(kPassSourcePrefix) + table;
+    return std::string(marker_target(kind));
+  }
   bool operator==(const OutputTarget&) const = default;
   auto operator<=>(const OutputTarget&) const = default;  // an order for maps keyed by target
 };

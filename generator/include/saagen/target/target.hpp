@@ -76,7 +76,8 @@ struct TargetSyntax {
   // target's emission (spirv_library_target()).
   bool spirv_library_source = false;
   // Optional (key "deferred_pass"): the deferred pass skeleton's sections (prologue, resources,
-  // tangent_resources, main); empty when the target has no deferred pass.
+  // tangent_resources, main, and baseline: the copy pass `saagen bench --isa` measures the passes
+  // against); empty when the target has no deferred pass.
   std::map<std::string, std::string, std::less<>> deferred_pass;
   // With deferred_pass (key "deferred_pass_extension", required there): the pass file's extension
   // (".comp" for GLSL, as glslang names a compute shader by it).

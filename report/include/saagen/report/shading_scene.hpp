@@ -78,12 +78,10 @@ std::string body_with(const SceneShading& shading, std::uint32_t width, std::uin
 std::vector<std::uint32_t> scene_shader_spirv(const std::string& target, const std::string& file_name, const std::string& content,
                                               const std::string& body, std::uint32_t width);
 
-// The deferred roughness-limiter pass's baseline, GLSL and HLSL: the passes' interface
-// (deferred_pass_abi), the roughness copied; bench_deferred_pass times it, `saagen bench --isa`
-// compiles it.
-extern const char* const deferred_copy_glsl;
-extern const char* const deferred_copy_hlsl;
-// The baseline written in target `target` (glsl, hlsl); throws saagen::Error for a target without one.
+// The deferred roughness-limiter pass's baseline written in target `target`: the section
+// "baseline" of its deferred pass skeleton (targets/<language>/deferred_pass.*), the passes'
+// interface (deferred_pass_abi) with the roughness copied; bench_deferred_pass times it, `saagen
+// bench --isa` compiles it. Throws saagen::Error for a target without a deferred pass.
 const char* deferred_copy_source(std::string_view target);
 
 }  // namespace saagen::report
