@@ -163,29 +163,17 @@ Vec3 normal_frame_bitangent(Vec3 n) {
   return {n.x * n.y * a, s + n.y * n.y * a, -n.y};
 }
 
-// Delta^T Delta with min(lambda, bound) through its spectral decomposition (template
-// sym2_from_derivative_rows_clamped): min(l2, bound) I + (min(l1, bound) - min(l2, bound)) P1,
-// l2 = det(Delta)^2 / l1, all of M / tr(M).
-Sym2 sym2_from_derivative_rows_clamped(const Params& p, Vec2 du, Vec2 dv, double bound) {
+// Delta^T Delta scaled by min(1, bound / lambda_max) (template sym2_from_derivative_rows_bounded):
+// eigenvectors and eigenvalue ratio kept, of the unit-trace M / tr(M) as the template does.
+Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double bound) {
   const Sym2 m = sym2_from_derivative_rows(du, dv);
   const double trace = m.xx + m.yy;
   if (trace <= bound) return m;
-  const double tiny = p.guard_constants().tiny_positive;
-  if (trace < tiny) return {bound, 0.0, bound};
+  if (trace < p.guard_constants().tiny_positive) return {bound, 0.0, bound};
   const Sym2 unit{m.xx / trace, m.xy / trace, m.yy / trace};
   const double half_difference = 0.5 * (unit.xx - unit.yy);
-  const double spread = std::sqrt(half_difference * half_difference + unit.xy * unit.xy);
-  const double larger_unit = 0.5 * (unit.xx + unit.yy) + spread;
-  const double area = (du.x * dv.y - du.y * dv.x) / trace;
-  const double larger = min(trace * larger_unit, bound);
-  const double smaller = min(trace * (area * area / larger_unit), larger);
-  const double magnitude = std::fabs(half_difference);
-  const double twice_spread = max(2.0 * spread, tiny);
-  const double major = saturate((spread + magnitude) / twice_spread);
-  const double minor = saturate(unit.xy * unit.xy / max(twice_spread * (spread + magnitude), tiny));
-  const double off_diagonal = std::clamp(unit.xy / twice_spread, -0.5, 0.5);
-  const Sym2 projector = half_difference >= 0.0 ? Sym2{major, off_diagonal, minor} : Sym2{minor, off_diagonal, major};
-  return Sym2{smaller, 0.0, smaller} + (larger - smaller) * projector;
+  const double larger_unit = 0.5 * (unit.xx + unit.yy) + std::sqrt(half_difference * half_difference + unit.xy * unit.xy);
+  return min(trace, bound / larger_unit) * unit;
 }
 
 // The normal matrix 2 sigma^2 Dn^T Dn (T&K 2019 Sec. 2.2) in the frame built from n.
@@ -193,7 +181,7 @@ Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
   const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
   const Vec3 dy = p.guards ? clamp_derivative3(p, dn_dy) : dn_dy;
   const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 rows = sym2_from_derivative_rows_clamped(p, {dot(dx, t), dot(dx, b)}, {dot(dy, t), dot(dy, b)}, p.kappa / (2.0 * p.sigma2));
+  const Sym2 rows = sym2_from_derivative_rows_bounded(p, {dot(dx, t), dot(dx, b)}, {dot(dy, t), dot(dy, b)}, p.kappa / (2.0 * p.sigma2));
   return (2.0 * p.sigma2) * rows;
 }
 

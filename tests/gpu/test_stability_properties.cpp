@@ -584,11 +584,12 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
   }
   const auto out = evaluator.run(f, pairs);
   const double slack = 4.0 * evaluator.unit();
-  // deferred-aniso's tensor min(lambda, kappa) of s^2 Delta^T Delta keeps its eigenvectors and
-  // raises each eigenvalue: it grows in the PSD order, and only as long as the derivatives scale
-  // as a whole (no component clamped at DERIVATIVE_MAX, which turns them); its diagonal follows
-  // from that order, with the same slack (rounding turns the eigenvectors by a few units of 2^-24,
-  // which moves a diagonal entry by that much times the eigenvalue gap, not times the entry).
+  // deferred-aniso's tensor of s^2 Delta^T Delta, scaled by min(1, kappa / lambda_max), is s^2 K
+  // until its largest eigenvalue reaches kappa and constant beyond: it grows in the PSD order
+  // (continuous at the bound), and only as long as the derivatives scale as a whole (no component
+  // clamped at DERIVATIVE_MAX, which turns them); its diagonal follows from that order, with the
+  // same slack (rounding turns the eigenvectors by a few units of 2^-24, which moves a diagonal
+  // entry by that much times the eigenvalue gap, not times the entry).
   const bool tensor = stab::claim_of(f.name) == stab::Claim::kernel_tensor;
   const bool matrix = stab::claim_of(f.name) == stab::Claim::roughness_matrix || tensor;
   for (std::size_t e = 0; e < batch.size(); ++e) {

@@ -332,6 +332,36 @@ TEST(Clamp, HugeDerivativesReachAlphaSquaredPlusKappaExactly) {
   EXPECT_EQ(deferred_sum(off, a, hx, hy), a);
 }
 
+TEST(Clamp, DeferredAnisoBoundsTheLargestEigenvalueAndKeepsTheKernelsShape) {
+  const Params p;  // sigma^2 = 0.25, kappa = 0.18
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int k = 0; k < 1000; ++k) {
+    const Vec2 du{u(rng), u(rng)}, dv{u(rng), u(rng)};
+    const Sym2 raw = sym2_from_derivative_rows(du, dv);
+    const double bound = 0.01 + 0.5 * std::fabs(u(rng));
+    const Sym2 bounded = sym2_from_derivative_rows_bounded(p, du, dv, bound);
+    if (trace(raw) <= bound) {  // every eigenvalue is at most the trace: nothing to bound
+      EXPECT_EQ(bounded.xx, raw.xx);
+      EXPECT_EQ(bounded.xy, raw.xy);
+      EXPECT_EQ(bounded.yy, raw.yy);
+      continue;
+    }
+    // One factor s = min(1, bound / lambda_max) on every entry: orientation and anisotropy kept.
+    const double s = std::min(1.0, bound / sym2_max_eigenvalue(raw));
+    expect_sym2_near(bounded, s * raw);
+    EXPECT_LE(sym2_max_eigenvalue(bounded), bound * (1.0 + 1e-12));
+  }
+  // A kernel along one axis: lambda_max = 2 sigma^2 |d|^2 = 0.5 * 100 -> kappa, the other axis 0.
+  const Sym2 line = deferred_aniso(p, Vec3{10, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 1});
+  EXPECT_TRUE(near_rel(sym2_max_eigenvalue(line), p.kappa));
+  EXPECT_NEAR(trace(line) - sym2_max_eigenvalue(line), 0.0, 1e-15);
+  // Anisotropy 4:1 beyond the bound stays 4:1 (a per-eigenvalue clamp would make it 1:1).
+  const Sym2 wide = deferred_aniso(p, Vec3{20, 0, 0}, Vec3{0, 10, 0}, Vec3{0, 0, 1});
+  EXPECT_TRUE(near_rel(sym2_max_eigenvalue(wide), p.kappa));
+  EXPECT_TRUE(near_rel(trace(wide) - sym2_max_eigenvalue(wide), p.kappa / 4.0));
+}
+
 TEST(Clamp, AxisVariantsClampEachAxisSeparately) {
   const Params p;
   // du = (100, 0.01), dv = (0, 0.02): rect = (100, 0.03).

@@ -158,15 +158,15 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 Vec3 normal_frame_tangent(Vec3 n);
 Vec3 normal_frame_bitangent(Vec3 n);
 
-// Delta^T Delta (rows du, dv) with each eigenvalue clamped, min(lambda, bound): unchanged when
-// its trace is <= bound, else min(l2, bound) I + (min(l1, bound) - min(l2, bound)) P1,
-// P1 = (M - l2 I) / (l1 - l2), l2 = det(Delta)^2 / l1; of M / tr(M) as the template does.
-Sym2 sym2_from_derivative_rows_clamped(const Params& p, Vec2 du, Vec2 dv, double bound);
+// Delta^T Delta (rows du, dv) scaled by min(1, bound / lambda_max): unchanged when its trace is
+// <= bound, else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound;
+// of M / tr(M) as the template does.
+Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double bound);
 
 // The G-buffer tensor K = 2 sigma^2 Dn^T Dn, Dn the rows (dn_dx, dn_dy) in the frame of
-// normal_frame_tangent / normal_frame_bitangent(normal_ws), each eigenvalue clamped to kappa
-// (the clamp on Dn^T Dn with bound kappa / (2 sigma^2), then the scale). Guarded: derivatives
-// clamped (clamp_derivative3).
+// normal_frame_tangent / normal_frame_bitangent(normal_ws), scaled so that its largest eigenvalue
+// is at most kappa (the bound on Dn^T Dn is kappa / (2 sigma^2), then the scale). Guarded:
+// derivatives clamped (clamp_derivative3).
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
 
 // ---------------------------------------------------------------------------------------------
