@@ -246,10 +246,12 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
 }
 
 // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
-// type and per scene; the verdicts, the planner and the scripts read these.
+// type, per scene, and per cell (one scene at one alpha: "alpha" names it; its interval is over the
+// cell's frames and ground-truth seeds only); the verdicts, the planner and the scripts read these.
 nlohmann::json comparisons_json(const measure::TradeTable& table) {
   nlohmann::json comparisons = nlohmann::json::array();
-  const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep) {
+  const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep,
+                                   std::optional<double> alpha = std::nullopt) {
     for (const std::string& id : configurations(table)) {
       if (id == "none" || is_measurement_configuration(id)) continue;
       const PairedComparison c = compare_configurations(table, id, "none", keep);
@@ -264,6 +266,7 @@ nlohmann::json comparisons_json(const measure::TradeTable& table) {
                              {"lag", difference_json(c.lag)},
                              {"outcome", std::string(comparison_outcome_name(c))}});
       if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
+      if (alpha) comparisons.back()["alpha"] = *alpha;
     }
   };
   for (Content content : kContents)
@@ -271,6 +274,11 @@ nlohmann::json comparisons_json(const measure::TradeTable& table) {
                     [content](const measure::TradeRow& row) { return content_of(row.scene) == content; });
   for (const measure::SceneId scene : table.config.scenes)
     add_comparisons("scene", std::string(measure::scene_name(scene)), [scene](const measure::TradeRow& row) { return row.scene == scene; });
+  for (const measure::SceneId scene : table.config.scenes)
+    for (const double alpha : table.config.alphas)
+      add_comparisons(
+          "cell", std::string(measure::scene_name(scene)),
+          [scene, alpha](const measure::TradeRow& row) { return row.scene == scene && row.alpha == alpha; }, alpha);
   return comparisons;
 }
 

@@ -12,6 +12,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <sys/wait.h>
 
@@ -210,6 +211,27 @@ TEST_F(Report, BenchPrintsTheTableAndWritesJsonThePlannerReads) {
     }
   }
   EXPECT_GT(paired, 0u);
+  // Per cell (one scene at one alpha), each configuration against no SAA: the difference of the two
+  // cases' means, paired on that cell alone; a scene's comparison pools as many cells as it has.
+  std::map<std::tuple<std::string, double, std::string>, double> case_image;
+  for (const auto& c : document["cases"])
+    if (!c["fresnel"].get<bool>()) case_image[{c["scene"], c["alpha"], c["configuration"]}] = c["image_error"]["mean"];
+  std::map<std::pair<std::string, std::string>, int> cells_of_scene, scene_cells;
+  for (const auto& c : document["comparisons"]) {
+    const std::pair<std::string, std::string> key{c["name"], c["configuration"]};
+    if (c["scope"] == "scene") scene_cells[key] = c["cells"];
+    if (c["scope"] != "cell") continue;
+    EXPECT_EQ(c["cells"], 1) << c.dump();
+    ++cells_of_scene[key];
+    const double alpha = c["alpha"];
+    const auto with = case_image.find({key.first, alpha, key.second});
+    const auto without = case_image.find({key.first, alpha, "none"});
+    ASSERT_TRUE(with != case_image.end() && without != case_image.end()) << c.dump();
+    EXPECT_NEAR(c["image_error"]["mean"].get<double>(), with->second - without->second, 1e-12) << c.dump();
+    EXPECT_LE(c["image_error"]["low"].get<double>(), c["image_error"]["high"].get<double>());
+  }
+  EXPECT_FALSE(cells_of_scene.empty());
+  EXPECT_EQ(cells_of_scene, scene_cells);
   // 3 scenes without normal detail x 2 alphas x (18 + 14 lobe) configurations + the bump plane's 2 x 76.
   EXPECT_EQ(document["cases"].size(), 3u * 2u * 32u + 2u * 76u);
 }
