@@ -569,7 +569,7 @@ template <class Reference>
 constexpr Filter filter_by_form(Reference) {
   using namespace ref::wrapper_forms;
   if constexpr (reads_half_vectors<Reference>) {
-    using Result = std::invoke_result_t<Reference, const ref::Params&, Vec2, const ref::Quad<Vec3>&, int, ref::Derivative>;
+    using Result = half_vector_result_t<Reference>;
     constexpr auto filter = [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); };
     if constexpr (std::is_same_v<Result, Sym2>) {
       return MatrixFilter{filter};

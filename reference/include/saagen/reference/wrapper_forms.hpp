@@ -20,6 +20,9 @@ using QuadOfVectors = const Quad<Vec3>&;
 // The unfiltered roughness per axis and the half vectors (forward-*).
 template <class Wrapper>
 constexpr bool reads_half_vectors = std::is_invocable_v<Wrapper, const Params&, Vec2, QuadOfVectors, int, Derivative>;
+// What such a wrapper returns: a roughness matrix (Sym2, forward-aniso-*) or per axis (Vec2).
+template <class Wrapper>
+using half_vector_result_t = std::invoke_result_t<Wrapper, const Params&, Vec2, QuadOfVectors, int, Derivative>;
 
 // alpha^2 and the normal, tangent, bitangent and fragment coordinates (a quad-average normal's
 // frame: deferred-previous, deferred-max); the average's own derivative mode may follow.
