@@ -50,6 +50,9 @@ def content_entries(derived, held_out, key, taa, map_lod_min=0):
     """Per content type, every configuration's figures and comparisons: without TAA (by_content,
     against no SAA) or under TAA (taa_by_content, against none+taa); map_lod_min > 0: tables of
     scenes whose normal maps are all seen at that LOD or coarser."""
+    if derived.get("alphas") != held_out.get("alphas"):
+        sys.exit(f"advice_data.py: the derivation and held-out tables were measured at other alphas ({derived.get('alphas')} and "
+                 f"{held_out.get('alphas')}); measure both with the same preset")
     derived_rows, held_rows = rows_by_content(derived, key), rows_by_content(held_out, key)
     derived_scenes, held_scenes = scenes_by_content(derived), scenes_by_content(held_out)
     contents = []
@@ -60,19 +63,23 @@ def content_entries(derived, held_out, key, taa, map_lod_min=0):
             entry.update({"taa": True, "baseline": "none+taa"})
         if map_lod_min:
             entry["map_lod_min"] = map_lod_min
-        entry.update({"scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, []), "rows": []})
+        entry.update({"scenes": derived_scenes.get(content, []), "held_out_scenes": held_scenes.get(content, [])})
+        if derived.get("alphas"):
+            entry["alphas"] = derived["alphas"]
+        entry["rows"] = []
         for configuration, row in rows.items():
             kept = {"configuration": configuration}
             kept.update({figure: row[figure] for figure in FIGURES if figure in row})
             if "against_none" in row:
                 kept["against_none"] = row["against_none"]
-            for pairing in ("loses_on", "not_worse_than"):
+            for pairing in ("loses_on", "not_worse_than", "loses_at"):
                 if row.get(pairing):
                     kept[pairing] = row[pairing]
             if "against_none" in held.get(configuration, {}):
                 kept["held_out"] = held[configuration]["against_none"]
-            if held.get(configuration, {}).get("loses_on"):
-                kept["held_out_loses_on"] = held[configuration]["loses_on"]
+            for pairing in ("loses_on", "loses_at"):
+                if held.get(configuration, {}).get(pairing):
+                    kept["held_out_" + pairing] = held[configuration][pairing]
             entry["rows"].append(kept)
         contents.append(entry)
     return contents

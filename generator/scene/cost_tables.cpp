@@ -74,13 +74,69 @@ std::vector<std::string> parse_names(const nlohmann::json& row, std::string_view
   return names;
 }
 
-// A content row's "loses_on" and "not_worse_than" (ContentRow).
+// A row's cells under `key` ("loses_at", "held_out_loses_at"): [{"scene": NAME, "alpha": A}], A a
+// GGX alpha in (0, 1]. Absent: none known.
+std::vector<CellLoss> parse_cells(const nlohmann::json& row, std::string_view key, std::string_view where) {
+  std::vector<CellLoss> cells;
+  if (!row.is_object() || !row.contains(key)) return cells;
+  const auto bad = [&] {
+    return Error(fmt::format("{}: \"{}\" must be an array of {{\"scene\": NAME, \"alpha\": A}}, A in (0, 1]", where, key));
+  };
+  const nlohmann::json& value = row[key];
+  if (!value.is_array()) throw bad();
+  for (const nlohmann::json& cell : value) {
+    if (!cell.is_object() || !cell.contains("scene") || !cell["scene"].is_string() || cell["scene"].get<std::string>().empty() ||
+        !cell.contains("alpha") || !cell["alpha"].is_number())
+      throw bad();
+    const double alpha = cell["alpha"].get<double>();
+    if (!(alpha > 0.0 && alpha <= 1.0)) throw bad();
+    cells.push_back({cell["scene"].get<std::string>(), alpha});
+  }
+  return cells;
+}
+
+// A content row's "loses_on", "not_worse_than" and "loses_at" (ContentRow).
 void parse_pairings(const nlohmann::json& row, ContentRow& out, std::string_view where) {
   out.loses_on = parse_names(row, "loses_on", "scene", where);
   out.not_worse_than = parse_names(row, "not_worse_than", "configuration", where);
+  out.loses_at = parse_cells(row, "loses_at", where);
+}
+
+// A document's "alphas": the GGX alphas it measured, ascending, each in (0, 1]. Absent: none given.
+std::vector<double> parse_alphas(const nlohmann::json& document, std::string_view where) {
+  std::vector<double> alphas;
+  if (!document.is_object() || !document.contains("alphas")) return alphas;
+  const auto bad = [&] { return Error(fmt::format("{}: \"alphas\" must be an ascending array of GGX alphas in (0, 1]", where)); };
+  if (!document["alphas"].is_array()) throw bad();
+  for (const nlohmann::json& alpha : document["alphas"]) {
+    if (!alpha.is_number() || !(alpha.get<double>() > 0.0 && alpha.get<double>() <= 1.0)) throw bad();
+    if (!alphas.empty() && alpha.get<double>() <= alphas.back()) throw bad();
+    alphas.push_back(alpha.get<double>());
+  }
+  return alphas;
 }
 
 }  // namespace
+
+std::vector<double> bracketing_alphas(const std::vector<double>& measured, AlphaRange range) {
+  std::vector<double> judged;
+  for (std::size_t i = 0; i < measured.size(); ++i) {
+    const bool inside = measured[i] >= range.low && measured[i] <= range.high;
+    // The nearest measured alpha below the range (or the smallest, above it) and above it.
+    const bool below = measured[i] < range.low && (i + 1 == measured.size() || measured[i + 1] > range.low);
+    const bool above = measured[i] > range.high && (i == 0 || measured[i - 1] < range.high);
+    if (inside || below || above) judged.push_back(measured[i]);
+  }
+  return judged;
+}
+
+std::vector<std::string> cells_lost_at(const std::vector<CellLoss>& losses, const std::vector<double>& alphas) {
+  std::vector<std::string> lost;
+  for (const CellLoss& cell : losses)
+    if (std::find(alphas.begin(), alphas.end(), cell.alpha) != alphas.end())
+      lost.push_back(fmt::format("{} at alpha {:g}", cell.scene, cell.alpha));
+  return lost;
+}
 
 std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
   const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.cost_ratio.has_value(); });
@@ -290,6 +346,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     return out;
   };
   table.content_rows = content_rows_of("by_content");
+  table.alphas = parse_alphas(document, source_name);
   table.taa_content_rows = content_rows_of("taa_by_content");
   return table;
 }
@@ -303,6 +360,12 @@ std::optional<decision::Comparison> AdviceMeasurement::held_out(std::string_view
 std::vector<std::string> AdviceMeasurement::held_out_loses_on(std::string_view configuration) const {
   for (const auto& [name, scenes] : held_out_losses)
     if (name == configuration) return scenes;
+  return {};
+}
+
+std::vector<CellLoss> AdviceMeasurement::held_out_loses_at(std::string_view configuration) const {
+  for (const auto& [name, cells] : held_out_cell_losses)
+    if (name == configuration) return cells;
   return {};
 }
 
@@ -358,6 +421,7 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
     measured.baseline = entry.value("baseline", measured.baseline);
     measured.scenes = names(entry, "scenes");
     measured.held_out_scenes = names(entry, "held_out_scenes");
+    measured.alphas = parse_alphas(entry, fmt::format("{}: content[{}]", source_name, index));
     for (const nlohmann::json& row : entry["rows"]) {
       const auto number = [&](const char* key) {
         if (!row.is_object() || !row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
@@ -378,6 +442,9 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
           fail(fmt::format("content[{}]: \"held_out_loses_on\" must be an array of scene names", index));
         measured.held_out_losses.emplace_back(kept.configuration, names(row, "held_out_loses_on"));
       }
+      if (row.contains("held_out_loses_at"))
+        measured.held_out_cell_losses.emplace_back(
+            kept.configuration, parse_cells(row, "held_out_loses_at", fmt::format("{}: content[{}]", source_name, index)));
       measured.rows.push_back(std::move(kept));
     }
     table.contents.push_back(std::move(measured));

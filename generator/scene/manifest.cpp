@@ -294,6 +294,31 @@ void apply_preset_variant(Manifest& manifest, const Catalogue& catalogue) {
   }
 }
 
+// `roughness`: a number in [0, 1], or an array [lowest, highest] of two (lowest <= highest).
+std::optional<RoughnessRange> read_roughness(const TableReader& reader) {
+  const std::string rule =
+      "a number in [0, 1], the perceptual roughness (as glTF's roughnessFactor; GGX alpha is its square), or [lowest, highest] where a "
+      "texture varies it";
+  const toml::node* node = reader.find("roughness");
+  if (!node) return std::nullopt;
+  const auto value_of = [&](const toml::node& element) {
+    if (!element.is_number()) reader.wrong_type("roughness", element, rule);
+    const double value = element.is_integer() ? static_cast<double>(element.as_integer()->get()) : element.as_floating_point()->get();
+    if (!(value >= 0.0 && value <= 1.0)) reader.fail_key("roughness", fmt::format("{} is outside [0, 1]", value), rule);
+    return value;
+  };
+  if (!node->is_array()) {
+    const double value = value_of(*node);
+    return RoughnessRange{value, value};
+  }
+  const toml::array& range = *node->as_array();
+  if (range.size() != 2) reader.fail_key("roughness", fmt::format("an array of {} numbers", range.size()), rule);
+  const RoughnessRange roughness{value_of(range[0]), value_of(range[1])};
+  if (roughness.low > roughness.high)
+    reader.fail_key("roughness", fmt::format("the lowest, {}, is above the highest, {}", roughness.low, roughness.high), rule);
+  return roughness;
+}
+
 Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<Precision>& precisions,
                        const Catalogue& catalogue) {
   Material material;
@@ -355,6 +380,7 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
     if (!material.normal_maps) reader.fail_key("map_lod", "a normal map's distance needs normal_maps = true", "normal_maps = true");
     material.map_lod = *map_lod;
   }
+  material.roughness = read_roughness(reader);
 
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
@@ -570,6 +596,11 @@ void check_manifest_limits(const Manifest& manifest, std::string_view text) {
 
 }  // namespace
 
+std::optional<AlphaRange> alpha_range(const Material& material) {
+  if (!material.roughness) return std::nullopt;
+  return AlphaRange{material.roughness->low * material.roughness->low, material.roughness->high * material.roughness->high};
+}
+
 advice::Content content_of(const Material& material) {
   if (material.content) return *material.content;
   return material.normal_maps ? advice::Content::normal_mapped : advice::Content::curved;
@@ -602,9 +633,9 @@ const std::vector<std::string>& manifest_keys() {
 }
 
 const std::vector<std::string>& material_keys() {
-  static const std::vector<std::string> keys = {"name",        "path",    "anisotropic", "tangents",  "ndf",
-                                                "normal_maps", "content", "glints",      "precision", "prefer",
-                                                "budget",      "lights",  "map_lod",     "variant",   "source"};
+  static const std::vector<std::string> keys = {"name",    "path",      "anisotropic", "tangents", "ndf",    "normal_maps",
+                                                "content", "glints",    "precision",   "prefer",   "budget", "lights",
+                                                "map_lod", "roughness", "variant",     "source"};
   return keys;
 }
 

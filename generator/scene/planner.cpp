@@ -701,11 +701,42 @@ void choose_normal_handling(const NormalMappedRows& from, const std::vector<cons
   if (from.advice) plan.normal_advice += "; " + held_out_text(*from.advice, chosen);
 }
 
-// The plan of saagen's decision (decision.hpp) on a content's rows: the chosen configuration's
-// variant, feed and prefilter, or no filter, with the decision's reason.
+// "0.05 (alpha 0.0025)" or "[0.05, 0.3] (alpha [0.0025, 0.09])": a material's roughness as the plan states it.
+std::string roughness_words(const RoughnessRange& roughness) {
+  if (roughness.low == roughness.high) return fmt::format("{:g} (alpha {:g})", roughness.low, roughness.low * roughness.low);
+  return fmt::format("[{:g}, {:g}] (alpha [{:g}, {:g}])", roughness.low, roughness.high, roughness.low * roughness.low,
+                     roughness.high * roughness.high);
+}
+
+// How the material's roughness entered the decision on rows measured at `alphas`: the measured
+// alphas it was judged at (at_roughness), or, without `roughness`, the cells on which the choice,
+// decided over every alpha pooled, loses to the baseline. Empty where the rows have no cells.
+std::string roughness_text(const Material& material, const std::vector<ContentRow>& rows, const std::optional<std::string>& chosen,
+                           const std::vector<double>& alphas, std::string_view baseline) {
+  if (alphas.empty()) return "";
+  if (const auto range = alpha_range(material))
+    return fmt::format(
+        "{}: decided on the measured cells (a scene at one alpha) at alpha {}, which bracket it: a configuration that "
+        "loses to {} beyond its interval on any of them is not taken",
+        roughness_words(*material.roughness), fmt::join(bracketing_alphas(alphas, *range), ", "), baseline);
+  if (!chosen) return "";
+  const auto row = std::find_if(rows.begin(), rows.end(), [&](const ContentRow& r) { return r.configuration == *chosen; });
+  if (row == rows.end() || row->loses_at.empty()) return "";
+  const std::vector<std::string> lost = cells_lost_at(row->loses_at, alphas);
+  return fmt::format(
+      "{} beats {} over every measured alpha ({}) pooled, but loses to it beyond its interval on {} of the cells (a scene at one "
+      "alpha): {}; state the material's `roughness` (perceptual, as glTF's roughnessFactor) to be planned at it",
+      *chosen, baseline, fmt::join(alphas, ", "), lost.size(), fmt::join(lost, ", "));
+}
+
+// The plan of saagen's decision (decision.hpp) on a content's rows measured at `alphas`: the
+// chosen configuration's variant, feed and prefilter, or no filter, with the decision's reason.
 void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
-                    std::string_view source, const AdviceMeasurement* advice, MaterialPlan& plan) {
+                    const std::vector<double>& alphas, std::string_view source, const AdviceMeasurement* advice, MaterialPlan& plan) {
   const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows, baseline_of(manifest.taa));
+  std::optional<std::string> decided;
+  if (made.decision.chosen) decided = made.candidates[*made.decision.chosen].configuration;
+  plan.roughness_advice = roughness_text(material, rows, decided, alphas, baseline_of(manifest.taa));
   const std::string where = fmt::format("{} in {}", content_words(content_of(material), manifest.taa), source);
   const std::string rule = advice ? "advice" : "trade table";
   if (advice) {
@@ -879,6 +910,206 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
   return plan_scene(catalogue, manifest, table, committed_advice());
 }
 
+namespace {
+
+// A row's losses as a material judged at the measured `alphas` sees them: its scenes', and its
+// cells' (one scene at one alpha) at those alphas.
+void add_cell_losses(ContentRow& row, const std::vector<double>& alphas) {
+  for (std::string& cell : cells_lost_at(row.loses_at, alphas)) row.loses_on.push_back(std::move(cell));
+}
+
+// A trade table as it applies to a material that states its roughness: each row also loses on
+// the cells it loses on at the measured alphas that bracket the material's (bracketing_alphas),
+// so that the one decision never gives it that material (decision.hpp: Candidate::loses_on).
+// Without `roughness`: unchanged, decided over every measured alpha pooled.
+MeasuredTradeTable at_roughness(MeasuredTradeTable table, const Material& material) {
+  const auto range = alpha_range(material);
+  if (!range) return table;
+  const std::vector<double> judged = bracketing_alphas(table.alphas, *range);
+  for (ContentRow& row : table.content_rows) add_cell_losses(row, judged);
+  for (ContentRow& row : table.taa_content_rows) add_cell_losses(row, judged);
+  return table;
+}
+
+// saagen's committed figures likewise, the held-out scenes' cells included (a choice that loses
+// on a held-out cell at the material's alphas does not hold there).
+AdviceTable at_roughness(AdviceTable advice, const Material& material) {
+  const auto range = alpha_range(material);
+  if (!range) return advice;
+  for (AdviceMeasurement& measured : advice.contents) {
+    const std::vector<double> judged = bracketing_alphas(measured.alphas, *range);
+    for (ContentRow& row : measured.rows) add_cell_losses(row, judged);
+    for (const auto& [configuration, cells] : measured.held_out_cell_losses) {
+      std::vector<std::string> lost = cells_lost_at(cells, judged);
+      if (lost.empty()) continue;
+      auto entry = std::find_if(measured.held_out_losses.begin(), measured.held_out_losses.end(),
+                                [&](const auto& losses) { return losses.first == configuration; });
+      if (entry == measured.held_out_losses.end()) entry = measured.held_out_losses.insert(entry, {configuration, {}});
+      entry->second.insert(entry->second.end(), lost.begin(), lost.end());
+    }
+  }
+  return advice;
+}
+
+// One material's plan (plan_scene): `table` and `advice` as they apply to its roughness.
+MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
+                           const AdviceTable& advice) {
+  const std::string context = fmt::format(" of material '{}'", material.name);
+  if (material.anisotropic && !material.tangents) {
+    const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
+    throw Error(manifest.where(position) +
+                fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
+                            "tangent frame); allowed: tangents = true, or anisotropic = false",
+                            context));
+  }
+  MaterialPlan plan;
+  plan.material = material.name;
+  plan.precision = material.precision;
+  plan.lights = material.lights;
+  plan.cost_lights = committed_isa_costs().cost_light_count(
+      manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family, material.lights);
+  if (material.glints) {
+    plan_glints(catalogue, manifest, material, plan);
+    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+    plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
+    return plan;
+  }
+  const auto eligible = eligible_variants(catalogue, material);
+
+  if (material.variant) {
+    const Variant* found = catalogue.find_variant(*material.variant);
+    if (!found || !is_screen_space_filter(catalogue, *found)) {
+      throw Error(
+          manifest.where(key_position(material, "variant")) +
+          fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
+    }
+    const Variant& variant = *found;
+    if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
+      throw Error(manifest.where(key_position(material, "variant")) +
+                  fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
+    }
+    plan.variant = variant.id;
+    plan.rule = "manifest";
+    plan.reason = material.positions.count("variant") || !manifest.preset
+                      ? "named by the manifest's `variant` key"
+                      : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
+  } else {
+    const Rule& rule = rule_for(material);
+    plan.variant = rule.variant;
+    plan.rule = rule.id;
+    plan.reason = rule.why;
+    const bool speed = material.prefer == Preference::speed;
+    // For speed, a GGX material the planner chooses for gets saagen's decision below, which costs
+    // every configuration itself; the ISA ranking here serves the others (Beckmann, presets).
+    const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
+    // A table without this material's content leaves a GGX material to saagen's decision on its
+    // own figures (below): the table's error means, of other content, rank nothing here.
+    const bool table_decides =
+        table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
+    if ((table_decides || speed) && !decision_costs) {
+      // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
+      // trade table when it has figures for that family (`saagen bench` measures one light, so
+      // only for a material costed at one light), else from the committed table. Accuracy: the
+      // table's error.
+      const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+      const bool table_has_isa = plan.cost_lights == 1 && table &&
+                                 std::any_of(table->rows.begin(), table->rows.end(),
+                                             [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
+      const std::string lights = light_count_words(material.lights, plan.cost_lights);
+      const std::string source =
+          !speed          ? table->source_name
+          : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
+                          : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
+      std::vector<std::pair<double, const Variant*>> ranked;
+      for (const Variant* variant : eligible) {
+        // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+        const std::string costed =
+            !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
+        const auto value = !speed          ? table->error(variant->id)
+                           : table_has_isa ? table->isa_cost(costed, family)
+                                           : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
+        if (value) ranked.emplace_back(*value, variant);
+      }
+      // Ties keep the rule's choice first, then catalogue order.
+      std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+        if (a.first != b.first) return a.first < b.first;
+        return a.second->id == rule.variant && b.second->id != rule.variant;
+      });
+      const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+      // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
+      // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
+      // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
+      const auto rule_entry =
+          std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+      const bool rule_ties =
+          speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+      if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
+        plan.variant = ranked.front().second->id;
+        plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+        plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id,
+                                  rule.variant);
+      } else if (!ranked.empty()) {
+        plan.reason +=
+            fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
+                        metric, source, describe_choice(ranked, metric));
+      } else {
+        plan.reason +=
+            fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source, metric, ids_of(eligible), rule.id);
+      }
+    }
+  }
+  if (material.normal_maps) {
+    // The table's rows, else saagen's committed measurement of normal-mapped content. For a
+    // material the planner chooses for, saagen's decision below (apply_decision) replaces this.
+    const std::string_view lobe = planned_lobe(material);
+    if (table && !table->content_rows.empty())
+      choose_normal_handling({table->content_rows, table->source_name}, eligible,
+                             !material.variant && material.prefer == Preference::accuracy, lobe, plan);
+    const AdviceMeasurement* measured = material_advice(catalogue, manifest, material, advice, advice::Content::normal_mapped).measured;
+    if (plan.normal_advice.empty() && measured)
+      choose_normal_handling(
+          {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
+          eligible, false, lobe, plan);
+  }
+  if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
+      !material.variant && plan.variant != "deferred-aniso")
+    plan.no_filter_advice = deferred_curved_note(advice);
+  // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
+  // named, no engine preset): on the table's rows for the material's content, else on saagen's
+  // committed figures (advice.hpp), with how far those hold on content they were not made on.
+  if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
+    const std::string content(advice::table_content(content_of(material)));
+    // A table without taa_by_content rows leaves a TAA decision to saagen's committed TAA figures.
+    const std::vector<ContentRow> rows = table ? rows_of_content(*table, manifest.taa, content_of(material)) : std::vector<ContentRow>{};
+    const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
+    const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
+    if (has_none) {
+      apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, plan);
+    } else if (!rows.empty()) {
+      // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
+      // the lowest error chosen above stands.
+    } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
+      const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
+      const AdviceMeasurement* measured = chosen_advice.measured;
+      static const AdviceMeasurement kNothingMeasured;
+      const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
+      const std::string lacking =
+          (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
+      apply_decision(catalogue, manifest, material, rows_of.rows, rows_of.alphas,
+                     measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
+                              : fmt::format("saagen's trade (not measured){}", lacking),
+                     measured, plan);
+    }
+  }
+  if (plan.variant == "none") {
+    return plan;
+  }
+  choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+  return plan;
+}
+
+}  // namespace
+
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table, const AdviceTable& advice) {
   if (table) check_trade_table_ids(catalogue, *table);
   ScenePlan scene;
@@ -909,162 +1140,9 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
     if (!identifier(material.name, true) || material.path == RenderPath::any) {
       throw Error(manifest.where(material.position) + "a material needs an identifier name and a forward or deferred path");
     }
-    const std::string context = fmt::format(" of material '{}'", material.name);
-    if (material.anisotropic && !material.tangents) {
-      const auto position =
-          material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
-      throw Error(manifest.where(position) +
-                  fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
-                              "tangent frame); allowed: tangents = true, or anisotropic = false",
-                              context));
-    }
-    MaterialPlan plan;
-    plan.material = material.name;
-    plan.precision = material.precision;
-    plan.lights = material.lights;
-    plan.cost_lights = committed_isa_costs().cost_light_count(
-        manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family, material.lights);
-    if (material.glints) {
-      plan_glints(catalogue, manifest, material, plan);
-      choose_functions(catalogue, material, manifest.preset.has_value(), plan);
-      plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
-      scene.materials.push_back(std::move(plan));
-      continue;
-    }
-    const auto eligible = eligible_variants(catalogue, material);
-
-    if (material.variant) {
-      const Variant* found = catalogue.find_variant(*material.variant);
-      if (!found || !is_screen_space_filter(catalogue, *found)) {
-        throw Error(
-            manifest.where(key_position(material, "variant")) +
-            fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
-      }
-      const Variant& variant = *found;
-      if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
-        throw Error(manifest.where(key_position(material, "variant")) +
-                    fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
-      }
-      plan.variant = variant.id;
-      plan.rule = "manifest";
-      plan.reason = material.positions.count("variant") || !manifest.preset
-                        ? "named by the manifest's `variant` key"
-                        : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
-    } else {
-      const Rule& rule = rule_for(material);
-      plan.variant = rule.variant;
-      plan.rule = rule.id;
-      plan.reason = rule.why;
-      const bool speed = material.prefer == Preference::speed;
-      // For speed, a GGX material the planner chooses for gets saagen's decision below, which costs
-      // every configuration itself; the ISA ranking here serves the others (Beckmann, presets).
-      const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
-      // A table without this material's content leaves a GGX material to saagen's decision on its
-      // own figures (below): the table's error means, of other content, rank nothing here.
-      const bool table_decides =
-          table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
-      if ((table_decides || speed) && !decision_costs) {
-        // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
-        // trade table when it has figures for that family (`saagen bench` measures one light, so
-        // only for a material costed at one light), else from the committed table. Accuracy: the
-        // table's error.
-        const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
-        const bool table_has_isa = plan.cost_lights == 1 && table &&
-                                   std::any_of(table->rows.begin(), table->rows.end(),
-                                               [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
-        const std::string lights = light_count_words(material.lights, plan.cost_lights);
-        const std::string source = !speed          ? table->source_name
-                                   : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
-                                                   : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family,
-                                                                 committed_isa_costs().driver, lights);
-        std::vector<std::pair<double, const Variant*>> ranked;
-        for (const Variant* variant : eligible) {
-          // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
-          const std::string costed = !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)
-                                         ? variant->id + "-tangent-free"
-                                         : variant->id;
-          const auto value = !speed          ? table->error(variant->id)
-                             : table_has_isa ? table->isa_cost(costed, family)
-                                             : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
-          if (value) ranked.emplace_back(*value, variant);
-        }
-        // Ties keep the rule's choice first, then catalogue order.
-        std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
-          if (a.first != b.first) return a.first < b.first;
-          return a.second->id == rule.variant && b.second->id != rule.variant;
-        });
-        const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
-        // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
-        // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
-        // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
-        const auto rule_entry =
-            std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
-        const bool rule_ties =
-            speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
-        if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
-          plan.variant = ranked.front().second->id;
-          plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
-          plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id,
-                                    rule.variant);
-        } else if (!ranked.empty()) {
-          plan.reason += fmt::format(" [{} the lowest {} in {}: {}]",
-                                     rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also", metric, source,
-                                     describe_choice(ranked, metric));
-        } else {
-          plan.reason +=
-              fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source, metric, ids_of(eligible), rule.id);
-        }
-      }
-    }
-    if (material.normal_maps) {
-      // The table's rows, else saagen's committed measurement of normal-mapped content. For a
-      // material the planner chooses for, saagen's decision below (apply_decision) replaces this.
-      const std::string_view lobe = planned_lobe(material);
-      if (table && !table->content_rows.empty())
-        choose_normal_handling({table->content_rows, table->source_name}, eligible,
-                               !material.variant && material.prefer == Preference::accuracy, lobe, plan);
-      const AdviceMeasurement* measured = material_advice(catalogue, manifest, material, advice, advice::Content::normal_mapped).measured;
-      if (plan.normal_advice.empty() && measured)
-        choose_normal_handling(
-            {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
-            eligible, false, lobe, plan);
-    }
-    if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
-        !material.variant && plan.variant != "deferred-aniso")
-      plan.no_filter_advice = deferred_curved_note(advice);
-    // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
-    // named, no engine preset): on the table's rows for the material's content, else on saagen's
-    // committed figures (advice.hpp), with how far those hold on content they were not made on.
-    if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
-      const std::string content(advice::table_content(content_of(material)));
-      // A table without taa_by_content rows leaves a TAA decision to saagen's committed TAA figures.
-      const std::vector<ContentRow> rows = table ? rows_of_content(*table, manifest.taa, content_of(material)) : std::vector<ContentRow>{};
-      const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
-      const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
-      if (has_none) {
-        apply_decision(catalogue, manifest, material, rows, table->source_name, nullptr, plan);
-      } else if (!rows.empty()) {
-        // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
-        // the lowest error chosen above stands.
-      } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
-        const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
-        const AdviceMeasurement* measured = chosen_advice.measured;
-        static const AdviceMeasurement kNothingMeasured;
-        const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
-        const std::string lacking =
-            (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
-        apply_decision(catalogue, manifest, material, rows_of.rows,
-                       measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
-                                : fmt::format("saagen's trade (not measured){}", lacking),
-                       measured, plan);
-      }
-    }
-    if (plan.variant == "none") {
-      scene.materials.push_back(std::move(plan));
-      continue;
-    }
-    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
-    scene.materials.push_back(std::move(plan));
+    std::optional<MeasuredTradeTable> table_at;
+    if (table) table_at = at_roughness(*table, material);
+    scene.materials.push_back(plan_material(catalogue, manifest, material, table ? &*table_at : nullptr, at_roughness(advice, material)));
   }
   return scene;
 }
@@ -1267,10 +1345,12 @@ std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, co
     traits.emplace_back(to_string(material.precision));
     traits.push_back("prefer " + std::string(to_string(material.prefer)));
     traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));
+    if (material.roughness) traits.push_back("roughness " + roughness_words(*material.roughness));
     if (material.glints) traits.push_back("glints");
     text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
     text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
     text += fmt::format("  why       {}\n", material_plan.reason);
+    if (!material_plan.roughness_advice.empty()) text += fmt::format("  roughness {}\n", material_plan.roughness_advice);
     if (!material_plan.measure_advice.empty()) text += fmt::format("  measure   {}\n", material_plan.measure_advice);
     if (material_plan.variant == "none") {
       text += "  shade     the engine's own BRDF at the material's own roughness: no SAA filter, nothing in the bundle\n";
@@ -1365,6 +1445,7 @@ std::string plan_json(const Manifest& manifest, const ScenePlan& plan) {
                          {"rule", m.rule},
                          {"reason", m.reason},
                          {"measure", m.measure_advice},
+                         {"roughness", m.roughness_advice},
                          {"wrapper", m.wrapper},
                          {"brdf", m.brdf ? nlohmann::json(*m.brdf) : nlohmann::json()},
                          {"functions", m.functions},

@@ -187,6 +187,24 @@ std::vector<std::string> scenes_lost(const measure::TradeTable& table, const std
   return lost;
 }
 
+// The cells (a scene at one alpha) among `keep`'s rows on which `configuration` loses to `baseline`
+// beyond the interval in either metric: what a recommendation for a material of that roughness
+// must not do (a cell comparison's outcome in the JSON, paired on that cell alone).
+std::vector<CellLoss> cells_lost(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                 const RowFilter& keep) {
+  std::vector<CellLoss> lost;
+  for (const measure::SceneId scene : table.config.scenes)
+    for (const double alpha : table.config.alphas) {
+      const RowFilter in_cell = [&](const measure::TradeRow& row) { return row.scene == scene && row.alpha == alpha && keep(row); };
+      const PairedComparison c = compare_configurations(table, configuration, baseline, in_cell);
+      if (c.cells == 0) continue;
+      const decision::Outcome there = decision::outcome(to_decision(c));
+      if (there == decision::Outcome::loses || there == decision::Outcome::mixed)
+        lost.push_back({std::string(measure::scene_name(scene)), alpha});
+    }
+  return lost;
+}
+
 // Whether the row can be a content's recommendation: it beats the baseline, is on time and loses
 // on none of the scenes (decision.hpp's eligibility, before a material's own constraints).
 bool may_be_recommended(const ContentRow& row) {
@@ -224,8 +242,10 @@ std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const Ro
     if (id != baseline) {
       const PairedComparison against_baseline = compare_configurations(table, id, baseline, keep);
       if (against_baseline.cells > 0) row.against_none = to_decision(against_baseline);
-      if (row.against_none && decision::outcome(*row.against_none) == decision::Outcome::beats)
+      if (row.against_none && decision::outcome(*row.against_none) == decision::Outcome::beats) {
         row.loses_on = scenes_lost(table, id, baseline, keep);
+        row.loses_at = cells_lost(table, id, baseline, keep);
+      }
     }
     rows.push_back(std::move(row));
   }

@@ -109,6 +109,21 @@ double first_seed_jod(const measure::TradeRow& row) {
   return losses.empty() ? 10.0 : 10.0 - measure::mean_interval(losses, 0.0).mean;
 }
 
+// A row's "loses_at": [{"scene", "alpha"}] (cost_tables.hpp, CellLoss).
+nlohmann::json cells_json(const std::vector<CellLoss>& cells) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const CellLoss& cell : cells) out.push_back({{"scene", cell.scene}, {"alpha", cell.alpha}});
+  return out;
+}
+
+// The GGX alphas the table measured, ascending (what a row's "loses_at" cells range over).
+std::vector<double> measured_alphas(const measure::TradeTable& table) {
+  std::vector<double> alphas = table.config.alphas;
+  std::sort(alphas.begin(), alphas.end());
+  alphas.erase(std::unique(alphas.begin(), alphas.end()), alphas.end());
+  return alphas;
+}
+
 }  // namespace
 
 // Under TAA, per content type and path: saagen's decision on the content's +taa rows against
@@ -129,6 +144,7 @@ nlohmann::json taa_by_content_json(const measure::TradeTable& table) {
       if (row.against_none) entry["against_none"] = comparison_json(*row.against_none);
       if (!row.loses_on.empty()) entry["loses_on"] = row.loses_on;
       if (!row.not_worse_than.empty()) entry["not_worse_than"] = row.not_worse_than;
+      if (!row.loses_at.empty()) entry["loses_at"] = cells_json(row.loses_at);
       out.push_back(entry);
     }
   return out;
@@ -240,6 +256,7 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
       by_content.back()["against_none"] = comparison_json(*row->second.against_none);
       if (!row->second.loses_on.empty()) by_content.back()["loses_on"] = row->second.loses_on;
       if (!row->second.not_worse_than.empty()) by_content.back()["not_worse_than"] = row->second.not_worse_than;
+      if (!row->second.loses_at.empty()) by_content.back()["loses_at"] = cells_json(row->second.loses_at);
     }
   }
   return by_content;
@@ -291,6 +308,7 @@ nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<Va
           {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
           {"config", config_line(table)},
           {"rows", summary_rows_json(summary, costs)},
+          {"alphas", measured_alphas(table)},
           {"by_content", by_content_json(table)},
           {"cases", cases_json(table)},
           {"sanity", sanity_json(table)},

@@ -41,7 +41,7 @@ TEST(Manifest, ParsesTheExample) {
   EXPECT_FALSE(manifest.materials[2].tangents);
   EXPECT_EQ(manifest.materials[3].precision, saagen::Precision::fp16);
   EXPECT_EQ(manifest.gpu_family, "vega10");
-  EXPECT_EQ(car.position.line, 30);
+  EXPECT_EQ(car.position.line, 32);
 }
 
 TEST(Manifest, DefaultsAndIntegerNumbers) {
@@ -78,6 +78,37 @@ TEST(Manifest, MapLodIsAMaterialsNormalMapDistance) {
   EXPECT_EQ(parse(header + forward_material + "normal_maps = true\nmap_lod = 16\n").materials.at(0).map_lod, 16);
 }
 
+// `roughness`: one perceptual roughness or the range a texture spans; GGX alpha is its square.
+TEST(Manifest, RoughnessIsOneValueOrARange) {
+  EXPECT_FALSE(parse(header + forward_material).materials.at(0).roughness);
+  const saagen::Material one = parse(header + forward_material + "roughness = 0.1\n").materials.at(0);
+  ASSERT_TRUE(one.roughness);
+  EXPECT_EQ(one.roughness->low, 0.1);
+  EXPECT_EQ(one.roughness->high, 0.1);
+  const saagen::Material range = parse(header + forward_material + "roughness = [0, 1]\n").materials.at(0);
+  ASSERT_TRUE(range.roughness);
+  EXPECT_EQ(range.roughness->low, 0.0);
+  EXPECT_EQ(range.roughness->high, 1.0);
+  const auto alphas = saagen::alpha_range(parse(header + forward_material + "roughness = [0.1, 0.5]\n").materials.at(0));
+  ASSERT_TRUE(alphas);
+  EXPECT_DOUBLE_EQ(alphas->low, 0.01);
+  EXPECT_DOUBLE_EQ(alphas->high, 0.25);
+}
+
+// The measured alphas a material's alpha range is judged at: those inside it and the nearest on
+// either side (an alpha between two measured ones is judged by both).
+TEST(Manifest, AMaterialsAlphasAreBracketedByTheMeasuredOnes) {
+  const std::vector<double> measured = {0.0025, 0.01, 0.05, 0.3};
+  using V = std::vector<double>;
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.01, 0.01}), (V{0.01}));
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.02, 0.02}), (V{0.01, 0.05}));
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.0, 0.0}), (V{0.0025}));
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.5, 1.0}), (V{0.3}));
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.005, 0.06}), (V{0.0025, 0.01, 0.05, 0.3}));
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.01, 0.05}), (V{0.01, 0.05}));
+  EXPECT_EQ(saagen::bracketing_alphas({}, {0.01, 0.05}), V{});
+}
+
 struct BadCase {
   const char* what;
   std::string text;
@@ -91,10 +122,14 @@ class BadManifest : public ::testing::TestWithParam<BadCase> {};
 TEST_P(BadManifest, IsRejectedWithPositionKeyAndWhatIsAllowed) { EXPECT_EQ(error_of(GetParam().text), GetParam().message); }
 
 const std::string material_keys =
-    "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, lights, map_lod, variant, source";
+    "name, path, anisotropic, tangents, ndf, normal_maps, content, glints, precision, prefer, budget, lights, map_lod, roughness, variant, source";
 const std::string filters =
     "\"forward-aniso-slope\", \"forward-aniso-projected\", \"forward-axis-slope\", \"forward-axis-projected\", "
     "\"deferred-previous\", \"deferred-max\", \"deferred-sum\", \"deferred-avg\", \"deferred-projected-space\", \"deferred-aniso\"";
+
+const std::string roughness_rule =
+    "a number in [0, 1], the perceptual roughness (as glTF's roughnessFactor; GGX alpha is its square), or [lowest, highest] where a "
+    "texture varies it";
 
 const std::string lights_rule =
     "an integer from 1 to 64: the lights that shade a pixel, at which the shading cost over no SAA is read (the nearest measured "
@@ -126,8 +161,16 @@ INSTANTIATE_TEST_SUITE_P(
             "unknown_top_key", header + "colour = 1\n" + forward_material,
             "scene.toml:2:1: unknown key 'colour'; allowed keys: name, targets, prefix, gpu_family, lights, sigma2, kappa, glint_count, glint_lods, "
             "glint_alpha, glint_resolution, glint_kernel_scale, glint_max_anisotropy, glint_relative_area, preset, domain, import_path, taa, source, material"},
-        BadCase{"unknown_material_key", header + forward_material + "roughness = 0.5\n",
-                "scene.toml:5:1: unknown key 'roughness' of material 'm'; allowed keys: " + material_keys},
+        BadCase{"unknown_material_key", header + forward_material + "colour = 0.5\n",
+                "scene.toml:5:1: unknown key 'colour' of material 'm'; allowed keys: " + material_keys},
+        BadCase{"roughness_above_one", header + forward_material + "roughness = 1.5\n",
+                "scene.toml:5:13: key 'roughness' of material 'm': 1.5 is outside [0, 1]; allowed: " + roughness_rule},
+        BadCase{"roughness_three_values", header + forward_material + "roughness = [0.1, 0.2, 0.3]\n",
+                "scene.toml:5:13: key 'roughness' of material 'm': an array of 3 numbers; allowed: " + roughness_rule},
+        BadCase{"roughness_reversed", header + forward_material + "roughness = [0.3, 0.1]\n",
+                "scene.toml:5:13: key 'roughness' of material 'm': the lowest, 0.3, is above the highest, 0.1; allowed: " + roughness_rule},
+        BadCase{"roughness_string", header + forward_material + "roughness = [\"0.1\", 0.2]\n",
+                "scene.toml:5:14: key 'roughness' of material 'm': must be a number, got a string; allowed: " + roughness_rule},
         BadCase{"wrong_type_number", header + "sigma2 = \"big\"\n" + forward_material,
                 "scene.toml:2:10: key 'sigma2': must be a number, got a string; allowed: a number in (0, 4] (variance sigma^2 of the "
                 "Gaussian pixel filter in pixels^2 (sigma = 0.5 px by default); default 0.25)"},

@@ -551,6 +551,37 @@ TEST(Planner, MapLodTakesTheAdviceMeasuredThatFarAway) {
       << fallen.reason;
 }
 
+// saagen's committed figures at a material's roughness: the derivation scenes' cells decide, the
+// held-out scenes' cells check (a choice that loses on a held-out cell at the material's alphas does
+// not hold there and is withheld), and other alphas' cells count for nothing.
+TEST(Planner, TheAdviceAtAMaterialsRoughnessIsCheckedOnTheHeldOutCellsThere) {
+  const std::string beats =
+      R"({"image": {"mean": -0.01, "low": -0.02, "high": -0.005}, "temporal": {"mean": -1, "low": -2, "high": -0.5}})";
+  const saagen::AdviceTable advice = saagen::parse_advice_table(
+      fmt::format(R"({{"schema": "saagen advice 1", "content": [{{"content": "curved", "scenes": ["a"], "held_out_scenes": ["b"],
+        "alphas": [0.0025, 0.05, 0.3], "rows": [
+        {{"configuration": "none", "image_error": 0.05, "video_error": 4}},
+        {{"configuration": "deferred-aniso/tail", "image_error": 0.04, "video_error": 3, "against_none": {0}, "held_out": {0},
+          "held_out_loses_at": [{{"scene": "b", "alpha": 0.3}}]}},
+        {{"configuration": "deferred-avg/tail", "image_error": 0.04, "video_error": 3.5, "against_none": {0}, "held_out": {0},
+          "loses_at": [{{"scene": "a", "alpha": 0.0025}}]}}]}}]}})",
+                  beats),
+      "advice.json");
+  const auto plan_at = [&](const std::string& roughness) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n" + roughness),
+                              nullptr, advice)
+        .materials.at(0);
+  };
+  const saagen::MaterialPlan smooth = plan_at("roughness = 0.05\n");
+  EXPECT_EQ(smooth.variant, "deferred-aniso") << smooth.reason;
+  EXPECT_NE(smooth.measure_advice.find("this advice held on content it was not derived from"), std::string::npos) << smooth.measure_advice;
+  const saagen::MaterialPlan rough = plan_at("roughness = 0.5\n");
+  EXPECT_EQ(rough.variant, "none") << rough.reason;
+  EXPECT_NE(rough.reason.find("it loses to no SAA beyond its interval on b at alpha 0.3), so it is not given"), std::string::npos)
+      << rough.reason;
+  EXPECT_EQ(plan_at("").variant, "deferred-aniso");
+}
+
 // `saagen plan --advice`'s table is what examples/INTEGRATION.md holds.
 TEST(Planner, IntegrationGuideHoldsTheAdviceTable) {
   const std::string guide = read_text(fs::path(SAAGEN_SOURCE_DIR) / "examples" / "INTEGRATION.md");

@@ -445,6 +445,12 @@ TEST(Planner, BadTradeTablesAreRejected) {
   EXPECT_EQ(
       error_of_table(R"({"rows": [], "taa_by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": [3]}]})"),
       "t.json: taa_by_content[0]: \"loses_on\" must be an array of scene names");
+  EXPECT_EQ(
+      error_of_table(
+          R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_at": [{"scene": "torus"}]}]})"),
+      "t.json: by_content[0]: \"loses_at\" must be an array of {\"scene\": NAME, \"alpha\": A}, A in (0, 1]");
+  EXPECT_EQ(error_of_table(R"({"rows": [], "alphas": [0.1, 0.01]})"),
+            "t.json: \"alphas\" must be an ascending array of GGX alphas in (0, 1]");
 }
 
 // A table's content row that beats no SAA on the content's mean but loses on one of its scenes
@@ -459,6 +465,43 @@ TEST(Planner, WithATableARowThatLosesOnASceneIsNotPlanned) {
       saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\n"), &table);
   EXPECT_EQ(plan.materials.at(0).variant, "deferred-avg") << plan.materials.at(0).reason;
   EXPECT_NE(plan.materials.at(0).reason.find("deferred-aniso/tail (loses on tubes)"), std::string::npos) << plan.materials.at(0).reason;
+}
+
+// A row that beats no SAA over every alpha pooled but loses on one cell (a scene at one alpha:
+// "loses_at", as `saagen bench --json` writes it) is not planned for a material whose roughness
+// that cell's alpha brackets; for another roughness, and without one, it is (the plan then names
+// the cell and asks for the roughness).
+TEST(Planner, AMaterialsRoughnessRefusesWhatLosesOnACellAtItsAlphas) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "alphas": [0.0025, 0.01, 0.1], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.008,
+       "loses_at": [{"scene": "torus-knot", "alpha": 0.0025}]},
+      {"content": "curved", "configuration": "deferred-avg/tail", "error": 0.025, "tde": 0.009}]})",
+                                                                     "t.json");
+  const auto plan_at = [&](const std::string& roughness) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\n" + roughness), &table)
+        .materials.at(0);
+  };
+  // alpha 0.0025 itself; alpha 0.0036, bracketed by 0.0025 and 0.01; a range reaching down to it.
+  for (const std::string roughness : {"roughness = 0.05\n", "roughness = 0.06\n", "roughness = [0.08, 0.2]\n"}) {
+    const saagen::MaterialPlan smooth = plan_at(roughness);
+    EXPECT_EQ(smooth.variant, "deferred-avg") << roughness << smooth.reason;
+    EXPECT_NE(smooth.reason.find("deferred-aniso/tail (loses on torus-knot at alpha 0.0025)"), std::string::npos) << smooth.reason;
+    EXPECT_NE(smooth.roughness_advice.find("decided on the measured cells (a scene at one alpha) at alpha 0.0025"), std::string::npos)
+        << smooth.roughness_advice;
+  }
+  // alpha 0.04 is bracketed by 0.01 and 0.1 only.
+  const saagen::MaterialPlan rough = plan_at("roughness = 0.2\n");
+  EXPECT_EQ(rough.variant, "deferred-aniso") << rough.reason;
+  EXPECT_NE(rough.roughness_advice.find("0.2 (alpha 0.04): decided on the measured cells (a scene at one alpha) at alpha 0.01, 0.1"),
+            std::string::npos)
+      << rough.roughness_advice;
+  const saagen::MaterialPlan pooled = plan_at("");
+  EXPECT_EQ(pooled.variant, "deferred-aniso") << pooled.reason;
+  EXPECT_NE(pooled.roughness_advice.find("loses to it beyond its interval on 1 of the cells (a scene at one alpha): torus-knot at alpha "
+                                         "0.0025; state the material's `roughness`"),
+            std::string::npos)
+      << pooled.roughness_advice;
 }
 
 TEST(Planner, WithATableATieOfTheMostAccurateGoesToTheCheaper) {

@@ -28,6 +28,27 @@ struct MeasuredTradeRow {
   std::string isa_family;                    // isa_family: the GPU family of isa_ratio
 };
 
+// One measured cell, a scene at one GGX alpha, on which a configuration loses to no SAA beyond the
+// interval in either metric (loses or mixed there; `saagen bench --json`: a by_content row's
+// "loses_at": [{"scene", "alpha"}]).
+struct CellLoss {
+  std::string scene;
+  double alpha = 0.0;
+};
+
+// A material's GGX alpha range (alpha = perceptual roughness squared; one value: low = high).
+struct AlphaRange {
+  double low = 0.0, high = 0.0;
+};
+
+// The measured alphas a material's range is judged at: every measured alpha inside it and the
+// nearest measured one on either side, so that an alpha between two measured ones is judged by
+// both (below the smallest or above the largest: that one). `measured` ascending; empty: none.
+std::vector<double> bracketing_alphas(const std::vector<double>& measured, AlphaRange range);
+
+// The losses among `losses` at the alphas `alphas` (bracketing_alphas), each as "SCENE at alpha A".
+std::vector<std::string> cells_lost_at(const std::vector<CellLoss>& losses, const std::vector<double>& alphas);
+
 // `saagen bench --json` also writes, per content type ("curved", "normal-mapped", "bump",
 // "clearcoat": an asset's coat lobe), the mean display error of every measured configuration: a
 // variant, "VARIANT:geometric" (fed the geometric normal) and "VARIANT[:geometric]+toksvig|+lean"
@@ -46,6 +67,10 @@ struct ContentRow {
   // The configurations the row is worse than beyond the interval in neither metric, paired on the
   // same cells ("not_worse_than": decision::Candidate::not_worse_than, the decision's ties).
   std::vector<std::string> not_worse_than = {};
+  // Where the row beats no SAA over the content: the cells (a scene at one alpha) on which it
+  // loses ("loses_at"). A material that states its roughness is not given a configuration that
+  // loses at the alphas that bracket it (planner.hpp).
+  std::vector<CellLoss> loses_at = {};
 };
 
 // The one adapter from a trade table's measurements to a decision's comparison
@@ -64,6 +89,8 @@ struct MeasuredTradeTable {
   // Under TAA (`saagen bench --taa`, "taa_by_content"): the configurations without "+taa", "none"
   // being none+taa, each compared with none+taa.
   std::vector<ContentRow> taa_content_rows;
+  // The GGX alphas the by-content rows were measured at ("alphas", ascending; empty: not given).
+  std::vector<double> alphas;
   // Mean cost of a variant: the time ratio when any row has one, else the SPIR-V delta.
   std::optional<double> cost(std::string_view variant) const;
   std::optional<double> error(std::string_view variant) const;
@@ -153,6 +180,11 @@ struct AdviceMeasurement {
   // metric (loses or mixed there), where measured; empty: none.
   std::vector<std::string> held_out_loses_on(std::string_view configuration) const;
   std::vector<std::pair<std::string, std::vector<std::string>>> held_out_losses;
+  // The GGX alphas both sets were measured at (ascending), and the held-out cells (a scene at one
+  // alpha) on which a configuration loses to no SAA beyond the interval, where measured.
+  std::vector<double> alphas;
+  std::vector<CellLoss> held_out_loses_at(std::string_view configuration) const;
+  std::vector<std::pair<std::string, std::vector<CellLoss>>> held_out_cell_losses;
 };
 
 struct AdviceTable {

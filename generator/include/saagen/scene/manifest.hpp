@@ -11,6 +11,7 @@
 #include "saagen/front/catalogue.hpp"
 #include "saagen/io/marker.hpp"
 #include "saagen/precision.hpp"
+#include "saagen/scene/cost_tables.hpp"
 
 #include <filesystem>
 #include <map>
@@ -30,6 +31,12 @@ enum class Preference { accuracy, speed };
 enum class Ndf { ggx, beckmann };
 std::string_view to_string(Preference preference);
 std::string_view to_string(Ndf ndf);
+
+// A material's perceptual roughness, as engines and glTF's roughnessFactor give it (GGX alpha is
+// its square): one value (low = high), or the range a roughness texture spans.
+struct RoughnessRange {
+  double low = 0.0, high = 0.0;
+};
 
 struct Material {
   std::string name;
@@ -58,6 +65,11 @@ struct Material {
   // normal-mapped advice then pools only its scenes with maps that far away
   // (AdviceTable::find), where it has measured them; 0 (the default): every distance.
   int map_lod = 0;
+  // `roughness`: the material's perceptual roughness, one value or [lowest, highest]. saagen's
+  // decision then also refuses a configuration that loses to no SAA on any measured cell (one
+  // scene at one alpha) at the measured alphas that bracket the material's
+  // (cost_tables.hpp: bracketing_alphas); nullopt: decided over every measured roughness pooled.
+  std::optional<RoughnessRange> roughness;
   std::optional<std::string> variant;  // explicit choice, overriding the planner's rules
   SourcePosition position;             // of the [[material]] header
   // Position of each key given in the file (values), for diagnostics found after parsing.
@@ -90,6 +102,9 @@ struct Manifest {
   // "FILE:LINE:COLUMN: " for a position in this manifest.
   std::string where(SourcePosition position) const;
 };
+
+// The GGX alpha range of a material's `roughness` (each end squared); nullopt without one.
+std::optional<AlphaRange> alpha_range(const Material& material);
 
 // The material's content type: `content`, else normal-mapped with normal maps, else curved.
 advice::Content content_of(const Material& material);

@@ -91,6 +91,9 @@ struct MaterialPlan {
   // Where the plan rests on saagen's committed figures (no trade table rows for the content): how
   // far they held on content they were not derived from, and how to measure the user's own.
   std::string measure_advice;
+  // How the material's `roughness` entered saagen's decision (the measured alphas it was judged
+  // at), or, without one, the cells (a scene at one alpha) on which the choice loses to no SAA.
+  std::string roughness_advice;
 };
 
 struct ScenePlan {
