@@ -261,8 +261,9 @@ std::string material_source(const measure::GltfAsset& asset, std::size_t index) 
 // direction, which the matrix form filters: saagen/measure/anisotropy.hpp); content =
 // "clearcoat" on a coat lobe (saagen's advice for clearcoat, saagen/advice.hpp), while the base
 // lobe under it is classified as any material's (normal-mapped with a normal texture, else
-// curved), as the trade's by_content rows classify the scenes NAME-coat and NAME; domain =
-// "perceptual", glTF's roughness (roughnessFactor x G).
+// curved), as the trade's by_content rows classify the scenes NAME-coat and NAME; each lobe's
+// roughness (GltfMaterial::roughness_range: the factor, or the factor times its texture's G
+// range); domain = "perceptual", glTF's roughness (roughnessFactor x G).
 std::string gltf_manifest_text(const measure::GltfAsset& asset, std::string_view path, const std::vector<std::string>& targets) {
   std::ostringstream s;
   // A path that is not UTF-8 is written with its odd bytes as U+FFFD: the key is a note.
@@ -293,7 +294,7 @@ std::string gltf_manifest_text(const measure::GltfAsset& asset, std::string_view
     return name;
   };
   auto lobe = [&](const std::string& name, const std::string& source, bool normal_maps, bool anisotropic, bool coat_layer,
-                  const std::string& comment) {
+                  std::pair<double, double> roughness, const std::string& comment) {
     s << "\n# " << comment << "\n";
     if (anisotropic)
       s << "# KHR_materials_anisotropy: alpha2 = (alpha_t^2, alpha_b^2), alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, in the\n"
@@ -303,6 +304,11 @@ std::string gltf_manifest_text(const measure::GltfAsset& asset, std::string_view
     if (normal_maps) s << "normal_maps = true\n";
     if (anisotropic) s << "anisotropic = true\n";
     if (coat_layer) s << "content = \"clearcoat\"\n";
+    if (roughness.first == roughness.second)
+      s << fmt::format("roughness = {:.6g}\n", roughness.first);
+    else
+      s << fmt::format("roughness = [{:.6g}, {:.6g}]  # the factor times its texture's smallest and largest G\n", roughness.first,
+                       roughness.second);
   };
   for (std::size_t m = 0; m < asset.materials.size(); ++m) {
     if (!used[m]) continue;
@@ -311,10 +317,11 @@ std::string gltf_manifest_text(const measure::GltfAsset& asset, std::string_view
     const bool anisotropic = material.anisotropy && (material.anisotropy_strength != 0.0 || material.anisotropy_texture);
     const bool coated = material.clearcoat && material.clearcoat_factor > 0.0;
     const std::string source = material_source(asset, m);
-    lobe(name, source, material.normal_map != nullptr, anisotropic, false,
+    lobe(name, source, material.normal_map != nullptr, anisotropic, false, material.roughness_range(),
          "glTF material " + std::to_string(m) + ": " + material.describe_factors());
     if (coated)
       lobe(unique(name.substr(0, 50) + "_coat", m), source + ", its clearcoat", material.clearcoat_normal_map != nullptr, false, true,
+           material.clearcoat_roughness_range(),
            "its KHR_materials_clearcoat layer, a second filtered lobe: roughness " +
                fmt::format("{}", material.clearcoat_roughness_factor) +
                (material.clearcoat_normal_map ? ", the coat's own normal texture" : ", the geometric normal (no coat normal texture)"));

@@ -1253,6 +1253,22 @@ void generate_tangents(std::vector<MeshVertex>& vertices, const std::vector<std:
   }
 }
 
+namespace {
+
+// A perceptual roughness factor times a texture's range (the factor alone without one).
+std::pair<double, double> scaled_range(double factor, const std::shared_ptr<const ScalarMap>& map) {
+  if (!map || map->empty()) return {factor, factor};
+  const auto [low, high] = map->value_range();
+  return {factor * low, factor * high};
+}
+
+}  // namespace
+
+std::pair<double, double> GltfMaterial::roughness_range() const { return scaled_range(roughness_factor, roughness_map); }
+std::pair<double, double> GltfMaterial::clearcoat_roughness_range() const {
+  return scaled_range(clearcoat_roughness_factor, clearcoat_roughness_map);
+}
+
 std::string GltfMaterial::describe() const { return printable(name) + ": " + describe_factors(); }
 
 std::string GltfMaterial::describe_factors() const {

@@ -1,6 +1,7 @@
 // One-channel textures with a MIP chain (see scalar_map.hpp).
 #include "saagen/measure/scalar_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -27,6 +28,13 @@ ScalarMap::ScalarMap(int width, int height, std::vector<double> values)
 
 ScalarMap::ScalarMap(std::uint64_t hash, int width, int height, std::vector<double>&& values)
     : MipChain<double>(width, height, std::move(values), [](double&) {}), hash_(hash) {}
+
+std::pair<double, double> ScalarMap::value_range() const {
+  std::pair<double, double> range{texel(0, 0, 0), texel(0, 0, 0)};
+  for (int y = 0; y < height(0); ++y)
+    for (int x = 0; x < width(0); ++x) range = {std::min(range.first, texel(0, x, y)), std::max(range.second, texel(0, x, y))};
+  return range;
+}
 
 std::string ScalarMap::describe() const {
   if (empty()) return "scalar_map(none)";

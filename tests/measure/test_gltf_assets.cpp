@@ -849,13 +849,18 @@ TEST_F(GltfCli, PlanWritesTheManifestOfAnAsset) {
       text.find("name = \"CoatNorm_Coated_coat\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\ncontent = \"clearcoat\"\n"),
       std::string::npos)
       << text;
-  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\ncontent = \"clearcoat\"\n\n"),
+  // Each lobe's perceptual roughness: its factor, or the factor times its texture's smallest and
+  // largest G (RoughVariations' coat: factor 1 and a roughness texture).
+  EXPECT_NE(text.find("name = \"Simple_Coated_coat\"\npath = \"deferred\"\ntangents = true\ncontent = \"clearcoat\"\nroughness = 0.03\n\n"),
             std::string::npos)
+      << text;
+  EXPECT_NE(text.find("roughness = [0.0431373, 0.278431]  # the factor times its texture's smallest and largest G\n"), std::string::npos)
       << text;
   EXPECT_NE(run.out.find("material CoatNorm_Coated_coat (deferred"), std::string::npos) << run.out;
   // The base lobe under a coat is classified by what it is: normal-mapped (BaseNorm_Coated's
   // normal texture), not clearcoat.
-  EXPECT_NE(text.find("name = \"BaseNorm_Coated\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\n\n"), std::string::npos)
+  EXPECT_NE(text.find("name = \"BaseNorm_Coated\"\npath = \"deferred\"\ntangents = true\nnormal_maps = true\nroughness = 0.44\n\n"),
+            std::string::npos)
       << text;
   // Coated materials follow saagen's advice for clearcoat (deferred-aniso/tail beats no SAA on
   // ClearCoatTest's coat), normal-mapped ones that for normal-mapped content (deferred-aniso/tail in

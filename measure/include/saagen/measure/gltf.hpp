@@ -77,6 +77,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace saagen::measure {
@@ -130,6 +131,10 @@ struct GltfMaterial {
   // and no texture (isotropic).
   std::shared_ptr<const Anisotropy> anisotropic_lobe;
 
+  // The perceptual roughness the base lobe spans (roughness_factor times the smallest and the
+  // largest G of its texture; the factor alone without one), and the coat's likewise.
+  std::pair<double, double> roughness_range() const;
+  std::pair<double, double> clearcoat_roughness_range() const;
   // "NAME: roughness ..., normal texture ..." (control characters in the name as \xNN).
   std::string describe() const;
   // The same without the name.

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace saagen::measure {
@@ -23,6 +24,8 @@ class ScalarMap : public MipChain<double> {
 
   // Size and a 64-bit hash of level 0 (cache keys).
   std::string describe() const;
+  // The smallest and the largest texel of level 0 (what every level's box means lie within).
+  std::pair<double, double> value_range() const;
 
  private:
   ScalarMap(std::uint64_t hash, int width, int height, std::vector<double>&& values);  // after the checks
