@@ -15,7 +15,12 @@ import sys
 
 
 def interval(metric):
-    return f"{metric['mean']:+.4g} [{metric['low']:+.4g}, {metric['high']:+.4g}]"
+    """The difference with its 95 % interval, and the bench's outcome for that metric (a difference
+    within the ground truth's own noise is a tie whatever its interval: "tie: ground truth's noise")."""
+    text = f"{metric['mean']:+.4g} [{metric['low']:+.4g}, {metric['high']:+.4g}]"
+    if metric.get('ground_truth_limited'):
+        return text + " (tie: ground truth's noise)"
+    return text + (f" ({metric['outcome']})" if 'outcome' in metric else "")
 
 
 def temporal(comparison):

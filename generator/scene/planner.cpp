@@ -912,12 +912,6 @@ ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const
 
 namespace {
 
-// A row's losses as a material judged at the measured `alphas` sees them: its scenes', and its
-// cells' (one scene at one alpha) at those alphas.
-void add_cell_losses(ContentRow& row, const std::vector<double>& alphas) {
-  for (std::string& cell : cells_lost_at(row.loses_at, alphas)) row.loses_on.push_back(std::move(cell));
-}
-
 // A trade table as it applies to a material that states its roughness: each row also loses on
 // the cells it loses on at the measured alphas that bracket the material's (bracketing_alphas),
 // so that the one decision never gives it that material (decision.hpp: Candidate::loses_on).
@@ -1212,6 +1206,42 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
                      planned, why, held_out_cell);
 }
 
+// What the plan gives a reference material of the content and path (prefer accuracy, no TAA) whose
+// roughness is sqrt(alpha): "no filter", or its variant with the feed and the bake it is given.
+std::string plan_at_alpha(const Catalogue& catalogue, advice::Content content, RenderPath path, double alpha) {
+  Manifest manifest;
+  manifest.source_name = "advice";
+  manifest.targets = {OutputTarget::named("glsl")};
+  Material material = reference_material(path, content);
+  material.roughness = RoughnessRange{std::sqrt(alpha), std::sqrt(alpha)};
+  manifest.materials = {material};
+  const MaterialPlan plan = plan_scene(catalogue, manifest).materials.front();
+  if (plan.variant == "none") return "no filter";
+  return fmt::format("`{}{}{}`", plan.variant, plan.feed == "geometric" ? ":geometric" : "",
+                     plan.prefilter == "none" ? "" : "+" + plan.prefilter);
+}
+
+// The plan per measured alpha (a material's `roughness` = sqrt(alpha)), per content and path:
+// where the decision over every alpha pooled loses on some cells, what a material of one roughness gets.
+std::string advice_by_alpha_markdown(const Catalogue& catalogue) {
+  const AdviceMeasurement* curved = committed_advice().find(advice::table_content(advice::Content::curved));
+  if (!curved || curved->alphas.empty()) return "";
+  std::string head = "\n| content | path |", rule = "|---|---|";
+  for (const double alpha : curved->alphas) {
+    head += fmt::format(" roughness {:.3g} (alpha {:g}) |", std::sqrt(alpha), alpha);
+    rule += "---|";
+  }
+  std::string text = head + "\n" + rule + "\n";
+  for (const advice::Content content :
+       {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat})
+    for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
+      text += fmt::format("| {} | {} |", advice::name(content), to_string(path));
+      for (const double alpha : curved->alphas) text += " " + plan_at_alpha(catalogue, content, path, alpha) + " |";
+      text += "\n";
+    }
+  return text;
+}
+
 }  // namespace
 
 std::string advice_markdown(const Catalogue& catalogue) {
@@ -1226,7 +1256,7 @@ std::string advice_markdown(const Catalogue& catalogue) {
         for (const RenderPath path : {RenderPath::forward, RenderPath::deferred})
           for (const Preference prefer : {Preference::accuracy, Preference::speed})
             text += advice_row(catalogue, content, taa, map_lod, path, prefer);
-  return text;
+  return text + advice_by_alpha_markdown(catalogue);
 }
 
 EmitOptions emit_options(const Manifest& manifest, const ScenePlan& plan, const OutputTarget& target, Precision precision) {

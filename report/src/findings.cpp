@@ -313,6 +313,23 @@ std::vector<Recommendation> recommend(const measure::TradeTable& table) {
   return recs;
 }
 
+std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table) {
+  std::vector<AlphaRecommendation> recs;
+  std::vector<double> alphas = table.config.alphas;
+  std::sort(alphas.begin(), alphas.end());
+  for (Content content : contents_of(table)) {
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
+    for (const double alpha : alphas) {
+      std::vector<ContentRow> at_alpha = rows;
+      for (ContentRow& row : at_alpha) add_cell_losses(row, {alpha});
+      for (Path path : {Path::forward, Path::deferred})
+        recs.push_back({path, content, alpha, chosen_configuration(decide_on(at_alpha, path, content))});
+    }
+  }
+  return recs;
+}
+
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content) {
   for (const Recommendation& rec : recs)
     if (rec.path == path && rec.content == content) return &rec;

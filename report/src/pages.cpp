@@ -78,6 +78,8 @@ std::string markdown_verdict(const measure::TradeTable& table) {
     md << "- **" << lines.front() << "**\n";
     for (std::size_t i = 1; i < lines.size(); ++i) md << "  - " << lines[i] << "\n";
   }
+  md << "\n### " << kByAlphaTitle << "\n\n(" << kByAlphaNote << ")\n\n";
+  for (const std::string& line : by_alpha_lines(table)) md << "- " << line << "\n";
   return md.str();
 }
 
@@ -122,6 +124,8 @@ std::string html_verdict(const measure::TradeTable& table) {
     for (std::size_t i = 1; i < lines.size(); ++i) html += "<br>" + html_escape(lines[i]);
     html += "</li>\n";
   }
+  html += fmt::format("</ul>\n<h3>{}</h3>\n<p>({})</p>\n<ul>\n", html_escape(kByAlphaTitle), html_escape(kByAlphaNote));
+  for (const std::string& line : by_alpha_lines(table)) html += "<li>" + html_escape(line) + "</li>\n";
   return html + "</ul>\n";
 }
 

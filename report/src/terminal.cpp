@@ -25,6 +25,8 @@ std::string format_verdict(const measure::TradeTable& table) {
     text += "  " + lines.front() + "\n";
     for (std::size_t i = 1; i < lines.size(); ++i) text += "      " + lines[i] + "\n";
   }
+  text += fmt::format("\n{}\n({}):\n", kByAlphaTitle, kByAlphaNote);
+  for (const std::string& line : by_alpha_lines(table)) text += "  " + line + "\n";
   return text;
 }
 

@@ -110,4 +110,22 @@ std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table) {
   return all;
 }
 
+std::vector<std::string> by_alpha_lines(const measure::TradeTable& table) {
+  const std::vector<AlphaRecommendation> recs = recommend_by_alpha(table);
+  std::vector<std::string> lines;
+  std::vector<Content> contents;  // in the table's order
+  for (const AlphaRecommendation& rec : recs)
+    if (std::find(contents.begin(), contents.end(), rec.content) == contents.end()) contents.push_back(rec.content);
+  for (Path path : {Path::forward, Path::deferred})
+    for (Content content : contents) {
+      std::vector<std::string> cells;
+      for (const AlphaRecommendation& rec : recs)
+        if (rec.path == path && rec.content == content) cells.push_back(fmt::format("alpha {:g} {}", rec.alpha, rec.configuration));
+      if (!cells.empty())
+        lines.push_back(
+            fmt::format("{}, {}: {}", content_name(content), path == Path::forward ? "forward" : "deferred", fmt::join(cells, "; ")));
+    }
+  return lines;
+}
+
 }  // namespace saagen::report

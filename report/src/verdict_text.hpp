@@ -23,4 +23,12 @@ std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table);
 // The verdict lines of one recommendation: the headline, then where it loses (or that it does not).
 std::vector<std::string> verdict_lines(const Verdict& v);
 
+inline constexpr const char* kByAlphaTitle = "At one roughness: the decision per measured alpha";
+inline constexpr const char* kByAlphaNote =
+    "what `saagen plan` gives a material whose `roughness` is sqrt(alpha): the same decision, with a configuration that loses to "
+    "no SAA beyond its interval on any of the content's scenes at that alpha set aside; none: no filter";
+
+// Per render path and content type, "CONTENT, PATH: alpha A X; alpha B Y; ..." (recommend_by_alpha).
+std::vector<std::string> by_alpha_lines(const measure::TradeTable& table);
+
 }  // namespace saagen::report

@@ -81,6 +81,11 @@ struct ContentRow {
 // compared with no SAA by that instead.
 decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline);
 
+// A row as a material judged at the measured `alphas` (bracketing_alphas) sees it: its loses_on
+// also names its cells lost at those alphas ("SCENE at alpha A"), so that the one decision never
+// gives it that material.
+void add_cell_losses(ContentRow& row, const std::vector<double>& alphas);
+
 struct MeasuredTradeTable {
   std::string source_name;
   std::string device = "unknown device";  // "device": what bench_shading timed on

@@ -147,6 +147,18 @@ struct Recommendation {
 // Per path and content type present in the table: saagen's decision on that content's means
 // (decide_on): the configuration that beats no SAA with the largest image improvement, or none.
 std::vector<Recommendation> recommend(const measure::TradeTable& table);
+// The same decision for a material of one roughness: per path, content type and measured alpha,
+// on the content's rows with the cells (a scene at one alpha) each loses on at that alpha counted
+// as losses (add_cell_losses), as `saagen plan` decides for a material whose `roughness` is
+// sqrt(alpha). configuration "none": no filter.
+struct AlphaRecommendation {
+  Path path = Path::deferred;
+  Content content = Content::curved;
+  double alpha = 0.0;
+  std::string configuration;
+};
+std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table);
+
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
 
 struct EngineSwitch {
