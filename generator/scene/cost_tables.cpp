@@ -119,13 +119,18 @@ std::vector<double> parse_alphas(const nlohmann::json& document, std::string_vie
 }  // namespace
 
 std::vector<double> bracketing_alphas(const std::vector<double>& measured, AlphaRange range) {
+  const auto matches = [](double alpha, double end) { return std::fabs(alpha - end) <= kAlphaMatch * end; };
+  const auto matched = [&](double end) { return std::any_of(measured.begin(), measured.end(), [&](double m) { return matches(m, end); }); };
+  const bool low_matched = matched(range.low), high_matched = matched(range.high);
   std::vector<double> judged;
   for (std::size_t i = 0; i < measured.size(); ++i) {
-    const bool inside = measured[i] >= range.low && measured[i] <= range.high;
-    // The nearest measured alpha below the range (or the smallest, above it) and above it.
-    const bool below = measured[i] < range.low && (i + 1 == measured.size() || measured[i + 1] > range.low);
-    const bool above = measured[i] > range.high && (i == 0 || measured[i - 1] < range.high);
-    if (inside || below || above) judged.push_back(measured[i]);
+    const double m = measured[i];
+    const bool inside = (m >= range.low && m <= range.high) || matches(m, range.low) || matches(m, range.high);
+    // Where an end lies between two measured alphas: the nearest measured one beyond it (the
+    // largest below the range, the smallest above it; the end one when all lie on one side).
+    const bool below = !low_matched && m < range.low && (i + 1 == measured.size() || measured[i + 1] > range.low);
+    const bool above = !high_matched && m > range.high && (i == 0 || measured[i - 1] < range.high);
+    if (inside || below || above) judged.push_back(m);
   }
   return judged;
 }

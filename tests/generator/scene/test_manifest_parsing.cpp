@@ -107,6 +107,10 @@ TEST(Manifest, AMaterialsAlphasAreBracketedByTheMeasuredOnes) {
   EXPECT_EQ(saagen::bracketing_alphas(measured, {0.005, 0.06}), (V{0.0025, 0.01, 0.05, 0.3}));
   EXPECT_EQ(saagen::bracketing_alphas(measured, {0.01, 0.05}), (V{0.01, 0.05}));
   EXPECT_EQ(saagen::bracketing_alphas({}, {0.01, 0.05}), V{});
+  // A roughness written to three digits names the measured alpha it rounds: 0.316^2 = 0.0999.
+  EXPECT_EQ(saagen::bracketing_alphas(measured, {0.316 * 0.316, 0.316 * 0.316}), (V{0.05, 0.3}));
+  EXPECT_EQ(saagen::bracketing_alphas({0.05, 0.1, 0.3}, {0.316 * 0.316, 0.316 * 0.316}), (V{0.1}));
+  EXPECT_EQ(saagen::bracketing_alphas({0.05, 0.1, 0.3}, {0.097, 0.097}), (V{0.05, 0.1}));
 }
 
 struct BadCase {
