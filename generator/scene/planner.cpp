@@ -713,11 +713,16 @@ std::string roughness_words(const RoughnessRange& roughness) {
 // decided over every alpha pooled, loses to the baseline. Empty where the rows have no cells.
 std::string roughness_text(const Material& material, const std::vector<ContentRow>& rows, const std::optional<std::string>& chosen,
                            const std::vector<double>& alphas, std::string_view baseline) {
+  if (alphas.empty() && material.roughness)
+    return fmt::format(
+        "{}: these figures have no cells per alpha (a table written before the bench wrote them; saagen's own under TAA), so it is "
+        "decided over every measured alpha pooled",
+        roughness_words(*material.roughness));
   if (alphas.empty()) return "";
   if (const auto range = alpha_range(material))
     return fmt::format(
-        "{}: decided on the measured cells (a scene at one alpha) at alpha {}, which bracket it: a configuration that "
-        "loses to {} beyond its interval on any of them is not taken",
+        "{}: decided on the measured cells (a scene at one alpha) at alpha {} (the measured alphas at and around it): a "
+        "configuration that loses to {} beyond its interval on any of them is not taken",
         roughness_words(*material.roughness), fmt::join(bracketing_alphas(alphas, *range), ", "), baseline);
   if (!chosen) return "";
   const auto row = std::find_if(rows.begin(), rows.end(), [&](const ContentRow& r) { return r.configuration == *chosen; });

@@ -493,9 +493,21 @@ TEST(Planner, AMaterialsRoughnessRefusesWhatLosesOnACellAtItsAlphas) {
   // alpha 0.04 is bracketed by 0.01 and 0.1 only.
   const saagen::MaterialPlan rough = plan_at("roughness = 0.2\n");
   EXPECT_EQ(rough.variant, "deferred-aniso") << rough.reason;
-  EXPECT_NE(rough.roughness_advice.find("0.2 (alpha 0.04): decided on the measured cells (a scene at one alpha) at alpha 0.01, 0.1"),
+  EXPECT_NE(rough.roughness_advice.find(
+                "0.2 (alpha 0.04): decided on the measured cells (a scene at one alpha) at alpha 0.01, 0.1 (the measured"),
             std::string::npos)
       << rough.roughness_advice;
+  // A table without cells per alpha decides over them pooled, and the plan says so.
+  const saagen::MeasuredTradeTable pooled_table = saagen::parse_trade_table(R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.008}]})",
+                                                                            "old.json");
+  const saagen::MaterialPlan old =
+      saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\nroughness = 0.05\n"),
+                         &pooled_table)
+          .materials.at(0);
+  EXPECT_EQ(old.variant, "deferred-aniso") << old.reason;
+  EXPECT_NE(old.roughness_advice.find("these figures have no cells per alpha"), std::string::npos) << old.roughness_advice;
   const saagen::MaterialPlan pooled = plan_at("");
   EXPECT_EQ(pooled.variant, "deferred-aniso") << pooled.reason;
   EXPECT_NE(pooled.roughness_advice.find("loses to it beyond its interval on 1 of the cells (a scene at one alpha): torus-knot at alpha "
