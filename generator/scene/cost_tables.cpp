@@ -372,12 +372,6 @@ std::vector<std::string> AdviceMeasurement::held_out_loses_on(std::string_view c
   return {};
 }
 
-std::vector<CellLoss> AdviceMeasurement::held_out_loses_at(std::string_view configuration) const {
-  for (const auto& [name, cells] : held_out_cell_losses)
-    if (name == configuration) return cells;
-  return {};
-}
-
 const AdviceMeasurement* AdviceTable::find(std::string_view content, bool taa, int map_lod) const {
   const AdviceMeasurement* found = nullptr;
   for (const AdviceMeasurement& entry : contents)

@@ -313,10 +313,16 @@ std::vector<Recommendation> recommend(const measure::TradeTable& table) {
   return recs;
 }
 
-std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table) {
-  std::vector<AlphaRecommendation> recs;
+std::vector<double> measured_alphas(const measure::TradeTable& table) {
   std::vector<double> alphas = table.config.alphas;
   std::sort(alphas.begin(), alphas.end());
+  alphas.erase(std::unique(alphas.begin(), alphas.end()), alphas.end());
+  return alphas;
+}
+
+std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table) {
+  std::vector<AlphaRecommendation> recs;
+  const std::vector<double> alphas = measured_alphas(table);
   for (Content content : contents_of(table)) {
     const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));

@@ -116,14 +116,6 @@ nlohmann::json cells_json(const std::vector<CellLoss>& cells) {
   return out;
 }
 
-// The GGX alphas the table measured, ascending (what a row's "loses_at" cells range over).
-std::vector<double> measured_alphas(const measure::TradeTable& table) {
-  std::vector<double> alphas = table.config.alphas;
-  std::sort(alphas.begin(), alphas.end());
-  alphas.erase(std::unique(alphas.begin(), alphas.end()), alphas.end());
-  return alphas;
-}
-
 }  // namespace
 
 // Under TAA, per content type and path: saagen's decision on the content's +taa rows against

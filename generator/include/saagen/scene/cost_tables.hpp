@@ -188,10 +188,9 @@ struct AdviceMeasurement {
   // metric (loses or mixed there), where measured; empty: none.
   std::vector<std::string> held_out_loses_on(std::string_view configuration) const;
   std::vector<std::pair<std::string, std::vector<std::string>>> held_out_losses;
-  // The GGX alphas both sets were measured at (ascending), and the held-out cells (a scene at one
-  // alpha) on which a configuration loses to no SAA beyond the interval, where measured.
+  // The GGX alphas both sets were measured at (ascending), and per configuration the held-out
+  // cells (a scene at one alpha) on which it loses to no SAA beyond the interval, where measured.
   std::vector<double> alphas;
-  std::vector<CellLoss> held_out_loses_at(std::string_view configuration) const;
   std::vector<std::pair<std::string, std::vector<CellLoss>>> held_out_cell_losses;
 };
 

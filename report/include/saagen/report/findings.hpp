@@ -147,6 +147,9 @@ struct Recommendation {
 // Per path and content type present in the table: saagen's decision on that content's means
 // (decide_on): the configuration that beats no SAA with the largest image improvement, or none.
 std::vector<Recommendation> recommend(const measure::TradeTable& table);
+// The GGX alphas the table measured, ascending and each once (what a row's loses_at cells range over).
+std::vector<double> measured_alphas(const measure::TradeTable& table);
+
 // The same decision for a material of one roughness: per path, content type and measured alpha,
 // on the content's rows with the cells (a scene at one alpha) each loses on at that alpha counted
 // as losses (add_cell_losses), as `saagen plan` decides for a material whose `roughness` is
