@@ -474,6 +474,22 @@ std::uint32_t VulkanContext::find_memory_type(std::uint32_t type_bits, VkMemoryP
   throw std::runtime_error(fmt::format("no Vulkan memory type with property flags {:#x} on '{}'", required, info_.name));
 }
 
+VkDeviceMemory VulkanContext::allocate_memory(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags preferred,
+                                              VkMemoryPropertyFlags required) const {
+  std::uint32_t type = 0;
+  try {
+    type = find_memory_type(requirements.memoryTypeBits, preferred);
+  } catch (const std::runtime_error&) {
+    type = find_memory_type(requirements.memoryTypeBits, required);
+  }
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = requirements.size;
+  info.memoryTypeIndex = type;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  SAAGEN_VK_CHECK(vkAllocateMemory(device_, &info, nullptr, &memory));
+  return memory;
+}
+
 VkFormatProperties VulkanContext::format_properties(VkFormat format) const {
   VkFormatProperties properties{};
   vkGetPhysicalDeviceFormatProperties(physical_device_, format, &properties);

@@ -14,18 +14,7 @@ namespace {
 
 DeviceHandle<VkDeviceMemory> allocate_memory(const VulkanContext& context, const VkMemoryRequirements& requirements,
                                              VkMemoryPropertyFlags preferred, VkMemoryPropertyFlags required) {
-  std::uint32_t type = 0;
-  try {
-    type = context.find_memory_type(requirements.memoryTypeBits, preferred);
-  } catch (const std::runtime_error&) {
-    type = context.find_memory_type(requirements.memoryTypeBits, required);
-  }
-  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  info.allocationSize = requirements.size;
-  info.memoryTypeIndex = type;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  SAAGEN_VK_CHECK(vkAllocateMemory(context.device(), &info, nullptr, &memory));
-  return {context.device(), memory, vkFreeMemory};
+  return {context.device(), context.allocate_memory(requirements, preferred, required), vkFreeMemory};
 }
 
 // Device memory bound to a new image (device-local when available).

@@ -171,18 +171,7 @@ class DeferredPassRunner {
   static std::size_t input_image(std::size_t index) { return index; }
 
   VkDeviceMemory allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags preferred, VkMemoryPropertyFlags required) {
-    std::uint32_t type = 0;
-    try {
-      type = context_.find_memory_type(requirements.memoryTypeBits, preferred);
-    } catch (const std::runtime_error&) {
-      type = context_.find_memory_type(requirements.memoryTypeBits, required);
-    }
-    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    info.allocationSize = requirements.size;
-    info.memoryTypeIndex = type;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    SAAGEN_VK_CHECK(vkAllocateMemory(device_, &info, nullptr, &memory));
-    return memory;
+    return context_.allocate_memory(requirements, preferred, required);
   }
 
   Image make_image(VkFormat format, VkImageUsageFlags usage) {

@@ -120,6 +120,10 @@ class VulkanContext {
 
   // Index of a memory type allowed by type_bits with all `required` flags; throws if none.
   std::uint32_t find_memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
+  // New device memory for `requirements`, of a type with the `preferred` flags where the device has
+  // one, else with the `required` ones; the caller frees it (vkFreeMemory). Throws if none.
+  VkDeviceMemory allocate_memory(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags preferred,
+                                 VkMemoryPropertyFlags required) const;
   VkFormatProperties format_properties(VkFormat format) const;
 
   // Names of all devices the loader reports (creates a temporary instance).
