@@ -938,8 +938,9 @@ AdviceTable at_roughness(AdviceTable advice, const Material& material) {
   for (AdviceMeasurement& measured : advice.contents) {
     const std::vector<double> judged = bracketing_alphas(measured.alphas, *range);
     for (ContentRow& row : measured.rows) add_cell_losses(row, judged);
-    for (const auto& [configuration, cells] : measured.held_out_cell_losses) {
-      std::vector<std::string> lost = cells_lost_at(cells, judged);
+    for (const auto& held_out : measured.held_out_cell_losses) {
+      const std::string& configuration = held_out.first;
+      std::vector<std::string> lost = cells_lost_at(held_out.second, judged);
       if (lost.empty()) continue;
       auto entry = std::find_if(measured.held_out_losses.begin(), measured.held_out_losses.end(),
                                 [&](const auto& losses) { return losses.first == configuration; });
