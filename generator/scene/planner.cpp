@@ -715,7 +715,7 @@ std::string roughness_text(const Material& material, const std::vector<ContentRo
                            const std::vector<double>& alphas, std::string_view baseline) {
   if (alphas.empty() && material.roughness)
     return fmt::format(
-        "{}: these figures have no cells per alpha (a table written before the bench wrote them; saagen's own under TAA), so it is "
+        "{}: these figures have no cells per alpha (a table written before the bench wrote them), so it is "
         "decided over every measured alpha pooled",
         roughness_words(*material.roughness));
   if (alphas.empty()) return "";
@@ -1212,12 +1212,13 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
                      planned, why, held_out_cell);
 }
 
-// What the plan gives a reference material of the content and path (prefer accuracy, no TAA) whose
+// What the plan gives a reference material of the content and path (prefer accuracy) whose
 // roughness is sqrt(alpha): "no filter", or its variant with the feed and the bake it is given.
-std::string plan_at_alpha(const Catalogue& catalogue, advice::Content content, RenderPath path, double alpha) {
+std::string plan_at_alpha(const Catalogue& catalogue, advice::Content content, bool taa, RenderPath path, double alpha) {
   Manifest manifest;
   manifest.source_name = "advice";
   manifest.targets = {OutputTarget::named("glsl")};
+  manifest.taa = taa;
   Material material = reference_material(path, content);
   material.roughness = RoughnessRange{std::sqrt(alpha), std::sqrt(alpha)};
   manifest.materials = {material};
@@ -1232,19 +1233,20 @@ std::string plan_at_alpha(const Catalogue& catalogue, advice::Content content, R
 std::string advice_by_alpha_markdown(const Catalogue& catalogue) {
   const AdviceMeasurement* curved = committed_advice().find(advice::table_content(advice::Content::curved));
   if (!curved || curved->alphas.empty()) return "";
-  std::string head = "\n| content | path |", rule = "|---|---|";
+  std::string head = "\n| content | TAA | path |", rule = "|---|---|---|";
   for (const double alpha : curved->alphas) {
     head += fmt::format(" roughness {:.3g} (alpha {:g}) |", std::sqrt(alpha), alpha);
     rule += "---|";
   }
   std::string text = head + "\n" + rule + "\n";
-  for (const advice::Content content :
-       {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat})
-    for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
-      text += fmt::format("| {} | {} |", advice::name(content), to_string(path));
-      for (const double alpha : curved->alphas) text += " " + plan_at_alpha(catalogue, content, path, alpha) + " |";
-      text += "\n";
-    }
+  for (const bool taa : {false, true})
+    for (const advice::Content content :
+         {advice::Content::curved, advice::Content::normal_mapped, advice::Content::bumps, advice::Content::clearcoat})
+      for (const RenderPath path : {RenderPath::forward, RenderPath::deferred}) {
+        text += fmt::format("| {} | {} | {} |", advice::name(content), taa ? "yes" : "no", to_string(path));
+        for (const double alpha : curved->alphas) text += " " + plan_at_alpha(catalogue, content, taa, path, alpha) + " |";
+        text += "\n";
+      }
   return text;
 }
 

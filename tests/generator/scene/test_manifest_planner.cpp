@@ -582,6 +582,23 @@ TEST(Planner, TheAdviceAtAMaterialsRoughnessIsCheckedOnTheHeldOutCellsThere) {
   EXPECT_EQ(plan_at("").variant, "deferred-aniso");
 }
 
+// saagen's committed figures under TAA carry their cells too: at a roughness where the TAA pick
+// loses to TAA alone on a held-out cell (forward-axis-projected/tail on the teapots at alpha 0.0064),
+// it is withheld; where it loses on none, it is given.
+TEST(Planner, UnderTaaTheCommittedAdviceIsJudgedAtAMaterialsRoughness) {
+  const auto plan_at = [&](const std::string& roughness) {
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n"
+                                                              "tangents = true\nroughness = " + roughness + "\n"))
+        .materials.at(0);
+  };
+  const saagen::MaterialPlan smooth = plan_at("0.08");
+  EXPECT_EQ(smooth.variant, "none") << smooth.reason;
+  EXPECT_NE(smooth.reason.find("teapots at alpha 0.0064"), std::string::npos) << smooth.reason;
+  const saagen::MaterialPlan medium = plan_at("0.224");
+  EXPECT_EQ(medium.variant, "forward-axis-projected") << medium.reason;
+  EXPECT_NE(medium.roughness_advice.find("decided on the measured cells"), std::string::npos) << medium.roughness_advice;
+}
+
 // `saagen plan --advice`'s table is what examples/INTEGRATION.md holds.
 TEST(Planner, IntegrationGuideHoldsTheAdviceTable) {
   const std::string guide = read_text(fs::path(SAAGEN_SOURCE_DIR) / "examples" / "INTEGRATION.md");
