@@ -1,7 +1,7 @@
 // footprint_kernel: what the SAA kernel would be worth if it were the pixel footprint's own, on
 // the medium preset's images and animation (docs/FILTERED_GGX.md, "The bump plane").
 //
-//   footprint_kernel [--cache DIR] [SCENE...]      (default: bump_plane)
+//   footprint_kernel [--cache DIR] [SCENE...]      (default: bump_plane; a scene's name or a .glb/.gltf asset)
 //
 // Per scene, alpha (the medium preset's six, no Fresnel) and configuration, the LDR-FLIP of
 // frame 0 (128 px) against the 256-spp ground truth and the TDE of the 16-frame animation (64 px)
@@ -25,10 +25,12 @@
 //               have no such moments: there it is the geometric-feed kernel alone.
 // With each kernel, "kernel change": the mean over the animation's frame pairs and the pixels the
 // ground truth lights in either frame (display value > 0.05) of |k_t - k_t-1| / max(k_t, k_t-1),
-// k = tr(K) / 2: how much the kernel estimate itself moves from one frame to the next.
+// k = tr(K) / 2: how much the kernel estimate itself moves from one frame to the next; for the
+// quad kernel also the quantiles of its ratio to the stable kernel at those pixels.
 // `stable` and `bake` cast 64 rays per pixel: they are measurements of what a temporally stable
 // kernel and a bake could reach, not forms a shader evaluates from one sample.
 #include "saagen/measure/flip.hpp"
+#include "saagen/measure/gltf.hpp"
 #include "saagen/measure/render.hpp"
 #include "saagen/reference/brdf.hpp"
 
@@ -210,6 +212,7 @@ double half_trace_kernel(const measure::GBuffer& gbuffer, const std::vector<Foot
 }
 
 measure::SceneId scene_id(const std::string& name) {
+  if (name.ends_with(".glb") || name.ends_with(".gltf")) return measure::register_gltf_scene(name);
   for (measure::SceneId id : measure::all_scenes())
     if (measure::scene_name(id) == name) return id;
   for (measure::SceneId id : measure::content_scenes())
@@ -274,6 +277,26 @@ double kernel_change(const SceneInputs& in, const measure::Material& material, c
   return count ? sum / static_cast<double>(count) : 0.0;
 }
 
+// Quantiles (10, 50, 90, 99 %) of the quad kernel over the stable (footprint) kernel, tr(K) / 2,
+// at the pixels the ground truth lights, over the animation's frames.
+std::string kernel_ratio(const SceneInputs& in, const measure::Material& material, const std::vector<measure::Image>& truths) {
+  constexpr double kLit = 0.05;
+  std::vector<double> ratios;
+  for (int frame = 0; frame < kFrames; ++frame)
+    for (int y = 0; y < kFlickerSize; ++y)
+      for (int x = 0; x < kFlickerSize; ++x) {
+        if (truths[frame].pixels[static_cast<std::size_t>(y) * kFlickerSize + x] <= kLit) continue;
+        const double quad = half_trace_kernel(in.frame_gbuffers[frame], in.frame_footprints[frame], material, x, y, Form::quad);
+        const double stable = half_trace_kernel(in.frame_gbuffers[frame], in.frame_footprints[frame], material, x, y, Form::stable);
+        if (quad < 0.0 || stable <= 0.0) continue;
+        ratios.push_back(quad / stable);
+      }
+  if (ratios.empty()) return "-";
+  std::sort(ratios.begin(), ratios.end());
+  const auto at = [&](double q) { return ratios[static_cast<std::size_t>(q * static_cast<double>(ratios.size() - 1))]; };
+  return fmt::format("{:.2f} / {:.2f} / {:.2f} / {:.2f} (n {})", at(0.1), at(0.5), at(0.9), at(0.99), ratios.size());
+}
+
 void measure_scene(const measure::TradeConfig& config, const std::string& name, const std::string& cache) {
   const std::vector<measure::Material> materials = measure::trade_materials(config);
   const SceneInputs in = scene_inputs(config, scene_id(name), materials, cache);
@@ -291,7 +314,8 @@ void measure_scene(const measure::TradeConfig& config, const std::string& name, 
         truths.push_back(measure::display_image(in.frame_truths[frame].images[m]));
       }
       const measure::TemporalError temporal = measure::temporal_difference_error(frames, truths);
-      const std::string change = form == Form::none ? "" : fmt::format("{:.3f}", kernel_change(in, materials[m], truths, form));
+      std::string change = form == Form::none ? "" : fmt::format("{:.3f}", kernel_change(in, materials[m], truths, form));
+      if (form == Form::quad) change += "; quad / stable " + kernel_ratio(in, materials[m], truths);
       fmt::print("| {} | {} | {:.4f} | {:.5f} | {:.5f} | {:.5f} | {} |\n", form_name(form), materials[m].alpha, flip, temporal.tde,
                  temporal.excess_flicker, temporal.lost_motion, change);
       flip_sum += flip;

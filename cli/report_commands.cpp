@@ -193,6 +193,17 @@ void check_isa_families(const std::string& families) {
 #endif
 }
 
+// --truth-samples-scale: every ground truth (main image and animation, the scenes' own sizes
+// included) with `scale` times the strata per axis, scale^2 times the samples.
+void scale_ground_truth_samples(int scale, measure::TradeConfig& config) {
+  config.strata *= scale;
+  config.flicker_strata *= scale;
+  for (measure::TradeSceneSize& size : config.scene_sizes) {
+    size.strata *= scale;
+    size.flicker_strata *= scale;
+  }
+}
+
 // The configuration of a run, its options checked before any rendering.
 measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_images) {
   if (common.threads < 0) throw Error(fmt::format("--threads {}: must be 0 (all cores) or a positive count", common.threads));
@@ -233,6 +244,7 @@ measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_i
   if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
   if (!common.derivatives.empty()) config.derivative = common.derivatives == "fine" ? ref::Derivative::fine : ref::Derivative::coarse;
   if (common.exact_lobe) config.lobes.push_back(measure::Lobe::exact);
+  scale_ground_truth_samples(common.truth_samples_scale, config);
   return config;
 }
 
@@ -359,6 +371,12 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
                    "What the filters' screen-space derivatives are: coarse (one difference per 2x2 quad, the default) or fine "
                    "(the difference within the pixel's own row and column: dFdxFine, ddx_fine, dpdxFine)")
       ->check(CLI::IsMember({"coarse", "fine"}));
+  command
+      ->add_option("--truth-samples-scale", common.truth_samples_scale,
+                   "Every ground truth with this many times the strata per axis (its square times the samples; e.g. 4: the medium "
+                   "preset's assets at 4096 spp instead of 256): where small, smooth highlights fall between the samples of the "
+                   "preset's ground truth and its two seeds disagree")
+      ->check(CLI::Range(1, 8));
   command->add_flag("--exact-lobe", common.exact_lobe,
                     "Also evaluate every filter's kernel with the exact filtered GGX (GGX convolved with the kernel by quadrature; rows "
                     "VARIANT/exact): what a closed-form lobe could reach. A measurement, not a BRDF saagen emits");

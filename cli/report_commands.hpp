@@ -57,6 +57,9 @@ class ReportCommands {
     std::string derivatives;
     // Also measure the exact filtered GGX (Lobe::exact, rows VARIANT/exact): a measuring instrument.
     bool exact_lobe = false;
+    // Every ground truth's strata per axis times this (its samples times its square): for
+    // scenes whose sub-pixel highlights the preset's ground truth has not converged on.
+    int truth_samples_scale = 1;
   };
 
  private:

@@ -3,8 +3,13 @@
 # from, measured with the medium preset's settings, so that the advice is reported on it.
 #   bash scripts/held_out.sh OUT [saagen bench options]   # e.g. --cache out/cache
 # ($SAAGEN names the saagen binary; default ./build/cli/saagen.)
-# Writes OUT/models/*.glb (converted here, nothing is committed), OUT/held_out.json (the trade
-# table) and OUT/held_out.txt (the bench's output).
+# Writes OUT/models/*.glb (converted here, nothing is committed) and two trade tables with the
+# bench's output beside each: OUT/held_out_models.json (.txt), the curved models, and
+# OUT/held_out_maps.json (.txt), the normal maps (scripts/advice_data.py reads the directory).
+# The models' ground truths have 16 times the preset's samples (4096 spp at their 64 px): at alpha
+# 0.0025 their sub-pixel highlights fall between the samples of 256, and the verdict there turns
+# with the ground truth's samples until about 4096 (docs/TEMPORAL.md, "A ground truth that has not
+# converged"). --truth-samples-scale among the options overrides it.
 # The set, chosen by a rule and not by how the advice fares on it:
 #   - curved: the three curved, smooth, textured models of Debian's assimp-testmodels with 3-4 k
 #     triangles (Collada duck, OBJ Wuson, Collada teapots), converted to glTF by assimp-utils;
@@ -19,13 +24,19 @@ shift
 command -v assimp > /dev/null || { echo "held_out.sh: assimp is needed (scripts/install-deps.sh installs assimp-utils)"; exit 1; }
 models=/usr/share/assimp/models
 mkdir -p "$out/models"
-scenes=()
+models_scenes=()
 for source in Collada/duck.dae OBJ/WusonOBJ.obj Collada/teapots.DAE; do
   name=$(basename "${source%.*}")
   assimp export "$models/$source" "$out/models/$name.glb" -fglb2 > "$out/models/$name.log" 2>&1 ||
     { cat "$out/models/$name.log"; echo "held_out.sh: assimp could not convert $models/$source"; exit 1; }
-  scenes+=(--scene "$out/models/$name.glb")
+  models_scenes+=(--scene "$out/models/$name.glb")
 done
-for map in 0000 0001 0002; do scenes+=(--scene "pmndrs-$map"); done
-for map in 0000 0001 0002; do for lod in 0 1 3 4; do scenes+=(--scene "pmndrs-$map-lod$lod"); done; done
-"${SAAGEN:-./build/cli/saagen}" bench --preset medium "${scenes[@]}" --json "$out/held_out.json" "$@" | tee "$out/held_out.txt"
+map_scenes=()
+for map in 0000 0001 0002; do map_scenes+=(--scene "pmndrs-$map"); done
+for map in 0000 0001 0002; do for lod in 0 1 3 4; do map_scenes+=(--scene "pmndrs-$map-lod$lod"); done; done
+models_truth=(--truth-samples-scale 4)
+for argument in "$@"; do [[ $argument == --truth-samples-scale* ]] && models_truth=(); done
+saagen=${SAAGEN:-./build/cli/saagen}
+"$saagen" bench --preset medium "${models_scenes[@]}" "${models_truth[@]}" --json "$out/held_out_models.json" "$@" |
+  tee "$out/held_out_models.txt"
+"$saagen" bench --preset medium "${map_scenes[@]}" --json "$out/held_out_maps.json" "$@" | tee "$out/held_out_maps.txt"

@@ -83,6 +83,16 @@ TEST_F(Cli, BenchRefusesNonFiniteNumbers) {
   }
 }
 
+// --truth-samples-scale K renders every ground truth with K times the strata per axis (the quick
+// preset's 64 spp at K = 2: 256), and refuses a scale outside [1, 8] in one line.
+TEST_F(Cli, BenchScalesTheGroundTruthsSamples) {
+  const CliRun run = saagen({"bench", "--preset", "quick", "--scene", "sphere", "--resolution", "8", "--truth-samples-scale", "2"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("errors against the 256-spp ground truth"), std::string::npos) << run.out;
+  expect_one_line_error(saagen({"bench", "--preset", "quick", "--truth-samples-scale", "0"}),
+                        "--truth-samples-scale: Value 0 not in range 1 to 8");
+}
+
 TEST_F(Cli, ListPrintsEveryVariant) {
   const CliRun run = saagen({"list"});
   ASSERT_EQ(run.exit_code, 0);
