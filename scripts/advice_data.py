@@ -5,13 +5,10 @@ and, under TAA, two more of the same scenes measured with --taa (their "taa_by_c
 each configuration against none+taa).
 
     saagen bench --preset medium --json T.json
-    bash scripts/held_out.sh OUT          # writes OUT/held_out_models.json and OUT/held_out_maps.json
+    bash scripts/held_out.sh OUT          # writes OUT/held_out.json
     saagen bench --preset medium --taa --sigma2 0.0625 --json TAA.json
     bash scripts/held_out.sh TAA_OUT --taa --sigma2 0.0625
-    python3 scripts/advice_data.py T.json OUT TAA.json TAA_OUT > generator/data/advice.json
-
-A held-out argument is one table or a directory of them (OUT/held_out_*.json: held_out.sh measures
-the models and the maps in two runs, each content in one of them).
+    python3 scripts/advice_data.py T.json OUT/held_out.json TAA.json TAA_OUT/held_out.json > generator/data/advice.json
 
 and, for normal maps seen only from afar (a manifest's `map_lod`), pairs of tables of the minification
 sweep's scenes at that LOD (the derivation maps', the held-out maps'), each entered with
@@ -19,15 +16,13 @@ sweep's scenes at that LOD (the derivation maps', the held-out maps'), each ente
 
     saagen bench --preset medium --scene pmndrs-0014-lod4 --scene pmndrs-0019-lod4 --scene pmndrs-0010-lod4 --json D4.json
     saagen bench --preset medium --scene pmndrs-0000-lod4 --scene pmndrs-0001-lod4 --scene pmndrs-0002-lod4 --json H4.json
-    python3 scripts/advice_data.py --map-lod 4 D4.json H4.json T.json OUT ... > generator/data/advice.json
+    python3 scripts/advice_data.py --map-lod 4 D4.json H4.json T.json OUT/held_out.json ... > generator/data/advice.json
 
 It copies figures; it decides nothing. The planner (saagen/scene/cost_tables.hpp: committed_advice) reads the file,
 embedded in the library (saagen/scene/cost_tables.hpp: committed_advice), and makes saagen's one decision (saagen/decision.hpp) on its rows: on the
 derivation rows' comparisons with no SAA, then held against the held-out rows' comparisons.
 """
-import glob
 import json
-import os
 import sys
 
 # The bench's by_content figures the advice keeps per configuration.
@@ -149,31 +144,6 @@ def load(path):
         return json.load(f)
 
 
-def load_held_out(path):
-    """One table, or the tables of a directory (held_out_*.json) as one: their contents side by
-    side, each content from the one table that measured it, their configs joined."""
-    if not os.path.isdir(path):
-        return load(path)
-    paths = sorted(glob.glob(os.path.join(path, "held_out_*.json")))
-    if not paths:
-        sys.exit(f"advice_data.py: {path}: no held_out_*.json in it; run `bash scripts/held_out.sh {path}` first")
-    tables = [load(table) for table in paths]
-    merged = {"alphas": tables[0].get("alphas"), "config": "; ".join(table["config"] for table in tables),
-              "decisions": {"per_scene": []}, "by_content": [], "taa_by_content": []}
-    measured_in = {}
-    for table_path, table in zip(paths, tables):
-        if table.get("alphas") != merged["alphas"]:
-            sys.exit(f"advice_data.py: {table_path}: measured at other alphas than {paths[0]}; measure both with the same preset")
-        for content in scenes_by_content(table):
-            if content in measured_in:
-                sys.exit(f"advice_data.py: {table_path}: {content} content is also in {measured_in[content]}; each content in one table")
-            measured_in[content] = table_path
-        merged["decisions"]["per_scene"] += table["decisions"]["per_scene"]
-        for key in ("by_content", "taa_by_content"):
-            merged[key] += table.get(key, [])
-    return merged
-
-
 def sweep_command(table):
     """The bench command of a table of sweep scenes, from its scene names."""
     scenes = []
@@ -184,18 +154,18 @@ def sweep_command(table):
 
 
 def main(argv):
-    usage = ("usage: advice_data.py [--map-lod K DERIVED.json HELD_OUT ...] DERIVED.json HELD_OUT "
-             "[TAA_DERIVED.json TAA_HELD_OUT] > generator/data/advice.json (HELD_OUT: a table or held_out.sh's directory)")
+    usage = ("usage: advice_data.py [--map-lod K DERIVED.json HELD_OUT.json ...] DERIVED.json HELD_OUT.json "
+             "[TAA_DERIVED.json TAA_HELD_OUT.json] > generator/data/advice.json")
     args, by_map_lod = argv[1:], []
     while args and args[0] == "--map-lod":
         if len(args) < 4 or not args[1].isdigit() or int(args[1]) < 1:
             sys.exit(usage)
-        derived, held_out = load(args[2]), load_held_out(args[3])
+        derived, held_out = load(args[2]), load(args[3])
         by_map_lod.append((int(args[1]), derived, held_out, sweep_command(derived), sweep_command(held_out)))
         args = args[4:]
     if len(args) not in (2, 4):
         sys.exit(usage)
-    tables = [load_held_out(path) if i % 2 else load(path) for i, path in enumerate(args)]
+    tables = [load(path) for path in args]
     document = advice_document(tables[0], tables[1], "saagen bench --preset medium --json T.json", "scripts/held_out.sh", *tables[2:],
                                by_map_lod=by_map_lod)
     write(document, sys.stdout)

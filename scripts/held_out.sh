@@ -3,13 +3,8 @@
 # from, measured with the medium preset's settings, so that the advice is reported on it.
 #   bash scripts/held_out.sh OUT [saagen bench options]   # e.g. --cache out/cache
 # ($SAAGEN names the saagen binary; default ./build/cli/saagen.)
-# Writes OUT/models/*.glb (converted here, nothing is committed) and two trade tables with the
-# bench's output beside each: OUT/held_out_models.json (.txt), the curved models, and
-# OUT/held_out_maps.json (.txt), the normal maps (scripts/advice_data.py reads the directory).
-# The models' ground truths have 16 times the preset's samples (4096 spp at their 64 px): at alpha
-# 0.0025 their sub-pixel highlights fall between the samples of 256, and the verdict there turns
-# with the ground truth's samples until about 4096 (docs/TEMPORAL.md, "A ground truth that has not
-# converged"). --truth-samples-scale among the options overrides it.
+# Writes OUT/models/*.glb (converted here, nothing is committed), OUT/held_out.json (the trade
+# table) and OUT/held_out.txt (the bench's output).
 # The set, chosen by a rule and not by how the advice fares on it:
 #   - curved: the three curved, smooth, textured models of Debian's assimp-testmodels with 3-4 k
 #     triangles (Collada duck, OBJ Wuson, Collada teapots), converted to glTF by assimp-utils;
@@ -17,6 +12,7 @@
 #     sphere, as the derivation set's maps (0010, 0014, 0019) are, and, as the medium preset
 #     sweeps its maps' minification, each at LOD 0, 1, 3 and 4 (pmndrs-NNNN-lodK).
 # Bumps and clearcoat have no held-out content (no package ships a second asset of either).
+# The models' ground truths are at 4096 spp (the presets' rule for glTF scenes; saagen/report/presets.hpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:?usage: scripts/held_out.sh OUT [saagen bench options]}
@@ -24,19 +20,13 @@ shift
 command -v assimp > /dev/null || { echo "held_out.sh: assimp is needed (scripts/install-deps.sh installs assimp-utils)"; exit 1; }
 models=/usr/share/assimp/models
 mkdir -p "$out/models"
-models_scenes=()
+scenes=()
 for source in Collada/duck.dae OBJ/WusonOBJ.obj Collada/teapots.DAE; do
   name=$(basename "${source%.*}")
   assimp export "$models/$source" "$out/models/$name.glb" -fglb2 > "$out/models/$name.log" 2>&1 ||
     { cat "$out/models/$name.log"; echo "held_out.sh: assimp could not convert $models/$source"; exit 1; }
-  models_scenes+=(--scene "$out/models/$name.glb")
+  scenes+=(--scene "$out/models/$name.glb")
 done
-map_scenes=()
-for map in 0000 0001 0002; do map_scenes+=(--scene "pmndrs-$map"); done
-for map in 0000 0001 0002; do for lod in 0 1 3 4; do map_scenes+=(--scene "pmndrs-$map-lod$lod"); done; done
-models_truth=(--truth-samples-scale 4)
-for argument in "$@"; do [[ $argument == --truth-samples-scale* ]] && models_truth=(); done
-saagen=${SAAGEN:-./build/cli/saagen}
-"$saagen" bench --preset medium "${models_scenes[@]}" "${models_truth[@]}" --json "$out/held_out_models.json" "$@" |
-  tee "$out/held_out_models.txt"
-"$saagen" bench --preset medium "${map_scenes[@]}" --json "$out/held_out_maps.json" "$@" | tee "$out/held_out_maps.txt"
+for map in 0000 0001 0002; do scenes+=(--scene "pmndrs-$map"); done
+for map in 0000 0001 0002; do for lod in 0 1 3 4; do scenes+=(--scene "pmndrs-$map-lod$lod"); done; done
+"${SAAGEN:-./build/cli/saagen}" bench --preset medium "${scenes[@]}" --json "$out/held_out.json" "$@" | tee "$out/held_out.txt"

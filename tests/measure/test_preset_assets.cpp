@@ -4,6 +4,7 @@
 #include "support/cli_support.hpp"
 
 #include "saagen/measure/assets.hpp"
+#include "saagen/measure/gltf.hpp"
 #include "saagen/measure/renderer.hpp"
 #include "saagen/measure/trade.hpp"
 #include "saagen/report/report.hpp"
@@ -42,7 +43,8 @@ Vec3 texel_normal(int r, int g, int b) {
 // minification sweep, LOD 0, 1, 3 and 4 at its 64 px), at half the preset's width and height
 // and the preset's samples per pixel, the animation never below 64 x 64 and 256 spp (the medium
 // preset's animation keeps its size and gets 4x its samples, the full preset's is halved to 64 px
-// at its own 256 spp); the quick preset adds none.
+// at its own 256 spp); the glTF scenes' ground truths (ClearCoatTest, its coat, 2CylinderEngine)
+// at 4096 spp, image and animation; the quick preset adds none.
 TEST(PresetAssets, MediumAndFullListTheAssetScenesAtAQuarterOfThePixels) {
   const std::vector<std::string> assets{"ClearCoatTest", "ClearCoatTest-coat", "2CylinderEngine",
                                         "pmndrs-0014",   "pmndrs-0019",        "pmndrs-0010"};
@@ -63,10 +65,12 @@ TEST(PresetAssets, MediumAndFullListTheAssetScenesAtAQuarterOfThePixels) {
       EXPECT_EQ(size.scene, config.scenes[built_in + i]);
       EXPECT_EQ(size.width, config.width / 2);
       EXPECT_EQ(size.height, config.height / 2);
-      EXPECT_EQ(size.strata, config.strata);
+      const bool gltf = i < 3;
+      EXPECT_EQ(size.strata, gltf ? 64 : config.strata) << expected[i];
       EXPECT_EQ(size.flicker_width, std::string(preset) == "medium" ? config.flicker_width : config.flicker_width / 2);
       EXPECT_EQ(size.flicker_width, 64);
-      EXPECT_EQ(size.flicker_strata, 16);  // 256 spp: the medium preset's 64 raised, the full preset's own
+      // 256 spp: the medium preset's 64 raised, the full preset's own; 4096 for a glTF scene.
+      EXPECT_EQ(size.flicker_strata, gltf ? 64 : 16) << expected[i];
       const TradeConfig sized = sized_for_scene(config, size.scene);
       EXPECT_EQ(sized.width, size.width);
       EXPECT_EQ(sized.flicker_height, size.flicker_height);
@@ -79,6 +83,21 @@ TEST(PresetAssets, MediumAndFullListTheAssetScenesAtAQuarterOfThePixels) {
   saagen::report::add_preset_assets("quick", quick);
   EXPECT_EQ(quick.scenes, before);
   EXPECT_TRUE(quick.scene_sizes.empty());
+}
+
+// A glTF asset given with --scene keeps the preset's sizes and takes its ground truths at 4096 spp
+// (a mesh's highlight at alpha 0.0025 is smaller than a pixel); a built-in scene keeps the preset's.
+TEST(PresetAssets, AGltfSceneOfOnesOwnTakesItsGroundTruthsAt4096Spp) {
+  TradeConfig config = saagen::report::preset_config("medium");
+  config.scenes = {SceneId::sphere, register_gltf_scene("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb")};
+  saagen::report::size_preset_assets("medium", config);
+  const TradeConfig box = sized_for_scene(config, config.scenes[1]), sphere = sized_for_scene(config, SceneId::sphere);
+  EXPECT_EQ(box.width, config.width);
+  EXPECT_EQ(box.flicker_width, config.flicker_width);
+  EXPECT_EQ(box.strata * box.strata, 4096);
+  EXPECT_EQ(box.flicker_strata * box.flicker_strata, 4096);
+  EXPECT_EQ(sphere.strata, config.strata);
+  EXPECT_EQ(sphere.flicker_strata, config.flicker_strata);
 }
 
 // A scene with sizes of its own (TradeConfig::scene_sizes) is rendered, ground truth and 1-spp

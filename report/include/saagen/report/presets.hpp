@@ -23,7 +23,11 @@ void add_preset_assets(std::string_view preset, measure::TradeConfig& config);
 // config.scenes: the medium preset 64 x 64, the full preset 128 x 128 (a quarter of the preset's
 // pixels, so that six more scenes keep the presets' run times) at the preset's samples per pixel;
 // the animation never below 64 x 64 px and 256 spp, where the sanity suite ranks a one-frame delay
-// below another ground-truth seed on every asset scene (docs/GLTF_SCENES.md).
+// below another ground-truth seed on every asset scene (docs/GLTF_SCENES.md). Every glTF scene (the
+// presets' and any given with --scene, at the preset's sizes) takes its ground truths, image and
+// animation, at 4096 spp at least: its smooth highlights are smaller than a pixel, and at alpha
+// 0.0025 the verdict turns with the ground truth's samples up to there (docs/TEMPORAL.md, "A
+// ground truth that has not converged").
 void size_preset_assets(std::string_view preset, measure::TradeConfig& config);
 
 }  // namespace saagen::report
