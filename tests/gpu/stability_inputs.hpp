@@ -245,6 +245,31 @@ inline bool is_brdf(const Function& function) {
          function.name == "ndf_clamp_tau" || is_tensor_lighting(function);
 }
 
+// Packs a parameter that a BRDF input's material and directions i, o give (i or w, o, A, tau,
+// A's diagonal as `filtered`, the kernel's xx as `kernel`, the kernel S as `tensor`); false for
+// any other. Shared by the adversarial inputs here and the precision test's realistic ones.
+inline bool pack_material_parameter(const std::string& name, const Material& material, ref::Vec3 i, ref::Vec3 o, Packer& pack) {
+  if (name == "w" || name == "i")
+    pack.vec3(i);
+  else if (name == "o")
+    pack.vec3(o);
+  else if (name == "a")
+    pack.sym2(material.a);
+  else if (name == "tau")
+    pack.real(material.tau);
+  else if (name == "filtered")
+    pack.vec2({material.a.xx, material.a.yy});
+  else if (name == "kernel")
+    pack.real(material.a.xx - material.alpha2.x);
+  else if (name == "tensor")
+    // The PSD kernel S of A = diag(alpha^2) + S: the lighting pass's claims hold for any PSD
+    // tensor, not only the kappa-clamped one deferred_aniso writes.
+    pack.sym2(material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y});
+  else
+    return false;
+  return true;
+}
+
 // One element of adversarial inputs for a core/evaluate function, appended to `out`.
 inline void pack_core_element(const Function& function, Rng& rng, std::vector<float>& out) {
   Packer pack{out};
@@ -252,6 +277,7 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
   const ref::Vec3 i = adversarial_direction(rng), o = adversarial_direction(rng);
   for (const Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
+    if (pack_material_parameter(name, material, i, o, pack)) continue;
     if (name == "alpha2") {
       if (is_brdf(function))
         parameter.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
@@ -265,28 +291,12 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
       const ref::Vec3 sum = i + o;
       pack.vec3(function.name.find("g2") != std::string::npos && ref::dot(sum, sum) > 0.0 ? ref::normalize(sum)
                                                                                           : adversarial_direction(rng));
-    } else if (name == "w" || name == "i") {
-      pack.vec3(i);
-    } else if (name == "o") {
-      pack.vec3(o);
-    } else if (name == "a") {
-      pack.sym2(material.a);
-    } else if (name == "tau") {
-      pack.real(material.tau);
-    } else if (name == "filtered") {
-      pack.vec2({material.a.xx, material.a.yy});
-    } else if (name == "kernel") {
-      pack.real(material.a.xx - material.alpha2.x);
     } else if (name == "normal_ws") {
       pack.vec3(adversarial_direction(rng));
     } else if (name == "light_ws") {
       pack.vec3(i);
     } else if (name == "view_ws") {
       pack.vec3(o);
-    } else if (name == "tensor") {
-      // The PSD kernel S of A = diag(alpha^2) + S: the lighting pass's claims hold for any PSD
-      // tensor, not only the kappa-clamped one deferred_aniso writes.
-      pack.sym2(material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y});
     } else if (name == "covariance") {
       // deferred_aniso_covariance's output: PSD and unbounded by kappa (another material's kernel).
       const Material texture = adversarial_material(rng);

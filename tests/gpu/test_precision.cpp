@@ -92,6 +92,7 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
     const saagen::test::TextureFrame frame = saagen::test::texture_frame(normal, 0.7 * e, e % 2 ? -1.0 : 1.0);
     for (const saagen::Parameter& p : f.parameters) {
       const std::string& name = p.name;
+      if (stab::pack_material_parameter(name, material, i, o, pack)) continue;
       if (name == "alpha2") {
         if (stab::is_brdf(f))
           p.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
@@ -105,26 +106,12 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
         for (std::uint32_t k = 0; k < saagen::component_count(p.type); ++k) pack.real(realistic_derivative(rng));
       } else if (name == "h") {
         pack.vec3(f.name.find("g2") != std::string::npos ? ref::normalize(i + o) : stab::upper_direction(rng, 0.1));
-      } else if (name == "w" || name == "i") {
-        pack.vec3(i);
-      } else if (name == "o") {
-        pack.vec3(o);
-      } else if (name == "a") {
-        pack.sym2(material.a);
-      } else if (name == "tau") {
-        pack.real(material.tau);
-      } else if (name == "filtered") {
-        pack.vec2({material.a.xx, material.a.yy});
-      } else if (name == "kernel") {
-        pack.real(material.a.xx - material.alpha2.x);
       } else if (name == "normal_ws") {
         pack.vec3(normal);
       } else if (name == "light_ws") {
         pack.vec3(in_world(i));
       } else if (name == "view_ws") {
         pack.vec3(in_world(o));
-      } else if (name == "tensor") {
-        pack.sym2(material.a - Sym2{material.alpha2.x, 0.0, material.alpha2.y});
       } else if (name == "mean_length") {
         pack.real(saagen::test::prefilter_inputs(seed * kElements + e).mean_length);
       } else if (name == "slope_mean") {
