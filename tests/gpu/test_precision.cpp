@@ -23,6 +23,7 @@
 // are bounded by the fp16 rows (fp16 is the lowest precision RelaxedPrecision allows).
 #include "stability_claims.hpp"
 #include "stability_inputs.hpp"
+#include "stability_names.hpp"
 #include "support/gpu_support.hpp"
 #include "support/reference_dispatch.hpp"
 
@@ -30,14 +31,7 @@
 
 namespace {
 
-namespace ref = saagen::ref;
-namespace stab = saagen::stability;
-using ref::Quad;
-using ref::Sym2;
-using ref::Vec2;
-using ref::Vec3;
-using saagen::Catalogue;
-using saagen::Function;
+using namespace saagen::stability::short_names;
 
 constexpr std::uint32_t kElements = 65536;
 constexpr std::uint32_t kWidth = 256;  // wrappers: a 256 x 256 emulated image
@@ -181,73 +175,6 @@ Inputs wrapper_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
 
 // --- the reference on the packed fp32 inputs -------------------------------------------------
 
-using Reader = saagen::test::FloatReader;
-
-std::vector<double> values(double v) { return {v}; }
-
-std::vector<double> reference_core(const ref::Params& p, const std::string& name, const float* x) {
-  Reader in(x);
-  if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
-  if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
-  if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
-  if (auto filter = saagen::test::filter_core_reference(name, p, in)) return *filter;
-  const ref::Brdf brdf{p};
-  if (name == "ndf_clamp_tau") return values(ref::ndf_clamp_tau(in.vec2()));
-  if (name == "ggx_ndf_matrix") {
-    const Vec3 h = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(brdf.ggx_ndf_matrix(h, a, in.real()));
-  }
-  if (name == "beckmann_ndf_matrix") {
-    const Vec3 h = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(brdf.beckmann_ndf_matrix(h, a, in.real()));
-  }
-  if (name == "ggx_lambda_matrix") {
-    const Vec3 w = in.vec3();
-    return values(brdf.ggx_lambda_matrix(w, in.sym2()));
-  }
-  if (name == "beckmann_lambda_matrix") {
-    const Vec3 w = in.vec3();
-    return values(brdf.beckmann_lambda_matrix(w, in.sym2()));
-  }
-  if (name == "ggx_g2_matrix") {
-    const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
-    return values(brdf.ggx_g2_matrix(i, o, h, in.sym2()));
-  }
-  if (name == "ggx_brdf_matrix") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(brdf.ggx_brdf_matrix(i, o, a, in.real()));
-  }
-  if (name == "beckmann_brdf_matrix") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(brdf.beckmann_brdf_matrix(i, o, a, in.real()));
-  }
-  if (name == "ggx_ndf_axis") {
-    const Vec3 h = in.vec3();
-    return values(brdf.ggx_ndf_axis(h, in.vec2()));
-  }
-  if (name == "ggx_lambda_axis") {
-    const Vec3 w = in.vec3();
-    return values(brdf.ggx_lambda_axis(w, in.vec2()));
-  }
-  if (name == "beckmann_ndf_axis") {
-    const Vec3 h = in.vec3();
-    return values(brdf.beckmann_ndf_axis(h, in.vec2()));
-  }
-  if (name == "ggx_brdf_axis") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    return values(brdf.ggx_brdf_axis(i, o, in.vec2()));
-  }
-  if (name == "beckmann_brdf_axis") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    return values(brdf.beckmann_brdf_axis(i, o, in.vec2()));
-  }
-  throw std::runtime_error("no reference for " + name);
-}
-
 std::vector<double> reference_wrapper(const ref::Params& p, const Function& f, const Inputs& in, std::uint32_t index) {
   const std::uint32_t x = index % kWidth, y = index / kWidth, stride = in.layout.stride;
   const int pixel = static_cast<int>((x & 1) + 2 * (y & 1));
@@ -321,8 +248,9 @@ Measured measure(const Function& f, const Inputs& in, const std::vector<float>& 
   const std::uint32_t elements = is_wrapper(f) ? kWidth * kWidth : kElements;
   for (std::uint32_t e = 0; e < elements; ++e) {
     if (in.min_alpha[e] < min_alpha) continue;
-    const auto expected = is_wrapper(f) ? reference_wrapper(params, f, in, e)
-                                        : reference_core(params, f.name, in.data.data() + std::size_t{e} * in.layout.stride);
+    const auto expected = is_wrapper(f)
+                              ? reference_wrapper(params, f, in, e)
+                              : saagen::test::core_function_reference(f.name, params, in.data.data() + std::size_t{e} * in.layout.stride);
     for (std::uint32_t k = 0; k < in.outputs; ++k) {
       const double g = got[std::size_t{e} * in.outputs + k], x = expected[k];
       ++m.count;

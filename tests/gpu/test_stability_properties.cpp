@@ -32,6 +32,7 @@
 #endif
 #include "stability_claims.hpp"
 #include "stability_inputs.hpp"
+#include "stability_names.hpp"
 #include "support/reference_dispatch.hpp"
 
 #include <rapidcheck.h>
@@ -44,14 +45,7 @@
 
 namespace {
 
-namespace ref = saagen::ref;
-namespace stab = saagen::stability;
-using ref::Quad;
-using ref::Sym2;
-using ref::Vec2;
-using ref::Vec3;
-using saagen::Catalogue;
-using saagen::Function;
+using namespace saagen::stability::short_names;
 
 using Element = std::vector<double>;  // a core function's inputs, or a wrapper quad's fields (4 x stride)
 using Values = std::vector<double>;   // one function output (1 to 3 components)
@@ -299,51 +293,10 @@ rc::Gen<std::vector<Element>> gen_batch(rc::Gen<Element> element) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The reference of every core/evaluate function and wrapper, on packed inputs.
+// The reference of every wrapper on packed quads (the core functions' is
+// saagen::test::core_function_reference).
 
 using Reader = saagen::test::PackedReader<double>;
-
-Values values(double v) { return {v}; }
-
-Values reference_core(const ref::Params& p, const std::string& name, const double* x) {
-  Reader in(x);
-  if (auto prefiltered = saagen::test::prefilter_reference(name, p, in)) return *prefiltered;
-  if (auto filtered = saagen::test::filtered_ggx_reference(name, p, in)) return *filtered;
-  if (auto tensor = saagen::test::deferred_aniso_reference(name, p, in)) return *tensor;
-  if (auto filter = saagen::test::filter_core_reference(name, p, in)) return *filter;
-  const ref::Brdf brdf{p};
-  if (name == "ndf_clamp_tau") return values(ref::ndf_clamp_tau(in.vec2()));
-  if (name == "ggx_ndf_matrix" || name == "beckmann_ndf_matrix") {
-    const Vec3 h = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(name[0] == 'g' ? brdf.ggx_ndf_matrix(h, a, in.real()) : brdf.beckmann_ndf_matrix(h, a, in.real()));
-  }
-  if (name == "ggx_lambda_matrix" || name == "beckmann_lambda_matrix") {
-    const Vec3 w = in.vec3();
-    return values(name[0] == 'g' ? brdf.ggx_lambda_matrix(w, in.sym2()) : brdf.beckmann_lambda_matrix(w, in.sym2()));
-  }
-  if (name == "ggx_g2_matrix") {
-    const Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
-    return values(brdf.ggx_g2_matrix(i, o, h, in.sym2()));
-  }
-  if (name == "ggx_brdf_matrix" || name == "beckmann_brdf_matrix") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    const Sym2 a = in.sym2();
-    return values(name[0] == 'g' ? brdf.ggx_brdf_matrix(i, o, a, in.real()) : brdf.beckmann_brdf_matrix(i, o, a, in.real()));
-  }
-  if (name == "ggx_ndf_axis" || name == "beckmann_ndf_axis" || name == "ggx_lambda_axis") {
-    const Vec3 h = in.vec3();
-    const Vec2 a2 = in.vec2();
-    if (name == "ggx_ndf_axis") return values(brdf.ggx_ndf_axis(h, a2));
-    if (name == "ggx_lambda_axis") return values(brdf.ggx_lambda_axis(h, a2));
-    return values(brdf.beckmann_ndf_axis(h, a2));
-  }
-  if (name == "ggx_brdf_axis" || name == "beckmann_brdf_axis") {
-    const Vec3 i = in.vec3(), o = in.vec3();
-    return values(name[0] == 'g' ? brdf.ggx_brdf_axis(i, o, in.vec2()) : brdf.beckmann_brdf_axis(i, o, in.vec2()));
-  }
-  throw std::runtime_error("no reference for " + name);
-}
 
 // pixel of a wrapper quad (fields pixel-major, `stride` each); plain ddx/ddy coarse as in the
 // quad_compute kernels (their default).
@@ -394,7 +347,7 @@ class ReferenceEvaluator : public Evaluator {
     std::vector<Values> out;
     for (const Element& e : batch) {
       if (!is_wrapper(f))
-        out.push_back(reference_core(params_, f.name, e.data()));
+        out.push_back(saagen::test::core_function_reference(f.name, params_, e.data()));
       else
         for (int p = 0; p < 4; ++p) out.push_back(reference_wrapper(params_, f, e, p));
     }

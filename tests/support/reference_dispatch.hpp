@@ -470,4 +470,71 @@ std::optional<std::vector<double>> deferred_aniso_reference(const std::string& n
   return std::vector<double>{lobes + std::fabs(value) * frame};
 }
 
+// The reference of a BRDF core function in matrix form (the GGX and Beckmann NDF, Lambda and
+// BRDF, GGX's G2) on inputs read in parameter order; nullopt for other functions.
+template <class In>
+std::optional<std::vector<double>> brdf_matrix_reference(const std::string& name, const ref::Params& p, In& in) {
+  const ref::Brdf brdf{p};
+  const bool ggx = name.rfind("ggx_", 0) == 0;
+  if (name == "ggx_ndf_matrix" || name == "beckmann_ndf_matrix") {
+    const ref::Vec3 h = in.vec3();
+    const ref::Sym2 a = in.sym2();
+    const double tau = in.real();
+    return output_values(ggx ? brdf.ggx_ndf_matrix(h, a, tau) : brdf.beckmann_ndf_matrix(h, a, tau));
+  }
+  if (name == "ggx_lambda_matrix" || name == "beckmann_lambda_matrix") {
+    const ref::Vec3 w = in.vec3();
+    const ref::Sym2 a = in.sym2();
+    return output_values(ggx ? brdf.ggx_lambda_matrix(w, a) : brdf.beckmann_lambda_matrix(w, a));
+  }
+  if (name == "ggx_g2_matrix") {
+    const ref::Vec3 i = in.vec3(), o = in.vec3(), h = in.vec3();
+    return output_values(brdf.ggx_g2_matrix(i, o, h, in.sym2()));
+  }
+  if (name == "ggx_brdf_matrix" || name == "beckmann_brdf_matrix") {
+    const ref::Vec3 i = in.vec3(), o = in.vec3();
+    const ref::Sym2 a = in.sym2();
+    const double tau = in.real();
+    return output_values(ggx ? brdf.ggx_brdf_matrix(i, o, a, tau) : brdf.beckmann_brdf_matrix(i, o, a, tau));
+  }
+  return std::nullopt;
+}
+
+// The reference of a BRDF core function in axis form (alpha^2 per axis: the GGX NDF, Lambda and
+// BRDF, Beckmann's NDF and BRDF) on inputs read in parameter order; nullopt for other functions.
+template <class In>
+std::optional<std::vector<double>> brdf_axis_reference(const std::string& name, const ref::Params& p, In& in) {
+  const ref::Brdf brdf{p};
+  if (name == "ggx_ndf_axis" || name == "ggx_lambda_axis" || name == "beckmann_ndf_axis") {
+    const ref::Vec3 direction = in.vec3();
+    const ref::Vec2 alpha2 = in.vec2();
+    if (name == "ggx_ndf_axis") return output_values(brdf.ggx_ndf_axis(direction, alpha2));
+    if (name == "ggx_lambda_axis") return output_values(brdf.ggx_lambda_axis(direction, alpha2));
+    return output_values(brdf.beckmann_ndf_axis(direction, alpha2));
+  }
+  if (name == "ggx_brdf_axis" || name == "beckmann_brdf_axis") {
+    const ref::Vec3 i = in.vec3(), o = in.vec3();
+    const ref::Vec2 alpha2 = in.vec2();
+    return output_values(name == "ggx_brdf_axis" ? brdf.ggx_brdf_axis(i, o, alpha2) : brdf.beckmann_brdf_axis(i, o, alpha2));
+  }
+  return std::nullopt;
+}
+
+// The reference of any core or evaluate function of the built-in catalogue on one element's
+// packed inputs (fp32 as a device reads them, or doubles), by name. The one dispatch of the
+// suites that run every such function on packed inputs (test_precision,
+// test_stability_properties); throws for a function without a reference.
+template <class Scalar>
+std::vector<double> core_function_reference(const std::string& name, const ref::Params& p, const Scalar* packed) {
+  PackedReader<Scalar> in(packed);
+  if (auto prefiltered = prefilter_reference(name, p, in)) return *prefiltered;
+  if (auto filtered = filtered_ggx_reference(name, p, in)) return *filtered;
+  if (auto tensor = deferred_aniso_reference(name, p, in)) return *tensor;
+  if (auto filter = filter_core_reference(name, p, in)) return *filter;
+  if (name == "ndf_clamp_tau") return output_values(ref::ndf_clamp_tau(in.vec2()));
+  if (auto matrix = brdf_matrix_reference(name, p, in)) return *matrix;
+  if (auto axis = brdf_axis_reference(name, p, in)) return *axis;
+  throw std::runtime_error("no reference for " + name);
+}
+
 }  // namespace saagen::test
