@@ -30,6 +30,7 @@
 // glint functions have no derived half-precision bound.
 #include "support/core_cases.hpp"
 #include "support/web_glints.hpp"
+#include "support/web_runs.hpp"
 #include "support/web_support.hpp"
 #include "support/wrapper_cases.hpp"
 
@@ -63,10 +64,9 @@ using saagen::test::Worst;
 
 constexpr std::uint32_t kCoreSide = 128;  // core results: a 128 x 128 target, one element per pixel
 constexpr std::uint32_t kCoreElements = kCoreSide * kCoreSide;
-constexpr std::uint32_t kCoreSubsample = 131072 / kCoreElements;  // one in 8 of test_gpu_core's inputs
-constexpr std::uint32_t kInputTextureWidth = 1024;                // texels (4 floats) per row
-constexpr double kMediumpUlp = 0x1p-10;                           // ES 3.00 4.5.2: relative precision
-constexpr double kMediumpFlush = 0x1p-14;                         // ES 3.00 4.5.2: smallest magnitude
+constexpr std::uint32_t kInputTextureWidth = 1024;  // texels (4 floats) per row
+constexpr double kMediumpUlp = 0x1p-10;             // ES 3.00 4.5.2: relative precision
+constexpr double kMediumpFlush = 0x1p-14;           // ES 3.00 4.5.2: smallest magnitude
 constexpr double kMediumpOperations = 16.0;
 
 // The skeleton around an emitted file: default precisions for the skeleton's own declarations
@@ -167,18 +167,9 @@ nlohmann::json write_case(const fs::path& directory, const Case& c, std::vector<
     entry["passes"] = (w::stride + 3) / 4;
     return entry;
   }
-  namespace core = saagen::test::core;
-  static const std::vector<core::Scenario> scenarios = core::scenarios();
   saagen::KernelRequest request;
   const std::string body = saagen::load_call_store_body(Catalogue::builtin(), c.function, request);
-  inputs.clear();
-  const ref::Params params;
-  for (std::uint32_t element = 0; element < kCoreElements; ++element) {
-    // One of each run of 8, at a rotating offset: every residue mod 8 appears (the texel
-    // statistics of core_cases.hpp depend on index % 8).
-    const std::uint64_t index = std::uint64_t{element} * kCoreSubsample + element % kCoreSubsample;
-    core::pack_inputs(function, scenarios[index], index, params, inputs);
-  }
+  inputs = saagen::test::subsampled_core_inputs(function, kCoreElements);
   inputs.resize(((inputs.size() + 4 * kInputTextureWidth - 1) / (4 * kInputTextureWidth)) * 4 * kInputTextureWidth, 0.0f);
   std::ofstream(directory / (c.id + ".in.f32"), std::ios::binary)
       .write(reinterpret_cast<const char*>(inputs.data()), static_cast<std::streamsize>(inputs.size() * sizeof(float)));
@@ -245,27 +236,21 @@ const BrowserRun& browser_run() {
     nlohmann::json cases = nlohmann::json::array();
     std::vector<Case> all = all_cases();
     all.push_back({"probe_derivative", Kind::probe, "deferred-sum", "", "fp32"});
-    for (const Case& c : all) {
-      std::vector<float> inputs;
-      cases.push_back(write_case(directory, c, inputs));
-      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
-    }
+    const auto write = [&](const Case& c, std::vector<float>& inputs) { return write_case(directory, c, inputs); };
+    saagen::test::add_runner_entries(all, write, cases, result.inputs);
     const nlohmann::json texture = saagen::test::web_glints::write_dictionary(directory);
-    std::vector<std::string> ids;
-    for (const Case& c : all) ids.push_back(c.id);
-    for (const auto& c : glint_cases()) {
-      std::vector<float> inputs;
-      cases.push_back(write_glint_case(directory, c, texture, inputs));
-      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
-      ids.push_back(c.id);
-    }
+    const auto write_glint = [&](const saagen::test::web_glints::Case& c, std::vector<float>& inputs) {
+      return write_glint_case(directory, c, texture, inputs);
+    };
+    saagen::test::add_runner_entries(glint_cases(), write_glint, cases, result.inputs);
     std::ofstream(directory / "cases.json") << cases.dump();
     const std::string command = fmt::format("node '{}/tests/webgl/run_functions.mjs' '{}'", SAAGEN_SOURCE_DIR, directory.string());
     if (std::system(command.c_str()) != 0) {
       result.error = "the browser run failed: " + command;
       return result;
     }
-    for (const std::string& id : ids) {
+    for (const nlohmann::json& entry : cases) {
+      const std::string id = entry.at("id").get<std::string>();
       std::vector<float> values = saagen::test::read_floats(directory / (id + ".out.f32"));
       if (values.empty()) continue;
       result.outputs[id] = std::move(values);
@@ -309,22 +294,11 @@ TEST_P(InWebGl2, MatchesTheDoublePrecisionReferenceWithinTheEsPrecisionBounds) {
   const auto& out = outputs_of(c.id);
   Worst worst;
   if (c.kind == Kind::core) {
-    namespace core = saagen::test::core;
-    const auto& inputs = browser_run().inputs.at(c.id);
-    saagen::KernelRequest request;
-    (void)saagen::load_call_store_body(Catalogue::builtin(), c.function, request);
-    const auto reference = core::reference_functions(params).at(c.function);
-    for (std::uint32_t element = 0; element < kCoreElements; ++element) {
-      core::Inputs value_inputs(inputs.data() + std::size_t{element} * request.input_stride);
-      core::Inputs scale_inputs(inputs.data() + std::size_t{element} * request.input_stride);
-      const auto values = reference.value(value_inputs);
-      const auto scales = reference.scale(scale_inputs);
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        const double scale = std::max(std::fabs(values[k]), scales[std::min(k, scales.size() - 1)]);
-        const double bound = mediump ? kMediumpOperations * (kMediumpUlp * scale + kMediumpFlush) : core::rounding_bound * scale + 1e-30;
-        worst.add(out[std::size_t{element} * 4 + k], values[k], bound);
-      }
-    }
+    const auto bound = [&](double scale) {
+      return mediump ? kMediumpOperations * (kMediumpUlp * scale + kMediumpFlush) : saagen::test::core::rounding_bound * scale + 1e-30;
+    };
+    // One RGBA pixel (4 floats) per element.
+    worst = saagen::test::core_worst(c.function, params, kCoreElements, browser_run().inputs.at(c.id), out, 4, bound);
   } else {
     namespace w = saagen::test::wrappers;
     const ref::Derivative mode = browser_plain_derivative();

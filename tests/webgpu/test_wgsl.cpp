@@ -24,6 +24,7 @@
 // (wrapper_cases.hpp).
 #include "support/core_cases.hpp"
 #include "support/web_glints.hpp"
+#include "support/web_runs.hpp"
 #include "support/web_support.hpp"
 #include "support/wrapper_cases.hpp"
 
@@ -60,7 +61,6 @@ using saagen::test::wgsl_options;
 using saagen::test::Worst;
 
 constexpr std::uint32_t kCoreElements = 16384;
-constexpr std::uint32_t kCoreSubsample = saagen::test::core::element_count / kCoreElements;  // one in 8
 
 saagen::EmittedFile emit(const std::string& variant, const std::string& precision = "fp32") {
   saagen::EmitOptions options;
@@ -116,18 +116,9 @@ nlohmann::json job_for(const fs::path& directory, const Case& c, std::vector<flo
     job["height"] = w::height;
     job["output_floats"] = std::size_t{w::width} * w::height * w::stride;
   } else {
-    namespace core = saagen::test::core;
-    static const std::vector<core::Scenario> scenarios = core::scenarios();
     request.kind = saagen::KernelKind::compute;
     request.body = saagen::load_call_store_body(Catalogue::builtin(), c.function, request);
-    inputs.clear();
-    const ref::Params params;
-    for (std::uint32_t element = 0; element < kCoreElements; ++element) {
-      // One of each run of 8 at a rotating offset: every residue mod 8 appears (the texel
-      // statistics of core_cases.hpp depend on index % 8).
-      const std::uint64_t index = std::uint64_t{element} * kCoreSubsample + element % kCoreSubsample;
-      core::pack_inputs(function, scenarios[index], index, params, inputs);
-    }
+    inputs = saagen::test::subsampled_core_inputs(function, kCoreElements);
     std::ofstream(directory / (c.id + ".in.f32"), std::ios::binary)
         .write(reinterpret_cast<const char*>(inputs.data()), static_cast<std::streamsize>(inputs.size() * sizeof(float)));
     job["kind"] = "compute";
@@ -218,18 +209,14 @@ const RunnerRun& runner_run() {
     fs::create_directories(directory);
     nlohmann::json jobs = nlohmann::json::array();
     const std::vector<Case> cases = all_cases();
-    for (const Case& c : cases) {
-      std::vector<float> inputs;
-      jobs.push_back(job_for(directory, c, inputs));
-      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
-    }
+    const auto job = [&](const Case& c, std::vector<float>& inputs) { return job_for(directory, c, inputs); };
+    saagen::test::add_runner_entries(cases, job, jobs, result.inputs);
     const nlohmann::json texture = saagen::test::web_glints::write_dictionary(directory);
     const auto glints = glint_cases();
-    for (const auto& c : glints) {
-      std::vector<float> inputs;
-      jobs.push_back(glint_job_for(directory, c, texture, inputs));
-      if (!inputs.empty()) result.inputs[c.id] = std::move(inputs);
-    }
+    const auto glint_job = [&](const saagen::test::web_glints::Case& c, std::vector<float>& inputs) {
+      return glint_job_for(directory, c, texture, inputs);
+    };
+    saagen::test::add_runner_entries(glints, glint_job, jobs, result.inputs);
     try {
       result.results = saagen::harness::run_webgpu_jobs(jobs, directory);
     } catch (const saagen::Error& error) {
@@ -267,22 +254,11 @@ TEST_P(OnWebGpu, MatchesTheDoublePrecisionReferenceWithinTheWgslAccuracyBounds) 
   const ref::Params params{.sigma2 = 0.25, .kappa = 0.18, .guards = true};
   Worst worst;
   if (c.kind == Kind::core) {
-    namespace core = saagen::test::core;
-    const auto& inputs = runner_run().inputs.at(c.id);
     saagen::KernelRequest request;
     (void)saagen::load_call_store_body(Catalogue::builtin(), c.function, request);
     ASSERT_EQ(out.size(), std::size_t{kCoreElements} * request.output_stride);
-    const auto reference = core::reference_functions(params).at(c.function);
-    for (std::uint32_t element = 0; element < kCoreElements; ++element) {
-      core::Inputs value_inputs(inputs.data() + std::size_t{element} * request.input_stride);
-      core::Inputs scale_inputs(inputs.data() + std::size_t{element} * request.input_stride);
-      const auto values = reference.value(value_inputs);
-      const auto scales = reference.scale(scale_inputs);
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        const double scale = std::max(std::fabs(values[k]), scales[std::min(k, scales.size() - 1)]);
-        worst.add(out[std::size_t{element} * request.output_stride + k], values[k], core::rounding_bound * scale + 1e-30);
-      }
-    }
+    const auto bound = [](double scale) { return saagen::test::core::rounding_bound * scale + 1e-30; };
+    worst = saagen::test::core_worst(c.function, params, kCoreElements, runner_run().inputs.at(c.id), out, request.output_stride, bound);
   } else {
     namespace w = saagen::test::wrappers;
     ASSERT_EQ(out.size(), std::size_t{w::width} * w::height * w::stride);
