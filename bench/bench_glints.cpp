@@ -13,6 +13,8 @@
 // baseline (ABBA order), optimized SPIR-V instruction counts, the mean shaded value of both
 // images, and the dictionary's memory with and without MIPs. Exits non-zero with one line when a
 // shader does not compile or the image is empty or non-finite.
+#include "support/glint_dictionary_binding.hpp"
+
 #include "saagen/products/glints.hpp"
 #include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
@@ -67,20 +69,6 @@ std::string body(const std::string& call, std::uint32_t size) {
   text.replace(text.find("{size}"), 6, std::to_string(size));
   text.replace(text.find("{call}"), 6, call);
   return text;
-}
-
-hx::ImageBinding dictionary_binding(const saagen::glints::DictionaryTexture& texture) {
-  hx::ImageBinding image;
-  image.binding = 2;
-  image.image.kind = hx::ImageKind::image_1d_array;
-  image.image.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-  image.image.width = texture.width;
-  image.image.layers = texture.layers;
-  for (const auto& level : texture.levels) image.image.levels.push_back(hx::to_bytes(level));
-  image.sampler.mag_filter = image.sampler.min_filter = VK_FILTER_LINEAR;
-  image.sampler.mipmap_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  image.sampler.address(VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT);
-  return image;
 }
 
 struct Shader {
@@ -186,7 +174,7 @@ int main(int argc, char** argv) {
         hx::FragmentRun run;
         run.fragment.spirv = shader.spirv;
         run.width = run.height = size;
-        run.images = {dictionary_binding(texture)};
+        run.images = {saagen::test::glint_dictionary_binding(texture, 2)};
         run.buffers = {hx::input_buffer(0, std::vector<float>{0.0f}), hx::output_buffer<float>(1, std::size_t{size} * size)};
         return run;
       };

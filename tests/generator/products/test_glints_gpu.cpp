@@ -21,6 +21,7 @@
 // does, lavapipe and SwiftShader filter in fp32; docs/GLINTS.md). SwiftShader uses about 0.4 of
 // the cos / sin allowance (1.9e-4), lavapipe 1e-7. On lavapipe a second, tighter check takes the
 // exact sampler with the fp32 bound alone (lavapipe filters in fp32 with unquantised weights).
+#include "support/glint_dictionary_binding.hpp"
 #include "support/glint_support.hpp"
 
 #include "saagen/validate/kernels.hpp"
@@ -70,18 +71,7 @@ const g::SamplerTolerance& spec_tolerance() {
 
 // The default dictionary as a combined image sampler at (set 0, binding).
 hx::ImageBinding dictionary_binding(std::uint32_t binding) {
-  const auto& texture = saagen::test::default_texture();
-  hx::ImageBinding image;
-  image.binding = binding;
-  image.image.kind = hx::ImageKind::image_1d_array;
-  image.image.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-  image.image.width = texture.width;
-  image.image.layers = texture.layers;
-  for (const auto& level : texture.levels) image.image.levels.push_back(hx::to_bytes(level));
-  image.sampler.mag_filter = image.sampler.min_filter = VK_FILTER_LINEAR;
-  image.sampler.mipmap_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  image.sampler.address(VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT);
-  return image;
+  return saagen::test::glint_dictionary_binding(saagen::test::default_texture(), binding);
 }
 
 // ---------------------------------------------------------------------------------------------
