@@ -587,8 +587,10 @@ TEST(Planner, TheAdviceAtAMaterialsRoughnessIsCheckedOnTheHeldOutCellsThere) {
 // it is withheld; where it loses on none, it is given.
 TEST(Planner, UnderTaaTheCommittedAdviceIsJudgedAtAMaterialsRoughness) {
   const auto plan_at = [&](const std::string& roughness) {
-    return saagen::plan_scene(Catalogue::builtin(), parse(header + "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n"
-                                                              "tangents = true\nroughness = " + roughness + "\n"))
+    return saagen::plan_scene(Catalogue::builtin(), parse(header +
+                                                          "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n"
+                                                          "tangents = true\nroughness = " +
+                                                          roughness + "\n"))
         .materials.at(0);
   };
   const saagen::MaterialPlan smooth = plan_at("0.08");
