@@ -67,10 +67,9 @@ INSTANTIATE_TEST_SUITE_P(
                                "F3",
                                "forward-aniso-projected",
                                {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
-                      RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n",
-                               "advice",
-                               "forward-aniso-projected",
-                               {"forward_aniso_projected", "forward_aniso_projected_fragment", "ggx_brdf_filtered_matrix"}},
+                      // Curved, forward, speed: the cheaper of the tied picks, forward-axis-projected/tail, is
+                      // worse than no SAA in the image error on the held-out models (+0.0009), so no filter.
+                      RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\n", "advice", "none", {}},
                       RuleCase{"path = \"forward\"\ntangents = true\nprefer = \"speed\"\nndf = \"beckmann\"\n",
                                "F4",
                                "deferred-avg",
@@ -583,22 +582,20 @@ TEST(Planner, TheAdviceAtAMaterialsRoughnessIsCheckedOnTheHeldOutCellsThere) {
 }
 
 // saagen's committed figures under TAA carry their cells too: at a roughness where the TAA pick
-// loses to TAA alone on a held-out cell (forward-axis-projected/tail on the teapots at alpha 0.0064),
-// it is withheld; where it loses on none, it is given.
+// loses to TAA alone on a held-out cell (normal-mapped, deferred: deferred-avg/tail on
+// pmndrs-0001 at LOD 4 at alpha 0.05), it is withheld; where it loses on none (alpha 0.01), it is given.
 TEST(Planner, UnderTaaTheCommittedAdviceIsJudgedAtAMaterialsRoughness) {
   const auto plan_at = [&](const std::string& roughness) {
-    return saagen::plan_scene(Catalogue::builtin(), parse(header +
-                                                          "taa = true\n[[material]]\nname = \"m\"\npath = \"forward\"\n"
-                                                          "tangents = true\nroughness = " +
-                                                          roughness + "\n"))
-        .materials.at(0);
+    const std::string material = "[[material]]\nname = \"m\"\npath = \"deferred\"\nnormal_maps = true\nroughness = ";
+    return saagen::plan_scene(Catalogue::builtin(), parse(header + "taa = true\n" + material + roughness + "\n")).materials.at(0);
   };
-  const saagen::MaterialPlan smooth = plan_at("0.08");
-  EXPECT_EQ(smooth.variant, "none") << smooth.reason;
-  EXPECT_NE(smooth.reason.find("teapots at alpha 0.0064"), std::string::npos) << smooth.reason;
   const saagen::MaterialPlan medium = plan_at("0.224");
-  EXPECT_EQ(medium.variant, "forward-axis-projected") << medium.reason;
-  EXPECT_NE(medium.roughness_advice.find("decided on the measured cells"), std::string::npos) << medium.roughness_advice;
+  EXPECT_EQ(medium.variant, "none") << medium.reason;
+  EXPECT_NE(medium.reason.find("pmndrs-0001-lod4 at alpha 0.05"), std::string::npos) << medium.reason;
+  EXPECT_NE(medium.reason.find("so it is not given"), std::string::npos) << medium.reason;
+  const saagen::MaterialPlan smooth = plan_at("0.1");
+  EXPECT_EQ(smooth.variant, "deferred-avg") << smooth.reason;
+  EXPECT_NE(smooth.roughness_advice.find("decided on the measured cells"), std::string::npos) << smooth.roughness_advice;
 }
 
 // `saagen plan --advice`'s table is what examples/INTEGRATION.md holds.
