@@ -2,10 +2,12 @@
 #include "saagen/report/sanity.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <span>
 
 namespace saagen::report {
 
@@ -104,6 +106,32 @@ std::string verdict_choice(const std::map<std::string, Clips>& candidates, const
   return chosen;
 }
 
+// converged, per alpha: the ground truth with another seed (all its samples) beats the one with a
+// quarter of its samples against the first seed (the verdict's rule: closer beyond the interval in
+// the image or the temporal error, farther in neither; a metric that sees neither difference, as
+// the video metric where both are invisible, is no objection). Against a converged ground truth
+// that holds: Monte Carlo error falls as 1 / sqrt(N), so N samples are nearer the converged image
+// than N / 4. Where the ground truth is itself noise, a highlight smaller than its sample spacing
+// caught in a few pixels by chance, both are as far from it, and fewer samples can even rank
+// ahead: they catch fewer spots the first seed lacks, as a 1-spp image (no SAA) misses them, so
+// such a ground truth favours the results that miss the highlight (docs/TEMPORAL.md).
+void check_convergence(const SceneClips& clips, measure::SceneId scene, SceneSanity& out) {
+  const Clips& other = clips.clips.at("other-seed");
+  const Clips& quarter = clips.clips.at("quarter-samples");
+  for (std::size_t i = 0; i < clips.alphas.size(); ++i) {
+    const MetricDifference image = compare_series(std::span(&other.image[i], 1), std::span(&quarter.image[i], 1));
+    const MetricDifference temporal = compare_series(std::span(&other.temporal[i], 1), std::span(&quarter.temporal[i], 1));
+    if (beats(image, temporal)) continue;
+    out.unconverged_alphas.push_back(clips.alphas[i]);
+    out.failures.push_back(
+        fmt::format("{}: the ground truth has not converged at alpha {:g}: another seed does not beat a quarter of "
+                    "its samples (image {:+.4g} [{:+.4g}, {:+.4g}], temporal {:+.4g} [{:+.4g}, {:+.4g}]); rerun "
+                    "with --truth-samples-scale 2",
+                    measure::scene_name(scene), clips.alphas[i], image.difference.mean, image.difference.low, image.difference.high,
+                    temporal.difference.mean, temporal.difference.low, temporal.difference.high));
+  }
+}
+
 SceneSanity check_scene(const measure::TradeTable& table, measure::SceneId scene) {
   SceneSanity out;
   out.scene = scene;
@@ -148,6 +176,7 @@ SceneSanity check_scene(const measure::TradeTable& table, measure::SceneId scene
                                            measure::scene_name(scene), name, against, text(image), text(flicker), text(lag)));
     }
   }
+  check_convergence(clips, scene, out);
   if (none) {
     std::map<std::string, Clips> candidates;
     for (const char* name : kDegenerate) candidates[name] = clips.clips.at(name);
@@ -205,6 +234,18 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
   return text;
 }
 
+std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
+  std::vector<std::string> cells;
+  for (const SceneSanity& scene : scenes)
+    for (double alpha : scene.unconverged_alphas) cells.push_back(fmt::format("{} at alpha {:g}", measure::scene_name(scene.scene), alpha));
+  if (cells.empty()) return "";
+  return fmt::format(
+      "The ground truth has not converged on {} cell(s): {}. Another seed does not beat a quarter of its samples "
+      "there (the sanity suite's converged rule), so the comparisons on those cells rank the ground truth's noise; "
+      "rerun with --truth-samples-scale 2 (docs/TEMPORAL.md).\n",
+      cells.size(), fmt::join(cells, ", "));
+}
+
 nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
   const auto difference = [](const MetricDifference& d) {
     return nlohmann::json{{"mean", d.difference.mean}, {"low", d.difference.low}, {"high", d.difference.high}};
@@ -224,6 +265,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                    {"entries", entries},
                    {"failures", scene.failures},
                    {"verdict_choice", scene.verdict_choice},
+                   {"unconverged_alphas", scene.unconverged_alphas},
                    {"passed", scene.failures.empty()}});
   }
   return out;

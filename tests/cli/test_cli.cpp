@@ -93,6 +93,19 @@ TEST_F(Cli, BenchScalesTheGroundTruthsSamples) {
                         "--truth-samples-scale: Value 0 not in range 1 to 8");
 }
 
+// --resolution sets every scene's pixels and keeps its ground truths' samples: a glTF scene's stay
+// at the presets' 4096 spp (saagen/report/presets.hpp), where a small highlight needs them.
+TEST_F(Cli, BenchAtAResolutionKeepsAGltfScenesGroundTruthSamples) {
+  const fs::path json = scratch_ / "trade.json";
+  const CliRun run =
+      saagen({"bench", "--preset", "medium", "--scene", "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+              "--resolution", "16", "--json", json.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream in(json);
+  const std::string config = nlohmann::json::parse(in)["config"].get<std::string>();
+  EXPECT_NE(config.find("BoxTextured at 16x16 px, 4096 spp (animation 8x8 px, 4096 spp)"), std::string::npos) << config;
+}
+
 TEST_F(Cli, ListPrintsEveryVariant) {
   const CliRun run = saagen({"list"});
   ASSERT_EQ(run.exit_code, 0);

@@ -1,9 +1,11 @@
 // The sanity suite (report/sanity.hpp) on the built-in scenes: the verdict's two metrics (the
 // image error and the video error, 10 - ColorVideoVDP's JOD) rank the results whose ranking is
 // known as expected, before they rank any configuration. A small trade (32 x 32 animation, 16
-// frames, 64-spp ground truth: the quarter-sample result has 16; three alphas, so that each
-// scene's intervals have two degrees of freedom over the alphas) keeps this a CI test; `saagen bench --preset medium` prints the same suite
-// on every preset scene (docs/TEMPORAL.md).
+// frames, 256-spp ground truth: the quarter-sample result has 64; three alphas, so that each
+// scene's intervals have two degrees of freedom over the alphas) keeps this a CI test; `saagen
+// bench --preset medium` prints the same suite on every preset scene (docs/TEMPORAL.md). At 64 spp
+// the sphere's ground truth at alpha 0.01 fails the converged rule: another seed does not beat a
+// quarter of its samples there.
 #include "saagen/report/sanity.hpp"
 
 #include <gtest/gtest.h>
@@ -20,7 +22,7 @@ measure::TradeConfig sanity_config() {
   config.width = config.height = 32;
   config.strata = 4;
   config.flicker_width = config.flicker_height = 32;
-  config.flicker_strata = 8;
+  config.flicker_strata = 16;
   config.frames = 16;
   config.rotation_degrees_per_frame = 0.5;
   config.scenes = {SceneId::sphere, SceneId::torus, SceneId::tubes, SceneId::bump_plane, SceneId::nmap_sphere};
@@ -89,3 +91,21 @@ TEST(SanitySuite, TheDelayedResultLagsAndTheResultsOnTimeDoNot) {
 }
 
 }  // namespace
+
+// The converged rule on a ground truth known not to have converged: the sphere at alpha 0.0025
+// (a highlight far smaller than a 32 px pixel) with 64 samples per pixel, where another seed does
+// not beat a quarter of the samples; with 1024 it does. The rule tells the two apart by the
+// ground truth's own results, as the bench does on any scene (docs/TEMPORAL.md).
+TEST(SanitySuite, AGroundTruthThatHasNotConvergedFailsTheConvergedRule) {
+  const auto unconverged_alphas = [](int strata) {
+    measure::TradeConfig config = sanity_config();
+    config.scenes = {SceneId::sphere};
+    config.alphas = {0.0025, 0.1};
+    config.flicker_strata = strata;
+    config.variants = {measure::Variant::none};
+    const std::vector<report::SceneSanity> scenes = report::check_sanity(measure::compute_trade_table(config));
+    return scenes.at(0).unconverged_alphas;
+  };
+  EXPECT_EQ(unconverged_alphas(8), std::vector<double>{0.0025});
+  EXPECT_EQ(unconverged_alphas(32), std::vector<double>{});
+}

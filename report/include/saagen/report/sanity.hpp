@@ -11,6 +11,11 @@
 //                    interval in at least one metric, and delayed is worse than the frames it is
 //                    made of shown on time (another seed), in the image or temporal metric or the
 //                    lag (animation_error.hpp);
+//   converged        per alpha: another seed is closer to the first seed than the quarter-sample
+//                    ground truth, beyond the interval in the image error (paired over the frames)
+//                    and in the temporal error. A ground truth that cannot tell its samples from a
+//                    quarter of them has not converged there: its noise ranks the results, and it
+//                    favours those that miss what it misses (docs/TEMPORAL.md);
 //   never wins       entered as configurations beside every measured one (blurred too), no
 //                    degenerate result (delayed, frozen, no highlight) is the configuration the
 //                    verdict would choose against no SAA on the scene (the decision's rule: among
@@ -46,14 +51,18 @@ struct SceneSanity {
   // temporal_metric); else the flicker error. SanityEntry's flicker fields then hold it.
   bool video = false;
   std::vector<SanityEntry> entries;
-  std::vector<std::string> failures;  // one line per broken rule; empty: passed
-  std::string verdict_choice;         // the verdict's choice with the degenerate results entered ("": no filter)
+  std::vector<std::string> failures;       // one line per broken rule; empty: passed
+  std::string verdict_choice;              // the verdict's choice with the degenerate results entered ("": no filter)
+  std::vector<double> unconverged_alphas;  // the alphas the converged rule failed at
 };
 
 // Every scene of the table that has sanity rows.
 std::vector<SceneSanity> check_sanity(const measure::TradeTable& table);
 // The suite's table (one block per scene) and a last line: passed, or how many rules failed.
 std::string format_sanity(const std::vector<SceneSanity>& scenes);
+// One line naming the cells (scene, alpha) whose ground truth failed the converged rule, for the
+// end of the verdict ("" when there are none).
+std::string format_unconverged(const std::vector<SceneSanity>& scenes);
 // The same for `saagen bench --json` ("sanity_checks").
 nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes);
 
