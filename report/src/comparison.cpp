@@ -98,19 +98,34 @@ PairedComparison compare_cells(const std::string& configuration, const std::stri
   return c;
 }
 
-PairedComparison compare_configurations(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
+ConfigurationRows::ConfigurationRows(const measure::TradeTable& table) {
+  for (const measure::TradeRow& row : table.rows)
+    if (!row.fresnel) rows_[measure::configuration_id(row)].push_back(&row);
+}
+
+std::span<const measure::TradeRow* const> ConfigurationRows::of(const std::string& configuration) const {
+  const auto found = rows_.find(configuration);
+  if (found == rows_.end()) return {};
+  return found->second;
+}
+
+PairedComparison compare_configurations(const ConfigurationRows& rows, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep) {
   using Cell = std::tuple<measure::SceneId, double>;
   std::map<Cell, const measure::TradeRow*> baseline_rows;
-  for (const measure::TradeRow& row : table.rows)
-    if (!row.fresnel && measure::configuration_id(row) == baseline) baseline_rows[{row.scene, row.alpha}] = &row;
+  for (const measure::TradeRow* row : rows.of(baseline)) baseline_rows[{row->scene, row->alpha}] = row;
   std::vector<CellPair> cells;
-  for (const measure::TradeRow& row : table.rows) {
-    if (row.fresnel || !keep(row) || measure::configuration_id(row) != configuration) continue;
-    const auto base = baseline_rows.find({row.scene, row.alpha});
-    if (base != baseline_rows.end()) cells.push_back({&row.series, &base->second->series});
+  for (const measure::TradeRow* row : rows.of(configuration)) {
+    if (!keep(*row)) continue;
+    const auto base = baseline_rows.find({row->scene, row->alpha});
+    if (base != baseline_rows.end()) cells.push_back({&row->series, &base->second->series});
   }
   return compare_cells(configuration, baseline, cells);
+}
+
+PairedComparison compare_configurations(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                        const CellFilter& keep) {
+  return compare_configurations(ConfigurationRows(table), configuration, baseline, keep);
 }
 
 }  // namespace saagen::report

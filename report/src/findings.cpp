@@ -174,12 +174,12 @@ namespace {
 
 // The scenes among `keep`'s rows on which `configuration` loses to `baseline` beyond the interval
 // in either metric (loses or mixed there): what a recommendation for the rows' content must not do.
-std::vector<std::string> scenes_lost(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
-                                     const RowFilter& keep) {
+std::vector<std::string> scenes_lost(const measure::TradeTable& table, const ConfigurationRows& index, const std::string& configuration,
+                                     const std::string& baseline, const RowFilter& keep) {
   std::vector<std::string> lost;
   for (const measure::SceneId scene : table.config.scenes) {
     const RowFilter on_scene = [&](const measure::TradeRow& row) { return row.scene == scene && keep(row); };
-    const PairedComparison c = compare_configurations(table, configuration, baseline, on_scene);
+    const PairedComparison c = compare_configurations(index, configuration, baseline, on_scene);
     if (c.cells == 0) continue;
     const decision::Outcome there = decision::outcome(to_decision(c));
     if (there == decision::Outcome::loses || there == decision::Outcome::mixed) lost.emplace_back(measure::scene_name(scene));
@@ -190,13 +190,13 @@ std::vector<std::string> scenes_lost(const measure::TradeTable& table, const std
 // The cells (a scene at one alpha) among `keep`'s rows on which `configuration` loses to `baseline`
 // beyond the interval in either metric: what a recommendation for a material of that roughness
 // must not do (a cell comparison's outcome in the JSON, paired on that cell alone).
-std::vector<CellLoss> cells_lost(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
-                                 const RowFilter& keep) {
+std::vector<CellLoss> cells_lost(const measure::TradeTable& table, const ConfigurationRows& index, const std::string& configuration,
+                                 const std::string& baseline, const RowFilter& keep) {
   std::vector<CellLoss> lost;
   for (const measure::SceneId scene : table.config.scenes)
     for (const double alpha : table.config.alphas) {
       const RowFilter in_cell = [&](const measure::TradeRow& row) { return row.scene == scene && row.alpha == alpha && keep(row); };
-      const PairedComparison c = compare_configurations(table, configuration, baseline, in_cell);
+      const PairedComparison c = compare_configurations(index, configuration, baseline, in_cell);
       if (c.cells == 0) continue;
       const decision::Outcome there = decision::outcome(to_decision(c));
       if (there == decision::Outcome::loses || there == decision::Outcome::mixed)
@@ -215,12 +215,12 @@ bool may_be_recommended(const ContentRow& row) {
 // Each recommendable row's not_worse_than: the other recommendable rows it is worse than beyond the
 // interval in neither metric, paired on `keep`'s cells (decision.hpp: a lead inside the interval
 // is a tie, and the cheaper of a tie wins).
-void pair_recommendable(const measure::TradeTable& table, const RowFilter& keep, std::vector<ContentRow>& rows) {
+void pair_recommendable(const ConfigurationRows& index, const RowFilter& keep, std::vector<ContentRow>& rows) {
   for (ContentRow& row : rows) {
     if (!may_be_recommended(row)) continue;
     for (const ContentRow& other : rows) {
       if (&other == &row || !may_be_recommended(other)) continue;
-      const PairedComparison c = compare_configurations(table, row.configuration, other.configuration, keep);
+      const PairedComparison c = compare_configurations(index, row.configuration, other.configuration, keep);
       if (c.cells == 0) continue;
       const decision::Outcome against = decision::outcome(to_decision(c));
       if (against == decision::Outcome::ties || against == decision::Outcome::beats) row.not_worse_than.push_back(other.configuration);
@@ -234,22 +234,23 @@ std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const Ro
                                       const std::string& baseline) {
   std::vector<ContentRow> rows;
   const bool video = has_video_metric(table);
+  const ConfigurationRows index(table);
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
     if (!m.cases || is_measurement_configuration(id)) continue;
     ContentRow row{std::string(scope), id, m.image_error, video ? m.video_error : m.flicker_error, std::nullopt};
     // The decision reads the paired comparison with its intervals (comparison.hpp).
     if (id != baseline) {
-      const PairedComparison against_baseline = compare_configurations(table, id, baseline, keep);
+      const PairedComparison against_baseline = compare_configurations(index, id, baseline, keep);
       if (against_baseline.cells > 0) row.against_none = to_decision(against_baseline);
       if (row.against_none && decision::outcome(*row.against_none) == decision::Outcome::beats) {
-        row.loses_on = scenes_lost(table, id, baseline, keep);
-        row.loses_at = cells_lost(table, id, baseline, keep);
+        row.loses_on = scenes_lost(table, index, id, baseline, keep);
+        row.loses_at = cells_lost(table, index, id, baseline, keep);
       }
     }
     rows.push_back(std::move(row));
   }
-  pair_recommendable(table, keep, rows);
+  pair_recommendable(index, keep, rows);
   return rows;
 }
 

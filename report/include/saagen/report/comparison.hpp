@@ -12,10 +12,12 @@
 #include "saagen/measure/trade.hpp"
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace saagen::report {
 
@@ -56,6 +58,22 @@ using CellFilter = std::function<bool(const measure::TradeRow&)>;
 // ("none+taa" is no SAA under TAA): "deferred-aniso+taa/tail" against "none+taa" compares under
 // TAA, "none+taa" against "none" what TAA alone does.
 PairedComparison compare_configurations(const measure::TradeTable& table, const std::string& configuration, const std::string& baseline,
+                                        const CellFilter& keep);
+
+// A table's non-Fresnel rows by configuration id (measure::configuration_id), in the table's
+// order: built once where many comparisons read one table (a content's decision pairs every
+// configuration with no SAA on every scene and cell), so that each reads two configurations' rows
+// instead of the whole table.
+class ConfigurationRows {
+ public:
+  explicit ConfigurationRows(const measure::TradeTable& table);
+  std::span<const measure::TradeRow* const> of(const std::string& configuration) const;
+
+ private:
+  std::map<std::string, std::vector<const measure::TradeRow*>, std::less<>> rows_;
+};
+// compare_configurations on the index: the same comparison.
+PairedComparison compare_configurations(const ConfigurationRows& rows, const std::string& configuration, const std::string& baseline,
                                         const CellFilter& keep);
 
 // The same over given cells: per cell, the configuration's series and the baseline's (of the same
