@@ -121,7 +121,8 @@ void check_convergence(const SceneClips& clips, measure::SceneId scene, SceneSan
   for (std::size_t i = 0; i < clips.alphas.size(); ++i) {
     const MetricDifference image = compare_series(std::span(&other.image[i], 1), std::span(&quarter.image[i], 1));
     const MetricDifference temporal = compare_series(std::span(&other.temporal[i], 1), std::span(&quarter.temporal[i], 1));
-    if (beats(image, temporal)) continue;
+    out.convergence.push_back({clips.alphas[i], image, temporal, beats(image, temporal)});
+    if (out.convergence.back().converged) continue;
     out.unconverged_alphas.push_back(clips.alphas[i]);
     out.failures.push_back(
         fmt::format("{}: the ground truth has not converged at alpha {:g}: another seed does not beat a quarter of "
@@ -252,6 +253,12 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
   };
   nlohmann::json out = nlohmann::json::array();
   for (const SceneSanity& scene : scenes) {
+    nlohmann::json convergence = nlohmann::json::array();
+    for (const Convergence& c : scene.convergence)
+      convergence.push_back({{"alpha", c.alpha},
+                             {"image", difference(c.image)},
+                             {scene.video ? "video" : "flicker", difference(c.temporal)},
+                             {"converged", c.converged}});
     nlohmann::json entries = nlohmann::json::array();
     for (const SanityEntry& e : scene.entries)
       entries.push_back({{"result", e.result},
@@ -265,6 +272,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                    {"entries", entries},
                    {"failures", scene.failures},
                    {"verdict_choice", scene.verdict_choice},
+                   {"convergence", convergence},
                    {"unconverged_alphas", scene.unconverged_alphas},
                    {"passed", scene.failures.empty()}});
   }

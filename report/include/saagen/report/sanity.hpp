@@ -44,6 +44,14 @@ struct SanityEntry {
   double lag = 0.0;                                       // mean lag (animation_error.hpp)
 };
 
+// The converged rule at one alpha: another seed against the quarter-sample ground truth (below 0:
+// another seed is closer to the first seed).
+struct Convergence {
+  double alpha = 0.0;
+  MetricDifference image, temporal;
+  bool converged = false;  // another seed beats the quarter (the verdict's rule)
+};
+
 struct SceneSanity {
   measure::SceneId scene = measure::SceneId::sphere;
   bool moves = false;  // the ground truth moves (see the top of this file)
@@ -53,6 +61,7 @@ struct SceneSanity {
   std::vector<SanityEntry> entries;
   std::vector<std::string> failures;       // one line per broken rule; empty: passed
   std::string verdict_choice;              // the verdict's choice with the degenerate results entered ("": no filter)
+  std::vector<Convergence> convergence;    // per alpha
   std::vector<double> unconverged_alphas;  // the alphas the converged rule failed at
 };
 
