@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <tuple>
 
@@ -321,20 +322,43 @@ std::vector<double> measured_alphas(const measure::TradeTable& table) {
   return alphas;
 }
 
-std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table) {
+namespace {
+
+// Per content (`rows_of` gives its rows) and measured alpha, the decision against `baseline` with
+// the rows' cell losses at that alpha (add_cell_losses).
+std::vector<AlphaRecommendation> decide_by_alpha(const measure::TradeTable& table, const std::vector<Content>& contents,
+                                                 const std::function<std::vector<ContentRow>(Content)>& rows_of,
+                                                 std::string_view baseline) {
   std::vector<AlphaRecommendation> recs;
   const std::vector<double> alphas = measured_alphas(table);
-  for (Content content : contents_of(table)) {
-    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
-    const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
+  for (Content content : contents) {
+    const std::vector<ContentRow> rows = rows_of(content);
+    if (rows.empty()) continue;
     for (const double alpha : alphas) {
       std::vector<ContentRow> at_alpha = rows;
       for (ContentRow& row : at_alpha) add_cell_losses(row, {alpha});
       for (Path path : {Path::forward, Path::deferred})
-        recs.push_back({path, content, alpha, chosen_configuration(decide_on(at_alpha, path, content))});
+        recs.push_back({path, content, alpha, chosen_configuration(decide_on(at_alpha, path, content, false, baseline))});
     }
   }
   return recs;
+}
+
+}  // namespace
+
+std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table) {
+  return decide_by_alpha(
+      table, contents_of(table),
+      [&](Content content) {
+        const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
+        return measured_rows(table, keep, content_name(content));
+      },
+      "none");
+}
+
+std::vector<AlphaRecommendation> recommend_taa_by_alpha(const measure::TradeTable& table) {
+  return decide_by_alpha(
+      table, {std::begin(kContents), std::end(kContents)}, [&](Content content) { return measured_taa_rows(table, content); }, "none+taa");
 }
 
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content) {

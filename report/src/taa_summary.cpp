@@ -2,6 +2,8 @@
 // its table (see taa_summary.hpp).
 #include "saagen/report/taa_summary.hpp"
 
+#include "verdict_text.hpp"
+
 #include "saagen/decision.hpp"
 #include "saagen/report/comparison.hpp"
 #include "saagen/report/findings.hpp"
@@ -168,6 +170,8 @@ std::string format_taa_summary(const measure::TradeTable& table) {
       text += fmt::format("  {}, {}: {}\n", path_name(path), content_name(content),
                           decide_on(rows, path, content, false, "none+taa").decision.reason);
   }
+  text += fmt::format("{} under TAA ({}; against none+taa):\n", kByAlphaTitle, kByAlphaNote);
+  for (const std::string& line : by_alpha_lines(recommend_taa_by_alpha(table))) text += "  " + line + "\n";
   return text;
 }
 

@@ -110,8 +110,9 @@ std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table) {
   return all;
 }
 
-std::vector<std::string> by_alpha_lines(const measure::TradeTable& table) {
-  const std::vector<AlphaRecommendation> recs = recommend_by_alpha(table);
+std::vector<std::string> by_alpha_lines(const measure::TradeTable& table) { return by_alpha_lines(recommend_by_alpha(table)); }
+
+std::vector<std::string> by_alpha_lines(const std::vector<AlphaRecommendation>& recs) {
   std::vector<std::string> lines;
   std::vector<Content> contents;  // in the table's order
   for (const AlphaRecommendation& rec : recs)

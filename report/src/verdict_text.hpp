@@ -30,5 +30,7 @@ inline constexpr const char* kByAlphaNote =
 
 // Per render path and content type, "CONTENT, PATH: alpha A X; alpha B Y; ..." (recommend_by_alpha).
 std::vector<std::string> by_alpha_lines(const measure::TradeTable& table);
+// The same lines of given decisions (recommend_taa_by_alpha under TAA).
+std::vector<std::string> by_alpha_lines(const std::vector<AlphaRecommendation>& recs);
 
 }  // namespace saagen::report

@@ -161,6 +161,9 @@ struct AlphaRecommendation {
   std::string configuration;
 };
 std::vector<AlphaRecommendation> recommend_by_alpha(const measure::TradeTable& table);
+// The same under TAA: the +taa rows against none+taa (measured_taa_rows), what `saagen plan` gives a
+// material with taa = true and a roughness.
+std::vector<AlphaRecommendation> recommend_taa_by_alpha(const measure::TradeTable& table);
 
 const Recommendation* find_recommendation(const std::vector<Recommendation>& recs, Path path, Content content);
 
