@@ -493,8 +493,8 @@ int ReportCommands::run_bench() const {
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
   if (bench_every_case_) std::cout << measure::format_trade_table(measured) << "\n";
   std::cout << report::format_summary(summary, cost_table);
-  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}-spp ground truth; cost: {})\n",
-                           table.config.scenes.size(), table.config.alphas.size(), table.config.strata * table.config.strata,
+  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}; cost: {})\n",
+                           table.config.scenes.size(), table.config.alphas.size(), report::ground_truth_samples(table.config),
                            cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
   std::cout << report::format_findings(table, cost_table);
   std::cout << report::format_frontier(table);

@@ -2,6 +2,7 @@
 #include "saagen/report/summary.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <map>
@@ -22,6 +23,15 @@ std::string scene_sizes_line(const measure::TradeConfig& c) {
 }
 
 }  // namespace
+
+std::string ground_truth_samples(const measure::TradeConfig& c) {
+  std::vector<std::string> own;
+  for (const measure::TradeSceneSize& size : c.scene_sizes)
+    if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) != c.scenes.end())
+      own.push_back(fmt::format("{} {}", measure::scene_name(size.scene), size.strata * size.strata));
+  const std::string samples = fmt::format("{}-spp ground truth", c.strata * c.strata);
+  return own.empty() ? samples : fmt::format("{} (spp on the scenes of their own size: {})", samples, fmt::join(own, ", "));
+}
 
 std::vector<VariantSummary> summarize(const measure::TradeTable& table) {
   std::vector<std::string> order;

@@ -25,5 +25,8 @@ std::vector<VariantSummary> summarize(const measure::TradeTable& table);
 // The table's configuration in one line: sizes, samples, animation, filter parameters, and the
 // scenes measured at sizes of their own.
 std::string config_line(const measure::TradeTable& table);
+// "N-spp ground truth", and the sample counts of the scenes with their own sizes (the presets' glTF
+// and asset scenes: TradeConfig::scene_sizes), e.g. "256-spp ground truth (... teapots 4096)".
+std::string ground_truth_samples(const measure::TradeConfig& config);
 
 }  // namespace saagen::report
