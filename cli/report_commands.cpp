@@ -253,9 +253,8 @@ measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_i
   return config;
 }
 
-// The ISA statistics of `families` ("" measures nothing), printed as tables to `out`, and
-// their forward-shading inverse-throughput ratios (first family, one light as the trade renders,
-// mean over GLSL and HLSL) added to `costs` as the primary cost column.
+// The ISA statistics of `families` ("" measures nothing), printed as tables to `out`, and their
+// table given to `costs`, whose first family's ratios are the primary cost column (cost_table.hpp).
 std::optional<nlohmann::json> measure_isa(const std::string& families, std::optional<report::CostTable>& costs, std::ostream& out) {
   if (families.empty()) return std::nullopt;
 #ifdef SAAGEN_HAVE_ISA_COST
@@ -269,16 +268,9 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
     throw Error(fmt::format("--isa {}: {}", families, error.what()));
   }
   out << report::format_isa_table(table);
-  const IsaTable ratios = report::isa_table(table);
-  std::vector<std::pair<std::string, double>> means;
-  for (const IsaRow& row : ratios.rows) {
-    if (row.family != parsed.front() || row.shader != report::isa_forward_shader || row.variant == report::isa_baseline ||
-        row.lights != 1 || std::any_of(means.begin(), means.end(), [&](const auto& mean) { return mean.first == row.variant; }))
-      continue;
-    means.emplace_back(row.variant, *ratios.forward_ratio(row.family, row.variant, {}, 1));
-  }
   if (!costs) costs.emplace();
-  report::add_isa_costs(*costs, parsed.front(), means);
+  costs->isa = report::isa_table(table);
+  costs->isa_family = parsed.front();
   return report::isa_json(table);
 #else
   (void)costs;

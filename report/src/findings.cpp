@@ -144,7 +144,7 @@ std::optional<double> configuration_cost(const CostTable* costs, const std::stri
   const std::string variant = costed_variant(configuration);
   if (variant == "none") return time ? 1.0 : 0.0;
   if (!costs) return std::nullopt;
-  const VariantCost* cost = costs->find(variant);
+  const std::optional<VariantCost> cost = costs->find(variant);
   if (!cost) return std::nullopt;
   return time ? cost->time_ratio : cost->delta_instructions;
 }
@@ -153,7 +153,7 @@ std::optional<double> configuration_isa_cost(const CostTable* costs, const std::
   const std::string variant = costed_variant(configuration);
   if (variant == "none") return 1.0;
   if (!costs) return std::nullopt;
-  const VariantCost* cost = costs->find(variant);
+  const std::optional<VariantCost> cost = costs->find(variant);
   return cost ? cost->isa_ratio : std::nullopt;
 }
 

@@ -157,7 +157,14 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
 // family (else by the committed table).
 TEST(IsaCost, TheTradeJsonCarriesTheIsaCostThePlannerRanksSpeedBy) {
   saagen::report::CostTable costs;
-  saagen::report::add_isa_costs(costs, "navi21", {{"deferred-sum", 1.0}, {"deferred-avg", 1.5}});
+  const auto row = [](const std::string& variant, double ratio) {
+    return fmt::format(R"({{"family": "navi21", "shader": "forward", "target": "glsl", "variant": "{}", "instructions": 1, "vgprs": 1,
+        "sgprs": 1, "subgroups_per_simd": 1, "latency": 1, "inverse_throughput": 1, "inverse_throughput_ratio": {}}})",
+                       variant, ratio);
+  };
+  costs.isa = saagen::parse_isa_table(
+      fmt::format(R"({{"families": ["navi21"], "rows": [{}, {}]}})", row("deferred-sum", 1.0), row("deferred-avg", 1.5)), "isa.json");
+  costs.isa_family = "navi21";
   EXPECT_NE(costs.describe().find("RADV navi21"), std::string::npos) << costs.describe();
   std::vector<saagen::report::VariantSummary> summary(2);
   summary[0].variant = "deferred-sum";
