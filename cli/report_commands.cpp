@@ -259,7 +259,7 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
   if (families.empty()) return std::nullopt;
 #ifdef SAAGEN_HAVE_ISA_COST
   const std::vector<std::string> parsed = report::parse_isa_families(families);
-  report::IsaCostTable table;
+  IsaTable table;
   try {
     table = report::measure_isa_costs(parsed, [](const std::string& step) { std::cerr << step << "\n"; });
   } catch (const Error&) {
@@ -269,7 +269,7 @@ std::optional<nlohmann::json> measure_isa(const std::string& families, std::opti
   }
   out << report::format_isa_table(table);
   if (!costs) costs.emplace();
-  costs->isa = report::isa_table(table);
+  costs->isa = table;
   costs->isa_family = parsed.front();
   return report::isa_json(table);
 #else

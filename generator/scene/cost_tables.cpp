@@ -219,6 +219,14 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     if (!family.is_string()) fail("\"families\" must hold strings");
     table.families.push_back(family.get<std::string>());
   }
+  if (document.contains("devices")) {
+    const nlohmann::json& devices = document["devices"];
+    if (!devices.is_object()) fail("\"devices\" must be an object of strings");
+    for (const auto& [family, device] : devices.items()) {
+      if (!device.is_string()) fail("\"devices\" must be an object of strings");
+      table.devices[family] = device.get<std::string>();
+    }
+  }
   for (const auto& row : document["rows"]) {
     const auto text = [&](const char* key) {
       if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
@@ -238,6 +246,8 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     entry.inverse_throughput = number("inverse_throughput");
     entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
     if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    if (row.contains("instructions_ratio")) entry.instructions_ratio = number("instructions_ratio");
+    if (row.contains("latency_ratio")) entry.latency_ratio = number("latency_ratio");
     if (row.contains("lights")) {
       const nlohmann::json& lights = row["lights"];
       if (!lights.is_number_integer() || lights.get<std::int64_t>() < 1 || lights.get<std::int64_t>() > kMaxLights)

@@ -10,6 +10,7 @@
 #include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
+#include <saagen/harness/isa.hpp>
 
 #include <algorithm>
 #include <map>
@@ -140,17 +141,34 @@ std::vector<IsaGroup> isa_groups() {
   return groups;
 }
 
+// A measured shader's row: its statistics and their ratios to its group's baseline.
+IsaRow isa_row(const std::string& family, const IsaGroup& group, const std::string& variant, const hx::IsaStatistics& statistics,
+               const hx::IsaStatistics& baseline) {
+  IsaRow row{family, group.shader, OutputTarget::named(group.target), variant};
+  row.instructions = statistics.instructions;
+  row.vgprs = statistics.vgprs;
+  row.sgprs = statistics.sgprs;
+  row.subgroups_per_simd = statistics.subgroups_per_simd;
+  row.latency = statistics.latency;
+  row.inverse_throughput = statistics.inverse_throughput;
+  row.inverse_throughput_ratio = statistics.inverse_throughput / baseline.inverse_throughput;
+  row.instructions_ratio = statistics.instructions / baseline.instructions;
+  row.latency_ratio = statistics.latency / baseline.latency;
+  row.lights = static_cast<int>(group.lights);
+  return row;
+}
+
 // The rows of one group on one family: its baseline, then every shader.
-void measure_group(const hx::IsaCompiler& compiler, const IsaGroup& group, std::vector<IsaCostRow>& rows) {
+void measure_group(const hx::IsaCompiler& compiler, const IsaGroup& group, IsaTable& table) {
   const bool forward = group.shader == std::string_view(isa_forward_shader);
   const auto statistics = [&](const IsaShader& shader) {
     return forward ? compiler.fragment(shader.spirv, shader.layout) : compiler.compute(shader.spirv, shader.layout);
   };
   const hx::IsaStatistics baseline = statistics(group.baseline);
-  rows.push_back({compiler.family(), group.shader, group.target, isa_baseline, baseline, baseline, group.lights});
-  for (const IsaShader& shader : group.shaders) {
-    rows.push_back({compiler.family(), group.shader, group.target, shader.variant, statistics(shader), baseline, group.lights});
-  }
+  table.devices[compiler.family()] = baseline.device_name;
+  table.rows.push_back(isa_row(compiler.family(), group, isa_baseline, baseline, baseline));
+  for (const IsaShader& shader : group.shaders)
+    table.rows.push_back(isa_row(compiler.family(), group, shader.variant, statistics(shader), baseline));
 }
 
 // Paper, Table 2: the Sponza ratio of a variant, when the paper measured it.
@@ -187,8 +205,9 @@ std::vector<std::string> parse_isa_families(const std::string& list) {
   return families;
 }
 
-IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress) {
-  IsaCostTable table;
+IsaTable measure_isa_costs(const std::vector<std::string>& families, const IsaProgressFn& progress) {
+  IsaTable table;
+  table.source_name = "the measured ISA statistics";
   table.families = families;
   // The SPIR-V (glslang, then spirv-opt: most of the time) does not depend on the family: it is
   // compiled once, on the first family's turn, and only the ISA compilation runs per family.
@@ -198,17 +217,14 @@ IsaCostTable measure_isa_costs(const std::vector<std::string>& families, const I
     const hx::IsaCompiler compiler(family);
     table.driver = compiler.driver_info();
     if (groups.empty()) groups = isa_groups();
-    for (const IsaGroup& group : groups) measure_group(compiler, group, table.rows);
+    for (const IsaGroup& group : groups) measure_group(compiler, group, table);
   }
   return table;
 }
 
-IsaTable isa_table(const IsaCostTable& table) { return parse_isa_table(isa_json(table).dump(), "the measured ISA statistics"); }
-
-std::string format_light_count_table(const IsaCostTable& table) {
-  const IsaTable ratios = isa_table(table);
+std::string format_light_count_table(const IsaTable& table) {
   std::vector<std::string> variants;
-  for (const IsaCostRow& row : table.rows) {
+  for (const IsaRow& row : table.rows) {
     if (row.shader == isa_forward_shader && row.variant != isa_baseline &&
         std::find(variants.begin(), variants.end(), row.variant) == variants.end())
       variants.push_back(row.variant);
@@ -225,7 +241,7 @@ std::string format_light_count_table(const IsaCostTable& table) {
     for (const std::string& family : table.families) {
       text += fmt::format(" | {:<8}", "");
       for (const std::uint32_t lights : kMeasuredLightCounts) {
-        const auto ratio = ratios.forward_ratio(family, variant, {}, static_cast<int>(lights));
+        const auto ratio = table.forward_ratio(family, variant, {}, static_cast<int>(lights));
         text += ratio ? fmt::format(" {:>5.3f}", *ratio) : fmt::format(" {:>5}", "-");
       }
     }
@@ -237,27 +253,27 @@ std::string format_light_count_table(const IsaCostTable& table) {
          "`lights` (the nearest measured count not above it). paper: Table 2's measured time ratio, forward shading at 8K\n";
 }
 
-std::string format_isa_table(const IsaCostTable& table) {
+std::string format_isa_table(const IsaTable& table) {
   std::string text = fmt::format("GPU cost model: {}; {}\n", cost_model_name, table.driver);
   std::string family, shader;
-  for (const IsaCostRow& row : table.rows) {
+  for (const IsaRow& row : table.rows) {
     if (row.lights != 1) continue;  // the light-count table below has the other counts
     if (row.family != family || row.shader != shader) {
       family = row.family;
       shader = row.shader;
-      const auto& stats = row.statistics;
+      const auto device = table.devices.find(family);
       text += fmt::format(
-          "\n{} ({}), {} shader{}\n", family, stats.device_name,
+          "\n{} ({}), {} shader{}\n", family, device == table.devices.end() ? std::string("RADV") : device->second,
           shader == isa_forward_shader ? "forward-shading fragment" : "deferred-pass compute",
           shader == isa_forward_shader ? " (bench_shading's scene, one light; no SAA = unfiltered GGX)" : " (no SAA = the copy pass)");
       text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n", "variant", "tgt", "instr", "VGPR",
                           "SGPR", "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency",
                           shader == isa_forward_shader ? "paper Table 2" : "");
     }
-    const auto& s = row.statistics;
-    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant, row.target,
-                        s.instructions, s.vgprs, s.sgprs, s.subgroups_per_simd, s.latency, s.inverse_throughput, row.instructions_ratio(),
-                        row.inverse_throughput_ratio(), row.latency_ratio(), shader == isa_forward_shader ? paper_ratio(row.variant) : "");
+    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant,
+                        row.target.name(), row.instructions, row.vgprs, row.sgprs, row.subgroups_per_simd, row.latency,
+                        row.inverse_throughput, row.instructions_ratio, row.inverse_throughput_ratio, row.latency_ratio,
+                        shader == isa_forward_shader ? paper_ratio(row.variant) : "");
   }
   text +=
       "\ninstr: ISA instructions; waves: subgroups per SIMD (occupancy); latency, inv.thr: ACO's estimates in cycles per wave\n"
@@ -266,23 +282,22 @@ std::string format_isa_table(const IsaCostTable& table) {
   return text + format_light_count_table(table);
 }
 
-nlohmann::json isa_json(const IsaCostTable& table) {
+nlohmann::json isa_json(const IsaTable& table) {
   nlohmann::json rows = nlohmann::json::array();
-  for (const IsaCostRow& row : table.rows) {
-    const auto& s = row.statistics;
+  for (const IsaRow& row : table.rows) {
     nlohmann::json entry = {{"family", row.family},
                             {"shader", row.shader},
-                            {"target", row.target},
+                            {"target", row.target.name()},
                             {"variant", row.variant},
-                            {"instructions", s.instructions},
-                            {"vgprs", s.vgprs},
-                            {"sgprs", s.sgprs},
-                            {"subgroups_per_simd", s.subgroups_per_simd},
-                            {"latency", s.latency},
-                            {"inverse_throughput", s.inverse_throughput},
-                            {"instructions_ratio", row.instructions_ratio()},
-                            {"inverse_throughput_ratio", row.inverse_throughput_ratio()},
-                            {"latency_ratio", row.latency_ratio()}};
+                            {"instructions", row.instructions},
+                            {"vgprs", row.vgprs},
+                            {"sgprs", row.sgprs},
+                            {"subgroups_per_simd", row.subgroups_per_simd},
+                            {"latency", row.latency},
+                            {"inverse_throughput", row.inverse_throughput},
+                            {"instructions_ratio", row.instructions_ratio},
+                            {"inverse_throughput_ratio", row.inverse_throughput_ratio},
+                            {"latency_ratio", row.latency_ratio}};
     // The deferred pass runs once per pixel whatever the light count: its rows carry none.
     if (row.shader == isa_forward_shader) entry["lights"] = row.lights;
     rows.push_back(std::move(entry));
@@ -290,6 +305,7 @@ nlohmann::json isa_json(const IsaCostTable& table) {
   // "generator": the ownership tag, so that `--isa-table F` may rewrite its own file without --force.
   return {{"cost_model", cost_model_name},
           {"driver", table.driver},
+          {"devices", table.devices},
           {"families", table.families},
           {"generator", std::string(output_tag) + " saagen bench --isa"},
           {"rows", rows}};

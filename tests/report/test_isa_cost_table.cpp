@@ -21,17 +21,19 @@
 
 namespace {
 
-using saagen::report::IsaCostRow;
+using saagen::IsaRow;
 
-const saagen::report::IsaCostTable& measured() {
-  static const saagen::report::IsaCostTable table = saagen::report::measure_isa_costs({"vega10", "navi21"});
+const saagen::IsaTable& measured() {
+  static const saagen::IsaTable table = saagen::report::measure_isa_costs({"vega10", "navi21"});
   return table;
 }
 
-const IsaCostRow* find_row(const std::string& family, const std::string& shader, const std::string& target, const std::string& variant,
+const IsaRow* find_row(const std::string& family, const std::string& shader, const std::string& target, const std::string& variant,
                            std::uint32_t lights = 1) {
-  for (const IsaCostRow& row : measured().rows) {
-    if (row.family == family && row.shader == shader && row.target == target && row.variant == variant && row.lights == lights) return &row;
+  for (const IsaRow& row : measured().rows) {
+    if (row.family == family && row.shader == shader && row.target.name() == target && row.variant == variant &&
+        row.lights == static_cast<int>(lights))
+      return &row;
   }
   return nullptr;
 }
@@ -43,19 +45,19 @@ TEST(IsaCost, EveryVariantAndPassIsMeasuredOnBothFamiliesAndTargets) {
     for (const std::string target : {"glsl", "hlsl"}) {
       for (const auto& variant : saagen::report::variant_cases()) {
         for (const std::uint32_t lights : saagen::report::kMeasuredLightCounts) {
-          const IsaCostRow* row = find_row(family, saagen::report::isa_forward_shader, target, variant.id, lights);
+          const IsaRow* row = find_row(family, saagen::report::isa_forward_shader, target, variant.id, lights);
           ASSERT_NE(row, nullptr) << family << " " << target << " " << variant.id << " " << lights;
-          EXPECT_GT(row->statistics.instructions, 0);
-          EXPECT_GT(row->statistics.inverse_throughput, 0);
-          EXPECT_GE(row->statistics.subgroups_per_simd, 1);
+          EXPECT_GT(row->instructions, 0);
+          EXPECT_GT(row->inverse_throughput, 0);
+          EXPECT_GE(row->subgroups_per_simd, 1);
           // Filtering adds work to the same shader: never fewer instructions than without SAA.
-          EXPECT_GT(row->statistics.instructions, row->baseline.instructions) << family << " " << target << " " << variant.id;
+          EXPECT_GT(row->instructions_ratio, 1.0) << family << " " << target << " " << variant.id;
         }
       }
       for (const std::string& pass : passes) {
-        const IsaCostRow* row = find_row(family, saagen::report::isa_deferred_shader, target, pass);
+        const IsaRow* row = find_row(family, saagen::report::isa_deferred_shader, target, pass);
         ASSERT_NE(row, nullptr) << family << " " << target << " " << pass;
-        EXPECT_GT(row->statistics.instructions, row->baseline.instructions) << family << " " << target << " " << pass;
+        EXPECT_GT(row->instructions_ratio, 1.0) << family << " " << target << " " << pass;
       }
     }
   }
@@ -97,7 +99,7 @@ TEST(IsaCost, TheSceneShadesEveryLightOnceAndTheFormsWorkOncePerPixel) {
 // Cost as work grows: a deferred form computes its roughness once per pixel, so its ratio to no
 // SAA (which shades the same lights) falls as the lights grow; a forward form filters per light.
 TEST(IsaCost, DeferredOverheadIsPaidOncePerPixelAndForwardPerLight) {
-  const saagen::IsaTable table = saagen::report::isa_table(measured());
+  const saagen::IsaTable& table = measured();
   for (const std::string family : {"vega10", "navi21"}) {
     const auto ratio = [&](const std::string& variant, int lights) {
       const auto value = table.forward_ratio(family, variant, {}, lights);
@@ -117,13 +119,13 @@ TEST(IsaCost, DeferredOverheadIsPaidOncePerPixelAndForwardPerLight) {
 // SIMD32 (1 cycle): ACO's inverse throughput of the same shader is therefore lower on navi21.
 TEST(IsaCost, FamiliesDifferTheWayTheirArchitecturesDo) {
   for (const std::string target : {"glsl", "hlsl"}) {
-    const IsaCostRow* gfx9 = find_row("vega10", saagen::report::isa_forward_shader, target, saagen::report::isa_baseline);
-    const IsaCostRow* rdna2 = find_row("navi21", saagen::report::isa_forward_shader, target, saagen::report::isa_baseline);
+    const IsaRow* gfx9 = find_row("vega10", saagen::report::isa_forward_shader, target, saagen::report::isa_baseline);
+    const IsaRow* rdna2 = find_row("navi21", saagen::report::isa_forward_shader, target, saagen::report::isa_baseline);
     ASSERT_NE(gfx9, nullptr);
     ASSERT_NE(rdna2, nullptr);
-    EXPECT_LT(rdna2->statistics.inverse_throughput, gfx9->statistics.inverse_throughput);
-    EXPECT_NE(gfx9->statistics.device_name, rdna2->statistics.device_name);
+    EXPECT_LT(rdna2->inverse_throughput, gfx9->inverse_throughput);
   }
+  EXPECT_NE(measured().devices.at("vega10"), measured().devices.at("navi21"));
 }
 
 // The planner's table is what `saagen bench --isa vega10,navi21 --isa-only --isa-table FILE`
@@ -149,7 +151,9 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
         << ": regenerate generator/data/isa_cost.json (saagen bench --isa vega10,navi21 --isa-only --isa-table FILE)";
     EXPECT_EQ(a.inverse_throughput, b.inverse_throughput) << b.family << " " << b.target.name() << " " << b.variant;
     EXPECT_EQ(a.vgprs, b.vgprs) << b.family << " " << b.target.name() << " " << b.variant;
+    EXPECT_EQ(a.instructions_ratio, b.instructions_ratio) << b.family << " " << b.target.name() << " " << b.variant;
   }
+  EXPECT_EQ(committed.devices, expected.devices);
 }
 
 // `saagen bench --isa FAMILY --json F` writes the first family's ratios into the trade rows, and

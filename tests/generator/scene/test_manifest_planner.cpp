@@ -345,6 +345,18 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
   EXPECT_NE(bad_lights("0").find("bad.json: a row's \"lights\" must be an integer from 1 to 64"), std::string::npos) << bad_lights("0");
   EXPECT_NE(bad_lights("2.5").find("must be an integer"), std::string::npos) << bad_lights("2.5");
   EXPECT_EQ(bad_lights("64"), "");
+  // The committed table names each family's device and keeps every ratio to no SAA.
+  EXPECT_EQ(committed.devices.at("vega10"), "Null hardware (RADV VEGA10)");
+  for (const saagen::IsaRow& row : committed.rows) {
+    if (row.variant == "no-saa") EXPECT_EQ(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
+    if (row.variant == "deferred-avg" && row.lights == 1) EXPECT_GT(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
+  }
+  try {
+    (void)saagen::parse_isa_table(R"({"families": ["vega10"], "devices": ["vega10"], "rows": []})", "devices.json");
+    ADD_FAILURE() << "a devices array was read";
+  } catch (const saagen::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("devices.json: \"devices\" must be an object of strings"), std::string::npos) << error.what();
+  }
 }
 
 // prefer = "speed" at any light count: the decision's costs are the committed ratios at that

@@ -7,6 +7,7 @@
 #include "saagen/io/marker.hpp"
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -124,7 +125,9 @@ struct IsaRow {
   OutputTarget target;  // a snippet of glsl or hlsl
   std::string variant;  // a variant id, a deferred pass id, or "no-saa"
   double instructions = 0, vgprs = 0, sgprs = 0, subgroups_per_simd = 0, latency = 0, inverse_throughput = 0;
-  double inverse_throughput_ratio = 1;  // over the same shader without SAA (with as many lights)
+  // Over the same shader without SAA (with as many lights; the copy pass for a deferred pass). A
+  // table without instructions_ratio or latency_ratio (written before they were kept) reads 1.
+  double inverse_throughput_ratio = 1, instructions_ratio = 1, latency_ratio = 1;
   // "lights": the lights the forward shader shades, 1 to kMaxLights; a row without it (a
   // table written before light counts were measured, or a deferred-pass row) is one light.
   int lights = 1;
@@ -141,6 +144,8 @@ struct IsaTable {
   std::string source_name;
   std::string driver;  // the Mesa version that compiled it
   std::vector<std::string> families;
+  // Each family's device as RADV names it ("devices": {"vega10": "AMD RADV VEGA10"}; may be absent).
+  std::map<std::string, std::string> devices;
   std::vector<IsaRow> rows;
   // The light counts the forward shader of `family` was measured at, ascending (the committed
   // table: 1, 4, 16); empty when the family has no forward rows.
