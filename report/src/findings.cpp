@@ -1,8 +1,8 @@
 #include "saagen/report/findings.hpp"
-#include "saagen/report/sanity.hpp"
 
 #include "saagen/measure/gltf.hpp"
 #include "saagen/report/comparison.hpp"
+#include "saagen/report/sanity.hpp"
 #include "saagen/scene/planner.hpp"
 
 #include <fmt/format.h>
@@ -313,7 +313,8 @@ std::vector<Recommendation> recommend(const measure::TradeTable& table) {
   std::vector<Recommendation> recs;
   for (Content content : contents_of(table)) {
     // Without TAA: the +taa rows are compared with none+taa (taa_summary.hpp).
-    const RowFilter keep = on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
+    const RowFilter keep =
+        on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
       const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
@@ -380,7 +381,8 @@ const Recommendation* find_recommendation(const std::vector<Recommendation>& rec
 std::vector<EngineSwitch> engine_switches(const measure::TradeTable& table, const CostTable* costs) {
   std::vector<EngineSwitch> switches;
   for (Content content : contents_of(table)) {
-    const RowFilter keep = on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
+    const RowFilter keep =
+        on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (const ContentRow& engine : rows) {
       if (!is_engine_configuration(engine.configuration)) continue;

@@ -10,10 +10,10 @@
 #include "saagen/validate/compiler.hpp"
 
 #include <fmt/format.h>
-#include <saagen/harness/isa.hpp>
 
 #include <algorithm>
 #include <map>
+#include <saagen/harness/isa.hpp>
 
 namespace saagen::report {
 namespace {
@@ -270,9 +270,9 @@ std::string format_isa_table(const IsaTable& table) {
                           "SGPR", "waves", "latency", "inv.thr", "x instr", "x inv.thr", "x latency",
                           shader == isa_forward_shader ? "paper Table 2" : "");
     }
-    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant,
-                        row.target.name(), row.instructions, row.vgprs, row.sgprs, row.subgroups_per_simd, row.latency,
-                        row.inverse_throughput, row.instructions_ratio, row.inverse_throughput_ratio, row.latency_ratio,
+    text += fmt::format("{:<26} {:<5} {:>6} {:>5} {:>5} {:>6} {:>8} {:>8} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n", row.variant, row.target.name(),
+                        row.instructions, row.vgprs, row.sgprs, row.subgroups_per_simd, row.latency, row.inverse_throughput,
+                        row.instructions_ratio, row.inverse_throughput_ratio, row.latency_ratio,
                         shader == isa_forward_shader ? paper_ratio(row.variant) : "");
   }
   text +=

@@ -29,7 +29,7 @@ const saagen::IsaTable& measured() {
 }
 
 const IsaRow* find_row(const std::string& family, const std::string& shader, const std::string& target, const std::string& variant,
-                           std::uint32_t lights = 1) {
+                       std::uint32_t lights = 1) {
   for (const IsaRow& row : measured().rows) {
     if (row.family == family && row.shader == shader && row.target.name() == target && row.variant == variant &&
         row.lights == static_cast<int>(lights))

@@ -6,10 +6,9 @@
 // bench --preset medium` prints the same suite on every preset scene (docs/TEMPORAL.md). At 64 spp
 // the sphere's ground truth at alpha 0.01 fails the converged rule: another seed does not beat a
 // quarter of its samples there.
-#include "saagen/report/sanity.hpp"
-
 #include "saagen/report/comparison.hpp"
 #include "saagen/report/findings.hpp"
+#include "saagen/report/sanity.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,10 +5,9 @@
 // ranks `prefer = "speed"` by; nothing here parses or stores a figure of its own.
 #pragma once
 
-#include <saagen/scene/cost_tables.hpp>
-
 #include <filesystem>
 #include <optional>
+#include <saagen/scene/cost_tables.hpp>
 #include <string>
 #include <string_view>
 
@@ -25,10 +24,10 @@ struct VariantCost {
 };
 
 struct CostTable {
-  std::string source;                  // the bench_shading file `timing` was read from ("": none)
-  MeasuredTradeTable timing;           // bench_shading --json
-  std::optional<IsaTable> isa;         // `saagen bench --isa FAMILIES`
-  std::string isa_family;              // the family of VariantCost::isa_ratio (the first of --isa)
+  std::string source;           // the bench_shading file `timing` was read from ("": none)
+  MeasuredTradeTable timing;    // bench_shading --json
+  std::optional<IsaTable> isa;  // `saagen bench --isa FAMILIES`
+  std::string isa_family;       // the family of VariantCost::isa_ratio (the first of --isa)
   // The variant's means; nullopt when neither table has it.
   std::optional<VariantCost> find(std::string_view variant) const;
   // One line naming the cost model of each cost column.
