@@ -3,7 +3,6 @@
 
 #include "saagen/io/output.hpp"
 #include "saagen/report/findings.hpp"
-#include "saagen/report/sanity.hpp"
 
 #include <algorithm>
 #include <map>
@@ -256,18 +255,12 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
 }
 
 // Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
-// type and per scene over the converged cells (as the decision reads them: on_converged_cells),
-// and per cell (one scene at one alpha: "alpha" names it; its interval is over the cell's frames
-// and ground-truth seeds only; "ground_truth_converged": false where the decision leaves it out);
-// the verdicts, the planner and the scripts read these.
+// type, per scene, and per cell (one scene at one alpha: "alpha" names it; its interval is over the
+// cell's frames and ground-truth seeds only); the verdicts, the planner and the scripts read these.
 nlohmann::json comparisons_json(const measure::TradeTable& table) {
   nlohmann::json comparisons = nlohmann::json::array();
-  const std::vector<Cell> unconverged = unconverged_cells(table);
-  const auto converged = [&](const measure::TradeRow& row) {
-    return std::find(unconverged.begin(), unconverged.end(), Cell{row.scene, row.alpha}) == unconverged.end();
-  };
   const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep,
-                                   std::optional<double> alpha = std::nullopt, bool ground_truth_converged = true) {
+                                   std::optional<double> alpha = std::nullopt) {
     for (const std::string& id : configurations(table)) {
       if (id == "none" || is_measurement_configuration(id)) continue;
       const PairedComparison c = compare_configurations(table, id, "none", keep);
@@ -283,21 +276,18 @@ nlohmann::json comparisons_json(const measure::TradeTable& table) {
                              {"outcome", std::string(comparison_outcome_name(c))}});
       if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
       if (alpha) comparisons.back()["alpha"] = *alpha;
-      if (!ground_truth_converged) comparisons.back()["ground_truth_converged"] = false;
     }
   };
   for (Content content : kContents)
     add_comparisons("content", std::string(content_name(content)),
-                    [&, content](const measure::TradeRow& row) { return content_of(row.scene) == content && converged(row); });
+                    [content](const measure::TradeRow& row) { return content_of(row.scene) == content; });
   for (const measure::SceneId scene : table.config.scenes)
-    add_comparisons("scene", std::string(measure::scene_name(scene)),
-                    [&, scene](const measure::TradeRow& row) { return row.scene == scene && converged(row); });
+    add_comparisons("scene", std::string(measure::scene_name(scene)), [scene](const measure::TradeRow& row) { return row.scene == scene; });
   for (const measure::SceneId scene : table.config.scenes)
     for (const double alpha : table.config.alphas)
       add_comparisons(
           "cell", std::string(measure::scene_name(scene)),
-          [scene, alpha](const measure::TradeRow& row) { return row.scene == scene && row.alpha == alpha; }, alpha,
-          std::find(unconverged.begin(), unconverged.end(), Cell{scene, alpha}) == unconverged.end());
+          [scene, alpha](const measure::TradeRow& row) { return row.scene == scene && row.alpha == alpha; }, alpha);
   return comparisons;
 }
 
