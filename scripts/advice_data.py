@@ -18,12 +18,6 @@ sweep's scenes at that LOD (the derivation maps', the held-out maps'), each ente
     saagen bench --preset medium --scene pmndrs-0000-lod4 --scene pmndrs-0001-lod4 --scene pmndrs-0002-lod4 --json H4.json
     python3 scripts/advice_data.py --map-lod 4 D4.json H4.json T.json OUT/held_out.json ... > generator/data/advice.json
 
-Where the tables under TAA were not measured again, --taa-from ADVICE.json (before the positional
-tables) carries the TAA entries of an earlier advice file unchanged, and says so in the file's "taa"
-header ("carried_from"):
-
-    python3 scripts/advice_data.py --taa-from OLD_ADVICE.json T.json OUT/held_out.json > generator/data/advice.json
-
 It copies figures; it decides nothing. The planner (saagen/scene/cost_tables.hpp: committed_advice) reads the file,
 embedded in the library (saagen/scene/cost_tables.hpp: committed_advice), and makes saagen's one decision (saagen/decision.hpp) on its rows: on the
 derivation rows' comparisons with no SAA, then held against the held-out rows' comparisons.
@@ -91,17 +85,8 @@ def content_entries(derived, held_out, key, taa, map_lod_min=0):
     return contents
 
 
-def carried_taa(previous, source_name):
-    """The TAA entries and header of an earlier advice file, as they are, with where they come from."""
-    header = dict(previous["taa"])
-    header["carried_from"] = (f"the earlier {source_name}: its TAA entries, unchanged, were not measured again with the tables "
-                              "above (their own tables' commands are this header's)")
-    return [entry for entry in previous["content"] if entry.get("taa")], {"taa": header}
-
-
-def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None, by_map_lod=(), taa_from=None):
-    """by_map_lod: (K, derived, held_out, derived_name, held_out_name) per map distance measured;
-    taa_from: (the earlier advice document, its name), whose TAA entries are carried over."""
+def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None, by_map_lod=()):
+    """by_map_lod: (K, derived, held_out, derived_name, held_out_name) per map distance measured."""
     contents = content_entries(derived, held_out, "by_content", False)
     for map_lod_min, lod_derived, lod_held_out, _, _ in by_map_lod:
         contents += content_entries(lod_derived, lod_held_out, "by_content", False, map_lod_min)
@@ -111,9 +96,6 @@ def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=
         taa = {"taa": {"table": "saagen bench --preset medium --taa --sigma2 0.0625 --json TAA.json",
                        "held_out_command": "bash scripts/held_out.sh OUT --taa --sigma2 0.0625",
                        "config": taa_derived["config"]}}
-    elif taa_from is not None:
-        entries, taa = carried_taa(*taa_from)
-        contents += entries
     return {
         "schema": "saagen advice 1",
         "about": "the table-free advice's measurement: per content type, every configuration's figures and its paired "
@@ -172,23 +154,20 @@ def sweep_command(table):
 
 
 def main(argv):
-    usage = ("usage: advice_data.py [--taa-from ADVICE.json] [--map-lod K DERIVED.json HELD_OUT.json ...] DERIVED.json HELD_OUT.json "
+    usage = ("usage: advice_data.py [--map-lod K DERIVED.json HELD_OUT.json ...] DERIVED.json HELD_OUT.json "
              "[TAA_DERIVED.json TAA_HELD_OUT.json] > generator/data/advice.json")
-    args, by_map_lod, taa_from = argv[1:], [], None
-    if len(args) >= 2 and args[0] == "--taa-from":
-        taa_from = (load(args[1]), args[1])
-        args = args[2:]
+    args, by_map_lod = argv[1:], []
     while args and args[0] == "--map-lod":
         if len(args) < 4 or not args[1].isdigit() or int(args[1]) < 1:
             sys.exit(usage)
         derived, held_out = load(args[2]), load(args[3])
         by_map_lod.append((int(args[1]), derived, held_out, sweep_command(derived), sweep_command(held_out)))
         args = args[4:]
-    if len(args) not in (2, 4) or (taa_from and len(args) == 4):
+    if len(args) not in (2, 4):
         sys.exit(usage)
     tables = [load(path) for path in args]
     document = advice_document(tables[0], tables[1], "saagen bench --preset medium --json T.json", "scripts/held_out.sh", *tables[2:],
-                               by_map_lod=by_map_lod, taa_from=taa_from)
+                               by_map_lod=by_map_lod)
     write(document, sys.stdout)
 
 
