@@ -4,10 +4,8 @@ a content and render path ("decisions" -> "by_content", made by the one decision
 saagen/decision.hpp) loses to no SAA, or is mixed, on one of that content's scenes at one
 roughness. The bench writes each cell's paired comparison with no SAA ("comparisons", scope
 "cell": its 95 % interval is over that cell's frames and ground-truth seeds only, so a cell says
-more about one roughness than the per-content verdict, and less certainly). The cells whose
-ground truth has not converged (sanity_checks[].unconverged_alphas) are left out, as the decision
-leaves them out, and counted apart. This script decides nothing; it lists what the per-content
-verdict pools away.
+more about one roughness than the per-content verdict, and less certainly). This script decides
+nothing; it lists what the per-content verdict pools away.
 
     python3 scripts/cell_verdicts.py trade.json
 """
@@ -45,8 +43,7 @@ def main(argv):
     scenes_of = collections.defaultdict(set)
     for entry in table['decisions']['per_scene']:
         scenes_of[entry['content']].add(entry['scene'])
-    left_out = {(check['scene'], alpha) for check in table.get('sanity_checks', []) for alpha in check.get('unconverged_alphas', [])}
-    total = counted = skipped = 0
+    total = counted = 0
     for decision in table['decisions']['by_content']:
         chosen = decision.get('chosen')
         if not chosen or chosen == 'none':
@@ -55,9 +52,6 @@ def main(argv):
         bad = []
         for scene in sorted(scenes_of[decision['content']]):
             for c in sorted(cells.get((scene, chosen), []), key=lambda c: c['alpha']):
-                if (scene, c['alpha']) in left_out:
-                    skipped += 1
-                    continue
                 outcomes[c['outcome']] += 1
                 if c['outcome'] in ('loses', 'mixed'):
                     bad.append(c)
@@ -68,8 +62,7 @@ def main(argv):
         for c in bad:
             print(f"    {c['name']:<22} alpha {c['alpha']:<7g} {c['outcome']:<6} image {interval(c['image_error'])}"
                   f"  temporal {interval(temporal(c))}")
-    print(f"{total} of {counted} cells of the decisions lose to no SAA or are mixed beyond their intervals"
-          + (f" ({skipped} more left out: their ground truth has not converged)" if skipped else ""))
+    print(f"{total} of {counted} cells of the decisions lose to no SAA or are mixed beyond their intervals")
     return 0
 
 
