@@ -37,13 +37,6 @@ def scene_means(cases, image_metric='image_error', temporal_metric='flicker_erro
     return {scene: {c: (v[0] / v[2], v[1] / v[2]) for c, v in configs.items()} for scene, configs in sums.items()}
 
 
-def converged_cases(table):
-    """The table's cases without the cells (scene, alpha) whose ground truth has not converged (the
-    bench's sanity_checks[].unconverged_alphas): the cells the decision leaves out (docs/TEMPORAL.md)."""
-    left_out = {(check['scene'], alpha) for check in table.get('sanity_checks', []) for alpha in check.get('unconverged_alphas', [])}
-    return [case for case in table['cases'] if (case['scene'], case['alpha']) not in left_out]
-
-
 def scene_decisions(table):
     """The bench's per scene x path decisions: (scene, path, chosen, beats every engine too)."""
     for entry in table['decisions']['per_scene']:
@@ -56,7 +49,7 @@ def main():
     table = json.load(open(sys.argv[1]))
     # The verdict's temporal metric: the video error (10 - ColorVideoVDP's JOD) where measured.
     video = any(case.get('video_error', {}).get('mean', 0.0) > 0.0 for case in table['cases'])
-    means = scene_means(converged_cases(table), temporal_metric='video_error' if video else 'flicker_error')
+    means = scene_means(table['cases'], temporal_metric='video_error' if video else 'flicker_error')
     wins = rows = 0
     for scene, path, chosen, beats_all in scene_decisions(table):
         rows += 1

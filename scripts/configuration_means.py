@@ -11,7 +11,7 @@ forward-aniso-projected/tail`."""
 import json
 import sys
 
-from beats_baselines import converged_cases, scene_means
+from beats_baselines import scene_means
 
 
 def main():
@@ -21,7 +21,7 @@ def main():
     names = sys.argv[2:] + ['none']
     print('| scene | ' + ' | '.join(names) + ' | best engine |')
     print('|---|' + '---:|' * (len(names) + 1))
-    for scene, means in scene_means(converged_cases(table)).items():
+    for scene, means in scene_means(table['cases']).items():
         engines = {c: v for c, v in means.items() if c.startswith('engine-')}
         best = min(engines, key=lambda c: engines[c][0])
         cells = [f'{means[n][0]:.4f} / {means[n][1]:.5f}' if n in means else '-' for n in names]

@@ -8,7 +8,7 @@ as a Markdown table (each cell LDR-FLIP / HDR-FLIP / tonemapped RMSE / TDE).
 import json
 import sys
 
-from beats_baselines import converged_cases, scene_decisions, scene_means
+from beats_baselines import scene_decisions, scene_means
 
 METRICS = ('flip_ldr', 'flip_hdr', 'rmse_tonemapped')
 
@@ -17,7 +17,7 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     table = json.load(open(sys.argv[1]))
-    cases = converged_cases(table)
+    cases = table['cases']
     decided = {(scene, path): (chosen, beats) for scene, path, chosen, beats in scene_decisions(table)}
     by_metric = {m: scene_means(cases, m) for m in METRICS}
     print('| scene | path | none | best engine | best saagen | |')
