@@ -112,7 +112,7 @@ TextTable content_table(const measure::TradeTable& table, Content content, const
   t.headers = {"configuration"};
   t.headers.insert(t.headers.end(), kMetricHeaders.begin(), kMetricHeaders.end());
   t.headers.insert(t.headers.end(), {"ISA inv.thr", "time ratio", "dSPIR-V"});
-  const RowFilter keep = on_converged_cells(table, [content](const measure::TradeRow& row) { return content_of(row.scene) == content; });
+  const RowFilter keep = [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
   for (const std::string& id : configurations(table)) {
     const Metrics m = mean_metrics(table, id, keep);
     if (!m.cases) continue;

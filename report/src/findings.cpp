@@ -2,7 +2,6 @@
 
 #include "saagen/measure/gltf.hpp"
 #include "saagen/report/comparison.hpp"
-#include "saagen/report/sanity.hpp"
 #include "saagen/scene/planner.hpp"
 
 #include <fmt/format.h>
@@ -232,17 +231,8 @@ void pair_recommendable(const ConfigurationRows& index, const RowFilter& keep, s
 
 }  // namespace
 
-RowFilter on_converged_cells(const measure::TradeTable& table, RowFilter keep) {
-  std::vector<Cell> unconverged = unconverged_cells(table);
-  if (unconverged.empty()) return keep;
-  return [keep = std::move(keep), unconverged = std::move(unconverged)](const measure::TradeRow& row) {
-    return keep(row) && std::find(unconverged.begin(), unconverged.end(), Cell{row.scene, row.alpha}) == unconverged.end();
-  };
-}
-
-std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep_asked, std::string_view scope,
+std::vector<ContentRow> measured_rows(const measure::TradeTable& table, const RowFilter& keep, std::string_view scope,
                                       const std::string& baseline) {
-  const RowFilter keep = on_converged_cells(table, keep_asked);
   std::vector<ContentRow> rows;
   const bool video = has_video_metric(table);
   const ConfigurationRows index(table);
@@ -313,8 +303,7 @@ std::vector<Recommendation> recommend(const measure::TradeTable& table) {
   std::vector<Recommendation> recs;
   for (Content content : contents_of(table)) {
     // Without TAA: the +taa rows are compared with none+taa (taa_summary.hpp).
-    const RowFilter keep =
-        on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
       const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
@@ -381,8 +370,7 @@ const Recommendation* find_recommendation(const std::vector<Recommendation>& rec
 std::vector<EngineSwitch> engine_switches(const measure::TradeTable& table, const CostTable* costs) {
   std::vector<EngineSwitch> switches;
   for (Content content : contents_of(table)) {
-    const RowFilter keep =
-        on_converged_cells(table, [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; });
+    const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (const ContentRow& engine : rows) {
       if (!is_engine_configuration(engine.configuration)) continue;
@@ -407,7 +395,7 @@ std::vector<EngineSwitch> engine_switches(const measure::TradeTable& table, cons
 std::vector<SceneVerdict> scene_verdicts(const measure::TradeTable& table, const std::vector<Recommendation>& recs) {
   std::vector<SceneVerdict> verdicts;
   for (measure::SceneId scene : table.config.scenes) {
-    const RowFilter on_scene = on_converged_cells(table, [scene](const measure::TradeRow& row) { return row.scene == scene; });
+    const RowFilter on_scene = [scene](const measure::TradeRow& row) { return row.scene == scene; };
     for (Path path : {Path::forward, Path::deferred}) {
       const Recommendation* rec = find_recommendation(recs, path, content_of(scene));
       if (!rec) continue;
@@ -432,12 +420,11 @@ std::string describe(const Loss& loss) { return fmt::format("{}: {} {:.4g} > {:.
 namespace {
 
 // The engine with the lowest mean `value` on a content type ("" when the table has no engine).
-std::pair<std::string, Metrics> best_engine(const measure::TradeTable& table, Content content, const RowFilter& keep,
-                                            double Metrics::*value) {
+std::pair<std::string, Metrics> best_engine(const measure::TradeTable& table, Content content, double Metrics::*value) {
   std::pair<std::string, Metrics> best;
   for (const std::string& id : configurations_of(table, content)) {
     if (!is_engine_configuration(id)) continue;
-    const Metrics m = mean_metrics(table, id, keep);
+    const Metrics m = mean_metrics(table, id, content_filter(content));
     if (best.first.empty() || m.*value < best.second.*value) best = {id, m};
   }
   return best;
@@ -451,16 +438,15 @@ std::vector<Verdict> verdicts(const measure::TradeTable& table, const std::vecto
   for (const Recommendation& rec : recs) {
     Verdict v;
     v.recommendation = rec;
-    const RowFilter keep = on_converged_cells(table, content_filter(rec.content));
-    v.none = mean_metrics(table, "none", keep);
-    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, keep, &Metrics::image_error);
+    v.none = mean_metrics(table, "none", content_filter(rec.content));
+    std::tie(v.best_engine_image, v.engine_image) = best_engine(table, rec.content, &Metrics::image_error);
     v.video = has_video_metric(table);
     std::tie(v.best_engine_motion, v.engine_motion) =
-        best_engine(table, rec.content, keep, v.video ? &Metrics::video_error : &Metrics::flicker_error);
+        best_engine(table, rec.content, v.video ? &Metrics::video_error : &Metrics::flicker_error);
     for (const VerdictMetric& metric : kVerdictMetrics) {
       const double ours = rec.metrics.*metric.value;
       if (v.none.cases && ours > v.none.*metric.value) v.losses.push_back({"none", metric.name, ours, v.none.*metric.value});
-      const auto [engine, engine_metrics] = best_engine(table, rec.content, keep, metric.value);
+      const auto [engine, engine_metrics] = best_engine(table, rec.content, metric.value);
       if (!engine.empty() && ours > engine_metrics.*metric.value)
         v.losses.push_back({engine, metric.name, ours, engine_metrics.*metric.value});
     }

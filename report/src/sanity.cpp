@@ -235,17 +235,6 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
   return text;
 }
 
-std::vector<Cell> unconverged_cells(const measure::TradeTable& table) {
-  std::vector<Cell> cells;
-  for (measure::SceneId scene : table.config.scenes) {
-    if (std::none_of(table.sanity.begin(), table.sanity.end(), [&](const measure::SanityRow& r) { return r.scene == scene; })) continue;
-    SceneSanity checked;
-    check_convergence(scene_clips(table, scene), scene, checked);
-    for (double alpha : checked.unconverged_alphas) cells.push_back({scene, alpha});
-  }
-  return cells;
-}
-
 std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
   std::vector<std::string> cells;
   for (const SceneSanity& scene : scenes)
@@ -253,8 +242,8 @@ std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
   if (cells.empty()) return "";
   return fmt::format(
       "The ground truth has not converged on {} cell(s): {}. Another seed does not beat a quarter of its samples "
-      "there (the sanity suite's converged rule): their comparisons would rank the ground truth's noise, and the "
-      "decision above leaves them out; rerun with --truth-samples-scale 2 for their evidence (docs/TEMPORAL.md).\n",
+      "there (the sanity suite's converged rule), so the comparisons on those cells rank the ground truth's noise; "
+      "rerun with --truth-samples-scale 2 (docs/TEMPORAL.md).\n",
       cells.size(), fmt::join(cells, ", "));
 }
 

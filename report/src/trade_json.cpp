@@ -224,7 +224,7 @@ nlohmann::json sanity_json(const measure::TradeTable& table) {
 nlohmann::json by_content_json(const measure::TradeTable& table) {
   nlohmann::json by_content = nlohmann::json::array();
   for (Content content : kContents) {
-    const RowFilter keep = on_converged_cells(table, [content](const measure::TradeRow& row) { return content_of(row.scene) == content; });
+    const RowFilter keep = [content](const measure::TradeRow& row) { return content_of(row.scene) == content; };
     // The comparisons with no SAA as the decision reads them (findings.hpp, measured_rows).
     std::map<std::string, ContentRow> measured;
     for (ContentRow& row : measured_rows(table, keep, content_name(content))) measured.emplace(row.configuration, std::move(row));

@@ -77,12 +77,7 @@ std::optional<double> configuration_isa_cost(const CostTable* costs, const std::
 // else the SPIR-V delta, else the time ratio; true when none is known, and the caller says so).
 bool costs_at_most(const CostTable* costs, const std::string& a, const std::string& b);
 
-// `keep` without the cells (scene, alpha) whose ground truth fails the sanity suite's converged rule
-// (sanity.hpp, unconverged_cells): their comparisons would rank the ground truth's noise, so the
-// decision, its means and the verdict's leave them out. `keep` itself when the table has no sanity rows.
-RowFilter on_converged_cells(const measure::TradeTable& table, RowFilter keep);
-
-// The measured rows of a set of trade rows, one per configuration, on the converged cells among them: the means the trade's JSON
+// The measured rows of a set of trade rows, one per configuration: the means the trade's JSON
 // writes ("by_content") and saagen's decision reads (through comparison_against,
 // saagen/scene/cost_tables.hpp). `scope` names the content type or the scene; each row is paired
 // against the rows' `baseline` (its against_none; none+taa for measured_taa_rows), and where it

@@ -67,16 +67,6 @@ struct SceneSanity {
 
 // Every scene of the table that has sanity rows.
 std::vector<SceneSanity> check_sanity(const measure::TradeTable& table);
-
-// A scene at one alpha.
-struct Cell {
-  measure::SceneId scene = measure::SceneId::sphere;
-  double alpha = 0.0;
-  bool operator==(const Cell&) const = default;
-};
-// The cells whose ground truth fails the converged rule (check_sanity's unconverged_alphas, this
-// rule alone): the decision leaves them out (findings.hpp, measured_rows).
-std::vector<Cell> unconverged_cells(const measure::TradeTable& table);
 // The suite's table (one block per scene) and a last line: passed, or how many rules failed.
 std::string format_sanity(const std::vector<SceneSanity>& scenes);
 // One line naming the cells (scene, alpha) whose ground truth failed the converged rule, for the
