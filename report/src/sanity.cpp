@@ -241,9 +241,10 @@ std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
     for (double alpha : scene.unconverged_alphas) cells.push_back(fmt::format("{} at alpha {:g}", measure::scene_name(scene.scene), alpha));
   if (cells.empty()) return "";
   return fmt::format(
-      "The ground truth has not converged on {} cell(s): {}. Another seed does not beat a quarter of its samples "
-      "there (the sanity suite's converged rule), so the comparisons on those cells rank the ground truth's noise; "
-      "rerun with --truth-samples-scale 2 (docs/TEMPORAL.md).\n",
+      "The ground truth may not have converged on {} cell(s): {}. Another seed does not beat a quarter of its samples "
+      "there (the sanity suite's converged rule): either the ground truth is noise there, and the comparisons on those "
+      "cells rank it, or both are too close for the interval to tell them apart. Rerun with --truth-samples-scale 2 and "
+      "trust a cell's verdict where it holds at 4x the samples (docs/TEMPORAL.md).\n",
       cells.size(), fmt::join(cells, ", "));
 }
 
