@@ -147,6 +147,10 @@ void add_cell_losses(ContentRow& row, const std::vector<double>& alphas) {
   for (std::string& cell : cells_lost_at(row.loses_at, alphas)) row.loses_on.push_back(std::move(cell));
 }
 
+std::optional<double> MeasuredTradeTable::mean(std::string_view variant, std::optional<double> MeasuredTradeRow::*figure) const {
+  return mean_of(rows, variant, figure);
+}
+
 std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
   const bool any_ratio = std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.cost_ratio.has_value(); });
   return mean_of(rows, variant, any_ratio ? &MeasuredTradeRow::cost_ratio : &MeasuredTradeRow::delta_instructions);

@@ -8,25 +8,10 @@
 #include <vector>
 
 namespace saagen::report {
-namespace {
-
-std::optional<double> mean(const std::vector<double>& values) {
-  if (values.empty()) return std::nullopt;
-  double sum = 0.0;
-  for (double value : values) sum += value;
-  return sum / static_cast<double>(values.size());
-}
-
-}  // namespace
 
 std::optional<VariantCost> CostTable::find(std::string_view variant) const {
-  std::vector<double> ratios, deltas;
-  for (const MeasuredTradeRow& row : timing.rows) {
-    if (row.variant != variant) continue;
-    if (row.cost_ratio) ratios.push_back(*row.cost_ratio);
-    if (row.delta_instructions) deltas.push_back(*row.delta_instructions);
-  }
-  VariantCost cost{mean(ratios), mean(deltas), std::nullopt};
+  VariantCost cost{timing.mean(variant, &MeasuredTradeRow::cost_ratio), timing.mean(variant, &MeasuredTradeRow::delta_instructions),
+                   std::nullopt};
   if (isa) cost.isa_ratio = isa->forward_ratio(isa_family, variant, {}, 1);
   if (!cost.time_ratio && !cost.delta_instructions && !cost.isa_ratio) return std::nullopt;
   return cost;

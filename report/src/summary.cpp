@@ -10,11 +10,18 @@
 namespace saagen::report {
 namespace {
 
+// The sizes of the measured scenes that have sizes of their own.
+std::vector<measure::TradeSceneSize> measured_scene_sizes(const measure::TradeConfig& c) {
+  std::vector<measure::TradeSceneSize> sizes;
+  for (const measure::TradeSceneSize& size : c.scene_sizes)
+    if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) != c.scenes.end()) sizes.push_back(size);
+  return sizes;
+}
+
 // "; NAME at WxH px (animation wxh px), ..." for the scenes with sizes of their own.
 std::string scene_sizes_line(const measure::TradeConfig& c) {
   std::string line;
-  for (const measure::TradeSceneSize& size : c.scene_sizes) {
-    if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) == c.scenes.end()) continue;
+  for (const measure::TradeSceneSize& size : measured_scene_sizes(c)) {
     line += fmt::format("{}{} at {}x{} px, {} spp (animation {}x{} px, {} spp)", line.empty() ? "; " : ", ",
                         measure::scene_name(size.scene), size.width, size.height, size.strata * size.strata, size.flicker_width,
                         size.flicker_height, size.flicker_strata * size.flicker_strata);
@@ -26,9 +33,8 @@ std::string scene_sizes_line(const measure::TradeConfig& c) {
 
 std::string ground_truth_samples(const measure::TradeConfig& c) {
   std::vector<std::string> own;
-  for (const measure::TradeSceneSize& size : c.scene_sizes)
-    if (std::find(c.scenes.begin(), c.scenes.end(), size.scene) != c.scenes.end())
-      own.push_back(fmt::format("{} {}", measure::scene_name(size.scene), size.strata * size.strata));
+  for (const measure::TradeSceneSize& size : measured_scene_sizes(c))
+    own.push_back(fmt::format("{} {}", measure::scene_name(size.scene), size.strata * size.strata));
   const std::string samples = fmt::format("{}-spp ground truth", c.strata * c.strata);
   return own.empty() ? samples : fmt::format("{} (spp on the scenes of their own size: {})", samples, fmt::join(own, ", "));
 }

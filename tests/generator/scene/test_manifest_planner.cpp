@@ -348,8 +348,12 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
   // The committed table names each family's device and keeps every ratio to no SAA.
   EXPECT_EQ(committed.devices.at("vega10"), "Null hardware (RADV VEGA10)");
   for (const saagen::IsaRow& row : committed.rows) {
-    if (row.variant == "no-saa") EXPECT_EQ(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
-    if (row.variant == "deferred-avg" && row.lights == 1) EXPECT_GT(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
+    if (row.variant == "no-saa") {
+      EXPECT_EQ(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
+    }
+    if (row.variant == "deferred-avg" && row.lights == 1) {
+      EXPECT_GT(row.instructions_ratio, 1.0) << row.family << " " << row.target.name();
+    }
   }
   try {
     (void)saagen::parse_isa_table(R"({"families": ["vega10"], "devices": ["vega10"], "rows": []})", "devices.json");

@@ -100,6 +100,8 @@ struct MeasuredTradeTable {
   std::vector<ContentRow> taa_content_rows;
   // The GGX alphas the by-content rows were measured at ("alphas", ascending; empty: not given).
   std::vector<double> alphas;
+  // Mean of one of a variant's figures over the rows (targets) that have it; nullopt when none has.
+  std::optional<double> mean(std::string_view variant, std::optional<double> MeasuredTradeRow::*figure) const;
   // Mean cost of a variant: the time ratio when any row has one, else the SPIR-V delta.
   std::optional<double> cost(std::string_view variant) const;
   std::optional<double> error(std::string_view variant) const;
