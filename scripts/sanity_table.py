@@ -3,8 +3,8 @@
 shows: per scene, each known result's image error / temporal error (the video error, 10 - ColorVideoVDP's
 JOD, where the table has it, else the flicker error; means over the scene's alphas), the lag
 (x 1e-4) of delayed and of 1-spp no SAA, the verdict's choice with the degenerate results entered,
-the alphas where the ground truth has not converged (the converged rule), and the rules that
-failed.
+the alphas where the verdict has not converged (the stable rule: a standing against no SAA changes
+with a quarter of the ground truth's samples), and the rules that failed.
 
     python3 scripts/sanity_table.py T.json
 

@@ -335,13 +335,22 @@ class SanityClips {
 };
 
 // The video metric of a scene's clips (ClipRecorder::finish_video): each material's reference
-// half once per seed, then every row's clip (rows r = m * n_keys + k) and the sanity results'
-// (against the first seed, as their other metrics), on the configured threads.
+// half once per ground truth (reference_clips[m]: the `seeds` seeds', then the quarter-sample
+// one's where the sanity suite runs), then every row's clip (rows r = m * n_keys + k) against the
+// seeds and, in quarter_clips[r], against the quarter, and the sanity results' (against the first
+// seed, as their other metrics), on the configured threads.
 void compare_clips(const TradeConfig& config, const std::vector<std::vector<ClipFrames>>& reference_clips, std::size_t n_keys,
-                   std::vector<ClipRecorder>& clips, std::vector<SanityClips>& sanity_clips) {
+                   std::size_t seeds, std::vector<ClipRecorder>& clips, std::vector<ClipRecorder>& quarter_clips,
+                   std::vector<SanityClips>& sanity_clips) {
   const std::vector<std::vector<VideoVdpReference>> references = video_references(config, reference_clips);
-  parallel_rows(static_cast<int>(clips.size()), config.threads,
-                [&](int r) { clips[static_cast<std::size_t>(r)].finish_video(references[static_cast<std::size_t>(r) / n_keys]); });
+  parallel_rows(static_cast<int>(clips.size()), config.threads, [&](int i) {
+    const std::size_t r = static_cast<std::size_t>(i);
+    const std::span<const VideoVdpReference> material(references[r / n_keys]);
+    if (quarter_clips.empty())
+      clips[r].finish_video(material.first(seeds));
+    else
+      clips[r].finish_video(material.first(seeds), &quarter_clips[r], material.subspan(seeds));
+  });
   parallel_rows(static_cast<int>(sanity_clips.size() * kSanityResults.size()), config.threads, [&](int i) {
     const std::size_t m = static_cast<std::size_t>(i) / kSanityResults.size();
     sanity_clips[m]
@@ -557,9 +566,14 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       const bool video = config.video_metric;
       std::vector<ClipRecorder> clips(n_rows);
       for (ClipRecorder& clip : clips) clip.keep_frames = video;
+      // Each row's clip against the quarter-sample ground truth (TradeRow::quarter_series), whose
+      // previous frame per material is quarter_references[m].
+      std::vector<ClipRecorder> quarter_clips(sanity ? n_rows : 0);
+      std::vector<SeedReference> quarter_references(sanity ? n_materials : 0);
       std::vector<std::vector<SeedReference>> seed_references(n_materials);  // [m][seed], of the previous frame
       std::vector<SanityClips> sanity_clips(sanity ? n_materials : 0, SanityClips(video));
-      std::vector<std::vector<ClipFrames>> reference_clips(video ? n_materials : 0, std::vector<ClipFrames>(seeds));  // [m][seed]
+      std::vector<std::vector<ClipFrames>> reference_clips(video ? n_materials : 0,
+                                                           std::vector<ClipFrames>(seeds + (sanity ? 1 : 0)));  // [m][seed], quarter
       const auto emit_frame = [&](std::size_t m, const std::string& clip, int frame, const Image& display) {
         if (on_frame) on_frame({id, materials[m].alpha, materials[m].fresnel, clip, frame, &display});
       };
@@ -596,6 +610,12 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           frame_references[m][seed] = seed_reference(linear, previous, config.flip);
           if (video) reference_clips[m][seed].append(frame_references[m][seed].display);
         });
+        std::vector<SeedReference> frame_quarter(quarter_references.size());
+        parallel_rows(static_cast<int>(frame_quarter.size()), config.threads, [&](int i) {
+          const std::size_t m = static_cast<std::size_t>(i);
+          frame_quarter[m] = seed_reference(quarter_gt->images[m], frame > 0 ? &quarter_references[m] : nullptr, config.flip);
+          if (video) reference_clips[m][seeds].append(frame_quarter[m].display);
+        });
         for (std::size_t m = 0; m < n_materials; ++m) {
           const Image reference_tonemapped = tonemapped(frame_gt.images[m]);
           reference_frame[m] = frame_references[m][0].display;
@@ -607,10 +627,15 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         for_each_row(n_rows, flicker_pixels, stage, [&](std::size_t r) {
           const std::size_t m = r / n_keys;
           const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
+          const Image image_tonemapped = tonemapped(image);
           variant_stats[r].add(image);
-          variant_display[r].add(tonemapped(image));
-          clips[r].add(image, frame_references[m],
-                       frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
+          variant_display[r].add(image_tonemapped);
+          Image display = display_image(image);
+          if (sanity)
+            quarter_clips[r].add_display(display, image_tonemapped, std::span(&frame_quarter[m], 1),
+                                         frame > 0 ? std::span(&quarter_references[m], 1) : std::span<const SeedReference>());
+          clips[r].add_display(std::move(display), image_tonemapped, frame_references[m],
+                               frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
           if (frame > 0) differences[r].add_pair(previous_variant[r], clips[r].previous_display, previous_reference[m], reference_frame[m]);
           previous_variant[r] = clips[r].previous_display;
         });
@@ -627,11 +652,12 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
             emit_frame(m, "sanity:" + std::string(sanity_name(result)), frame, sanity_clips[m].last(result));
         previous_reference = std::move(reference_frame);
         seed_references = std::move(frame_references);
+        quarter_references = std::move(frame_quarter);
         report(stage, base);
       }
       if (video) {
         report("video metric " + name, base);
-        compare_clips(config, reference_clips, n_keys, clips, sanity_clips);
+        compare_clips(config, reference_clips, n_keys, static_cast<std::size_t>(seeds), clips, quarter_clips, sanity_clips);
       }
       for (std::size_t m = 0; m < n_materials; ++m) {
         const double reference_std = mean_temporal_stddev(reference_stats[m]);
@@ -650,6 +676,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           row.reference_temporal_stddev_display = reference_std_display;
           row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
           finish_verdict_metrics(clips[r], row);
+          if (sanity) row.quarter_series = quarter_clips[r].series;
         }
         if (sanity)
           for (SanityResult result : kSanityResults) table.sanity.push_back(sanity_clips[m].row(id, materials[m], result));

@@ -17,6 +17,15 @@ SeedReference seed_reference(Image display, const Image& tonemapped_frame, const
   return r;
 }
 
+std::vector<double> video_losses(const VideoVdpReference& reference, const GreyClip& clip) {
+  const VideoVdpResult result = reference.compare(clip);
+  double frame_mean = 0.0;
+  for (const double jod : result.frame_jod) frame_mean += jod / static_cast<double>(result.frame_jod.size());
+  std::vector<double> losses;
+  for (const double jod : result.frame_jod) losses.push_back((10.0 - jod) - (10.0 - frame_mean) + (10.0 - result.jod));
+  return losses;
+}
+
 std::vector<std::vector<VideoVdpReference>> video_references(const TradeConfig& config,
                                                              const std::vector<std::vector<ClipFrames>>& reference_clips) {
   const std::size_t n_materials = reference_clips.size(), seeds = n_materials ? reference_clips[0].size() : 0;

@@ -46,6 +46,9 @@ struct ClipFrames {
   }
 };
 
+// The video metric's per-frame losses of a clip against one reference (ClipRecorder::finish_video).
+std::vector<double> video_losses(const VideoVdpReference& reference, const GreyClip& clip);
+
 // A clip's state across frames: its previous display frame, its per-seed series, the sums of
 // the flicker error's parts and, for the video metric, its frames.
 struct ClipRecorder {
@@ -85,15 +88,14 @@ struct ClipRecorder {
   // is per frame, so that its interval sees the variation over the frames (animation_error.hpp):
   // the frames' losses (10 - VideoVdpResult::frame_jod) shifted so that their mean is the clip's
   // loss, 10 - JOD.
-  void finish_video(std::span<const VideoVdpReference> references) {
+  // `also` (optional): another recorder of the same frames against other references (the quarter-
+  // sample ground truth's), whose video series are measured on these frames before they are dropped.
+  void finish_video(std::span<const VideoVdpReference> references, ClipRecorder* also = nullptr,
+                    std::span<const VideoVdpReference> also_references = {}) {
     const GreyClip clip = frames.grey();
-    for (std::size_t s = 0; s < references.size(); ++s) {
-      const VideoVdpResult result = references[s].compare(clip);
-      double frame_mean = 0.0;
-      for (const double jod : result.frame_jod) frame_mean += jod / static_cast<double>(result.frame_jod.size());
-      series.video[s].clear();
-      for (const double jod : result.frame_jod) series.video[s].push_back((10.0 - jod) - (10.0 - frame_mean) + (10.0 - result.jod));
-    }
+    for (std::size_t s = 0; s < references.size(); ++s) series.video[s] = video_losses(references[s], clip);
+    if (also)
+      for (std::size_t s = 0; s < also_references.size(); ++s) also->series.video[s] = video_losses(also_references[s], clip);
     frames = ClipFrames();
   }
 };

@@ -55,7 +55,7 @@ constexpr int kMinAssetAnimationStrata = 16;
 // highlight at alpha 0.0025 covers a small part of a pixel; with fewer samples its two seeds
 // catch different parts of it, and the verdict there turned with the samples: between 64 and
 // 1024 spp on the teapots, between 256 and 4096 on ClearCoatTest and 2CylinderEngine
-// (docs/TEMPORAL.md). Where 4096 is still too few, the sanity suite's converged rule names the
+// (docs/TEMPORAL.md). Where 4096 is still too few, the sanity suite's stable rule names the
 // cell. A mesh covers few pixels, so these cost seconds; the normal-mapped spheres keep the
 // preset's samples.
 constexpr int kMinGltfStrata = 64;

@@ -240,6 +240,9 @@ struct TradeRow : RowMetrics, VerdictMetrics<Interval> {
   double flicker_excess = 0.0;  // flicker_error's parts, means over pairs and seeds
   double flicker_missing = 0.0;
   AnimationSeries series;
+  // The same clip against the sanity suite's quarter-sample ground truth alone ([0]; empty without
+  // the suite): the suite's stable rule reads each verdict against it and against the first seed.
+  AnimationSeries quarter_series;
 };
 
 // The images behind the rows of one (scene, material): frame 0 at the main resolution.

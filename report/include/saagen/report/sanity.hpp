@@ -11,11 +11,11 @@
 //                    interval in at least one metric, and delayed is worse than the frames it is
 //                    made of shown on time (another seed), in the image or temporal metric or the
 //                    lag (animation_error.hpp);
-//   converged        per alpha: another seed is closer to the first seed than the quarter-sample
-//                    ground truth, beyond the interval in the image error (paired over the frames)
-//                    and in the temporal error. A ground truth that cannot tell its samples from a
-//                    quarter of them has not converged there: its noise ranks the results, and it
-//                    favours those that miss what it misses (docs/TEMPORAL.md);
+//   stable           per alpha: no configuration's standing against no SAA reverses (beats
+//                    against one ground truth, loses or is mixed against the other) between the
+//                    first seed's ground truth and one with a quarter of its samples, each read
+//                    alone. Where one does, the ground truth's noise decides that comparison: its
+//                    verdict has not converged (docs/TEMPORAL.md);
 //   never wins       entered as configurations beside every measured one (blurred too), no
 //                    degenerate result (delayed, frozen, no highlight) is the configuration the
 //                    verdict would choose against no SAA on the scene (the decision's rule: among
@@ -44,12 +44,22 @@ struct SanityEntry {
   double lag = 0.0;                                       // mean lag (animation_error.hpp)
 };
 
-// The converged rule at one alpha: another seed against the quarter-sample ground truth (below 0:
-// another seed is closer to the first seed).
+// A configuration whose standing against no SAA on one cell moves once the ground truth's bias is
+// taken out (the stable rule): "beats", "ties" or "against" (loses or mixed).
+struct StandingMove {
+  std::string configuration;
+  std::string standing;      // as the verdict reads it
+  std::string extrapolated;  // with the bias taken out
+};
+
+// The stable rule at one alpha: the configurations compared with no SAA, those whose standing
+// moves, and those among them that reverse (beats <-> against).
 struct Convergence {
   double alpha = 0.0;
-  MetricDifference image, temporal;
-  bool converged = false;  // another seed beats the quarter (the verdict's rule)
+  int comparisons = 0;
+  std::vector<StandingMove> moved;
+  std::vector<std::string> reversed;  // configuration ids
+  bool converged = false;             // none reversed
 };
 
 struct SceneSanity {
@@ -62,14 +72,14 @@ struct SceneSanity {
   std::vector<std::string> failures;       // one line per broken rule; empty: passed
   std::string verdict_choice;              // the verdict's choice with the degenerate results entered ("": no filter)
   std::vector<Convergence> convergence;    // per alpha
-  std::vector<double> unconverged_alphas;  // the alphas the converged rule failed at
+  std::vector<double> unconverged_alphas;  // the alphas the stable rule failed at
 };
 
 // Every scene of the table that has sanity rows.
 std::vector<SceneSanity> check_sanity(const measure::TradeTable& table);
 // The suite's table (one block per scene) and a last line: passed, or how many rules failed.
 std::string format_sanity(const std::vector<SceneSanity>& scenes);
-// One line naming the cells (scene, alpha) whose ground truth failed the converged rule, for the
+// One line naming the cells (scene, alpha) whose verdict failed the stable rule, for the
 // end of the verdict ("" when there are none).
 std::string format_unconverged(const std::vector<SceneSanity>& scenes);
 // The same for `saagen bench --json` ("sanity_checks").
