@@ -11,11 +11,12 @@
 //                    interval in at least one metric, and delayed is worse than the frames it is
 //                    made of shown on time (another seed), in the image or temporal metric or the
 //                    lag (animation_error.hpp);
-//   stable           per alpha: no configuration's standing against no SAA reverses (beats
-//                    against one ground truth, loses or is mixed against the other) between the
-//                    first seed's ground truth and one with a quarter of its samples, each read
-//                    alone. Where one does, the ground truth's noise decides that comparison: its
-//                    verdict has not converged (docs/TEMPORAL.md);
+//   stable           per alpha: no configuration's standing against no SAA reverses (beats <->
+//                    loses or mixed) between the verdict's reading and the same comparison with
+//                    the bias of the ground truth's samples taken out (Richardson extrapolation
+//                    from its reading against the quarter-sample ground truth). Where one does,
+//                    more samples would change that comparison: the verdict has not converged
+//                    there (docs/TEMPORAL.md);
 //   never wins       entered as configurations beside every measured one (blurred too), no
 //                    degenerate result (delayed, frozen, no highlight) is the configuration the
 //                    verdict would choose against no SAA on the scene (the decision's rule: among
