@@ -346,10 +346,8 @@ void compare_clips(const TradeConfig& config, const std::vector<std::vector<Clip
   parallel_rows(static_cast<int>(clips.size()), config.threads, [&](int i) {
     const std::size_t r = static_cast<std::size_t>(i);
     const std::span<const VideoVdpReference> material(references[r / n_keys]);
-    if (quarter_clips.empty())
-      clips[r].finish_video(material.first(seeds));
-    else
-      clips[r].finish_video(material.first(seeds), &quarter_clips[r], material.subspan(seeds));
+    if (!quarter_clips.empty()) quarter_clips[r].series.video[0] = video_losses(material[seeds], clips[r].frames.grey());
+    clips[r].finish_video(material.first(seeds));
   });
   parallel_rows(static_cast<int>(sanity_clips.size() * kSanityResults.size()), config.threads, [&](int i) {
     const std::size_t m = static_cast<std::size_t>(i) / kSanityResults.size();

@@ -88,14 +88,9 @@ struct ClipRecorder {
   // is per frame, so that its interval sees the variation over the frames (animation_error.hpp):
   // the frames' losses (10 - VideoVdpResult::frame_jod) shifted so that their mean is the clip's
   // loss, 10 - JOD.
-  // `also` (optional): another recorder of the same frames against other references (the quarter-
-  // sample ground truth's), whose video series are measured on these frames before they are dropped.
-  void finish_video(std::span<const VideoVdpReference> references, ClipRecorder* also = nullptr,
-                    std::span<const VideoVdpReference> also_references = {}) {
+  void finish_video(std::span<const VideoVdpReference> references) {
     const GreyClip clip = frames.grey();
     for (std::size_t s = 0; s < references.size(); ++s) series.video[s] = video_losses(references[s], clip);
-    if (also)
-      for (std::size_t s = 0; s < also_references.size(); ++s) also->series.video[s] = video_losses(also_references[s], clip);
     frames = ClipFrames();
   }
 };

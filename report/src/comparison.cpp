@@ -54,6 +54,11 @@ decision::Comparison to_decision(const PairedComparison& c) {
   return {decision_difference(c.image), decision_difference(temporal_metric(c)), decision_difference(c.lag)};
 }
 
+namespace {
+// The ground truth's noise is larger than a quarter of the difference (MetricDifference).
+bool limited_by_ground_truth(const MetricDifference& d) { return d.ground_truth_sd > 0.25 * std::fabs(d.difference.mean); }
+}  // namespace
+
 MetricDifference compare_series(std::span<const measure::SeedSeries> a, std::span<const measure::SeedSeries> b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_series: different cell counts");
   std::vector<measure::SeedSeries> differences;
@@ -62,7 +67,15 @@ MetricDifference compare_series(std::span<const measure::SeedSeries> a, std::spa
   MetricDifference d;
   d.difference = measure::series_interval(differences);
   d.ground_truth_sd = measure::series_ground_truth_sd(differences);
-  d.ground_truth_limited = d.ground_truth_sd > 0.25 * std::fabs(d.difference.mean);
+  d.ground_truth_limited = limited_by_ground_truth(d);
+  return d;
+}
+
+MetricDifference shifted(MetricDifference d, double shift) {
+  d.difference.mean += shift;
+  d.difference.low += shift;
+  d.difference.high += shift;
+  d.ground_truth_limited = limited_by_ground_truth(d);
   return d;
 }
 

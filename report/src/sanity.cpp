@@ -5,7 +5,6 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <optional>
 #include <span>
@@ -128,13 +127,8 @@ CellReading read_cell(const measure::SeedSeries& configuration, const measure::S
 // the converged difference is the verdict's minus a third of (quarter - verdict). The interval
 // moves with the mean; the ground truth's share of it (ground_truth_limited) is judged anew.
 MetricDifference extrapolated(const CellReading& reading) {
-  MetricDifference d = reading.verdict;
-  const double bias = (reading.quarter_mean - d.difference.mean) / 3.0;
-  d.difference.mean -= bias;
-  d.difference.low -= bias;
-  d.difference.high -= bias;
-  d.ground_truth_limited = d.ground_truth_sd > 0.25 * std::fabs(d.difference.mean);
-  return d;
+  const double bias = (reading.quarter_mean - reading.verdict.difference.mean) / 3.0;
+  return shifted(reading.verdict, -bias);
 }
 
 // How a configuration compares with no SAA on one cell, as the decision reads it: it beats no SAA

@@ -31,6 +31,10 @@ struct MetricDifference {
   bool ground_truth_limited = false;
 };
 
+// The difference moved by `shift` (its mean and interval), the ground truth's share of it
+// (ground_truth_limited) judged anew at the moved mean.
+MetricDifference shifted(MetricDifference difference, double shift);
+
 enum class MetricOutcome { better, tie, worse };
 // better: the interval lies below 0; worse: above; tie: it spans 0, or the ground truth limits.
 MetricOutcome outcome_of(const MetricDifference& difference);
