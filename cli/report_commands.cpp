@@ -372,7 +372,8 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
       ->add_option("--truth-samples-scale", common.truth_samples_scale,
                    "Every ground truth with this many times the strata per axis (its square times the samples; e.g. 2: the medium "
                    "preset's glTF scenes at 16384 spp instead of 4096): where the sanity suite finds a verdict that has not "
-                   "converged (a configuration's standing against no SAA changes with a quarter of the ground truth's samples)")
+                   "converged (a configuration's standing against no SAA reverses once the bias of the ground truth's samples is "
+                   "taken out)")
       ->check(CLI::Range(1, 8));
   command->add_flag("--exact-lobe", common.exact_lobe,
                     "Also evaluate every filter's kernel with the exact filtered GGX (GGX convolved with the kernel by quadrature; rows "

@@ -16,10 +16,14 @@ import sys
 
 def interval(metric):
     """The difference with its 95 % interval, and the bench's outcome for that metric (a difference
-    within the ground truth's own noise is a tie whatever its interval: "tie: ground truth's noise")."""
+    within the ground truth's own noise, or one whose call the bias of the ground truth's samples
+    would change, is a tie whatever its interval: "tie: ground truth's noise", "tie: ground truth's
+    samples")."""
     text = f"{metric['mean']:+.4g} [{metric['low']:+.4g}, {metric['high']:+.4g}]"
     if metric.get('ground_truth_limited'):
         return text + " (tie: ground truth's noise)"
+    if metric.get('bias_limited'):
+        return text + " (tie: ground truth's samples)"
     return text + (f" ({metric['outcome']})" if 'outcome' in metric else "")
 
 

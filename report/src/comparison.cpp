@@ -10,7 +10,7 @@
 namespace saagen::report {
 
 MetricOutcome outcome_of(const MetricDifference& d) {
-  if (d.ground_truth_limited) return MetricOutcome::tie;
+  if (d.ground_truth_limited || d.bias_limited) return MetricOutcome::tie;
   if (d.difference.high < 0.0) return MetricOutcome::better;
   if (d.difference.low > 0.0) return MetricOutcome::worse;
   return MetricOutcome::tie;
@@ -44,7 +44,7 @@ namespace {
 
 decision::Difference decision_difference(const MetricDifference& d) {
   decision::Difference out{d.difference.mean, d.difference.low, d.difference.high};
-  if (d.ground_truth_limited) out.low = std::min(out.low, 0.0), out.high = std::max(out.high, 0.0);
+  if (d.ground_truth_limited || d.bias_limited) out.low = std::min(out.low, 0.0), out.high = std::max(out.high, 0.0);
   return out;
 }
 
@@ -79,6 +79,52 @@ MetricDifference shifted(MetricDifference d, double shift) {
   return d;
 }
 
+MetricDifference without_sample_bias(const MetricDifference& d) {
+  MetricDifference unbiased = shifted(d, -d.sample_bias.value_or(0.0));
+  unbiased.sample_bias.reset();
+  unbiased.bias_limited = false;
+  return unbiased;
+}
+
+namespace {
+
+// `d` against the same cells' reading against the quarter-sample ground truth: its sample_bias,
+// and whether the call holds once it is taken out.
+void judge_sample_bias(MetricDifference& d, const MetricDifference& quarter) {
+  d.sample_bias = (quarter.difference.mean - d.difference.mean) / 3.0;
+  d.bias_limited = outcome_of(d) != outcome_of(without_sample_bias(d));
+}
+
+bool measured(const measure::SeedSeries& series) { return !series[0].empty(); }
+
+// One metric of every cell (`metric` of the AnimationSeries): the configuration's and the
+// baseline's, and their readings against the quarter-sample ground truth where every cell has them.
+struct MetricCells {
+  std::vector<measure::SeedSeries> a, b, quarter_a, quarter_b;
+};
+
+MetricCells metric_cells(std::span<const CellPair> cells, measure::SeedSeries measure::AnimationSeries::*metric) {
+  MetricCells out;
+  bool quarters = true;
+  for (const CellPair& cell : cells) {
+    out.a.push_back(cell.configuration->*metric);
+    out.b.push_back(cell.baseline->*metric);
+    quarters = quarters && cell.configuration_quarter && cell.baseline_quarter && measured(cell.configuration_quarter->*metric) &&
+               measured(cell.baseline_quarter->*metric);
+    if (quarters) out.quarter_a.push_back(cell.configuration_quarter->*metric), out.quarter_b.push_back(cell.baseline_quarter->*metric);
+  }
+  if (!quarters) out.quarter_a.clear(), out.quarter_b.clear();
+  return out;
+}
+
+MetricDifference compare_metric(const MetricCells& cells) {
+  MetricDifference d = compare_series(cells.a, cells.b);
+  if (!cells.quarter_a.empty()) judge_sample_bias(d, compare_series(cells.quarter_a, cells.quarter_b));
+  return d;
+}
+
+}  // namespace
+
 MetricDifference lag_of(std::span<const measure::SeedSeries> cells) {
   const bool measured =
       !cells.empty() && std::all_of(cells.begin(), cells.end(), [](const measure::SeedSeries& s) { return !s[0].empty(); });
@@ -90,24 +136,14 @@ MetricDifference lag_of(std::span<const measure::SeedSeries> cells) {
 }
 
 PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells) {
-  std::vector<measure::SeedSeries> image_a, image_b, flicker_a, flicker_b, video_a, video_b, lag_a;
-  for (const CellPair& cell : cells) {
-    image_a.push_back(cell.configuration->image);
-    image_b.push_back(cell.baseline->image);
-    flicker_a.push_back(cell.configuration->flicker);
-    flicker_b.push_back(cell.baseline->flicker);
-    video_a.push_back(cell.configuration->video);
-    video_b.push_back(cell.baseline->video);
-    lag_a.push_back(cell.configuration->lag);
-  }
-  PairedComparison c{configuration, baseline, static_cast<int>(image_a.size()), {}, {}, std::nullopt, {}};
+  PairedComparison c{configuration, baseline, static_cast<int>(cells.size()), {}, {}, std::nullopt, {}};
   if (c.cells == 0) return c;
-  c.image = compare_series(image_a, image_b);
-  c.flicker = compare_series(flicker_a, flicker_b);
-  const auto measured = [](const measure::SeedSeries& series) { return !series[0].empty(); };
-  if (std::all_of(video_a.begin(), video_a.end(), measured) && std::all_of(video_b.begin(), video_b.end(), measured))
-    c.video = compare_series(video_a, video_b);
-  c.lag = lag_of(lag_a);
+  c.image = compare_metric(metric_cells(cells, &measure::AnimationSeries::image));
+  c.flicker = compare_metric(metric_cells(cells, &measure::AnimationSeries::flicker));
+  const MetricCells video = metric_cells(cells, &measure::AnimationSeries::video);
+  if (std::all_of(video.a.begin(), video.a.end(), measured) && std::all_of(video.b.begin(), video.b.end(), measured))
+    c.video = compare_metric(video);
+  c.lag = lag_of(metric_cells(cells, &measure::AnimationSeries::lag).a);
   return c;
 }
 
@@ -131,7 +167,9 @@ PairedComparison compare_configurations(const ConfigurationRows& rows, const std
   for (const measure::TradeRow* row : rows.of(configuration)) {
     if (!keep(*row)) continue;
     const auto base = baseline_rows.find({row->scene, row->alpha});
-    if (base != baseline_rows.end()) cells.push_back({&row->series, &base->second->series});
+    if (base == baseline_rows.end()) continue;
+    const measure::TradeRow& baseline_row = *base->second;
+    cells.push_back({&row->series, &baseline_row.series, &row->quarter_series, &baseline_row.quarter_series});
   }
   return compare_cells(configuration, baseline, cells);
 }

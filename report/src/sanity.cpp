@@ -107,30 +107,6 @@ std::string verdict_choice(const std::map<std::string, Clips>& candidates, const
   return chosen;
 }
 
-// One metric of a configuration against no SAA on one cell: the verdict's reading (against both
-// ground-truth seeds) and the same difference's mean against the quarter-sample ground truth alone.
-struct CellReading {
-  MetricDifference verdict;
-  double quarter_mean = 0.0;
-};
-
-CellReading read_cell(const measure::SeedSeries& configuration, const measure::SeedSeries& none,
-                      const measure::SeedSeries& configuration_quarter, const measure::SeedSeries& none_quarter) {
-  return {compare_series(std::span(&configuration, 1), std::span(&none, 1)),
-          compare_series(std::span(&configuration_quarter, 1), std::span(&none_quarter, 1)).difference.mean};
-}
-
-// The verdict's difference moved by the bias its ground truth's samples leave, by Richardson
-// extrapolation (L. F. Richardson, 1911): a metric against a Monte Carlo ground truth of N samples
-// is biased by its noise, about c / N (for a squared error exactly: the ground truth's variance,
-// sigma^2 / N), so the quarter-sample reading is biased by 4 c / N, their difference is 3 c / N and
-// the converged difference is the verdict's minus a third of (quarter - verdict). The interval
-// moves with the mean; the ground truth's share of it (ground_truth_limited) is judged anew.
-MetricDifference extrapolated(const CellReading& reading) {
-  const double bias = (reading.quarter_mean - reading.verdict.difference.mean) / 3.0;
-  return shifted(reading.verdict, -bias);
-}
-
 // How a configuration compares with no SAA on one cell, as the decision reads it: it beats no SAA
 // (a candidate), loses or is mixed (it loses on the content, never taken), or ties (neither).
 enum class Standing { beats, ties, against };
@@ -152,9 +128,12 @@ std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTa
 
 // stable, per alpha: every configuration's standing against no SAA (beats; ties; loses or mixed,
 // "against") is read as the verdict reads it, and again with the bias the ground truth's samples
-// leave taken out (extrapolated(), from the quarter-sample ground truth). The verdict has
-// converged where no standing reverses (beats <-> against); a standing that moves to or from a
-// tie is recorded, not failed (an interval's end near 0 moves with any estimate). It asks the
+// leave taken out (without_sample_bias, from the quarter-sample ground truth). The verdict reads a
+// metric whose call that bias would change as a tie (comparison.hpp, bias_limited), so what can
+// still reverse is a standing whose other metric turns: beats on the video error with the image
+// error a tie that is worse once the bias is out. The verdict has converged where no standing
+// reverses (beats <-> against); a standing that moves to or from a tie is recorded, not failed
+// (an interval's end near 0 moves with any estimate). It asks the
 // question the decision depends on: whether more samples in the ground truth would change what
 // it decides. Noise in a ground truth is not neutral: one that catches a highlight in a few pixels
 // by chance favours the results that miss it as it does, as 1-spp no SAA does (docs/TEMPORAL.md).
@@ -170,10 +149,11 @@ void check_stability(const measure::TradeTable& table, const std::vector<double>
       if (id == "none" || row->quarter_series.image[0].empty()) continue;
       ++cell.comparisons;
       const measure::TradeRow& base = *none->second;
-      const CellReading image = read_cell(row->series.image, base.series.image, row->quarter_series.image, base.quarter_series.image);
-      const CellReading temporal = read_cell(temporal_series(row->series), temporal_series(base.series),
-                                             temporal_series(row->quarter_series), temporal_series(base.quarter_series));
-      const Standing read = standing(image.verdict, temporal.verdict), converged = standing(extrapolated(image), extrapolated(temporal));
+      const CellPair cell_pair{&row->series, &base.series, &row->quarter_series, &base.quarter_series};
+      const PairedComparison read_as_verdict = compare_cells(id, "none", std::span(&cell_pair, 1));
+      const MetricDifference& temporal = temporal_metric(read_as_verdict);
+      const Standing read = standing(read_as_verdict.image, temporal);
+      const Standing converged = standing(without_sample_bias(read_as_verdict.image), without_sample_bias(temporal));
       if (read == converged) continue;
       cell.moved.push_back({id, std::string(standing_name(read)), std::string(standing_name(converged))});
       if (read != Standing::ties && converged != Standing::ties) cell.reversed.push_back(id);

@@ -150,6 +150,7 @@ nlohmann::json difference_json(const MetricDifference& d) {
   nlohmann::json out = interval_json(d.difference);
   out["ground_truth_sd"] = d.ground_truth_sd;
   out["ground_truth_limited"] = d.ground_truth_limited;
+  if (d.sample_bias) out["sample_bias"] = *d.sample_bias, out["bias_limited"] = d.bias_limited;
   out["outcome"] = std::string(metric_outcome_name(outcome_of(d)));
   return out;
 }

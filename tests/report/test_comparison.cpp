@@ -1,5 +1,6 @@
 // The lag gate (report/comparison.hpp, lag_of): a result is late when its frames are closer to
-// the ground truth's previous frames than to their own beyond the interval.
+// the ground truth's previous frames than to their own beyond the interval. The bias of the ground
+// truth's samples (MetricDifference::sample_bias): a call it would change is a tie.
 #include "saagen/report/comparison.hpp"
 
 #include <gtest/gtest.h>
@@ -40,6 +41,55 @@ TEST(LagOf, WithoutTheSeriesItIsATie) {
   const report::MetricDifference d = report::lag_of(empty);
   EXPECT_EQ(report::outcome_of(d), report::MetricOutcome::tie);
   EXPECT_EQ(d.difference.mean, 0.0);
+}
+
+// One cell's image series of 16 frames, `value` against both seeds with a small alternating noise.
+measure::AnimationSeries image_cell(double value) {
+  measure::AnimationSeries cell;
+  cell.image = lag_series(value);
+  return cell;
+}
+
+// Three cells where the configuration reads 0.002 worse than no SAA against the full ground truth.
+// Against the quarter-sample one it reads `quarter_difference` worse; the bias of the full
+// ground truth's samples is a third of the gap, (quarter - full) / 3 (Richardson extrapolation).
+report::PairedComparison image_worse_by_0_002(double quarter_difference) {
+  const measure::AnimationSeries configuration = image_cell(0.012), none = image_cell(0.010);
+  const measure::AnimationSeries configuration_quarter = image_cell(0.010 + quarter_difference), none_quarter = image_cell(0.010);
+  const std::vector<report::CellPair> cells(3, {&configuration, &none, &configuration_quarter, &none_quarter});
+  return report::compare_cells("filter", "none", cells);
+}
+
+TEST(SampleBias, ACallTheBiasWouldChangeIsATie) {
+  // Quarter 0.008 worse: the bias is 0.002, all of the difference.
+  const report::PairedComparison biased = image_worse_by_0_002(0.008);
+  EXPECT_NEAR(biased.image.sample_bias.value(), 0.002, 1e-9);
+  EXPECT_TRUE(biased.image.bias_limited);
+  EXPECT_EQ(report::outcome_of(biased.image), report::MetricOutcome::tie);
+  EXPECT_NEAR(report::without_sample_bias(biased.image).difference.mean, 0.0, 1e-9);
+  // The decision reads it as a tie too: its interval is widened to include 0.
+  const decision::Comparison read = report::to_decision(biased);
+  EXPECT_LE(read.image.low, 0.0);
+  EXPECT_GE(read.image.high, 0.0);
+}
+
+TEST(SampleBias, ACallThatHoldsWithoutTheBiasStands) {
+  // Quarter 0.0035 worse: the bias is 0.0005 and the difference without it, 0.0015, is still worse.
+  const report::PairedComparison held = image_worse_by_0_002(0.0035);
+  EXPECT_NEAR(held.image.sample_bias.value(), 0.0005, 1e-9);
+  EXPECT_FALSE(held.image.bias_limited);
+  EXPECT_EQ(report::outcome_of(held.image), report::MetricOutcome::worse);
+  EXPECT_GT(report::to_decision(held).image.low, 0.0);
+}
+
+// Cells without the quarter-sample readings (a TAA row, `saagen score` clips): no sample bias.
+TEST(SampleBias, WithoutTheQuarterSampleReadingsThereIsNone) {
+  const measure::AnimationSeries configuration = image_cell(0.012), none = image_cell(0.010);
+  const std::vector<report::CellPair> cells(3, {&configuration, &none});
+  const report::PairedComparison c = report::compare_cells("filter", "none", cells);
+  EXPECT_FALSE(c.image.sample_bias.has_value());
+  EXPECT_FALSE(c.image.bias_limited);
+  EXPECT_EQ(report::outcome_of(c.image), report::MetricOutcome::worse);
 }
 
 }  // namespace

@@ -29,14 +29,28 @@ struct MetricDifference {
   // The ground truth's noise is larger than a quarter of the difference: too noisy to call, a tie
   // whatever the interval says (more ground-truth samples would settle it).
   bool ground_truth_limited = false;
+  // The bias the ground truth's finite samples leave in the difference, where every cell was also
+  // read against the quarter-sample ground truth (the sanity suite's; TradeRow::quarter_series):
+  // by Richardson extrapolation (L. F. Richardson, 1911), a metric against an N-sample Monte Carlo
+  // ground truth is biased by about c / N (for a squared error exactly the ground truth's variance),
+  // so the quarter-sample reading is biased by 4 c / N and the bias is (quarter - difference) / 3.
+  std::optional<double> sample_bias;
+  // The call (better, tie, worse) and the call with that bias taken out (without_sample_bias)
+  // differ: more ground-truth samples would change it, so it is a tie whatever the interval says.
+  bool bias_limited = false;
 };
 
 // The difference moved by `shift` (its mean and interval), the ground truth's share of it
 // (ground_truth_limited) judged anew at the moved mean.
 MetricDifference shifted(MetricDifference difference, double shift);
 
+// The difference with its sample_bias taken out (itself where it has none): what more ground-truth
+// samples would read, with the same interval width.
+MetricDifference without_sample_bias(const MetricDifference& difference);
+
 enum class MetricOutcome { better, tie, worse };
-// better: the interval lies below 0; worse: above; tie: it spans 0, or the ground truth limits.
+// better: the interval lies below 0; worse: above; tie: it spans 0, or the ground truth limits
+// (its noise, ground_truth_limited, or its samples' bias, bias_limited).
 MetricOutcome outcome_of(const MetricDifference& difference);
 std::string_view metric_outcome_name(MetricOutcome outcome);  // "better", "tie", "worse"
 
@@ -83,9 +97,13 @@ PairedComparison compare_configurations(const ConfigurationRows& rows, const std
 // The same over given cells: per cell, the configuration's series and the baseline's (of the same
 // content, frames and ground-truth seeds); what compare_configurations computes once it has
 // paired a table's rows, and `saagen score` on clips rendered elsewhere.
+// Where both also have their series against the quarter-sample ground truth, each metric's
+// difference carries its sample_bias (and bias_limited) when every cell has them.
 struct CellPair {
   const measure::AnimationSeries* configuration = nullptr;
   const measure::AnimationSeries* baseline = nullptr;
+  const measure::AnimationSeries* configuration_quarter = nullptr;
+  const measure::AnimationSeries* baseline_quarter = nullptr;
 };
 PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells);
 
@@ -96,8 +114,8 @@ std::string_view comparison_outcome_name(const PairedComparison& comparison);
 
 // The comparison as saagen's decision reads it (saagen/decision.hpp): image = image_error's
 // difference, temporal = temporal_metric()'s, lag = the lag's. A difference the ground truth limits
-// (MetricDifference::ground_truth_limited) is a tie whatever its interval: its interval is
-// widened to include 0.
+// (MetricDifference::ground_truth_limited or bias_limited) is a tie whatever its interval: its
+// interval is widened to include 0.
 decision::Comparison to_decision(const PairedComparison& comparison);
 
 // The same for two series of one cell (a sanity result against a row, two rows).
