@@ -126,9 +126,7 @@ MetricDifference compare_metric(const MetricCells& cells) {
 }  // namespace
 
 MetricDifference lag_of(std::span<const measure::SeedSeries> cells) {
-  const bool measured =
-      !cells.empty() && std::all_of(cells.begin(), cells.end(), [](const measure::SeedSeries& s) { return !s[0].empty(); });
-  if (!measured) return {};
+  if (cells.empty() || !std::all_of(cells.begin(), cells.end(), measured)) return {};
   MetricDifference d;
   d.difference = measure::series_interval(cells);
   d.ground_truth_sd = measure::series_ground_truth_sd(cells);
