@@ -2,6 +2,7 @@
 // the ground truth's previous frames than to their own beyond the interval. The bias of the ground
 // truth's samples (MetricDifference::sample_bias): a call it would change is a tie.
 #include "saagen/report/comparison.hpp"
+#include "saagen/report/trade_json.hpp"
 
 #include <gtest/gtest.h>
 
@@ -71,6 +72,11 @@ TEST(SampleBias, ACallTheBiasWouldChangeIsATie) {
   const decision::Comparison read = report::to_decision(biased);
   EXPECT_LE(read.image.low, 0.0);
   EXPECT_GE(read.image.high, 0.0);
+  // The bench's JSON carries both, beside the outcome they give.
+  const nlohmann::json written = report::difference_json(biased.image);
+  EXPECT_NEAR(written.at("sample_bias").get<double>(), 0.002, 1e-9);
+  EXPECT_TRUE(written.at("bias_limited").get<bool>());
+  EXPECT_EQ(written.at("outcome"), "tie");
 }
 
 TEST(SampleBias, ACallThatHoldsWithoutTheBiasStands) {
@@ -90,6 +96,7 @@ TEST(SampleBias, WithoutTheQuarterSampleReadingsThereIsNone) {
   EXPECT_FALSE(c.image.sample_bias.has_value());
   EXPECT_FALSE(c.image.bias_limited);
   EXPECT_EQ(report::outcome_of(c.image), report::MetricOutcome::worse);
+  EXPECT_FALSE(report::difference_json(c.image).contains("sample_bias"));
 }
 
 }  // namespace
