@@ -557,7 +557,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
       std::vector<TemporalDifference> differences(n_rows);
       std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
       std::vector<Image> previous_variant(n_rows);
-      std::vector<std::vector<Image>> reference_frames, second_seed_frames;  // [frame][material], for the +taa rows
+      AnimationGroundTruths taa_truths;  // for the +taa rows
       // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
       const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
       const bool sanity = config.sanity && seeds == 2 && config.frames >= 2;
@@ -579,14 +579,14 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
         const Scene moved = trade_animation_frame(sized, id, frame);
         const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
         const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
-        if (config.taa) reference_frames.push_back(frame_gt.images);
+        if (config.taa) taa_truths.first.push_back(frame_gt.images);
         base += sizes.flicker_gt;
         std::optional<GroundTruth> other_gt, quarter_gt;
         if (seeds == 2) {
           GroundTruthSettings other = flicker_settings;
           other.seed = second_seed(flicker_settings.seed);
           other_gt = ground_truth(moved, other, stage, base, false);
-          if (config.taa) second_seed_frames.push_back(other_gt->images);
+          if (config.taa) taa_truths.second.push_back(other_gt->images);
           base += sizes.flicker_gt;
         }
         if (sanity) {
@@ -594,6 +594,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           quarter.seed = third_seed(flicker_settings.seed);
           quarter.strata = std::max(1, flicker_settings.strata / 2);
           quarter_gt = ground_truth(moved, quarter, stage, base, false);
+          if (config.taa) taa_truths.quarter.push_back(quarter_gt->images);
           base += sizes.flicker_gt / 4;
         }
         const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
@@ -685,7 +686,7 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
           base += pixels;
           report(stage, base);
         };
-        append_taa_rows(sized, id, materials, taa_keys(config, id), reference_frames, second_seed_frames, table.rows, shaded,
+        append_taa_rows(sized, id, materials, taa_keys(config, id), taa_truths, table.rows, shaded,
                         config.keep_images ? &table.taa_images : nullptr);
       }
     }

@@ -31,16 +31,21 @@ struct TaaRowKey {
 // The warm-up of a configuration: taa_warmup_frames, or one jitter cycle when 0.
 int taa_warmup(const TradeConfig& config);
 
+// The animation's ground truths the +taa rows are measured against, [frame][material] at the
+// flicker resolution (frames 0 .. config.frames - 1): the first seed's, the second seed's (empty
+// when one was rendered) and the sanity suite's quarter-sample one's (empty without the suite).
+// The verdict metrics read both seeds, as the trade's other rows'; the quarter-sample one gives
+// each row its quarter_series, so that the verdict under TAA judges the ground truth's sample
+// bias as it does without (report/comparison.hpp, bias_limited).
+struct AnimationGroundTruths {
+  std::vector<std::vector<Image>> first, second, quarter;
+};
+
 // The +taa rows of scene `id`, material-major then key order, appended to `rows`.
-// reference_frames[f][m]: the ground truth of animation frame f (0 .. config.frames - 1) for
-// material m at the flicker resolution; second_seed_frames the same with the second ground-truth
-// seed (empty when one was rendered): the verdict metrics read both, as the trade's other rows'.
-// shaded(pixels) reports 1-spp shading work. When
-// `images` is given, each material's last frame (its ground truth and every key's resolved
-// image) is appended to it (TradeTable::taa_images).
+// shaded(pixels) reports 1-spp shading work. When `images` is given, each material's last frame
+// (its ground truth and every key's resolved image) is appended to it (TradeTable::taa_images).
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
-                     const std::vector<std::vector<Image>>& reference_frames, const std::vector<std::vector<Image>>& second_seed_frames,
-                     std::vector<TradeRow>& rows, const std::function<void(std::uint64_t pixels)>& shaded,
-                     std::vector<ImageSet>* images = nullptr);
+                     const AnimationGroundTruths& truths, std::vector<TradeRow>& rows,
+                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images = nullptr);
 
 }  // namespace saagen::measure

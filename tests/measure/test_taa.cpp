@@ -265,6 +265,14 @@ TEST(TaaTrade, EveryConfigurationOnceMoreUnderTaa) {
       EXPECT_EQ(taa.series.lag[seed].size(), 2u);
     }
     EXPECT_NEAR(taa.flip_ldr_animation, mean_interval(taa.series.image[0], 0.0).mean, 1e-9);
+    // And against the sanity suite's quarter-sample ground truth, as the rows without TAA, so that
+    // the verdict under TAA judges the ground truth's sample bias too (report/comparison.hpp).
+    EXPECT_EQ(taa.quarter_series.image[0].size(), 3u);
+    EXPECT_EQ(taa.quarter_series.video[0].size(), 3u);
+    EXPECT_EQ(taa.quarter_series.flicker[0].size(), 2u);
+    EXPECT_EQ(taa.quarter_series.lag[0].size(), 2u);
+    EXPECT_NE(taa.quarter_series.image[0], taa.series.image[0]);  // another ground truth
+    EXPECT_EQ(plain.quarter_series.image[0].size(), 3u);
     EXPECT_GT(taa.image_error.mean, 0.0);
     EXPECT_GT(taa.video_error.mean, 0.0);
     EXPECT_LE(taa.video_error.low, taa.video_error.mean);

@@ -113,6 +113,51 @@ TEST(TaaComparisons, ALateConfigurationIsNotTakenUnderTaa) {
   for (const report::TaaComparisonRow& r : c.rows) EXPECT_NE(r.label, "saagen");
 }
 
+// The rows' series against the quarter-sample ground truth (TradeRow::quarter_series): the same
+// as against the first seed, but none+taa's at (image, video) and deferred-avg+taa's at (0, 0).
+void set_quarter_series(measure::TradeTable& table, double image, double video) {
+  for (measure::TradeRow& r : table.rows) {
+    if (!r.taa) continue;
+    r.quarter_series = r.series;
+    if (r.variant != measure::Variant::none && r.variant != measure::Variant::deferred_avg) continue;
+    const bool none = r.variant == measure::Variant::none;
+    r.quarter_series.image = series(none ? image : 0.0);
+    r.quarter_series.flicker = series(none ? image : 0.0, kFrames - 1);
+    r.quarter_series.video = series(none ? video : 0.0);
+  }
+}
+
+// Under TAA, as without it, a call the ground truth's sample bias would change is a tie
+// (comparison.hpp, bias_limited). Read against the quarter-sample ground truth, deferred-avg+taa
+// leads none+taa by more (image -0.10, video -5.0, against -0.02 and -1.0), so the bias,
+// (quarter - full) / 3, is -0.0267 and -1.33, and without it both calls turn (+0.0067, +0.33):
+// both metrics tie, and with nothing else of saagen's beating TAA alone the verdict is no filter.
+// Where the quarter reading agrees (image -0.03, video -2.5), the call stands.
+TEST(TaaComparisons, UnderTaaACallTheSampleBiasWouldChangeIsATie) {
+  measure::TradeTable table = table_with(-1e-4);
+  set_quarter_series(table, 0.10, 5.0);
+  const report::TaaComparison turned = report::taa_comparisons(table).front();
+  EXPECT_EQ(turned.best_saagen, "");
+  EXPECT_TRUE(turned.verdict.starts_with("no filter")) << turned.verdict;
+  const std::vector<ContentRow> rows = report::measured_taa_rows(table, report::Content::curved);
+  ASSERT_EQ(rows[1].configuration, "deferred-avg");
+  ASSERT_TRUE(rows[1].against_none.has_value());
+  EXPECT_LE(rows[1].against_none->temporal.low, 0.0);  // widened to include 0: a tie
+  EXPECT_GE(rows[1].against_none->temporal.high, 0.0);
+  EXPECT_EQ(report::taa_decisions_json(table)[1]["chosen"], "none");
+
+  set_quarter_series(table, 0.03, 2.5);
+  const report::TaaComparison stands = report::taa_comparisons(table).front();
+  EXPECT_EQ(stands.best_saagen, measure::configuration_id(table.rows[2]));
+  const report::TaaComparisonRow* chosen = find_row(stands, stands.best_saagen);
+  ASSERT_NE(chosen, nullptr);
+  ASSERT_TRUE(chosen->against_taa.has_value() && chosen->against_taa->video.has_value());
+  ASSERT_TRUE(chosen->against_taa->video->sample_bias.has_value());
+  EXPECT_NEAR(*chosen->against_taa->video->sample_bias, (-2.5 - -1.0) / 3.0, 1e-9);
+  EXPECT_FALSE(chosen->against_taa->video->bias_limited);
+  EXPECT_EQ(report::comparison_outcome_name(*chosen->against_taa), "beats");
+}
+
 // Per content type under TAA (what `saagen plan` decides on with taa = true): the +taa rows named
 // as a material uses them, each against none+taa, and the decision over them.
 TEST(TaaComparisons, PerContentTheRowsAreAgainstTaaAloneAndNamedWithoutTaa) {
