@@ -44,24 +44,10 @@ std::vector<std::string> configurations_of(const measure::TradeTable& table, Con
 
 }  // namespace
 
-std::string_view content_name(Content content) {
-  switch (content) {
-    case Content::curved:
-      return "curved";
-    case Content::normal_mapped:
-      return "normal-mapped";
-    case Content::bump:
-      return "bump";
-    case Content::clearcoat:
-      return "clearcoat";
-  }
-  return "?";
-}
-
 Content content_of(measure::SceneId scene) {
   if (measure::is_gltf_coat_scene(scene)) return Content::clearcoat;
   if (measure::scene_has_normal_map(scene)) return Content::normal_mapped;
-  return measure::scene_has_normal_detail(scene) ? Content::bump : Content::curved;
+  return measure::scene_has_normal_detail(scene) ? Content::bumps : Content::curved;
 }
 
 Metrics row_metrics(const measure::TradeRow& row) {
@@ -279,7 +265,7 @@ advice::Content advice_content(Content content) {
       return advice::Content::curved;
     case Content::normal_mapped:
       return advice::Content::normal_mapped;
-    case Content::bump:
+    case Content::bumps:
       return advice::Content::bumps;
     case Content::clearcoat:
       return advice::Content::clearcoat;

@@ -57,8 +57,7 @@ measure::TradeTable small_table() {
 
 const report::Recommendation& verdict(const std::vector<report::Recommendation>& recs, RenderPath path, advice::Content content) {
   const report::Path p = path == RenderPath::forward ? report::Path::forward : report::Path::deferred;
-  const report::Content c = content == advice::Content::curved ? report::Content::curved : report::Content::normal_mapped;
-  const report::Recommendation* found = report::find_recommendation(recs, p, c);
+  const report::Recommendation* found = report::find_recommendation(recs, p, content);
   if (!found) throw std::runtime_error("no verdict");
   return *found;
 }

@@ -14,6 +14,7 @@
 // A configuration "beats" another on a metric when its value is lower.
 #pragma once
 
+#include "saagen/advice.hpp"
 #include "saagen/decision.hpp"
 #include "saagen/measure/trade.hpp"
 #include "saagen/report/cost_table.hpp"
@@ -35,9 +36,12 @@ namespace saagen::report {
 //   clearcoat      the coat layer of a KHR_materials_clearcoat asset (its scene NAME-coat: the
 //                  coat lobe alone, a second filtered lobe); the asset's base lobe is classified
 //                  as any scene (normal-mapped where it has normal textures).
-enum class Content { curved, normal_mapped, bump, clearcoat };
-inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bump, Content::clearcoat};
-std::string_view content_name(Content content);  // "curved", "normal-mapped", "bump", "clearcoat"
+// The planner's content types (saagen/advice.hpp), one enum for the manifest, the planner and the
+// bench.
+using Content = advice::Content;
+inline constexpr Content kContents[] = {Content::curved, Content::normal_mapped, Content::bumps, Content::clearcoat};
+// As a trade table's by_content rows name it: "curved", "normal-mapped", "bump", "clearcoat".
+inline constexpr std::string_view content_name(Content content) { return advice::table_content(content); }
 Content content_of(measure::SceneId scene);
 
 // Means over a set of trade rows (no Fresnel rows: they differ by a dim factor only): the scalar
