@@ -394,7 +394,11 @@ GroundTruthSettings ground_truth_settings(const TradeConfig& sized, bool animati
   return settings;
 }
 
-TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress, const AnimationFrameFn& on_frame) {
+namespace {
+
+// The config's resolutions and strata (each scene's own, sized_for_scene) and TAA options,
+// checked before anything renders.
+void check_trade_config(const TradeConfig& config) {
   for (const SceneId id : config.scenes) {
     const TradeConfig sized = sized_for_scene(config, id);
     if (sized.width <= 0 || sized.height <= 0 || sized.strata <= 0)
@@ -404,295 +408,399 @@ TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn&
   }
   if (config.taa && config.frames < 2) throw std::invalid_argument("trade table: TAA rows need an animation of at least 2 frames");
   if (config.taa) check_taa_options(config.taa_options);
+}
 
-  TradeTable table;
-  table.config = config;
-  const std::vector<Material> materials = trade_materials(config);
-  const std::size_t n_materials = materials.size();
+// A scene's pixels and ground-truth samples, at its own sizes: the progress's work units
+// (ground-truth samples and 1-spp pixel shadings).
+struct SceneSizes {
+  std::uint64_t main_pixels, flicker_pixels, main_gt, flicker_gt;
+};
 
-  // Work units: ground-truth samples and 1-spp pixel shadings, at each scene's sizes.
-  struct Sizes {
-    std::uint64_t main_pixels, flicker_pixels, main_gt, flicker_gt;
-  };
-  const auto sizes_of = [&](SceneId id) {
-    const TradeConfig sized = sized_for_scene(config, id);
-    const std::uint64_t main_pixels = static_cast<std::uint64_t>(sized.width) * sized.height;
-    const std::uint64_t flicker_pixels = static_cast<std::uint64_t>(sized.flicker_width) * sized.flicker_height;
-    return Sizes{main_pixels, flicker_pixels, main_pixels * sized.strata * sized.strata,
-                 flicker_pixels * sized.flicker_strata * sized.flicker_strata};
-  };
-  auto scene_work = [&](SceneId id) {
-    const Sizes sizes = sizes_of(id);
-    const std::uint64_t main_pixels = sizes.main_pixels, flicker_pixels = sizes.flicker_pixels;
-    const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
-    const std::uint64_t taa_shading = config.taa ? static_cast<std::uint64_t>(config.frames + taa_warmup(config)) * flicker_pixels *
-                                                       n_materials * taa_keys(config, id).size()
-                                                 : 0;
-    return sizes.main_gt + main_pixels * shading_per_frame +
-           (config.frames > 0
-                ? config.frames * (static_cast<std::uint64_t>(animation_ground_truths(config) * static_cast<double>(sizes.flicker_gt)) +
-                                   flicker_pixels * shading_per_frame)
-                : 0) +
-           taa_shading;
-  };
-  TradeProgress state;
-  for (SceneId id : config.scenes) state.total += scene_work(id);
-  auto report = [&](const std::string& stage, std::uint64_t done) {
-    state.stage = stage;
-    state.done = done;
-    if (progress) progress(state);
-  };
+SceneSizes scene_sizes(const TradeConfig& config, SceneId id) {
+  const TradeConfig sized = sized_for_scene(config, id);
+  const std::uint64_t main_pixels = static_cast<std::uint64_t>(sized.width) * sized.height;
+  const std::uint64_t flicker_pixels = static_cast<std::uint64_t>(sized.flicker_width) * sized.flicker_height;
+  return {main_pixels, flicker_pixels, main_pixels * sized.strata * sized.strata,
+          flicker_pixels * sized.flicker_strata * sized.flicker_strata};
+}
 
-  std::uint64_t base = 0;
+// The work units one scene takes: its ground truths and its rows' 1-spp shadings, TAA's included.
+std::uint64_t scene_work(const TradeConfig& config, SceneId id, std::size_t n_materials) {
+  const SceneSizes sizes = scene_sizes(config, id);
+  const std::uint64_t shading_per_frame = n_materials * row_keys(config, id).size();
+  const std::uint64_t taa_shading = config.taa ? static_cast<std::uint64_t>(config.frames + taa_warmup(config)) * sizes.flicker_pixels *
+                                                     n_materials * taa_keys(config, id).size()
+                                               : 0;
+  const std::uint64_t animation =
+      config.frames > 0
+          ? config.frames * (static_cast<std::uint64_t>(animation_ground_truths(config) * static_cast<double>(sizes.flicker_gt)) +
+                             sizes.flicker_pixels * shading_per_frame)
+          : 0;
+  return sizes.main_gt + sizes.main_pixels * shading_per_frame + animation + taa_shading;
+}
+
+// One compute_trade_table: the table it fills, its materials, the work done so far (`base`, in
+// work units) and the progress it reports. Scene by scene: frame 0's rows (measure_still), then
+// the animation's figures of the same rows (SceneAnimation), then the +taa rows.
+class TradeRun {
+ public:
+  TradeRun(const TradeConfig& config, const TradeProgressFn& progress, const AnimationFrameFn& on_frame)
+      : config_(config), progress_(progress), on_frame_(on_frame), materials_(trade_materials(config)) {
+    table_.config = config;
+    for (const SceneId id : config.scenes) state_.total += scene_work(config, id, materials_.size());
+  }
+
+  void measure_scene(SceneId id);
+
+  TradeTable finish() {
+    report("done", state_.total);
+    return std::move(table_);
+  }
+
+ private:
+  friend class SceneAnimation;
+
+  void report(const std::string& stage, std::uint64_t done) {
+    state_.stage = stage;
+    state_.done = done;
+    if (progress_) progress_(state_);
+  }
+
   // The checks (check_ground_truth) apply to the ground truths every metric reads: the main image
   // and the first seed's animation. The second seed's and the quarter-sample frames only estimate
   // the ground truth's noise and feed the sanity suite (`checked` false).
-  auto ground_truth = [&](const Scene& scene, const GroundTruthSettings& settings, const std::string& stage, std::uint64_t base,
-                          bool checked = true) {
-    report(stage, base);
+  GroundTruth ground_truth(const Scene& scene, const GroundTruthSettings& settings, const std::string& stage, std::uint64_t at,
+                           bool checked = true) {
+    report(stage, at);
     bool hit = false;
     const auto start = std::chrono::steady_clock::now();
     GroundTruth gt = cached_ground_truth(
-        scene, settings, materials, config.cache_dir, [&](std::uint64_t done, std::uint64_t) { report(stage, base + done); }, &hit);
-    if (checked) check_ground_truth(scene, gt, materials);
+        scene, settings, materials_, config_.cache_dir, [&](std::uint64_t done, std::uint64_t) { report(stage, at + done); }, &hit);
+    if (checked) check_ground_truth(scene, gt, materials_);
     if (hit) {
-      ++table.cache_hits;
+      ++table_.cache_hits;
     } else {
-      ++table.cache_misses;
-      table.ground_truth_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      table.ground_truth_samples += static_cast<std::uint64_t>(settings.width) * settings.height * settings.strata * settings.strata;
+      ++table_.cache_misses;
+      table_.ground_truth_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      table_.ground_truth_samples += static_cast<std::uint64_t>(settings.width) * settings.height * settings.strata * settings.strata;
     }
     return gt;
-  };
+  }
+
   // One image per worker: the rows of a frame run in parallel (for_each_row), each on one thread.
-  auto shade = [&](const FrameBuffers& buffers, const RowKey& key, const Material& material) {
-    return render_variant(buffers.for_prefilter(key.prefilter), key.variant, material, config.params, config.derivative, 1, key.feed,
-                          key.prefilter, config.prefilter_scale, key.lobe);
-  };
+  Image shade(const FrameBuffers& buffers, const RowKey& key, const Material& material) const {
+    return render_variant(buffers.for_prefilter(key.prefilter), key.variant, material, config_.params, config_.derivative, 1, key.feed,
+                          key.prefilter, config_.prefilter_scale, key.lobe);
+  }
+
   // Runs body(r) for the n_materials x n_keys rows of a frame (r = m * n_keys + k) on the
   // configured threads; the progress advances `base` by pixels_per_row for each row done.
   // The images are small (FLIP's convolutions dominate), so rows, not pixels, are the unit.
-  auto for_each_row = [&](std::size_t n_rows, std::uint64_t pixels_per_row, const std::string& stage,
-                          const std::function<void(std::size_t r)>& body) {
-    const std::uint64_t start = base;
+  void for_each_row(std::size_t n_rows, std::uint64_t pixels_per_row, const std::string& stage,
+                    const std::function<void(std::size_t r)>& body) {
+    const std::uint64_t start = base_;
     parallel_rows(
-        static_cast<int>(n_rows), config.threads, [&](int r) { body(static_cast<std::size_t>(r)); },
+        static_cast<int>(n_rows), config_.threads, [&](int r) { body(static_cast<std::size_t>(r)); },
         [&](int done) { report(stage, start + static_cast<std::uint64_t>(done) * pixels_per_row); });
-    base = start + n_rows * pixels_per_row;
-  };
-
-  for (const SceneId id : config.scenes) {
-    const std::string name(scene_name(id));
-    const TradeConfig sized = sized_for_scene(config, id);
-    const Sizes sizes = sizes_of(id);
-    const std::uint64_t main_pixels = sizes.main_pixels, flicker_pixels = sizes.flicker_pixels;
-    const GroundTruthSettings main_settings = ground_truth_settings(sized);
-    const GroundTruthSettings flicker_settings = ground_truth_settings(sized, true);
-    const std::vector<RowKey> keys = row_keys(config, id);
-    const std::size_t n_keys = keys.size();
-
-    // Frame 0 at the main resolution: ground truth, 1-spp images, image metrics.
-    const Scene scene = make_scene(id, 0.0);
-    const GroundTruth gt = ground_truth(scene, main_settings, "ground truth " + name, base);
-    base += sizes.main_gt;
-    report("1-spp variants " + name, base);
-    const FrameBuffers gbuffer = frame_buffers(config, id, scene, sized.width, sized.height);
-    const std::size_t first_row = table.rows.size();
-    // FLIP's reference half once per material: [m] for LDR-FLIP, [n_materials + m] for HDR-FLIP.
-    std::vector<std::optional<GreyFlipReference>> flip_references(config.flip ? 2 * n_materials : 0);
-    parallel_rows(static_cast<int>(flip_references.size()), config.threads, [&](int i) {
-      const std::size_t m = static_cast<std::size_t>(i) % n_materials;
-      flip_references[static_cast<std::size_t>(i)] = i < static_cast<int>(n_materials)
-                                                         ? GreyFlipReference(tonemapped(gt.images[m]), GreyFlipReference::Range::ldr)
-                                                         : GreyFlipReference(gt.images[m], GreyFlipReference::Range::hdr);
-    });
-    std::vector<TradeRow> rows(n_materials * n_keys);
-    std::vector<Image> images(config.keep_images ? rows.size() : 0);
-    for_each_row(rows.size(), main_pixels, "1-spp variants " + name, [&](std::size_t r) {
-      const std::size_t m = r / n_keys;
-      const RowKey& key = keys[r % n_keys];
-      Image image = shade(gbuffer, key, materials[m]);
-      const ImageError e = compare_images(image, gt.images[m]);
-      TradeRow& row = rows[r];
-      row.variant = key.variant;
-      row.feed = key.feed;
-      row.prefilter = key.prefilter;
-      row.lobe = key.lobe;
-      row.scene = id;
-      row.alpha = materials[m].alpha;
-      row.fresnel = materials[m].fresnel;
-      row.rmse_linear = e.rmse_linear;
-      row.rmse_tonemapped = e.rmse_tonemapped;
-      row.max_error = e.max_error;
-      row.non_finite = e.non_finite;
-      if (config.flip) {
-        row.flip_ldr = flip_references[m]->mean_error(tonemapped(image));
-        row.flip_hdr = flip_references[n_materials + m]->mean_error(image);
-      }
-      if (config.keep_images) images[r] = std::move(image);
-    });
-    table.rows.insert(table.rows.end(), rows.begin(), rows.end());
-    if (config.keep_images) {
-      for (std::size_t m = 0; m < n_materials; ++m) {
-        ImageSet set;
-        set.scene = id;
-        set.material = materials[m];
-        set.reference = gt.images[m];
-        set.coverage = gt.coverage;
-        for (std::size_t k = 0; k < n_keys; ++k)
-          set.variants.push_back({keys[k].variant, keys[k].feed, keys[k].prefilter, keys[k].lobe, std::move(images[m * n_keys + k])});
-        table.images.push_back(std::move(set));
-      }
-    }
-
-    // Temporal metrics: the animation at the flicker resolution; TDE in display values,
-    // the temporal standard deviations in linear and tonemapped values.
-    if (config.frames > 0) {
-      const int fw = sized.flicker_width, fh = sized.flicker_height;
-      const std::size_t n_rows = n_materials * n_keys;
-      std::vector<TemporalStats> reference_stats(n_materials, TemporalStats(fw, fh));
-      std::vector<TemporalStats> reference_display(n_materials, TemporalStats(fw, fh));
-      std::vector<TemporalStats> variant_stats(n_rows, TemporalStats(fw, fh));
-      std::vector<TemporalStats> variant_display(n_rows, TemporalStats(fw, fh));
-      std::vector<TemporalDifference> differences(n_rows);
-      std::vector<Image> previous_reference(n_materials);  // display values of frame - 1
-      std::vector<Image> previous_variant(n_rows);
-      AnimationGroundTruths taa_truths;  // for the +taa rows
-      // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
-      const int seeds = std::clamp(config.ground_truth_seeds, 1, 2);
-      const bool sanity = config.sanity && seeds == 2 && config.frames >= 2;
-      const bool video = config.video_metric;
-      std::vector<ClipRecorder> clips(n_rows);
-      for (ClipRecorder& clip : clips) clip.keep_frames = video;
-      // Each row's clip against the quarter-sample ground truth (TradeRow::quarter_series), whose
-      // previous frame per material is quarter_references[m].
-      std::vector<ClipRecorder> quarter_clips(sanity ? n_rows : 0);
-      std::vector<SeedReference> quarter_references(sanity ? n_materials : 0);
-      std::vector<std::vector<SeedReference>> seed_references(n_materials);  // [m][seed], of the previous frame
-      std::vector<SanityClips> sanity_clips(sanity ? n_materials : 0, SanityClips(video));
-      std::vector<std::vector<ClipFrames>> reference_clips(video ? n_materials : 0,
-                                                           std::vector<ClipFrames>(seeds + (sanity ? 1 : 0)));  // [m][seed], quarter
-      const auto emit_frame = [&](std::size_t m, const std::string& clip, int frame, const Image& display) {
-        if (on_frame) on_frame({id, materials[m].alpha, materials[m].fresnel, clip, frame, &display});
-      };
-      for (int frame = 0; frame < config.frames; ++frame) {
-        const Scene moved = trade_animation_frame(sized, id, frame);
-        const std::string stage = "flicker " + name + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config.frames);
-        const GroundTruth frame_gt = ground_truth(moved, flicker_settings, stage, base);
-        if (config.taa) taa_truths.first.push_back(frame_gt.images);
-        base += sizes.flicker_gt;
-        std::optional<GroundTruth> other_gt, quarter_gt;
-        if (seeds == 2) {
-          GroundTruthSettings other = flicker_settings;
-          other.seed = second_seed(flicker_settings.seed);
-          other_gt = ground_truth(moved, other, stage, base, false);
-          if (config.taa) taa_truths.second.push_back(other_gt->images);
-          base += sizes.flicker_gt;
-        }
-        if (sanity) {
-          GroundTruthSettings quarter = flicker_settings;
-          quarter.seed = third_seed(flicker_settings.seed);
-          quarter.strata = std::max(1, flicker_settings.strata / 2);
-          quarter_gt = ground_truth(moved, quarter, stage, base, false);
-          if (config.taa) taa_truths.quarter.push_back(quarter_gt->images);
-          base += sizes.flicker_gt / 4;
-        }
-        const FrameBuffers frame_buffer = frame_buffers(config, id, moved, fw, fh);
-        std::vector<Image> reference_frame(n_materials);
-        std::vector<std::optional<GreyFlipReference>> flip_references(n_materials);  // the +taa rows' LDR-FLIP
-        std::vector<std::vector<SeedReference>> frame_references(n_materials);
-        for (std::size_t m = 0; m < n_materials; ++m) frame_references[m].resize(seeds);
-        parallel_rows(static_cast<int>(n_materials * seeds), config.threads, [&](int i) {
-          const std::size_t m = static_cast<std::size_t>(i) / seeds, seed = static_cast<std::size_t>(i) % seeds;
-          const Image& linear = seed == 0 ? frame_gt.images[m] : other_gt->images[m];
-          const SeedReference* previous = frame > 0 ? &seed_references[m][seed] : nullptr;
-          frame_references[m][seed] = seed_reference(linear, previous, config.flip);
-          if (video) reference_clips[m][seed].append(frame_references[m][seed].display);
-        });
-        std::vector<SeedReference> frame_quarter(quarter_references.size());
-        parallel_rows(static_cast<int>(frame_quarter.size()), config.threads, [&](int i) {
-          const std::size_t m = static_cast<std::size_t>(i);
-          frame_quarter[m] = seed_reference(quarter_gt->images[m], frame > 0 ? &quarter_references[m] : nullptr, config.flip);
-          if (video) reference_clips[m][seeds].append(frame_quarter[m].display);
-        });
-        for (std::size_t m = 0; m < n_materials; ++m) {
-          const Image reference_tonemapped = tonemapped(frame_gt.images[m]);
-          reference_frame[m] = frame_references[m][0].display;
-          reference_stats[m].add(frame_gt.images[m]);
-          reference_display[m].add(reference_tonemapped);
-          if (config.taa) flip_references[m].emplace(reference_tonemapped, GreyFlipReference::Range::ldr);
-          emit_frame(m, "ground-truth", frame, reference_frame[m]);
-        }
-        for_each_row(n_rows, flicker_pixels, stage, [&](std::size_t r) {
-          const std::size_t m = r / n_keys;
-          const Image image = shade(frame_buffer, keys[r % n_keys], materials[m]);
-          const Image image_tonemapped = tonemapped(image);
-          variant_stats[r].add(image);
-          variant_display[r].add(image_tonemapped);
-          Image display = display_image(image);
-          if (sanity)
-            quarter_clips[r].add_display(display, image_tonemapped, std::span(&frame_quarter[m], 1),
-                                         frame > 0 ? std::span(&quarter_references[m], 1) : std::span<const SeedReference>());
-          clips[r].add_display(std::move(display), image_tonemapped, frame_references[m],
-                               frame > 0 ? std::span<const SeedReference>(seed_references[m]) : std::span<const SeedReference>());
-          if (frame > 0) differences[r].add_pair(previous_variant[r], clips[r].previous_display, previous_reference[m], reference_frame[m]);
-          previous_variant[r] = clips[r].previous_display;
-        });
-        if (sanity)
-          parallel_rows(static_cast<int>(n_materials), config.threads, [&](int i) {
-            const std::size_t m = static_cast<std::size_t>(i);
-            sanity_clips[m].add(other_gt->images[m], quarter_gt->images[m], frame_references[m][0],
-                                frame > 0 ? &seed_references[m][0] : nullptr);
-          });
-        for (std::size_t r = 0; r < n_rows; ++r)
-          emit_frame(r / n_keys, configuration_id(table.rows[first_row + r]), frame, previous_variant[r]);
-        for (std::size_t m = 0; m < sanity_clips.size(); ++m)
-          for (SanityResult result : kSanityResults)
-            emit_frame(m, "sanity:" + std::string(sanity_name(result)), frame, sanity_clips[m].last(result));
-        previous_reference = std::move(reference_frame);
-        seed_references = std::move(frame_references);
-        quarter_references = std::move(frame_quarter);
-        report(stage, base);
-      }
-      if (video) {
-        report("video metric " + name, base);
-        compare_clips(config, reference_clips, n_keys, static_cast<std::size_t>(seeds), clips, quarter_clips, sanity_clips);
-      }
-      for (std::size_t m = 0; m < n_materials; ++m) {
-        const double reference_std = mean_temporal_stddev(reference_stats[m]);
-        const double reference_std_display = mean_temporal_stddev(reference_display[m]);
-        for (std::size_t k = 0; k < n_keys; ++k) {
-          const std::size_t r = m * n_keys + k;
-          TradeRow& row = table.rows[first_row + r];
-          const TemporalError temporal = differences[r].mean();
-          row.tde = temporal.tde;
-          row.tde_excess_flicker = temporal.excess_flicker;
-          row.tde_lost_motion = temporal.lost_motion;
-          row.flicker = flicker(variant_stats[r], reference_stats[m]);
-          row.temporal_stddev = mean_temporal_stddev(variant_stats[r]);
-          row.reference_temporal_stddev = reference_std;
-          row.temporal_stddev_display = mean_temporal_stddev(variant_display[r]);
-          row.reference_temporal_stddev_display = reference_std_display;
-          row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
-          finish_verdict_metrics(clips[r], row);
-          if (sanity) row.quarter_series = quarter_clips[r].series;
-        }
-        if (sanity)
-          for (SanityResult result : kSanityResults) table.sanity.push_back(sanity_clips[m].row(id, materials[m], result));
-      }
-      if (config.taa) {
-        const std::string stage = "taa " + name;
-        const auto shaded = [&](std::uint64_t pixels) {
-          base += pixels;
-          report(stage, base);
-        };
-        append_taa_rows(sized, id, materials, taa_keys(config, id), taa_truths, table.rows, shaded,
-                        config.keep_images ? &table.taa_images : nullptr);
-      }
-    }
+    base_ = start + n_rows * pixels_per_row;
   }
-  report("done", state.total);
-  return table;
+
+  void measure_still(SceneId id, std::span<const RowKey> keys);
+
+  const TradeConfig& config_;
+  const TradeProgressFn& progress_;
+  const AnimationFrameFn& on_frame_;
+  const std::vector<Material> materials_;
+  TradeTable table_;
+  TradeProgress state_;
+  std::uint64_t base_ = 0;
+};
+
+// Frame 0 at the main resolution: the ground truth, every row's 1-spp image and its image
+// metrics; the scene's rows (material-major, then key order) are appended to the table.
+void TradeRun::measure_still(SceneId id, std::span<const RowKey> keys) {
+  const std::string name(scene_name(id));
+  const TradeConfig sized = sized_for_scene(config_, id);
+  const SceneSizes sizes = scene_sizes(config_, id);
+  const std::size_t n_materials = materials_.size(), n_keys = keys.size();
+  const Scene scene = make_scene(id, 0.0);
+  const GroundTruth gt = ground_truth(scene, ground_truth_settings(sized), "ground truth " + name, base_);
+  base_ += sizes.main_gt;
+  report("1-spp variants " + name, base_);
+  const FrameBuffers gbuffer = frame_buffers(config_, id, scene, sized.width, sized.height);
+  // FLIP's reference half once per material: [m] for LDR-FLIP, [n_materials + m] for HDR-FLIP.
+  std::vector<std::optional<GreyFlipReference>> flip_references(config_.flip ? 2 * n_materials : 0);
+  parallel_rows(static_cast<int>(flip_references.size()), config_.threads, [&](int i) {
+    const std::size_t m = static_cast<std::size_t>(i) % n_materials;
+    flip_references[static_cast<std::size_t>(i)] = i < static_cast<int>(n_materials)
+                                                       ? GreyFlipReference(tonemapped(gt.images[m]), GreyFlipReference::Range::ldr)
+                                                       : GreyFlipReference(gt.images[m], GreyFlipReference::Range::hdr);
+  });
+  std::vector<TradeRow> rows(n_materials * n_keys);
+  std::vector<Image> images(config_.keep_images ? rows.size() : 0);
+  for_each_row(rows.size(), sizes.main_pixels, "1-spp variants " + name, [&](std::size_t r) {
+    const std::size_t m = r / n_keys;
+    const RowKey& key = keys[r % n_keys];
+    Image image = shade(gbuffer, key, materials_[m]);
+    const ImageError e = compare_images(image, gt.images[m]);
+    TradeRow& row = rows[r];
+    row.variant = key.variant;
+    row.feed = key.feed;
+    row.prefilter = key.prefilter;
+    row.lobe = key.lobe;
+    row.scene = id;
+    row.alpha = materials_[m].alpha;
+    row.fresnel = materials_[m].fresnel;
+    row.rmse_linear = e.rmse_linear;
+    row.rmse_tonemapped = e.rmse_tonemapped;
+    row.max_error = e.max_error;
+    row.non_finite = e.non_finite;
+    if (config_.flip) {
+      row.flip_ldr = flip_references[m]->mean_error(tonemapped(image));
+      row.flip_hdr = flip_references[n_materials + m]->mean_error(image);
+    }
+    if (config_.keep_images) images[r] = std::move(image);
+  });
+  table_.rows.insert(table_.rows.end(), rows.begin(), rows.end());
+  if (!config_.keep_images) return;
+  for (std::size_t m = 0; m < n_materials; ++m) {
+    ImageSet set;
+    set.scene = id;
+    set.material = materials_[m];
+    set.reference = gt.images[m];
+    set.coverage = gt.coverage;
+    for (std::size_t k = 0; k < n_keys; ++k)
+      set.variants.push_back({keys[k].variant, keys[k].feed, keys[k].prefilter, keys[k].lobe, std::move(images[m * n_keys + k])});
+    table_.images.push_back(std::move(set));
+  }
+}
+
+// The temporal figures of one scene's rows: the animation at the flicker resolution, frame by
+// frame (TDE in display values, the temporal standard deviations in linear and tonemapped
+// values), each row's clip against each ground-truth seed (the verdict metrics) and against the
+// quarter-sample one, the sanity suite's results, and the ground truths the +taa rows read.
+class SceneAnimation {
+ public:
+  SceneAnimation(TradeRun& run, SceneId id, std::span<const RowKey> keys, std::size_t first_row)
+      : run_(run),
+        config_(run.config_),
+        id_(id),
+        name_(scene_name(id)),
+        sized_(sized_for_scene(run.config_, id)),
+        sizes_(scene_sizes(run.config_, id)),
+        settings_(ground_truth_settings(sized_, true)),
+        keys_(keys),
+        first_row_(first_row),
+        n_materials_(run.materials_.size()),
+        n_keys_(keys.size()),
+        n_rows_(n_materials_ * n_keys_),
+        seeds_(static_cast<std::size_t>(std::clamp(config_.ground_truth_seeds, 1, 2))),
+        sanity_(config_.sanity && seeds_ == 2 && config_.frames >= 2),
+        video_(config_.video_metric),
+        reference_stats_(n_materials_, TemporalStats(sized_.flicker_width, sized_.flicker_height)),
+        reference_display_(n_materials_, TemporalStats(sized_.flicker_width, sized_.flicker_height)),
+        variant_stats_(n_rows_, TemporalStats(sized_.flicker_width, sized_.flicker_height)),
+        variant_display_(n_rows_, TemporalStats(sized_.flicker_width, sized_.flicker_height)),
+        differences_(n_rows_),
+        previous_reference_(n_materials_),
+        previous_variant_(n_rows_),
+        clips_(n_rows_),
+        quarter_clips_(sanity_ ? n_rows_ : 0),
+        quarter_references_(sanity_ ? n_materials_ : 0),
+        seed_references_(n_materials_),
+        sanity_clips_(sanity_ ? n_materials_ : 0, SanityClips(video_)),
+        reference_clips_(video_ ? n_materials_ : 0, std::vector<ClipFrames>(seeds_ + (sanity_ ? 1 : 0))) {
+    for (ClipRecorder& clip : clips_) clip.keep_frames = video_;
+  }
+
+  void measure_frame(int frame);
+  // Every row's temporal figures and verdict series, the sanity suite's rows, then the +taa rows.
+  void finish();
+
+ private:
+  // The frame's ground truths: the first seed's, the second's and the quarter-sample one's (those
+  // two where measured); the +taa rows keep them (taa_truths_).
+  struct FrameTruths {
+    GroundTruth first;
+    std::optional<GroundTruth> other, quarter;
+  };
+  FrameTruths render_truths(const Scene& moved, const std::string& stage);
+  // Each material's references of the frame for each seed, and for the quarter-sample ground truth.
+  std::vector<std::vector<SeedReference>> seed_references(const FrameTruths& truths, int frame);
+  std::vector<SeedReference> quarter_references(const FrameTruths& truths, int frame);
+  void emit(std::size_t m, const std::string& clip, int frame, const Image& display) const {
+    if (run_.on_frame_) run_.on_frame_({id_, run_.materials_[m].alpha, run_.materials_[m].fresnel, clip, frame, &display});
+  }
+
+  TradeRun& run_;
+  const TradeConfig& config_;
+  const SceneId id_;
+  const std::string name_;
+  const TradeConfig sized_;
+  const SceneSizes sizes_;
+  const GroundTruthSettings settings_;
+  const std::span<const RowKey> keys_;
+  const std::size_t first_row_, n_materials_, n_keys_, n_rows_, seeds_;
+  const bool sanity_, video_;
+  std::vector<TemporalStats> reference_stats_, reference_display_, variant_stats_, variant_display_;
+  std::vector<TemporalDifference> differences_;
+  std::vector<Image> previous_reference_;  // display values of frame - 1
+  std::vector<Image> previous_variant_;
+  // The verdict metrics (animation_error.hpp): each row's clip against each seed's frame.
+  std::vector<ClipRecorder> clips_;
+  // Each row's clip against the quarter-sample ground truth (TradeRow::quarter_series), whose
+  // previous frame per material is quarter_references_[m].
+  std::vector<ClipRecorder> quarter_clips_;
+  std::vector<SeedReference> quarter_references_;
+  std::vector<std::vector<SeedReference>> seed_references_;  // [m][seed], of the previous frame
+  std::vector<SanityClips> sanity_clips_;
+  std::vector<std::vector<ClipFrames>> reference_clips_;  // [m][seed], quarter
+  AnimationGroundTruths taa_truths_;                      // for the +taa rows
+};
+
+SceneAnimation::FrameTruths SceneAnimation::render_truths(const Scene& moved, const std::string& stage) {
+  FrameTruths truths{run_.ground_truth(moved, settings_, stage, run_.base_), std::nullopt, std::nullopt};
+  if (config_.taa) taa_truths_.first.push_back(truths.first.images);
+  run_.base_ += sizes_.flicker_gt;
+  if (seeds_ == 2) {
+    GroundTruthSettings other = settings_;
+    other.seed = second_seed(settings_.seed);
+    truths.other = run_.ground_truth(moved, other, stage, run_.base_, false);
+    if (config_.taa) taa_truths_.second.push_back(truths.other->images);
+    run_.base_ += sizes_.flicker_gt;
+  }
+  if (sanity_) {
+    GroundTruthSettings quarter = settings_;
+    quarter.seed = third_seed(settings_.seed);
+    quarter.strata = std::max(1, settings_.strata / 2);
+    truths.quarter = run_.ground_truth(moved, quarter, stage, run_.base_, false);
+    if (config_.taa) taa_truths_.quarter.push_back(truths.quarter->images);
+    run_.base_ += sizes_.flicker_gt / 4;
+  }
+  return truths;
+}
+
+std::vector<std::vector<SeedReference>> SceneAnimation::seed_references(const FrameTruths& truths, int frame) {
+  std::vector<std::vector<SeedReference>> references(n_materials_, std::vector<SeedReference>(seeds_));
+  parallel_rows(static_cast<int>(n_materials_ * seeds_), config_.threads, [&](int i) {
+    const std::size_t m = static_cast<std::size_t>(i) / seeds_, seed = static_cast<std::size_t>(i) % seeds_;
+    const Image& linear = seed == 0 ? truths.first.images[m] : truths.other->images[m];
+    const SeedReference* previous = frame > 0 ? &seed_references_[m][seed] : nullptr;
+    references[m][seed] = seed_reference(linear, previous, config_.flip);
+    if (video_) reference_clips_[m][seed].append(references[m][seed].display);
+  });
+  return references;
+}
+
+std::vector<SeedReference> SceneAnimation::quarter_references(const FrameTruths& truths, int frame) {
+  std::vector<SeedReference> references(quarter_references_.size());
+  parallel_rows(static_cast<int>(references.size()), config_.threads, [&](int i) {
+    const std::size_t m = static_cast<std::size_t>(i);
+    references[m] = seed_reference(truths.quarter->images[m], frame > 0 ? &quarter_references_[m] : nullptr, config_.flip);
+    if (video_) reference_clips_[m][seeds_].append(references[m].display);
+  });
+  return references;
+}
+
+void SceneAnimation::measure_frame(int frame) {
+  const Scene moved = trade_animation_frame(sized_, id_, frame);
+  const std::string stage = "flicker " + name_ + " frame " + std::to_string(frame + 1) + "/" + std::to_string(config_.frames);
+  const FrameTruths truths = render_truths(moved, stage);
+  const FrameBuffers frame_buffer = frame_buffers(config_, id_, moved, sized_.flicker_width, sized_.flicker_height);
+  std::vector<std::vector<SeedReference>> frame_references = seed_references(truths, frame);
+  std::vector<SeedReference> frame_quarter = quarter_references(truths, frame);
+  std::vector<Image> reference_frame(n_materials_);
+  for (std::size_t m = 0; m < n_materials_; ++m) {
+    reference_frame[m] = frame_references[m][0].display;
+    reference_stats_[m].add(truths.first.images[m]);
+    reference_display_[m].add(tonemapped(truths.first.images[m]));
+    emit(m, "ground-truth", frame, reference_frame[m]);
+  }
+  run_.for_each_row(n_rows_, sizes_.flicker_pixels, stage, [&](std::size_t r) {
+    const std::size_t m = r / n_keys_;
+    const Image image = run_.shade(frame_buffer, keys_[r % n_keys_], run_.materials_[m]);
+    const Image image_tonemapped = tonemapped(image);
+    variant_stats_[r].add(image);
+    variant_display_[r].add(image_tonemapped);
+    Image display = display_image(image);
+    if (sanity_)
+      quarter_clips_[r].add_display(display, image_tonemapped, std::span(&frame_quarter[m], 1),
+                                    frame > 0 ? std::span(&quarter_references_[m], 1) : std::span<const SeedReference>());
+    clips_[r].add_display(std::move(display), image_tonemapped, frame_references[m],
+                          frame > 0 ? std::span<const SeedReference>(seed_references_[m]) : std::span<const SeedReference>());
+    if (frame > 0) differences_[r].add_pair(previous_variant_[r], clips_[r].previous_display, previous_reference_[m], reference_frame[m]);
+    previous_variant_[r] = clips_[r].previous_display;
+  });
+  if (sanity_)
+    parallel_rows(static_cast<int>(n_materials_), config_.threads, [&](int i) {
+      const std::size_t m = static_cast<std::size_t>(i);
+      sanity_clips_[m].add(truths.other->images[m], truths.quarter->images[m], frame_references[m][0],
+                           frame > 0 ? &seed_references_[m][0] : nullptr);
+    });
+  for (std::size_t r = 0; r < n_rows_; ++r)
+    emit(r / n_keys_, configuration_id(run_.table_.rows[first_row_ + r]), frame, previous_variant_[r]);
+  for (std::size_t m = 0; m < sanity_clips_.size(); ++m)
+    for (SanityResult result : kSanityResults) emit(m, "sanity:" + std::string(sanity_name(result)), frame, sanity_clips_[m].last(result));
+  previous_reference_ = std::move(reference_frame);
+  seed_references_ = std::move(frame_references);
+  quarter_references_ = std::move(frame_quarter);
+  run_.report(stage, run_.base_);
+}
+
+void SceneAnimation::finish() {
+  if (video_) {
+    run_.report("video metric " + name_, run_.base_);
+    compare_clips(config_, reference_clips_, n_keys_, seeds_, clips_, quarter_clips_, sanity_clips_);
+  }
+  for (std::size_t m = 0; m < n_materials_; ++m) {
+    const double reference_std = mean_temporal_stddev(reference_stats_[m]);
+    const double reference_std_display = mean_temporal_stddev(reference_display_[m]);
+    for (std::size_t k = 0; k < n_keys_; ++k) {
+      const std::size_t r = m * n_keys_ + k;
+      TradeRow& row = run_.table_.rows[first_row_ + r];
+      const TemporalError temporal = differences_[r].mean();
+      row.tde = temporal.tde;
+      row.tde_excess_flicker = temporal.excess_flicker;
+      row.tde_lost_motion = temporal.lost_motion;
+      row.flicker = flicker(variant_stats_[r], reference_stats_[m]);
+      row.temporal_stddev = mean_temporal_stddev(variant_stats_[r]);
+      row.reference_temporal_stddev = reference_std;
+      row.temporal_stddev_display = mean_temporal_stddev(variant_display_[r]);
+      row.reference_temporal_stddev_display = reference_std_display;
+      row.flicker_display = reference_std_display > 0.0 ? row.temporal_stddev_display / reference_std_display : 0.0;
+      finish_verdict_metrics(clips_[r], row);
+      if (sanity_) row.quarter_series = quarter_clips_[r].series;
+    }
+    if (sanity_)
+      for (SanityResult result : kSanityResults) run_.table_.sanity.push_back(sanity_clips_[m].row(id_, run_.materials_[m], result));
+  }
+  if (!config_.taa) return;
+  const std::string stage = "taa " + name_;
+  const auto shaded = [&](std::uint64_t pixels) {
+    run_.base_ += pixels;
+    run_.report(stage, run_.base_);
+  };
+  append_taa_rows(sized_, id_, run_.materials_, taa_keys(config_, id_), taa_truths_, run_.table_.rows, shaded,
+                  config_.keep_images ? &run_.table_.taa_images : nullptr);
+}
+
+void TradeRun::measure_scene(SceneId id) {
+  const std::vector<RowKey> keys = row_keys(config_, id);
+  const std::size_t first_row = table_.rows.size();
+  measure_still(id, keys);
+  if (config_.frames <= 0) return;
+  SceneAnimation animation(*this, id, keys, first_row);
+  for (int frame = 0; frame < config_.frames; ++frame) animation.measure_frame(frame);
+  animation.finish();
+}
+
+}  // namespace
+
+TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress, const AnimationFrameFn& on_frame) {
+  check_trade_config(config);
+  TradeRun run(config, progress, on_frame);
+  for (const SceneId id : config.scenes) run.measure_scene(id);
+  return run.finish();
 }
 
 // ---------------------------------------------------------------------------------------------
