@@ -255,28 +255,38 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
   return by_content;
 }
 
-// Every configuration against no SAA, paired, with 95 % intervals (comparison.hpp): per content
-// type, per scene, and per cell (one scene at one alpha: "alpha" names it; its interval is over the
-// cell's frames and ground-truth seeds only); the verdicts, the planner and the scripts read these.
+// The baselines a configuration is compared with: no SAA, and a configuration under TAA also
+// TAA alone (none+taa), which the verdict under TAA reads.
+std::vector<std::string> baselines_of(const std::string& configuration) {
+  if (configuration == "none+taa" || configuration == without_taa(configuration)) return {"none"};
+  return {"none", "none+taa"};
+}
+
+// Every configuration against no SAA (and one under TAA against none+taa too), paired, with 95 %
+// intervals (comparison.hpp): per content type, per scene, and per cell (one scene at one alpha:
+// "alpha" names it; its interval is over the cell's frames and ground-truth seeds only); the
+// verdicts, the planner and the scripts read these.
 nlohmann::json comparisons_json(const measure::TradeTable& table) {
   nlohmann::json comparisons = nlohmann::json::array();
   const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep,
                                    std::optional<double> alpha = std::nullopt) {
     for (const std::string& id : configurations(table)) {
       if (id == "none" || is_measurement_configuration(id)) continue;
-      const PairedComparison c = compare_configurations(table, id, "none", keep);
-      if (c.cells == 0) continue;
-      comparisons.push_back({{"scope", scope},
-                             {"name", name},
-                             {"configuration", id},
-                             {"baseline", "none"},
-                             {"cells", c.cells},
-                             {"image_error", difference_json(c.image)},
-                             {"flicker_error", difference_json(c.flicker)},
-                             {"lag", difference_json(c.lag)},
-                             {"outcome", std::string(comparison_outcome_name(c))}});
-      if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
-      if (alpha) comparisons.back()["alpha"] = *alpha;
+      for (const std::string& baseline : baselines_of(id)) {
+        const PairedComparison c = compare_configurations(table, id, baseline, keep);
+        if (c.cells == 0) continue;
+        comparisons.push_back({{"scope", scope},
+                               {"name", name},
+                               {"configuration", id},
+                               {"baseline", baseline},
+                               {"cells", c.cells},
+                               {"image_error", difference_json(c.image)},
+                               {"flicker_error", difference_json(c.flicker)},
+                               {"lag", difference_json(c.lag)},
+                               {"outcome", std::string(comparison_outcome_name(c))}});
+        if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
+        if (alpha) comparisons.back()["alpha"] = *alpha;
+      }
     }
   };
   for (Content content : kContents)

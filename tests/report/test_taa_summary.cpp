@@ -145,6 +145,21 @@ TEST(TaaComparisons, UnderTaaACallTheSampleBiasWouldChangeIsATie) {
   EXPECT_LE(rows[1].against_none->temporal.low, 0.0);  // widened to include 0: a tie
   EXPECT_GE(rows[1].against_none->temporal.high, 0.0);
   EXPECT_EQ(report::taa_decisions_json(table)[1]["chosen"], "none");
+  // The JSON's comparisons carry it: deferred-avg+taa against none+taa, per content, a tie that the
+  // bias makes (and against no SAA without TAA as before).
+  const nlohmann::json json = report::trade_json(table, {}, nullptr);
+  int against_taa = 0;
+  for (const nlohmann::json& c : json["comparisons"]) {
+    if (c["configuration"] != "deferred-avg+taa" || c["scope"] != "content") continue;
+    if (c["baseline"] == "none") continue;
+    ++against_taa;
+    EXPECT_EQ(c["baseline"], "none+taa");
+    EXPECT_EQ(c["outcome"], "ties");
+    EXPECT_TRUE(c["image_error"]["bias_limited"].get<bool>());
+    EXPECT_TRUE(c["video_error"]["bias_limited"].get<bool>());
+    EXPECT_NEAR(c["video_error"]["sample_bias"].get<double>(), (-5.0 - -1.0) / 3.0, 1e-9);
+  }
+  EXPECT_EQ(against_taa, 1);
 
   set_quarter_series(table, 0.03, 2.5);
   const report::TaaComparison stands = report::taa_comparisons(table).front();
