@@ -118,11 +118,12 @@ Standing standing(const MetricDifference& image, const MetricDifference& tempora
 
 std::string_view standing_name(Standing s) { return s == Standing::beats ? "beats" : s == Standing::ties ? "ties" : "against"; }
 
-// The configurations' rows of one cell (non-Fresnel, without TAA), by configuration id.
-std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTable& table, measure::SceneId scene, double alpha) {
+// The configurations' rows of one cell (non-Fresnel; without TAA, or under it), by configuration id.
+std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTable& table, measure::SceneId scene, double alpha,
+                                                          bool taa) {
   std::map<std::string, const measure::TradeRow*> rows;
   for (const measure::TradeRow& row : table.rows)
-    if (row.scene == scene && row.alpha == alpha && !row.fresnel && !row.taa) rows[measure::configuration_id(row)] = &row;
+    if (row.scene == scene && row.alpha == alpha && !row.fresnel && row.taa == taa) rows[measure::configuration_id(row)] = &row;
   return rows;
 }
 
@@ -139,18 +140,21 @@ std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTa
 // by chance favours the results that miss it as it does, as 1-spp no SAA does (docs/TEMPORAL.md).
 // An earlier rule, another seed beating the quarter-sample ground truth in the image or temporal
 // error, failed on converged ground truths, where both are too close for the interval to tell apart.
-void check_stability(const measure::TradeTable& table, const std::vector<double>& alphas, measure::SceneId scene, SceneSanity& out) {
+// With `taa`, the same for the +taa rows against none+taa: the verdict under TAA.
+void check_stability(const measure::TradeTable& table, const std::vector<double>& alphas, measure::SceneId scene, bool taa,
+                     SceneSanity& out) {
+  const std::string baseline = taa ? "none+taa" : "none";
   for (const double alpha : alphas) {
-    const auto rows = cell_rows(table, scene, alpha);
-    const auto none = rows.find("none");
+    const auto rows = cell_rows(table, scene, alpha, taa);
+    const auto none = rows.find(baseline);
     if (none == rows.end() || none->second->quarter_series.image[0].empty()) continue;
-    Convergence cell{alpha, 0, {}, {}, true};
+    Convergence cell{alpha, taa, 0, {}, {}, true};
     for (const auto& [id, row] : rows) {
-      if (id == "none" || row->quarter_series.image[0].empty()) continue;
+      if (id == baseline || row->quarter_series.image[0].empty()) continue;
       ++cell.comparisons;
       const measure::TradeRow& base = *none->second;
       const CellPair cell_pair{&row->series, &base.series, &row->quarter_series, &base.quarter_series};
-      const PairedComparison read_as_verdict = compare_cells(id, "none", std::span(&cell_pair, 1));
+      const PairedComparison read_as_verdict = compare_cells(id, baseline, std::span(&cell_pair, 1));
       const MetricDifference& temporal = temporal_metric(read_as_verdict);
       const Standing read = standing(read_as_verdict.image, temporal);
       const Standing converged = standing(without_sample_bias(read_as_verdict.image), without_sample_bias(temporal));
@@ -161,12 +165,13 @@ void check_stability(const measure::TradeTable& table, const std::vector<double>
     cell.converged = cell.reversed.empty();
     out.convergence.push_back(cell);
     if (cell.converged) continue;
-    out.unconverged_alphas.push_back(alpha);
+    (taa ? out.unconverged_taa_alphas : out.unconverged_alphas).push_back(alpha);
     out.failures.push_back(
-        fmt::format("{}: the verdict has not converged at alpha {:g}: {} of {} configurations reverse their standing "
-                    "against no SAA (beats <-> loses or mixed) once the bias of the ground truth's samples is "
+        fmt::format("{}: the verdict{} has not converged at alpha {:g}: {} of {} configurations reverse their standing "
+                    "against {} (beats <-> loses or mixed) once the bias of the ground truth's samples is "
                     "taken out ({}); rerun with --truth-samples-scale 2",
-                    measure::scene_name(scene), alpha, cell.reversed.size(), cell.comparisons, fmt::join(cell.reversed, ", ")));
+                    measure::scene_name(scene), taa ? " under TAA" : "", alpha, cell.reversed.size(), cell.comparisons,
+                    taa ? "TAA alone" : "no SAA", fmt::join(cell.reversed, ", ")));
   }
 }
 
@@ -214,7 +219,8 @@ SceneSanity check_scene(const measure::TradeTable& table, measure::SceneId scene
                                            measure::scene_name(scene), name, against, text(image), text(flicker), text(lag)));
     }
   }
-  check_stability(table, clips.alphas, scene, out);
+  check_stability(table, clips.alphas, scene, false, out);
+  check_stability(table, clips.alphas, scene, true, out);
   if (none) {
     std::map<std::string, Clips> candidates;
     for (const char* name : kDegenerate) candidates[name] = clips.clips.at(name);
@@ -274,11 +280,15 @@ std::string format_sanity(const std::vector<SceneSanity>& scenes) {
 
 std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
   std::vector<std::string> cells;
-  for (const SceneSanity& scene : scenes)
+  for (const SceneSanity& scene : scenes) {
     for (double alpha : scene.unconverged_alphas) cells.push_back(fmt::format("{} at alpha {:g}", measure::scene_name(scene.scene), alpha));
+    for (double alpha : scene.unconverged_taa_alphas)
+      cells.push_back(fmt::format("{} at alpha {:g} under TAA", measure::scene_name(scene.scene), alpha));
+  }
   if (cells.empty()) return "";
   return fmt::format(
-      "The verdict has not converged on {} cell(s): {}. There, a configuration that beats no SAA would lose to it or be "
+      "The verdict has not converged on {} cell(s): {}. There, a configuration that beats no SAA (under TAA: TAA alone) would "
+      "lose to it or be "
       "mixed, or the reverse, once the bias the ground truth's samples leave is taken out (estimated from the quarter-sample "
       "ground truth; the sanity suite's stable rule): more samples would change those comparisons. Rerun with "
       "--truth-samples-scale 2 (docs/TEMPORAL.md).\n",
@@ -298,6 +308,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
         moved.push_back({{"configuration", m.configuration}, {"standing", m.standing}, {"extrapolated", m.extrapolated}});
       convergence.push_back(
           {{"alpha", c.alpha}, {"comparisons", c.comparisons}, {"moved", moved}, {"reversed", c.reversed}, {"converged", c.converged}});
+      if (c.taa) convergence.back()["taa"] = true;
     }
     nlohmann::json entries = nlohmann::json::array();
     for (const SanityEntry& e : scene.entries)
@@ -314,6 +325,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                    {"verdict_choice", scene.verdict_choice},
                    {"convergence", convergence},
                    {"unconverged_alphas", scene.unconverged_alphas},
+                   {"unconverged_taa_alphas", scene.unconverged_taa_alphas},
                    {"passed", scene.failures.empty()}});
   }
   return out;

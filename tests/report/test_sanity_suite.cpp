@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <string>
 
 using namespace saagen;
 using measure::SceneId;
@@ -124,4 +126,35 @@ TEST(SanitySuite, ACallTheGroundTruthsSampleBiasWouldChangeIsATie) {
   EXPECT_EQ(report::outcome_of(converged.image), report::MetricOutcome::better);
   EXPECT_EQ(report::comparison_outcome_name(converged), "beats");
   EXPECT_EQ(report::check_sanity(at_1024_spp).at(0).unconverged_alphas, std::vector<double>{});
+}
+
+// In a table measured with --taa the stable rule reads the verdict under TAA too: per alpha, every
+// configuration under TAA against TAA alone (none+taa), beside every configuration without TAA
+// against no SAA, neither pairing mixing in the other's rows; the JSON marks the TAA cells.
+TEST(SanitySuite, UnderTaaTheStableRuleReadsTheVerdictUnderTaa) {
+  measure::TradeConfig config = sanity_config();
+  config.scenes = {SceneId::sphere};
+  config.alphas = {0.0025, 0.1};
+  config.flicker_strata = 4;
+  config.taa = true;
+  const measure::TradeTable table = measure::compute_trade_table(config);
+  const auto count = [&](double alpha, bool taa) {
+    std::set<std::string> ids;
+    for (const measure::TradeRow& row : table.rows)
+      if (row.alpha == alpha && row.taa == taa) ids.insert(measure::configuration_id(row));
+    return static_cast<int>(ids.size()) - 1;  // all but the baseline
+  };
+  const report::SceneSanity sanity = report::check_sanity(table).at(0);
+  ASSERT_EQ(sanity.convergence.size(), 4u);  // two alphas, without and under TAA
+  for (const report::Convergence& cell : sanity.convergence) {
+    EXPECT_GT(cell.comparisons, 0);
+    EXPECT_EQ(cell.comparisons, count(cell.alpha, cell.taa)) << cell.alpha << (cell.taa ? " under TAA" : "");
+    for (const std::string& id : cell.reversed) EXPECT_EQ(id.find("+taa") != std::string::npos, cell.taa) << id;
+  }
+  EXPECT_EQ(std::count_if(sanity.convergence.begin(), sanity.convergence.end(), [](const report::Convergence& c) { return c.taa; }), 2);
+  const nlohmann::json json = report::sanity_json({sanity});
+  int taa_cells = 0;
+  for (const nlohmann::json& cell : json[0]["convergence"]) taa_cells += cell.value("taa", false) ? 1 : 0;
+  EXPECT_EQ(taa_cells, 2);
+  EXPECT_TRUE(json[0].contains("unconverged_taa_alphas"));
 }

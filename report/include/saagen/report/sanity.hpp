@@ -16,7 +16,8 @@
 //                    the bias of the ground truth's samples taken out (Richardson extrapolation
 //                    from its reading against the quarter-sample ground truth). Where one does,
 //                    more samples would change that comparison: the verdict has not converged
-//                    there (docs/TEMPORAL.md);
+//                    there (docs/TEMPORAL.md). In a table with +taa rows, the same for each
+//                    configuration under TAA against TAA alone (none+taa), the verdict under TAA;
 //   never wins       entered as configurations beside every measured one (blurred too), no
 //                    degenerate result (delayed, frozen, no highlight) is the configuration the
 //                    verdict would choose against no SAA on the scene (the decision's rule: among
@@ -53,10 +54,11 @@ struct StandingMove {
   std::string extrapolated;  // with the bias taken out
 };
 
-// The stable rule at one alpha: the configurations compared with no SAA, those whose standing
-// moves, and those among them that reverse (beats <-> against).
+// The stable rule at one alpha: the configurations compared with no SAA (under TAA: the +taa ones
+// with none+taa), those whose standing moves, and those among them that reverse (beats <-> against).
 struct Convergence {
   double alpha = 0.0;
+  bool taa = false;
   int comparisons = 0;
   std::vector<StandingMove> moved;
   std::vector<std::string> reversed;  // configuration ids
@@ -70,10 +72,11 @@ struct SceneSanity {
   // temporal_metric); else the flicker error. SanityEntry's flicker fields then hold it.
   bool video = false;
   std::vector<SanityEntry> entries;
-  std::vector<std::string> failures;       // one line per broken rule; empty: passed
-  std::string verdict_choice;              // the verdict's choice with the degenerate results entered ("": no filter)
-  std::vector<Convergence> convergence;    // per alpha
-  std::vector<double> unconverged_alphas;  // the alphas the stable rule failed at
+  std::vector<std::string> failures;           // one line per broken rule; empty: passed
+  std::string verdict_choice;                  // the verdict's choice with the degenerate results entered ("": no filter)
+  std::vector<Convergence> convergence;        // per alpha
+  std::vector<double> unconverged_alphas;      // the alphas the stable rule failed at
+  std::vector<double> unconverged_taa_alphas;  // the same for the verdict under TAA
 };
 
 // Every scene of the table that has sanity rows.
