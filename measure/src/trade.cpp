@@ -781,7 +781,7 @@ void SceneAnimation::finish() {
     run_.report(stage, run_.base_);
   };
   append_taa_rows(sized_, id_, run_.materials_, taa_keys(config_, id_), taa_truths_, run_.table_.rows, shaded,
-                  config_.keep_images ? &run_.table_.taa_images : nullptr);
+                  config_.keep_images ? &run_.table_.taa_images : nullptr, run_.on_frame_);
 }
 
 void TradeRun::measure_scene(SceneId id) {

@@ -111,7 +111,8 @@ int taa_warmup(const TradeConfig& config) {
 
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
                      const AnimationGroundTruths& truths, std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images) {
+                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images,
+                     const AnimationFrameFn& on_frame) {
   const int fw = config.flicker_width, fh = config.flicker_height, warmup = taa_warmup(config);
   const std::size_t n_keys = keys.size();
   std::vector<TaaAccumulator> accumulators;
@@ -181,6 +182,13 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
           if (shaded && done > reported) shaded(static_cast<std::uint64_t>(done - reported) * fw * fh);
           reported = done;
         });
+    if (frame >= 0 && on_frame)
+      for (std::size_t r = 0; r < accumulators.size(); ++r) {
+        const TaaRowKey& key = keys[r % n_keys];
+        const Material& material = materials[r / n_keys];
+        on_frame({id, material.alpha, material.fresnel, configuration_id(key.variant, key.feed, key.prefilter, key.lobe, true), frame,
+                  &accumulators[r].clip.previous_display});
+      }
     if (frame >= 0) previous_references = std::move(references), previous_quarter = std::move(quarter_references);
     for (std::size_t r = 0; r < last_outputs.size(); ++r) {
       const TaaRowKey& key = keys[r % n_keys];

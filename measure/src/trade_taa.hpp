@@ -2,6 +2,7 @@
 // by the TAA of taa.hpp over the animation, measured after a warm-up.
 #pragma once
 
+#include "saagen/measure/trade.hpp"
 #include "saagen/measure/trade_table.hpp"
 
 #include <functional>
@@ -44,8 +45,11 @@ struct AnimationGroundTruths {
 // The +taa rows of scene `id`, material-major then key order, appended to `rows`.
 // shaded(pixels) reports 1-spp shading work. When `images` is given, each material's last frame
 // (its ground truth and every key's resolved image) is appended to it (TradeTable::taa_images).
+// on_frame (where set) is handed every row's resolved frame of the animation, as the trade's
+// other rows' (its clip named by the +taa configuration id).
 void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Material> materials, std::span<const TaaRowKey> keys,
                      const AnimationGroundTruths& truths, std::vector<TradeRow>& rows,
-                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images = nullptr);
+                     const std::function<void(std::uint64_t pixels)>& shaded, std::vector<ImageSet>* images = nullptr,
+                     const AnimationFrameFn& on_frame = {});
 
 }  // namespace saagen::measure

@@ -113,6 +113,32 @@ TEST_F(ScoreCli, ReproducesTheBenchsFiguresForItsOwnClips) {
   EXPECT_EQ(sanity, static_cast<int>(bench["sanity"].size()));
 }
 
+// With --taa the bench writes the +taa rows' resolved clips too (beside the sanity clips, which
+// give the score its second ground-truth seed), and scoring them gives the video error the bench
+// measured under TAA (its taa_cases rows: the mean against both seeds).
+TEST_F(ScoreCli, TheTaaRowsClipsGiveTheBenchsFiguresUnderTaa) {
+  const auto run = saagen({"bench", "--scene", "sphere", "--preset", "quick", "--resolution", "16", "--taa", "--json", table(), "--frames",
+                           frames(), "--frames-filter", "^(none|none\\+taa|deferred-avg\\+taa/tail|sanity:.*)$"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json bench = read_json(table());
+  const nlohmann::json scored = score_json();
+  int taa_results = 0;
+  for (const nlohmann::json& group : scored["groups"])
+    for (const nlohmann::json& result : group["results"]) {
+      const std::string configuration = result["configuration"];
+      if (configuration.find("+taa") == std::string::npos) continue;
+      ++taa_results;
+      const auto& rows = bench["taa_cases"];
+      const auto row = std::find_if(rows.begin(), rows.end(), [&](const nlohmann::json& r) {
+        return r["alpha"] == group["alpha"] && r["configuration"] == configuration && r["taa"].get<bool>();
+      });
+      ASSERT_NE(row, rows.end()) << configuration;
+      EXPECT_NEAR(result["video_error"]["mean"].get<double>(), (*row)["video_error"].get<double>(), 1e-9) << configuration;
+      EXPECT_NEAR(result["image_error"]["mean"].get<double>(), (*row)["image_error"].get<double>(), 2e-3) << configuration;
+    }
+  EXPECT_EQ(taa_results, 4);  // none+taa and deferred-avg+taa/tail at the quick preset's two alphas
+}
+
 TEST_F(ScoreCli, AClipEqualToTheGroundTruthScoresZeroAndTheBaselineTiesWithItself) {
   bench_frames();
   nlohmann::json index = read_json(index_path());
