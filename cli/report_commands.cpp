@@ -498,6 +498,7 @@ int ReportCommands::run_bench() const {
       json["taa_cases"] = report::taa_cases_json(measured);
       json["taa_by_content"] = report::taa_by_content_json(measured);
       json["decisions"]["taa_by_content"] = report::taa_decisions_json(measured);
+      for (nlohmann::json& comparison : report::taa_comparisons_json(measured)) json["comparisons"].push_back(std::move(comparison));
     }
     json["sanity_checks"] = report::sanity_json(sanity);
     files.push_back({bench_json_, json.dump(2) + "\n"});

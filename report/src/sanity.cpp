@@ -325,8 +325,9 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
                    {"verdict_choice", scene.verdict_choice},
                    {"convergence", convergence},
                    {"unconverged_alphas", scene.unconverged_alphas},
-                   {"unconverged_taa_alphas", scene.unconverged_taa_alphas},
                    {"passed", scene.failures.empty()}});
+    const bool taa = std::any_of(scene.convergence.begin(), scene.convergence.end(), [](const Convergence& c) { return c.taa; });
+    if (taa) out.back()["unconverged_taa_alphas"] = scene.unconverged_taa_alphas;  // a table measured with --taa
   }
   return out;
 }

@@ -255,38 +255,30 @@ nlohmann::json by_content_json(const measure::TradeTable& table) {
   return by_content;
 }
 
-// The baselines a configuration is compared with: no SAA, and a configuration under TAA also
-// TAA alone (none+taa), which the verdict under TAA reads.
-std::vector<std::string> baselines_of(const std::string& configuration) {
-  if (configuration == "none+taa" || configuration == without_taa(configuration)) return {"none"};
-  return {"none", "none+taa"};
-}
-
-// Every configuration against no SAA (and one under TAA against none+taa too), paired, with 95 %
-// intervals (comparison.hpp): per content type, per scene, and per cell (one scene at one alpha:
-// "alpha" names it; its interval is over the cell's frames and ground-truth seeds only); the
-// verdicts, the planner and the scripts read these.
-nlohmann::json comparisons_json(const measure::TradeTable& table) {
+// Every configuration against `baseline`, paired, with 95 % intervals (comparison.hpp): per content
+// type, per scene, and per cell (one scene at one alpha: "alpha" names it; its interval is over the
+// cell's frames and ground-truth seeds only); the verdicts, the planner and the scripts read these.
+// Against none+taa, only the configurations under TAA.
+nlohmann::json comparisons_json(const measure::TradeTable& table, const std::string& baseline = "none") {
   nlohmann::json comparisons = nlohmann::json::array();
+  const bool under_taa = baseline == "none+taa";
   const auto add_comparisons = [&](std::string_view scope, const std::string& name, const CellFilter& keep,
                                    std::optional<double> alpha = std::nullopt) {
     for (const std::string& id : configurations(table)) {
-      if (id == "none" || is_measurement_configuration(id)) continue;
-      for (const std::string& baseline : baselines_of(id)) {
-        const PairedComparison c = compare_configurations(table, id, baseline, keep);
-        if (c.cells == 0) continue;
-        comparisons.push_back({{"scope", scope},
-                               {"name", name},
-                               {"configuration", id},
-                               {"baseline", baseline},
-                               {"cells", c.cells},
-                               {"image_error", difference_json(c.image)},
-                               {"flicker_error", difference_json(c.flicker)},
-                               {"lag", difference_json(c.lag)},
-                               {"outcome", std::string(comparison_outcome_name(c))}});
-        if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
-        if (alpha) comparisons.back()["alpha"] = *alpha;
-      }
+      if (id == baseline || is_measurement_configuration(id) || (under_taa && id == without_taa(id))) continue;
+      const PairedComparison c = compare_configurations(table, id, baseline, keep);
+      if (c.cells == 0) continue;
+      comparisons.push_back({{"scope", scope},
+                             {"name", name},
+                             {"configuration", id},
+                             {"baseline", baseline},
+                             {"cells", c.cells},
+                             {"image_error", difference_json(c.image)},
+                             {"flicker_error", difference_json(c.flicker)},
+                             {"lag", difference_json(c.lag)},
+                             {"outcome", std::string(comparison_outcome_name(c))}});
+      if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
+      if (alpha) comparisons.back()["alpha"] = *alpha;
     }
   };
   for (Content content : kContents)
@@ -303,6 +295,8 @@ nlohmann::json comparisons_json(const measure::TradeTable& table) {
 }
 
 }  // namespace
+
+nlohmann::json taa_comparisons_json(const measure::TradeTable& table) { return comparisons_json(table, "none+taa"); }
 
 nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
   return {{"generator", std::string(output_tag) + " saagen bench"},

@@ -28,5 +28,10 @@ nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<Va
 // decisions.taa_by_content.
 nlohmann::json taa_by_content_json(const measure::TradeTable& table);
 nlohmann::json taa_decisions_json(const measure::TradeTable& table);
+// Every configuration under TAA against TAA alone (none+taa), in the form of the JSON's
+// "comparisons" (baseline "none+taa"), from a table with +taa rows: the comparisons the verdict
+// under TAA reads, with their intervals, sample_bias and bias_limited; `saagen bench --taa --json`
+// appends them to "comparisons".
+nlohmann::json taa_comparisons_json(const measure::TradeTable& table);
 
 }  // namespace saagen::report
