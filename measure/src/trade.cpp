@@ -210,17 +210,6 @@ std::vector<Material> trade_materials(const TradeConfig& config) {
   return materials;
 }
 
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe, bool taa) {
-  std::string id(variant_id(variant));
-  if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none) id += ":geometric";
-  if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
-  if (taa) id += "+taa";
-  if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
-  return id;
-}
-
-std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }
-
 bool scene_has_normal_map(SceneId id) { return scene_normal_detail(id) == NormalDetail::normal_map; }
 
 bool scene_has_procedural_normals(SceneId id) { return scene_normal_detail(id) == NormalDetail::procedural; }

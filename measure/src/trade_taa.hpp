@@ -2,7 +2,6 @@
 // by the TAA of taa.hpp over the animation, measured after a warm-up.
 #pragma once
 
-#include "saagen/measure/trade.hpp"
 #include "saagen/measure/trade_table.hpp"
 
 #include <functional>

@@ -1,8 +1,19 @@
-// The trade's data (see trade_table.hpp): the default variants, finding a row, the sanity
-// results' names and the animation's frames.
+// The trade's data (see trade_table.hpp): the configuration ids, the default variants, finding a
+// row, the sanity results' names and the animation's frames.
 #include "saagen/measure/trade_table.hpp"
 
 namespace saagen::measure {
+
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter, Lobe lobe, bool taa) {
+  std::string id(variant_id(variant));
+  if (feed == NormalFeed::geometric && !is_engine(variant) && variant != Variant::none) id += ":geometric";
+  if (prefilter != Prefilter::none) id += "+" + std::string(prefilter_name(prefilter));
+  if (taa) id += "+taa";
+  if (lobe != Lobe::papers) id += "/" + std::string(lobe_name(lobe));
+  return id;
+}
+
+std::string configuration_id(const TradeRow& row) { return configuration_id(row.variant, row.feed, row.prefilter, row.lobe, row.taa); }
 
 std::vector<Variant> default_trade_variants() {
   std::vector<Variant> variants(all_variants().begin(), all_variants().end());

@@ -110,19 +110,6 @@ struct TradeProgress {
 // Called on the calling thread, at most about every 100 ms and at each stage change.
 using TradeProgressFn = std::function<void(const TradeProgress&)>;
 
-// One clip of the animation, as the trade measured it (display values, display_image()), handed
-// to an observer frame by frame: the ground truth's ("ground-truth"), every row's (its
-// configuration id) and every sanity result's ("sanity:NAME"). Called on the calling thread.
-struct AnimationFrame {
-  SceneId scene = SceneId::sphere;
-  double alpha = 0.0;
-  bool fresnel = false;
-  std::string clip;  // "ground-truth", a configuration id, or "sanity:NAME"
-  int frame = 0;
-  const Image* display = nullptr;
-};
-using AnimationFrameFn = std::function<void(const AnimationFrame&)>;
-
 TradeTable compute_trade_table(const TradeConfig& config, const TradeProgressFn& progress = {}, const AnimationFrameFn& frames = {});
 // The config with a scene's own sizes (TradeConfig::scene_sizes) in width ... flicker_strata.
 TradeConfig sized_for_scene(const TradeConfig& config, SceneId id);
@@ -148,16 +135,6 @@ void set_ground_truth_cache_writer(CacheFileWriter writer);
 // The cache key text and its file name ("gt-<16 hex digits>.bin").
 std::string ground_truth_cache_key(const Scene& scene, const GroundTruthSettings& settings, std::span<const Material> materials);
 std::string ground_truth_cache_file(const std::string& key);
-
-// The configuration a row measures: the variant id, with ":geometric" appended when a saagen
-// variant is fed the geometric normal, and "+toksvig" / "+lean" with a prefiltered normal map
-// ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
-// "engine-hdrp"), and "/tail" or "/mapped" for a lobe other than the papers'
-// ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped"), and "+taa" before the
-// lobe under TAA ("none+taa", "deferred-avg:geometric+lean+taa").
-std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers,
-                             bool taa = false);
-std::string configuration_id(const TradeRow& row);
 
 // Whether a scene has normal detail beyond its geometry (normal map or bump shading), i.e.
 // whether the geometric and the shading normal differ.

@@ -279,6 +279,29 @@ struct TradeTable {
                        Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers, bool taa = false) const;
 };
 
+// The configuration a row measures: the variant id, with ":geometric" appended when a saagen
+// variant is fed the geometric normal, and "+toksvig" / "+lean" with a prefiltered normal map
+// ("deferred-avg", "deferred-avg:geometric", "deferred-avg:geometric+lean", "none+toksvig",
+// "engine-hdrp"), and "/tail" or "/mapped" for a lobe other than the papers'
+// ("forward-aniso-projected/tail", "deferred-avg:geometric+lean/mapped"), and "+taa" before the
+// lobe under TAA ("none+taa", "deferred-avg:geometric+lean+taa").
+std::string configuration_id(Variant variant, NormalFeed feed, Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers,
+                             bool taa = false);
+std::string configuration_id(const TradeRow& row);
+
+// One clip of the animation, as the trade measured it (display values, display_image()), handed
+// to an observer frame by frame: the ground truth's ("ground-truth"), every row's (its
+// configuration id) and every sanity result's ("sanity:NAME"). Called on the calling thread.
+struct AnimationFrame {
+  SceneId scene = SceneId::sphere;
+  double alpha = 0.0;
+  bool fresnel = false;
+  std::string clip;  // "ground-truth", a configuration id, or "sanity:NAME"
+  int frame = 0;
+  const Image* display = nullptr;
+};
+using AnimationFrameFn = std::function<void(const AnimationFrame&)>;
+
 // Frame `frame` of the animation the temporal metrics measure (see the top of trade.hpp).
 Scene trade_animation_frame(const TradeConfig& config, SceneId id, int frame);
 
