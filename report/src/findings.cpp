@@ -257,26 +257,8 @@ std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Cont
   return rows;
 }
 
-namespace {
-
-advice::Content advice_content(Content content) {
-  switch (content) {
-    case Content::curved:
-      return advice::Content::curved;
-    case Content::normal_mapped:
-      return advice::Content::normal_mapped;
-    case Content::bumps:
-      return advice::Content::bumps;
-    case Content::clearcoat:
-      return advice::Content::clearcoat;
-  }
-  return advice::Content::curved;
-}
-
-}  // namespace
-
 MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed, std::string_view baseline) {
-  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, advice_content(content));
+  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, content);
   if (speed) material.prefer = Preference::speed;
   return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline);
 }
@@ -482,7 +464,7 @@ std::vector<TradePoint> engine_points(const MaterialDecision& made, const std::v
 }
 
 std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Content content, std::optional<double> budget) {
-  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, advice_content(content));
+  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, content);
   material.budget = budget;
   return chosen_configuration(decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows));
 }
