@@ -142,6 +142,7 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
   const std::size_t n_materials = materials.size();
   const std::size_t spp = static_cast<std::size_t>(settings.strata) * settings.strata;
 
+  const CameraFilm film(scene.camera(), w, h);
   auto render_row = [&](int y) {
     std::vector<FilmOffset> offsets;
     std::vector<double> sums(n_materials);
@@ -151,7 +152,7 @@ GroundTruth render_ground_truth(const Scene& scene, const GroundTruthSettings& s
       std::fill(sums.begin(), sums.end(), 0.0);
       std::size_t hits = 0;
       for (const FilmOffset& off : offsets) {
-        const Ray ray = scene.camera().generate(x + 0.5 + off.dx, y + 0.5 + off.dy, w, h);
+        const Ray ray = film.ray(x + 0.5 + off.dx, y + 0.5 + off.dy);
         SurfaceHit hit;
         if (!scene.intersect(ray, hit)) continue;
         ++hits;

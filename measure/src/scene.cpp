@@ -427,15 +427,23 @@ std::string BumpPlane::describe() const {
 // ---------------------------------------------------------------------------------------------
 // Camera and light
 
-Ray Camera::generate(double fx, double fy, int width, int height) const {
-  const Vec3 forward = normalize(look_at - position);
-  const Vec3 right = normalize(cross(forward, up));
-  const Vec3 true_up = cross(right, forward);
-  const double tan_half = std::tan(0.5 * fov_y_degrees * kPi / 180.0);
-  const double aspect = static_cast<double>(width) / height;
-  const double sx = (2.0 * (fx + jitter.x) / width - 1.0) * tan_half * aspect;
-  const double sy = (1.0 - 2.0 * (fy + jitter.y) / height) * tan_half;
-  return {position, normalize(forward + sx * right + sy * true_up)};
+Ray Camera::generate(double fx, double fy, int width, int height) const { return CameraFilm(*this, width, height).ray(fx, fy); }
+
+CameraFilm::CameraFilm(const Camera& camera, int width, int height)
+    : position_(camera.position),
+      forward_(normalize(camera.look_at - camera.position)),
+      right_(normalize(cross(forward_, camera.up))),
+      true_up_(cross(right_, forward_)),
+      jitter_(camera.jitter),
+      tan_half_(std::tan(0.5 * camera.fov_y_degrees * kPi / 180.0)),
+      aspect_(static_cast<double>(width) / height),
+      width_(width),
+      height_(height) {}
+
+Ray CameraFilm::ray(double fx, double fy) const {
+  const double sx = (2.0 * (fx + jitter_.x) / width_ - 1.0) * tan_half_ * aspect_;
+  const double sy = (1.0 - 2.0 * (fy + jitter_.y) / height_) * tan_half_;
+  return {position_, normalize(forward_ + sx * right_ + sy * true_up_)};
 }
 
 std::optional<Vec2> Camera::project(Vec3 p, int width, int height) const {

@@ -214,12 +214,27 @@ struct Camera {
   Camera panned(double right_pixels, double up_pixels, int height) const;
 
   // Primary ray through film position (fx, fy) in pixels (x right, y down) of a
-  // width x height image.
+  // width x height image (CameraFilm(*this, width, height).ray(fx, fy)).
   Ray generate(double fx, double fy, int width, int height) const;
 
   // The film position (fx, fy) whose primary ray passes through the world point p (generate's
   // inverse, jitter included); nullopt when p is not in front of the camera.
   std::optional<Vec2> project(Vec3 p, int width, int height) const;
+};
+
+// A camera's primary rays for one image size: the frame, the field of view's tangent and the
+// aspect ratio computed once, so that a renderer tracing many rays per pixel does not recompute
+// them per ray. ray() is Camera::generate to the last bit (the same operations in the same order).
+class CameraFilm {
+ public:
+  CameraFilm(const Camera& camera, int width, int height);
+  Ray ray(double fx, double fy) const;
+
+ private:
+  Vec3 position_, forward_, right_, true_up_;
+  Vec2 jitter_;
+  double tan_half_ = 0.0, aspect_ = 0.0;
+  int width_ = 0, height_ = 0;
 };
 
 struct Light {
