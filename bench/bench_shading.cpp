@@ -382,6 +382,156 @@ std::size_t probe_helper_loads(hx::VulkanContext& context, const saagen::Emitted
 // changes nothing.
 constexpr double minimum_pixel_change = 0.002;
 
+// Prints whether helper invocations load buffers on this device (the kernels' derivatives of
+// loaded values depend on it).
+void report_helper_loads(hx::VulkanContext& context, const saagen::Catalogue& catalogue, const Options& options) {
+  saagen::EmitOptions emit;
+  emit.variants = {"brdf-ggx"};
+  const std::size_t wrong = probe_helper_loads(context, saagen::emit_variants(catalogue, emit).front(), options.width, options.height);
+  if (wrong == 0) {
+    fmt::print("helper invocations: buffer loads ok (derivatives of loaded values are exact on every pixel)\n");
+  } else {
+    fmt::print(
+        "helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
+        "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
+        wrong, static_cast<std::size_t>(options.width) * options.height);
+  }
+}
+
+// The timed rounds of a variant and the baseline, interleaved ABBA after the warm-up rounds.
+struct InterleavedSamples {
+  std::vector<double> variant_ms, baseline_ms, ratios;
+};
+
+InterleavedSamples time_interleaved(Kernel& baseline, Kernel& kernel, const Options& options, bool timestamps) {
+  InterleavedSamples samples;
+  for (std::uint32_t round = 0; round < options.warmup + options.repetitions; ++round) {
+    double base_ms = 0.0, variant_ms = 0.0;
+    if (round % 2 == 0) {
+      base_ms = baseline.run_once(timestamps);
+      variant_ms = kernel.run_once(timestamps);
+    } else {
+      variant_ms = kernel.run_once(timestamps);
+      base_ms = baseline.run_once(timestamps);
+    }
+    if (round < options.warmup) continue;
+    samples.variant_ms.push_back(variant_ms);
+    samples.baseline_ms.push_back(base_ms);
+    samples.ratios.push_back(variant_ms / base_ms);
+  }
+  return samples;
+}
+
+// The no-SAA image a variant's is compared with, and its statistics.
+struct BaselineImage {
+  std::vector<float> pixels;
+  ImageStats stats;
+};
+
+// A variant's image against no SAA's: its relative change per sphere pixel and of the mean. Throws
+// where the sphere's coverage differs or the filter changes too little to be wired in.
+std::pair<double, double> image_change(const std::string& target, const std::string& variant, const std::vector<float>& image,
+                                       const BaselineImage& baseline) {
+  const ImageStats stats = check_image(target, variant, image);
+  if (stats.on_sphere != baseline.stats.on_sphere) {
+    throw Failure(fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant, stats.on_sphere, baseline.stats.on_sphere));
+  }
+  double absolute_change = 0.0;
+  for (std::size_t index = 0; index < image.size(); ++index) {
+    if (baseline.pixels[index] != -1.0f) absolute_change += std::abs(static_cast<double>(image[index]) - baseline.pixels[index]);
+  }
+  const double pixel_change = absolute_change / static_cast<double>(stats.on_sphere) / baseline.stats.mean;
+  const double mean_change = (stats.mean - baseline.stats.mean) / baseline.stats.mean;
+  if (pixel_change < minimum_pixel_change) {
+    throw Failure(fmt::format("{} {}: the image differs from no SAA by only {:.3f}% per pixel: the filter is not wired in", target, variant,
+                              100.0 * pixel_change));
+  }
+  return {pixel_change, mean_change};
+}
+
+// The ratios of Tokuyoshi & Kaplanyan 2019's Table 2 for a variant the paper timed.
+void set_paper_anchor(const VariantCase& variant, Row& row) {
+  if (!variant.paper_ms) return;
+  std::array<double, 3> ratios_in_paper{};
+  for (std::size_t scene = 0; scene < 3; ++scene) ratios_in_paper[scene] = (*variant.paper_ms)[scene] / paper_no_saa_ms[scene];
+  row.paper_range = std::array<double, 2>{*std::min_element(ratios_in_paper.begin(), ratios_in_paper.end()),
+                                          *std::max_element(ratios_in_paper.begin(), ratios_in_paper.end())};
+  row.paper_sponza = ratios_in_paper[0];
+}
+
+Row timed_row(const std::string& target, const std::string& variant, const InterleavedSamples& samples) {
+  Row row;
+  row.target = target;
+  row.variant = variant;
+  row.ms = percentile(samples.variant_ms, 0.5);
+  row.baseline_ms = percentile(samples.baseline_ms, 0.5);
+  row.ratio = percentile(samples.ratios, 0.5);
+  row.ratio_p25 = percentile(samples.ratios, 0.25);
+  row.ratio_p75 = percentile(samples.ratios, 0.75);
+  row.ms_min = *std::min_element(samples.variant_ms.begin(), samples.variant_ms.end());
+  row.baseline_ms_min = *std::min_element(samples.baseline_ms.begin(), samples.baseline_ms.end());
+  row.ratio_of_minima = row.ms_min / row.baseline_ms_min;
+  return row;
+}
+
+// No SAA's row: the median and minimum of every baseline round timed beside the variants.
+Row baseline_row(const std::string& target, const std::vector<double>& baseline_samples, std::size_t instructions) {
+  Row row;
+  row.target = target;
+  row.variant = "no-saa";
+  row.ms = percentile(baseline_samples, 0.5);
+  row.baseline_ms = row.ms;
+  row.ms_min = *std::min_element(baseline_samples.begin(), baseline_samples.end());
+  row.baseline_ms_min = row.ms_min;
+  row.instructions = instructions;
+  return row;
+}
+
+// Every variant of one target timed against no SAA, no SAA's row first.
+std::vector<Row> measure_target(hx::VulkanContext& context, const saagen::Catalogue& catalogue, const std::string& target,
+                                const Options& options, bool timestamps) {
+  saagen::EmitOptions emit;
+  emit.target = target;
+  const std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, emit);
+  const auto file_of = [&](const std::string& id) -> const saagen::EmittedFile& {
+    for (const auto& file : files) {
+      if (file.marker.variants.size() == 1 && file.marker.variants.front() == id) return file;
+    }
+    throw Failure(fmt::format("{}: no emitted file for variant {}", target, id));
+  };
+  const saagen::EmittedFile& brdf = file_of("brdf-ggx");
+
+  const Shader baseline_shader = build_shader(target, "no-saa", brdf, brdf.content,
+                                              body_with(baseline_shading, options.width, options.height, options.lights), options.width);
+  const std::vector<float> parameters = parameter_buffer(options.width, options.height, options.lights);
+  Kernel baseline(context, baseline_shader, options.width, options.height, parameters);
+  baseline.run_once(timestamps);
+  BaselineImage baseline_image{baseline.output(), {}};
+  baseline_image.stats = check_image(target, "no-saa", baseline_image.pixels);
+
+  std::vector<Row> rows;
+  std::vector<double> all_baseline_samples;
+  for (const VariantCase& variant : variant_cases()) {
+    const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
+    const Shader shader = build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
+                                       body_with(variant.shading, options.width, options.height, options.lights), options.width);
+    Kernel kernel(context, shader, options.width, options.height, parameters);
+    const InterleavedSamples samples = time_interleaved(baseline, kernel, options, timestamps);
+    const auto [pixel_change, mean_change] = image_change(target, variant.id, kernel.output(), baseline_image);
+    all_baseline_samples.insert(all_baseline_samples.end(), samples.baseline_ms.begin(), samples.baseline_ms.end());
+
+    Row row = timed_row(target, variant.id, samples);
+    row.instructions = shader.instructions;
+    row.delta_instructions = static_cast<long>(shader.instructions) - static_cast<long>(baseline_shader.instructions);
+    row.mean_change = mean_change;
+    row.pixel_change = pixel_change;
+    set_paper_anchor(variant, row);
+    rows.push_back(row);
+  }
+  rows.insert(rows.begin(), baseline_row(target, all_baseline_samples, baseline_shader.instructions));
+  return rows;
+}
+
 int run_bench(const Options& options) {
   const auto started = std::chrono::steady_clock::now();
   hx::VulkanContext context(hx::ContextOptions{.device_name = options.device});
@@ -396,115 +546,10 @@ int run_bench(const Options& options) {
       options.width, options.height, options.lights, options.lights == 1 ? "" : "s", options.warmup, options.repetitions);
 
   const saagen::Catalogue& catalogue = saagen::Catalogue::builtin();
-  {
-    saagen::EmitOptions emit;
-    emit.variants = {"brdf-ggx"};
-    const std::size_t wrong = probe_helper_loads(context, saagen::emit_variants(catalogue, emit).front(), options.width, options.height);
-    if (wrong == 0) {
-      fmt::print("helper invocations: buffer loads ok (derivatives of loaded values are exact on every pixel)\n");
-    } else {
-      fmt::print(
-          "helper invocations: buffer loads read 0 on this device ({} of {} pixels would get wrong derivatives "
-          "of loaded values); the kernels substitute the parameters' literal values in those lanes\n",
-          wrong, static_cast<std::size_t>(options.width) * options.height);
-    }
-  }
+  report_helper_loads(context, catalogue, options);
   std::vector<Row> all_rows;
   for (const std::string target : {"glsl", "hlsl"}) {
-    saagen::EmitOptions emit;
-    emit.target = target;
-    const std::vector<saagen::EmittedFile> files = saagen::emit_variants(catalogue, emit);
-    const auto file_of = [&](const std::string& id) -> const saagen::EmittedFile& {
-      for (const auto& file : files) {
-        if (file.marker.variants.size() == 1 && file.marker.variants.front() == id) return file;
-      }
-      throw Failure(fmt::format("{}: no emitted file for variant {}", target, id));
-    };
-    const saagen::EmittedFile& brdf = file_of("brdf-ggx");
-
-    const Shader baseline_shader = build_shader(target, "no-saa", brdf, brdf.content,
-                                                body_with(baseline_shading, options.width, options.height, options.lights), options.width);
-    const std::vector<float> parameters = parameter_buffer(options.width, options.height, options.lights);
-    Kernel baseline(context, baseline_shader, options.width, options.height, parameters);
-    baseline.run_once(timestamps);
-    const std::vector<float> baseline_image = baseline.output();
-    const ImageStats baseline_stats = check_image(target, "no-saa", baseline_image);
-
-    std::vector<Row> rows;
-    std::vector<double> all_baseline_samples;
-    for (const VariantCase& variant : variant_cases()) {
-      const saagen::EmittedFile& file = file_of(catalogue_variant(variant));
-      const Shader shader = build_shader(target, variant.id, file, file.content + "\n" + brdf.content,
-                                         body_with(variant.shading, options.width, options.height, options.lights), options.width);
-      Kernel kernel(context, shader, options.width, options.height, parameters);
-
-      std::vector<double> variant_samples, baseline_samples, ratios;
-      for (std::uint32_t round = 0; round < options.warmup + options.repetitions; ++round) {
-        double base_ms = 0.0, variant_ms = 0.0;
-        if (round % 2 == 0) {
-          base_ms = baseline.run_once(timestamps);
-          variant_ms = kernel.run_once(timestamps);
-        } else {
-          variant_ms = kernel.run_once(timestamps);
-          base_ms = baseline.run_once(timestamps);
-        }
-        if (round < options.warmup) continue;
-        variant_samples.push_back(variant_ms);
-        baseline_samples.push_back(base_ms);
-        ratios.push_back(variant_ms / base_ms);
-      }
-      const std::vector<float> image = kernel.output();
-      const ImageStats stats = check_image(target, variant.id, image);
-      if (stats.on_sphere != baseline_stats.on_sphere) {
-        throw Failure(
-            fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant.id, stats.on_sphere, baseline_stats.on_sphere));
-      }
-      double absolute_change = 0.0;
-      for (std::size_t index = 0; index < image.size(); ++index) {
-        if (baseline_image[index] != -1.0f) absolute_change += std::abs(static_cast<double>(image[index]) - baseline_image[index]);
-      }
-      const double pixel_change = absolute_change / static_cast<double>(stats.on_sphere) / baseline_stats.mean;
-      const double mean_change = (stats.mean - baseline_stats.mean) / baseline_stats.mean;
-      if (pixel_change < minimum_pixel_change) {
-        throw Failure(fmt::format("{} {}: the image differs from no SAA by only {:.3f}% per pixel: the filter is not wired in", target,
-                                  variant.id, 100.0 * pixel_change));
-      }
-      all_baseline_samples.insert(all_baseline_samples.end(), baseline_samples.begin(), baseline_samples.end());
-
-      Row row;
-      row.target = target;
-      row.variant = variant.id;
-      row.ms = percentile(variant_samples, 0.5);
-      row.baseline_ms = percentile(baseline_samples, 0.5);
-      row.ratio = percentile(ratios, 0.5);
-      row.ratio_p25 = percentile(ratios, 0.25);
-      row.ratio_p75 = percentile(ratios, 0.75);
-      row.ms_min = *std::min_element(variant_samples.begin(), variant_samples.end());
-      row.baseline_ms_min = *std::min_element(baseline_samples.begin(), baseline_samples.end());
-      row.ratio_of_minima = row.ms_min / row.baseline_ms_min;
-      row.instructions = shader.instructions;
-      row.delta_instructions = static_cast<long>(shader.instructions) - static_cast<long>(baseline_shader.instructions);
-      row.mean_change = mean_change;
-      row.pixel_change = pixel_change;
-      if (variant.paper_ms) {
-        std::array<double, 3> ratios_in_paper{};
-        for (std::size_t scene = 0; scene < 3; ++scene) ratios_in_paper[scene] = (*variant.paper_ms)[scene] / paper_no_saa_ms[scene];
-        row.paper_range = std::array<double, 2>{*std::min_element(ratios_in_paper.begin(), ratios_in_paper.end()),
-                                                *std::max_element(ratios_in_paper.begin(), ratios_in_paper.end())};
-        row.paper_sponza = ratios_in_paper[0];
-      }
-      rows.push_back(row);
-    }
-
-    Row baseline_row;
-    baseline_row.target = target;
-    baseline_row.variant = "no-saa";
-    baseline_row.ms = percentile(all_baseline_samples, 0.5);
-    baseline_row.baseline_ms = baseline_row.ms;
-    baseline_row.ms_min = *std::min_element(all_baseline_samples.begin(), all_baseline_samples.end());
-    baseline_row.baseline_ms_min = baseline_row.ms_min;
-    baseline_row.instructions = baseline_shader.instructions;
-    rows.insert(rows.begin(), baseline_row);
+    const std::vector<Row> rows = measure_target(context, catalogue, target, options, timestamps);
     print_table(target, rows, time_source);
     all_rows.insert(all_rows.end(), rows.begin(), rows.end());
   }
