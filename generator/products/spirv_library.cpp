@@ -305,42 +305,19 @@ std::vector<std::pair<std::string, std::string>> export_decorations(const std::v
 
 std::uint32_t numeric_id(const std::string& id) { return static_cast<std::uint32_t>(std::stoul(id.substr(1))); }
 
-// `base_catalogue`'s variant, compiled from its GLSL emission in options.domain: the exports are
-// the functions as emitted in that domain (the domain wrappers where roughness goes in and out).
-SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& options, const Variant& base_variant) {
-  EmitOptions glsl = options;  // the emission of the library's source target (spirv_library_target)
-  glsl.target = spirv_library_target().name;
-  glsl.variants = {base_variant.id};
-  const EmittedFile file = emit_variants(base_catalogue, glsl).front();
-  const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
-  const Variant& variant = catalogue.variant(base_variant.id);
-
-  CompileRequest request;
-  request.language = spirv_library_target().language;
-  request.stage = ShaderStage::compute;
-  request.client = ClientApi::vulkan;
-  // The validation skeleton: the file under <PREFIX>CORE_ONLY and a main that calls every
-  // function without derivatives once, with arguments loaded from a buffer, so that glslang
-  // emits every function (it does not inline without the optimizer).
-  request.sources = validation_sources(catalogue, file.marker, file.file_name, file.content, ShaderStage::compute);
-  const CompileResult compiled = compile_to_spirv(request);
-  if (!compiled.ok) throw Error(fmt::format("{}: the SPIR-V library does not compile: {}", file.file_name, compiled.log));
-
+// The functions of `variant` a library exports: those without derivatives.
+std::vector<std::string> exportable_functions(const Catalogue& catalogue, const Variant& variant) {
   std::vector<std::string> exported;
   for (const std::string& name : variant.functions) {
     if (!catalogue.find_function(name)->fragment_only) exported.push_back(name);
   }
   if (exported.empty()) throw Error(fmt::format("variant {} has no function without derivatives to export", variant.id));
+  return exported;
+}
 
-  SpirvLibrary library;
-  library.marker = file.marker;
-  library.marker.target = OutputTarget::product(OutputKind::spirv_library);
-  const std::string stem = file.file_name.substr(0, file.file_name.rfind('.'));
-  library.file_name = stem + ".spv";
-  library.header_name = stem + ".spv.h";
-
-  auto instructions = parse_module_text(disassemble_spirv(compiled.spirv));
-  // The entry points and everything defined inside them.
+// The module without its entry points, everything defined inside them, their execution modes and
+// the workgroup size that belongs to the removed compute entry point (a consumer declares its own).
+std::vector<Instruction> without_entry_points(std::vector<Instruction> instructions) {
   std::set<std::string> dead;
   for (const Instruction& instruction : instructions) {
     if (instruction.opcode == "OpEntryPoint" && instruction.operands.size() >= 2) dead.insert(instruction.operands[1]);
@@ -358,12 +335,16 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
       continue;
     kept.push_back(std::move(instruction));
   }
-  // The workgroup size belongs to the removed compute entry point (a consumer declares its own).
   std::erase_if(kept, [&dead](const Instruction& instruction) {
     return targets_id(instruction, dead) || (instruction.opcode == "OpDecorate" && instruction.operands.size() >= 3 &&
                                              instruction.operands[1] == "BuiltIn" && instruction.operands[2] == "WorkgroupSize");
   });
+  return kept;
+}
 
+// Marks each exported function with an Export linkage attribute, records the marker line as an
+// OpModuleProcessed and declares the Linkage capability.
+void decorate_exports(std::vector<Instruction>& kept, const std::vector<std::string>& exported, const SpirvLibrary& library) {
   std::vector<Instruction> decorations;
   for (const std::string& name : exported) {
     const std::string emitted = prefixed_name(library.marker.prefix, name);
@@ -380,16 +361,11 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
   if (!has_capability(kept, "Linkage")) {
     kept.insert(kept.begin() + static_cast<std::ptrdiff_t>(after_last_capability(kept)), parse_instruction("OpCapability Linkage"));
   }
+}
 
-  library.words = run_dead_code_passes(assemble_spirv(module_text(kept)));
-  std::vector<std::string> exported_names;
-  for (const std::string& name : exported) exported_names.push_back(prefixed_name(library.marker.prefix, name));
-  if (const std::string problems = validate_spirv_library(library.words, exported_names); !problems.empty()) {
-    throw Error(fmt::format("{}: the library module is invalid: {}", library.file_name, problems));
-  }
-
-  // Exports and their SPIR-V function types, read back from the final module.
-  const auto final_instructions = parse_module_text(disassemble_spirv(library.words));
+// The exports and their SPIR-V function types, read back from the final module.
+std::vector<SpirvExport> read_exports(const std::vector<Instruction>& final_instructions, const std::vector<std::string>& exported,
+                                      const std::string& prefix) {
   const auto types = type_descriptions(final_instructions);
   std::map<std::string, std::string> function_types;  // id -> description
   for (const Instruction& instruction : final_instructions) {
@@ -399,13 +375,18 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
     }
   }
   const auto decorated = export_decorations(final_instructions);
+  std::vector<SpirvExport> exports;
   for (const std::string& name : exported) {
-    const std::string emitted = prefixed_name(library.marker.prefix, name);
+    const std::string emitted = prefixed_name(prefix, name);
     const auto found = std::find_if(decorated.begin(), decorated.end(), [&](const auto& entry) { return entry.second == emitted; });
-    library.exports.push_back({emitted, name, numeric_id(found->first), function_types[found->first]});
+    exports.push_back({emitted, name, numeric_id(found->first), function_types[found->first]});
   }
+  return exports;
+}
 
-  // Reflection: the `saagen list --json` entries of the exported functions plus their SPIR-V types.
+// Reflection: the `saagen list --json` entries of the exported functions plus their SPIR-V types.
+nlohmann::json library_reflection(const Catalogue& base_catalogue, const EmitOptions& options, const Variant& variant,
+                                  const SpirvLibrary& library, const std::vector<Instruction>& final_instructions) {
   const nlohmann::json catalogue_entry = catalogue_json(base_catalogue, library.marker.prefix, options.domain);
   nlohmann::json functions = nlohmann::json::array();
   for (const SpirvExport& entry : library.exports) {
@@ -426,19 +407,62 @@ SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& o
   }
   nlohmann::json option_values = nlohmann::json::object();
   for (const auto& [option, value] : library.marker.option_values) option_values[option] = value;
-  library.reflection = {{"saagen_version", std::string(version())},
-                        {"module", library.file_name},
-                        {"variant", variant.id},
-                        {"prefix", library.marker.prefix},
-                        {"precision", to_string(library.marker.precision)},
-                        {"guards", library.marker.guards},
-                        {"options", option_values},
-                        {"spirv_version", env_name(universal_env(library.words))},
-                        {"capabilities", capabilities},
-                        {"calling_convention",
-                         "glslang's: every parameter is an OpTypePointer Function to its value type; the result is returned by "
-                         "value. Imports must declare exactly spirv_type."},
-                        {"exports", functions}};
+  return {{"saagen_version", std::string(version())},
+          {"module", library.file_name},
+          {"variant", variant.id},
+          {"prefix", library.marker.prefix},
+          {"precision", to_string(library.marker.precision)},
+          {"guards", library.marker.guards},
+          {"options", option_values},
+          {"spirv_version", env_name(universal_env(library.words))},
+          {"capabilities", capabilities},
+          {"calling_convention",
+           "glslang's: every parameter is an OpTypePointer Function to its value type; the result is returned by "
+           "value. Imports must declare exactly spirv_type."},
+          {"exports", functions}};
+}
+
+// `base_catalogue`'s variant, compiled from its GLSL emission in options.domain: the exports are
+// the functions as emitted in that domain (the domain wrappers where roughness goes in and out).
+SpirvLibrary build_library(const Catalogue& base_catalogue, const EmitOptions& options, const Variant& base_variant) {
+  EmitOptions glsl = options;  // the emission of the library's source target (spirv_library_target)
+  glsl.target = spirv_library_target().name;
+  glsl.variants = {base_variant.id};
+  const EmittedFile file = emit_variants(base_catalogue, glsl).front();
+  const Catalogue& catalogue = domain_catalogue(base_catalogue, options.domain);
+  const Variant& variant = catalogue.variant(base_variant.id);
+
+  CompileRequest request;
+  request.language = spirv_library_target().language;
+  request.stage = ShaderStage::compute;
+  request.client = ClientApi::vulkan;
+  // The validation skeleton: the file under <PREFIX>CORE_ONLY and a main that calls every
+  // function without derivatives once, with arguments loaded from a buffer, so that glslang
+  // emits every function (it does not inline without the optimizer).
+  request.sources = validation_sources(catalogue, file.marker, file.file_name, file.content, ShaderStage::compute);
+  const CompileResult compiled = compile_to_spirv(request);
+  if (!compiled.ok) throw Error(fmt::format("{}: the SPIR-V library does not compile: {}", file.file_name, compiled.log));
+  const std::vector<std::string> exported = exportable_functions(catalogue, variant);
+
+  SpirvLibrary library;
+  library.marker = file.marker;
+  library.marker.target = OutputTarget::product(OutputKind::spirv_library);
+  const std::string stem = file.file_name.substr(0, file.file_name.rfind('.'));
+  library.file_name = stem + ".spv";
+  library.header_name = stem + ".spv.h";
+
+  std::vector<Instruction> kept = without_entry_points(parse_module_text(disassemble_spirv(compiled.spirv)));
+  decorate_exports(kept, exported, library);
+  library.words = run_dead_code_passes(assemble_spirv(module_text(kept)));
+  std::vector<std::string> exported_names;
+  for (const std::string& name : exported) exported_names.push_back(prefixed_name(library.marker.prefix, name));
+  if (const std::string problems = validate_spirv_library(library.words, exported_names); !problems.empty()) {
+    throw Error(fmt::format("{}: the library module is invalid: {}", library.file_name, problems));
+  }
+
+  const auto final_instructions = parse_module_text(disassemble_spirv(library.words));
+  library.exports = read_exports(final_instructions, exported, library.marker.prefix);
+  library.reflection = library_reflection(base_catalogue, options, variant, library, final_instructions);
   return library;
 }
 
