@@ -241,6 +241,116 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
   return exit_usage;
 }
 
+// `saagen list`: the catalogue, as text or JSON.
+class ListCommand {
+ public:
+  explicit ListCommand(CLI::App& app) : command_(app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions")) {
+    command_->add_flag("--json", json_, "Machine-readable catalogue (the contract for engines and tests)");
+    command_->add_option("--prefix", prefix_, "Prefix shown in emitted names")->capture_default_str();
+    command_->add_option("--domain", domain_, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")
+        ->capture_default_str();
+  }
+  bool requested() const { return static_cast<bool>(*command_); }
+  int run(const Catalogue& catalogue) const { return run_list(catalogue, json_, prefix_, saagen::find_domain(domain_).kind); }
+
+ private:
+  CLI::App* command_;
+  bool json_ = false;
+  std::string prefix_ = "saa_";
+  std::string domain_ = "alpha2";
+};
+
+// `saagen emit` of variants (without --manifest: SceneCommands takes that).
+class EmitCommand {
+ public:
+  explicit EmitCommand(CLI::App& app) : command_(app.add_subcommand("emit", "Write one include file per variant for a target")) {
+    command_
+        ->add_option(
+            "--target,-t", arguments_.target,
+            "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")
+        ->capture_default_str();
+    command_->add_option("--variant,-v", arguments_.variants, "Variant id (repeatable); all variants when none is named");
+    preset_option_ = command_->add_option(
+        "--preset", preset_,
+        "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
+    domain_option_ = command_->add_option(
+        "--domain", domain_,
+        "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
+    command_->add_option("--prefix", arguments_.prefix, "Prefix of every global name in the output")->capture_default_str();
+    sigma2_option_ = command_->add_option("--sigma2", sigma2_, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
+    kappa_option_ =
+        command_->add_option("--kappa", kappa_, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
+    command_->add_option("--output,-o", arguments_.output_directory, "Output directory")->required();
+    command_->add_flag("--force", arguments_.force, "Overwrite files that saagen did not write");
+    command_
+        ->add_option("--precision", arguments_.precision, "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")
+        ->capture_default_str();
+    command_->add_flag("--unguarded", arguments_.unguarded, "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
+    command_->add_option("--import-path", arguments_.import_path,
+                         "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
+    command_
+        ->add_option("--module", arguments_.module_name, "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")
+        ->capture_default_str();
+    arguments_.glint.add_to(command_, "glint-");
+  }
+  CLI::App* command() const { return command_; }
+  bool requested() const { return static_cast<bool>(*command_); }
+  const std::string& output_directory() const { return arguments_.output_directory; }
+  bool force() const { return arguments_.force; }
+  // The options that shape a variant's emission, which `emit --manifest` refuses (the manifest sets them).
+  std::vector<CLI::Option*> per_variant_options() const {
+    std::vector<CLI::Option*> options;
+    for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset",
+                             "--domain", "--import-path", "--module"}) {
+      if (CLI::Option* option = command_->get_option_no_throw(name)) options.push_back(option);
+    }
+    return options;
+  }
+  int run(const Catalogue& catalogue) {
+    if (*sigma2_option_) arguments_.sigma2 = saagen::cli::parse_number("--sigma2", sigma2_);
+    if (*kappa_option_) arguments_.kappa = saagen::cli::parse_number("--kappa", kappa_);
+    if (*preset_option_) arguments_.preset = preset_;
+    if (*domain_option_) arguments_.domain = domain_;
+    return run_emit(catalogue, arguments_);
+  }
+
+ private:
+  CLI::App* command_;
+  EmitArguments arguments_;
+  std::string sigma2_, kappa_, preset_, domain_;
+  CLI::Option* preset_option_ = nullptr;
+  CLI::Option* domain_option_ = nullptr;
+  CLI::Option* sigma2_option_ = nullptr;
+  CLI::Option* kappa_option_ = nullptr;
+};
+
+// `saagen validate [DIR]`.
+class ValidateCommand {
+ public:
+  explicit ValidateCommand(CLI::App& app)
+      : command_(app.add_subcommand(
+            "validate",
+            "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)")) {
+    command_->add_option("DIR", directory_, "Directory written by `saagen emit`");
+  }
+  bool requested() const { return static_cast<bool>(*command_); }
+  int run(const Catalogue& catalogue) const { return run_validate(catalogue, directory_); }
+
+ private:
+  CLI::App* command_;
+  std::string directory_;
+};
+
+// A first argument that names no command: one line naming the commands.
+bool names_unknown_command(CLI::App& app, int argc, char** argv) {
+  if (argc <= 1 || argv[1][0] == '-') return false;
+  if (!app.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; }).empty()) return false;
+  std::cerr
+      << "saagen: error: unknown command '" << saagen::one_line(argv[1])
+      << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs, score for clips rendered elsewhere (run `saagen --help`)\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -251,62 +361,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(saagen::version()));
   app.require_subcommand(1);
 
-  bool list_json = false;
-  std::string list_prefix = "saa_";
-  CLI::App* list = app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions");
-  list->add_flag("--json", list_json, "Machine-readable catalogue (the contract for engines and tests)");
-  list->add_option("--prefix", list_prefix, "Prefix shown in emitted names")->capture_default_str();
-  std::string list_domain = "alpha2";
-  list->add_option("--domain", list_domain, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")
-      ->capture_default_str();
-
-  EmitArguments emit_arguments;
-  std::string sigma2;
-  std::string kappa;
-  CLI::App* emit = app.add_subcommand("emit", "Write one include file per variant for a target");
-  emit->add_option(
-          "--target,-t", emit_arguments.target,
-          "Target language: glsl, gles (GLSL ES 3.00: WebGL2, OpenGL ES 3), hlsl, wgsl (WebGPU modules), or spirv (linkable SPIR-V library modules + C/C++ headers)")
-      ->capture_default_str();
-  emit->add_option("--variant,-v", emit_arguments.variants, "Variant id (repeatable); all variants when none is named");
-  std::string preset;
-  std::string domain;
-  CLI::Option* preset_option = emit->add_option(
-      "--preset", preset,
-      "An engine's shipped form: hdrp, filament, filament-taa, o3de, bevy or vsgl (variant, sigma^2, kappa and domain; explicit options win)");
-  CLI::Option* domain_option = emit->add_option(
-      "--domain", domain,
-      "Roughness in and out of the emitted functions: alpha2 (default), alpha, perceptual (alpha = r^2) or smoothness (1 - r)");
-  emit->add_option("--prefix", emit_arguments.prefix, "Prefix of every global name in the output")->capture_default_str();
-  CLI::Option* sigma2_option = emit->add_option("--sigma2", sigma2, "Variance of the pixel filter in pixels^2, in (0, 4] (default 0.25)");
-  CLI::Option* kappa_option =
-      emit->add_option("--kappa", kappa, "Clamp of the kernel roughness in the alpha^2 domain, in [0, 1] (default 0.18)");
-  emit->add_option("--output,-o", emit_arguments.output_directory, "Output directory")->required();
-  emit->add_flag("--force", emit_arguments.force, "Overwrite files that saagen did not write");
-  emit->add_option("--precision", emit_arguments.precision,
-                   "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")
-      ->capture_default_str();
-  emit->add_flag("--unguarded", emit_arguments.unguarded, "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
-  emit->add_option("--import-path", emit_arguments.import_path,
-                   "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
-  emit->add_option("--module", emit_arguments.module_name,
-                   "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")
-      ->capture_default_str();
-  emit_arguments.glint.add_to(emit, "glint-");
-
-  std::string validate_directory;
-  CLI::App* validate = app.add_subcommand(
-      "validate",
-      "Compile and spirv-validate emitted files in-process, WGSL with Tint (Dawn for Node) (all variants and targets when no DIR)");
-  validate->add_option("DIR", validate_directory, "Directory written by `saagen emit`");
-
+  const ListCommand list(app);
+  EmitCommand emit(app);
+  const ValidateCommand validate(app);
   // Scene manifests: `plan`, `emit --manifest`, `compile`; see scene_commands.cpp.
-  std::vector<CLI::Option*> per_variant_options;
-  for (const char* name : {"--target", "--variant", "--prefix", "--sigma2", "--kappa", "--precision", "--unguarded", "--preset", "--domain",
-                           "--import-path", "--module"}) {
-    if (CLI::Option* option = emit->get_option_no_throw(name)) per_variant_options.push_back(option);
-  }
-  const saagen::cli::SceneCommands scene(app, emit, per_variant_options);
+  const saagen::cli::SceneCommands scene(app, emit.command(), emit.per_variant_options());
   const saagen::cli::GlintCommands glints(app);  // `saagen glints ...`
   // The speed/accuracy trade: `bench`, `report`; see report_commands.cpp.
   const saagen::cli::ReportCommands trade(app);
@@ -317,13 +376,7 @@ int main(int argc, char** argv) {
   // Normal-map prefiltering: `texture prefilter`; see texture_commands.cpp.
   const saagen::cli::TextureCommands texture(app);
 
-  if (argc > 1 && argv[1][0] != '-' &&
-      app.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; }).empty()) {
-    std::cerr
-        << "saagen: error: unknown command '" << saagen::one_line(argv[1])
-        << "'; use list, emit or validate, plan or compile for scene manifests, bench or report for the trade-offs, score for clips rendered elsewhere (run `saagen --help`)\n";
-    return exit_usage;
-  }
+  if (names_unknown_command(app, argc, argv)) return exit_usage;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -335,24 +388,18 @@ int main(int argc, char** argv) {
     // `list` and `emit` show and write every variant, the glinty BRDFs included; the planner and
     // the other commands keep the screen-space SAA catalogue.
     const Catalogue& every_variant = saagen::glints::catalogue();
-    if (*list) return run_list(every_variant, list_json, list_prefix, saagen::find_domain(list_domain).kind);
-    if (*emit && scene.emit_from_manifest()) {
-      saagen::cli::check_output_named("--output", emit_arguments.output_directory);
-      return scene.run_emit(catalogue, emit_arguments.output_directory, emit_arguments.force);
+    if (list.requested()) return list.run(every_variant);
+    if (emit.requested() && scene.emit_from_manifest()) {
+      saagen::cli::check_output_named("--output", emit.output_directory());
+      return scene.run_emit(catalogue, emit.output_directory(), emit.force());
     }
     if (scene.plan_requested()) return scene.run_plan(catalogue);
     if (scene.compile_requested()) return scene.run_compile();
     if (trade.bench_requested()) return trade.run_bench();
     if (trade.report_requested()) return trade.run_report();
     if (score.requested()) return score.run();
-    if (*emit) {
-      if (*sigma2_option) emit_arguments.sigma2 = saagen::cli::parse_number("--sigma2", sigma2);
-      if (*kappa_option) emit_arguments.kappa = saagen::cli::parse_number("--kappa", kappa);
-      if (*preset_option) emit_arguments.preset = preset;
-      if (*domain_option) emit_arguments.domain = domain;
-      return run_emit(every_variant, emit_arguments);
-    }
-    if (*validate) return run_validate(every_variant, validate_directory);
+    if (emit.requested()) return emit.run(every_variant);
+    if (validate.requested()) return validate.run(every_variant);
     if (glints.requested()) return glints.run();
     if (deferred_pass.requested()) return deferred_pass.run(catalogue);
     if (texture.requested()) return texture.run();
