@@ -1366,106 +1366,132 @@ std::string rules_text() {
   return text;
 }
 
+namespace {
+
+// "forward, anisotropic, tangents, ggx, normal maps, fp32, prefer accuracy, 1 light": what the plan
+// was made for.
+std::string material_traits(const Material& material) {
+  std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
+                                     material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
+  if (material.normal_maps) traits.push_back(material.map_lod > 0 ? fmt::format("normal maps at LOD >= {}", material.map_lod) : "normal maps");
+  traits.emplace_back(to_string(material.precision));
+  traits.push_back("prefer " + std::string(to_string(material.prefer)));
+  traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));
+  if (material.roughness) traits.push_back("roughness " + roughness_words(*material.roughness));
+  if (material.glints) traits.push_back("glints");
+  return fmt::format("{}", fmt::join(traits, ", "));
+}
+
+// The "  shade" line (and the glints' "  resource" line): what the engine does with the call's result.
+std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MaterialPlan& material_plan,
+                        bool converted) {
+  const std::string& prefix = manifest.prefix;
+  if (material.glints) {
+    return "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n" +
+           fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+                       glint_dictionary_file_name(manifest));
+  }
+  if (shades_from_tensor(catalogue, material_plan) && is_covariance_function(*material_plan.brdf)) {
+    return fmt::format(
+        "  shade     {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2) per light in the lighting pass, with the tensor "
+        "the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]), the texture covariance "
+        "{} (3 more G-buffer values, 16-bit float: not bounded by kappa) and the normal it read (the tail-preserving filtered "
+        "GGX of A = diag(alpha^2) + (n.h)^2 K + C; {} returns A)\n",
+        prefixed_name(prefix, *material_plan.brdf),
+        material_plan.prefilter == "lean"
+            ? fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
+                          prefixed_name(prefix, "deferred_aniso_covariance"))
+            : fmt::format("C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
+        prefixed_name(prefix, "deferred_aniso_roughness_with_covariance"));
+  }
+  if (shades_from_tensor(catalogue, material_plan)) {
+    return fmt::format(
+        "  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
+        "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
+        "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
+        prefixed_name(prefix, *material_plan.brdf), prefixed_name(prefix, "deferred_aniso_roughness"));
+  }
+  if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
+    return fmt::format(
+        "  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
+        prefixed_name(prefix, *material_plan.brdf));
+  }
+  if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
+    return fmt::format(
+        "  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
+        "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
+        prefixed_name(prefix, *material_plan.brdf));
+  }
+  if (material_plan.brdf) {
+    return fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n", prefixed_name(prefix, *material_plan.brdf),
+                       prefixed_name(prefix, "ndf_clamp_tau"));
+  }
+  return fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n",
+                     converted ? to_string(manifest.domain) : "alpha^2");
+}
+
+// The "  cost" lines: the optimized SPIR-V instructions per target, and the targets not measured.
+std::string cost_lines(const Manifest& manifest, const Material& material, const MaterialPlan& material_plan) {
+  std::string text;
+  if (!material_plan.cost.empty()) {
+    std::vector<std::string> costs;
+    for (const OutputTarget& target : manifest.targets) {
+      if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target.name(), material_plan.cost.at(target)));
+    }
+    text += fmt::format("  cost      {} optimized SPIR-V instructions ({}, one light; filter{} vs the unfiltered {}_brdf_axis)\n",
+                        fmt::join(costs, ", "), to_string(material.precision),
+                        !material_plan.brdf                              ? " + axis BRDF"
+                        : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
+                                                                         : " + matrix BRDF",
+                        to_string(material.ndf));
+  }
+  for (const OutputTarget& target : manifest.targets) {
+    if (!builtin_target(target.table).compiled_in_process() && !material.glints) {
+      text += fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target.name());
+    }
+  }
+  return text;
+}
+
+// One material's block of the plan.
+std::string format_material_plan(const Catalogue& catalogue, const Manifest& manifest, const Material& material,
+                                 const MaterialPlan& material_plan) {
+  std::string text = fmt::format("\nmaterial {} ({})\n", material.name, material_traits(material));
+  text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
+  text += fmt::format("  why       {}\n", material_plan.reason);
+  if (!material_plan.roughness_advice.empty()) text += fmt::format("  roughness {}\n", material_plan.roughness_advice);
+  if (!material_plan.measure_advice.empty()) text += fmt::format("  measure   {}\n", material_plan.measure_advice);
+  if (material_plan.variant == "none") {
+    text += "  shade     the engine's own BRDF at the material's own roughness: no SAA filter, nothing in the bundle\n";
+    if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
+    return text;
+  }
+
+  // Under another roughness domain the material calls the wrapper's converting form.
+  const Function& planned = *catalogue.find_function(material_plan.wrapper);
+  const bool converted = manifest.domain != Domain::alpha2 && takes_and_returns_roughness(planned);
+  const Function& wrapper =
+      converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
+  std::vector<std::string> parameters;
+  for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
+  text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
+                      wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
+  text += shade_lines(catalogue, manifest, material, material_plan, converted);
+  if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
+  if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
+  return text + cost_lines(manifest, material, material_plan);
+}
+
+}  // namespace
+
 std::string format_plan(const Catalogue& catalogue, const Manifest& manifest, const ScenePlan& plan) {
   std::string text = fmt::format("scene '{}' from {}: targets {}, prefix {}", manifest.name, manifest.source_name,
                                  fmt::join(target_names(manifest.targets), ", "), manifest.prefix);
   for (const auto& [option, value] : resolve_options(catalogue, plan.option_values)) text += fmt::format(", {} = {}", option, value);
   text += plan.trade_table.empty() ? "; rules (no trade table)\n" : fmt::format("; trade table {}\n", plan.trade_table);
   if (!plan.options_reason.empty()) text += fmt::format("options: {}\n", plan.options_reason);
-
-  for (std::size_t index = 0; index < plan.materials.size(); ++index) {
-    const MaterialPlan& material_plan = plan.materials[index];
-    const Material& material = manifest.materials.at(index);
-    std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
-                                       material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
-    if (material.normal_maps)
-      traits.push_back(material.map_lod > 0 ? fmt::format("normal maps at LOD >= {}", material.map_lod) : "normal maps");
-    traits.emplace_back(to_string(material.precision));
-    traits.push_back("prefer " + std::string(to_string(material.prefer)));
-    traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));
-    if (material.roughness) traits.push_back("roughness " + roughness_words(*material.roughness));
-    if (material.glints) traits.push_back("glints");
-    text += fmt::format("\nmaterial {} ({})\n", material.name, fmt::join(traits, ", "));
-    text += fmt::format("  variant   {}  [{}]\n", material_plan.variant, material_plan.rule);
-    text += fmt::format("  why       {}\n", material_plan.reason);
-    if (!material_plan.roughness_advice.empty()) text += fmt::format("  roughness {}\n", material_plan.roughness_advice);
-    if (!material_plan.measure_advice.empty()) text += fmt::format("  measure   {}\n", material_plan.measure_advice);
-    if (material_plan.variant == "none") {
-      text += "  shade     the engine's own BRDF at the material's own roughness: no SAA filter, nothing in the bundle\n";
-      if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
-      continue;
-    }
-
-    // Under another roughness domain the material calls the wrapper's converting form.
-    const Function& planned = *catalogue.find_function(material_plan.wrapper);
-    const bool converted = manifest.domain != Domain::alpha2 && takes_and_returns_roughness(planned);
-    const Function& wrapper =
-        converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain))
-                  : planned;
-    std::vector<std::string> parameters;
-    for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
-    text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),
-                        wrapper.return_meaning, material_plan.per_axis ? "; once per axis (ax^2, ay^2)" : "");
-    if (material.glints) {
-      text += "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n";
-      text += fmt::format(
-          "  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
-          glint_dictionary_file_name(manifest));
-    } else if (shades_from_tensor(catalogue, material_plan) && is_covariance_function(*material_plan.brdf)) {
-      text += fmt::format(
-          "  shade     {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2) per light in the lighting pass, with the tensor "
-          "the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]), the texture covariance "
-          "{} (3 more G-buffer values, 16-bit float: not bounded by kappa) and the normal it read (the tail-preserving filtered "
-          "GGX of A = diag(alpha^2) + (n.h)^2 K + C; {} returns A)\n",
-          prefixed_name(manifest.prefix, *material_plan.brdf),
-          material_plan.prefilter == "lean"
-              ? fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
-                            prefixed_name(manifest.prefix, "deferred_aniso_covariance"))
-              : fmt::format("C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
-          prefixed_name(manifest.prefix, "deferred_aniso_roughness_with_covariance"));
-    } else if (shades_from_tensor(catalogue, material_plan)) {
-      text += fmt::format(
-          "  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
-          "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
-          "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
-          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "deferred_aniso_roughness"));
-    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {
-      text += fmt::format(
-          "  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
-          prefixed_name(manifest.prefix, *material_plan.brdf));
-    } else if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
-      text += fmt::format(
-          "  shade     {}(i, o, filtered, alpha2) with the filtered (ax'^2, ay'^2) (both axes from an isotropic filter) and the "
-          "material's (ax^2, ay^2), alpha^2 domain (the tail-preserving filtered GGX)\n",
-          prefixed_name(manifest.prefix, *material_plan.brdf));
-    } else if (material_plan.brdf) {
-      text += fmt::format("  shade     {}(i, o, a, {}(alpha2)) with the filtered matrix a\n",
-                          prefixed_name(manifest.prefix, *material_plan.brdf), prefixed_name(manifest.prefix, "ndf_clamp_tau"));
-    } else {
-      text += fmt::format("  shade     the engine's own BRDF with the filtered roughness ({} domain)\n",
-                          converted ? to_string(manifest.domain) : "alpha^2");
-    }
-    if (material.normal_maps) text += fmt::format("  normal    {}\n", material_plan.normal_advice);
-    if (!material_plan.no_filter_advice.empty()) text += fmt::format("  advice    {}\n", material_plan.no_filter_advice);
-    if (!material_plan.cost.empty()) {
-      std::vector<std::string> costs;
-      for (const OutputTarget& target : manifest.targets) {
-        if (material_plan.cost.count(target)) costs.push_back(fmt::format("{} {:+}", target.name(), material_plan.cost.at(target)));
-      }
-      text += fmt::format("  cost      {} optimized SPIR-V instructions ({}, one light; filter{} vs the unfiltered {}_brdf_axis)\n",
-                          fmt::join(costs, ", "), to_string(material.precision),
-                          !material_plan.brdf                              ? " + axis BRDF"
-                          : shades_with_tail_preserving_ggx(material_plan) ? " + the tail-preserving filtered GGX"
-                                                                           : " + matrix BRDF",
-                          to_string(material.ndf));
-    }
-    for (const OutputTarget& target : manifest.targets) {
-      if (!builtin_target(target.table).compiled_in_process() && !material.glints) {
-        text +=
-            fmt::format("  cost      {}: not measured (the WebGPU implementation's compiler, Tint, is not in-process)\n", target.name());
-      }
-    }
-  }
+  for (std::size_t index = 0; index < plan.materials.size(); ++index)
+    text += format_material_plan(catalogue, manifest, manifest.materials.at(index), plan.materials[index]);
 
   text += "\nfiles\n";
   for (const EmittedFile& file : emit_scene(catalogue, manifest, plan)) {
