@@ -87,18 +87,9 @@ struct Entry {
   std::vector<float> output;
 };
 
-int run(int argc, char** argv) {
-  saagen::harness::ContextOptions context_options;
-  context_options.device_name = saagen::harness::take_device_flag(argc, argv);
-  const Options options = parse(argc, argv);
-  saagen::harness::VulkanContext context(context_options);
-  std::cout << "device: " << context.info().summary() << "\n";
-  if (!context.info().timestamps_supported()) throw std::runtime_error("the device has no timestamps");
-  if (!context.info().subgroup.supports(VK_SUBGROUP_FEATURE_QUAD_BIT, VK_SHADER_STAGE_COMPUTE_BIT)) {
-    throw std::runtime_error("the device has no subgroup quad operations in compute");
-  }
-
-  // The G-buffer: bump_plane seen from above, cropped so that the surface fills the image.
+// The G-buffer: bump_plane seen from above, cropped so that the surface fills the image; prints its
+// size and coverage.
+saagen::test::GBufferImages bump_plane_gbuffer(const Options& options) {
   const double megapixels = double(options.width) * options.height * 1e-6;
   const auto scene = saagen::measure::make_scene(saagen::measure::SceneId::bump_plane);
   const auto cropped = scene.with_camera(scene.camera().cropped(static_cast<int>(std::max(options.width, options.height)) / 2,
@@ -118,24 +109,30 @@ int run(int argc, char** argv) {
   }
   std::cout << fmt::format("G-buffer: bump_plane {}x{} ({:.2f} Mpx, {:.1f} % on the surface), {} rounds\n", options.width, options.height,
                            megapixels, 100.0 * double(covered) / double(gbuffer.pixels.size()), options.rounds);
+  return images;
+}
 
+// The baseline (a copy pass) and every deferred pass saagen emits, validated.
+std::vector<Entry> pass_entries() {
   std::vector<Entry> entries;
-  {
-    saagen::CompileRequest request;
-    request.stage = saagen::ShaderStage::compute;
-    request.sources = {{"baseline.comp", saagen::report::deferred_copy_source("glsl")}};
-    const auto compiled = saagen::compile_to_spirv(request);
-    if (!compiled.ok) throw std::runtime_error("the baseline does not compile: " + compiled.log);
-    entries.push_back({"baseline (copy)", compiled.spirv, false, nullptr, {}, {}});
-  }
-  nlohmann::json json = {
-      {"device", context.info().summary()}, {"width", options.width}, {"height", options.height}, {"rounds", options.rounds}};
+  saagen::CompileRequest request;
+  request.stage = saagen::ShaderStage::compute;
+  request.sources = {{"baseline.comp", saagen::report::deferred_copy_source("glsl")}};
+  const auto compiled = saagen::compile_to_spirv(request);
+  if (!compiled.ok) throw std::runtime_error("the baseline does not compile: " + compiled.log);
+  entries.push_back({"baseline (copy)", compiled.spirv, false, nullptr, {}, {}});
   for (const saagen::DeferredPass& pass : saagen::emit_deferred_passes(saagen::Catalogue::builtin(), {})) {
     if (const std::string log = saagen::validate_spirv(pass.spirv, saagen::ClientApi::vulkan); !log.empty()) {
       throw std::runtime_error(pass.stem + ".spv is invalid: " + log);
     }
     entries.push_back({pass.kind.id, pass.spirv, pass.kind.tangents, nullptr, {}, {}});
   }
+  return entries;
+}
+
+// Two warm-up rounds, then `rounds` timed rounds of every pass in turn; each keeps its last output.
+void time_passes(saagen::harness::VulkanContext& context, const Options& options, const saagen::test::GBufferImages& images,
+                 std::vector<Entry>& entries) {
   for (Entry& entry : entries) {
     entry.runner = std::make_unique<saagen::test::DeferredPassRunner>(context, entry.spirv, entry.tangents, VK_FORMAT_R32_SFLOAT,
                                                                       options.width, options.height);
@@ -149,7 +146,25 @@ int run(int argc, char** argv) {
       if (round == options.rounds - 1) entry.output = std::move(result.output);
     }
   }
+}
 
+// The mean alpha^2 a pass wrote; throws on a non-finite value, or where a pass (not the baseline)
+// changed no pixel's roughness.
+double checked_mean_output(const Entry& entry, bool baseline) {
+  double mean = 0.0;
+  std::size_t changed = 0;
+  for (float value : entry.output) {
+    if (!std::isfinite(value)) throw std::runtime_error(entry.name + ": non-finite output");
+    mean += value;
+    changed += value != 0.01f;
+  }
+  if (!baseline && changed == 0) throw std::runtime_error(entry.name + ": the roughness is unchanged everywhere");
+  return mean / double(entry.output.size());
+}
+
+// Prints the passes' table and returns its JSON.
+nlohmann::json report_passes(const Options& options, const std::vector<Entry>& entries) {
+  const double megapixels = double(options.width) * options.height * 1e-6;
   const double baseline = median(entries.front().gpu_ms);
   std::cout << fmt::format("\n{:<26} {:>10} {:>10} {:>12} {:>12} {:>8} {:>7}  {}\n", "pass", "median ms", "ms / Mpx", "- baseline",
                            "min ms / Mpx", "bytes", "instr", "mean alpha^2 out");
@@ -157,15 +172,7 @@ int run(int argc, char** argv) {
   for (const Entry& entry : entries) {
     const double ms = median(entry.gpu_ms);
     const double lowest = *std::min_element(entry.gpu_ms.begin(), entry.gpu_ms.end());
-    double mean = 0.0;
-    std::size_t changed = 0;
-    for (float value : entry.output) {
-      if (!std::isfinite(value)) throw std::runtime_error(entry.name + ": non-finite output");
-      mean += value;
-      changed += value != 0.01f;
-    }
-    mean /= double(entry.output.size());
-    if (&entry != &entries.front() && changed == 0) throw std::runtime_error(entry.name + ": the roughness is unchanged everywhere");
+    const double mean = checked_mean_output(entry, &entry == &entries.front());
     std::cout << fmt::format("{:<26} {:>10.3f} {:>10.3f} {:>12.3f} {:>12.3f} {:>8} {:>7}  {:.5f}\n", entry.name, ms, ms / megapixels,
                              (ms - baseline) / megapixels, lowest / megapixels, entry.spirv.size() * 4,
                              saagen::count_spirv_instructions(entry.spirv), mean);
@@ -178,8 +185,11 @@ int run(int argc, char** argv) {
                       {"spirv_instructions", saagen::count_spirv_instructions(entry.spirv)},
                       {"samples_ms", entry.gpu_ms}});
   }
-  json["passes"] = passes;
+  return passes;
+}
 
+// Prints the SPIR-V library modules' sizes and returns their JSON.
+nlohmann::json report_libraries() {
   std::cout << fmt::format("\n{:<34} {:>8} {:>7} {:>8}\n", "SPIR-V library module", "bytes", "instr", "exports");
   nlohmann::json modules = nlohmann::json::array();
   for (const saagen::SpirvLibrary& library : saagen::emit_spirv_libraries(saagen::Catalogue::builtin(), {})) {
@@ -190,7 +200,27 @@ int run(int argc, char** argv) {
                        {"instructions", saagen::count_spirv_instructions(library.words)},
                        {"exports", library.exports.size()}});
   }
-  json["libraries"] = modules;
+  return modules;
+}
+
+int run(int argc, char** argv) {
+  saagen::harness::ContextOptions context_options;
+  context_options.device_name = saagen::harness::take_device_flag(argc, argv);
+  const Options options = parse(argc, argv);
+  saagen::harness::VulkanContext context(context_options);
+  std::cout << "device: " << context.info().summary() << "\n";
+  if (!context.info().timestamps_supported()) throw std::runtime_error("the device has no timestamps");
+  if (!context.info().subgroup.supports(VK_SUBGROUP_FEATURE_QUAD_BIT, VK_SHADER_STAGE_COMPUTE_BIT)) {
+    throw std::runtime_error("the device has no subgroup quad operations in compute");
+  }
+
+  const saagen::test::GBufferImages images = bump_plane_gbuffer(options);
+  std::vector<Entry> entries = pass_entries();
+  time_passes(context, options, images, entries);
+  nlohmann::json json = {
+      {"device", context.info().summary()}, {"width", options.width}, {"height", options.height}, {"rounds", options.rounds}};
+  json["passes"] = report_passes(options, entries);
+  json["libraries"] = report_libraries();
   if (!options.json.empty()) {
     std::ofstream(options.json) << json.dump(2) << "\n";
     std::cout << "wrote " << options.json << "\n";
