@@ -149,6 +149,52 @@ std::map<std::string, std::string, std::less<>> skeleton_sections(std::string_vi
   return sections;
 }
 
+namespace {
+
+// One entry of a target's "precisions": its type spellings (of types the target spells), intrinsic
+// patterns, literal suffix, preamble (inline or from a skeleton file's section) and notes.
+PrecisionForm parse_precision_form(const Json& entry, const std::string& name, const std::map<std::string, std::string, std::less<>>& target_types,
+                                   std::string_view source) {
+  PrecisionForm precision;
+  for (const auto& [type, spelling] : require(entry, "types", source).items()) {
+    if (!target_types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
+    precision.types[type] = spelling.get<std::string>();
+  }
+  for (const auto& [intrinsic, pattern] : require(entry, "intrinsics", source).items()) {
+    precision.intrinsics[intrinsic] = pattern.get<std::string>();
+  }
+  precision.literal_suffix = require_string(entry, "literal_suffix", source);
+  if (entry.contains("preamble_file")) {
+    const auto sections = skeleton_sections(require_string(entry, "preamble_file", source), source);
+    if (!sections.count("preamble")) throw Error(fmt::format("{}: the preamble file of {} has no section 'preamble'", source, name));
+    precision.preamble = sections.at("preamble");
+  } else {
+    precision.preamble = require_string(entry, "preamble", source);
+  }
+  precision.native_16bit = entry.value("native_16bit", false);
+  read_type_spellings(entry, "declaration_types", target_types, precision.declaration_types, source);
+  if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
+  read_notes(entry, precision.intrinsic_notes, source);
+  return precision;
+}
+
+// One entry of a target's "resources"; a module target's also needs the parameters and arguments
+// it is passed through.
+TargetSyntax::Resource parse_resource(const Json& entry, const std::string& name, bool module, std::string_view source) {
+  TargetSyntax::Resource resource;
+  for (const Json& intrinsic : require(entry, "intrinsics", source)) resource.intrinsics.push_back(intrinsic.get<std::string>());
+  resource.declaration = require_string(entry, "declaration", source);
+  resource.parameters = entry.value("parameters", "");
+  resource.arguments = entry.value("arguments", "");
+  resource.caller_arguments = entry.value("caller_arguments", "");
+  if (module && (resource.parameters.empty() || resource.arguments.empty() || resource.caller_arguments.empty())) {
+    throw Error(fmt::format("{}: resource {} of a module target needs 'parameters', 'arguments' and 'caller_arguments'", source, name));
+  }
+  return resource;
+}
+
+}  // namespace
+
 TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
   Json json;
   try {
@@ -205,27 +251,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   for (const auto& [name, entry] : require(json, "precisions", source).items()) {
     const auto kind = precision_named(name);
     if (!kind) throw Error(fmt::format("{}: unknown precision '{}' in 'precisions'; use one of {}", source, name, precision_id_list()));
-    PrecisionForm precision;
-    for (const auto& [type, spelling] : require(entry, "types", source).items()) {
-      if (!target.types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
-      precision.types[type] = spelling.get<std::string>();
-    }
-    for (const auto& [intrinsic, pattern] : require(entry, "intrinsics", source).items()) {
-      precision.intrinsics[intrinsic] = pattern.get<std::string>();
-    }
-    precision.literal_suffix = require_string(entry, "literal_suffix", source);
-    if (entry.contains("preamble_file")) {
-      const auto sections = skeleton_sections(require_string(entry, "preamble_file", source), source);
-      if (!sections.count("preamble")) throw Error(fmt::format("{}: the preamble file of {} has no section 'preamble'", source, name));
-      precision.preamble = sections.at("preamble");
-    } else {
-      precision.preamble = require_string(entry, "preamble", source);
-    }
-    precision.native_16bit = entry.value("native_16bit", false);
-    read_type_spellings(entry, "declaration_types", target.types, precision.declaration_types, source);
-    if (entry.contains("function_prologue")) precision.function_prologue = require_string(entry, "function_prologue", source);
-    read_notes(entry, precision.intrinsic_notes, source);
-    target.precisions[*kind] = std::move(precision);
+    target.precisions[*kind] = parse_precision_form(entry, name, target.types, source);
   }
   if (!target.precisions.count(Precision::fp32)) throw Error(fmt::format("{}: 'precisions' needs an fp32 entry", source));
   if (json.contains("glue_names")) {
@@ -235,18 +261,7 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     }
   }
   if (json.contains("resources")) {
-    for (const auto& [name, entry] : json.at("resources").items()) {
-      Resource resource;
-      for (const Json& intrinsic : require(entry, "intrinsics", source)) resource.intrinsics.push_back(intrinsic.get<std::string>());
-      resource.declaration = require_string(entry, "declaration", source);
-      resource.parameters = entry.value("parameters", "");
-      resource.arguments = entry.value("arguments", "");
-      resource.caller_arguments = entry.value("caller_arguments", "");
-      if (target.module && (resource.parameters.empty() || resource.arguments.empty() || resource.caller_arguments.empty())) {
-        throw Error(fmt::format("{}: resource {} of a module target needs 'parameters', 'arguments' and 'caller_arguments'", source, name));
-      }
-      target.resources[name] = std::move(resource);
-    }
+    for (const auto& [name, entry] : json.at("resources").items()) target.resources[name] = parse_resource(entry, name, target.module, source);
   }
   return target;
 }
