@@ -440,52 +440,67 @@ const Catalogue& Catalogue::builtin() {
   return catalogue;
 }
 
-void Catalogue::link() {
+namespace {
+
+using FunctionIndex = std::map<std::string, std::size_t, std::less<>>;
+using ConstantNames = std::set<std::string>;
+
+// Indexes the functions by name and collects the constants' names: no name may be a dialect type,
+// an intrinsic or used twice.
+ConstantNames index_names(const std::vector<Function>& functions, const std::vector<Constant>& constants, FunctionIndex& index) {
   std::set<std::string, std::less<>> reserved(dialect::type_names().begin(), dialect::type_names().end());
-  for (const Function& function : functions_) {
-    if (reserved.count(function.name) || !function_index_.emplace(function.name, &function - functions_.data()).second) {
+  for (const Function& function : functions) {
+    if (reserved.count(function.name) || !index.emplace(function.name, &function - functions.data()).second) {
       fail(function.source_file, function.line, fmt::format("function name '{}' is already used", function.name));
     }
   }
-  std::set<std::string> constant_names;
-  for (const Constant& constant : constants_) {
-    if (function_index_.count(constant.name) || !constant_names.insert(constant.name).second) {
+  ConstantNames constant_names;
+  for (const Constant& constant : constants) {
+    if (index.count(constant.name) || !constant_names.insert(constant.name).second) {
       fail(constant.source_file, constant.line, fmt::format("constant name '{}' is already used", constant.name));
     }
   }
-
-  for (const Function& function : functions_) {
+  for (const Function& function : functions) {
     if (dialect::is_intrinsic(function.name)) {
       fail(function.source_file, function.line,
            fmt::format("function name '{}' is a dialect intrinsic; choose another name", function.name));
     }
   }
-  std::map<std::string, dialect::FunctionSignature, std::less<>> signatures;
-  for (const Function& function : functions_) {
-    signatures[function.name] = signature_of(function);
-  }
-  std::map<std::string, dialect::Type, std::less<>> constant_types;
-  for (const Constant& constant : constants_) constant_types[constant.name] = *dialect::Type::from_name(constant.type);
+  return constant_names;
+}
 
-  // Direct references: names of functions and constants, in the guarded form and in the paper form.
+// A body naming a matrix type or function, which the dialect does not have.
+void refuse_matrices(const Function& function) {
+  const auto tokens = dialect::tokenize(function.body);
+  for (std::size_t index = 0; index < tokens.size(); ++index) {
+    if (tokens[index].kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens, index)) continue;
+    const std::string name(tokens[index].text);
+    if (contains(dialect::forbidden_names(), name)) {
+      fail(function.source_file, function.line,
+           fmt::format("{} uses '{}': the dialect has no matrices; write the product with dot products", function.name, name));
+    }
+  }
+}
+
+// Parses and type-checks every body (the typed tree, at load time, with the body's own lines) and
+// records each function's direct references: the functions and constants it names, in the
+// guarded form and in the paper form, whether it takes derivatives and whether it has guards.
+void parse_bodies(std::vector<Function>& functions, const std::vector<Constant>& constants, const FunctionIndex& index,
+                  const ConstantNames& constant_names) {
+  std::map<std::string, dialect::FunctionSignature, std::less<>> signatures;
+  for (const Function& function : functions) signatures[function.name] = signature_of(function);
+  std::map<std::string, dialect::Type, std::less<>> constant_types;
+  for (const Constant& constant : constants) constant_types[constant.name] = *dialect::Type::from_name(constant.type);
+
   const auto collect = [&](const Function& function, const std::vector<std::string>& names, std::vector<std::string>& calls,
-                           std::vector<std::string>& constants) {
+                           std::vector<std::string>& referenced_constants) {
     for (const std::string& name : names) {
-      if (function_index_.count(name) && name != function.name && !contains(calls, name)) calls.push_back(name);
-      if (constant_names.count(name) && !contains(constants, name)) constants.push_back(name);
+      if (index.count(name) && name != function.name && !contains(calls, name)) calls.push_back(name);
+      if (constant_names.count(name) && !contains(referenced_constants, name)) referenced_constants.push_back(name);
     }
   };
-  for (Function& function : functions_) {
-    const auto tokens = dialect::tokenize(function.body);
-    for (std::size_t index = 0; index < tokens.size(); ++index) {
-      if (tokens[index].kind != dialect::TokenKind::identifier || dialect::is_member_access(tokens, index)) continue;
-      const std::string name(tokens[index].text);
-      if (contains(dialect::forbidden_names(), name)) {
-        fail(function.source_file, function.line,
-             fmt::format("{} uses '{}': the dialect has no matrices; write the product with dot products", function.name, name));
-      }
-    }
-    // The typed tree: parsed and checked here, at load time, with the body's own lines.
+  for (Function& function : functions) {
+    refuse_matrices(function);
     const dialect::SourcePlace place{function.source_file, function.body_line, function.name};
     auto tree = std::make_shared<dialect::Body>(dialect::parse_body(function.body, place));
     dialect::check_body(*tree, signatures.at(function.name), {&signatures, &constant_types, nullptr}, place);
@@ -497,13 +512,16 @@ void Catalogue::link() {
     collect(function, dialect::referenced_names(*tree, false), function.paper_calls, function.paper_constants);
     function.tree = std::move(tree);
   }
+}
 
-  // Fragment-only propagates from callees to callers (a fixed point over the call graph).
+// Fragment-only propagates from callees to callers (a fixed point over the call graph); then a
+// function's role must say whether it takes derivatives (helpers may either way).
+void propagate_fragment_only(std::vector<Function>& functions, const FunctionIndex& index) {
   for (bool changed = true; changed;) {
     changed = false;
-    for (Function& function : functions_) {
+    for (Function& function : functions) {
       if (function.fragment_only) continue;
-      const auto fragment_callee = [&](const std::string& callee) { return functions_[function_index_.at(callee)].fragment_only; };
+      const auto fragment_callee = [&](const std::string& callee) { return functions[index.at(callee)].fragment_only; };
       if (std::any_of(function.calls.begin(), function.calls.end(), fragment_callee) ||
           std::any_of(function.paper_calls.begin(), function.paper_calls.end(), fragment_callee)) {
         function.fragment_only = true;
@@ -511,8 +529,7 @@ void Catalogue::link() {
       }
     }
   }
-
-  for (const Function& function : functions_) {
+  for (const Function& function : functions) {
     const bool must_be_fragment = function.role == FunctionRole::fragment;
     if (must_be_fragment != function.fragment_only && function.role != FunctionRole::helper) {
       fail(function.source_file, function.line,
@@ -520,17 +537,29 @@ void Catalogue::link() {
                             : fmt::format("{} takes screen-space derivatives; its role must be fragment", function.name));
     }
   }
+}
 
+// Each variant is defined once and lists only known functions.
+void check_variants(const std::vector<Variant>& variants, const FunctionIndex& index) {
   std::set<std::string> variant_ids;
-  for (const Variant& variant : variants_) {
+  for (const Variant& variant : variants) {
     if (!variant_ids.insert(variant.id).second)
       fail(variant.source_file, variant.line, fmt::format("variant '{}' is defined twice", variant.id));
     for (const std::string& name : variant.functions) {
-      if (!function_index_.count(name)) {
+      if (!index.count(name)) {
         fail(variant.source_file, variant.line, fmt::format("variant {} lists unknown function '{}'", variant.id, name));
       }
     }
   }
+}
+
+}  // namespace
+
+void Catalogue::link() {
+  const ConstantNames constant_names = index_names(functions_, constants_, function_index_);
+  parse_bodies(functions_, constants_, function_index_, constant_names);
+  propagate_fragment_only(functions_, function_index_);
+  check_variants(variants_, function_index_);
 }
 
 const Variant* Catalogue::find_variant(std::string_view id) const {
