@@ -436,8 +436,7 @@ ReportCommands::ReportCommands(CLI::App& app) {
   report_->add_option("--output,-o", report_directory_, "Report directory")->required();
 }
 
-int ReportCommands::run_bench() const {
-  // Inputs and outputs are checked first: a bad file or path fails before rendering.
+void ReportCommands::check_bench_flags() const {
   if ((bench_isa_only_ || !bench_isa_table_.empty()) && bench_common_.isa_families.empty()) {
     throw Error("--isa-only and --isa-table need --isa FAMILY[,FAMILY] (e.g. --isa vega10,navi21)");
   }
@@ -450,15 +449,65 @@ int ReportCommands::run_bench() const {
     throw Error(fmt::format("--report {}: --isa-only computes no trade table to report; drop --isa-only", bench_report_));
   }
   check_isa_families(bench_common_.isa_families);
-  auto costs = load_costs(bench_common_.cost_json);
-  const measure::TradeConfig config = configure(bench_common_, !bench_report_.empty());
-  // Every output together (never one file twice), and never over an input.
+}
+
+// Every output together (never one file twice): the JSON, the ISA table and the report's files.
+std::vector<std::filesystem::path> ReportCommands::bench_outputs(const measure::TradeConfig& config) const {
   std::vector<std::filesystem::path> outputs;
   if (!bench_json_.empty()) outputs.emplace_back(bench_json_);
   if (!bench_isa_table_.empty()) outputs.emplace_back(bench_isa_table_);
   if (!bench_report_.empty())
     for (const std::filesystem::path& path : report::report_paths(config, bench_report_)) outputs.push_back(path);
-  check_output_paths(outputs, bench_common_.force, run_inputs(bench_common_, config));
+  return outputs;
+}
+
+namespace {
+
+// The trade table's JSON (`plan --trade-table` reads it), with the rows and comparisons under TAA
+// when measured, and the sanity suite's checks.
+nlohmann::json bench_json(const measure::TradeTable& measured, const measure::TradeTable& table, const std::vector<report::VariantSummary>& summary,
+                          const report::CostTable* cost_table, const std::vector<report::SceneSanity>& sanity) {
+  nlohmann::json json = report::trade_json(table, summary, cost_table);
+  if (measured.config.taa) {
+    json["taa_cases"] = report::taa_cases_json(measured);
+    json["taa_by_content"] = report::taa_by_content_json(measured);
+    json["decisions"]["taa_by_content"] = report::taa_decisions_json(measured);
+    for (nlohmann::json& comparison : report::taa_comparisons_json(measured)) json["comparisons"].push_back(std::move(comparison));
+  }
+  json["sanity_checks"] = report::sanity_json(sanity);
+  return json;
+}
+
+// The sanity suite, first: the instrument before anything it ranks (report/sanity.hpp).
+void print_sanity(const std::vector<report::SceneSanity>& sanity) {
+  if (sanity.empty()) return;
+  std::cout << "\nSanity suite (results whose ranking is known; image error: LDR-FLIP per frame, video error: 10 - ColorVideoVDP's "
+               "JOD of the clip; docs/TEMPORAL.md):\n"
+            << report::format_sanity(sanity);
+}
+
+// The means, findings, frontier and (measured under TAA) the TAA summary of a table.
+void print_tables(const measure::TradeTable& measured, const measure::TradeTable& table, const std::vector<report::VariantSummary>& summary,
+                  const report::CostTable* cost_table, bool every_case) {
+  if (every_case) std::cout << measure::format_trade_table(measured) << "\n";
+  std::cout << report::format_summary(summary, cost_table);
+  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}; cost: {})\n",
+                           table.config.scenes.size(), table.config.alphas.size(), report::ground_truth_samples(table.config),
+                           cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
+  std::cout << report::format_findings(table, cost_table);
+  std::cout << report::format_frontier(table);
+  if (measured.config.taa) std::cout << "\n" << report::format_taa_summary(measured);
+}
+
+}  // namespace
+
+int ReportCommands::run_bench() const {
+  // Inputs and outputs are checked first: a bad file or path fails before rendering.
+  check_bench_flags();
+  auto costs = load_costs(bench_common_.cost_json);
+  const measure::TradeConfig config = configure(bench_common_, !bench_report_.empty());
+  // Never over an input.
+  check_output_paths(bench_outputs(config), bench_common_.force, run_inputs(bench_common_, config));
   const auto isa = measure_isa(bench_common_.isa_families, costs, std::cout);
   // Every output of the run is written in one commit, after every input has been read.
   std::vector<OutputFile> files;
@@ -474,35 +523,14 @@ int ReportCommands::run_bench() const {
   if (clips) on_frame = [&](const measure::AnimationFrame& frame) { clips->add(frame, config.frames); };
   const measure::TradeTable measured = measure_trade(config, on_frame);
   std::cout << ground_truth_line(measured);
-  // The instrument before anything it ranks: the sanity suite (report/sanity.hpp).
   const std::vector<report::SceneSanity> sanity = report::check_sanity(measured);
-  if (!sanity.empty())
-    std::cout << "\nSanity suite (results whose ranking is known; image error: LDR-FLIP per frame, video error: 10 - ColorVideoVDP's "
-                 "JOD of the clip; docs/TEMPORAL.md):\n"
-              << report::format_sanity(sanity);
+  print_sanity(sanity);
   // The +taa rows have their own comparison (format_taa_summary): the summaries read frame 0.
   const measure::TradeTable table = report::without_taa_rows(measured);
   const auto summary = report::summarize(table);
   const report::CostTable* cost_table = costs ? &*costs : nullptr;
-  if (bench_every_case_) std::cout << measure::format_trade_table(measured) << "\n";
-  std::cout << report::format_summary(summary, cost_table);
-  std::cout << fmt::format("(means over {} scenes x {} alphas without Fresnel; errors against the {}; cost: {})\n",
-                           table.config.scenes.size(), table.config.alphas.size(), report::ground_truth_samples(table.config),
-                           cost_table ? cost_table->describe() : std::string("none (pass --isa FAMILY and/or --cost FILE)"));
-  std::cout << report::format_findings(table, cost_table);
-  std::cout << report::format_frontier(table);
-  if (config.taa) std::cout << "\n" << report::format_taa_summary(measured);
-  if (!bench_json_.empty()) {
-    nlohmann::json json = report::trade_json(table, summary, cost_table);
-    if (config.taa) {
-      json["taa_cases"] = report::taa_cases_json(measured);
-      json["taa_by_content"] = report::taa_by_content_json(measured);
-      json["decisions"]["taa_by_content"] = report::taa_decisions_json(measured);
-      for (nlohmann::json& comparison : report::taa_comparisons_json(measured)) json["comparisons"].push_back(std::move(comparison));
-    }
-    json["sanity_checks"] = report::sanity_json(sanity);
-    files.push_back({bench_json_, json.dump(2) + "\n"});
-  }
+  print_tables(measured, table, summary, cost_table, bench_every_case_);
+  if (!bench_json_.empty()) files.push_back({bench_json_, bench_json(measured, table, summary, cost_table, sanity).dump(2) + "\n"});
   std::size_t clip_files = 0;
   if (clips) {
     const std::vector<OutputFile> clip_outputs = clips->outputs();

@@ -5,9 +5,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace saagen::measure {
+struct TradeConfig;
+}
 
 namespace saagen::cli {
 
@@ -64,6 +69,9 @@ class ReportCommands {
 
  private:
   static void add_common(CLI::App* command, Common& common);
+  // run_bench's parts: the flags that contradict each other, and the files the run writes.
+  void check_bench_flags() const;
+  std::vector<std::filesystem::path> bench_outputs(const measure::TradeConfig& config) const;
 
   CLI::App* bench_ = nullptr;
   Common bench_common_;
