@@ -35,13 +35,11 @@ std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::st
 
 // A by_content row's "against_none": {"image": {"mean", "low", "high"}, "temporal": {...}} and,
 // in tables that measured it, "lag": {...}; low <= mean <= high, finite.
-decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view source_name, std::size_t index) {
+decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view key, std::string_view where) {
   const auto difference = [&](const char* metric) {
     const auto fail = [&] {
-      throw Error(
-          fmt::format("{}: by_content[{}]: \"against_none\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, "
-                      "low <= mean <= high",
-                      source_name, index, metric));
+      throw Error(fmt::format("{}: \"{}\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, low <= mean <= high", where,
+                              key, metric));
     };
     if (!value.is_object() || !value.contains(metric) || !value[metric].is_object()) fail();
     decision::Difference d;
@@ -114,6 +112,35 @@ std::vector<double> parse_alphas(const nlohmann::json& document, std::string_vie
     alphas.push_back(alpha.get<double>());
   }
   return alphas;
+}
+
+// One content row in the schema every writer of one uses (a trade table's "by_content" and
+// "taa_by_content", the advice's "rows"; ContentRow): "configuration"; the image error
+// "image_error" (the verdict's: LDR-FLIP per frame; tables written before it: "error"); the
+// temporal error "video_error" (10 - ColorVideoVDP's JOD), else "flicker_error" (tables without
+// the video metric), else "tde" (tables written before either); "against_none" with its
+// intervals; "loses_on", "not_worse_than" and "loses_at". `content`: the row's own "content" when
+// empty (the advice names it once per entry). `where` names the row in messages.
+ContentRow parse_content_row(const nlohmann::json& row, std::string_view where, std::string content = {}) {
+  if (!row.is_object()) throw Error(fmt::format("{}: must be an object", where));
+  const auto text = [&](const char* key) {
+    if (!row.contains(key) || !row[key].is_string()) throw Error(fmt::format("{}: needs a string \"{}\"", where, key));
+    return row[key].get<std::string>();
+  };
+  const auto number = [&](const char* key) -> std::optional<double> {
+    if (!row.contains(key)) return std::nullopt;
+    if (!row[key].is_number() || !std::isfinite(row[key].get<double>())) throw Error(fmt::format("{}: \"{}\" must be a finite number", where, key));
+    return row[key].get<double>();
+  };
+  if (content.empty()) content = text("content");
+  ContentRow entry{std::move(content), text("configuration"), 0.0, std::nullopt, std::nullopt};
+  const std::optional<double> image = row.contains("image_error") ? number("image_error") : number("error");
+  if (!image) throw Error(fmt::format("{}: needs a number \"image_error\" (tables written before it: \"error\")", where));
+  entry.error = *image;
+  entry.temporal = row.contains("video_error") ? number("video_error") : row.contains("flicker_error") ? number("flicker_error") : number("tde");
+  if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], "against_none", where);
+  parse_pairings(row, entry, where);
+  return entry;
 }
 
 }  // namespace
@@ -282,7 +309,7 @@ const IsaTable& committed_isa_costs() {
 
 decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline) {
   if (baseline.configuration == "none" && row.against_none) return *row.against_none;
-  const double temporal = row.tde && baseline.tde ? *row.tde - *baseline.tde : 0.0;
+  const double temporal = row.temporal && baseline.temporal ? *row.temporal - *baseline.temporal : 0.0;
   return {decision::exact(row.error - baseline.error), decision::exact(temporal), decision::exact(0.0)};
 }
 
@@ -350,22 +377,8 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     if (!document.contains(section)) return out;
     const nlohmann::json& content_rows = document[section];
     if (!content_rows.is_array()) throw Error(fmt::format("{}: \"{}\" must be an array", source_name, section));
-    for (std::size_t index = 0; index < content_rows.size(); ++index) {
-      const nlohmann::json& row = content_rows[index];
-      const auto text = [&](const char* key) {
-        if (!row.is_object() || !row.contains(key) || !row[key].is_string())
-          throw Error(fmt::format("{}: {}[{}]: needs a string \"{}\"", source_name, section, index, key));
-        return row[key].get<std::string>();
-      };
-      ContentRow entry{text("content"), text("configuration"), 0.0, std::nullopt, std::nullopt};
-      const auto error = number(row, "error", index);
-      if (!error) throw Error(fmt::format("{}: {}[{}]: needs a number \"error\"", source_name, section, index));
-      entry.error = *error;
-      entry.tde = number(row, "tde", index);
-      if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], source_name, index);
-      parse_pairings(row, entry, fmt::format("{}: {}[{}]", source_name, section, index));
-      out.push_back(std::move(entry));
-    }
+    for (std::size_t index = 0; index < content_rows.size(); ++index)
+      out.push_back(parse_content_row(content_rows[index], fmt::format("{}: {}[{}]", source_name, section, index)));
     return out;
   };
   table.content_rows = content_rows_of("by_content");
@@ -439,29 +452,16 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
     measured.scenes = names(entry, "scenes");
     measured.held_out_scenes = names(entry, "held_out_scenes");
     measured.alphas = parse_alphas(entry, fmt::format("{}: content[{}]", source_name, index));
-    for (const nlohmann::json& row : entry["rows"]) {
-      const auto number = [&](const char* key) {
-        if (!row.is_object() || !row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
-          fail(fmt::format("content[{}]: every row needs a finite \"{}\"", index, key));
-        return row[key].get<double>();
-      };
-      if (!row.contains("configuration") || !row["configuration"].is_string())
-        fail(fmt::format("content[{}]: a row without a \"configuration\"", index));
-      // The temporal figure: the video error (10 - JOD) where the table has it, else the flicker error.
-      const double temporal = row.is_object() && row.contains("video_error") ? number("video_error") : number("flicker_error");
-      ContentRow kept{measured.content, row["configuration"].get<std::string>(), number("image_error"), temporal, std::nullopt};
-      if (row.contains("against_none")) kept.against_none = parse_comparison(row["against_none"], source_name, index);
-      parse_pairings(row, kept, fmt::format("{}: content[{}]", source_name, index));
+    for (std::size_t row_index = 0; row_index < entry["rows"].size(); ++row_index) {
+      const nlohmann::json& row = entry["rows"][row_index];
+      const std::string where = fmt::format("{}: content[{}].rows[{}]", source_name, index, row_index);
+      ContentRow kept = parse_content_row(row, where, measured.content);
       if (row.contains("held_out"))
-        measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], source_name, index));
-      if (row.contains("held_out_loses_on")) {
-        if (!row["held_out_loses_on"].is_array())
-          fail(fmt::format("content[{}]: \"held_out_loses_on\" must be an array of scene names", index));
-        measured.held_out_losses.emplace_back(kept.configuration, names(row, "held_out_loses_on"));
-      }
+        measured.held_out_rows.emplace_back(kept.configuration, parse_comparison(row["held_out"], "held_out", where));
+      if (row.contains("held_out_loses_on"))
+        measured.held_out_losses.emplace_back(kept.configuration, parse_names(row, "held_out_loses_on", "scene", where));
       if (row.contains("held_out_loses_at"))
-        measured.held_out_cell_losses.emplace_back(
-            kept.configuration, parse_cells(row, "held_out_loses_at", fmt::format("{}: content[{}]", source_name, index)));
+        measured.held_out_cell_losses.emplace_back(kept.configuration, parse_cells(row, "held_out_loses_at", where));
       measured.rows.push_back(std::move(kept));
     }
     table.contents.push_back(std::move(measured));

@@ -132,7 +132,7 @@ nlohmann::json taa_by_content_json(const measure::TradeTable& table) {
   for (Content content : kContents)
     for (const ContentRow& row : measured_taa_rows(table, content)) {
       nlohmann::json entry = {{"content", row.content}, {"configuration", row.configuration}, {"baseline", "none+taa"},
-                              {"error", row.error},     {"image_error", row.error},           {temporal, row.tde.value_or(0.0)}};
+                              {"error", row.error},     {"image_error", row.error},           {temporal, row.temporal.value_or(0.0)}};
       if (row.against_none) entry["against_none"] = comparison_json(*row.against_none);
       if (!row.loses_on.empty()) entry["loses_on"] = row.loses_on;
       if (!row.not_worse_than.empty()) entry["not_worse_than"] = row.not_worse_than;

@@ -420,6 +420,44 @@ TEST(Planner, WithoutATradeTableNormalMapsGetTheMeasuredAdvice) {
       << named.materials.at(0).normal_advice;
 }
 
+// A content row has one schema wherever it is written (by_content, taa_by_content, the advice's
+// rows): the verdict's image error and video error (else flicker error) are read, not the frame-0
+// LDR-FLIP "error" and "tde" the bench also writes; a table written before those keys is read by
+// "error" and "tde".
+TEST(Planner, ContentRowsReadTheVerdictsFigures) {
+  const saagen::MeasuredTradeTable table = saagen::parse_trade_table(
+      R"({"rows": [], "by_content": [
+      {"content": "curved", "configuration": "none", "error": 0.5, "tde": 0.4, "image_error": 0.02, "flicker_error": 0.3, "video_error": 0.9},
+      {"content": "curved", "configuration": "deferred-avg", "error": 0.5, "tde": 0.4, "image_error": 0.03, "flicker_error": 0.2},
+      {"content": "curved", "configuration": "deferred-sum", "error": 0.5, "tde": 0.4}],
+      "taa_by_content": [{"content": "curved", "configuration": "none", "error": 0.1, "image_error": 0.1, "video_error": 2.2}]})",
+      "t.json");
+  ASSERT_EQ(table.content_rows.size(), 3u);
+  EXPECT_EQ(table.content_rows[0].error, 0.02);
+  EXPECT_EQ(table.content_rows[0].temporal, std::optional<double>(0.9));
+  EXPECT_EQ(table.content_rows[1].temporal, std::optional<double>(0.2));
+  EXPECT_EQ(table.content_rows[2].error, 0.5);
+  EXPECT_EQ(table.content_rows[2].temporal, std::optional<double>(0.4));
+  ASSERT_EQ(table.taa_content_rows.size(), 1u);
+  EXPECT_EQ(table.taa_content_rows[0].temporal, std::optional<double>(2.2));
+  // Without an against_none, the comparison is the difference of those means.
+  const saagen::decision::Comparison c = saagen::comparison_against(table.content_rows[1], table.content_rows[0]);
+  EXPECT_DOUBLE_EQ(c.image.mean, 0.01);
+  EXPECT_DOUBLE_EQ(c.temporal.mean, 0.2 - 0.9);
+  // The advice's rows are read by the same parser, and a bad row is named by its place.
+  EXPECT_THROW(
+      {
+        try {
+          (void)saagen::parse_advice_table(
+              R"({"schema": "saagen advice 1", "content": [{"content": "curved", "rows": [{"configuration": "none"}]}]})", "a.json");
+        } catch (const saagen::Error& error) {
+          EXPECT_STREQ(error.what(), "a.json: content[0].rows[0]: needs a number \"image_error\" (tables written before it: \"error\")");
+          throw;
+        }
+      },
+      saagen::Error);
+}
+
 TEST(Planner, BadTradeTablesAreRejected) {
   const auto error_of_table = [](const std::string& text) -> std::string {
     try {
@@ -437,7 +475,10 @@ TEST(Planner, BadTradeTablesAreRejected) {
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "error": 1}]})"),
             "t.json: by_content[0]: needs a string \"configuration\"");
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
-            "t.json: by_content[0]: needs a number \"error\"");
+            "t.json: by_content[0]: needs a number \"image_error\" (tables written before it: \"error\")");
+  EXPECT_EQ(
+      error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "image_error": 1, "against_none": {}}]})"),
+      "t.json: by_content[0]: \"against_none\" needs \"image\": {\"mean\", \"low\", \"high\"}, finite numbers, low <= mean <= high");
   EXPECT_EQ(
       error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": "torus"}]})"),
       "t.json: by_content[0]: \"loses_on\" must be an array of scene names");

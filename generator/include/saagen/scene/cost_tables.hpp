@@ -54,14 +54,16 @@ std::vector<double> bracketing_alphas(const std::vector<double>& measured, Alpha
 std::vector<std::string> cells_lost_at(const std::vector<CellLoss>& losses, const std::vector<double>& alphas);
 
 // `saagen bench --json` also writes, per content type ("curved", "normal-mapped", "bump",
-// "clearcoat": an asset's coat lobe), the mean display error of every measured configuration: a
+// "clearcoat": an asset's coat lobe), the verdict's mean errors of every measured configuration: a
 // variant, "VARIANT:geometric" (fed the geometric normal) and "VARIANT[:geometric]+toksvig|+lean"
-// (with a prefiltered normal map).
+// (with a prefiltered normal map). One schema for a trade table's "by_content" and
+// "taa_by_content" rows and the advice's rows, read by one parser (cost_tables.cpp,
+// parse_content_row).
 struct ContentRow {
   std::string content;
   std::string configuration;
-  double error = 0.0;
-  std::optional<double> tde;  // the temporal difference error, when the table has it
+  double error = 0.0;               // the image error ("image_error": LDR-FLIP per frame)
+  std::optional<double> temporal;  // the temporal error ("video_error", else "flicker_error"), when the table has it
   // The row minus no SAA's with 95 % intervals, when the table carries one ("against_none":
   // {"image": {"mean", "low", "high"}, "temporal": {...}}); comparison_against prefers it.
   std::optional<decision::Comparison> against_none;
@@ -79,10 +81,10 @@ struct ContentRow {
 
 // The one adapter from a trade table's measurements to a decision's comparison
 // (saagen/decision.hpp): `row` minus `baseline` (no SAA's row of the same content or scene, or an
-// engine's). Today's tables carry means only (LDR-FLIP "error" and "tde"), so each difference is
-// its mean with low = high = mean; a row without a TDE compares as tied in the temporal metric.
-// A row that carries its comparison with no SAA (ContentRow::against_none, intervals included) is
-// compared with no SAA by that instead.
+// engine's). A row that carries its comparison with no SAA (ContentRow::against_none, intervals
+// included) is compared with no SAA by that; otherwise each difference is the difference of the
+// means, with low = high = mean, and a row without a temporal error compares as tied in the
+// temporal metric.
 decision::Comparison comparison_against(const ContentRow& row, const ContentRow& baseline);
 
 // A row as a material judged at the measured `alphas` (bracketing_alphas) sees it: its loses_on
