@@ -100,12 +100,14 @@ int write_synthetic(const fs::path& directory) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Arguments {
   std::string frames_dir, out_path, filter, reference_clip, synthetic;
   double fps = 0.0;
   int threads = 0;
+};
+
+Arguments parse_arguments(int argc, char** argv) {
+  Arguments a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -113,90 +115,107 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--frames")
-      frames_dir = value();
+      a.frames_dir = value();
     else if (arg == "--out")
-      out_path = value();
+      a.out_path = value();
     else if (arg == "--filter")
-      filter = value();
+      a.filter = value();
     else if (arg == "--reference-clip")
-      reference_clip = value();
+      a.reference_clip = value();
     else if (arg == "--fps")
-      fps = std::stod(value());
+      a.fps = std::stod(value());
     else if (arg == "--threads")
-      threads = std::stoi(value());
+      a.threads = std::stoi(value());
     else if (arg == "--write-synthetic")
-      synthetic = value();
+      a.synthetic = value();
     else
       fail("unknown argument " + arg + " (see the comment at the top of bench/video_vdp_frames.cpp)");
   }
-  if (!synthetic.empty()) return write_synthetic(synthetic);
-  if (frames_dir.empty() || out_path.empty()) fail("--frames DIR and --out FILE are required");
-  std::ifstream index_file(fs::path(frames_dir) / "index.json");
-  if (!index_file) fail(frames_dir + ": no index.json (written by saagen bench --frames DIR)");
+  return a;
+}
+
+// Totals over the groups: the comparisons' and the references' own times.
+struct Timing {
+  double compare_seconds = 0.0, reference_seconds = 0.0;
+  std::size_t compared = 0, references = 0;
+};
+
+// The rows of one group of the index: each clip the filter keeps against the group's reference
+// (or --reference-clip, the ground truth then being a row "ground-truth").
+void score_group(const nlohmann::json& group, const Arguments& a, double fps, const std::regex& pattern,
+                 const saagen::measure::VideoVdpDisplay& display, nlohmann::json& rows, Timing& timing) {
+  const std::string scene = group.at("scene");
+  const double alpha = group.at("alpha");
+  const bool fresnel = group.value("fresnel", false);
+  const int frames = group.at("frames");
+  struct Row {
+    std::string configuration, file;
+    double jod = 0.0, seconds = 0.0;
+  };
+  std::string reference = group.at("reference");
+  std::vector<Row> todo;
+  for (const nlohmann::json& clip : group.at("clips")) todo.push_back({clip.at("configuration"), clip.at("file")});
+  if (!a.reference_clip.empty()) {
+    const auto swap = std::find_if(todo.begin(), todo.end(), [&](const Row& r) { return r.configuration == a.reference_clip; });
+    if (swap == todo.end()) return;
+    const std::string ground_truth = reference;
+    reference = swap->file;
+    todo.erase(swap);
+    todo.insert(todo.begin(), Row{"ground-truth", ground_truth});
+  }
+  std::erase_if(todo, [&](const Row& r) { return !std::regex_search(fmt::format("{}/a{:g}/{}", scene, alpha, r.configuration), pattern); });
+  if (todo.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const saagen::measure::VideoVdpReference vdp(load_clip(fs::path(a.frames_dir) / reference, frames), display, fps);
+  timing.reference_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++timing.references;
+  saagen::measure::parallel_rows(static_cast<int>(todo.size()), a.threads, [&](int i) {
+    const GreyClip test = load_clip(fs::path(a.frames_dir) / todo[i].file, frames);
+    const auto start = std::chrono::steady_clock::now();
+    todo[i].jod = vdp.compare(test).jod;
+    todo[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  });
+  for (const Row& r : todo) {
+    rows.push_back({{"scene", scene},
+                    {"alpha", alpha},
+                    {"fresnel", fresnel},
+                    {"configuration", r.configuration},
+                    {"clip", r.file},
+                    {"jod", r.jod},
+                    {"seconds", r.seconds}});
+    timing.compare_seconds += r.seconds;
+    ++timing.compared;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Arguments a = parse_arguments(argc, argv);
+  if (!a.synthetic.empty()) return write_synthetic(a.synthetic);
+  if (a.frames_dir.empty() || a.out_path.empty()) fail("--frames DIR and --out FILE are required");
+  std::ifstream index_file(fs::path(a.frames_dir) / "index.json");
+  if (!index_file) fail(a.frames_dir + ": no index.json (written by saagen bench --frames DIR)");
   const nlohmann::json index = nlohmann::json::parse(index_file);
-  if (fps <= 0.0) fps = index.value("fps", 30.0);
-  const std::regex pattern(filter.empty() ? "." : filter, std::regex::ECMAScript);
+  const double fps = a.fps > 0.0 ? a.fps : index.value("fps", 30.0);
+  const std::regex pattern(a.filter.empty() ? "." : a.filter, std::regex::ECMAScript);
   const saagen::measure::VideoVdpDisplay display = saagen::measure::video_vdp_standard_fhd();
 
   nlohmann::json rows = nlohmann::json::array();
-  double compare_seconds = 0.0, reference_seconds = 0.0;
-  std::size_t compared = 0, references = 0;
+  Timing timing;
   const auto started = std::chrono::steady_clock::now();
-  for (const nlohmann::json& group : index.at("groups")) {
-    const std::string scene = group.at("scene");
-    const double alpha = group.at("alpha");
-    const bool fresnel = group.value("fresnel", false);
-    const int frames = group.at("frames");
-    struct Row {
-      std::string configuration, file;
-      double jod = 0.0, seconds = 0.0;
-    };
-    std::string reference = group.at("reference");
-    std::vector<Row> todo;
-    for (const nlohmann::json& clip : group.at("clips")) todo.push_back({clip.at("configuration"), clip.at("file")});
-    if (!reference_clip.empty()) {
-      const auto swap = std::find_if(todo.begin(), todo.end(), [&](const Row& r) { return r.configuration == reference_clip; });
-      if (swap == todo.end()) continue;
-      const std::string ground_truth = reference;
-      reference = swap->file;
-      todo.erase(swap);
-      todo.insert(todo.begin(), Row{"ground-truth", ground_truth});
-    }
-    std::erase_if(todo,
-                  [&](const Row& r) { return !std::regex_search(fmt::format("{}/a{:g}/{}", scene, alpha, r.configuration), pattern); });
-    if (todo.empty()) continue;
-    const auto t0 = std::chrono::steady_clock::now();
-    const saagen::measure::VideoVdpReference vdp(load_clip(fs::path(frames_dir) / reference, frames), display, fps);
-    reference_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++references;
-    saagen::measure::parallel_rows(static_cast<int>(todo.size()), threads, [&](int i) {
-      const GreyClip test = load_clip(fs::path(frames_dir) / todo[i].file, frames);
-      const auto start = std::chrono::steady_clock::now();
-      todo[i].jod = vdp.compare(test).jod;
-      todo[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    });
-    for (const Row& r : todo) {
-      rows.push_back({{"scene", scene},
-                      {"alpha", alpha},
-                      {"fresnel", fresnel},
-                      {"configuration", r.configuration},
-                      {"clip", r.file},
-                      {"jod", r.jod},
-                      {"seconds", r.seconds}});
-      compare_seconds += r.seconds;
-      ++compared;
-    }
-  }
+  for (const nlohmann::json& group : index.at("groups")) score_group(group, a, fps, pattern, display, rows, timing);
   const nlohmann::json result = {{"metric", "ColorVideoVDP (saagen C++, saagen/measure/video_vdp.hpp)"},
                                  {"display", display.name},
                                  {"fps", fps},
-                                 {"frames", fs::absolute(frames_dir).string()},
-                                 {"filter", filter},
-                                 {"reference_clip", reference_clip.empty() ? "ground-truth" : reference_clip},
+                                 {"frames", fs::absolute(a.frames_dir).string()},
+                                 {"filter", a.filter},
+                                 {"reference_clip", a.reference_clip.empty() ? "ground-truth" : a.reference_clip},
                                  {"rows", rows}};
-  std::ofstream(out_path) << result.dump(1) << "\n";
-  std::cerr << fmt::format("{} rows: {:.4f} s per comparison, {:.4f} s per reference (one thread each), {:.1f} s in all -> {}\n", compared,
-                           compared ? compare_seconds / compared : 0.0, references ? reference_seconds / references : 0.0,
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), out_path);
+  std::ofstream(a.out_path) << result.dump(1) << "\n";
+  std::cerr << fmt::format("{} rows: {:.4f} s per comparison, {:.4f} s per reference (one thread each), {:.1f} s in all -> {}\n",
+                           timing.compared, timing.compared ? timing.compare_seconds / timing.compared : 0.0,
+                           timing.references ? timing.reference_seconds / timing.references : 0.0,
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), a.out_path);
   return 0;
 }
