@@ -28,6 +28,7 @@
 #include <memory>
 #include <saagen/harness/harness.hpp>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -130,91 +131,106 @@ Image summarise(const std::vector<float>& values, const std::string& what) {
   return image;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+struct Options {
   std::uint32_t size = 512, rounds = 12;
   double max_anisotropy = 8.0;
   std::string device;
+};
+
+// nullopt after printing the usage line for an unknown argument.
+std::optional<Options> parse_options(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  Options o;
   for (std::size_t k = 0; k < args.size(); ++k) {
     if (args[k] == "--quick")
-      size = 128, rounds = 3;
+      o.size = 128, o.rounds = 3;
     else if (args[k] == "--size" && k + 1 < args.size())
-      size = static_cast<std::uint32_t>(std::stoul(args[++k]));
+      o.size = static_cast<std::uint32_t>(std::stoul(args[++k]));
     else if (args[k] == "--rounds" && k + 1 < args.size())
-      rounds = static_cast<std::uint32_t>(std::stoul(args[++k]));
+      o.rounds = static_cast<std::uint32_t>(std::stoul(args[++k]));
     else if (args[k] == "--device" && k + 1 < args.size())
-      device = args[++k];
+      o.device = args[++k];
     else if (args[k] == "--max-anisotropy" && k + 1 < args.size())
-      max_anisotropy = std::stod(args[++k]);
+      o.max_anisotropy = std::stod(args[++k]);
     else {
       std::cerr << "bench_glints: unknown argument '" << args[k]
                 << "' (use --device NAME, --quick, --size N, --rounds N, --max-anisotropy A)\n";
-      return 2;
+      return std::nullopt;
     }
   }
-  size &= ~1u;
+  o.size &= ~1u;
+  return o;
+}
+
+// One target's GGAA against the textureLod baseline: timed ABBA, both images checked, one line.
+void bench_target(hx::VulkanContext& context, const std::string& target, const Options& o,
+                  const saagen::glints::DictionaryTexture& with_mips, const saagen::glints::DictionaryTexture& without_mips) {
+  const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", o.size, o.max_anisotropy);
+  const Shader baseline = compile(target, "glints", "glint_brdf_fragment", o.size, o.max_anisotropy);
+  const auto make_run = [&](const Shader& shader, const saagen::glints::DictionaryTexture& texture) {
+    hx::FragmentRun run;
+    run.fragment.spirv = shader.spirv;
+    run.width = run.height = o.size;
+    run.images = {saagen::test::glint_dictionary_binding(texture, 2)};
+    run.buffers = {hx::input_buffer(0, std::vector<float>{0.0f}), hx::output_buffer<float>(1, std::size_t{o.size} * o.size)};
+    return run;
+  };
+  hx::FragmentProgram ggaa_program(context, make_run(ggaa, with_mips));
+  hx::FragmentProgram baseline_program(context, make_run(baseline, without_mips));
+  const bool timestamps = context.info().timestamps_supported();
+  std::vector<double> ggaa_ms, baseline_ms, ratios;
+  hx::RunResult ggaa_result, baseline_result;
+  const auto time = [&](hx::FragmentProgram& program, hx::RunResult& result) {
+    result = program.run({.repetitions = 1, .gpu_timestamps = timestamps});
+    return timestamps ? result.timing.gpu_ms.front() : result.timing.host_ms.front();
+  };
+  time(ggaa_program, ggaa_result);  // warm-up
+  time(baseline_program, baseline_result);
+  for (std::uint32_t round = 0; round < o.rounds; ++round) {
+    double a = 0.0, b = 0.0;
+    if (round % 2 == 0) {
+      b = time(baseline_program, baseline_result);
+      a = time(ggaa_program, ggaa_result);
+    } else {
+      a = time(ggaa_program, ggaa_result);
+      b = time(baseline_program, baseline_result);
+    }
+    ggaa_ms.push_back(a);
+    baseline_ms.push_back(b);
+    ratios.push_back(a / b);
+  }
+  const Image ggaa_image = summarise(ggaa_result.buffer_as<float>(1), target + " GGAA");
+  const Image baseline_image = summarise(baseline_result.buffer_as<float>(1), target + " baseline");
+  const std::size_t filtered = changed(ggaa_result.buffer_as<float>(1), baseline_result.buffer_as<float>(1));
+  if (filtered == 0) throw Failure(target + ": GGAA leaves the image unchanged; the timings would be meaningless");
+  std::cout << fmt::format(
+      "{}: GGAA {:.3f} ms, textureLod baseline {:.3f} ms; overhead {:+.1f} % (quartiles {:+.1f} .. {:+.1f} %; paper: +0.6 .. +4.2 % on an RTX 2080)\n"
+      "{}:   optimized SPIR-V instructions: GGAA {}, baseline {} ({:+d}); mean shaded value GGAA {:.5f}, baseline {:.5f}; lit pixels {} / {}; "
+      "pixels GGAA changes: {}\n",
+      target, median(ggaa_ms), median(baseline_ms), 100.0 * (median(ratios) - 1.0), 100.0 * (quantile(ratios, 0.25) - 1.0),
+      100.0 * (quantile(ratios, 0.75) - 1.0), target, ggaa.optimized_instructions, baseline.optimized_instructions,
+      static_cast<long>(ggaa.optimized_instructions) - static_cast<long>(baseline.optimized_instructions), ggaa_image.mean,
+      baseline_image.mean, ggaa_image.lit, baseline_image.lit, filtered);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::optional<Options> options = parse_options(argc, argv);
+  if (!options) return 2;
   try {
-    if (!device.empty()) setenv("SAAGEN_VK_DEVICE", device.c_str(), 1);
+    if (!options->device.empty()) setenv("SAAGEN_VK_DEVICE", options->device.c_str(), 1);
     hx::VulkanContext context;
     const auto dictionary = saagen::glints::generate_dictionary({});
     const auto with_mips = saagen::glints::dictionary_texture(dictionary, true);
     const auto without_mips = saagen::glints::dictionary_texture(dictionary, false);
-    std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA); max anisotropy {}\n", context.info().name, size, size, rounds,
-                             max_anisotropy);
+    std::cout << fmt::format("device: {}; {} x {} pixels, {} rounds (ABBA); max anisotropy {}\n", context.info().name, options->size,
+                             options->size, options->rounds, options->max_anisotropy);
     std::cout << fmt::format(
         "dictionary: N = 192, L = 16, R = 64, RGBA16F: {:.0f} KiB without MIPs, {:.0f} KiB with MIPs (+{:.1f} %)\n",
         saagen::glints::texture_bytes(without_mips) / 1024.0, saagen::glints::texture_bytes(with_mips) / 1024.0,
         100.0 * (double(saagen::glints::texture_bytes(with_mips)) / double(saagen::glints::texture_bytes(without_mips)) - 1.0));
-    for (const std::string target : {"glsl", "hlsl"}) {
-      const Shader ggaa = compile(target, "glints-ggaa", "glint_brdf_filtered_fragment", size, max_anisotropy);
-      const Shader baseline = compile(target, "glints", "glint_brdf_fragment", size, max_anisotropy);
-      const auto make_run = [&](const Shader& shader, const saagen::glints::DictionaryTexture& texture) {
-        hx::FragmentRun run;
-        run.fragment.spirv = shader.spirv;
-        run.width = run.height = size;
-        run.images = {saagen::test::glint_dictionary_binding(texture, 2)};
-        run.buffers = {hx::input_buffer(0, std::vector<float>{0.0f}), hx::output_buffer<float>(1, std::size_t{size} * size)};
-        return run;
-      };
-      hx::FragmentProgram ggaa_program(context, make_run(ggaa, with_mips));
-      hx::FragmentProgram baseline_program(context, make_run(baseline, without_mips));
-      const bool timestamps = context.info().timestamps_supported();
-      std::vector<double> ggaa_ms, baseline_ms, ratios;
-      hx::RunResult ggaa_result, baseline_result;
-      const auto time = [&](hx::FragmentProgram& program, hx::RunResult& result) {
-        result = program.run({.repetitions = 1, .gpu_timestamps = timestamps});
-        return timestamps ? result.timing.gpu_ms.front() : result.timing.host_ms.front();
-      };
-      time(ggaa_program, ggaa_result);  // warm-up
-      time(baseline_program, baseline_result);
-      for (std::uint32_t round = 0; round < rounds; ++round) {
-        double a = 0.0, b = 0.0;
-        if (round % 2 == 0) {
-          b = time(baseline_program, baseline_result);
-          a = time(ggaa_program, ggaa_result);
-        } else {
-          a = time(ggaa_program, ggaa_result);
-          b = time(baseline_program, baseline_result);
-        }
-        ggaa_ms.push_back(a);
-        baseline_ms.push_back(b);
-        ratios.push_back(a / b);
-      }
-      const Image ggaa_image = summarise(ggaa_result.buffer_as<float>(1), target + " GGAA");
-      const Image baseline_image = summarise(baseline_result.buffer_as<float>(1), target + " baseline");
-      const std::size_t filtered = changed(ggaa_result.buffer_as<float>(1), baseline_result.buffer_as<float>(1));
-      if (filtered == 0) throw Failure(target + ": GGAA leaves the image unchanged; the timings would be meaningless");
-      std::cout << fmt::format(
-          "{}: GGAA {:.3f} ms, textureLod baseline {:.3f} ms; overhead {:+.1f} % (quartiles {:+.1f} .. {:+.1f} %; paper: +0.6 .. +4.2 % on an RTX 2080)\n"
-          "{}:   optimized SPIR-V instructions: GGAA {}, baseline {} ({:+d}); mean shaded value GGAA {:.5f}, baseline {:.5f}; lit pixels {} / {}; "
-          "pixels GGAA changes: {}\n",
-          target, median(ggaa_ms), median(baseline_ms), 100.0 * (median(ratios) - 1.0), 100.0 * (quantile(ratios, 0.25) - 1.0),
-          100.0 * (quantile(ratios, 0.75) - 1.0), target, ggaa.optimized_instructions, baseline.optimized_instructions,
-          static_cast<long>(ggaa.optimized_instructions) - static_cast<long>(baseline.optimized_instructions), ggaa_image.mean,
-          baseline_image.mean, ggaa_image.lit, baseline_image.lit, filtered);
-    }
+    for (const std::string target : {"glsl", "hlsl"}) bench_target(context, target, *options, with_mips, without_mips);
   } catch (const std::exception& error) {
     std::cerr << "bench_glints: " << error.what() << "\n";
     return 1;
