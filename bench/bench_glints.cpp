@@ -26,9 +26,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <saagen/harness/harness.hpp>
 #include <stdexcept>
-#include <optional>
 #include <string>
 #include <vector>
 

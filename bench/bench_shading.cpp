@@ -434,7 +434,8 @@ std::pair<double, double> image_change(const std::string& target, const std::str
                                        const BaselineImage& baseline) {
   const ImageStats stats = check_image(target, variant, image);
   if (stats.on_sphere != baseline.stats.on_sphere) {
-    throw Failure(fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant, stats.on_sphere, baseline.stats.on_sphere));
+    throw Failure(
+        fmt::format("{} {}: {} sphere pixels, the no-SAA image has {}", target, variant, stats.on_sphere, baseline.stats.on_sphere));
   }
   double absolute_change = 0.0;
   for (std::size_t index = 0; index < image.size(); ++index) {

@@ -244,7 +244,8 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
 // `saagen list`: the catalogue, as text or JSON.
 class ListCommand {
  public:
-  explicit ListCommand(CLI::App& app) : command_(app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions")) {
+  explicit ListCommand(CLI::App& app)
+      : command_(app.add_subcommand("list", "List every variant: id, paper and equation, render path, tangents, functions")) {
     command_->add_flag("--json", json_, "Machine-readable catalogue (the contract for engines and tests)");
     command_->add_option("--prefix", prefix_, "Prefix shown in emitted names")->capture_default_str();
     command_->add_option("--domain", domain_, "Roughness domain of the listed functions: alpha2, alpha, perceptual or smoothness")
@@ -283,13 +284,15 @@ class EmitCommand {
     command_->add_option("--output,-o", arguments_.output_directory, "Output directory")->required();
     command_->add_flag("--force", arguments_.force, "Overwrite files that saagen did not write");
     command_
-        ->add_option("--precision", arguments_.precision, "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")
+        ->add_option("--precision", arguments_.precision,
+                     "fp32, fp16 (GLSL float16_t, GLSL ES mediump, WGSL f16) or min16 (HLSL min16float)")
         ->capture_default_str();
     command_->add_flag("--unguarded", arguments_.unguarded, "Emit the papers' unguarded formulas (for comparison; see docs/STABILITY.md)");
     command_->add_option("--import-path", arguments_.import_path,
                          "WGSL: write `#define_import_path PATH` (naga_oil, Bevy's shader imports) into the one module written");
     command_
-        ->add_option("--module", arguments_.module_name, "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")
+        ->add_option("--module", arguments_.module_name,
+                     "WGSL: the name of the one module that several --variant make (file PREFIX+NAME.wgsl)")
         ->capture_default_str();
     arguments_.glint.add_to(command_, "glint-");
   }

@@ -465,8 +465,9 @@ namespace {
 
 // The trade table's JSON (`plan --trade-table` reads it), with the rows and comparisons under TAA
 // when measured, and the sanity suite's checks.
-nlohmann::json bench_json(const measure::TradeTable& measured, const measure::TradeTable& table, const std::vector<report::VariantSummary>& summary,
-                          const report::CostTable* cost_table, const std::vector<report::SceneSanity>& sanity) {
+nlohmann::json bench_json(const measure::TradeTable& measured, const measure::TradeTable& table,
+                          const std::vector<report::VariantSummary>& summary, const report::CostTable* cost_table,
+                          const std::vector<report::SceneSanity>& sanity) {
   nlohmann::json json = report::trade_json(table, summary, cost_table);
   if (measured.config.taa) {
     json["taa_cases"] = report::taa_cases_json(measured);

@@ -38,8 +38,8 @@ std::optional<double> mean_of(const std::vector<MeasuredTradeRow>& rows, std::st
 decision::Comparison parse_comparison(const nlohmann::json& value, std::string_view key, std::string_view where) {
   const auto difference = [&](const char* metric) {
     const auto fail = [&] {
-      throw Error(fmt::format("{}: \"{}\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, low <= mean <= high", where,
-                              key, metric));
+      throw Error(
+          fmt::format("{}: \"{}\" needs \"{}\": {{\"mean\", \"low\", \"high\"}}, finite numbers, low <= mean <= high", where, key, metric));
     };
     if (!value.is_object() || !value.contains(metric) || !value[metric].is_object()) fail();
     decision::Difference d;
@@ -129,7 +129,8 @@ ContentRow parse_content_row(const nlohmann::json& row, std::string_view where, 
   };
   const auto number = [&](const char* key) -> std::optional<double> {
     if (!row.contains(key)) return std::nullopt;
-    if (!row[key].is_number() || !std::isfinite(row[key].get<double>())) throw Error(fmt::format("{}: \"{}\" must be a finite number", where, key));
+    if (!row[key].is_number() || !std::isfinite(row[key].get<double>()))
+      throw Error(fmt::format("{}: \"{}\" must be a finite number", where, key));
     return row[key].get<double>();
   };
   if (content.empty()) content = text("content");
@@ -137,7 +138,9 @@ ContentRow parse_content_row(const nlohmann::json& row, std::string_view where, 
   const std::optional<double> image = row.contains("image_error") ? number("image_error") : number("error");
   if (!image) throw Error(fmt::format("{}: needs a number \"image_error\" (tables written before it: \"error\")", where));
   entry.error = *image;
-  entry.temporal = row.contains("video_error") ? number("video_error") : row.contains("flicker_error") ? number("flicker_error") : number("tde");
+  entry.temporal = row.contains("video_error")     ? number("video_error")
+                   : row.contains("flicker_error") ? number("flicker_error")
+                                                   : number("tde");
   if (row.contains("against_none")) entry.against_none = parse_comparison(row["against_none"], "against_none", where);
   parse_pairings(row, entry, where);
   return entry;

@@ -1373,7 +1373,8 @@ namespace {
 std::string material_traits(const Material& material) {
   std::vector<std::string> traits = {std::string(to_string(material.path)), material.anisotropic ? "anisotropic" : "isotropic",
                                      material.tangents ? "tangents" : "no tangents", std::string(to_string(material.ndf))};
-  if (material.normal_maps) traits.push_back(material.map_lod > 0 ? fmt::format("normal maps at LOD >= {}", material.map_lod) : "normal maps");
+  if (material.normal_maps)
+    traits.push_back(material.map_lod > 0 ? fmt::format("normal maps at LOD >= {}", material.map_lod) : "normal maps");
   traits.emplace_back(to_string(material.precision));
   traits.push_back("prefer " + std::string(to_string(material.prefer)));
   traits.push_back(fmt::format("{} light{}", material.lights, material.lights == 1 ? "" : "s"));
@@ -1388,8 +1389,9 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
   const std::string& prefix = manifest.prefix;
   if (material.glints) {
     return "  shade     the returned f(i, o) is the specular BRDF: multiply by Fresnel, i.z and the light\n" +
-           fmt::format("  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
-                       glint_dictionary_file_name(manifest));
+           fmt::format(
+               "  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
+               glint_dictionary_file_name(manifest));
   }
   if (shades_from_tensor(catalogue, material_plan) && is_covariance_function(*material_plan.brdf)) {
     return fmt::format(
@@ -1471,7 +1473,8 @@ std::string format_material_plan(const Catalogue& catalogue, const Manifest& man
   const Function& planned = *catalogue.find_function(material_plan.wrapper);
   const bool converted = manifest.domain != Domain::alpha2 && takes_and_returns_roughness(planned);
   const Function& wrapper =
-      converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain)) : planned;
+      converted ? *domain_catalogue(catalogue, manifest.domain).find_function(domain_function_name(planned.name, manifest.domain))
+                : planned;
   std::vector<std::string> parameters;
   for (const Parameter& parameter : wrapper.parameters) parameters.push_back(parameter.name);
   text += fmt::format("  call      {}({}) -> {}{}\n", prefixed_name(manifest.prefix, wrapper.name), fmt::join(parameters, ", "),

@@ -153,8 +153,8 @@ namespace {
 
 // One entry of a target's "precisions": its type spellings (of types the target spells), intrinsic
 // patterns, literal suffix, preamble (inline or from a skeleton file's section) and notes.
-PrecisionForm parse_precision_form(const Json& entry, const std::string& name, const std::map<std::string, std::string, std::less<>>& target_types,
-                                   std::string_view source) {
+PrecisionForm parse_precision_form(const Json& entry, const std::string& name,
+                                   const std::map<std::string, std::string, std::less<>>& target_types, std::string_view source) {
   PrecisionForm precision;
   for (const auto& [type, spelling] : require(entry, "types", source).items()) {
     if (!target_types.count(type)) throw Error(fmt::format("{}: precision {} spells unknown type '{}'", source, name, type));
@@ -261,7 +261,8 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     }
   }
   if (json.contains("resources")) {
-    for (const auto& [name, entry] : json.at("resources").items()) target.resources[name] = parse_resource(entry, name, target.module, source);
+    for (const auto& [name, entry] : json.at("resources").items())
+      target.resources[name] = parse_resource(entry, name, target.module, source);
   }
   return target;
 }

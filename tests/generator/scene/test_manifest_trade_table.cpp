@@ -476,9 +476,9 @@ TEST(Planner, BadTradeTablesAreRejected) {
             "t.json: by_content[0]: needs a string \"configuration\"");
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
             "t.json: by_content[0]: needs a number \"image_error\" (tables written before it: \"error\")");
-  EXPECT_EQ(
-      error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "image_error": 1, "against_none": {}}]})"),
-      "t.json: by_content[0]: \"against_none\" needs \"image\": {\"mean\", \"low\", \"high\"}, finite numbers, low <= mean <= high");
+  EXPECT_EQ(error_of_table(
+                R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "image_error": 1, "against_none": {}}]})"),
+            "t.json: by_content[0]: \"against_none\" needs \"image\": {\"mean\", \"low\", \"high\"}, finite numbers, low <= mean <= high");
   EXPECT_EQ(
       error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none", "error": 1, "loses_on": "torus"}]})"),
       "t.json: by_content[0]: \"loses_on\" must be an array of scene names");

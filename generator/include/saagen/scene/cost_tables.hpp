@@ -62,7 +62,7 @@ std::vector<std::string> cells_lost_at(const std::vector<CellLoss>& losses, cons
 struct ContentRow {
   std::string content;
   std::string configuration;
-  double error = 0.0;               // the image error ("image_error": LDR-FLIP per frame)
+  double error = 0.0;              // the image error ("image_error": LDR-FLIP per frame)
   std::optional<double> temporal;  // the temporal error ("video_error", else "flicker_error"), when the table has it
   // The row minus no SAA's with 95 % intervals, when the table carries one ("against_none":
   // {"image": {"mean", "low", "high"}, "temporal": {...}}); comparison_against prefers it.
