@@ -71,6 +71,11 @@ bool has_video_metric(const measure::TradeTable& table) {
   return std::any_of(table.rows.begin(), table.rows.end(), [](const measure::TradeRow& row) { return !row.series.video[0].empty(); });
 }
 
+std::string temporal_metric_description(const measure::TradeTable& table) {
+  return has_video_metric(table) ? "video error (10 - ColorVideoVDP's JOD of the animation clip against the ground truth's)"
+                                 : "flicker error (pooled frame-to-frame change against the ground truth's)";
+}
+
 Metrics mean_metrics(const measure::TradeTable& table, const std::string& configuration, const RowFilter& keep) {
   Metrics m;
   for (const measure::TradeRow& row : table.rows) {

@@ -72,7 +72,7 @@ constexpr const char* kHtmlTail =
 
 std::string markdown_verdict(const measure::TradeTable& table) {
   std::ostringstream md;
-  md << "## " << kVerdictTitle << "\n\n(" << kVerdictNote << ")\n\n";
+  md << "## " << kVerdictTitle << "\n\n(" << verdict_note(table) << ")\n\n";
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     md << "- **" << lines.front() << "**\n";
@@ -117,7 +117,7 @@ std::string html_taa(const TaaSection& taa) {
 
 std::string html_verdict(const measure::TradeTable& table) {
   std::string html =
-      fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(kVerdictNote));
+      fmt::format("<h2>{}</h2>\n<p>({})</p>\n<ul class=\"verdict\">\n", html_escape(kVerdictTitle), html_escape(verdict_note(table)));
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     html += "<li><b>" + html_escape(lines.front()) + "</b>";

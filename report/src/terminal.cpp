@@ -19,7 +19,7 @@ std::string format_findings(const measure::TradeTable& table, const CostTable* c
 }
 
 std::string format_verdict(const measure::TradeTable& table) {
-  std::string text = fmt::format("{}\n({}):\n", kVerdictTitle, kVerdictNote);
+  std::string text = fmt::format("{}\n({}):\n", kVerdictTitle, verdict_note(table));
   for (const Verdict& v : ordered_verdicts(table)) {
     const std::vector<std::string> lines = verdict_lines(v);
     text += "  " + lines.front() + "\n";

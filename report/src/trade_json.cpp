@@ -95,9 +95,7 @@ nlohmann::json decisions_json(const measure::TradeTable& table) {
            "accuracy: the largest gain in the temporal metric, the image metric as tie-break; none where nothing "
            "beats no SAA (saagen/decision.hpp)"},
           {"image_metric", "image error (LDR-FLIP of every animation frame)"},
-          {"temporal_metric", has_video_metric(table)
-                                  ? "video error (10 - ColorVideoVDP's JOD of the animation clip against the ground truth's)"
-                                  : "flicker error (pooled frame-to-frame change against the ground truth's)"},
+          {"temporal_metric", temporal_metric_description(table)},
           {"by_content", by_content},
           {"per_scene", per_scene}};
 }

@@ -87,6 +87,14 @@ std::string scene_losses(const Verdict& v) {
 
 }  // namespace
 
+std::string verdict_note(const measure::TradeTable& table) {
+  return fmt::format(
+      "the decision's comparison with no SAA, paired, 95 % intervals, then means over the content's scenes and alphas, no Fresnel; "
+      "lower is better; image error = LDR-FLIP of every animation frame; temporal = {}; docs/TEMPORAL.md; % = change from the "
+      "baseline",
+      temporal_metric_description(table));
+}
+
 // The verdict lines of one recommendation: the headline, then where it loses (or that it does not).
 std::vector<std::string> verdict_lines(const Verdict& v) {
   std::vector<std::string> lines{headline(v)};

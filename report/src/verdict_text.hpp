@@ -12,10 +12,9 @@
 namespace saagen::report {
 
 inline constexpr const char* kVerdictTitle = "Verdict: what to use per render path and content";
-inline constexpr const char* kVerdictNote =
-    "the decision's comparison with no SAA, paired, 95 % intervals, then means over the content's scenes and alphas, no Fresnel; "
-    "lower is better; image error = LDR-FLIP of every animation frame, flicker error = pooled frame-to-frame change against the "
-    "ground truth's (docs/TEMPORAL.md); % = change from the baseline";
+// The verdict's note: what its comparisons and means are, and its image and temporal metrics
+// (temporal_metric_description: the video error where the table has it).
+std::string verdict_note(const measure::TradeTable& table);
 
 // Verdicts grouped by render path, then content type.
 std::vector<Verdict> ordered_verdicts(const measure::TradeTable& table);

@@ -205,3 +205,17 @@ TEST(TaaComparisons, PerContentTheRowsAreAgainstTaaAloneAndNamedWithoutTaa) {
 }
 
 }  // namespace
+
+// The printed verdict names the temporal metric its comparisons read: the video error where the
+// table has the video metric, else the flicker error (as the JSON's "temporal_metric").
+TEST(Verdict, NamesTheTemporalMetricItReads) {
+  measure::TradeTable table = report::without_taa_rows(table_with(-1e-4));
+  table.config.scenes = {SceneId::sphere};
+  table.config.alphas = {0.01, 0.1};
+  table.config.fresnel_modes = {false};
+  EXPECT_NE(report::format_verdict(table).find("temporal = video error (10 - ColorVideoVDP's JOD"), std::string::npos);
+  EXPECT_EQ(report::format_verdict(table).find("flicker error"), std::string::npos);
+  for (measure::TradeRow& r : table.rows) r.series.video = {};
+  EXPECT_NE(report::format_verdict(table).find("temporal = flicker error (pooled frame-to-frame change"), std::string::npos);
+  EXPECT_EQ(report::temporal_metric_description(table).rfind("flicker error", 0), 0u);
+}

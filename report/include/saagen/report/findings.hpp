@@ -52,6 +52,10 @@ struct Metrics : measure::RowMetrics, measure::VerdictMetrics<double> {
 // Whether the table's rows carry the video metric (TradeConfig::video_metric), which the verdict
 // then reads as its temporal metric (comparison.hpp, temporal_metric).
 bool has_video_metric(const measure::TradeTable& table);
+// What the verdict's temporal metric is for this table, as the printed verdict and the JSON's
+// "temporal_metric" name it: the video error where the table has the video metric, else the
+// flicker error.
+std::string temporal_metric_description(const measure::TradeTable& table);
 // The metrics of one trade row (cases = 1).
 Metrics row_metrics(const measure::TradeRow& row);
 
