@@ -19,9 +19,9 @@ done
 head -n 1 out/cost.txt
 # Accuracy against supersampled ground truths, in linear and display-referred metrics, with the
 # engines' shipped forms as baselines; one measurement gives the table, its JSON and the report.
-# SAAGEN_PRESET=full (256 px, 1024 spp, Fresnel: about 21 minutes on 2 cores the first time) gives
-# the figures in docs/GUIDE.md; the default medium preset takes about 2 minutes (ground truths are
-# cached in out/cache; docs/GLTF_SCENES.md, "In the presets").
+# The default medium preset takes about 35 minutes on 2 cores the first time and 18 once its ground
+# truths are cached in out/cache; SAAGEN_PRESET=full (256 px, 1024 spp, Fresnel) takes hours
+# (docs/GUIDE.md, "The main job"; docs/GLTF_SCENES.md, "In the presets").
 preset=${SAAGEN_PRESET:-medium}
 "$saagen" bench --preset "$preset" --cost out/cost.json --cache out/cache --json out/trade.json --report out/report
 # One answer: the example scene planned and emitted with the table just measured, by the same

@@ -22,8 +22,9 @@ measure::TradeConfig preset_config(std::string_view preset) {
   config.alphas = {0.0025, 0.0064, 0.01, 0.05, 0.1, 0.3};
   if (preset == "full") return config;
   if (preset == "medium") {
-    // Every scene and alpha at a quarter of the pixels and samples, without Fresnel: minutes,
-    // not tens of minutes, for trying a configuration.
+    // Every scene and alpha at a quarter of the pixels and samples, without Fresnel: the main
+    // job's preset (about 35 minutes on 2 cores the first time, 18 with its ground truths cached;
+    // docs/GUIDE.md), where the full preset takes hours.
     config.width = config.height = 128;
     config.strata = 16;
     config.flicker_width = config.flicker_height = 64;
