@@ -951,17 +951,153 @@ AdviceTable at_roughness(AdviceTable advice, const Material& material) {
   return advice;
 }
 
+// anisotropic = true without tangents: one line at the key that is wrong.
+void check_tangents(const Manifest& manifest, const Material& material) {
+  if (!material.anisotropic || material.tangents) return;
+  const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
+  throw Error(manifest.where(position) + fmt::format("key 'tangents' of material '{}': anisotropic = true needs tangents = true (an "
+                                                     "anisotropic BRDF is defined in a tangent frame); allowed: tangents = true, or "
+                                                     "anisotropic = false",
+                                                     material.name));
+}
+
+// The variant the manifest names (its `variant` key or its engine preset's), checked.
+void plan_named_variant(const Catalogue& catalogue, const Manifest& manifest, const Material& material,
+                        const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
+  const std::string context = fmt::format(" of material '{}'", material.name);
+  const Variant* found = catalogue.find_variant(*material.variant);
+  if (!found || !is_screen_space_filter(catalogue, *found)) {
+    throw Error(manifest.where(key_position(material, "variant")) +
+                fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
+  }
+  const Variant& variant = *found;
+  if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
+    throw Error(manifest.where(key_position(material, "variant")) +
+                fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
+  }
+  plan.variant = variant.id;
+  plan.rule = "manifest";
+  plan.reason = material.positions.count("variant") || !manifest.preset
+                    ? "named by the manifest's `variant` key"
+                    : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
+}
+
+// The rule's variant, then, where a trade table decides or the material prefers speed (and
+// saagen's decision does not cost it itself), the eligible variant with the lowest table error
+// (accuracy) or ISA cost (speed): from the trade table when it has figures for the manifest's GPU
+// family (`saagen bench` measures one light, so only for a material costed at one light), else
+// from the committed table.
+void plan_by_rule(const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
+                  const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
+  const Rule& rule = rule_for(material);
+  plan.variant = rule.variant;
+  plan.rule = rule.id;
+  plan.reason = rule.why;
+  const bool speed = material.prefer == Preference::speed;
+  // For speed, a GGX material the planner chooses for gets saagen's decision (plan_by_decision),
+  // which costs every configuration itself; the ISA ranking here serves the others (Beckmann,
+  // presets).
+  const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
+  // A table without this material's content leaves a GGX material to saagen's decision on its
+  // own figures: the table's error means, of other content, rank nothing here.
+  const bool table_decides =
+      table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
+  if (!(table_decides || speed) || decision_costs) return;
+  const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+  const bool table_has_isa = plan.cost_lights == 1 && table &&
+                             std::any_of(table->rows.begin(), table->rows.end(),
+                                         [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
+  const std::string lights = light_count_words(material.lights, plan.cost_lights);
+  const std::string source =
+      !speed          ? table->source_name
+      : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
+                      : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
+  std::vector<std::pair<double, const Variant*>> ranked;
+  for (const Variant* variant : eligible) {
+    // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
+    const std::string costed =
+        !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
+    const auto value = !speed          ? table->error(variant->id)
+                       : table_has_isa ? table->isa_cost(costed, family)
+                                       : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
+    if (value) ranked.emplace_back(*value, variant);
+  }
+  // Ties keep the rule's choice first, then catalogue order.
+  std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    return a.second->id == rule.variant && b.second->id != rule.variant;
+  });
+  const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+  // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 % of
+  // these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally cheap,
+  // and the rule, which orders equals by accuracy, keeps its choice among them.
+  const auto rule_entry = std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
+  const bool rule_ties =
+      speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
+  if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
+    plan.variant = ranked.front().second->id;
+    plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+    plan.reason =
+        fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id, rule.variant);
+  } else if (!ranked.empty()) {
+    plan.reason +=
+        fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
+                    metric, source, describe_choice(ranked, metric));
+  } else {
+    plan.reason += fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source, metric, ids_of(eligible), rule.id);
+  }
+}
+
+// A normal-mapped material's feed and prefilter: from the table's rows, else saagen's committed
+// measurement of normal-mapped content. For a material the planner chooses for, saagen's decision
+// (plan_by_decision) replaces this.
+void plan_normal_maps(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
+                      const AdviceTable& advice, const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
+  const std::string_view lobe = planned_lobe(material);
+  if (table && !table->content_rows.empty())
+    choose_normal_handling({table->content_rows, table->source_name}, eligible,
+                           !material.variant && material.prefer == Preference::accuracy, lobe, plan);
+  const AdviceMeasurement* measured = material_advice(catalogue, manifest, material, advice, advice::Content::normal_mapped).measured;
+  if (plan.normal_advice.empty() && measured)
+    choose_normal_handling(
+        {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured}, eligible,
+        false, lobe, plan);
+}
+
+// saagen's decision (decision.hpp) for a GGX material the planner chooses for (no variant named,
+// no engine preset): on the table's rows for the material's content, else on saagen's committed
+// figures (advice.hpp), with how far those hold on content they were not made on.
+void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
+                      const AdviceTable& advice, MaterialPlan& plan) {
+  const std::string content(advice::table_content(content_of(material)));
+  // A table without taa_by_content rows leaves a TAA decision to saagen's committed TAA figures.
+  const std::vector<ContentRow> rows = table ? rows_of_content(*table, manifest.taa, content_of(material)) : std::vector<ContentRow>{};
+  const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
+  const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
+  if (has_none) {
+    apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, plan);
+    return;
+  }
+  // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against; the
+  // lowest error chosen by plan_by_rule stands.
+  if (!rows.empty()) return;
+  if (table && !manifest.taa && table->has_errors() && material.prefer != Preference::speed && !other_content) return;
+  const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
+  const AdviceMeasurement* measured = chosen_advice.measured;
+  static const AdviceMeasurement kNothingMeasured;
+  const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
+  const std::string lacking =
+      (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
+  apply_decision(catalogue, manifest, material, rows_of.rows, rows_of.alphas,
+                 measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
+                          : fmt::format("saagen's trade (not measured){}", lacking),
+                 measured, plan);
+}
+
 // One material's plan (plan_scene): `table` and `advice` as they apply to its roughness.
 MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
                            const AdviceTable& advice) {
-  const std::string context = fmt::format(" of material '{}'", material.name);
-  if (material.anisotropic && !material.tangents) {
-    const auto position = material.positions.count("tangents") ? key_position(material, "tangents") : key_position(material, "anisotropic");
-    throw Error(manifest.where(position) +
-                fmt::format("key 'tangents'{}: anisotropic = true needs tangents = true (an anisotropic BRDF is defined in a "
-                            "tangent frame); allowed: tangents = true, or anisotropic = false",
-                            context));
-  }
+  check_tangents(manifest, material);
   MaterialPlan plan;
   plan.material = material.name;
   plan.precision = material.precision;
@@ -975,135 +1111,17 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
     return plan;
   }
   const auto eligible = eligible_variants(catalogue, material);
-
-  if (material.variant) {
-    const Variant* found = catalogue.find_variant(*material.variant);
-    if (!found || !is_screen_space_filter(catalogue, *found)) {
-      throw Error(
-          manifest.where(key_position(material, "variant")) +
-          fmt::format("key 'variant'{}: \"{}\" is not a filter variant; allowed: {}", context, *material.variant, ids_of(eligible)));
-    }
-    const Variant& variant = *found;
-    if (const std::string why = ineligibility(catalogue, variant, material); !why.empty()) {
-      throw Error(manifest.where(key_position(material, "variant")) +
-                  fmt::format("key 'variant'{}: {}; allowed: {}", context, why, ids_of(eligible)));
-    }
-    plan.variant = variant.id;
-    plan.rule = "manifest";
-    plan.reason = material.positions.count("variant") || !manifest.preset
-                      ? "named by the manifest's `variant` key"
-                      : fmt::format("the variant of the manifest's preset \"{}\" (the engine's own form)", *manifest.preset);
-  } else {
-    const Rule& rule = rule_for(material);
-    plan.variant = rule.variant;
-    plan.rule = rule.id;
-    plan.reason = rule.why;
-    const bool speed = material.prefer == Preference::speed;
-    // For speed, a GGX material the planner chooses for gets saagen's decision below, which costs
-    // every configuration itself; the ISA ranking here serves the others (Beckmann, presets).
-    const bool decision_costs = speed && material.ndf == Ndf::ggx && !manifest.preset;
-    // A table without this material's content leaves a GGX material to saagen's decision on its
-    // own figures (below): the table's error means, of other content, rank nothing here.
-    const bool table_decides =
-        table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
-    if ((table_decides || speed) && !decision_costs) {
-      // Speed: the ISA cost on the manifest's GPU family at the material's light count, from the
-      // trade table when it has figures for that family (`saagen bench` measures one light, so
-      // only for a material costed at one light), else from the committed table. Accuracy: the
-      // table's error.
-      const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
-      const bool table_has_isa = plan.cost_lights == 1 && table &&
-                                 std::any_of(table->rows.begin(), table->rows.end(),
-                                             [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
-      const std::string lights = light_count_words(material.lights, plan.cost_lights);
-      const std::string source =
-          !speed          ? table->source_name
-          : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
-                          : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
-      std::vector<std::pair<double, const Variant*>> ranked;
-      for (const Variant* variant : eligible) {
-        // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
-        const std::string costed =
-            !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
-        const auto value = !speed          ? table->error(variant->id)
-                           : table_has_isa ? table->isa_cost(costed, family)
-                                           : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
-        if (value) ranked.emplace_back(*value, variant);
-      }
-      // Ties keep the rule's choice first, then catalogue order.
-      std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
-        if (a.first != b.first) return a.first < b.first;
-        return a.second->id == rule.variant && b.second->id != rule.variant;
-      });
-      const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
-      // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 %
-      // of these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally
-      // cheap, and the rule, which orders equals by accuracy, keeps its choice among them.
-      const auto rule_entry =
-          std::find_if(ranked.begin(), ranked.end(), [&](const auto& entry) { return entry.second->id == rule.variant; });
-      const bool rule_ties =
-          speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
-      if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
-        plan.variant = ranked.front().second->id;
-        plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
-        plan.reason = fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id,
-                                  rule.variant);
-      } else if (!ranked.empty()) {
-        plan.reason +=
-            fmt::format(" [{} the lowest {} in {}: {}]", rule_ties && ranked.front().second->id != rule.variant ? "within 1 % of" : "also",
-                        metric, source, describe_choice(ranked, metric));
-      } else {
-        plan.reason +=
-            fmt::format(" [{} has no {} for the eligible variants {}; rule {} applies]", source, metric, ids_of(eligible), rule.id);
-      }
-    }
-  }
-  if (material.normal_maps) {
-    // The table's rows, else saagen's committed measurement of normal-mapped content. For a
-    // material the planner chooses for, saagen's decision below (apply_decision) replaces this.
-    const std::string_view lobe = planned_lobe(material);
-    if (table && !table->content_rows.empty())
-      choose_normal_handling({table->content_rows, table->source_name}, eligible,
-                             !material.variant && material.prefer == Preference::accuracy, lobe, plan);
-    const AdviceMeasurement* measured = material_advice(catalogue, manifest, material, advice, advice::Content::normal_mapped).measured;
-    if (plan.normal_advice.empty() && measured)
-      choose_normal_handling(
-          {measured->rows, fmt::format("saagen's trade ({}; generator/data/advice.json)", scene_list(measured->scenes)), measured},
-          eligible, false, lobe, plan);
-  }
+  if (material.variant)
+    plan_named_variant(catalogue, manifest, material, eligible, plan);
+  else
+    plan_by_rule(manifest, material, table, eligible, plan);
+  if (material.normal_maps) plan_normal_maps(catalogue, manifest, material, table, advice, eligible, plan);
   if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
       !material.variant && plan.variant != "deferred-aniso")
     plan.no_filter_advice = deferred_curved_note(advice);
-  // saagen's decision (decision.hpp) for GGX materials the planner chooses for (no variant
-  // named, no engine preset): on the table's rows for the material's content, else on saagen's
-  // committed figures (advice.hpp), with how far those hold on content they were not made on.
-  if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset) {
-    const std::string content(advice::table_content(content_of(material)));
-    // A table without taa_by_content rows leaves a TAA decision to saagen's committed TAA figures.
-    const std::vector<ContentRow> rows = table ? rows_of_content(*table, manifest.taa, content_of(material)) : std::vector<ContentRow>{};
-    const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
-    const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
-    if (has_none) {
-      apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, plan);
-    } else if (!rows.empty()) {
-      // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against;
-      // the lowest error chosen above stands.
-    } else if (!table || manifest.taa || !table->has_errors() || material.prefer == Preference::speed || other_content) {
-      const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
-      const AdviceMeasurement* measured = chosen_advice.measured;
-      static const AdviceMeasurement kNothingMeasured;
-      const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
-      const std::string lacking =
-          (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
-      apply_decision(catalogue, manifest, material, rows_of.rows, rows_of.alphas,
-                     measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
-                              : fmt::format("saagen's trade (not measured){}", lacking),
-                     measured, plan);
-    }
-  }
-  if (plan.variant == "none") {
-    return plan;
-  }
+  if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset)
+    plan_by_decision(catalogue, manifest, material, table, advice, plan);
+  if (plan.variant == "none") return plan;
   choose_functions(catalogue, material, manifest.preset.has_value(), plan);
   return plan;
 }
