@@ -103,6 +103,73 @@ TradeRow finished_row(const TaaAccumulator& a, const TaaRowKey& key, SceneId id,
   return row;
 }
 
+// The ground truth's side of a TAA animation, per material: the references of every seed and of
+// the quarter-sample truth for the current frame and the previous one, their clips for the video
+// metric (empty without it) and their temporal statistics for the older figures.
+struct TaaTruthState {
+  std::size_t seeds = 1;
+  bool quarter = false;
+  std::vector<std::vector<ClipFrames>> clips;                    // [m][seed], the quarter's last
+  std::vector<TemporalStats> stats, display;                     // [m]: the first seed's, linear and tonemapped
+  std::vector<std::vector<SeedReference>> current, previous;     // [m][seed]
+  std::vector<SeedReference> current_quarter, previous_quarter;  // [m]
+
+  TaaTruthState(const TradeConfig& config, const AnimationGroundTruths& truths, std::size_t materials)
+      : seeds(truths.second.empty() ? 1 : 2),
+        quarter(!truths.quarter.empty()),
+        clips(config.video_metric ? materials : 0, std::vector<ClipFrames>(seeds + (quarter ? 1 : 0))),
+        stats(materials, TemporalStats(config.flicker_width, config.flicker_height)),
+        display(materials, TemporalStats(config.flicker_width, config.flicker_height)),
+        previous(materials),
+        previous_quarter(quarter ? materials : 0) {}
+
+  // Frame `frame`'s references (none during the warm-up, frame < 0).
+  void begin_frame(const TradeConfig& config, const AnimationGroundTruths& truths, int frame) {
+    current.assign(previous.size(), std::vector<SeedReference>(seeds));
+    current_quarter.assign(previous_quarter.size(), SeedReference{});
+    if (frame < 0) return;
+    const auto f = static_cast<std::size_t>(frame);
+    for (std::size_t m = 0; m < previous.size(); ++m) {
+      const Image& reference = truths.first[f][m];
+      stats[m].add(reference);
+      display[m].add(tonemapped(reference));
+      for (std::size_t s = 0; s < seeds; ++s) {
+        current[m][s] = seed_reference(s == 0 ? reference : truths.second[f][m], frame > 0 ? &previous[m][s] : nullptr, config.flip);
+        if (!clips.empty()) clips[m][s].append(current[m][s].display);
+      }
+      if (!quarter) continue;
+      current_quarter[m] = seed_reference(truths.quarter[f][m], frame > 0 ? &previous_quarter[m] : nullptr, config.flip);
+      if (!clips.empty()) clips[m][seeds].append(current_quarter[m].display);
+    }
+  }
+
+  // What material m's rows read at frame `frame` (>= 0).
+  FrameTruths frame_truths(std::size_t m, int frame) const {
+    FrameTruths truths{current[m], {}};
+    if (frame > 0) truths.previous_seeds = previous[m];
+    if (quarter) truths.quarter = &current_quarter[m], truths.previous_quarter = frame > 0 ? &previous_quarter[m] : nullptr;
+    return truths;
+  }
+
+  void end_frame(int frame) {
+    if (frame >= 0) previous = std::move(current), previous_quarter = std::move(current_quarter);
+  }
+};
+
+// Each row's video error against every seed's clip (and the quarter-sample clip's), once the
+// animation is over.
+void finish_video(const TradeConfig& config, const TaaTruthState& truth, std::size_t n_keys, std::vector<TaaAccumulator>& accumulators) {
+  if (truth.clips.empty()) return;
+  const std::vector<std::vector<VideoVdpReference>> video = video_references(config, truth.clips);
+  parallel_rows(static_cast<int>(accumulators.size()), config.threads, [&](int i) {
+    const std::size_t r = static_cast<std::size_t>(i);
+    const std::span<const VideoVdpReference> material(video[r / n_keys]);
+    TaaAccumulator& a = accumulators[r];
+    if (truth.quarter) a.quarter_clip.series.video[0] = video_losses(material[truth.seeds], a.clip.frames.grey());
+    a.clip.finish_video(material.first(truth.seeds));
+  });
+}
+
 }  // namespace
 
 int taa_warmup(const TradeConfig& config) {
@@ -121,16 +188,8 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     accumulators.emplace_back(fw, fh, config.taa_options);
     accumulators.back().clip.keep_frames = config.video_metric;
   }
-  const std::size_t seeds = truths.second.empty() ? 1 : 2;
-  const bool quarter = !truths.quarter.empty();
-  std::vector<std::vector<ClipFrames>> reference_clips(config.video_metric ? materials.size() : 0,
-                                                       std::vector<ClipFrames>(seeds + (quarter ? 1 : 0)));  // [m][seed], quarter
-  std::vector<TemporalStats> reference_stats(materials.size(), TemporalStats(fw, fh));
-  std::vector<TemporalStats> reference_display(materials.size(), TemporalStats(fw, fh));
-
+  TaaTruthState truth(config, truths, materials.size());
   std::optional<Scene> previous;
-  std::vector<std::vector<SeedReference>> previous_references(materials.size());  // [m][seed], of the previous frame
-  std::vector<SeedReference> previous_quarter(quarter ? materials.size() : 0);    // [m], of the previous frame
   std::vector<ImageSet> last_frames(images ? materials.size() : 0);
   for (int frame = -warmup; frame < config.frames; ++frame) {
     // The jitter cycle starts with the warm-up; the animation's frame 0 follows it.
@@ -138,24 +197,7 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     const Scene scene = jittered_frame(config, id, frame, jitter);
     const FrameBuffers buffers = frame_buffers(config, id, scene, fw, fh);
     const std::vector<Vec2> positions = previous ? reproject_history(buffers.plain, scene, *previous) : std::vector<Vec2>{};
-    std::vector<std::vector<SeedReference>> references(materials.size(), std::vector<SeedReference>(seeds));
-    std::vector<SeedReference> quarter_references(previous_quarter.size());
-    if (frame >= 0) {
-      const auto f = static_cast<std::size_t>(frame);
-      for (std::size_t m = 0; m < materials.size(); ++m) {
-        const Image& reference = truths.first[f][m];
-        reference_stats[m].add(reference);
-        reference_display[m].add(tonemapped(reference));
-        for (std::size_t s = 0; s < seeds; ++s) {
-          references[m][s] =
-              seed_reference(s == 0 ? reference : truths.second[f][m], frame > 0 ? &previous_references[m][s] : nullptr, config.flip);
-          if (!reference_clips.empty()) reference_clips[m][s].append(references[m][s].display);
-        }
-        if (!quarter) continue;
-        quarter_references[m] = seed_reference(truths.quarter[f][m], frame > 0 ? &previous_quarter[m] : nullptr, config.flip);
-        if (!reference_clips.empty()) reference_clips[m][seeds].append(quarter_references[m].display);
-      }
-    }
+    truth.begin_frame(config, truths, frame);
     const bool last = frame + 1 == config.frames;
     std::vector<Image> last_outputs(images && last ? accumulators.size() : 0);
     // The rows of a frame in parallel, each on one thread (as the trade's other rows).
@@ -169,13 +211,7 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
           const Image samples = render_variant(buffers.for_prefilter(key.prefilter), key.variant, materials[m], config.params,
                                                config.derivative, 1, key.feed, key.prefilter, config.prefilter_scale, key.lobe);
           const Image& out = a.resolve.resolve(samples, jitter, positions);
-          if (frame >= 0) {
-            FrameTruths frame_truths{references[m], {}};
-            if (frame > 0) frame_truths.previous_seeds = previous_references[m];
-            if (quarter)
-              frame_truths.quarter = &quarter_references[m], frame_truths.previous_quarter = frame > 0 ? &previous_quarter[m] : nullptr;
-            measure_frame(a, out, truths.first[static_cast<std::size_t>(frame)][m], frame_truths, last);
-          }
+          if (frame >= 0) measure_frame(a, out, truths.first[static_cast<std::size_t>(frame)][m], truth.frame_truths(m, frame), last);
           if (!last_outputs.empty()) last_outputs[r] = out;
         },
         [&](int done) {
@@ -189,7 +225,7 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
         on_frame({id, material.alpha, material.fresnel, configuration_id(key.variant, key.feed, key.prefilter, key.lobe, true), frame,
                   &accumulators[r].clip.previous_display});
       }
-    if (frame >= 0) previous_references = std::move(references), previous_quarter = std::move(quarter_references);
+    truth.end_frame(frame);
     for (std::size_t r = 0; r < last_outputs.size(); ++r) {
       const TaaRowKey& key = keys[r % n_keys];
       last_frames[r / n_keys].variants.push_back({key.variant, key.feed, key.prefilter, key.lobe, std::move(last_outputs[r])});
@@ -202,20 +238,11 @@ void append_taa_rows(const TradeConfig& config, SceneId id, std::span<const Mate
     last_frames[m].reference = truths.first.back()[m];
     images->push_back(std::move(last_frames[m]));
   }
-  if (!reference_clips.empty()) {
-    const std::vector<std::vector<VideoVdpReference>> video = video_references(config, reference_clips);
-    parallel_rows(static_cast<int>(accumulators.size()), config.threads, [&](int i) {
-      const std::size_t r = static_cast<std::size_t>(i);
-      const std::span<const VideoVdpReference> material(video[r / n_keys]);
-      TaaAccumulator& a = accumulators[r];
-      if (quarter) a.quarter_clip.series.video[0] = video_losses(material[seeds], a.clip.frames.grey());
-      a.clip.finish_video(material.first(seeds));
-    });
-  }
+  finish_video(config, truth, n_keys, accumulators);
   for (std::size_t m = 0; m < materials.size(); ++m)
     for (std::size_t k = 0; k < n_keys; ++k)
-      rows.push_back(finished_row(accumulators[m * n_keys + k], keys[k], id, materials[m], config.frames, reference_stats[m],
-                                  reference_display[m], quarter));
+      rows.push_back(finished_row(accumulators[m * n_keys + k], keys[k], id, materials[m], config.frames, truth.stats[m], truth.display[m],
+                                  truth.quarter));
 }
 
 }  // namespace saagen::measure
