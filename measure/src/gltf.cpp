@@ -1039,56 +1039,11 @@ class Loader {
     if (!primitive.attributes.count("POSITION")) fail(where + ": no POSITION attribute");
     const int material = primitive.material < 0 ? default_material_ : primitive.material;
     if (material > default_material_) fail(where + ": material " + std::to_string(primitive.material) + " does not exist");
-    const View positions = attribute(primitive, "POSITION", where, 3, false);
-    const std::size_t n = positions.count;
-    if (vertices_.size() + n > limits_.max_vertices)
-      fail(where + ": " + std::to_string(vertices_.size() + n) + " vertices so far, beyond the limit of " +
-           std::to_string(limits_.max_vertices));
     const bool has_normals = primitive.attributes.count("NORMAL") > 0;
     const bool has_uv = primitive.attributes.count("TEXCOORD_0") > 0;
     const bool has_tangents = primitive.attributes.count("TANGENT") > 0;
-    if (!has_uv && material < default_material_ && has_textures_[static_cast<std::size_t>(material)])
-      fail(where + ": material " + std::to_string(material) + " is textured but the primitive has no TEXCOORD_0");
-    std::vector<MeshVertex> local(n);
-    for (std::size_t i = 0; i < n; ++i)
-      local[i].position = {component(positions, i, 0), component(positions, i, 1), component(positions, i, 2)};
-    auto check_count = [&](const View& v, const char* name) {
-      if (v.count != n) fail(where + " " + name + ": " + std::to_string(v.count) + " elements for " + std::to_string(n) + " positions");
-    };
-    if (has_normals) {
-      const View normals = attribute(primitive, "NORMAL", where, 3, false);
-      check_count(normals, "NORMAL");
-      for (std::size_t i = 0; i < n; ++i) local[i].normal = {component(normals, i, 0), component(normals, i, 1), component(normals, i, 2)};
-    }
-    if (has_uv) {
-      const View uv = attribute(primitive, "TEXCOORD_0", where, 2, true);
-      check_count(uv, "TEXCOORD_0");
-      // The renderer samples a texture at the integer texel floor(u size - 1/2) (repeat
-      // addressing): |u| size must stay well inside a 32-bit int for every texture the asset may
-      // have, and a hit's uv is a convex combination of its triangle's, so the bound on the
-      // vertices holds for every hit.
-      const double uv_limit = std::ldexp(1.0, 30) / std::max(limits_.max_texture_size, 1);
-      for (std::size_t i = 0; i < n; ++i) {
-        local[i].uv = {component(uv, i, 0), component(uv, i, 1)};
-        if (!(std::fabs(local[i].uv.x) <= uv_limit && std::fabs(local[i].uv.y) <= uv_limit)) {
-          std::ostringstream s;
-          s.precision(6);
-          s << where << ": vertex " << i << "'s TEXCOORD_0 (" << local[i].uv.x << ", " << local[i].uv.y << ") is not finite or beyond "
-            << uv_limit << " in magnitude (2^30 over the " << limits_.max_texture_size
-            << " texels per side a texture may have: the texel index must stay a 32-bit integer)";
-          fail(s.str());
-        }
-      }
-    }
-    if (has_tangents) {
-      const View tangents = attribute(primitive, "TANGENT", where, 4, false);
-      check_count(tangents, "TANGENT");
-      for (std::size_t i = 0; i < n; ++i) {
-        local[i].tangent = {component(tangents, i, 0), component(tangents, i, 1), component(tangents, i, 2)};
-        local[i].tangent_sign = component(tangents, i, 3) < 0.0 ? -1.0 : 1.0;
-      }
-    }
-    const std::vector<std::uint32_t> index = indices(primitive, n, where);
+    std::vector<MeshVertex> local = read_vertices(primitive, material, where);
+    const std::vector<std::uint32_t> index = indices(primitive, local.size(), where);
     std::vector<std::array<int, 3>> triangles = assemble(index, mode);
     if (triangles.empty()) return;
     if (triangles_.size() + triangles.size() > limits_.max_triangles)
@@ -1098,18 +1053,7 @@ class Loader {
     if (vertices_.size() + local.size() > limits_.max_vertices)
       fail(std::to_string(vertices_.size() + local.size()) + " vertices so far, beyond the limit of " +
            std::to_string(limits_.max_vertices));
-    for (std::size_t i = 0; i < local.size(); ++i) {
-      MeshVertex& v = local[i];
-      v.position = world.point(v.position);
-      if (!is_bounded(v.position))
-        fail(where + ": vertex " + std::to_string(i) + "'s position after the node transforms (" + coordinates(v.position) +
-             ") is not finite or beyond " + coordinates_limit() + " in magnitude; every position must be a finite point");
-      v.normal = world.normal(v.normal);
-      const double l = length(v.normal);
-      if (!(l > 0.0) || !std::isfinite(l)) fail(where + ": a zero or non-finite normal");
-      v.normal = v.normal / l;
-      if (has_tangents) v.tangent = world.vector(v.tangent);
-    }
+    to_world(local, world, has_tangents, where);
     if (has_tangents) {
       for (MeshVertex& v : local) {
         const Vec3 t = v.tangent - dot(v.tangent, v.normal) * v.normal;
@@ -1128,6 +1072,74 @@ class Loader {
     for (const auto& tri : triangles) {
       triangles_.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
       triangle_objects_.push_back(object);
+    }
+  }
+
+  // A primitive's vertices in its mesh's space: POSITION, and NORMAL, TEXCOORD_0 and TANGENT where
+  // it has them, each with as many elements as positions.
+  std::vector<MeshVertex> read_vertices(const tinygltf::Primitive& primitive, int material, const std::string& where) const {
+    const View positions = attribute(primitive, "POSITION", where, 3, false);
+    const std::size_t n = positions.count;
+    if (vertices_.size() + n > limits_.max_vertices)
+      fail(where + ": " + std::to_string(vertices_.size() + n) + " vertices so far, beyond the limit of " +
+           std::to_string(limits_.max_vertices));
+    const bool has_uv = primitive.attributes.count("TEXCOORD_0") > 0;
+    if (!has_uv && material < default_material_ && has_textures_[static_cast<std::size_t>(material)])
+      fail(where + ": material " + std::to_string(material) + " is textured but the primitive has no TEXCOORD_0");
+    std::vector<MeshVertex> local(n);
+    for (std::size_t i = 0; i < n; ++i)
+      local[i].position = {component(positions, i, 0), component(positions, i, 1), component(positions, i, 2)};
+    auto check_count = [&](const View& v, const char* name) {
+      if (v.count != n) fail(where + " " + name + ": " + std::to_string(v.count) + " elements for " + std::to_string(n) + " positions");
+    };
+    if (primitive.attributes.count("NORMAL") > 0) {
+      const View normals = attribute(primitive, "NORMAL", where, 3, false);
+      check_count(normals, "NORMAL");
+      for (std::size_t i = 0; i < n; ++i) local[i].normal = {component(normals, i, 0), component(normals, i, 1), component(normals, i, 2)};
+    }
+    if (has_uv) {
+      const View uv = attribute(primitive, "TEXCOORD_0", where, 2, true);
+      check_count(uv, "TEXCOORD_0");
+      for (std::size_t i = 0; i < n; ++i) local[i].uv = checked_uv({component(uv, i, 0), component(uv, i, 1)}, i, where);
+    }
+    if (primitive.attributes.count("TANGENT") > 0) {
+      const View tangents = attribute(primitive, "TANGENT", where, 4, false);
+      check_count(tangents, "TANGENT");
+      for (std::size_t i = 0; i < n; ++i) {
+        local[i].tangent = {component(tangents, i, 0), component(tangents, i, 1), component(tangents, i, 2)};
+        local[i].tangent_sign = component(tangents, i, 3) < 0.0 ? -1.0 : 1.0;
+      }
+    }
+    return local;
+  }
+
+  // The renderer samples a texture at the integer texel floor(u size - 1/2) (repeat addressing):
+  // |u| size must stay well inside a 32-bit int for every texture the asset may have, and a hit's
+  // uv is a convex combination of its triangle's, so the bound on the vertices holds for every hit.
+  Vec2 checked_uv(Vec2 uv, std::size_t i, const std::string& where) const {
+    const double uv_limit = std::ldexp(1.0, 30) / std::max(limits_.max_texture_size, 1);
+    if (std::fabs(uv.x) <= uv_limit && std::fabs(uv.y) <= uv_limit) return uv;
+    std::ostringstream s;
+    s.precision(6);
+    s << where << ": vertex " << i << "'s TEXCOORD_0 (" << uv.x << ", " << uv.y << ") is not finite or beyond " << uv_limit
+      << " in magnitude (2^30 over the " << limits_.max_texture_size
+      << " texels per side a texture may have: the texel index must stay a 32-bit integer)";
+    fail(s.str());
+  }
+
+  // The vertices through the node transforms: finite positions, unit normals, tangents as vectors.
+  void to_world(std::vector<MeshVertex>& local, const Mat4& world, bool has_tangents, const std::string& where) const {
+    for (std::size_t i = 0; i < local.size(); ++i) {
+      MeshVertex& v = local[i];
+      v.position = world.point(v.position);
+      if (!is_bounded(v.position))
+        fail(where + ": vertex " + std::to_string(i) + "'s position after the node transforms (" + coordinates(v.position) +
+             ") is not finite or beyond " + coordinates_limit() + " in magnitude; every position must be a finite point");
+      v.normal = world.normal(v.normal);
+      const double l = length(v.normal);
+      if (!(l > 0.0) || !std::isfinite(l)) fail(where + ": a zero or non-finite normal");
+      v.normal = v.normal / l;
+      if (has_tangents) v.tangent = world.vector(v.tangent);
     }
   }
 
