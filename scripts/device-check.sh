@@ -5,28 +5,31 @@
 #   bash scripts/device-check.sh build         # here (Debian bookworm, scripts/install-deps.sh):
 #                                              #   build the GPU suites and benches, stage them
 #                                              #   into device-check/ (binaries, their shared
-#                                              #   libraries but the C runtime, the Vulkan loader)
+#                                              #   libraries but the C runtime, the Vulkan loader,
+#                                              #   libglvnd's packages)
 #   bash scripts/device-check.sh run [DEVICE]  # on the device machine, in the repository root
-#                                              #   with device-check/ carried along: every suite
-#                                              #   with SAAGEN_VK_DEVICE=DEVICE (default NVIDIA),
-#                                              #   then bench_shading at 3840x2160 and its table
+#                                              #   with device-check/ carried along: bench_shading
+#                                              #   at 3840x2160 at 1, 4 and 16 lights and its
+#                                              #   table, then every suite with
+#                                              #   SAAGEN_VK_DEVICE=DEVICE (default NVIDIA)
 #   bash scripts/device-check.sh all [DEVICE]  # both, where one machine has the toolchain and the GPU
 # BUILD_DIR=DIR builds in DIR instead of build-device (an existing Release build: only what is missing).
 #
-# The device machines here have no Debian packages (glslang, gtest, tinygltf...) and no host
-# compiler, so the build happens on the Debian machine and travels (device-check/ is ignored by
+# The device machines here have no Debian packages (glslang, gtest, tinygltf...), so the build happens on the Debian machine and travels (device-check/ is ignored by
 # git, .gitignore; name it in the device tool's `carry`). The test binaries hold this checkout's and build
 # folder's absolute paths (SAAGEN_SOURCE_DIR, SAAGEN_CLI_PATH); `run` recreates them as links
 # when the device machine's copy lies elsewhere. No validation layer is assumed there
 # (SAAGEN_VK_VALIDATION is left unset); lavapipe and SwiftShader run the suites with it in ctest.
 #
-# Output (OUT=DIR, default device-check/out): one log per suite, summary.txt (per
-# suite: passed, failed, skipped, and every skip with its reason; the failures' first lines) and
-# the 4K table (shading_4k.md, shading_4k.json). The suites run all at once (SUITE_JOBS, default
-# all ten: the lent machine has 16 cores and one GPU they share), each cut at SUITE_TIMEOUT
-# seconds (default 270), then the bench, cut at 180 s: the whole `run` ends within 7.5 minutes
-# plus the unpacking (seconds), whatever the device's speed; a cut suite is reported as such.
-# Exit status: non-zero when a suite failed or was cut.
+# Output (OUT=DIR, default device-check/out): the 4K table first, on an idle GPU: bench_shading at
+# 3840x2160 at each light count of LIGHTS ("COUNT:ROUNDS ...", default "1:31 4:15 16:7"; the ratios
+# are to no SAA with as many lights), each cut at BENCH_TIMEOUT seconds (default 100), in
+# shading_4k_<COUNT>l.json and one table shading_4k.md. Then the suites, all at once (SUITE_JOBS,
+# default all ten: the lent machine has 16 cores and one GPU they share), each cut at SUITE_TIMEOUT
+# seconds (default 240): one log per suite and summary.txt (per suite: passed, failed, skipped,
+# and every skip with its reason; the failures' first lines). The whole `run` ends within 9 minutes
+# plus the unpacking (seconds), whatever the device's speed; a cut suite or bench is reported as such.
+# Exit status: non-zero when a suite or a bench failed or was cut.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -34,8 +37,9 @@ stage=$root/device-check
 build_dir=${BUILD_DIR:-$root/build-device}
 all_suites=(test_harness_vulkan test_gpu_core test_gpu_fragment test_stability_sweep test_stability_properties_gpu test_spirv_library
             test_deferred_pass test_glints_gpu test_precision test_engines_gpu)
-# SUITES="a b" runs some of them (run only); SHADING_4K=0 leaves the 4K bench out.
+# SUITES="a b" runs some of them (run only), SUITES=none none; SHADING_4K=0 leaves the 4K bench out.
 read -r -a suites <<< "${SUITES:-${all_suites[*]}}"
+[[ ${suites[*]:-} == none ]] && suites=()
 
 benches=(bench_shading bench_deferred_pass bench_glints)
 
@@ -62,9 +66,31 @@ build() {
       *) cp -L "$library" "$stage/lib/" ;;
     esac
   done
+  download_glvnd "$stage/gl"
   printf 'source_dir=%s\nbuild_dir=%s\n' "$root" "$build_dir" > "$stage/paths"
-  (cd "$stage" && XZ_OPT=-6 tar -cJf bundle.tar.xz tree lib && rm -rf tree lib)
+  (cd "$stage" && XZ_OPT=-6 tar -cJf bundle.tar.xz tree lib gl && rm -rf tree lib gl)
   echo "device-check: staged $(du -h "$stage/bundle.tar.xz" | cut -f1) in device-check/ (carry it: the device tool's carry=[\"device-check\"])"
+}
+
+# The NVIDIA driver's Vulkan ICD (libGLX_nvidia) needs libglvnd's dispatch libraries, which the
+# device machine's image lacks: without them the loader answers VK_ERROR_INCOMPATIBLE_DRIVER
+# (seen on the lent H200). Debian's packages travel as .deb files (the device tool's notes).
+glvnd_packages=(libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+download_glvnd() {
+  local log
+  log=$(mktemp)
+  mkdir -p "$1"
+  (cd "$1" && apt-get -q download "${glvnd_packages[@]}" > "$log" 2>&1) || { cat "$log"; rm -f "$log"; exit 1; }
+  rm -f "$log"
+}
+
+# Unpack them into / where the dispatch library is missing (root only, as on the device machine).
+install_glvnd() {
+  local deb
+  ldconfig -p 2> /dev/null | grep -q libGLdispatch && return 0
+  [[ $(id -u) == 0 ]] || { echo "device-check: libGLdispatch is missing and only root may unpack libglvnd; the NVIDIA ICD may not load"; return 0; }
+  for deb in "$1"/*.deb; do dpkg -x "$deb" /; done
+  ldconfig
 }
 
 # Summary of each suite from its log (gtest's own lines): counts, every skip with its message
@@ -102,6 +128,37 @@ for path in sys.argv[1:]:
 EOF
 }
 
+# bench_shading at 3840x2160 at each light count of LIGHTS, then one table of them all
+# (docs/GPU_TIMINGS.md).
+bench_4k() {
+  local device=$1 built=$2 out=$3 status=0 tables=() entry
+  for entry in ${LIGHTS:-1:31 4:15 16:7}; do
+    local lights=${entry%%:*} rounds=${entry##*:}
+    local json="$out/shading_4k_${lights}l.json"
+    if timeout "${BENCH_TIMEOUT:-100}" "$built/bench/bench_shading" --device "$device" --size 3840x2160 --lights "$lights" \
+         --repetitions "$rounds" --json "$json" > "$out/bench_shading_${lights}l.log" 2>&1; then
+      tables+=("$json")
+    else
+      echo "device-check: bench_shading at 4K with $lights lights failed or was cut (see $out/bench_shading_${lights}l.log)"
+      status=1
+    fi
+  done
+  if (( ${#tables[@]} )); then python3 scripts/shading_cost_table.py "${tables[@]}" | tee "$out/shading_4k.md"; fi
+  return "$status"
+}
+
+# Every suite at once, each cut at SUITE_TIMEOUT seconds, and the summary of their logs.
+run_suites() {
+  local built=$1 out=$2 start=$3 status=0 suite logs=()
+  printf '%s\n' "${suites[@]}" | xargs -P "${SUITE_JOBS:-${#suites[@]}}" -I{} sh -c \
+    'timeout "${SUITE_TIMEOUT:-240}" "$0/tests/{}" > "$1/{}.log" 2>&1; echo "{}: exit $? after $(( $(date +%s) - $2 )) s"' \
+    "$built" "$out" "$start" | tee "$out/exits.txt"
+  grep -qv ': exit 0 ' "$out/exits.txt" && status=1
+  for suite in "${suites[@]}"; do logs+=("$out/$suite.log"); done
+  summarise "${logs[@]}" | tee "$out/summary.txt"
+  return "$status"
+}
+
 run() {
   local device=${1:-NVIDIA}
   local out=${OUT:-$stage/out}
@@ -124,6 +181,7 @@ run() {
     fi
   fi
   export LD_LIBRARY_PATH="$unpacked/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  [[ -d $unpacked/gl ]] && install_glvnd "$unpacked/gl"
   # The NVIDIA ICD where the loader does not find one by itself (the device tool's notes).
   if [[ -z ${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-} && -f /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json ]] &&
      ! ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json > /dev/null 2>&1; then
@@ -132,25 +190,8 @@ run() {
   export SAAGEN_VK_DEVICE=$device
   unset SAAGEN_VK_VALIDATION
   local status=0
-  printf '%s\n' "${suites[@]}" | xargs -P "${SUITE_JOBS:-${#suites[@]}}" -I{} sh -c \
-    'timeout "${SUITE_TIMEOUT:-270}" "$0/tests/{}" > "$1/{}.log" 2>&1; echo "{}: exit $? after $(( $(date +%s) - $2 )) s"' \
-    "$built" "$out" "$start" | tee "$out/exits.txt"
-  grep -qv ': exit 0 ' "$out/exits.txt" && status=1
-  local logs=()
-  for suite in "${suites[@]}"; do logs+=("$out/$suite.log"); done
-  summarise "${logs[@]}" | tee "$out/summary.txt"
-  # The 4K table (docs/GPU_TIMINGS.md).
-  if [[ ${SHADING_4K:-1} == 0 ]]; then
-    echo "device-check: done in $(( $(date +%s) - start )) s on $device (no 4K bench); results in $out"
-    return "$status"
-  fi
-  if timeout 180 "$built/bench/bench_shading" --device "$device" --size 3840x2160 --repetitions 31 --json "$out/shading_4k.json" \
-       > "$out/bench_shading.log" 2>&1; then
-    python3 scripts/shading_cost_table.py "$out/shading_4k.json" | tee "$out/shading_4k.md"
-  else
-    echo "device-check: bench_shading at 4K failed or was cut (see $out/bench_shading.log)"
-    status=1
-  fi
+  [[ ${SHADING_4K:-1} == 0 ]] || bench_4k "$device" "$built" "$out" || status=1
+  if (( ${#suites[@]} )); then run_suites "$built" "$out" "$start" || status=1; fi
   echo "device-check: done in $(( $(date +%s) - start )) s on $device; results in $out"
   return "$status"
 }

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """The shading cost of each variant against no SAA, and of each tail-lobe variant against the same
-filter with the papers' lobe, from bench_shading's JSON (one file per size or device):
+filter with the papers' lobe, from bench_shading's JSON (one file per size, light count or device):
 
     build/bench/bench_shading --device NAME --size 3840x2160 --repetitions 31 --json 4k.json
     python3 scripts/shading_cost_table.py 4k.json [1000.json ...]
+
+A file measured with more than one light (--lights N) heads its columns "N lights".
 
 Each ratio is bench_shading's: the median over rounds of variant ms / no-SAA ms measured back to
 back, so a change of clock between rounds cancels. "tail / papers" divides two such ratios.
@@ -16,7 +18,11 @@ def load(path):
     with open(path) as handle:
         document = json.load(handle)
     ratios = {(row["target"], row["variant"]): row["ratio_median"] for row in document["rows"]}
-    return f'{document["width"]}x{document["height"]}', document["device"], ratios
+    label = f'{document["width"]}x{document["height"]}'
+    lights = document.get("lights", 1)
+    if lights != 1:
+        label += f" {lights} lights"
+    return label, document["device"], ratios
 
 
 def main(paths):
