@@ -188,6 +188,15 @@ std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
 
 std::optional<double> MeasuredTradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &MeasuredTradeRow::error); }
 
+bool MeasuredTradeTable::is_device_timing() const {
+  return std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.variant == kCostBaselineId && row.cost_ratio; });
+}
+
+std::optional<double> MeasuredTradeTable::device_time_ratio(std::string_view variant) const {
+  if (!is_device_timing()) return std::nullopt;
+  return mean_of(rows, variant, &MeasuredTradeRow::cost_ratio);
+}
+
 std::optional<double> MeasuredTradeTable::isa_cost(std::string_view variant, std::string_view family) const {
   std::vector<MeasuredTradeRow> of_family;
   for (const MeasuredTradeRow& row : rows) {
@@ -348,6 +357,12 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
     return value;
   };
   if (document.contains("device") && document["device"].is_string()) table.device = document["device"].get<std::string>();
+  if (document.contains("lights")) {
+    const nlohmann::json& lights = document["lights"];
+    if (!lights.is_number_integer() || lights.get<long long>() < 1 || lights.get<long long>() > kMaxLights)
+      throw Error(fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
+    table.lights = lights.get<int>();
+  }
   const nlohmann::json& rows = document["rows"];
   for (std::size_t index = 0; index < rows.size(); ++index) {
     const nlohmann::json& row = rows[index];

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 
 namespace saagen {
 namespace {
@@ -737,8 +738,9 @@ std::string roughness_text(const Material& material, const std::vector<ContentRo
 // The plan of saagen's decision (decision.hpp) on a content's rows measured at `alphas`: the
 // chosen configuration's variant, feed and prefilter, or no filter, with the decision's reason.
 void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
-                    const std::vector<double>& alphas, std::string_view source, const AdviceMeasurement* advice, MaterialPlan& plan) {
-  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows, baseline_of(manifest.taa));
+                    const std::vector<double>& alphas, std::string_view source, const AdviceMeasurement* advice,
+                    const MeasuredTradeTable* timing, MaterialPlan& plan) {
+  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows, baseline_of(manifest.taa), timing);
   std::optional<std::string> decided;
   if (made.decision.chosen) decided = made.candidates[*made.decision.chosen].configuration;
   plan.roughness_advice = roughness_text(material, rows, decided, alphas, baseline_of(manifest.taa));
@@ -778,7 +780,8 @@ void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable&
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
     // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
-    // tangent-free form of a variant that has one ("deferred-max-tangent-free").
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free"), or the baseline:
+    // "none" in a trade table, kCostBaselineId in bench_shading's.
     const std::string& id = table.rows[index].variant;
     std::string base = parse_configuration(id).variant;
     constexpr std::string_view tangent_free_suffix = "-tangent-free";
@@ -786,9 +789,10 @@ void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable&
       const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
       if (variant && has_tangent_free_form(*variant)) base = variant->id;
     }
-    if (base != "none" && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
+    const bool baseline = base == "none" || id == kCostBaselineId;
+    if (!baseline && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
       throw Error(fmt::format(
-          "{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` writes",
+          "{}: rows[{}]: unknown variant \"{}\"; allowed: the ids `saagen list` prints, \"none\" or what `saagen bench --json` and `bench_shading --json` write",
           table.source_name, index, id.substr(0, 40)));
     }
   }
@@ -812,21 +816,21 @@ bool usable(const Material& material, const std::vector<const Variant*>& eligibl
   return can_prefilter(material, c);
 }
 
-// The shading cost of a configuration over no SAA: the committed ISA model's forward-shader ratio
-// on the GPU family (every target it has) at the material's light count (the nearest measured
-// count not above it), of the variant with its lobe where the model has that (the feed and the
-// prefilter change inputs, not code), and the tangent-free form without tangents.
-// Where the model has the variant only with the papers' lobe, the lobe's overhead is added as the
-// model measures it on the form that shares the lobe's BRDF: forward-aniso-projected's for the
-// matrix forms (forward-aniso-*), deferred-avg's for the others (the axis BRDF).
-std::optional<double> configuration_cost(const Catalogue& catalogue, const Material& material, std::string_view family,
+// A variant id's shading cost over no SAA ("deferred-avg", "deferred-avg/tail"), where known.
+using RatioOf = std::function<std::optional<double>(const std::string&)>;
+
+// The shading cost of a configuration over no SAA, read by `ratio_of`: of the variant with its
+// lobe where the source has that (the feed and the prefilter change inputs, not code), and the
+// tangent-free form without tangents. Where the source has the variant only with the papers'
+// lobe, the lobe's overhead is added as the source measures it on the form that shares the
+// lobe's BRDF: forward-aniso-projected's for the matrix forms (forward-aniso-*), deferred-avg's
+// for the others (the axis BRDF).
+std::optional<double> configuration_cost(const Catalogue& catalogue, const Material& material, const RatioOf& ratio,
                                          const std::string& configuration) {
   const Configuration c = parse_configuration(configuration);
   const Variant* variant = catalogue.find_variant(c.variant);
   std::string costed = c.variant;
   if (variant && !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant)) costed += "-tangent-free";
-  const IsaTable& isa = committed_isa_costs();
-  const auto ratio = [&](const std::string& id) { return isa.forward_ratio(family, id, {}, material.lights); };
   if (c.lobe != "papers")
     if (const auto with_lobe = ratio(costed + "/" + c.lobe)) return with_lobe;
   const auto papers = ratio(costed);
@@ -844,13 +848,38 @@ std::string light_count_words(int lights, int measured) {
   return measured == lights ? at : fmt::format("{} (the nearest measured count not above {})", at, lights);
 }
 
+// Where the decision's costs come from, and how its reasons name that after "no SAA's shading
+// cost": a device's timings (bench_shading's table given as the trade table) where they were
+// taken at the material's light count, else the committed ISA model's forward-shader ratio on
+// `family` (every target it has) at the nearest measured count not above it.
+struct CostSource {
+  RatioOf ratio;
+  std::string basis;
+};
+
+CostSource cost_source(const Material& material, const std::string& family, const MeasuredTradeTable* timing) {
+  const int lights = material.lights;
+  if (timing && timing->lights == lights) {
+    const std::string device = timing->device.substr(0, timing->device.find(" ("));
+    return {[timing](const std::string& id) { return timing->device_time_ratio(id); },
+            fmt::format("{} on {} ({})", light_count_words(lights, lights), device, timing->source_name)};
+  }
+  const IsaTable& isa = committed_isa_costs();
+  std::string basis = light_count_words(lights, isa.cost_light_count(family, lights));
+  if (timing)
+    basis += fmt::format(" ({}'s ISA model: {} was timed at {} light{})", family, timing->source_name, timing->lights,
+                         timing->lights == 1 ? "" : "s");
+  return {[&isa, family, lights](const std::string& id) { return isa.forward_ratio(family, id, {}, lights); }, basis};
+}
+
 }  // namespace
 
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows, std::string_view baseline) {
+                                 const std::vector<ContentRow>& rows, std::string_view baseline, const MeasuredTradeTable* timing) {
   MaterialDecision made;
   const std::string family = gpu_family.empty() ? std::string(kDefaultGpuFamily) : std::string(gpu_family);
   const auto eligible = eligible_variants(catalogue, material);
+  const CostSource costs = cost_source(material, family, timing);
   const auto none = std::find_if(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
   const bool has_lobe = std::any_of(rows.begin(), rows.end(),
                                     [](const ContentRow& row) { return parse_configuration(row.configuration).lobe == advice::kLobe; });
@@ -863,14 +892,13 @@ MaterialDecision decide_material(const Catalogue& catalogue, const Material& mat
     // Rows under TAA (`saagen bench --taa`: "+taa") compare with none+taa, not with no SAA.
     if (c.variant == "none" || row.configuration.rfind("engine-", 0) == 0 || c.lobe == "exact" || is_taa(row.configuration)) continue;
     made.candidates.push_back({row.configuration, comparison_against(row, *none),
-                               configuration_cost(catalogue, material, family, row.configuration),
+                               configuration_cost(catalogue, material, costs.ratio, row.configuration),
                                usable(material, eligible, has_lobe, row.configuration), row.loses_on, row.not_worse_than});
   }
   const decision::Prefer prefer = material.prefer == Preference::speed ? decision::Prefer::speed : decision::Prefer::accuracy;
-  const std::string basis = light_count_words(material.lights, committed_isa_costs().cost_light_count(family, material.lights));
   // A budget takes the most accurate configuration within it (prefer only orders without one).
   decision::Preference preference{material.budget ? decision::Prefer::accuracy : prefer, material.budget, std::string(baseline)};
-  made.decision = decision::decide(made.candidates, preference, basis);
+  made.decision = decision::decide(made.candidates, preference, costs.basis);
   return made;
 }
 
@@ -896,10 +924,10 @@ struct MaterialAdvice {
 };
 
 MaterialAdvice material_advice(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const AdviceTable& advice,
-                               advice::Content content) {
+                               advice::Content content, const MeasuredTradeTable* timing = nullptr) {
   const AdviceMeasurement* far = advice_measurement(advice, content, manifest.taa, material.map_lod);
   if (!far || far->map_lod_min == 0) return {far, ""};
-  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, far->rows, baseline_of(manifest.taa));
+  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, far->rows, baseline_of(manifest.taa), timing);
   if (!made.decision.chosen) return {far, ""};
   const std::string& chosen = made.candidates[*made.decision.chosen].configuration;
   if (!fails_held_out(*far, chosen)) return {far, ""};
@@ -1007,9 +1035,13 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
   const bool table_has_isa = plan.cost_lights == 1 && table &&
                              std::any_of(table->rows.begin(), table->rows.end(),
                                          [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
-  const std::string lights = light_count_words(material.lights, plan.cost_lights);
+  // A device's timings (bench_shading's table) at the material's light count rank speed first.
+  const bool table_timed = speed && table && table->is_device_timing() && table->lights == material.lights;
+  const std::string lights = light_count_words(material.lights, table_timed ? material.lights : plan.cost_lights);
   const std::string source =
-      !speed          ? table->source_name
+      !speed ? table->source_name
+      : table_timed
+          ? fmt::format("{} ({} on {})", table->source_name, lights, table->device.substr(0, table->device.find(" (")))
       : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                       : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
   std::vector<std::pair<double, const Variant*>> ranked;
@@ -1018,6 +1050,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
     const std::string costed =
         !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
     const auto value = !speed          ? table->error(variant->id)
+                       : table_timed   ? table->device_time_ratio(costed)
                        : table_has_isa ? table->isa_cost(costed, family)
                                        : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
     if (value) ranked.emplace_back(*value, variant);
@@ -1027,7 +1060,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
     if (a.first != b.first) return a.first < b.first;
     return a.second->id == rule.variant && b.second->id != rule.variant;
   });
-  const char* metric = speed ? "ISA inverse-throughput ratio" : "error";
+  const char* metric = !speed ? "error" : table_timed ? "GPU time ratio" : "ISA inverse-throughput ratio";
   // ACO's estimate is static and counts whole instructions (one VALU instruction is ~0.5 % of
   // these shaders on GFX9); variants within kIsaTieTolerance of the cheapest are equally cheap,
   // and the rule, which orders equals by accuracy, keeps its choice among them.
@@ -1036,7 +1069,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
       speed && !ranked.empty() && rule_entry != ranked.end() && rule_entry->first <= ranked.front().first * (1.0 + kIsaTieTolerance);
   if (!ranked.empty() && !rule_ties && (!speed || ranked.front().second->id != rule.variant)) {
     plan.variant = ranked.front().second->id;
-    plan.rule = speed && !table_has_isa ? "isa table" : "trade table";
+    plan.rule = speed && !table_has_isa && !table_timed ? "isa table" : "trade table";
     plan.reason =
         fmt::format("lowest {} in {} ({}); rule {} would pick {}", metric, source, describe_choice(ranked, metric), rule.id, rule.variant);
   } else if (!ranked.empty()) {
@@ -1075,14 +1108,15 @@ void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, cons
   const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
   const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
   if (has_none) {
-    apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, plan);
+    apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, nullptr, plan);
     return;
   }
   // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against; the
   // lowest error chosen by plan_by_rule stands.
   if (!rows.empty()) return;
   if (table && !manifest.taa && table->has_errors() && material.prefer != Preference::speed && !other_content) return;
-  const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material));
+  const MeasuredTradeTable* timing = table && table->is_device_timing() ? table : nullptr;
+  const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material), timing);
   const AdviceMeasurement* measured = chosen_advice.measured;
   static const AdviceMeasurement kNothingMeasured;
   const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
@@ -1091,7 +1125,7 @@ void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, cons
   apply_decision(catalogue, manifest, material, rows_of.rows, rows_of.alphas,
                  measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
                           : fmt::format("saagen's trade (not measured){}", lacking),
-                 measured, plan);
+                 measured, timing, plan);
 }
 
 // One material's plan (plan_scene): `table` and `advice` as they apply to its roughness.

@@ -630,4 +630,48 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   EXPECT_GT(pair_plan.materials.at(0).cost.at("glsl"), pair_plan.materials.at(1).cost.at("glsl"));
 }
 
+// A device's timings (bench_shading --json, marked by its "no-saa" baseline row) cost the
+// decision at the light count they were timed with, instead of the committed ISA model: a budget
+// that the ISA ratio of deferred-aniso/tail exceeds (vega10 1.517x) admits it at the device's
+// 1.36x; at another light count the ISA model stays and the reason says which count was timed.
+// The rules' speed ranking reads the same timings.
+TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
+  const saagen::MeasuredTradeTable timing = saagen::parse_trade_table(R"json({"device": "Some GPU (discrete GPU, Vulkan 1.4)", "lights": 1,
+      "rows": [{"target": "glsl", "variant": "no-saa", "ratio_median": 1.0},
+               {"target": "glsl", "variant": "deferred-aniso/tail", "ratio_median": 1.34},
+               {"target": "hlsl", "variant": "deferred-aniso/tail", "ratio_median": 1.38},
+               {"target": "glsl", "variant": "deferred-avg/tail", "ratio_median": 1.19},
+               {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.30},
+               {"target": "glsl", "variant": "forward-aniso-projected", "ratio_median": 1.05}]})json",
+                                                                      "timing.json");
+  EXPECT_TRUE(timing.is_device_timing());
+  EXPECT_NEAR(*timing.device_time_ratio("deferred-aniso/tail"), 1.36, 1e-12);
+  const std::string curved = header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 1.4\n";
+  const saagen::MaterialPlan isa = saagen::plan_scene(Catalogue::builtin(), parse(curved)).materials.at(0);
+  EXPECT_NE(isa.variant, "deferred-aniso") << isa.reason;
+  const saagen::MaterialPlan timed = saagen::plan_scene(Catalogue::builtin(), parse(curved), &timing).materials.at(0);
+  EXPECT_EQ(timed.variant, "deferred-aniso") << timed.reason;
+  EXPECT_NE(timed.reason.find("1.36x no SAA's shading cost at 1 light on Some GPU (timing.json)"), std::string::npos) << timed.reason;
+  const saagen::MaterialPlan four =
+      saagen::plan_scene(Catalogue::builtin(), parse(curved + "lights = 4\nprefer = \"accuracy\"\n"), &timing).materials.at(0);
+  EXPECT_NE(four.reason.find("at 4 lights (vega10's ISA model: timing.json was timed at 1 light)"), std::string::npos) << four.reason;
+  // A Beckmann material preferring speed is ranked by the rules on the same timings.
+  const saagen::MaterialPlan beckmann =
+      saagen::plan_scene(Catalogue::builtin(),
+                         parse(header + "[[material]]\nname = \"b\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n"
+                                        "ndf = \"beckmann\"\nprefer = \"speed\"\n"),
+                         &timing)
+          .materials.at(0);
+  EXPECT_EQ(beckmann.variant, "forward-aniso-projected") << beckmann.reason;
+  EXPECT_NE(beckmann.reason.find("lowest GPU time ratio in timing.json (at 1 light on Some GPU)"), std::string::npos) << beckmann.reason;
+  // A timing table's light count is checked; `saagen bench --json`'s rows (no "no-saa") are no device's timings.
+  try {
+    (void)saagen::parse_trade_table(R"({"lights": 0, "rows": []})", "t.json");
+    ADD_FAILURE() << "a light count of 0 was read";
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(), "t.json: \"lights\" must be an integer from 1 to 64 (the lights bench_shading --lights timed)");
+  }
+  EXPECT_FALSE(saagen::parse_trade_table(R"({"rows": [{"variant": "none", "ratio_median": 1.0}]})", "bench.json").is_device_timing());
+}
+
 }  // namespace

@@ -122,9 +122,12 @@ struct MaterialDecision {
   decision::Decision decision;
 };
 // `baseline` names what the rows' "none" is, as the reasons print it ("none+taa" for rows
-// measured under TAA).
+// measured under TAA). `timing`: a device's timings (bench_shading's table, is_device_timing())
+// that cost the configurations where they were taken at the material's light count, instead of
+// the committed ISA model.
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows, std::string_view baseline = "no SAA");
+                                 const std::vector<ContentRow>& rows, std::string_view baseline = "no SAA",
+                                 const MeasuredTradeTable* timing = nullptr);
 // The material the bench's verdict decides for on a render path and content type: GGX, isotropic,
 // tangents on the forward path (none on the deferred path's G-buffer), normal maps on
 // normal-mapped content, prefer accuracy.
