@@ -360,7 +360,9 @@ std::string SceneCommands::write_gltf_manifest(const Catalogue& catalogue) const
 SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CLI::Option*>& emit_exclusive) {
   plan_ = app.add_subcommand("plan", "Print, per material of a scene manifest, the variant chosen, why, what to call, and its cost");
   plan_->add_option("MANIFEST", plan_manifest_, "Scene manifest (TOML; see examples/scene.saagen.toml)");
-  plan_->add_option("--trade-table", plan_trade_table_, "Measured trade table (JSON): saagen bench --json's (the plan decides on its rows), or bench_shading --json's (a device's timings cost the configurations at the light count it timed); saagen's own measurement otherwise");
+  plan_->add_option(
+      "--trade-table", plan_trade_table_,
+      "Measured trade table (JSON): saagen bench --json's (the plan decides on its rows), or bench_shading --json's (a device's timings cost the configurations at the light count it timed); saagen's own measurement otherwise");
   plan_->add_flag("--no-cost", plan_no_cost_, "Skip compiling the cost kernels (optimized SPIR-V instruction counts)");
   plan_->add_flag("--rules", plan_rules_, "Print the planner's rules table");
   plan_->add_flag("--advice", plan_advice_,

@@ -189,7 +189,8 @@ std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
 std::optional<double> MeasuredTradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &MeasuredTradeRow::error); }
 
 bool MeasuredTradeTable::is_device_timing() const {
-  return std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.variant == kCostBaselineId && row.cost_ratio; });
+  return std::any_of(rows.begin(), rows.end(),
+                     [](const MeasuredTradeRow& row) { return row.variant == kCostBaselineId && row.cost_ratio; });
 }
 
 std::optional<double> MeasuredTradeTable::device_time_ratio(std::string_view variant) const {
@@ -360,7 +361,8 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   if (document.contains("lights")) {
     const nlohmann::json& lights = document["lights"];
     if (!lights.is_number_integer() || lights.get<long long>() < 1 || lights.get<long long>() > kMaxLights)
-      throw Error(fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
+      throw Error(
+          fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
     table.lights = lights.get<int>();
   }
   const nlohmann::json& rows = document["rows"];

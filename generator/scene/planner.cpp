@@ -1039,9 +1039,8 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
   const bool table_timed = speed && table && table->is_device_timing() && table->lights == material.lights;
   const std::string lights = light_count_words(material.lights, table_timed ? material.lights : plan.cost_lights);
   const std::string source =
-      !speed ? table->source_name
-      : table_timed
-          ? fmt::format("{} ({} on {})", table->source_name, lights, table->device.substr(0, table->device.find(" (")))
+      !speed          ? table->source_name
+      : table_timed   ? fmt::format("{} ({} on {})", table->source_name, lights, table->device.substr(0, table->device.find(" (")))
       : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                       : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
   std::vector<std::pair<double, const Variant*>> ranked;

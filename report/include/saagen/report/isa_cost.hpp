@@ -25,7 +25,7 @@ namespace saagen::report {
 // Which shader a row measures.
 inline constexpr const char* isa_forward_shader = "forward";         // the bench_shading fragment shader
 inline constexpr const char* isa_deferred_shader = "deferred-pass";  // the deferred compute pass
-inline constexpr const char* isa_baseline = kCostBaselineId;               // the variant id of the baselines
+inline constexpr const char* isa_baseline = kCostBaselineId;         // the variant id of the baselines
 
 // Families from "vega10,navi21": each must be one of harness::isa_families(). Throws
 // saagen::Error with the allowed names.
