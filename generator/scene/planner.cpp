@@ -848,6 +848,11 @@ std::string light_count_words(int lights, int measured) {
   return measured == lights ? at : fmt::format("{} (the nearest measured count not above {})", at, lights);
 }
 
+// The GPU family a manifest's costs are read on: its `gpu_family`, else kDefaultGpuFamily.
+std::string cost_family(std::string_view gpu_family) {
+  return gpu_family.empty() ? std::string(kDefaultGpuFamily) : std::string(gpu_family);
+}
+
 // Where the decision's costs come from, and how its reasons name that after "no SAA's shading
 // cost": a device's timings (bench_shading's table given as the trade table) where they were
 // taken at the material's light count, else the committed ISA model's forward-shader ratio on
@@ -877,7 +882,7 @@ CostSource cost_source(const Material& material, const std::string& family, cons
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
                                  const std::vector<ContentRow>& rows, std::string_view baseline, const MeasuredTradeTable* timing) {
   MaterialDecision made;
-  const std::string family = gpu_family.empty() ? std::string(kDefaultGpuFamily) : std::string(gpu_family);
+  const std::string family = cost_family(gpu_family);
   const auto eligible = eligible_variants(catalogue, material);
   const CostSource costs = cost_source(material, family, timing);
   const auto none = std::find_if(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
@@ -1031,7 +1036,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
   const bool table_decides =
       table && !(material.ndf == Ndf::ggx && !manifest.preset && lacks_content(*table, manifest.taa, content_of(material)));
   if (!(table_decides || speed) || decision_costs) return;
-  const std::string family = manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family;
+  const std::string family = cost_family(manifest.gpu_family);
   const bool table_has_isa = plan.cost_lights == 1 && table &&
                              std::any_of(table->rows.begin(), table->rows.end(),
                                          [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
@@ -1135,8 +1140,7 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   plan.material = material.name;
   plan.precision = material.precision;
   plan.lights = material.lights;
-  plan.cost_lights = committed_isa_costs().cost_light_count(
-      manifest.gpu_family.empty() ? std::string(kDefaultGpuFamily) : manifest.gpu_family, material.lights);
+  plan.cost_lights = committed_isa_costs().cost_light_count(cost_family(manifest.gpu_family), material.lights);
   if (material.glints) {
     plan_glints(catalogue, manifest, material, plan);
     choose_functions(catalogue, material, manifest.preset.has_value(), plan);
