@@ -319,17 +319,8 @@ std::optional<RoughnessRange> read_roughness(const TableReader& reader) {
   return roughness;
 }
 
-Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<Precision>& precisions,
-                       const Catalogue& catalogue) {
-  Material material;
-  material.position = position_of(table.source());
-  // The context names the material by its name once it is known to be a safe identifier.
-  std::string context = fmt::format(" of material #{}", index + 1);
-  if (const toml::node* name = table.get("name"); name && name->is_string() && is_identifier(name->as_string()->get(), true)) {
-    context = fmt::format(" of material '{}'", name->as_string()->get());
-  }
-  const TableReader reader(manifest, table, context, material_keys());
-
+// A material's name (an identifier, required), source note and render path (required).
+void read_identity(const TableReader& reader, Material& material) {
   const std::string name_rule = "an identifier: a letter, then letters, digits, '_' or '-' (at most 64 characters)";
   const auto name = reader.string("name", name_rule);
   if (!name) reader.missing("name", name_rule);
@@ -340,7 +331,11 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
   const auto path = reader.choice("path", {"forward", "deferred"});
   if (!path) reader.missing("path", "\"forward\", \"deferred\"");
   material.path = *path == "forward" ? RenderPath::forward : RenderPath::deferred;
+}
 
+// What the material's surface is: anisotropy, tangents, NDF, normal maps, content, glints and
+// the precision it is shaded at, each checked against the keys read before it.
+void read_surface(const TableReader& reader, const std::vector<Precision>& precisions, Material& material) {
   material.anisotropic = reader.boolean("anisotropic").value_or(false);
   material.tangents = reader.boolean("tangents").value_or(false);
   if (const auto ndf = reader.choice("ndf", {"ggx", "beckmann"})) material.ndf = *ndf == "ggx" ? Ndf::ggx : Ndf::beckmann;
@@ -363,6 +358,11 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
                     "the glinty BRDF is numerically supported in fp32 only (no half-precision error bound is derived or proven)",
                     "\"fp32\" with glints = true");
   }
+}
+
+// What the plan may spend and where it is read: prefer, budget, lights, the normal maps' closest
+// MIP level and the roughness.
+void read_trade(const Manifest& manifest, const TableReader& reader, Material& material) {
   if (const auto prefer = reader.choice("prefer", {"accuracy", "speed"})) {
     material.prefer = *prefer == "accuracy" ? Preference::accuracy : Preference::speed;
   }
@@ -381,26 +381,44 @@ Material read_material(const Manifest& manifest, const toml::table& table, std::
     material.map_lod = *map_lod;
   }
   material.roughness = read_roughness(reader);
+}
 
+// The filter variant the manifest names (`variant`), if any: a screen-space filter that reads no
+// resource (the glint variant is planned through `glints = true`).
+void read_named_variant(const TableReader& reader, const Catalogue& catalogue, Material& material) {
   std::vector<std::string> filters;
   for (const Variant& variant : catalogue.variants()) {
-    // Variants that read a resource (the glint dictionary) are planned through `glints = true`.
     const bool reads_resource = !resources_read(catalogue, variant.functions).empty();
     if (is_screen_space_filter(catalogue, variant) && !reads_resource) filters.push_back(variant.id);
   }
-  if (const auto variant = reader.string("variant", quoted_list(filters))) {
-    if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
-      const bool is_brdf = catalogue.find_variant(*variant) != nullptr;
-      reader.fail_key(
-          "variant",
-          fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
-          quoted_list(filters));
-    }
-    if (material.glints)
-      reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
-    material.variant = *variant;
+  const auto variant = reader.string("variant", quoted_list(filters));
+  if (!variant) return;
+  if (std::find(filters.begin(), filters.end(), *variant) == filters.end()) {
+    const bool is_brdf = catalogue.find_variant(*variant) != nullptr;
+    reader.fail_key(
+        "variant",
+        fmt::format("{} \"{}\"", is_brdf ? "not a filter variant (the BRDF is planned from 'ndf'):" : "unknown variant", show(*variant)),
+        quoted_list(filters));
   }
+  if (material.glints)
+    reader.fail_key("variant", "glints = true picks the glint variant; leave 'variant' out", "no 'variant' with glints = true");
+  material.variant = *variant;
+}
 
+Material read_material(const Manifest& manifest, const toml::table& table, std::size_t index, const std::vector<Precision>& precisions,
+                       const Catalogue& catalogue) {
+  Material material;
+  material.position = position_of(table.source());
+  // The context names the material by its name once it is known to be a safe identifier.
+  std::string context = fmt::format(" of material #{}", index + 1);
+  if (const toml::node* name = table.get("name"); name && name->is_string() && is_identifier(name->as_string()->get(), true)) {
+    context = fmt::format(" of material '{}'", name->as_string()->get());
+  }
+  const TableReader reader(manifest, table, context, material_keys());
+  read_identity(reader, material);
+  read_surface(reader, precisions, material);
+  read_trade(manifest, reader, material);
+  read_named_variant(reader, catalogue, material);
   for (auto&& [key, node] : table) material.positions[std::string(key.str())] = position_of(node.source());
   return material;
 }
