@@ -180,101 +180,148 @@ double mean_abs_difference(const Image& a, const Image& b) {
   return sum / static_cast<double>(a.size());
 }
 
-}  // namespace
+struct Options {
+  std::string preset = "full", cache, scene = "nmap-sphere", dump;
+};
 
-int main(int argc, char** argv) try {
-  std::string preset_name = "full", cache, scene_arg = "nmap-sphere", dump;
+Options parse_options(int argc, char** argv) {
+  Options options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--preset" && i + 1 < argc) {
-      preset_name = argv[++i];
+      options.preset = argv[++i];
     } else if (arg == "--dump" && i + 1 < argc) {
-      dump = argv[++i];
+      options.dump = argv[++i];
     } else if (arg == "--cache" && i + 1 < argc) {
-      cache = argv[++i];
+      options.cache = argv[++i];
     } else {
-      scene_arg = arg;
+      options.scene = arg;
     }
   }
-  const std::optional<SceneId> id = scene_from_name(scene_arg);
-  if (!id || (*id != SceneId::nmap_sphere && *id != SceneId::nmap_sphere_fine))
-    throw std::invalid_argument("prefilter_flicker: " + scene_arg + " is not nmap-sphere or nmap-sphere-fine");
-  const TradeConfig config = sized_for_scene(preset(preset_name), *id);
-  const std::vector<Material> materials = trade_materials(config);
+  return options;
+}
+
+// What every pass measures: the scene at the preset's sizes, the materials without Fresnel (one
+// per alpha) and the cases.
+struct Run {
+  Options options;
+  SceneId id;
+  TradeConfig config;
+  std::vector<Material> materials;
   std::vector<std::size_t> measured;  // the materials without Fresnel
-  for (std::size_t m = 0; m < materials.size(); ++m)
-    if (!materials[m].fresnel) measured.push_back(m);
-  const auto map = content_normal_map();
-  const std::vector<Case> all = cases();
-  const std::size_t n = measured.size();
+  std::shared_ptr<const NormalMap> map;
+  std::vector<Case> all;
 
-  const GroundTruthSettings main_settings = ground_truth_settings(config);
-  const GroundTruthSettings flicker_settings = ground_truth_settings(config, true);
-
-  const Scene scene = make_scene(*id, 0.0);
-  const GroundTruth main_gt = cached_ground_truth(scene, main_settings, materials, cache);
-  std::vector<double> flip(all.size(), 0.0);
-  for (std::size_t c = 0; c < all.size(); ++c) {
-    const GBuffer g = case_buffer(all[c], scene, config.width, config.height, *map);
-    for (std::size_t m : measured) {
-      const Image image = render_variant(g, all[c].variant, materials[m], config.params, config.derivative, 0, all[c].feed,
-                                         all[c].prefilter, all[c].scale, all[c].lobe);
-      flip[c] += ldr_flip_mean_grey(tonemapped(main_gt.images[m]), tonemapped(image)) / static_cast<double>(n);
-    }
+  std::size_t n() const { return measured.size(); }
+  Image render(const Case& c, const GBuffer& g, std::size_t material) const {
+    return render_variant(g, c.variant, materials[material], config.params, config.derivative, 0, c.feed, c.prefilter, c.scale, c.lobe);
   }
+};
 
-  std::vector<TemporalDifference> differences(all.size() * n);
-  std::vector<Image> previous(all.size() * n), previous_reference(n);
+Run make_run(const Options& options) {
+  const std::optional<SceneId> id = scene_from_name(options.scene);
+  if (!id || (*id != SceneId::nmap_sphere && *id != SceneId::nmap_sphere_fine))
+    throw std::invalid_argument("prefilter_flicker: " + options.scene + " is not nmap-sphere or nmap-sphere-fine");
+  Run run{options, *id, sized_for_scene(preset(options.preset), *id), {}, {}, content_normal_map(), cases()};
+  run.materials = trade_materials(run.config);
+  for (std::size_t m = 0; m < run.materials.size(); ++m)
+    if (!run.materials[m].fresnel) run.measured.push_back(m);
+  return run;
+}
+
+// Each case's LDR-FLIP against the main ground truth, the mean over the materials.
+std::vector<double> first_frame_flip(const Run& run) {
+  const Scene scene = make_scene(run.id, 0.0);
+  const GroundTruth main_gt = cached_ground_truth(scene, ground_truth_settings(run.config), run.materials, run.options.cache);
+  std::vector<double> flip(run.all.size(), 0.0);
+  for (std::size_t c = 0; c < run.all.size(); ++c) {
+    const GBuffer g = case_buffer(run.all[c], scene, run.config.width, run.config.height, *run.map);
+    for (std::size_t m : run.measured)
+      flip[c] += ldr_flip_mean_grey(tonemapped(main_gt.images[m]), tonemapped(run.render(run.all[c], g, m))) / static_cast<double>(run.n());
+  }
+  return flip;
+}
+
+// The animation: each case's and material's frame-to-frame change against the ground truth's
+// (row c * n + k), and the frozen image's mean |dR|.
+struct Animation {
+  std::vector<TemporalDifference> differences;
   double frozen = 0.0;
+};
+
+Animation animate(const Run& run) {
+  const std::size_t n = run.n();
+  const TradeConfig& config = run.config;
+  const GroundTruthSettings flicker_settings = ground_truth_settings(config, true);
+  Animation out{std::vector<TemporalDifference>(run.all.size() * n), 0.0};
+  std::vector<Image> previous(run.all.size() * n), previous_reference(n);
+  const bool dump = !run.options.dump.empty();
   for (int frame = 0; frame < config.frames; ++frame) {
-    const Scene moved = trade_animation_frame(config, *id, frame);
-    const GroundTruth gt = cached_ground_truth(moved, flicker_settings, materials, cache);
+    const Scene moved = trade_animation_frame(config, run.id, frame);
+    const GroundTruth gt = cached_ground_truth(moved, flicker_settings, run.materials, run.options.cache);
     std::vector<Image> reference(n);
     for (std::size_t k = 0; k < n; ++k) {
-      reference[k] = display_image(gt.images[measured[k]]);
-      if (frame > 0) frozen += mean_abs_difference(reference[k], previous_reference[k]) / static_cast<double>(n * (config.frames - 1));
+      reference[k] = display_image(gt.images[run.measured[k]]);
+      if (frame > 0) out.frozen += mean_abs_difference(reference[k], previous_reference[k]) / static_cast<double>(n * (config.frames - 1));
     }
-    for (std::size_t c = 0; c < all.size(); ++c) {
-      const GBuffer g = case_buffer(all[c], moved, config.flicker_width, config.flicker_height, *map);
+    for (std::size_t c = 0; c < run.all.size(); ++c) {
+      const GBuffer g = case_buffer(run.all[c], moved, config.flicker_width, config.flicker_height, *run.map);
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t r = c * n + k;
-        Image image = display_image(render_variant(g, all[c].variant, materials[measured[k]], config.params, config.derivative, 0,
-                                                   all[c].feed, all[c].prefilter, all[c].scale, all[c].lobe));
-        if (frame > 0) differences[r].add_pair(previous[r], image, previous_reference[k], reference[k]);
-        if (!dump.empty() && k == 0 && (frame == 10 || frame == 11))
-          write_pgm(fmt::format("{}/frame{}_case{:02}.pgm", dump, frame, c), image);
+        Image image = display_image(run.render(run.all[c], g, run.measured[k]));
+        if (frame > 0) out.differences[r].add_pair(previous[r], image, previous_reference[k], reference[k]);
+        if (dump && k == 0 && (frame == 10 || frame == 11))
+          write_pgm(fmt::format("{}/frame{}_case{:02}.pgm", run.options.dump, frame, c), image);
         previous[r] = std::move(image);
       }
     }
-    if (!dump.empty() && (frame == 10 || frame == 11)) write_pgm(fmt::format("{}/frame{}_ground_truth.pgm", dump, frame), reference[0]);
+    if (dump && (frame == 10 || frame == 11)) write_pgm(fmt::format("{}/frame{}_ground_truth.pgm", run.options.dump, frame), reference[0]);
     previous_reference = std::move(reference);
   }
+  return out;
+}
 
-  // The ground truth's own noise: the middle frame rendered once more with another seed.
-  const Scene middle = trade_animation_frame(config, *id, config.frames / 2);
-  const GroundTruth a = cached_ground_truth(middle, flicker_settings, materials, cache);
+// The ground truth's own noise: the middle frame rendered once more with another seed.
+double ground_truth_noise(const Run& run) {
+  const GroundTruthSettings flicker_settings = ground_truth_settings(run.config, true);
+  const Scene middle = trade_animation_frame(run.config, run.id, run.config.frames / 2);
+  const GroundTruth a = cached_ground_truth(middle, flicker_settings, run.materials, run.options.cache);
   GroundTruthSettings reseeded = flicker_settings;
-  reseeded.seed = config.seed + 1;
-  const GroundTruth b = render_ground_truth(middle, reseeded, materials);
+  reseeded.seed = run.config.seed + 1;
+  const GroundTruth b = render_ground_truth(middle, reseeded, run.materials);
   double noise = 0.0;
-  for (std::size_t m : measured)
-    noise += mean_abs_difference(display_image(a.images[m]), display_image(b.images[m])) / static_cast<double>(n);
+  for (std::size_t m : run.measured)
+    noise += mean_abs_difference(display_image(a.images[m]), display_image(b.images[m])) / static_cast<double>(run.n());
+  return noise;
+}
 
-  fmt::print("{} {}: main {} px, animation {} frames at {} px ({} spp); means over {} alphas, no Fresnel\n", preset_name, scene_arg,
-             config.width, config.frames, config.flicker_width, config.flicker_strata * config.flicker_strata, n);
+void print_table(const Run& run, const std::vector<double>& flip, const Animation& animation, double noise) {
+  const TradeConfig& config = run.config;
+  const std::size_t n = run.n();
+  fmt::print("{} {}: main {} px, animation {} frames at {} px ({} spp); means over {} alphas, no Fresnel\n", run.options.preset,
+             run.options.scene, config.width, config.frames, config.flicker_width, config.flicker_strata * config.flicker_strata, n);
   fmt::print("{:<48} {:>8} {:>8} {:>8} {:>8}\n", "configuration", "LDR-FLIP", "TDE", "excess", "lost");
-  for (std::size_t c = 0; c < all.size(); ++c) {
+  for (std::size_t c = 0; c < run.all.size(); ++c) {
     TemporalError e;
     for (std::size_t k = 0; k < n; ++k) {
-      const TemporalError one = differences[c * n + k].mean();
+      const TemporalError one = animation.differences[c * n + k].mean();
       e.tde += one.tde / static_cast<double>(n);
       e.excess_flicker += one.excess_flicker / static_cast<double>(n);
       e.lost_motion += one.lost_motion / static_cast<double>(n);
     }
-    fmt::print("{:<48} {:>8.4f} {:>8.5f} {:>8.5f} {:>8.5f}\n", all[c].label, flip[c], e.tde, e.excess_flicker, e.lost_motion);
+    fmt::print("{:<48} {:>8.4f} {:>8.5f} {:>8.5f} {:>8.5f}\n", run.all[c].label, flip[c], e.tde, e.excess_flicker, e.lost_motion);
   }
-  fmt::print("{:<48} {:>8} {:>8.5f}\n", "frozen image (E|dR|)", "", frozen);
+  fmt::print("{:<48} {:>8} {:>8.5f}\n", "frozen image (E|dR|)", "", animation.frozen);
   fmt::print("{:<48} {:>8} {:>8.5f}\n", "ground-truth noise (E|R_a - R_b|, one frame)", "", noise);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  const Run run = make_run(parse_options(argc, argv));
+  const std::vector<double> flip = first_frame_flip(run);
+  const Animation animation = animate(run);
+  print_table(run, flip, animation, ground_truth_noise(run));
   return 0;
 } catch (const std::exception& e) {
   fmt::print(stderr, "{}\n", e.what());
