@@ -330,6 +330,70 @@ bool MeasuredTradeTable::has_errors() const {
   return std::any_of(rows.begin(), rows.end(), [](const MeasuredTradeRow& row) { return row.error.has_value(); });
 }
 
+namespace {
+
+// One row of a trade table's "rows": a variant's cost, error and ISA ratio, each checked.
+MeasuredTradeRow parse_cost_row(const nlohmann::json& row, std::size_t index, std::string_view source_name) {
+  const auto fail = [&](std::string_view what) {
+    throw Error(
+        fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
+                    "\"delta_spirv_instructions\": number, \"error\": number}}",
+                    source_name, index, what));
+  };
+  const auto number = [&](const char* key) -> std::optional<double> {
+    if (!row.contains(key)) return std::nullopt;
+    if (!row[key].is_number()) fail(fmt::format("\"{}\" must be a number", key));
+    const double value = row[key].get<double>();
+    if (!std::isfinite(value)) fail(fmt::format("\"{}\" must be finite", key));
+    return value;
+  };
+  if (!row.is_object()) fail("must be an object");
+  if (!row.contains("variant") || !row["variant"].is_string()) fail("needs a string \"variant\"");
+  MeasuredTradeRow entry;
+  entry.variant = row["variant"].get<std::string>();
+  if (row.contains("target")) {
+    if (!row["target"].is_string()) fail("\"target\" must be a string");
+    entry.target = OutputTarget::named(row["target"].get<std::string>());
+  }
+  entry.cost_ratio = number("ratio_median");
+  entry.delta_instructions = number("delta_spirv_instructions");
+  entry.error = number("error");
+  entry.isa_ratio = number("isa_inverse_throughput_ratio");
+  if (entry.isa_ratio) {
+    if (!row.contains("isa_family") || !row["isa_family"].is_string())
+      fail("\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
+    entry.isa_family = row["isa_family"].get<std::string>();
+    if (*entry.isa_ratio <= 0.0) fail("\"isa_inverse_throughput_ratio\" must be positive");
+  }
+  if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail("\"ratio_median\" must be positive");
+  if (entry.error && *entry.error < 0.0) fail("\"error\" must not be negative");
+  return entry;
+}
+
+// A table's content rows of `section`: "by_content" (against no SAA) or, under TAA,
+// "taa_by_content" (against none+taa, named without "+taa"); the same form.
+std::vector<ContentRow> parse_content_rows(const nlohmann::json& document, const char* section, std::string_view source_name) {
+  std::vector<ContentRow> out;
+  if (!document.contains(section)) return out;
+  const nlohmann::json& content_rows = document[section];
+  if (!content_rows.is_array()) throw Error(fmt::format("{}: \"{}\" must be an array", source_name, section));
+  for (std::size_t index = 0; index < content_rows.size(); ++index)
+    out.push_back(parse_content_row(content_rows[index], fmt::format("{}: {}[{}]", source_name, section, index)));
+  return out;
+}
+
+// bench_shading's "lights" (1 where not given).
+int parse_timed_lights(const nlohmann::json& document, std::string_view source_name) {
+  if (!document.contains("lights")) return 1;
+  const nlohmann::json& lights = document["lights"];
+  if (!lights.is_number_integer() || lights.get<long long>() < 1 || lights.get<long long>() > kMaxLights)
+    throw Error(
+        fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
+  return lights.get<int>();
+}
+
+}  // namespace
+
 MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
   MeasuredTradeTable table;
   table.source_name = std::string(source_name);
@@ -341,69 +405,16 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   } catch (const nlohmann::json::exception&) {  // out_of_range.406: a number such as 1e999
     throw Error(fmt::format("{}: holds a number beyond a double's range; pass the file `bench_shading --json` writes", source_name));
   }
-  const auto fail = [&](std::size_t index, std::string_view what) {
-    throw Error(
-        fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
-                    "\"delta_spirv_instructions\": number, \"error\": number}}",
-                    source_name, index, what));
-  };
   if (!document.is_object() || !document.contains("rows") || !document["rows"].is_array()) {
     throw Error(fmt::format("{}: no \"rows\" array; pass the file `bench_shading --json` writes", source_name));
   }
-  const auto number = [&](const nlohmann::json& row, const char* key, std::size_t index) -> std::optional<double> {
-    if (!row.contains(key)) return std::nullopt;
-    if (!row[key].is_number()) fail(index, fmt::format("\"{}\" must be a number", key));
-    const double value = row[key].get<double>();
-    if (!std::isfinite(value)) fail(index, fmt::format("\"{}\" must be finite", key));
-    return value;
-  };
   if (document.contains("device") && document["device"].is_string()) table.device = document["device"].get<std::string>();
-  if (document.contains("lights")) {
-    const nlohmann::json& lights = document["lights"];
-    if (!lights.is_number_integer() || lights.get<long long>() < 1 || lights.get<long long>() > kMaxLights)
-      throw Error(
-          fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
-    table.lights = lights.get<int>();
-  }
+  table.lights = parse_timed_lights(document, source_name);
   const nlohmann::json& rows = document["rows"];
-  for (std::size_t index = 0; index < rows.size(); ++index) {
-    const nlohmann::json& row = rows[index];
-    if (!row.is_object()) fail(index, "must be an object");
-    if (!row.contains("variant") || !row["variant"].is_string()) fail(index, "needs a string \"variant\"");
-    MeasuredTradeRow entry;
-    entry.variant = row["variant"].get<std::string>();
-    if (row.contains("target")) {
-      if (!row["target"].is_string()) fail(index, "\"target\" must be a string");
-      entry.target = OutputTarget::named(row["target"].get<std::string>());
-    }
-    entry.cost_ratio = number(row, "ratio_median", index);
-    entry.delta_instructions = number(row, "delta_spirv_instructions", index);
-    entry.error = number(row, "error", index);
-    entry.isa_ratio = number(row, "isa_inverse_throughput_ratio", index);
-    if (entry.isa_ratio) {
-      if (!row.contains("isa_family") || !row["isa_family"].is_string())
-        fail(index, "\"isa_inverse_throughput_ratio\" needs a string \"isa_family\"");
-      entry.isa_family = row["isa_family"].get<std::string>();
-      if (*entry.isa_ratio <= 0.0) fail(index, "\"isa_inverse_throughput_ratio\" must be positive");
-    }
-    if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail(index, "\"ratio_median\" must be positive");
-    if (entry.error && *entry.error < 0.0) fail(index, "\"error\" must not be negative");
-    table.rows.push_back(std::move(entry));
-  }
-  // A content type's rows: "by_content" (against no SAA) and, under TAA, "taa_by_content"
-  // (against none+taa, named without "+taa"); the same form.
-  const auto content_rows_of = [&](const char* section) {
-    std::vector<ContentRow> out;
-    if (!document.contains(section)) return out;
-    const nlohmann::json& content_rows = document[section];
-    if (!content_rows.is_array()) throw Error(fmt::format("{}: \"{}\" must be an array", source_name, section));
-    for (std::size_t index = 0; index < content_rows.size(); ++index)
-      out.push_back(parse_content_row(content_rows[index], fmt::format("{}: {}[{}]", source_name, section, index)));
-    return out;
-  };
-  table.content_rows = content_rows_of("by_content");
+  for (std::size_t index = 0; index < rows.size(); ++index) table.rows.push_back(parse_cost_row(rows[index], index, source_name));
+  table.content_rows = parse_content_rows(document, "by_content", source_name);
   table.alphas = parse_alphas(document, source_name);
-  table.taa_content_rows = content_rows_of("taa_by_content");
+  table.taa_content_rows = parse_content_rows(document, "taa_by_content", source_name);
   return table;
 }
 
