@@ -674,4 +674,25 @@ TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
   EXPECT_FALSE(saagen::parse_trade_table(R"({"rows": [{"variant": "none", "ratio_median": 1.0}]})", "bench.json").is_device_timing());
 }
 
+// The H200 timings behind docs/GPU_TIMINGS.md, as `saagen plan --trade-table` reads them: at one
+// light deferred-aniso/tail costs 1.36x no SAA there (vega10's ISA model: 1.517x), so a curved
+// deferred material with budget 1.4 gets deferred-aniso; at 16 lights (1.49x) it does not.
+TEST(Planner, TheCommittedH200TimingsPlanABudget) {
+  const std::filesystem::path data = std::filesystem::path(SAAGEN_SOURCE_DIR) / "docs" / "data" / "h200";
+  const saagen::MeasuredTradeTable one = saagen::load_trade_table(data / "shading_4k_1l.json");
+  const saagen::MeasuredTradeTable sixteen = saagen::load_trade_table(data / "shading_4k_16l.json");
+  ASSERT_TRUE(one.is_device_timing());
+  EXPECT_EQ(sixteen.lights, 16);
+  EXPECT_NEAR(*one.device_time_ratio("deferred-aniso/tail"), (1.3401 + 1.3752) / 2.0, 1e-3);
+  const std::string curved = header + "[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 1.4\n";
+  const saagen::MaterialPlan at_one = saagen::plan_scene(Catalogue::builtin(), parse(curved), &one).materials.at(0);
+  EXPECT_EQ(at_one.variant, "deferred-aniso") << at_one.reason;
+  EXPECT_NE(at_one.reason.find("at 1 light on NVIDIA H200 (" + (data / "shading_4k_1l.json").string() + ")"), std::string::npos)
+      << at_one.reason;
+  const saagen::MaterialPlan at_sixteen =
+      saagen::plan_scene(Catalogue::builtin(), parse(curved + "lights = 16\n"), &sixteen).materials.at(0);
+  EXPECT_EQ(at_sixteen.variant, "none") << at_sixteen.reason;
+  EXPECT_NE(at_sixteen.reason.find("costs more than the budget 1.4"), std::string::npos) << at_sixteen.reason;
+}
+
 }  // namespace
