@@ -865,9 +865,8 @@ struct CostSource {
 CostSource cost_source(const Material& material, const std::string& family, const MeasuredTradeTable* timing) {
   const int lights = material.lights;
   if (timing && timing->lights == lights) {
-    const std::string device = timing->device.substr(0, timing->device.find(" ("));
     return {[timing](const std::string& id) { return timing->device_time_ratio(id); },
-            fmt::format("{} on {} ({})", light_count_words(lights, lights), device, timing->source_name)};
+            fmt::format("{} on {} ({})", light_count_words(lights, lights), timing->device_name(), timing->source_name)};
   }
   const IsaTable& isa = committed_isa_costs();
   std::string basis = light_count_words(lights, isa.cost_light_count(family, lights));
@@ -1045,7 +1044,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
   const std::string lights = light_count_words(material.lights, table_timed ? material.lights : plan.cost_lights);
   const std::string source =
       !speed          ? table->source_name
-      : table_timed   ? fmt::format("{} ({} on {})", table->source_name, lights, table->device.substr(0, table->device.find(" (")))
+      : table_timed   ? fmt::format("{} ({} on {})", table->source_name, lights, table->device_name())
       : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                       : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
   std::vector<std::pair<double, const Variant*>> ranked;

@@ -118,6 +118,8 @@ struct MeasuredTradeTable {
   bool is_device_timing() const;
   // A timed variant's median time ratio to no SAA, the mean over its targets.
   std::optional<double> device_time_ratio(std::string_view variant) const;
+  // The device's name without bench_shading's details ("NVIDIA H200").
+  std::string device_name() const { return device.substr(0, device.find(" (")); }
 };
 
 // The GPU cost model of `prefer = "speed"`: ISA statistics of Mesa's ACO compiler for AMD GPU
