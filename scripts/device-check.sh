@@ -15,9 +15,9 @@
 #   bash scripts/device-check.sh all [DEVICE]  # both, where one machine has the toolchain and the GPU
 # BUILD_DIR=DIR builds in DIR instead of build-device (an existing Release build: only what is missing).
 #
-# The device machines here have no Debian packages (glslang, gtest, tinygltf...), so the build happens on the Debian machine and travels (device-check/ is ignored by
-# git, .gitignore; name it in the device tool's `carry`). The test binaries hold this checkout's and build
-# folder's absolute paths (SAAGEN_SOURCE_DIR, SAAGEN_CLI_PATH); `run` recreates them as links
+# The device machines here have no Debian packages (glslang, gtest, tinygltf...), so the build
+# happens on the Debian machine and travels (device-check/ is ignored by git, .gitignore; name it
+# in the device tool's `carry`). The test binaries hold this checkout's and build folder's absolute paths (SAAGEN_SOURCE_DIR, SAAGEN_CLI_PATH); `run` recreates them as links
 # when the device machine's copy lies elsewhere. No validation layer is assumed there
 # (SAAGEN_VK_VALIDATION is left unset); lavapipe and SwiftShader run the suites with it in ctest.
 #
