@@ -1166,6 +1166,11 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
 
 ScenePlan plan_scene(const Catalogue& catalogue, const Manifest& manifest, const MeasuredTradeTable* table, const AdviceTable& advice) {
   if (table) check_trade_table_ids(catalogue, *table);
+  if (table && table->is_device_timing() && table->timed_on_cpu())
+    throw Error(
+        fmt::format("{}: bench_shading timed {}, a CPU: its time ratios do not stand for a GPU's; time it on your GPU "
+                    "(bench_shading --device NAME --json FILE), or plan without it (vega10's ISA model)",
+                    table->source_name, table->device_name()));
   ScenePlan scene;
   if (table) scene.trade_table = table->source_name;
   scene.option_values = manifest.option_values;

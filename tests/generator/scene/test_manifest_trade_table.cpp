@@ -672,6 +672,18 @@ TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
     EXPECT_STREQ(error.what(), "t.json: \"lights\" must be an integer from 1 to 64 (the lights bench_shading --lights timed)");
   }
   EXPECT_FALSE(saagen::parse_trade_table(R"({"rows": [{"variant": "none", "ratio_median": 1.0}]})", "bench.json").is_device_timing());
+  // A CPU's timings (lavapipe) never cost a plan: one line says so.
+  const saagen::MeasuredTradeTable cpu = saagen::parse_trade_table(
+      R"json({"device": "llvmpipe (LLVM 15.0.6, 256 bits) (CPU, Vulkan 1.3.230)", "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})json",
+      "cpu.json");
+  try {
+    (void)saagen::plan_scene(Catalogue::builtin(), parse(curved), &cpu);
+    ADD_FAILURE() << "a CPU's timings were planned with";
+  } catch (const saagen::Error& error) {
+    EXPECT_STREQ(error.what(),
+                 "cpu.json: bench_shading timed llvmpipe, a CPU: its time ratios do not stand for a GPU's; time it on your GPU "
+                 "(bench_shading --device NAME --json FILE), or plan without it (vega10's ISA model)");
+  }
 }
 
 // The H200 timings behind docs/GPU_TIMINGS.md, as `saagen plan --trade-table` reads them: at one

@@ -120,6 +120,8 @@ struct MeasuredTradeTable {
   std::optional<double> device_time_ratio(std::string_view variant) const;
   // The device's name without bench_shading's details ("NVIDIA H200").
   std::string device_name() const { return device.substr(0, device.find(" (")); }
+  // Whether bench_shading timed a CPU device (lavapipe: "... (CPU, Vulkan ...)" in "device").
+  bool timed_on_cpu() const { return device.find("(CPU, Vulkan") != std::string::npos; }
 };
 
 // The GPU cost model of `prefer = "speed"`: ISA statistics of Mesa's ACO compiler for AMD GPU
