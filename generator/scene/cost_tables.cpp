@@ -146,6 +146,13 @@ ContentRow parse_content_row(const nlohmann::json& row, std::string_view where, 
   return entry;
 }
 
+// A "lights" value of the ISA table's rows or of bench_shading's table: an integer from 1 to
+// kMaxLights, else nullopt (each caller says what its "lights" counts).
+std::optional<int> read_light_count(const nlohmann::json& lights) {
+  if (!lights.is_number_integer() || lights.get<std::int64_t>() < 1 || lights.get<std::int64_t>() > kMaxLights) return std::nullopt;
+  return static_cast<int>(lights.get<std::int64_t>());
+}
+
 }  // namespace
 
 std::vector<double> bracketing_alphas(const std::vector<double>& measured, AlphaRange range) {
@@ -188,13 +195,8 @@ std::optional<double> MeasuredTradeTable::cost(std::string_view variant) const {
 
 std::optional<double> MeasuredTradeTable::error(std::string_view variant) const { return mean_of(rows, variant, &MeasuredTradeRow::error); }
 
-bool MeasuredTradeTable::is_device_timing() const {
-  return std::any_of(rows.begin(), rows.end(),
-                     [](const MeasuredTradeRow& row) { return row.variant == kCostBaselineId && row.cost_ratio; });
-}
-
 std::optional<double> MeasuredTradeTable::device_time_ratio(std::string_view variant) const {
-  if (!is_device_timing()) return std::nullopt;
+  if (!device_timing) return std::nullopt;
   return mean_of(rows, variant, &MeasuredTradeRow::cost_ratio);
 }
 
@@ -293,10 +295,9 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
     if (row.contains("instructions_ratio")) entry.instructions_ratio = number("instructions_ratio");
     if (row.contains("latency_ratio")) entry.latency_ratio = number("latency_ratio");
     if (row.contains("lights")) {
-      const nlohmann::json& lights = row["lights"];
-      if (!lights.is_number_integer() || lights.get<std::int64_t>() < 1 || lights.get<std::int64_t>() > kMaxLights)
-        fail(fmt::format("a row's \"lights\" must be an integer from 1 to {} (absent: one light)", kMaxLights));
-      entry.lights = static_cast<int>(lights.get<std::int64_t>());
+      const auto lights = read_light_count(row["lights"]);
+      if (!lights) fail(fmt::format("a row's \"lights\" must be an integer from 1 to {} (absent: one light)", kMaxLights));
+      entry.lights = *lights;
     }
     table.rows.push_back(std::move(entry));
   }
@@ -385,11 +386,11 @@ std::vector<ContentRow> parse_content_rows(const nlohmann::json& document, const
 // bench_shading's "lights" (1 where not given).
 int parse_timed_lights(const nlohmann::json& document, std::string_view source_name) {
   if (!document.contains("lights")) return 1;
-  const nlohmann::json& lights = document["lights"];
-  if (!lights.is_number_integer() || lights.get<long long>() < 1 || lights.get<long long>() > kMaxLights)
+  const auto lights = read_light_count(document["lights"]);
+  if (!lights)
     throw Error(
         fmt::format("{}: \"lights\" must be an integer from 1 to {} (the lights bench_shading --lights timed)", source_name, kMaxLights));
-  return lights.get<int>();
+  return *lights;
 }
 
 }  // namespace
@@ -412,6 +413,8 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   table.lights = parse_timed_lights(document, source_name);
   const nlohmann::json& rows = document["rows"];
   for (std::size_t index = 0; index < rows.size(); ++index) table.rows.push_back(parse_cost_row(rows[index], index, source_name));
+  table.device_timing = std::any_of(table.rows.begin(), table.rows.end(),
+                                    [](const MeasuredTradeRow& row) { return row.variant == kCostBaselineId && row.cost_ratio; });
   table.content_rows = parse_content_rows(document, "by_content", source_name);
   table.alphas = parse_alphas(document, source_name);
   table.taa_content_rows = parse_content_rows(document, "taa_by_content", source_name);

@@ -864,7 +864,7 @@ struct CostSource {
 
 CostSource cost_source(const Material& material, const std::string& family, const MeasuredTradeTable* timing) {
   const int lights = material.lights;
-  if (timing && timing->lights == lights) {
+  if (timing && timing->timed_at(lights)) {
     return {[timing](const std::string& id) { return timing->device_time_ratio(id); },
             fmt::format("{} on {} ({})", light_count_words(lights, lights), timing->device_name(), timing->source_name)};
   }
@@ -1040,7 +1040,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
                              std::any_of(table->rows.begin(), table->rows.end(),
                                          [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
   // A device's timings (bench_shading's table) at the material's light count rank speed first.
-  const bool table_timed = speed && table && table->is_device_timing() && table->lights == material.lights;
+  const bool table_timed = speed && table && table->timed_at(material.lights);
   const std::string lights = light_count_words(material.lights, table_timed ? material.lights : plan.cost_lights);
   const std::string source =
       !speed          ? table->source_name

@@ -115,7 +115,12 @@ struct MeasuredTradeTable {
   // Whether the rows are a device's timings: bench_shading's table, whose baseline row
   // (kCostBaselineId) carries a time ratio. `saagen bench --json` writes none; its ratios are the
   // trade's cost column (lavapipe's time by default), which the plan does not cost by.
-  bool is_device_timing() const;
+  // parse_trade_table sets it.
+  bool device_timing = false;
+  bool is_device_timing() const { return device_timing; }
+  // Whether the rows are a device's timings taken at `material_lights` lights per pixel: the
+  // timings that cost a material's plan (at another count the ISA model does).
+  bool timed_at(int material_lights) const { return device_timing && lights == material_lights; }
   // A timed variant's median time ratio to no SAA, the mean over its targets.
   std::optional<double> device_time_ratio(std::string_view variant) const;
   // The device's name without bench_shading's details ("NVIDIA H200").
