@@ -316,7 +316,11 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
           "--preset", common.preset,
           "full (256 px, 1024 spp, 32 frames, 7 scenes x 6 alphas x Fresnel), medium (128 px, 256 spp, 16 frames, no Fresnel) or quick")
       ->capture_default_str();
-  command->add_option("--cost", common.cost_json, "Cost measured by `bench_shading --json FILE` (lavapipe time ratio, SPIR-V delta)")
+  command
+      ->add_option(
+          "--cost", common.cost_json,
+          "Cost measured by `bench_shading --json FILE`: a GPU's time ratios at one light cost the verdict's decisions (else vega10's ISA model "
+          "does); lavapipe's are a column only")
       ->check(value_given());
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs")->check(value_given());
   command->add_option("--threads", common.threads, "Render threads (0: all cores)")->check(value_given())->capture_default_str();
@@ -522,7 +526,8 @@ int ReportCommands::run_bench() const {
   std::cout << asset_summaries(config);
   measure::AnimationFrameFn on_frame;
   if (clips) on_frame = [&](const measure::AnimationFrame& frame) { clips->add(frame, config.frames); };
-  const measure::TradeTable measured = measure_trade(config, on_frame);
+  measure::TradeTable measured = measure_trade(config, on_frame);
+  if (costs) measured.decision_timing = costs->decision_timing();
   std::cout << ground_truth_line(measured);
   const std::vector<report::SceneSanity> sanity = report::check_sanity(measured);
   print_sanity(sanity);
@@ -562,7 +567,8 @@ int ReportCommands::run_report() const {
   check_output_paths(report::report_paths(config, report_directory_), report_common_.force, run_inputs(report_common_, config));
   measure_isa(report_common_.isa_families, costs, std::cerr);
   std::cout << asset_summaries(config);
-  const measure::TradeTable measured = measure_trade(config);
+  measure::TradeTable measured = measure_trade(config);
+  if (costs) measured.decision_timing = costs->decision_timing();
   std::cout << ground_truth_line(measured);
   const measure::TradeTable table = report::without_taa_rows(measured);
   const report::ReportFiles files =

@@ -393,6 +393,23 @@ int parse_timed_lights(const nlohmann::json& document, std::string_view source_n
   return *lights;
 }
 
+// A bench table's "device_timing" (MeasuredTradeTable::decision_timing): bench_shading's table,
+// under the name of the file it was read from ("source").
+std::shared_ptr<const MeasuredTradeTable> parse_decision_timing(const nlohmann::json& document, std::string_view source_name) {
+  if (!document.contains("device_timing")) return nullptr;
+  const nlohmann::json& timing = document["device_timing"];
+  const std::string where = fmt::format("{}: \"device_timing\"", source_name);
+  if (!timing.is_object() || !timing.contains("source") || !timing["source"].is_string())
+    throw Error(where + " must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
+  auto table = std::make_shared<MeasuredTradeTable>(parse_trade_table(timing.dump(), where));
+  if (!table->is_device_timing() || table->timed_on_cpu())
+    throw Error(where + fmt::format(": not a GPU's timings (no \"{}\" row with a \"ratio_median\", or a CPU device); "
+                                    "pass the file `saagen bench --cost FILE --json` writes",
+                                    kCostBaselineId));
+  table->source_name = timing["source"].get<std::string>();
+  return table;
+}
+
 }  // namespace
 
 MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
@@ -418,6 +435,7 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   table.content_rows = parse_content_rows(document, "by_content", source_name);
   table.alphas = parse_alphas(document, source_name);
   table.taa_content_rows = parse_content_rows(document, "taa_by_content", source_name);
+  table.decision_timing = parse_decision_timing(document, source_name);
   return table;
 }
 

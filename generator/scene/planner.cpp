@@ -1039,12 +1039,15 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
   const bool table_has_isa = plan.cost_lights == 1 && table &&
                              std::any_of(table->rows.begin(), table->rows.end(),
                                          [&](const MeasuredTradeRow& row) { return row.isa_ratio && row.isa_family == family; });
-  // A device's timings (bench_shading's table) at the material's light count rank speed first.
-  const bool table_timed = speed && table && table->timed_at(material.lights);
+  // A device's timings (bench_shading's table, or the one a bench table was decided with) at the
+  // material's light count rank speed first.
+  const MeasuredTradeTable* timed =
+      speed && table && table->timing() && table->timing()->timed_at(material.lights) ? table->timing() : nullptr;
+  const bool table_timed = timed != nullptr;
   const std::string lights = light_count_words(material.lights, table_timed ? material.lights : plan.cost_lights);
   const std::string source =
       !speed          ? table->source_name
-      : table_timed   ? fmt::format("{} ({} on {})", table->source_name, lights, table->device_name())
+      : table_timed   ? fmt::format("{} ({} on {})", timed->source_name, lights, timed->device_name())
       : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                       : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
   std::vector<std::pair<double, const Variant*>> ranked;
@@ -1053,7 +1056,7 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
     const std::string costed =
         !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
     const auto value = !speed          ? table->error(variant->id)
-                       : table_timed   ? table->device_time_ratio(costed)
+                       : table_timed   ? timed->device_time_ratio(costed)
                        : table_has_isa ? table->isa_cost(costed, family)
                                        : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
     if (value) ranked.emplace_back(*value, variant);
@@ -1111,14 +1114,14 @@ void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, cons
   const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
   const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
   if (has_none) {
-    apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, nullptr, plan);
+    apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, table->timing(), plan);
     return;
   }
   // Rows without no SAA's (a table not written by `saagen bench`): nothing to decide against; the
   // lowest error chosen by plan_by_rule stands.
   if (!rows.empty()) return;
   if (table && !manifest.taa && table->has_errors() && material.prefer != Preference::speed && !other_content) return;
-  const MeasuredTradeTable* timing = table && table->is_device_timing() ? table : nullptr;
+  const MeasuredTradeTable* timing = table ? table->timing() : nullptr;
   const MaterialAdvice chosen_advice = material_advice(catalogue, manifest, material, advice, content_of(material), timing);
   const AdviceMeasurement* measured = chosen_advice.measured;
   static const AdviceMeasurement kNothingMeasured;

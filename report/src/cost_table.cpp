@@ -25,6 +25,11 @@ std::string CostTable::describe() const {
   return models.empty() ? std::string("no cost model") : fmt::format("{}", fmt::join(models, "; "));
 }
 
+std::shared_ptr<const MeasuredTradeTable> CostTable::decision_timing() const {
+  if (!timing.is_device_timing() || timing.timed_on_cpu()) return nullptr;
+  return std::make_shared<const MeasuredTradeTable>(timing);
+}
+
 CostTable load_cost_table(const std::filesystem::path& path) {
   CostTable table;
   table.source = path.string();

@@ -262,10 +262,21 @@ std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Cont
   return rows;
 }
 
-MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed, std::string_view baseline) {
+MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<ContentRow>& rows, Path path, Content content, bool speed,
+                           std::string_view baseline) {
   Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, content);
   if (speed) material.prefer = Preference::speed;
-  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline);
+  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline, table.decision_timing.get());
+}
+
+std::string decision_cost_words(const measure::TradeTable& table) {
+  // The reference materials shade one light, as the trade renders.
+  const int lights = reference_material(RenderPath::forward, Content::curved).lights;
+  const MeasuredTradeTable* timing = table.decision_timing.get();
+  if (timing && timing->timed_at(lights))
+    return fmt::format("{} GPU time ratio to no SAA at {} light ({})", timing->device_name(), lights, timing->source_name);
+  const std::string isa = fmt::format("{} ISA ratio to no SAA", kDefaultGpuFamily);
+  return timing ? fmt::format("{} ({} was timed at {} lights)", isa, timing->source_name, timing->lights) : isa;
 }
 
 std::string chosen_configuration(const MaterialDecision& made) {
@@ -279,7 +290,7 @@ std::vector<Recommendation> recommend(const measure::TradeTable& table) {
     const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
-      const MaterialDecision made = decide_on(rows, path, content), speed = decide_on(rows, path, content, true);
+      const MaterialDecision made = decide_on(table, rows, path, content), speed = decide_on(table, rows, path, content, true);
       const std::string id = chosen_configuration(made);
       recs.push_back(
           {path, content, id, mean_metrics(table, id, keep), made.decision.reason, chosen_configuration(speed), speed.decision.reason});
@@ -311,7 +322,7 @@ std::vector<AlphaRecommendation> decide_by_alpha(const measure::TradeTable& tabl
       std::vector<ContentRow> at_alpha = rows;
       for (ContentRow& row : at_alpha) add_cell_losses(row, {alpha});
       for (Path path : {Path::forward, Path::deferred})
-        recs.push_back({path, content, alpha, chosen_configuration(decide_on(at_alpha, path, content, false, baseline))});
+        recs.push_back({path, content, alpha, chosen_configuration(decide_on(table, at_alpha, path, content, false, baseline))});
     }
   }
   return recs;
@@ -468,10 +479,11 @@ std::vector<TradePoint> engine_points(const MaterialDecision& made, const std::v
   return points;
 }
 
-std::string budget_choice(const std::vector<ContentRow>& rows, Path path, Content content, std::optional<double> budget) {
-  Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, content);
+std::string budget_choice(const measure::TradeTable& table, const ContentTrade& trade, std::optional<double> budget) {
+  Material material = reference_material(trade.path == Path::forward ? RenderPath::forward : RenderPath::deferred, trade.content);
   material.budget = budget;
-  return chosen_configuration(decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows));
+  return chosen_configuration(
+      decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, trade.rows, "no SAA", table.decision_timing.get()));
 }
 
 }  // namespace
@@ -482,7 +494,7 @@ std::vector<ContentTrade> content_trades(const measure::TradeTable& table) {
     const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
-      ContentTrade trade{content, path, {}, "", decide_on(rows, path, content), rows};
+      ContentTrade trade{content, path, {}, "", decide_on(table, rows, path, content), rows, decision_cost_words(table)};
       trade.points = candidate_points(trade.made);
       for (TradePoint& engine : engine_points(trade.made, rows)) trade.points.push_back(std::move(engine));
       trade.chosen = chosen_configuration(trade.made);
@@ -493,9 +505,10 @@ std::vector<ContentTrade> content_trades(const measure::TradeTable& table) {
 }
 
 std::string format_frontier(const measure::TradeTable& table) {
-  std::string text =
-      "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), cost = "
-      "vega10 ISA ratio to no SAA, image / video error (10 - JOD) against no SAA with 95 % intervals:\n";
+  std::string text = fmt::format(
+      "\nThe trade per content and render path: the frontier (no configuration is both cheaper and lower in image error), "
+      "cost = {}, image / video error (10 - JOD) against no SAA with 95 % intervals:\n",
+      decision_cost_words(table));
   for (const ContentTrade& trade : content_trades(table)) {
     text += fmt::format("  {}, {}:\n    {:<44} {:>5}  {:<34} {:<34} {}\n", path_name(trade.path), content_name(trade.content),
                         "configuration", "cost", "image error", "video error (10 - JOD)", "against no SAA");
@@ -506,9 +519,8 @@ std::string format_frontier(const measure::TradeTable& table) {
                             decision::describe(point.against_none.image), decision::describe(point.against_none.temporal),
                             decision::name(point.outcome));
     text += fmt::format("    at x{} (the papers' overhead): {}; at x1.25: {}; unlimited: {}\n", kPapersBudget,
-                        budget_choice(trade.rows, trade.path, trade.content, kPapersBudget),
-                        budget_choice(trade.rows, trade.path, trade.content, 1.25),
-                        budget_choice(trade.rows, trade.path, trade.content, std::nullopt));
+                        budget_choice(table, trade, kPapersBudget), budget_choice(table, trade, 1.25),
+                        budget_choice(table, trade, std::nullopt));
   }
   return text;
 }

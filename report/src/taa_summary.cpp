@@ -168,7 +168,7 @@ std::string format_taa_summary(const measure::TradeTable& table) {
     if (rows.empty()) continue;
     for (Path path : {Path::forward, Path::deferred})
       text += fmt::format("  {}, {}: {}\n", path_name(path), content_name(content),
-                          decide_on(rows, path, content, false, "none+taa").decision.reason);
+                          decide_on(table, rows, path, content, false, "none+taa").decision.reason);
   }
   text += fmt::format("{} under TAA ({}; against none+taa):\n", kByAlphaTitle, kByAlphaNote);
   for (const std::string& line : by_alpha_lines(recommend_taa_by_alpha(table))) text += "  " + line + "\n";

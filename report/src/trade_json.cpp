@@ -50,13 +50,13 @@ nlohmann::json engine_comparison_json(const decision::Comparison& c) {
 // Per content type and path: saagen's decision on each content's rows (`rows_of`) against
 // `baseline`, as the JSON carries it.
 template <class RowsOf>
-nlohmann::json content_decisions_json(RowsOf rows_of, std::string_view baseline) {
+nlohmann::json content_decisions_json(const measure::TradeTable& table, RowsOf rows_of, std::string_view baseline) {
   nlohmann::json out = nlohmann::json::array();
   for (Content content : kContents) {
     const std::vector<ContentRow> rows = rows_of(content);
     if (rows.empty()) continue;
     for (Path path : {Path::forward, Path::deferred}) {
-      nlohmann::json entry = decision_json(decide_on(rows, path, content, false, baseline));
+      nlohmann::json entry = decision_json(decide_on(table, rows, path, content, false, baseline));
       entry["content"] = std::string(content_name(content)), entry["path"] = std::string(path_name(path));
       out.push_back(entry);
     }
@@ -66,6 +66,7 @@ nlohmann::json content_decisions_json(RowsOf rows_of, std::string_view baseline)
 
 nlohmann::json decisions_json(const measure::TradeTable& table) {
   const nlohmann::json by_content = content_decisions_json(
+      table,
       [&](Content content) {
         const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
         return measured_rows(table, keep, content_name(content));
@@ -76,7 +77,7 @@ nlohmann::json decisions_json(const measure::TradeTable& table) {
     const RowFilter keep = [scene](const measure::TradeRow& row) { return !row.taa && row.scene == scene; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, measure::scene_name(scene));
     for (Path path : {Path::forward, Path::deferred}) {
-      const MaterialDecision made = decide_on(rows, path, content_of(scene));
+      const MaterialDecision made = decide_on(table, rows, path, content_of(scene));
       nlohmann::json entry = decision_json(made);
       entry["scene"] = std::string(measure::scene_name(scene)), entry["path"] = std::string(path_name(path));
       entry["content"] = std::string(content_name(content_of(scene)));
@@ -119,7 +120,8 @@ nlohmann::json cells_json(const std::vector<CellLoss>& cells) {
 // Under TAA, per content type and path: saagen's decision on the content's +taa rows against
 // none+taa (findings.hpp, measured_taa_rows), what `saagen plan` gives with taa = true.
 nlohmann::json taa_decisions_json(const measure::TradeTable& table) {
-  return content_decisions_json([&](Content content) { return measured_taa_rows(table, content); }, "none+taa");
+  return content_decisions_json(
+      table, [&](Content content) { return measured_taa_rows(table, content); }, "none+taa");
 }
 
 // Under TAA, per content type: every configuration's means and its pairing with none+taa
@@ -292,22 +294,34 @@ nlohmann::json comparisons_json(const measure::TradeTable& table, const std::str
   return comparisons;
 }
 
+// The device timing the decisions were costed with (MeasuredTradeTable::decision_timing), in
+// bench_shading's form with the file it came from, for `saagen plan --trade-table` to cost as the
+// bench did.
+nlohmann::json device_timing_json(const MeasuredTradeTable& timing) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const MeasuredTradeRow& row : timing.rows)
+    if (row.cost_ratio) rows.push_back({{"variant", row.variant}, {"target", row.target.name()}, {"ratio_median", *row.cost_ratio}});
+  return {{"source", timing.source_name}, {"device", timing.device}, {"lights", timing.lights}, {"rows", rows}};
+}
+
 }  // namespace
 
 nlohmann::json taa_comparisons_json(const measure::TradeTable& table) { return comparisons_json(table, "none+taa"); }
 
 nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<VariantSummary>& summary, const CostTable* costs) {
-  return {{"generator", std::string(output_tag) + " saagen bench"},
-          {"decisions", decisions_json(table)},
-          {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
-          {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
-          {"config", config_line(table)},
-          {"rows", summary_rows_json(summary, costs)},
-          {"alphas", measured_alphas(table)},
-          {"by_content", by_content_json(table)},
-          {"cases", cases_json(table)},
-          {"sanity", sanity_json(table)},
-          {"comparisons", comparisons_json(table)}};
+  nlohmann::json json = {{"generator", std::string(output_tag) + " saagen bench"},
+                         {"decisions", decisions_json(table)},
+                         {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
+                         {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
+                         {"config", config_line(table)},
+                         {"rows", summary_rows_json(summary, costs)},
+                         {"alphas", measured_alphas(table)},
+                         {"by_content", by_content_json(table)},
+                         {"cases", cases_json(table)},
+                         {"sanity", sanity_json(table)},
+                         {"comparisons", comparisons_json(table)}};
+  if (table.decision_timing) json["device_timing"] = device_timing_json(*table.decision_timing);
+  return json;
 }
 
 }  // namespace saagen::report

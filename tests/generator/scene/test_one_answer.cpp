@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <memory>
+
 namespace {
 
 using namespace saagen;
@@ -233,6 +236,60 @@ TEST(OneAnswer, IntervalsInTheTableDecide) {
                                      "against_none": {"image": {"mean": 1, "low": 2, "high": 3}}}]})",
                                  "bad.json"),
                Error);
+}
+
+// `saagen bench --cost GPU.json` costs the verdict's decisions by the GPU's time ratios (at one
+// light, as the trade renders) and carries them in its JSON, so that `saagen plan` of that table
+// costs alike: on the curved scene deferred-aniso/tail costs 1.36x no SAA on the H200 (vega10's
+// ISA model: 1.52x), so a deferred material's budget 1.4 takes it on both, and the verdict, the
+// frontier and the plan name the device.
+TEST(OneAnswer, AGpuTimingCostsTheVerdictAndThePlanAlike) {
+  const std::filesystem::path timing_file = std::filesystem::path(SAAGEN_SOURCE_DIR) / "docs" / "data" / "h200" / "shading_4k_1l.json";
+  measure::TradeTable trade = small_table();
+  const auto json_of = [](const measure::TradeTable& t) { return report::trade_json(t, report::summarize(t), nullptr); };
+  const MeasuredTradeTable isa_costed = parse_trade_table(json_of(trade).dump(), "isa.json");
+  EXPECT_EQ(isa_costed.timing(), nullptr);
+  trade.decision_timing = std::make_shared<const MeasuredTradeTable>(load_trade_table(timing_file));
+  const MeasuredTradeTable gpu_costed = parse_trade_table(json_of(trade).dump(), "gpu.json");
+  ASSERT_NE(gpu_costed.timing(), nullptr);
+  EXPECT_EQ(gpu_costed.timing()->source_name, timing_file.string());
+  EXPECT_EQ(gpu_costed.timing()->device_name(), "NVIDIA H200");
+  EXPECT_NEAR(*gpu_costed.timing()->device_time_ratio("deferred-aniso/tail"),
+              *trade.decision_timing->device_time_ratio("deferred-aniso/tail"), 1e-12);
+
+  const std::string on_h200 = "at 1 light on NVIDIA H200 (" + timing_file.string() + ")";
+  const std::vector<report::Recommendation> recs = report::recommend(trade);
+  const report::Recommendation& deferred = verdict(recs, RenderPath::deferred, advice::Content::curved);
+  EXPECT_EQ(deferred.configuration, "deferred-aniso/tail");
+  EXPECT_NE(deferred.reason.find("1.36x no SAA's shading cost " + on_h200), std::string::npos) << deferred.reason;
+  EXPECT_NE(report::format_frontier(trade).find("cost = NVIDIA H200 GPU time ratio to no SAA at 1 light"), std::string::npos);
+
+  const Manifest manifest =
+      parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\nbudget = 1.4\n", "s.toml",
+                     Catalogue::builtin());
+  const MaterialPlan by_isa = plan_scene(Catalogue::builtin(), manifest, &isa_costed).materials.at(0);
+  EXPECT_EQ(by_isa.variant, "none") << by_isa.reason;  // 1.52x on vega10's model
+  const MaterialPlan by_gpu = plan_scene(Catalogue::builtin(), manifest, &gpu_costed).materials.at(0);
+  EXPECT_EQ(by_gpu.variant, "deferred-aniso") << by_gpu.reason;
+  EXPECT_NE(by_gpu.reason.find(on_h200), std::string::npos) << by_gpu.reason;
+}
+
+// A table's "device_timing" must be a GPU's timings as the bench writes them: one line otherwise.
+TEST(OneAnswer, ADeviceTimingThatIsNoGpusIsRefused) {
+  const auto error_of = [](const std::string& timing) {
+    try {
+      parse_trade_table(R"({"rows": [], "device_timing": )" + timing + "}", "t.json");
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(R"({"device": "NVIDIA H200", "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})"),
+            "t.json: \"device_timing\" must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
+  EXPECT_EQ(error_of(R"json({"source": "l.json", "device": "llvmpipe (LLVM 15.0.6, 256 bits) (CPU, Vulkan 1.3.230)",
+                             "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})json"),
+            "t.json: \"device_timing\": not a GPU's timings (no \"no-saa\" row with a \"ratio_median\", or a CPU device); pass the "
+            "file `saagen bench --cost FILE --json` writes");
 }
 
 }  // namespace

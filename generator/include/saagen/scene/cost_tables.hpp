@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -127,6 +128,13 @@ struct MeasuredTradeTable {
   std::string device_name() const { return device.substr(0, device.find(" (")); }
   // Whether bench_shading timed a CPU device (lavapipe: "... (CPU, Vulkan ...)" in "device").
   bool timed_on_cpu() const { return device.find("(CPU, Vulkan") != std::string::npos; }
+  // The device timing `saagen bench --cost FILE` decided its verdict with ("device_timing" in its
+  // JSON: FILE as bench_shading wrote it, read by this parser), so that a plan of this table costs
+  // its decisions as the bench did. Null where the bench decided by the ISA model.
+  std::shared_ptr<const MeasuredTradeTable> decision_timing;
+  // The device timing that costs this table's decisions: its own rows where it is bench_shading's
+  // table, else the bench's decision_timing; null where the ISA model does.
+  const MeasuredTradeTable* timing() const { return device_timing ? this : decision_timing.get(); }
 };
 
 // The GPU cost model of `prefer = "speed"`: ISA statistics of Mesa's ACO compiler for AMD GPU

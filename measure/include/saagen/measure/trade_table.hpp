@@ -19,11 +19,16 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
+
+namespace saagen {
+struct MeasuredTradeTable;  // saagen/scene/cost_tables.hpp
+}
 
 namespace saagen::measure {
 
@@ -274,6 +279,10 @@ struct TradeTable {
   std::vector<ImageSet> taa_images;
   // The sanity suite's rows (TradeConfig::sanity): per scene and material, each SanityResult.
   std::vector<SanityRow> sanity;
+  // A GPU's timings (bench_shading's table, `saagen bench --cost FILE`) that cost the verdict's
+  // decisions where they were taken at the decided material's light count; null: the committed
+  // ISA model costs them. The measurement does not read it.
+  std::shared_ptr<const MeasuredTradeTable> decision_timing;
 
   const TradeRow* find(Variant variant, SceneId scene, double alpha, bool fresnel, NormalFeed feed = NormalFeed::shading,
                        Prefilter prefilter = Prefilter::none, Lobe lobe = Lobe::papers, bool taa = false) const;

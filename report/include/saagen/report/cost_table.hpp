@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <saagen/scene/cost_tables.hpp>
 #include <string>
@@ -32,6 +33,10 @@ struct CostTable {
   std::optional<VariantCost> find(std::string_view variant) const;
   // One line naming the cost model of each cost column.
   std::string describe() const;
+  // The timing that costs the verdict's decisions (measure::TradeTable::decision_timing): `timing`
+  // where it is a GPU's (bench_shading's baseline row on a device that is not a CPU); null
+  // otherwise (lavapipe's ratios never decide; the committed ISA model does).
+  std::shared_ptr<const MeasuredTradeTable> decision_timing() const;
 };
 
 // Reads bench_shading's --json output through the planner's parser; throws saagen::Error with the

@@ -107,24 +107,28 @@ std::string without_taa(std::string configuration);
 // for a path's reference material of a content type (reference_material): what `saagen plan`
 // gives such a material with this table.
 // `baseline` names what the rows' comparisons are against ("none+taa" for measured_taa_rows).
-MaterialDecision decide_on(const std::vector<ContentRow>& rows, Path path, Content content, bool speed = false,
-                           std::string_view baseline = "no SAA");
+// The candidates are costed as `table` says (decision_cost_words): by its decision_timing, a GPU's,
+// where that was taken at one light, else by the committed ISA model.
+MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<ContentRow>& rows, Path path, Content content,
+                           bool speed = false, std::string_view baseline = "no SAA");
+// What the decisions' costs are, as a column or an axis names them: "vega10 ISA ratio to no SAA",
+// or "NVIDIA H200 GPU time ratio to no SAA at 1 light (FILE)".
+std::string decision_cost_words(const measure::TradeTable& table);
 
 // The configuration a decision chose, "none" for no filter.
 std::string chosen_configuration(const MaterialDecision& made);
 
 // The trade as a user reads it, per content type and render path: the frontier, the usable
-// configurations no other beats in both cost (the committed ISA model's ratio to no SAA on vega10,
-// the planner's) and image error against no SAA (the decision's comparison, its mean), with each
-// one's comparison and outcome; then saagen's decision at three budgets: the papers' overhead
-// (x1.05, Tokuyoshi & Kaplanyan 2019 Table 2), x1.25 and unlimited.
+// configurations no other beats in both cost (the decisions' cost: decision_cost_words) and image error against no SAA (the decision's
+// comparison, its mean), with each one's comparison and outcome; then saagen's decision at three budgets: the papers' overhead (x1.05,
+// Tokuyoshi & Kaplanyan 2019 Table 2), x1.25 and unlimited.
 inline constexpr double kPapersBudget = 1.05;
 std::string format_frontier(const measure::TradeTable& table);
 
 // One configuration on the trade's picture of a content type and render path.
 struct TradePoint {
   std::string configuration;
-  double cost = 1.0;                  // the planner's cost ratio to no SAA (vega10 ISA)
+  double cost = 1.0;                  // the decision's cost ratio to no SAA (decision_cost_words)
   decision::Comparison against_none;  // image / temporal error minus no SAA's, 95 % intervals
   decision::Outcome outcome = decision::Outcome::ties;
   bool frontier = false;  // no usable configuration is both cheaper and lower in image error
@@ -137,6 +141,7 @@ struct ContentTrade {
   std::string chosen;              // saagen's decision ("none": no filter)
   MaterialDecision made;           // the decision the points come from (decide_on)
   std::vector<ContentRow> rows;    // what it decided on
+  std::string cost_words;          // what `cost` is (decision_cost_words)
 };
 // Per content type of the table and render path: what format_frontier prints and the report plots.
 std::vector<ContentTrade> content_trades(const measure::TradeTable& table);
