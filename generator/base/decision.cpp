@@ -185,6 +185,7 @@ std::string_view name(Outcome outcome) {
 }
 
 Outcome outcome(const Comparison& c) {
+  if (c.unconverged) return Outcome::ties;
   const int better_count = better(c.image) + better(c.temporal);
   const int worse_count = worse(c.image) + worse(c.temporal);
   if (better_count && worse_count) return Outcome::mixed;

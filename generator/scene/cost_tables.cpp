@@ -53,7 +53,9 @@ decision::Comparison parse_comparison(const nlohmann::json& value, std::string_v
     return d;
   };
   const decision::Difference lag = value.is_object() && value.contains("lag") ? difference("lag") : decision::exact(0.0);
-  return {difference("image"), difference("temporal"), lag};
+  if (value.contains("unconverged") && !value["unconverged"].is_boolean())
+    throw Error(fmt::format("{}: \"{}\": \"unconverged\" must be true or false", where, key));
+  return {difference("image"), difference("temporal"), lag, value.value("unconverged", false)};
 }
 
 // A content row's list of names under `key` (`saagen bench --json`): "loses_on", the content's

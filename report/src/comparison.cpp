@@ -30,7 +30,18 @@ std::string_view metric_outcome_name(MetricOutcome outcome) {
 
 const MetricDifference& temporal_metric(const PairedComparison& c) { return c.video ? *c.video : c.flicker; }
 
+Standing standing(const MetricDifference& image, const MetricDifference& temporal) {
+  const MetricOutcome a = outcome_of(image), b = outcome_of(temporal);
+  if (a == MetricOutcome::worse || b == MetricOutcome::worse) return Standing::against;
+  return a == MetricOutcome::better || b == MetricOutcome::better ? Standing::beats : Standing::ties;
+}
+
+std::string_view standing_name(Standing s) { return s == Standing::beats ? "beats" : s == Standing::ties ? "ties" : "against"; }
+
+bool reverses(Standing read, Standing other) { return read != other && read != Standing::ties && other != Standing::ties; }
+
 std::string_view comparison_outcome_name(const PairedComparison& c) {
+  if (c.unconverged) return "ties";
   const MetricOutcome image = outcome_of(c.image), flicker = outcome_of(temporal_metric(c));
   const bool better = image == MetricOutcome::better || flicker == MetricOutcome::better;
   const bool worse = image == MetricOutcome::worse || flicker == MetricOutcome::worse;
@@ -51,7 +62,7 @@ decision::Difference decision_difference(const MetricDifference& d) {
 }  // namespace
 
 decision::Comparison to_decision(const PairedComparison& c) {
-  return {decision_difference(c.image), decision_difference(temporal_metric(c)), decision_difference(c.lag)};
+  return {decision_difference(c.image), decision_difference(temporal_metric(c)), decision_difference(c.lag), c.unconverged};
 }
 
 namespace {
@@ -142,6 +153,8 @@ PairedComparison compare_cells(const std::string& configuration, const std::stri
   if (std::all_of(video.a.begin(), video.a.end(), measured) && std::all_of(video.b.begin(), video.b.end(), measured))
     c.video = compare_metric(video);
   c.lag = lag_of(metric_cells(cells, &measure::AnimationSeries::lag).a);
+  const MetricDifference& temporal = temporal_metric(c);
+  c.unconverged = reverses(standing(c.image, temporal), standing(without_sample_bias(c.image), without_sample_bias(temporal)));
   return c;
 }
 

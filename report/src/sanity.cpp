@@ -107,17 +107,6 @@ std::string verdict_choice(const std::map<std::string, Clips>& candidates, const
   return chosen;
 }
 
-// How a configuration compares with no SAA on one cell, as the decision reads it: it beats no SAA
-// (a candidate), loses or is mixed (it loses on the content, never taken), or ties (neither).
-enum class Standing { beats, ties, against };
-
-Standing standing(const MetricDifference& image, const MetricDifference& temporal) {
-  if (worse(image) || worse(temporal)) return Standing::against;
-  return beats(image, temporal) ? Standing::beats : Standing::ties;
-}
-
-std::string_view standing_name(Standing s) { return s == Standing::beats ? "beats" : s == Standing::ties ? "ties" : "against"; }
-
 // The configurations' rows of one cell (non-Fresnel; without TAA, or under it), by configuration id.
 std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTable& table, measure::SceneId scene, double alpha,
                                                           bool taa) {
@@ -132,9 +121,11 @@ std::map<std::string, const measure::TradeRow*> cell_rows(const measure::TradeTa
 // leave taken out (without_sample_bias, from the quarter-sample ground truth). The verdict reads a
 // metric whose call that bias would change as a tie (comparison.hpp, bias_limited), so what can
 // still reverse is a standing whose other metric turns: beats on the video error with the image
-// error a tie that is worse once the bias is out. The verdict has converged where no standing
-// reverses (beats <-> against); a standing that moves to or from a tie is recorded, not failed
-// (an interval's end near 0 moves with any estimate). It asks the
+// error a tie that is worse once the bias is out. Such a comparison has not converged: more samples
+// in the ground truth would change its call, so the verdict reads it as a tie (comparison.hpp,
+// PairedComparison::unconverged). The rule fails where the verdict still calls one (beats, loses
+// or mixed), and lists the alphas with one (unconverged_alphas); a standing that moves to or from
+// a tie is recorded, not failed (an interval's end near 0 moves with any estimate). It asks the
 // question the decision depends on: whether more samples in the ground truth would change what
 // it decides. Noise in a ground truth is not neutral: one that catches a highlight in a few pixels
 // by chance favours the results that miss it as it does, as 1-spp no SAA does (docs/TEMPORAL.md).
@@ -148,30 +139,34 @@ void check_stability(const measure::TradeTable& table, const std::vector<double>
     const auto rows = cell_rows(table, scene, alpha, taa);
     const auto none = rows.find(baseline);
     if (none == rows.end() || none->second->quarter_series.image[0].empty()) continue;
-    Convergence cell{alpha, taa, 0, {}, {}, true};
+    Convergence cell{alpha, taa, 0, {}, {}, true, {}};
     for (const auto& [id, row] : rows) {
       if (id == baseline || row->quarter_series.image[0].empty()) continue;
       ++cell.comparisons;
       const measure::TradeRow& base = *none->second;
       const CellPair cell_pair{&row->series, &base.series, &row->quarter_series, &base.quarter_series};
-      const PairedComparison read_as_verdict = compare_cells(id, baseline, std::span(&cell_pair, 1));
-      const MetricDifference& temporal = temporal_metric(read_as_verdict);
-      const Standing read = standing(read_as_verdict.image, temporal);
-      const Standing converged = standing(without_sample_bias(read_as_verdict.image), without_sample_bias(temporal));
+      const PairedComparison comparison = compare_cells(id, baseline, std::span(&cell_pair, 1));
+      const MetricDifference& temporal = temporal_metric(comparison);
+      const Standing read = standing(comparison.image, temporal);
+      const Standing converged = standing(without_sample_bias(comparison.image), without_sample_bias(temporal));
       if (read == converged) continue;
       cell.moved.push_back({id, std::string(standing_name(read)), std::string(standing_name(converged))});
-      if (read != Standing::ties && converged != Standing::ties) cell.reversed.push_back(id);
+      if (!reverses(read, converged)) continue;
+      cell.reversed.push_back(id);
+      if (decision::outcome(to_decision(comparison)) != decision::Outcome::ties || comparison_outcome_name(comparison) != "ties")
+        cell.called.push_back(id);
     }
     cell.converged = cell.reversed.empty();
     out.convergence.push_back(cell);
     if (cell.converged) continue;
     (taa ? out.unconverged_taa_alphas : out.unconverged_alphas).push_back(alpha);
+    if (cell.called.empty()) continue;
     out.failures.push_back(
-        fmt::format("{}: the verdict{} has not converged at alpha {:g}: {} of {} configurations reverse their standing "
-                    "against {} (beats <-> loses or mixed) once the bias of the ground truth's samples is "
-                    "taken out ({}); rerun with --truth-samples-scale 2",
-                    measure::scene_name(scene), taa ? " under TAA" : "", alpha, cell.reversed.size(), cell.comparisons,
-                    taa ? "TAA alone" : "no SAA", fmt::join(cell.reversed, ", ")));
+        fmt::format("{}: the verdict{} calls a comparison more samples would reverse at alpha {:g}: {} of {} configurations "
+                    "reverse their standing against {} (beats <-> loses or mixed) once the bias of the ground truth's "
+                    "samples is taken out, and the verdict does not read them as ties ({})",
+                    measure::scene_name(scene), taa ? " under TAA" : "", alpha, cell.called.size(), cell.comparisons,
+                    taa ? "TAA alone" : "no SAA", fmt::join(cell.called, ", ")));
   }
 }
 
@@ -287,11 +282,10 @@ std::string format_unconverged(const std::vector<SceneSanity>& scenes) {
   }
   if (cells.empty()) return "";
   return fmt::format(
-      "The verdict has not converged on {} cell(s): {}. There, a configuration that beats no SAA (under TAA: TAA alone) would "
-      "lose to it or be "
-      "mixed, or the reverse, once the bias the ground truth's samples leave is taken out (estimated from the quarter-sample "
-      "ground truth; the sanity suite's stable rule): more samples would change those comparisons. Rerun with "
-      "--truth-samples-scale 2 (docs/TEMPORAL.md).\n",
+      "The ground truth has not converged on {} cell(s): {}. There, a configuration that beats no SAA (under TAA: TAA alone) "
+      "would lose to it or be mixed, or the reverse, once the bias the ground truth's samples leave is taken out (estimated "
+      "from the quarter-sample ground truth; the sanity suite's stable rule): the verdict reads those comparisons as ties. "
+      "More samples would settle them: --truth-samples-scale 2 (docs/TEMPORAL.md).\n",
       cells.size(), fmt::join(cells, ", "));
 }
 
@@ -308,6 +302,7 @@ nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes) {
         moved.push_back({{"configuration", m.configuration}, {"standing", m.standing}, {"extrapolated", m.extrapolated}});
       convergence.push_back(
           {{"alpha", c.alpha}, {"comparisons", c.comparisons}, {"moved", moved}, {"reversed", c.reversed}, {"converged", c.converged}});
+      if (!c.called.empty()) convergence.back()["called"] = c.called;  // the stable rule's failures
       if (c.taa) convergence.back()["taa"] = true;
     }
     nlohmann::json entries = nlohmann::json::array();

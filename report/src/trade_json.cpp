@@ -17,7 +17,9 @@ std::string id_of(measure::Variant variant) { return std::string(measure::varian
 nlohmann::json difference_json(const decision::Difference& d) { return {{"mean", d.mean}, {"low", d.low}, {"high", d.high}}; }
 
 nlohmann::json comparison_json(const decision::Comparison& c) {
-  return {{"image", difference_json(c.image)}, {"temporal", difference_json(c.temporal)}, {"lag", difference_json(c.lag)}};
+  nlohmann::json json = {{"image", difference_json(c.image)}, {"temporal", difference_json(c.temporal)}, {"lag", difference_json(c.lag)}};
+  if (c.unconverged) json["unconverged"] = true;
+  return json;
 }
 
 // saagen's decision (findings.hpp, decide_on) as the JSON carries it, for the scripts to read
@@ -277,6 +279,7 @@ nlohmann::json comparisons_json(const measure::TradeTable& table, const std::str
                              {"flicker_error", difference_json(c.flicker)},
                              {"lag", difference_json(c.lag)},
                              {"outcome", std::string(comparison_outcome_name(c))}});
+      if (c.unconverged) comparisons.back()["unconverged"] = true;
       if (c.video) comparisons.back()["video_error"] = difference_json(*c.video);
       if (alpha) comparisons.back()["alpha"] = *alpha;
     }

@@ -59,6 +59,10 @@ struct Comparison {
   // to their own, i.e. more than half a frame late (latency, ghosting). Not a merit but a gate:
   // a late configuration is never taken. Tables without it: exact(0), never late.
   Difference lag;
+  // The call would reverse (beats <-> loses or mixed) once the bias the ground truth's finite
+  // samples leave is taken out (the bench's report/comparison.hpp): more samples would change it,
+  // so it is a tie whatever the intervals say.
+  bool unconverged = false;
 };
 // Whether the comparison says the configuration is late (its lag lies above 0 beyond the interval).
 bool late(const Comparison& comparison);

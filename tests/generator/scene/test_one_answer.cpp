@@ -238,6 +238,28 @@ TEST(OneAnswer, IntervalsInTheTableDecide) {
                Error);
 }
 
+// A comparison the bench marks unconverged (more ground-truth samples would reverse it) is a tie
+// for the plan too, whatever its intervals: no filter.
+TEST(OneAnswer, AnUnconvergedComparisonInTheTableIsATie) {
+  const auto plan_with = [](const std::string& mark) {
+    const MeasuredTradeTable table = parse_trade_table(R"({"rows": [], "by_content": [
+        {"content": "curved", "configuration": "none", "error": 0.03},
+        {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02,
+         "against_none": {"image": {"mean": -0.01, "low": -0.012, "high": -0.008},
+                          "temporal": {"mean": -1, "low": -1.2, "high": -0.8})" +
+                                                           mark + R"(}}]})",
+                                                       "unconverged.json");
+    const Manifest manifest = parse_manifest("name = \"s\"\ntargets = [\"glsl\"]\n[[material]]\nname = \"m\"\npath = \"deferred\"\n",
+                                             "s.toml", Catalogue::builtin());
+    return plan_scene(Catalogue::builtin(), manifest, &table).materials.at(0);
+  };
+  EXPECT_EQ(plan_with("").variant, "deferred-aniso");
+  const MaterialPlan unconverged = plan_with(R"(, "unconverged": true)");
+  EXPECT_EQ(unconverged.variant, "none") << unconverged.reason;
+  EXPECT_NE(unconverged.reason.find("ties"), std::string::npos) << unconverged.reason;
+  EXPECT_THROW(plan_with(R"(, "unconverged": 1)"), Error);
+}
+
 // `saagen bench --cost GPU.json` costs the verdict's decisions by the GPU's time ratios (at one
 // light, as the trade renders) and carries them in its JSON, so that `saagen plan` of that table
 // costs alike: on the curved scene deferred-aniso/tail costs 1.36x no SAA on the H200 (vega10's

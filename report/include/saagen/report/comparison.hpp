@@ -54,6 +54,15 @@ enum class MetricOutcome { better, tie, worse };
 MetricOutcome outcome_of(const MetricDifference& difference);
 std::string_view metric_outcome_name(MetricOutcome outcome);  // "better", "tie", "worse"
 
+// How a comparison stands as the decision reads it, from its image and temporal differences:
+// beats (better beyond the interval in one, worse in neither), against (worse in one: loses or
+// mixed, never taken) or ties (neither).
+enum class Standing { beats, ties, against };
+Standing standing(const MetricDifference& image, const MetricDifference& temporal);
+std::string_view standing_name(Standing standing);  // "beats", "ties", "against"
+// Whether a call reverses between two readings (beats <-> against; a move to or from a tie does not).
+bool reverses(Standing read, Standing other);
+
 struct PairedComparison {
   std::string configuration;
   std::string baseline;
@@ -66,6 +75,13 @@ struct PairedComparison {
   // The configuration's own lag (lag_of; not a difference to the baseline): the decision's gate,
   // not a merit (decision::late). All 0 where the table has no lag.
   MetricDifference lag;
+  // The call reverses once the bias of the ground truth's samples is taken out of both metrics
+  // (standing of the metrics as read against their without_sample_bias): each metric's own call
+  // can hold (bias_limited is per metric) while the pair's turns, e.g. beats on the video error with
+  // the image error a tie that is worse without the bias. More samples would change the call, so
+  // the verdict reads it as a tie (comparison_outcome_name, to_decision: decision::Comparison's
+  // unconverged), not as a win or a loss.
+  bool unconverged = false;
 };
 // The metric the verdict reads as temporal: the video metric where measured, else the flicker error.
 const MetricDifference& temporal_metric(const PairedComparison& comparison);
@@ -108,8 +124,8 @@ struct CellPair {
 PairedComparison compare_cells(const std::string& configuration, const std::string& baseline, std::span<const CellPair> cells);
 
 // The verdict's reading of a comparison (image and temporal_metric): "beats" (better beyond the interval in one metric, worse
-// in none), "loses" (worse in one, better in none), "ties" (neither), "mixed" (better in one,
-// worse in the other: not a win).
+// in none), "loses" (worse in one, better in none), "ties" (neither, or unconverged), "mixed"
+// (better in one, worse in the other: not a win).
 std::string_view comparison_outcome_name(const PairedComparison& comparison);
 
 // The comparison as saagen's decision reads it (saagen/decision.hpp): image = image_error's

@@ -11,13 +11,14 @@
 //                    interval in at least one metric, and delayed is worse than the frames it is
 //                    made of shown on time (another seed), in the image or temporal metric or the
 //                    lag (animation_error.hpp);
-//   stable           per alpha: no configuration's standing against no SAA reverses (beats <->
-//                    loses or mixed) between the verdict's reading and the same comparison with
-//                    the bias of the ground truth's samples taken out (Richardson extrapolation
-//                    from its reading against the quarter-sample ground truth). Where one does,
-//                    more samples would change that comparison: the verdict has not converged
-//                    there (docs/TEMPORAL.md). In a table with +taa rows, the same for each
-//                    configuration under TAA against TAA alone (none+taa), the verdict under TAA;
+//   stable           per alpha: the verdict calls no comparison with no SAA whose standing
+//                    reverses (beats <-> loses or mixed) once the bias of the ground truth's
+//                    samples is taken out (Richardson extrapolation from its reading against the
+//                    quarter-sample ground truth). Where one does, more samples would change that
+//                    comparison: the ground truth has not converged there, and the verdict reads
+//                    it as a tie (comparison.hpp, PairedComparison::unconverged; docs/TEMPORAL.md).
+//                    In a table with +taa rows, the same for each configuration under TAA against
+//                    TAA alone (none+taa), the verdict under TAA;
 //   never wins       entered as configurations beside every measured one (blurred too), no
 //                    degenerate result (delayed, frozen, no highlight) is the configuration the
 //                    verdict would choose against no SAA on the scene (the decision's rule: among
@@ -55,7 +56,8 @@ struct StandingMove {
 };
 
 // The stable rule at one alpha: the configurations compared with no SAA (under TAA: the +taa ones
-// with none+taa), those whose standing moves, and those among them that reverse (beats <-> against).
+// with none+taa), those whose standing moves, those among them that reverse (beats <-> against),
+// and those of these the verdict still calls (the rule's failures; the verdict reads them as ties).
 struct Convergence {
   double alpha = 0.0;
   bool taa = false;
@@ -63,6 +65,7 @@ struct Convergence {
   std::vector<StandingMove> moved;
   std::vector<std::string> reversed;  // configuration ids
   bool converged = false;             // none reversed
+  std::vector<std::string> called;    // reversed, yet not read as a tie by the verdict
 };
 
 struct SceneSanity {
@@ -75,7 +78,7 @@ struct SceneSanity {
   std::vector<std::string> failures;           // one line per broken rule; empty: passed
   std::string verdict_choice;                  // the verdict's choice with the degenerate results entered ("": no filter)
   std::vector<Convergence> convergence;        // per alpha
-  std::vector<double> unconverged_alphas;      // the alphas the stable rule failed at
+  std::vector<double> unconverged_alphas;      // the alphas where a comparison reverses (read as ties)
   std::vector<double> unconverged_taa_alphas;  // the same for the verdict under TAA
 };
 
@@ -83,8 +86,8 @@ struct SceneSanity {
 std::vector<SceneSanity> check_sanity(const measure::TradeTable& table);
 // The suite's table (one block per scene) and a last line: passed, or how many rules failed.
 std::string format_sanity(const std::vector<SceneSanity>& scenes);
-// One line naming the cells (scene, alpha) whose verdict failed the stable rule, for the
-// end of the verdict ("" when there are none).
+// One line naming the cells (scene, alpha) where a comparison with no SAA has not converged (the
+// stable rule's reversals, read as ties), for the end of the verdict ("" when there are none).
 std::string format_unconverged(const std::vector<SceneSanity>& scenes);
 // The same for `saagen bench --json` ("sanity_checks").
 nlohmann::json sanity_json(const std::vector<SceneSanity>& scenes);
