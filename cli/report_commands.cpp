@@ -375,9 +375,9 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command
       ->add_option("--truth-samples-scale", common.truth_samples_scale,
                    "Every ground truth with this many times the strata per axis (its square times the samples; e.g. 2: the medium "
-                   "preset's glTF scenes at 16384 spp instead of 4096): where the sanity suite finds a verdict that has not "
-                   "converged (a configuration's standing against no SAA reverses once the bias of the ground truth's samples is "
-                   "taken out)")
+                   "preset's glTF scenes at 16384 spp instead of 4096): where the sanity suite finds comparisons that have not "
+                   "converged (a standing against no SAA that reverses once the bias of the ground truth's samples is taken out; "
+                   "the verdict reads them as ties)")
       ->check(CLI::Range(1, 8));
   command->add_flag("--exact-lobe", common.exact_lobe,
                     "Also evaluate every filter's kernel with the exact filtered GGX (GGX convolved with the kernel by quadrature; rows "
