@@ -401,7 +401,8 @@ std::shared_ptr<const MeasuredTradeTable> parse_decision_timing(const nlohmann::
   if (!document.contains("device_timing")) return nullptr;
   const nlohmann::json& timing = document["device_timing"];
   const std::string where = fmt::format("{}: \"device_timing\"", source_name);
-  if (!timing.is_object() || !timing.contains("source") || !timing["source"].is_string())
+  // bench_shading's table has no "device_timing" of its own: one level, however the file nests.
+  if (!timing.is_object() || !timing.contains("source") || !timing["source"].is_string() || timing.contains("device_timing"))
     throw Error(where + " must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
   auto table = std::make_shared<MeasuredTradeTable>(parse_trade_table(timing.dump(), where));
   if (!table->is_device_timing() || table->timed_on_cpu())

@@ -122,9 +122,9 @@ struct MaterialDecision {
   decision::Decision decision;
 };
 // `baseline` names what the rows' "none" is, as the reasons print it ("none+taa" for rows
-// measured under TAA). `timing`: a device's timings (bench_shading's table, is_device_timing())
-// that cost the configurations where they were taken at the material's light count, instead of
-// the committed ISA model.
+// measured under TAA). `timing`: a device's timings (bench_shading's table, or the one a bench
+// table was decided with: MeasuredTradeTable::timing()) that cost the configurations where they
+// were taken at the material's light count, instead of the committed ISA model.
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
                                  const std::vector<ContentRow>& rows, std::string_view baseline = "no SAA",
                                  const MeasuredTradeTable* timing = nullptr);
