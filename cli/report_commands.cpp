@@ -310,7 +310,10 @@ std::string measure_asset_table(const std::string& asset, const std::string& cac
   return json.dump();
 }
 
-void ReportCommands::add_common(CLI::App* command, Common& common) {
+namespace {
+
+// The run: the preset, the cost tables, the cache and the threads.
+void add_run_options(CLI::App* command, ReportCommands::Common& common) {
   command
       ->add_option(
           "--preset", common.preset,
@@ -324,6 +327,10 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
       ->check(value_given());
   command->add_option("--cache", common.cache_dir, "Directory caching ground-truth images between runs")->check(value_given());
   command->add_option("--threads", common.threads, "Render threads (0: all cores)")->check(value_given())->capture_default_str();
+}
+
+// What is measured of the filters: the kernel, the prefilter and the ISA cost model.
+void add_filter_options(CLI::App* command, ReportCommands::Common& common) {
   command->add_option("--sigma2", common.sigma2, "Pixel-filter variance of the SAA kernel to measure (default 0.25)")
       ->check(finite_range(1e-6, 16.0));
   command->add_option("--kappa", common.kappa, "Kernel clamp to measure (default 0.18)")->check(finite_range(1e-6, 1.0));
@@ -338,7 +345,10 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_option("--isa", common.isa_families,
                       "GPU families (comma-separated: vega10, navi21, navi10, polaris10) whose ISA statistics from Mesa's ACO "
                       "compiler (RADV null hardware, no GPU needed) give the cost column; the first family ranks the variants");
-  command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
+}
+
+// The measurement under TAA (--taa) and its resolve.
+void add_taa_options(CLI::App* command, ReportCommands::Common& common) {
   command->add_flag("--taa", common.taa,
                     "Also measure every configuration under TAA (rows CONFIGURATION+taa: Halton jitter, exact reprojection, "
                     "variance clipping; the animation's frames after a warm-up of one jitter cycle)");
@@ -353,6 +363,10 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_flag("--taa-unweighted", common.taa_unweighted,
                     "With --taa: resolve in linear radiance instead of Karis's inverse-luminance weighting (x / (1 + x)), which "
                     "converges below a sub-pixel highlight's mean");
+}
+
+// The scenes, the animation and the ground truths.
+void add_scene_options(CLI::App* command, ReportCommands::Common& common) {
   command
       ->add_option("--pan", common.pan,
                    "RIGHT,UP: the animation's camera pan per frame in pixels at its resolution instead of the preset's (0.11,0.37: "
@@ -382,6 +396,16 @@ void ReportCommands::add_common(CLI::App* command, Common& common) {
   command->add_flag("--exact-lobe", common.exact_lobe,
                     "Also evaluate every filter's kernel with the exact filtered GGX (GGX convolved with the kernel by quadrature; rows "
                     "VARIANT/exact): what a closed-form lobe could reach. A measurement, not a BRDF saagen emits");
+}
+
+}  // namespace
+
+void ReportCommands::add_common(CLI::App* command, Common& common) {
+  add_run_options(command, common);
+  add_filter_options(command, common);
+  command->add_flag("--force", common.force, "Overwrite output files that saagen did not write");
+  add_taa_options(command, common);
+  add_scene_options(command, common);
 }
 
 namespace {
