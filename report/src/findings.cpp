@@ -269,14 +269,30 @@ MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<C
   return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline, table.decision_timing.get());
 }
 
-std::string decision_cost_words(const measure::TradeTable& table) {
-  // The reference materials shade one light, as the trade renders.
-  const int lights = reference_material(RenderPath::forward, Content::curved).lights;
+namespace {
+
+// The reference materials shade one light, as the trade renders.
+int decided_lights() { return reference_material(RenderPath::forward, Content::curved).lights; }
+
+// The decision_timing where it costs the decisions (taken at decided_lights), else null.
+const MeasuredTradeTable* deciding_timing(const measure::TradeTable& table) {
   const MeasuredTradeTable* timing = table.decision_timing.get();
-  if (timing && timing->timed_at(lights))
-    return fmt::format("{} GPU time ratio to no SAA at {} light ({})", timing->device_name(), lights, timing->source_name);
-  const std::string isa = fmt::format("{} ISA ratio to no SAA", kDefaultGpuFamily);
-  return timing ? fmt::format("{} ({} was timed at {} lights)", isa, timing->source_name, timing->lights) : isa;
+  return timing && timing->timed_at(decided_lights()) ? timing : nullptr;
+}
+
+}  // namespace
+
+std::string decision_cost_axis(const measure::TradeTable& table) {
+  if (const MeasuredTradeTable* timing = deciding_timing(table))
+    return fmt::format("{} GPU time ratio to no SAA at {} light", timing->device_name(), decided_lights());
+  return fmt::format("{} ISA ratio to no SAA", kDefaultGpuFamily);
+}
+
+std::string decision_cost_words(const measure::TradeTable& table) {
+  const MeasuredTradeTable* timing = table.decision_timing.get();
+  if (!timing) return decision_cost_axis(table);
+  if (deciding_timing(table)) return fmt::format("{} ({})", decision_cost_axis(table), timing->source_name);
+  return fmt::format("{} ({} was timed at {} lights)", decision_cost_axis(table), timing->source_name, timing->lights);
 }
 
 std::string chosen_configuration(const MaterialDecision& made) {
@@ -494,7 +510,7 @@ std::vector<ContentTrade> content_trades(const measure::TradeTable& table) {
     const RowFilter keep = [content](const measure::TradeRow& row) { return !row.taa && content_of(row.scene) == content; };
     const std::vector<ContentRow> rows = measured_rows(table, keep, content_name(content));
     for (Path path : {Path::forward, Path::deferred}) {
-      ContentTrade trade{content, path, {}, "", decide_on(table, rows, path, content), rows, decision_cost_words(table)};
+      ContentTrade trade{content, path, {}, "", decide_on(table, rows, path, content), rows, decision_cost_axis(table)};
       trade.points = candidate_points(trade.made);
       for (TradePoint& engine : engine_points(trade.made, rows)) trade.points.push_back(std::move(engine));
       trade.chosen = chosen_configuration(trade.made);

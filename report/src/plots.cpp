@@ -67,7 +67,7 @@ void axes(std::ostringstream& svg, const Frame& f, const ContentTrade& trade) {
   for (double y = std::ceil(f.y_min / y_step) * y_step; y <= f.y_max; y += y_step)
     svg << fmt::format(R"s(<text x="{}" y="{:.1f}" text-anchor="end">{}</text>)s", f.left - 5, f.y(y) + 4, signed_tick(y, y_step)) << "\n";
   svg << fmt::format(R"s(<text x="{}" y="{}" text-anchor="middle">shading cost: {}</text>)s", (f.left + f.right) / 2, f.bottom + 34,
-                     escape(trade.cost_words))
+                     escape(trade.cost_axis))
       << "\n";
   svg << fmt::format(R"s(<text x="14" y="{0}" transform="rotate(-90 14 {0})" text-anchor="middle">image error - no SAA's</text>)s",
                      (f.top + f.bottom) / 2)

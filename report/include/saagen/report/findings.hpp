@@ -111,17 +111,19 @@ std::string without_taa(std::string configuration);
 // where that was taken at one light, else by the committed ISA model.
 MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<ContentRow>& rows, Path path, Content content,
                            bool speed = false, std::string_view baseline = "no SAA");
-// What the decisions' costs are, as a column or an axis names them: "vega10 ISA ratio to no SAA",
-// or "NVIDIA H200 GPU time ratio to no SAA at 1 light (FILE)".
+// What the decisions' costs are, as a plot's axis names them: "vega10 ISA ratio to no SAA", or
+// "NVIDIA H200 GPU time ratio to no SAA at 1 light"; decision_cost_words adds the timing's file.
+std::string decision_cost_axis(const measure::TradeTable& table);
 std::string decision_cost_words(const measure::TradeTable& table);
 
 // The configuration a decision chose, "none" for no filter.
 std::string chosen_configuration(const MaterialDecision& made);
 
 // The trade as a user reads it, per content type and render path: the frontier, the usable
-// configurations no other beats in both cost (the decisions' cost: decision_cost_words) and image error against no SAA (the decision's
-// comparison, its mean), with each one's comparison and outcome; then saagen's decision at three budgets: the papers' overhead (x1.05,
-// Tokuyoshi & Kaplanyan 2019 Table 2), x1.25 and unlimited.
+// configurations no other beats in both cost (the decisions' cost: decision_cost_words) and image
+// error against no SAA (the decision's comparison, its mean), with each one's comparison and
+// outcome; then saagen's decision at three budgets: the papers' overhead (x1.05, Tokuyoshi &
+// Kaplanyan 2019 Table 2), x1.25 and unlimited.
 inline constexpr double kPapersBudget = 1.05;
 std::string format_frontier(const measure::TradeTable& table);
 
@@ -141,7 +143,7 @@ struct ContentTrade {
   std::string chosen;              // saagen's decision ("none": no filter)
   MaterialDecision made;           // the decision the points come from (decide_on)
   std::vector<ContentRow> rows;    // what it decided on
-  std::string cost_words;          // what `cost` is (decision_cost_words)
+  std::string cost_axis;           // what `cost` is (decision_cost_axis)
 };
 // Per content type of the table and render path: what format_frontier prints and the report plots.
 std::vector<ContentTrade> content_trades(const measure::TradeTable& table);
