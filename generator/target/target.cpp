@@ -195,14 +195,10 @@ TargetSyntax::Resource parse_resource(const Json& entry, const std::string& name
 
 }  // namespace
 
-TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
-  Json json;
-  try {
-    json = Json::parse(json_text);
-  } catch (const Json::parse_error& error) {
-    throw Error(fmt::format("{}: {}", source, error.what()));
-  }
-  TargetSyntax target;
+namespace {
+
+// The target's name, description, file extension, language and whether it is a module.
+void read_identity(const Json& json, TargetSyntax& target, std::string_view source) {
   target.name = require_string(json, "name", source);
   target.description = require_string(json, "description", source);
   target.file_extension = require_string(json, "file_extension", source);
@@ -211,7 +207,11 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   if (!parsed_language) throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
   target.language = *parsed_language;
   target.module = json.value("module", false);
+}
 
+// How the dialect is spelled: signatures, reserved words, types (every dialect type), intrinsics,
+// constants, declaration types, the function prologue and the intrinsics' notes.
+void read_spellings(const Json& json, TargetSyntax& target, std::string_view source) {
   if (json.contains("signature")) target.signature = require_string(json, "signature", source);
   if (json.contains("parameter")) target.parameter = require_string(json, "parameter", source);
   if (json.contains("reserved_words")) {
@@ -227,6 +227,10 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   read_type_spellings(json, "declaration_types", target.types, target.declaration_types, source);
   if (json.contains("function_prologue")) target.function_prologue = require_string(json, "function_prologue", source);
   read_notes(json, target.intrinsic_notes, source);
+}
+
+// The emitted file's form (an include guard unless a module) and the deferred pass's sections.
+void read_file_forms(const Json& json, TargetSyntax& target, std::string_view source) {
   target.file_form = parse_file_form(require(json, "file_form", source), source);
   if (!target.module && target.file_form.definitions_open.empty()) {
     throw Error(fmt::format("{}: a target with includes needs an include guard ('file_form.definitions_open')", source));
@@ -238,6 +242,10 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
                                           {"prologue", "resources", "tangent_resources", "main", "baseline"}, {}, source);
     target.deferred_pass_extension = require_string(json, "deferred_pass_extension", source);
   }
+}
+
+// How an emitted file is validated: the core stage, the clients and the skeletons it is compiled in.
+void read_validation(const Json& json, TargetSyntax& target, std::string_view source) {
   const Json& validation = require(json, "validation", source);
   target.core_validation_stage = parse_core_stage(validation, source);
   for (const Json& client : require(validation, "clients", source)) {
@@ -248,6 +256,10 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
   for (const auto& [kind, skeleton] : require(json, "kernels", source).items()) {
     target.kernel_skeletons[kind] = parse_skeleton(skeleton, source);
   }
+}
+
+// The precisions the target emits (fp32 required), its glue names and its resources.
+void read_precisions_and_resources(const Json& json, TargetSyntax& target, std::string_view source) {
   for (const auto& [name, entry] : require(json, "precisions", source).items()) {
     const auto kind = precision_named(name);
     if (!kind) throw Error(fmt::format("{}: unknown precision '{}' in 'precisions'; use one of {}", source, name, precision_id_list()));
@@ -264,6 +276,23 @@ TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view so
     for (const auto& [name, entry] : json.at("resources").items())
       target.resources[name] = parse_resource(entry, name, target.module, source);
   }
+}
+
+}  // namespace
+
+TargetSyntax TargetSyntax::parse(std::string_view json_text, std::string_view source) {
+  Json json;
+  try {
+    json = Json::parse(json_text);
+  } catch (const Json::parse_error& error) {
+    throw Error(fmt::format("{}: {}", source, error.what()));
+  }
+  TargetSyntax target;
+  read_identity(json, target, source);
+  read_spellings(json, target, source);
+  read_file_forms(json, target, source);
+  read_validation(json, target, source);
+  read_precisions_and_resources(json, target, source);
   return target;
 }
 
