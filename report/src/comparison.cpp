@@ -38,7 +38,12 @@ Standing standing(const MetricDifference& image, const MetricDifference& tempora
 
 std::string_view standing_name(Standing s) { return s == Standing::beats ? "beats" : s == Standing::ties ? "ties" : "against"; }
 
+namespace {
+
+// Whether a call reverses between two readings (beats <-> against; a move to or from a tie does not).
 bool reverses(Standing read, Standing other) { return read != other && read != Standing::ties && other != Standing::ties; }
+
+}  // namespace
 
 std::string_view comparison_outcome_name(const PairedComparison& c) {
   if (c.unconverged) return "ties";

@@ -151,7 +151,7 @@ void check_stability(const measure::TradeTable& table, const std::vector<double>
       const Standing converged = standing(without_sample_bias(comparison.image), without_sample_bias(temporal));
       if (read == converged) continue;
       cell.moved.push_back({id, std::string(standing_name(read)), std::string(standing_name(converged))});
-      if (!reverses(read, converged)) continue;
+      if (!comparison.unconverged) continue;
       cell.reversed.push_back(id);
       if (decision::outcome(to_decision(comparison)) != decision::Outcome::ties || comparison_outcome_name(comparison) != "ties")
         cell.called.push_back(id);

@@ -60,8 +60,6 @@ std::string_view metric_outcome_name(MetricOutcome outcome);  // "better", "tie"
 enum class Standing { beats, ties, against };
 Standing standing(const MetricDifference& image, const MetricDifference& temporal);
 std::string_view standing_name(Standing standing);  // "beats", "ties", "against"
-// Whether a call reverses between two readings (beats <-> against; a move to or from a tie does not).
-bool reverses(Standing read, Standing other);
 
 struct PairedComparison {
   std::string configuration;
