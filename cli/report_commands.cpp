@@ -248,6 +248,7 @@ measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_i
     throw Error("--taa-blend, --taa-clip-gamma, --taa-sequence and --taa-unweighted set the TAA resolve: add --taa");
   if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
   if (!common.derivatives.empty()) config.derivative = common.derivatives == "fine" ? ref::Derivative::fine : ref::Derivative::coarse;
+  if (common.half_vector_frame == "transported") config.half_vector_frame = measure::HalfVectorFrame::transported;
   if (common.exact_lobe) config.lobes.push_back(measure::Lobe::exact);
   scale_ground_truth_samples(common.truth_samples_scale, config);
   return config;
@@ -386,6 +387,12 @@ void add_scene_options(CLI::App* command, ReportCommands::Common& common) {
                    "What the filters' screen-space derivatives are: coarse (one difference per 2x2 quad, the default) or fine "
                    "(the difference within the pixel's own row and column: dFdxFine, ddx_fine, dpdxFine)")
       ->check(CLI::IsMember({"coarse", "fine"}));
+  command
+      ->add_option("--half-vector-frame", common.half_vector_frame,
+                   "The frame the forward filters difference their half vectors in: tangent (each quad pixel's own tangent frame, "
+                   "as the papers' listing; the default) or transported (the pixel's frame carried to its quad partners without "
+                   "turning about their normals, so a tangent frame that twists from pixel to pixel adds nothing to the kernel)")
+      ->check(CLI::IsMember({"tangent", "transported"}));
   command
       ->add_option("--truth-samples-scale", common.truth_samples_scale,
                    "Every ground truth with this many times the strata per axis (its square times the samples; e.g. 2: the medium "

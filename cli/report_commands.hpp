@@ -60,6 +60,8 @@ class ReportCommands {
     int resolution = 0;
     // What plain ddx/ddy mean in the emulated 2x2 quads the filters read ("" : the preset's).
     std::string derivatives;
+    // The frame the forward filters difference their half vectors in ("" : each pixel's tangent frame).
+    std::string half_vector_frame;
     // Also measure the exact filtered GGX (Lobe::exact, rows VARIANT/exact): a measuring instrument.
     bool exact_lobe = false;
     // Every ground truth's strata per axis times this (its samples times its square): for

@@ -393,7 +393,39 @@ GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads, d
   return g;
 }
 
-QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
+namespace {
+
+// A quad pixel's half vector, given in its own frame (t, b, n), expressed in the frame of the
+// pixel (self_t, self_b, self_n) carried to n without turning about it (HalfVectorFrame::
+// transported): t' = self_t - n (n . self_t) normalised, b' = n x t' with the pixel's handedness.
+// Where n is nearly along self_t (normals a quarter turn apart), the quad pixel's own frame stays.
+Vec3 half_in_transported_frame(Vec3 half_ts, Vec3 t, Vec3 b, Vec3 n, Vec3 self_t, Vec3 self_b, Vec3 self_n) {
+  const Vec3 carried = self_t - n * dot(n, self_t);
+  if (dot(carried, carried) < 1e-12) return half_ts;
+  const Vec3 tangent = ref::normalize(carried);
+  const double handedness = dot(cross(self_n, self_t), self_b) < 0.0 ? -1.0 : 1.0;
+  const Vec3 bitangent = cross(n, tangent) * handedness;
+  const Vec3 half_ws = t * half_ts.x + b * half_ts.y + n * half_ts.z;
+  return {dot(half_ws, tangent), dot(half_ws, bitangent), dot(half_ws, n)};
+}
+
+// The quad pixels' half vectors (shading and geometric frames) in the pixel's transported frame.
+void transport_half_vectors(std::array<QuadPixel, 4>& source, int self) {
+  const QuadPixel own = source[static_cast<std::size_t>(self)];
+  for (int q = 0; q < 4; ++q) {
+    if (q == self) continue;
+    QuadPixel& other = source[static_cast<std::size_t>(q)];
+    other.half_ts =
+        half_in_transported_frame(other.half_ts, other.tangent, other.bitangent, other.normal, own.tangent, own.bitangent, own.normal);
+    other.geometric_half_ts =
+        half_in_transported_frame(other.geometric_half_ts, other.geometric_tangent, other.geometric_bitangent, other.geometric_normal,
+                                  own.geometric_tangent, own.geometric_bitangent, own.geometric_normal);
+  }
+}
+
+}  // namespace
+
+QuadFields gather_quad(const GBuffer& gbuffer, int x, int y, HalfVectorFrame frame) {
   const PixelFields& self = gbuffer.at(x, y);
   if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
   const int x0 = x & ~1, y0 = y & ~1;
@@ -417,6 +449,8 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
       if (helper.valid) source[q] = helper;
     }
   }
+  const int own = (x & 1) + 2 * (y & 1);
+  if (frame == HalfVectorFrame::transported) transport_half_vectors(source, own);
   auto quad = [&](Vec3 QuadPixel::*member) {
     return ref::Quad<Vec3>{source[0].*member, source[1].*member, source[2].*member, source[3].*member};
   };
@@ -430,15 +464,15 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y) {
   q.geometric_tangent = quad(&QuadPixel::geometric_tangent);
   q.geometric_bitangent = quad(&QuadPixel::geometric_bitangent);
   q.geometric_half_ts = quad(&QuadPixel::geometric_half_ts);
-  q.pixel = (x & 1) + 2 * (y & 1);
+  q.pixel = own;
   return q;
 }
 
-void gather_quads(GBuffer& gbuffer, int threads) {
+void gather_quads(GBuffer& gbuffer, int threads, HalfVectorFrame frame) {
   std::vector<QuadFields> quads(gbuffer.pixels.size());
   parallel_rows(gbuffer.height, threads, [&](int y) {
     for (int x = 0; x < gbuffer.width; ++x)
-      if (gbuffer.at(x, y).hit) quads[static_cast<std::size_t>(y) * gbuffer.width + x] = gather_quad(gbuffer, x, y);
+      if (gbuffer.at(x, y).hit) quads[static_cast<std::size_t>(y) * gbuffer.width + x] = gather_quad(gbuffer, x, y, frame);
   });
   gbuffer.quads = std::move(quads);
 }

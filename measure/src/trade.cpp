@@ -350,10 +350,10 @@ void compare_clips(const TradeConfig& config, const std::vector<std::vector<Clip
 
 FrameBuffers frame_buffers(const TradeConfig& config, SceneId id, const Scene& scene, int width, int height) {
   FrameBuffers buffers{render_gbuffer(scene, width, height, config.threads), std::nullopt};
-  gather_quads(buffers.plain, config.threads);
+  gather_quads(buffers.plain, config.threads, config.half_vector_frame);
   if (config.prefilter_lod_bias != 0.0 && scene_has_normal_map(id)) {
     buffers.prefiltered = render_gbuffer(scene, width, height, config.threads, config.prefilter_lod_bias);
-    gather_quads(*buffers.prefiltered, config.threads);
+    gather_quads(*buffers.prefiltered, config.threads, config.half_vector_frame);
   }
   return buffers;
 }

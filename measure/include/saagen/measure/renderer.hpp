@@ -299,6 +299,16 @@ struct UvDerivatives {
 // Coarse uv derivatives of the quad of pixel (x, y), whose centre hit is `shaded`.
 UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y, int width, int height);
 
+// The frame in which the forward filters' half vectors are differenced across a 2x2 quad.
+// tangent: each quad pixel's own tangent frame, as Tokuyoshi & Kaplanyan 2019 Listing 1
+// differentiates half_ts: a frame that turns about the normal from pixel to pixel (a seam, a
+// pole, tangents generated from uv) adds its turn, |h.xy| per radian, to the derivative, and the
+// kernel widens most where the lobe is wide (docs/FORWARD_DERIVATIVES.md).
+// transported: the pixel's own frame carried to each quad pixel's normal without turning about it
+// (the tangent's component along that normal removed): the frame's tilt, which is the surface's
+// curvature the filter measures, stays; its turn about the normal goes.
+enum class HalfVectorFrame { tangent, transported };
+
 // The fields of one quad pixel that a filter reads (gather_quad).
 struct QuadPixel {
   bool valid = false;
@@ -340,10 +350,10 @@ struct GBuffer {
 GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads = 0, double normal_lod_bias = 0.0);
 
 // Precondition: gbuffer.at(x, y).hit.
-QuadFields gather_quad(const GBuffer& gbuffer, int x, int y);
+QuadFields gather_quad(const GBuffer& gbuffer, int x, int y, HalfVectorFrame frame = HalfVectorFrame::tangent);
 // Fills gbuffer.quads: what gather_quad returns, for every hit pixel. shade_pixel reads them
 // instead of gathering: the trade shades each G-buffer once per row (configuration x material).
-void gather_quads(GBuffer& gbuffer, int threads = 0);
+void gather_quads(GBuffer& gbuffer, int threads = 0, HalfVectorFrame frame = HalfVectorFrame::tangent);
 
 struct PixelShade {
   double radiance = 0.0;
