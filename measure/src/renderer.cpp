@@ -736,6 +736,127 @@ std::optional<Variant> variant_from_id(std::string_view id) {
 
 std::span<const Variant> all_variants() { return kAllVariants; }
 
+namespace {
+
+// A pixel's filtered roughness through the lobe it is shaded with (shade_pixel): the texture term
+// joins each form in its own domain (prefilter.hpp): added to alpha^2 and saturated; in projected
+// space for deferred-projected-space; to A for the matrix forms. Then the lobe's mapping and BRDF.
+class LobeShading {
+ public:
+  LobeShading(const PixelFields& f, Variant variant, double alpha, const ref::Params& params, Prefilter prefilter, double prefilter_scale,
+              Lobe lobe)
+      : f_(f),
+        variant_(variant),
+        a2_(alpha * alpha),
+        // The unfiltered roughness per axis: (alpha_t^2, alpha_b^2) on an anisotropic lobe (in its
+        // turned frame), (alpha^2, alpha^2) otherwise.
+        alpha2_(f.anisotropic ? anisotropic_alpha2(alpha, f.anisotropy) : Vec2{a2_, a2_}),
+        per_axis_(alpha2_.x != alpha2_.y),
+        texture_(texture_term(f, params, prefilter, prefilter_scale, a2_)),
+        // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
+        texture_isotropic_(0.5 * ref::trace(texture_)),
+        // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
+        evaluated_(variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe) {}
+
+  Vec2 alpha2() const { return alpha2_; }
+  double a2() const { return a2_; }
+  bool per_axis() const { return per_axis_; }
+  const Sym2& roughness() const { return roughness_; }
+  double brdf() const { return brdf_; }
+
+  // Per-axis filtered roughness (texture term included) through the lobe.
+  void shade_axis(Vec2 filtered) {
+    if (evaluated_ == Lobe::mapped)
+      filtered = {ref::ggx_filtered_alpha2(alpha2_.x, filtered.x - alpha2_.x), ref::ggx_filtered_alpha2(alpha2_.y, filtered.y - alpha2_.y)};
+    roughness_ = {filtered.x, 0.0, filtered.y};
+    if (evaluated_ == Lobe::exact) {
+      brdf_ = ref::ggx_brdf_filtered_exact(f_.light_ts, f_.view_ts, roughness_, alpha2_);
+      return;
+    }
+    brdf_ = evaluated_ == Lobe::tail ? ref::ggx_brdf_filtered_axis(f_.light_ts, f_.view_ts, filtered, alpha2_)
+                                     : ref::ggx_brdf_axis(f_.light_ts, f_.view_ts, filtered);
+  }
+
+  double with_isotropic_texture(double filtered) const {
+    return variant_ == Variant::deferred_projected_space ? ref::projected_space_add(filtered, texture_isotropic_)
+                                                         : ref::saturate(filtered + texture_isotropic_);
+  }
+
+  void isotropic(double filtered) {
+    filtered = with_isotropic_texture(filtered);
+    shade_axis({filtered, filtered});
+  }
+
+  // An isotropic form (alpha^2 -> alpha'^2) on the lobe: once, or once per axis of an
+  // anisotropic lobe (as the planner emits a deferred-* filter on anisotropic roughness).
+  template <class Form>
+  void isotropic_form(Form&& form) {
+    if (!per_axis_) return isotropic(form(a2_));
+    shade_axis({with_isotropic_texture(form(alpha2_.x)), with_isotropic_texture(form(alpha2_.y))});
+  }
+
+  void axis(Vec2 filtered) { shade_axis({ref::saturate(filtered.x + texture_.xx), ref::saturate(filtered.y + texture_.yy)}); }
+
+  void matrix(Sym2 a) {
+    a = a + texture_;
+    if (evaluated_ == Lobe::mapped) {
+      const Sym2 unfiltered{alpha2_.x, 0.0, alpha2_.y};
+      const Sym2 kernel = a - unfiltered;
+      a = unfiltered + ref::ggx_kernel_scale(0.5 * (alpha2_.x + alpha2_.y), 0.5 * ref::trace(kernel)) * kernel;
+    }
+    roughness_ = a;
+    if (evaluated_ == Lobe::exact) {
+      brdf_ = ref::ggx_brdf_filtered_exact(f_.light_ts, f_.view_ts, a, alpha2_);
+      return;
+    }
+    brdf_ = evaluated_ == Lobe::tail ? ref::ggx_brdf_filtered_matrix(f_.light_ts, f_.view_ts, a, alpha2_)
+                                     : ref::ggx_brdf_matrix(f_.light_ts, f_.view_ts, a, ref::ndf_clamp_tau(alpha2_));
+  }
+
+ private:
+  // The texture term, in the anisotropic lobe's turned frame where it has one.
+  static Sym2 texture_term(const PixelFields& f, const ref::Params& params, Prefilter prefilter, double prefilter_scale, double a2) {
+    const Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
+    return f.anisotropic ? to_anisotropy_frame(texture, f.anisotropy_direction, f.bitangent_sign) : texture;
+  }
+
+  const PixelFields& f_;
+  Variant variant_;
+  double a2_;
+  Vec2 alpha2_;
+  bool per_axis_;
+  Sym2 texture_;
+  double texture_isotropic_;
+  Lobe evaluated_;
+  Sym2 roughness_;
+  double brdf_ = 0.0;
+};
+
+// An engine's shipped form (engines.hpp) on the lobe: its alpha'^2, or on an anisotropic lobe the
+// extension's mapping of its alpha' (three.js's order).
+void shade_engine(LobeShading& shading, Variant engine, double alpha, const QuadFields& q, const PixelFields& f, ref::Derivative mode) {
+  const double filtered = engine_alpha2(engine, alpha, q, mode);
+  if (!shading.per_axis()) return shading.isotropic(filtered);
+  const Vec2 e = anisotropic_alpha2(std::sqrt(filtered), f.anisotropy);
+  shading.shade_axis({shading.with_isotropic_texture(e.x), shading.with_isotropic_texture(e.y)});
+}
+
+// A saagen filter's row (kVariantRows) on the lobe, in the form its reference has.
+void shade_filter(LobeShading& shading, Variant variant, const FilterInputs& inputs) {
+  const Filter& filter = variant_row(variant).filter;
+  if (const MatrixFilter* form = std::get_if<MatrixFilter>(&filter)) {
+    shading.matrix((*form)(inputs));
+  } else if (const AxisFilter* form = std::get_if<AxisFilter>(&filter)) {
+    shading.axis((*form)(inputs));
+  } else if (const IsotropicFilter* form = std::get_if<IsotropicFilter>(&filter)) {
+    shading.isotropic_form([&](double unfiltered) { return (*form)(inputs, unfiltered); });
+  } else {
+    throw std::invalid_argument("shade_pixel: unknown variant");
+  }
+}
+
+}  // namespace
+
 PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, const Material& material, const ref::Params& params,
                        ref::Derivative mode, NormalFeed feed, Prefilter prefilter, double prefilter_scale, Lobe lobe) {
   const PixelFields& own = gbuffer.at(x, y);
@@ -745,91 +866,21 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
   PixelShade out;
   if (!f.hit) return out;
   const double alpha = material.alpha * f.alpha_scale;
-  const double a2 = alpha * alpha;
-  // The unfiltered roughness per axis: (alpha_t^2, alpha_b^2) on an anisotropic lobe (in its
-  // turned frame), (alpha^2, alpha^2) otherwise.
-  const Vec2 alpha2 = f.anisotropic ? anisotropic_alpha2(alpha, f.anisotropy) : Vec2{a2, a2};
-  const bool per_axis = alpha2.x != alpha2.y;
-  // The texture term joins each form in its own domain (prefilter.hpp): added to alpha^2 and
-  // saturated; in projected space for deferred-projected-space; to A for the matrix forms.
-  Sym2 texture = prefilter_scale * texture_roughness(f, prefilter, params, a2);
-  if (f.anisotropic) texture = to_anisotropy_frame(texture, f.anisotropy_direction, f.bitangent_sign);
-  // Isotropic forms take the mean of the two axes: 2 sigma^2 (Toksvig), tr(Sigma_tex) (LEAN).
-  const double texture_isotropic = 0.5 * ref::trace(texture);
-  double brdf = 0.0;
-  // The lobe applies to saagen's filters; none and the engines keep the papers' GGX.
-  const Lobe evaluated = variant == Variant::none || is_engine(variant) ? Lobe::papers : lobe;
-  // Per-axis filtered roughness (texture term included) through the lobe.
-  auto shade_axis = [&](Vec2 filtered) {
-    if (evaluated == Lobe::mapped)
-      filtered = {ref::ggx_filtered_alpha2(alpha2.x, filtered.x - alpha2.x), ref::ggx_filtered_alpha2(alpha2.y, filtered.y - alpha2.y)};
-    out.roughness = {filtered.x, 0.0, filtered.y};
-    if (evaluated == Lobe::exact) {
-      brdf = ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, out.roughness, alpha2);
-      return;
-    }
-    brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_axis(f.light_ts, f.view_ts, filtered, alpha2)
-                                   : ref::ggx_brdf_axis(f.light_ts, f.view_ts, filtered);
-  };
-  auto with_isotropic_texture = [&](double filtered) {
-    return variant == Variant::deferred_projected_space ? ref::projected_space_add(filtered, texture_isotropic)
-                                                        : ref::saturate(filtered + texture_isotropic);
-  };
-  auto isotropic = [&](double filtered) {
-    filtered = with_isotropic_texture(filtered);
-    shade_axis({filtered, filtered});
-  };
-  // An isotropic form (alpha^2 -> alpha'^2) on the lobe: once, or once per axis of an
-  // anisotropic lobe (as the planner emits a deferred-* filter on anisotropic roughness).
-  auto isotropic_form = [&](auto&& form) {
-    if (!per_axis) return isotropic(form(a2));
-    shade_axis({with_isotropic_texture(form(alpha2.x)), with_isotropic_texture(form(alpha2.y))});
-  };
-  auto axis = [&](Vec2 filtered) { shade_axis({ref::saturate(filtered.x + texture.xx), ref::saturate(filtered.y + texture.yy)}); };
-  auto matrix = [&](Sym2 a) {
-    a = a + texture;
-    if (evaluated == Lobe::mapped) {
-      const Sym2 unfiltered{alpha2.x, 0.0, alpha2.y};
-      const Sym2 kernel = a - unfiltered;
-      a = unfiltered + ref::ggx_kernel_scale(0.5 * (alpha2.x + alpha2.y), 0.5 * ref::trace(kernel)) * kernel;
-    }
-    out.roughness = a;
-    if (evaluated == Lobe::exact) {
-      brdf = ref::ggx_brdf_filtered_exact(f.light_ts, f.view_ts, a, alpha2);
-      return;
-    }
-    brdf = evaluated == Lobe::tail ? ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, a, alpha2)
-                                   : ref::ggx_brdf_matrix(f.light_ts, f.view_ts, a, ref::ndf_clamp_tau(alpha2));
-  };
-
+  LobeShading shading(f, variant, alpha, params, prefilter, prefilter_scale, lobe);
   if (variant == Variant::none) {
-    isotropic_form([](double unfiltered) { return unfiltered; });
-  } else if (is_engine(variant)) {
-    std::optional<QuadFields> gathered;
-    const double engine = engine_alpha2(variant, alpha, quad_fields(gbuffer, x, y, gathered), mode);
-    if (!per_axis) {
-      isotropic(engine);
-    } else {  // the extension's mapping on the engine's filtered alpha' (three.js's order)
-      const Vec2 e = anisotropic_alpha2(std::sqrt(engine), f.anisotropy);
-      shade_axis({with_isotropic_texture(e.x), with_isotropic_texture(e.y)});
-    }
+    shading.isotropic_form([](double unfiltered) { return unfiltered; });
   } else {
     std::optional<QuadFields> gathered;
     const QuadFields& q = quad_fields(gbuffer, x, y, gathered);
-    const FeedQuads in = feed_quads(q, feed);
-    const FilterInputs inputs{params, alpha2, a2, in, q, f, mode};
-    const Filter& filter = variant_row(variant).filter;
-    if (const MatrixFilter* form = std::get_if<MatrixFilter>(&filter)) {
-      matrix((*form)(inputs));
-    } else if (const AxisFilter* form = std::get_if<AxisFilter>(&filter)) {
-      axis((*form)(inputs));
-    } else if (const IsotropicFilter* form = std::get_if<IsotropicFilter>(&filter)) {
-      isotropic_form([&](double unfiltered) { return (*form)(inputs, unfiltered); });
+    if (is_engine(variant)) {
+      shade_engine(shading, variant, alpha, q, f, mode);
     } else {
-      throw std::invalid_argument("shade_pixel: unknown variant");
+      const FeedQuads in = feed_quads(q, feed);
+      shade_filter(shading, variant, FilterInputs{params, shading.alpha2(), shading.a2(), in, q, f, mode});
     }
   }
-  out.radiance = f.weight * specular_radiance(brdf, f.light_ts, f.view_ts, f.irradiance, material.fresnel);
+  out.roughness = shading.roughness();
+  out.radiance = f.weight * specular_radiance(shading.brdf(), f.light_ts, f.view_ts, f.irradiance, material.fresnel);
   if (f.coat > 0.0) out.radiance *= 1.0 - f.coat * schlick_fresnel(dot(f.light_ts, normalize(f.light_ts + f.view_ts)));
   return out;
 }
