@@ -393,38 +393,6 @@ GBuffer render_gbuffer(const Scene& scene, int width, int height, int threads, d
   return g;
 }
 
-namespace {
-
-// A quad pixel's half vector, given in its own frame (t, b, n), expressed in the frame of the
-// pixel (self_t, self_b, self_n) carried to n without turning about it (HalfVectorFrame::
-// transported): t' = self_t - n (n . self_t) normalised, b' = n x t' with the pixel's handedness.
-// Where n is nearly along self_t (normals a quarter turn apart), the quad pixel's own frame stays.
-Vec3 half_in_transported_frame(Vec3 half_ts, Vec3 t, Vec3 b, Vec3 n, Vec3 self_t, Vec3 self_b, Vec3 self_n) {
-  const Vec3 carried = self_t - n * dot(n, self_t);
-  if (dot(carried, carried) < 1e-12) return half_ts;
-  const Vec3 tangent = ref::normalize(carried);
-  const double handedness = dot(cross(self_n, self_t), self_b) < 0.0 ? -1.0 : 1.0;
-  const Vec3 bitangent = cross(n, tangent) * handedness;
-  const Vec3 half_ws = t * half_ts.x + b * half_ts.y + n * half_ts.z;
-  return {dot(half_ws, tangent), dot(half_ws, bitangent), dot(half_ws, n)};
-}
-
-// The quad pixels' half vectors (shading and geometric frames) in the pixel's transported frame.
-void transport_half_vectors(std::array<QuadPixel, 4>& source, int self) {
-  const QuadPixel own = source[static_cast<std::size_t>(self)];
-  for (int q = 0; q < 4; ++q) {
-    if (q == self) continue;
-    QuadPixel& other = source[static_cast<std::size_t>(q)];
-    other.half_ts =
-        half_in_transported_frame(other.half_ts, other.tangent, other.bitangent, other.normal, own.tangent, own.bitangent, own.normal);
-    other.geometric_half_ts =
-        half_in_transported_frame(other.geometric_half_ts, other.geometric_tangent, other.geometric_bitangent, other.geometric_normal,
-                                  own.geometric_tangent, own.geometric_bitangent, own.geometric_normal);
-  }
-}
-
-}  // namespace
-
 QuadFields gather_quad(const GBuffer& gbuffer, int x, int y, HalfVectorFrame frame) {
   const PixelFields& self = gbuffer.at(x, y);
   if (!self.hit) throw std::invalid_argument("gather_quad: the pixel does not hit the shape");
@@ -450,7 +418,6 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y, HalfVectorFrame fra
     }
   }
   const int own = (x & 1) + 2 * (y & 1);
-  if (frame == HalfVectorFrame::transported) transport_half_vectors(source, own);
   auto quad = [&](Vec3 QuadPixel::*member) {
     return ref::Quad<Vec3>{source[0].*member, source[1].*member, source[2].*member, source[3].*member};
   };
@@ -465,6 +432,7 @@ QuadFields gather_quad(const GBuffer& gbuffer, int x, int y, HalfVectorFrame fra
   q.geometric_bitangent = quad(&QuadPixel::geometric_bitangent);
   q.geometric_half_ts = quad(&QuadPixel::geometric_half_ts);
   q.pixel = own;
+  q.half_vector_frame = frame;
   return q;
 }
 
@@ -496,6 +464,11 @@ struct FeedQuads {
 FeedQuads feed_quads(const QuadFields& q, NormalFeed feed) {
   if (feed == NormalFeed::geometric) return {q.geometric_normal, q.geometric_tangent, q.geometric_bitangent, q.geometric_half_ts};
   return {q.normal, q.tangent, q.bitangent, q.half_ts};
+}
+
+// The quad's half vectors in world space, from each pixel's own (orthonormal) frame.
+ref::Quad<Vec3> world_half_vectors(const FeedQuads& in) {
+  return ref::map_indexed(in.half_ts, [&](Vec3 h, int q) { return in.tangent[q] * h.x + in.bitangent[q] * h.y + in.normal[q] * h.z; });
 }
 
 // alpha^2 after an engine's shipped form (engines.hpp), on the normal the engine feeds.
@@ -611,6 +584,16 @@ constexpr Filter filter_by_form(Reference) {
     } else {
       return AxisFilter{filter};
     }
+  } else if constexpr (reads_half_vectors_in_frames<Reference>) {
+    using Result = half_vector_in_frames_result_t<Reference>;
+    constexpr auto filter = [](const FilterInputs& x) {
+      return Reference{}(x.params, x.alpha2, world_half_vectors(x.in), x.in.normal, x.in.tangent, x.in.bitangent, x.q.pixel, x.mode);
+    };
+    if constexpr (std::is_same_v<Result, Sym2>) {
+      return MatrixFilter{filter};
+    } else {
+      return AxisFilter{filter};
+    }
   } else if constexpr (reads_normal_frame<Reference>) {
     return IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
       return Reference{}(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord, x.q.pixel, x.mode);
@@ -632,6 +615,17 @@ constexpr Filter custom_filter(Variant variant) {
              Sym2{x.alpha2.x - x.a2, 0.0, x.alpha2.y - x.a2};
     }};
   }
+  return Filter{};
+}
+
+// The projected forms' wrappers in transported frames (templates/10-forward.saa:
+// *_transported_fragment), which a quad gathered for HalfVectorFrame::transported is shaded with;
+// none for the other filters.
+constexpr Filter transported_filter(Variant variant) {
+  if (variant == Variant::forward_aniso_projected)
+    return filter_by_form(SAAGEN_REFERENCE_CALLABLE(forward_aniso_projected_transported_fragment_quad));
+  if (variant == Variant::forward_axis_projected)
+    return filter_by_form(SAAGEN_REFERENCE_CALLABLE(forward_axis_projected_transported_fragment_quad));
   return Filter{};
 }
 
@@ -843,7 +837,8 @@ void shade_engine(LobeShading& shading, Variant engine, double alpha, const Quad
 
 // A saagen filter's row (kVariantRows) on the lobe, in the form its reference has.
 void shade_filter(LobeShading& shading, Variant variant, const FilterInputs& inputs) {
-  const Filter& filter = variant_row(variant).filter;
+  const Filter transported = inputs.q.half_vector_frame == HalfVectorFrame::transported ? transported_filter(variant) : Filter{};
+  const Filter& filter = transported.index() != 0 ? transported : variant_row(variant).filter;
   if (const MatrixFilter* form = std::get_if<MatrixFilter>(&filter)) {
     shading.matrix((*form)(inputs));
   } else if (const AxisFilter* form = std::get_if<AxisFilter>(&filter)) {

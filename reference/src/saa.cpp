@@ -216,6 +216,41 @@ Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2, const Qu
   return forward_axis_projected(p, alpha2, ddx(projected, pixel, mode), ddy(projected, pixel, mode));
 }
 
+Vec2 transported_projected_derivative(Vec3 dh, Vec3 dn, double h_dot_n, Vec3 t, Vec3 b) {
+  return {dot(dh, t) - dot(dn, t) * h_dot_n, dot(dh, b) - dot(dn, b) * h_dot_n};
+}
+
+namespace {
+
+// The x and y derivatives of the projected half vector in the pixel's transported frame.
+struct ProjectedDerivatives {
+  Vec2 dx, dy;
+};
+
+ProjectedDerivatives transported_projected_derivatives(const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
+                                                       const Quad<Vec3>& bitangent_ws, int pixel, Derivative mode) {
+  const double h_dot_n = dot(half_ws[pixel], normal_ws[pixel]);
+  const Vec3 t = tangent_ws[pixel], b = bitangent_ws[pixel];
+  return {transported_projected_derivative(ddx(half_ws, pixel, mode), ddx(normal_ws, pixel, mode), h_dot_n, t, b),
+          transported_projected_derivative(ddy(half_ws, pixel, mode), ddy(normal_ws, pixel, mode), h_dot_n, t, b)};
+}
+
+}  // namespace
+
+Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                       const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                       Derivative mode) {
+  const ProjectedDerivatives d = transported_projected_derivatives(half_ws, normal_ws, tangent_ws, bitangent_ws, pixel, mode);
+  return forward_aniso_projected(p, alpha2, d.dx, d.dy);
+}
+
+Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                      const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                      Derivative mode) {
+  const ProjectedDerivatives d = transported_projected_derivatives(half_ws, normal_ws, tangent_ws, bitangent_ws, pixel, mode);
+  return forward_axis_projected(p, alpha2, d.dx, d.dy);
+}
+
 // Template deferred_previous_fragment: at every pixel q of the quad,
 //   average_ts(q) = to_tangent_space(quad_average_normal(q), t(q), b(q), n(q)),
 //   slope(q) = average_ts.xy / |average_ts.z| (guarded: / max(|average_ts.z|, SLOPE_MIN_Z));

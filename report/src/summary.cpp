@@ -70,7 +70,9 @@ std::string config_line(const measure::TradeTable& table) {
              c.width, c.height, c.strata * c.strata, c.frames, c.rotation_degrees_per_frame, c.pan_pixels_per_frame.x,
              c.pan_pixels_per_frame.y, c.flicker_width, c.flicker_height, c.flicker_strata * c.flicker_strata, c.params.sigma2,
              c.params.kappa, c.derivative == ref::Derivative::coarse ? "coarse" : "fine", c.prefilter_lod_bias) +
-         (c.half_vector_frame == measure::HalfVectorFrame::transported ? "; forward half vectors differenced in transported frames" : "") +
+         (c.half_vector_frame == measure::HalfVectorFrame::transported
+              ? "; projected forward filters in transported frames (*_transported_fragment)"
+              : "") +
          scene_sizes_line(c);
 }
 

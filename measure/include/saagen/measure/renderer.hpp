@@ -299,14 +299,18 @@ struct UvDerivatives {
 // Coarse uv derivatives of the quad of pixel (x, y), whose centre hit is `shaded`.
 UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded, int x, int y, int width, int height);
 
-// The frame in which the forward filters' half vectors are differenced across a 2x2 quad.
+// The frame in which the projected forward filters (forward-aniso-projected,
+// forward-axis-projected) difference their half vectors across a 2x2 quad.
 // tangent: each quad pixel's own tangent frame, as Tokuyoshi & Kaplanyan 2019 Listing 1
-// differentiates half_ts: a frame that turns about the normal from pixel to pixel (a seam, a
-// pole, tangents generated from uv) adds its turn, |h.xy| per radian, to the derivative, and the
-// kernel widens most where the lobe is wide (docs/FORWARD_DERIVATIVES.md).
-// transported: the pixel's own frame carried to each quad pixel's normal without turning about it
-// (the tangent's component along that normal removed): the frame's tilt, which is the surface's
-// curvature the filter measures, stays; its turn about the normal goes.
+// differentiates half_ts (the templates' *_fragment wrappers): a frame that turns about the normal
+// from pixel to pixel (a seam, a pole, tangents generated from uv) adds its turn, |h.xy| per
+// radian, to the derivative, and the kernel widens most where the lobe is wide
+// (docs/FORWARD_DERIVATIVES.md).
+// transported: the templates' *_transported_fragment wrappers: the derivatives of the
+// world-space half vector and normal read in the pixel's own frame with the frame's first-order
+// change along the normal removed, so the frame's tilt, which is the surface's curvature the
+// filter measures, stays and its turn about the normal goes. The slope forms, which have no such
+// wrapper, keep the papers' in both.
 enum class HalfVectorFrame { tangent, transported };
 
 // The fields of one quad pixel that a filter reads (gather_quad).
@@ -328,7 +332,8 @@ struct QuadFields {
   ref::Quad<Vec3> geometric_tangent;
   ref::Quad<Vec3> geometric_bitangent;
   ref::Quad<Vec3> geometric_half_ts;
-  int pixel = 0;  // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
+  int pixel = 0;                                                 // index of (x, y) in the quad, (x & 1) + 2 (y & 1)
+  HalfVectorFrame half_vector_frame = HalfVectorFrame::tangent;  // the wrappers the projected forward filters read it with
 };
 
 struct GBuffer {

@@ -191,6 +191,18 @@ Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<V
 Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
                                           Derivative mode = Derivative::coarse);
 
+// The projected forms' wrappers in transported frames (templates *_transported_fragment,
+// docs/FORWARD_DERIVATIVES.md): the screen derivatives of the world-space half vector h and normal
+// n, read in the pixel's own frame (t, b) with the frame's first-order change along the normal
+// removed: d(h.t) = dh.t - (dn.t)(h.n), d(h.b) = dh.b - (dn.b)(h.n) (transported_projected_derivative).
+Vec2 transported_projected_derivative(Vec3 dh, Vec3 dn, double h_dot_n, Vec3 t, Vec3 b);
+Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                       const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                       Derivative mode = Derivative::coarse);
+Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                      const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                      Derivative mode = Derivative::coarse);
+
 // Two levels of derivatives, as in the template: ddx_fine/ddy_fine form each pixel's
 // neighbour-weighted normal, which is expressed in that pixel's own frame (t, b, n); the outer
 // plain ddx/ddy (mode) then differentiate the per-pixel slope (previous) or projected unit
