@@ -85,8 +85,20 @@ def content_entries(derived, held_out, key, taa, map_lod_min=0):
     return contents
 
 
+def half_vector_frame(tables):
+    """The frame every table's projected forward filters were measured in (their "half_vector_frame";
+    tables written before it had the key are "tangent"): the wrappers the planner then calls."""
+    frames = {table.get("half_vector_frame", "tangent") for table in tables}
+    if len(frames) != 1:
+        sys.exit(f"advice_data.py: the tables were measured with other --half-vector-frame options ({', '.join(sorted(frames))}); "
+                 "measure them all with the same one")
+    return frames.pop()
+
+
 def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=None, taa_held_out=None, by_map_lod=()):
     """by_map_lod: (K, derived, held_out, derived_name, held_out_name) per map distance measured."""
+    tables = [derived, held_out] + [t for t in (taa_derived, taa_held_out) if t is not None]
+    tables += [t for _, d, h, _, _ in by_map_lod for t in (d, h)]
     contents = content_entries(derived, held_out, "by_content", False)
     for map_lod_min, lod_derived, lod_held_out, _, _ in by_map_lod:
         contents += content_entries(lod_derived, lod_held_out, "by_content", False, map_lod_min)
@@ -102,6 +114,7 @@ def advice_document(derived, held_out, derived_name, held_out_name, taa_derived=
                  "comparison with no SAA (95 % intervals) on the scenes the advice is derived from, and on held-out scenes "
                  "it is only reported on; written by scripts/advice_data.py, read by the planner (saagen/scene/cost_tables.hpp: committed_advice)",
         "derived_from": {"table": derived_name, "config": derived["config"]},
+        "forward_half_vector_frame": half_vector_frame(tables),
         "held_out": {"table": held_out_name, "command": "bash scripts/held_out.sh OUT", "config": held_out["config"]},
         "image_metric": "image error: LDR-FLIP of every animation frame against the ground truth's",
         "temporal_metric": "video error: 10 - the ColorVideoVDP JOD of the animation clip against the ground truth's (docs/TEMPORAL.md)",

@@ -483,6 +483,9 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
   };
   table.derived_from = described("derived_from");
   table.held_out_from = described("held_out");
+  const std::string frame = document.value("forward_half_vector_frame", std::string("tangent"));
+  if (frame != "tangent" && frame != "transported") fail("\"forward_half_vector_frame\" must be \"tangent\" or \"transported\"");
+  table.forward_transported = frame == "transported";
   const auto names = [&](const nlohmann::json& entry, const char* key) {
     std::vector<std::string> out;
     for (const nlohmann::json& name : entry.value(key, nlohmann::json::array()))

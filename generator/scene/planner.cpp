@@ -176,18 +176,27 @@ bool is_covariance_function(const std::string& name) { return name.find("covaria
 
 bool adds_texture_term(const Material& material, const MaterialPlan& plan) { return material.normal_maps && plan.prefilter != "none"; }
 
-void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
+// A projected forward filter's wrapper in transported frames (docs/FORWARD_DERIVATIVES.md).
+bool is_transported_wrapper(const std::string& name) { return name.ends_with("_transported_fragment"); }
+
+bool has_transported_form(const Variant& variant) { return std::ranges::any_of(variant.functions, is_transported_wrapper); }
+
+// forward_transported: the advice measured the projected forward filters with their transported
+// wrappers (AdviceTable::forward_transported), which the plan then calls instead of the papers'.
+void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, bool forward_transported, MaterialPlan& plan) {
   const Variant& variant = *catalogue.find_variant(plan.variant);
   const bool split = has_tangent_free_form(variant);
+  const bool frames = has_transported_form(variant);
   const bool texture_term = adds_texture_term(material, plan);
-  const auto wanted = [&](const std::string& name) {
+  const auto wanted = [&](const std::string& name, const Function& function) {
     if (is_covariance_function(name) && !(texture_term && plan.prefilter == "lean")) return false;
+    if (frames && function.role == FunctionRole::fragment && is_transported_wrapper(name) != forward_transported) return false;
     if (!split) return true;
     return (name.find("tangent_free") != std::string::npos) == !material.tangents;
   };
   for (const std::string& name : variant.functions) {
     const Function& function = *catalogue.find_function(name);
-    if (!wanted(name) || (function.role != FunctionRole::core && function.role != FunctionRole::fragment)) continue;
+    if (!wanted(name, function) || (function.role != FunctionRole::core && function.role != FunctionRole::fragment)) continue;
     plan.functions.push_back(name);
     if (function.role == FunctionRole::fragment && plan.wrapper.empty()) plan.wrapper = name;
   }
@@ -1145,7 +1154,7 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   plan.cost_lights = committed_isa_costs().cost_light_count(cost_family(manifest.gpu_family), material.lights);
   if (material.glints) {
     plan_glints(catalogue, manifest, material, plan);
-    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+    choose_functions(catalogue, material, manifest.preset.has_value(), advice.forward_transported, plan);
     plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
     return plan;
   }
@@ -1161,7 +1170,7 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset)
     plan_by_decision(catalogue, manifest, material, table, advice, plan);
   if (plan.variant == "none") return plan;
-  choose_functions(catalogue, material, manifest.preset.has_value(), plan);
+  choose_functions(catalogue, material, manifest.preset.has_value(), advice.forward_transported, plan);
   return plan;
 }
 

@@ -317,6 +317,7 @@ nlohmann::json trade_json(const measure::TradeTable& table, const std::vector<Va
                          {"error_metric", "mean LDR-FLIP of the tonemapped images over scenes and alphas, no Fresnel"},
                          {"motion_metric", "tde: mean temporal difference error of the display-value animation against the ground truth's"},
                          {"config", config_line(table)},
+                         {"half_vector_frame", to_string(table.config.half_vector_frame)},
                          {"rows", summary_rows_json(summary, costs)},
                          {"alphas", measured_alphas(table)},
                          {"by_content", by_content_json(table)},

@@ -402,6 +402,28 @@ TEST(Planner, SpeedAtEveryLightCountNeverTakesTheDearestForm) {
   EXPECT_GE(decided, 8);  // normal-mapped and bump content on both paths at every count
 }
 
+// The advice's measurement says which wrappers of the projected forward filters it measured
+// (saagen bench --half-vector-frame): a plan calls those and never both; the committed advice's
+// are the papers' (Rules above).
+TEST(Planner, ForwardPlansCallTheWrapperTheAdviceWasMeasuredWith) {
+  const saagen::Manifest manifest = parse(header + "[[material]]\nname = \"m\"\npath = \"forward\"\ntangents = true\n");
+  saagen::AdviceTable transported = saagen::committed_advice();
+  ASSERT_FALSE(transported.forward_transported);
+  transported.forward_transported = true;
+  const saagen::MaterialPlan plan = saagen::plan_scene(Catalogue::builtin(), manifest, nullptr, transported).materials.at(0);
+  EXPECT_EQ(plan.variant, "forward-aniso-projected") << plan.reason;
+  EXPECT_EQ(plan.wrapper, "forward_aniso_projected_transported_fragment");
+  EXPECT_EQ(plan.functions, (std::vector<std::string>{"forward_aniso_projected", "forward_aniso_projected_transported_fragment",
+                                                      "ggx_brdf_filtered_matrix"}));
+  const auto frame_of = [](const std::string& value) {
+    return saagen::parse_advice_table(R"({"schema": "saagen advice 1", "forward_half_vector_frame": )" + value + R"(, "content": []})",
+                                      "advice.json");
+  };
+  EXPECT_TRUE(frame_of("\"transported\"").forward_transported);
+  EXPECT_FALSE(frame_of("\"tangent\"").forward_transported);
+  EXPECT_THROW(frame_of("\"sideways\""), saagen::Error);
+}
+
 // The rules' speed ranking reads the light count too, and a trade table's ISA figures (one
 // light, as `saagen bench` measures) serve only materials costed at one light.
 TEST(Planner, RuleSpeedRankingStatesItsLightCount) {

@@ -235,6 +235,10 @@ struct AdviceTable {
   std::string source_name;
   std::string derived_from;  // the derivation table's command and configuration line
   std::string held_out_from;
+  // Its projected forward filters were measured with their *_transported_fragment wrappers
+  // (`saagen bench --half-vector-frame transported`; the file's "forward_half_vector_frame"),
+  // so a plan calls those; else with the papers' *_fragment wrappers.
+  bool forward_transported = false;
   std::vector<AdviceMeasurement> contents;
   // The entry of a content (under TAA or not) for a material whose normal maps are seen at LOD
   // map_lod or coarser: of those with map_lod_min <= map_lod, the largest map_lod_min.
