@@ -193,10 +193,6 @@ TargetSyntax::Resource parse_resource(const Json& entry, const std::string& name
   return resource;
 }
 
-}  // namespace
-
-namespace {
-
 // The target's name, description, file extension, language and whether it is a module.
 void read_identity(const Json& json, TargetSyntax& target, std::string_view source) {
   target.name = require_string(json, "name", source);
