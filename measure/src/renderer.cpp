@@ -566,29 +566,28 @@ using AxisFilter = Vec2 (*)(const FilterInputs&);
 using IsotropicFilter = double (*)(const FilterInputs&, double unfiltered);
 using Filter = std::variant<std::monostate, MatrixFilter, AxisFilter, IsotropicFilter>;
 
+// A half-vector filter's row in the form of its result: a roughness matrix (Sym2) or per axis.
+template <class Result, class Form>
+constexpr Filter matrix_or_axis(Form filter) {
+  if constexpr (std::is_same_v<Result, Sym2>) {
+    return MatrixFilter{filter};
+  } else {
+    return AxisFilter{filter};
+  }
+}
+
 // The row's filter of a fragment wrapper's reference, in the form its signature has; none when it
 // has none of them (then custom_filter() must have the row).
 template <class Reference>
 constexpr Filter filter_by_form(Reference) {
   using namespace ref::wrapper_forms;
   if constexpr (reads_half_vectors<Reference>) {
-    using Result = half_vector_result_t<Reference>;
-    constexpr auto filter = [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); };
-    if constexpr (std::is_same_v<Result, Sym2>) {
-      return MatrixFilter{filter};
-    } else {
-      return AxisFilter{filter};
-    }
+    return matrix_or_axis<half_vector_result_t<Reference>>(
+        [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); });
   } else if constexpr (reads_half_vectors_and_frame<Reference>) {
-    using Result = half_vector_and_frame_result_t<Reference>;
-    constexpr auto filter = [](const FilterInputs& x) {
+    return matrix_or_axis<half_vector_and_frame_result_t<Reference>>([](const FilterInputs& x) {
       return Reference{}(x.params, x.alpha2, x.in.half_ts, x.in.tangent, x.in.bitangent, x.q.pixel, x.mode);
-    };
-    if constexpr (std::is_same_v<Result, Sym2>) {
-      return MatrixFilter{filter};
-    } else {
-      return AxisFilter{filter};
-    }
+    });
   } else if constexpr (reads_normal_frame<Reference>) {
     return IsotropicFilter{[](const FilterInputs& x, double unfiltered) {
       return Reference{}(x.params, unfiltered, x.in.normal, x.in.tangent, x.in.bitangent, x.q.frag_coord, x.q.pixel, x.mode);
