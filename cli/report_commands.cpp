@@ -391,8 +391,8 @@ void add_scene_options(CLI::App* command, ReportCommands::Common& common) {
       ->add_option("--half-vector-frame", common.half_vector_frame,
                    "The frame the projected forward filters difference their half vectors in: tangent (each quad pixel's own "
                    "tangent frame, as the papers' listing: their *_fragment wrappers; the default) or transported (their "
-                   "*_transported_fragment wrappers: the derivatives less the frame's turn about the normal, ddx(t).b, so a tangent "
-                   "frame that twists from pixel to pixel adds nothing to the kernel to first order)")
+                   "*_transported_fragment wrappers: world-space derivatives read in the pixel's frame without its turn about the "
+                   "normal, so a tangent frame that twists from pixel to pixel adds nothing to the kernel)")
       ->check(CLI::IsMember({"tangent", "transported"}));
   command
       ->add_option("--truth-samples-scale", common.truth_samples_scale,

@@ -296,6 +296,7 @@ constexpr const char* cost_body = R"(    real2 frag_coord = real2(saagen_frag_co
     real3 i_ts = real3(dot(light_ws, tangent_ws), dot(light_ws, bitangent_ws), dot(light_ws, normal_ws));
     real3 o_ts = real3(dot(view_ws, tangent_ws), dot(view_ws, bitangent_ws), dot(view_ws, normal_ws));
     real3 half_ts = normalize(i_ts + o_ts);
+    real3 half_ws = normalize(light_ws + view_ws);
     real2 alpha2 = real2(real(SAAGEN_LOAD(8)), real(SAAGEN_LOAD(9)));
 {shade}    SAAGEN_STORE(0, value);
 )";
@@ -305,8 +306,8 @@ std::string call_with(const Function& function, const std::string& alpha2) {
   for (const Parameter& parameter : function.parameters) {
     if (parameter.name == "alpha2")
       arguments.push_back(alpha2);
-    else if (parameter.name == "half_ts" || parameter.name == "normal_ws" || parameter.name == "tangent_ws" ||
-             parameter.name == "bitangent_ws" || parameter.name == "frag_coord")
+    else if (parameter.name == "half_ts" || parameter.name == "half_ws" || parameter.name == "normal_ws" ||
+             parameter.name == "tangent_ws" || parameter.name == "bitangent_ws" || parameter.name == "frag_coord")
       arguments.push_back(parameter.name);
     else
       throw Error(fmt::format("internal error: the cost kernel has no value for parameter '{}' of {}", parameter.name, function.name));

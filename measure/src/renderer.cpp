@@ -466,6 +466,11 @@ FeedQuads feed_quads(const QuadFields& q, NormalFeed feed) {
   return {q.normal, q.tangent, q.bitangent, q.half_ts};
 }
 
+// The quad's half vectors in world space, from each pixel's own (orthonormal) frame.
+ref::Quad<Vec3> world_half_vectors(const FeedQuads& in) {
+  return ref::map_indexed(in.half_ts, [&](Vec3 h, int q) { return in.tangent[q] * h.x + in.bitangent[q] * h.y + in.normal[q] * h.z; });
+}
+
 // alpha^2 after an engine's shipped form (engines.hpp), on the normal the engine feeds.
 double engine_alpha2(Variant engine, double alpha, const QuadFields& q, ref::Derivative mode) {
   const ref::Quad<Vec3>& n = feed_quads(q, engine_feed(engine)).normal;
@@ -584,9 +589,9 @@ constexpr Filter filter_by_form(Reference) {
   if constexpr (reads_half_vectors<Reference>) {
     return matrix_or_axis<half_vector_result_t<Reference>>(
         [](const FilterInputs& x) { return Reference{}(x.params, x.alpha2, x.in.half_ts, x.q.pixel, x.mode); });
-  } else if constexpr (reads_half_vectors_and_frame<Reference>) {
-    return matrix_or_axis<half_vector_and_frame_result_t<Reference>>([](const FilterInputs& x) {
-      return Reference{}(x.params, x.alpha2, x.in.half_ts, x.in.tangent, x.in.bitangent, x.q.pixel, x.mode);
+  } else if constexpr (reads_half_vectors_in_frames<Reference>) {
+    return matrix_or_axis<half_vector_in_frames_result_t<Reference>>([](const FilterInputs& x) {
+      return Reference{}(x.params, x.alpha2, world_half_vectors(x.in), x.in.normal, x.in.tangent, x.in.bitangent, x.q.pixel, x.mode);
     });
   } else if constexpr (reads_normal_frame<Reference>) {
     return IsotropicFilter{[](const FilterInputs& x, double unfiltered) {

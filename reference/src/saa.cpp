@@ -216,39 +216,38 @@ Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2, const Qu
   return forward_axis_projected(p, alpha2, ddx(projected, pixel, mode), ddy(projected, pixel, mode));
 }
 
-// Template tangent_frame_turn's value at a pixel, from the derivative of its tangent (one screen axis):
-// the turn about the normal is the derivative's bitangent component.
-double frame_turn(Vec3 dtangent, Vec3 bitangent) { return dot(dtangent, bitangent); }
-
-Vec2 without_frame_turn(Vec2 dproj, Vec3 half_ts, double turn) { return dproj - turn * Vec2{half_ts.y, -half_ts.x}; }
+Vec2 transported_projected_derivative(Vec3 dh, Vec3 dn, double h_dot_n, Vec3 t, Vec3 b) {
+  return {dot(dh, t) - dot(dn, t) * h_dot_n, dot(dh, b) - dot(dn, b) * h_dot_n};
+}
 
 namespace {
 
-// The x and y derivatives of the projected half vector without the frame's turn.
+// The x and y derivatives of the projected half vector in the pixel's transported frame.
 struct ProjectedDerivatives {
   Vec2 dx, dy;
 };
 
-ProjectedDerivatives derivatives_without_frame_turn(const Quad<Vec3>& half_ts, const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws,
-                                                    int pixel, Derivative mode) {
-  const Quad<Vec2> projected = map(half_ts, half_vector_projected);
-  const Vec3 h = half_ts[pixel], b = bitangent_ws[pixel];
-  return {without_frame_turn(ddx(projected, pixel, mode), h, frame_turn(ddx(tangent_ws, pixel, mode), b)),
-          without_frame_turn(ddy(projected, pixel, mode), h, frame_turn(ddy(tangent_ws, pixel, mode), b))};
+ProjectedDerivatives transported_projected_derivatives(const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws, const Quad<Vec3>& tangent_ws,
+                                                       const Quad<Vec3>& bitangent_ws, int pixel, Derivative mode) {
+  const double h_dot_n = dot(half_ws[pixel], normal_ws[pixel]);
+  const Vec3 t = tangent_ws[pixel], b = bitangent_ws[pixel];
+  return {transported_projected_derivative(ddx(half_ws, pixel, mode), ddx(normal_ws, pixel, mode), h_dot_n, t, b),
+          transported_projected_derivative(ddy(half_ws, pixel, mode), ddy(normal_ws, pixel, mode), h_dot_n, t, b)};
 }
 
 }  // namespace
 
-Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
+Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
                                                        const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
                                                        Derivative mode) {
-  const ProjectedDerivatives d = derivatives_without_frame_turn(half_ts, tangent_ws, bitangent_ws, pixel, mode);
+  const ProjectedDerivatives d = transported_projected_derivatives(half_ws, normal_ws, tangent_ws, bitangent_ws, pixel, mode);
   return forward_aniso_projected(p, alpha2, d.dx, d.dy);
 }
 
-Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, const Quad<Vec3>& tangent_ws,
-                                                      const Quad<Vec3>& bitangent_ws, int pixel, Derivative mode) {
-  const ProjectedDerivatives d = derivatives_without_frame_turn(half_ts, tangent_ws, bitangent_ws, pixel, mode);
+Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                      const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                      Derivative mode) {
+  const ProjectedDerivatives d = transported_projected_derivatives(half_ws, normal_ws, tangent_ws, bitangent_ws, pixel, mode);
   return forward_axis_projected(p, alpha2, d.dx, d.dy);
 }
 

@@ -80,7 +80,7 @@ std::vector<ForwardCase> forward_cases() {
   cases.push_back({"deferred-max-tangent-free/tail",
                    "deferred-max",
                    {tangent_free, "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"}});
-  const std::string_view in_frames = "(alpha2, half_ts, tangent, bitangent);\n";
+  const std::string_view in_frames = "(alpha2, normalize(light_ws + view_ws), normal, tangent, bitangent);\n";
   cases.push_back({"forward-aniso-projected-transported/tail",
                    "forward-aniso-projected",
                    {"", fmt::format("    real3 filtered = forward_aniso_projected_transported_fragment{}", in_frames) +

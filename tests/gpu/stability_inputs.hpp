@@ -400,7 +400,7 @@ inline void pack_wrapper_quad(const Function& wrapper, Rng& rng, std::vector<flo
   double alpha2[2] = {filter_alpha2(rng), filter_alpha2(rng)};
   if (is_brdf(wrapper)) alpha2[0] = brdf_alpha2(rng), alpha2[1] = brdf_alpha2(rng);
   for (const Parameter& parameter : wrapper.parameters) {
-    if (parameter.name == "o") {
+    if (parameter.name == "o" || parameter.name == "half_ws") {
       quad_vectors(rng, second);
       for (int p = 0; p < 4; ++p)
         if (rng.chance(8)) second[p] = -1.0 * first[p];  // o = -i: a zero half vector
@@ -419,7 +419,7 @@ inline void pack_wrapper_quad(const Function& wrapper, Rng& rng, std::vector<flo
         if (parameter.type == "real2") pack.real(alpha2[1]);
       } else if (name == "half_ts" || name == "normal_ws" || name == "i") {
         pack.vec3(first[p]);
-      } else if (name == "o") {
+      } else if (name == "o" || name == "half_ws") {
         pack.vec3(second[p]);
       } else if (name == "tangent_ws") {
         pack.vec3(t[p]);

@@ -164,6 +164,8 @@ Inputs wrapper_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
           pack.vec3(l);
         } else if (param.name == "o") {
           pack.vec3(n);  // the view direction: the varying normal-like field
+        } else if (param.name == "half_ws") {
+          pack.vec3(ref::normalize(l + n));  // the half vector of i and o above
         }
       }
       std::copy(fields.begin(), fields.end(), in.data.begin() + std::size_t{index} * stride);

@@ -272,7 +272,7 @@ rc::Gen<Element> gen_wrapper_quad(const Function& f) {
           if (param.type == "real2") push(e, alpha_b);
         } else if (param.name == "half_ts" || param.name == "normal_ws" || param.name == "i") {
           push(e, first[p]);
-        } else if (param.name == "o") {
+        } else if (param.name == "o" || param.name == "half_ws") {
           push(e, second[p]);
         } else if (param.name == "tangent_ws") {
           push(e, t[p]);

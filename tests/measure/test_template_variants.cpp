@@ -64,9 +64,13 @@ ref::Quad<ref::Vec3> tilted_quad(ref::Vec3 centre) {
 bool has_cpu_reference(const saagen::Function& function, const std::map<std::string, saagen::test::core::ReferenceFunction>& core) {
   if (function.role != saagen::FunctionRole::fragment) return core.count(function.name) == 1;
   std::map<std::string, ref::Quad<ref::Vec3>> vectors = {
-      {"half_ts", tilted_quad({0.1, 0.2, 1.0})},     {"normal_ws", tilted_quad({0.2, 0.1, 1.0})},
-      {"tangent_ws", tilted_quad({1.0, 0.0, -0.2})}, {"bitangent_ws", tilted_quad({0.0, 1.0, -0.1})},
-      {"i", tilted_quad({0.3, 0.1, 1.0})},           {"o", tilted_quad({-0.2, 0.1, 1.0})},
+      {"half_ts", tilted_quad({0.1, 0.2, 1.0})},
+      {"half_ws", tilted_quad({0.2, 0.2, 1.0})},
+      {"normal_ws", tilted_quad({0.2, 0.1, 1.0})},
+      {"tangent_ws", tilted_quad({1.0, 0.0, -0.2})},
+      {"bitangent_ws", tilted_quad({0.0, 1.0, -0.1})},
+      {"i", tilted_quad({0.3, 0.1, 1.0})},
+      {"o", tilted_quad({-0.2, 0.1, 1.0})},
   };
   try {
     saagen::test::wrapper_reference_on_quad(function.name, ref::Params{}, {0.04, 0.04}, vectors, 0);

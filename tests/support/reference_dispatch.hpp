@@ -148,7 +148,7 @@ inline std::vector<std::string> filter_core_names() {
 inline constexpr ref::Quad<ref::Vec2> kFirstQuadFragCoord{{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}, {1.5, 1.5}};
 
 // What a fragment wrapper's reference reads on a quad: the quad values of its vector parameters
-// by parameter name (half_ts, normal_ws, tangent_ws, bitangent_ws, i, o), and how it derives.
+// by parameter name (half_ts, half_ws, normal_ws, tangent_ws, bitangent_ws, i, o), and how it derives.
 struct WrapperQuad {
   ref::Vec2 alpha2;
   std::map<std::string, ref::Quad<ref::Vec3>>& vectors;
@@ -165,8 +165,8 @@ std::vector<double> filter_wrapper_on(const ref::Params& p, WrapperQuad q) {
   auto& v = q.vectors;
   if constexpr (reads_half_vectors<Wrapper>) {
     return output_values(Wrapper{}(p, q.alpha2, v["half_ts"], q.pixel, q.mode));
-  } else if constexpr (reads_half_vectors_and_frame<Wrapper>) {
-    return output_values(Wrapper{}(p, q.alpha2, v["half_ts"], v["tangent_ws"], v["bitangent_ws"], q.pixel, q.mode));
+  } else if constexpr (reads_half_vectors_in_frames<Wrapper>) {
+    return output_values(Wrapper{}(p, q.alpha2, v["half_ws"], v["normal_ws"], v["tangent_ws"], v["bitangent_ws"], q.pixel, q.mode));
   } else if constexpr (reads_normal_frame<Wrapper>) {
     return output_values(Wrapper{}(p, q.alpha2.x, v["normal_ws"], v["tangent_ws"], v["bitangent_ws"], q.frag, q.pixel, q.mode, q.average));
   } else if constexpr (reads_normals<Wrapper>) {
@@ -195,7 +195,7 @@ inline std::optional<std::vector<double>> filter_wrapper_reference(const std::st
 }
 
 // The reference of fragment wrapper `name` at `pixel` of a quad, given the quad values of its
-// vector parameters by parameter name (half_ts, normal_ws, tangent_ws, bitangent_ws, i, o): the
+// vector parameters by parameter name (half_ts, half_ws, normal_ws, tangent_ws, bitangent_ws, i, o): the
 // one dispatch from a template's fragment wrapper to its CPU reference (saa.hpp, brdf.hpp) that
 // every suite comparing wrappers uses (wrapper_cases.hpp too). `average`: how the quad-average
 // normal of deferred-previous/-max takes its derivatives (fine in GLSL and HLSL; the plain

@@ -35,14 +35,15 @@ using ref::Vec2;
 using ref::Vec3;
 
 inline constexpr std::uint32_t width = 128, height = 128;
-inline constexpr std::uint32_t result_offset = 20;  // fields first, then up to 3 result floats
-inline constexpr std::uint32_t stride = 23;
+inline constexpr std::uint32_t result_offset = 23;  // fields first, then up to 3 result floats
+inline constexpr std::uint32_t stride = 26;
 
 // Scene: a sphere of radius 58 px centred at (64, 60), light direction (0.3, 0.5, 0.8), view
 // along +z, alpha^2 = (0.0025, 0.0009).
 inline const Vec2 material_alpha2{0.0025, 0.0009};
 
-// Field layout per pixel: n 0-2, t 3-5, b 6-8, half_ts 9-11, i_ts 12-14, o_ts 15-17, frag 18-19.
+// Field layout per pixel: n 0-2, t 3-5, b 6-8, half_ts 9-11, i_ts 12-14, o_ts 15-17, frag 18-19,
+// half_ws 20-22.
 inline const char* const scene_body = R"(
     real2 centre = real2(64.0, 60.0);
     real2 p = (saagen_frag_coord - centre) / 58.0;
@@ -57,6 +58,7 @@ inline const char* const scene_body = R"(
     real3 i_ts = real3(dot(light, t), dot(light, b), dot(light, n));
     real3 o_ts = real3(dot(view, t), dot(view, b), dot(view, n));
     real3 half_ts = normalize(i_ts + o_ts);
+    real3 half_ws = normalize(light + view);
     real2 alpha2 = real2(0.0025, 0.0009);  // material_alpha2
     SAAGEN_STORE(0, n.x); SAAGEN_STORE(1, n.y); SAAGEN_STORE(2, n.z);
     SAAGEN_STORE(3, t.x); SAAGEN_STORE(4, t.y); SAAGEN_STORE(5, t.z);
@@ -65,13 +67,15 @@ inline const char* const scene_body = R"(
     SAAGEN_STORE(12, i_ts.x); SAAGEN_STORE(13, i_ts.y); SAAGEN_STORE(14, i_ts.z);
     SAAGEN_STORE(15, o_ts.x); SAAGEN_STORE(16, o_ts.y); SAAGEN_STORE(17, o_ts.z);
     SAAGEN_STORE(18, saagen_frag_coord.x); SAAGEN_STORE(19, saagen_frag_coord.y);
+    SAAGEN_STORE(20, half_ws.x); SAAGEN_STORE(21, half_ws.y); SAAGEN_STORE(22, half_ws.z);
 )";
 
 // The wrapper call, its arguments chosen by parameter name, and the stores of its result.
 inline std::string wrapper_call(const saagen::Function& wrapper) {
-  static const std::map<std::string, std::string> argument_for_parameter = {
-      {"half_ts", "half_ts"}, {"normal_ws", "n"}, {"tangent_ws", "t"}, {"bitangent_ws", "b"}, {"frag_coord", "saagen_frag_coord"},
-      {"i", "i_ts"},          {"o", "o_ts"}};
+  static const std::map<std::string, std::string> argument_for_parameter = {{"half_ts", "half_ts"}, {"half_ws", "half_ws"},
+                                                                            {"normal_ws", "n"},     {"tangent_ws", "t"},
+                                                                            {"bitangent_ws", "b"},  {"frag_coord", "saagen_frag_coord"},
+                                                                            {"i", "i_ts"},          {"o", "o_ts"}};
   std::string arguments;
   for (const saagen::Parameter& parameter : wrapper.parameters) {
     if (!arguments.empty()) arguments += ", ";
@@ -91,17 +95,18 @@ inline std::string wrapper_call(const saagen::Function& wrapper) {
 struct PixelFields {
   Vec3 n, t, b, half_ts, i_ts, o_ts;
   Vec2 frag;
+  Vec3 half_ws;
 };
 
 inline PixelFields fields_at(const std::vector<float>& out, std::uint32_t x, std::uint32_t y) {
   const float* f = out.data() + (std::size_t{y} * width + x) * stride;
   const auto vec3 = [&](int k) { return Vec3{f[k], f[k + 1], f[k + 2]}; };
-  return {vec3(0), vec3(3), vec3(6), vec3(9), vec3(12), vec3(15), Vec2{f[18], f[19]}};
+  return {vec3(0), vec3(3), vec3(6), vec3(9), vec3(12), vec3(15), Vec2{f[18], f[19]}, vec3(20)};
 }
 
-// The vector fields (n, t, b, half_ts, i_ts, o_ts) each wrapper reads.
+// The vector fields (n, t, b, half_ts, i_ts, o_ts, half_ws) each wrapper reads.
 inline std::vector<Vec3 PixelFields::*> fields_read_by(const std::string& wrapper) {
-  if (wrapper.ends_with("_transported_fragment")) return {&PixelFields::half_ts, &PixelFields::t, &PixelFields::b};
+  if (wrapper.ends_with("_transported_fragment")) return {&PixelFields::half_ws, &PixelFields::n, &PixelFields::t, &PixelFields::b};
   if (wrapper.rfind("forward_", 0) == 0) return {&PixelFields::half_ts};
   if (wrapper == "deferred_previous_fragment" || wrapper == "deferred_max_fragment")
     return {&PixelFields::n, &PixelFields::t, &PixelFields::b};
@@ -127,11 +132,12 @@ inline std::vector<double> reference_wrapper(const std::string& name, const std:
   const auto t = quad_of<Vec3>(q, [](const PixelFields& f) { return f.t; });
   const auto b = quad_of<Vec3>(q, [](const PixelFields& f) { return f.b; });
   const auto h = quad_of<Vec3>(q, [](const PixelFields& f) { return f.half_ts; });
+  const auto h_ws = quad_of<Vec3>(q, [](const PixelFields& f) { return f.half_ws; });
   const auto i = quad_of<Vec3>(q, [](const PixelFields& f) { return f.i_ts; });
   const auto o = quad_of<Vec3>(q, [](const PixelFields& f) { return f.o_ts; });
   const auto frag = quad_of<Vec2>(q, [](const PixelFields& f) { return f.frag; });
-  std::map<std::string, Quad<Vec3>> vectors = {{"half_ts", h},      {"normal_ws", n}, {"tangent_ws", t},
-                                               {"bitangent_ws", b}, {"i", i},         {"o", o}};
+  std::map<std::string, Quad<Vec3>> vectors = {{"half_ts", h},      {"half_ws", h_ws}, {"normal_ws", n}, {"tangent_ws", t},
+                                               {"bitangent_ws", b}, {"i", i},          {"o", o}};
   return wrapper_reference_on_quad(name, p, alpha2, vectors, pixel, mode, average, frag);
 }
 

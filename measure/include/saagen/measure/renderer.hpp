@@ -306,10 +306,11 @@ UvDerivatives coarse_uv_derivatives(const Scene& scene, const SurfaceHit& shaded
 // from pixel to pixel (a seam, a pole, tangents generated from uv) adds its turn, |h.xy| per
 // radian, to the derivative, and the kernel widens most where the lobe is wide
 // (docs/FORWARD_DERIVATIVES.md).
-// transported: the templates' *_transported_fragment wrappers: Listing 1's derivatives less the
-// frame's turn about the normal, w (h_y, -h_x) with w = ddx(t).b, so the frame's tilt, which is
-// the surface's curvature the filter measures, stays and its turn goes (to first order). The
-// slope forms, which have no such wrapper, keep the papers' in both.
+// transported: the templates' *_transported_fragment wrappers: the derivatives of the
+// world-space half vector and normal read in the pixel's own frame with the frame's first-order
+// change along the normal removed, so the frame's tilt, which is the surface's curvature the
+// filter measures, stays and its turn about the normal goes. The slope forms, which have no such
+// wrapper, keep the papers' in both.
 enum class HalfVectorFrame { tangent, transported };
 // Its name in `saagen bench --half-vector-frame` and the table's "half_vector_frame".
 constexpr std::string_view to_string(HalfVectorFrame frame) { return frame == HalfVectorFrame::transported ? "transported" : "tangent"; }

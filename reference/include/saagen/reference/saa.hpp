@@ -191,18 +191,17 @@ Vec2 forward_axis_slope_fragment_quad(const Params& p, Vec2 alpha2, const Quad<V
 Vec2 forward_axis_projected_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, int pixel,
                                           Derivative mode = Derivative::coarse);
 
-// The projected forms' wrappers without the tangent frame's turn about the normal (templates
-// *_transported_fragment, docs/FORWARD_DERIVATIVES.md): Listing 1's derivatives of h.xy less
-// w (h_y, -h_x), w = ddx(t).b the frame's turn between the quad's pixels (template helpers
-// tangent_frame_turn, one screen axis: frame_turn; without_frame_turn), which leaves the derivative
-// in a frame carried without turning, to first order.
-double frame_turn(Vec3 dtangent, Vec3 bitangent);
-Vec2 without_frame_turn(Vec2 dproj, Vec3 half_ts, double turn);
-Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts,
+// The projected forms' wrappers in transported frames (templates *_transported_fragment,
+// docs/FORWARD_DERIVATIVES.md): the screen derivatives of the world-space half vector h and normal
+// n, read in the pixel's own frame (t, b) with the frame's first-order change along the normal
+// removed: d(h.t) = dh.t - (dn.t)(h.n), d(h.b) = dh.b - (dn.b)(h.n) (transported_projected_derivative).
+Vec2 transported_projected_derivative(Vec3 dh, Vec3 dn, double h_dot_n, Vec3 t, Vec3 b);
+Sym2 forward_aniso_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
                                                        const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
                                                        Derivative mode = Derivative::coarse);
-Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ts, const Quad<Vec3>& tangent_ws,
-                                                      const Quad<Vec3>& bitangent_ws, int pixel, Derivative mode = Derivative::coarse);
+Vec2 forward_axis_projected_transported_fragment_quad(const Params& p, Vec2 alpha2, const Quad<Vec3>& half_ws, const Quad<Vec3>& normal_ws,
+                                                      const Quad<Vec3>& tangent_ws, const Quad<Vec3>& bitangent_ws, int pixel,
+                                                      Derivative mode = Derivative::coarse);
 
 // Two levels of derivatives, as in the template: ddx_fine/ddy_fine form each pixel's
 // neighbour-weighted normal, which is expressed in that pixel's own frame (t, b, n); the outer

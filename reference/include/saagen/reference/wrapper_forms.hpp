@@ -24,14 +24,14 @@ constexpr bool reads_half_vectors = std::is_invocable_v<Wrapper, const Params&, 
 template <class Wrapper>
 using half_vector_result_t = std::invoke_result_t<Wrapper, const Params&, Vec2, QuadOfVectors, int, Derivative>;
 
-// The unfiltered roughness per axis, the half vectors and the tangent frame (forward-*-projected
-// without the frame's turn: *_transported_fragment_quad).
+// The unfiltered roughness per axis, the world-space half vectors and the normal, tangent and
+// bitangent (forward-*-projected in transported frames: *_transported_fragment_quad).
 template <class Wrapper>
-constexpr bool reads_half_vectors_and_frame =
-    std::is_invocable_v<Wrapper, const Params&, Vec2, QuadOfVectors, QuadOfVectors, QuadOfVectors, int, Derivative>;
+constexpr bool reads_half_vectors_in_frames =
+    std::is_invocable_v<Wrapper, const Params&, Vec2, QuadOfVectors, QuadOfVectors, QuadOfVectors, QuadOfVectors, int, Derivative>;
 template <class Wrapper>
-using half_vector_and_frame_result_t =
-    std::invoke_result_t<Wrapper, const Params&, Vec2, QuadOfVectors, QuadOfVectors, QuadOfVectors, int, Derivative>;
+using half_vector_in_frames_result_t =
+    std::invoke_result_t<Wrapper, const Params&, Vec2, QuadOfVectors, QuadOfVectors, QuadOfVectors, QuadOfVectors, int, Derivative>;
 
 // alpha^2 and the normal, tangent, bitangent and fragment coordinates (a quad-average normal's
 // frame: deferred-previous, deferred-max); the average's own derivative mode may follow.
