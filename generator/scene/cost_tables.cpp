@@ -413,6 +413,16 @@ std::shared_ptr<const MeasuredTradeTable> parse_decision_timing(const nlohmann::
   return table;
 }
 
+// Whether `key` names the transported frame: "transported" or "tangent", absent being tangent (the
+// frame of the tables and advice written before the key); nullopt for anything else.
+std::optional<bool> names_transported_frame(const nlohmann::json& document, const char* key) {
+  if (!document.contains(key)) return false;
+  const nlohmann::json& frame = document[key];
+  if (frame == "transported") return true;
+  if (frame == "tangent") return false;
+  return std::nullopt;
+}
+
 }  // namespace
 
 MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_view source_name) {
@@ -438,6 +448,11 @@ MeasuredTradeTable parse_trade_table(std::string_view json_text, std::string_vie
   table.content_rows = parse_content_rows(document, "by_content", source_name);
   table.alphas = parse_alphas(document, source_name);
   table.taa_content_rows = parse_content_rows(document, "taa_by_content", source_name);
+  const auto transported = names_transported_frame(document, "half_vector_frame");
+  if (!transported)
+    throw Error(fmt::format("{}: \"half_vector_frame\" must be \"tangent\" or \"transported\"; pass the file `saagen bench --json` writes",
+                            source_name));
+  table.forward_transported = *transported;
   table.decision_timing = parse_decision_timing(document, source_name);
   return table;
 }
@@ -483,9 +498,9 @@ AdviceTable parse_advice_table(std::string_view json_text, std::string_view sour
   };
   table.derived_from = described("derived_from");
   table.held_out_from = described("held_out");
-  const std::string frame = document.value("forward_half_vector_frame", std::string("tangent"));
-  if (frame != "tangent" && frame != "transported") fail("\"forward_half_vector_frame\" must be \"tangent\" or \"transported\"");
-  table.forward_transported = frame == "transported";
+  const auto transported = names_transported_frame(document, "forward_half_vector_frame");
+  if (!transported) fail("\"forward_half_vector_frame\" must be \"tangent\" or \"transported\"");
+  table.forward_transported = *transported;
   const auto names = [&](const nlohmann::json& entry, const char* key) {
     std::vector<std::string> out;
     for (const nlohmann::json& name : entry.value(key, nlohmann::json::array()))

@@ -181,16 +181,16 @@ bool is_transported_wrapper(const std::string& name) { return name.ends_with("_t
 
 bool has_transported_form(const Variant& variant) { return std::ranges::any_of(variant.functions, is_transported_wrapper); }
 
-// forward_transported: the advice measured the projected forward filters with their transported
-// wrappers (AdviceTable::forward_transported), which the plan then calls instead of the papers'.
-void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, bool forward_transported, MaterialPlan& plan) {
+// A projected forward filter calls the wrappers its measurement was taken with
+// (MaterialPlan::forward_transported), never both.
+void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
   const Variant& variant = *catalogue.find_variant(plan.variant);
   const bool split = has_tangent_free_form(variant);
   const bool frames = has_transported_form(variant);
   const bool texture_term = adds_texture_term(material, plan);
   const auto wanted = [&](const std::string& name, const Function& function) {
     if (is_covariance_function(name) && !(texture_term && plan.prefilter == "lean")) return false;
-    if (frames && function.role == FunctionRole::fragment && is_transported_wrapper(name) != forward_transported) return false;
+    if (frames && function.role == FunctionRole::fragment && is_transported_wrapper(name) != plan.forward_transported) return false;
     if (!split) return true;
     return (name.find("tangent_free") != std::string::npos) == !material.tangents;
   };
@@ -750,7 +750,8 @@ std::string roughness_text(const Material& material, const std::vector<ContentRo
 void apply_decision(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const std::vector<ContentRow>& rows,
                     const std::vector<double>& alphas, std::string_view source, const AdviceMeasurement* advice,
                     const MeasuredTradeTable* timing, MaterialPlan& plan) {
-  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, rows, baseline_of(manifest.taa), timing);
+  const MaterialDecision made =
+      decide_material(catalogue, material, manifest.gpu_family, rows, plan.forward_transported, baseline_of(manifest.taa), timing);
   std::optional<std::string> decided;
   if (made.decision.chosen) decided = made.candidates[*made.decision.chosen].configuration;
   plan.roughness_advice = roughness_text(material, rows, decided, alphas, baseline_of(manifest.taa));
@@ -829,6 +830,25 @@ bool usable(const Material& material, const std::vector<const Variant*>& eligibl
 // A variant id's shading cost over no SAA ("deferred-avg", "deferred-avg/tail"), where known.
 using RatioOf = std::function<std::optional<double>(const std::string&)>;
 
+// `ratio` as a plan calls the filters: a variant with a transported wrapper, measured with it
+// (forward_transported), costed by that wrapper's rows ("forward-aniso-projected-transported/tail");
+// where the source has them only with the tail-preserving lobe, the papers' wrapper's cost plus
+// the transported one's overhead there.
+RatioOf as_called(const Catalogue& catalogue, RatioOf ratio, bool forward_transported) {
+  if (!forward_transported) return ratio;
+  return [&catalogue, ratio](const std::string& id) -> std::optional<double> {
+    const std::size_t slash = id.find('/');
+    const std::string variant = id.substr(0, slash), lobe = slash == std::string::npos ? "" : id.substr(slash);
+    const Variant* found = catalogue.find_variant(variant);
+    if (!found || !has_transported_form(*found)) return ratio(id);
+    if (const auto own = ratio(variant + "-transported" + lobe)) return own;
+    const std::string tail = fmt::format("/{}", advice::kLobe);
+    const auto own_tail = ratio(variant + "-transported" + tail), papers_tail = ratio(variant + tail), papers = ratio(id);
+    if (!own_tail || !papers_tail || !papers) return std::nullopt;
+    return *papers + (*own_tail - *papers_tail);
+  };
+}
+
 // The shading cost of a configuration over no SAA, read by `ratio_of`: of the variant with its
 // lobe where the source has that (the feed and the prefilter change inputs, not code), and the
 // tangent-free form without tangents. Where the source has the variant only with the papers'
@@ -872,7 +892,8 @@ struct CostSource {
   std::string basis;
 };
 
-CostSource cost_source(const Material& material, const std::string& family, const MeasuredTradeTable* timing) {
+CostSource cost_source(const Catalogue& catalogue, const Material& material, const std::string& family, const MeasuredTradeTable* timing,
+                       bool forward_transported) {
   const int lights = material.lights;
   if (timing && timing->timed_at(lights)) {
     return {[timing](const std::string& id) { return timing->device_time_ratio(id); },
@@ -883,17 +904,20 @@ CostSource cost_source(const Material& material, const std::string& family, cons
   if (timing)
     basis += fmt::format(" ({}'s ISA model: {} was timed at {} light{})", family, timing->source_name, timing->lights,
                          timing->lights == 1 ? "" : "s");
-  return {[&isa, family, lights](const std::string& id) { return isa.forward_ratio(family, id, {}, lights); }, basis};
+  return {as_called(catalogue, [&isa, family, lights](const std::string& id) { return isa.forward_ratio(family, id, {}, lights); },
+                    forward_transported),
+          basis};
 }
 
 }  // namespace
 
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows, std::string_view baseline, const MeasuredTradeTable* timing) {
+                                 const std::vector<ContentRow>& rows, bool forward_transported, std::string_view baseline,
+                                 const MeasuredTradeTable* timing) {
   MaterialDecision made;
   const std::string family = cost_family(gpu_family);
   const auto eligible = eligible_variants(catalogue, material);
-  const CostSource costs = cost_source(material, family, timing);
+  const CostSource costs = cost_source(catalogue, material, family, timing, forward_transported);
   const auto none = std::find_if(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
   const bool has_lobe = std::any_of(rows.begin(), rows.end(),
                                     [](const ContentRow& row) { return parse_configuration(row.configuration).lobe == advice::kLobe; });
@@ -941,7 +965,8 @@ MaterialAdvice material_advice(const Catalogue& catalogue, const Manifest& manif
                                advice::Content content, const MeasuredTradeTable* timing = nullptr) {
   const AdviceMeasurement* far = advice_measurement(advice, content, manifest.taa, material.map_lod);
   if (!far || far->map_lod_min == 0) return {far, ""};
-  const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, far->rows, baseline_of(manifest.taa), timing);
+  const MaterialDecision made =
+      decide_material(catalogue, material, manifest.gpu_family, far->rows, advice.forward_transported, baseline_of(manifest.taa), timing);
   if (!made.decision.chosen) return {far, ""};
   const std::string& chosen = made.candidates[*made.decision.chosen].configuration;
   if (!fails_held_out(*far, chosen)) return {far, ""};
@@ -1029,7 +1054,7 @@ void plan_named_variant(const Catalogue& catalogue, const Manifest& manifest, co
 // (accuracy) or ISA cost (speed): from the trade table when it has figures for the manifest's GPU
 // family (`saagen bench` measures one light, so only for a material costed at one light), else
 // from the committed table.
-void plan_by_rule(const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
+void plan_by_rule(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MeasuredTradeTable* table,
                   const std::vector<const Variant*>& eligible, MaterialPlan& plan) {
   const Rule& rule = rule_for(material);
   plan.variant = rule.variant;
@@ -1060,15 +1085,18 @@ void plan_by_rule(const Manifest& manifest, const Material& material, const Meas
       : table_timed   ? fmt::format("{} ({} on {})", timed->source_name, lights, timed->device_name())
       : table_has_isa ? fmt::format("{} ({})", table->source_name, lights)
                       : fmt::format("{} ({}, {}, {})", committed_isa_costs().source_name, family, committed_isa_costs().driver, lights);
+  const RatioOf isa_ratio = as_called(
+      catalogue,
+      [&](const std::string& id) {
+        return table_has_isa ? table->isa_cost(id, family) : committed_isa_costs().forward_ratio(family, id, manifest.targets, material.lights);
+      },
+      plan.forward_transported);
   std::vector<std::pair<double, const Variant*>> ranked;
   for (const Variant* variant : eligible) {
     // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
     const std::string costed =
         !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
-    const auto value = !speed          ? table->error(variant->id)
-                       : table_timed   ? timed->device_time_ratio(costed)
-                       : table_has_isa ? table->isa_cost(costed, family)
-                                       : committed_isa_costs().forward_ratio(family, costed, manifest.targets, material.lights);
+    const auto value = !speed ? table->error(variant->id) : table_timed ? timed->device_time_ratio(costed) : isa_ratio(costed);
     if (value) ranked.emplace_back(*value, variant);
   }
   // Ties keep the rule's choice first, then catalogue order.
@@ -1124,6 +1152,7 @@ void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, cons
   const bool has_none = std::any_of(rows.begin(), rows.end(), [](const ContentRow& row) { return row.configuration == "none"; });
   const bool other_content = table && lacks_content(*table, manifest.taa, content_of(material));
   if (has_none) {
+    plan.forward_transported = table->forward_transported;
     apply_decision(catalogue, manifest, material, rows, table->alphas, table->source_name, nullptr, table->timing(), plan);
     return;
   }
@@ -1136,12 +1165,21 @@ void plan_by_decision(const Catalogue& catalogue, const Manifest& manifest, cons
   const AdviceMeasurement* measured = chosen_advice.measured;
   static const AdviceMeasurement kNothingMeasured;
   const AdviceMeasurement& rows_of = measured ? *measured : kNothingMeasured;
+  plan.forward_transported = advice.forward_transported;
   const std::string lacking =
       (other_content ? fmt::format("; {} has no {} rows", table->source_name, content) : std::string()) + chosen_advice.note;
   apply_decision(catalogue, manifest, material, rows_of.rows, rows_of.alphas,
                  measured ? fmt::format("saagen's trade ({}; generator/data/advice.json){}", scene_list(measured->scenes), lacking)
                           : fmt::format("saagen's trade (not measured){}", lacking),
                  measured, timing, plan);
+}
+
+// The wrappers a projected forward filter is planned with where no decision on rows says (a named
+// variant, a rule): those of the trade table's measurement where it has by-content rows, else those
+// of saagen's advice.
+bool measured_frame(const MeasuredTradeTable* table, const AdviceTable& advice) {
+  const bool measured_here = table && (!table->content_rows.empty() || !table->taa_content_rows.empty());
+  return measured_here ? table->forward_transported : advice.forward_transported;
 }
 
 // One material's plan (plan_scene): `table` and `advice` as they apply to its roughness.
@@ -1153,9 +1191,10 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   plan.precision = material.precision;
   plan.lights = material.lights;
   plan.cost_lights = committed_isa_costs().cost_light_count(cost_family(manifest.gpu_family), material.lights);
+  plan.forward_transported = measured_frame(table, advice);
   if (material.glints) {
     plan_glints(catalogue, manifest, material, plan);
-    choose_functions(catalogue, material, manifest.preset.has_value(), advice.forward_transported, plan);
+    choose_functions(catalogue, material, manifest.preset.has_value(), plan);
     plan.per_axis = false;  // the glinty BRDF takes (alpha_x, alpha_y, rho) itself
     return plan;
   }
@@ -1163,7 +1202,7 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   if (material.variant)
     plan_named_variant(catalogue, manifest, material, eligible, plan);
   else
-    plan_by_rule(manifest, material, table, eligible, plan);
+    plan_by_rule(catalogue, manifest, material, table, eligible, plan);
   if (material.normal_maps) plan_normal_maps(catalogue, manifest, material, table, advice, eligible, plan);
   if (material.path == RenderPath::deferred && material.ndf == Ndf::ggx && content_of(material) == advice::Content::curved &&
       !material.variant && plan.variant != "deferred-aniso")
@@ -1171,7 +1210,7 @@ MaterialPlan plan_material(const Catalogue& catalogue, const Manifest& manifest,
   if (!material.variant && material.ndf == Ndf::ggx && !manifest.preset)
     plan_by_decision(catalogue, manifest, material, table, advice, plan);
   if (plan.variant == "none") return plan;
-  choose_functions(catalogue, material, manifest.preset.has_value(), advice.forward_transported, plan);
+  choose_functions(catalogue, material, manifest.preset.has_value(), plan);
   return plan;
 }
 
@@ -1258,7 +1297,8 @@ std::string advice_row(const Catalogue& catalogue, advice::Content content, bool
   std::optional<decision::Comparison> derived, held_out;
   std::vector<std::string> held_out_losses;
   if (measured) {
-    const MaterialDecision made = decide_material(catalogue, material, manifest.gpu_family, measured->rows, baseline);
+    const MaterialDecision made =
+        decide_material(catalogue, material, manifest.gpu_family, measured->rows, committed_advice().forward_transported, baseline);
     for (std::size_t i = 0; i < made.candidates.size(); ++i)
       if (made.candidates[i].usable && made.decision.outcomes[i] == decision::Outcome::beats)
         nothing = fmt::format("only the most expensive form beats {}, which prefer = \"speed\" never takes", baseline);

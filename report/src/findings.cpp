@@ -262,11 +262,16 @@ std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Cont
   return rows;
 }
 
+// Whether the table's projected forward filters were shaded with their transported wrappers,
+// which then cost them (decide_material).
+bool measured_transported(const measure::TradeTable& table) { return table.config.half_vector_frame == measure::HalfVectorFrame::transported; }
+
 MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<ContentRow>& rows, Path path, Content content, bool speed,
                            std::string_view baseline) {
   Material material = reference_material(path == Path::forward ? RenderPath::forward : RenderPath::deferred, content);
   if (speed) material.prefer = Preference::speed;
-  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, baseline, table.decision_timing.get());
+  return decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, rows, measured_transported(table), baseline,
+                         table.decision_timing.get());
 }
 
 namespace {
@@ -499,7 +504,8 @@ std::string budget_choice(const measure::TradeTable& table, const ContentTrade& 
   Material material = reference_material(trade.path == Path::forward ? RenderPath::forward : RenderPath::deferred, trade.content);
   material.budget = budget;
   return chosen_configuration(
-      decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, trade.rows, "no SAA", table.decision_timing.get()));
+      decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, trade.rows, measured_transported(table), "no SAA",
+                      table.decision_timing.get()));
 }
 
 }  // namespace

@@ -377,7 +377,8 @@ TEST(Planner, SpeedAtEveryLightCountNeverTakesTheDearestForm) {
         saagen::Material material = saagen::reference_material(path, content);
         material.prefer = saagen::Preference::speed;
         material.lights = lights;
-        const saagen::MaterialDecision made = saagen::decide_material(Catalogue::builtin(), material, "", measured->rows);
+        const saagen::MaterialDecision made = saagen::decide_material(Catalogue::builtin(), material, "", measured->rows,
+                                                                                   saagen::committed_advice().forward_transported);
         std::optional<double> dearest;
         int usable = 0;
         for (const saagen::decision::Candidate& candidate : made.candidates) {
@@ -469,7 +470,8 @@ TEST(Planner, TableFreeAdviceNeverGivesWhatLosesOnHeldOutContent) {
           manifest.materials = {material};
           const saagen::MaterialPlan plan = saagen::plan_scene(Catalogue::builtin(), manifest).materials.at(0);
           const saagen::MaterialDecision made =
-              saagen::decide_material(Catalogue::builtin(), material, "", measured->rows, taa ? "none+taa" : "no SAA");
+              saagen::decide_material(Catalogue::builtin(), material, "", measured->rows,
+                                      saagen::committed_advice().forward_transported, taa ? "none+taa" : "no SAA");
           const std::string where =
               std::string(saagen::advice::name(content)) + " " + std::string(saagen::to_string(path)) + (taa ? " taa" : "");
           if (!made.decision.chosen) {

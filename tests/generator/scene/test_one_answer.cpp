@@ -163,7 +163,8 @@ TEST(OneAnswer, UnderTaaATablesRowsWithoutTaaDoNotDecide) {
   const AdviceMeasurement* committed = committed_advice().find("curved", true);
   ASSERT_NE(committed, nullptr);
   EXPECT_EQ(committed->baseline, "none+taa");
-  const MaterialDecision made = decide_material(Catalogue::builtin(), manifest.materials.at(0), "vega10", committed->rows, "none+taa");
+  const MaterialDecision made = decide_material(Catalogue::builtin(), manifest.materials.at(0), "vega10", committed->rows,
+                                                committed_advice().forward_transported, "none+taa");
   const std::string chosen = made.decision.chosen ? made.candidates[*made.decision.chosen].configuration : "none";
   EXPECT_EQ(taa.variant, chosen.substr(0, chosen.find_first_of(":+/")));  // the configuration's variant
 }
@@ -201,7 +202,7 @@ TEST(OneAnswer, CostsAreTheCommittedIsaModel) {
                                         {"bump", "deferred-aniso/tail", 0.2, 0.09, std::nullopt},
                                         {"bump", "deferred-max/tail", 0.2, 0.09, std::nullopt}};
   const auto cost_of = [&](const Material& material, std::size_t index) {
-    return *decide_material(Catalogue::builtin(), material, "vega10", rows).candidates.at(index).cost_ratio;
+    return *decide_material(Catalogue::builtin(), material, "vega10", rows, false).candidates.at(index).cost_ratio;
   };
   Material forward = reference_material(RenderPath::forward, advice::Content::bumps);
   const double avg_tail_overhead = 1.1673414304993252 - 1.105263157894737;
@@ -209,6 +210,33 @@ TEST(OneAnswer, CostsAreTheCommittedIsaModel) {
   EXPECT_NEAR(cost_of(forward, 1), 1.3427800269905532 + avg_tail_overhead, 1e-9);
   Material deferred = reference_material(RenderPath::deferred, advice::Content::bumps);  // no tangents
   EXPECT_NEAR(cost_of(deferred, 1), 1.1592442645074224 + avg_tail_overhead, 1e-9);
+}
+
+// Rows measured with the projected forward filters' transported wrappers cost those wrappers: their
+// own ISA rows with the tail-preserving lobe; with the papers' lobe, the papers' wrapper plus the
+// transported wrapper's overhead measured with the tail-preserving lobe. Other variants as before.
+TEST(OneAnswer, TransportedRowsCostTheTransportedWrappers) {
+  const std::vector<ContentRow> rows = {{"curved", "none", 0.3, 0.1, std::nullopt},
+                                        {"curved", "forward-aniso-projected/tail", 0.2, 0.09, std::nullopt},
+                                        {"curved", "forward-aniso-projected", 0.2, 0.09, std::nullopt},
+                                        {"curved", "forward-axis-projected/tail", 0.2, 0.09, std::nullopt},
+                                        {"curved", "forward-aniso-slope/tail", 0.2, 0.09, std::nullopt}};
+  const Material forward = reference_material(RenderPath::forward, advice::Content::curved);
+  const auto costs = [&](bool transported) {
+    std::vector<double> out;
+    for (const auto& candidate : decide_material(Catalogue::builtin(), forward, "vega10", rows, transported).candidates)
+      out.push_back(*candidate.cost_ratio);
+    return out;
+  };
+  const std::vector<double> papers = costs(false), transported = costs(true);
+  ASSERT_EQ(papers.size(), 4u);
+  ASSERT_EQ(transported.size(), 4u);
+  // generator/data/isa_cost.json, vega10, one light.
+  EXPECT_NEAR(papers[0], 1.1983805668016194, 1e-9);
+  EXPECT_NEAR(transported[0], 1.5060728744939271, 1e-9);
+  EXPECT_NEAR(transported[1], 1.2091767881241566 + (1.5060728744939271 - 1.1983805668016194), 1e-9);
+  EXPECT_NEAR(transported[2], 1.4385964912280702, 1e-9);
+  EXPECT_EQ(transported[3], papers[3]);  // the slope forms have no transported wrapper
 }
 
 // A table whose rows carry their comparison with no SAA with intervals is decided by the

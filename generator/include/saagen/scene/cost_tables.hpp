@@ -103,6 +103,10 @@ struct MeasuredTradeTable {
   std::vector<ContentRow> taa_content_rows;
   // The GGX alphas the by-content rows were measured at ("alphas", ascending; empty: not given).
   std::vector<double> alphas;
+  // Whether its projected forward filters were measured with their *_transported_fragment
+  // wrappers ("half_vector_frame": "transported", `saagen bench`'s default); a table without the
+  // key was measured with the papers' wrappers.
+  bool forward_transported = false;
   // Mean of one of a variant's figures over the rows (targets) that have it; nullopt when none has.
   std::optional<double> mean(std::string_view variant, std::optional<double> MeasuredTradeRow::*figure) const;
   // Mean cost of a variant: the time ratio when any row has one, else the SPIR-V delta.

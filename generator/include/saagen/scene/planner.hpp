@@ -67,6 +67,10 @@ struct MaterialPlan {
   std::vector<std::string> functions;  // public functions the material calls (closure roots)
   std::vector<std::string> variants;   // the variants those functions belong to
   std::string wrapper;                 // the fragment wrapper to call
+  // Whether a projected forward filter is called through its *_transported_fragment wrapper: as
+  // the measurement that decides the material was taken (a trade table's "half_vector_frame",
+  // else generator/data/advice.json's "forward_half_vector_frame"), and costed so.
+  bool forward_transported = false;
   // The BRDF to shade with: for GGX the tail-preserving filtered GGX (ggx_brdf_filtered_matrix for
   // a roughness matrix, ggx_brdf_filtered_axis otherwise); for Beckmann the matrix BRDF of the
   // forward-aniso-* filters; none: the engine's own BRDF.
@@ -121,12 +125,14 @@ struct MaterialDecision {
   std::vector<decision::Candidate> candidates;
   decision::Decision decision;
 };
+// `forward_transported`: the rows' projected forward filters were measured with their
+// *_transported_fragment wrappers, which then cost them (the ISA model's "-transported" rows).
 // `baseline` names what the rows' "none" is, as the reasons print it ("none+taa" for rows
 // measured under TAA). `timing`: a device's timings (bench_shading's table, or the one a bench
 // table was decided with: MeasuredTradeTable::timing()) that cost the configurations where they
 // were taken at the material's light count, instead of the committed ISA model.
 MaterialDecision decide_material(const Catalogue& catalogue, const Material& material, std::string_view gpu_family,
-                                 const std::vector<ContentRow>& rows, std::string_view baseline = "no SAA",
+                                 const std::vector<ContentRow>& rows, bool forward_transported, std::string_view baseline = "no SAA",
                                  const MeasuredTradeTable* timing = nullptr);
 // The material the bench's verdict decides for on a render path and content type: GGX, isotropic,
 // tangents on the forward path (none on the deferred path's G-buffer), normal maps on
