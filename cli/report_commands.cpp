@@ -248,7 +248,7 @@ measure::TradeConfig configure(const ReportCommands::Common& common, bool keep_i
     throw Error("--taa-blend, --taa-clip-gamma, --taa-sequence and --taa-unweighted set the TAA resolve: add --taa");
   if (!common.pan.empty()) config.pan_pixels_per_frame = {common.pan[0], common.pan[1]};
   if (!common.derivatives.empty()) config.derivative = common.derivatives == "fine" ? ref::Derivative::fine : ref::Derivative::coarse;
-  if (common.half_vector_frame == "transported") config.half_vector_frame = measure::HalfVectorFrame::transported;
+  if (common.half_vector_frame == "tangent") config.half_vector_frame = measure::HalfVectorFrame::tangent;
   if (common.exact_lobe) config.lobes.push_back(measure::Lobe::exact);
   scale_ground_truth_samples(common.truth_samples_scale, config);
   return config;
@@ -389,10 +389,11 @@ void add_scene_options(CLI::App* command, ReportCommands::Common& common) {
       ->check(CLI::IsMember({"coarse", "fine"}));
   command
       ->add_option("--half-vector-frame", common.half_vector_frame,
-                   "The frame the projected forward filters difference their half vectors in: tangent (each quad pixel's own "
-                   "tangent frame, as the papers' listing: their *_fragment wrappers; the default) or transported (their "
+                   "The frame the projected forward filters difference their half vectors in: transported (their "
                    "*_transported_fragment wrappers: world-space derivatives read in the pixel's frame without its turn about the "
-                   "normal, so a tangent frame that twists from pixel to pixel adds nothing to the kernel)")
+                   "normal, so a tangent frame that twists from pixel to pixel adds nothing to the kernel; the default, which "
+                   "saagen's plans call) or tangent (each quad pixel's own tangent frame, as the papers' listing: their "
+                   "*_fragment wrappers)")
       ->check(CLI::IsMember({"tangent", "transported"}));
   command
       ->add_option("--truth-samples-scale", common.truth_samples_scale,

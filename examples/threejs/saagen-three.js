@@ -213,7 +213,8 @@ export function installSaagen(material, { snippet = '', wrapper = 'deferred_sum_
 // The plan's wrappers this module installs, and how: 'roughness' filters three.js's roughness
 // (a tangent-free wrapper, alpha^2 in and out); 'tensor' writes deferred-aniso's kernel tensor
 // per pixel and evaluates its lighting pass per light; 'matrix' and 'axis' filter per light on
-// the half vector (forward-*), returning a roughness matrix or per-axis alpha^2.
+// the half vector (forward-*), returning a roughness matrix or per-axis alpha^2; the projected
+// forms' *_transported_fragment wrappers (what saagen plans) read it in view space with the frame.
 export const PLAN_WRAPPERS = {
   deferred_sum_fragment: 'roughness',
   deferred_avg_fragment: 'roughness',
@@ -221,8 +222,10 @@ export const PLAN_WRAPPERS = {
   deferred_projected_space_fragment: 'roughness',
   deferred_aniso_fragment: 'tensor',
   forward_aniso_projected_fragment: 'matrix',
+  forward_aniso_projected_transported_fragment: 'matrix',
   forward_aniso_slope_fragment: 'matrix',
   forward_axis_projected_fragment: 'axis',
+  forward_axis_projected_transported_fragment: 'axis',
   forward_axis_slope_fragment: 'axis',
 };
 
@@ -238,12 +241,18 @@ const BRDF_GGX_RETURN = 'return F * ( V * D );';
 // where the material has a map); the forward filters measure the half vector in the frame of the
 // normal they are fed, deferred-aniso's lighting pass rebuilds its tensor's frame from that normal.
 function lobeGlsl(kind, prefix, plan) {
+  // The forward filters' half vector: in the fed normal's frame (the papers' wrappers), or in view
+  // space with that frame, whose turn about the normal from pixel to pixel the transported
+  // wrappers leave out (docs/FORWARD_DERIVATIVES.md).
+  const half = plan.wrapper.endsWith('_transported_fragment')
+    ? 'normalize(l + v), saagenFeedNormal, saagenFeedTangent(), cross(saagenFeedNormal, saagenFeedTangent())'
+    : 'saagenFeedHalf(l, v)';
   const specular = {
     roughness: `return ${prefix}ggx_brdf_filtered_axis(i, o, vec2(saagenFiltered), vec2(saagenAlpha2));`,
     tensor: `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
-    matrix: `highp vec3 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), saagenFeedHalf(l, v));
+    matrix: `highp vec3 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), ${half});
   return ${prefix}ggx_brdf_filtered_matrix(i, o, a, vec2(saagenAlpha2));`,
-    axis: `highp vec2 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), saagenFeedHalf(l, v));
+    axis: `highp vec2 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), ${half});
   return ${prefix}ggx_brdf_filtered_axis(i, o, a, vec2(saagenAlpha2));`,
   }[kind];
   return `
@@ -264,6 +273,12 @@ highp vec3 saagenFeedHalf(highp vec3 l, highp vec3 v) {
   saagenFrame(saagenFeedNormal, t, b);
   highp vec3 h = normalize(l + v);
   return vec3(dot(h, t), dot(h, b), dot(h, saagenFeedNormal));
+}
+// That frame's tangent (its bitangent is n x t).
+highp vec3 saagenFeedTangent() {
+  highp vec3 t, b;
+  saagenFrame(saagenFeedNormal, t, b);
+  return t;
 }
 highp float saagenSpecular(highp vec3 l, highp vec3 v, highp vec3 n) {
   highp vec3 t, b;

@@ -58,9 +58,10 @@ fn radiance(s: Surface, a: vec3<f32>) -> f32 {
     return select(0.0, LIGHT_RADIANCE * brdf * max(i.z, 0.0), s.hit);
 }
 
-fn half_vector(s: Surface) -> vec3<f32> {
+// The light's half vector in world space (the view is along +z).
+fn half_vector() -> vec3<f32> {
     let light = normalize(vec3<f32>(0.35, 0.45, 0.82));
-    return normalize(to_tangent(light, s) + to_tangent(vec3<f32>(0.0, 0.0, 1.0), s));
+    return normalize(light + vec3<f32>(0.0, 0.0, 1.0));
 }
 
 struct Out {
@@ -74,7 +75,9 @@ override MODE: u32 = 0u;
 fn shade(@builtin(position) position: vec4<f32>) -> Out {
     let s = bead_at(position.xy);
     // Uniform control flow: the wrapper (dpdx/dpdy inside) runs for every pixel of the quad.
-    let filtered = saa_forward_aniso_projected_fragment(ALPHA2, half_vector(s));
+    // The half vector in world space with the frame it is filtered in (the transported wrapper, as
+    // saagen plans it: the frame's turn about the normal between pixels is not read as curvature).
+    let filtered = saa_forward_aniso_projected_transported_fragment(ALPHA2, half_vector(), s.n, s.t, s.b);
     let unfiltered = vec3<f32>(ALPHA2.x, 0.0, ALPHA2.y);
     let a = select(unfiltered, filtered, MODE == 1u);
     return Out(vec4<f32>(radiance(s, a), 0.0, 0.0, 1.0));

@@ -904,8 +904,9 @@ CostSource cost_source(const Catalogue& catalogue, const Material& material, con
   if (timing)
     basis += fmt::format(" ({}'s ISA model: {} was timed at {} light{})", family, timing->source_name, timing->lights,
                          timing->lights == 1 ? "" : "s");
-  return {as_called(catalogue, [&isa, family, lights](const std::string& id) { return isa.forward_ratio(family, id, {}, lights); },
-                    forward_transported),
+  return {as_called(
+              catalogue, [&isa, family, lights](const std::string& id) { return isa.forward_ratio(family, id, {}, lights); },
+              forward_transported),
           basis};
 }
 
@@ -1088,7 +1089,8 @@ void plan_by_rule(const Catalogue& catalogue, const Manifest& manifest, const Ma
   const RatioOf isa_ratio = as_called(
       catalogue,
       [&](const std::string& id) {
-        return table_has_isa ? table->isa_cost(id, family) : committed_isa_costs().forward_ratio(family, id, manifest.targets, material.lights);
+        return table_has_isa ? table->isa_cost(id, family)
+                             : committed_isa_costs().forward_ratio(family, id, manifest.targets, material.lights);
       },
       plan.forward_transported);
   std::vector<std::pair<double, const Variant*>> ranked;

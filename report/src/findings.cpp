@@ -264,7 +264,9 @@ std::vector<ContentRow> measured_taa_rows(const measure::TradeTable& table, Cont
 
 // Whether the table's projected forward filters were shaded with their transported wrappers,
 // which then cost them (decide_material).
-bool measured_transported(const measure::TradeTable& table) { return table.config.half_vector_frame == measure::HalfVectorFrame::transported; }
+bool measured_transported(const measure::TradeTable& table) {
+  return table.config.half_vector_frame == measure::HalfVectorFrame::transported;
+}
 
 MaterialDecision decide_on(const measure::TradeTable& table, const std::vector<ContentRow>& rows, Path path, Content content, bool speed,
                            std::string_view baseline) {
@@ -503,9 +505,8 @@ std::vector<TradePoint> engine_points(const MaterialDecision& made, const std::v
 std::string budget_choice(const measure::TradeTable& table, const ContentTrade& trade, std::optional<double> budget) {
   Material material = reference_material(trade.path == Path::forward ? RenderPath::forward : RenderPath::deferred, trade.content);
   material.budget = budget;
-  return chosen_configuration(
-      decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, trade.rows, measured_transported(table), "no SAA",
-                      table.decision_timing.get()));
+  return chosen_configuration(decide_material(Catalogue::builtin(), material, kDefaultGpuFamily, trade.rows, measured_transported(table),
+                                              "no SAA", table.decision_timing.get()));
 }
 
 }  // namespace

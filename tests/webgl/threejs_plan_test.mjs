@@ -2,8 +2,8 @@
 // scene.saagen.toml, planned with --json, its gles bundle emitted with emit --manifest), in
 // headless Chromium, WebGL2 on SwiftShader: no filter (the normal-mapped material, as advised)
 // renders exactly as the unfiltered material;
-// forward-aniso-projected and forward-axis-projected per light with the tail-preserving filtered
-// GGX, and deferred-aniso's tensor and lighting pass, compile, change the picture on the spheres
+// forward-aniso-projected and forward-axis-projected per light (their transported wrappers, as
+// saagen plans them) with the tail-preserving filtered GGX, and deferred-aniso's tensor and lighting pass, compile, change the picture on the spheres
 // only and widen the highlights, and with a pixel filter of almost no width give three.js's own
 // GGX picture; one renderer keeps every configuration's program apart.
 //   node tests/webgl/threejs_plan_test.mjs SAAGEN_CLI
@@ -46,6 +46,11 @@ check(variants.glossy === 'forward-aniso-projected' && variants.glossy_matrix ==
       variants.glossy_deferred === 'deferred-aniso' && variants.glossy_fast === 'none' && variants.bumpy === 'forward-aniso-projected' &&
       variants.bumpy_named === 'deferred-sum',
       `the plan: ${JSON.stringify(variants)}`);
+// saagen's advice was measured with the projected forms' transported wrappers, so the plan calls
+// those and the module installs them (view-space half vector, normal and the Duff frame).
+const projected = plan.materials.filter((m) => m.variant.endsWith('-projected'));
+check(projected.length === 4 && projected.every((m) => m.wrapper.endsWith('_transported_fragment')),
+      `the projected forms' wrappers: ${projected.map((m) => m.wrapper).join(', ')}`);
 
 const { server, origin } = await serveDirectory(root);
 const { browser, close } = await launchChromium();

@@ -32,7 +32,9 @@ void main() {
   vec3 n = normalize(in_normal_ws);
   vec3 t = normalize(in_tangent_ws.xyz - n * dot(n, in_tangent_ws.xyz));
   vec3 b = cross(n, t) * in_tangent_ws.w;
-  vec3 half_geometric = normalize(vec3(dot(l, t), dot(l, b), dot(l, n)) + vec3(dot(v, t), dot(v, b), dot(v, n)));
+  // The filter reads the world-space half vector in the geometric frame (the transported wrapper,
+  // as saagen plans it: the frame's turn about the normal between pixels is not read as curvature).
+  vec3 filtered = saa_forward_aniso_projected_transported_fragment(material.alpha * material.alpha, normalize(l + v), n, t, b);
   // One MIP level coarser than the implicit LOD, as the bake (saagen's advice: docs/PREFILTER.md,
   // "The LOD bias"; a baked roughness texture is sampled with the same bias).
   vec3 mapped = texture(normal_map, in_uv, 1.0).xyz * 2.0 - 1.0;
@@ -43,7 +45,6 @@ void main() {
   vec3 o_ts = vec3(dot(v, t), dot(v, b), dot(v, n));
 
   vec2 alpha2 = material.alpha * material.alpha;
-  vec3 filtered = saa_forward_aniso_projected_fragment(alpha2, half_geometric);
   float specular = saa_ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);
   out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
 }

@@ -65,9 +65,11 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
   // The fp32 GLSL bundle: brushed_metal, terrain and car_paint (forward-aniso-projected/tail, saagen's
   // normal-mapped decision); not foliage's filter (advised no filter: nothing in the bundle).
   const std::set<std::string> defined = defined_functions(files[0].content, "saa_");
-  EXPECT_TRUE(defined.count("forward_axis_projected_fragment"));   // brushed_metal
-  EXPECT_TRUE(defined.count("forward_axis_projected"));            // the wrapper pulls its core
-  EXPECT_TRUE(defined.count("forward_aniso_projected_fragment"));  // car_paint
+  // car_paint: the projected form's transported wrapper, as the advice was measured, not the papers'.
+  EXPECT_TRUE(defined.count("forward_aniso_projected_transported_fragment"));
+  EXPECT_TRUE(defined.count("forward_aniso_projected"));  // the wrapper pulls its core
+  EXPECT_FALSE(defined.count("forward_aniso_projected_fragment"));
+  EXPECT_TRUE(defined.count("forward_axis_slope_fragment"));  // brushed_metal: the cheapest form for speed
   EXPECT_FALSE(defined.count("deferred_aniso_fragment"));
   EXPECT_TRUE(defined.count("deferred_sum_fragment"));
   EXPECT_TRUE(defined.count("ggx_brdf_filtered_axis"));  // GGX pulls the tail-preserving filtered GGX

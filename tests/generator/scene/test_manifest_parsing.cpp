@@ -308,7 +308,10 @@ TEST(Planner, PlansAndCostsInTheManifestsDomain) {
   const std::string printed = saagen::format_plan(Catalogue::builtin(), manifest, plan);
   EXPECT_NE(printed.find("call      saa_deferred_sum_fragment_perceptual(perceptual_roughness, normal_ws)"), std::string::npos) << printed;
   EXPECT_NE(printed.find("the variant of the manifest's preset \"filament\""), std::string::npos) << printed;
-  EXPECT_NE(printed.find("call      saa_forward_aniso_projected_fragment(alpha2, half_ts)"), std::string::npos) << printed;
+  EXPECT_NE(
+      printed.find("call      saa_forward_aniso_projected_transported_fragment(alpha2, half_ws, normal_ws, tangent_ws, bitangent_ws)"),
+      std::string::npos)
+      << printed;
   EXPECT_GT(plan.materials.at(0).cost.at("glsl"), 0);
   const auto files = saagen::emit_scene(Catalogue::builtin(), manifest, plan);
   ASSERT_EQ(files.size(), 1u);

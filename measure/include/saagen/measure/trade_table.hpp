@@ -94,8 +94,9 @@ struct TradeConfig {
                                      Variant::deferred_aniso};
   ref::Params params{};
   ref::Derivative derivative = ref::Derivative::coarse;
-  // The frame the forward filters difference their half vectors in (renderer.hpp, HalfVectorFrame).
-  HalfVectorFrame half_vector_frame = HalfVectorFrame::tangent;
+  // The frame the forward filters difference their half vectors in (renderer.hpp, HalfVectorFrame):
+  // the transported wrappers, which saagen's plans call (generator/data/advice.json).
+  HalfVectorFrame half_vector_frame = HalfVectorFrame::transported;
   std::uint64_t seed = 0x5aa6e11ULL;
   int threads = 0;           // 0: hardware concurrency
   std::string cache_dir;     // empty: no ground-truth cache
