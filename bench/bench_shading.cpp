@@ -278,12 +278,12 @@ std::string format_anchor(const Row& row) {
 
 void print_table(const std::string& target, const std::vector<Row>& rows, const char* time_source) {
   fmt::print("\n{} ({} ms, median)\n", target, time_source);
-  const std::string header = fmt::format("{:<30} {:>8} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}", "variant", "ms", "no-SAA ms",
+  const std::string header = fmt::format("{:<41} {:>8} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}", "variant", "ms", "no-SAA ms",
                                          "ratio (p25-p75)", "min ratio", "dSPIR-V", "|d| px", "mean d", "paper Table 2");
   fmt::print("{}\n{}\n", header, std::string(header.size() + 10, '-'));
   for (const Row& row : rows) {
     const bool baseline = row.variant == "no-saa";
-    fmt::print("{:<30} {:>8.2f} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}\n", row.variant, row.ms,
+    fmt::print("{:<41} {:>8.2f} {:>9} {:>20} {:>9} {:>8} {:>8} {:>8}  {}\n", row.variant, row.ms,
                baseline ? std::string("-") : fmt::format("{:.2f}", row.baseline_ms),
                baseline ? std::string("1.000") : fmt::format("{:.3f} ({:.3f}-{:.3f})", row.ratio, row.ratio_p25, row.ratio_p75),
                baseline ? std::string("1.000") : fmt::format("{:.3f}", row.ratio_of_minima),

@@ -791,15 +791,18 @@ void check_trade_table_ids(const Catalogue& catalogue, const MeasuredTradeTable&
   for (std::size_t index = 0; index < table.rows.size(); ++index) {
     // Rows are configurations (`saagen bench`): a variant, with ":geometric" / "+toksvig" /
     // "+lean", or an engine's shipped form ("engine-NAME") measured as a baseline, or the
-    // tangent-free form of a variant that has one ("deferred-max-tangent-free"), or the baseline:
-    // "none" in a trade table, kCostBaselineId in bench_shading's.
+    // tangent-free form of a variant that has one ("deferred-max-tangent-free"), the transported
+    // wrapper of one that has one ("forward-aniso-projected-transported/tail", bench_shading), or
+    // the baseline: "none" in a trade table, kCostBaselineId in bench_shading's.
     const std::string& id = table.rows[index].variant;
     std::string base = parse_configuration(id).variant;
-    constexpr std::string_view tangent_free_suffix = "-tangent-free";
-    if (base.size() > tangent_free_suffix.size() && base.ends_with(tangent_free_suffix)) {
-      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - tangent_free_suffix.size()));
-      if (variant && has_tangent_free_form(*variant)) base = variant->id;
-    }
+    const auto strip = [&](std::string_view suffix, bool (*has_form)(const Variant&)) {
+      if (base.size() <= suffix.size() || !base.ends_with(suffix)) return;
+      const Variant* variant = catalogue.find_variant(base.substr(0, base.size() - suffix.size()));
+      if (variant && has_form(*variant)) base = variant->id;
+    };
+    strip("-tangent-free", has_tangent_free_form);
+    strip("-transported", has_transported_form);
     const bool baseline = base == "none" || id == kCostBaselineId;
     if (!baseline && id.rfind("engine-", 0) != 0 && !catalogue.find_variant(base)) {
       throw Error(fmt::format(
@@ -831,9 +834,9 @@ bool usable(const Material& material, const std::vector<const Variant*>& eligibl
 using RatioOf = std::function<std::optional<double>(const std::string&)>;
 
 // `ratio` as a plan calls the filters: a variant with a transported wrapper, measured with it
-// (forward_transported), costed by that wrapper's rows ("forward-aniso-projected-transported/tail");
-// where the source has them only with the tail-preserving lobe, the papers' wrapper's cost plus
-// the transported one's overhead there.
+// (forward_transported), costed by that wrapper's rows ("forward-aniso-projected-transported/tail",
+// the ISA model's and bench_shading's); where the source has them only with the tail-preserving
+// lobe, the papers' wrapper's cost plus the transported one's overhead there.
 RatioOf as_called(const Catalogue& catalogue, RatioOf ratio, bool forward_transported) {
   if (!forward_transported) return ratio;
   return [&catalogue, ratio](const std::string& id) -> std::optional<double> {
@@ -844,7 +847,10 @@ RatioOf as_called(const Catalogue& catalogue, RatioOf ratio, bool forward_transp
     if (const auto own = ratio(variant + "-transported" + lobe)) return own;
     const std::string tail = fmt::format("/{}", advice::kLobe);
     const auto own_tail = ratio(variant + "-transported" + tail), papers_tail = ratio(variant + tail), papers = ratio(id);
-    if (!own_tail || !papers_tail || !papers) return std::nullopt;
+    // A device timing taken before bench_shading timed the transported wrappers has neither row:
+    // the papers' wrapper's time is all it knows.
+    if (!own_tail) return papers;
+    if (!papers_tail || !papers) return std::nullopt;
     return *papers + (*own_tail - *papers_tail);
   };
 }
@@ -896,7 +902,8 @@ CostSource cost_source(const Catalogue& catalogue, const Material& material, con
                        bool forward_transported) {
   const int lights = material.lights;
   if (timing && timing->timed_at(lights)) {
-    return {[timing](const std::string& id) { return timing->device_time_ratio(id); },
+    return {as_called(
+                catalogue, [timing](const std::string& id) { return timing->device_time_ratio(id); }, forward_transported),
             fmt::format("{} on {} ({})", light_count_words(lights, lights), timing->device_name(), timing->source_name)};
   }
   const IsaTable& isa = committed_isa_costs();
@@ -1093,12 +1100,14 @@ void plan_by_rule(const Catalogue& catalogue, const Manifest& manifest, const Ma
                              : committed_isa_costs().forward_ratio(family, id, manifest.targets, material.lights);
       },
       plan.forward_transported);
+  const RatioOf timed_ratio = as_called(
+      catalogue, [&](const std::string& id) { return timed->device_time_ratio(id); }, plan.forward_transported);
   std::vector<std::pair<double, const Variant*>> ranked;
   for (const Variant* variant : eligible) {
     // Without tangents a variant runs its tangent-free form, measured as "<id>-tangent-free".
     const std::string costed =
         !material.tangents && variant->needs_tangents && has_tangent_free_form(*variant) ? variant->id + "-tangent-free" : variant->id;
-    const auto value = !speed ? table->error(variant->id) : table_timed ? timed->device_time_ratio(costed) : isa_ratio(costed);
+    const auto value = !speed ? table->error(variant->id) : table_timed ? timed_ratio(costed) : isa_ratio(costed);
     if (value) ranked.emplace_back(*value, variant);
   }
   // Ties keep the rule's choice first, then catalogue order.

@@ -59,11 +59,9 @@ const EmittedFile& file_of(const std::vector<EmittedFile>& files, const std::str
   throw Error(fmt::format("no emitted file for variant {}", variant));
 }
 
-// What the forward shader is measured with: bench_shading's variant cases, plus the
-// tangent-free form of deferred-max (with either lobe), which the trade measures as a
-// configuration of its own, and the projected forward forms' wrappers in transported frames with
-// saagen's lobe (docs/FORWARD_DERIVATIVES.md), which `saagen bench --half-vector-frame
-// transported` measures in place of the papers' wrappers.
+// What the forward shader is measured with: bench_shading's variant cases (the projected forward
+// forms' transported wrappers among them), plus the tangent-free form of deferred-max (with either
+// lobe), which the trade measures as a configuration of its own.
 struct ForwardCase {
   std::string id;
   std::string file_variant;  // the catalogue variant whose emitted file defines the wrapper
@@ -80,15 +78,6 @@ std::vector<ForwardCase> forward_cases() {
   cases.push_back({"deferred-max-tangent-free/tail",
                    "deferred-max",
                    {tangent_free, "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"}});
-  const std::string_view in_frames = "(alpha2, normalize(light_ws + view_ws), normal, tangent, bitangent);\n";
-  cases.push_back({"forward-aniso-projected-transported/tail",
-                   "forward-aniso-projected",
-                   {"", fmt::format("    real3 filtered = forward_aniso_projected_transported_fragment{}", in_frames) +
-                            "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n"}});
-  cases.push_back({"forward-axis-projected-transported/tail",
-                   "forward-axis-projected",
-                   {"", fmt::format("    real2 filtered = forward_axis_projected_transported_fragment{}", in_frames) +
-                            "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n"}});
   return cases;
 }
 

@@ -170,9 +170,10 @@ const std::array<double, 3> paper_no_saa_ms = {1.80, 2.06, 3.65};
 enum class Lobe { papers, tail };
 
 // A forward wrapper's statements, all per light (the wrapper filters the light's half vector):
-// `filtered` is a roughness matrix (real3) or per-axis (real2).
-SceneShading forward_shade(std::string_view wrapper, bool matrix, Lobe lobe) {
-  const std::string filter = fmt::format("    {} filtered = {}_fragment(alpha2, half_ts);\n", matrix ? "real3" : "real2", wrapper);
+// `filtered` is a roughness matrix (real3) or per-axis (real2). `inputs`: the wrapper's
+// arguments after alpha2, the tangent-space half vector (the papers' wrappers) by default.
+SceneShading forward_shade(std::string_view wrapper, bool matrix, Lobe lobe, std::string_view inputs = "half_ts") {
+  const std::string filter = fmt::format("    {} filtered = {}_fragment(alpha2, {});\n", matrix ? "real3" : "real2", wrapper, inputs);
   if (matrix) {
     return {"", filter + (lobe == Lobe::papers ? "    real value = ggx_brdf_matrix(i_ts, o_ts, filtered, ndf_clamp_tau(alpha2));\n"
                                                : "    real value = ggx_brdf_filtered_matrix(i_ts, o_ts, filtered, alpha2);\n")};
@@ -240,6 +241,9 @@ std::vector<VariantCase> filter_cases() {
   return cases;
 }
 
+// The transported wrappers' arguments after alpha2 (templates/10-forward.saa).
+constexpr std::string_view kTransportedInputs = "normalize(light_ws + view_ws), normal, tangent, bitangent";
+
 // The filters timed once more with another lobe, or in a form of their own.
 std::vector<VariantCase> lobe_cases() {
   return {
@@ -262,6 +266,12 @@ std::vector<VariantCase> lobe_cases() {
       // The other deferred kernels the advice may choose with saagen's lobe (generator/data/advice.json).
       {"deferred-max/tail", deferred_shade("deferred_max", true, Lobe::tail), std::nullopt},
       {"deferred-projected-space/tail", deferred_shade("deferred_projected_space", false, Lobe::tail), std::nullopt},
+      // The projected forward forms' transported wrappers with saagen's lobe, which saagen plans
+      // (docs/FORWARD_DERIVATIVES.md): the world-space half vector with the pixel's frame.
+      {"forward-aniso-projected-transported/tail",
+       forward_shade("forward_aniso_projected_transported", true, Lobe::tail, kTransportedInputs), std::nullopt},
+      {"forward-axis-projected-transported/tail",
+       forward_shade("forward_axis_projected_transported", false, Lobe::tail, kTransportedInputs), std::nullopt},
   };
 }
 
@@ -278,8 +288,10 @@ const std::vector<VariantCase>& variant_cases() {
 }
 
 std::string catalogue_variant(const VariantCase& variant) {
-  const std::string id = variant.id;
-  return id.substr(0, id.find('/'));
+  std::string id = variant.id.substr(0, variant.id.find('/'));
+  constexpr std::string_view transported = "-transported";
+  if (id.ends_with(transported)) id.resize(id.size() - transported.size());
+  return id;
 }
 
 void check_light_count(std::uint32_t lights) {

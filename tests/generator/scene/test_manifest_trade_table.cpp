@@ -630,6 +630,29 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   EXPECT_GT(pair_plan.materials.at(0).cost.at("glsl"), pair_plan.materials.at(1).cost.at("glsl"));
 }
 
+// bench_shading times the projected forms' transported wrappers too, which saagen plans: a plan
+// costs them by those rows (the papers' lobe: the papers' wrapper's time plus the transported
+// overhead timed with the tail-preserving lobe), here 1.05 + 0.30 against forward-axis-projected's
+// 1.30 (no transported row: its papers' time).
+TEST(Planner, ADeviceTimingOfTheTransportedWrappersCostsThem) {
+  const saagen::MeasuredTradeTable timing = saagen::parse_trade_table(R"json({"device": "Some GPU (discrete GPU, Vulkan 1.4)", "lights": 1,
+      "rows": [{"target": "glsl", "variant": "no-saa", "ratio_median": 1.0},
+               {"target": "glsl", "variant": "forward-aniso-projected", "ratio_median": 1.05},
+               {"target": "glsl", "variant": "forward-aniso-projected/tail", "ratio_median": 1.10},
+               {"target": "glsl", "variant": "forward-aniso-projected-transported/tail", "ratio_median": 1.40},
+               {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.30}]})json",
+                                                                      "timing.json");
+  ASSERT_TRUE(saagen::committed_advice().forward_transported);
+  const saagen::MaterialPlan beckmann =
+      saagen::plan_scene(Catalogue::builtin(),
+                         parse(header + "[[material]]\nname = \"b\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n"
+                                        "ndf = \"beckmann\"\nprefer = \"speed\"\n"),
+                         &timing)
+          .materials.at(0);
+  EXPECT_EQ(beckmann.variant, "forward-axis-projected") << beckmann.reason;
+  EXPECT_NE(beckmann.reason.find("forward-aniso-projected 1.35"), std::string::npos) << beckmann.reason;
+}
+
 // A device's timings (bench_shading --json, marked by its "no-saa" baseline row) cost the
 // decision at the light count they were timed with, instead of the committed ISA model: a budget
 // that the ISA ratio of deferred-aniso/tail exceeds (vega10 1.517x) admits it at the device's

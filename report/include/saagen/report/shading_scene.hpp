@@ -64,7 +64,9 @@ struct VariantCase {
 };
 const std::vector<VariantCase>& variant_cases();
 // The catalogue variant whose emitted file defines a case's wrapper: the id before a lobe suffix
-// ("deferred-avg/tail" -> "deferred-avg"; the lobe's BRDF comes from brdf-ggx, always included).
+// ("deferred-avg/tail" -> "deferred-avg"; the lobe's BRDF comes from brdf-ggx, always included),
+// without the transported wrappers' "-transported" ("forward-aniso-projected-transported/tail" ->
+// "forward-aniso-projected").
 std::string catalogue_variant(const VariantCase& variant);
 
 // The kernel body (template dialect) shading `lights` lights with `shading` on a width x height
