@@ -630,6 +630,15 @@ TEST(Planner, CostsAreMeasuredInOptimizedSpirv) {
   EXPECT_GT(pair_plan.materials.at(0).cost.at("glsl"), pair_plan.materials.at(1).cost.at("glsl"));
 }
 
+// A Beckmann anisotropic forward material preferring speed (the rules rank it by cost), planned
+// with a device's timings.
+saagen::MaterialPlan beckmann_speed_plan(const saagen::MeasuredTradeTable& timing) {
+  const std::string material =
+      "[[material]]\nname = \"b\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n"
+      "ndf = \"beckmann\"\nprefer = \"speed\"\n";
+  return saagen::plan_scene(Catalogue::builtin(), parse(header + material), &timing).materials.at(0);
+}
+
 // bench_shading times the projected forms' transported wrappers too, which saagen plans: a plan
 // costs them by those rows (the papers' lobe: the papers' wrapper's time plus the transported
 // overhead timed with the tail-preserving lobe), here 1.05 + 0.30 against forward-axis-projected's
@@ -643,12 +652,7 @@ TEST(Planner, ADeviceTimingOfTheTransportedWrappersCostsThem) {
                {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.30}]})json",
                                                                       "timing.json");
   ASSERT_TRUE(saagen::committed_advice().forward_transported);
-  const saagen::MaterialPlan beckmann =
-      saagen::plan_scene(Catalogue::builtin(),
-                         parse(header + "[[material]]\nname = \"b\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n"
-                                        "ndf = \"beckmann\"\nprefer = \"speed\"\n"),
-                         &timing)
-          .materials.at(0);
+  const saagen::MaterialPlan beckmann = beckmann_speed_plan(timing);
   EXPECT_EQ(beckmann.variant, "forward-axis-projected") << beckmann.reason;
   EXPECT_NE(beckmann.reason.find("forward-aniso-projected 1.35"), std::string::npos) << beckmann.reason;
 }
@@ -679,12 +683,7 @@ TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
       saagen::plan_scene(Catalogue::builtin(), parse(curved + "lights = 4\nprefer = \"accuracy\"\n"), &timing).materials.at(0);
   EXPECT_NE(four.reason.find("at 4 lights (vega10's ISA model: timing.json was timed at 1 light)"), std::string::npos) << four.reason;
   // A Beckmann material preferring speed is ranked by the rules on the same timings.
-  const saagen::MaterialPlan beckmann =
-      saagen::plan_scene(Catalogue::builtin(),
-                         parse(header + "[[material]]\nname = \"b\"\npath = \"forward\"\nanisotropic = true\ntangents = true\n"
-                                        "ndf = \"beckmann\"\nprefer = \"speed\"\n"),
-                         &timing)
-          .materials.at(0);
+  const saagen::MaterialPlan beckmann = beckmann_speed_plan(timing);
   EXPECT_EQ(beckmann.variant, "forward-aniso-projected") << beckmann.reason;
   EXPECT_NE(beckmann.reason.find("lowest GPU time ratio in timing.json (at 1 light on Some GPU)"), std::string::npos) << beckmann.reason;
   // A timing table's light count is checked; `saagen bench --json`'s rows (no "no-saa") are no device's timings.
