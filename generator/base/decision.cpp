@@ -73,16 +73,39 @@ std::vector<std::size_t> lowest_cost(std::span<const Candidate> candidates, cons
   return equal;
 }
 
-// For accuracy: the most accurate of the pool by the mean, unless a candidate that ties with it
-// (worse than it beyond the interval in neither metric) costs less: then the cheapest of it and
-// its ties (equal costs: the more accurate). Where the most accurate one's cost is unknown, it.
+// Whether `a` beats `b` in their paired comparison: worse beyond the interval in neither metric,
+// while `b` is worse than `a` beyond it in one (the pairing of b with a is not a tie).
+bool dominates(const Candidate& a, const Candidate& b) { return ties_with(a, b) && !ties_with(b, a); }
+
+// The members of a tie group that no other member beats in their paired comparison; all of them
+// where the pairings go round in a circle.
+std::vector<std::size_t> undominated(std::span<const Candidate> candidates, const std::vector<std::size_t>& group) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i : group)
+    if (std::none_of(group.begin(), group.end(), [&](std::size_t j) { return dominates(candidates[j], candidates[i]); })) kept.push_back(i);
+  return kept.empty() ? group : kept;
+}
+
+// The most accurate candidate of the pool by the mean and the candidates that tie with it (worse
+// than it beyond the interval in neither metric): as accurate as it.
+std::vector<std::size_t> tie_group(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool, std::size_t best) {
+  std::vector<std::size_t> tied{best};
+  for (std::size_t i : pool)
+    if (i != best && ties_with(candidates[i], candidates[best])) tied.push_back(i);
+  return tied;
+}
+
+// For accuracy: the most accurate of the pool by the mean and its ties, less any that another of
+// them beats in their paired comparison, and of the rest the cheapest (equal costs: the more
+// accurate by the mean). Where the most accurate one's cost is unknown, nothing is known to be
+// cheaper: the best of the group by the pairing.
 std::optional<std::size_t> most_accurate_for_its_cost(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
   const std::optional<std::size_t> best = most_accurate(candidates, pool);
-  if (!best || !candidates[*best].cost_ratio) return best;
-  std::vector<std::size_t> tied{*best};
-  for (std::size_t i : pool)
-    if (i != *best && ties_with(candidates[i], candidates[*best])) tied.push_back(i);
-  return most_accurate(candidates, lowest_cost(candidates, tied));
+  if (!best) return best;
+  const std::vector<std::size_t> kept = undominated(candidates, tie_group(candidates, pool, *best));
+  if (!candidates[*best].cost_ratio) return most_accurate(candidates, kept);
+  const std::vector<std::size_t> priced = lowest_cost(candidates, kept);
+  return most_accurate(candidates, priced.empty() ? kept : priced);
 }
 
 // The cheapest of the pool (equal costs: the more accurate), skipping the most expensive usable
@@ -96,9 +119,15 @@ std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const
   return most_accurate(candidates, lowest_cost(candidates, affordable));
 }
 
-// "; it ties with X, the largest temporal improvement on the mean (...), at lower cost": where the
-// accuracy choice took a cheaper tie of the most accurate candidate.
-std::string tie_text(const Candidate& best, std::string_view basis, std::string_view baseline) {
+// Where accuracy took another candidate than the one with the largest temporal improvement on the
+// mean: "; it beats X, ... in their paired comparison" when the chosen one does, else "; it ties
+// with X, ..., at lower cost".
+std::string tie_text(const Candidate& chosen, const Candidate& best, std::string_view basis, std::string_view baseline) {
+  if (dominates(chosen, best))
+    return fmt::format(
+        "; paired with {}, the largest temporal improvement on the mean, it is better beyond the 95 % interval in one metric and "
+        "worse in neither",
+        figures(best, basis, baseline));
   return fmt::format(
       "; it ties with {}, the largest temporal improvement on the mean (paired with it, worse beyond the 95 % interval in neither "
       "metric), at lower cost",
@@ -224,11 +253,12 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
   const std::string among =
       eligible.size() == 1 ? std::string("the only usable configuration that does")
       : tie
-          ? fmt::format("the lowest cost of the {} that do, as accurate as the most accurate", usable_count(eligible.size()))
+          ? fmt::format("the lowest cost of the {} that do, as accurate as the most accurate and beaten by none of its ties",
+                        usable_count(eligible.size()))
           : fmt::format("the {} of the {} that do", speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()));
   decision.reason = fmt::format("{} beats {}: {}{}{}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
                                 preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "",
-                                tie ? tie_text(candidates[best], cost_basis, preference.baseline) : "",
+                                tie ? tie_text(chosen, candidates[best], cost_basis, preference.baseline) : "",
                                 set_aside(candidates, beating, chosen, preference.baseline));
   return decision;
 }

@@ -24,9 +24,12 @@
 //     2024), so the verdict orders configurations as it does; the image metric only has to be no
 //     worse (beats). A lead inside the interval is a tie, not a win: the eligible candidates whose
 //     paired comparison with that most accurate one is worse beyond the interval in neither
-//     metric (Candidate::not_worse_than names it) are as accurate as it, and of it and them the
-//     cheapest is taken (as for speed, but the most expensive form is allowed); where none of
-//     them has a known cost below its own, the most accurate one.
+//     metric (Candidate::not_worse_than names it) are as accurate as it. Of it and them, any that
+//     another of them beats in their paired comparison (better beyond the interval in one metric,
+//     worse in neither: one names the other, the other does not name it) is set aside, and of
+//     the rest the cheapest is taken (as for speed, but the most expensive form is allowed;
+//     equal costs: the more accurate by the mean); where the most accurate one's cost is
+//     unknown, the most accurate of the rest by the mean.
 //   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and the more
 //     accurate of equals wins); never the most expensive form among the usable candidates unless
 //     it is the only usable candidate. A candidate without a known cost is never taken for speed.
@@ -82,6 +85,8 @@ struct Candidate {
   // The configurations this one is worse than beyond the interval in neither metric, paired on the
   // same cells (the bench's comparison of the two; empty where unknown): where one of them is the
   // most accurate candidate by the mean, this one ties with it, and the cheaper of the two wins.
+  // The bench pairs every eligible candidate with every other, so where A names B and B does not
+  // name A, A beats B in their paired comparison.
   std::vector<std::string> not_worse_than = {};
 };
 

@@ -110,14 +110,17 @@ TEST(Decision, ALeadInsideTheIntervalIsATieAndTheCheaperOfATieWins) {
   // cheaper "axis" is taken. "slope" is cheaper still but worse than "aniso": not a tie.
   Candidate aniso = candidate("forward-aniso-projected/tail", -0.012, -1.78, 1.385);
   Candidate axis = candidate("forward-axis-projected/tail", -0.0085, -1.63, 1.30);
+  aniso.not_worse_than = {"forward-axis-projected/tail"};
   axis.not_worse_than = {"forward-aniso-projected/tail"};
   const Candidate slope = candidate("forward-axis-slope/tail", -0.002, -0.9, 1.16);
   const Decision d = decide(std::vector<Candidate>{aniso, axis, slope}, {});
   ASSERT_TRUE(d.chosen);
   EXPECT_EQ(*d.chosen, 1u) << d.reason;
-  EXPECT_NE(d.reason.find("the lowest cost of the 3 usable configurations that do, as accurate as the most accurate; it ties with "
-                          "forward-aniso-projected/tail"),
-            std::string::npos)
+  EXPECT_NE(
+      d.reason.find("the lowest cost of the 3 usable configurations that do, as accurate as the most accurate and beaten by none of its "
+                    "ties; it ties with "
+                    "forward-aniso-projected/tail"),
+      std::string::npos)
       << d.reason;
   // Without the pairing (a table that has none) the mean decides, as before.
   axis.not_worse_than.clear();
@@ -134,6 +137,42 @@ TEST(Decision, ALeadInsideTheIntervalIsATieAndTheCheaperOfATieWins) {
   aniso.cost_ratio = 1.385;
   axis.loses_on = {"torus"};
   EXPECT_EQ(decide(std::vector<Candidate>{aniso, axis}, {}).chosen, std::optional<std::size_t>(0));
+}
+
+TEST(Decision, AccuracyNeverTakesATieThatAnotherTieBeatsInThePairing) {
+  // "deferred" has the largest temporal improvement on the mean, and "forward" ties with it on the
+  // video metric but is better beyond the interval in image error: "forward" names "deferred" in
+  // its not_worse_than, "deferred" does not name "forward". At costs equal within
+  // kCostTieTolerance the mean would take "deferred"; the pairing says "forward" is better.
+  Candidate deferred = candidate("deferred-aniso:geometric/tail", -0.0003, -2.0, 1.514);
+  Candidate forward = candidate("forward-aniso-projected/tail", -0.086, -1.9, 1.506);
+  forward.not_worse_than = {"deferred-aniso:geometric/tail"};
+  const Decision d = decide(std::vector<Candidate>{deferred, forward}, {});
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(*d.chosen, 1u) << d.reason;
+  EXPECT_NE(d.reason.find("paired with deferred-aniso:geometric/tail"), std::string::npos) << d.reason;
+  EXPECT_NE(d.reason.find("better beyond the 95 % interval in one metric and worse in neither"), std::string::npos) << d.reason;
+  // Where the pairing is a tie both ways, the mean decides the equal costs again.
+  deferred.not_worse_than = {"forward-aniso-projected/tail"};
+  EXPECT_EQ(decide(std::vector<Candidate>{deferred, forward}, {}).chosen, std::optional<std::size_t>(0));
+  // A cheaper tie that a dearer tie beats is set aside for the dearer one: "mid" and "cheap" both
+  // tie with "deferred" both ways, and "mid" beats "cheap" in their pairing.
+  Candidate mid = candidate("deferred-avg/tail", -0.02, -1.95, 1.3);
+  Candidate cheap = candidate("deferred-avg:geometric/tail", -0.001, -1.92, 1.1);
+  deferred.not_worse_than = {"deferred-avg/tail", "deferred-avg:geometric/tail"};
+  mid.not_worse_than = {"deferred-aniso:geometric/tail", "deferred-avg:geometric/tail"};
+  cheap.not_worse_than = {"deferred-aniso:geometric/tail"};
+  EXPECT_EQ(decide(std::vector<Candidate>{deferred, mid, cheap}, {}).chosen, std::optional<std::size_t>(1));
+  // Pairings that go round in a circle set nothing aside: each of "mid", "cheap" and "third"
+  // beats "deferred" and the next of them, so every member is beaten by another; then the group
+  // is kept whole and its cheapest is taken.
+  Candidate third = candidate("deferred-sum/tail", -0.01, -1.93, 1.2);
+  deferred.not_worse_than.clear();
+  mid.not_worse_than = {"deferred-aniso:geometric/tail", "deferred-avg:geometric/tail"};
+  cheap.not_worse_than = {"deferred-aniso:geometric/tail", "deferred-sum/tail"};
+  third.not_worse_than = {"deferred-aniso:geometric/tail", "deferred-avg/tail"};
+  const std::vector<Candidate> circle{deferred, mid, cheap, third};
+  EXPECT_EQ(decide(circle, {}).chosen, std::optional<std::size_t>(2));
 }
 
 TEST(Decision, SpeedTakesTheCheapestThatBeats) {

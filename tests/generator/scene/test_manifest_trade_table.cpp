@@ -557,11 +557,11 @@ TEST(Planner, AMaterialsRoughnessRefusesWhatLosesOnACellAtItsAlphas) {
 }
 
 TEST(Planner, WithATableATieOfTheMostAccurateGoesToTheCheaper) {
-  // deferred-aniso/tail improves TDE most on the mean, deferred-avg/tail ties with it (worse
-  // beyond the interval in neither metric, "not_worse_than") and costs less in the committed ISA
-  // table: deferred-avg is planned. Without the pairing the mean decides.
+  // deferred-aniso/tail improves TDE most on the mean, deferred-avg/tail ties with it (each worse
+  // than the other beyond the interval in neither metric, "not_worse_than") and costs less in the
+  // committed ISA table: deferred-avg is planned. Without the pairing the mean decides.
   const std::string rows = R"({"content": "curved", "configuration": "none", "error": 0.03, "tde": 0.010},
-      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.008},)";
+      {"content": "curved", "configuration": "deferred-aniso/tail", "error": 0.02, "tde": 0.008, "not_worse_than": ["deferred-avg/tail"]},)";
   const auto plan_with = [&](const std::string& avg) {
     const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [], "by_content": [)" + rows + avg + "]}", "t.json");
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"a\"\npath = \"deferred\"\n"), &table)
