@@ -94,9 +94,10 @@ nlohmann::json decisions_json(const measure::TradeTable& table) {
     }
   }
   return {{"rule",
-           "only what beats no SAA (no metric worse beyond its interval, one better) and is not late is chosen; "
-           "accuracy: the largest gain in the temporal metric, the image metric as tie-break; none where nothing "
-           "beats no SAA (saagen/decision.hpp)"},
+           "only what beats no SAA (no metric worse beyond its interval, one better), is not late and loses on none of "
+           "the pooled scenes is chosen; accuracy: the largest gain in the temporal metric on the mean, the image metric "
+           "as tie-break, or of it and what ties with it in their paired comparison, the cheapest that none of them beats "
+           "in their own pairing; none where nothing beats no SAA (saagen/decision.hpp)"},
           {"image_metric", "image error (LDR-FLIP of every animation frame)"},
           {"temporal_metric", temporal_metric_description(table)},
           {"by_content", by_content},
