@@ -108,15 +108,16 @@ std::optional<std::size_t> most_accurate_for_its_cost(std::span<const Candidate>
   return most_accurate(candidates, priced.empty() ? kept : priced);
 }
 
-// The cheapest of the pool (equal costs: the more accurate), skipping the most expensive usable
-// form unless it is the only usable candidate.
+// The cheapest of the pool, skipping the most expensive usable form unless it is the only usable
+// candidate; of equal costs, the one accuracy takes among them (a tie another of them beats in
+// the pairing is set aside, as for accuracy).
 std::optional<std::size_t> cheapest(std::span<const Candidate> candidates, const std::vector<std::size_t>& pool) {
   const auto [most, usable] = usable_cost_range(candidates);
   std::vector<std::size_t> affordable;
   for (std::size_t i : pool)
     if (candidates[i].cost_ratio && (usable == 1 || !is_most_expensive(candidates[i], most))) affordable.push_back(i);
   if (affordable.empty()) return std::nullopt;
-  return most_accurate(candidates, lowest_cost(candidates, affordable));
+  return most_accurate_for_its_cost(candidates, lowest_cost(candidates, affordable));
 }
 
 // Where accuracy took another candidate than the one with the largest temporal improvement on the

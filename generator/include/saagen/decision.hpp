@@ -30,9 +30,10 @@
 //     the rest the cheapest is taken (as for speed, but the most expensive form is allowed;
 //     equal costs: the more accurate by the mean); where the most accurate one's cost is
 //     unknown, the most accurate of the rest by the mean.
-//   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and the more
-//     accurate of equals wins); never the most expensive form among the usable candidates unless
-//     it is the only usable candidate. A candidate without a known cost is never taken for speed.
+//   - speed: the cheapest eligible one (costs within kCostTieTolerance are equal, and of equals
+//     the one accuracy would take among them: a tie that another of them beats in the pairing is
+//     set aside); never the most expensive form among the usable candidates unless it is the only
+//     usable candidate. A candidate without a known cost is never taken for speed.
 #pragma once
 
 #include <cstddef>

@@ -186,6 +186,25 @@ TEST(Decision, SpeedTakesTheCheapestThatBeats) {
   EXPECT_NE(d.reason.find("lowest cost"), std::string::npos);
 }
 
+TEST(Decision, SpeedNeverTakesAnEqualCostTieThatAnotherBeatsInThePairing) {
+  // The bump plane's forward candidates: the two deferred-aniso feeds cost the same (one kernel
+  // on another normal), the transported forward form more. Speed skips that most expensive form;
+  // of the two at the lowest cost the mean would take "geometric" (the larger temporal
+  // improvement), but "mapped" ties with it on the video metric and is better beyond the interval
+  // in image error, so the pairing takes "mapped", as accuracy would among the two.
+  Candidate geometric = candidate("deferred-aniso:geometric/tail", -0.0003, -0.004, 1.433);
+  Candidate mapped = candidate("deferred-aniso/tail", -0.086, -0.001, 1.433);
+  const Candidate dearest = candidate("forward-aniso-projected/tail", -0.086, -0.002, 1.463);
+  mapped.not_worse_than = {"deferred-aniso:geometric/tail"};
+  const Decision d = decide(std::vector<Candidate>{geometric, mapped, dearest}, {Prefer::speed, std::nullopt});
+  ASSERT_TRUE(d.chosen);
+  EXPECT_EQ(*d.chosen, 1u) << d.reason;
+  // Where they tie both ways, the mean decides between the equal costs again.
+  geometric.not_worse_than = {"deferred-aniso/tail"};
+  EXPECT_EQ(decide(std::vector<Candidate>{geometric, mapped, dearest}, {Prefer::speed, std::nullopt}).chosen,
+            std::optional<std::size_t>(0));
+}
+
 TEST(Decision, SpeedNeverTakesTheMostExpensiveFormUnlessItIsTheOnlyOne) {
   // Only the most expensive usable form beats no SAA: speed plans no filter.
   const std::vector<Candidate> c = {candidate("deferred-aniso/tail", -0.02, -0.002, 1.874),
