@@ -176,6 +176,13 @@ Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double
   return min(trace, bound / larger_unit) * unit;
 }
 
+// M min(1, bound / lambda_max(M)) (template sym2_scaled_to_eigenvalue_bound): the same matrix as
+// sym2_from_derivative_rows_bounded, without its unit-trace division.
+Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound) {
+  const double largest = sym2_max_eigenvalue(m);
+  return std::min(1.0, bound / (p.guards ? std::max(largest, p.guard_constants().tiny_positive) : largest)) * m;
+}
+
 // The normal matrix 2 sigma^2 Dn^T Dn (T&K 2019 Sec. 2.2) in the frame built from n.
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
   const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
@@ -183,6 +190,14 @@ Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
   const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
   const Sym2 rows = sym2_from_derivative_rows_bounded(p, {dot(dx, t), dot(dx, b)}, {dot(dy, t), dot(dy, b)}, p.kappa / (2.0 * p.sigma2));
   return (2.0 * p.sigma2) * rows;
+}
+
+// deferred_aniso for the differences of vectors of length <= 1 (template
+// deferred_aniso_from_bounded_derivatives): no clamp, the eigenvalue bound on Dn^T Dn itself.
+Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
+  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+  const Sym2 rows = sym2_from_derivative_rows({dot(dn_dx, t), dot(dn_dx, b)}, {dot(dn_dy, t), dot(dn_dy, b)});
+  return (2.0 * p.sigma2) * sym2_scaled_to_eigenvalue_bound(p, rows, p.kappa / (2.0 * p.sigma2));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -299,7 +314,7 @@ double deferred_projected_space_fragment_quad(const Params& p, double alpha2, co
 }
 
 Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel, Derivative mode) {
-  return deferred_aniso(p, ddx(normal_ws, pixel, mode), ddy(normal_ws, pixel, mode), normal_ws[pixel]);
+  return deferred_aniso_from_bounded_derivatives(p, ddx(normal_ws, pixel, mode), ddy(normal_ws, pixel, mode), normal_ws[pixel]);
 }
 
 double alpha2_from_domain(RoughnessDomain domain, double value) {

@@ -162,12 +162,18 @@ Vec3 normal_frame_bitangent(Vec3 n);
 // <= bound, else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound;
 // of M / tr(M) as the template does.
 Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double bound);
+// The same bound on a matrix M whose squares cannot overflow: M min(1, bound / lambda_max(M)),
+// lambda_max floored at TINY_POSITIVE when guarded.
+Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound);
 
 // The G-buffer tensor K = 2 sigma^2 Dn^T Dn, Dn the rows (dn_dx, dn_dy) in the frame of
 // normal_frame_tangent / normal_frame_bitangent(normal_ws), scaled so that its largest eigenvalue
 // is at most kappa (the bound on Dn^T Dn is kappa / (2 sigma^2), then the scale). Guarded:
 // derivatives clamped (clamp_derivative3).
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
+// The same tensor for derivatives of a vector of length <= 1 (|dn| <= 2), as the fragment wrapper
+// takes them: no clamp, and the eigenvalue bound on Dn^T Dn itself (sym2_scaled_to_eigenvalue_bound).
+Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
 
 // ---------------------------------------------------------------------------------------------
 // Fragment wrappers on a 2x2 quad. `pixel` is the quad index 0..3 (quad.hpp); `mode` says how
@@ -223,7 +229,7 @@ double deferred_avg_fragment_quad(const Params& p, double alpha2, const Quad<Vec
                                   Derivative mode = Derivative::coarse);
 double deferred_projected_space_fragment_quad(const Params& p, double alpha2, const Quad<Vec3>& normal_ws, int pixel,
                                               Derivative mode = Derivative::coarse);
-// deferred_aniso on the plain ddx/ddy (mode) of the normal, with this pixel's normal.
+// deferred_aniso_from_bounded_derivatives on the plain ddx/ddy (mode) of the normal, with this pixel's normal.
 Sym2 deferred_aniso_fragment_quad(const Params& p, const Quad<Vec3>& normal_ws, int pixel, Derivative mode = Derivative::coarse);
 
 }  // namespace saagen::ref
