@@ -163,10 +163,15 @@ Vec3 normal_frame_bitangent(Vec3 n) {
   return {n.x * n.y * a, s + n.y * n.y * a, -n.y};
 }
 
-// Delta^T Delta scaled by min(1, bound / lambda_max) (template sym2_from_derivative_rows_bounded):
-// eigenvectors and eigenvalue ratio kept, of the unit-trace M / tr(M) as the template does.
-Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double bound) {
-  const Sym2 m = sym2_from_derivative_rows(du, dv);
+// Dn^T Dn with the rows read in the frame built from n (template normal_variation_in_normal_frame).
+Sym2 normal_variation_in_normal_frame(Vec3 dn_dx, Vec3 dn_dy, Vec3 n) {
+  const Vec3 t = normal_frame_tangent(n), b = normal_frame_bitangent(n);
+  return sym2_from_derivative_rows({dot(dn_dx, t), dot(dn_dx, b)}, {dot(dn_dy, t), dot(dn_dy, b)});
+}
+
+// M scaled by min(1, bound / lambda_max) (template sym2_bounded_through_unit_trace): eigenvectors
+// and eigenvalue ratio kept, of the unit-trace M / tr(M) as the template does.
+Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound) {
   const double trace = m.xx + m.yy;
   if (trace <= bound) return m;
   if (trace < p.guard_constants().tiny_positive) return {bound, 0.0, bound};
@@ -177,7 +182,7 @@ Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double
 }
 
 // M min(1, bound / lambda_max(M)) (template sym2_scaled_to_eigenvalue_bound): the same matrix as
-// sym2_from_derivative_rows_bounded, without its unit-trace division.
+// sym2_bounded_through_unit_trace, without its unit-trace division.
 Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound) {
   const double largest = sym2_max_eigenvalue(m);
   return std::min(1.0, bound / (p.guards ? std::max(largest, p.guard_constants().tiny_positive) : largest)) * m;
@@ -187,17 +192,15 @@ Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound) {
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
   const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
   const Vec3 dy = p.guards ? clamp_derivative3(p, dn_dy) : dn_dy;
-  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 rows = sym2_from_derivative_rows_bounded(p, {dot(dx, t), dot(dx, b)}, {dot(dy, t), dot(dy, b)}, p.kappa / (2.0 * p.sigma2));
-  return (2.0 * p.sigma2) * rows;
+  return (2.0 * p.sigma2) *
+         sym2_bounded_through_unit_trace(p, normal_variation_in_normal_frame(dx, dy, normal_ws), p.kappa / (2.0 * p.sigma2));
 }
 
 // deferred_aniso for the differences of vectors of length <= 1 (template
 // deferred_aniso_from_bounded_derivatives): no clamp, the eigenvalue bound on Dn^T Dn itself.
 Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
-  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 rows = sym2_from_derivative_rows({dot(dn_dx, t), dot(dn_dx, b)}, {dot(dn_dy, t), dot(dn_dy, b)});
-  return (2.0 * p.sigma2) * sym2_scaled_to_eigenvalue_bound(p, rows, p.kappa / (2.0 * p.sigma2));
+  return (2.0 * p.sigma2) *
+         sym2_scaled_to_eigenvalue_bound(p, normal_variation_in_normal_frame(dn_dx, dn_dy, normal_ws), p.kappa / (2.0 * p.sigma2));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -340,7 +340,7 @@ TEST(Clamp, DeferredAnisoBoundsTheLargestEigenvalueAndKeepsTheKernelsShape) {
     const Vec2 du{u(rng), u(rng)}, dv{u(rng), u(rng)};
     const Sym2 raw = sym2_from_derivative_rows(du, dv);
     const double bound = 0.01 + 0.5 * std::fabs(u(rng));
-    const Sym2 bounded = sym2_from_derivative_rows_bounded(p, du, dv, bound);
+    const Sym2 bounded = sym2_bounded_through_unit_trace(p, raw, bound);
     if (trace(raw) <= bound) {  // every eigenvalue is at most the trace: nothing to bound
       EXPECT_EQ(bounded.xx, raw.xx);
       EXPECT_EQ(bounded.xy, raw.xy);

@@ -158,10 +158,12 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 Vec3 normal_frame_tangent(Vec3 n);
 Vec3 normal_frame_bitangent(Vec3 n);
 
-// Delta^T Delta (rows du, dv) scaled by min(1, bound / lambda_max): unchanged when its trace is
-// <= bound, else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound;
-// of M / tr(M) as the template does.
-Sym2 sym2_from_derivative_rows_bounded(const Params& p, Vec2 du, Vec2 dv, double bound);
+// Dn^T Dn, Dn the rows (dn_dx, dn_dy) read in the frame normal_frame_tangent / _bitangent(n).
+Sym2 normal_variation_in_normal_frame(Vec3 dn_dx, Vec3 dn_dy, Vec3 n);
+// M = Delta^T Delta scaled by min(1, bound / lambda_max): unchanged when its trace is <= bound,
+// else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound; of
+// M / tr(M) as the template does, so that M's squares may overflow.
+Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound);
 // The same bound on a matrix M whose squares cannot overflow: M min(1, bound / lambda_max(M)),
 // lambda_max floored at TINY_POSITIVE when guarded.
 Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound);
