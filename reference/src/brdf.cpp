@@ -256,7 +256,20 @@ double Brdf::ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const {
 // Template ggx_brdf_filtered_matrix: D G2 / (4 i.z o.z) with the papers' G2 of A, written as
 // D / (2 (o.z S(i) + i.z S(o))), S(v) = sqrt(v.xy^T A v.xy + v.z^2) (Lambda(v) = S(v) / (2 v.z) - 1/2),
 // the cosines floored at LAMBDA_MIN_Z as in ggx_lambda_matrix and cosines().
-double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const {
+double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const { return filtered_brdf(i, o, a, a, alpha2); }
+
+// Template ggx_brdf_filtered_axis: the matrix form of diag(filtered), whose NDF
+// (ggx_ndf_filtered_diagonal) floors the kernel filtered - alpha^2 at 0 per axis when guarded; the
+// G2 takes filtered as given.
+double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const {
+  return filtered_brdf(i, o, {filtered.x, 0.0, filtered.y}, diagonal_ndf_matrix(filtered, alpha2), alpha2);
+}
+
+Sym2 Brdf::diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const {
+  return {guarded(max(filtered.x, alpha2.x), filtered.x), 0.0, guarded(max(filtered.y, alpha2.y), filtered.y)};
+}
+
+double Brdf::filtered_brdf(Vec3 i, Vec3 o, Sym2 a, Sym2 ndf_matrix, Vec2 alpha2) const {
   if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
   const Vec3 h = half_vector(params, i, o);
   if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
@@ -265,11 +278,7 @@ double Brdf::ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const
   const double spread_i = sym2_quadratic_form(a, i.xy()), spread_o = sym2_quadratic_form(a, o.xy());
   const double length_i = std::sqrt(guarded(max(spread_i, 0.0), spread_i) + zi * zi);
   const double length_o = std::sqrt(guarded(max(spread_o, 0.0), spread_o) + zo * zo);
-  return 0.5 * ggx_ndf_filtered_matrix(h, a, alpha2) / (zo * length_i + zi * length_o);
-}
-
-double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const {
-  return ggx_brdf_filtered_matrix(i, o, {filtered.x, 0.0, filtered.y}, alpha2);
+  return 0.5 * ggx_ndf_filtered_matrix(h, ndf_matrix, alpha2) / (zo * length_i + zi * length_o);
 }
 
 namespace {
@@ -286,7 +295,8 @@ double filtered_ggx_ratio(Sym2 a, Vec2 alpha2) { return Brdf{}.filtered_ggx_rati
 double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) { return Brdf{}.ggx_ndf_filtered_matrix(h, a, alpha2); }
 double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) { return Brdf{}.ggx_brdf_filtered_matrix(i, o, a, alpha2); }
 double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
-  return Brdf{}.ggx_ndf_filtered_matrix(h, {filtered.x, 0.0, filtered.y}, alpha2);
+  const Brdf brdf{};
+  return brdf.ggx_ndf_filtered_matrix(h, brdf.diagonal_ndf_matrix(filtered, alpha2), alpha2);
 }
 double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) { return Brdf{}.ggx_brdf_filtered_axis(i, o, filtered, alpha2); }
 

@@ -301,8 +301,9 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
   }
   if (name == "ggx_brdf_filtered_axis") {
     const Vec3 i = in.vec3(), o = in.vec3();
-    const Vec2 filtered = in.vec2();
-    return output_values(brdf_value(i, o, {filtered.x, 0.0, filtered.y}, in.vec2()));
+    const Vec2 filtered = in.vec2(), alpha2 = in.vec2();
+    return output_values(magnitudes ? brdf_value(i, o, {filtered.x, 0.0, filtered.y}, alpha2)
+                                    : brdf.ggx_brdf_filtered_axis(i, o, filtered, alpha2));
   }
   if (name == "ggx_filtered_alpha2") {
     const double a = in.real(), kernel = in.real();

@@ -184,6 +184,9 @@ struct Brdf {
   double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
+  // The matrix the axis form's NDF sees: diag(filtered), the kernel floored at 0 per axis when
+  // guarded (template ggx_ndf_filtered_diagonal).
+  Sym2 diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const;
   double ggx_filtered_alpha2(double alpha2, double kernel) const;
 
  private:
@@ -193,6 +196,8 @@ struct Brdf {
   double falloff(double x) const;        // exp(-x), 0 past EXP_ARG_MAX when guarded
   double divisor(double d) const;        // d, floored at DIVISOR_MIN when guarded
   double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
+  // D G2 / (4 i.z o.z) of the filtered GGX: G2 of a, D of ndf_matrix (a itself but in the axis form).
+  double filtered_brdf(Vec3 i, Vec3 o, Sym2 a, Sym2 ndf_matrix, Vec2 alpha2) const;
 };
 
 // ---------------------------------------------------------------------------------------------
