@@ -20,6 +20,7 @@
 #include "saagen/emit/emitter.hpp"
 #include "saagen/front/catalogue.hpp"
 #include "saagen/report/shading_scene.hpp"
+#include "saagen/scene/cost_tables.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 #include "saagen/validate/kernels.hpp"
@@ -328,14 +329,18 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Opt
   document["repetitions"] = options.repetitions;
   document["lights"] = options.lights;
   document["time_source"] = time_source;
+  document["cost_model"] = saagen::kTimeCostModel;
   document["alpha"] = std::sqrt(scene_parameters(2, 2).front().values.front());
   nlohmann::json entries = nlohmann::json::array();
   for (const Row& row : rows) {
-    nlohmann::json entry = {{"target", row.target},
+    nlohmann::json entry = {{"device", device.substr(0, device.find(" ("))},  // the name, as MeasuredTradeTable::device_name
+                            {"shader", "forward"},
+                            {"target", row.target},
                             {"variant", row.variant},
+                            {"lights", options.lights},
+                            {"cost_ratio", row.ratio},
                             {"ms_median", row.ms},
                             {"baseline_ms_median", row.baseline_ms},
-                            {"ratio_median", row.ratio},
                             {"ratio_p25", row.ratio_p25},
                             {"ratio_p75", row.ratio_p75},
                             {"ms_min", row.ms_min},

@@ -7,8 +7,8 @@ filter with the papers' lobe, from bench_shading's JSON (one file per size, ligh
 
 A file measured with more than one light (--lights N) heads its columns "N lights".
 
-Each ratio is bench_shading's: the median over rounds of variant ms / no-SAA ms measured back to
-back, so a change of clock between rounds cancels. "tail / papers" divides two such ratios.
+Each ratio is the cost table's cost_ratio (bench_shading: the median over rounds of variant ms / no-SAA ms measured back to
+back, so a change of clock between rounds cancels). "tail / papers" divides two such ratios.
 """
 import json
 import sys
@@ -17,7 +17,7 @@ import sys
 def load(path):
     with open(path) as handle:
         document = json.load(handle)
-    ratios = {(row["target"], row["variant"]): row["ratio_median"] for row in document["rows"]}
+    ratios = {(row["target"], row["variant"]): row["cost_ratio"] for row in document["rows"]}
     label = f'{document["width"]}x{document["height"]}'
     lights = document.get("lights", 1)
     if lights != 1:

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 
 namespace saagen {
@@ -155,6 +156,45 @@ std::optional<int> read_light_count(const nlohmann::json& lights) {
   return static_cast<int>(lights.get<std::int64_t>());
 }
 
+// A cost table row's shared keys (cost_tables.hpp, "The cost table").
+struct CostRowKeys {
+  std::string device;  // "" where absent
+  std::string shader;  // "" where absent
+  OutputTarget target;
+  std::string variant;
+  int lights = 1;
+  std::optional<double> cost_ratio;
+};
+
+// The keys every cost table row shares (cost_tables.hpp, "The cost table"), each checked; `fail`
+// throws with the row's place. Absent keys stay empty (lights: 1), for the caller to require.
+CostRowKeys read_cost_row(const nlohmann::json& row, const std::function<void(std::string_view)>& fail) {
+  if (!row.is_object()) fail("must be an object");
+  const auto text = [&](const char* key) -> std::string {
+    if (!row.contains(key)) return {};
+    if (!row[key].is_string()) fail(fmt::format("\"{}\" must be a string", key));
+    return row[key].get<std::string>();
+  };
+  CostRowKeys keys;
+  keys.variant = text("variant");
+  if (keys.variant.empty()) fail("needs a string \"variant\"");
+  keys.device = text("device");
+  keys.shader = text("shader");
+  if (row.contains("target")) keys.target = OutputTarget::named(text("target"));
+  if (row.contains("lights")) {
+    const auto lights = read_light_count(row["lights"]);
+    if (!lights) fail(fmt::format("\"lights\" must be an integer from 1 to {} (absent: one light)", kMaxLights));
+    keys.lights = *lights;
+  }
+  if (row.contains("cost_ratio")) {
+    const nlohmann::json& ratio = row["cost_ratio"];
+    if (!ratio.is_number() || !std::isfinite(ratio.get<double>()) || ratio.get<double>() <= 0.0)
+      fail("\"cost_ratio\" must be a positive finite number");
+    keys.cost_ratio = ratio.get<double>();
+  }
+  return keys;
+}
+
 }  // namespace
 
 std::vector<double> bracketing_alphas(const std::vector<double>& measured, AlphaRange range) {
@@ -275,32 +315,28 @@ IsaTable parse_isa_table(std::string_view json_text, std::string_view source_nam
       table.devices[family] = device.get<std::string>();
     }
   }
-  for (const auto& row : document["rows"]) {
-    const auto text = [&](const char* key) {
-      if (!row.is_object() || !row.contains(key) || !row[key].is_string()) fail(fmt::format("every row needs a string \"{}\"", key));
-      return row[key].get<std::string>();
-    };
+  for (std::size_t index = 0; index < document["rows"].size(); ++index) {
+    const nlohmann::json& row = document["rows"][index];
+    const auto row_fail = [&](std::string_view what) { fail(fmt::format("rows[{}]: {}", index, what)); };
+    const CostRowKeys keys = read_cost_row(row, row_fail);
+    if (keys.device.empty() || keys.shader.empty() || !row.contains("target") || !keys.cost_ratio)
+      row_fail("needs the cost table's \"device\", \"shader\", \"target\" and \"cost_ratio\"");
     const auto number = [&](const char* key) {
       if (!row.contains(key) || !row[key].is_number() || !std::isfinite(row[key].get<double>()))
-        fail(fmt::format("every row needs a finite \"{}\"", key));
+        row_fail(fmt::format("needs a finite \"{}\"", key));
       return row[key].get<double>();
     };
-    IsaRow entry{text("family"), text("shader"), OutputTarget::named(text("target")), text("variant")};
+    IsaRow entry{keys.device, keys.shader, keys.target, keys.variant};
     entry.instructions = number("instructions");
     entry.vgprs = number("vgprs");
     entry.sgprs = number("sgprs");
     entry.subgroups_per_simd = number("subgroups_per_simd");
     entry.latency = number("latency");
     entry.inverse_throughput = number("inverse_throughput");
-    entry.inverse_throughput_ratio = number("inverse_throughput_ratio");
-    if (entry.inverse_throughput_ratio <= 0.0) fail("\"inverse_throughput_ratio\" must be positive");
+    entry.inverse_throughput_ratio = *keys.cost_ratio;
     if (row.contains("instructions_ratio")) entry.instructions_ratio = number("instructions_ratio");
     if (row.contains("latency_ratio")) entry.latency_ratio = number("latency_ratio");
-    if (row.contains("lights")) {
-      const auto lights = read_light_count(row["lights"]);
-      if (!lights) fail(fmt::format("a row's \"lights\" must be an integer from 1 to {} (absent: one light)", kMaxLights));
-      entry.lights = *lights;
-    }
+    entry.lights = keys.lights;
     table.rows.push_back(std::move(entry));
   }
   return table;
@@ -335,12 +371,14 @@ bool MeasuredTradeTable::has_errors() const {
 
 namespace {
 
-// One row of a trade table's "rows": a variant's cost, error and ISA ratio, each checked.
+// One row of a cost table (bench_shading's; cost_tables.hpp, "The cost table") or of a trade
+// table's "rows" (the same keys without device, shader and lights, with the trade's error and ISA
+// ratio): each figure checked.
 MeasuredTradeRow parse_cost_row(const nlohmann::json& row, std::size_t index, std::string_view source_name) {
   const auto fail = [&](std::string_view what) {
     throw Error(
-        fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"ratio_median\": number, "
-                    "\"delta_spirv_instructions\": number, \"error\": number}}",
+        fmt::format("{}: rows[{}]: {}; allowed: {{\"variant\": ID, \"target\": NAME, \"device\": NAME, \"shader\": NAME, "
+                    "\"lights\": N, \"cost_ratio\": number, \"delta_spirv_instructions\": number, \"error\": number}}",
                     source_name, index, what));
   };
   const auto number = [&](const char* key) -> std::optional<double> {
@@ -350,15 +388,11 @@ MeasuredTradeRow parse_cost_row(const nlohmann::json& row, std::size_t index, st
     if (!std::isfinite(value)) fail(fmt::format("\"{}\" must be finite", key));
     return value;
   };
-  if (!row.is_object()) fail("must be an object");
-  if (!row.contains("variant") || !row["variant"].is_string()) fail("needs a string \"variant\"");
+  const CostRowKeys keys = read_cost_row(row, fail);
   MeasuredTradeRow entry;
-  entry.variant = row["variant"].get<std::string>();
-  if (row.contains("target")) {
-    if (!row["target"].is_string()) fail("\"target\" must be a string");
-    entry.target = OutputTarget::named(row["target"].get<std::string>());
-  }
-  entry.cost_ratio = number("ratio_median");
+  entry.variant = keys.variant;
+  entry.target = keys.target;
+  entry.cost_ratio = keys.cost_ratio;
   entry.delta_instructions = number("delta_spirv_instructions");
   entry.error = number("error");
   entry.isa_ratio = number("isa_inverse_throughput_ratio");
@@ -368,7 +402,6 @@ MeasuredTradeRow parse_cost_row(const nlohmann::json& row, std::size_t index, st
     entry.isa_family = row["isa_family"].get<std::string>();
     if (*entry.isa_ratio <= 0.0) fail("\"isa_inverse_throughput_ratio\" must be positive");
   }
-  if (entry.cost_ratio && *entry.cost_ratio <= 0.0) fail("\"ratio_median\" must be positive");
   if (entry.error && *entry.error < 0.0) fail("\"error\" must not be negative");
   return entry;
 }
@@ -406,7 +439,7 @@ std::shared_ptr<const MeasuredTradeTable> parse_decision_timing(const nlohmann::
     throw Error(where + " must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
   auto table = std::make_shared<MeasuredTradeTable>(parse_trade_table(timing.dump(), where));
   if (!table->is_device_timing() || table->timed_on_cpu())
-    throw Error(where + fmt::format(": not a GPU's timings (no \"{}\" row with a \"ratio_median\", or a CPU device); "
+    throw Error(where + fmt::format(": not a GPU's timings (no \"{}\" row with a \"cost_ratio\", or a CPU device); "
                                     "pass the file `saagen bench --cost FILE --json` writes",
                                     kCostBaselineId));
   table->source_name = timing["source"].get<std::string>();

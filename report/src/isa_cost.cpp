@@ -285,10 +285,11 @@ std::string format_isa_table(const IsaTable& table) {
 nlohmann::json isa_json(const IsaTable& table) {
   nlohmann::json rows = nlohmann::json::array();
   for (const IsaRow& row : table.rows) {
-    nlohmann::json entry = {{"family", row.family},
+    nlohmann::json entry = {{"device", row.family},
                             {"shader", row.shader},
                             {"target", row.target.name()},
                             {"variant", row.variant},
+                            {"cost_ratio", row.inverse_throughput_ratio},
                             {"instructions", row.instructions},
                             {"vgprs", row.vgprs},
                             {"sgprs", row.sgprs},
@@ -296,14 +297,13 @@ nlohmann::json isa_json(const IsaTable& table) {
                             {"latency", row.latency},
                             {"inverse_throughput", row.inverse_throughput},
                             {"instructions_ratio", row.instructions_ratio},
-                            {"inverse_throughput_ratio", row.inverse_throughput_ratio},
                             {"latency_ratio", row.latency_ratio}};
     // The deferred pass runs once per pixel whatever the light count: its rows carry none.
     if (row.shader == isa_forward_shader) entry["lights"] = row.lights;
     rows.push_back(std::move(entry));
   }
   // "generator": the ownership tag, so that `--isa-table F` may rewrite its own file without --force.
-  return {{"cost_model", cost_model_name},
+  return {{"cost_model", fmt::format("{}; cost_ratio: the inverse throughput over no SAA's with as many lights", cost_model_name)},
           {"driver", table.driver},
           {"devices", table.devices},
           {"families", table.families},

@@ -179,7 +179,7 @@ nlohmann::json summary_rows_json(const std::vector<VariantSummary>& summary, con
       entry["isa_inverse_throughput_ratio"] = *ratio;
       entry["isa_family"] = costs->isa_family;
     }
-    if (const auto ratio = configuration_cost(costs, row.variant, true)) entry["ratio_median"] = *ratio;
+    if (const auto ratio = configuration_cost(costs, row.variant, true)) entry["cost_ratio"] = *ratio;
     if (const auto delta = configuration_cost(costs, row.variant, false)) entry["delta_spirv_instructions"] = *delta;
     rows.push_back(entry);
   }
@@ -298,14 +298,22 @@ nlohmann::json comparisons_json(const measure::TradeTable& table, const std::str
   return comparisons;
 }
 
-// The device timing the decisions were costed with (MeasuredTradeTable::decision_timing), in
-// bench_shading's form with the file it came from, for `saagen plan --trade-table` to cost as the
-// bench did.
+// The device timing the decisions were costed with (MeasuredTradeTable::decision_timing), as a
+// cost table (cost_tables.hpp) with the file it came from, for `saagen plan --trade-table` to cost
+// as the bench did.
 nlohmann::json device_timing_json(const MeasuredTradeTable& timing) {
   nlohmann::json rows = nlohmann::json::array();
-  for (const MeasuredTradeRow& row : timing.rows)
-    if (row.cost_ratio) rows.push_back({{"variant", row.variant}, {"target", row.target.name()}, {"ratio_median", *row.cost_ratio}});
-  return {{"source", timing.source_name}, {"device", timing.device}, {"lights", timing.lights}, {"rows", rows}};
+  for (const MeasuredTradeRow& row : timing.rows) {
+    if (!row.cost_ratio) continue;
+    rows.push_back({{"device", timing.device_name()},
+                    {"shader", "forward"},
+                    {"target", row.target.name()},
+                    {"variant", row.variant},
+                    {"lights", timing.lights},
+                    {"cost_ratio", *row.cost_ratio}});
+  }
+  return {
+      {"source", timing.source_name}, {"cost_model", kTimeCostModel}, {"device", timing.device}, {"lights", timing.lights}, {"rows", rows}};
 }
 
 }  // namespace

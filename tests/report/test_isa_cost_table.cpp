@@ -162,8 +162,8 @@ TEST(IsaCost, TheCommittedPlannerTableIsCurrent) {
 TEST(IsaCost, TheTradeJsonCarriesTheIsaCostThePlannerRanksSpeedBy) {
   saagen::report::CostTable costs;
   const auto row = [](const std::string& variant, double ratio) {
-    return fmt::format(R"({{"family": "navi21", "shader": "forward", "target": "glsl", "variant": "{}", "instructions": 1, "vgprs": 1,
-        "sgprs": 1, "subgroups_per_simd": 1, "latency": 1, "inverse_throughput": 1, "inverse_throughput_ratio": {}}})",
+    return fmt::format(R"({{"device": "navi21", "shader": "forward", "target": "glsl", "variant": "{}", "instructions": 1, "vgprs": 1,
+        "sgprs": 1, "subgroups_per_simd": 1, "latency": 1, "inverse_throughput": 1, "cost_ratio": {}}})",
                        variant, ratio);
   };
   costs.isa = saagen::parse_isa_table(

@@ -51,7 +51,7 @@ class Report : public ::testing::Test {
                               "deferred-projected-space"};
     double ratio = 1.0;
     for (const char* variant : variants) {
-      rows.push_back({{"target", "glsl"}, {"variant", variant}, {"ratio_median", ratio += 0.01}, {"delta_spirv_instructions", 20}});
+      rows.push_back({{"target", "glsl"}, {"variant", variant}, {"cost_ratio", ratio += 0.01}, {"delta_spirv_instructions", 20}});
     }
     std::ofstream(scratch_ / "cost.json") << nlohmann::json{{"device", "test fixture"}, {"rows", rows}}.dump();
     const std::string command = std::string("'") + SAAGEN_CLI_PATH + "' report --preset quick --cost '" +

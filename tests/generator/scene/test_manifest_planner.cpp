@@ -333,9 +333,9 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
   }
   // A table without light counts (written before they were measured) is one light's.
   const saagen::IsaTable old = saagen::parse_isa_table(
-      R"({"families": ["vega10"], "rows": [{"family": "vega10", "shader": "forward", "target": "glsl", "variant": "deferred-avg",
+      R"({"families": ["vega10"], "rows": [{"device": "vega10", "shader": "forward", "target": "glsl", "variant": "deferred-avg",
           "instructions": 1, "vgprs": 1, "sgprs": 1, "subgroups_per_simd": 1, "latency": 1, "inverse_throughput": 1,
-          "inverse_throughput_ratio": 1.25}]})",
+          "cost_ratio": 1.25}]})",
       "old.json");
   EXPECT_EQ(old.rows.at(0).lights, 1);
   EXPECT_EQ(old.cost_light_count("vega10", 16), 1);
@@ -347,9 +347,9 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
   EXPECT_EQ(committed.cost_light_count("vega10", 64), 16);
   const auto bad_lights = [](const std::string& value) -> std::string {
     try {
-      (void)saagen::parse_isa_table(R"({"families": ["vega10"], "rows": [{"family": "vega10", "shader": "forward", "target": "glsl",
+      (void)saagen::parse_isa_table(R"({"families": ["vega10"], "rows": [{"device": "vega10", "shader": "forward", "target": "glsl",
           "variant": "deferred-avg", "instructions": 1, "vgprs": 1, "sgprs": 1, "subgroups_per_simd": 1, "latency": 1,
-          "inverse_throughput": 1, "inverse_throughput_ratio": 1.25, "lights": )" +
+          "inverse_throughput": 1, "cost_ratio": 1.25, "lights": )" +
                                         value + "}]}",
                                     "bad.json");
     } catch (const saagen::Error& error) {
@@ -357,7 +357,7 @@ TEST(Planner, CommittedCostsGrowPerLightAndShrinkPerPixel) {
     }
     return "";
   };
-  EXPECT_NE(bad_lights("0").find("bad.json: a row's \"lights\" must be an integer from 1 to 64"), std::string::npos) << bad_lights("0");
+  EXPECT_NE(bad_lights("0").find("bad.json: rows[0]: \"lights\" must be an integer from 1 to 64"), std::string::npos) << bad_lights("0");
   EXPECT_NE(bad_lights("2.5").find("must be an integer"), std::string::npos) << bad_lights("2.5");
   EXPECT_EQ(bad_lights("64"), "");
   // The committed table names each family's device and keeps every ratio to no SAA.

@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -237,7 +239,7 @@ TEST(Planner, ManifestsBuiltInCodeAreCheckedToo) {
 
 TEST(Planner, TradeTablePicksTheCheapestForSpeedAndTheMostAccurateForAccuracy) {
   const saagen::MeasuredTradeTable table = saagen::parse_trade_table(R"({"rows": [
-      {"target": "glsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.05, "ratio_median": 0.9, "error": 0.02},
+      {"target": "glsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.05, "cost_ratio": 0.9, "error": 0.02},
       {"target": "hlsl", "variant": "deferred-avg", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.07, "error": 0.02},
       {"target": "glsl", "variant": "deferred-sum", "isa_family": "vega10", "isa_inverse_throughput_ratio": 1.02, "error": 0.05},
       {"target": "glsl", "variant": "deferred-sum", "isa_family": "navi21", "isa_inverse_throughput_ratio": 2.0},
@@ -264,7 +266,7 @@ TEST(Planner, SpeedFollowsTheCommittedIsaTableNotLavapipeTime) {
   const saagen::IsaTable& isa = saagen::committed_isa_costs();
   ASSERT_FALSE(isa.rows.empty());
   const saagen::MeasuredTradeTable table =
-      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "ratio_median": 0.5}]})", "time.json");
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-projected-space", "cost_ratio": 0.5}]})", "time.json");
   for (const std::string family : {"vega10", "navi21"}) {
     const saagen::Manifest manifest =
         parse("name = \"s\"\ntargets = [\"glsl\"]\ngpu_family = \"" + family +
@@ -309,7 +311,7 @@ TEST(Planner, TangentFreeConfigurationsAreKnownIdsAndCostTheirOwnForm) {
 
 TEST(Planner, TradeTableWithoutErrorsLeavesAccuracyToTheRules) {
   const saagen::MeasuredTradeTable table =
-      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "ratio_median": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
+      saagen::parse_trade_table(R"({"rows": [{"variant": "deferred-sum", "cost_ratio": 1.0, "delta_spirv_instructions": 9}]})", "t.json");
   EXPECT_FALSE(table.has_errors());
   const saagen::ScenePlan plan =
       saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = \"deferred\"\n"), &table);
@@ -469,9 +471,9 @@ TEST(Planner, BadTradeTablesAreRejected) {
   };
   EXPECT_EQ(error_of_table("{"), "t.json: not valid JSON (byte 2); pass the file `bench_shading --json` writes");
   EXPECT_EQ(error_of_table("[]"), "t.json: no \"rows\" array; pass the file `bench_shading --json` writes");
-  EXPECT_NE(
-      error_of_table(R"({"rows": [{"variant": "x", "ratio_median": "fast"}]})").find("t.json: rows[0]: \"ratio_median\" must be a number"),
-      std::string::npos);
+  EXPECT_NE(error_of_table(R"({"rows": [{"variant": "x", "cost_ratio": "fast"}]})")
+                .find("t.json: rows[0]: \"cost_ratio\" must be a positive finite number"),
+            std::string::npos);
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "error": 1}]})"),
             "t.json: by_content[0]: needs a string \"configuration\"");
   EXPECT_EQ(error_of_table(R"({"rows": [], "by_content": [{"content": "curved", "configuration": "none"}]})"),
@@ -645,11 +647,11 @@ saagen::MaterialPlan beckmann_speed_plan(const saagen::MeasuredTradeTable& timin
 // 1.30 (no transported row: its papers' time).
 TEST(Planner, ADeviceTimingOfTheTransportedWrappersCostsThem) {
   const saagen::MeasuredTradeTable timing = saagen::parse_trade_table(R"json({"device": "Some GPU (discrete GPU, Vulkan 1.4)", "lights": 1,
-      "rows": [{"target": "glsl", "variant": "no-saa", "ratio_median": 1.0},
-               {"target": "glsl", "variant": "forward-aniso-projected", "ratio_median": 1.05},
-               {"target": "glsl", "variant": "forward-aniso-projected/tail", "ratio_median": 1.10},
-               {"target": "glsl", "variant": "forward-aniso-projected-transported/tail", "ratio_median": 1.40},
-               {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.30}]})json",
+      "rows": [{"target": "glsl", "variant": "no-saa", "cost_ratio": 1.0},
+               {"target": "glsl", "variant": "forward-aniso-projected", "cost_ratio": 1.05},
+               {"target": "glsl", "variant": "forward-aniso-projected/tail", "cost_ratio": 1.10},
+               {"target": "glsl", "variant": "forward-aniso-projected-transported/tail", "cost_ratio": 1.40},
+               {"target": "glsl", "variant": "forward-axis-projected", "cost_ratio": 1.30}]})json",
                                                                       "timing.json");
   ASSERT_TRUE(saagen::committed_advice().forward_transported);
   const saagen::MaterialPlan beckmann = beckmann_speed_plan(timing);
@@ -664,12 +666,12 @@ TEST(Planner, ADeviceTimingOfTheTransportedWrappersCostsThem) {
 // The rules' speed ranking reads the same timings.
 TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
   const saagen::MeasuredTradeTable timing = saagen::parse_trade_table(R"json({"device": "Some GPU (discrete GPU, Vulkan 1.4)", "lights": 1,
-      "rows": [{"target": "glsl", "variant": "no-saa", "ratio_median": 1.0},
-               {"target": "glsl", "variant": "deferred-aniso/tail", "ratio_median": 1.34},
-               {"target": "hlsl", "variant": "deferred-aniso/tail", "ratio_median": 1.38},
-               {"target": "glsl", "variant": "deferred-avg/tail", "ratio_median": 1.19},
-               {"target": "glsl", "variant": "forward-axis-projected", "ratio_median": 1.30},
-               {"target": "glsl", "variant": "forward-aniso-projected", "ratio_median": 1.05}]})json",
+      "rows": [{"target": "glsl", "variant": "no-saa", "cost_ratio": 1.0},
+               {"target": "glsl", "variant": "deferred-aniso/tail", "cost_ratio": 1.34},
+               {"target": "hlsl", "variant": "deferred-aniso/tail", "cost_ratio": 1.38},
+               {"target": "glsl", "variant": "deferred-avg/tail", "cost_ratio": 1.19},
+               {"target": "glsl", "variant": "forward-axis-projected", "cost_ratio": 1.30},
+               {"target": "glsl", "variant": "forward-aniso-projected", "cost_ratio": 1.05}]})json",
                                                                       "timing.json");
   EXPECT_TRUE(timing.is_device_timing());
   EXPECT_NEAR(*timing.device_time_ratio("deferred-aniso/tail"), 1.36, 1e-12);
@@ -693,10 +695,10 @@ TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
   } catch (const saagen::Error& error) {
     EXPECT_STREQ(error.what(), "t.json: \"lights\" must be an integer from 1 to 64 (the lights bench_shading --lights timed)");
   }
-  EXPECT_FALSE(saagen::parse_trade_table(R"({"rows": [{"variant": "none", "ratio_median": 1.0}]})", "bench.json").is_device_timing());
+  EXPECT_FALSE(saagen::parse_trade_table(R"({"rows": [{"variant": "none", "cost_ratio": 1.0}]})", "bench.json").is_device_timing());
   // A CPU's timings (lavapipe) never cost a plan: one line says so.
   const saagen::MeasuredTradeTable cpu = saagen::parse_trade_table(
-      R"json({"device": "llvmpipe (LLVM 15.0.6, 256 bits) (CPU, Vulkan 1.3.230)", "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})json",
+      R"json({"device": "llvmpipe (LLVM 15.0.6, 256 bits) (CPU, Vulkan 1.3.230)", "rows": [{"variant": "no-saa", "cost_ratio": 1.0}]})json",
       "cpu.json");
   try {
     (void)saagen::plan_scene(Catalogue::builtin(), parse(curved), &cpu);
@@ -727,6 +729,43 @@ TEST(Planner, TheCommittedH200TimingsPlanABudget) {
       saagen::plan_scene(Catalogue::builtin(), parse(curved + "lights = 16\n"), &sixteen).materials.at(0);
   EXPECT_EQ(at_sixteen.variant, "none") << at_sixteen.reason;
   EXPECT_NE(at_sixteen.reason.find("costs more than the budget 1.4"), std::string::npos) << at_sixteen.reason;
+}
+
+// The cost table is one form (cost_tables.hpp, "The cost table"): the committed ISA model and the
+// H200's timings name what their ratios measure and give every row the same keys, and each parser
+// reads cost_ratio as the figure the planner costs by.
+TEST(CostTable, TheIsaModelAndTheTimedTablesShareOneSchema) {
+  const std::filesystem::path source(SAAGEN_SOURCE_DIR);
+  const auto document_of = [](const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+  };
+  const std::filesystem::path isa_path = source / "generator" / "data" / "isa_cost.json";
+  const std::filesystem::path timed_path = source / "docs" / "data" / "h200" / "shading_4k_4l.json";
+  const nlohmann::json isa = document_of(isa_path), timed = document_of(timed_path);
+  for (const nlohmann::json* table : {&isa, &timed}) {
+    EXPECT_TRUE((*table)["cost_model"].is_string());
+    for (const nlohmann::json& row : (*table)["rows"]) {
+      for (const char* key : {"device", "shader", "target", "variant"}) EXPECT_TRUE(row[key].is_string()) << key << " " << row;
+      EXPECT_TRUE(row["cost_ratio"].is_number()) << row;
+      if (row["shader"] == "forward") EXPECT_TRUE(row["lights"].is_number_integer()) << row;
+    }
+  }
+  const saagen::IsaTable isa_table = saagen::parse_isa_table(isa.dump(), isa_path.string());
+  const nlohmann::json& first = isa["rows"].at(1);
+  EXPECT_EQ(isa_table.rows.at(1).inverse_throughput_ratio, first["cost_ratio"].get<double>());
+  const saagen::MeasuredTradeTable timed_table = saagen::load_trade_table(timed_path);
+  EXPECT_EQ(timed_table.lights, 4);
+  for (const nlohmann::json& row : timed["rows"]) {
+    EXPECT_EQ(row["lights"], 4);
+    EXPECT_EQ(row["device"], timed_table.device_name());
+  }
+  const auto timed_ratio = [&](const std::string& target) {
+    for (const nlohmann::json& row : timed["rows"])
+      if (row["variant"] == "deferred-avg/tail" && row["target"] == target) return row["cost_ratio"].get<double>();
+    return 0.0;
+  };
+  EXPECT_DOUBLE_EQ(*timed_table.device_time_ratio("deferred-avg/tail"), (timed_ratio("glsl") + timed_ratio("hlsl")) / 2.0);
 }
 
 }  // namespace

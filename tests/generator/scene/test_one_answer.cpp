@@ -334,13 +334,13 @@ TEST(OneAnswer, ADeviceTimingThatIsNoGpusIsRefused) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(error_of(R"({"device": "NVIDIA H200", "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})"),
+  EXPECT_EQ(error_of(R"({"device": "NVIDIA H200", "rows": [{"variant": "no-saa", "cost_ratio": 1.0}]})"),
             "t.json: \"device_timing\" must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
   EXPECT_EQ(error_of(R"({"source": "a.json", "device": "NVIDIA H200", "rows": [], "device_timing": {}})"),
             "t.json: \"device_timing\" must be an object with a string \"source\" (as `saagen bench --cost FILE --json` writes it)");
   EXPECT_EQ(error_of(R"json({"source": "l.json", "device": "llvmpipe (LLVM 15.0.6, 256 bits) (CPU, Vulkan 1.3.230)",
-                             "rows": [{"variant": "no-saa", "ratio_median": 1.0}]})json"),
-            "t.json: \"device_timing\": not a GPU's timings (no \"no-saa\" row with a \"ratio_median\", or a CPU device); pass the "
+                             "rows": [{"variant": "no-saa", "cost_ratio": 1.0}]})json"),
+            "t.json: \"device_timing\": not a GPU's timings (no \"no-saa\" row with a \"cost_ratio\", or a CPU device); pass the "
             "file `saagen bench --cost FILE --json` writes");
 }
 

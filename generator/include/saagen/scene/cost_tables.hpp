@@ -17,13 +17,23 @@
 
 namespace saagen {
 
-// Measured trade-offs: bench_shading --json writes {"rows": [{"target", "variant",
-// "ratio_median", "delta_spirv_instructions", ...}]}; a row may also carry "error" (lower is
-// better), which `saagen bench` is to write. Rows of several targets are averaged per variant.
+// The cost table: one JSON form for every cost the planner, the report and the scripts read, written
+// by `bench_shading --json` (a device's time ratios) and `saagen bench --isa ... --isa-table` (ACO's
+// ISA model, generator/data/isa_cost.json): {"cost_model": what the ratios measure, "rows":
+// [{"device", "shader", "target", "variant", "lights", "cost_ratio", ...}]}, each row a shader
+// ("forward": bench_shading's scene with `lights` lights; "deferred-pass") of one target and
+// variant on one device (an ISA family or the timed device), and cost_ratio its cost over the
+// same shader without SAA (kCostBaselineId) with as many lights. A model's own measures follow in
+// the row (ISA: instructions, vgprs, inverse_throughput, ...; time: ms_median, ratio_p25, ...), and
+// one parser reads the shared keys of both (cost_tables.cpp, read_cost_row). A trade table's
+// summary "rows" (`saagen bench --json`) use the same keys for what they share ("variant",
+// "target", "cost_ratio") and add the trade's own ("error", "isa_family",
+// "isa_inverse_throughput_ratio", "delta_spirv_instructions"). Rows of several targets are
+// averaged per variant.
 struct MeasuredTradeRow {
   OutputTarget target;  // read once from the row's "target" text
   std::string variant;
-  std::optional<double> cost_ratio;          // ratio_median: time with the variant / without SAA
+  std::optional<double> cost_ratio;          // cost_ratio: time with the variant / without SAA
   std::optional<double> delta_instructions;  // delta_spirv_instructions
   std::optional<double> error;               // error
   std::optional<double> isa_ratio;           // isa_inverse_throughput_ratio (`saagen bench --isa`)
@@ -151,6 +161,9 @@ inline constexpr const char* kDefaultGpuFamily = "vega10";
 // The id of the baseline row (the same shader without SAA) in bench_shading's JSON and the ISA
 // table; a trade table names it "none".
 inline constexpr const char* kCostBaselineId = "no-saa";
+// The "cost_model" of a device's timings (bench_shading --json): cost_ratio is the median over
+// rounds of the variant's time over no SAA's, measured back to back.
+inline constexpr const char* kTimeCostModel = "time: the median over rounds of the frame's GPU time with the variant over without SAA";
 // Speed ranks variants whose ISA ratios differ by less than this fraction as equally cheap (the
 // rule's choice among them stands): one instruction of ACO's static estimate is ~0.5 %.
 inline constexpr double kIsaTieTolerance = 0.01;

@@ -46,9 +46,11 @@ std::string format_isa_table(const IsaTable& table);
 // inverse-throughput ratio to no SAA with the same lights (IsaTable::forward_ratio, all targets).
 std::string format_light_count_table(const IsaTable& table);
 
-// {"cost_model": "...", "driver", "devices": {FAMILY: DEVICE}, "rows": [{"family", "shader", "target", "variant",
+// The cost table (saagen/scene/cost_tables.hpp) of the ISA model: {"cost_model": "...", "driver",
+// "devices": {FAMILY: DEVICE}, "families", "rows": [{"device": FAMILY, "shader", "target", "variant",
+// "cost_ratio" (the inverse-throughput ratio), "lights" (forward rows), and the model's own
 // "instructions", "vgprs", "sgprs", "subgroups_per_simd", "latency", "inverse_throughput",
-// "instructions_ratio", "inverse_throughput_ratio", "latency_ratio", "lights" (forward rows)}]}
+// "instructions_ratio", "latency_ratio"}]}
 nlohmann::json isa_json(const IsaTable& table);
 
 }  // namespace saagen::report
