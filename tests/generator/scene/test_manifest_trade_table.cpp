@@ -748,7 +748,9 @@ TEST(CostTable, TheIsaModelAndTheTimedTablesShareOneSchema) {
     for (const nlohmann::json& row : (*table)["rows"]) {
       for (const char* key : {"device", "shader", "target", "variant"}) EXPECT_TRUE(row[key].is_string()) << key << " " << row;
       EXPECT_TRUE(row["cost_ratio"].is_number()) << row;
-      if (row["shader"] == "forward") EXPECT_TRUE(row["lights"].is_number_integer()) << row;
+      if (row["shader"] == "forward") {
+        EXPECT_TRUE(row["lights"].is_number_integer()) << row;
+      }
     }
   }
   const saagen::IsaTable isa_table = saagen::parse_isa_table(isa.dump(), isa_path.string());
