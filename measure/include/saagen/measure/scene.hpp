@@ -247,9 +247,12 @@ struct Light {
   void at(Vec3 p, Vec3& to_light, double& irradiance) const;
 };
 
-// The analytic scenes (all_scenes) and the "real content" scenes (content_scenes: normal maps
-// and a triangle mesh, see the top of this file). Each built-in scene is an enumerator here and
-// one row of scene.cpp's kBuiltinScenes (name, group, normal detail, how it is built).
+// A scene the trade renders: a built-in one, or one registered at run time (register_scene).
+// The built-in scenes are the analytic ones (all_scenes) and the "real content" ones
+// (content_scenes: normal maps and a triangle mesh, see the top of this file), each one row of
+// kBuiltinScenes in measure/src/builtin_scenes.cpp (name, group, normal detail, the function that
+// builds it) and nothing else: a scene's id is its row's index. The enumerators name the rows
+// that code refers to directly; a new row needs none.
 enum class SceneId { sphere, torus, tubes, bump_plane, nmap_sphere, nmap_sphere_fine, torus_knot };
 
 std::string_view scene_name(SceneId id);
