@@ -9,11 +9,11 @@
 #include "saagen/io/input.hpp"
 #include "saagen/io/output.hpp"
 #include "saagen/measure/gltf.hpp"
-#include "saagen/print/backend.hpp"
 #include "saagen/products/glints.hpp"
 #include "saagen/products/spirv_library.hpp"
 #include "saagen/scene/manifest.hpp"
 #include "saagen/scene/planner.hpp"
+#include "saagen/target/language.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 
@@ -523,7 +523,7 @@ CompileRequest SceneCommands::compile_settings(const fs::path& input) const {
   }
   const SourceLanguage language =
       !compile_language_.empty() ? *source_language(compile_language_) : source_language_of_extension(extension);
-  if (!language_backend(language).front_end().named_entry_points && compile_entry_ != "main") {
+  if (!language->front_end().named_entry_points && compile_entry_ != "main") {
     throw Error(fmt::format("--entry {}: GLSL's entry point is always main; --entry applies to HLSL only", compile_entry_));
   }
   if (compile_entry_.empty()) throw Error("--entry: empty; pass the name of the HLSL entry function");

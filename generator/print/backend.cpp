@@ -3,6 +3,9 @@
 #include "saagen/error.hpp"
 #include "saagen/target/target.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 namespace saagen {
 namespace {
 
@@ -10,25 +13,29 @@ std::string print_c_like_body(const dialect::Body& body, const TargetSyntax& tar
   return dialect::print_c_like(body, target, *options.names, options.guarded);
 }
 
-// One entry per language. GLSL ES is GLSL's front end on the OpenGL ES client (its tables say).
-const LanguageBackend backends[] = {
-    {SourceLanguage::glsl, print_c_like_body, GlslangFrontEnd{.hlsl = false, .default_version = 450, .named_entry_points = false}},
-    {SourceLanguage::hlsl, print_c_like_body, GlslangFrontEnd{.hlsl = true, .default_version = 100, .named_entry_points = true}},
-    {SourceLanguage::wgsl, dialect::print_wgsl, std::nullopt},
+struct NamedPrinter {
+  std::string_view name;
+  BodyPrinter print;
+};
+// One entry per printer: the C-like one spells GLSL, GLSL ES and HLSL from their tables.
+constexpr NamedPrinter kPrinters[] = {
+    {"c_like", print_c_like_body},
+    {"wgsl", dialect::print_wgsl},
 };
 
 }  // namespace
 
-const GlslangFrontEnd& LanguageBackend::front_end() const {
-  if (!glslang) throw Error("this language is not compiled by glslang; Tint validates it through the WebGPU runner");
-  return *glslang;
+BodyPrinter body_printer(const Language& language) {
+  for (const NamedPrinter& printer : kPrinters) {
+    if (printer.name == language.printer) return printer.print;
+  }
+  throw Error(fmt::format("{}: printer '{}' is not one of {}", language.table, language.printer, fmt::join(body_printer_names(), ", ")));
 }
 
-const LanguageBackend& language_backend(SourceLanguage language) {
-  for (const LanguageBackend& backend : backends) {
-    if (backend.language == language) return backend;
-  }
-  throw Error("no backend for this source language");
+std::vector<std::string_view> body_printer_names() {
+  std::vector<std::string_view> names;
+  for (const NamedPrinter& printer : kPrinters) names.push_back(printer.name);
+  return names;
 }
 
 }  // namespace saagen
@@ -36,7 +43,7 @@ const LanguageBackend& language_backend(SourceLanguage language) {
 namespace saagen::dialect {
 
 std::string print_body(const Body& body, const TargetSyntax& target, const PrintOptions& options) {
-  return language_backend(target.language).print_body(body, target, options);
+  return body_printer(*target.language)(body, target, options);
 }
 
 }  // namespace saagen::dialect

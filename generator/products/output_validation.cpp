@@ -2,9 +2,9 @@
 
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
-#include "saagen/print/backend.hpp"
 #include "saagen/products/deferred_pass.hpp"
 #include "saagen/products/spirv_library.hpp"
+#include "saagen/target/language.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/compiler.hpp"
 
@@ -81,7 +81,7 @@ bool validated_by_tint(const std::string& content) {
   const auto marker = find_marker(content);
   if (!marker || is_spirv_or_pass_marker(*marker)) return false;
   const TargetSyntax* target = find_builtin_target(marker->target.table);
-  return target && !language_backend(target->language).compiled_in_process();
+  return target && !target->language->compiled_in_process();
 }
 
 }  // namespace

@@ -200,7 +200,10 @@ void read_identity(const Json& json, TargetSyntax& target, std::string_view sour
   target.file_extension = require_string(json, "file_extension", source);
   const std::string language = require_string(json, "language", source);
   const auto parsed_language = source_language(language);
-  if (!parsed_language) throw Error(fmt::format("{}: language '{}' is not glsl, hlsl or wgsl", source, language));
+  if (!parsed_language) {
+    throw Error(fmt::format("{}: language '{}' has no table targets/{}/language.json in this build; the languages are {}", source, language,
+                            language, fmt::join(language_names(), ", ")));
+  }
   target.language = *parsed_language;
   target.module = json.value("module", false);
 }
@@ -297,7 +300,8 @@ const std::map<std::string, TargetSyntax, std::less<>>& builtin_targets() {
   static const auto targets = [] {
     std::map<std::string, TargetSyntax, std::less<>> table;
     for (const auto& [name, text] : embedded::files()) {
-      if (name.rfind("targets/", 0) != 0 || name.size() < 5 || name.substr(name.size() - 5) != ".json") continue;
+      // targets/<name>.json; a language's own table is targets/<language>/language.json.
+      if (!name.starts_with("targets/") || !name.ends_with(".json") || name.find('/', 8) != std::string::npos) continue;
       TargetSyntax target = TargetSyntax::parse(text, name);
       table.emplace(target.name, std::move(target));
     }
@@ -343,19 +347,12 @@ std::vector<const TargetSyntax*> vulkan_targets() {
   return targets;
 }
 
-std::optional<SourceLanguage> source_language(std::string_view name) {
-  if (name == "glsl") return SourceLanguage::glsl;
-  if (name == "hlsl") return SourceLanguage::hlsl;
-  if (name == "wgsl") return SourceLanguage::wgsl;
-  return std::nullopt;
-}
-
 SourceLanguage source_language_of_extension(std::string_view extension) {
   if (extension.starts_with('.')) extension.remove_prefix(1);
   for (const auto& [name, target] : builtin_targets()) {
     if (target.file_extension == extension) return target.language;
   }
-  return SourceLanguage::glsl;
+  return SourceLanguage::named("glsl");
 }
 
 const TargetSyntax* find_builtin_target(std::string_view name) {

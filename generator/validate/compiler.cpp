@@ -1,6 +1,6 @@
 #include "saagen/validate/compiler.hpp"
 
-#include "saagen/print/backend.hpp"
+#include "saagen/target/language.hpp"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
@@ -39,7 +39,7 @@ spv_target_env to_spirv_env(ClientApi client) {
 
 void configure_environment(glslang::TShader& shader, const CompileRequest& request) {
   const EShLanguage stage = to_glslang_stage(request.stage);
-  const glslang::EShSource source = language_backend(request.language).front_end().hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl;
+  const glslang::EShSource source = request.language->front_end().hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl;
   if (request.client == ClientApi::opengl_es) {
     // No client: glslang checks the source against the ES profile its #version line names
     // (300 es), as an OpenGL ES / WebGL2 driver's front end does, and generates no SPIR-V.
@@ -60,7 +60,7 @@ EShMessages message_flags(const CompileRequest& request) {
   if (request.client == ClientApi::opengl_es) return EShMsgDefault;
   int flags = EShMsgSpvRules;
   if (request.client == ClientApi::vulkan) flags |= EShMsgVulkanRules;
-  if (language_backend(request.language).front_end().hlsl) {
+  if (request.language->front_end().hlsl) {
     flags |= EShMsgReadHlsl;
     if (request.hlsl_native_16bit) flags |= EShMsgHlslEnable16BitTypes;
   }
@@ -88,7 +88,7 @@ CompileResult compile_to_spirv(const CompileRequest& request) {
   configure_environment(*shader, request);
 
   const EShMessages messages = message_flags(request);
-  const int default_version = language_backend(request.language).front_end().default_version;
+  const int default_version = request.language->front_end().default_version;
   if (!shader->parse(GetDefaultResources(), default_version, false, messages)) {
     result.log = shader->getInfoLog();
     return result;

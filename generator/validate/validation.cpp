@@ -3,7 +3,7 @@
 #include "saagen/emit/engines.hpp"
 #include "saagen/error.hpp"
 #include "saagen/front/dialect.hpp"
-#include "saagen/print/backend.hpp"
+#include "saagen/target/language.hpp"
 #include "saagen/target/resources.hpp"
 #include "saagen/target/target.hpp"
 #include "saagen/validate/kernels.hpp"
@@ -137,7 +137,7 @@ FileValidation validate_file(const Catalogue& catalogue, const std::string& file
   const auto marker = find_marker(content);
   if (!marker) throw Error(fmt::format("{}: no saagen marker line; this file was not written by `saagen emit`", file_name));
   const TargetSyntax target = builtin_target(marker->target.table).with_precision(marker->precision);
-  if (!language_backend(target.language).compiled_in_process()) return validate_wgsl_files(catalogue, {{file_name, content}}).front();
+  if (!target.language->compiled_in_process()) return validate_wgsl_files(catalogue, {{file_name, content}}).front();
 
   FileValidation validation{file_name, {}};
   for (ClientApi client : target.validation_clients) {

@@ -20,8 +20,8 @@ saagen::ShaderStage to_compiler_stage(Stage stage) {
 
 }  // namespace
 
-std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source, const std::string& entry_point,
-                                          const std::string& name) {
+std::vector<std::uint32_t> compile_shader(saagen::SourceLanguage language, Stage stage, const std::string& source,
+                                          const std::string& entry_point, const std::string& name) {
   saagen::CompileRequest request;
   request.language = language;
   request.stage = to_compiler_stage(stage);
@@ -33,7 +33,7 @@ std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const 
   return std::move(result.spirv);
 }
 
-ShaderDesc shader_desc(Language language, Stage stage, const std::string& source, const std::string& entry_point) {
+ShaderDesc shader_desc(saagen::SourceLanguage language, Stage stage, const std::string& source, const std::string& entry_point) {
   return ShaderDesc{compile_shader(language, stage, source, entry_point), entry_point, {}};
 }
 

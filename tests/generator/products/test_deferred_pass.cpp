@@ -231,7 +231,7 @@ saagen::DeferredPass emit_pass(const std::string& id, saagen::PlainDerivative de
 std::vector<std::uint32_t> spirv_of(const saagen::DeferredPass& pass, const std::string& language) {
   if (language == "glsl") return pass.spirv;  // the emitted .spv, compiled from the .comp
   saagen::CompileRequest request;
-  request.language = saagen::SourceLanguage::hlsl;
+  request.language = saagen::SourceLanguage::named("hlsl");
   request.stage = saagen::ShaderStage::compute;
   request.sources = {{pass.stem + ".hlsl", pass.source("hlsl")}};
   const auto result = saagen::compile_to_spirv(request);

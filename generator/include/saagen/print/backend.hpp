@@ -1,39 +1,25 @@
-// One backend per source language: what the generator does differently per language beyond the
-// language's syntax tables (targets/*.json): the printer of function bodies, the glslang front end
-// that compiles it in process, and so how an emitted file of it is validated. Code outside the
-// backends asks language_backend(language) rather than comparing languages.
+// What the generator does differently per source language in C++: the printer of its function
+// bodies, chosen by name by the language's table (targets/<language>/language.json, "printer";
+// saagen/target/language.hpp). Everything else that differs per language is the tables' data:
+// glslang's front end and its settings, or validation by Tint. A new language whose bodies the
+// C-like printer spells is its tables alone; one that needs a printer of its own adds it here.
 #pragma once
 
 #include "saagen/front/syntax_tree.hpp"
 #include "saagen/target/language.hpp"
 
-#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace saagen {
-
-// How glslang compiles a language in process (saagen/validate/compiler.hpp).
-struct GlslangFrontEnd {
-  bool hlsl = false;                // glslang's HLSL front end (else its GLSL one)
-  int default_version = 450;        // the version of a source without a #version line
-  bool named_entry_points = false;  // the entry function may have any name (GLSL's is always main)
-};
 
 // Prints a function body or glue from the typed tree in the target's language.
 using BodyPrinter = std::string (*)(const dialect::Body& body, const TargetSyntax& target, const dialect::PrintOptions& options);
 
-struct LanguageBackend {
-  SourceLanguage language;
-  BodyPrinter print_body;
-  // Set for a language glslang compiles to SPIR-V, whose emitted files are validated in process
-  // (glslang and spirv-val); empty for one that Tint validates through the WebGPU runner (WGSL).
-  std::optional<GlslangFrontEnd> glslang;
-
-  bool compiled_in_process() const { return glslang.has_value(); }
-  // The front end; throws saagen::Error when glslang does not compile the language.
-  const GlslangFrontEnd& front_end() const;
-};
-
-const LanguageBackend& language_backend(SourceLanguage language);
+// The printer a language's table names; throws saagen::Error naming the table when there is none of that name.
+BodyPrinter body_printer(const Language& language);
+// The printers' names, as the language tables name them.
+std::vector<std::string_view> body_printer_names();
 
 }  // namespace saagen

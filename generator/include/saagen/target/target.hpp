@@ -55,7 +55,7 @@ struct TargetSyntax {
   std::string name;
   std::string description;
   std::string file_extension;
-  SourceLanguage language = SourceLanguage::glsl;
+  SourceLanguage language = SourceLanguage::named("glsl");
   std::map<std::string, std::string, std::less<>> types;
   // dialect intrinsic -> pattern with {0}, {1}, ... for the arguments
   std::map<std::string, std::string, std::less<>> intrinsics;
@@ -178,8 +178,6 @@ std::vector<const TargetSyntax*> deferred_pass_targets();
 // The built-in tables that compile for Vulkan in process (a "vulkan" validation client), in name
 // order: what ISA statistics and the glint validation measure.
 std::vector<const TargetSyntax*> vulkan_targets();
-// The language a target table's "language" names ("glsl", "hlsl", "wgsl"), or nothing.
-std::optional<SourceLanguage> source_language(std::string_view name);
 // The language of a shader file with extension `extension` (".hlsl"): the language of the
 // built-in table whose files carry it, GLSL for any other extension (.vert, .frag, .comp).
 SourceLanguage source_language_of_extension(std::string_view extension);

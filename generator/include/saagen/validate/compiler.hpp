@@ -21,7 +21,7 @@ struct SourcePiece {
 std::string joined_source(const std::vector<SourcePiece>& pieces);
 
 struct CompileRequest {
-  SourceLanguage language = SourceLanguage::glsl;
+  SourceLanguage language = SourceLanguage::named("glsl");
   ShaderStage stage = ShaderStage::fragment;
   ClientApi client = ClientApi::vulkan;
   std::vector<SourcePiece> sources;

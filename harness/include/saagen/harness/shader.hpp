@@ -10,16 +10,21 @@
 
 namespace saagen::harness {
 
-using Language = saagen::SourceLanguage;  // glsl or hlsl: the languages glslang compiles
+// The languages glslang compiles, as the harness's callers name them (their tables:
+// targets/glsl/language.json and targets/hlsl/language.json).
+struct Language {
+  static inline const saagen::SourceLanguage glsl = saagen::SourceLanguage::named("glsl");
+  static inline const saagen::SourceLanguage hlsl = saagen::SourceLanguage::named("hlsl");
+};
 enum class Stage { vertex, fragment, compute };
 
 // Compiles one source string for Vulkan (SPIR-V 1.3, validated). Throws std::runtime_error
 // with the compiler/validator log when it fails.
-std::vector<std::uint32_t> compile_shader(Language language, Stage stage, const std::string& source,
+std::vector<std::uint32_t> compile_shader(saagen::SourceLanguage language, Stage stage, const std::string& source,
                                           const std::string& entry_point = "main", const std::string& name = "shader");
 
 // compile_shader wrapped into a ShaderDesc with the same entry point.
-ShaderDesc shader_desc(Language language, Stage stage, const std::string& source, const std::string& entry_point = "main");
+ShaderDesc shader_desc(saagen::SourceLanguage language, Stage stage, const std::string& source, const std::string& entry_point = "main");
 
 // GLSL of the built-in full-screen-triangle vertex shader, and its SPIR-V (compiled once).
 const std::string& fullscreen_vertex_glsl();
