@@ -27,7 +27,9 @@ std::string error_of(auto&& call) {
 
 TEST(Languages, EveryTargetTableNamesALanguageWithATableAndAPrinter) {
   const auto names = saagen::language_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"glsl", "hlsl", "wgsl"}));
+  for (const std::string language : {"glsl", "hlsl", "wgsl"})
+    EXPECT_NE(std::find(names.begin(), names.end(), language), names.end()) << language;
+  EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
   for (const std::string& target_name : saagen::builtin_target_names()) {
     const saagen::TargetSyntax& target = saagen::builtin_target(target_name);
     EXPECT_NE(std::find(names.begin(), names.end(), target.language.name()), names.end()) << target_name;
@@ -59,7 +61,7 @@ TEST(Languages, AnUnknownLanguageOrAMalformedTableIsOneLineNamingIt) {
   EXPECT_FALSE(saagen::source_language("msl").has_value());
   const std::string unknown = error_of([] { SourceLanguage::named("msl"); });
   EXPECT_NE(unknown.find("targets/msl/language.json"), std::string::npos) << unknown;
-  EXPECT_NE(unknown.find("glsl, hlsl, wgsl"), std::string::npos) << unknown;
+  for (const std::string& language : saagen::language_names()) EXPECT_NE(unknown.find(language), std::string::npos) << unknown;
   EXPECT_EQ(unknown.find('\n'), std::string::npos);
 
   const std::string source = "targets/x/language.json";
