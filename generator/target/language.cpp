@@ -40,10 +40,13 @@ GlslangFrontEnd parse_front_end(const Json& table, std::string_view source) {
           .named_entry_points = glslang.at("named_entry_points").get<bool>()};
 }
 
-bool is_language_table(std::string_view path) {
+// The folder of a language table targets/<language>/language.json, or nothing for another file.
+std::optional<std::string_view> language_folder(std::string_view path) {
   constexpr std::string_view folder = "targets/", file = "/language.json";
-  return path.starts_with(folder) && path.ends_with(file) && path.size() > folder.size() + file.size() &&
-         path.substr(folder.size(), path.size() - folder.size() - file.size()).find('/') == std::string_view::npos;
+  if (!path.starts_with(folder) || !path.ends_with(file) || path.size() <= folder.size() + file.size()) return std::nullopt;
+  const std::string_view name = path.substr(folder.size(), path.size() - folder.size() - file.size());
+  if (name.find('/') != std::string_view::npos) return std::nullopt;
+  return name;
 }
 
 // Every targets/<language>/language.json of this build, by name.
@@ -51,10 +54,12 @@ const std::map<std::string, Language, std::less<>>& builtin_languages() {
   static const auto languages = [] {
     std::map<std::string, Language, std::less<>> table;
     for (const auto& [path, text] : embedded::files()) {
-      if (!is_language_table(path)) continue;
+      const std::optional<std::string_view> folder = language_folder(path);
+      if (!folder) continue;
       Language language = Language::parse(text, path);
+      if (language.name != *folder) throw Error(fmt::format("{}: its name is its folder's, '{}', not '{}'", path, *folder, language.name));
       const std::string name = language.name;
-      if (!table.emplace(name, std::move(language)).second) throw Error(fmt::format("{}: a second table of language '{}'", path, name));
+      table.emplace(name, std::move(language));
     }
     return table;
   }();
