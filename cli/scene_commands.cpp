@@ -112,6 +112,14 @@ void check_not_an_input(const fs::path& output, const std::vector<fs::path>& inp
   }
 }
 
+// The languages `compile` takes: those whose tables have glslang validate them (glsl, hlsl).
+std::vector<std::string> glslang_languages() {
+  std::vector<std::string> names;
+  for (const std::string& name : language_names())
+    if (SourceLanguage::named(name)->compiled_in_process()) names.push_back(name);
+  return names;
+}
+
 // -I directories must exist: a typo would otherwise surface as a missing #include.
 void check_include_directories(const std::vector<std::string>& directories) {
   for (const std::string& directory : directories) {
@@ -402,7 +410,7 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   compile_->add_option("--stage,-S", compile_stage_, "vert, frag or comp (default: from the extension .vert/.frag/.comp)")
       ->check(CLI::IsMember({"vert", "frag", "comp"}));
   compile_->add_option("--language", compile_language_, "glsl or hlsl (default: hlsl for .hlsl, else glsl)")
-      ->check(CLI::IsMember({"glsl", "hlsl"}));
+      ->check(CLI::IsMember(glslang_languages()));
   compile_->add_option("--client", compile_client_, "vulkan or opengl")->check(CLI::IsMember({"vulkan", "opengl"}))->capture_default_str();
   compile_->add_option("--entry", compile_entry_, "Entry point (HLSL; GLSL's is always main)")->capture_default_str();
   compile_->add_option("-I,--include-dir", compile_include_dirs_, "Directory searched for #include \"...\" (repeatable)");
