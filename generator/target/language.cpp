@@ -1,5 +1,7 @@
 #include "saagen/target/language.hpp"
 
+#include "table_keys.hpp"
+
 #include "saagen/error.hpp"
 
 #include <fmt/format.h>
@@ -18,9 +20,7 @@ namespace {
 using Json = nlohmann::json;
 
 std::string required_string(const Json& object, const char* key, std::string_view source) {
-  if (!object.is_object() || !object.contains(key) || !object.at(key).is_string())
-    throw Error(fmt::format("{}: the language table needs the string '{}'", source, key));
-  return object.at(key).get<std::string>();
+  return table_keys::require_string(object, key, source, "language");
 }
 
 GlslangFrontEnd parse_front_end(const Json& table, std::string_view source) {

@@ -1,5 +1,7 @@
 #include "saagen/target/target.hpp"
 
+#include "table_keys.hpp"
+
 #include "saagen/error.hpp"
 #include "saagen/front/dialect.hpp"
 
@@ -19,16 +21,11 @@ namespace {
 using Json = nlohmann::json;
 
 const Json& require(const Json& object, const char* key, std::string_view source) {
-  if (!object.is_object() || !object.contains(key)) {
-    throw Error(fmt::format("{}: missing key '{}' in the target table", source, key));
-  }
-  return object.at(key);
+  return table_keys::require(object, key, source, "target");
 }
 
 std::string require_string(const Json& object, const char* key, std::string_view source) {
-  const Json& value = require(object, key, source);
-  if (!value.is_string()) throw Error(fmt::format("{}: key '{}' must be a string", source, key));
-  return value.get<std::string>();
+  return table_keys::require_string(object, key, source, "target");
 }
 
 // A skeleton is either inline ({"prologue": ..., "epilogue": ...}) or, readable, the name of a

@@ -66,7 +66,7 @@ TEST(Languages, AnUnknownLanguageOrAMalformedTableIsOneLineNamingIt) {
 
   const std::string source = "targets/x/language.json";
   EXPECT_NE(
-      error_of([&] { Language::parse(R"({"name": "x"})", source); }).find(source + ": the language table needs the string 'description'"),
+      error_of([&] { Language::parse(R"({"name": "x"})", source); }).find(source + ": missing key 'description' in the language table"),
       std::string::npos);
   EXPECT_NE(error_of([&] {
               Language::parse(R"({"name": "x", "description": "d", "printer": "c_like", "validator": "fxc"})", source);
