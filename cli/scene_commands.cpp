@@ -409,7 +409,9 @@ SceneCommands::SceneCommands(CLI::App& app, CLI::App* emit, const std::vector<CL
   compile_->add_option("--output,-o", compile_output_, "SPIR-V output file")->required();
   compile_->add_option("--stage,-S", compile_stage_, "vert, frag or comp (default: from the extension .vert/.frag/.comp)")
       ->check(CLI::IsMember({"vert", "frag", "comp"}));
-  compile_->add_option("--language", compile_language_, "glsl or hlsl (default: hlsl for .hlsl, else glsl)")
+  compile_
+      ->add_option("--language", compile_language_,
+                   "The source's language, one whose table has glslang compile it (default: hlsl for .hlsl, else glsl)")
       ->check(CLI::IsMember(glslang_languages()));
   compile_->add_option("--client", compile_client_, "vulkan or opengl")->check(CLI::IsMember({"vulkan", "opengl"}))->capture_default_str();
   compile_->add_option("--entry", compile_entry_, "Entry point (HLSL; GLSL's is always main)")->capture_default_str();
