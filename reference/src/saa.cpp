@@ -157,10 +157,11 @@ Vec3 normal_frame_tangent(Vec3 n) {
   return {1.0 + s * n.x * n.x * a, s * n.x * n.y * a, -s * n.x};
 }
 
+// Duff et al.'s b2 times s (template normal_frame_bitangent): left-handed below n.z = 0.
 Vec3 normal_frame_bitangent(Vec3 n) {
   const double s = n.z >= 0.0 ? 1.0 : -1.0;
   const double a = -1.0 / (s + n.z);
-  return {n.x * n.y * a, s + n.y * n.y * a, -n.y};
+  return {s * n.x * n.y * a, 1.0 + s * n.y * n.y * a, -s * n.y};
 }
 
 // Dn^T Dn with the rows read in the frame built from n (template normal_variation_in_normal_frame).
@@ -181,11 +182,11 @@ Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound) {
   return min(trace, bound / larger_unit) * unit;
 }
 
-// M min(1, bound / lambda_max(M)) (template sym2_scaled_to_eigenvalue_bound): the same matrix as
-// sym2_bounded_through_unit_trace, without its unit-trace division.
-Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound) {
-  const double largest = sym2_max_eigenvalue(m);
-  return std::min(1.0, bound / (p.guards ? std::max(largest, p.guard_constants().tiny_positive) : largest)) * m;
+// scale M min(1, bound / (scale lambda_max(M))) = bound / max(bound / scale, lambda_max(M)) M
+// (template sym2_scaled_to_eigenvalue_bound): scale times the matrix sym2_bounded_through_unit_trace
+// gives for bound / scale, without its unit-trace division; the divisor is at least bound / scale.
+Sym2 sym2_scaled_to_eigenvalue_bound(Sym2 m, double scale, double bound) {
+  return (bound / std::max(bound / scale, sym2_max_eigenvalue(m))) * m;
 }
 
 // The normal matrix 2 sigma^2 Dn^T Dn (T&K 2019 Sec. 2.2) in the frame built from n.
@@ -199,8 +200,7 @@ Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
 // deferred_aniso for the differences of vectors of length <= 1 (template
 // deferred_aniso_from_bounded_derivatives): no clamp, the eigenvalue bound on Dn^T Dn itself.
 Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
-  return (2.0 * p.sigma2) *
-         sym2_scaled_to_eigenvalue_bound(p, normal_variation_in_normal_frame(dn_dx, dn_dy, normal_ws), p.kappa / (2.0 * p.sigma2));
+  return sym2_scaled_to_eigenvalue_bound(normal_variation_in_normal_frame(dn_dx, dn_dy, normal_ws), 2.0 * p.sigma2, p.kappa);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -152,9 +152,10 @@ double deferred_projected_space(const Params& p, double alpha2, Vec3 dn_dx, Vec3
 
 // Anisotropic deferred filtering (deferred-aniso; docs/DEFERRED_KERNEL.md).
 
-// The orthonormal frame (t, b, n) built from n alone (Duff et al. 2017, JCGT 6(1), Listing 3):
-// s = sign(n.z) (+1 at n.z = 0), a = -1 / (s + n.z),
-// t = (1 + s n.x^2 a, s n.x n.y a, -s n.x), b = (n.x n.y a, s + n.y^2 a, -n.y).
+// The orthonormal frame (t, b, n) built from n alone (Duff et al. 2017, JCGT 6(1), Listing 3,
+// with their b2 times s): s = sign(n.z) (+1 at n.z = 0), a = -1 / (s + n.z),
+// t = (1 + s n.x^2 a, s n.x n.y a, -s n.x), b = (s n.x n.y a, 1 + s n.y^2 a, -s n.y);
+// right-handed for n.z >= 0, left-handed below (no symmetric matrix read in it can tell).
 Vec3 normal_frame_tangent(Vec3 n);
 Vec3 normal_frame_bitangent(Vec3 n);
 
@@ -164,9 +165,9 @@ Sym2 normal_variation_in_normal_frame(Vec3 dn_dx, Vec3 dn_dy, Vec3 n);
 // else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound; of
 // M / tr(M) as the template does, so that M's squares may overflow.
 Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound);
-// The same bound on a matrix M whose squares cannot overflow: M min(1, bound / lambda_max(M)),
-// lambda_max floored at TINY_POSITIVE when guarded.
-Sym2 sym2_scaled_to_eigenvalue_bound(const Params& p, Sym2 m, double bound);
+// scale M with the same bound, for a matrix M whose squares cannot overflow:
+// bound / max(bound / scale, lambda_max(M)) M, its largest eigenvalue at most bound.
+Sym2 sym2_scaled_to_eigenvalue_bound(Sym2 m, double scale, double bound);
 
 // The G-buffer tensor K = 2 sigma^2 Dn^T Dn, Dn the rows (dn_dx, dn_dy) in the frame of
 // normal_frame_tangent / normal_frame_bitangent(normal_ws), scaled so that its largest eigenvalue
