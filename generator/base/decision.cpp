@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
 
 namespace saagen::decision {
 namespace {
@@ -22,16 +23,27 @@ bool within_budget(const Candidate& c, const Preference& p) { return !p.budget |
 // "1 usable configuration", "3 usable configurations".
 std::string usable_count(std::size_t n) { return fmt::format("{} usable configuration{}", n, n == 1 ? "" : "s"); }
 
-// "; 1.17x no SAA's shading cost at 1 light", or nothing where the candidate carries no cost (a
-// choice by accuracy alone, as among one variant's feeds and bakes).
-std::string cost_text(const Candidate& c, std::string_view basis) {
+// "; 1.17x no SAA's shading cost at 1 light" (`digits` significant digits), or nothing where the
+// candidate carries no cost (a choice by accuracy alone, as among one variant's feeds and bakes).
+std::string cost_text(const Candidate& c, std::string_view basis, int digits) {
   if (!c.cost_ratio) return "";
-  return fmt::format("; {:.3g}x no SAA's shading cost{}{}", *c.cost_ratio, basis.empty() ? "" : " ", basis);
+  return fmt::format("; {:.{}g}x no SAA's shading cost{}{}", *c.cost_ratio, digits, basis.empty() ? "" : " ", basis);
 }
 
-std::string figures(const Candidate& c, std::string_view basis, std::string_view baseline) {
+std::string figures(const Candidate& c, std::string_view basis, std::string_view baseline, int cost_digits = 3) {
   return fmt::format("{} (image {}, temporal {} against {}{})", c.configuration, describe(c.against_none.image),
-                     describe(c.against_none.temporal), baseline, cost_text(c, basis));
+                     describe(c.against_none.temporal), baseline, cost_text(c, basis, cost_digits));
+}
+
+// A cost over a budget, which is printed as given: with as many significant digits as it takes
+// to read above it (1.333x against the budget 1.33, not 1.33x), up to 6.
+int digits_against_budget(std::span<const Candidate> candidates, const std::vector<std::size_t>& listed, double budget) {
+  int digits = 3;
+  for (std::size_t i : listed)
+    while (candidates[i].cost_ratio && *candidates[i].cost_ratio > budget && digits < 6 &&
+           std::stod(fmt::format("{:.{}g}", *candidates[i].cost_ratio, digits)) <= budget)
+      ++digits;
+  return digits;
 }
 
 // The largest known cost among the usable candidates, and how many candidates are usable.
@@ -184,12 +196,13 @@ std::string no_filter_reason(std::span<const Candidate> candidates, const std::v
                        figures(candidates[best], basis, baseline), name(outcomes[best]));
   }
   std::vector<std::string> listed;
-  for (std::size_t i : holding) listed.push_back(figures(candidates[i], basis, baseline));
+  const int cost_digits = preference.budget ? digits_against_budget(candidates, holding, *preference.budget) : 3;
+  for (std::size_t i : holding) listed.push_back(figures(candidates[i], basis, baseline, cost_digits));
   if (preference.budget) {
     bool any_in_budget = false;
     for (std::size_t i : holding) any_in_budget = any_in_budget || within_budget(candidates[i], preference);
     if (!any_in_budget)
-      return fmt::format("no filter: what beats {} costs more than the budget {:.3g}: {}", baseline, *preference.budget,
+      return fmt::format("no filter: what beats {} costs more than the budget {}: {}", baseline, *preference.budget,
                          fmt::join(listed, ", "));
   }
   return fmt::format(
@@ -258,7 +271,7 @@ Decision decide(std::span<const Candidate> candidates, const Preference& prefere
                         usable_count(eligible.size()))
           : fmt::format("the {} of the {} that do", speed ? "lowest cost" : "largest temporal improvement", usable_count(eligible.size()));
   decision.reason = fmt::format("{} beats {}: {}{}{}{}", figures(chosen, cost_basis, preference.baseline), preference.baseline, among,
-                                preference.budget ? fmt::format(" within the budget {:.3g}", *preference.budget) : "",
+                                preference.budget ? fmt::format(" within the budget {}", *preference.budget) : "",
                                 tie ? tie_text(chosen, candidates[best], cost_basis, preference.baseline) : "",
                                 set_aside(candidates, beating, chosen, preference.baseline));
   return decision;

@@ -229,6 +229,21 @@ TEST(Decision, ABudgetCapsTheCost) {
   EXPECT_NE(none.reason.find("budget 1.05"), std::string::npos) << none.reason;
 }
 
+// Over the budget, a cost is printed with the digits that tell it from the budget, which is
+// printed as given: 1.3333 against 1.33 reads 1.333x, not 1.33x.
+TEST(Decision, ACostOverTheBudgetReadsAboveIt) {
+  const std::vector<Candidate> c = {candidate("dear", -0.02, -0.002, 1.3333), candidate("cheap", 0.01, 0.01, 1.105)};
+  const Decision close = decide(c, {Prefer::accuracy, 1.33});
+  EXPECT_FALSE(close.chosen);
+  EXPECT_NE(close.reason.find("costs more than the budget 1.33: dear ("), std::string::npos) << close.reason;
+  EXPECT_NE(close.reason.find("; 1.333x no SAA's shading cost"), std::string::npos) << close.reason;
+  const Decision finer = decide(c, {Prefer::accuracy, 1.333});
+  EXPECT_NE(finer.reason.find("costs more than the budget 1.333: "), std::string::npos) << finer.reason;
+  EXPECT_NE(finer.reason.find("; 1.3333x no SAA's shading cost"), std::string::npos) << finer.reason;
+  const Decision far = decide(c, {Prefer::accuracy, 1.2});
+  EXPECT_NE(far.reason.find("; 1.33x no SAA's shading cost"), std::string::npos) << far.reason;
+}
+
 TEST(Decision, ACandidateWithoutACostIsNotTakenForSpeed) {
   const std::vector<Candidate> c = {candidate("unknown", -0.02, -0.002, std::nullopt), candidate("known", -0.001, -0.001, 1.3),
                                     candidate("dear", 0.01, 0.01, 1.9)};
