@@ -157,7 +157,7 @@ Vec3 normal_frame_tangent(Vec3 n) {
   return {1.0 + s * n.x * n.x * a, s * n.x * n.y * a, -s * n.x};
 }
 
-// Duff et al.'s b2 times s (template normal_frame_bitangent): left-handed below n.z = 0.
+// Duff et al.'s b2 times s (the frame of template to_normal_frame): left-handed below n.z = 0.
 Vec3 normal_frame_bitangent(Vec3 n) {
   const double s = n.z >= 0.0 ? 1.0 : -1.0;
   const double a = -1.0 / (s + n.z);
