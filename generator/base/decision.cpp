@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <string>
 
 namespace saagen::decision {
@@ -37,11 +38,20 @@ std::string figures(const Candidate& c, std::string_view basis, std::string_view
 
 // A cost over a budget, which is printed as given: with as many significant digits as it takes
 // to read above it (1.333x against the budget 1.33, not 1.33x), up to 6.
+// The value a cost reads as when printed with `digits` significant digits (fmt and from_chars
+// both ignore the locale, so "1.33" reads as 1.33 wherever the plan runs).
+double as_printed(double value, int digits) {
+  const std::string text = fmt::format("{:.{}g}", value, digits);
+  double read = value;
+  std::from_chars(text.data(), text.data() + text.size(), read);
+  return read;
+}
+
 int digits_against_budget(std::span<const Candidate> candidates, const std::vector<std::size_t>& listed, double budget) {
   int digits = 3;
   for (std::size_t i : listed)
     while (candidates[i].cost_ratio && *candidates[i].cost_ratio > budget && digits < 6 &&
-           std::stod(fmt::format("{:.{}g}", *candidates[i].cost_ratio, digits)) <= budget)
+           as_printed(*candidates[i].cost_ratio, digits) <= budget)
       ++digits;
   return digits;
 }
