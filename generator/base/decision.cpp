@@ -36,8 +36,6 @@ std::string figures(const Candidate& c, std::string_view basis, std::string_view
                      describe(c.against_none.temporal), baseline, cost_text(c, basis, cost_digits));
 }
 
-// A cost over a budget, which is printed as given: with as many significant digits as it takes
-// to read above it (1.333x against the budget 1.33, not 1.33x), up to 6.
 // The value a cost reads as when printed with `digits` significant digits (fmt and from_chars
 // both ignore the locale, so "1.33" reads as 1.33 wherever the plan runs).
 double as_printed(double value, int digits) {
@@ -47,6 +45,8 @@ double as_printed(double value, int digits) {
   return read;
 }
 
+// A cost over a budget, which is printed as given: with as many significant digits as it takes
+// to read above it (1.333x against the budget 1.33, not 1.33x), up to 6.
 int digits_against_budget(std::span<const Candidate> candidates, const std::vector<std::size_t>& listed, double budget) {
   int digits = 3;
   for (std::size_t i : listed)
