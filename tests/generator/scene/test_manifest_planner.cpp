@@ -244,14 +244,14 @@ TEST(Planner, BudgetTakesTheMostAccurateWithinIt) {
   const auto plan_of = [](const std::string& keys) {
     return saagen::plan_scene(Catalogue::builtin(), parse(header + "[[material]]\nname = \"m\"\npath = " + keys)).materials.at(0);
   };
-  // Curved content, deferred: only deferred-aniso/tail (1.33x on vega10, GLSL) beats no SAA.
+  // Curved content, deferred: only deferred-aniso/tail (1.32x on vega10, GLSL) beats no SAA.
   const auto tight = plan_of("\"deferred\"\nbudget = 1.3\n");
   EXPECT_EQ(tight.variant, "none");
   EXPECT_NE(tight.reason.find("costs more than the budget 1.3"), std::string::npos) << tight.reason;
   const auto loose = plan_of("\"deferred\"\nbudget = 2\nprefer = \"speed\"\n");  // the budget decides, not prefer
   EXPECT_EQ(loose.variant, "deferred-aniso");
   EXPECT_NE(loose.reason.find("within the budget 2"), std::string::npos) << loose.reason;
-  // Bumps, forward: deferred-aniso/tail (1.33x) ties forward-aniso-projected/tail (1.463x through
+  // Bumps, forward: deferred-aniso/tail (1.32x) ties forward-aniso-projected/tail (1.463x through
   // its transported wrapper) and is the cheaper; within 1.51 it is taken; within 1.3 nothing that
   // beats no SAA fits.
   const auto mapped = plan_of("\"forward\"\ntangents = true\ncontent = \"bumps\"\nbudget = 1.51\n");

@@ -661,7 +661,7 @@ TEST(Planner, ADeviceTimingOfTheTransportedWrappersCostsThem) {
 
 // A device's timings (bench_shading --json, marked by its "no-saa" baseline row) cost the
 // decision at the light count they were timed with, instead of the committed ISA model: a budget
-// that the ISA ratio of deferred-aniso/tail exceeds (vega10 1.33x) admits it at the device's
+// that the ISA ratio of deferred-aniso/tail exceeds (vega10 1.32x) admits it at the device's
 // 1.26x; at another light count the ISA model stays and the reason says which count was timed.
 // The rules' speed ranking reads the same timings.
 TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
@@ -711,7 +711,7 @@ TEST(Planner, ADeviceTimingTableCostsThePlanAtItsLightCount) {
 }
 
 // The H200 timings behind docs/GPU_TIMINGS.md, as `saagen plan --trade-table` reads them: at one
-// light deferred-aniso/tail costs 1.36x no SAA there (vega10's ISA model: 1.33x), so a curved
+// light deferred-aniso/tail costs 1.36x no SAA there (vega10's ISA model: 1.32x), so a curved
 // deferred material with budget 1.4 gets deferred-aniso; at 16 lights (1.49x) it does not.
 TEST(Planner, TheCommittedH200TimingsPlanABudget) {
   const std::filesystem::path data = std::filesystem::path(SAAGEN_SOURCE_DIR) / "docs" / "data" / "h200";
