@@ -80,7 +80,8 @@ def measured(saagen):
         run = subprocess.run([saagen, "bench", "--isa", FAMILY, "--isa-only", "--isa-table", table],
                              env=environment, capture_output=True, text=True)
         if run.returncode != 0:
-            raise SystemExit(f"isa_issue_cycles.py: {saagen} bench --isa {FAMILY} failed: {run.stderr.strip().splitlines()[-1:]}")
+            last = (run.stderr.strip().splitlines() or ["no message"])[-1]
+            raise SystemExit(f"isa_issue_cycles.py: {saagen} bench --isa {FAMILY} failed: {last}")
         with open(table) as handle:
             rows = [row for row in json.load(handle)["rows"] if row["device"] == FAMILY and row["shader"] == "forward"]
     return rows, fragment_disassemblies(run.stderr)
