@@ -50,7 +50,7 @@ std::string calls_body(const std::vector<std::string>& functions, std::uint32_t&
     const std::uint32_t count = saagen::component_count(f.return_type);
     for (std::uint32_t k = 0; k < count; ++k) {
       body +=
-          fmt::format("    SAAGEN_STORE({}, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyz"[k]);
+          fmt::format("    SAAGEN_STORE({}, saagen_r{}{});\n", outputs++, index, count == 1 ? std::string() : std::string(".") + "xyzw"[k]);
     }
     ++index;
   }

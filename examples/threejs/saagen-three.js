@@ -248,7 +248,7 @@ function lobeGlsl(kind, prefix, plan) {
     ? 'normalize(l + v), saagenFeedNormal, saagenFeedTangent(), cross(saagenFeedNormal, saagenFeedTangent())'
     : 'saagenFeedHalf(l, v)';
   const specular = {
-    roughness: `return ${prefix}ggx_brdf_filtered_axis(i, o, vec2(saagenFiltered), vec2(saagenAlpha2));`,
+    roughness: `return ${prefix}ggx_brdf_filtered_lobe(i, o, saagenFiltered, saagenAlpha2, saagenLobe);`,
     tensor: `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
     matrix: `highp vec3 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), ${half});
   return ${prefix}ggx_brdf_filtered_matrix(i, o, a, vec2(saagenAlpha2));`,
@@ -258,6 +258,7 @@ function lobeGlsl(kind, prefix, plan) {
   return `
 highp float saagenAlpha2;      // the material's own alpha^2 (three.js: r^4)
 highp float saagenFiltered;    // a tangent-free filter's alpha^2
+highp vec4 saagenLobe;         // its lobe's light-independent part, once per pixel
 highp vec3 saagenTensor;       // deferred-aniso's kernel tensor (Kxx, Kxy, Kyy)
 highp vec3 saagenFeedNormal;   // the normal the filter read
 void saagenFrame(highp vec3 n, out highp vec3 t, out highp vec3 b) {
@@ -295,7 +296,9 @@ function perPixelGlsl(kind, prefix, wrapper, normal) {
 saagenAlpha2 = pow2(pow2(material.roughness));`;
   if (kind === 'tensor') return `${own}\nsaagenTensor = ${prefix}${wrapper}(${normal});`;
   if (kind === 'roughness') {
-    return `${own}\nsaagenFiltered = ${prefix}${wrapper}(saagenAlpha2, ${normal});\nmaterial.roughness = sqrt(sqrt(saagenFiltered));`;
+    return `${own}\nsaagenFiltered = ${prefix}${wrapper}(saagenAlpha2, ${normal});
+saagenLobe = ${prefix}ggx_filtered_lobe_isotropic(saagenFiltered, saagenAlpha2);
+material.roughness = sqrt(sqrt(saagenFiltered));`;
   }
   return own;  // matrix, axis: per light, in saagenSpecular
 }

@@ -181,6 +181,19 @@ bool is_transported_wrapper(const std::string& name) { return name.ends_with("_t
 
 bool has_transported_form(const Variant& variant) { return std::ranges::any_of(variant.functions, is_transported_wrapper); }
 
+// The tail-preserving filtered GGX a filter's roughness feeds: the matrix form for a roughness
+// matrix, the axis form for per-axis roughness, and for one isotropic alpha^2 (the deferred
+// forms') the form split into its per-pixel setup and its per-light BRDF, which pays per light
+// only what depends on the light (docs/FILTERED_GGX.md).
+constexpr const char* kIsotropicLobeBrdf = "ggx_brdf_filtered_lobe";
+constexpr const char* kIsotropicLobeSetup = "ggx_filtered_lobe_isotropic";
+
+std::string tail_preserving_brdf(const Function& wrapper, bool per_axis) {
+  if (wrapper.return_type == "real3") return "ggx_brdf_filtered_matrix";
+  if (wrapper.return_type == "real" && !per_axis) return kIsotropicLobeBrdf;
+  return "ggx_brdf_filtered_axis";
+}
+
 // A projected forward filter calls the wrappers its measurement was taken with
 // (MaterialPlan::forward_transported), never both.
 void choose_functions(const Catalogue& catalogue, const Material& material, bool own_brdf, MaterialPlan& plan) {
@@ -215,11 +228,13 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
     }
     return;
   }
+  plan.per_axis = material.anisotropic && wrapper.return_type == "real";
   if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
-    const std::string brdf = wrapper.return_type == "real3" ? "ggx_brdf_filtered_matrix" : "ggx_brdf_filtered_axis";
+    const std::string brdf = tail_preserving_brdf(wrapper, plan.per_axis);
     if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx"))
       throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
     plan.brdf = brdf;
+    if (brdf == kIsotropicLobeBrdf) plan.functions.push_back(kIsotropicLobeSetup);
     plan.functions.push_back(brdf);
     plan.variants.push_back("brdf-ggx");
   } else if (wrapper.return_type == "real3") {  // a roughness matrix: only the matrix BRDFs take it
@@ -233,7 +248,6 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
     plan.functions.push_back("ndf_clamp_tau");
     plan.variants.push_back(brdf_variant);
   }
-  plan.per_axis = material.anisotropic && wrapper.return_type == "real";
 }
 
 // Where a key of the material was written; its [[material]] header when it was not (or when
@@ -348,6 +362,11 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   // The tail-preserving filtered GGX takes the filtered and the material's roughness; the other
   // BRDFs the filtered one (the matrix BRDFs with the determinant clamp of the material's).
   const bool tail = shades_with_tail_preserving_ggx(*plan);
+  if (plan->brdf && *plan->brdf == kIsotropicLobeBrdf) {
+    return fmt::format("    real filtered = {};\n", call_with(wrapper, "alpha2.x")) +
+           fmt::format("    real4 lobe = {}(filtered, alpha2.x);\n", kIsotropicLobeSetup) +
+           fmt::format("    real value = {}(i_ts, o_ts, filtered, alpha2.x, lobe);\n", kIsotropicLobeBrdf);
+  }
   const auto value = [&](const std::string& filtered) {
     if (tail) return fmt::format("    real value = {}(i_ts, o_ts, {}, {});\n", *plan->brdf, filtered, material_alpha2);
     if (wrapper.return_type == "real3") {
@@ -1460,8 +1479,9 @@ std::string rules_text() {
       "and prefilters its map gets the lighting pass with the texture covariance instead (deferred_aniso_roughness_with_covariance,\n"
       "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments).\n"
       "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
-      "ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann forward-aniso-* emit\n"
-      "beckmann_brdf_matrix and ndf_clamp_tau.\n"
+      "ggx_filtered_lobe_isotropic once per pixel and ggx_brdf_filtered_lobe per light after a filter of one alpha^2 on an\n"
+      "isotropic material, ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann\n"
+      "forward-aniso-* emit beckmann_brdf_matrix and ndf_clamp_tau.\n"
       "anisotropic = true with tangents = false is rejected.\n"
       "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
       "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
@@ -1540,6 +1560,12 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
     return fmt::format(
         "  shade     {}(i, o, a, alpha2) with the filtered matrix a and the material's (ax^2, ay^2) (the tail-preserving filtered GGX)\n",
         prefixed_name(prefix, *material_plan.brdf));
+  }
+  if (material_plan.brdf && *material_plan.brdf == kIsotropicLobeBrdf) {
+    return fmt::format(
+        "  shade     lobe = {}(filtered, alpha2) once per pixel, then {}(i, o, filtered, alpha2, lobe) per light, with the "
+        "filtered alpha'^2 and the material's alpha^2, alpha^2 domain (the tail-preserving filtered GGX)\n",
+        prefixed_name(prefix, kIsotropicLobeSetup), prefixed_name(prefix, *material_plan.brdf));
   }
   if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_axis") {
     return fmt::format(

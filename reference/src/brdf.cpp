@@ -265,6 +265,44 @@ double Brdf::ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) 
   return filtered_brdf(i, o, {filtered.x, 0.0, filtered.y}, diagonal_ndf_matrix(filtered, alpha2), alpha2);
 }
 
+// Template ggx_filtered_lobe_isotropic: r = k / (2 alpha^2) (the kernel k on both axes), capped at
+// FILTERED_RATIO_MAX, and the core lobe's m = alpha^2 + c k floored at the floored alpha^2 (m >=
+// alpha^2 for k >= 0); lambda multiplied through by alpha^2 as the template does.
+IsotropicLobe Brdf::ggx_filtered_lobe_isotropic(double filtered, double alpha2) const {
+  const double unfiltered = max(alpha2, tiny());
+  const double kernel = guarded(max(filtered - alpha2, 0.0), filtered - alpha2);
+  const double ratio = min(max(0.5 * kernel / unfiltered, 0.0), params.guard_constants().filtered_ratio_max);
+  const FilteredGgxLobes lobes = filtered_ggx_lobes(ratio);
+  const double core = max(alpha2 + lobes.core_kernel * kernel, unfiltered);
+  return {unfiltered * lobes.tail_scale, lobes.tail_weight, 0.25 / core, 0.5 * lobes.shoulder_fraction};
+}
+
+// Template ggx_brdf_filtered_lobe: filtered_brdf of A = filtered I with the lobe's parameters
+// given: M = m I makes hxy^T (4 M)^-1 hxy = |hxy|^2 / (4 m) and 1 / sqrt(det 2 M) = 2 / (4 m); p and
+// the tail multiplied through by alpha^2 (p = |hxy|^2 + alpha^2 lambda hz^2, tail alpha^2 / p^2).
+double Brdf::ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alpha2, const IsotropicLobe& lobe) const {
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const GuardConstants& g = params.guard_constants();
+  const double floor = g.lambda_min_z;
+  const double zi = guarded(max(i.z, floor), i.z), zo = guarded(max(o.z, floor), o.z);
+  const double spread_i = filtered * dot(i.xy(), i.xy()), spread_o = filtered * dot(o.xy(), o.xy());
+  const double length_i = std::sqrt(guarded(max(spread_i, 0.0), spread_i) + zi * zi);
+  const double length_o = std::sqrt(guarded(max(spread_o, 0.0), spread_o) + zo * zo);
+  const auto [tail_scale, w, quarter_inverse_core, half_shoulder] = lobe;
+  const double spread = h.x * h.x + h.y * h.y, cos2 = h.z * h.z;
+  const double p = spread + tail_scale * cos2;
+  const double t = 1.0 / guarded(max(p * cos2, g.divisor_min), p * cos2);
+  const double inverse_cos2 = p * t, inverse_p = cos2 * t;
+  const double tail = inverse_p * inverse_p * max(alpha2, tiny());
+  const double scale = 2.0 * quarter_inverse_core * inverse_cos2 * inverse_cos2;
+  const double shoulder = falloff(spread * quarter_inverse_core * inverse_cos2);
+  const double mixture = half_shoulder * shoulder + (2.0 - 4.0 * half_shoulder) * std::pow(shoulder, kFilteredShoulderScale);
+  const double ndf = (tail + (1.0 - w) * mixture * guarded(min(scale, 0.5 / g.divisor_min), scale)) / kPi;
+  return 0.5 * ndf / (zo * length_i + zi * length_o);
+}
+
 Sym2 Brdf::diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const {
   return {guarded(max(filtered.x, alpha2.x), filtered.x), 0.0, guarded(max(filtered.y, alpha2.y), filtered.y)};
 }
@@ -299,6 +337,10 @@ double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2) {
   return brdf.ggx_ndf_filtered_matrix(h, brdf.diagonal_ndf_matrix(filtered, alpha2), alpha2);
 }
 double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) { return Brdf{}.ggx_brdf_filtered_axis(i, o, filtered, alpha2); }
+IsotropicLobe ggx_filtered_lobe_isotropic(double filtered, double alpha2) { return Brdf{}.ggx_filtered_lobe_isotropic(filtered, alpha2); }
+double ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alpha2, const IsotropicLobe& lobe) {
+  return Brdf{}.ggx_brdf_filtered_lobe(i, o, filtered, alpha2, lobe);
+}
 
 namespace {
 // integral_0^inf e^-w f(w) dw by the trapezoid rule in u = ln w (the integrand is smooth and

@@ -72,12 +72,8 @@ std::vector<ForwardCase> forward_cases() {
   std::vector<ForwardCase> cases;
   for (const VariantCase& variant : variant_cases()) cases.push_back({variant.id, catalogue_variant(variant), variant.shading});
   const std::string tangent_free = "    real filtered = deferred_max_tangent_free_fragment(alpha2_material, normal);\n";
-  cases.push_back({"deferred-max-tangent-free",
-                   "deferred-max",
-                   {tangent_free, "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"}});
-  cases.push_back({"deferred-max-tangent-free/tail",
-                   "deferred-max",
-                   {tangent_free, "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"}});
+  cases.push_back({"deferred-max-tangent-free", "deferred-max", deferred_lobe_shading(tangent_free, false)});
+  cases.push_back({"deferred-max-tangent-free/tail", "deferred-max", deferred_lobe_shading(tangent_free, true)});
   return cases;
 }
 

@@ -182,15 +182,19 @@ SceneShading forward_shade(std::string_view wrapper, bool matrix, Lobe lobe, std
                                              : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, filtered, alpha2);\n")};
 }
 
+SceneShading deferred_lobe_shading(const std::string& filtered, bool tail) {
+  if (!tail) return {filtered, "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"};
+  return {filtered + "    real4 lobe = ggx_filtered_lobe_isotropic(filtered, alpha2_material);\n",
+          "    real value = ggx_brdf_filtered_lobe(i_ts, o_ts, filtered, alpha2_material, lobe);\n"};
+}
+
 // A deferred wrapper's statements: once per pixel (the G-buffer side) one filtered alpha^2 for
 // both axes, from the G-buffer normal (with the tangent frame and the pixel position where the
 // variant reads them); per light the lobe with it.
 SceneShading deferred_shade(std::string_view wrapper, bool tangent_frame, Lobe lobe) {
   const std::string_view arguments =
       tangent_frame ? "alpha2_material, normal, tangent, bitangent, saagen_frag_coord" : "alpha2_material, normal";
-  return {fmt::format("    real filtered = {}_fragment({});\n", wrapper, arguments),
-          lobe == Lobe::papers ? "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"
-                               : "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"};
+  return deferred_lobe_shading(fmt::format("    real filtered = {}_fragment({});\n", wrapper, arguments), lobe == Lobe::tail);
 }
 
 namespace {

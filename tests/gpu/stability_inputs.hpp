@@ -19,6 +19,7 @@
 
 #include "saagen/front/catalogue.hpp"
 #include "saagen/reference/reference.hpp"
+#include "saagen/validate/kernels.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -227,7 +228,7 @@ inline Layout layout_of(const Function& function) {
   Layout layout;
   for (const Parameter& parameter : function.parameters) {
     if (parameter.name == "frag_coord") continue;
-    const std::uint32_t count = parameter.type == "real" ? 1 : parameter.type == "real2" ? 2 : 3;
+    const std::uint32_t count = saagen::component_count(parameter.type);
     if (parameter.name == "alpha2") layout.alpha2_offset = static_cast<int>(layout.stride), layout.alpha2_count = count;
     layout.stride += count;
   }
@@ -246,9 +247,11 @@ inline bool is_brdf(const Function& function) {
 }
 
 // Packs a parameter that a BRDF input's material and directions i, o give (i or w, o, A, tau,
-// A's diagonal as `filtered`, the kernel's xx as `kernel`, the kernel S as `tensor`); false for
+// A's diagonal as `filtered` (its xx where one filtered alpha^2 is taken), the kernel's xx as
+// `kernel`, the kernel S as `tensor`, the isotropic lobe of (A's xx, alpha^2) as `lobe`); false for
 // any other. Shared by the adversarial inputs here and the precision test's realistic ones.
-inline bool pack_material_parameter(const std::string& name, const Material& material, ref::Vec3 i, ref::Vec3 o, Packer& pack) {
+inline bool pack_material_parameter(const Parameter& parameter, const Material& material, ref::Vec3 i, ref::Vec3 o, Packer& pack) {
+  const std::string& name = parameter.name;
   if (name == "w" || name == "i")
     pack.vec3(i);
   else if (name == "o")
@@ -257,8 +260,12 @@ inline bool pack_material_parameter(const std::string& name, const Material& mat
     pack.sym2(material.a);
   else if (name == "tau")
     pack.real(material.tau);
+  else if (name == "filtered" && parameter.type == "real")
+    pack.real(material.a.xx);
   else if (name == "filtered")
     pack.vec2({material.a.xx, material.a.yy});
+  else if (name == "lobe")
+    for (double v : ref::ggx_filtered_lobe_isotropic(material.a.xx, material.alpha2.x)) pack.real(v);
   else if (name == "kernel")
     pack.real(material.a.xx - material.alpha2.x);
   else if (name == "tensor")
@@ -277,7 +284,7 @@ inline void pack_core_element(const Function& function, Rng& rng, std::vector<fl
   const ref::Vec3 i = adversarial_direction(rng), o = adversarial_direction(rng);
   for (const Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
-    if (pack_material_parameter(name, material, i, o, pack)) continue;
+    if (pack_material_parameter(parameter, material, i, o, pack)) continue;
     if (name == "alpha2") {
       if (is_brdf(function))
         parameter.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);
@@ -450,7 +457,7 @@ inline std::string wrapper_body(const Function& wrapper, std::uint32_t stride) {
       arguments += parameter.type + "(saagen_frag_coord)";  // converts in half-precision forms
       continue;
     }
-    const std::uint32_t count = parameter.type == "real" ? 1 : parameter.type == "real2" ? 2 : 3;
+    const std::uint32_t count = saagen::component_count(parameter.type);
     std::string loads;
     for (std::uint32_t k = 0; k < count; ++k) {
       if (k) loads += ", ";
@@ -460,10 +467,10 @@ inline std::string wrapper_body(const Function& wrapper, std::uint32_t stride) {
     arguments += "saagen_arg_" + parameter.name;
   }
   body += "    " + wrapper.return_type + " saagen_result = " + wrapper.name + "(" + arguments + ");\n";
-  const std::uint32_t results = wrapper.return_type == "real" ? 1 : wrapper.return_type == "real2" ? 2 : 3;
+  const std::uint32_t results = saagen::component_count(wrapper.return_type);
   for (std::uint32_t k = 0; k < results; ++k) {
-    body +=
-        "    SAAGEN_STORE(" + std::to_string(k) + ", saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyz"[k]) + ");\n";
+    body += "    SAAGEN_STORE(" + std::to_string(k) + ", saagen_result" + (results == 1 ? std::string() : std::string(".") + "xyzw"[k]) +
+            ");\n";
   }
   return body;
 }

@@ -86,7 +86,7 @@ Inputs core_inputs(const Function& f, double min_alpha, std::uint64_t seed) {
     const saagen::test::TextureFrame frame = saagen::test::texture_frame(normal, 0.7 * e, e % 2 ? -1.0 : 1.0);
     for (const saagen::Parameter& p : f.parameters) {
       const std::string& name = p.name;
-      if (stab::pack_material_parameter(name, material, i, o, pack)) continue;
+      if (stab::pack_material_parameter(p, material, i, o, pack)) continue;
       if (name == "alpha2") {
         if (stab::is_brdf(f))
           p.type == "real" ? pack.real(material.alpha2.x) : pack.vec2(material.alpha2);

@@ -172,7 +172,9 @@ rc::Gen<Element> gen_core_element(const Function& f) {
       } else if (p.name == "tau") {
         push(e, material.tau);
       } else if (p.name == "filtered") {
-        push(e, Vec2{material.a.xx, material.a.yy});
+        p.type == "real" ? push(e, material.a.xx) : push(e, Vec2{material.a.xx, material.a.yy});
+      } else if (p.name == "lobe") {
+        for (double v : ref::ggx_filtered_lobe_isotropic(material.a.xx, material.alpha2.x)) push(e, v);
       } else if (p.name == "kernel") {
         push(e, material.a.xx - material.alpha2.x);
       } else if (p.name == "normal_ws") {
@@ -837,7 +839,7 @@ TEST_P(ReferenceProperties, GuardsChangeNothingWhereThePaperFormIsFine) {
       // deferred-aniso's lighting pass).
       const bool beckmann = f->name.find("beckmann") != std::string::npos || f->name.find("filtered_matrix") != std::string::npos ||
                             f->name.find("filtered_axis") != std::string::npos || f->name.find("tail_filtered") != std::string::npos ||
-                            f->name.rfind("deferred_aniso_brdf", 0) == 0;
+                            f->name.find("filtered_lobe") != std::string::npos || f->name.rfind("deferred_aniso_brdf", 0) == 0;
       const double relative = beckmann ? 1e-5 : 1e-12;
       for (std::size_t k = 0; k < a.size(); ++k)
         for (std::size_t c = 0; c < a[k].size(); ++c)

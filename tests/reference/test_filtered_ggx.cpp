@@ -161,6 +161,25 @@ TEST(FilteredGgx, NoKernelIsGgx) {
     }
 }
 
+// The per-pixel / per-light split of the isotropic form is the axis form of (filtered, filtered):
+// the same lobe with its light-independent terms computed once (rounding only: 1e-12 relative).
+TEST(FilteredGgx, SplitIsotropicLobeIsTheAxisForm) {
+  for (double alpha2 : {1e-6, 2.5e-3, 0.1, 0.6})
+    for (double kernel : {0.0, 1e-4, 0.02, 0.36})
+      for (double tilt : {0.0, 0.05, 0.3, 1.2}) {
+        const double filtered = alpha2 + kernel;
+        const IsotropicLobe lobe = ggx_filtered_lobe_isotropic(filtered, alpha2);
+        const Vec3 i = normalize(Vec3{0.4 + tilt, -0.2, 1.0}), o = normalize(Vec3{-0.3, 0.1 - tilt, 1.0});
+        const double axis = ggx_brdf_filtered_axis(i, o, {filtered, filtered}, {alpha2, alpha2});
+        EXPECT_NEAR(ggx_brdf_filtered_lobe(i, o, filtered, alpha2, lobe), axis, 1e-12 * axis + 1e-300)
+            << "alpha2 " << alpha2 << " kernel " << kernel << " tilt " << tilt;
+      }
+  // A filtered alpha^2 below the material's (rounding in a G-buffer) is no kernel, as in the axis form.
+  const IsotropicLobe none = ggx_filtered_lobe_isotropic(0.009, 0.01);
+  EXPECT_DOUBLE_EQ(none[0], 0.01);
+  EXPECT_DOUBLE_EQ(none[1], 1.0);
+}
+
 namespace {
 
 // 2D L1 distance of the matrix lobe to the exact anisotropic convolution

@@ -121,6 +121,9 @@ inline void push(std::vector<float>& out, double v) { out.push_back(static_cast<
 inline void push(std::vector<float>& out, Vec2 v) { push(out, v.x), push(out, v.y); }
 inline void push(std::vector<float>& out, Vec3 v) { push(out, v.x), push(out, v.y), push(out, v.z); }
 inline void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), push(out, m.yy); }
+inline void push(std::vector<float>& out, const ref::IsotropicLobe& lobe) {
+  for (double v : lobe) push(out, v);
+}
 
 // Packs the inputs of `function` for one scenario, by parameter name (see templates/*.saa).
 inline void pack_inputs(const saagen::Function& function, const Scenario& s, std::uint64_t index, const ref::Params& params,
@@ -155,7 +158,9 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
     else if (name == "a")
       push(out, saagen::test::takes_unfiltered_alpha2(function) ? Sym2{alpha2.x, 0.0, alpha2.y} + matrix : matrix);
     else if (name == "filtered")
-      push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
+      parameter.type == "real" ? push(out, alpha2.x + matrix.xx) : push(out, alpha2 + Vec2{matrix.xx, matrix.yy});
+    else if (name == "lobe")
+      push(out, ref::ggx_filtered_lobe_isotropic(alpha2.x + matrix.xx, alpha2.x));
     else if (name == "kernel")
       push(out, matrix.xx);
     else if (name == "tau")
@@ -326,7 +331,8 @@ inline std::map<std::string, ReferenceFunction> reference_functions(const ref::P
   table["ggx_brdf_axis"] = brdf_axis(ref::ggx_brdf_axis, false);
   table["beckmann_brdf_axis"] = brdf_axis(ref::beckmann_brdf_axis, true);
   // The tail-preserving filtered GGX and the single-roughness mapping: the shared reference and its scale.
-  for (const char* name : {"ggx_ndf_filtered_matrix", "ggx_brdf_filtered_matrix", "ggx_brdf_filtered_axis", "ggx_filtered_alpha2"}) {
+  for (const char* name : {"ggx_ndf_filtered_matrix", "ggx_brdf_filtered_matrix", "ggx_brdf_filtered_axis", "ggx_filtered_lobe_isotropic",
+                           "ggx_brdf_filtered_lobe", "ggx_filtered_alpha2"}) {
     const std::string function = name;
     table[function] = {[=](Inputs& in) { return *saagen::test::filtered_ggx_reference(function, p, in); },
                        [=](Inputs& in) { return *saagen::test::filtered_ggx_reference(function, p, in, true); }};

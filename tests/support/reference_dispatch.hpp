@@ -305,6 +305,27 @@ std::optional<std::vector<double>> filtered_ggx_reference(const std::string& nam
     return output_values(magnitudes ? brdf_value(i, o, {filtered.x, 0.0, filtered.y}, alpha2)
                                     : brdf.ggx_brdf_filtered_axis(i, o, filtered, alpha2));
   }
+  if (name == "ggx_filtered_lobe_isotropic") {
+    const double filtered = in.real(), alpha2 = in.real();
+    const ref::IsotropicLobe lobe = brdf.ggx_filtered_lobe_isotropic(filtered, alpha2);
+    if (!magnitudes) return std::vector<double>(lobe.begin(), lobe.end());
+    // Every parameter carries the rounding of the kernel filtered - alpha^2 (relative to |filtered|
+    // + |alpha^2|) into u lambda = u + 1.2536 k and into the core m = alpha^2 + c k (c <= 1.33):
+    // relative to them, 1.2536 (|f| + |a|) / (u lambda) and 1.33 (|f| + |a|) / m; w = u / (u lambda),
+    // 1 / (4 m) and f / 2 (|d ln(f / 2) / d ln w| <= 2.3) amplify it at most 3 times.
+    const double cancelled = std::fabs(filtered) + std::fabs(alpha2);
+    const double spread = 1.0 + 3.0 * cancelled * (1.2536 / std::fabs(lobe[0]) + 1.33 * 4.0 * std::fabs(lobe[2]));
+    return std::vector<double>{std::fabs(lobe[0]) * spread, std::fabs(lobe[1]) * spread, std::fabs(lobe[2]) * spread,
+                               std::fabs(lobe[3]) * spread};
+  }
+  if (name == "ggx_brdf_filtered_lobe") {
+    const Vec3 i = in.vec3(), o = in.vec3();
+    const double filtered = in.real(), alpha2 = in.real();
+    const ref::IsotropicLobe lobe{in.real(), in.real(), in.real(), in.real()};
+    // The lobe as the device read it; the scale is the axis form's of (filtered, filtered), the same lobe.
+    return output_values(magnitudes ? brdf_value(i, o, {filtered, 0.0, filtered}, {alpha2, alpha2})
+                                    : brdf.ggx_brdf_filtered_lobe(i, o, filtered, alpha2, lobe));
+  }
   if (name == "ggx_filtered_alpha2") {
     const double a = in.real(), kernel = in.real();
     return output_values(magnitudes ? std::fabs(brdf.ggx_filtered_alpha2(std::fabs(a), std::fabs(kernel)))

@@ -87,7 +87,7 @@ inline std::string wrapper_call(const saagen::Function& wrapper) {
   std::string body = fmt::format("    {} saagen_result = {}({});\n", wrapper.return_type, wrapper.name, arguments);
   const std::uint32_t count = saagen::component_count(wrapper.return_type);
   for (std::uint32_t k = 0; k < count; ++k) {
-    body += fmt::format("    SAAGEN_STORE({}, saagen_result{});\n", result_offset + k, count == 1 ? "" : std::string(".") + "xyz"[k]);
+    body += fmt::format("    SAAGEN_STORE({}, saagen_result{});\n", result_offset + k, count == 1 ? "" : std::string(".") + "xyzw"[k]);
   }
   return body;
 }

@@ -131,8 +131,8 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
   // As test_kernels: 4 forward + 7 deferred cores, deferred-aniso's covariance and 4 lighting
-  // functions, 12 GGX + 6 Beckmann evaluators, 9 prefilter cores.
-  EXPECT_EQ(exported, 43u);
+  // functions, 14 GGX + 6 Beckmann evaluators, 9 prefilter cores.
+  EXPECT_EQ(exported, 45u);
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -344,7 +344,9 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
     else if (name == "tau")
       push(out, d.tau);
     else if (name == "filtered")
-      push(out, Vec2{d.a.xx, d.a.yy});
+      parameter.type == "real" ? push(out, d.a.xx) : push(out, Vec2{d.a.xx, d.a.yy});
+    else if (name == "lobe")
+      for (double v : ref::ggx_filtered_lobe_isotropic(d.a.xx, d.alpha2.x)) push(out, v);
     else if (name == "kernel")
       push(out, d.a.xx - d.alpha2.x);
     else if (name == "normal_ws")

@@ -61,8 +61,8 @@ TEST_P(KernelsPerTarget, EveryCoreAndEvaluateFunctionRunsInACompute) {
     }
   }
   // 4 forward + 7 deferred cores, deferred-aniso's covariance and 4 lighting functions (with and
-  // without the texture covariance), 12 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores.
-  EXPECT_EQ(compiled, 43);
+  // without the texture covariance), 14 GGX + 6 Beckmann evaluators, 4 + 5 prefilter cores.
+  EXPECT_EQ(compiled, 45);
 }
 
 TEST_P(KernelsPerTarget, EveryFragmentWrapperRunsInAFragmentShaderAndUnderQuadEmulation) {

@@ -15,8 +15,10 @@
 //   D1    deferred  any          any       accuracy  deferred-avg             -
 //   D2    deferred  any          any       speed     deferred-avg             -
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
-//   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
-//   filter (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf.
+//   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_lobe (with its per-pixel
+//   setup ggx_filtered_lobe_isotropic) after a filter of one alpha^2 on an isotropic material,
+//   ggx_brdf_filtered_axis after every other filter (docs/FILTERED_GGX.md); deferred-aniso with
+//   its own lighting pass, deferred_aniso_brdf.
 //   GGX materials without a `variant` or `preset` are then decided by saagen's one decision
 //   (saagen/decision.hpp through decide_material below; the bench's verdict uses the same) on their
 //   content type's figures (`content`): a trade table's by_content rows for it (under TAA its
@@ -72,7 +74,8 @@ struct MaterialPlan {
   // else generator/data/advice.json's "forward_half_vector_frame"), and costed so.
   bool forward_transported = false;
   // The BRDF to shade with: for GGX the tail-preserving filtered GGX (ggx_brdf_filtered_matrix for
-  // a roughness matrix, ggx_brdf_filtered_axis otherwise); for Beckmann the matrix BRDF of the
+  // a roughness matrix, ggx_brdf_filtered_lobe for one isotropic alpha^2, its setup
+  // ggx_filtered_lobe_isotropic in `functions` too, ggx_brdf_filtered_axis otherwise); for Beckmann the matrix BRDF of the
   // forward-aniso-* filters; none: the engine's own BRDF.
   std::optional<std::string> brdf;
   // Where saagen's trade measured no filter beating every filter for this material's content and

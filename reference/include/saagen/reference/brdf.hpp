@@ -21,6 +21,8 @@
 #include "saagen/reference/quad.hpp"
 #include "saagen/reference/saa.hpp"
 
+#include <array>
+
 namespace saagen::ref {
 
 // tau = ax^2 ay^2 for the determinant clamp (T&K 2019 supplemental Sec. 1, "Practical
@@ -128,6 +130,14 @@ double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2);
 // Axis-aligned forms: the filtered (ax'^2, ay'^2) and the unfiltered (ax^2, ay^2).
 double ggx_ndf_filtered_axis(Vec3 h, Vec2 filtered, Vec2 alpha2);
 double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2);
+// The isotropic form split where its work depends on the light: once per pixel the lobe's
+// parameters of one filtered alpha^2 (the deferred forms' roughness), (alpha^2 lambda, w,
+// 1 / (4 m), f / 2) with m = alpha^2 + c k the core lobe's (k = filtered - alpha^2), then per
+// light the BRDF with them; ggx_brdf_filtered_lobe(i, o, f, a, ggx_filtered_lobe_isotropic(f, a))
+// is ggx_brdf_filtered_axis(i, o, (f, f), (a, a)).
+using IsotropicLobe = std::array<double, 4>;
+IsotropicLobe ggx_filtered_lobe_isotropic(double filtered, double alpha2);
+double ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alpha2, const IsotropicLobe& lobe);
 
 // The exact filtered slope density of GGX(alpha2) convolved with an isotropic Gaussian of
 // per-axis variance k, at slope radius rho (numerical quadrature of the scale mixture), and its
@@ -184,6 +194,8 @@ struct Brdf {
   double ggx_ndf_filtered_matrix(Vec3 h, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_matrix(Vec3 i, Vec3 o, Sym2 a, Vec2 alpha2) const;
   double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
+  IsotropicLobe ggx_filtered_lobe_isotropic(double filtered, double alpha2) const;
+  double ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alpha2, const IsotropicLobe& lobe) const;
   // The matrix the axis form's NDF sees: diag(filtered), the kernel floored at 0 per axis when
   // guarded (template ggx_ndf_filtered_diagonal).
   Sym2 diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const;

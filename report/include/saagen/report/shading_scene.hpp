@@ -50,6 +50,12 @@ struct SceneShading {
   std::string per_light;
 };
 
+// A deferred form's shading after `filtered` (statements defining `real filtered`, its one alpha^2
+// per pixel): per light the papers' GGX of it, or with `tail` saagen's tail-preserving lobe, its
+// light-independent part (ggx_filtered_lobe_isotropic) once per pixel as a deferred lighting pass
+// computes it.
+SceneShading deferred_lobe_shading(const std::string& filtered, bool tail);
+
 // Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF.
 extern const SceneShading baseline_shading;
 
