@@ -285,11 +285,6 @@ double Brdf::ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alph
   const Vec3 h = half_vector(params, i, o);
   if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
   const GuardConstants& g = params.guard_constants();
-  const double floor = g.lambda_min_z;
-  const double zi = guarded(max(i.z, floor), i.z), zo = guarded(max(o.z, floor), o.z);
-  const double spread_i = filtered * dot(i.xy(), i.xy()), spread_o = filtered * dot(o.xy(), o.xy());
-  const double length_i = std::sqrt(guarded(max(spread_i, 0.0), spread_i) + zi * zi);
-  const double length_o = std::sqrt(guarded(max(spread_o, 0.0), spread_o) + zo * zo);
   const auto [tail_scale, w, quarter_inverse_core, half_shoulder] = lobe;
   const double spread = h.x * h.x + h.y * h.y, cos2 = h.z * h.z;
   const double p = spread + tail_scale * cos2;
@@ -300,7 +295,7 @@ double Brdf::ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alph
   const double shoulder = falloff(spread * quarter_inverse_core * inverse_cos2);
   const double mixture = half_shoulder * shoulder + (2.0 - 4.0 * half_shoulder) * std::pow(shoulder, kFilteredShoulderScale);
   const double ndf = (tail + (1.0 - w) * mixture * guarded(min(scale, 0.5 / g.divisor_min), scale)) / kPi;
-  return 0.5 * ndf / (zo * length_i + zi * length_o);
+  return 0.5 * ndf / filtered_g2_divisor(i, o, filtered * dot(i.xy(), i.xy()), filtered * dot(o.xy(), o.xy()));
 }
 
 Sym2 Brdf::diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const {
@@ -311,12 +306,16 @@ double Brdf::filtered_brdf(Vec3 i, Vec3 o, Sym2 a, Sym2 ndf_matrix, Vec2 alpha2)
   if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
   const Vec3 h = half_vector(params, i, o);
   if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  return 0.5 * ggx_ndf_filtered_matrix(h, ndf_matrix, alpha2) /
+         filtered_g2_divisor(i, o, sym2_quadratic_form(a, i.xy()), sym2_quadratic_form(a, o.xy()));
+}
+
+double Brdf::filtered_g2_divisor(Vec3 i, Vec3 o, double spread_i, double spread_o) const {
   const double floor = params.guard_constants().lambda_min_z;
   const double zi = guarded(max(i.z, floor), i.z), zo = guarded(max(o.z, floor), o.z);
-  const double spread_i = sym2_quadratic_form(a, i.xy()), spread_o = sym2_quadratic_form(a, o.xy());
   const double length_i = std::sqrt(guarded(max(spread_i, 0.0), spread_i) + zi * zi);
   const double length_o = std::sqrt(guarded(max(spread_o, 0.0), spread_o) + zo * zo);
-  return 0.5 * ggx_ndf_filtered_matrix(h, ndf_matrix, alpha2) / (zo * length_i + zi * length_o);
+  return zo * length_i + zi * length_o;
 }
 
 namespace {

@@ -210,6 +210,9 @@ struct Brdf {
   double cosines(Vec3 i, Vec3 o) const;  // i.z o.z, guarded as the templates' BRDFs
   // D G2 / (4 i.z o.z) of the filtered GGX: G2 of a, D of ndf_matrix (a itself but in the axis form).
   double filtered_brdf(Vec3 i, Vec3 o, Sym2 a, Sym2 ndf_matrix, Vec2 alpha2) const;
+  // o.z S(i) + i.z S(o), S(v) = sqrt(v.xy^T A v.xy + v.z^2) with the spreads v.xy^T A v.xy given
+  // (template filtered_ggx_g2_divisor): G2 / (4 i.z o.z) of the filtered lobes is 1 / (2 this).
+  double filtered_g2_divisor(Vec3 i, Vec3 o, double spread_i, double spread_o) const;
 };
 
 // ---------------------------------------------------------------------------------------------
