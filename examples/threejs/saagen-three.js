@@ -247,9 +247,15 @@ function lobeGlsl(kind, prefix, plan) {
   const half = plan.wrapper.endsWith('_transported_fragment')
     ? 'normalize(l + v), saagenFeedNormal, saagenFeedTangent(), cross(saagenFeedNormal, saagenFeedTangent())'
     : 'saagenFeedHalf(l, v)';
+  // The deferred forms' lobe: split per pixel and per light where the plan names the pair (more
+  // than one light), else in one pass (perPixelGlsl computes the split's per-pixel part).
   const specular = {
-    roughness: `return ${prefix}ggx_brdf_filtered_lobe(i, o, saagenFiltered, saagenAlpha2, saagenLobe);`,
-    tensor: `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
+    roughness: plan.split
+      ? `return ${prefix}ggx_brdf_filtered_lobe(i, o, saagenFiltered, saagenAlpha2, saagenLobe);`
+      : `return ${prefix}ggx_brdf_filtered_axis(i, o, vec2(saagenFiltered), vec2(saagenAlpha2));`,
+    tensor: plan.split
+      ? `return ${prefix}deferred_aniso_brdf_lobe(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2, saagenLobe);`
+      : `return ${prefix}deferred_aniso_brdf(l, v, saagenFeedNormal, saagenTensor, saagenAlpha2);`,
     matrix: `highp vec3 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), ${half});
   return ${prefix}ggx_brdf_filtered_matrix(i, o, a, vec2(saagenAlpha2));`,
     axis: `highp vec2 a = ${prefix}${plan.wrapper}(vec2(saagenAlpha2), ${half});
@@ -258,7 +264,7 @@ function lobeGlsl(kind, prefix, plan) {
   return `
 highp float saagenAlpha2;      // the material's own alpha^2 (three.js: r^4)
 highp float saagenFiltered;    // a tangent-free filter's alpha^2
-highp vec4 saagenLobe;         // its lobe's light-independent part, once per pixel
+highp vec4 saagenLobe;         // a deferred form's lobe, its light-independent part, once per pixel
 highp vec3 saagenTensor;       // deferred-aniso's kernel tensor (Kxx, Kxy, Kyy)
 highp vec3 saagenFeedNormal;   // the normal the filter read
 void saagenFrame(highp vec3 n, out highp vec3 t, out highp vec3 b) {
@@ -291,13 +297,17 @@ highp float saagenSpecular(highp vec3 l, highp vec3 v, highp vec3 n) {
 }
 
 // The lines that replace three.js's geometric roughness term in lights_physical_fragment, per kind.
-function perPixelGlsl(kind, prefix, wrapper, normal) {
+function perPixelGlsl(plan, prefix) {
+  const { kind, wrapper, normal } = plan;
   const own = `saagenFeedNormal = ${normal};
 saagenAlpha2 = pow2(pow2(material.roughness));`;
-  if (kind === 'tensor') return `${own}\nsaagenTensor = ${prefix}${wrapper}(${normal});`;
+  if (kind === 'tensor') {
+    const lobe = plan.split ? `\nsaagenLobe = ${prefix}deferred_aniso_lobe(saagenTensor, saagenAlpha2);` : '';
+    return `${own}\nsaagenTensor = ${prefix}${wrapper}(${normal});${lobe}`;
+  }
   if (kind === 'roughness') {
-    return `${own}\nsaagenFiltered = ${prefix}${wrapper}(saagenAlpha2, ${normal});
-saagenLobe = ${prefix}ggx_filtered_lobe_isotropic(saagenFiltered, saagenAlpha2);
+    const lobe = plan.split ? `\nsaagenLobe = ${prefix}ggx_filtered_lobe_isotropic(saagenFiltered, saagenAlpha2);` : '';
+    return `${own}\nsaagenFiltered = ${prefix}${wrapper}(saagenAlpha2, ${normal});${lobe}
 material.roughness = sqrt(sqrt(saagenFiltered));`;
   }
   return own;  // matrix, axis: per light, in saagenSpecular
@@ -311,7 +321,7 @@ function patchedBrdf(pars) {
   return pars.slice(0, ret) + 'return F * saagenSpecular( lightDir, viewDir, normal );' + pars.slice(ret + BRDF_GGX_RETURN.length);
 }
 
-// How the plan's entry is installed: { kind, wrapper, tail, normal, bias }, or throws saying why not.
+// How the plan's entry is installed: { kind, wrapper, tail, normal, bias, split }, or throws saying why not.
 function planKind(entry) {
   if (entry.variant === 'none') return { kind: 'none' };
   const wrapper = entry.wrapper;
@@ -325,7 +335,9 @@ function planKind(entry) {
     throw new Error(`saagen-three: ${entry.variant} with the ${entry.prefilter} bake (a texture covariance) is not installable by this module; plan it with a tangent-free variant`);
   }
   const normal = entry.feed === 'shading' ? 'normal' : 'nonPerturbedNormal';
-  return { kind, wrapper, tail, normal, bias: entry.prefilter !== 'none' };
+  // The plan names a deferred form's lobe split per pixel and per light at more than one light.
+  const split = entry.brdf === 'ggx_brdf_filtered_lobe' || entry.brdf === 'deferred_aniso_brdf_lobe';
+  return { kind, wrapper, tail, normal, bias: entry.prefilter !== 'none', split };
 }
 
 // Installs one material's plan entry. Options: snippet, the bundle's text (gles, with the
@@ -352,7 +364,7 @@ export function installPlan(material, entry, { snippet = '', clearcoat = 'none' 
       if (!lights.includes(line)) throw new Error(`saagen-three: three.js r${THREE.REVISION} has no '${line}' in lights_physical_fragment; this module needs updating`);
     }
     const coat = clearcoat !== 'none' ? `material.clearcoatRoughness = saagenFilterRoughness(material.clearcoatRoughness, ${NORMALS.geometric[1]});` : '';
-    const chunk = lights.replace(ROUGHNESS_LINE, perPixelGlsl(plan.kind, prefix, plan.wrapper, plan.normal)).replace(CLEARCOAT_LINE, coat);
+    const chunk = lights.replace(ROUGHNESS_LINE, perPixelGlsl(plan, prefix)).replace(CLEARCOAT_LINE, coat);
     const fragment = plan.bias ? withBiasedReads(shader.fragmentShader) : shader.fragmentShader;
     shader.fragmentShader = head + fragment
       .replace('#include <lights_physical_pars_fragment>', patchedBrdf(THREE.ShaderChunk.lights_physical_pars_fragment))

@@ -43,9 +43,9 @@ struct Rule {
 // against no SAA is the decision's own text (generator/data/advice.json), appended to the plan.
 constexpr const char* kMeasuredDeferredAniso =
     "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, its largest eigenvalue bounded by kappa) and the "
-    "lighting pass scales it by (n.h)^2 per light into the roughness matrix of the tail-preserving filtered GGX, which keeps "
-    "the kernel's orientation (across a tube, not along it) that the isotropic deferred kernels lose (docs/DEFERRED_KERNEL.md). "
-    "Costs 3 G-buffer values and a matrix BRDF per light";
+    "lighting pass adds it to alpha^2 I as the roughness matrix of the tail-preserving filtered GGX, which keeps the kernel's "
+    "orientation (across a tube, not along it) that the isotropic deferred kernels lose (docs/DEFERRED_KERNEL.md). Costs 3 "
+    "G-buffer values and a matrix lobe, computed once per pixel at more than one light";
 
 // Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
 // with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
@@ -183,15 +183,33 @@ bool has_transported_form(const Variant& variant) { return std::ranges::any_of(v
 
 // The tail-preserving filtered GGX a filter's roughness feeds: the matrix form for a roughness
 // matrix, the axis form for per-axis roughness, and for one isotropic alpha^2 (the deferred
-// forms') the form split into its per-pixel setup and its per-light BRDF, which pays per light
-// only what depends on the light (docs/FILTERED_GGX.md).
+// forms') at more than one light the form split into its per-pixel setup and its per-light BRDF,
+// which pays per light only what depends on the light (docs/FILTERED_GGX.md). Both forms compute
+// the same value; at one light the committed ISA table measures the one-pass form cheaper (ACO's
+// estimate discounts the work behind a BRDF's early returns, where the one pass keeps it), from
+// four lights on the split.
 constexpr const char* kIsotropicLobeBrdf = "ggx_brdf_filtered_lobe";
 constexpr const char* kIsotropicLobeSetup = "ggx_filtered_lobe_isotropic";
+// deferred-aniso's lighting pass split the same way (templates/20-deferred.saa).
+constexpr const char* kTensorLobeBrdf = "deferred_aniso_brdf_lobe";
+constexpr const char* kTensorLobeSetup = "deferred_aniso_lobe";
 
-std::string tail_preserving_brdf(const Function& wrapper, bool per_axis) {
+bool splits_lobe(const Material& material) { return material.lights > 1; }
+
+std::string tail_preserving_brdf(const Function& wrapper, bool per_axis, const Material& material) {
   if (wrapper.return_type == "real3") return "ggx_brdf_filtered_matrix";
-  if (wrapper.return_type == "real" && !per_axis) return kIsotropicLobeBrdf;
+  if (wrapper.return_type == "real" && !per_axis && splits_lobe(material)) return kIsotropicLobeBrdf;
   return "ggx_brdf_filtered_axis";
+}
+
+// Whether a deferred-aniso lighting function belongs in the plan: the split pair at more than one
+// light (with the tensor plus the texture covariance where there is one), else the one-pass BRDF
+// (with or without the covariance); the roughness functions (for an engine's own matrix BRDF) as
+// the texture term says. An engine's BRDF or a Beckmann material never takes the pair.
+bool wanted_lighting_function(const std::string& name, const Function& function, bool texture_term, bool split) {
+  if (name == kTensorLobeSetup || name == kTensorLobeBrdf) return split;
+  if (is_covariance_function(name) != texture_term) return false;
+  return !(split && function.return_type == "real");
 }
 
 // A projected forward filter calls the wrappers its measurement was taken with
@@ -220,17 +238,20 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
   if (const auto lighting = lighting_pass(catalogue, variant); !lighting.empty()) {
     // The wrapper writes a tensor for the G-buffer; the variant's lighting pass turns it into the
     // roughness matrix per light (deferred_aniso_roughness, for the engine's own matrix BRDF) and
-    // shades with the tail-preserving filtered GGX (deferred_aniso_brdf).
+    // shades with the tail-preserving filtered GGX (deferred_aniso_brdf; at more than one light
+    // deferred_aniso_lobe once per pixel and deferred_aniso_brdf_lobe per light).
+    const bool split = splits_lobe(material) && material.ndf == Ndf::ggx && !own_brdf;
     for (const std::string& name : lighting) {
-      if (is_covariance_function(name) != texture_term) continue;
+      const Function& function = *catalogue.find_function(name);
+      if (!wanted_lighting_function(name, function, texture_term, split)) continue;
       plan.functions.push_back(name);
-      if (catalogue.find_function(name)->return_type == "real" && material.ndf == Ndf::ggx && !own_brdf) plan.brdf = name;
+      if (function.return_type == "real" && material.ndf == Ndf::ggx && !own_brdf) plan.brdf = name;
     }
     return;
   }
   plan.per_axis = material.anisotropic && wrapper.return_type == "real";
   if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
-    const std::string brdf = tail_preserving_brdf(wrapper, plan.per_axis);
+    const std::string brdf = tail_preserving_brdf(wrapper, plan.per_axis, material);
     if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx"))
       throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
     plan.brdf = brdf;
@@ -348,14 +369,20 @@ std::string shade_statements(const Catalogue& catalogue, const Material& materia
   const Function& wrapper = *catalogue.find_function(plan->wrapper);
   if (shades_from_tensor(catalogue, *plan)) {  // the geometry pass's tensor, then the lighting pass per light
     const std::string tensor = fmt::format("    real3 tensor = {};\n", call_with(wrapper, "alpha2.x"));
-    if (!is_covariance_function(*plan->brdf))
-      return tensor + fmt::format("    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n", *plan->brdf);
     // The texture covariance: LEAN's from the texel's moments, or a scalar bake's (v, 0, v).
     const std::string covariance =
-        plan->prefilter == "lean"
+        !adds_texture_term(material, *plan) ? ""
+        : plan->prefilter == "lean"
             ? "    real3 covariance = deferred_aniso_covariance(real2(real(SAAGEN_LOAD(10)), real(SAAGEN_LOAD(11))), "
               "real3(real(SAAGEN_LOAD(12)), real(SAAGEN_LOAD(13)), real(SAAGEN_LOAD(14))), tangent_ws, bitangent_ws, normal_ws);\n"
             : "    real3 covariance = real3(real(SAAGEN_LOAD(10)), 0.0, real(SAAGEN_LOAD(10)));\n";
+    if (*plan->brdf == kTensorLobeBrdf) {  // the lobe of K (+ C) once per pixel, then per light
+      const std::string kernel = covariance.empty() ? "tensor" : "tensor + covariance";
+      return tensor + covariance + fmt::format("    real4 lobe = {}({}, alpha2.x);\n", kTensorLobeSetup, kernel) +
+             fmt::format("    real value = {}(light_ws, view_ws, normal_ws, {}, alpha2.x, lobe);\n", kTensorLobeBrdf, kernel);
+    }
+    if (covariance.empty())
+      return tensor + fmt::format("    real value = {}(light_ws, view_ws, normal_ws, tensor, alpha2.x);\n", *plan->brdf);
     return tensor + covariance +
            fmt::format("    real value = {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2.x);\n", *plan->brdf);
   }
@@ -1477,11 +1504,12 @@ std::string rules_text() {
       "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
       "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it. A normal-mapped material that names deferred-aniso\n"
       "and prefilters its map gets the lighting pass with the texture covariance instead (deferred_aniso_roughness_with_covariance,\n"
-      "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments).\n"
+      "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments). At more than one light (lights > 1)\n"
+      "deferred_aniso_lobe once per pixel and deferred_aniso_brdf_lobe per light replace the lighting pass's BRDF.\n"
       "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
-      "ggx_filtered_lobe_isotropic once per pixel and ggx_brdf_filtered_lobe per light after a filter of one alpha^2 on an\n"
-      "isotropic material, ggx_brdf_filtered_axis otherwise), except under an engine's preset (its own BRDF); Beckmann\n"
-      "forward-aniso-* emit beckmann_brdf_matrix and ndf_clamp_tau.\n"
+      "ggx_brdf_filtered_axis otherwise; after a filter of one alpha^2 on an isotropic material at more than one light\n"
+      "ggx_filtered_lobe_isotropic once per pixel and ggx_brdf_filtered_lobe per light), except under an engine's preset (its\n"
+      "own BRDF); Beckmann forward-aniso-* emit beckmann_brdf_matrix and ndf_clamp_tau.\n"
       "anisotropic = true with tangents = false is rejected.\n"
       "glints = true (path = \"forward\", tangents = true): G1 prefer accuracy -> glints-ggaa, G2 prefer speed -> glints; the glinty\n"
       "BRDF replaces the specular BRDF, with lean_roughness for normal maps, and its dictionary is written next to the bundle.\n"
@@ -1536,12 +1564,30 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
                "  resource  the dictionary {}: bind it as the variant's glint_dictionary (`saagen list --json` shows the declaration)\n",
                glint_dictionary_file_name(manifest));
   }
+  if (material_plan.brdf && *material_plan.brdf == kTensorLobeBrdf) {
+    const bool texture_term = adds_texture_term(material, material_plan);
+    return fmt::format(
+        "  shade     lobe = {}(K, alpha2) once per pixel, then {}(light_ws, view_ws, normal_ws, K, alpha2, lobe) per light in "
+        "the lighting pass, with K the tensor the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in "
+        "[-kappa/2, kappa/2]){} and the normal it read (the tail-preserving filtered GGX of A = diag(alpha^2) + K{}; {} "
+        "returns diag(alpha^2) + (n.h)^2 K{} for an engine's own matrix BRDF)\n",
+        prefixed_name(prefix, kTensorLobeSetup), prefixed_name(prefix, kTensorLobeBrdf),
+        !texture_term ? ""
+        : material_plan.prefilter == "lean"
+            ? fmt::format(" plus the texture covariance C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of "
+                          "the texel's LEAN moments (3 more G-buffer values, 16-bit float: not bounded by kappa)",
+                          prefixed_name(prefix, "deferred_aniso_covariance"))
+            : fmt::format(" plus the texture covariance C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
+        texture_term ? " + C" : "",
+        prefixed_name(prefix, texture_term ? "deferred_aniso_roughness_with_covariance" : "deferred_aniso_roughness"),
+        texture_term ? " + C" : "");
+  }
   if (shades_from_tensor(catalogue, material_plan) && is_covariance_function(*material_plan.brdf)) {
     return fmt::format(
         "  shade     {}(light_ws, view_ws, normal_ws, tensor, covariance, alpha2) per light in the lighting pass, with the tensor "
         "the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]), the texture covariance "
         "{} (3 more G-buffer values, 16-bit float: not bounded by kappa) and the normal it read (the tail-preserving filtered "
-        "GGX of A = diag(alpha^2) + (n.h)^2 K + C; {} returns A)\n",
+        "GGX of A = diag(alpha^2) + K + C; {} returns diag(alpha^2) + (n.h)^2 K + C for an engine's own matrix BRDF)\n",
         prefixed_name(prefix, *material_plan.brdf),
         material_plan.prefilter == "lean"
             ? fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
@@ -1553,7 +1599,8 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
     return fmt::format(
         "  shade     {}(light_ws, view_ws, normal_ws, tensor, alpha2) per light in the lighting pass, with the tensor the "
         "call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]) and the normal it "
-        "read (the tail-preserving filtered GGX of A = diag(alpha^2) + (n.h)^2 K; {} returns A)\n",
+        "read (the tail-preserving filtered GGX of A = diag(alpha^2) + K; {} returns diag(alpha^2) + (n.h)^2 K for an engine's "
+        "own matrix BRDF)\n",
         prefixed_name(prefix, *material_plan.brdf), prefixed_name(prefix, "deferred_aniso_roughness"));
   }
   if (material_plan.brdf && *material_plan.brdf == "ggx_brdf_filtered_matrix") {

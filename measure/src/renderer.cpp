@@ -527,15 +527,17 @@ Sym2 texture_roughness(const PixelFields& f, Prefilter prefilter, const ref::Par
 }
 
 // deferred-aniso as the emitted passes compute it: the geometry pass's tensor in the frame built
-// from the fed normal, the lighting pass's A = diag(alpha^2) + (n.h)^2 K there; then A carried
+// from the fed normal, the lighting pass's A = diag(alpha^2) + (n.h)^2 K there (the tail-preserving
+// lobe's diag(alpha^2) + K, deferred_aniso_tail_roughness); then A carried
 // into the pixel's shading frame (t, b), A' = M A M^T with M = [t'.t b'.t; t'.b b'.b], so that
 // the texture term and every lobe apply as to the forward matrix. With the shading feed the two
 // frames share n and M is a rotation: the BRDF is deferred_aniso_brdf's (tail lobe).
 Sym2 deferred_aniso_in_pixel_frame(const ref::Params& params, const PixelFields& f, const ref::Quad<Vec3>& normal, int pixel,
-                                   ref::Derivative mode, double alpha2) {
+                                   ref::Derivative mode, double alpha2, Lobe lobe) {
   const Vec3 n = normal[pixel];
   const Sym2 tensor = ref::deferred_aniso_fragment_quad(params, normal, pixel, mode);
-  const Sym2 a = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n, tensor, alpha2);
+  const Sym2 a = lobe == Lobe::tail ? ref::deferred_aniso_tail_roughness(tensor, alpha2)
+                                    : ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n, tensor, alpha2);
   const Vec3 t = ref::normal_frame_tangent(n), b = ref::normal_frame_bitangent(n);
   const double m00 = dot(t, f.tangent), m01 = dot(b, f.tangent), m10 = dot(t, f.bitangent), m11 = dot(b, f.bitangent);
   // Rows of M A: (m00 a.xx + m01 a.xy, m00 a.xy + m01 a.yy), (m10 a.xx + m11 a.xy, m10 a.xy + m11 a.yy).
@@ -561,6 +563,7 @@ struct FilterInputs {
   const QuadFields& q;
   const PixelFields& f;
   ref::Derivative mode;
+  Lobe lobe;  // what shades the filtered roughness (deferred-aniso's A depends on it)
 };
 
 // The three forms of a filter's result: a roughness matrix A (forward-aniso-*, deferred-aniso),
@@ -610,7 +613,7 @@ constexpr Filter filter_by_form(Reference) {
 constexpr Filter custom_filter(Variant variant) {
   if (variant == Variant::deferred_aniso) {
     return MatrixFilter{[](const FilterInputs& x) {
-      return deferred_aniso_in_pixel_frame(x.params, x.f, x.in.normal, x.q.pixel, x.mode, x.a2) +
+      return deferred_aniso_in_pixel_frame(x.params, x.f, x.in.normal, x.q.pixel, x.mode, x.a2, x.lobe) +
              Sym2{x.alpha2.x - x.a2, 0.0, x.alpha2.y - x.a2};
     }};
   }
@@ -870,7 +873,7 @@ PixelShade shade_pixel(const GBuffer& gbuffer, int x, int y, Variant variant, co
       shade_engine(shading, variant, alpha, q, f, mode);
     } else {
       const FeedQuads in = feed_quads(q, feed);
-      shade_filter(shading, variant, FilterInputs{params, shading.alpha2(), shading.a2(), in, q, f, mode});
+      shade_filter(shading, variant, FilterInputs{params, shading.alpha2(), shading.a2(), in, q, f, mode, lobe});
     }
   }
   out.roughness = shading.roughness();

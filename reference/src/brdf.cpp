@@ -203,10 +203,12 @@ FilteredGgxLobes filtered_ggx_lobes(double ratio) {
   lobes.tail_scale = 1.0 + 2.5072 * r;
   lobes.tail_weight = 1.0 / lobes.tail_scale;
   const double w = lobes.tail_weight;
-  lobes.core_kernel = 1.0 + w * (1.3212 - 1.9936 * w);
+  lobes.core_kernel = filtered_ggx_core_kernel(w);
   lobes.shoulder_fraction = w * (0.52867 - 0.40604 * w);
   return lobes;
 }
+
+double filtered_ggx_core_kernel(double tail_weight) { return 1.0 + tail_weight * (1.3212 - 1.9936 * tail_weight); }
 
 // The template's floor of alpha^2 (TINY_POSITIVE) and cap of r (FILTERED_RATIO_MAX) hold in both
 // forms (not guarded() sites): past the cap the tail lobe weighs < 1e-6 (fp16: 1e-4) and r's
@@ -296,6 +298,33 @@ double Brdf::ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alph
   const double mixture = half_shoulder * shoulder + (2.0 - 4.0 * half_shoulder) * std::pow(shoulder, kFilteredShoulderScale);
   const double ndf = (tail + (1.0 - w) * mixture * guarded(min(scale, 0.5 / g.divisor_min), scale)) / kPi;
   return 0.5 * ndf / filtered_g2_divisor(i, o, filtered * dot(i.xy(), i.xy()), filtered * dot(o.xy(), o.xy()));
+}
+
+// Template ggx_filtered_lobe_matrix: r of A = alpha^2 I + K (filtered_ggx_ratio), lambda multiplied
+// through by the floored alpha^2, and 1 / sqrt(det 2 M) of the core lobe M = alpha^2 I + c K with
+// det(M) floored as filtered_ggx_mixture floors it.
+IsotropicLobe Brdf::ggx_filtered_lobe_matrix(Sym2 a, double alpha2) const {
+  const double unfiltered = max(alpha2, tiny());
+  const Sym2 a0{alpha2, 0.0, alpha2};
+  const FilteredGgxLobes lobes = filtered_ggx_lobes(filtered_ggx_ratio(a, {alpha2, alpha2}));
+  const Sym2 core = a0 + lobes.core_kernel * (a - a0);
+  const double det0 = unfiltered * unfiltered;
+  const double det = max(sym2_determinant(core), guarded(max(det0, tiny()), det0));
+  return {unfiltered * lobes.tail_scale, lobes.tail_weight, 1.0 / std::sqrt(4.0 * det), 0.5 * lobes.shoulder_fraction};
+}
+
+// Template ggx_brdf_filtered_lobe_matrix: filtered_brdf of A with the lobe's lambda, w and f given
+// and c again from w; filtered_ggx_mixture recomputes det(M) from the core lobe, which is the
+// lobe's 1 / sqrt(det 2 M) in double.
+double Brdf::ggx_brdf_filtered_lobe_matrix(Vec3 i, Vec3 o, Sym2 a, double alpha2, const IsotropicLobe& lobe) const {
+  if (i.z <= 0.0 || o.z <= 0.0) return 0.0;
+  const Vec3 h = half_vector(params, i, o);
+  if (dot(i, h) <= 0.0 || dot(o, h) <= 0.0) return 0.0;
+  const double unfiltered = max(alpha2, tiny()), w = lobe[1];
+  const Sym2 a0{alpha2, 0.0, alpha2};
+  const Sym2 core = a0 + filtered_ggx_core_kernel(w) * (a - a0);
+  const double ndf = filtered_ggx_mixture(core, {unfiltered, unfiltered}, lobe[0] / unfiltered, w, 2.0 * lobe[3], h);
+  return 0.5 * ndf / filtered_g2_divisor(i, o, sym2_quadratic_form(a, i.xy()), sym2_quadratic_form(a, o.xy()));
 }
 
 Sym2 Brdf::diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const {
@@ -406,17 +435,30 @@ double ggx_kernel_scale(double alpha2, double kernel) { return kernel_scale(alph
 double ggx_filtered_alpha2(double alpha2, double kernel) { return Brdf{}.ggx_filtered_alpha2(alpha2, kernel); }
 
 // ---------------------------------------------------------------------------------------------
-// deferred-aniso's lighting pass (template deferred_aniso_roughness / deferred_aniso_brdf).
+// deferred-aniso's lighting pass (template deferred_aniso_roughness / deferred_aniso_brdf, and the
+// pair deferred_aniso_lobe / deferred_aniso_brdf_lobe).
 Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
   const double cosine = dot(normal_ws, half_vector(p, light_ws, view_ws));
   return Sym2{alpha2, 0.0, alpha2} + (cosine * cosine) * tensor;
 }
 
+Sym2 deferred_aniso_tail_roughness(Sym2 tensor, double alpha2) { return Sym2{alpha2, 0.0, alpha2} + tensor; }
+
 double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
   const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 a = deferred_aniso_roughness(p, light_ws, view_ws, normal_ws, tensor, alpha2);
-  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
-                                          {alpha2, alpha2});
+  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws),
+                                          deferred_aniso_tail_roughness(tensor, alpha2), {alpha2, alpha2});
+}
+
+IsotropicLobe deferred_aniso_lobe(const Params& p, Sym2 tensor, double alpha2) {
+  return Brdf{p}.ggx_filtered_lobe_matrix(deferred_aniso_tail_roughness(tensor, alpha2), alpha2);
+}
+
+double deferred_aniso_brdf_lobe(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2,
+                                const IsotropicLobe& lobe) {
+  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
+  return Brdf{p}.ggx_brdf_filtered_lobe_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws),
+                                               deferred_aniso_tail_roughness(tensor, alpha2), alpha2, lobe);
 }
 
 Sym2 deferred_aniso_covariance(const Params& p, Vec2 slope_mean, Sym2 slope_second, Vec3 tangent_ws, Vec3 bitangent_ws, Vec3 normal_ws) {
@@ -438,7 +480,7 @@ Sym2 deferred_aniso_roughness_with_covariance(const Params& p, Vec3 light_ws, Ve
 double deferred_aniso_brdf_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
                                            double alpha2) {
   const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 a = deferred_aniso_roughness_with_covariance(p, light_ws, view_ws, normal_ws, tensor, covariance, alpha2);
+  const Sym2 a = deferred_aniso_tail_roughness(tensor + covariance, alpha2);
   return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
                                           {alpha2, alpha2});
 }

@@ -185,7 +185,8 @@ SceneShading forward_shade(std::string_view wrapper, bool matrix, Lobe lobe, std
 SceneShading deferred_lobe_shading(const std::string& filtered, bool tail) {
   if (!tail) return {filtered, "    real value = ggx_brdf_axis(i_ts, o_ts, real2(filtered, filtered));\n"};
   return {filtered + "    real4 lobe = ggx_filtered_lobe_isotropic(filtered, alpha2_material);\n",
-          "    real value = ggx_brdf_filtered_lobe(i_ts, o_ts, filtered, alpha2_material, lobe);\n"};
+          "    real value = ggx_brdf_filtered_lobe(i_ts, o_ts, filtered, alpha2_material, lobe);\n",
+          filtered + "    real value = ggx_brdf_filtered_axis(i_ts, o_ts, real2(filtered, filtered), alpha2);\n"};
 }
 
 // A deferred wrapper's statements: once per pixel (the G-buffer side) one filtered alpha^2 for
@@ -258,9 +259,12 @@ std::vector<VariantCase> lobe_cases() {
       {"deferred-sum/tail", deferred_shade("deferred_sum", false, Lobe::tail), std::nullopt},
       {"deferred-avg/tail", deferred_shade("deferred_avg", false, Lobe::tail), std::nullopt},
       // deferred-aniso (docs/DEFERRED_KERNEL.md): the geometry pass's tensor and the lighting
-      // pass's BRDF in one shader, as a forward renderer would run both.
+      // pass in one shader, as a forward renderer would run both: its lobe once per pixel, then
+      // the BRDF per light; at one light the BRDF in one pass.
       {"deferred-aniso/tail",
-       {"    real3 tensor = deferred_aniso_fragment(normal);\n",
+       {"    real3 tensor = deferred_aniso_fragment(normal);\n    real4 lobe = deferred_aniso_lobe(tensor, alpha2_material);\n",
+        "    real value = deferred_aniso_brdf_lobe(light_ws, view_ws, normal, tensor, alpha2_material, lobe);\n",
+        "    real3 tensor = deferred_aniso_fragment(normal);\n"
         "    real value = deferred_aniso_brdf(light_ws, view_ws, normal, tensor, alpha2_material);\n"},
        std::nullopt},
       {"deferred-avg/mapped",
@@ -312,7 +316,8 @@ std::string body_with(const SceneShading& shading, std::uint32_t width, std::uin
   fill("{light}", light.light);
   fill("{incident}", light.incident);
   fill("{half}", light.half);
-  fill("{shade}", one ? shading.per_pixel + shading.per_light : lights_shade(shading, lights));
+  const std::string one_light = shading.one_light.empty() ? shading.per_pixel + shading.per_light : shading.one_light;
+  fill("{shade}", one ? one_light : lights_shade(shading, lights));
   return parameter_block(width, height, lights) + body;
 }
 

@@ -52,7 +52,8 @@ enum class Claim {
   prefiltered,            // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
   prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
   kernel_tensor,          // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
-  isotropic_lobe,    // ggx_filtered_lobe_isotropic: finite, alpha^2 lambda > 0, 0 < w <= 1, 1 / (4 m) > 0, 0 <= f / 2 <= 0.0861 (+2^-8)
+  isotropic_lobe,         // ggx_filtered_lobe_isotropic, deferred_aniso_lobe: finite, alpha^2 lambda > 0, 0 < w <= 1, 1 / (4 m) or
+                          // 1 / sqrt(det 2 M) > 0, 0 <= f / 2 <= 0.0861 (+2^-8)
   tensor_roughness,  // deferred_aniso_roughness(_with_covariance): finite, A00, A11 >= alpha^2, det A >= -(rounding) (for PSD tensor and
                      // covariance)
 };
@@ -62,7 +63,7 @@ inline constexpr double kProjectedSlack = 0x1p-22;
 inline constexpr double kPsdSlack = 0x1p-20;
 inline constexpr double kPsdUnderflow = 0x1p-122;
 inline constexpr double kTensorSlack = 0x1p-21;
-// kLobeSlack: ggx_filtered_lobe_isotropic's w = u / (u lambda) <= 1 (u lambda >= u) and f / 2 =
+// kLobeSlack: ggx_filtered_lobe_isotropic's and deferred_aniso_lobe's w = u / (u lambda) <= 1 (u lambda >= u) and f / 2 =
 // w (0.264335 - 0.20302 w) in [0, 0.08605] (its peak at w = 0.651), each after a division that
 // Vulkan bounds to 2.5 ulps, in half precision too (the precision test judges fp16 results):
 // 2.5 ulps of 1 in fp16 are 2.5 x 2^-10 < 2^-8.
@@ -81,7 +82,8 @@ inline Claim claim_of(std::string_view function) {
   if (starts("prefilter_")) return Claim::prefiltered;
   if (function == "deferred_aniso" || function == "deferred_aniso_fragment") return Claim::kernel_tensor;
   if (function == "deferred_aniso_roughness" || function == "deferred_aniso_roughness_with_covariance") return Claim::tensor_roughness;
-  if (function == "deferred_aniso_brdf" || function == "deferred_aniso_brdf_with_covariance") return Claim::brdf_value;
+  if (function == "deferred_aniso_lobe") return Claim::isotropic_lobe;
+  if (function.rfind("deferred_aniso_brdf", 0) == 0) return Claim::brdf_value;
   if (starts("deferred_projected_space")) return Claim::projected_space;
   if (starts("forward_axis_") || starts("deferred_")) return Claim::saturated;
   if (function == "ndf_clamp_tau") return Claim::clamp_tau;
@@ -115,7 +117,7 @@ inline std::string_view describe(Claim claim) {
     case Claim::kernel_tensor:
       return "finite; K00, K11 in [0, kappa], |K01| <= kappa / 2 (+2^-21); PSD: det K >= -2^-20 K00 K11 - 2^-122 (K00 + K11)";
     case Claim::isotropic_lobe:
-      return "finite; alpha^2 lambda > 0; 0 < w <= 1; 1 / (4 m) > 0; 0 <= f / 2 <= 0.0861 (+-2^-8)";
+      return "finite; alpha^2 lambda > 0; 0 < w <= 1; 1 / (4 m) or 1 / sqrt(det 2 M) > 0; 0 <= f / 2 <= 0.0861 (+-2^-8)";
     case Claim::tensor_roughness:
       return "finite; A00, A11 >= alpha^2; PSD: det A >= -2^-20 A00 A11 - 2^-122 (A00 + A11)";
   }
@@ -180,7 +182,7 @@ inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, 
     case Claim::isotropic_lobe: {
       if (!(out[0] > 0.0)) fail("alpha^2 lambda <= 0");
       if (!(out[1] > 0.0) || out[1] > 1.0 + kLobeSlack) fail("w outside (0, 1]");
-      if (!(out[2] > 0.0)) fail("1 / (4 m) <= 0");
+      if (!(out[2] > 0.0)) fail("1 / (4 m) or 1 / sqrt(det 2 M) <= 0");
       if (out[3] < -kLobeSlack || out[3] > 0.0861 + kLobeSlack) fail("f / 2 outside [0, 0.0861]");
       break;
     }

@@ -246,10 +246,14 @@ inline bool is_brdf(const Function& function) {
          function.name == "ndf_clamp_tau" || is_tensor_lighting(function);
 }
 
+// The kernel S of the material's A = diag(alpha^2) + S, deferred-aniso's tensor.
+inline ref::Sym2 material_tensor(const Material& material) { return material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y}; }
+
 // Packs a parameter that a BRDF input's material and directions i, o give (i or w, o, A, tau,
 // A's diagonal as `filtered` (its xx where one filtered alpha^2 is taken), the kernel's xx as
-// `kernel`, the kernel S as `tensor`, the isotropic lobe of (A's xx, alpha^2) as `lobe`); false for
-// any other. Shared by the adversarial inputs here and the precision test's realistic ones.
+// `kernel`, the kernel S as `tensor`, the isotropic lobe of (A's xx, alpha^2) as `lobe`, deferred-aniso's
+// lobe of (S, alpha^2) as `tensor_lobe`); false for any other. Shared by the adversarial inputs here and the precision test's realistic
+// ones.
 inline bool pack_material_parameter(const Parameter& parameter, const Material& material, ref::Vec3 i, ref::Vec3 o, Packer& pack) {
   const std::string& name = parameter.name;
   if (name == "w" || name == "i")
@@ -271,7 +275,9 @@ inline bool pack_material_parameter(const Parameter& parameter, const Material& 
   else if (name == "tensor")
     // The PSD kernel S of A = diag(alpha^2) + S: the lighting pass's claims hold for any PSD
     // tensor, not only the kappa-clamped one deferred_aniso writes.
-    pack.sym2(material.a - ref::Sym2{material.alpha2.x, 0.0, material.alpha2.y});
+    pack.sym2(material_tensor(material));
+  else if (name == "tensor_lobe")
+    for (double v : ref::deferred_aniso_lobe(ref::Params{}, material_tensor(material), material.alpha2.x)) pack.real(v);
   else
     return false;
   return true;

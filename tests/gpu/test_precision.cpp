@@ -327,8 +327,10 @@ double bound_for(const Function& f) {
   // deferred_aniso_roughness: A = alpha^2 + (n.h)^2 K relative to max(1, tr A). n.h carries ~4u
   // (light, view, normal rounded to fp16, u/2 each; normalize 2u; the dot product), its square
   // 8u, the product and the sum u more: 9u = 4.4e-3 of K <= tr A, measured <= 1.8e-3: 5e-3.
-  // deferred_aniso_brdf takes the GGX BRDFs' 0.05 (relative_metric): the frame built from n in
-  // fp16 turns the directions by a few u, measured <= 1.9e-2 for alpha >= 0.1 (cosines >= 0.1).
+  // deferred_aniso_brdf (_with_covariance, _lobe) and deferred_aniso_lobe take the GGX BRDFs' 0.05
+  // (relative_metric): the frame built from n in fp16 turns the directions by a few u, measured
+  // <= 1.9e-2 for alpha >= 0.1 (cosines >= 0.1); the lobe's 1 / sqrt(det 2 M) loses det(M)'s
+  // cancellation, at most K / alpha^2 <= 18 times u = 8.8e-3 here, halved by the square root.
   // deferred_aniso_roughness_with_covariance adds the covariance C, an fp16 input (u/2 of C <= tr A)
   // with one more rounded sum (u/2): 10u = 4.9e-3, measured <= 1.7e-3: the same 5e-3.
   // deferred_aniso_covariance keeps the default 2e-3 (absolute; C <= 0.5 here): the moments carry

@@ -477,8 +477,8 @@ TEST(ProceduralBumps, PrefilteredRowsShadeTheBandLimitedNormal) {
 }
 
 // The emitted deferred-aniso pass with a texture covariance (templates/20-deferred.saa:
-// deferred_aniso_covariance in the geometry pass, deferred_aniso_roughness_with_covariance /
-// _brdf_with_covariance in the lighting pass) against the trade's deferred-aniso rows with LEAN.
+// deferred_aniso_covariance in the geometry pass, _brdf_with_covariance in the lighting pass)
+// against the trade's deferred-aniso rows with LEAN and the tail-preserving lobe.
 // The pass works in the frame (t', b') built from the normal the G-buffer stores; the renderer in
 // the pixel's shading frame (t, b): A_pixel = Q A Q^T, Q = [t.t' t.b'; b.t' b.b'].
 namespace {
@@ -545,7 +545,8 @@ TEST(DeferredAnisoCovariance, EmittedPassIsTheLeanRowOnANormalMap) {
       const ref::Sym2 covariance =
           ref::deferred_aniso_covariance(params, f.texel.slope_mean, f.texel.slope_second, f.tangent, f.bitangent, f.normal);
       EXPECT_GT(ref::trace(covariance), 0.0);
-      const ref::Sym2 a = ref::deferred_aniso_roughness_with_covariance(params, f.to_light, f.to_view, f.normal, tensor, covariance, a2);
+      // The tail lobe's row: A = diag(alpha^2) + K + C (deferred_aniso_tail_roughness).
+      const ref::Sym2 a = ref::deferred_aniso_tail_roughness(tensor + covariance, a2);
       const double scale = ref::trace(row.roughness);
       expect_sym2_near(to_pixel_frame(a, f.normal, f.tangent, f.bitangent), row.roughness, 1e-12 * scale);
       const double brdf = ref::ggx_brdf_filtered_matrix(f.light_ts, f.view_ts, row.roughness, {a2, a2});
@@ -559,7 +560,7 @@ TEST(DeferredAnisoCovariance, EmittedPassIsTheLeanRowOnANormalMap) {
 // The bump plane's deferred-aniso:geometric+lean row (the trade's best deferred configuration
 // there): its texture term 2 Sigma (LEAN's covariance of the footprint moments, in the
 // band-limited normal's shading frame) is the emitted covariance carried back into that frame,
-// and the rest of its A is the geometric normal's kernel, as deferred_aniso_roughness gives it.
+// and the rest of its A is the geometric normal's kernel, as deferred_aniso_tail_roughness gives it.
 TEST(DeferredAnisoCovariance, EmittedCovarianceIsTheBandLimitedRowsTextureTerm) {
   const int size = 64;
   const GBuffer gbuffer = render_gbuffer(make_scene(SceneId::bump_plane), size, size, 1);
@@ -581,8 +582,7 @@ TEST(DeferredAnisoCovariance, EmittedCovarianceIsTheBandLimitedRowsTextureTerm) 
     // band-limited frame by M = [t.t_g' t.b_g'; b.t_g' b.b_g'] (renderer.cpp, deferred_aniso_in_pixel_frame).
     const QuadFields q = gather_quad(gbuffer, x, y);
     const Vec3 n_g = q.geometric_normal[q.pixel];
-    const ref::Sym2 kernel = ref::deferred_aniso_roughness(params, f.to_light, f.to_view, n_g,
-                                                           ref::deferred_aniso_fragment_quad(params, q.geometric_normal, q.pixel), a2);
+    const ref::Sym2 kernel = ref::deferred_aniso_tail_roughness(ref::deferred_aniso_fragment_quad(params, q.geometric_normal, q.pixel), a2);
     const double scale = ref::trace(row.roughness);
     expect_sym2_near(row.roughness - to_pixel_frame(covariance, band.normal, band.tangent, band.bitangent),
                      to_pixel_frame(kernel, n_g, band.tangent, band.bitangent), 1e-12 * scale);

@@ -180,6 +180,21 @@ TEST(FilteredGgx, SplitIsotropicLobeIsTheAxisForm) {
   EXPECT_DOUBLE_EQ(none[1], 1.0);
 }
 
+// deferred-aniso's lobe split per pixel and per light is its one-pass BRDF: for kernels thin and
+// round, turned, and with the frame built from tilted normals.
+TEST(FilteredGgx, SplitMatrixLobeIsDeferredAnisosBrdf) {
+  const Params p{};
+  for (double alpha2 : {1e-6, 2.5e-3, 0.1, 0.6})
+    for (const Sym2 tensor : {Sym2{0.0, 0.0, 0.0}, Sym2{1e-4, 0.0, 1e-4}, Sym2{0.18, 0.02, 0.001}, Sym2{0.02, -0.09, 0.18}})
+      for (double tilt : {0.0, 0.05, 0.3, 1.2}) {
+        const Vec3 n = normalize(Vec3{0.2 * tilt, -0.1, 1.0});
+        const Vec3 light = normalize(Vec3{0.4 + tilt, -0.2, 1.0}), view = normalize(Vec3{-0.3, 0.1 - tilt, 1.0});
+        const double one_pass = deferred_aniso_brdf(p, light, view, n, tensor, alpha2);
+        const double split = deferred_aniso_brdf_lobe(p, light, view, n, tensor, alpha2, deferred_aniso_lobe(p, tensor, alpha2));
+        EXPECT_NEAR(split, one_pass, 1e-12 * one_pass + 1e-300) << "alpha2 " << alpha2 << " tilt " << tilt;
+      }
+}
+
 namespace {
 
 // 2D L1 distance of the matrix lobe to the exact anisotropic convolution

@@ -173,6 +173,8 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
       push(out, s.o);
     else if (name == "tensor")
       push(out, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h));
+    else if (name == "tensor_lobe")
+      push(out, ref::deferred_aniso_lobe(params, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h), alpha2.x));
     else if (name == "mean_length")
       push(out, texel.mean_length);
     else if (name == "slope_mean")
@@ -218,8 +220,9 @@ inline double beckmann_exponent(Vec3 h, Sym2 a, double tau) {
 // deferred-aniso's core and evaluate functions: the shared reference and its scale
 // (reference_dispatch.hpp, deferred_aniso_reference).
 inline void deferred_aniso_references(const ref::Params& p, std::map<std::string, ReferenceFunction>& table) {
-  for (const char* name : {"deferred_aniso", "deferred_aniso_roughness", "deferred_aniso_brdf", "deferred_aniso_covariance",
-                           "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"}) {
+  for (const char* name :
+       {"deferred_aniso", "deferred_aniso_roughness", "deferred_aniso_brdf", "deferred_aniso_lobe", "deferred_aniso_brdf_lobe",
+        "deferred_aniso_covariance", "deferred_aniso_roughness_with_covariance", "deferred_aniso_brdf_with_covariance"}) {
     const std::string function = name;
     table[function] = {[=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in); },
                        [=](Inputs& in) { return *saagen::test::deferred_aniso_reference(function, p, in, true); }};

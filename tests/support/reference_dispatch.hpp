@@ -445,12 +445,28 @@ inline TextureFrame texture_frame(ref::Vec3 n, double angle, double sign) {
 //    entry of R (2 Sigma) R^T is a sum of four products of two entries of R, each at most
 //    |t| or |b| (the frame built from n is unit), with one entry of 2 Sigma;
 //  - deferred_aniso_roughness: alpha^2 + |Kxx| + |Kyy|, and _with_covariance + |Cxx| + |Cyy|;
-//  - deferred_aniso_brdf: the filtered GGX's scale, plus the frame: the directions enter through
+//  - deferred_aniso_lobe: deferred_aniso_lobe_magnitudes;
+//  - deferred_aniso_brdf (_with_covariance, _lobe): the filtered GGX's scale, plus the frame: the directions enter through
 //    dot products with a frame built in fp32 (a few ulps of absolute error delta in i_ts, o_ts,
 //    h_ts), which moves the NDF's quadratic form h.xy^T M^-1 h.xy / h_z^2 by at most
 //    2 |h.xy| delta / (alpha^2 h_z^2) for every lobe M >= alpha^2 I (the GGX lobe's relative
 //    error is twice that) and the cosines i.z, o.z by delta:
 //    S += |f| (4 |h.xy| / (alpha^2 h_z^2) + 1 / i.z + 1 / o.z).
+// deferred_aniso_lobe's magnitudes: every value carries the rounding of the kernel A - alpha^2 I
+// that the template takes back out of A = alpha^2 I + K (relative to |alpha^2| + |Kxx| + |Kyy|)
+// into u lambda = u + 0.6268 tr K, amplified at most 3 times (as ggx_filtered_lobe_isotropic's);
+// 1 / sqrt(det 2 M) also carries det(M) = M00 M11 - M01^2, which cancels for a nearly rank-1 kernel
+// to (|M00 M11| + M01^2) / det(M) of its rounding.
+inline std::vector<double> deferred_aniso_lobe_magnitudes(ref::Sym2 tensor, double alpha2, const ref::IsotropicLobe& lobe) {
+  const double cancelled = std::fabs(alpha2) + std::fabs(tensor.xx) + std::fabs(tensor.yy);
+  const double spread = 1.0 + 3.0 * cancelled * 1.2536 / std::fabs(lobe[0]);
+  const ref::Sym2 core = ref::Sym2{alpha2, 0.0, alpha2} + ref::filtered_ggx_core_kernel(lobe[1]) * tensor;
+  const double det = 0.25 / (lobe[2] * lobe[2]);
+  const double conditioning = (std::fabs(core.xx * core.yy) + core.xy * core.xy) / det;
+  return {std::fabs(lobe[0]) * spread, std::fabs(lobe[1]) * spread, std::fabs(lobe[2]) * (spread + conditioning),
+          std::fabs(lobe[3]) * spread};
+}
+
 template <class In>
 std::optional<std::vector<double>> deferred_aniso_reference(const std::string& name, const ref::Params& p, In& in,
                                                             bool magnitudes = false) {
@@ -470,27 +486,35 @@ std::optional<std::vector<double>> deferred_aniso_reference(const std::string& n
     return std::vector<double>(3, 2.0 * (xx + 2.0 * xy + yy) * frame * frame);
   }
   const bool with_covariance = name == "deferred_aniso_roughness_with_covariance" || name == "deferred_aniso_brdf_with_covariance";
-  if (name != "deferred_aniso_roughness" && name != "deferred_aniso_brdf" && !with_covariance) return std::nullopt;
+  if (name == "deferred_aniso_lobe") {
+    const ref::Sym2 tensor = in.sym2();
+    const double alpha2 = in.real();
+    const ref::IsotropicLobe lobe = ref::deferred_aniso_lobe(p, tensor, alpha2);
+    if (!magnitudes) return std::vector<double>(lobe.begin(), lobe.end());
+    return deferred_aniso_lobe_magnitudes(tensor, alpha2, lobe);
+  }
+  const bool split = name == "deferred_aniso_brdf_lobe";
+  if (name != "deferred_aniso_roughness" && name != "deferred_aniso_brdf" && !with_covariance && !split) return std::nullopt;
   const ref::Vec3 light = in.vec3(), view = in.vec3(), normal = in.vec3();
   const ref::Sym2 tensor = in.sym2();
   const ref::Sym2 covariance = with_covariance ? in.sym2() : ref::Sym2{};
   const double alpha2 = in.real();
-  const auto roughness = [&] {
-    return with_covariance ? ref::deferred_aniso_roughness_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
-                           : ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2);
-  };
   if (name == "deferred_aniso_roughness" || name == "deferred_aniso_roughness_with_covariance") {
     if (magnitudes)
       return std::vector<double>(
           3, std::fabs(alpha2) + std::fabs(tensor.xx) + std::fabs(tensor.yy) + std::fabs(covariance.xx) + std::fabs(covariance.yy));
-    return output_values(roughness());
+    return output_values(with_covariance ? ref::deferred_aniso_roughness_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
+                                         : ref::deferred_aniso_roughness(p, light, view, normal, tensor, alpha2));
   }
-  const double value = with_covariance ? ref::deferred_aniso_brdf_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
-                                       : ref::deferred_aniso_brdf(p, light, view, normal, tensor, alpha2);
+  // The split form's lobe as the device read it.
+  const ref::IsotropicLobe lobe = split ? ref::IsotropicLobe{in.real(), in.real(), in.real(), in.real()} : ref::IsotropicLobe{};
+  const double value = split             ? ref::deferred_aniso_brdf_lobe(p, light, view, normal, tensor, alpha2, lobe)
+                       : with_covariance ? ref::deferred_aniso_brdf_with_covariance(p, light, view, normal, tensor, covariance, alpha2)
+                                         : ref::deferred_aniso_brdf(p, light, view, normal, tensor, alpha2);
   if (!magnitudes) return output_values(value);
   const ref::Vec3 t = ref::normal_frame_tangent(normal), b = ref::normal_frame_bitangent(normal);
   const ref::Vec3 i = ref::to_tangent_space(light, t, b, normal), o = ref::to_tangent_space(view, t, b, normal);
-  const ref::Sym2 a = roughness();
+  const ref::Sym2 a = ref::deferred_aniso_tail_roughness(tensor + covariance, alpha2);
   ValueList lobe_inputs{{i.x, i.y, i.z, o.x, o.y, o.z, a.xx, a.xy, a.yy, alpha2, alpha2}};
   const double lobes = filtered_ggx_reference("ggx_brdf_filtered_matrix", p, lobe_inputs, true)->at(0);
   if (i.z <= 0.0 || o.z <= 0.0) return std::vector<double>{lobes};

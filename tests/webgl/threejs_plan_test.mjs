@@ -39,7 +39,20 @@ const narrow = path.join(output, 'narrow.saagen.toml');
 fs.writeFileSync(narrow, fs.readFileSync(manifest, 'utf8').replace('prefix = "saa_"', 'prefix = "saa_"\nsigma2 = 0.000001'));
 execFileSync(cli, ['emit', '--manifest', narrow, '--output', path.join(output, 'narrow')]);
 const narrowSnippet = fs.readFileSync(path.join(output, 'narrow', 'saa_threejs.essl'), 'utf8');
+// The same scene at four lights: the plan splits the deferred forms' lobe into its per-pixel part
+// (ggx_filtered_lobe_isotropic, deferred_aniso_lobe) and its per-light BRDF, which compute the
+// value the one-pass BRDF does, so the module's split install must give the one-light picture.
+const split = path.join(output, 'split.saagen.toml');
+fs.writeFileSync(split, fs.readFileSync(manifest, 'utf8').replace('prefix = "saa_"', 'prefix = "saa_"\nlights = 4'));
+const splitPlan = JSON.parse(execFileSync(cli, ['plan', split, '--json'], { encoding: 'utf8' }));
+execFileSync(cli, ['emit', '--manifest', split, '--output', path.join(output, 'split')]);
+const splitSnippet = fs.readFileSync(path.join(output, 'split', 'saa_threejs.essl'), 'utf8');
 fs.rmSync(output, { recursive: true, force: true });
+const splitEntries = Object.fromEntries(splitPlan.materials.filter((m) => ['glossy_deferred', 'bumpy_named'].includes(m.material))
+  .map((m) => [m.material, m]));
+check(splitEntries.glossy_deferred?.variant === 'deferred-aniso' && splitEntries.glossy_deferred?.brdf === 'deferred_aniso_brdf_lobe' &&
+      splitEntries.bumpy_named?.variant === 'deferred-sum' && splitEntries.bumpy_named?.brdf === 'ggx_brdf_filtered_lobe',
+      `at four lights the deferred materials' lobe is split: ${JSON.stringify(Object.values(splitEntries).map((m) => [m.variant, m.brdf]))}`);
 
 const variants = Object.fromEntries(plan.materials.map((m) => [m.material, m.variant]));
 check(variants.glossy === 'forward-aniso-projected' && variants.glossy_matrix === 'forward-aniso-projected' && variants.glossy_axis === 'forward-axis-projected' &&
@@ -57,7 +70,7 @@ const { browser, close } = await launchChromium();
 try {
   const { page, errors } = await openPage(browser, `${origin}/tests/webgl/threejs.html`);
   await page.waitForFunction('window.saagenReady === true', { timeout: 20000 });
-  const result = await page.evaluate((snippet, narrowSnippet, plan) => {
+  const result = await page.evaluate((snippet, narrowSnippet, plan, splitSnippet, splitEntries) => {
     const { createRenderer, renderScene } = window.saagenScene;
     const render = (renderer, mode, options) => renderScene(renderer, mode, { snippet, ...options });
     const fresh = (mode, options = {}) => {
@@ -94,12 +107,15 @@ try {
       const planned = fresh('plan', { entry, normalMap });
       const again = render(shared, 'plan', { entry, normalMap });
       const narrowed = entry.variant === 'none' ? planned : fresh('plan', { entry, normalMap, snippet: narrowSnippet });
+      const splitEntry = splitEntries[entry.material];
+      const splitDiffering = splitEntry ? compare(fresh('plan', { entry: splitEntry, normalMap, snippet: splitSnippet }), planned).differing : 0;
       out[entry.material] = { vsUnfiltered: compare(planned, unfiltered), planned: stats(planned), unfiltered: stats(unfiltered),
-                              shared: compare(again, planned).differing, narrowVsUnfiltered: compare(narrowed, unfiltered).differing };
+                              shared: compare(again, planned).differing, narrowVsUnfiltered: compare(narrowed, unfiltered).differing,
+                              splitVsPlanned: splitDiffering };
     }
     out.programs = shared.info.programs.length;
     return out;
-  }, snippet, narrowSnippet, plan);
+  }, snippet, narrowSnippet, plan, splitSnippet, splitEntries);
   check(errors.length === 0, `no console errors or exceptions (${errors.slice(0, 3).join(' | ')})`);
   const none = result.glossy_fast;
   check(none.vsUnfiltered.differing === 0, `variant none renders as the unfiltered material (${none.vsUnfiltered.differing} pixels differ)`);
@@ -116,6 +132,8 @@ try {
     // contexts were left alive until Chromium lost the oldest, the shared one; fresh() now
     // releases each.)
     check(r.shared === 0, `${name}: one renderer, every configuration in turn, the same picture as a fresh renderer (${r.shared} pixels differ)`);
+    if (splitEntries[name]) check(r.splitVsPlanned <= 5,
+          `${name}: the lobe split per pixel and per light (four lights' plan) renders as the one-pass BRDF (${r.splitVsPlanned} pixels differ by > 2/255)`);
   }
   check(result.programs >= 4, `one program per configuration (${result.programs})`);
 } finally {

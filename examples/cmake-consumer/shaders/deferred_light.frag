@@ -32,8 +32,6 @@ void main() {
   vec3 i_ts = vec3(dot(l, t), dot(l, b), dot(l, n));
   vec3 o_ts = vec3(dot(v, t), dot(v, b), dot(v, n));
   float alpha2 = material.alpha * material.alpha;
-  // The lobe's light-independent part once per pixel; a pass shading several lights reuses it.
-  vec4 lobe = saa_ggx_filtered_lobe_isotropic(filtered, alpha2);
-  float specular = saa_ggx_brdf_filtered_lobe(i_ts, o_ts, filtered, alpha2, lobe);
+  float specular = saa_ggx_brdf_filtered_axis(i_ts, o_ts, vec2(filtered), vec2(alpha2));
   out_radiance = vec4(frame.light_radiance.rgb * specular * max(i_ts.z, 0.0), 1.0);
 }

@@ -130,9 +130,9 @@ TEST(SpirvLibrary, EveryVariantIsAValidLinkableModuleExportingItsCoreFunctions) 
     std::cout << fmt::format("[ size     ] {:<34} {:>6} bytes {:>5} instructions, {} export(s)\n", library.file_name,
                              library.words.size() * 4, saagen::count_spirv_instructions(library.words), names.size());
   }
-  // As test_kernels: 4 forward + 7 deferred cores, deferred-aniso's covariance and 4 lighting
+  // As test_kernels: 4 forward + 7 deferred cores, deferred-aniso's covariance and 6 lighting
   // functions, 14 GGX + 6 Beckmann evaluators, 9 prefilter cores.
-  EXPECT_EQ(exported, 45u);
+  EXPECT_EQ(exported, 47u);
 }
 
 TEST(SpirvLibrary, BytesAreDeterministicAndFollowTheEmissionOptions) {
@@ -357,6 +357,9 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
       push(out, d.o);
     else if (name == "tensor")
       push(out, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h));
+    else if (name == "tensor_lobe")
+      for (double v : ref::deferred_aniso_lobe(ref::Params{}, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h), d.alpha2.x))
+        push(out, v);
     else if (name == "mean_length")
       push(out, d.texel.mean_length);
     else if (name == "slope_mean")

@@ -11,14 +11,15 @@
 //   F4    forward   no           yes       speed     deferred-avg             -
 //   F5    forward   no           no        any       deferred-avg             -
 //   D0    deferred  no           any       accuracy  deferred-aniso           deferred_aniso_roughness, deferred_aniso_brdf
-//         (GGX without normal maps: the G-buffer tensor, (n.h)^2 per light; docs/DEFERRED_KERNEL.md)
+//         (GGX without normal maps: the G-buffer tensor; docs/DEFERRED_KERNEL.md)
 //   D1    deferred  any          any       accuracy  deferred-avg             -
 //   D2    deferred  any          any       speed     deferred-avg             -
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
-//   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_lobe (with its per-pixel
-//   setup ggx_filtered_lobe_isotropic) after a filter of one alpha^2 on an isotropic material,
-//   ggx_brdf_filtered_axis after every other filter (docs/FILTERED_GGX.md); deferred-aniso with
-//   its own lighting pass, deferred_aniso_brdf.
+//   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
+//   filter, except that at more than one light a filter of one alpha^2 on an isotropic material
+//   takes ggx_brdf_filtered_lobe (with its per-pixel setup ggx_filtered_lobe_isotropic)
+//   (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf (at
+//   more than one light deferred_aniso_brdf_lobe, with its per-pixel deferred_aniso_lobe).
 //   GGX materials without a `variant` or `preset` are then decided by saagen's one decision
 //   (saagen/decision.hpp through decide_material below; the bench's verdict uses the same) on their
 //   content type's figures (`content`): a trade table's by_content rows for it (under TAA its
@@ -74,8 +75,10 @@ struct MaterialPlan {
   // else generator/data/advice.json's "forward_half_vector_frame"), and costed so.
   bool forward_transported = false;
   // The BRDF to shade with: for GGX the tail-preserving filtered GGX (ggx_brdf_filtered_matrix for
-  // a roughness matrix, ggx_brdf_filtered_lobe for one isotropic alpha^2, its setup
-  // ggx_filtered_lobe_isotropic in `functions` too, ggx_brdf_filtered_axis otherwise); for Beckmann the matrix BRDF of the
+  // a roughness matrix, ggx_brdf_filtered_lobe for one isotropic alpha^2 at more than one light,
+  // its setup ggx_filtered_lobe_isotropic in `functions` too, ggx_brdf_filtered_axis otherwise;
+  // deferred-aniso's lighting pass deferred_aniso_brdf, or the pair deferred_aniso_lobe and
+  // deferred_aniso_brdf_lobe at more than one light); for Beckmann the matrix BRDF of the
   // forward-aniso-* filters; none: the engine's own BRDF.
   std::optional<std::string> brdf;
   // Where saagen's trade measured no filter beating every filter for this material's content and

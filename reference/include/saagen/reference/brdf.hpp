@@ -119,6 +119,8 @@ struct FilteredGgxLobes {
   double core_kernel = 1.0;        // c
 };
 FilteredGgxLobes filtered_ggx_lobes(double ratio);
+// c = 1 + w (1.3212 - 1.9936 w) from the tail lobe's weight w (template filtered_ggx_core_scale).
+double filtered_ggx_core_kernel(double tail_weight);
 
 // r = (K00 / ax^2 + K11 / ay^2) / 4 of a filtered matrix A = diag(alpha2) + K.
 double filtered_ggx_ratio(Sym2 a, Vec2 alpha2);
@@ -196,6 +198,12 @@ struct Brdf {
   double ggx_brdf_filtered_axis(Vec3 i, Vec3 o, Vec2 filtered, Vec2 alpha2) const;
   IsotropicLobe ggx_filtered_lobe_isotropic(double filtered, double alpha2) const;
   double ggx_brdf_filtered_lobe(Vec3 i, Vec3 o, double filtered, double alpha2, const IsotropicLobe& lobe) const;
+  // The isotropic material's matrix form split the same way (templates ggx_filtered_lobe_matrix and
+  // ggx_brdf_filtered_lobe_matrix): once per pixel (alpha^2 lambda, w, 1 / sqrt(det 2 M), f / 2) of a
+  // filtered A = alpha^2 I + K, then per light the BRDF with them; the pair is
+  // ggx_brdf_filtered_matrix(i, o, a, (alpha2, alpha2)).
+  IsotropicLobe ggx_filtered_lobe_matrix(Sym2 a, double alpha2) const;
+  double ggx_brdf_filtered_lobe_matrix(Vec3 i, Vec3 o, Sym2 a, double alpha2, const IsotropicLobe& lobe) const;
   // The matrix the axis form's NDF sees: diag(filtered), the kernel floored at 0 per axis when
   // guarded (template ggx_ndf_filtered_diagonal).
   Sym2 diagonal_ndf_matrix(Vec2 filtered, Vec2 alpha2) const;
@@ -222,8 +230,17 @@ struct Brdf {
 // A = diag(alpha^2) + (n.h)^2 K, h = normalize(l + v) (guarded as half_vector), in the frame
 // (normal_frame_tangent(n), normal_frame_bitangent(n), n).
 Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2);
+// The tail-preserving lobe's A = diag(alpha^2) + K (the tilt at the highlight's peak, 1), the same
+// for every light (template deferred_aniso_tail_roughness).
+Sym2 deferred_aniso_tail_roughness(Sym2 tensor, double alpha2);
 // The tail-preserving filtered GGX of that A, the light and view expressed in the same frame.
 double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2);
+// The same BRDF split: its lobe once per pixel (Brdf::ggx_filtered_lobe_matrix of that A), then per
+// light; deferred_aniso_brdf_lobe(p, l, v, n, K, a, deferred_aniso_lobe(p, K, a)) is
+// deferred_aniso_brdf(p, l, v, n, K, a).
+IsotropicLobe deferred_aniso_lobe(const Params& p, Sym2 tensor, double alpha2);
+double deferred_aniso_brdf_lobe(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2,
+                                const IsotropicLobe& lobe);
 
 // A texture covariance with deferred-aniso (docs/DEFERRED_KERNEL.md, "A texture covariance"). The
 // geometry pass: C = R (2 Sigma_tex) R^T, Sigma_tex = lean_covariance(slope_mean, slope_second)
@@ -231,7 +248,8 @@ double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 no
 // basis into (t', b') = (normal_frame_tangent(n), normal_frame_bitangent(n)); guarded: clamped to
 // PSD (sym2_clamp_psd). Not clamped by kappa.
 Sym2 deferred_aniso_covariance(const Params& p, Vec2 slope_mean, Sym2 slope_second, Vec3 tangent_ws, Vec3 bitangent_ws, Vec3 normal_ws);
-// The lighting pass: A = diag(alpha^2) + (n.h)^2 K + C, and the tail-preserving filtered GGX of it.
+// The lighting pass: A = diag(alpha^2) + (n.h)^2 K + C, and the tail-preserving filtered GGX of
+// diag(alpha^2) + K + C.
 Sym2 deferred_aniso_roughness_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
                                               double alpha2);
 double deferred_aniso_brdf_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,

@@ -45,15 +45,19 @@ std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height, s
 // G-buffer-side roughness `filtered` or tensor `tensor`; empty for forward forms and no SAA),
 // then `per_light` for each light, defining `real value` from light_ws, i_ts, half_ts (that
 // light's direction in world and tangent space, its half vector) and what per_pixel defined.
+// `one_light`, where it is not empty, replaces both at one light: a deferred form's tail-preserving
+// lobe in one pass, which the plan names there (its split per pixel and per light computes the
+// same value, and is cheaper from more than one light on; generator/scene/planner.cpp).
 struct SceneShading {
   std::string per_pixel;
   std::string per_light;
+  std::string one_light = {};
 };
 
 // A deferred form's shading after `filtered` (statements defining `real filtered`, its one alpha^2
 // per pixel): per light the papers' GGX of it, or with `tail` saagen's tail-preserving lobe, its
 // light-independent part (ggx_filtered_lobe_isotropic) once per pixel as a deferred lighting pass
-// computes it.
+// computes it, and at one light the lobe in one pass (ggx_brdf_filtered_axis).
 SceneShading deferred_lobe_shading(const std::string& filtered, bool tail);
 
 // Baseline (no SAA): the unfiltered alpha^2 through the axis-aligned GGX BRDF.
