@@ -57,8 +57,8 @@
 // roughness), a tangent-free filter of the roughness, or, with the tail-preserving filtered GGX
 // (the plan's brdf ggx_brdf_filtered_*: docs/FILTERED_GGX.md), three.js's BRDF_GGX patched to
 // evaluate saagen's lobe for the punctual lights: forward-aniso-projected and
-// forward-axis-projected per light on the half vector, deferred-aniso's G-buffer tensor scaled
-// by (n.h)^2 per light (docs/DEFERRED_KERNEL.md), the tangent-free filters' roughness. The
+// forward-axis-projected per light on the half vector, deferred-aniso's G-buffer tensor added to
+// alpha^2 I (docs/DEFERRED_KERNEL.md), the tangent-free filters' roughness. The
 // snippet is the bundle `saagen emit --manifest MANIFEST` writes for a manifest with
 // targets = ["gles"]; installSaagen below is the lower-level roughness-only form.
 import * as THREE from 'three';
