@@ -335,7 +335,7 @@ function planKind(entry) {
     throw new Error(`saagen-three: ${entry.variant} with the ${entry.prefilter} bake (a texture covariance) is not installable by this module; plan it with a tangent-free variant`);
   }
   const normal = entry.feed === 'shading' ? 'normal' : 'nonPerturbedNormal';
-  // The plan names a deferred form's lobe split per pixel and per light at more than one light.
+  // The plan names a deferred form's lobe split per pixel and per light from 4 lights on.
   const split = entry.brdf === 'ggx_brdf_filtered_lobe' || entry.brdf === 'deferred_aniso_brdf_lobe';
   return { kind, wrapper, tail, normal, bias: entry.prefilter !== 'none', split };
 }

@@ -45,7 +45,7 @@ constexpr const char* kMeasuredDeferredAniso =
     "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, its largest eigenvalue bounded by kappa) and the "
     "lighting pass adds it to alpha^2 I as the roughness matrix of the tail-preserving filtered GGX, which keeps the kernel's "
     "orientation (across a tube, not along it) that the isotropic deferred kernels lose (docs/DEFERRED_KERNEL.md). Costs 3 "
-    "G-buffer values and a matrix lobe, computed once per pixel at more than one light";
+    "G-buffer values and a matrix lobe, computed once per pixel from 4 lights on";
 
 // Table 2 of Tokuyoshi & Kaplanyan 2019 (forward shading, Sponza / Bistro / San Miguel): time
 // with the variant over time without SAA. deferred-avg x1.02-1.05, forward-* x1.13-1.31.
@@ -183,29 +183,31 @@ bool has_transported_form(const Variant& variant) { return std::ranges::any_of(v
 
 // The tail-preserving filtered GGX a filter's roughness feeds: the matrix form for a roughness
 // matrix, the axis form for per-axis roughness, and for one isotropic alpha^2 (the deferred
-// forms') at more than one light the form split into its per-pixel setup and its per-light BRDF,
+// forms') from 4 lights on the form split into its per-pixel setup and its per-light BRDF,
 // which pays per light only what depends on the light (docs/FILTERED_GGX.md). Both forms compute
 // the same value; at one light the committed ISA table measures the one-pass form cheaper (ACO's
-// estimate discounts the work behind a BRDF's early returns, where the one pass keeps it), from
-// four lights on the split.
+// estimate discounts the work behind a BRDF's early returns, where the one pass keeps it), at 4
+// and 16 lights the split.
 constexpr const char* kIsotropicLobeBrdf = "ggx_brdf_filtered_lobe";
 constexpr const char* kIsotropicLobeSetup = "ggx_filtered_lobe_isotropic";
 // deferred-aniso's lighting pass split the same way (templates/20-deferred.saa).
 constexpr const char* kTensorLobeBrdf = "deferred_aniso_brdf_lobe";
 constexpr const char* kTensorLobeSetup = "deferred_aniso_lobe";
 
-bool splits_lobe(const Material& material) { return material.lights > 1; }
+// The split where the plan is costed at more than one light (MaterialPlan::cost_lights: with the
+// committed table 4 lights or more), so that the form named is the one whose cost the plan reads.
+bool splits_lobe(const MaterialPlan& plan) { return plan.cost_lights > 1; }
 
-std::string tail_preserving_brdf(const Function& wrapper, bool per_axis, const Material& material) {
+std::string tail_preserving_brdf(const Function& wrapper, bool per_axis, const MaterialPlan& plan) {
   if (wrapper.return_type == "real3") return "ggx_brdf_filtered_matrix";
-  if (wrapper.return_type == "real" && !per_axis && splits_lobe(material)) return kIsotropicLobeBrdf;
+  if (wrapper.return_type == "real" && !per_axis && splits_lobe(plan)) return kIsotropicLobeBrdf;
   return "ggx_brdf_filtered_axis";
 }
 
-// Whether a deferred-aniso lighting function belongs in the plan: the split pair at more than one
-// light (with the tensor plus the texture covariance where there is one), else the one-pass BRDF
-// (with or without the covariance); the roughness functions (for an engine's own matrix BRDF) as
-// the texture term says. An engine's BRDF or a Beckmann material never takes the pair.
+// Whether a deferred-aniso lighting function belongs in the plan: the split pair where it splits
+// (splits_lobe; with the tensor plus the texture covariance where there is one), else the one-pass
+// BRDF (with or without the covariance); the roughness functions (for an engine's own matrix
+// BRDF) as the texture term says. An engine's BRDF or a Beckmann material never takes the pair.
 bool wanted_lighting_function(const std::string& name, const Function& function, bool texture_term, bool split) {
   if (name == kTensorLobeSetup || name == kTensorLobeBrdf) return split;
   if (is_covariance_function(name) != texture_term) return false;
@@ -238,9 +240,9 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
   if (const auto lighting = lighting_pass(catalogue, variant); !lighting.empty()) {
     // The wrapper writes a tensor for the G-buffer; the variant's lighting pass turns it into the
     // roughness matrix per light (deferred_aniso_roughness, for the engine's own matrix BRDF) and
-    // shades with the tail-preserving filtered GGX (deferred_aniso_brdf; at more than one light
+    // shades with the tail-preserving filtered GGX (deferred_aniso_brdf; from 4 lights on
     // deferred_aniso_lobe once per pixel and deferred_aniso_brdf_lobe per light).
-    const bool split = splits_lobe(material) && material.ndf == Ndf::ggx && !own_brdf;
+    const bool split = splits_lobe(plan) && material.ndf == Ndf::ggx && !own_brdf;
     for (const std::string& name : lighting) {
       const Function& function = *catalogue.find_function(name);
       if (!wanted_lighting_function(name, function, texture_term, split)) continue;
@@ -251,7 +253,7 @@ void choose_functions(const Catalogue& catalogue, const Material& material, bool
   }
   plan.per_axis = material.anisotropic && wrapper.return_type == "real";
   if (material.ndf == Ndf::ggx && !own_brdf && !material.glints) {  // the tail-preserving filtered GGX (docs/FILTERED_GGX.md)
-    const std::string brdf = tail_preserving_brdf(wrapper, plan.per_axis, material);
+    const std::string brdf = tail_preserving_brdf(wrapper, plan.per_axis, plan);
     if (!catalogue.find_function(brdf) || !catalogue.find_variant("brdf-ggx"))
       throw Error(fmt::format("internal error: the catalogue lacks {}", brdf));
     plan.brdf = brdf;
@@ -1504,10 +1506,10 @@ std::string rules_text() {
       "D0 applies to GGX materials without normal maps (ndf = \"ggx\", normal_maps = false); its lighting pass\n"
       "(deferred_aniso_roughness, deferred_aniso_brdf) is emitted with it. A normal-mapped material that names deferred-aniso\n"
       "and prefilters its map gets the lighting pass with the texture covariance instead (deferred_aniso_roughness_with_covariance,\n"
-      "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments). At more than one light (lights > 1)\n"
+      "deferred_aniso_brdf_with_covariance; deferred_aniso_covariance for LEAN's moments). From 4 lights on (lights >= 4)\n"
       "deferred_aniso_lobe once per pixel and deferred_aniso_brdf_lobe per light replace the lighting pass's BRDF.\n"
       "GGX materials also emit the tail-preserving filtered GGX to shade with (ggx_brdf_filtered_matrix after forward-aniso-*,\n"
-      "ggx_brdf_filtered_axis otherwise; after a filter of one alpha^2 on an isotropic material at more than one light\n"
+      "ggx_brdf_filtered_axis otherwise; after a filter of one alpha^2 on an isotropic material from 4 lights on\n"
       "ggx_filtered_lobe_isotropic once per pixel and ggx_brdf_filtered_lobe per light), except under an engine's preset (its\n"
       "own BRDF); Beckmann forward-aniso-* emit beckmann_brdf_matrix and ndf_clamp_tau.\n"
       "anisotropic = true with tangents = false is rejected.\n"

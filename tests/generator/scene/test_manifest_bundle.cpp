@@ -73,7 +73,7 @@ TEST(Bundle, HoldsExactlyTheClosureOfTheMaterialsFunctions) {
   EXPECT_FALSE(defined.count("deferred_aniso_fragment"));
   EXPECT_TRUE(defined.count("deferred_sum_fragment"));
   // GGX pulls the tail-preserving filtered GGX: terrain's deferred-sum at one light its one-pass
-  // form (the split per pixel and per light is planned from two lights on).
+  // form (the split per pixel and per light is planned from 4 lights on, where it is costed).
   EXPECT_FALSE(defined.count("ggx_filtered_lobe_isotropic"));
   EXPECT_FALSE(defined.count("ggx_brdf_filtered_lobe"));
   EXPECT_TRUE(defined.count("ggx_brdf_filtered_axis"));

@@ -122,7 +122,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "D2",
                  "deferred-avg",
                  {"deferred_avg", "deferred_avg_fragment"}},
-        // At more than one light the deferred forms' lobe is split per pixel and per light.
+        // From 4 lights on the deferred forms' lobe is split per pixel and per light.
         RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\nlights = 4\n",
                  "manifest",
                  "deferred-sum",

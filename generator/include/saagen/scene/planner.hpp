@@ -16,10 +16,10 @@
 //   D2    deferred  any          any       speed     deferred-avg             -
 //   GGX materials (no engine preset) are shaded with the tail-preserving filtered GGX instead:
 //   ggx_brdf_filtered_matrix after forward-aniso-*, ggx_brdf_filtered_axis after every other
-//   filter, except that at more than one light a filter of one alpha^2 on an isotropic material
+//   filter, except that from 4 lights on a filter of one alpha^2 on an isotropic material
 //   takes ggx_brdf_filtered_lobe (with its per-pixel setup ggx_filtered_lobe_isotropic)
 //   (docs/FILTERED_GGX.md); deferred-aniso with its own lighting pass, deferred_aniso_brdf (at
-//   more than one light deferred_aniso_brdf_lobe, with its per-pixel deferred_aniso_lobe).
+//   4 lights on deferred_aniso_brdf_lobe, with its per-pixel deferred_aniso_lobe).
 //   GGX materials without a `variant` or `preset` are then decided by saagen's one decision
 //   (saagen/decision.hpp through decide_material below; the bench's verdict uses the same) on their
 //   content type's figures (`content`): a trade table's by_content rows for it (under TAA its
@@ -75,10 +75,10 @@ struct MaterialPlan {
   // else generator/data/advice.json's "forward_half_vector_frame"), and costed so.
   bool forward_transported = false;
   // The BRDF to shade with: for GGX the tail-preserving filtered GGX (ggx_brdf_filtered_matrix for
-  // a roughness matrix, ggx_brdf_filtered_lobe for one isotropic alpha^2 at more than one light,
+  // a roughness matrix, ggx_brdf_filtered_lobe for one isotropic alpha^2 from 4 lights on,
   // its setup ggx_filtered_lobe_isotropic in `functions` too, ggx_brdf_filtered_axis otherwise;
   // deferred-aniso's lighting pass deferred_aniso_brdf, or the pair deferred_aniso_lobe and
-  // deferred_aniso_brdf_lobe at more than one light); for Beckmann the matrix BRDF of the
+  // deferred_aniso_brdf_lobe from 4 lights on: where cost_lights > 1); for Beckmann the matrix BRDF of the
   // forward-aniso-* filters; none: the engine's own BRDF.
   std::optional<std::string> brdf;
   // Where saagen's trade measured no filter beating every filter for this material's content and

@@ -47,7 +47,7 @@ std::vector<float> parameter_buffer(std::uint32_t width, std::uint32_t height, s
 // light's direction in world and tangent space, its half vector) and what per_pixel defined.
 // `one_light`, where it is not empty, replaces both at one light: a deferred form's tail-preserving
 // lobe in one pass, which the plan names there (its split per pixel and per light computes the
-// same value, and is cheaper from more than one light on; generator/scene/planner.cpp).
+// same value, and the plan names it from 4 lights on; generator/scene/planner.cpp).
 struct SceneShading {
   std::string per_pixel;
   std::string per_light;
