@@ -122,7 +122,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "D2",
                  "deferred-avg",
                  {"deferred_avg", "deferred_avg_fragment"}},
-        // From 4 lights on the deferred forms' lobe is split per pixel and per light.
+        // From 4 lights on the deferred forms' lobe is split per pixel and per light; 2 and 3
+        // lights are costed at one light's row, and get its one-pass form.
+        RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\nlights = 3\n",
+                 "manifest",
+                 "deferred-sum",
+                 {"deferred_sum", "deferred_sum_fragment", "ggx_brdf_filtered_axis"}},
         RuleCase{"path = \"deferred\"\nvariant = \"deferred-sum\"\nlights = 4\n",
                  "manifest",
                  "deferred-sum",
