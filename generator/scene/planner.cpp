@@ -1556,6 +1556,15 @@ std::string material_traits(const Material& material) {
   return fmt::format("{}", fmt::join(traits, ", "));
 }
 
+// deferred-aniso's texture covariance as the shade lines name it: LEAN's from the texel's moments,
+// or a scalar bake's (v, 0, v).
+std::string texture_covariance_words(const std::string& prefix, const MaterialPlan& material_plan) {
+  if (material_plan.prefilter == "lean")
+    return fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
+                       prefixed_name(prefix, "deferred_aniso_covariance"));
+  return fmt::format("C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter);
+}
+
 // The "  shade" line (and the glints' "  resource" line): what the engine does with the call's result.
 std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, const Material& material, const MaterialPlan& material_plan,
                         bool converted) {
@@ -1576,10 +1585,9 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
         prefixed_name(prefix, kTensorLobeSetup), prefixed_name(prefix, kTensorLobeBrdf),
         !texture_term ? ""
         : material_plan.prefilter == "lean"
-            ? fmt::format(" plus the texture covariance C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of "
-                          "the texel's LEAN moments (3 more G-buffer values, 16-bit float: not bounded by kappa)",
-                          prefixed_name(prefix, "deferred_aniso_covariance"))
-            : fmt::format(" plus the texture covariance C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
+            ? fmt::format(" plus the texture covariance {} (3 more G-buffer values, 16-bit float: not bounded by kappa)",
+                          texture_covariance_words(prefix, material_plan))
+            : " plus the texture covariance " + texture_covariance_words(prefix, material_plan),
         texture_term ? " + C" : "",
         prefixed_name(prefix, texture_term ? "deferred_aniso_roughness_with_covariance" : "deferred_aniso_roughness"),
         texture_term ? " + C" : "");
@@ -1590,11 +1598,7 @@ std::string shade_lines(const Catalogue& catalogue, const Manifest& manifest, co
         "the call above stored (3 G-buffer values: K00, K11 in [0, kappa], K01 in [-kappa/2, kappa/2]), the texture covariance "
         "{} (3 more G-buffer values, 16-bit float: not bounded by kappa) and the normal it read (the tail-preserving filtered "
         "GGX of A = diag(alpha^2) + K + C; {} returns diag(alpha^2) + (n.h)^2 K + C for an engine's own matrix BRDF)\n",
-        prefixed_name(prefix, *material_plan.brdf),
-        material_plan.prefilter == "lean"
-            ? fmt::format("C = {}(slope_mean, slope_second, tangent_ws, bitangent_ws, normal_ws) of the texel's LEAN moments",
-                          prefixed_name(prefix, "deferred_aniso_covariance"))
-            : fmt::format("C = (v, 0, v) of the {} bake, v = its alpha'^2 - alpha^2", material_plan.prefilter),
+        prefixed_name(prefix, *material_plan.brdf), texture_covariance_words(prefix, material_plan),
         prefixed_name(prefix, "deferred_aniso_roughness_with_covariance"));
   }
   if (shades_from_tensor(catalogue, material_plan)) {

@@ -444,9 +444,15 @@ Sym2 deferred_aniso_roughness(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3
 
 Sym2 deferred_aniso_tail_roughness(Sym2 tensor, double alpha2) { return Sym2{alpha2, 0.0, alpha2} + tensor; }
 
+namespace {
+// A world-space direction in the frame the lighting pass rebuilds from the normal (to_normal_frame).
+Vec3 in_normal_frame(Vec3 v, Vec3 normal_ws) {
+  return to_tangent_space(v, normal_frame_tangent(normal_ws), normal_frame_bitangent(normal_ws), normal_ws);
+}
+}  // namespace
+
 double deferred_aniso_brdf(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2) {
-  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws),
+  return Brdf{p}.ggx_brdf_filtered_matrix(in_normal_frame(light_ws, normal_ws), in_normal_frame(view_ws, normal_ws),
                                           deferred_aniso_tail_roughness(tensor, alpha2), {alpha2, alpha2});
 }
 
@@ -456,8 +462,7 @@ IsotropicLobe deferred_aniso_lobe(const Params& p, Sym2 tensor, double alpha2) {
 
 double deferred_aniso_brdf_lobe(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, double alpha2,
                                 const IsotropicLobe& lobe) {
-  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  return Brdf{p}.ggx_brdf_filtered_lobe_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws),
+  return Brdf{p}.ggx_brdf_filtered_lobe_matrix(in_normal_frame(light_ws, normal_ws), in_normal_frame(view_ws, normal_ws),
                                                deferred_aniso_tail_roughness(tensor, alpha2), alpha2, lobe);
 }
 
@@ -479,10 +484,7 @@ Sym2 deferred_aniso_roughness_with_covariance(const Params& p, Vec3 light_ws, Ve
 
 double deferred_aniso_brdf_with_covariance(const Params& p, Vec3 light_ws, Vec3 view_ws, Vec3 normal_ws, Sym2 tensor, Sym2 covariance,
                                            double alpha2) {
-  const Vec3 t = normal_frame_tangent(normal_ws), b = normal_frame_bitangent(normal_ws);
-  const Sym2 a = deferred_aniso_tail_roughness(tensor + covariance, alpha2);
-  return Brdf{p}.ggx_brdf_filtered_matrix(to_tangent_space(light_ws, t, b, normal_ws), to_tangent_space(view_ws, t, b, normal_ws), a,
-                                          {alpha2, alpha2});
+  return deferred_aniso_brdf(p, light_ws, view_ws, normal_ws, tensor + covariance, alpha2);
 }
 
 // Fragment wrappers on a quad

@@ -184,11 +184,9 @@ rc::Gen<Element> gen_core_element(const Function& f) {
       } else if (p.name == "view_ws") {
         push(e, o);
       } else if (p.name == "tensor") {
-        push(e, material.a - Sym2{material.alpha2.x, 0.0, material.alpha2.y});
+        push(e, stab::material_tensor(material));
       } else if (p.name == "tensor_lobe") {
-        for (double v :
-             ref::deferred_aniso_lobe(ref::Params{}, material.a - Sym2{material.alpha2.x, 0.0, material.alpha2.y}, material.alpha2.x))
-          push(e, v);
+        for (double v : ref::deferred_aniso_lobe(ref::Params{}, stab::material_tensor(material), material.alpha2.x)) push(e, v);
       } else if (p.name == "covariance") {  // PSD, not bounded by kappa: trace 1e-8 .. 1e8
         const double trace = std::pow(10.0, *rc::gen::inRange(-80, 81) / 10.0);
         const double angle = *gen_angle(), ratio = *rc::gen::inRange(0, 101) / 100.0;

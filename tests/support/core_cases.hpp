@@ -131,6 +131,7 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
   const Vec2 alpha2{s.alpha_x * s.alpha_x, s.alpha_y * s.alpha_y};
   const saagen::test::PrefilterInputs texel = saagen::test::prefilter_inputs(index);
   const Sym2 matrix = roughness_matrix(s);
+  const Sym2 tensor = ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h);  // deferred-aniso's geometry pass
   // The texture frame of deferred_aniso_covariance around normal_ws = h, mirrored every other index.
   const saagen::test::TextureFrame frame = saagen::test::texture_frame(s.h, s.matrix_angle, index % 2 == 0 ? 1.0 : -1.0);
   for (const saagen::Parameter& parameter : function.parameters) {
@@ -172,9 +173,9 @@ inline void pack_inputs(const saagen::Function& function, const Scenario& s, std
     else if (name == "view_ws")
       push(out, s.o);
     else if (name == "tensor")
-      push(out, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h));
+      push(out, tensor);
     else if (name == "tensor_lobe")
-      push(out, ref::deferred_aniso_lobe(params, ref::deferred_aniso(params, s.dh_x, s.dh_y, s.h), alpha2.x));
+      push(out, ref::deferred_aniso_lobe(params, tensor, alpha2.x));
     else if (name == "mean_length")
       push(out, texel.mean_length);
     else if (name == "slope_mean")

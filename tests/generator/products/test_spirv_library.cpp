@@ -315,6 +315,7 @@ void push(std::vector<float>& out, Sym2 m) { push(out, m.xx), push(out, m.xy), p
 // The inputs of a function, by parameter name (templates/*.saa).
 void pack(const saagen::Function& function, const Draw& d, std::vector<float>& out) {
   const bool reads_alpha2 = saagen::test::takes_unfiltered_alpha2(function);
+  const Sym2 tensor = ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h);  // deferred-aniso's geometry pass
   for (const saagen::Parameter& parameter : function.parameters) {
     const std::string& name = parameter.name;
     if (name == "alpha2")
@@ -356,10 +357,9 @@ void pack(const saagen::Function& function, const Draw& d, std::vector<float>& o
     else if (name == "view_ws")
       push(out, d.o);
     else if (name == "tensor")
-      push(out, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h));
+      push(out, tensor);
     else if (name == "tensor_lobe")
-      for (double v : ref::deferred_aniso_lobe(ref::Params{}, ref::deferred_aniso(ref::Params{}, d.dh_x, d.dh_y, d.h), d.alpha2.x))
-        push(out, v);
+      for (double v : ref::deferred_aniso_lobe(ref::Params{}, tensor, d.alpha2.x)) push(out, v);
     else if (name == "mean_length")
       push(out, d.texel.mean_length);
     else if (name == "slope_mean")
