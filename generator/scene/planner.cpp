@@ -42,7 +42,7 @@ struct Rule {
 // deferred-aniso with the tail-preserving filtered GGX the planner shades GGX with; what it measured
 // against no SAA is the decision's own text (generator/data/advice.json), appended to the plan.
 constexpr const char* kMeasuredDeferredAniso =
-    "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, its largest eigenvalue bounded by kappa) and the "
+    "the G-buffer stores the normal-variation tensor 2 sigma^2 Dn^T Dn (3 values, its trace bounded by kappa as the papers' deferred clamp bounds theirs) and the "
     "lighting pass adds it to alpha^2 I as the roughness matrix of the tail-preserving filtered GGX, which keeps the kernel's "
     "orientation (across a tube, not along it) that the isotropic deferred kernels lose (docs/DEFERRED_KERNEL.md). Costs 3 "
     "G-buffer values and a matrix lobe, computed once per pixel from 4 lights on";

@@ -170,37 +170,30 @@ Sym2 normal_variation_in_normal_frame(Vec3 dn_dx, Vec3 dn_dy, Vec3 n) {
   return sym2_from_derivative_rows({dot(dn_dx, t), dot(dn_dx, b)}, {dot(dn_dy, t), dot(dn_dy, b)});
 }
 
-// M scaled by min(1, bound / lambda_max) (template sym2_bounded_through_unit_trace): eigenvectors
-// and eigenvalue ratio kept, of the unit-trace M / tr(M) as the template does.
-Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound) {
-  const double trace = m.xx + m.yy;
-  if (trace <= bound) return m;
-  if (trace < p.guard_constants().tiny_positive) return {bound, 0.0, bound};
-  const Sym2 unit{m.xx / trace, m.xy / trace, m.yy / trace};
-  const double half_difference = 0.5 * (unit.xx - unit.yy);
-  const double larger_unit = 0.5 * (unit.xx + unit.yy) + std::sqrt(half_difference * half_difference + unit.xy * unit.xy);
-  return min(trace, bound / larger_unit) * unit;
+// M scaled by min(1, bound / tr(M)) (template sym2_trace_bounded): eigenvectors and eigenvalue
+// ratio kept, the trace at most bound as T&K 2019 Eq. 4 bounds the same sum of squares.
+Sym2 sym2_trace_bounded(Sym2 m, double bound) {
+  const double half_trace = 0.5 * m.xx + 0.5 * m.yy;
+  if (half_trace <= 0.5 * bound) return m;
+  return ((0.5 * bound) / half_trace) * m;
 }
 
-// scale M min(1, bound / (scale lambda_max(M))) = bound / max(bound / scale, lambda_max(M)) M
-// (template sym2_scaled_to_eigenvalue_bound): scale times the matrix sym2_bounded_through_unit_trace
-// gives for bound / scale, without its unit-trace division; the divisor is at least bound / scale.
-Sym2 sym2_scaled_to_eigenvalue_bound(Sym2 m, double scale, double bound) {
-  return (bound / std::max(bound / scale, sym2_max_eigenvalue(m))) * m;
-}
+// scale M min(1, bound / (scale tr(M))) = bound / max(bound / scale, tr(M)) M (template
+// sym2_scaled_to_trace_bound): scale times the matrix sym2_trace_bounded gives for bound / scale,
+// without its branch; the divisor is at least bound / scale.
+Sym2 sym2_scaled_to_trace_bound(Sym2 m, double scale, double bound) { return (bound / std::max(bound / scale, m.xx + m.yy)) * m; }
 
 // The normal matrix 2 sigma^2 Dn^T Dn (T&K 2019 Sec. 2.2) in the frame built from n.
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
   const Vec3 dx = p.guards ? clamp_derivative3(p, dn_dx) : dn_dx;
   const Vec3 dy = p.guards ? clamp_derivative3(p, dn_dy) : dn_dy;
-  return (2.0 * p.sigma2) *
-         sym2_bounded_through_unit_trace(p, normal_variation_in_normal_frame(dx, dy, normal_ws), p.kappa / (2.0 * p.sigma2));
+  return (2.0 * p.sigma2) * sym2_trace_bounded(normal_variation_in_normal_frame(dx, dy, normal_ws), p.kappa / (2.0 * p.sigma2));
 }
 
 // deferred_aniso for the differences of vectors of length <= 1 (template
-// deferred_aniso_from_bounded_derivatives): no clamp, the eigenvalue bound on Dn^T Dn itself.
+// deferred_aniso_from_bounded_derivatives): no clamp, the trace bound on Dn^T Dn itself.
 Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws) {
-  return sym2_scaled_to_eigenvalue_bound(normal_variation_in_normal_frame(dn_dx, dn_dy, normal_ws), 2.0 * p.sigma2, p.kappa);
+  return sym2_scaled_to_trace_bound(normal_variation_in_normal_frame(dn_dx, dn_dy, normal_ws), 2.0 * p.sigma2, p.kappa);
 }
 
 // ---------------------------------------------------------------------------------------------

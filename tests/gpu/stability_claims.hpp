@@ -21,13 +21,12 @@
 //    Products below FLT_MIN = 2^-126 underflow (or flush to zero, which Vulkan allows): K11 can
 //    come out 0 while its exact value is up to 2 sigma^2 * 2 FLT_MIN <= 16 FLT_MIN (sigma^2 <= 4),
 //    and A01^2 <= A00 K11 then exceeds A00 A11 by at most 16 FLT_MIN A00 = 2^-122 A00.
-//  - kTensorSlack: deferred-aniso's tensor entries <= kappa (diagonal), kappa / 2 (off-diagonal)
-//    plus 2^-21. The bound kappa / (2 sigma^2) rounds once, the clamped diagonal
-//    smaller + (larger - smaller) p (p in [0, 1]) three times, the scale by 2 sigma^2 (exact
-//    power-of-two factor times a rounded SIGMA2) once more: 5 units of 2^-24 of kappa <= 1,
-//    2^-21 = 8. Its PSD check is kPsdSlack's: the unclamped branch is Delta^T Delta as above,
-//    the clamped one s I + c P1 with P1's smaller diagonal entry written without cancellation,
-//    so det(P1) = p00 p11 - p01^2 is a few units of 2^-24 of p01^2 <= p00 p11.
+//  - kTensorSlack: deferred-aniso's tensor trace K00 + K11 <= kappa (the bound), so each
+//    diagonal entry <= kappa and the off-diagonal <= kappa / 2, plus 2^-21. The factor
+//    kappa / max(kappa / (2 sigma^2), tr) rounds the quotient, the trace and the division (the
+//    maximum is exact), each entry's product once more and the sum of the two diagonal entries
+//    once, with a rounded SIGMA2 and KAPPA: 7 units of 2^-24 of kappa <= 1, 2^-21 = 8. Its PSD
+//    check is kPsdSlack's: one factor times Delta^T Delta, whose entries are as above.
 #pragma once
 
 #include "saagen/reference/reference.hpp"
@@ -51,7 +50,7 @@ enum class Claim {
   covariance,             // lean_covariance, deferred_aniso_covariance: finite, diagonal >= 0, det >= -(rounding)
   prefiltered,            // prefilter_toksvig(_sum), prefilter_lean_sum: min(a, 1) <= out <= 1 (the texture term is not clamped)
   prefiltered_projected,  // prefilter_*_projected: saturate(a) <= out <= 1 (+-2^-22)
-  kernel_tensor,          // deferred_aniso(_fragment): finite, K00, K11 in [0, kappa], |K01| <= kappa / 2, det K >= -(rounding)
+  kernel_tensor,          // deferred_aniso(_fragment): finite, K00, K11 >= 0, K00 + K11 <= kappa, |K01| <= kappa / 2, det K >= -(rounding)
   isotropic_lobe,         // ggx_filtered_lobe_isotropic, deferred_aniso_lobe: finite, alpha^2 lambda > 0, 0 < w <= 1, 1 / (4 m) or
                           // 1 / sqrt(det 2 M) > 0, 0 <= f / 2 <= 0.0861 (+2^-8)
   tensor_roughness,  // deferred_aniso_roughness(_with_covariance): finite, A00, A11 >= alpha^2, det A >= -(rounding) (for PSD tensor and
@@ -172,7 +171,7 @@ inline Verdict judge(Claim claim, double kappa, std::span<const double> alpha2, 
     }
     case Claim::kernel_tensor: {
       if (out[0] < 0.0 || out[2] < 0.0) fail("negative K00 or K11");
-      if (out[0] > kappa + kTensorSlack || out[2] > kappa + kTensorSlack) fail("K00 or K11 > kappa");
+      if (out[0] + out[2] > kappa + kTensorSlack) fail("K00 + K11 > kappa");
       if (std::fabs(out[1]) > 0.5 * kappa + kTensorSlack) fail("|K01| > kappa / 2");
       if (out[0] * out[2] - out[1] * out[1] < -kPsdSlack * out[0] * out[2] - kPsdUnderflow * (out[0] + out[2])) {
         fail("det K < 0 beyond rounding");

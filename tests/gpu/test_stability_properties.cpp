@@ -541,8 +541,8 @@ void monotone_in_derivatives(Evaluator& evaluator, const Function& f, const std:
   }
   const auto out = evaluator.run(f, pairs);
   const double slack = 4.0 * evaluator.unit();
-  // deferred-aniso's tensor of s^2 Delta^T Delta, scaled by min(1, kappa / lambda_max), is s^2 K
-  // until its largest eigenvalue reaches kappa and constant beyond: it grows in the PSD order
+  // deferred-aniso's tensor of s^2 Delta^T Delta, scaled by min(1, kappa / tr), is s^2 K until its
+  // trace reaches kappa and constant beyond: it grows in the PSD order
   // (continuous at the bound), and only as long as the derivatives scale as a whole (no component
   // clamped at DERIVATIVE_MAX, which turns them); its diagonal follows from that order, with the
   // same slack (rounding turns the eigenvectors by a few units of 2^-24, which moves a diagonal

@@ -332,7 +332,7 @@ TEST(Clamp, HugeDerivativesReachAlphaSquaredPlusKappaExactly) {
   EXPECT_EQ(deferred_sum(off, a, hx, hy), a);
 }
 
-TEST(Clamp, DeferredAnisoBoundsTheLargestEigenvalueAndKeepsTheKernelsShape) {
+TEST(Clamp, DeferredAnisoBoundsTheTraceAsEq4AndKeepsTheKernelsShape) {
   const Params p;  // sigma^2 = 0.25, kappa = 0.18
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-3.0, 3.0);
@@ -340,26 +340,32 @@ TEST(Clamp, DeferredAnisoBoundsTheLargestEigenvalueAndKeepsTheKernelsShape) {
     const Vec2 du{u(rng), u(rng)}, dv{u(rng), u(rng)};
     const Sym2 raw = sym2_from_derivative_rows(du, dv);
     const double bound = 0.01 + 0.5 * std::fabs(u(rng));
-    const Sym2 bounded = sym2_bounded_through_unit_trace(p, raw, bound);
-    if (trace(raw) <= bound) {  // every eigenvalue is at most the trace: nothing to bound
+    const Sym2 bounded = sym2_trace_bounded(raw, bound);
+    if (trace(raw) <= bound) {  // nothing to bound
       EXPECT_EQ(bounded.xx, raw.xx);
       EXPECT_EQ(bounded.xy, raw.xy);
       EXPECT_EQ(bounded.yy, raw.yy);
       continue;
     }
-    // One factor s = min(1, bound / lambda_max) on every entry: orientation and anisotropy kept.
-    const double s = std::min(1.0, bound / sym2_max_eigenvalue(raw));
-    expect_sym2_near(bounded, s * raw);
-    EXPECT_LE(sym2_max_eigenvalue(bounded), bound * (1.0 + 1e-12));
+    // One factor s = bound / tr on every entry: orientation and anisotropy kept, the trace = bound.
+    expect_sym2_near(bounded, (bound / trace(raw)) * raw);
+    EXPECT_TRUE(near_rel(trace(bounded), bound));
+    // The branch-free form with the scale gives scale times the same matrix.
+    expect_sym2_near(sym2_scaled_to_trace_bound(raw, 2.0, 2.0 * bound), 2.0 * bounded);
   }
-  // A kernel along one axis: lambda_max = 2 sigma^2 |d|^2 = 0.5 * 100 -> kappa, the other axis 0.
+  // A kernel along one axis (an edge's): tr = lambda_max = 2 sigma^2 |d|^2 = 0.5 * 100 -> kappa,
+  // the other axis 0: the bound of Eq. 4's clamp, min(2 sigma^2 (|dn_x|^2 + |dn_y|^2), kappa).
   const Sym2 line = deferred_aniso(p, Vec3{10, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 1});
   EXPECT_TRUE(near_rel(sym2_max_eigenvalue(line), p.kappa));
   EXPECT_NEAR(trace(line) - sym2_max_eigenvalue(line), 0.0, 1e-15);
-  // Anisotropy 4:1 beyond the bound stays 4:1 (a per-eigenvalue clamp would make it 1:1).
+  // Anisotropy 4:1 beyond the bound stays 4:1 (a per-eigenvalue clamp would make it 1:1):
+  // eigenvalues 4 kappa / 5 and kappa / 5, whose sum is kappa.
   const Sym2 wide = deferred_aniso(p, Vec3{20, 0, 0}, Vec3{0, 10, 0}, Vec3{0, 0, 1});
-  EXPECT_TRUE(near_rel(sym2_max_eigenvalue(wide), p.kappa));
-  EXPECT_TRUE(near_rel(trace(wide) - sym2_max_eigenvalue(wide), p.kappa / 4.0));
+  EXPECT_TRUE(near_rel(sym2_max_eigenvalue(wide), 0.8 * p.kappa));
+  EXPECT_TRUE(near_rel(trace(wide) - sym2_max_eigenvalue(wide), 0.2 * p.kappa));
+  // The fragment wrapper's form (bounded derivatives, no clamp) gives the same tensor.
+  expect_sym2_near(deferred_aniso_from_bounded_derivatives(p, Vec3{1.5, 0, 0}, Vec3{0, 0.75, 0}, Vec3{0, 0, 1}),
+                   deferred_aniso(p, Vec3{1.5, 0, 0}, Vec3{0, 0.75, 0}, Vec3{0, 0, 1}));
 }
 
 TEST(Clamp, AxisVariantsClampEachAxisSeparately) {

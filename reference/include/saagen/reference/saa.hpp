@@ -161,21 +161,21 @@ Vec3 normal_frame_bitangent(Vec3 n);
 
 // Dn^T Dn, Dn the rows (dn_dx, dn_dy) read in the frame normal_frame_tangent / _bitangent(n).
 Sym2 normal_variation_in_normal_frame(Vec3 dn_dx, Vec3 dn_dy, Vec3 n);
-// M = Delta^T Delta scaled by min(1, bound / lambda_max): unchanged when its trace is <= bound,
-// else its eigenvectors and eigenvalue ratio kept with the largest eigenvalue = bound; of
-// M / tr(M) as the template does, so that M's squares may overflow.
-Sym2 sym2_bounded_through_unit_trace(const Params& p, Sym2 m, double bound);
-// scale M with the same bound, for a matrix M whose squares cannot overflow:
-// bound / max(bound / scale, lambda_max(M)) M, its largest eigenvalue at most bound.
-Sym2 sym2_scaled_to_eigenvalue_bound(Sym2 m, double scale, double bound);
+// M = Delta^T Delta scaled by min(1, bound / tr(M)): unchanged when its trace is <= bound, else
+// its eigenvectors and eigenvalue ratio kept with the trace = bound (T&K 2019 Eq. 4's clamp of the
+// same sum of squares); the trace halved first, as the template does, so that it cannot overflow.
+Sym2 sym2_trace_bounded(Sym2 m, double bound);
+// scale M with the same bound, for a matrix M whose trace cannot overflow:
+// bound / max(bound / scale, tr(M)) M, its trace at most bound.
+Sym2 sym2_scaled_to_trace_bound(Sym2 m, double scale, double bound);
 
 // The G-buffer tensor K = 2 sigma^2 Dn^T Dn, Dn the rows (dn_dx, dn_dy) in the frame of
-// normal_frame_tangent / normal_frame_bitangent(normal_ws), scaled so that its largest eigenvalue
-// is at most kappa (the bound on Dn^T Dn is kappa / (2 sigma^2), then the scale). Guarded:
+// normal_frame_tangent / normal_frame_bitangent(normal_ws), scaled so that its trace is at most
+// kappa (the bound on Dn^T Dn is kappa / (2 sigma^2), then the scale). Guarded:
 // derivatives clamped (clamp_derivative3).
 Sym2 deferred_aniso(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
 // The same tensor for derivatives of a vector of length <= 1 (|dn| <= 2), as the fragment wrapper
-// takes them: no clamp, and the eigenvalue bound on Dn^T Dn itself (sym2_scaled_to_eigenvalue_bound).
+// takes them: no clamp, and the trace bound on Dn^T Dn itself (sym2_scaled_to_trace_bound).
 Sym2 deferred_aniso_from_bounded_derivatives(const Params& p, Vec3 dn_dx, Vec3 dn_dy, Vec3 normal_ws);
 
 // ---------------------------------------------------------------------------------------------
